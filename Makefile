@@ -1,0 +1,61 @@
+# mpmstab front door. `make` builds, `make test` runs the test suite, `make bench` the benchmarks.
+# Every target first installs the Debian packages it needs if they are missing.
+
+BUILD_DIR  ?= build
+BUILD_TYPE ?= Release
+JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
+# CI builds treat compiler warnings as errors.
+WERROR     ?= $(if $(CI),ON,OFF)
+
+DEB_PACKAGES := cmake g++ make libeigen3-dev nlohmann-json3-dev libgtest-dev libgmock-dev \
+                libbenchmark-dev gnuplot-nox clang-format python3
+
+.PHONY: all build deps test bench format format-check clean help
+
+all: build
+
+help:
+	@echo "make              install missing packages, configure and build into $(BUILD_DIR)/"
+	@echo "make test         build and run the GoogleTest suite (CTest)"
+	@echo "make bench        run the step benchmark, write results/benchmark_step.json"
+	@echo "make format       clang-format every source file in place"
+	@echo "make deps         only install the missing Debian packages"
+
+# Install only what is missing; apt-get needs root (sudo is used when available).
+deps:
+	@missing=""; for p in $(DEB_PACKAGES); do \
+	  dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "ok installed" || missing="$$missing $$p"; \
+	done; \
+	if [ -n "$$missing" ]; then \
+	  echo "Installing missing Debian packages:$$missing"; \
+	  SUDO=""; [ "$$(id -u)" -ne 0 ] && SUDO="sudo"; \
+	  $$SUDO apt-get update -qq && \
+	  DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y -qq --no-install-recommends $$missing; \
+	fi
+
+$(BUILD_DIR)/CMakeCache.txt: CMakeLists.txt | deps
+	cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) -DMPMSTAB_WERROR=$(WERROR)
+
+build: deps $(BUILD_DIR)/CMakeCache.txt
+	cmake -S . -B $(BUILD_DIR) -DMPMSTAB_WERROR=$(WERROR) > /dev/null
+	cmake --build $(BUILD_DIR) -j $(JOBS)
+
+test: build
+	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
+
+bench: build
+	$(BUILD_DIR)/tests/mpmstab_bench --benchmark_repetitions=5 \
+	  --benchmark_report_aggregates_only=true \
+	  --benchmark_out=results/benchmark_step.json.tmp --benchmark_out_format=json
+	mv results/benchmark_step.json.tmp results/benchmark_step.json
+
+SOURCES = $(shell git ls-files '*.cpp' '*.hpp' 2>/dev/null)
+
+format:
+	clang-format -i $(SOURCES)
+
+format-check:
+	clang-format --dry-run -Werror $(SOURCES)
+
+clean:
+	rm -rf $(BUILD_DIR)

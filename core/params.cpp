@@ -1,0 +1,138 @@
+#include "params.hpp"
+
+#include <array>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <utility>
+
+namespace mpmstab {
+
+namespace {
+
+std::string show(double v) {
+  std::ostringstream s;
+  s.precision(17);
+  s << v;
+  return s.str();
+}
+
+// Name tables: one place for every enum's spelling.
+template <class Enum, std::size_t N>
+using Names = std::array<std::pair<Enum, std::string_view>, N>;
+
+constexpr Names<Method, 2> kMethods{{{Method::mpm, "mpm"}, {Method::gimp, "gimp"}}};
+constexpr Names<Boundary, 2> kBoundaries{
+    {{Boundary::dirichlet, "dirichlet"}, {Boundary::periodic, "periodic"}}};
+constexpr Names<PositionUpdate, 2> kPositionUpdates{
+    {{PositionUpdate::grid, "grid"}, {PositionUpdate::particle, "particle"}}};
+constexpr Names<StressScaling, 2> kScalings{
+    {{StressScaling::scaled, "scaled"}, {StressScaling::raw, "raw"}}};
+constexpr Names<VelocityNorm, 2> kNorms{{{VelocityNorm::l2, "l2"}, {VelocityNorm::max, "max"}}};
+
+template <class Enum, std::size_t N>
+std::string_view name_of(const Names<Enum, N>& table, Enum e) {
+  for (const auto& [value, name] : table)
+    if (value == e) return name;
+  return "?";
+}
+
+template <class Enum, std::size_t N>
+std::optional<Enum> parse(const Names<Enum, N>& table, std::string_view s) {
+  for (const auto& [value, name] : table)
+    if (name == s) return value;
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::string_view to_string(Method m) {
+  return name_of(kMethods, m);
+}
+std::string_view to_string(Boundary b) {
+  return name_of(kBoundaries, b);
+}
+std::string_view to_string(PositionUpdate u) {
+  return name_of(kPositionUpdates, u);
+}
+std::string_view to_string(StressScaling s) {
+  return name_of(kScalings, s);
+}
+std::string_view to_string(VelocityNorm n) {
+  return name_of(kNorms, n);
+}
+
+std::optional<Method> parse_method(std::string_view s) {
+  return parse(kMethods, s);
+}
+std::optional<Boundary> parse_boundary(std::string_view s) {
+  return parse(kBoundaries, s);
+}
+std::optional<PositionUpdate> parse_position_update(std::string_view s) {
+  return parse(kPositionUpdates, s);
+}
+std::optional<StressScaling> parse_stress_scaling(std::string_view s) {
+  return parse(kScalings, s);
+}
+std::optional<VelocityNorm> parse_velocity_norm(std::string_view s) {
+  return parse(kNorms, s);
+}
+
+std::optional<std::int64_t> step_count(double T, double dt) {
+  if (!(T > 0) || !(dt > 0) || !std::isfinite(T) || !std::isfinite(dt)) return std::nullopt;
+  const double ratio = T / dt;
+  if (!(ratio < 9.0e18)) return std::nullopt;
+  // T / dt within a relative 1e-9 of an integer counts as that integer: T = 1, dt = 1e-5 is
+  // 100000 steps, not 100001 with a last step of 1e-16.
+  const double nearest = std::round(ratio);
+  if (std::abs(ratio - nearest) <= 1e-9 * nearest && nearest >= 1) {
+    return static_cast<std::int64_t>(nearest);
+  }
+  return static_cast<std::int64_t>(std::ceil(ratio));
+}
+
+std::vector<ParamIssue> validate(const RunParams& p) {
+  std::vector<ParamIssue> issues;
+  auto bad = [&](std::string key, std::string message) {
+    issues.push_back({std::move(key), std::move(message)});
+  };
+  constexpr int kMaxCells = 10'000'000;
+  constexpr int kMaxPpc = 64;
+  constexpr double kMaxParticles = 1e8;
+
+  if (!std::isfinite(p.E) || !(p.E > 0)) bad("E", "must be a finite number > 0, got " + show(p.E));
+  if (!std::isfinite(p.A) || !(p.A >= 0))
+    bad("A", "must be a finite number >= 0, got " + show(p.A));
+  if (!std::isfinite(p.T) || !(p.T > 0)) bad("T", "must be a finite number > 0, got " + show(p.T));
+  if (!std::isfinite(p.dt) || !(p.dt > 0)) {
+    bad("dt", "must be a finite number > 0, got " + show(p.dt));
+  } else if (std::isfinite(p.T) && p.T > 0 && p.dt > p.T) {
+    bad("dt", "must not exceed T = " + show(p.T) + ", got " + show(p.dt));
+  }
+  if (p.cells < 1 || p.cells > kMaxCells) {
+    bad("cells", "must be an integer in [1, " + std::to_string(kMaxCells) + "], got " +
+                     std::to_string(p.cells));
+  }
+  if (p.ppc < 1 || p.ppc > kMaxPpc) {
+    bad("ppc",
+        "must be an integer in [1, " + std::to_string(kMaxPpc) + "], got " + std::to_string(p.ppc));
+  }
+  if (p.cells >= 1 && p.ppc >= 1 && double(p.cells) * p.ppc > kMaxParticles) {
+    bad("cells", "cells * ppc must not exceed 1e8 particles");
+  }
+  if (p.max_steps < 1) bad("max_steps", "must be >= 1, got " + std::to_string(p.max_steps));
+  if (p.observe.history_stride < 1) {
+    bad("history_stride", "must be >= 1, got " + std::to_string(p.observe.history_stride));
+  }
+  if (std::isfinite(p.T) && p.T > 0 && std::isfinite(p.dt) && p.dt > 0 && p.dt <= p.T &&
+      p.max_steps >= 1) {
+    const auto n = step_count(p.T, p.dt);
+    if (!n || *n > p.max_steps) {
+      bad("dt", "T / dt = " + show(p.T / p.dt) + " steps exceeds the cap max_steps = " +
+                    std::to_string(p.max_steps) + " (raise --max-steps or shorten T)");
+    }
+  }
+  return issues;
+}
+
+}  // namespace mpmstab

@@ -1,0 +1,93 @@
+// Parameters of one run of the 1D bar: plain structs, validated in one place (validate()).
+//
+// Every choice the paper's text leaves open is a named option here with the default documented
+// in README.md ("Interpretation options").
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace mpmstab {
+
+// Shape functions (DESIGN.md section 2): linear hat ("mpm") or uGIMP with fixed half-width.
+enum class Method { mpm, gimp };
+
+// Dirichlet: u = 0 at X = 0 and X = 1, a particle leaving [0, 1] ends the run as unstable.
+// Periodic: node N is node 0; particles wrap around.
+enum class Boundary { dirichlet, periodic };
+
+// How g2p moves a particle: with the interpolated grid velocity v_i^{n+1} (default), or with the
+// updated particle velocity v_p^{n+1} (the paper's eq. 10).
+enum class PositionUpdate { grid, particle };
+
+// Eq. (108) leaves two points open; each is an option.
+//  - sigma: section 4.6 rescales the stress as sigma / sqrt(E) (eq. 105) before stating eq. (108).
+//    `scaled` uses sigma_max / sqrt(E) and (sigma F)_max / sqrt(E) in eq. (108) (default);
+//    `raw` uses the unscaled stress as eq. (74) defines sigma_maxp.
+//  - vnorm: ||v|| as the Euclidean norm of the nodal velocity vector (eq. 36, default) or its
+//    maximum norm.
+enum class StressScaling { scaled, raw };
+enum class VelocityNorm { l2, max };
+
+struct StableDtOptions {
+  StressScaling sigma = StressScaling::scaled;
+  VelocityNorm vnorm = VelocityNorm::l2;
+};
+
+// What a run measures beyond its verdict and final error. A run computes only what is asked:
+// each flag switches a per-step observer on; all are cheap, histories are off by default.
+struct Observe {
+  bool error_over_time = true;      // max_error_over_time (and the "meaningless" flag)
+  bool dt_stable = true;            // minimum of eq. (108) over the run
+  bool crossings = true;            // cell-boundary crossings
+  bool history = false;             // per-step rows (error, eq. 108, cumulative crossings)
+  std::int64_t history_stride = 1;  // keep every k-th step in the history (and the last one)
+};
+
+struct RunParams {
+  Method method = Method::gimp;
+  double E = 4.0;    // Young's modulus
+  double A = 0.015;  // amplitude of the manufactured solution
+  double dt = 1e-3;  // time step
+  double T = 1.0;    // final time
+  int cells = 100;   // N, h = 1 / N
+  int ppc = 2;       // particles per cell, m
+  Boundary bc = Boundary::dirichlet;
+  PositionUpdate position_update = PositionUpdate::grid;
+  StableDtOptions stable;
+  Observe observe;
+  // Refuse, before running, a run that would need more steps than this (see README).
+  std::int64_t max_steps = 200'000'000;
+};
+
+// A parameter that failed validation: `key` is the field name as it appears on the command line
+// (without "--") and in JSON specs, so that callers can name the option or the key path.
+struct ParamIssue {
+  std::string key;
+  std::string message;
+};
+
+// All checks on a RunParams, in one place. Empty result: the parameters are valid.
+std::vector<ParamIssue> validate(const RunParams& p);
+
+// Number of time steps the run takes: ceil(T / dt), the last one shortened to land on T.
+// Returns nullopt when the count does not fit in 64 bits.
+std::optional<std::int64_t> step_count(double T, double dt);
+
+// Names used on the command line, in JSON and in reports.
+std::string_view to_string(Method m);
+std::string_view to_string(Boundary b);
+std::string_view to_string(PositionUpdate u);
+std::string_view to_string(StressScaling s);
+std::string_view to_string(VelocityNorm n);
+
+std::optional<Method> parse_method(std::string_view s);
+std::optional<Boundary> parse_boundary(std::string_view s);
+std::optional<PositionUpdate> parse_position_update(std::string_view s);
+std::optional<StressScaling> parse_stress_scaling(std::string_view s);
+std::optional<VelocityNorm> parse_velocity_norm(std::string_view s);
+
+}  // namespace mpmstab

@@ -1,0 +1,51 @@
+// Everything one run measures (DESIGN.md section 3).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "failure.hpp"
+#include "params.hpp"
+
+namespace mpmstab {
+
+// One row per recorded step. A field whose observer is off holds nullopt.
+struct HistoryRow {
+  std::int64_t step = 0;
+  double time = 0;
+  std::optional<double> error;            // max_p |u_p - u(X_p, t)| after this step
+  std::optional<double> dt_stable;        // eq. (108) from the state after this step
+  std::optional<std::int64_t> crossings;  // cumulative
+};
+
+struct RunResult {
+  RunParams params;
+  std::int64_t particles = 0;
+  std::int64_t steps_planned = 0;
+  std::int64_t steps = 0;  // steps completed (the failing step included)
+
+  bool stable = false;
+  std::optional<Failure> failure;  // set when !stable
+
+  // Table 1's "Max Error": max_p |u_p(T) - u(X_p, T)|, stable runs only.
+  std::optional<double> max_error;
+  // Largest error over all steps completed before a failure (observer error_over_time).
+  std::optional<double> max_error_over_time;
+  // The run survived but its error over time reached A: the answer is as large as the solution.
+  std::optional<bool> meaningless;
+  std::optional<std::int64_t> crossings;
+  std::optional<double> dt_stable_min;  // min of eq. (108) over the steps (observer dt_stable)
+
+  double c = 0;         // wave speed sqrt(E / rho0)
+  double dt_cfl = 0;    // h / c, the classical speed-of-sound limit
+  double dt_sound = 0;  // 1 / c, Table 2's "dt_sound" column
+  double courant = 0;   // c dt / h
+
+  double wall_seconds = 0;
+  double ns_per_particle_step = 0;
+
+  std::vector<HistoryRow> history;  // only when params.observe.history
+};
+
+}  // namespace mpmstab

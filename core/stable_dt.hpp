@@ -1,0 +1,40 @@
+// The paper's time-step bound, eq. (108), evaluated from a state.
+//
+//   dt <= h sqrt(m) / ( 4 m (sqrt(E) + F_max + ||v||)
+//                       + 9 h sqrt(E) (F_max + sigma_max + (2 / (l sqrt(m))) (sigma F)_max) )
+//
+// m = particles per cell, F_max = max_p |F_p|, sigma_max = max_p |sigma_p|,
+// (sigma F)_max = max_p |sigma_p F_p|, ||v|| = norm of the nodal velocity vector, l = 2 lp the
+// particle width. For linear MPM the position-Lipschitz term (2 / (l sqrt m)) (sigma F)_max is
+// absent: the paper shows linear MPM has no such constant (section 4.4, eq. 77 onwards).
+// The options (params.hpp) pick how sigma enters and which norm ||v|| is.
+#pragma once
+
+#include "grid.hpp"
+#include "params.hpp"
+#include "particles.hpp"
+
+namespace mpmstab {
+
+struct StableDtInputs {
+  double F_max = 0;       // max_p |F_p|
+  double sigma_max = 0;   // max_p |sigma_p|
+  double sigmaF_max = 0;  // max_p |sigma_p F_p|
+  double v_norm = 0;      // ||v_N||, Euclidean or maximum norm over the distinct nodes
+};
+
+struct StableDtGeometry {
+  Method method;
+  double E;
+  double h;
+  int ppc;       // m
+  double width;  // l = 2 lp = h / m
+};
+
+// Reductions over the state after a step.
+StableDtInputs stable_dt_inputs(const Particles& P, const Grid& G, VelocityNorm vnorm);
+
+// Eq. (108). Finite and positive for every finite input (the denominator is >= 4 m sqrt(E) > 0).
+double stable_dt(const StableDtInputs& in, const StableDtGeometry& geo, StressScaling sigma);
+
+}  // namespace mpmstab

@@ -1,0 +1,7 @@
+// The solver's version. Raise it whenever a change can move a result: cached results and
+// blessed references are keyed by it.
+#pragma once
+
+namespace mpmstab {
+inline constexpr const char* kSolverVersion = "1";
+}  // namespace mpmstab

@@ -1,0 +1,231 @@
+// `mpmstab run`: one case of the bar, measured (DESIGN.md section 4).
+#include <algorithm>
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+
+#include "args.hpp"
+#include "atomic_file.hpp"
+#include "commands.hpp"
+#include "params.hpp"
+#include "result_json.hpp"
+#include "run.hpp"
+
+namespace mpmstab::cli {
+
+namespace {
+
+constexpr const char* kHelp =
+    R"(Usage: mpmstab run --method gimp|mpm --E <x> --A <x> --dt <x> [options]
+
+Runs the paper's 1D bar (manufactured solution u = A sin(2 pi X) sin(c pi t), c = sqrt(E))
+to time T with a fixed time step and reports its verdict and every measured quantity.
+
+Required:
+  --method gimp|mpm        shape functions: uGIMP or linear MPM
+  --E <x>                  Young's modulus, > 0
+  --A <x>                  amplitude of the solution, >= 0
+  --dt <x>                 time step, 0 < dt <= T (the last step is shortened to land on T)
+
+Options:
+  --T <x>                  final time (default 1)
+  --cells <n>              grid cells N on [0, 1], h = 1/N (default 100)
+  --ppc <n>                particles per cell (default 2)
+  --bc dirichlet|periodic  boundary conditions (default dirichlet)
+  --position-update grid|particle
+                           move particles with the grid velocity (default) or with
+                           the updated particle velocity (the paper's eq. 10)
+  --dt-stable-sigma scaled|raw
+                           stress in eq. (108) scaled by 1/sqrt(E) (default) or not
+  --dt-stable-vnorm l2|max norm of the nodal velocity in eq. (108) (default l2)
+  --max-steps <n>          refuse runs needing more steps (default 200000000)
+  --history <file.csv>     also write the per-step history (error, eq. 108, crossings)
+  --history-stride <n>     keep every n-th step in the history (default 1)
+  --json                   print one JSON object instead of the text summary
+  --help                   show this text
+
+Exit status: 0 when the run completed (stable or not: an unstable run is a result),
+2 for invalid input (nothing is run or written), 1 for an internal error.
+)";
+
+const std::vector<OptionSpec> kOptions = {
+    {"method"},
+    {"E"},
+    {"A"},
+    {"dt"},
+    {"T"},
+    {"cells"},
+    {"ppc"},
+    {"bc"},
+    {"position-update"},
+    {"dt-stable-sigma"},
+    {"dt-stable-vnorm"},
+    {"max-steps"},
+    {"history"},
+    {"history-stride"},
+    {"json", false},
+    {"help", false},
+};
+
+// Parameter keys (params.hpp) are snake_case; options spell them with dashes.
+std::string option_for_key(std::string key) {
+  std::replace(key.begin(), key.end(), '_', '-');
+  return "--" + key;
+}
+
+std::string_view required(const Args& a, std::string_view name) {
+  auto v = a.value(name);
+  if (!v) throw UsageError("missing required option --" + std::string(name));
+  return *v;
+}
+
+template <class Enum>
+Enum parse_choice(std::string_view text, std::string_view option,
+                  std::optional<Enum> (*parse)(std::string_view), std::string_view choices) {
+  if (auto e = parse(text)) return *e;
+  throw UsageError("--" + std::string(option) + ": unknown value '" + std::string(text) +
+                   "' (expected " + std::string(choices) + ")");
+}
+
+int to_int(std::string_view text, std::string_view option) {
+  const std::int64_t v = parse_int(text, option);
+  if (v < -1'000'000'000 || v > 1'000'000'000) {
+    throw UsageError("--" + std::string(option) + ": " + std::string(text) + " is out of range");
+  }
+  return static_cast<int>(v);
+}
+
+RunParams params_from(const Args& a) {
+  RunParams p;
+  p.method = parse_choice(required(a, "method"), "method", parse_method, "gimp or mpm");
+  p.E = parse_double(required(a, "E"), "E");
+  p.A = parse_double(required(a, "A"), "A");
+  p.dt = parse_double(required(a, "dt"), "dt");
+  if (auto v = a.value("T")) p.T = parse_double(*v, "T");
+  if (auto v = a.value("cells")) p.cells = to_int(*v, "cells");
+  if (auto v = a.value("ppc")) p.ppc = to_int(*v, "ppc");
+  if (auto v = a.value("bc"))
+    p.bc = parse_choice(*v, "bc", parse_boundary, "dirichlet or periodic");
+  if (auto v = a.value("position-update")) {
+    p.position_update =
+        parse_choice(*v, "position-update", parse_position_update, "grid or particle");
+  }
+  if (auto v = a.value("dt-stable-sigma")) {
+    p.stable.sigma = parse_choice(*v, "dt-stable-sigma", parse_stress_scaling, "scaled or raw");
+  }
+  if (auto v = a.value("dt-stable-vnorm")) {
+    p.stable.vnorm = parse_choice(*v, "dt-stable-vnorm", parse_velocity_norm, "l2 or max");
+  }
+  if (auto v = a.value("max-steps")) p.max_steps = parse_int(*v, "max-steps");
+  if (auto v = a.value("history-stride"))
+    p.observe.history_stride = parse_int(*v, "history-stride");
+  p.observe.history = a.value("history").has_value();
+  if (p.observe.history && a.value("history")->empty()) {
+    throw UsageError("--history: needs a file name");
+  }
+
+  const auto issues = validate(p);
+  if (!issues.empty()) {
+    std::string message;
+    for (const auto& issue : issues) {
+      if (!message.empty()) message += "\n";
+      message += option_for_key(issue.key) + ": " + issue.message;
+    }
+    throw UsageError(message);
+  }
+  return p;
+}
+
+std::string fmt(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.4g", v);
+  return buf;
+}
+
+template <class T>
+std::string fmt(const std::optional<T>& v) {
+  if (!v) return "-";
+  if constexpr (std::is_floating_point_v<T>) {
+    return fmt(*v);
+  } else {
+    return std::to_string(*v);
+  }
+}
+
+std::string text_summary(const RunResult& r) {
+  const RunParams& p = r.params;
+  std::ostringstream s;
+  s << "mpmstab run: " << to_string(p.method) << ", E = " << fmt(p.E) << ", A = " << fmt(p.A)
+    << ", dt = " << fmt(p.dt) << ", T = " << fmt(p.T) << ", " << p.cells << " cells x " << p.ppc
+    << " ppc, " << to_string(p.bc) << "\n";
+  std::string verdict = r.stable ? "stable" : "unstable";
+  if (r.failure) {
+    verdict += " (" + std::string(to_string(r.failure->reason)) + " at step " +
+               std::to_string(r.failure->step) + ", t = " + fmt(r.failure->time) + ", particle " +
+               std::to_string(r.failure->particle) + ")";
+  }
+  if (r.meaningless.value_or(false)) verdict += ", meaningless: error over time reached A";
+  auto line = [&](std::string_view key, const std::string& value) {
+    s << "  " << key << std::string(22 - key.size(), ' ') << value << "\n";
+  };
+  line("verdict", verdict);
+  line("steps", std::to_string(r.steps) + " of " + std::to_string(r.steps_planned));
+  line("max_error", fmt(r.max_error));
+  line("max_error_over_time", fmt(r.max_error_over_time));
+  line("dt_stable_min", fmt(r.dt_stable_min) + "  (eq. 108, sigma " +
+                            std::string(to_string(p.stable.sigma)) + ", ||v|| " +
+                            std::string(to_string(p.stable.vnorm)) + ")");
+  line("crossings", fmt(r.crossings));
+  line("dt_cfl = h/c", fmt(r.dt_cfl));
+  line("dt_sound = 1/c", fmt(r.dt_sound));
+  line("courant = c dt/h", fmt(r.courant));
+  line("wall_seconds", fmt(r.wall_seconds));
+  line("ns/particle-step", fmt(r.ns_per_particle_step));
+  return s.str();
+}
+
+std::string history_csv(const RunResult& r) {
+  std::ostringstream s;
+  s.precision(17);
+  s << "step,time,error,dt_stable,crossings\n";
+  for (const auto& h : r.history) {
+    s << h.step << ',' << h.time << ',';
+    if (h.error) s << *h.error;
+    s << ',';
+    if (h.dt_stable) s << *h.dt_stable;
+    s << ',';
+    if (h.crossings) s << *h.crossings;
+    s << '\n';
+  }
+  return s.str();
+}
+
+}  // namespace
+
+int cmd_run(const std::vector<std::string_view>& argv) {
+  const Args args(argv, kOptions);
+  if (args.flag("help")) {
+    std::cout << kHelp;
+    return 0;
+  }
+  if (!args.positional().empty()) {
+    throw UsageError("unexpected argument '" + std::string(args.positional().front()) + "'");
+  }
+  const RunParams params = params_from(args);
+  const RunResult result = run(params);
+  if (auto path = args.value("history")) {
+    try {
+      write_file_atomically(std::string(*path), history_csv(result));
+    } catch (const std::runtime_error& e) {
+      throw UsageError(std::string("--history: ") + e.what());
+    }
+  }
+  if (args.flag("json")) {
+    std::cout << to_json(result).dump(2) << "\n";
+  } else {
+    std::cout << text_summary(result);
+  }
+  return 0;
+}
+
+}  // namespace mpmstab::cli

@@ -1,0 +1,12 @@
+// The subcommands of build/mpmstab. Each returns the process exit status and throws
+// cli::UsageError for bad input (status 2, printed by main).
+#pragma once
+
+#include <string_view>
+#include <vector>
+
+namespace mpmstab::cli {
+
+int cmd_run(const std::vector<std::string_view>& args);
+
+}  // namespace mpmstab::cli

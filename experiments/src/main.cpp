@@ -1,0 +1,45 @@
+// build/mpmstab: the command-line front end.
+#include <exception>
+#include <iostream>
+#include <string_view>
+#include <vector>
+
+#include "args.hpp"
+#include "commands.hpp"
+
+namespace {
+
+constexpr const char* kUsage = R"(Usage: mpmstab <command> [options]
+
+Commands:
+  run     run one case of the paper's 1D bar and report every measured quantity
+
+'mpmstab <command> --help' describes a command.
+)";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<std::string_view> args(argv + 1, argv + argc);
+  if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
+    (args.empty() ? std::cerr : std::cout) << kUsage;
+    return args.empty() ? 2 : 0;
+  }
+  const std::string_view command = args[0];
+  args.erase(args.begin());
+  try {
+    if (command == "run") return mpmstab::cli::cmd_run(args);
+    std::string message = "unknown command '" + std::string(command) + "'";
+    if (auto guess = mpmstab::cli::nearest(command, {"run"})) {
+      message += " (did you mean '" + *guess + "'?)";
+    }
+    throw mpmstab::cli::UsageError(message);
+  } catch (const mpmstab::cli::UsageError& e) {
+    std::cerr << "mpmstab " << command << ": error: " << e.what() << "\n"
+              << "Try 'mpmstab " << (command == "run" ? "run " : "") << "--help'.\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "mpmstab " << command << ": internal error: " << e.what() << "\n";
+    return 1;
+  }
+}

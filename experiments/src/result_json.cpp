@@ -1,0 +1,67 @@
+#include "result_json.hpp"
+
+#include "version.hpp"
+
+namespace mpmstab {
+
+namespace {
+
+template <class T>
+nlohmann::ordered_json or_null(const std::optional<T>& v) {
+  return v ? nlohmann::ordered_json(*v) : nlohmann::ordered_json(nullptr);
+}
+
+}  // namespace
+
+nlohmann::ordered_json to_json(const RunResult& r) {
+  const RunParams& p = r.params;
+  nlohmann::ordered_json j;
+  j["method"] = to_string(p.method);
+  j["E"] = p.E;
+  j["A"] = p.A;
+  j["dt"] = p.dt;
+  j["T"] = p.T;
+  j["cells"] = p.cells;
+  j["ppc"] = p.ppc;
+  j["bc"] = to_string(p.bc);
+  j["position_update"] = to_string(p.position_update);
+  j["stable"] = r.stable;
+  if (r.failure) {
+    j["failure"] = {{"reason", to_string(r.failure->reason)},
+                    {"step", r.failure->step},
+                    {"time", r.failure->time},
+                    {"particle", r.failure->particle}};
+  } else {
+    j["failure"] = nullptr;
+  }
+  j["meaningless"] = or_null(r.meaningless);
+  j["steps"] = r.steps;
+  j["max_error"] = or_null(r.max_error);
+  j["max_error_over_time"] = or_null(r.max_error_over_time);
+  j["crossings"] = or_null(r.crossings);
+  j["dt_stable_min"] = or_null(r.dt_stable_min);
+  j["dt_stable_sigma"] = to_string(p.stable.sigma);
+  j["dt_stable_vnorm"] = to_string(p.stable.vnorm);
+  j["dt_cfl"] = r.dt_cfl;
+  j["dt_sound"] = r.dt_sound;
+  j["courant"] = r.courant;
+  j["particles"] = r.particles;
+  j["wall_seconds"] = r.wall_seconds;
+  j["ns_per_particle_step"] = r.ns_per_particle_step;
+  j["solver_version"] = kSolverVersion;
+  return j;
+}
+
+nlohmann::ordered_json history_to_json(const RunResult& r) {
+  auto rows = nlohmann::ordered_json::array();
+  for (const auto& h : r.history) {
+    rows.push_back({{"step", h.step},
+                    {"time", h.time},
+                    {"error", or_null(h.error)},
+                    {"dt_stable", or_null(h.dt_stable)},
+                    {"crossings", or_null(h.crossings)}});
+  }
+  return rows;
+}
+
+}  // namespace mpmstab

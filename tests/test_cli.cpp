@@ -1,0 +1,148 @@
+// The command line: every invalid input exits 2 naming the option; a valid run prints JSON.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace {
+
+struct Outcome {
+  int status;
+  std::string output;  // stdout and stderr together
+};
+
+Outcome mpmstab(const std::string& args) {
+  const std::string command = std::string(MPMSTAB_BIN) + " " + args + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return {-1, "popen failed"};
+  std::string output;
+  std::array<char, 4096> buffer;
+  while (const std::size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) {
+    output.append(buffer.data(), n);
+  }
+  const int raw = pclose(pipe);
+  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, output};
+}
+
+const std::string kValid = "--method gimp --E 4 --A 0.015 --dt 1e-3 --T 0.01";
+
+std::string with(const std::string& option, const std::string& value) {
+  // Replace (or add) one option in the valid command line.
+  std::string args = kValid;
+  const std::string key = "--" + option + " ";
+  if (const auto at = args.find(key); at != std::string::npos) {
+    const auto end = args.find(' ', at + key.size());
+    args.erase(at, (end == std::string::npos ? args.size() : end) - at);
+  }
+  return args + " " + key + value;
+}
+
+TEST(Cli, ValidRunPrintsJsonWithEveryKey) {
+  const Outcome o = mpmstab("run " + kValid + " --json");
+  ASSERT_EQ(o.status, 0) << o.output;
+  const auto j = nlohmann::json::parse(o.output);
+  for (const char* key : {"method", "E", "A", "dt", "T", "cells", "ppc", "bc", "stable", "failure",
+                          "steps", "max_error", "max_error_over_time", "crossings", "dt_stable_min",
+                          "dt_cfl", "courant", "wall_seconds", "ns_per_particle_step"}) {
+    EXPECT_TRUE(j.contains(key)) << key;
+  }
+  EXPECT_EQ(j["stable"], true);
+  EXPECT_TRUE(j["failure"].is_null());
+  EXPECT_EQ(j["steps"], 10);
+}
+
+TEST(Cli, UnstableRunIsAResultNotAnError) {
+  const Outcome o = mpmstab("run --method gimp --E 1000 --A 0.015 --dt 1e-3 --json");
+  ASSERT_EQ(o.status, 0) << o.output;
+  const auto j = nlohmann::json::parse(o.output);
+  EXPECT_EQ(j["stable"], false);
+  EXPECT_FALSE(j["failure"]["reason"].get<std::string>().empty());
+  EXPECT_TRUE(j["max_error"].is_null());
+}
+
+TEST(Cli, InvalidInputExitsTwoAndNamesTheOption) {
+  struct Case {
+    std::string args;
+    std::string named;
+  };
+  const std::vector<Case> cases = {
+      {with("E", "-1"), "--E"},
+      {with("E", "0"), "--E"},
+      {with("E", "abc"), "--E"},
+      {with("E", "nan"), "--E"},
+      {with("E", "inf"), "--E"},
+      {with("E", "1e999"), "--E"},
+      {with("A", "-0.1"), "--A"},
+      {with("A", "0.1x"), "--A"},
+      {with("dt", "0"), "--dt"},
+      {with("dt", "-1e-3"), "--dt"},
+      {with("dt", "1e-3x"), "--dt"},
+      {with("dt", "5"), "--dt"},  // dt > T
+      {with("T", "0"), "--T"},
+      {with("T", "-1"), "--T"},
+      {with("cells", "0"), "--cells"},
+      {with("cells", "-4"), "--cells"},
+      {with("cells", "2.5"), "--cells"},
+      {with("cells", "99999999999999999999"), "--cells"},
+      {with("ppc", "0"), "--ppc"},
+      {with("ppc", "two"), "--ppc"},
+      {with("method", "flip"), "--method"},
+      {with("method", "GIMP"), "--method"},
+      {with("bc", "neumann"), "--bc"},
+      {with("position-update", "nodes"), "--position-update"},
+      {with("dt-stable-sigma", "half"), "--dt-stable-sigma"},
+      {with("dt-stable-vnorm", "l1"), "--dt-stable-vnorm"},
+      {with("max-steps", "0"), "--max-steps"},
+      {"--method gimp --A 0.015 --dt 1e-3", "--E"},  // missing required option
+      {"--E 4 --A 0.015 --dt 1e-3", "--method"},
+      {kValid + " --Young 4", "--Young"},                         // unknown option
+      {kValid + " --dt", "--dt"},                                 // given twice / no value
+      {"--method gimp --E 4 --A 0.015 --dt 1e-9 --T 1", "--dt"},  // over the step cap
+  };
+  for (const auto& c : cases) {
+    const Outcome o = mpmstab("run " + c.args);
+    EXPECT_EQ(o.status, 2) << c.args << "\n" << o.output;
+    EXPECT_NE(o.output.find(c.named), std::string::npos) << c.args << "\n" << o.output;
+    EXPECT_EQ(o.output.find("internal error"), std::string::npos) << c.args;
+  }
+}
+
+TEST(Cli, UnknownOptionSuggestsTheNearestOne) {
+  const Outcome o = mpmstab("run " + kValid + " --cell 10");
+  EXPECT_EQ(o.status, 2);
+  EXPECT_NE(o.output.find("did you mean --cells"), std::string::npos) << o.output;
+}
+
+TEST(Cli, UnknownCommandAndBareInvocationExitTwo) {
+  EXPECT_EQ(mpmstab("rnu").status, 2);
+  EXPECT_NE(mpmstab("rnu").output.find("did you mean 'run'"), std::string::npos);
+  EXPECT_EQ(mpmstab("").status, 2);
+}
+
+TEST(Cli, HelpExitsZero) {
+  const Outcome o = mpmstab("run --help");
+  EXPECT_EQ(o.status, 0);
+  EXPECT_NE(o.output.find("--dt-stable-sigma"), std::string::npos);
+}
+
+TEST(Cli, BadInputWritesNothing) {
+  const auto path = std::filesystem::temp_directory_path() / "mpmstab_cli_history_test.csv";
+  std::filesystem::remove(path);
+  EXPECT_EQ(mpmstab("run " + with("E", "-4") + " --history " + path.string()).status, 2);
+  EXPECT_FALSE(std::filesystem::exists(path));
+  EXPECT_EQ(mpmstab("run " + kValid + " --history " + path.string()).status, 0);
+  EXPECT_TRUE(std::filesystem::exists(path));
+  std::filesystem::remove(path);
+}
+
+TEST(Cli, UnwritableHistoryIsAUsageError) {
+  const Outcome o = mpmstab("run " + kValid + " --history /nonexistent-dir/h.csv");
+  EXPECT_EQ(o.status, 2) << o.output;
+  EXPECT_NE(o.output.find("--history"), std::string::npos) << o.output;
+}
+
+}  // namespace

@@ -1,0 +1,130 @@
+// Failure detection: each failure mode is caught and named, with its step and time.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "failure.hpp"
+#include "run.hpp"
+#include "scene.hpp"
+#include "simulation.hpp"
+
+namespace mpmstab {
+namespace {
+
+Particles healthy() {
+  return BarScene(4.0, 0.015).initial_particles(10, 2);
+}
+
+TEST(DetectFailure, AHealthyStateIsAdmissible) {
+  EXPECT_FALSE(detect_failure(healthy(), Boundary::dirichlet));
+  EXPECT_FALSE(detect_failure(healthy(), Boundary::periodic));
+}
+
+TEST(DetectFailure, ParticleOutsideTheDomain) {
+  for (double x : {-1e-12, 1.0 + 1e-12, 5.0}) {
+    Particles P = healthy();
+    P.x[7] = x;
+    const auto f = detect_failure(P, Boundary::dirichlet);
+    ASSERT_TRUE(f) << x;
+    EXPECT_EQ(f->reason, FailureReason::left_domain);
+    EXPECT_EQ(f->particle, 7);
+    // With periodic boundaries the same position is fine.
+    EXPECT_FALSE(detect_failure(P, Boundary::periodic)) << x;
+  }
+}
+
+TEST(DetectFailure, NonFiniteValuesInEveryField) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  for (Eigen::ArrayXd Particles::*field :
+       {&Particles::x, &Particles::v, &Particles::F, &Particles::sigma}) {
+    for (double bad : {nan, inf, -inf}) {
+      Particles P = healthy();
+      (P.*field)[3] = bad;
+      for (Boundary bc : {Boundary::dirichlet, Boundary::periodic}) {
+        const auto f = detect_failure(P, bc);
+        ASSERT_TRUE(f);
+        EXPECT_EQ(f->reason, FailureReason::non_finite);
+        EXPECT_EQ(f->particle, 3);
+      }
+    }
+  }
+}
+
+TEST(DetectFailure, NonPositiveDeformationGradient) {
+  for (double F : {0.0, -0.0, -0.5}) {
+    Particles P = healthy();
+    P.F[11] = F;
+    const auto f = detect_failure(P, Boundary::dirichlet);
+    ASSERT_TRUE(f) << F;
+    EXPECT_EQ(f->reason, FailureReason::nonpositive_F);
+    EXPECT_EQ(f->particle, 11);
+  }
+}
+
+TEST(DetectFailure, NanIsReportedBeforeOtherReasons) {
+  Particles P = healthy();
+  P.F[2] = -1.0;
+  P.x[5] = 2.0;
+  P.v[9] = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(detect_failure(P, Boundary::dirichlet)->reason, FailureReason::non_finite);
+}
+
+TEST(Run, FarAboveTheCflLimitIsUnstableWithAReason) {
+  RunParams p;
+  p.method = Method::gimp;
+  p.E = 1000;   // c = 31.6, h / c = 3.2e-4
+  p.dt = 1e-3;  // Courant 3.2
+  const RunResult r = run(p);
+  EXPECT_GT(r.courant, 3.0);
+  EXPECT_FALSE(r.stable);
+  ASSERT_TRUE(r.failure);
+  EXPECT_GE(r.failure->step, 1);
+  EXPECT_LT(r.failure->step, r.steps_planned);
+  EXPECT_DOUBLE_EQ(r.failure->time, r.failure->step * p.dt);
+  EXPECT_EQ(r.steps, r.failure->step);
+  EXPECT_FALSE(r.max_error);  // no error is reported for a run that failed
+  EXPECT_FALSE(r.meaningless);
+  for (Method m : {Method::mpm, Method::gimp}) {
+    p.method = m;
+    EXPECT_FALSE(run(p).stable) << to_string(m);
+  }
+}
+
+TEST(Simulation, PlantedBadStatesAreCaughtAfterTheNextStep) {
+  RunParams p;
+  p.cells = 10;
+  // F <= 0 planted in one particle: the step keeps F_p (1 + dt L_p) <= 0 for small dt.
+  {
+    Simulation sim(p);
+    sim.particles().F[4] = -0.2;
+    sim.advance_to(p.dt);
+    const auto f = detect_failure(sim.particles(), p.bc);
+    ASSERT_TRUE(f);
+    EXPECT_EQ(f->reason, FailureReason::nonpositive_F);
+  }
+  // A NaN velocity spreads through the grid to the neighbours.
+  {
+    Simulation sim(p);
+    sim.particles().v[6] = std::numeric_limits<double>::quiet_NaN();
+    sim.advance_to(p.dt);
+    const auto f = detect_failure(sim.particles(), p.bc);
+    ASSERT_TRUE(f);
+    EXPECT_EQ(f->reason, FailureReason::non_finite);
+  }
+  // A particle pushed out through the wall.
+  {
+    Simulation sim(p);
+    sim.particles().v[19] = 1e3;
+    sim.particles().x[19] = 0.99;
+    sim.advance_to(p.dt);
+    sim.advance_to(2 * p.dt);
+    const auto f = detect_failure(sim.particles(), p.bc);
+    ASSERT_TRUE(f);
+    EXPECT_EQ(f->reason, FailureReason::left_domain);
+  }
+}
+
+}  // namespace
+}  // namespace mpmstab

@@ -1,0 +1,144 @@
+// The run driver: observers compute only what is asked, verdicts, determinism, landing on T.
+#include <gtest/gtest.h>
+
+#include "run.hpp"
+
+namespace mpmstab {
+namespace {
+
+RunParams quick() {
+  RunParams p;
+  p.method = Method::gimp;
+  p.E = 4;
+  p.A = 0.015;
+  p.dt = 1e-3;
+  p.T = 0.2;
+  p.cells = 20;
+  return p;
+}
+
+TEST(Run, StableRunReportsEveryQuantity) {
+  const RunResult r = run(quick());
+  EXPECT_TRUE(r.stable);
+  EXPECT_FALSE(r.failure);
+  EXPECT_EQ(r.steps, 200);
+  EXPECT_EQ(r.particles, 40);
+  ASSERT_TRUE(r.max_error && r.max_error_over_time && r.crossings && r.dt_stable_min);
+  EXPECT_GT(*r.max_error, 0);
+  EXPECT_GE(*r.max_error_over_time, *r.max_error);
+  EXPECT_GT(*r.dt_stable_min, 0);
+  EXPECT_EQ(r.meaningless, false);
+  EXPECT_DOUBLE_EQ(r.dt_cfl, 0.05 / 2.0);  // h / c with h = 1/20, c = 2
+  EXPECT_DOUBLE_EQ(r.dt_sound, 0.5);
+  EXPECT_DOUBLE_EQ(r.courant, 2.0 * 1e-3 / 0.05);
+  EXPECT_GT(r.wall_seconds, 0);
+  EXPECT_GT(r.ns_per_particle_step, 0);
+  EXPECT_TRUE(r.history.empty());  // no history unless asked
+}
+
+TEST(Run, ObserversThatAreOffComputeNothingAndChangeNothing) {
+  RunParams lean = quick();
+  lean.observe = {false, false, false, false, 1};
+  const RunResult a = run(lean);
+  const RunResult b = run(quick());
+  EXPECT_FALSE(a.max_error_over_time);
+  EXPECT_FALSE(a.crossings);
+  EXPECT_FALSE(a.dt_stable_min);
+  EXPECT_FALSE(a.meaningless);
+  ASSERT_TRUE(a.max_error && b.max_error);
+  EXPECT_EQ(*a.max_error, *b.max_error);  // bit for bit: observers only read the state
+}
+
+TEST(Run, HistoryHasOneRowPerKeptStepWithOnlyTheObservedFields) {
+  RunParams p = quick();
+  p.observe.history = true;
+  const RunResult all = run(p);
+  ASSERT_EQ(all.history.size(), 200u);
+  EXPECT_EQ(all.history.front().step, 1);
+  EXPECT_DOUBLE_EQ(all.history.back().time, p.T);
+  EXPECT_EQ(*all.history.back().crossings, *all.crossings);
+  double max_error = 0, min_dt = 1e300;
+  for (const auto& row : all.history) {
+    max_error = std::max(max_error, *row.error);
+    min_dt = std::min(min_dt, *row.dt_stable);
+  }
+  EXPECT_EQ(max_error, *all.max_error_over_time);
+  EXPECT_EQ(min_dt, *all.dt_stable_min);
+
+  p.observe.history_stride = 30;
+  p.observe.dt_stable = false;
+  const RunResult strided = run(p);
+  ASSERT_EQ(strided.history.size(), 7u);  // steps 30, 60, ..., 180 and the last, 200
+  EXPECT_EQ(strided.history[5].step, 180);
+  EXPECT_EQ(strided.history[6].step, 200);
+  EXPECT_FALSE(strided.history[0].dt_stable);
+}
+
+TEST(Run, IsDeterministic) {
+  const RunResult a = run(quick());
+  const RunResult b = run(quick());
+  EXPECT_EQ(*a.max_error, *b.max_error);
+  EXPECT_EQ(*a.max_error_over_time, *b.max_error_over_time);
+  EXPECT_EQ(*a.dt_stable_min, *b.dt_stable_min);
+  EXPECT_EQ(*a.crossings, *b.crossings);
+}
+
+TEST(Run, LastStepIsShortenedToLandOnT) {
+  RunParams p = quick();
+  p.dt = 0.03;  // 6.67 steps in T = 0.2 -> 7 steps, the last one 0.02
+  p.E = 0.01;
+  p.observe.history = true;
+  const RunResult r = run(p);
+  EXPECT_EQ(r.steps, 7);
+  EXPECT_DOUBLE_EQ(r.history.back().time, 0.2);
+  EXPECT_DOUBLE_EQ(r.history[5].time, 0.18);
+}
+
+TEST(Run, FlagsARunWhoseErrorReachesTheAmplitudeAsMeaningless) {
+  RunParams p;
+  p.method = Method::gimp;
+  p.E = 16;
+  p.A = 0.2;  // two cells of displacement on a 10-cell grid
+  p.cells = 10;
+  p.bc = Boundary::periodic;
+  const RunResult r = run(p);
+  ASSERT_TRUE(r.stable);
+  EXPECT_GE(*r.max_error_over_time, p.A);
+  EXPECT_EQ(r.meaningless, true);
+}
+
+TEST(Run, PositionUpdateOptionChangesTheResultButNotTheVerdict) {
+  RunParams p = quick();
+  const RunResult grid = run(p);
+  p.position_update = PositionUpdate::particle;
+  const RunResult particle = run(p);
+  ASSERT_TRUE(grid.stable && particle.stable);
+  EXPECT_NE(*grid.max_error, *particle.max_error);
+  EXPECT_LT(*particle.max_error, 10 * *grid.max_error + 1e-4);
+}
+
+TEST(Run, OneAndEightParticlesPerCellBothWork) {
+  for (int ppc : {1, 8}) {
+    for (Method m : {Method::mpm, Method::gimp}) {
+      RunParams p = quick();
+      p.ppc = ppc;
+      p.method = m;
+      p.A = 1e-3;
+      const RunResult r = run(p);
+      EXPECT_TRUE(r.stable) << ppc << " " << to_string(m);
+      EXPECT_LT(*r.max_error, 1e-3) << ppc << " " << to_string(m);
+      EXPECT_EQ(r.particles, 20 * ppc);
+    }
+  }
+}
+
+TEST(Run, PeriodicBarStaysStableAndAccurate) {
+  RunParams p = quick();
+  p.bc = Boundary::periodic;
+  const RunResult r = run(p);
+  ASSERT_TRUE(r.stable);
+  EXPECT_LT(*r.max_error_over_time, 0.1 * p.A);
+}
+
+}  // namespace
+}  // namespace mpmstab
