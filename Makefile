@@ -10,13 +10,21 @@ WERROR     ?= $(if $(CI),ON,OFF)
 DEB_PACKAGES := cmake g++ make libeigen3-dev nlohmann-json3-dev libgtest-dev libgmock-dev \
                 libbenchmark-dev gnuplot-nox clang-format python3
 
-.PHONY: all build deps test bench format format-check clean help
+# The paper's experiments, in the order make reproduce runs them.
+TABLES      := table1 table2
+FIGURES     := fig1 fig2 fig3
+EXPERIMENTS := $(TABLES) $(FIGURES)
+RESULTS     ?= results
+MPMSTAB     := $(BUILD_DIR)/mpmstab
+
+.PHONY: all build deps test bench reproduce figures format format-check clean help
 
 all: build
 
 help:
 	@echo "make              install missing packages, configure and build into $(BUILD_DIR)/"
 	@echo "make test         build and run the GoogleTest suite (CTest)"
+	@echo "make reproduce    rerun the paper's experiments (cached cases are not rerun), write results/"
 	@echo "make bench        run the step benchmark, write results/benchmark_step.json"
 	@echo "make format       clang-format every source file in place"
 	@echo "make deps         only install the missing Debian packages"
@@ -48,6 +56,24 @@ bench: build
 	  --benchmark_report_aggregates_only=true \
 	  --benchmark_out=results/benchmark_step.json.tmp --benchmark_out_format=json
 	mv results/benchmark_step.json.tmp results/benchmark_step.json
+
+# Each sweep computes only the cases whose key changed; reports are rewritten only when their
+# content changed, so a figure is redrawn only when its data or its script changed.
+reproduce: build
+	@for e in $(EXPERIMENTS); do \
+	  $(MPMSTAB) sweep experiments/$$e.json --jobs $(JOBS) --out $(RESULTS) || exit $$?; \
+	done
+	@$(MAKE) --no-print-directory figures
+	$(MPMSTAB) index $(EXPERIMENTS:%=experiments/%.json) --out $(RESULTS)
+	@echo "Reports: $(RESULTS)/README.md"
+
+figures: $(FIGURES:%=$(RESULTS)/%.png)
+
+$(RESULTS)/fig1.png $(RESULTS)/fig1.svg &: $(RESULTS)/fig1_data.csv experiments/fig1.gp
+	$(MPMSTAB) plot experiments/fig1.json --out $(RESULTS)
+
+$(RESULTS)/%.png $(RESULTS)/%.svg &: $(RESULTS)/%_data.csv experiments/%.gp experiments/history.gp
+	$(MPMSTAB) plot experiments/$*.json --out $(RESULTS)
 
 SOURCES = $(shell git ls-files '*.cpp' '*.hpp' 2>/dev/null)
 

@@ -44,6 +44,7 @@ struct Observe {
   bool dt_stable = true;            // minimum of eq. (108) over the run
   bool crossings = true;            // cell-boundary crossings
   bool history = false;             // per-step rows (error, eq. 108, cumulative crossings)
+  bool final_state = false;         // the particle state at the end, with the exact solution
   std::int64_t history_stride = 1;  // keep every k-th step in the history (and the last one)
 };
 

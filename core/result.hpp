@@ -5,6 +5,8 @@
 #include <optional>
 #include <vector>
 
+#include <Eigen/Core>
+
 #include "failure.hpp"
 #include "params.hpp"
 
@@ -17,6 +19,14 @@ struct HistoryRow {
   std::optional<double> error;            // max_p |u_p - u(X_p, t)| after this step
   std::optional<double> dt_stable;        // eq. (108) from the state after this step
   std::optional<std::int64_t> crossings;  // cumulative
+};
+
+// The particles at the end of the run (at T, or at the failure) with the exact solution there.
+// Values are as the solver left them; a failed run may hold non-finite values.
+struct FinalState {
+  double time = 0;
+  Eigen::ArrayXd X, x, v, F, sigma;              // reference position and state
+  Eigen::ArrayXd u_exact, v_exact, sigma_exact;  // exact solution at (X_p, time)
 };
 
 struct RunResult {
@@ -45,7 +55,8 @@ struct RunResult {
   double wall_seconds = 0;
   double ns_per_particle_step = 0;
 
-  std::vector<HistoryRow> history;  // only when params.observe.history
+  std::vector<HistoryRow> history;        // only when params.observe.history
+  std::optional<FinalState> final_state;  // only when params.observe.final_state
 };
 
 }  // namespace mpmstab

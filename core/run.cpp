@@ -39,6 +39,8 @@ RunResult run(const RunParams& p) {
     r.history.reserve(static_cast<std::size_t>(std::min<std::int64_t>(rows, 10'000'000)));
   }
 
+  std::optional<HistoryRow> pending_row;  // last row not kept by the stride
+
   // 3. Step to T, checking the state after every step.
   const auto start = std::chrono::steady_clock::now();
   for (std::int64_t n = 0; n < r.steps_planned; ++n) {
@@ -48,6 +50,8 @@ RunResult run(const RunParams& p) {
       failure->step = sim.steps();
       failure->time = sim.time();
       r.failure = failure;
+      // Keep the last admissible step in the history even when the stride skipped it.
+      if (pending_row) r.history.push_back(*pending_row);
       break;
     }
     HistoryRow row{sim.steps(), sim.time(), {}, {}, {}};
@@ -66,7 +70,14 @@ RunResult run(const RunParams& p) {
       dt_stable_min = std::min(dt_stable_min, bound);
       row.dt_stable = bound;
     }
-    if (obs.history && (sim.steps() % obs.history_stride == 0 || last)) r.history.push_back(row);
+    if (obs.history) {
+      if (sim.steps() % obs.history_stride == 0 || last) {
+        r.history.push_back(row);
+        pending_row.reset();
+      } else {
+        pending_row = row;
+      }
+    }
   }
   const auto stop = std::chrono::steady_clock::now();
 
@@ -80,6 +91,16 @@ RunResult run(const RunParams& p) {
   }
   if (obs.crossings) r.crossings = crossings;
   if (obs.dt_stable && r.steps > (r.failure ? 1 : 0)) r.dt_stable_min = dt_stable_min;
+  if (obs.final_state) {
+    const Particles& P = sim.particles();
+    const BarScene& scene = sim.scene();
+    const double t = sim.time();
+    FinalState f{t, P.X, P.x, P.v, P.F, P.sigma, {}, {}, {}};
+    f.u_exact = P.X.unaryExpr([&](double X) { return scene.displacement(X, t); });
+    f.v_exact = P.X.unaryExpr([&](double X) { return scene.velocity(X, t); });
+    f.sigma_exact = P.X.unaryExpr([&](double X) { return scene.stress(X, t); });
+    r.final_state = std::move(f);
+  }
   r.wall_seconds = std::chrono::duration<double>(stop - start).count();
   if (r.steps > 0) {
     r.ns_per_particle_step = r.wall_seconds * 1e9 / (double(r.steps) * double(r.particles));

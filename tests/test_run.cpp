@@ -38,7 +38,9 @@ TEST(Run, StableRunReportsEveryQuantity) {
 
 TEST(Run, ObserversThatAreOffComputeNothingAndChangeNothing) {
   RunParams lean = quick();
-  lean.observe = {false, false, false, false, 1};
+  lean.observe.error_over_time = false;
+  lean.observe.dt_stable = false;
+  lean.observe.crossings = false;
   const RunResult a = run(lean);
   const RunResult b = run(quick());
   EXPECT_FALSE(a.max_error_over_time);
@@ -72,6 +74,32 @@ TEST(Run, HistoryHasOneRowPerKeptStepWithOnlyTheObservedFields) {
   EXPECT_EQ(strided.history[5].step, 180);
   EXPECT_EQ(strided.history[6].step, 200);
   EXPECT_FALSE(strided.history[0].dt_stable);
+}
+
+TEST(Run, FinalStateHoldsTheParticlesAndTheExactSolutionAtT) {
+  RunParams p = quick();
+  EXPECT_FALSE(run(p).final_state);
+  p.observe.final_state = true;
+  const RunResult r = run(p);
+  ASSERT_TRUE(r.final_state);
+  const FinalState& f = *r.final_state;
+  EXPECT_DOUBLE_EQ(f.time, p.T);
+  ASSERT_EQ(f.x.size(), r.particles);
+  // max_error is computed from the same state: max |x - X - u_exact|.
+  EXPECT_DOUBLE_EQ(((f.x - f.X) - f.u_exact).abs().maxCoeff(), *r.max_error);
+  EXPECT_TRUE(((f.sigma - p.E * (f.F - 1.0)).abs() < 1e-12).all());
+}
+
+TEST(Run, HistoryOfAFailedRunEndsWithTheLastAdmissibleStep) {
+  RunParams p = quick();
+  p.E = 1000;  // Courant 3.2 on 20 cells: fails within a few steps
+  p.dt = 2e-3;
+  p.observe.history = true;
+  p.observe.history_stride = 1000;
+  const RunResult r = run(p);
+  ASSERT_FALSE(r.stable);
+  ASSERT_EQ(r.history.size(), 1u);
+  EXPECT_EQ(r.history.back().step, r.failure->step - 1);
 }
 
 TEST(Run, IsDeterministic) {

@@ -13,6 +13,9 @@ constexpr const char* kUsage = R"(Usage: mpmstab <command> [options]
 
 Commands:
   run     run one case of the paper's 1D bar and report every measured quantity
+  sweep   run the cases of an experiment spec in parallel and write its reports
+  index   write results/README.md, the index of the reports
+  plot    draw a figure experiment with gnuplot
 
 'mpmstab <command> --help' describes a command.
 )";
@@ -29,14 +32,17 @@ int main(int argc, char** argv) {
   args.erase(args.begin());
   try {
     if (command == "run") return mpmstab::cli::cmd_run(args);
+    if (command == "sweep") return mpmstab::cli::cmd_sweep(args);
+    if (command == "index") return mpmstab::cli::cmd_index(args);
+    if (command == "plot") return mpmstab::cli::cmd_plot(args);
     std::string message = "unknown command '" + std::string(command) + "'";
-    if (auto guess = mpmstab::cli::nearest(command, {"run"})) {
+    if (auto guess = mpmstab::cli::nearest(command, {"run", "sweep", "index", "plot"})) {
       message += " (did you mean '" + *guess + "'?)";
     }
     throw mpmstab::cli::UsageError(message);
   } catch (const mpmstab::cli::UsageError& e) {
     std::cerr << "mpmstab " << command << ": error: " << e.what() << "\n"
-              << "Try 'mpmstab " << (command == "run" ? "run " : "") << "--help'.\n";
+              << "Try 'mpmstab " << command << " --help'.\n";
     return 2;
   } catch (const std::exception& e) {
     std::cerr << "mpmstab " << command << ": internal error: " << e.what() << "\n";

@@ -1,0 +1,78 @@
+#include "provenance.hpp"
+
+#include <Eigen/Core>
+#include <array>
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+#include <fstream>
+
+namespace mpmstab {
+
+namespace {
+
+// First line of a command's standard output ("" when it fails).
+std::string first_line_of(const std::string& command) {
+  FILE* pipe = popen((command + " 2>/dev/null").c_str(), "r");
+  if (!pipe) return "";
+  std::array<char, 512> buf{};
+  std::string out;
+  if (fgets(buf.data(), buf.size(), pipe)) out = buf.data();
+  const int status = pclose(pipe);
+  if (status != 0) return "";
+  while (!out.empty() && (out.back() == '\n' || out.back() == '\r'))
+    out.pop_back();
+  return out;
+}
+
+std::string cpu_model() {
+  std::ifstream in("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.rfind("model name", 0) == 0) {
+      const auto colon = line.find(':');
+      if (colon != std::string::npos) return line.substr(line.find_first_not_of(" \t", colon + 1));
+    }
+  }
+  return "unknown";
+}
+
+std::string utc_now() {
+  const std::time_t t = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
+
+}  // namespace
+
+Provenance current_provenance(int threads) {
+  Provenance p;
+  const std::string git = std::string("git -C '") + MPMSTAB_SOURCE_DIR + "' ";
+  p.commit = first_line_of(git + "rev-parse HEAD");
+  if (p.commit.empty()) {
+    p.commit = "unknown";
+  } else {
+    p.dirty =
+        !first_line_of(git + "status --porcelain --untracked-files=no -- . ':(exclude)results'")
+             .empty();
+  }
+  p.compiler = MPMSTAB_COMPILER;
+  p.flags = MPMSTAB_CXX_FLAGS;
+  p.eigen = std::to_string(EIGEN_WORLD_VERSION) + "." + std::to_string(EIGEN_MAJOR_VERSION) + "." +
+            std::to_string(EIGEN_MINOR_VERSION);
+  p.date = utc_now();
+  p.cpu = cpu_model();
+  p.threads = threads;
+  return p;
+}
+
+nlohmann::ordered_json to_json(const Provenance& p) {
+  return {{"commit", p.commit}, {"dirty", p.dirty},    {"compiler", p.compiler},
+          {"flags", p.flags},   {"eigen", p.eigen},    {"date", p.date},
+          {"cpu", p.cpu},       {"threads", p.threads}};
+}
+
+}  // namespace mpmstab

@@ -1,0 +1,728 @@
+#include "report.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "atomic_file.hpp"
+#include "cache.hpp"
+#include "csv.hpp"
+
+namespace mpmstab {
+
+namespace {
+
+using ojson = nlohmann::ordered_json;
+namespace fs = std::filesystem;
+
+// ---------------------------------------------------------------------------------------------
+// Flat rows: the same columns in the CSV and in the JSON "cases" array.
+
+const std::vector<std::string> kColumns = {
+    "method", "E", "A", "dt", "dt_inferred", "T", "cells", "ppc", "bc", "position_update",
+    "dt_stable_sigma", "dt_stable_vnorm", "stable", "failure_reason", "failure_step",
+    "failure_time", "meaningless", "steps", "max_error", "max_error_over_time", "crossings",
+    "dt_stable_min", "dt_cfl", "dt_sound", "courant", "key",
+    // Measurements of the machine: the only columns that differ between identical runs.
+    "wall_seconds", "ns_per_particle_step"};
+
+ojson flat_row(const CaseSpec& c, const ojson& record) {
+  const ojson& r = record["result"];
+  ojson row;
+  for (const auto& col : kColumns) {
+    if (col == "dt_inferred") {
+      row[col] = c.dt_inferred;
+    } else if (col == "failure_reason" || col == "failure_step" || col == "failure_time") {
+      row[col] = r["failure"].is_null() ? ojson(nullptr) : r["failure"][col.substr(8)];
+    } else if (col == "key") {
+      row[col] = case_key(c.params);
+    } else {
+      row[col] = r.contains(col) ? r[col] : ojson(nullptr);
+    }
+  }
+  return row;
+}
+
+std::string csv_cell(const ojson& v) {
+  if (v.is_null()) return "";
+  if (v.is_boolean()) return v.get<bool>() ? "true" : "false";
+  if (v.is_number_float()) return shortest(v.get<double>());
+  if (v.is_number()) return v.dump();
+  return csv_field(v.get<std::string>());
+}
+
+// ---------------------------------------------------------------------------------------------
+// Provenance of a set of cases: each field's distinct values, in spec order.
+
+ojson aggregate_provenance(const std::vector<ojson>& records) {
+  std::vector<std::string> fields = {"commit", "dirty", "compiler", "flags",
+                                     "eigen",  "cpu",   "threads"};
+  ojson out;
+  for (const auto& f : fields) {
+    std::vector<std::pair<std::string, int>> values;
+    for (const auto& rec : records) {
+      const ojson& v = rec["provenance"][f];
+      const std::string s = v.is_string() ? v.get<std::string>() : v.dump();
+      auto it =
+          std::find_if(values.begin(), values.end(), [&](const auto& e) { return e.first == s; });
+      if (it == values.end()) {
+        values.emplace_back(s, 1);
+      } else {
+        ++it->second;
+      }
+    }
+    std::string text;
+    for (const auto& [value, count] : values) {
+      if (!text.empty()) text += "; ";
+      text += value;
+      if (values.size() > 1) text += " (" + std::to_string(count) + " cases)";
+    }
+    out[f] = text;
+  }
+  std::string first, last;
+  for (const auto& rec : records) {
+    const std::string d = rec["provenance"]["date"].get<std::string>();
+    if (first.empty() || d < first) first = d;
+    if (last.empty() || d > last) last = d;
+  }
+  out["date"] = first == last ? first : first + " .. " + last;
+  return out;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Number formatting.
+
+std::string fixed(double v, int decimals) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+  return buf;
+}
+
+std::string seconds(double s) {
+  if (s < 1) return fixed(s * 1e3, s < 0.01 ? 2 : 0) + " ms";
+  return s < 10 ? fixed(s, 2) + " s" : fixed(s, 0) + " s";
+}
+
+// A ratio to two significant digits: "11", "7.6", "0.13", "1.2e+02".
+std::string ratio(double r) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.2g", r);
+  return buf;
+}
+
+// A paper cell as transcribed: a number, "*" (unstable), or unreadable/missing text.
+struct PaperValue {
+  enum Kind { number, unstable, unreadable } kind = unreadable;
+  double value = 0;
+  std::string text;
+};
+
+PaperValue paper_value(const std::string& text) {
+  PaperValue p;
+  p.text = text;
+  if (text == "*") {
+    p.kind = PaperValue::unstable;
+    return p;
+  }
+  try {
+    std::size_t used = 0;
+    p.value = std::stod(text, &used);
+    if (used == text.size()) p.kind = PaperValue::number;
+  } catch (const std::exception&) {
+  }
+  return p;
+}
+
+std::string show(const PaperValue& p) {
+  if (p.kind == PaperValue::number) return sci(p.value);
+  if (p.kind == PaperValue::unstable) return "*";
+  return p.text.empty() ? "?" : "`" + p.text + "`";
+}
+
+// A parameter: its value to 3 significant digits without trailing zeros ("1e-5", "2.5e-3").
+std::string param(double v) {
+  std::string s = sci(v, 3);
+  const auto e = s.find('e');
+  std::string mantissa = s.substr(0, e), rest = e == std::string::npos ? "" : s.substr(e);
+  if (mantissa.find('.') != std::string::npos) {
+    mantissa.erase(mantissa.find_last_not_of('0') + 1);
+    if (mantissa.back() == '.') mantissa.pop_back();
+  }
+  return mantissa + rest;
+}
+
+std::string opt_sci(const ojson& v) {
+  return v.is_number() ? sci(v.get<double>()) : "–";
+}
+
+// Our verdict, in the notation of the table: "*" for unstable, with the reason and step.
+std::string verdict(const ojson& r) {
+  if (!r["stable"].get<bool>()) {
+    return "\\* " + r["failure_reason"].get<std::string>() + " at step " +
+           std::to_string(r["failure_step"].get<std::int64_t>()) +
+           " (t = " + sci(r["failure_time"].get<double>()) + ")";
+  }
+  return r["meaningless"] == true ? "stable, meaningless (error reached A)" : "stable";
+}
+
+std::string cost(const ojson& r) {
+  return seconds(r["wall_seconds"].get<double>()) + ", " +
+         fixed(r["ns_per_particle_step"].get<double>(), 1) + " ns";
+}
+
+std::string link(const fs::path& from_dir, const fs::path& target) {
+  return fs::relative(target, from_dir).generic_string();
+}
+
+// ---------------------------------------------------------------------------------------------
+// Table 1.
+
+struct PaperCell {
+  PaperValue dt_stable, max_error;
+  std::string confidence, evidence;
+  bool dt_printed = true;
+};
+
+using Table1Key = std::tuple<double, double, double, std::string>;  // A, E, dt, method
+
+std::map<Table1Key, PaperCell> read_paper_table1(const Spec& spec) {
+  std::map<Table1Key, PaperCell> cells;
+  const CsvTable t = read_csv(spec.reference);
+  // Cells without a printed dt are matched to the spec's case marked dt_inferred.
+  for (const auto& row : t.rows) {
+    PaperCell c{paper_value(row.at("dt_stable")), paper_value(row.at("max_error")),
+                row.at("confidence"), row.at("evidence"), row.at("dt") != "?"};
+    std::string method = row.at("method");
+    std::transform(method.begin(), method.end(), method.begin(), ::tolower);
+    const double A = std::stod(row.at("A")), E = std::stod(row.at("E"));
+    double dt = std::nan("");
+    if (c.dt_printed) {
+      dt = std::stod(row.at("dt"));
+    } else {
+      for (const auto& cs : spec.cases) {
+        const auto& p = cs.params;
+        if (cs.dt_inferred && p.A == A && p.E == E && to_string(p.method) == method &&
+            !cells.count({A, E, p.dt, method})) {
+          dt = p.dt;
+        }
+      }
+    }
+    cells[{A, E, dt, method}] = c;
+  }
+  return cells;
+}
+
+struct Table1Summary {
+  int cells = 0, paper_stable = 0, paper_unstable = 0, paper_unknown = 0;
+  int ours_stable = 0, ours_meaningless = 0, ours_unstable = 0;
+  int verdicts_agree = 0, verdicts_compared = 0;
+  int paper_stable_ours_not = 0, paper_stable_ours_not_courant_ge1 = 0;
+  int errors_within_3 = 0, errors_compared = 0;
+  std::map<std::string, int> reasons;
+};
+
+Table1Summary summarize_table1(const Spec& spec, const std::vector<ojson>& rows,
+                               const std::map<Table1Key, PaperCell>& paper) {
+  Table1Summary s;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const auto& p = spec.cases[i].params;
+    const ojson& r = rows[i];
+    ++s.cells;
+    const bool ours_stable = r["stable"].get<bool>();
+    if (ours_stable) {
+      ++s.ours_stable;
+      if (r["meaningless"] == true) ++s.ours_meaningless;
+    } else {
+      ++s.ours_unstable;
+      ++s.reasons[r["failure_reason"].get<std::string>()];
+    }
+    const auto it = paper.find({p.A, p.E, p.dt, std::string(to_string(p.method))});
+    if (it == paper.end()) {
+      ++s.paper_unknown;
+      continue;
+    }
+    const PaperValue& pe = it->second.max_error;
+    if (pe.kind == PaperValue::unreadable) {
+      ++s.paper_unknown;
+      continue;
+    }
+    const bool paper_stable = pe.kind == PaperValue::number;
+    (paper_stable ? s.paper_stable : s.paper_unstable) += 1;
+    ++s.verdicts_compared;
+    if (paper_stable == ours_stable) ++s.verdicts_agree;
+    if (paper_stable && !ours_stable) {
+      ++s.paper_stable_ours_not;
+      if (r["courant"].get<double>() >= 1.0) ++s.paper_stable_ours_not_courant_ge1;
+    }
+    if (paper_stable && ours_stable) {
+      ++s.errors_compared;
+      const double ratio = r["max_error"].get<double>() / pe.value;
+      if (ratio <= 3 && ratio >= 1.0 / 3) ++s.errors_within_3;
+    }
+  }
+  return s;
+}
+
+std::string table1_summary_text(const Table1Summary& s) {
+  std::ostringstream md;
+  md << s.cells << " cells. Paper: " << s.paper_stable << " stable, " << s.paper_unstable
+     << " unstable (`*`), " << s.paper_unknown
+     << " unreadable in the transcription. Ours: " << s.ours_stable << " stable ("
+     << s.ours_meaningless << " of them meaningless: the error over time reached A), "
+     << s.ours_unstable << " unstable";
+  if (!s.reasons.empty()) {
+    md << " (";
+    bool first = true;
+    for (const auto& [reason, count] : s.reasons) {
+      md << (first ? "" : ", ") << reason << " " << count;
+      first = false;
+    }
+    md << ")";
+  }
+  md << ". Stability verdicts agree in " << s.verdicts_agree << " of " << s.verdicts_compared
+     << " cells; the paper lists as stable " << s.paper_stable_ours_not
+     << " cells that are unstable here, " << s.paper_stable_ours_not_courant_ge1
+     << " of them at a Courant number c dt / h >= 1. Where both are stable, our max error is "
+        "within a factor 3 of the paper's in "
+     << s.errors_within_3 << " of " << s.errors_compared << " cells.";
+  return md.str();
+}
+
+std::string table1_markdown(const Spec& spec, const std::vector<ojson>& rows, const fs::path& out) {
+  const auto paper = read_paper_table1(spec);
+  std::ostringstream md;
+  md << "## Results\n\n**Summary.** " << table1_summary_text(summarize_table1(spec, rows, paper))
+     << "\n\n";
+  md << "Legend: `*` unstable (ours: the reason and the step where the run stopped); "
+        "*meaningless*: the run survived but its error over time reached the amplitude A; "
+        "*inferred*: the paper does not print this cell's dt; *transcription*: the confidence of "
+        "the paper value as transcribed in ["
+     << link(out, spec.reference) << "](" << link(out, spec.reference)
+     << ") (low-confidence cells are data, not truth). dt_stable is the minimum over the run of "
+        "eq. (108) (stress "
+     << to_string(spec.cases.front().params.stable.sigma) << ", ||v|| "
+     << to_string(spec.cases.front().params.stable.vnorm)
+     << "). Cost: wall time of the run and ns per particle-step.\n\n";
+
+  // Blocks in the order the spec lists them: E, then A.
+  std::vector<std::pair<double, double>> blocks;
+  for (const auto& c : spec.cases) {
+    const std::pair<double, double> b{c.params.E, c.params.A};
+    if (std::find(blocks.begin(), blocks.end(), b) == blocks.end()) blocks.push_back(b);
+  }
+  double current_E = std::nan("");
+  for (const auto& [E, A] : blocks) {
+    if (E != current_E) {
+      md << "### E = " << shortest(E) << "\n\n";
+      current_E = E;
+    }
+    md << "**A = " << shortest(A) << "**\n\n";
+    md << "| dt | method | c dt/h | dt_stable paper | dt_stable ours | max error paper | max error "
+          "ours | ours / paper | ours: verdict | transcription | cost |\n";
+    md << "|---|---|---|---|---|---|---|---|---|---|---|\n";
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      const auto& cs = spec.cases[i];
+      const auto& p = cs.params;
+      if (p.E != E || p.A != A) continue;
+      const ojson& r = rows[i];
+      const auto it = paper.find({p.A, p.E, p.dt, std::string(to_string(p.method))});
+      const PaperCell* pc = it == paper.end() ? nullptr : &it->second;
+      std::string ratio_text = "–";
+      if (pc && pc->max_error.kind == PaperValue::number && r["max_error"].is_number()) {
+        ratio_text = ratio(r["max_error"].get<double>() / pc->max_error.value);
+      }
+      md << "| " << param(p.dt) << (cs.dt_inferred ? " (inferred)" : "") << " | "
+         << to_string(p.method) << " | " << sci(r["courant"].get<double>()) << " | "
+         << (pc ? show(pc->dt_stable) : "–") << " | "
+         << (r["stable"].get<bool>() ? opt_sci(r["dt_stable_min"]) : "\\*") << " | "
+         << (pc ? show(pc->max_error) : "–") << " | "
+         << (r["stable"].get<bool>() ? opt_sci(r["max_error"]) : "\\*") << " | " << ratio_text
+         << " | " << verdict(r) << " | " << (pc ? pc->confidence : "not in the paper") << " | "
+         << cost(r) << " |\n";
+    }
+    md << "\n";
+  }
+  return md.str();
+}
+
+// ---------------------------------------------------------------------------------------------
+// Table 2.
+
+// Per method: the range of ours / paper over the stable cases, and how many cases failed.
+std::string table2_summary_text(const Spec& spec, const std::vector<ojson>& rows) {
+  const CsvTable paper = read_csv(spec.reference);
+  std::map<std::string, std::pair<double, double>> range;  // method -> min, max ratio
+  std::map<std::string, int> compared, unstable;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const auto& p = spec.cases[i].params;
+    const std::string m(to_string(p.method));
+    if (!rows[i]["stable"].get<bool>()) {
+      ++unstable[m];
+      continue;
+    }
+    for (const auto& row : paper.rows) {
+      const std::string col = "crossings_A" + shortest(p.A);
+      if (std::stod(row.at("E")) != p.E || !row.count(col)) continue;
+      const double r = rows[i]["crossings"].get<double>() / std::stod(row.at(col));
+      auto [it, fresh] = range.try_emplace(m, r, r);
+      it->second.first = std::min(it->second.first, r);
+      it->second.second = std::max(it->second.second, r);
+      ++compared[m];
+    }
+  }
+  std::ostringstream md;
+  for (const auto& [m, lr] : range) {
+    md << "Ours with " << m << " count " << ratio(lr.first) << " to " << ratio(lr.second)
+       << " times the paper's crossings in the " << compared[m] << " cases that reach T";
+    if (unstable[m]) md << " (" << unstable[m] << " more became unstable before T)";
+    md << ". ";
+  }
+  md << "The paper's dt_sound column is 1/c in every row but E = 1000 (0.03132 printed, 1/c = "
+        "0.03162); the grid's speed-of-sound step h/c is 100 times smaller.";
+  return md.str();
+}
+
+std::string table2_markdown(const Spec& spec, const std::vector<ojson>& rows, const fs::path& out) {
+  const CsvTable paper = read_csv(spec.reference);
+  std::map<double, std::map<std::string, std::string>> paper_by_E;
+  for (const auto& row : paper.rows)
+    paper_by_E[std::stod(row.at("E"))] = row;
+
+  std::vector<double> Es, As;
+  std::vector<std::string> methods;
+  for (const auto& c : spec.cases) {
+    if (std::find(Es.begin(), Es.end(), c.params.E) == Es.end()) Es.push_back(c.params.E);
+    if (std::find(As.begin(), As.end(), c.params.A) == As.end()) As.push_back(c.params.A);
+    const std::string m(to_string(c.params.method));
+    if (std::find(methods.begin(), methods.end(), m) == methods.end()) methods.push_back(m);
+  }
+  auto find_row = [&](double E, double A, const std::string& m) -> const ojson* {
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      const auto& p = spec.cases[i].params;
+      if (p.E == E && p.A == A && to_string(p.method) == m) return &rows[i];
+    }
+    return nullptr;
+  };
+  auto crossings = [](const ojson* r) -> std::string {
+    if (!r || !(*r)["crossings"].is_number()) return "–";
+    std::string s = std::to_string((*r)["crossings"].get<std::int64_t>());
+    if (!(*r)["stable"].get<bool>()) {
+      s = "\\* " + s + " (to step " + std::to_string((*r)["failure_step"].get<std::int64_t>()) +
+          ")";
+    }
+    return s;
+  };
+
+  std::ostringstream md;
+  md << "## Results\n\n**Summary.** " << table2_summary_text(spec, rows)
+     << "\n\nCrossings: the number of cell boundaries passed by all particles over the "
+        "run (DESIGN.md section 3). `*`: the run became unstable; the count is up to the failure. "
+        "The paper's counts are \"approximate\"; its dt and method for them are not stated. Ours "
+        "use dt = "
+     << param(spec.cases.front().params.dt)
+     << " for every E. dt_sound: the paper's column equals 1/c; the speed-of-sound limit of "
+        "the grid is h/c. Paper values from ["
+     << link(out, spec.reference) << "](" << link(out, spec.reference) << ").\n\n";
+  md << "| E |";
+  for (double A : As) {
+    md << " A = " << shortest(A) << ": paper |";
+    for (const auto& m : methods)
+      md << " ours " << m << " | " << m << " / paper |";
+  }
+  md << " dt_sound paper | 1/c | h/c |\n|---|";
+  for (std::size_t k = 0; k < As.size() * (1 + 2 * methods.size()); ++k)
+    md << "---|";
+  md << "---|---|---|\n";
+  for (double E : Es) {
+    const auto pit = paper_by_E.find(E);
+    md << "| " << shortest(E) << " |";
+    for (double A : As) {
+      std::string paper_count = "–";
+      double paper_n = 0;
+      if (pit != paper_by_E.end()) {
+        const std::string col = "crossings_A" + shortest(A);
+        if (pit->second.count(col)) {
+          paper_count = pit->second.at(col);
+          paper_n = std::stod(paper_count);
+        }
+      }
+      md << " " << paper_count << " |";
+      for (const auto& m : methods) {
+        const ojson* r = find_row(E, A, m);
+        std::string ratio_text = "–";
+        if (r && (*r)["stable"].get<bool>() && (*r)["crossings"].is_number() && paper_n > 0) {
+          ratio_text = ratio((*r)["crossings"].get<double>() / paper_n);
+        }
+        md << " " << crossings(r) << " | " << ratio_text << " |";
+      }
+    }
+    const ojson* any = find_row(E, As.front(), methods.front());
+    md << " " << (pit != paper_by_E.end() ? pit->second.at("dt_sound") : "–") << " | "
+       << (any ? sci((*any)["dt_sound"].get<double>(), 4) : "–") << " | "
+       << (any ? sci((*any)["dt_cfl"].get<double>(), 4) : "–") << " |\n";
+  }
+  md << "\nNotes from the transcription: ";
+  for (const auto& row : paper.rows) {
+    if (!row.at("note").empty()) md << "E = " << row.at("E") << ": " << row.at("note") << ". ";
+  }
+  md << "\n\nEvery case: its verdict and cost.\n\n| E | A | method | dt | c dt/h | verdict | "
+        "crossings | cost |\n|---|---|---|---|---|---|---|---|\n";
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const auto& p = spec.cases[i].params;
+    md << "| " << shortest(p.E) << " | " << shortest(p.A) << " | " << to_string(p.method) << " | "
+       << param(p.dt) << " | " << sci(rows[i]["courant"].get<double>()) << " | " << verdict(rows[i])
+       << " | " << crossings(&rows[i]) << " | " << cost(rows[i]) << " |\n";
+  }
+  return md.str();
+}
+
+// ---------------------------------------------------------------------------------------------
+// Figures.
+
+std::string figure_markdown(const Spec& spec, const std::vector<ojson>& rows) {
+  const ojson& r = rows.front();
+  const auto& p = spec.cases.front().params;
+  std::ostringstream md;
+  md << "## Results\n\n![" << spec.title << "](" << spec.name << ".png)\n\n";
+  md << "Vector version: [" << spec.name << ".svg](" << spec.name << ".svg); data: [" << spec.name
+     << "_data.csv](" << spec.name << "_data.csv).\n\n";
+  md << "| method | E | A | dt | c dt/h | steps | verdict | max error at end | max error over "
+        "time | dt_stable min | crossings | cost |\n|---|---|---|---|---|---|---|---|---|---|---|"
+        "---|\n";
+  md << "| " << to_string(p.method) << " | " << shortest(p.E) << " | " << shortest(p.A) << " | "
+     << param(p.dt) << " | " << sci(r["courant"].get<double>()) << " | " << r["steps"].dump()
+     << " of " << *step_count(p.T, p.dt) << " | " << verdict(r) << " | " << opt_sci(r["max_error"])
+     << " | " << opt_sci(r["max_error_over_time"]) << " | " << opt_sci(r["dt_stable_min"]) << " | "
+     << (r["crossings"].is_null() ? std::string("–") : r["crossings"].dump()) << " | " << cost(r)
+     << " |\n";
+  return md.str();
+}
+
+std::string figure_data_csv(const ojson& record, const std::string& header_lines) {
+  std::ostringstream csv;
+  csv << header_lines;
+  auto cell = [](const ojson& v) {
+    return v.is_null() ? std::string() : shortest(v.get<double>());
+  };
+  if (record.contains("final_state")) {
+    const ojson& f = record["final_state"];
+    csv << "# particle state at t = " << shortest(f["time"].get<double>()) << "\n";
+    csv << "X,x,u,u_exact,v,v_exact,sigma,sigma_exact\n";
+    for (std::size_t i = 0; i < f["X"].size(); ++i) {
+      const ojson& x = f["x"][i];
+      const std::string u =
+          x.is_null() ? std::string() : shortest(x.get<double>() - f["X"][i].get<double>());
+      csv << cell(f["X"][i]) << ',' << cell(x) << ',' << u << ',' << cell(f["u_exact"][i]) << ','
+          << cell(f["v"][i]) << ',' << cell(f["v_exact"][i]) << ',' << cell(f["sigma"][i]) << ','
+          << cell(f["sigma_exact"][i]) << '\n';
+    }
+  } else if (record.contains("history")) {
+    csv << "step,time,error,dt_stable,crossings\n";
+    for (const auto& h : record["history"]) {
+      csv << h["step"].dump() << ',' << cell(h["time"]) << ',' << cell(h["error"]) << ','
+          << cell(h["dt_stable"]) << ',' << (h["crossings"].is_null() ? "" : h["crossings"].dump())
+          << '\n';
+    }
+  }
+  return csv.str();
+}
+
+std::string provenance_lines(const ojson& prov) {
+  std::ostringstream s;
+  s << "# commit: " << prov["commit"].get<std::string>()
+    << (prov["dirty"] == "false" ? "" : " (dirty: " + prov["dirty"].get<std::string>() + ")")
+    << "\n# compiler: " << prov["compiler"].get<std::string>()
+    << "\n# flags: " << prov["flags"].get<std::string>()
+    << "\n# eigen: " << prov["eigen"].get<std::string>()
+    << "\n# date: " << prov["date"].get<std::string>()
+    << "\n# cpu: " << prov["cpu"].get<std::string>()
+    << "\n# threads: " << prov["threads"].get<std::string>() << "\n";
+  return s.str();
+}
+
+std::string provenance_markdown(const ojson& prov, const ojson& sweep) {
+  std::ostringstream md;
+  md << "## Provenance\n\n| | |\n|---|---|\n";
+  for (const auto& [k, v] : prov.items())
+    md << "| " << k << " | " << v.get<std::string>() << " |\n";
+  md << "| compute time | " << seconds(sweep["compute_seconds"].get<double>())
+     << " summed over the cases (each timed when it was computed) |\n";
+  md << "| sweep wall time | " << seconds(sweep["wall_seconds"].get<double>())
+     << " (the last sweep that computed a case) |\n";
+  return md.str();
+}
+
+std::string read_file(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return "";
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return buffer.str();
+}
+
+}  // namespace
+
+std::string sci(double v, int digits) {
+  if (v == 0) return "0";
+  if (!std::isfinite(v)) return std::isnan(v) ? "nan" : (v > 0 ? "inf" : "-inf");
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*e", digits - 1, v);
+  // 5.1e-05 -> 5.1e-5, 1.0e+04 -> 1.0e4
+  std::string s = buf;
+  const auto e = s.find('e');
+  std::string mantissa = s.substr(0, e);
+  std::string exponent = s.substr(e + 1);
+  const bool negative = exponent[0] == '-';
+  exponent = exponent.substr(1);
+  exponent.erase(0, std::min(exponent.find_first_not_of('0'), exponent.size() - 1));
+  if (exponent == "0") return mantissa;
+  return mantissa + "e" + (negative ? "-" : "") + exponent;
+}
+
+void write_if_changed(const fs::path& path, const std::string& content) {
+  if (fs::exists(path) && read_file(path) == content) return;
+  write_file_atomically(path, content);
+}
+
+void write_reports(const Spec& spec, const SweepOutcome& outcome, const fs::path& out) {
+  fs::create_directories(out);
+  std::vector<ojson> rows;
+  for (std::size_t i = 0; i < spec.cases.size(); ++i) {
+    rows.push_back(flat_row(spec.cases[i], outcome.records[i]));
+  }
+  const ojson prov = aggregate_provenance(outcome.records);
+
+  // Timing of the sweep: a rerun served from the cache keeps the figure of the sweep that
+  // computed the results, so that reports do not change when nothing was computed.
+  double compute_seconds = 0;
+  for (const auto& r : rows)
+    compute_seconds += r["wall_seconds"].get<double>();
+  double sweep_wall = outcome.wall_seconds;
+  const fs::path json_path = out / (spec.name + ".json");
+  if (outcome.computed == 0) {
+    try {
+      const ojson previous = ojson::parse(read_file(json_path));
+      sweep_wall = previous.at("sweep").at("wall_seconds").get<double>();
+    } catch (const std::exception&) {
+    }
+  }
+  const ojson sweep = {
+      {"cases", rows.size()}, {"compute_seconds", compute_seconds}, {"wall_seconds", sweep_wall}};
+
+  const std::string spec_path = spec.path.generic_string();
+  std::string header = "# experiment: " + spec.name + " (" + spec_path +
+                       ")\n# title: " + spec.title + "\n" + provenance_lines(prov);
+
+  // CSV: one row per case.
+  std::ostringstream csv;
+  csv << header
+      << "# wall_seconds and ns_per_particle_step are measurements of the machine; every other "
+         "column is the same for the same spec whatever the number of jobs.\n";
+  for (std::size_t c = 0; c < kColumns.size(); ++c)
+    csv << (c ? "," : "") << kColumns[c];
+  csv << "\n";
+  for (const auto& row : rows) {
+    for (std::size_t c = 0; c < kColumns.size(); ++c) {
+      csv << (c ? "," : "") << csv_cell(row[kColumns[c]]);
+    }
+    csv << "\n";
+  }
+  write_if_changed(out / (spec.name + ".csv"), csv.str());
+
+  // JSON: the same content.
+  ojson doc;
+  doc["experiment"] = spec.name;
+  doc["title"] = spec.title;
+  doc["spec"] = spec_path;
+  doc["report"] = to_string(spec.report);
+  doc["provenance"] = prov;
+  doc["sweep"] = sweep;
+  doc["cases"] = rows;
+  write_if_changed(json_path, doc.dump(2) + "\n");
+
+  // Markdown.
+  std::ostringstream md;
+  md << "# " << spec.title << "\n\n"
+     << spec.description << "\n\nSpec: [`" << spec_path << "`](" << link(out, spec.path)
+     << ") · data: [" << spec.name << ".csv](" << spec.name << ".csv), [" << spec.name << ".json]("
+     << spec.name << ".json) · generated by `make reproduce`.\n\n";
+  switch (spec.report) {
+    case ReportKind::table1:
+      md << table1_markdown(spec, rows, out);
+      break;
+    case ReportKind::table2:
+      md << table2_markdown(spec, rows, out);
+      break;
+    case ReportKind::figure:
+      md << figure_markdown(spec, rows);
+      write_if_changed(out / (spec.name + "_data.csv"),
+                       figure_data_csv(outcome.records.front(), header));
+      break;
+  }
+  md << "\n" << provenance_markdown(prov, sweep);
+  write_if_changed(out / (spec.name + ".md"), md.str());
+}
+
+void write_index(const std::vector<Spec>& specs, const fs::path& out) {
+  std::ostringstream md;
+  md << "# mpmstab results\n\n"
+        "Regenerated by `make reproduce` from the specs in [`experiments/`](../experiments/): "
+        "the experiments of M. Berzins, *Nonlinear stability and time step selection for the MPM "
+        "method*, rerun with this project's solver and set beside the paper's values. Every "
+        "number below is read from the files it links to.\n\n";
+  md << "| experiment | report | data | cases | unstable | compute time | sweep wall time |\n"
+        "|---|---|---|---|---|---|---|\n";
+  std::vector<std::pair<const Spec*, ojson>> docs;
+  for (const auto& spec : specs) {
+    const std::string text = read_file(out / (spec.name + ".json"));
+    if (text.empty()) {
+      md << "| " << spec.title << " | not generated | | | | | |\n";
+      continue;
+    }
+    const ojson doc = ojson::parse(text);
+    int unstable = 0;
+    for (const auto& c : doc["cases"])
+      unstable += c["stable"] == false;
+    md << "| " << spec.title << " | [" << spec.name << ".md](" << spec.name << ".md) | ["
+       << spec.name << ".csv](" << spec.name << ".csv), [" << spec.name << ".json](" << spec.name
+       << ".json) | " << doc["cases"].size() << " | " << unstable << " | "
+       << seconds(doc["sweep"]["compute_seconds"].get<double>()) << " | "
+       << seconds(doc["sweep"]["wall_seconds"].get<double>()) << " |\n";
+    docs.emplace_back(&spec, doc);
+  }
+  md << "\n";
+  for (const auto& [spec, doc] : docs) {
+    md << "## " << spec->title << "\n\n" << spec->description << "\n\n";
+    std::vector<ojson> rows(doc["cases"].begin(), doc["cases"].end());
+    if (spec->report == ReportKind::table1) {
+      const auto paper = read_paper_table1(*spec);
+      md << "**What it shows.** " << table1_summary_text(summarize_table1(*spec, rows, paper))
+         << " Full table with the paper's values beside ours: [" << spec->name << ".md]("
+         << spec->name << ".md).\n\n";
+    } else if (spec->report == ReportKind::table2) {
+      md << "**What it shows.** Our crossing counts beside the paper's approximate ones, per E "
+            "and A, and both readings of dt_sound: ["
+         << spec->name << ".md](" << spec->name << ".md).\n\n";
+    } else {
+      const ojson& r = rows.front();
+      md << "![" << spec->title << "](" << spec->name << ".png)\n\n**What it shows.** This run "
+         << (r["stable"] == true ? "reached T" : "did not reach T") << ": " << verdict(r) << "; "
+         << r["steps"].dump() << " steps, max error over time " << opt_sci(r["max_error_over_time"])
+         << ", eq. (108) minimum " << opt_sci(r["dt_stable_min"])
+         << " against dt = " << param(r["dt"].get<double>()) << ". Details: [" << spec->name
+         << ".md](" << spec->name << ".md).\n\n";
+    }
+    md << "Provenance: commit " << doc["provenance"]["commit"].get<std::string>() << ", "
+       << doc["provenance"]["date"].get<std::string>() << ", "
+       << doc["provenance"]["cpu"].get<std::string>() << ", "
+       << doc["provenance"]["threads"].get<std::string>() << " threads; computed in "
+       << seconds(doc["sweep"]["compute_seconds"].get<double>()) << " of case time.\n\n";
+  }
+  write_if_changed(out / "README.md", md.str());
+}
+
+}  // namespace mpmstab

@@ -1,0 +1,164 @@
+#include "sweep.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <exception>
+#include <mutex>
+#include <numeric>
+#include <thread>
+
+#include "cache.hpp"
+#include "csv.hpp"
+#include "provenance.hpp"
+#include "result_json.hpp"
+#include "run.hpp"
+
+namespace mpmstab {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Work of a case, for scheduling and the time estimate: particle-steps.
+double cost_of(const RunParams& p) {
+  return double(*step_count(p.T, p.dt)) * double(p.cells) * double(p.ppc);
+}
+
+nlohmann::ordered_json final_state_json(const FinalState& f) {
+  auto column = [](const Eigen::ArrayXd& a) {
+    auto out = nlohmann::ordered_json::array();
+    for (double v : a)
+      out.push_back(std::isfinite(v) ? nlohmann::ordered_json(v) : nullptr);
+    return out;
+  };
+  return {{"time", f.time},
+          {"X", column(f.X)},
+          {"x", column(f.x)},
+          {"v", column(f.v)},
+          {"F", column(f.F)},
+          {"sigma", column(f.sigma)},
+          {"u_exact", column(f.u_exact)},
+          {"v_exact", column(f.v_exact)},
+          {"sigma_exact", column(f.sigma_exact)}};
+}
+
+std::string describe(const RunParams& p) {
+  return std::string(to_string(p.method)) + " E=" + shortest(p.E) + " A=" + shortest(p.A) +
+         " dt=" + shortest(p.dt);
+}
+
+class Progress {
+ public:
+  Progress(const Spec& spec, bool line, double total_cost)
+      : name_(spec.name), total_(spec.cases.size()), line_(line), total_cost_(total_cost) {}
+
+  void done(const RunParams& p, const nlohmann::ordered_json& result, bool from_cache,
+            double cost) {
+    std::lock_guard lock(mutex_);
+    ++done_;
+    if (!result["stable"].get<bool>()) ++unstable_;
+    if (from_cache) {
+      total_cost_ -= cost;  // cached cases take no time: leave them out of the estimate
+    } else {
+      done_cost_ += cost;
+    }
+    const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
+    if (line_) {
+      const double rate = done_cost_ > 0 ? done_cost_ / elapsed : 0;
+      const double left = rate > 0 ? (total_cost_ - done_cost_) / rate : 0;
+      std::fprintf(stderr, "\r[%s] %zu/%zu cases, %zu unstable, %.0f s elapsed, ~%.0f s left   ",
+                   name_.c_str(), done_, total_, unstable_, elapsed, left);
+      if (done_ == total_) std::fputc('\n', stderr);
+    } else {
+      std::string verdict =
+          result["stable"].get<bool>()
+              ? "stable"
+              : "unstable (" + result["failure"]["reason"].get<std::string>() + ")";
+      std::fprintf(stderr, "[%s] %zu/%zu %s: %s%s\n", name_.c_str(), done_, total_,
+                   describe(p).c_str(), verdict.c_str(), from_cache ? " [cached]" : "");
+    }
+    std::fflush(stderr);
+  }
+
+ private:
+  std::mutex mutex_;
+  std::string name_;
+  std::size_t total_, done_ = 0, unstable_ = 0;
+  bool line_;
+  double total_cost_, done_cost_ = 0;
+  Clock::time_point start_ = Clock::now();
+};
+
+}  // namespace
+
+SweepOutcome run_sweep(const Spec& spec, const SweepOptions& options) {
+  const auto start = Clock::now();
+  const std::size_t n = spec.cases.size();
+  const ResultCache cache(options.cache);
+  const Provenance provenance = current_provenance(options.jobs);
+
+  // Longest cases first, so that the last one to finish is short.
+  std::vector<std::size_t> order(n);
+  std::iota(order.begin(), order.end(), 0);
+  std::vector<double> cost(n);
+  double total_cost = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    total_cost += cost[i] = cost_of(spec.cases[i].params);
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return cost[a] > cost[b]; });
+
+  SweepOutcome out;
+  out.records.resize(n);
+  std::vector<char> from_cache(n, 0);
+  Progress progress(spec, options.progress_line, total_cost);
+  std::atomic<std::size_t> next{0};
+  std::exception_ptr error;
+  std::mutex error_mutex;
+
+  auto worker = [&] {
+    for (std::size_t k; (k = next.fetch_add(1)) < n;) {
+      const std::size_t i = order[k];
+      const RunParams& p = spec.cases[i].params;
+      try {
+        std::optional<nlohmann::ordered_json> record;
+        if (!options.force) record = cache.load(p);
+        from_cache[i] = record.has_value();
+        if (!record) {
+          const RunResult r = run(p);
+          nlohmann::ordered_json rec;
+          rec["result"] = to_json(r);
+          rec["provenance"] = to_json(provenance);
+          if (p.observe.history) rec["history"] = history_to_json(r);
+          if (r.final_state) rec["final_state"] = final_state_json(*r.final_state);
+          cache.store(p, rec);
+          record = std::move(rec);
+        }
+        progress.done(p, (*record)["result"], from_cache[i], cost[i]);
+        out.records[i] = std::move(*record);
+      } catch (...) {
+        std::lock_guard lock(error_mutex);
+        if (!error) error = std::current_exception();
+        next = n;  // stop handing out cases
+      }
+    }
+  };
+  const int jobs = std::max(1, std::min<int>(options.jobs, static_cast<int>(n)));
+  std::vector<std::thread> threads;
+  for (int t = 1; t < jobs; ++t)
+    threads.emplace_back(worker);
+  worker();
+  for (auto& t : threads)
+    t.join();
+  if (error) std::rethrow_exception(error);
+
+  for (std::size_t i = 0; i < n; ++i) {
+    (from_cache[i] ? out.cached : out.computed) += 1;
+    if (!out.records[i]["result"]["stable"].get<bool>()) ++out.unstable;
+  }
+  out.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  return out;
+}
+
+}  // namespace mpmstab

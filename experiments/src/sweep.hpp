@@ -1,0 +1,32 @@
+// Running the cases of a spec: in parallel, from the cache where possible, with progress.
+#pragma once
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <vector>
+
+#include "spec.hpp"
+
+namespace mpmstab {
+
+struct SweepOptions {
+  int jobs = 1;                 // cases run at once
+  bool force = false;           // compute every case again, ignoring the cache
+  std::filesystem::path cache;  // cache folder
+  bool progress_line = false;   // one updating line (terminal) instead of a line per case
+};
+
+struct SweepOutcome {
+  // One record per case, in spec order: {"result", "provenance"[, "history"][, "final_state"]}.
+  std::vector<nlohmann::ordered_json> records;
+  int computed = 0;
+  int cached = 0;
+  int unstable = 0;
+  double wall_seconds = 0;
+};
+
+// Results do not depend on `jobs`: every case is an independent, deterministic computation and
+// the records are returned in spec order.
+SweepOutcome run_sweep(const Spec& spec, const SweepOptions& options);
+
+}  // namespace mpmstab

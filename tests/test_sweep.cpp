@@ -1,0 +1,158 @@
+// Sweeps: results independent of --jobs, the cache reruns nothing unchanged, and bad specs are
+// refused before anything is written.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "cache.hpp"
+#include "report.hpp"
+#include "spec.hpp"
+#include "sweep.hpp"
+
+namespace mpmstab {
+namespace {
+
+namespace fs = std::filesystem;
+
+class Sweeps : public ::testing::Test {
+ protected:
+  fs::path dir = fs::temp_directory_path() / ("mpmstab_sweep_test_" + std::to_string(::getpid()));
+  void SetUp() override {
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    std::ofstream(dir / "small.json") << R"({
+      "name": "small", "title": "Small", "report": "table2", "reference": "paper2.csv",
+      "record": ["crossings", "error_over_time"],
+      "defaults": {"T": 0.05, "cells": 20, "dt": 1e-4},
+      "cases": [
+        {"E": 4, "A": 0.015, "method": "gimp"}, {"E": 4, "A": 0.015, "method": "mpm"},
+        {"E": 64, "A": 0.05, "method": "gimp"}, {"E": 64, "A": 0.05, "method": "mpm"},
+        {"E": 1e4, "A": 0.05, "method": "gimp", "dt": 1e-3}
+      ]})";
+    std::ofstream(dir / "paper2.csv") << "E,crossings_A0.015,crossings_A0.05,dt_sound,note\n4,300,"
+                                         "1000,0.5,\n64,1300,4000,0.125,\n"
+                                         "10000,15000,55000,0.01,\n";
+  }
+  void TearDown() override { fs::remove_all(dir); }
+
+  std::string read(const fs::path& p) {
+    std::ifstream in(p);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+  }
+  // CSV rows without the '#' lines and without the two timing columns (the last two).
+  std::vector<std::string> deterministic_rows(const fs::path& csv) {
+    std::vector<std::string> rows;
+    std::istringstream in(read(csv));
+    for (std::string line; std::getline(in, line);) {
+      if (line.empty() || line[0] == '#') continue;
+      for (int k = 0; k < 2; ++k)
+        line.erase(line.rfind(','));
+      rows.push_back(line);
+    }
+    return rows;
+  }
+  SweepOutcome sweep(const Spec& spec, int jobs, const fs::path& out, bool force = false) {
+    SweepOptions o;
+    o.jobs = jobs;
+    o.force = force;
+    o.cache = out / "cache";
+    const SweepOutcome r = run_sweep(spec, o);
+    write_reports(spec, r, out);
+    return r;
+  }
+};
+
+TEST_F(Sweeps, ResultsDoNotDependOnTheNumberOfJobs) {
+  const Spec spec = load_spec(dir / "small.json");
+  sweep(spec, 1, dir / "one");
+  sweep(spec, 2, dir / "two");
+  sweep(spec, 5, dir / "five");
+  const auto one = deterministic_rows(dir / "one/small.csv");
+  ASSERT_EQ(one.size(), 6u);  // header + 5 cases
+  EXPECT_EQ(one, deterministic_rows(dir / "two/small.csv"));
+  EXPECT_EQ(one, deterministic_rows(dir / "five/small.csv"));
+}
+
+TEST_F(Sweeps, TheCacheRerunsNothingUnchangedAndOnlyWhatChanged) {
+  const Spec spec = load_spec(dir / "small.json");
+  const SweepOutcome first = sweep(spec, 2, dir / "out");
+  EXPECT_EQ(first.computed, 5);
+  const std::string md = read(dir / "out/small.md");
+  const std::string csv = read(dir / "out/small.csv");
+
+  const SweepOutcome again = sweep(spec, 2, dir / "out");
+  EXPECT_EQ(again.computed, 0);
+  EXPECT_EQ(again.cached, 5);
+  // Reports are byte for byte the same: nothing of the rerun leaks into them.
+  EXPECT_EQ(read(dir / "out/small.md"), md);
+  EXPECT_EQ(read(dir / "out/small.csv"), csv);
+
+  // One changed case is computed again, and only that one.
+  Spec changed = spec;
+  changed.cases[1].params.A = 0.02;
+  EXPECT_EQ(sweep(changed, 2, dir / "out").computed, 1);
+
+  // --force computes everything.
+  EXPECT_EQ(sweep(spec, 2, dir / "out", true).computed, 5);
+}
+
+TEST_F(Sweeps, KeysChangeWithEveryParameterAndWithWhatIsRecorded) {
+  RunParams p;
+  const std::string base = case_key(p);
+  std::vector<RunParams> variants(9, p);
+  variants[0].E = 4.000000000000001;
+  variants[1].dt *= 2;
+  variants[2].method = Method::mpm;
+  variants[3].bc = Boundary::periodic;
+  variants[4].ppc = 3;
+  variants[5].position_update = PositionUpdate::particle;
+  variants[6].stable.sigma = StressScaling::raw;
+  variants[7].observe.history = true;
+  variants[8].observe.crossings = false;
+  std::set<std::string> keys{base};
+  for (const auto& v : variants)
+    keys.insert(case_key(v));
+  EXPECT_EQ(keys.size(), variants.size() + 1);
+}
+
+TEST_F(Sweeps, UnstableCasesAreReportedNotFatal) {
+  const Spec spec = load_spec(dir / "small.json");
+  const SweepOutcome r = sweep(spec, 2, dir / "out");
+  EXPECT_EQ(r.unstable, 1);  // E = 1e4 at dt = 1e-3: Courant 2
+  EXPECT_NE(read(dir / "out/small.md").find("\\* "), std::string::npos);
+}
+
+int run_cli(const std::string& args) {
+  const int raw = std::system((std::string(MPMSTAB_BIN) + " " + args + " >/dev/null 2>&1").c_str());
+  return WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+}
+
+TEST_F(Sweeps, CommandLineRefusesBadSpecsAndLeavesResultsUntouched) {
+  const fs::path out = dir / "out";
+  ASSERT_EQ(run_cli("sweep " + (dir / "small.json").string() + " --jobs 2 --out " + out.string()),
+            0);
+  const std::string before = read(out / "small.csv");
+  std::ofstream(dir / "bad.json") << R"({"name": "small", "report": "figure", "cases": [)"
+                                     R"({"method": "gimp", "E": 4, "A": 0.01, "dt": -1}]})";
+  const std::string command = std::string(MPMSTAB_BIN) + " sweep " + (dir / "bad.json").string() +
+                              " --out " + out.string() + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  std::string output(4096, '\0');
+  output.resize(fread(output.data(), 1, output.size(), pipe));
+  const int raw = pclose(pipe);
+  EXPECT_EQ(WEXITSTATUS(raw), 2);
+  EXPECT_NE(output.find("cases[0].dt"), std::string::npos) << output;
+  EXPECT_EQ(read(out / "small.csv"), before);
+  EXPECT_EQ(run_cli("sweep " + (dir / "small.json").string() + " --jobs 0"), 2);
+  EXPECT_EQ(run_cli("sweep " + (dir / "small.json").string() + " --out /proc/none"), 2);
+  EXPECT_EQ(run_cli("sweep " + dir.string()), 2);  // a directory
+  EXPECT_EQ(run_cli("sweep"), 2);
+}
+
+}  // namespace
+}  // namespace mpmstab
