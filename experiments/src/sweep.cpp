@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <condition_variable>
 #include <cstdio>
 #include <exception>
 #include <mutex>
 #include <numeric>
+#include <stop_token>
 #include <thread>
 
 #include "cache.hpp"
@@ -64,12 +66,8 @@ class Progress {
     } else {
       done_cost_ += cost;
     }
-    const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
     if (line_) {
-      const double rate = done_cost_ > 0 ? done_cost_ / elapsed : 0;
-      const double left = rate > 0 ? (total_cost_ - done_cost_) / rate : 0;
-      std::fprintf(stderr, "\r[%s] %zu/%zu cases, %zu unstable, %.0f s elapsed, ~%.0f s left   ",
-                   name_.c_str(), done_, total_, unstable_, elapsed, left);
+      draw();
       if (done_ == total_) std::fputc('\n', stderr);
     } else {
       std::string verdict =
@@ -82,7 +80,27 @@ class Progress {
     std::fflush(stderr);
   }
 
+  // Redraws the terminal line (elapsed time moves on during long cases).
+  void tick() {
+    std::lock_guard lock(mutex_);
+    if (line_ && done_ < total_) {
+      draw();
+      std::fflush(stderr);
+    }
+  }
+
  private:
+  void draw() const {
+    const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
+    const double rate = done_cost_ > 0 ? done_cost_ / elapsed : 0;
+    char left[48] = "estimating";
+    if (rate > 0) {
+      std::snprintf(left, sizeof left, "~%.0f s left", (total_cost_ - done_cost_) / rate);
+    }
+    std::fprintf(stderr, "\r[%s] %zu/%zu cases, %zu unstable, %.0f s elapsed, %s   ", name_.c_str(),
+                 done_, total_, unstable_, elapsed, left);
+  }
+
   std::mutex mutex_;
   std::string name_;
   std::size_t total_, done_ = 0, unstable_ = 0;
