@@ -13,17 +13,21 @@ DEB_PACKAGES := cmake g++ make libeigen3-dev nlohmann-json3-dev libgtest-dev lib
 # The paper's experiments, in the order make reproduce runs them.
 TABLES      := table1 table2
 FIGURES     := fig1 fig2 fig3
-EXPERIMENTS := $(TABLES) $(FIGURES)
+SUPPORT     := courant walls crossing eq108
+EXPERIMENTS := $(TABLES) $(FIGURES) $(SUPPORT)
+SPECS       := $(EXPERIMENTS:%=experiments/%.json)
 RESULTS     ?= results
 MPMSTAB     := $(BUILD_DIR)/mpmstab
 
-.PHONY: all build deps test bench reproduce figures format format-check clean help
+.PHONY: all build deps test check bless bench reproduce figures format format-check clean help
 
 all: build
 
 help:
 	@echo "make              install missing packages, configure and build into $(BUILD_DIR)/"
-	@echo "make test         build and run the GoogleTest suite (CTest)"
+	@echo "make test         build and run the GoogleTest suite (CTest), then make check"
+	@echo "make check        rerun a fast subset of every experiment against reference/regression"
+	@echo "make bless REASON=\"...\"  accept the current values as blessed, logged in BLESSED.md"
 	@echo "make reproduce    rerun the paper's experiments (cached cases are not rerun), write results/"
 	@echo "make bench        run the step benchmark, write results/benchmark_step.json"
 	@echo "make format       clang-format every source file in place"
@@ -50,6 +54,13 @@ build: deps $(BUILD_DIR)/CMakeCache.txt
 
 test: build
 	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
+	@$(MAKE) --no-print-directory check
+
+check: build
+	$(MPMSTAB) check $(SPECS) --jobs $(JOBS) --results $(RESULTS)
+
+bless: build
+	$(MPMSTAB) bless $(SPECS) --jobs $(JOBS) --results $(RESULTS) --reason "$(REASON)"
 
 bench: build
 	$(BUILD_DIR)/tests/mpmstab_bench --benchmark_repetitions=5 \
@@ -64,7 +75,8 @@ reproduce: build
 	  $(MPMSTAB) sweep experiments/$$e.json --jobs $(JOBS) --out $(RESULTS) || exit $$?; \
 	done
 	@$(MAKE) --no-print-directory figures
-	$(MPMSTAB) index $(EXPERIMENTS:%=experiments/%.json) --out $(RESULTS)
+	$(MPMSTAB) compare experiments/table1.json $(SUPPORT:%=experiments/%.json) --out $(RESULTS)
+	$(MPMSTAB) index $(SPECS) --out $(RESULTS)
 	@echo "Reports: $(RESULTS)/README.md"
 
 figures: $(FIGURES:%=$(RESULTS)/%.png)

@@ -16,6 +16,9 @@ Commands:
   sweep   run the cases of an experiment spec in parallel and write its reports
   index   write results/README.md, the index of the reports
   plot    draw a figure experiment with gnuplot
+  compare write results/comparison.md: every Table 1 cell against the paper
+  check   rerun a fast subset of every experiment against the blessed values
+  bless   accept the current values as the blessed ones, with a reason
 
 'mpmstab <command> --help' describes a command.
 )";
@@ -35,8 +38,12 @@ int main(int argc, char** argv) {
     if (command == "sweep") return mpmstab::cli::cmd_sweep(args);
     if (command == "index") return mpmstab::cli::cmd_index(args);
     if (command == "plot") return mpmstab::cli::cmd_plot(args);
+    if (command == "compare") return mpmstab::cli::cmd_compare(args);
+    if (command == "check") return mpmstab::cli::cmd_check(args);
+    if (command == "bless") return mpmstab::cli::cmd_bless(args);
     std::string message = "unknown command '" + std::string(command) + "'";
-    if (auto guess = mpmstab::cli::nearest(command, {"run", "sweep", "index", "plot"})) {
+    if (auto guess = mpmstab::cli::nearest(
+            command, {"run", "sweep", "index", "plot", "compare", "check", "bless"})) {
       message += " (did you mean '" + *guess + "'?)";
     }
     throw mpmstab::cli::UsageError(message);

@@ -11,6 +11,7 @@
 #include "atomic_file.hpp"
 #include "cache.hpp"
 #include "csv.hpp"
+#include "report_util.hpp"
 
 namespace mpmstab {
 
@@ -29,31 +30,6 @@ const std::vector<std::string> kColumns = {
     "dt_stable_min", "dt_cfl", "dt_sound", "courant", "key",
     // Measurements of the machine: the only columns that differ between identical runs.
     "wall_seconds", "ns_per_particle_step"};
-
-ojson flat_row(const CaseSpec& c, const ojson& record) {
-  const ojson& r = record["result"];
-  ojson row;
-  for (const auto& col : kColumns) {
-    if (col == "dt_inferred") {
-      row[col] = c.dt_inferred;
-    } else if (col == "failure_reason" || col == "failure_step" || col == "failure_time") {
-      row[col] = r["failure"].is_null() ? ojson(nullptr) : r["failure"][col.substr(8)];
-    } else if (col == "key") {
-      row[col] = case_key(c.params);
-    } else {
-      row[col] = r.contains(col) ? r[col] : ojson(nullptr);
-    }
-  }
-  return row;
-}
-
-std::string csv_cell(const ojson& v) {
-  if (v.is_null()) return "";
-  if (v.is_boolean()) return v.get<bool>() ? "true" : "false";
-  if (v.is_number_float()) return shortest(v.get<double>());
-  if (v.is_number()) return v.dump();
-  return csv_field(v.get<std::string>());
-}
 
 // ---------------------------------------------------------------------------------------------
 // Provenance of a set of cases: each field's distinct values, in spec order.
@@ -91,129 +67,6 @@ ojson aggregate_provenance(const std::vector<ojson>& records) {
   }
   out["date"] = first == last ? first : first + " .. " + last;
   return out;
-}
-
-// ---------------------------------------------------------------------------------------------
-// Number formatting.
-
-std::string fixed(double v, int decimals) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
-  return buf;
-}
-
-std::string seconds(double s) {
-  if (s < 1) return fixed(s * 1e3, s < 0.01 ? 2 : 0) + " ms";
-  return s < 10 ? fixed(s, 2) + " s" : fixed(s, 0) + " s";
-}
-
-// A ratio to two significant digits: "11", "7.6", "0.13", "1.2e+02".
-std::string ratio(double r) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.2g", r);
-  return buf;
-}
-
-// A paper cell as transcribed: a number, "*" (unstable), or unreadable/missing text.
-struct PaperValue {
-  enum Kind { number, unstable, unreadable } kind = unreadable;
-  double value = 0;
-  std::string text;
-};
-
-PaperValue paper_value(const std::string& text) {
-  PaperValue p;
-  p.text = text;
-  if (text == "*") {
-    p.kind = PaperValue::unstable;
-    return p;
-  }
-  try {
-    std::size_t used = 0;
-    p.value = std::stod(text, &used);
-    if (used == text.size()) p.kind = PaperValue::number;
-  } catch (const std::exception&) {
-  }
-  return p;
-}
-
-std::string show(const PaperValue& p) {
-  if (p.kind == PaperValue::number) return sci(p.value);
-  if (p.kind == PaperValue::unstable) return "*";
-  return p.text.empty() ? "?" : "`" + p.text + "`";
-}
-
-// A parameter: its value to 3 significant digits without trailing zeros ("1e-5", "2.5e-3").
-std::string param(double v) {
-  std::string s = sci(v, 3);
-  const auto e = s.find('e');
-  std::string mantissa = s.substr(0, e), rest = e == std::string::npos ? "" : s.substr(e);
-  if (mantissa.find('.') != std::string::npos) {
-    mantissa.erase(mantissa.find_last_not_of('0') + 1);
-    if (mantissa.back() == '.') mantissa.pop_back();
-  }
-  return mantissa + rest;
-}
-
-std::string opt_sci(const ojson& v) {
-  return v.is_number() ? sci(v.get<double>()) : "–";
-}
-
-// Our verdict, in the notation of the table: "*" for unstable, with the reason and step.
-std::string verdict(const ojson& r) {
-  if (!r["stable"].get<bool>()) {
-    return "\\* " + r["failure_reason"].get<std::string>() + " at step " +
-           std::to_string(r["failure_step"].get<std::int64_t>()) +
-           " (t = " + sci(r["failure_time"].get<double>()) + ")";
-  }
-  return r["meaningless"] == true ? "stable, meaningless (error reached A)" : "stable";
-}
-
-std::string cost(const ojson& r) {
-  return seconds(r["wall_seconds"].get<double>()) + ", " +
-         fixed(r["ns_per_particle_step"].get<double>(), 1) + " ns";
-}
-
-std::string link(const fs::path& from_dir, const fs::path& target) {
-  return fs::relative(target, from_dir).generic_string();
-}
-
-// ---------------------------------------------------------------------------------------------
-// Table 1.
-
-struct PaperCell {
-  PaperValue dt_stable, max_error;
-  std::string confidence, evidence;
-  bool dt_printed = true;
-};
-
-using Table1Key = std::tuple<double, double, double, std::string>;  // A, E, dt, method
-
-std::map<Table1Key, PaperCell> read_paper_table1(const Spec& spec) {
-  std::map<Table1Key, PaperCell> cells;
-  const CsvTable t = read_csv(spec.reference);
-  // Cells without a printed dt are matched to the spec's case marked dt_inferred.
-  for (const auto& row : t.rows) {
-    PaperCell c{paper_value(row.at("dt_stable")), paper_value(row.at("max_error")),
-                row.at("confidence"), row.at("evidence"), row.at("dt") != "?"};
-    std::string method = row.at("method");
-    std::transform(method.begin(), method.end(), method.begin(), ::tolower);
-    const double A = std::stod(row.at("A")), E = std::stod(row.at("E"));
-    double dt = std::nan("");
-    if (c.dt_printed) {
-      dt = std::stod(row.at("dt"));
-    } else {
-      for (const auto& cs : spec.cases) {
-        const auto& p = cs.params;
-        if (cs.dt_inferred && p.A == A && p.E == E && to_string(p.method) == method &&
-            !cells.count({A, E, p.dt, method})) {
-          dt = p.dt;
-        }
-      }
-    }
-    cells[{A, E, dt, method}] = c;
-  }
-  return cells;
 }
 
 struct Table1Summary {
@@ -481,6 +334,80 @@ std::string table2_markdown(const Spec& spec, const std::vector<ojson>& rows, co
 }
 
 // ---------------------------------------------------------------------------------------------
+// A plain table of every case: the parameters that vary, then the measured quantities.
+
+std::string cases_markdown(const Spec& spec, const std::vector<ojson>& rows) {
+  // Parameter columns shown: always method, E, A, dt; the others only where cases differ.
+  std::vector<std::string> params = {"method", "E", "A", "dt"};
+  for (const char* col :
+       {"T", "cells", "ppc", "bc", "position_update", "dt_stable_sigma", "dt_stable_vnorm"}) {
+    for (const auto& r : rows) {
+      if (r[col] != rows.front()[col]) {
+        params.push_back(col);
+        break;
+      }
+    }
+  }
+  const auto& observe = spec.cases.front().params.observe;
+  std::ostringstream md;
+  int unstable = 0, meaningless = 0;
+  for (const auto& r : rows) {
+    unstable += r["stable"] == false;
+    meaningless += r["meaningless"] == true;
+  }
+  md << "## Results\n\n"
+     << rows.size() << " cases: " << rows.size() - unstable << " stable (" << meaningless
+     << " meaningless: the error over time reached A), " << unstable << " unstable.";
+  std::string fixed_params;
+  for (const char* col :
+       {"T", "cells", "ppc", "bc", "position_update", "dt_stable_sigma", "dt_stable_vnorm"}) {
+    if (std::find(params.begin(), params.end(), col) != params.end()) continue;
+    const ojson& v = rows.front()[col];
+    fixed_params += std::string(fixed_params.empty() ? "" : ", ") + col + " = " +
+                    (v.is_string() ? v.get<std::string>() : shortest(v.get<double>()));
+  }
+  md << " Common to all: " << fixed_params << ".\n\n|";
+  for (const auto& p : params)
+    md << " " << p << " |";
+  md << " c dt/h | verdict | max error |";
+  if (observe.error_over_time) md << " max error over time | over time / A |";
+  if (observe.dt_stable) md << " dt_stable min |";
+  if (observe.crossings) md << " crossings |";
+  md << " cost |\n|";
+  const std::size_t n_cols = params.size() + 4 + (observe.error_over_time ? 2 : 0) +
+                             (observe.dt_stable ? 1 : 0) + (observe.crossings ? 1 : 0);
+  for (std::size_t k = 0; k < n_cols; ++k)
+    md << "---|";
+  md << "\n";
+  for (const auto& r : rows) {
+    md << "|";
+    for (const auto& p : params) {
+      const ojson& v = r[p];
+      md << " "
+         << (v.is_string() ? v.get<std::string>()
+             : p == "dt"   ? param(v.get<double>())
+                           : shortest(v.get<double>()))
+         << " |";
+    }
+    md << " " << sci(r["courant"].get<double>()) << " | " << verdict(r) << " | "
+       << opt_sci(r["max_error"]) << " |";
+    if (observe.error_over_time) {
+      md << " " << opt_sci(r["max_error_over_time"]) << " | "
+         << (r["max_error_over_time"].is_number() && r["A"].get<double>() > 0
+                 ? ratio(r["max_error_over_time"].get<double>() / r["A"].get<double>())
+                 : "–")
+         << " |";
+    }
+    if (observe.dt_stable) md << " " << opt_sci(r["dt_stable_min"]) << " |";
+    if (observe.crossings) {
+      md << " " << (r["crossings"].is_null() ? std::string("–") : r["crossings"].dump()) << " |";
+    }
+    md << " " << cost(r) << " |\n";
+  }
+  return md.str();
+}
+
+// ---------------------------------------------------------------------------------------------
 // Figures.
 
 std::string figure_markdown(const Spec& spec, const std::vector<ojson>& rows) {
@@ -556,31 +483,35 @@ std::string provenance_markdown(const ojson& prov, const ojson& sweep) {
   return md.str();
 }
 
-std::string read_file(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return "";
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
-}
-
 }  // namespace
 
-std::string sci(double v, int digits) {
-  if (v == 0) return "0";
-  if (!std::isfinite(v)) return std::isnan(v) ? "nan" : (v > 0 ? "inf" : "-inf");
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*e", digits - 1, v);
-  // 5.1e-05 -> 5.1e-5, 1.0e+04 -> 1.0e4
-  std::string s = buf;
-  const auto e = s.find('e');
-  std::string mantissa = s.substr(0, e);
-  std::string exponent = s.substr(e + 1);
-  const bool negative = exponent[0] == '-';
-  exponent = exponent.substr(1);
-  exponent.erase(0, std::min(exponent.find_first_not_of('0'), exponent.size() - 1));
-  if (exponent == "0") return mantissa;
-  return mantissa + "e" + (negative ? "-" : "") + exponent;
+ojson flat_row(const CaseSpec& c, const ojson& record) {
+  const ojson& r = record["result"];
+  ojson row;
+  for (const auto& col : kColumns) {
+    if (col == "dt_inferred") {
+      row[col] = c.dt_inferred;
+    } else if (col == "failure_reason" || col == "failure_step" || col == "failure_time") {
+      row[col] = r["failure"].is_null() ? ojson(nullptr) : r["failure"][col.substr(8)];
+    } else if (col == "key") {
+      row[col] = case_key(c.params);
+    } else {
+      row[col] = r.contains(col) ? r[col] : ojson(nullptr);
+    }
+  }
+  return row;
+}
+
+std::string csv_cell(const ojson& v) {
+  if (v.is_null()) return "";
+  if (v.is_boolean()) return v.get<bool>() ? "true" : "false";
+  if (v.is_number_float()) return shortest(v.get<double>());
+  if (v.is_number()) return v.dump();
+  return csv_field(v.get<std::string>());
+}
+
+const std::vector<std::string>& result_columns() {
+  return kColumns;
 }
 
 void write_if_changed(const fs::path& path, const std::string& content) {
@@ -657,6 +588,9 @@ void write_reports(const Spec& spec, const SweepOutcome& outcome, const fs::path
     case ReportKind::table2:
       md << table2_markdown(spec, rows, out);
       break;
+    case ReportKind::cases:
+      md << cases_markdown(spec, rows);
+      break;
     case ReportKind::figure:
       md << figure_markdown(spec, rows);
       write_if_changed(out / (spec.name + "_data.csv"),
@@ -674,6 +608,9 @@ void write_index(const std::vector<Spec>& specs, const fs::path& out) {
         "the experiments of M. Berzins, *Nonlinear stability and time step selection for the MPM "
         "method*, rerun with this project's solver and set beside the paper's values. Every "
         "number below is read from the files it links to.\n\n";
+  md << "**Against the paper:** [comparison.md](comparison.md) sets every Table 1 cell beside "
+        "the paper's, with a verdict, and explains each class of disagreement with an "
+        "experiment.\n\n";
   md << "| experiment | report | data | cases | unstable | compute time | sweep wall time |\n"
         "|---|---|---|---|---|---|---|\n";
   std::vector<std::pair<const Spec*, ojson>> docs;
@@ -707,6 +644,15 @@ void write_index(const std::vector<Spec>& specs, const fs::path& out) {
       md << "**What it shows.** Our crossing counts beside the paper's approximate ones, per E "
             "and A, and both readings of dt_sound: ["
          << spec->name << ".md](" << spec->name << ".md).\n\n";
+    } else if (spec->report == ReportKind::cases) {
+      int unstable = 0, meaningless = 0;
+      for (const auto& r : rows) {
+        unstable += r["stable"] == false;
+        meaningless += r["meaningless"] == true;
+      }
+      md << "**What it shows.** " << rows.size() << " cases, " << unstable << " unstable, "
+         << meaningless << " meaningless; it supports the explanations in [comparison.md]"
+         << "(comparison.md). Full table: [" << spec->name << ".md](" << spec->name << ".md).\n\n";
     } else {
       const ojson& r = rows.front();
       md << "![" << spec->title << "](" << spec->name << ".png)\n\n**What it shows.** This run "

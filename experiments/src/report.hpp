@@ -19,10 +19,14 @@ void write_reports(const Spec& spec, const SweepOutcome& outcome, const std::fil
 // Writes <out>/README.md, the index a reader browses, from the <name>.json of each spec.
 void write_index(const std::vector<Spec>& specs, const std::filesystem::path& out);
 
+// The columns of a result row, in CSV order; the last two are timing measurements.
+const std::vector<std::string>& result_columns();
+// One case as a flat row of result_columns().
+nlohmann::ordered_json flat_row(const CaseSpec& c, const nlohmann::ordered_json& record);
+// A JSON value as a CSV field: "" for null, shortest round-trip text for numbers.
+std::string csv_cell(const nlohmann::ordered_json& v);
+
 // Writes `content` to `path` atomically unless the file already holds exactly that.
 void write_if_changed(const std::filesystem::path& path, const std::string& content);
-
-// "5.1e-5": `digits` significant digits, compact exponent.
-std::string sci(double v, int digits = 2);
 
 }  // namespace mpmstab

@@ -178,6 +178,8 @@ std::string_view to_string(ReportKind k) {
       return "table2";
     case ReportKind::figure:
       return "figure";
+    case ReportKind::cases:
+      return "cases";
   }
   return "?";
 }
@@ -203,18 +205,22 @@ Spec load_spec(const std::filesystem::path& file) {
     spec.description = r.string_at(doc["description"], "description");
   }
   const std::string report = r.string_at(doc["report"], "report");
-  if (report == "table1")
-    spec.report = ReportKind::table1;
-  else if (report == "table2")
-    spec.report = ReportKind::table2;
-  else if (report == "figure")
-    spec.report = ReportKind::figure;
-  else
-    r.fail("report", "unknown value '" + report + "' (expected table1, table2 or figure)");
+  bool known = false;
+  for (ReportKind k :
+       {ReportKind::table1, ReportKind::table2, ReportKind::figure, ReportKind::cases}) {
+    if (report == to_string(k)) {
+      spec.report = k;
+      known = true;
+    }
+  }
+  if (!known) {
+    r.fail("report", "unknown value '" + report + "' (expected table1, table2, figure or cases)");
+  }
   if (doc.contains("reference")) {
     spec.reference = file.parent_path() / r.string_at(doc["reference"], "reference");
   }
-  if (spec.report != ReportKind::figure && spec.reference.empty()) {
+  if ((spec.report == ReportKind::table1 || spec.report == ReportKind::table2) &&
+      spec.reference.empty()) {
     r.fail("reference", "is required for a " + report + " report");
   }
 

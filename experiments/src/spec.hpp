@@ -16,6 +16,7 @@ enum class ReportKind {
   table1,  // Table 1: E blocks, dt rows, MPM and GIMP, paper beside ours
   table2,  // Table 2: grid crossings per E and A, dt_sound
   figure,  // one case whose history or final state a gnuplot script draws
+  cases,   // a plain table of every case (supporting experiments)
 };
 
 struct CaseSpec {

@@ -141,7 +141,8 @@ SweepOutcome run_sweep(const Spec& spec, const SweepOptions& options) {
       const RunParams& p = spec.cases[i].params;
       try {
         std::optional<nlohmann::ordered_json> record;
-        if (!options.force) record = cache.load(p);
+        const bool cached = !options.cache.empty();
+        if (cached && !options.force) record = cache.load(p);
         from_cache[i] = record.has_value();
         if (!record) {
           const RunResult r = run(p);
@@ -150,10 +151,10 @@ SweepOutcome run_sweep(const Spec& spec, const SweepOptions& options) {
           rec["provenance"] = to_json(provenance);
           if (p.observe.history) rec["history"] = history_to_json(r);
           if (r.final_state) rec["final_state"] = final_state_json(*r.final_state);
-          cache.store(p, rec);
+          if (cached) cache.store(p, rec);
           record = std::move(rec);
         }
-        progress.done(p, (*record)["result"], from_cache[i], cost[i]);
+        if (!options.quiet) progress.done(p, (*record)["result"], from_cache[i], cost[i]);
         out.records[i] = std::move(*record);
       } catch (...) {
         std::lock_guard lock(error_mutex);

@@ -12,8 +12,9 @@ namespace mpmstab {
 struct SweepOptions {
   int jobs = 1;                 // cases run at once
   bool force = false;           // compute every case again, ignoring the cache
-  std::filesystem::path cache;  // cache folder
+  std::filesystem::path cache;  // cache folder; empty: compute every case, store nothing
   bool progress_line = false;   // one updating line (terminal) instead of a line per case
+  bool quiet = false;           // no progress at all
 };
 
 struct SweepOutcome {

@@ -1,0 +1,57 @@
+// Helpers shared by the report writers: number formatting, our verdict in the paper's notation,
+// and the paper's Table 1 as transcribed.
+#pragma once
+
+#include <filesystem>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <tuple>
+
+#include "spec.hpp"
+
+namespace mpmstab {
+
+// "5.1e-5": `digits` significant digits, compact exponent.
+std::string sci(double v, int digits = 2);
+std::string fixed(double v, int decimals);
+// "0.25 ms", "3.96 s", "56 s".
+std::string seconds(double s);
+// A ratio to two significant digits: "11", "7.6", "0.13", "1.2e+02".
+std::string ratio(double r);
+// A parameter: three significant digits without trailing zeros ("1e-5", "2.5e-3").
+std::string param(double v);
+// A JSON number in sci(), or "–" for null.
+std::string opt_sci(const nlohmann::ordered_json& v);
+// Our verdict for a flat result row: "stable", "stable, meaningless ...", "\\* reason at step n".
+std::string verdict(const nlohmann::ordered_json& row);
+// "0.25 s, 12.7 ns": wall time and ns per particle-step of a flat result row.
+std::string cost(const nlohmann::ordered_json& row);
+// Relative link from a report folder to a file.
+std::string link(const std::filesystem::path& from_dir, const std::filesystem::path& target);
+// The whole file, or "" when it cannot be read.
+std::string read_file(const std::filesystem::path& path);
+
+// A paper cell as transcribed: a number, "*" (unstable), or unreadable/missing text.
+struct PaperValue {
+  enum Kind { number, unstable, unreadable } kind = unreadable;
+  double value = 0;
+  std::string text;
+};
+
+PaperValue paper_value(const std::string& text);
+std::string show(const PaperValue& p);
+
+struct PaperCell {
+  PaperValue dt_stable, max_error;
+  std::string confidence, evidence;
+  bool dt_printed = true;
+};
+
+using Table1Key = std::tuple<double, double, double, std::string>;  // A, E, dt, method
+
+// The transcribed Table 1 of a table1 spec, keyed by (A, E, dt, method); cells whose dt the
+// paper does not print are keyed by the dt of the spec's case marked dt_inferred.
+std::map<Table1Key, PaperCell> read_paper_table1(const Spec& spec);
+
+}  // namespace mpmstab

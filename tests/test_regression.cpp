@@ -1,0 +1,170 @@
+// The regression gate: check passes on blessed values, fails naming the cell on any change,
+// bless rewrites only what changed and logs it, and refuses to run without a reason.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "regression.hpp"
+#include "spec.hpp"
+
+namespace mpmstab {
+namespace {
+
+namespace fs = std::filesystem;
+
+class Regression : public ::testing::Test {
+ protected:
+  fs::path dir = fs::temp_directory_path() / ("mpmstab_regression_" + std::to_string(::getpid()));
+  RegressionOptions options;
+
+  void SetUp() override {
+    fs::remove_all(dir);
+    fs::create_directories(dir / "results");
+    write_spec(0.015);
+    std::ofstream(dir / "results/comparison.csv")
+        << "# verdicts\nmethod,E,A,dt,verdict,class,confidence\n"
+           "gimp,4,0.015,0.001,agree,agree-stable,high\n";
+    options.reference = dir / "reference";
+    options.results = dir / "results";
+    options.jobs = 2;
+    options.budget = 5e5;  // the T = 2 case below (8e5 particle-steps) is left out
+  }
+  void TearDown() override { fs::remove_all(dir); }
+
+  void write_spec(double A) {
+    std::ofstream(dir / "small.json") << R"({"name": "small", "report": "cases",
+      "record": ["error_over_time", "crossings", "dt_stable"],
+      "defaults": {"T": 0.05, "cells": 20, "dt": 1e-4},
+      "cases": [{"E": 4, "A": )" << A << R"(, "method": "gimp"},
+                {"E": 64, "A": 0.05, "method": "mpm"},
+                {"E": 1e4, "A": 0.05, "method": "gimp", "dt": 1e-3},
+                {"E": 4, "A": 0.01, "method": "gimp", "T": 2}]})";
+  }
+  std::vector<Spec> specs() { return {load_spec(dir / "small.json")}; }
+  std::string read(const fs::path& p) {
+    std::ifstream in(p);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+  }
+  // Runs check and returns (status, what it printed on stderr).
+  std::pair<int, std::string> check() {
+    testing::internal::CaptureStderr();
+    const int status = run_check(specs(), options);
+    return {status, testing::internal::GetCapturedStderr()};
+  }
+};
+
+TEST_F(Regression, CheckFailsWithoutBlessedValuesAndPassesAfterBless) {
+  EXPECT_EQ(check().first, 1);
+  testing::internal::CaptureStdout();
+  ASSERT_EQ(run_bless(specs(), options, "first blessing"), 0);
+  testing::internal::GetCapturedStdout();
+  const std::string blessed = read(options.reference / "small.csv");
+  EXPECT_NE(blessed.find("gimp,4,0.015,1e-04,0.05"), std::string::npos) << blessed;
+  EXPECT_EQ(blessed.find(",2,20,"), std::string::npos);  // the costly case is not in the subset
+  testing::internal::CaptureStdout();
+  EXPECT_EQ(check().first, 0);
+  testing::internal::GetCapturedStdout();
+}
+
+TEST_F(Regression, ALastDigitChangeFailsNamingTheCellAndRestoringPasses) {
+  testing::internal::CaptureStdout();
+  run_bless(specs(), options, "first blessing");
+  const fs::path file = options.reference / "small.csv";
+  const std::string original = read(file);
+  // Change the last digit of the first max_error_over_time value.
+  std::istringstream lines(original);
+  std::string out, line;
+  bool changed = false;
+  while (std::getline(lines, line)) {
+    if (!changed && line.rfind("gimp,4,", 0) == 0) {
+      std::vector<std::string> f;
+      std::stringstream ss(line);
+      for (std::string x; std::getline(ss, x, ',');)
+        f.push_back(x);
+      std::string& v = f[17];  // max_error_over_time
+      char& last = v[v.find('e') == std::string::npos ? v.size() - 1 : v.find('e') - 1];
+      last = last == '9' ? '8' : static_cast<char>(last + 1);
+      line.clear();
+      for (std::size_t i = 0; i < f.size(); ++i)
+        line += (i ? "," : "") + f[i];
+      changed = true;
+    }
+    out += line + "\n";
+  }
+  ASSERT_TRUE(changed);
+  std::ofstream(file) << out;
+  const auto [status, message] = check();
+  testing::internal::GetCapturedStdout();
+  EXPECT_EQ(status, 1);
+  EXPECT_NE(message.find("method=gimp E=4 A=0.015 dt=1e-04"), std::string::npos) << message;
+  EXPECT_NE(message.find("max_error_over_time expected"), std::string::npos) << message;
+  EXPECT_NE(message.find("relative difference"), std::string::npos) << message;
+  EXPECT_NE(message.find("tolerance atol 0 + rtol 0"), std::string::npos) << message;
+  std::ofstream(file) << original;
+  testing::internal::CaptureStdout();
+  EXPECT_EQ(check().first, 0);
+  testing::internal::GetCapturedStdout();
+}
+
+TEST_F(Regression, AChangedVerdictFailsCheckUntilBlessed) {
+  testing::internal::CaptureStdout();
+  run_bless(specs(), options, "first blessing");
+  testing::internal::GetCapturedStdout();
+  std::ofstream(dir / "results/comparison.csv")
+      << "method,E,A,dt,verdict,class,confidence\n"
+         "gimp,4,0.015,0.001,paper stable ours unstable,courant-above-1,high\n";
+  const auto [status, message] = check();
+  EXPECT_EQ(status, 1);
+  EXPECT_NE(message.find("comparison verdict"), std::string::npos) << message;
+  testing::internal::CaptureStdout();
+  run_bless(specs(), options, "verdict moved");
+  EXPECT_EQ(check().first, 0);
+  testing::internal::GetCapturedStdout();
+}
+
+TEST_F(Regression, BlessRewritesOnlyWhatChangedAndLogsIt) {
+  testing::internal::CaptureStdout();
+  run_bless(specs(), options, "first blessing");
+  const std::string before = read(options.reference / "small.csv");
+  // Nothing changed: nothing is rewritten and nothing is logged.
+  const std::string log_before = read(options.reference / "BLESSED.md");
+  run_bless(specs(), options, "no change");
+  EXPECT_EQ(read(options.reference / "BLESSED.md"), log_before);
+  // One case changes: its row is replaced, the others keep their text, the log names it.
+  write_spec(0.02);
+  run_bless(specs(), options, "amplitude of the first case raised");
+  testing::internal::GetCapturedStdout();
+  const std::string after = read(options.reference / "small.csv");
+  EXPECT_NE(after, before);
+  EXPECT_NE(after.find("mpm,64,0.05,1e-04"), std::string::npos);
+  auto line_of = [](const std::string& text, const std::string& prefix) {
+    const auto at = text.find(prefix);
+    return at == std::string::npos ? "" : text.substr(at, text.find('\n', at) - at);
+  };
+  EXPECT_EQ(line_of(after, "mpm,64,0.05,"), line_of(before, "mpm,64,0.05,"));
+  const std::string log = read(options.reference / "BLESSED.md");
+  EXPECT_NE(log.find("Reason: amplitude of the first case raised"), std::string::npos) << log;
+  EXPECT_NE(log.find("A=0.02"), std::string::npos) << log;       // the new row
+  EXPECT_NE(log.find("missing row"), std::string::npos) << log;  // the old one
+  EXPECT_NE(log.find("commit"), std::string::npos);
+}
+
+TEST_F(Regression, BlessRefusesWithoutAReason) {
+  const std::string cmd = std::string(MPMSTAB_BIN) + " bless " + (dir / "small.json").string() +
+                          " --reference " + options.reference.string() + " --reason '  ' 2>&1";
+  const int raw = std::system(cmd.c_str());
+  EXPECT_EQ(WEXITSTATUS(raw), 2);
+  EXPECT_FALSE(fs::exists(options.reference / "BLESSED.md"));
+  const int none = std::system(
+      (std::string(MPMSTAB_BIN) + " bless " + (dir / "small.json").string() + " >/dev/null 2>&1")
+          .c_str());
+  EXPECT_EQ(WEXITSTATUS(none), 2);
+}
+
+}  // namespace
+}  // namespace mpmstab
