@@ -13,6 +13,8 @@ std::string_view to_string(FailureReason r) {
       return "nonpositive_F";
     case FailureReason::left_domain:
       return "left_domain";
+    case FailureReason::step_limit:
+      return "step_limit";
   }
   return "?";
 }

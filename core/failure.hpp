@@ -1,5 +1,6 @@
 // Failure detection: the run stops as unstable ("*" in Table 1) when a particle leaves the
-// domain (Dirichlet), any state value is not finite, or some F_p <= 0.
+// domain (Dirichlet), any state value is not finite, or some F_p <= 0. A run whose time-step
+// policy needs more steps than the cap stops with step_limit (set by the run driver).
 #pragma once
 
 #include <cstdint>
@@ -11,7 +12,7 @@
 
 namespace mpmstab {
 
-enum class FailureReason { non_finite, nonpositive_F, left_domain };
+enum class FailureReason { non_finite, nonpositive_F, left_domain, step_limit };
 
 std::string_view to_string(FailureReason r);
 

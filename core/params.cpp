@@ -29,6 +29,10 @@ constexpr Names<PositionUpdate, 2> kPositionUpdates{
 constexpr Names<StressScaling, 2> kScalings{
     {{StressScaling::scaled, "scaled"}, {StressScaling::raw, "raw"}}};
 constexpr Names<VelocityNorm, 2> kNorms{{{VelocityNorm::l2, "l2"}, {VelocityNorm::max, "max"}}};
+constexpr Names<TimeStepPolicy, 4> kPolicies{{{TimeStepPolicy::fixed, "fixed"},
+                                              {TimeStepPolicy::cfl, "cfl"},
+                                              {TimeStepPolicy::adaptive, "adaptive"},
+                                              {TimeStepPolicy::min, "min"}}};
 
 template <class Enum, std::size_t N>
 std::string_view name_of(const Names<Enum, N>& table, Enum e) {
@@ -78,6 +82,24 @@ std::optional<VelocityNorm> parse_velocity_norm(std::string_view s) {
   return parse(kNorms, s);
 }
 
+std::string_view to_string(TimeStepPolicy p) {
+  return name_of(kPolicies, p);
+}
+std::optional<TimeStepPolicy> parse_time_step_policy(std::string_view s) {
+  return parse(kPolicies, s);
+}
+
+std::optional<double> fixed_step(const RunParams& p) {
+  switch (p.stepping.policy) {
+    case TimeStepPolicy::fixed:
+      return p.dt;
+    case TimeStepPolicy::cfl:
+      return p.stepping.cfl_factor * (1.0 / p.cells) / std::sqrt(p.E);
+    default:
+      return std::nullopt;
+  }
+}
+
 std::optional<std::int64_t> step_count(double T, double dt) {
   if (!(T > 0) || !(dt > 0) || !std::isfinite(T) || !std::isfinite(dt)) return std::nullopt;
   const double ratio = T / dt;
@@ -104,10 +126,17 @@ std::vector<ParamIssue> validate(const RunParams& p) {
   if (!std::isfinite(p.A) || !(p.A >= 0))
     bad("A", "must be a finite number >= 0, got " + show(p.A));
   if (!std::isfinite(p.T) || !(p.T > 0)) bad("T", "must be a finite number > 0, got " + show(p.T));
-  if (!std::isfinite(p.dt) || !(p.dt > 0)) {
+  const bool fixed = p.stepping.policy == TimeStepPolicy::fixed;
+  if (fixed && (!std::isfinite(p.dt) || !(p.dt > 0))) {
     bad("dt", "must be a finite number > 0, got " + show(p.dt));
-  } else if (std::isfinite(p.T) && p.T > 0 && p.dt > p.T) {
+  } else if (fixed && std::isfinite(p.T) && p.T > 0 && p.dt > p.T) {
     bad("dt", "must not exceed T = " + show(p.T) + ", got " + show(p.dt));
+  }
+  if (!std::isfinite(p.stepping.cfl_factor) || !(p.stepping.cfl_factor > 0)) {
+    bad("cfl_factor", "must be a finite number > 0, got " + show(p.stepping.cfl_factor));
+  }
+  if (!std::isfinite(p.stepping.safety) || !(p.stepping.safety > 0)) {
+    bad("safety", "must be a finite number > 0, got " + show(p.stepping.safety));
   }
   if (p.cells < 1 || p.cells > kMaxCells) {
     bad("cells", "must be an integer in [1, " + std::to_string(kMaxCells) + "], got " +
@@ -124,12 +153,16 @@ std::vector<ParamIssue> validate(const RunParams& p) {
   if (p.observe.history_stride < 1) {
     bad("history_stride", "must be >= 1, got " + std::to_string(p.observe.history_stride));
   }
-  if (std::isfinite(p.T) && p.T > 0 && std::isfinite(p.dt) && p.dt > 0 && p.dt <= p.T &&
-      p.max_steps >= 1) {
-    const auto n = step_count(p.T, p.dt);
-    if (!n || *n > p.max_steps) {
-      bad("dt", "T / dt = " + show(p.T / p.dt) + " steps exceeds the cap max_steps = " +
-                    std::to_string(p.max_steps) + " (raise --max-steps or shorten T)");
+  // The step count of the fixed-step policies is known before the run: refuse it if too large.
+  // (The state-dependent policies stop with a step_limit failure when they reach the cap.)
+  if (issues.empty()) {
+    if (const auto dt = fixed_step(p)) {
+      const auto n = step_count(p.T, std::min(*dt, p.T));
+      const std::string key = fixed ? "dt" : "cfl_factor";
+      if (!n || *n > p.max_steps) {
+        bad(key, "T / dt = " + show(p.T / *dt) + " steps exceeds the cap max_steps = " +
+                     std::to_string(p.max_steps) + " (raise --max-steps or shorten T)");
+      }
     }
   }
   return issues;

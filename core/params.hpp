@@ -32,6 +32,21 @@ enum class PositionUpdate { grid, particle };
 enum class StressScaling { scaled, raw };
 enum class VelocityNorm { l2, max };
 
+// How each step's dt is chosen (every policy lands exactly on T):
+//  - fixed:    dt as given;
+//  - cfl:      dt = C h / c, the speed-of-sound rule with Courant factor C (`cfl_factor`);
+//  - adaptive: dt_n = s * eq. (108) bound of the current state (`safety` s);
+//  - min:      dt_n = min(C h / c, s * eq. (108) bound).
+// The bound of the current state is the one after the previous step; before the first step no
+// grid velocity exists yet and the bound is taken with ||v|| = 0.
+enum class TimeStepPolicy { fixed, cfl, adaptive, min };
+
+struct TimeStepping {
+  TimeStepPolicy policy = TimeStepPolicy::fixed;
+  double cfl_factor = 0.5;  // C
+  double safety = 1.0;      // s
+};
+
 struct StableDtOptions {
   StressScaling sigma = StressScaling::scaled;
   VelocityNorm vnorm = VelocityNorm::l2;
@@ -59,6 +74,7 @@ struct RunParams {
   Boundary bc = Boundary::dirichlet;
   PositionUpdate position_update = PositionUpdate::grid;
   StableDtOptions stable;
+  TimeStepping stepping;
   Observe observe;
   // Refuse, before running, a run that would need more steps than this (see README).
   std::int64_t max_steps = 200'000'000;
@@ -78,17 +94,22 @@ std::vector<ParamIssue> validate(const RunParams& p);
 // Returns nullopt when the count does not fit in 64 bits.
 std::optional<std::int64_t> step_count(double T, double dt);
 
+// The step of the fixed and cfl policies (dt, or C h / c); nullopt for the state-dependent ones.
+std::optional<double> fixed_step(const RunParams& p);
+
 // Names used on the command line, in JSON and in reports.
 std::string_view to_string(Method m);
 std::string_view to_string(Boundary b);
 std::string_view to_string(PositionUpdate u);
 std::string_view to_string(StressScaling s);
 std::string_view to_string(VelocityNorm n);
+std::string_view to_string(TimeStepPolicy p);
 
 std::optional<Method> parse_method(std::string_view s);
 std::optional<Boundary> parse_boundary(std::string_view s);
 std::optional<PositionUpdate> parse_position_update(std::string_view s);
 std::optional<StressScaling> parse_stress_scaling(std::string_view s);
 std::optional<VelocityNorm> parse_velocity_norm(std::string_view s);
+std::optional<TimeStepPolicy> parse_time_step_policy(std::string_view s);
 
 }  // namespace mpmstab

@@ -32,8 +32,12 @@ struct FinalState {
 struct RunResult {
   RunParams params;
   std::int64_t particles = 0;
-  std::int64_t steps_planned = 0;
-  std::int64_t steps = 0;  // steps completed (the failing step included)
+  std::int64_t steps_planned = 0;  // fixed-step policies; 0 when the policy adapts dt
+  std::int64_t steps = 0;          // steps completed (the failing step included)
+  // Smallest and largest dt used; the last step, shortened to land on T, is not counted unless
+  // it is the only one.
+  double dt_min = 0;
+  double dt_max = 0;
 
   bool stable = false;
   std::optional<Failure> failure;  // set when !stable

@@ -146,3 +146,25 @@ TEST(Cli, UnwritableHistoryIsAUsageError) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(Cli, PoliciesTakeDtOnlyWhenFixed) {
+  EXPECT_EQ(mpmstab("run --method gimp --E 4 --A 0.01 --T 0.01 --policy cfl").status, 0);
+  const Outcome both = mpmstab("run --method gimp --E 4 --A 0.01 --T 0.01 --policy cfl --dt 1e-3");
+  EXPECT_EQ(both.status, 2);
+  EXPECT_NE(both.output.find("--dt"), std::string::npos);
+  const Outcome bad = mpmstab("run --method gimp --E 4 --A 0.01 --policy adaptive --safety 0");
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.output.find("--safety"), std::string::npos);
+  EXPECT_EQ(mpmstab("run --method gimp --E 4 --A 0.01 --policy cfl --cfl-factor -1").status, 2);
+  EXPECT_EQ(mpmstab("run --method gimp --E 4 --A 0.01 --policy sometimes").status, 2);
+  const Outcome json =
+      mpmstab("run --method mpm --E 4 --A 0.01 --T 0.05 --policy adaptive --safety 3 --json");
+  ASSERT_EQ(json.status, 0) << json.output;
+  const auto j = nlohmann::json::parse(json.output);
+  EXPECT_EQ(j["policy"], "adaptive");
+  EXPECT_LT(j["dt_min"].get<double>(), j["dt_max"].get<double>());
+}
+
+}  // namespace

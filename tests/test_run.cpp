@@ -170,3 +170,73 @@ TEST(Run, PeriodicBarStaysStableAndAccurate) {
 
 }  // namespace
 }  // namespace mpmstab
+
+namespace mpmstab {
+namespace {
+
+RunParams policy_case(TimeStepPolicy policy) {
+  RunParams p;
+  p.method = Method::gimp;
+  p.E = 64;
+  p.A = 0.015;
+  p.T = 0.3;
+  p.cells = 40;
+  p.stepping.policy = policy;
+  p.stepping.cfl_factor = 0.3;
+  p.stepping.safety = 2.0;
+  p.dt = 7e-4;  // used by the fixed policy only
+  p.observe.history = true;
+  return p;
+}
+
+TEST(Policies, EveryPolicyEndsExactlyAtT) {
+  for (auto policy : {TimeStepPolicy::fixed, TimeStepPolicy::cfl, TimeStepPolicy::adaptive,
+                      TimeStepPolicy::min}) {
+    const RunResult r = run(policy_case(policy));
+    ASSERT_TRUE(r.stable) << to_string(policy);
+    EXPECT_EQ(r.history.back().time, 0.3) << to_string(policy);  // exactly, not nearly
+    EXPECT_EQ(r.history.size(), static_cast<std::size_t>(r.steps));
+    EXPECT_GT(r.dt_min, 0);
+    EXPECT_LE(r.dt_min, r.dt_max);
+  }
+}
+
+TEST(Policies, CflStepIsTheCourantFactorTimesHOverC) {
+  const RunResult r = run(policy_case(TimeStepPolicy::cfl));
+  const double dt = 0.3 * (1.0 / 40) / 8.0;  // C h / c, c = sqrt(64)
+  EXPECT_DOUBLE_EQ(r.dt_max, dt);
+  EXPECT_DOUBLE_EQ(r.dt_min, dt);
+  EXPECT_EQ(r.steps, static_cast<std::int64_t>(std::ceil(0.3 / dt - 1e-9)));
+  EXPECT_NEAR(r.courant, 0.3, 1e-12);
+}
+
+TEST(Policies, AdaptiveStepFollowsTheBoundOfTheCurrentState) {
+  RunParams p = policy_case(TimeStepPolicy::adaptive);
+  const RunResult r = run(p);
+  // dt_n = s * bound after step n - 1: compare every step with the recorded bounds.
+  for (std::size_t k = 1; k + 1 < r.history.size(); ++k) {
+    const double dt = r.history[k].time - r.history[k - 1].time;
+    EXPECT_NEAR(dt, p.stepping.safety * *r.history[k - 1].dt_stable, 1e-12 * dt) << k;
+  }
+  EXPECT_LT(r.dt_min, r.dt_max);  // the bound moves with the state
+}
+
+TEST(Policies, MinPolicyNeverExceedsEitherLimit) {
+  const RunResult r = run(policy_case(TimeStepPolicy::min));
+  EXPECT_LE(r.dt_max, 0.3 * (1.0 / 40) / 8.0 * (1 + 1e-12));
+  const RunResult adaptive = run(policy_case(TimeStepPolicy::adaptive));
+  EXPECT_GE(r.steps, adaptive.steps);
+}
+
+TEST(Policies, AnAdaptiveRunThatNeedsTooManyStepsStopsWithAVerdict) {
+  RunParams p = policy_case(TimeStepPolicy::adaptive);
+  p.max_steps = 50;
+  const RunResult r = run(p);
+  EXPECT_FALSE(r.stable);
+  ASSERT_TRUE(r.failure);
+  EXPECT_EQ(r.failure->reason, FailureReason::step_limit);
+  EXPECT_EQ(r.steps, 50);
+}
+
+}  // namespace
+}  // namespace mpmstab

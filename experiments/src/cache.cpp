@@ -19,8 +19,10 @@ std::string canonical_parameters(const RunParams& p) {
     << ";position_update=" << to_string(p.position_update)
     << ";dt_stable_sigma=" << to_string(p.stable.sigma)
     << ";dt_stable_vnorm=" << to_string(p.stable.vnorm) << ";max_steps=" << p.max_steps
-    << ";record=" << (o.error_over_time ? "e" : "") << (o.dt_stable ? "s" : "")
-    << (o.crossings ? "c" : "") << (o.final_state ? "f" : "");
+    << ";policy=" << to_string(p.stepping.policy)
+    << ";cfl_factor=" << shortest(p.stepping.cfl_factor)
+    << ";safety=" << shortest(p.stepping.safety) << ";record=" << (o.error_over_time ? "e" : "")
+    << (o.dt_stable ? "s" : "") << (o.crossings ? "c" : "") << (o.final_state ? "f" : "");
   if (o.history) s << "h" << o.history_stride;
   return s.str();
 }

@@ -25,7 +25,8 @@ Required:
   --method gimp|mpm        shape functions: uGIMP or linear MPM
   --E <x>                  Young's modulus, > 0
   --A <x>                  amplitude of the solution, >= 0
-  --dt <x>                 time step, 0 < dt <= T (the last step is shortened to land on T)
+  --dt <x>                 time step, 0 < dt <= T (the last step is shortened to land on T);
+                           required with --policy fixed only
 
 Options:
   --T <x>                  final time (default 1)
@@ -38,7 +39,14 @@ Options:
   --dt-stable-sigma scaled|raw
                            stress in eq. (108) scaled by 1/sqrt(E) (default) or not
   --dt-stable-vnorm l2|max norm of the nodal velocity in eq. (108) (default l2)
-  --max-steps <n>          refuse runs needing more steps (default 200000000)
+  --policy fixed|cfl|adaptive|min
+                           time-step policy (default fixed): fixed dt; dt = C h / c;
+                           dt_n = s * eq. (108) bound of the current state; or the minimum
+                           of the last two. Every policy lands exactly on T.
+  --cfl-factor <C>         Courant factor of the cfl and min policies (default 0.5)
+  --safety <s>             factor on the eq. (108) bound, adaptive and min (default 1)
+  --max-steps <n>          refuse runs needing more steps (default 200000000); an adaptive
+                           run that reaches it stops with the verdict step_limit
   --history <file.csv>     also write the per-step history (error, eq. 108, crossings)
   --history-stride <n>     keep every n-th step in the history (default 1)
   --json                   print one JSON object instead of the text summary
@@ -61,6 +69,9 @@ const std::vector<OptionSpec> kOptions = {
     {"dt-stable-sigma"},
     {"dt-stable-vnorm"},
     {"max-steps"},
+    {"policy"},
+    {"cfl-factor"},
+    {"safety"},
     {"history"},
     {"history-stride"},
     {"json", false},
@@ -100,7 +111,18 @@ RunParams params_from(const Args& a) {
   p.method = parse_choice(required(a, "method"), "method", parse_method, "gimp or mpm");
   p.E = parse_double(required(a, "E"), "E");
   p.A = parse_double(required(a, "A"), "A");
-  p.dt = parse_double(required(a, "dt"), "dt");
+  if (auto v = a.value("policy")) {
+    p.stepping.policy =
+        parse_choice(*v, "policy", parse_time_step_policy, "fixed, cfl, adaptive or min");
+  }
+  if (p.stepping.policy == TimeStepPolicy::fixed) {
+    p.dt = parse_double(required(a, "dt"), "dt");
+  } else if (auto v = a.value("dt")) {
+    throw UsageError("--dt: only with --policy fixed (the " +
+                     std::string(to_string(p.stepping.policy)) + " policy chooses dt itself)");
+  }
+  if (auto v = a.value("cfl-factor")) p.stepping.cfl_factor = parse_double(*v, "cfl-factor");
+  if (auto v = a.value("safety")) p.stepping.safety = parse_double(*v, "safety");
   if (auto v = a.value("T")) p.T = parse_double(*v, "T");
   if (auto v = a.value("cells")) p.cells = to_int(*v, "cells");
   if (auto v = a.value("ppc")) p.ppc = to_int(*v, "ppc");
@@ -169,7 +191,10 @@ std::string text_summary(const RunResult& r) {
     s << "  " << key << std::string(22 - key.size(), ' ') << value << "\n";
   };
   line("verdict", verdict);
-  line("steps", std::to_string(r.steps) + " of " + std::to_string(r.steps_planned));
+  line("steps", std::to_string(r.steps) +
+                    (r.steps_planned ? " of " + std::to_string(r.steps_planned) : std::string()) +
+                    "  (policy " + std::string(to_string(p.stepping.policy)) + ", dt " +
+                    fmt(r.dt_min) + " to " + fmt(r.dt_max) + ")");
   line("max_error", fmt(r.max_error));
   line("max_error_over_time", fmt(r.max_error_over_time));
   line("dt_stable_min", fmt(r.dt_stable_min) + "  (eq. 108, sigma " +
@@ -178,7 +203,7 @@ std::string text_summary(const RunResult& r) {
   line("crossings", fmt(r.crossings));
   line("dt_cfl = h/c", fmt(r.dt_cfl));
   line("dt_sound = 1/c", fmt(r.dt_sound));
-  line("courant = c dt/h", fmt(r.courant));
+  line("courant = c dt/h", fmt(r.courant) + (r.dt_min != r.dt_max ? "  (largest dt)" : ""));
   line("wall_seconds", fmt(r.wall_seconds));
   line("ns/particle-step", fmt(r.ns_per_particle_step));
   return s.str();

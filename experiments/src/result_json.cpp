@@ -25,6 +25,9 @@ nlohmann::ordered_json to_json(const RunResult& r) {
   j["ppc"] = p.ppc;
   j["bc"] = to_string(p.bc);
   j["position_update"] = to_string(p.position_update);
+  j["policy"] = to_string(p.stepping.policy);
+  j["cfl_factor"] = p.stepping.cfl_factor;
+  j["safety"] = p.stepping.safety;
   j["stable"] = r.stable;
   if (r.failure) {
     j["failure"] = {{"reason", to_string(r.failure->reason)},
@@ -36,6 +39,8 @@ nlohmann::ordered_json to_json(const RunResult& r) {
   }
   j["meaningless"] = or_null(r.meaningless);
   j["steps"] = r.steps;
+  j["dt_min"] = r.dt_min;
+  j["dt_max"] = r.dt_max;
   j["max_error"] = or_null(r.max_error);
   j["max_error_over_time"] = or_null(r.max_error_over_time);
   j["crossings"] = or_null(r.crossings);

@@ -32,7 +32,10 @@ const std::vector<std::string> kCaseKeys = {"method",
                                             "dt_stable_sigma",
                                             "dt_stable_vnorm",
                                             "max_steps",
-                                            "dt_inferred"};
+                                            "dt_inferred",
+                                            "policy",
+                                            "cfl_factor",
+                                            "safety"};
 const std::vector<std::string> kTopKeys = {"name",      "title",    "description",
                                            "report",    "record",   "history_stride",
                                            "reference", "defaults", "cases"};
@@ -119,6 +122,12 @@ class Reader {
       p.stable.vnorm = choice_at(v, path, parse_velocity_norm, "l2 or max");
     else if (key == "max_steps")
       p.max_steps = integer_at(v, path);
+    else if (key == "policy")
+      p.stepping.policy = choice_at(v, path, parse_time_step_policy, "fixed, cfl, adaptive or min");
+    else if (key == "cfl_factor")
+      p.stepping.cfl_factor = number_at(v, path);
+    else if (key == "safety")
+      p.stepping.safety = number_at(v, path);
     else if (key == "dt_inferred")
       c.dt_inferred = bool_at(v, path);
   }
@@ -286,8 +295,11 @@ Spec load_spec(const std::filesystem::path& file) {
       r.set(p, cs, key, value, base + "." + key);
       source[key] = base + "." + key;
     }
-    for (const char* key : {"method", "E", "A", "dt"}) {
+    for (const char* key : {"method", "E", "A"}) {
       if (!source.count(key)) r.fail(base + "." + key, "is required (in the case or in defaults)");
+    }
+    if (p.stepping.policy == TimeStepPolicy::fixed && !source.count("dt")) {
+      r.fail(base + ".dt", "is required with the fixed policy (in the case or in defaults)");
     }
     const auto issues = validate(p);
     if (!issues.empty()) {
