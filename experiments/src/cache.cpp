@@ -27,9 +27,15 @@ std::string canonical_parameters(const RunParams& p) {
   return s.str();
 }
 
-std::string case_key(const RunParams& p) {
+namespace {
+std::string canonical(const RunParams& p, const std::string& search) {
+  return search.empty() ? canonical_parameters(p) : canonical_parameters(p) + ";search=" + search;
+}
+}  // namespace
+
+std::string case_key(const RunParams& p, const std::string& search) {
   std::uint64_t h = 1469598103934665603ull;
-  for (const unsigned char c : canonical_parameters(p)) {
+  for (const unsigned char c : canonical(p, search)) {
     h ^= c;
     h *= 1099511628211ull;
   }
@@ -38,26 +44,28 @@ std::string case_key(const RunParams& p) {
   return buf;
 }
 
-std::optional<nlohmann::ordered_json> ResultCache::load(const RunParams& p) const {
-  std::ifstream in(dir_ / (case_key(p) + ".json"), std::ios::binary);
+std::optional<nlohmann::ordered_json> ResultCache::load(const RunParams& p,
+                                                        const std::string& search) const {
+  std::ifstream in(dir_ / (case_key(p, search) + ".json"), std::ios::binary);
   if (!in) return std::nullopt;
   std::stringstream buffer;
   buffer << in.rdbuf();
   try {
     auto record = nlohmann::ordered_json::parse(buffer.str());
     // A hash collision or a stale file must not pass for this case.
-    if (record.value("canonical", "") != canonical_parameters(p)) return std::nullopt;
+    if (record.value("canonical", "") != canonical(p, search)) return std::nullopt;
     return record;
   } catch (const nlohmann::json::exception&) {
     return std::nullopt;  // unreadable: compute again
   }
 }
 
-void ResultCache::store(const RunParams& p, nlohmann::ordered_json record) const {
+void ResultCache::store(const RunParams& p, nlohmann::ordered_json record,
+                        const std::string& search) const {
   std::filesystem::create_directories(dir_);
-  record["key"] = case_key(p);
-  record["canonical"] = canonical_parameters(p);
-  write_file_atomically(dir_ / (case_key(p) + ".json"), record.dump());
+  record["key"] = case_key(p, search);
+  record["canonical"] = canonical(p, search);
+  write_file_atomically(dir_ / (case_key(p, search) + ".json"), record.dump());
 }
 
 }  // namespace mpmstab

@@ -17,16 +17,19 @@ namespace mpmstab {
 std::string canonical_parameters(const RunParams& p);
 
 // 16 hex digits: FNV-1a (64 bit) of canonical_parameters(p).
-std::string case_key(const RunParams& p);
+std::string case_key(const RunParams& p, const std::string& search = "");
 
 class ResultCache {
  public:
   explicit ResultCache(std::filesystem::path dir) : dir_(std::move(dir)) {}
 
   // The stored record of this case, if present and made from exactly these parameters.
-  std::optional<nlohmann::ordered_json> load(const RunParams& p) const;
+  // `search` names what was computed from the parameters beyond one run ("" or "edge").
+  std::optional<nlohmann::ordered_json> load(const RunParams& p,
+                                             const std::string& search = "") const;
   // Stores a record atomically. Throws std::runtime_error when the folder is not writable.
-  void store(const RunParams& p, nlohmann::ordered_json record) const;
+  void store(const RunParams& p, nlohmann::ordered_json record,
+             const std::string& search = "") const;
 
   const std::filesystem::path& dir() const { return dir_; }
 

@@ -7,6 +7,7 @@
 #include "args.hpp"
 #include "atomic_file.hpp"
 #include "commands.hpp"
+#include "edge.hpp"
 #include "params.hpp"
 #include "result_json.hpp"
 #include "run.hpp"
@@ -106,7 +107,7 @@ int to_int(std::string_view text, std::string_view option) {
   return static_cast<int>(v);
 }
 
-RunParams params_from(const Args& a) {
+RunParams params_from(const Args& a, bool searching_dt = false) {
   RunParams p;
   p.method = parse_choice(required(a, "method"), "method", parse_method, "gimp or mpm");
   p.E = parse_double(required(a, "E"), "E");
@@ -115,7 +116,9 @@ RunParams params_from(const Args& a) {
     p.stepping.policy =
         parse_choice(*v, "policy", parse_time_step_policy, "fixed, cfl, adaptive or min");
   }
-  if (p.stepping.policy == TimeStepPolicy::fixed) {
+  if (searching_dt) {
+    p.dt = p.T;  // replaced by the search
+  } else if (p.stepping.policy == TimeStepPolicy::fixed) {
     p.dt = parse_double(required(a, "dt"), "dt");
   } else if (auto v = a.value("dt")) {
     throw UsageError("--dt: only with --policy fixed (the " +
@@ -124,6 +127,7 @@ RunParams params_from(const Args& a) {
   if (auto v = a.value("cfl-factor")) p.stepping.cfl_factor = parse_double(*v, "cfl-factor");
   if (auto v = a.value("safety")) p.stepping.safety = parse_double(*v, "safety");
   if (auto v = a.value("T")) p.T = parse_double(*v, "T");
+  if (searching_dt) p.dt = p.T;
   if (auto v = a.value("cells")) p.cells = to_int(*v, "cells");
   if (auto v = a.value("ppc")) p.ppc = to_int(*v, "ppc");
   if (auto v = a.value("bc"))
@@ -142,6 +146,7 @@ RunParams params_from(const Args& a) {
   if (auto v = a.value("history-stride"))
     p.observe.history_stride = parse_int(*v, "history-stride");
   p.observe.history = a.value("history").has_value();
+  if (searching_dt) p.dt = p.T;
   if (p.observe.history && a.value("history")->empty()) {
     throw UsageError("--history: needs a file name");
   }
@@ -225,7 +230,93 @@ std::string history_csv(const RunResult& r) {
   return s.str();
 }
 
+constexpr const char* kEdgeHelp = R"(Usage: mpmstab edge --method gimp|mpm --E <x> --A <x> [options]
+
+Finds the real stability edge of one case: the largest fixed dt with which the bar survives
+to T. A log-spaced scan dt = (h/c) 2^(k/2) from h/(16c) to 4h/c, then bisection to within
+--tolerance. Reports dt_edge, dt_edge / (h/c), dt_edge / (the eq. 108 minimum of the run at
+dt_edge), and warns when stability is not monotone in dt.
+
+Options: --T, --cells, --ppc, --bc, --position-update, --dt-stable-sigma, --dt-stable-vnorm,
+--max-steps as for 'mpmstab run'; --tolerance <x> (default 0.02); --json.
+)";
+
+const std::vector<OptionSpec> kEdgeOptions = {{"method"},
+                                              {"E"},
+                                              {"A"},
+                                              {"T"},
+                                              {"cells"},
+                                              {"ppc"},
+                                              {"bc"},
+                                              {"position-update"},
+                                              {"dt-stable-sigma"},
+                                              {"dt-stable-vnorm"},
+                                              {"max-steps"},
+                                              {"tolerance"},
+                                              {"json", false},
+                                              {"help", false}};
+
 }  // namespace
+
+int cmd_edge(const std::vector<std::string_view>& argv) {
+  const Args args(argv, kEdgeOptions);
+  if (args.flag("help")) {
+    std::cout << kEdgeHelp;
+    return 0;
+  }
+  if (!args.positional().empty()) {
+    throw UsageError("unexpected argument '" + std::string(args.positional().front()) + "'");
+  }
+  EdgeOptions options;
+  if (auto v = args.value("tolerance")) {
+    options.tolerance = parse_double(*v, "tolerance");
+    if (!(options.tolerance >= 1e-6 && options.tolerance <= 1)) {
+      throw UsageError("--tolerance: must be in [1e-6, 1]");
+    }
+  }
+  const RunParams params = params_from(args, true);
+  const EdgeResult e = find_edge(params, options);
+  nlohmann::ordered_json j = edge_to_json(e);
+  if (args.flag("json")) {
+    nlohmann::ordered_json out = {{"method", to_string(params.method)},
+                                  {"E", params.E},
+                                  {"A", params.A},
+                                  {"T", params.T},
+                                  {"cells", params.cells},
+                                  {"ppc", params.ppc},
+                                  {"bc", to_string(params.bc)}};
+    for (auto& [k, v] : j.items())
+      out[k] = v;
+    std::cout << out.dump(2) << "\n";
+    return 0;
+  }
+  std::cout << "mpmstab edge: " << to_string(params.method) << ", E = " << fmt(params.E)
+            << ", A = " << fmt(params.A) << ", T = " << fmt(params.T) << ", " << params.cells
+            << " cells x " << params.ppc << " ppc, " << to_string(params.bc) << "\n";
+  if (!e.dt_edge) {
+    std::cout << "  no dt from h/(16c) to 4h/c survives to T\n";
+    return 0;
+  }
+  std::cout << "  dt_edge               " << fmt(*e.dt_edge)
+            << (e.dt_fail ? "  (fails at " + fmt(*e.dt_fail) + ")"
+                          : std::string("  (every dt up to T survives)"))
+            << "\n  h/c                   " << fmt(e.dt_cfl) << "\n  dt_edge / (h/c)       "
+            << fmt(*e.dt_edge / e.dt_cfl) << "\n";
+  if (e.at_edge && e.at_edge->dt_stable_min) {
+    std::cout << "  eq. (108) at dt_edge  " << fmt(*e.at_edge->dt_stable_min)
+              << "\n  dt_edge / eq. (108)   " << fmt(*e.dt_edge / *e.at_edge->dt_stable_min)
+              << "\n";
+  }
+  std::cout << "  runs                  " << e.probes.size() << " in " << fmt(e.wall_seconds)
+            << " s\n";
+  if (!e.failed_below_edge.empty()) {
+    std::cout << "  warning: stability is not monotone in dt: smaller steps failed at";
+    for (double dt : e.failed_below_edge)
+      std::cout << " " << fmt(dt);
+    std::cout << "\n";
+  }
+  return 0;
+}
 
 int cmd_run(const std::vector<std::string_view>& argv) {
   const Args args(argv, kOptions);

@@ -232,7 +232,11 @@ int cmd_plot(const std::vector<std::string_view>& argv) {
   }
   if (args.positional().size() != 1) throw UsageError("plot takes one spec");
   const Spec spec = load_specs(args.positional()).front();
-  if (spec.report != ReportKind::figure) throw UsageError(spec.path.string() + ": not a figure");
+  if (spec.report == ReportKind::table1 || spec.report == ReportKind::table2 ||
+      spec.report == ReportKind::cases) {
+    throw UsageError(spec.path.string() + ": a " + std::string(to_string(spec.report)) +
+                     " experiment has no figure");
+  }
   const auto out = output_folder(args);
   const auto script = spec.path.parent_path() / (spec.name + ".gp");
   const auto data = out / (spec.name + "_data.csv");
@@ -243,17 +247,24 @@ int cmd_plot(const std::vector<std::string_view>& argv) {
   std::ifstream in(summary);
   const auto doc = nlohmann::json::parse(in);
   const auto& c = doc["cases"][0];
-  std::string subtitle = std::string(c["method"]) + ", E = " + shortest(c["E"]) +
-                         ", A = " + shortest(c["A"]) + ", dt = " + shortest(c["dt"]) + ", " +
-                         c["cells"].dump() + " cells x " + c["ppc"].dump() + " ppc, " +
-                         std::string(c["bc"]) + "; ";
-  subtitle += c["stable"] == true ? "stable to T"
-                                  : "unstable: " + std::string(c["failure_reason"]) + " at step " +
-                                        c["failure_step"].dump();
+  std::string subtitle, dt = "0";
+  if (spec.report == ReportKind::figure) {
+    subtitle = std::string(c["method"]) + ", E = " + shortest(c["E"]) +
+               ", A = " + shortest(c["A"]) + ", dt = " + shortest(c["dt"]) + ", " +
+               c["cells"].dump() + " cells x " + c["ppc"].dump() + " ppc, " + std::string(c["bc"]) +
+               "; ";
+    subtitle += c["stable"] == true ? "stable to T"
+                                    : "unstable: " + std::string(c["failure_reason"]) +
+                                          " at step " + c["failure_step"].dump();
+    dt = shortest(c["dt"]);
+  } else {
+    subtitle = c["cells"].dump() + " cells x " + c["ppc"].dump() + " ppc, " + std::string(c["bc"]) +
+               ", T = " + shortest(c["T"]);
+  }
   const auto tmp = out / ("." + spec.name + ".tmp");
   const std::string command = "gnuplot -e \"datafile='" + data.string() + "'; outbase='" +
-                              tmp.string() + "'; subtitle='" + subtitle +
-                              "'; dt=" + shortest(c["dt"]) + "\" '" + script.string() + "'";
+                              tmp.string() + "'; subtitle='" + subtitle + "'; dt=" + dt + "\" '" +
+                              script.string() + "'";
   if (std::system(command.c_str()) != 0) {
     throw std::runtime_error("gnuplot failed: " + command);
   }

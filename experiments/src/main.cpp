@@ -13,6 +13,7 @@ constexpr const char* kUsage = R"(Usage: mpmstab <command> [options]
 
 Commands:
   run     run one case of the paper's 1D bar and report every measured quantity
+  edge    find the largest fixed dt with which one case survives to T
   sweep   run the cases of an experiment spec in parallel and write its reports
   index   write results/README.md, the index of the reports
   plot    draw a figure experiment with gnuplot
@@ -35,6 +36,7 @@ int main(int argc, char** argv) {
   args.erase(args.begin());
   try {
     if (command == "run") return mpmstab::cli::cmd_run(args);
+    if (command == "edge") return mpmstab::cli::cmd_edge(args);
     if (command == "sweep") return mpmstab::cli::cmd_sweep(args);
     if (command == "index") return mpmstab::cli::cmd_index(args);
     if (command == "plot") return mpmstab::cli::cmd_plot(args);
@@ -43,7 +45,7 @@ int main(int argc, char** argv) {
     if (command == "bless") return mpmstab::cli::cmd_bless(args);
     std::string message = "unknown command '" + std::string(command) + "'";
     if (auto guess = mpmstab::cli::nearest(
-            command, {"run", "sweep", "index", "plot", "compare", "check", "bless"})) {
+            command, {"run", "edge", "sweep", "index", "plot", "compare", "check", "bless"})) {
       message += " (did you mean '" + *guess + "'?)";
     }
     throw mpmstab::cli::UsageError(message);

@@ -408,6 +408,91 @@ std::string cases_markdown(const Spec& spec, const std::vector<ojson>& rows) {
 }
 
 // ---------------------------------------------------------------------------------------------
+// Stability edge.
+
+std::string edge_summary_text(const std::vector<ojson>& rows) {
+  std::map<std::string, std::vector<double>> over_cfl, over_bound;
+  int non_monotone = 0, none = 0;
+  for (const auto& r : rows) {
+    if (!r["dt_edge"].is_number()) {
+      ++none;
+      continue;
+    }
+    const std::string m = r["method"].get<std::string>();
+    over_cfl[m].push_back(r["dt_edge_over_cfl"].get<double>());
+    if (r["dt_edge_over_stable"].is_number()) {
+      over_bound[m].push_back(r["dt_edge_over_stable"].get<double>());
+    }
+    non_monotone += r["monotone"] == false;
+  }
+  std::ostringstream md;
+  for (const auto& [m, v] : over_cfl) {
+    const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+    const auto& b = over_bound[m];
+    md << m << ": the largest surviving fixed dt is " << ratio(*lo) << " to " << ratio(*hi)
+       << " times h/c";
+    if (!b.empty()) {
+      const auto [blo, bhi] = std::minmax_element(b.begin(), b.end());
+      md << " and " << ratio(*blo) << " to " << ratio(*bhi)
+         << " times the eq. (108) bound of that run";
+    }
+    md << ". ";
+  }
+  md << non_monotone << " of " << rows.size()
+     << " searches found stability not monotone in dt (a smaller dt failed where a larger one "
+        "survived)";
+  if (none) md << "; " << none << " found no surviving dt in the scan";
+  md << ".";
+  return md.str();
+}
+
+std::string opt_ratio(const ojson& v) {
+  return v.is_number() ? ratio(v.get<double>()) : "–";
+}
+
+std::string edge_markdown(const Spec& spec, const std::vector<ojson>& rows) {
+  std::ostringstream md;
+  md << "## Results\n\n**Summary.** " << edge_summary_text(rows) << "\n\n![" << spec.title << "]("
+     << spec.name
+     << ".png)\n\nThe search: a scan of dt = (h/c) 2^(k/2) from h/(16c) "
+        "to 4h/c, then bisection between the largest surviving and the smallest failing dt to "
+        "within 2%. dt_edge is the largest dt found to survive to T; \"eq. (108)\" is the "
+        "minimum of the bound over the run at dt_edge. Vector version: ["
+     << spec.name << ".svg](" << spec.name << ".svg); data: [" << spec.name << "_data.csv]("
+     << spec.name << "_data.csv).\n\n"
+     << "| method | A | E | dt_edge | h/c | dt_edge / (h/c) | eq. (108) at dt_edge | dt_edge / "
+        "eq. (108) | max error at dt_edge | monotone | runs | search time |\n"
+        "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const auto& r : rows) {
+    const bool found = r["dt_edge"].is_number();
+    std::string monotone = r["monotone"] == true ? "yes" : "**no**";
+    if (r["failed_below_edge"].get<int>() > 0) {
+      monotone += " (" + std::to_string(r["failed_below_edge"].get<int>()) + " smaller dt failed)";
+    }
+    md << "| " << r["method"].get<std::string>() << " | " << shortest(r["A"].get<double>()) << " | "
+       << shortest(r["E"].get<double>()) << " | "
+       << (found ? sci(r["dt_edge"].get<double>(), 3) : "none") << " | "
+       << sci(r["dt_cfl"].get<double>(), 3) << " | " << opt_ratio(r["dt_edge_over_cfl"]) << " | "
+       << opt_sci(r["dt_stable_min_at_edge"]) << " | " << opt_ratio(r["dt_edge_over_stable"])
+       << " | " << (found ? opt_sci(r["max_error"]) : "–") << " | " << monotone << " | "
+       << r["probes"].dump() << " | " << seconds(r["search_seconds"].get<double>()) << " |\n";
+  }
+  return md.str();
+}
+
+std::string edge_data_csv(const std::vector<ojson>& rows, const std::string& header_lines) {
+  std::ostringstream csv;
+  csv << header_lines
+      << "# method: 0 mpm, 1 gimp\nE,method,A,dt_edge,dt_cfl,dt_stable_min_at_edge\n";
+  for (const auto& r : rows) {
+    csv << shortest(r["E"].get<double>()) << ',' << (r["method"] == "gimp" ? 1 : 0) << ','
+        << shortest(r["A"].get<double>()) << ',' << csv_cell(r["dt_edge"]) << ','
+        << csv_cell(r["dt_cfl"]) << ',' << csv_cell(r["dt_stable_min_at_edge"]) << '\n';
+  }
+  return csv.str();
+}
+
+// ---------------------------------------------------------------------------------------------
 // Figures.
 
 std::string figure_markdown(const Spec& spec, const std::vector<ojson>& rows) {
@@ -485,6 +570,17 @@ std::string provenance_markdown(const ojson& prov, const ojson& sweep) {
 
 }  // namespace
 
+// Extra columns of an edge experiment (the search), after the columns of the run at dt_edge.
+const std::vector<std::string> kEdgeColumns = {"dt_edge",
+                                               "dt_fail",
+                                               "dt_edge_over_cfl",
+                                               "dt_stable_min_at_edge",
+                                               "dt_edge_over_stable",
+                                               "monotone",
+                                               "failed_below_edge",
+                                               "probes",
+                                               "search_seconds"};
+
 ojson flat_row(const CaseSpec& c, const ojson& record) {
   const ojson& r = record["result"];
   ojson row;
@@ -497,6 +593,20 @@ ojson flat_row(const CaseSpec& c, const ojson& record) {
       row[col] = case_key(c.params);
     } else {
       row[col] = r.contains(col) ? r[col] : ojson(nullptr);
+    }
+  }
+  if (record.contains("edge")) {
+    const ojson& e = record["edge"];
+    for (const auto& col : kEdgeColumns) {
+      if (col == "failed_below_edge") {
+        row[col] = e[col].size();
+      } else if (col == "probes") {
+        row[col] = e[col].size();
+      } else if (col == "search_seconds") {
+        row[col] = e["wall_seconds"];
+      } else {
+        row[col] = e[col];
+      }
     }
   }
   return row;
@@ -591,6 +701,10 @@ void write_reports(const Spec& spec, const SweepOutcome& outcome, const fs::path
     case ReportKind::cases:
       md << cases_markdown(spec, rows);
       break;
+    case ReportKind::edge:
+      md << edge_markdown(spec, rows);
+      write_if_changed(out / (spec.name + "_data.csv"), edge_data_csv(rows, header));
+      break;
     case ReportKind::figure:
       md << figure_markdown(spec, rows);
       write_if_changed(out / (spec.name + "_data.csv"),
@@ -644,6 +758,10 @@ void write_index(const std::vector<Spec>& specs, const fs::path& out) {
       md << "**What it shows.** Our crossing counts beside the paper's approximate ones, per E "
             "and A, and both readings of dt_sound: ["
          << spec->name << ".md](" << spec->name << ".md).\n\n";
+    } else if (spec->report == ReportKind::edge) {
+      md << "![" << spec->title << "](" << spec->name << ".png)\n\n**What it shows.** "
+         << edge_summary_text(rows) << " Details: [" << spec->name << ".md](" << spec->name
+         << ".md).\n\n";
     } else if (spec->report == ReportKind::cases) {
       int unstable = 0, meaningless = 0;
       for (const auto& r : rows) {

@@ -19,8 +19,9 @@ void write_reports(const Spec& spec, const SweepOutcome& outcome, const std::fil
 // Writes <out>/README.md, the index a reader browses, from the <name>.json of each spec.
 void write_index(const std::vector<Spec>& specs, const std::filesystem::path& out);
 
-// The columns of a result row, in CSV order; the last two are timing measurements.
-const std::vector<std::string>& result_columns();
+// The columns of a result row, in CSV order: the run's (the last two of which are timing
+// measurements), then for edge experiments those of the search.
+std::vector<std::string> result_columns(ReportKind kind);
 // One case as a flat row of result_columns().
 nlohmann::ordered_json flat_row(const CaseSpec& c, const nlohmann::ordered_json& record);
 // A JSON value as a CSV field: "" for null, shortest round-trip text for numbers.

@@ -69,4 +69,31 @@ nlohmann::ordered_json history_to_json(const RunResult& r) {
   return rows;
 }
 
+nlohmann::ordered_json edge_to_json(const EdgeResult& e) {
+  nlohmann::ordered_json j;
+  j["dt_cfl"] = e.dt_cfl;
+  j["dt_edge"] = or_null(e.dt_edge);
+  j["dt_fail"] = or_null(e.dt_fail);
+  j["dt_edge_over_cfl"] = e.dt_edge ? nlohmann::ordered_json(*e.dt_edge / e.dt_cfl) : nullptr;
+  const bool have_bound = e.dt_edge && e.at_edge && e.at_edge->dt_stable_min;
+  const double bound = have_bound ? e.at_edge->dt_stable_min.value() : 0.0;
+  j["dt_stable_min_at_edge"] = have_bound ? nlohmann::ordered_json(bound) : nullptr;
+  j["dt_edge_over_stable"] =
+      have_bound ? nlohmann::ordered_json(e.dt_edge.value() / bound) : nullptr;
+  j["above_scan"] = e.above_scan;
+  j["monotone"] = e.failed_below_edge.empty();
+  j["failed_below_edge"] = e.failed_below_edge;
+  auto probes = nlohmann::ordered_json::array();
+  for (const auto& p : e.probes) {
+    probes.push_back({{"dt", p.dt},
+                      {"stable", p.stable},
+                      {"reason", p.reason ? nlohmann::ordered_json(to_string(*p.reason))
+                                          : nlohmann::ordered_json(nullptr)},
+                      {"steps", p.steps}});
+  }
+  j["probes"] = probes;
+  j["wall_seconds"] = e.wall_seconds;
+  return j;
+}
+
 }  // namespace mpmstab

@@ -189,6 +189,8 @@ std::string_view to_string(ReportKind k) {
       return "figure";
     case ReportKind::cases:
       return "cases";
+    case ReportKind::edge:
+      return "edge";
   }
   return "?";
 }
@@ -215,15 +217,16 @@ Spec load_spec(const std::filesystem::path& file) {
   }
   const std::string report = r.string_at(doc["report"], "report");
   bool known = false;
-  for (ReportKind k :
-       {ReportKind::table1, ReportKind::table2, ReportKind::figure, ReportKind::cases}) {
+  for (ReportKind k : {ReportKind::table1, ReportKind::table2, ReportKind::figure,
+                       ReportKind::cases, ReportKind::edge}) {
     if (report == to_string(k)) {
       spec.report = k;
       known = true;
     }
   }
   if (!known) {
-    r.fail("report", "unknown value '" + report + "' (expected table1, table2, figure or cases)");
+    r.fail("report",
+           "unknown value '" + report + "' (expected table1, table2, figure, cases or edge)");
   }
   if (doc.contains("reference")) {
     spec.reference = file.parent_path() / r.string_at(doc["reference"], "reference");
@@ -298,7 +301,10 @@ Spec load_spec(const std::filesystem::path& file) {
     for (const char* key : {"method", "E", "A"}) {
       if (!source.count(key)) r.fail(base + "." + key, "is required (in the case or in defaults)");
     }
-    if (p.stepping.policy == TimeStepPolicy::fixed && !source.count("dt")) {
+    if (spec.report == ReportKind::edge) {
+      if (source.count("dt")) r.fail(source["dt"], "an edge experiment searches dt: remove it");
+      p.dt = p.T;  // a placeholder that validates; the search sets dt
+    } else if (p.stepping.policy == TimeStepPolicy::fixed && !source.count("dt")) {
       r.fail(base + ".dt", "is required with the fixed policy (in the case or in defaults)");
     }
     const auto issues = validate(p);

@@ -17,6 +17,7 @@ enum class ReportKind {
   table2,  // Table 2: grid crossings per E and A, dt_sound
   figure,  // one case whose history or final state a gnuplot script draws
   cases,   // a plain table of every case (supporting experiments)
+  edge,    // per case, the largest fixed dt that survives to T (its dt is searched, not given)
 };
 
 struct CaseSpec {

@@ -13,6 +13,7 @@
 
 #include "cache.hpp"
 #include "csv.hpp"
+#include "edge.hpp"
 #include "provenance.hpp"
 #include "result_json.hpp"
 #include "run.hpp"
@@ -24,8 +25,11 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 // Work of a case, for scheduling and the time estimate: particle-steps.
-double cost_of(const RunParams& p) {
-  return double(*step_count(p.T, p.dt)) * double(p.cells) * double(p.ppc);
+// An edge search costs about as much as 40 runs at the speed-of-sound step h / c.
+double cost_of(const RunParams& p, ReportKind kind) {
+  const double dt = kind == ReportKind::edge ? (1.0 / p.cells) / std::sqrt(p.E) / 40
+                                             : fixed_step(p).value_or(p.dt / 10);
+  return p.T / dt * double(p.cells) * double(p.ppc);
 }
 
 nlohmann::ordered_json final_state_json(const FinalState& f) {
@@ -44,6 +48,14 @@ nlohmann::ordered_json final_state_json(const FinalState& f) {
           {"u_exact", column(f.u_exact)},
           {"v_exact", column(f.v_exact)},
           {"sigma_exact", column(f.sigma_exact)}};
+}
+
+// An edge search that found no surviving dt: report the run at the smallest dt it tried.
+RunResult run_at_smallest_probe(const RunParams& p, const EdgeResult& e) {
+  RunParams q = p;
+  q.stepping.policy = TimeStepPolicy::fixed;
+  q.dt = e.probes.empty() ? p.dt : e.probes.front().dt;
+  return run(q);
 }
 
 std::string describe(const RunParams& p) {
@@ -123,7 +135,7 @@ SweepOutcome run_sweep(const Spec& spec, const SweepOptions& options) {
   std::vector<double> cost(n);
   double total_cost = 0;
   for (std::size_t i = 0; i < n; ++i)
-    total_cost += cost[i] = cost_of(spec.cases[i].params);
+    total_cost += cost[i] = cost_of(spec.cases[i].params, spec.report);
   std::stable_sort(order.begin(), order.end(),
                    [&](std::size_t a, std::size_t b) { return cost[a] > cost[b]; });
 
@@ -142,16 +154,23 @@ SweepOutcome run_sweep(const Spec& spec, const SweepOptions& options) {
       try {
         std::optional<nlohmann::ordered_json> record;
         const bool cached = !options.cache.empty();
-        if (cached && !options.force) record = cache.load(p);
+        const std::string search = spec.report == ReportKind::edge ? "edge" : "";
+        if (cached && !options.force) record = cache.load(p, search);
         from_cache[i] = record.has_value();
         if (!record) {
-          const RunResult r = run(p);
           nlohmann::ordered_json rec;
-          rec["result"] = to_json(r);
+          if (spec.report == ReportKind::edge) {
+            const EdgeResult e = find_edge(p);
+            rec["result"] = to_json(e.at_edge ? *e.at_edge : run_at_smallest_probe(p, e));
+            rec["edge"] = edge_to_json(e);
+          } else {
+            const RunResult r = run(p);
+            rec["result"] = to_json(r);
+            if (p.observe.history) rec["history"] = history_to_json(r);
+            if (r.final_state) rec["final_state"] = final_state_json(*r.final_state);
+          }
           rec["provenance"] = to_json(provenance);
-          if (p.observe.history) rec["history"] = history_to_json(r);
-          if (r.final_state) rec["final_state"] = final_state_json(*r.final_state);
-          if (cached) cache.store(p, rec);
+          if (cached) cache.store(p, rec, search);
           record = std::move(rec);
         }
         if (!options.quiet) progress.done(p, (*record)["result"], from_cache[i], cost[i]);
