@@ -233,7 +233,7 @@ int cmd_plot(const std::vector<std::string_view>& argv) {
   if (args.positional().size() != 1) throw UsageError("plot takes one spec");
   const Spec spec = load_specs(args.positional()).front();
   if (spec.report == ReportKind::table1 || spec.report == ReportKind::table2 ||
-      spec.report == ReportKind::cases) {
+      spec.report == ReportKind::cases) {  // tables only
     throw UsageError(spec.path.string() + ": a " + std::string(to_string(spec.report)) +
                      " experiment has no figure");
   }
@@ -258,8 +258,8 @@ int cmd_plot(const std::vector<std::string_view>& argv) {
                                           " at step " + c["failure_step"].dump();
     dt = shortest(c["dt"]);
   } else {
-    subtitle = c["cells"].dump() + " cells x " + c["ppc"].dump() + " ppc, " + std::string(c["bc"]) +
-               ", T = " + shortest(c["T"]);
+    subtitle = std::string(c["bc"]) + " boundaries, T = " + shortest(c["T"]) +
+               "; the cells of each " + "case are in " + spec.name + ".md";
   }
   const auto tmp = out / ("." + spec.name + ".tmp");
   const std::string command = "gnuplot -e \"datafile='" + data.string() + "'; outbase='" +

@@ -191,6 +191,8 @@ std::string_view to_string(ReportKind k) {
       return "cases";
     case ReportKind::edge:
       return "edge";
+    case ReportKind::tradeoff:
+      return "tradeoff";
   }
   return "?";
 }
@@ -218,15 +220,15 @@ Spec load_spec(const std::filesystem::path& file) {
   const std::string report = r.string_at(doc["report"], "report");
   bool known = false;
   for (ReportKind k : {ReportKind::table1, ReportKind::table2, ReportKind::figure,
-                       ReportKind::cases, ReportKind::edge}) {
+                       ReportKind::cases, ReportKind::edge, ReportKind::tradeoff}) {
     if (report == to_string(k)) {
       spec.report = k;
       known = true;
     }
   }
   if (!known) {
-    r.fail("report",
-           "unknown value '" + report + "' (expected table1, table2, figure, cases or edge)");
+    r.fail("report", "unknown value '" + report +
+                         "' (expected table1, table2, figure, cases, edge or tradeoff)");
   }
   if (doc.contains("reference")) {
     spec.reference = file.parent_path() / r.string_at(doc["reference"], "reference");

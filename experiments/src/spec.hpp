@@ -13,11 +13,12 @@ namespace mpmstab {
 
 // The layout of an experiment's report.
 enum class ReportKind {
-  table1,  // Table 1: E blocks, dt rows, MPM and GIMP, paper beside ours
-  table2,  // Table 2: grid crossings per E and A, dt_sound
-  figure,  // one case whose history or final state a gnuplot script draws
-  cases,   // a plain table of every case (supporting experiments)
-  edge,    // per case, the largest fixed dt that survives to T (its dt is searched, not given)
+  table1,    // Table 1: E blocks, dt rows, MPM and GIMP, paper beside ours
+  table2,    // Table 2: grid crossings per E and A, dt_sound
+  figure,    // one case whose history or final state a gnuplot script draws
+  cases,     // a plain table of every case (supporting experiments)
+  edge,      // per case, the largest fixed dt that survives to T (its dt is searched, not given)
+  tradeoff,  // error against cost across methods, time-step policies and their parameters
 };
 
 struct CaseSpec {
