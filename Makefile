@@ -8,13 +8,14 @@ JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
 WERROR     ?= $(if $(CI),ON,OFF)
 
 DEB_PACKAGES := cmake g++ make libeigen3-dev nlohmann-json3-dev libgtest-dev libgmock-dev \
-                libbenchmark-dev gnuplot-nox clang-format python3
+                libbenchmark-dev gnuplot-nox clang-format bc util-linux
 
 # The paper's experiments, in the order make reproduce runs them.
 TABLES      := table1 table2
 FIGURES     := fig1 fig2 fig3
 SUPPORT     := courant walls crossing eq108
-EXPERIMENTS := $(TABLES) $(FIGURES) $(SUPPORT)
+STUDIES     := edge tradeoff
+EXPERIMENTS := $(TABLES) $(FIGURES) $(SUPPORT) $(STUDIES)
 SPECS       := $(EXPERIMENTS:%=experiments/%.json)
 RESULTS     ?= results
 MPMSTAB     := $(BUILD_DIR)/mpmstab
@@ -62,24 +63,28 @@ check: build
 bless: build
 	$(MPMSTAB) bless $(SPECS) --jobs $(JOBS) --results $(RESULTS) --reason "$(REASON)"
 
+# The step benchmark (Google Benchmark, 5 repetitions, medians used), pinned to one core.
 bench: build
-	$(BUILD_DIR)/tests/mpmstab_bench --benchmark_repetitions=5 \
-	  --benchmark_report_aggregates_only=true \
-	  --benchmark_out=results/benchmark_step.json.tmp --benchmark_out_format=json
-	mv results/benchmark_step.json.tmp results/benchmark_step.json
+	taskset -c 0 $(BUILD_DIR)/tests/mpmstab_bench --benchmark_repetitions=5 \
+	  --benchmark_min_time=0.2 --benchmark_report_aggregates_only=true \
+	  --benchmark_out=$(RESULTS)/benchmark_step.json.tmp --benchmark_out_format=json
+	mv $(RESULTS)/benchmark_step.json.tmp $(RESULTS)/benchmark_step.json
+	$(MPMSTAB) performance $(SPECS) --bench $(RESULTS)/benchmark_step.json --out $(RESULTS)
 
 # Each sweep computes only the cases whose key changed; reports are rewritten only when their
 # content changed, so a figure is redrawn only when its data or its script changed.
 reproduce: build
-	@for e in $(EXPERIMENTS); do \
+	@start=$$(date +%s.%N); \
+	for e in $(EXPERIMENTS); do \
 	  $(MPMSTAB) sweep experiments/$$e.json --jobs $(JOBS) --out $(RESULTS) || exit $$?; \
-	done
-	@$(MAKE) --no-print-directory figures
-	$(MPMSTAB) compare experiments/table1.json $(SUPPORT:%=experiments/%.json) --out $(RESULTS)
-	$(MPMSTAB) index $(SPECS) --out $(RESULTS)
-	@echo "Reports: $(RESULTS)/README.md"
+	done; \
+	$(MAKE) --no-print-directory figures || exit $$?; \
+	$(MPMSTAB) compare experiments/table1.json $(SUPPORT:%=experiments/%.json) --out $(RESULTS) || exit $$?; \
+	$(MPMSTAB) performance $(SPECS) --bench $(RESULTS)/benchmark_step.json --out $(RESULTS) || exit $$?; \
+	$(MPMSTAB) index $(SPECS) --out $(RESULTS) || exit $$?; \
+	echo "make reproduce: $$(echo "$$(date +%s.%N) - $$start" | bc | xargs printf '%.1f') s wall; reports in $(RESULTS)/README.md"
 
-figures: $(FIGURES:%=$(RESULTS)/%.png)
+figures: $(FIGURES:%=$(RESULTS)/%.png) $(STUDIES:%=$(RESULTS)/%.png)
 
 $(RESULTS)/fig1.png $(RESULTS)/fig1.svg &: $(RESULTS)/fig1_data.csv experiments/fig1.gp
 	$(MPMSTAB) plot experiments/fig1.json --out $(RESULTS)

@@ -13,6 +13,7 @@
 #include "commands.hpp"
 #include "comparison.hpp"
 #include "csv.hpp"
+#include "performance.hpp"
 #include "regression.hpp"
 #include "report.hpp"
 #include "spec.hpp"
@@ -222,6 +223,22 @@ int cmd_bless(const std::vector<std::string_view>& argv) {
   }
   const auto specs = load_specs(args.positional());
   return run_bless(specs, regression_options(args), reason);
+}
+
+int cmd_performance(const std::vector<std::string_view>& argv) {
+  const Args args(argv, {{"out"}, {"bench"}, {"help", false}});
+  if (args.flag("help")) {
+    std::cout
+        << "Usage: mpmstab performance <spec.json>... --bench <benchmark.json> [--out DIR]\n\n"
+           "Writes DIR/performance.md from Google Benchmark's JSON output of the step\n"
+           "benchmark and the timing of every experiment in DIR/<name>.json.\n";
+    return 0;
+  }
+  const auto specs = load_specs(args.positional());
+  const auto out = output_folder(args);
+  write_performance(
+      specs, std::string(args.value("bench").value_or(out.string() + "/benchmark_step.json")), out);
+  return 0;
 }
 
 int cmd_plot(const std::vector<std::string_view>& argv) {

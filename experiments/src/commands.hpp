@@ -12,6 +12,7 @@ int cmd_edge(const std::vector<std::string_view>& args);
 int cmd_sweep(const std::vector<std::string_view>& args);
 int cmd_index(const std::vector<std::string_view>& args);
 int cmd_plot(const std::vector<std::string_view>& args);
+int cmd_performance(const std::vector<std::string_view>& args);
 int cmd_compare(const std::vector<std::string_view>& args);
 int cmd_check(const std::vector<std::string_view>& args);
 int cmd_bless(const std::vector<std::string_view>& args);

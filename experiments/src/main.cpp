@@ -18,6 +18,7 @@ Commands:
   index   write results/README.md, the index of the reports
   plot    draw a figure experiment with gnuplot
   compare write results/comparison.md: every Table 1 cell against the paper
+  performance  write results/performance.md (benchmark and experiment wall times)
   check   rerun a fast subset of every experiment against the blessed values
   bless   accept the current values as the blessed ones, with a reason
 
@@ -40,12 +41,13 @@ int main(int argc, char** argv) {
     if (command == "sweep") return mpmstab::cli::cmd_sweep(args);
     if (command == "index") return mpmstab::cli::cmd_index(args);
     if (command == "plot") return mpmstab::cli::cmd_plot(args);
+    if (command == "performance") return mpmstab::cli::cmd_performance(args);
     if (command == "compare") return mpmstab::cli::cmd_compare(args);
     if (command == "check") return mpmstab::cli::cmd_check(args);
     if (command == "bless") return mpmstab::cli::cmd_bless(args);
     std::string message = "unknown command '" + std::string(command) + "'";
-    if (auto guess = mpmstab::cli::nearest(
-            command, {"run", "edge", "sweep", "index", "plot", "compare", "check", "bless"})) {
+    if (auto guess = mpmstab::cli::nearest(command, {"run", "edge", "sweep", "index", "plot",
+                                                     "compare", "check", "bless", "performance"})) {
       message += " (did you mean '" + *guess + "'?)";
     }
     throw mpmstab::cli::UsageError(message);
