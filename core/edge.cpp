@@ -7,7 +7,13 @@
 
 namespace mpmstab {
 
-EdgeResult find_edge(const RunParams& base, const EdgeOptions& o) {
+namespace {
+struct Interrupted {};
+}  // namespace
+
+namespace {
+
+EdgeResult search(const RunParams& base, const EdgeOptions& o, const std::atomic<bool>* cancel) {
   const auto start = std::chrono::steady_clock::now();
   EdgeResult e;
   e.dt_cfl = (1.0 / base.cells) / std::sqrt(base.E);
@@ -18,7 +24,8 @@ EdgeResult find_edge(const RunParams& base, const EdgeOptions& o) {
   lean.observe.error_over_time = lean.observe.dt_stable = lean.observe.crossings = false;
   auto probe = [&](double dt) {
     lean.dt = std::min(dt, base.T);
-    const RunResult r = run(lean);
+    const RunResult r = run(lean, cancel);
+    if (r.interrupted) throw Interrupted{};
     e.probes.push_back(
         {lean.dt, r.stable, r.failure ? std::optional(r.failure->reason) : std::nullopt, r.steps});
     return r.stable;
@@ -75,9 +82,22 @@ EdgeResult find_edge(const RunParams& base, const EdgeOptions& o) {
   at.stepping.policy = TimeStepPolicy::fixed;
   at.dt = *lo;
   at.observe.dt_stable = true;
-  e.at_edge = run(at);
+  e.at_edge = run(at, cancel);
+  if (e.at_edge->interrupted) throw Interrupted{};
   e.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return e;
+}
+
+}  // namespace
+
+EdgeResult find_edge(const RunParams& base, const EdgeOptions& o, const std::atomic<bool>* cancel) {
+  try {
+    return search(base, o, cancel);
+  } catch (const Interrupted&) {
+    EdgeResult e;
+    e.interrupted = true;
+    return e;
+  }
 }
 
 }  // namespace mpmstab

@@ -2,6 +2,7 @@
 // log-spaced scan around the speed-of-sound limit h / c followed by bisection.
 #pragma once
 
+#include <atomic>
 #include <optional>
 #include <vector>
 
@@ -35,11 +36,14 @@ struct EdgeResult {
   std::vector<EdgeProbe> probes;     // every run, in the order made
   std::optional<RunResult> at_edge;  // the run at dt_edge, with the observers of the params
   double wall_seconds = 0;
+  bool interrupted = false;
 };
 
 // `base` must be valid apart from its dt, which the search sets (the fixed policy is used).
 // The probes run with every observer off; the final run at dt_edge uses base's observers with
 // dt_stable on, for dt_edge / (eq. 108 minimum).
-EdgeResult find_edge(const RunParams& base, const EdgeOptions& options = {});
+// With `cancel` set during the search, it stops promptly and returns with interrupted = true.
+EdgeResult find_edge(const RunParams& base, const EdgeOptions& options = {},
+                     const std::atomic<bool>* cancel = nullptr);
 
 }  // namespace mpmstab

@@ -41,6 +41,7 @@ struct RunResult {
 
   bool stable = false;
   std::optional<Failure> failure;  // set when !stable
+  bool interrupted = false;        // cancelled before the end: incomplete, no verdict
 
   // Table 1's "Max Error": max_p |u_p(T) - u(X_p, T)|, stable runs only.
   std::optional<double> max_error;

@@ -12,7 +12,7 @@
 
 namespace mpmstab {
 
-RunResult run(const RunParams& p) {
+RunResult run(const RunParams& p, const std::atomic<bool>* cancel) {
   RunResult r;
   r.params = p;
   const Observe& obs = p.observe;
@@ -63,6 +63,11 @@ RunResult run(const RunParams& p) {
       // Land on T exactly, without leaving a sliver of a step.
       last = sim.time() + dt >= p.T - 1e-9 * dt;
       t_next = last ? p.T : sim.time() + dt;
+    }
+    // Cancellation is polled every 1024 steps: cheap, and prompt (well under a second).
+    if (cancel && (sim.steps() & 1023) == 0 && cancel->load(std::memory_order_relaxed)) {
+      r.interrupted = true;
+      break;
     }
     if (sim.steps() >= p.max_steps) {
       r.failure = Failure{FailureReason::step_limit, -1, sim.steps(), sim.time()};
@@ -116,7 +121,7 @@ RunResult run(const RunParams& p) {
   r.dt_min = std::isfinite(dt_min) ? dt_min : 0;
   r.dt_max = dt_max;
   r.courant = r.c * dt_max / h;
-  r.stable = !r.failure.has_value();
+  r.stable = !r.failure.has_value() && !r.interrupted;
   if (r.stable) r.max_error = sim.max_error();
   if (obs.error_over_time) {
     r.max_error_over_time = max_error_over_time;

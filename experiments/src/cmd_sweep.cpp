@@ -1,6 +1,9 @@
 // `mpmstab sweep`, `mpmstab index` and `mpmstab plot`: experiments from JSON specs.
 #include <unistd.h>
 
+#include <atomic>
+#include <csignal>
+
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -54,6 +57,26 @@ constexpr const char* kPlotHelp = R"(Usage: mpmstab plot <spec.json> [--out DIR]
 Draws a figure experiment with gnuplot: runs experiments/<name>.gp (beside the spec) on
 DIR/<name>_data.csv and writes DIR/<name>.png and DIR/<name>.svg atomically.
 )";
+
+// SIGINT and SIGTERM during a sweep: the handler only raises this flag (async-signal-safe);
+// the sweep stops promptly, keeps its finished cases in the cache and writes no report. A
+// second signal gets the default action (the handler is reset when it runs).
+std::atomic<bool> g_stop{false};
+volatile std::sig_atomic_t g_signal = 0;
+
+extern "C" void on_stop_signal(int sig) {
+  g_signal = sig;
+  g_stop.store(true);
+}
+
+void install_stop_handlers() {
+  struct sigaction action {};
+  action.sa_handler = on_stop_signal;
+  sigemptyset(&action.sa_mask);
+  action.sa_flags = SA_RESETHAND;
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
+}
 
 int default_jobs() {
   const unsigned n = std::thread::hardware_concurrency();
@@ -110,8 +133,19 @@ int cmd_sweep(const std::vector<std::string_view>& argv) {
   const auto out = output_folder(args);
   options.cache = out / "cache";
   options.progress_line = ::isatty(STDERR_FILENO) != 0;
+  options.cancel = &g_stop;
+  install_stop_handlers();
 
   const SweepOutcome outcome = run_sweep(spec, options);
+  if (outcome.interrupted) {
+    const int sig = g_signal ? static_cast<int>(g_signal) : SIGINT;
+    std::cerr << "\n[" << spec.name << "] interrupted by "
+              << (sig == SIGTERM ? "SIGTERM" : "SIGINT") << ": "
+              << outcome.computed + outcome.cached << " of " << spec.cases.size()
+              << " cases finished and are kept in " << options.cache.string()
+              << "; no report was written. Run the same command again to resume.\n";
+    return 128 + sig;
+  }
   write_reports(spec, outcome, out);
   std::cerr << "[" << spec.name << "] " << spec.cases.size() << " cases (" << outcome.computed
             << " computed, " << outcome.cached << " from the cache, " << outcome.unstable

@@ -150,8 +150,9 @@ SweepOutcome run_sweep(const Spec& spec, const SweepOptions& options) {
   std::exception_ptr error;
   std::mutex error_mutex;
 
+  auto cancelled = [&] { return options.cancel && options.cancel->load(); };
   auto worker = [&] {
-    for (std::size_t k; (k = next.fetch_add(1)) < n;) {
+    for (std::size_t k; !cancelled() && (k = next.fetch_add(1)) < n;) {
       const std::size_t i = order[k];
       const RunParams& p = spec.cases[i].params;
       try {
@@ -163,11 +164,13 @@ SweepOutcome run_sweep(const Spec& spec, const SweepOptions& options) {
         if (!record) {
           nlohmann::ordered_json rec;
           if (spec.report == ReportKind::edge) {
-            const EdgeResult e = find_edge(p);
+            const EdgeResult e = find_edge(p, {}, options.cancel);
+            if (e.interrupted) continue;  // unfinished: neither cached nor reported
             rec["result"] = to_json(e.at_edge ? *e.at_edge : run_at_smallest_probe(p, e));
             rec["edge"] = edge_to_json(e);
           } else {
-            const RunResult r = run(p);
+            const RunResult r = run(p, options.cancel);
+            if (r.interrupted) continue;  // unfinished: neither cached nor reported
             rec["result"] = to_json(r);
             if (p.observe.history) rec["history"] = history_to_json(r);
             if (r.final_state) rec["final_state"] = final_state_json(*r.final_state);
@@ -195,6 +198,10 @@ SweepOutcome run_sweep(const Spec& spec, const SweepOptions& options) {
   if (error) std::rethrow_exception(error);
 
   for (std::size_t i = 0; i < n; ++i) {
+    if (out.records[i].is_null()) {
+      out.interrupted = true;  // a case that never finished
+      continue;
+    }
     (from_cache[i] ? out.cached : out.computed) += 1;
     if (!out.records[i]["result"]["stable"].get<bool>()) ++out.unstable;
   }

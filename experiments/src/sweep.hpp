@@ -1,6 +1,7 @@
 // Running the cases of a spec: in parallel, from the cache where possible, with progress.
 #pragma once
 
+#include <atomic>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <vector>
@@ -15,6 +16,9 @@ struct SweepOptions {
   std::filesystem::path cache;  // cache folder; empty: compute every case, store nothing
   bool progress_line = false;   // one updating line (terminal) instead of a line per case
   bool quiet = false;           // no progress at all
+  // Set (by a signal handler) to stop: no new case starts, running cases stop within a few
+  // thousand steps, finished cases stay in the cache.
+  const std::atomic<bool>* cancel = nullptr;
 };
 
 struct SweepOutcome {
@@ -24,6 +28,7 @@ struct SweepOutcome {
   int cached = 0;
   int unstable = 0;
   double wall_seconds = 0;
+  bool interrupted = false;  // stopped by `cancel`: records of unfinished cases are null
 };
 
 // Results do not depend on `jobs`: every case is an independent, deterministic computation and
