@@ -180,7 +180,12 @@ int cmd_compare(const std::vector<std::string_view>& argv) {
   }
   const Spec table1 = specs.front();
   specs.erase(specs.begin());
-  write_comparison(table1, specs, output_folder(args));
+  const auto out = output_folder(args);
+  if (!std::filesystem::exists(out / (table1.name + ".json"))) {
+    throw UsageError((out / (table1.name + ".json")).string() +
+                     " does not exist: run mpmstab sweep " + table1.path.string() + " first");
+  }
+  write_comparison(table1, specs, out);
   return 0;
 }
 
