@@ -8,7 +8,7 @@ JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
 WERROR     ?= $(if $(CI),ON,OFF)
 
 DEB_PACKAGES := cmake g++ make libeigen3-dev nlohmann-json3-dev libgtest-dev libgmock-dev \
-                libbenchmark-dev gnuplot-nox clang-format bc util-linux
+                libbenchmark-dev gnuplot-nox clang-format bc util-linux clang-14 libclang-rt-14-dev
 
 # The paper's experiments, in the order make reproduce runs them.
 TABLES      := table1 table2
@@ -20,13 +20,17 @@ SPECS       := $(EXPERIMENTS:%=experiments/%.json)
 RESULTS     ?= results
 MPMSTAB     := $(BUILD_DIR)/mpmstab
 
-.PHONY: all build deps test check bless bench reproduce figures format format-check clean help
+FUZZ_SECONDS ?= 20
+FUZZ_DIR     ?= build-fuzz
+
+.PHONY: all build deps test check bless fuzz bench reproduce figures format format-check clean help
 
 all: build
 
 help:
 	@echo "make              install missing packages, configure and build into $(BUILD_DIR)/"
 	@echo "make test         build and run the GoogleTest suite (CTest), then make check"
+	@echo "make fuzz         fuzz the spec parser for FUZZ_SECONDS (default 20) seconds"
 	@echo "make check        rerun a fast subset of every experiment against reference/regression"
 	@echo "make bless REASON=\"...\"  accept the current values as blessed, logged in BLESSED.md"
 	@echo "make reproduce    rerun the paper's experiments (cached cases are not rerun), write results/"
@@ -56,6 +60,17 @@ build: deps $(BUILD_DIR)/CMakeCache.txt
 test: build
 	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
 	@$(MAKE) --no-print-directory check
+	@$(MAKE) --no-print-directory fuzz
+
+# A bounded fuzz run of the spec parser (libFuzzer, with address and UB sanitizers). New inputs
+# that reach new code are kept in tests/fuzz/corpus (committed); the specs seed it.
+fuzz: deps
+	@test -f $(FUZZ_DIR)/CMakeCache.txt || cmake -S . -B $(FUZZ_DIR) -DMPMSTAB_FUZZ=ON \
+	  -DCMAKE_CXX_COMPILER=clang++-14 -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMPMSTAB_ARCH= > /dev/null
+	cmake --build $(FUZZ_DIR) -j $(JOBS) --target fuzz_spec
+	mkdir -p tests/fuzz/corpus
+	$(FUZZ_DIR)/tests/fuzz/fuzz_spec -max_total_time=$(FUZZ_SECONDS) -max_len=4096 \
+	  -dict=tests/fuzz/spec.dict -print_final_stats=1 tests/fuzz/corpus experiments
 
 check: build
 	$(MPMSTAB) check $(SPECS) --jobs $(JOBS) --results $(RESULTS)

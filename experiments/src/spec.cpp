@@ -136,15 +136,8 @@ class Reader {
   std::filesystem::path file_;
 };
 
-json parse_file(const std::filesystem::path& file) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(file, ec)) throw SpecError(file, "", "is a directory");
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw SpecError(file, "", "cannot be read");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  const std::string text = buffer.str();
-  if (text.find_first_not_of(" \t\r\n") == std::string::npos) {
+json parse_text(std::string_view text, const std::filesystem::path& file) {
+  if (text.find_first_not_of(" \t\r\n") == std::string_view::npos) {
     throw SpecError(file, "", "is empty");
   }
   try {
@@ -198,8 +191,18 @@ std::string_view to_string(ReportKind k) {
 }
 
 Spec load_spec(const std::filesystem::path& file) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(file, ec)) throw SpecError(file, "", "is a directory");
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw SpecError(file, "", "cannot be read");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return parse_spec(buffer.str(), file);
+}
+
+Spec parse_spec(std::string_view text, const std::filesystem::path& file) {
   const Reader r(file);
-  const json doc = parse_file(file);
+  const json doc = parse_text(text, file);
   if (!doc.is_object()) r.fail("", "must be a JSON object, got " + std::string(doc.type_name()));
   r.only_known_keys(doc, "", kTopKeys);
 

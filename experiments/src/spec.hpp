@@ -46,6 +46,10 @@ class SpecError : public std::runtime_error {
 // Reads and validates a spec. Throws SpecError.
 Spec load_spec(const std::filesystem::path& file);
 
+// Validates the text of a spec; `file` names it in messages and anchors its relative paths.
+// Throws SpecError, and nothing else, for any text (the fuzz target tests/fuzz/ checks that).
+Spec parse_spec(std::string_view text, const std::filesystem::path& file);
+
 std::string_view to_string(ReportKind k);
 
 }  // namespace mpmstab
