@@ -17,10 +17,10 @@
 namespace mpmstab {
 
 struct StableDtInputs {
-  double F_max = 0;       // max_p |F_p|
-  double sigma_max = 0;   // max_p |sigma_p|
-  double sigmaF_max = 0;  // max_p |sigma_p F_p|
-  double v_norm = 0;      // ||v_N||, Euclidean or maximum norm over the distinct nodes
+  double F_max = 0;            // max_p |F_p|
+  double sigma_max = 0;        // max_p |sigma_p|
+  long double sigmaF_max = 0;  // max_p |sigma_p F_p| (long double: it may exceed a double)
+  double v_norm = 0;           // ||v_N||, Euclidean or maximum norm over the distinct nodes
 };
 
 struct StableDtGeometry {
@@ -32,9 +32,11 @@ struct StableDtGeometry {
 };
 
 // Reductions over the state after a step.
+// (sigma F)_max is taken as max |sigma_p| |F_p| in long double, so it does not overflow.
 StableDtInputs stable_dt_inputs(const Particles& P, const Grid& G, VelocityNorm vnorm);
 
-// Eq. (108). Finite and positive for every finite input (the denominator is >= 4 m sqrt(E) > 0).
+// Eq. (108). Finite and positive for every finite input: the denominator is >= 4 m sqrt(E) > 0
+// and is summed in long double, and the result is at least the smallest positive double.
 double stable_dt(const StableDtInputs& in, const StableDtGeometry& geo, StressScaling sigma);
 
 }  // namespace mpmstab

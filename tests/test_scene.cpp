@@ -83,6 +83,26 @@ TEST(Convergence, GimpErrorFallsAtOrderAtLeastOneAndAHalfInSpace) {
   }
 }
 
+// No absolute tolerance hides in the scheme: with no cell crossed, the error relative to A is
+// the same for a tiny amplitude as for a moderate one (the problem is linear in A there).
+// The floor is the rounding of the stored positions, eps |x| per step: at A = 1e-12 it is 13
+// times the discretization error (README, "Limits"), so the test stops at A = 1e-8.
+TEST(Convergence, TinyAmplitudeKeepsTheRelativeErrorOfAModerateOne) {
+  auto relative_error = [](double A) {
+    RunParams p = small_amplitude_gimp(32);
+    p.A = A;
+    const RunResult r = run(p);
+    EXPECT_TRUE(r.stable);
+    EXPECT_EQ(*r.crossings, 0);
+    return *r.max_error_over_time / A;
+  };
+  const double moderate = relative_error(1e-4);
+  for (double tiny : {1e-6, 1e-8}) {
+    const double rel = relative_error(tiny);
+    EXPECT_NEAR(rel / moderate, 1.0, 0.05) << tiny;
+  }
+}
+
 // Symplectic Euler is first order in dt: on a fixed grid the particle positions approach the
 // small-dt solution at order about one.
 TEST(Convergence, PositionsConvergeAtFirstOrderInTime) {

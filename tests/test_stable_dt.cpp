@@ -72,6 +72,25 @@ TEST(StableDt, Eq108ByHandForEveryOption) {
   }
 }
 
+TEST(StableDt, FiniteAndPositiveForEveryFiniteStateEvenWhenSigmaTimesFOverflows) {
+  for (double F : {1e-300, 1e-10, 1.0, 1e200, 1e308}) {
+    for (double sigma : {0.0, 1e-300, 1.0, 1e200, 1e308}) {
+      Particles P;
+      P.resize(2);
+      P.F << F, 0.5 * F;
+      P.sigma << sigma, -sigma;
+      Grid G(1, Boundary::dirichlet);
+      G.velocity.setConstant(1e300);
+      for (auto scaling : {StressScaling::scaled, StressScaling::raw}) {
+        const StableDtGeometry geo{Method::gimp, 1e8, 1e-5, 1, 1e-5};
+        const double dt = stable_dt(stable_dt_inputs(P, G, VelocityNorm::l2), geo, scaling);
+        EXPECT_TRUE(std::isfinite(dt)) << F << " " << sigma;
+        EXPECT_GT(dt, 0.0) << F << " " << sigma;
+      }
+    }
+  }
+}
+
 TEST(StableDt, FinitePositiveAndMonotoneAtExtremeStates) {
   const StableDtGeometry geo{Method::gimp, 1e8, 1e-5, 8, 1e-5 / 8};
   double previous = std::numeric_limits<double>::infinity();

@@ -314,8 +314,8 @@ int cmd_plot(const std::vector<std::string_view>& argv) {
                                           " at step " + c["failure_step"].dump();
     dt = shortest(c["dt"]);
   } else {
-    subtitle = std::string(c["bc"]) + " boundaries, T = " + shortest(c["T"]) +
-               "; the cells of each " + "case are in " + spec.name + ".md";
+    subtitle = std::to_string(doc["cases"].size()) + " cases; the parameters of each are in " +
+               spec.name + ".md";
   }
   const auto tmp = out / ("." + spec.name + ".tmp");
   const std::string command = "gnuplot -e \"datafile='" + data.string() + "'; outbase='" +

@@ -186,6 +186,8 @@ std::string_view to_string(ReportKind k) {
       return "edge";
     case ReportKind::tradeoff:
       return "tradeoff";
+    case ReportKind::extremes:
+      return "extremes";
   }
   return "?";
 }
@@ -222,8 +224,9 @@ Spec parse_spec(std::string_view text, const std::filesystem::path& file) {
   }
   const std::string report = r.string_at(doc["report"], "report");
   bool known = false;
-  for (ReportKind k : {ReportKind::table1, ReportKind::table2, ReportKind::figure,
-                       ReportKind::cases, ReportKind::edge, ReportKind::tradeoff}) {
+  for (ReportKind k :
+       {ReportKind::table1, ReportKind::table2, ReportKind::figure, ReportKind::cases,
+        ReportKind::edge, ReportKind::tradeoff, ReportKind::extremes}) {
     if (report == to_string(k)) {
       spec.report = k;
       known = true;
@@ -231,7 +234,7 @@ Spec parse_spec(std::string_view text, const std::filesystem::path& file) {
   }
   if (!known) {
     r.fail("report", "unknown value '" + report +
-                         "' (expected table1, table2, figure, cases, edge or tradeoff)");
+                         "' (expected table1, table2, figure, cases, edge, tradeoff or extremes)");
   }
   if (doc.contains("reference")) {
     spec.reference = file.parent_path() / r.string_at(doc["reference"], "reference");

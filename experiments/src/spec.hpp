@@ -19,6 +19,7 @@ enum class ReportKind {
   cases,     // a plain table of every case (supporting experiments)
   edge,      // per case, the largest fixed dt that survives to T (its dt is searched, not given)
   tradeoff,  // error against cost across methods, time-step policies and their parameters
+  extremes,  // verdicts over extreme parameters: where and why each method fails
 };
 
 struct CaseSpec {

@@ -1,0 +1,51 @@
+# extremes.gp -- the verdict of every extremes case in the plane (Courant number, amplitude in
+# cells), log-log, one panel per method.
+#
+# Reads : datafile (results/extremes_data.csv): '#' lines, then method,courant,A_over_h,verdict
+#         (method 0 mpm, 1 gimp; verdict 0 stable, 1 meaningless, 2 unstable).
+# Writes: outbase.png and outbase.svg.
+# Variables: datafile, outbase (required), subtitle (optional).
+
+if (!exists("datafile") || !exists("outbase")) {
+    print "extremes.gp: datafile and outbase must be set"
+    exit error "missing variables"
+}
+if (!exists("subtitle")) subtitle = ""
+
+set datafile separator comma
+set datafile commentschars '#'
+set datafile columnheaders
+
+sel(m, v, x) = ($1 == m && $4 == v && $2 > 0 && $3 > 0) ? x : 1/0
+
+do for [ext in "png svg"] {
+    if (ext eq "png") {
+        set terminal pngcairo size 1100,600 font "sans,11" noenhanced
+    } else {
+        set terminal svg size 1100,600 dynamic font "sans,11" noenhanced background "white"
+    }
+    set output outbase . "." . ext
+    set multiplot layout 1,2 title "Verdicts at the extremes: Courant number against amplitude in cells" . (strlen(subtitle) > 0 ? "\n" . subtitle : "") \
+        margins 0.08,0.98,0.22,0.86 spacing 0.08,0
+    set logscale xy
+    set format x "%.0e"
+    set format y "%.0e"
+    set xlabel "Courant number c dt / h"
+    set ylabel "amplitude in cells A / h"
+    set grid xtics ytics lc rgb "#e0e0e0"
+    set xrange [1e-9:1e7]
+    set yrange [1e-8:1e5]
+    do for [m = 1:0:-1] {
+        set title (m == 1 ? "GIMP" : "MPM")
+        if (m == 0) {
+            set key at screen 0.5, screen 0.06 center bottom horizontal samplen 2
+        } else {
+            unset key
+        }
+        plot datafile using (sel(m, 0, $2)):(sel(m, 0, $3)) with points pt 6 ps 1.2 lc rgb "#2ca02c" title "stable", \
+             datafile using (sel(m, 1, $2)):(sel(m, 1, $3)) with points pt 8 ps 1.2 lc rgb "#ff7f0e" title "stable, meaningless (error reached A)", \
+             datafile using (sel(m, 2, $2)):(sel(m, 2, $3)) with points pt 2 ps 1.0 lc rgb "#d62728" title "unstable"
+    }
+    unset multiplot
+    unset output
+}
