@@ -14,7 +14,7 @@ DEB_PACKAGES := cmake g++ make libeigen3-dev nlohmann-json3-dev libgtest-dev lib
 TABLES      := table1 table2
 FIGURES     := fig1 fig2 fig3
 SUPPORT     := courant walls crossing eq108
-STUDIES     := edge tradeoff
+STUDIES     := edge tradeoff extremes
 EXPERIMENTS := $(TABLES) $(FIGURES) $(SUPPORT) $(STUDIES)
 SPECS       := $(EXPERIMENTS:%=experiments/%.json)
 RESULTS     ?= results
