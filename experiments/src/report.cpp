@@ -1146,6 +1146,8 @@ void write_index(const std::vector<Spec>& specs, const fs::path& out) {
         "the experiments of M. Berzins, *Nonlinear stability and time step selection for the MPM "
         "method*, rerun with this project's solver and set beside the paper's values. Every "
         "number below is read from the files it links to.\n\n";
+  md << "**Performance:** [performance.md](performance.md): the step kernel's benchmark, what "
+        "each measured quantity costs, and the wall time of every experiment.\n\n";
   md << "**Against the paper:** [comparison.md](comparison.md) sets every Table 1 cell beside "
         "the paper's, with a verdict, and explains each class of disagreement with an "
         "experiment.\n\n";
