@@ -19,12 +19,11 @@ StableDtInputs stable_dt_inputs(const Particles& P, const Grid& G, VelocityNorm 
   return in;
 }
 
-double stable_dt(const StableDtInputs& in, const StableDtGeometry& geo, StressScaling sigma) {
-  // The denominator is summed in long double: products such as (sigma F) times 2 / (l sqrt m)
-  // overflow a double for extreme but finite states, and the bound must stay finite and
-  // positive for every finite state. Where it is smaller than the smallest positive double, it
-  // is that smallest double: no step is stable.
-  using real = long double;
+namespace {
+
+// Eq. (108) in the floating-point type `real`.
+template <class real>
+real eq108(const StableDtInputs& in, const StableDtGeometry& geo, StressScaling sigma) {
   const real m = geo.ppc;
   const real sqrt_m = std::sqrt(m);
   const real sqrt_E = std::sqrt(real(geo.E));
@@ -35,7 +34,20 @@ double stable_dt(const StableDtInputs& in, const StableDtGeometry& geo, StressSc
       geo.method == Method::gimp ? 2 / (real(geo.width) * sqrt_m) * sigmaF_max : real(0);
   const real denominator = 4 * m * (sqrt_E + real(in.F_max) + real(in.v_norm)) +
                            9 * real(geo.h) * sqrt_E * (real(in.F_max) + sigma_max + position_term);
-  const double dt = static_cast<double>(real(geo.h) * sqrt_m / denominator);
+  return real(geo.h) * sqrt_m / denominator;
+}
+
+}  // namespace
+
+double stable_dt(const StableDtInputs& in, const StableDtGeometry& geo, StressScaling sigma) {
+  // In double; where an extreme but finite state overflows a double (for example
+  // (sigma F)_max times 2 / (l sqrt m)), again in long double. A bound smaller than the
+  // smallest positive double is that double: no step is stable.
+  double dt = eq108<double>(in, geo, sigma);
+  if (!(dt > 0) || !std::isfinite(dt)) {
+    dt = static_cast<double>(eq108<long double>(in, geo, sigma));
+  }
   return std::max(dt, std::numeric_limits<double>::denorm_min());
 }
+
 }  // namespace mpmstab

@@ -35,8 +35,9 @@ struct StableDtGeometry {
 // (sigma F)_max is taken as max |sigma_p| |F_p| in long double, so it does not overflow.
 StableDtInputs stable_dt_inputs(const Particles& P, const Grid& G, VelocityNorm vnorm);
 
-// Eq. (108). Finite and positive for every finite input: the denominator is >= 4 m sqrt(E) > 0
-// and is summed in long double, and the result is at least the smallest positive double.
+// Eq. (108). Finite and positive for every finite input: the denominator is >= 4 m sqrt(E) > 0,
+// it is summed again in long double where a double overflows, and the result is at least the
+// smallest positive double.
 double stable_dt(const StableDtInputs& in, const StableDtGeometry& geo, StressScaling sigma);
 
 }  // namespace mpmstab
