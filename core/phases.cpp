@@ -1,16 +1,233 @@
+// The four phases (phases.hpp). Every kernel keeps the arithmetic of the plain loop it replaces
+// operation for operation, so that the results are the same bits: vector lanes are independent
+// particles or nodes, and each grid node still sums its contributions in particle order.
 #include "phases.hpp"
 
 #include <array>
+#include <cmath>
+#include <cstring>
+
+// Instruction sets. MPMSTAB_SIMD_CLONES compiles a function for AVX-512 (x86-64-v4), AVX2
+// (x86-64-v3) and the build's own target; the loader picks the best one the CPU has (GCC function
+// multiversioning). g2p and the stress update also have hand-written AVX-512 versions, chosen
+// at run time (use_avx512). FMA contraction stays off in every version (-ffp-contract=off).
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#include <immintrin.h>
+#define MPMSTAB_SIMD_CLONES \
+  __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+#define MPMSTAB_AVX512 1
+#define MPMSTAB_AVX512_TARGET __attribute__((target("arch=x86-64-v4")))
+#else
+#define MPMSTAB_SIMD_CLONES
+#define MPMSTAB_AVX512 0
+#endif
+#if defined(__GNUC__) && !defined(__clang__)
+#define MPMSTAB_IVDEP _Pragma("GCC ivdep")  // the per-slot arrays of a stencil do not overlap
+#else
+#define MPMSTAB_IVDEP
+#endif
 
 namespace mpmstab {
 
+// ---------------------------------------------------------------------------------------------
+// p2g, eqs. (5)-(7). Particles go in blocks of kBlock. For a block, first S_ip, G_ip and what
+// each particle adds to each of its W nodes (independent iterations, vectorized across
+// particles); then the sums into the grid, particle after particle, so that every node adds its
+// contributions in particle order as the plain scatter does (the order fixes the rounding).
+// Particles stay nearly sorted, so consecutive ones share nodes: the W nodes under the current
+// particle are held in registers (Window), loaded from the grid when they enter and written
+// back when they leave. This removes the chain of store and reload of the same node from one
+// particle to the next, which bounds the plain scatter, and gives the same sums as it in any
+// particle order (a jump of the stencil writes back and reloads all W nodes).
 namespace {
+
+constexpr int kBlock = 32;  // the contributions of a block stay in L1 until they are summed
+
+// (m_i, q_i) of one node: one 2-lane add does the mass and the momentum sums together.
+using Pair = double __attribute__((vector_size(16)));
+
+template <int W>
+struct alignas(64) Contributions {
+  double mq[W][kBlock][2];  // (S_ip m_p, S_ip m_p v_p) to node base_p + k
+  double f[W][kBlock];      // -G_ip sigma_p V_p + S_ip m_p b_p
+};
+
+template <int W>
+struct Window {
+  int b = 0;    // storage index of the first node
+  Pair mq[W];   // nodes b .. b + W - 1
+  double f[W];  //
+};
+
+template <bool kPeriodic, class Basis>
+inline void evaluate_block(const Basis& basis, const Particles& P, const double* body_accel,
+                           Eigen::Index p0, int len, Stencil<Basis::width>& S,
+                           Contributions<Basis::width>& C) {
+  constexpr int W = Basis::width;
+  const double* __restrict x = P.x.data() + p0;
+  const double* __restrict v = P.v.data() + p0;
+  const double* __restrict F = P.F.data() + p0;
+  const double* __restrict sig = P.sigma.data() + p0;
+  const double* __restrict m_p = P.mass.data() + p0;
+  const double* __restrict V0 = P.volume0.data() + p0;
+  const double* __restrict b_p = body_accel + p0;
+  int* __restrict base = S.base.data() + p0;
+  double *w[W], *g[W];
+  for (int k = 0; k < W; ++k) {
+    w[k] = S.w[k].data() + p0;
+    g[k] = S.g[k].data() + p0;
+  }
+  MPMSTAB_IVDEP
+  for (int j = 0; j < len; ++j) {
+    double xp = x[j];
+    if constexpr (kPeriodic) xp -= std::floor(xp);
+    int bp;
+    double wp[W], gp[W];
+    basis.eval(xp, bp, wp, gp);
+    base[j] = bp + Grid::kOffset;
+    const double mass = m_p[j];
+    const double mom = mass * v[j];
+    const double stress_volume = -sig[j] * F[j] * V0[j];  // V_p = F_p V_p^0 (eq. 6)
+    const double body = mass * b_p[j];
+    for (int k = 0; k < W; ++k) {
+      w[k][j] = wp[k];
+      g[k][j] = gp[k];
+      C.mq[k][j][0] = wp[k] * mass;
+      C.mq[k][j][1] = wp[k] * mom;
+      C.f[k][j] = gp[k] * stress_volume + wp[k] * body;
+    }
+  }
+}
+
+template <int W>
+inline void scatter_block(const int* base, int len, const Contributions<W>& C, Window<W>& win,
+                          double* __restrict m_i, double* __restrict q_i, double* __restrict f_i) {
+  int b = win.b;
+  Pair mq[W];
+  double f[W];
+  for (int k = 0; k < W; ++k) {
+    mq[k] = win.mq[k];
+    f[k] = win.f[k];
+  }
+  for (int j = 0; j < len; ++j) {
+    const int bp = base[j];
+    if (bp != b) {
+      if (bp == b + 1) {  // the usual move: node b leaves, node b + W enters
+        m_i[b] = mq[0][0];
+        q_i[b] = mq[0][1];
+        f_i[b] = f[0];
+        for (int k = 0; k + 1 < W; ++k) {
+          mq[k] = mq[k + 1];
+          f[k] = f[k + 1];
+        }
+        mq[W - 1] = Pair{m_i[bp + W - 1], q_i[bp + W - 1]};
+        f[W - 1] = f_i[bp + W - 1];
+      } else {
+        for (int k = 0; k < W; ++k) {
+          m_i[b + k] = mq[k][0];
+          q_i[b + k] = mq[k][1];
+          f_i[b + k] = f[k];
+        }
+        for (int k = 0; k < W; ++k) {
+          mq[k] = Pair{m_i[bp + k], q_i[bp + k]};
+          f[k] = f_i[bp + k];
+        }
+      }
+      b = bp;
+    }
+    for (int k = 0; k < W; ++k) {
+      Pair c;
+      std::memcpy(&c, C.mq[k][j], sizeof c);
+      mq[k] += c;
+      f[k] += C.f[k][j];
+    }
+  }
+  win.b = b;
+  for (int k = 0; k < W; ++k) {
+    win.mq[k] = mq[k];
+    win.f[k] = f[k];
+  }
+}
+
+template <bool kPeriodic, class Basis>
+MPMSTAB_SIMD_CLONES void p2g_kernel(const Basis& basis, const Particles& P,
+                                    const double* body_accel, Stencil<Basis::width>& S, Grid& G) {
+  constexpr int W = Basis::width;
+  G.mass.setZero();
+  G.momentum.setZero();
+  G.force.setZero();
+  Window<W> win;  // at slot 0, which holds the cleared values
+  for (int k = 0; k < W; ++k) {
+    win.mq[k] = Pair{0.0, 0.0};
+    win.f[k] = 0.0;
+  }
+  Contributions<W> C;
+  const Eigen::Index n = P.size();
+  for (Eigen::Index p0 = 0; p0 < n; p0 += kBlock) {
+    const int len = n - p0 < kBlock ? static_cast<int>(n - p0) : kBlock;
+    if (len == kBlock) {  // a constant trip count vectorizes best
+      evaluate_block<kPeriodic>(basis, P, body_accel, p0, kBlock, S, C);
+    } else {
+      evaluate_block<kPeriodic>(basis, P, body_accel, p0, len, S, C);
+    }
+    scatter_block(S.base.data() + p0, len, C, win, G.mass.data(), G.momentum.data(),
+                  G.force.data());
+  }
+  for (int k = 0; k < W; ++k) {
+    G.mass[win.b + k] = win.mq[k][0];
+    G.momentum[win.b + k] = win.mq[k][1];
+    G.force[win.b + k] = win.f[k];
+  }
+}
+
+template <class Basis>
+void p2g_any(const Basis& basis, const Particles& P, const double* body_accel,
+             Stencil<Basis::width>& S, Grid& G) {
+  if (G.bc == Boundary::periodic) {
+    p2g_kernel<true>(basis, P, body_accel, S, G);
+  } else {
+    p2g_kernel<false>(basis, P, body_accel, S, G);
+  }
+}
+
+}  // namespace
+
+void p2g(const LinearBasis& basis, const Particles& P, const double* body_accel,
+         Stencil<LinearBasis::width>& S, Grid& G) {
+  p2g_any(basis, P, body_accel, S, G);
+}
+
+void p2g(const GimpBasis& basis, const Particles& P, const double* body_accel,
+         Stencil<GimpBasis::width>& S, Grid& G) {
+  p2g_any(basis, P, body_accel, S, G);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Grid update, eqs. (7), (8).
+namespace {
+
 std::array<int, 3> image_slots(int N) {
   return {-1, N, N + 1};
 }
 int wrap(int i, int N) {
   return ((i % N) + N) % N;
 }
+
+// a_i = f_i / m_i and v_i = q_i / m_i + dt a_i on slots [lo, hi), 0 where m_i = 0 (the
+// quotients computed there are discarded). Vectorized across nodes.
+MPMSTAB_SIMD_CLONES void nodal_update(const double* __restrict m, const double* __restrict q,
+                                      const double* __restrict f, double* __restrict v,
+                                      double* __restrict a, int lo, int hi, double dt) {
+  for (int s = lo; s < hi; ++s) {
+    const double inv_m = 1.0 / m[s];
+    const double as = f[s] * inv_m;
+    const double vs = q[s] * inv_m + dt * as;
+    const bool has_mass = m[s] > 0.0;
+    a[s] = has_mass ? as : 0.0;
+    v[s] = has_mass ? vs : 0.0;
+  }
+}
+
 }  // namespace
 
 void grid_update(Grid& G, double dt) {
@@ -21,7 +238,7 @@ void grid_update(Grid& G, double dt) {
   double* f = G.force.data();
   double* v = G.velocity.data();
   double* a = G.accel.data();
-  const Eigen::Index slots = G.mass.size();
+  const int slots = static_cast<int>(G.mass.size());
 
   int first = 0, last = N;  // real nodes whose velocity is computed
   if (G.bc == Boundary::periodic) {
@@ -36,16 +253,11 @@ void grid_update(Grid& G, double dt) {
     last = N - 1;
   }
 
-  for (Eigen::Index s = 0; s < slots; ++s)
+  for (int s = 0; s < o + first; ++s)
     v[s] = a[s] = 0.0;
-  for (int i = first; i <= last; ++i) {
-    const int s = o + i;
-    if (m[s] > 0.0) {
-      const double inv_m = 1.0 / m[s];
-      a[s] = f[s] * inv_m;
-      v[s] = q[s] * inv_m + dt * a[s];
-    }
-  }
+  nodal_update(m, q, f, v, a, o + first, o + last + 1, dt);
+  for (int s = o + last + 1; s < slots; ++s)
+    v[s] = a[s] = 0.0;
 
   if (G.bc == Boundary::periodic) {
     for (const int i : image_slots(N))
@@ -53,5 +265,217 @@ void grid_update(Grid& G, double dt) {
         arr[o + i] = arr[o + wrap(i, N)];
   }
 }
+
+// ---------------------------------------------------------------------------------------------
+// g2p, eqs. (9), (10), and the stress update, eqs. (11), (13), (14).
+namespace {
+
+template <int W>
+using Rows = std::array<const double*, W>;  // S_ip (or G_ip) of slot k and particle p: [k][p]
+
+// sum_k S_ip field_i over the stencil of particle p, summed from 0 in slot order: the arithmetic
+// of one particle. The AVX-512 versions do the same operations in the same order in each lane.
+template <int W>
+inline double interpolate(const Rows<W>& wk, std::size_t p, const double* __restrict field, int b) {
+  double s = 0;
+  for (int k = 0; k < W; ++k)
+    s += wk[k][p] * field[b + k];
+  return s;
+}
+
+template <int W, bool kGridPosition>
+inline void g2p_particle(std::size_t p, const int* __restrict base, const Rows<W>& w,
+                         const double* __restrict a_i, const double* __restrict v_i,
+                         double* __restrict x, double* __restrict v, double dt) {
+  const int b = base[p];
+  v[p] += dt * interpolate<W>(w, p, a_i, b);
+  if constexpr (kGridPosition) {
+    x[p] += dt * interpolate<W>(w, p, v_i, b);
+  } else {
+    x[p] += dt * v[p];
+  }
+}
+
+template <int W>
+inline void stress_particle(std::size_t p, const int* __restrict base, const Rows<W>& g,
+                            const double* __restrict v_i, double* __restrict F,
+                            double* __restrict sig, double dt, double E) {
+  const double L = interpolate<W>(g, p, v_i, base[p]);
+  F[p] *= 1.0 + dt * L;
+  sig[p] = E * (F[p] - 1.0);
+}
+
+template <int W, bool kGridPosition>
+MPMSTAB_SIMD_CLONES void g2p_loop(std::size_t n, const int* __restrict base, const Rows<W> w,
+                                  const double* __restrict a_i, const double* __restrict v_i,
+                                  double* __restrict x, double* __restrict v, double dt) {
+  MPMSTAB_IVDEP
+  for (std::size_t p = 0; p < n; ++p)
+    g2p_particle<W, kGridPosition>(p, base, w, a_i, v_i, x, v, dt);
+}
+
+template <int W>
+MPMSTAB_SIMD_CLONES void stress_loop(std::size_t n, const int* __restrict base, const Rows<W> g,
+                                     const double* __restrict v_i, double* __restrict F,
+                                     double* __restrict sig, double dt, double E) {
+  MPMSTAB_IVDEP
+  for (std::size_t p = 0; p < n; ++p)
+    stress_particle<W>(p, base, g, v_i, F, sig, dt, E);
+}
+
+#if MPMSTAB_AVX512
+// AVX-512, 8 particles at a time. Their stencils nearly always lie within the 16 grid slots
+// from the first particle's base b0, so a grid array is read with two vector loads and the value
+// at base_p + k of each particle is picked by one permutation, instead of a gather. A block that
+// does not fit (particles far apart or out of order) takes the scalar path.
+struct Slots16 {
+  __m512d lo, hi;  // field[b0 .. b0 + 15]; slots past the end of the array read as 0
+};
+
+MPMSTAB_AVX512_TARGET inline Slots16 load16(const double* field, int b0, int slots) {
+  // Slots that exist from b0 on, at most the 16 read (>= W, as the stencil fits).
+  const unsigned avail = slots - b0 < 16 ? static_cast<unsigned>(slots - b0) : 16u;
+  const auto lo = static_cast<__mmask8>(_bzhi_u32(0xFF, avail));
+  const auto hi = static_cast<__mmask8>(_bzhi_u32(0xFF, avail > 8 ? avail - 8 : 0));
+  return {_mm512_maskz_loadu_pd(lo, field + b0), _mm512_maskz_loadu_pd(hi, field + b0 + 8)};
+}
+
+// base_p - b0 of particles p0 .. p0 + 7 as 64-bit lanes; false if a stencil leaves the slots.
+template <int W>
+MPMSTAB_AVX512_TARGET inline bool relative_bases(const int* base, std::size_t p0, __m512i& r) {
+  const __m256i rel = _mm256_sub_epi32(
+      _mm256_loadu_si256(reinterpret_cast<const __m256i*>(base + p0)), _mm256_set1_epi32(base[p0]));
+  if (_mm256_cmple_epu32_mask(rel, _mm256_set1_epi32(16 - W)) != 0xFF) return false;
+  r = _mm512_maskz_cvtepu32_epi64(0xFF, rel);
+  return true;
+}
+
+// interpolate() for particles p0 .. p0 + 7.
+template <int W>
+MPMSTAB_AVX512_TARGET inline __m512d interpolate8(const Rows<W>& wk, std::size_t p0,
+                                                  const Slots16& f, __m512i r) {
+  __m512d s = _mm512_setzero_pd();
+  for (int k = 0; k < W; ++k) {
+    const __m512d fk =
+        _mm512_permutex2var_pd(f.lo, _mm512_add_epi64(r, _mm512_set1_epi64(k)), f.hi);
+    s = _mm512_add_pd(s, _mm512_mul_pd(_mm512_loadu_pd(wk[k] + p0), fk));
+  }
+  return s;
+}
+
+template <int W, bool kGridPosition>
+MPMSTAB_AVX512_TARGET void g2p_avx512(std::size_t n, const int* __restrict base, const Rows<W> w,
+                                      const double* __restrict a_i, const double* __restrict v_i,
+                                      int slots, double* __restrict x, double* __restrict v,
+                                      double dt) {
+  const __m512d dt8 = _mm512_set1_pd(dt);
+  std::size_t p0 = 0;
+  for (; p0 + 8 <= n; p0 += 8) {
+    __m512i r;
+    if (!relative_bases<W>(base, p0, r)) {
+      for (std::size_t p = p0; p < p0 + 8; ++p)
+        g2p_particle<W, kGridPosition>(p, base, w, a_i, v_i, x, v, dt);
+      continue;
+    }
+    const int b0 = base[p0];
+    const __m512d a = interpolate8<W>(w, p0, load16(a_i, b0, slots), r);
+    const __m512d vp = _mm512_add_pd(_mm512_loadu_pd(v + p0), _mm512_mul_pd(dt8, a));
+    _mm512_storeu_pd(v + p0, vp);
+    __m512d dx;
+    if constexpr (kGridPosition) {
+      dx = _mm512_mul_pd(dt8, interpolate8<W>(w, p0, load16(v_i, b0, slots), r));
+    } else {
+      dx = _mm512_mul_pd(dt8, vp);
+    }
+    _mm512_storeu_pd(x + p0, _mm512_add_pd(_mm512_loadu_pd(x + p0), dx));
+  }
+  for (; p0 < n; ++p0)
+    g2p_particle<W, kGridPosition>(p0, base, w, a_i, v_i, x, v, dt);
+}
+
+template <int W>
+MPMSTAB_AVX512_TARGET void stress_avx512(std::size_t n, const int* __restrict base, const Rows<W> g,
+                                         const double* __restrict v_i, int slots,
+                                         double* __restrict F, double* __restrict sig, double dt,
+                                         double E) {
+  const __m512d dt8 = _mm512_set1_pd(dt), E8 = _mm512_set1_pd(E), one = _mm512_set1_pd(1.0);
+  std::size_t p0 = 0;
+  for (; p0 + 8 <= n; p0 += 8) {
+    __m512i r;
+    if (!relative_bases<W>(base, p0, r)) {
+      for (std::size_t p = p0; p < p0 + 8; ++p)
+        stress_particle<W>(p, base, g, v_i, F, sig, dt, E);
+      continue;
+    }
+    const __m512d L = interpolate8<W>(g, p0, load16(v_i, base[p0], slots), r);
+    const __m512d Fp =
+        _mm512_mul_pd(_mm512_loadu_pd(F + p0), _mm512_add_pd(one, _mm512_mul_pd(dt8, L)));
+    _mm512_storeu_pd(F + p0, Fp);
+    _mm512_storeu_pd(sig + p0, _mm512_mul_pd(E8, _mm512_sub_pd(Fp, one)));
+  }
+  for (; p0 < n; ++p0)
+    stress_particle<W>(p0, base, g, v_i, F, sig, dt, E);
+}
+
+bool use_avx512() {
+  static const bool yes = __builtin_cpu_supports("x86-64-v4");
+  return yes;
+}
+#endif
+
+template <int W>
+Rows<W> rows(const std::array<AlignedVector<double>, W>& a) {
+  Rows<W> r;
+  for (int k = 0; k < W; ++k)
+    r[k] = a[k].data();
+  return r;
+}
+
+template <int W, bool kGridPosition>
+void g2p_any(const Stencil<W>& S, const Grid& G, double dt, Particles& P) {
+  const auto n = static_cast<std::size_t>(P.size());
+#if MPMSTAB_AVX512
+  if (use_avx512()) {
+    return g2p_avx512<W, kGridPosition>(n, S.base.data(), rows<W>(S.w), G.accel.data(),
+                                        G.velocity.data(), static_cast<int>(G.velocity.size()),
+                                        P.x.data(), P.v.data(), dt);
+  }
+#endif
+  g2p_loop<W, kGridPosition>(n, S.base.data(), rows<W>(S.w), G.accel.data(), G.velocity.data(),
+                             P.x.data(), P.v.data(), dt);
+}
+
+}  // namespace
+
+template <int W>
+void g2p(const Stencil<W>& S, const Grid& G, double dt, PositionUpdate mode, Particles& P) {
+  if (mode == PositionUpdate::grid) {
+    g2p_any<W, true>(S, G, dt, P);
+  } else {
+    g2p_any<W, false>(S, G, dt, P);
+  }
+}
+
+template <int W>
+void stress_update(const Stencil<W>& S, const Grid& G, double dt, double E, Particles& P) {
+  const auto n = static_cast<std::size_t>(P.size());
+#if MPMSTAB_AVX512
+  if (use_avx512()) {
+    return stress_avx512<W>(n, S.base.data(), rows<W>(S.g), G.velocity.data(),
+                            static_cast<int>(G.velocity.size()), P.F.data(), P.sigma.data(), dt, E);
+  }
+#endif
+  stress_loop<W>(n, S.base.data(), rows<W>(S.g), G.velocity.data(), P.F.data(), P.sigma.data(), dt,
+                 E);
+}
+
+template void g2p(const Stencil<LinearBasis::width>&, const Grid&, double, PositionUpdate,
+                  Particles&);
+template void g2p(const Stencil<GimpBasis::width>&, const Grid&, double, PositionUpdate,
+                  Particles&);
+template void stress_update(const Stencil<LinearBasis::width>&, const Grid&, double, double,
+                            Particles&);
+template void stress_update(const Stencil<GimpBasis::width>&, const Grid&, double, double,
+                            Particles&);
 
 }  // namespace mpmstab

@@ -9,10 +9,19 @@
 
 namespace mpmstab {
 
-// floor(s) as an int, for s well inside int range; avoids a libm call in the hot loops.
+// floor(s) as a double, exactly, for |s| < 2^51. Adding and subtracting 1.5 * 2^52 rounds s to
+// the nearest integer (both operations stay: FMA contraction is off and fast-math is not used);
+// one step down if that is above s. No libm call and no round trip through an integer register,
+// so it vectorizes and its dependency chain is short.
+inline double floor_exact(double s) {
+  constexpr double kRound = 6755399441055744.0;  // 1.5 * 2^52
+  const double r = (s + kRound) - kRound;
+  return r > s ? r - 1.0 : r;
+}
+
+// floor(s) as an int, for s well inside int range.
 inline int floor_to_int(double s) {
-  const int i = static_cast<int>(s);
-  return i - static_cast<int>(s < static_cast<double>(i));
+  return static_cast<int>(floor_exact(s));
 }
 
 // max(d, 0) without a branch, exactly: (d + |d|) / 2 is d or 0 with no rounding.
@@ -30,8 +39,9 @@ struct LinearBasis {
 
   void eval(double x, int& base, double* w, double* g) const {
     const double s = x * inv_h;
-    base = floor_to_int(s);
-    const double xi = s - base;
+    const double cell = floor_exact(s);
+    base = static_cast<int>(cell);
+    const double xi = s - cell;
     w[0] = 1.0 - xi;
     w[1] = xi;
     g[0] = -inv_h;
@@ -63,8 +73,9 @@ struct GimpBasis {
   void eval(double x, int& base, double* wt, double* g) const {
     // Left edge of the support in cell units, relative to node `base`: u in [0, 1).
     const double s = x * inv_h - lp_cells;
-    base = floor_to_int(s);
-    const double u = s - base;
+    const double cell = floor_exact(s);
+    base = static_cast<int>(cell);
+    const double u = s - cell;
     const double b = u + w;                   // right edge, in [w, 1 + w)
     const double e = positive_part(b - 1.0);  // length of the part in cell [base+1, base+2]
     const double b0 = b - e;                  // right end of the part in cell [base, base+1]

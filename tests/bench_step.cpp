@@ -3,8 +3,15 @@
 // BM_Step: the four phases only (p2g, grid update, g2p, stress update), what every run pays.
 // BM_StepChecked: the step plus the failure check every run does after each step.
 // BM_StepInstrumented: plus every observer (error over time, eq. 108, crossings).
+// BM_StepBaseline: the same step as a first textbook implementation would write it (below), so
+// that one run shows the solver's kernel and a straightforward one side by side.
 // The counter ns_per_particle_step is the time per step divided by the number of particles.
 #include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+#include <vector>
 
 #include "crossings.hpp"
 #include "failure.hpp"
@@ -25,6 +32,15 @@ mpmstab::RunParams bar(Method method) {
 }
 
 enum class Level { step, checked, instrumented };
+
+void set_counters(benchmark::State& state, Method method, double particles) {
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(particles));
+  // (particles * 1e-9) per iteration, as a rate, inverted: wall ns per particle-step.
+  state.counters["ns_per_particle_step"] =
+      benchmark::Counter(particles * 1e-9, benchmark::Counter::kIsIterationInvariantRate |
+                                               benchmark::Counter::kInvert);
+  state.SetLabel(method == Method::gimp ? "gimp" : "mpm");
+}
 
 template <Level level>
 void BM_Step(benchmark::State& state) {
@@ -54,13 +70,136 @@ void BM_Step(benchmark::State& state) {
                              geo, p.stable.sigma));
     }
   }
-  const double particles = static_cast<double>(sim.particles().size());
-  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(particles));
-  // (particles * 1e-9) per iteration, as a rate, inverted: wall ns per particle-step.
-  state.counters["ns_per_particle_step"] =
-      benchmark::Counter(particles * 1e-9, benchmark::Counter::kIsIterationInvariantRate |
-                                               benchmark::Counter::kInvert);
-  state.SetLabel(method == Method::gimp ? "gimp" : "mpm");
+  set_counters(state, method, static_cast<double>(sim.particles().size()));
+}
+
+// The textbook step: one loop per phase, every particle visits the nodes near it and evaluates
+// S_ip and G_ip from their piecewise definitions in each phase, the sums go straight into the
+// grid, particles are an array of structs. The same equations, parameters and initial state as
+// mpmstab::Simulation (the stress update uses the gradients at x^n, as USL does).
+namespace textbook {
+
+struct Particle {
+  double X, x, x_old, v, F, sigma, mass, volume0, body_profile;
+};
+
+// S_i and dS_i/dx for a particle at distance r = x_p - X_i: the hat (MPM) or the five uGIMP
+// branches of Bardenhagen & Kober (2004).
+std::pair<double, double> shape(Method method, double r, double h, double lp) {
+  if (method == Method::mpm) {
+    if (std::abs(r) >= h) return {0.0, 0.0};
+    return {1.0 - std::abs(r) / h, r < 0 ? 1.0 / h : -1.0 / h};
+  }
+  if (r <= -h - lp || r >= h + lp) return {0.0, 0.0};
+  if (r <= -h + lp)
+    return {(h + lp + r) * (h + lp + r) / (4 * h * lp), (h + lp + r) / (2 * h * lp)};
+  if (r <= -lp) return {1 + r / h, 1 / h};
+  if (r <= lp) return {1 - (r * r + lp * lp) / (2 * h * lp), -r / (h * lp)};
+  if (r <= h - lp) return {1 - r / h, -1 / h};
+  return {(h + lp - r) * (h + lp - r) / (4 * h * lp), -(h + lp - r) / (2 * h * lp)};
+}
+
+struct Bar {
+  mpmstab::RunParams p;
+  mpmstab::BarScene scene;
+  double h, lp;
+  std::vector<Particle> particles;
+  std::vector<double> m, q, f, vel, acc;  // nodes 0 .. N
+  double t = 0;
+
+  explicit Bar(const mpmstab::RunParams& params)
+      : p(params),
+        scene(p.E, p.A),
+        h(1.0 / p.cells),
+        lp(p.method == Method::gimp ? h / (2.0 * p.ppc) : 0.0),
+        m(p.cells + 1),
+        q(p.cells + 1),
+        f(p.cells + 1),
+        vel(p.cells + 1),
+        acc(p.cells + 1) {
+    const mpmstab::Particles P = scene.initial_particles(p.cells, p.ppc);
+    for (Eigen::Index i = 0; i < P.size(); ++i) {
+      particles.push_back({P.X[i], P.x[i], P.x[i], P.v[i], P.F[i], P.sigma[i], P.mass[i],
+                           P.volume0[i], scene.body_force_profile(P.X[i])});
+    }
+  }
+
+  // Nodes whose support can contain x.
+  std::pair<int, int> nodes_near(double x) const {
+    const double reach = h + lp;
+    return {std::max(0, static_cast<int>(std::floor((x - reach) / h))),
+            std::min(p.cells, static_cast<int>(std::ceil((x + reach) / h)))};
+  }
+
+  void step(double dt) {
+    const double factor = scene.body_force_factor(t);
+    // p2g, eqs. (5)-(7)
+    std::fill(m.begin(), m.end(), 0.0);
+    std::fill(q.begin(), q.end(), 0.0);
+    std::fill(f.begin(), f.end(), 0.0);
+    for (const Particle& pt : particles) {
+      const auto [first, last] = nodes_near(pt.x);
+      for (int i = first; i <= last; ++i) {
+        const auto [S, G] = shape(p.method, pt.x - i * h, h, lp);
+        m[i] += S * pt.mass;
+        q[i] += S * pt.mass * pt.v;
+        f[i] += -G * pt.sigma * pt.F * pt.volume0 + S * pt.mass * pt.body_profile * factor;
+      }
+    }
+    // grid update, eqs. (7), (8); nodes 0 and N fixed
+    for (int i = 0; i <= p.cells; ++i) {
+      if (i == 0 || i == p.cells || m[i] <= 0.0) {
+        vel[i] = acc[i] = 0.0;
+      } else {
+        acc[i] = f[i] / m[i];
+        vel[i] = q[i] / m[i] + dt * acc[i];
+      }
+    }
+    // g2p, eqs. (9), (10)
+    for (Particle& pt : particles) {
+      pt.x_old = pt.x;
+      const auto [first, last] = nodes_near(pt.x_old);
+      double dv = 0, dx = 0;
+      for (int i = first; i <= last; ++i) {
+        const double S = shape(p.method, pt.x_old - i * h, h, lp).first;
+        dv += S * acc[i];
+        dx += S * vel[i];
+      }
+      pt.v += dt * dv;
+      pt.x += dt * dx;
+    }
+    // stress update, eqs. (11), (13), (14), gradients at x^n
+    for (Particle& pt : particles) {
+      const auto [first, last] = nodes_near(pt.x_old);
+      double L = 0;
+      for (int i = first; i <= last; ++i)
+        L += shape(p.method, pt.x_old - i * h, h, lp).second * vel[i];
+      pt.F *= 1.0 + dt * L;
+      pt.sigma = p.E * (pt.F - 1.0);
+    }
+    t += dt;
+  }
+};
+
+}  // namespace textbook
+
+void BM_StepBaseline(benchmark::State& state) {
+  const auto method = static_cast<Method>(state.range(0));
+  const auto p = bar(method);
+  textbook::Bar sim(p);
+  std::int64_t n = 0;
+  for (auto _ : state) {
+    if (n == 1000) {  // as BM_Step: start the run again at T = 1
+      state.PauseTiming();
+      sim = textbook::Bar(p);
+      n = 0;
+      state.ResumeTiming();
+    }
+    sim.step(p.dt);
+    ++n;
+    benchmark::DoNotOptimize(sim.particles.data());
+  }
+  set_counters(state, method, static_cast<double>(sim.particles.size()));
 }
 
 void methods(benchmark::internal::Benchmark* b) {
@@ -70,6 +209,7 @@ void methods(benchmark::internal::Benchmark* b) {
 BENCHMARK(BM_Step<Level::step>)->Name("BM_Step")->Apply(methods);
 BENCHMARK(BM_Step<Level::checked>)->Name("BM_StepChecked")->Apply(methods);
 BENCHMARK(BM_Step<Level::instrumented>)->Name("BM_StepInstrumented")->Apply(methods);
+BENCHMARK(BM_StepBaseline)->Apply(methods);
 
 }  // namespace
 
