@@ -43,7 +43,15 @@ std::vector<ColumnRule> value_rules(double rtol) {
           {"max_error", 0, rtol, false},
           {"max_error_over_time", 0, rtol, false},
           {"crossings", 0, 0, false},
-          {"dt_stable_min", 0, rtol, false}};
+          {"dt_stable_min", 0, rtol, false},
+          {"dt_min", 0, rtol, false},
+          {"dt_max", 0, rtol, false},
+          // edge experiments: the bracket of the search and its warnings
+          {"dt_edge", 0, rtol, false},
+          {"dt_fail", 0, rtol, false},
+          {"monotone", 0, 0, true},
+          {"failed_below_edge", 0, 0, false},
+          {"probes", 0, 0, false}};
 }
 
 const std::vector<std::string> kVerdictKeys = {"method", "E", "A", "dt"};
@@ -71,7 +79,7 @@ Table run_subset(const Spec& subset, const RegressionOptions& o) {
     const ojson flat = flat_row(subset.cases[i], outcome.records[i]);
     Row row;
     for (const auto& c : columns)
-      row.cells[c] = csv_cell(flat[c]);
+      row.cells[c] = flat.contains(c) ? csv_cell(flat[c]) : "";  // edge columns: edge only
     t.rows.push_back(std::move(row));
   }
   return t;
@@ -130,7 +138,7 @@ Spec fast_subset(const Spec& spec, double budget) {
   subset.cases.clear();
   for (const auto& c : spec.cases) {
     const auto& p = c.params;
-    if (double(*step_count(p.T, p.dt)) * p.cells * p.ppc <= budget) subset.cases.push_back(c);
+    if (case_cost(p, spec.report) <= budget) subset.cases.push_back(c);
   }
   return subset;
 }

@@ -26,7 +26,9 @@ using Clock = std::chrono::steady_clock;
 
 // Work of a case, for scheduling and the time estimate: particle-steps.
 // An edge search costs about as much as 40 runs at the speed-of-sound step h / c.
-double cost_of(const RunParams& p, ReportKind kind) {
+}  // namespace
+
+double case_cost(const RunParams& p, ReportKind kind) {
   const double h_over_c = (1.0 / p.cells) / std::sqrt(p.E);
   // The adaptive policies step at about s / 20 of h / c (eq. 108 sits 5 to 200 times below it).
   const double dt = kind == ReportKind::edge
@@ -34,6 +36,8 @@ double cost_of(const RunParams& p, ReportKind kind) {
                         : fixed_step(p).value_or(p.stepping.safety * h_over_c / 20);
   return p.T / dt * double(p.cells) * double(p.ppc);
 }
+
+namespace {
 
 nlohmann::ordered_json final_state_json(const FinalState& f) {
   auto column = [](const Eigen::ArrayXd& a) {
@@ -138,7 +142,7 @@ SweepOutcome run_sweep(const Spec& spec, const SweepOptions& options) {
   std::vector<double> cost(n);
   double total_cost = 0;
   for (std::size_t i = 0; i < n; ++i)
-    total_cost += cost[i] = cost_of(spec.cases[i].params, spec.report);
+    total_cost += cost[i] = case_cost(spec.cases[i].params, spec.report);
   std::stable_sort(order.begin(), order.end(),
                    [&](std::size_t a, std::size_t b) { return cost[a] > cost[b]; });
 

@@ -31,6 +31,10 @@ struct SweepOutcome {
   bool interrupted = false;  // stopped by `cancel`: records of unfinished cases are null
 };
 
+// The work of a case in particle-steps (an estimate for the adaptive policies and for edge
+// searches), for scheduling, progress and the fast subset of make check.
+double case_cost(const RunParams& p, ReportKind kind);
+
 // Results do not depend on `jobs`: every case is an independent, deterministic computation and
 // the records are returned in spec order.
 SweepOutcome run_sweep(const Spec& spec, const SweepOptions& options);
