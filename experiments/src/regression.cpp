@@ -20,6 +20,7 @@ namespace {
 namespace fs = std::filesystem;
 using ojson = nlohmann::ordered_json;
 
+// A regression row is identified by every parameter that can change it.
 const std::vector<std::string> kKeyColumns = {"method",
                                               "E",
                                               "A",
@@ -30,7 +31,10 @@ const std::vector<std::string> kKeyColumns = {"method",
                                               "bc",
                                               "position_update",
                                               "dt_stable_sigma",
-                                              "dt_stable_vnorm"};
+                                              "dt_stable_vnorm",
+                                              "policy",
+                                              "cfl_factor",
+                                              "safety"};
 
 // Every deterministic result column and how it is compared. Verdicts, reasons and counts are
 // exact; floating-point values use the relative tolerance of the options.
@@ -127,6 +131,12 @@ std::string blessed_comment(const Spec& spec, double budget) {
          shortest(budget) + " particle-steps; rewritten only by make bless (see BLESSED.md)\n";
 }
 
+// A cell of a row; "" when the row has no such column (a file written before it existed).
+std::string cell(const Row& row, const std::string& column) {
+  const auto it = row.cells.find(column);
+  return it == row.cells.end() ? std::string() : it->second;
+}
+
 fs::path verdicts_file(const RegressionOptions& o) {
   return o.reference / "comparison_verdicts.csv";
 }
@@ -201,17 +211,17 @@ int run_bless(const std::vector<Spec>& specs, const RegressionOptions& o,
       for (const auto& row : old.rows) {
         std::string id;
         for (const auto& k : keys)
-          id += row.cells.at(k) + "|";
+          id += cell(row, k) + "|";
         old_rows[id] = &row;
       }
       for (auto& row : obtained.rows) {
         std::string id;
         for (const auto& k : keys)
-          id += row.cells.at(k) + "|";
+          id += cell(row, k) + "|";
         const auto it = old_rows.find(id);
         if (it == old_rows.end()) continue;
         for (const auto& rule : rules) {
-          const std::string& before = it->second->cells.at(rule.column);
+          const std::string before = cell(*it->second, rule.column);
           if (cells_agree(parse_cell(before), parse_cell(row.cells[rule.column]), rule)) {
             row.cells[rule.column] = before;
           }
