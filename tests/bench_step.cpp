@@ -31,7 +31,9 @@ mpmstab::RunParams bar(Method method) {
   return p;
 }
 
-enum class Level { step, checked, instrumented };
+// What runs after the step: nothing, the failure check, one observer on top of the check, or
+// every observer.
+enum class Level { step, checked, error, stable_dt, crossings, instrumented };
 
 void set_counters(benchmark::State& state, Method method, double particles) {
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(particles));
@@ -62,9 +64,13 @@ void BM_Step(benchmark::State& state) {
     if constexpr (level != Level::step) {
       benchmark::DoNotOptimize(mpmstab::detect_failure(sim.particles(), p.bc));
     }
-    if constexpr (level == Level::instrumented) {
+    if constexpr (level == Level::error || level == Level::instrumented) {
       benchmark::DoNotOptimize(sim.max_error());
+    }
+    if constexpr (level == Level::crossings || level == Level::instrumented) {
       benchmark::DoNotOptimize(crossings.update(sim.particles()));
+    }
+    if constexpr (level == Level::stable_dt || level == Level::instrumented) {
       benchmark::DoNotOptimize(
           mpmstab::stable_dt(mpmstab::stable_dt_inputs(sim.particles(), sim.grid(), p.stable.vnorm),
                              geo, p.stable.sigma));
@@ -208,6 +214,9 @@ void methods(benchmark::internal::Benchmark* b) {
 
 BENCHMARK(BM_Step<Level::step>)->Name("BM_Step")->Apply(methods);
 BENCHMARK(BM_Step<Level::checked>)->Name("BM_StepChecked")->Apply(methods);
+BENCHMARK(BM_Step<Level::error>)->Name("BM_StepError")->Apply(methods);
+BENCHMARK(BM_Step<Level::stable_dt>)->Name("BM_StepStableDt")->Apply(methods);
+BENCHMARK(BM_Step<Level::crossings>)->Name("BM_StepCrossings")->Apply(methods);
 BENCHMARK(BM_Step<Level::instrumented>)->Name("BM_StepInstrumented")->Apply(methods);
 BENCHMARK(BM_StepBaseline)->Apply(methods);
 
