@@ -113,6 +113,24 @@ std::optional<std::int64_t> step_count(double T, double dt) {
   return static_cast<std::int64_t>(std::ceil(ratio));
 }
 
+const std::vector<std::string>& parameter_names() {
+  static const std::vector<std::string> names = {"method",
+                                                 "E",
+                                                 "A",
+                                                 "dt",
+                                                 "T",
+                                                 "cells",
+                                                 "ppc",
+                                                 "bc",
+                                                 "position_update",
+                                                 "dt_stable_sigma",
+                                                 "dt_stable_vnorm",
+                                                 "policy",
+                                                 "cfl_factor",
+                                                 "safety"};
+  return names;
+}
+
 std::vector<ParamIssue> validate(const RunParams& p) {
   std::vector<ParamIssue> issues;
   auto bad = [&](std::string key, std::string message) {

@@ -87,6 +87,10 @@ struct ParamIssue {
   std::string message;
 };
 
+// The parameters of a run that can change its result, by the names used as spec keys and CSV
+// columns (the command line spells them with '-' for '_'). max_steps is a limit, not listed.
+const std::vector<std::string>& parameter_names();
+
 // All checks on a RunParams, in one place. Empty result: the parameters are valid.
 std::vector<ParamIssue> validate(const RunParams& p);
 

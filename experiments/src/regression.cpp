@@ -21,20 +21,7 @@ namespace fs = std::filesystem;
 using ojson = nlohmann::ordered_json;
 
 // A regression row is identified by every parameter that can change it.
-const std::vector<std::string> kKeyColumns = {"method",
-                                              "E",
-                                              "A",
-                                              "dt",
-                                              "T",
-                                              "cells",
-                                              "ppc",
-                                              "bc",
-                                              "position_update",
-                                              "dt_stable_sigma",
-                                              "dt_stable_vnorm",
-                                              "policy",
-                                              "cfl_factor",
-                                              "safety"};
+const std::vector<std::string>& kKeyColumns = parameter_names();
 
 // Every deterministic result column and how it is compared. Verdicts, reasons and counts are
 // exact; floating-point values use the relative tolerance of the options.

@@ -20,22 +20,12 @@ std::string where(const std::filesystem::path& file, const std::string& key_path
 }
 
 // Keys a case (or the defaults object) may set; everything else is an error.
-const std::vector<std::string> kCaseKeys = {"method",
-                                            "E",
-                                            "A",
-                                            "dt",
-                                            "T",
-                                            "cells",
-                                            "ppc",
-                                            "bc",
-                                            "position_update",
-                                            "dt_stable_sigma",
-                                            "dt_stable_vnorm",
-                                            "max_steps",
-                                            "dt_inferred",
-                                            "policy",
-                                            "cfl_factor",
-                                            "safety"};
+const std::vector<std::string> kCaseKeys = [] {
+  std::vector<std::string> keys = parameter_names();
+  keys.push_back("max_steps");
+  keys.push_back("dt_inferred");
+  return keys;
+}();
 const std::vector<std::string> kTopKeys = {"name",      "title",    "description",
                                            "report",    "record",   "history_stride",
                                            "reference", "defaults", "cases"};
