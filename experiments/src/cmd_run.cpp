@@ -241,20 +241,20 @@ Options: --T, --cells, --ppc, --bc, --position-update, --dt-stable-sigma, --dt-s
 --max-steps as for 'mpmstab run'; --tolerance <x> (default 0.02); --json.
 )";
 
-const std::vector<OptionSpec> kEdgeOptions = {{"method"},
-                                              {"E"},
-                                              {"A"},
-                                              {"T"},
-                                              {"cells"},
-                                              {"ppc"},
-                                              {"bc"},
-                                              {"position-update"},
-                                              {"dt-stable-sigma"},
-                                              {"dt-stable-vnorm"},
-                                              {"max-steps"},
-                                              {"tolerance"},
-                                              {"json", false},
-                                              {"help", false}};
+// The options of `run` that describe the case (not its dt, policy or history), and the
+// search's tolerance.
+const std::vector<OptionSpec> kEdgeOptions = [] {
+  const std::vector<std::string> searched = {"dt",     "policy",  "cfl-factor",
+                                             "safety", "history", "history-stride"};
+  std::vector<OptionSpec> options;
+  for (const auto& o : kOptions) {
+    if (std::find(searched.begin(), searched.end(), o.name) == searched.end()) {
+      options.push_back(o);
+    }
+  }
+  options.push_back({"tolerance"});
+  return options;
+}();
 
 }  // namespace
 

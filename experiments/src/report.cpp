@@ -113,8 +113,7 @@ Table1Summary summarize_table1(const Spec& spec, const std::vector<ojson>& rows,
     }
     if (paper_stable && ours_stable) {
       ++s.errors_compared;
-      const double ratio = r["max_error"].get<double>() / pe.value;
-      if (ratio <= 3 && ratio >= 1.0 / 3) ++s.errors_within_3;
+      if (within_factor_3(r["max_error"].get<double>(), pe.value)) ++s.errors_within_3;
     }
   }
   return s;

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "compare.hpp"
 #include "csv.hpp"
 
 namespace mpmstab {
@@ -116,6 +117,12 @@ std::map<Table1Key, PaperCell> read_paper_table1(const Spec& spec) {
     cells[{A, E, dt, method}] = c;
   }
   return cells;
+}
+
+bool within_factor_3(double ours, double paper) {
+  static const ColumnRule factor3{"max_error", 0, 2.0 / 3.0, false};
+  return cells_agree(CellValue{CellValue::Kind::number, ours, ""},
+                     CellValue{CellValue::Kind::number, paper, ""}, factor3);
 }
 
 std::string sci(double v, int digits) {

@@ -50,6 +50,10 @@ struct PaperCell {
 
 using Table1Key = std::tuple<double, double, double, std::string>;  // A, E, dt, method
 
+// Our value and the paper's agree within a factor 3: the comparator's rule
+// |a - b| <= (2/3) max(|a|, |b|) (core/compare.hpp).
+bool within_factor_3(double ours, double paper);
+
 // The transcribed Table 1 of a table1 spec, keyed by (A, E, dt, method); cells whose dt the
 // paper does not print are keyed by the dt of the spec's case marked dt_inferred.
 std::map<Table1Key, PaperCell> read_paper_table1(const Spec& spec);
