@@ -21,7 +21,16 @@ std::string show(double v) {
 template <class Enum, std::size_t N>
 using Names = std::array<std::pair<Enum, std::string_view>, N>;
 
-constexpr Names<Method, 2> kMethods{{{Method::mpm, "mpm"}, {Method::gimp, "gimp"}}};
+constexpr Names<Method, 3> kMethods{
+    {{Method::mpm, "mpm"}, {Method::gimp, "gimp"}, {Method::cpgimp, "cpgimp"}}};
+constexpr Names<SceneKind, 2> kScenes{{{SceneKind::bar, "bar"}, {SceneKind::steffen, "steffen"}}};
+constexpr Names<Walls, 2> kWalls{{{Walls::clip, "clip"}, {Walls::ghost, "ghost"}}};
+constexpr Names<Transfer, 3> kTransfers{
+    {{Transfer::flip, "flip"}, {Transfer::pic, "pic"}, {Transfer::blend, "blend"}}};
+constexpr Names<UpdateOrder, 3> kUpdateOrders{
+    {{UpdateOrder::usl, "usl"}, {UpdateOrder::usf, "usf"}, {UpdateOrder::musl, "musl"}}};
+constexpr Names<BodyForceTime, 2> kBodyForceTimes{
+    {{BodyForceTime::start, "start"}, {BodyForceTime::end, "end"}}};
 constexpr Names<Boundary, 2> kBoundaries{
     {{Boundary::dirichlet, "dirichlet"}, {Boundary::periodic, "periodic"}}};
 constexpr Names<PositionUpdate, 2> kPositionUpdates{
@@ -89,6 +98,43 @@ std::optional<TimeStepPolicy> parse_time_step_policy(std::string_view s) {
   return parse(kPolicies, s);
 }
 
+std::string_view to_string(SceneKind s) {
+  return name_of(kScenes, s);
+}
+std::string_view to_string(Walls w) {
+  return name_of(kWalls, w);
+}
+std::string_view to_string(Transfer t) {
+  return name_of(kTransfers, t);
+}
+std::string_view to_string(UpdateOrder u) {
+  return name_of(kUpdateOrders, u);
+}
+std::string_view to_string(BodyForceTime b) {
+  return name_of(kBodyForceTimes, b);
+}
+std::optional<SceneKind> parse_scene(std::string_view s) {
+  return parse(kScenes, s);
+}
+std::optional<Walls> parse_walls(std::string_view s) {
+  return parse(kWalls, s);
+}
+std::optional<Transfer> parse_transfer(std::string_view s) {
+  return parse(kTransfers, s);
+}
+std::optional<UpdateOrder> parse_update_order(std::string_view s) {
+  return parse(kUpdateOrders, s);
+}
+std::optional<BodyForceTime> parse_body_force_time(std::string_view s) {
+  return parse(kBodyForceTimes, s);
+}
+
+bool default_choices(const RunParams& p) {
+  const RunParams d;
+  return p.scene == d.scene && p.walls == d.walls && p.transfer == d.transfer &&
+         p.update == d.update && p.body_force_time == d.body_force_time;
+}
+
 std::optional<double> fixed_step(const RunParams& p) {
   switch (p.stepping.policy) {
     case TimeStepPolicy::fixed:
@@ -123,6 +169,12 @@ const std::vector<std::string>& parameter_names() {
                                                  "ppc",
                                                  "bc",
                                                  "position_update",
+                                                 "scene",
+                                                 "walls",
+                                                 "transfer",
+                                                 "flip_fraction",
+                                                 "update",
+                                                 "body_force_time",
                                                  "dt_stable_sigma",
                                                  "dt_stable_vnorm",
                                                  "policy",
@@ -166,6 +218,14 @@ std::vector<ParamIssue> validate(const RunParams& p) {
   }
   if (p.cells >= 1 && p.ppc >= 1 && double(p.cells) * p.ppc > kMaxParticles) {
     bad("cells", "cells * ppc must not exceed 1e8 particles");
+  }
+  if (p.transfer == Transfer::blend &&
+      (!std::isfinite(p.flip_fraction) || !(p.flip_fraction > 0) || !(p.flip_fraction < 1))) {
+    bad("flip_fraction",
+        "must be a number in (0, 1) for transfer = blend, got " + show(p.flip_fraction));
+  }
+  if (p.walls == Walls::ghost && p.bc != Boundary::dirichlet) {
+    bad("walls", "ghost nodes apply to bc = dirichlet only (a periodic grid has no walls)");
   }
   if (p.max_steps < 1) bad("max_steps", "must be >= 1, got " + std::to_string(p.max_steps));
   if (p.observe.history_stride < 1) {

@@ -12,8 +12,15 @@
 
 namespace mpmstab {
 
-// Shape functions (DESIGN.md section 2): linear hat ("mpm") or uGIMP with fixed half-width.
-enum class Method { mpm, gimp };
+// Shape functions (DESIGN.md section 2): linear hat ("mpm"), uGIMP with fixed half-width
+// lp = h / (2 m) ("gimp"), or cpGIMP, whose half-width follows the deformation, lp = F_p h / (2 m)
+// ("cpgimp").
+enum class Method { mpm, gimp, cpgimp };
+
+// The problem being solved (scene.hpp): the paper's bar ("bar", section 5.1: linear material,
+// u = A sin(2 pi X) sin(c pi t)) or the manufactured solution of Steffen, Wallstedt, Guilkey,
+// Kirby and Berzins (2008) ("steffen": neo-Hookean material, u = A sin(2 pi X) cos(c pi t)).
+enum class SceneKind { bar, steffen };
 
 // Dirichlet: u = 0 at X = 0 and X = 1, a particle leaving [0, 1] ends the run as unstable.
 // Periodic: node N is node 0; particles wrap around.
@@ -22,6 +29,23 @@ enum class Boundary { dirichlet, periodic };
 // How g2p moves a particle: with the interpolated grid velocity v_i^{n+1} (default), or with the
 // updated particle velocity v_p^{n+1} (the paper's eq. 10).
 enum class PositionUpdate { grid, particle };
+
+// Documented implementation choices of the MPM literature (DESIGN.md section 2). The first
+// value of each is the default.
+//  - walls (Dirichlet, GIMP supports): `clip` keeps nodes on [0, 1] only, so what a support
+//    puts beyond a wall is dropped; `ghost` adds one free node beyond each wall (as codes that
+//    extend the grid by one cell do), which takes part in every phase like an interior node; the
+//    walls X = 0 and X = 1 stay fixed.
+//  - transfer (particle velocity in g2p): FLIP v_p += dt sum_i S_ip a_i; PIC v_p = sum_i S_ip v_i;
+//    blend = flip_fraction * FLIP + (1 - flip_fraction) * PIC.
+//  - update (when the stress is updated): USL after g2p with v_i^{n+1}; USF before the forces are
+//    computed, with v_i^n = q_i / m_i (the paper's section 6); MUSL after g2p with the grid
+//    velocity re-mapped from the updated particle velocities.
+//  - body_force_time: b(X_p, t) at the start t^n of a step or at its end t^{n+1}.
+enum class Walls { clip, ghost };
+enum class Transfer { flip, pic, blend };
+enum class UpdateOrder { usl, usf, musl };
+enum class BodyForceTime { start, end };
 
 // Eq. (108) leaves two points open; each is an option.
 //  - sigma: section 4.6 rescales the stress as sigma / sqrt(E) (eq. 105) before stating eq. (108).
@@ -73,6 +97,12 @@ struct RunParams {
   int ppc = 2;       // particles per cell, m
   Boundary bc = Boundary::dirichlet;
   PositionUpdate position_update = PositionUpdate::grid;
+  SceneKind scene = SceneKind::bar;
+  Walls walls = Walls::clip;
+  Transfer transfer = Transfer::flip;
+  double flip_fraction = 0.95;  // FLIP share of a blend (transfer = blend only), in (0, 1)
+  UpdateOrder update = UpdateOrder::usl;
+  BodyForceTime body_force_time = BodyForceTime::start;
   StableDtOptions stable;
   TimeStepping stepping;
   Observe observe;
@@ -108,6 +138,11 @@ std::string_view to_string(PositionUpdate u);
 std::string_view to_string(StressScaling s);
 std::string_view to_string(VelocityNorm n);
 std::string_view to_string(TimeStepPolicy p);
+std::string_view to_string(SceneKind s);
+std::string_view to_string(Walls w);
+std::string_view to_string(Transfer t);
+std::string_view to_string(UpdateOrder u);
+std::string_view to_string(BodyForceTime b);
 
 std::optional<Method> parse_method(std::string_view s);
 std::optional<Boundary> parse_boundary(std::string_view s);
@@ -115,5 +150,14 @@ std::optional<PositionUpdate> parse_position_update(std::string_view s);
 std::optional<StressScaling> parse_stress_scaling(std::string_view s);
 std::optional<VelocityNorm> parse_velocity_norm(std::string_view s);
 std::optional<TimeStepPolicy> parse_time_step_policy(std::string_view s);
+std::optional<SceneKind> parse_scene(std::string_view s);
+std::optional<Walls> parse_walls(std::string_view s);
+std::optional<Transfer> parse_transfer(std::string_view s);
+std::optional<UpdateOrder> parse_update_order(std::string_view s);
+std::optional<BodyForceTime> parse_body_force_time(std::string_view s);
+
+// True when every implementation choice above (scene, walls, transfer, update, body_force_time)
+// is at its default: the runs of solver version 1, whose cache keys do not name these choices.
+bool default_choices(const RunParams& p);
 
 }  // namespace mpmstab
