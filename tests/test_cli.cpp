@@ -97,6 +97,15 @@ TEST(Cli, InvalidInputExitsTwoAndNamesTheOption) {
       {with("dt-stable-sigma", "half"), "--dt-stable-sigma"},
       {with("dt-stable-vnorm", "l1"), "--dt-stable-vnorm"},
       {with("max-steps", "0"), "--max-steps"},
+      {with("scene", "beam"), "--scene"},
+      {with("walls", "mirror"), "--walls"},
+      {with("walls", "ghost") + " --bc periodic", "--walls"},  // a periodic grid has no walls
+      {with("transfer", "apic"), "--transfer"},
+      {with("flip-fraction", "0.5"), "--flip-fraction"},  // only with --transfer blend
+      {with("transfer", "blend") + " --flip-fraction 1", "--flip-fraction"},
+      {with("transfer", "blend") + " --flip-fraction nan", "--flip-fraction"},
+      {with("update", "usf2"), "--update"},
+      {with("body-force-time", "middle"), "--body-force-time"},
       {"--method gimp --A 0.015 --dt 1e-3", "--E"},  // missing required option
       {"--E 4 --A 0.015 --dt 1e-3", "--method"},
       {kValid + " --Young 4", "--Young"},                         // unknown option

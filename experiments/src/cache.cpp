@@ -24,6 +24,14 @@ std::string canonical_parameters(const RunParams& p) {
     << ";safety=" << shortest(p.stepping.safety) << ";record=" << (o.error_over_time ? "e" : "")
     << (o.dt_stable ? "s" : "") << (o.crossings ? "c" : "") << (o.final_state ? "f" : "");
   if (o.history) s << "h" << o.history_stride;
+  // The implementation choices came after the first cached runs: they enter the key only when
+  // one differs from its default, so that the keys of default runs did not change.
+  if (!default_choices(p)) {
+    s << ";scene=" << to_string(p.scene) << ";walls=" << to_string(p.walls)
+      << ";transfer=" << to_string(p.transfer);
+    if (p.transfer == Transfer::blend) s << ";flip_fraction=" << shortest(p.flip_fraction);
+    s << ";update=" << to_string(p.update) << ";body_force_time=" << to_string(p.body_force_time);
+  }
   return s.str();
 }
 

@@ -17,13 +17,15 @@ namespace mpmstab::cli {
 namespace {
 
 constexpr const char* kHelp =
-    R"(Usage: mpmstab run --method gimp|mpm --E <x> --A <x> --dt <x> [options]
+    R"(Usage: mpmstab run --method gimp|cpgimp|mpm --E <x> --A <x> --dt <x> [options]
 
-Runs the paper's 1D bar (manufactured solution u = A sin(2 pi X) sin(c pi t), c = sqrt(E))
-to time T with a fixed time step and reports its verdict and every measured quantity.
+Runs one case of a 1D scene to time T (default: the paper's bar, manufactured solution
+u = A sin(2 pi X) sin(c pi t), c = sqrt(E)) and reports its verdict and every measured
+quantity.
 
 Required:
-  --method gimp|mpm        shape functions: uGIMP or linear MPM
+  --method gimp|cpgimp|mpm shape functions: uGIMP, cpGIMP (half-width follows F) or
+                           linear MPM
   --E <x>                  Young's modulus, > 0
   --A <x>                  amplitude of the solution, >= 0
   --dt <x>                 time step, 0 < dt <= T (the last step is shortened to land on T);
@@ -37,6 +39,18 @@ Options:
   --position-update grid|particle
                            move particles with the grid velocity (default) or with
                            the updated particle velocity (the paper's eq. 10)
+  --scene bar|steffen      the paper's bar (default: linear material, u = A sin(2 pi X)
+                           sin(c pi t)) or Steffen et al. (2008): neo-Hookean material,
+                           u = A sin(2 pi X) cos(c pi t)
+  --walls clip|ghost       GIMP supports at a Dirichlet wall: nodes on [0, 1] only
+                           (default) or one free ghost node beyond each wall
+  --transfer flip|pic|blend
+                           particle velocity update (default flip)
+  --flip-fraction <a>      FLIP share of a blend, 0 < a < 1 (default 0.95)
+  --update usl|usf|musl    stress update last (default), first (the paper's section 6),
+                           or last with the grid velocity re-mapped from the particles
+  --body-force-time start|end
+                           evaluate b at the start t^n (default) or end t^{n+1} of a step
   --dt-stable-sigma scaled|raw
                            stress in eq. (108) scaled by 1/sqrt(E) (default) or not
   --dt-stable-vnorm l2|max norm of the nodal velocity in eq. (108) (default l2)
@@ -67,6 +81,12 @@ const std::vector<OptionSpec> kOptions = {
     {"ppc"},
     {"bc"},
     {"position-update"},
+    {"scene"},
+    {"walls"},
+    {"transfer"},
+    {"flip-fraction"},
+    {"update"},
+    {"body-force-time"},
     {"dt-stable-sigma"},
     {"dt-stable-vnorm"},
     {"max-steps"},
@@ -109,7 +129,7 @@ int to_int(std::string_view text, std::string_view option) {
 
 RunParams params_from(const Args& a, bool searching_dt = false) {
   RunParams p;
-  p.method = parse_choice(required(a, "method"), "method", parse_method, "gimp or mpm");
+  p.method = parse_choice(required(a, "method"), "method", parse_method, "gimp, cpgimp or mpm");
   p.E = parse_double(required(a, "E"), "E");
   p.A = parse_double(required(a, "A"), "A");
   if (auto v = a.value("policy")) {
@@ -135,6 +155,22 @@ RunParams params_from(const Args& a, bool searching_dt = false) {
   if (auto v = a.value("position-update")) {
     p.position_update =
         parse_choice(*v, "position-update", parse_position_update, "grid or particle");
+  }
+  if (auto v = a.value("scene")) p.scene = parse_choice(*v, "scene", parse_scene, "bar or steffen");
+  if (auto v = a.value("walls")) p.walls = parse_choice(*v, "walls", parse_walls, "clip or ghost");
+  if (auto v = a.value("transfer")) {
+    p.transfer = parse_choice(*v, "transfer", parse_transfer, "flip, pic or blend");
+  }
+  if (auto v = a.value("flip-fraction")) {
+    if (p.transfer != Transfer::blend)
+      throw UsageError("--flip-fraction: only with --transfer blend");
+    p.flip_fraction = parse_double(*v, "flip-fraction");
+  }
+  if (auto v = a.value("update")) {
+    p.update = parse_choice(*v, "update", parse_update_order, "usl, usf or musl");
+  }
+  if (auto v = a.value("body-force-time")) {
+    p.body_force_time = parse_choice(*v, "body-force-time", parse_body_force_time, "start or end");
   }
   if (auto v = a.value("dt-stable-sigma")) {
     p.stable.sigma = parse_choice(*v, "dt-stable-sigma", parse_stress_scaling, "scaled or raw");
@@ -230,14 +266,16 @@ std::string history_csv(const RunResult& r) {
   return s.str();
 }
 
-constexpr const char* kEdgeHelp = R"(Usage: mpmstab edge --method gimp|mpm --E <x> --A <x> [options]
+constexpr const char* kEdgeHelp =
+    R"(Usage: mpmstab edge --method gimp|cpgimp|mpm --E <x> --A <x> [options]
 
 Finds the real stability edge of one case: the largest fixed dt with which the bar survives
-to T. A log-spaced scan dt = (h/c) 2^(k/2) from h/(16c) to 4h/c, then bisection to within
+to T (the scene, method and choices as given). A log-spaced scan dt = (h/c) 2^(k/2) from h/(16c) to 4h/c, then bisection to within
 --tolerance. Reports dt_edge, dt_edge / (h/c), dt_edge / (the eq. 108 minimum of the run at
 dt_edge), and warns when stability is not monotone in dt.
 
-Options: --T, --cells, --ppc, --bc, --position-update, --dt-stable-sigma, --dt-stable-vnorm,
+Options: --T, --cells, --ppc, --bc, --position-update, --scene, --walls, --transfer,
+--flip-fraction, --update, --body-force-time, --dt-stable-sigma, --dt-stable-vnorm,
 --max-steps as for 'mpmstab run'; --tolerance <x> (default 0.02); --json.
 )";
 

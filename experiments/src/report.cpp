@@ -24,10 +24,11 @@ namespace fs = std::filesystem;
 // Flat rows: the same columns in the CSV and in the JSON "cases" array.
 
 const std::vector<std::string> kColumns = {
-    "method", "E", "A", "dt", "dt_inferred", "T", "cells", "ppc", "bc", "position_update", "policy",
-    "cfl_factor", "safety", "dt_stable_sigma", "dt_stable_vnorm", "stable", "failure_reason",
-    "failure_step", "failure_time", "meaningless", "steps", "dt_min", "dt_max", "max_error",
-    "max_error_over_time", "crossings", "dt_stable_min", "dt_cfl", "dt_sound", "courant", "key",
+    "method", "E", "A", "dt", "dt_inferred", "T", "cells", "ppc", "bc", "position_update", "scene",
+    "walls", "transfer", "flip_fraction", "update", "body_force_time", "policy", "cfl_factor",
+    "safety", "dt_stable_sigma", "dt_stable_vnorm", "stable", "failure_reason", "failure_step",
+    "failure_time", "meaningless", "steps", "dt_min", "dt_max", "max_error", "max_error_over_time",
+    "crossings", "dt_stable_min", "dt_cfl", "dt_sound", "courant", "key",
     // Measurements of the machine: the only columns that differ between identical runs.
     "wall_seconds", "ns_per_particle_step"};
 
@@ -339,7 +340,8 @@ std::string cases_markdown(const Spec& spec, const std::vector<ojson>& rows) {
   // Parameter columns shown: always method, E, A, dt; the others only where cases differ.
   std::vector<std::string> params = {"method", "E", "A", "dt"};
   for (const char* col :
-       {"T", "cells", "ppc", "bc", "position_update", "dt_stable_sigma", "dt_stable_vnorm"}) {
+       {"T", "cells", "ppc", "bc", "position_update", "scene", "walls", "transfer", "flip_fraction",
+        "update", "body_force_time", "dt_stable_sigma", "dt_stable_vnorm"}) {
     for (const auto& r : rows) {
       if (r[col] != rows.front()[col]) {
         params.push_back(col);
@@ -359,7 +361,8 @@ std::string cases_markdown(const Spec& spec, const std::vector<ojson>& rows) {
      << " meaningless: the error over time reached A), " << unstable << " unstable.";
   std::string fixed_params;
   for (const char* col :
-       {"T", "cells", "ppc", "bc", "position_update", "dt_stable_sigma", "dt_stable_vnorm"}) {
+       {"T", "cells", "ppc", "bc", "position_update", "scene", "walls", "transfer", "flip_fraction",
+        "update", "body_force_time", "dt_stable_sigma", "dt_stable_vnorm"}) {
     if (std::find(params.begin(), params.end(), col) != params.end()) continue;
     const ojson& v = rows.front()[col];
     fixed_params += std::string(fixed_params.empty() ? "" : ", ") + col + " = " +

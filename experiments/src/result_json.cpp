@@ -25,6 +25,13 @@ nlohmann::ordered_json to_json(const RunResult& r) {
   j["ppc"] = p.ppc;
   j["bc"] = to_string(p.bc);
   j["position_update"] = to_string(p.position_update);
+  j["scene"] = to_string(p.scene);
+  j["walls"] = to_string(p.walls);
+  j["transfer"] = to_string(p.transfer);
+  j["flip_fraction"] = p.transfer == Transfer::blend ? nlohmann::ordered_json(p.flip_fraction)
+                                                     : nlohmann::ordered_json(nullptr);
+  j["update"] = to_string(p.update);
+  j["body_force_time"] = to_string(p.body_force_time);
   j["policy"] = to_string(p.stepping.policy);
   j["cfl_factor"] = p.stepping.cfl_factor;
   j["safety"] = p.stepping.safety;

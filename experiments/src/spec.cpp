@@ -89,7 +89,7 @@ class Reader {
   void set(RunParams& p, CaseSpec& c, const std::string& key, const json& v,
            const std::string& path) const {
     if (key == "method")
-      p.method = choice_at(v, path, parse_method, "gimp or mpm");
+      p.method = choice_at(v, path, parse_method, "gimp, cpgimp or mpm");
     else if (key == "E")
       p.E = number_at(v, path);
     else if (key == "A")
@@ -106,6 +106,18 @@ class Reader {
       p.bc = choice_at(v, path, parse_boundary, "dirichlet or periodic");
     else if (key == "position_update")
       p.position_update = choice_at(v, path, parse_position_update, "grid or particle");
+    else if (key == "scene")
+      p.scene = choice_at(v, path, parse_scene, "bar or steffen");
+    else if (key == "walls")
+      p.walls = choice_at(v, path, parse_walls, "clip or ghost");
+    else if (key == "transfer")
+      p.transfer = choice_at(v, path, parse_transfer, "flip, pic or blend");
+    else if (key == "flip_fraction")
+      p.flip_fraction = number_at(v, path);
+    else if (key == "update")
+      p.update = choice_at(v, path, parse_update_order, "usl, usf or musl");
+    else if (key == "body_force_time")
+      p.body_force_time = choice_at(v, path, parse_body_force_time, "start or end");
     else if (key == "dt_stable_sigma")
       p.stable.sigma = choice_at(v, path, parse_stress_scaling, "scaled or raw");
     else if (key == "dt_stable_vnorm")
