@@ -1,9 +1,12 @@
 // Failure detection: the run stops as unstable ("*" in Table 1) when a particle leaves the
-// domain (Dirichlet), any state value is not finite, or some F_p <= 0. A run whose time-step
+// domain (Dirichlet), any state value is not finite, or some F_p <= 0. With cpGIMP it also stops
+// when a particle's half-width lp_p = F_p h / (2 m) exceeds h (F_p > 2 m): its support would
+// then cover more nodes than the basis has (shape.hpp, CpGimpBasis). A run whose time-step
 // policy needs more steps than the cap stops with step_limit (set by the run driver).
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string_view>
 
@@ -12,7 +15,7 @@
 
 namespace mpmstab {
 
-enum class FailureReason { non_finite, nonpositive_F, left_domain, step_limit };
+enum class FailureReason { non_finite, nonpositive_F, support_too_wide, left_domain, step_limit };
 
 std::string_view to_string(FailureReason r);
 
@@ -23,8 +26,13 @@ struct Failure {
   double time = 0;             // the time reached by that step
 };
 
+// The largest admissible F_p of a method: 2 m for cpGIMP (lp_p <= h), unbounded otherwise.
+double max_admissible_F(Method method, int ppc);
+
 // Checks every particle; nullopt if the state is admissible. When several particles fail, the
-// reason reported is the first in the order non_finite, nonpositive_F, left_domain.
-std::optional<Failure> detect_failure(const Particles& P, Boundary bc);
+// reason reported is the first in the order non_finite, nonpositive_F, support_too_wide (some
+// F_p > max_F), left_domain.
+std::optional<Failure> detect_failure(const Particles& P, Boundary bc,
+                                      double max_F = std::numeric_limits<double>::infinity());
 
 }  // namespace mpmstab

@@ -1,11 +1,20 @@
 // Background grid as a struct of arrays over nodes.
 //
-// Nodes X_i = i h, i = 0..N. Every array has one padding slot on each side (storage index
-// i + 1 holds node i), so that a particle stencil never needs a bounds check:
-//  - Dirichlet: real nodes 0..N; slots -1 and N + 1 collect nothing (their contributions are
-//    dropped after p2g) and hold zero velocity and acceleration.
-//  - Periodic: real nodes 0..N-1; slots -1, N and N + 1 are images of nodes N-1, 0 and 1.
+// Nodes X_i = i h, i = 0..N. Every array has padding slots on each side (storage index i + 1
+// holds node i), so that a particle stencil never needs a bounds check. A particle on [0, 1]
+// with half-width lp <= h has its first node, floor((x - lp) / h), in -1..N (N - 1 unless
+// lp = 0), so its stencil of W nodes stays within nodes -1..N + 1 for the hat (W = 2) and uGIMP
+// (W = 3) and within -1..N + 2 for cpGIMP (W = 4): one padding slot on the left, and one or two
+// on the right (right_padding).
+//  - Dirichlet, walls = clip: real nodes 0..N; the padding slots collect what p2g puts there,
+//    which the grid update drops: they hold zero velocity and acceleration.
+//  - Dirichlet, walls = ghost: nodes -1 and N + 1 are real free nodes too (see grid_update);
+//    further padding (cpGIMP's node N + 2, which a particle on [0, 1] never weights) is dropped.
+//  - Periodic: real nodes 0..N-1; slot -1 is the image of node N-1 and slots N, N + 1, ... are
+//    images of nodes 0, 1, ...
 #pragma once
+
+#include <algorithm>
 
 #include <Eigen/Core>
 
@@ -17,6 +26,7 @@ struct Grid {
   int cells = 0;
   double h = 0;
   Boundary bc = Boundary::dirichlet;
+  Walls walls = Walls::clip;
 
   Eigen::ArrayXd mass;      // m_i
   Eigen::ArrayXd momentum;  // q_i
@@ -26,15 +36,28 @@ struct Grid {
 
   static constexpr int kOffset = 1;  // storage index of node 0
 
+  // Padding slots right of node N for stencils of `width` nodes.
+  static constexpr int right_padding(int width) { return std::max(1, width - 2); }
+
   Grid() = default;
-  Grid(int n_cells, Boundary boundary) : cells(n_cells), h(1.0 / n_cells), bc(boundary) {
-    const Eigen::Index slots = n_cells + 3;  // nodes -1 .. N + 1
+  // `stencil_width`: the number of nodes a particle touches (Basis::width).
+  Grid(int n_cells, Boundary boundary, Walls wall_nodes = Walls::clip, int stencil_width = 3)
+      : cells(n_cells), h(1.0 / n_cells), bc(boundary), walls(wall_nodes) {
+    const Eigen::Index slots = kOffset + n_cells + 1 + right_padding(stencil_width);
     for (Eigen::ArrayXd* a : {&mass, &momentum, &force, &velocity, &accel})
       a->setZero(slots);
   }
 
-  // Number of distinct nodes: N + 1 (Dirichlet) or N (periodic).
-  int nodes() const { return bc == Boundary::periodic ? cells : cells + 1; }
+  bool ghost_nodes() const { return bc == Boundary::dirichlet && walls == Walls::ghost; }
+
+  // The distinct nodes, as consecutive storage slots from first_node_slot(): N + 1 (Dirichlet),
+  // N + 3 (Dirichlet with ghost nodes -1 and N + 1) or N (periodic).
+  int first_node_slot() const { return ghost_nodes() ? kOffset - 1 : kOffset; }
+  int nodes() const {
+    if (bc == Boundary::periodic) return cells;
+    return ghost_nodes() ? cells + 3 : cells + 1;
+  }
+  int slots() const { return static_cast<int>(mass.size()); }
 };
 
 }  // namespace mpmstab

@@ -6,6 +6,8 @@
 #include <sstream>
 #include <utility>
 
+#include "scene.hpp"
+
 namespace mpmstab {
 
 namespace {
@@ -230,6 +232,11 @@ std::vector<ParamIssue> validate(const RunParams& p) {
   if (p.max_steps < 1) bad("max_steps", "must be >= 1, got " + std::to_string(p.max_steps));
   if (p.observe.history_stride < 1) {
     bad("history_stride", "must be >= 1, got " + std::to_string(p.observe.history_stride));
+  }
+  // A scene declares the boundaries it is posed with (scene.hpp).
+  if (!scene_supports(p.scene, p.bc)) {
+    bad("bc", "scene " + std::string(to_string(p.scene)) +
+                  " does not support bc = " + std::string(to_string(p.bc)));
   }
   // The step count of the fixed-step policies is known before the run: refuse it if too large.
   // (The state-dependent policies stop with a step_limit failure when they reach the cap.)

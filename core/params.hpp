@@ -14,7 +14,7 @@ namespace mpmstab {
 
 // Shape functions (DESIGN.md section 2): linear hat ("mpm"), uGIMP with fixed half-width
 // lp = h / (2 m) ("gimp"), or cpGIMP, whose half-width follows the deformation, lp = F_p h / (2 m)
-// ("cpgimp").
+// ("cpgimp"); a cpGIMP particle wider than two cells (lp > h) ends the run (support_too_wide).
 enum class Method { mpm, gimp, cpgimp };
 
 // The problem being solved (scene.hpp): the paper's bar ("bar", section 5.1: linear material,

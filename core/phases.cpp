@@ -1,4 +1,4 @@
-// The four phases (phases.hpp). Every kernel keeps the arithmetic of the plain loop it replaces
+// The phases (phases.hpp). Every kernel keeps the arithmetic of the plain loop it replaces
 // operation for operation, so that the results are the same bits: vector lanes are independent
 // particles or nodes, and each grid node still sums its contributions in particle order.
 #include "phases.hpp"
@@ -6,6 +6,9 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <initializer_list>
+#include <type_traits>
+#include <utility>
 
 // Instruction sets. MPMSTAB_SIMD_CLONES compiles a function for AVX-512 (x86-64-v4), AVX2
 // (x86-64-v3) and the build's own target; the loader picks the best one the CPU has (GCC function
@@ -83,7 +86,11 @@ inline void evaluate_block(const Basis& basis, const Particles& P, const double*
     if constexpr (kPeriodic) xp -= std::floor(xp);
     int bp;
     double wp[W], gp[W];
-    basis.eval(xp, bp, wp, gp);
+    if constexpr (std::is_same_v<Basis, CpGimpBasis>) {
+      basis.eval(xp, F[j], bp, wp, gp);  // half-width F_p lp0
+    } else {
+      basis.eval(xp, bp, wp, gp);
+    }
     base[j] = bp + Grid::kOffset;
     const double mass = m_p[j];
     const double mom = mass * v[j];
@@ -202,15 +209,103 @@ void p2g(const GimpBasis& basis, const Particles& P, const double* body_accel,
   p2g_any(basis, P, body_accel, S, G);
 }
 
+void p2g(const CpGimpBasis& basis, const Particles& P, const double* body_accel,
+         Stencil<CpGimpBasis::width>& S, Grid& G) {
+  p2g_any(basis, P, body_accel, S, G);
+}
+
+// The partial p2g sums of USF and MUSL: plain scatters over the kept stencil, in particle order,
+// with p2g's arithmetic per contribution.
+template <int W>
+void p2g_force(const Stencil<W>& S, const Particles& P, const double* body_accel, Grid& G) {
+  G.force.setZero();
+  double* f_i = G.force.data();
+  for (Eigen::Index p = 0; p < P.size(); ++p) {
+    const double stress_volume = -P.sigma[p] * P.F[p] * P.volume0[p];  // V_p = F_p V_p^0
+    const double body = P.mass[p] * body_accel[p];
+    const int b = S.base[p];
+    for (int k = 0; k < W; ++k)
+      f_i[b + k] += S.g[k][p] * stress_volume + S.w[k][p] * body;
+  }
+}
+
+template <int W>
+void p2g_momentum(const Stencil<W>& S, const Particles& P, Grid& G) {
+  G.momentum.setZero();
+  double* q_i = G.momentum.data();
+  for (Eigen::Index p = 0; p < P.size(); ++p) {
+    const double mom = P.mass[p] * P.v[p];
+    const int b = S.base[p];
+    for (int k = 0; k < W; ++k)
+      q_i[b + k] += S.w[k][p] * mom;
+  }
+}
+
 // ---------------------------------------------------------------------------------------------
 // Grid update, eqs. (7), (8).
 namespace {
 
-std::array<int, 3> image_slots(int N) {
-  return {-1, N, N + 1};
-}
 int wrap(int i, int N) {
   return ((i % N) + N) % N;
+}
+
+// Periodic images (grid.hpp): slot -1 and every padding slot from node N on, in that order.
+template <class Visit>
+void for_each_image(const Grid& G, Visit&& visit) {
+  visit(-1);
+  for (int i = G.cells; i < G.slots() - Grid::kOffset; ++i)
+    visit(i);
+}
+
+// Adds each image slot into its node and clears the slot: folding twice adds nothing.
+void fold_images(const Grid& G, std::initializer_list<double*> arrays) {
+  constexpr int o = Grid::kOffset;
+  for_each_image(G, [&](int i) {
+    for (double* arr : arrays) {
+      arr[o + wrap(i, G.cells)] += arr[o + i];
+      arr[o + i] = 0.0;
+    }
+  });
+}
+
+void copy_to_images(const Grid& G, std::initializer_list<double*> arrays) {
+  constexpr int o = Grid::kOffset;
+  for_each_image(G, [&](int i) {
+    for (double* arr : arrays)
+      arr[o + i] = arr[o + wrap(i, G.cells)];
+  });
+}
+
+// Runs update(lo, hi) on the slots [lo, hi) of free nodes and sets v = a = 0 on the others.
+template <class Update>
+void on_free_nodes(Grid& G, Update&& update) {
+  constexpr int o = Grid::kOffset;
+  const int N = G.cells;
+  double* v = G.velocity.data();
+  double* a = G.accel.data();
+  auto fixed = [&](int lo, int hi) {
+    for (int s = lo; s < hi; ++s)
+      v[s] = a[s] = 0.0;
+  };
+  if (G.bc == Boundary::periodic) {  // nodes 0 .. N-1; the images are copied after
+    fixed(0, o);
+    update(o, o + N);
+    fixed(o + N, G.slots());
+  } else if (!G.ghost_nodes()) {  // nodes 1 .. N-1; the walls 0 and N and the padding fixed
+    fixed(0, o + 1);
+    update(o + 1, o + N);
+    fixed(o + N, G.slots());
+  } else {
+    // Ghost nodes -1 and N + 1 are free too. Fixing them as well would give the same results
+    // as clip: what p2g puts on a node acts only through that node's a_i and v_i, which would
+    // be zero.
+    update(o - 1, o);
+    fixed(o, o + 1);
+    update(o + 1, o + N);
+    fixed(o + N, o + N + 1);
+    update(o + N + 1, o + N + 2);
+    fixed(o + N + 2, G.slots());
+  }
 }
 
 // a_i = f_i / m_i and v_i = q_i / m_i + dt a_i on slots [lo, hi), 0 where m_i = 0 (the
@@ -231,39 +326,26 @@ MPMSTAB_SIMD_CLONES void nodal_update(const double* __restrict m, const double* 
 }  // namespace
 
 void grid_update(Grid& G, double dt) {
-  constexpr int o = Grid::kOffset;
-  const int N = G.cells;
   double* m = G.mass.data();
   double* q = G.momentum.data();
   double* f = G.force.data();
   double* v = G.velocity.data();
   double* a = G.accel.data();
-  const int slots = static_cast<int>(G.mass.size());
+  if (G.bc == Boundary::periodic) fold_images(G, {m, q, f});
+  on_free_nodes(G, [&](int lo, int hi) { nodal_update(m, q, f, v, a, lo, hi, dt); });
+  if (G.bc == Boundary::periodic) copy_to_images(G, {v, a});
+}
 
-  int first = 0, last = N;  // real nodes whose velocity is computed
-  if (G.bc == Boundary::periodic) {
-    // Padding slots -1, N and N + 1 are images of nodes (i mod N): fold them in.
-    for (const int i : image_slots(N))
-      for (double* arr : {m, q, f})
-        arr[o + wrap(i, N)] += arr[o + i];
-    last = N - 1;
-  } else {
-    // Fixed nodes 0 and N: a = v = 0. Contributions to the slots beyond the walls are dropped.
-    first = 1;
-    last = N - 1;
-  }
-
-  for (int s = 0; s < o + first; ++s)
-    v[s] = a[s] = 0.0;
-  nodal_update(m, q, f, v, a, o + first, o + last + 1, dt);
-  for (int s = o + last + 1; s < slots; ++s)
-    v[s] = a[s] = 0.0;
-
-  if (G.bc == Boundary::periodic) {
-    for (const int i : image_slots(N))
-      for (double* arr : {v, a})
-        arr[o + i] = arr[o + wrap(i, N)];
-  }
+void grid_velocity(Grid& G) {
+  double* m = G.mass.data();
+  double* q = G.momentum.data();
+  double* v = G.velocity.data();
+  if (G.bc == Boundary::periodic) fold_images(G, {m, q});
+  on_free_nodes(G, [&](int lo, int hi) {
+    for (int s = lo; s < hi; ++s)
+      v[s] = m[s] > 0.0 ? q[s] / m[s] : 0.0;
+  });
+  if (G.bc == Boundary::periodic) copy_to_images(G, {v});
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -445,20 +527,66 @@ void g2p_any(const Stencil<W>& S, const Grid& G, double dt, Particles& P) {
                              P.x.data(), P.v.data(), dt);
 }
 
+// PIC and blended transfers (phases.hpp), one particle after the other.
+template <int W, Transfer kTransfer>
+void g2p_pic_blend(const Stencil<W>& S, const Grid& G, double dt, const ParticleUpdate& rule,
+                   Particles& P) {
+  const Rows<W> w = rows<W>(S.w);
+  const double* a_i = G.accel.data();
+  const double* v_i = G.velocity.data();
+  const double alpha = rule.flip_fraction;
+  const bool grid_position = rule.position == PositionUpdate::grid;
+  for (std::size_t p = 0; p < static_cast<std::size_t>(P.size()); ++p) {
+    const int b = S.base[p];
+    const double v_grid = interpolate<W>(w, p, v_i, b);  // sum_i S_ip v_i
+    double v_new = v_grid;
+    if constexpr (kTransfer == Transfer::blend) {
+      const double v_flip = P.v[p] + dt * interpolate<W>(w, p, a_i, b);
+      v_new = alpha * v_flip + (1.0 - alpha) * v_grid;
+    }
+    P.v[p] = v_new;
+    P.x[p] += dt * (grid_position ? v_grid : v_new);
+  }
+}
+
+// Stress update with a material law other than the linear one, one particle after the other.
+template <int W>
+void stress_update_law(const Stencil<W>& S, const Grid& G, double dt, const MaterialLaw& law,
+                       Particles& P) {
+  const Rows<W> g = rows<W>(S.g);
+  const double* v_i = G.velocity.data();
+  for (std::size_t p = 0; p < static_cast<std::size_t>(P.size()); ++p) {
+    const double L = interpolate<W>(g, p, v_i, S.base[p]);
+    P.F[p] *= 1.0 + dt * L;
+    P.sigma[p] = law.stress(P.F[p]);
+  }
+}
+
 }  // namespace
 
 template <int W>
-void g2p(const Stencil<W>& S, const Grid& G, double dt, PositionUpdate mode, Particles& P) {
-  if (mode == PositionUpdate::grid) {
-    g2p_any<W, true>(S, G, dt, P);
-  } else {
-    g2p_any<W, false>(S, G, dt, P);
+void g2p(const Stencil<W>& S, const Grid& G, double dt, const ParticleUpdate& rule, Particles& P) {
+  switch (rule.transfer) {
+    case Transfer::flip:
+      if (rule.position == PositionUpdate::grid) {
+        g2p_any<W, true>(S, G, dt, P);
+      } else {
+        g2p_any<W, false>(S, G, dt, P);
+      }
+      return;
+    case Transfer::pic:
+      return g2p_pic_blend<W, Transfer::pic>(S, G, dt, rule, P);
+    case Transfer::blend:
+      return g2p_pic_blend<W, Transfer::blend>(S, G, dt, rule, P);
   }
 }
 
 template <int W>
-void stress_update(const Stencil<W>& S, const Grid& G, double dt, double E, Particles& P) {
+void stress_update(const Stencil<W>& S, const Grid& G, double dt, const MaterialLaw& law,
+                   Particles& P) {
+  if (law.kind != Material::linear) return stress_update_law(S, G, dt, law, P);
   const auto n = static_cast<std::size_t>(P.size());
+  const double E = law.E;
 #if MPMSTAB_AVX512
   if (use_avx512()) {
     return stress_avx512<W>(n, S.base.data(), rows<W>(S.g), G.velocity.data(),
@@ -469,13 +597,15 @@ void stress_update(const Stencil<W>& S, const Grid& G, double dt, double E, Part
                  E);
 }
 
-template void g2p(const Stencil<LinearBasis::width>&, const Grid&, double, PositionUpdate,
-                  Particles&);
-template void g2p(const Stencil<GimpBasis::width>&, const Grid&, double, PositionUpdate,
-                  Particles&);
-template void stress_update(const Stencil<LinearBasis::width>&, const Grid&, double, double,
-                            Particles&);
-template void stress_update(const Stencil<GimpBasis::width>&, const Grid&, double, double,
-                            Particles&);
+#define MPMSTAB_INSTANTIATE(W)                                                                  \
+  template void p2g_force(const Stencil<W>&, const Particles&, const double*, Grid&);           \
+  template void p2g_momentum(const Stencil<W>&, const Particles&, Grid&);                       \
+  template void g2p(const Stencil<W>&, const Grid&, double, const ParticleUpdate&, Particles&); \
+  template void stress_update(const Stencil<W>&, const Grid&, double, const MaterialLaw&,       \
+                              Particles&);
+MPMSTAB_INSTANTIATE(LinearBasis::width)
+MPMSTAB_INSTANTIATE(GimpBasis::width)
+MPMSTAB_INSTANTIATE(CpGimpBasis::width)
+#undef MPMSTAB_INSTANTIATE
 
 }  // namespace mpmstab

@@ -1,20 +1,30 @@
-// The four phases of one update-stress-last (USL) step, symplectic Euler A (paper sections 2
-// and 4; DESIGN.md section 2). Equation numbers are the paper's.
+// The phases of one step, symplectic Euler A (paper sections 2 and 4; DESIGN.md section 2).
+// Equation numbers are the paper's.
 //
 //   p2g           mass, momentum and force to the grid                   eqs. (5)-(7)
 //   grid_update   nodal acceleration and velocity, boundary conditions   eqs. (7), (8)
 //   g2p           particle velocity and position                         eqs. (9), (10)
-//   stress_update velocity gradient, F and sigma with the new velocities eqs. (11), (13), (14)
+//   stress_update velocity gradient, F and sigma from the grid velocity  eqs. (11), (13), (14)
+//
+// The default step (update stress last, USL) runs them in this order. Update stress first (USF,
+// the paper's section 6) and modified USL (MUSL) add two partial phases: grid_velocity, the
+// nodal velocity q_i / m_i without the force, and p2g_force / p2g_momentum, which redo one
+// sum of p2g over the stencil it kept (Simulation::step lists the order of each).
 //
 // Each phase is a loop over a struct of arrays. The shape functions are evaluated once per step,
-// in p2g, at the positions x^n; g2p and the stress update reuse them (Stencil).
+// in p2g, at the positions x^n (and for cpGIMP with the half-widths of F^n); the other phases
+// reuse them (Stencil).
 //
-// The kernels live in phases.cpp, each compiled for three instruction sets and chosen when the
-// program starts (see MPMSTAB_SIMD_CLONES there). Every version gives the same bits: loops are
-// vectorized across particles or nodes, never inside a sum, and nothing is contracted to FMA.
+// The kernels of the default choices live in phases.cpp, each compiled for three instruction sets
+// and chosen when the program starts (see MPMSTAB_SIMD_CLONES there). Every version gives the
+// same bits: loops are vectorized across particles or nodes, never inside a sum, and nothing is
+// contracted to FMA. cpGIMP runs on the same kernels with stencils of four nodes. What only the
+// other choices use (the partial phases of USF and MUSL, PIC and blended transfers, the
+// neo-Hookean stress) is written as plain loops.
 #pragma once
 
 #include "grid.hpp"
+#include "material.hpp"
 #include "params.hpp"
 #include "particles.hpp"
 #include "shape.hpp"
@@ -24,28 +34,60 @@ namespace mpmstab {
 
 // p2g: m_i = sum_p S_ip m_p,  q_i = sum_p S_ip m_p v_p,
 //      f_i = sum_p ( -G_ip sigma_p V_p + S_ip m_p b_p ),  V_p = F_p V_p^0   (eqs. 5, 6)
-// `body_accel[p]` is b(X_p, t^n). The grid is cleared first; each node receives its
-// contributions in particle order. With periodic boundaries the positions are kept unwrapped and
-// the stencil is taken at the image in [0, 1).
+// `body_accel[p]` is b(X_p, t) at the time the step evaluates it. The grid is cleared first;
+// each node receives its contributions in particle order. With periodic boundaries the positions
+// are kept unwrapped and the stencil is taken at the image in [0, 1). The state must be
+// admissible (failure.hpp): finite positions and, for cpGIMP, 0 < F_p <= 2 m.
 void p2g(const LinearBasis& basis, const Particles& P, const double* body_accel,
          Stencil<LinearBasis::width>& S, Grid& G);
 void p2g(const GimpBasis& basis, const Particles& P, const double* body_accel,
          Stencil<GimpBasis::width>& S, Grid& G);
+void p2g(const CpGimpBasis& basis, const Particles& P, const double* body_accel,
+         Stencil<CpGimpBasis::width>& S, Grid& G);
+
+// The force sum of p2g alone, over the stencil p2g kept, with the current stress and volume:
+// f_i = sum_p ( -G_ip sigma_p F_p V_p^0 + S_ip m_p b_p ). USF calls it after its stress update.
+template <int W>
+void p2g_force(const Stencil<W>& S, const Particles& P, const double* body_accel, Grid& G);
+
+// The momentum sum of p2g alone, over the stencil p2g kept: q_i = sum_p S_ip m_p v_p. MUSL
+// calls it after g2p to re-map the updated particle velocities.
+template <int W>
+void p2g_momentum(const Stencil<W>& S, const Particles& P, Grid& G);
 
 // grid update: a_i = f_i / m_i, v_i = q_i / m_i + dt a_i where m_i > 0 (eqs. 7, 8); zero where
-// m_i = 0. Dirichlet nodes 0 and N get a_i = v_i = 0; periodic images are folded before and
-// copied back after, so that g2p can read every slot of a stencil.
+// m_i = 0. Dirichlet walls (nodes 0 and N) get a_i = v_i = 0. The padding slots beyond the walls
+// (grid.hpp) are dropped (a = v = 0) with walls = clip; with walls = ghost nodes -1 and N + 1
+// are free and updated like interior nodes. Periodic images are folded into their nodes before
+// (their slots are left at zero) and copied back after, so that g2p can read every slot of a
+// stencil.
 void grid_update(Grid& G, double dt);
 
-// g2p: v_p += dt sum_i S_ip a_i (eq. 9); x_p += dt sum_i S_ip v_i (default) or, with
-// PositionUpdate::particle, x_p += dt v_p^{n+1} (eq. 10).
-template <int W>
-void g2p(const Stencil<W>& S, const Grid& G, double dt, PositionUpdate mode, Particles& P);
+// The nodal velocity without the force: v_i = q_i / m_i where m_i > 0, zero elsewhere, with the
+// boundary conditions and images of grid_update. USF's v_i^n; MUSL's re-mapped velocity.
+void grid_velocity(Grid& G);
 
-// stress update (last): L_p = sum_i G_ip v_i^{n+1} (eq. 11); F_p <- F_p (1 + dt L_p) (eq. 13);
-// sigma_p = E (F_p - 1), the material law of eq. (109); for this law it equals eq. (14)'s
-// sigma_p + dt E L_p F_p.
+// How g2p updates a particle (params.hpp): the velocity transfer and the position update.
+struct ParticleUpdate {
+  Transfer transfer = Transfer::flip;
+  double flip_fraction = 1.0;  // alpha of Transfer::blend
+  PositionUpdate position = PositionUpdate::grid;
+};
+
+// g2p, particle velocity (eq. 9 for FLIP):
+//   flip:  v_p += dt sum_i S_ip a_i
+//   pic:   v_p  = sum_i S_ip v_i
+//   blend: v_p  = alpha (v_p + dt sum_i S_ip a_i) + (1 - alpha) sum_i S_ip v_i
+// and position: x_p += dt sum_i S_ip v_i (default) or, with PositionUpdate::particle,
+// x_p += dt v_p^{n+1} (eq. 10).
 template <int W>
-void stress_update(const Stencil<W>& S, const Grid& G, double dt, double E, Particles& P);
+void g2p(const Stencil<W>& S, const Grid& G, double dt, const ParticleUpdate& rule, Particles& P);
+
+// stress update: L_p = sum_i G_ip v_i with the velocity in G (eq. 11); F_p <- F_p (1 + dt L_p)
+// (eq. 13); sigma_p = sigma(F_p) by the material law. For the linear law of eq. (109) this equals
+// eq. (14)'s sigma_p + dt E L_p F_p.
+template <int W>
+void stress_update(const Stencil<W>& S, const Grid& G, double dt, const MaterialLaw& law,
+                   Particles& P);
 
 }  // namespace mpmstab

@@ -34,9 +34,10 @@ RunResult run(const RunParams& p, const std::atomic<bool>* cancel) {
   if (obs.crossings) crossing_counter.emplace(sim.particles(), h);
   const StableDtGeometry geometry{p.method, p.E, h, p.ppc, h / p.ppc};
   auto bound_now = [&] {
-    return stable_dt(stable_dt_inputs(sim.particles(), sim.grid(), p.stable.vnorm), geometry,
-                     p.stable.sigma);
+    return stable_dt(stable_dt_inputs(sim.particles(), sim.grid(), p.stable.vnorm, p.method),
+                     geometry, p.stable.sigma);
   };
+  const double max_F = max_admissible_F(p.method, p.ppc);
   double max_error_over_time = 0;
   double dt_stable_min = std::numeric_limits<double>::infinity();
   std::int64_t crossings = 0;
@@ -48,9 +49,12 @@ RunResult run(const RunParams& p, const std::atomic<bool>* cancel) {
   double bound = uses_bound ? bound_now() : 0;  // of the current state
   double dt_min = std::numeric_limits<double>::infinity(), dt_max = 0;
 
-  // 3. Step to T, checking the state after every step.
+  // 3. Step to T, checking the state after every step. A scene's initial state can already be
+  // inadmissible (a steffen amplitude with F_p(0) <= 0, or a cpGIMP support wider than 2 h): the
+  // run then fails at step 0, before any step reads it.
+  if (auto failure = detect_failure(sim.particles(), p.bc, max_F)) r.failure = failure;
   const auto start = std::chrono::steady_clock::now();
-  while (sim.time() < p.T) {
+  while (!r.failure && sim.time() < p.T) {
     // The next time: fixed steps are counted (t = n dt, no drift); adaptive ones accumulate.
     double t_next;
     bool last;
@@ -80,7 +84,7 @@ RunResult run(const RunParams& p, const std::atomic<bool>* cancel) {
       dt_max = std::max(dt_max, dt);
     }
     sim.advance_to(t_next);
-    if (auto failure = detect_failure(sim.particles(), p.bc)) {
+    if (auto failure = detect_failure(sim.particles(), p.bc, max_F)) {
       failure->step = sim.steps();
       failure->time = sim.time();
       r.failure = failure;
@@ -132,7 +136,7 @@ RunResult run(const RunParams& p, const std::atomic<bool>* cancel) {
   if (obs.dt_stable && r.steps > (failed_in_a_step ? 1 : 0)) r.dt_stable_min = dt_stable_min;
   if (obs.final_state) {
     const Particles& P = sim.particles();
-    const BarScene& scene = sim.scene();
+    const Scene& scene = sim.scene();
     const double t = sim.time();
     FinalState f{t, P.X, P.x, P.v, P.F, P.sigma, {}, {}, {}};
     f.u_exact = P.X.unaryExpr([&](double X) { return scene.displacement(X, t); });

@@ -1,15 +1,82 @@
 #include "scene.hpp"
 
 #include <cmath>
+#include <numbers>
 
 namespace mpmstab {
 
 namespace {
+
 constexpr double kPi = std::numbers::pi;
+
+// b(X_p, t) = profile[p] * sin(c pi t): the bar's separable body force.
+class BarBodyForce final : public BodyForceAtParticles {
+ public:
+  BarBodyForce(const BarScene& scene, const Eigen::ArrayXd& X)
+      : scene_(scene),
+        profile_(X.unaryExpr([&](double Xp) { return scene.body_force_profile(Xp); })) {}
+  void evaluate(double t, Eigen::ArrayXd& b) const override {
+    b = profile_ * scene_.body_force_factor(t);
+  }
+
+ private:
+  BarScene scene_;
+  Eigen::ArrayXd profile_;  // 3 (c pi)^2 A sin(2 pi X_p)
+};
+
+// b(X_p, t) = (c pi)^2 u (1 + 2 / F^2) with u = A sin(2 pi X_p) g and
+// F = 1 + 2 pi A cos(2 pi X_p) g, g = cos(c pi t).
+class SteffenBodyForce final : public BodyForceAtParticles {
+ public:
+  SteffenBodyForce(const SteffenScene& scene, const Eigen::ArrayXd& X)
+      : A_(scene.A),
+        c_pi_(scene.c * kPi),
+        sin_(X.unaryExpr([](double Xp) { return std::sin(2 * kPi * Xp); })),
+        cos_(X.unaryExpr([](double Xp) { return std::cos(2 * kPi * Xp); })) {}
+  void evaluate(double t, Eigen::ArrayXd& b) const override {
+    const double g = std::cos(c_pi_ * t);
+    const auto u = (A_ * g) * sin_;
+    const auto F = 1.0 + (2 * kPi * A_ * g) * cos_;
+    b = (c_pi_ * c_pi_) * u * (1.0 + 2.0 / F.square());
+  }
+
+ private:
+  double A_;
+  double c_pi_;
+  Eigen::ArrayXd sin_;  // sin(2 pi X_p)
+  Eigen::ArrayXd cos_;  // cos(2 pi X_p)
+};
+
+}  // namespace
+
+Scene::Scene(double youngs_modulus, double amplitude)
+    : E(youngs_modulus), A(amplitude), c(std::sqrt(youngs_modulus / rho0)) {}
+
+Particles Scene::reference_layout(int cells, int ppc) const {
+  Particles P;
+  const Eigen::Index n = Eigen::Index(cells) * ppc;
+  P.resize(n);
+  const double h = 1.0 / cells;
+  for (int i = 0; i < cells; ++i) {
+    for (int k = 0; k < ppc; ++k) {
+      const Eigen::Index p = Eigen::Index(i) * ppc + k;
+      P.X[p] = (i + (k + 0.5) / ppc) * h;
+      P.mass[p] = rho0 * h / ppc;
+      P.volume0[p] = h / ppc;
+    }
+  }
+  return P;
 }
 
-BarScene::BarScene(double youngs_modulus, double amplitude)
-    : E(youngs_modulus), A(amplitude), c(std::sqrt(youngs_modulus / rho0)) {}
+std::unique_ptr<Scene> make_scene(const RunParams& p) {
+  if (p.scene == SceneKind::steffen) return std::make_unique<SteffenScene>(p.E, p.A);
+  return std::make_unique<BarScene>(p.E, p.A);
+}
+
+// ---------------------------------------------------------------------------------------------
+// bar
+
+BarScene::BarScene(double youngs_modulus, double amplitude) : Scene(youngs_modulus, amplitude) {}
 
 double BarScene::displacement_profile(double X) const {
   return A * std::sin(2 * kPi * X);
@@ -37,23 +104,64 @@ double BarScene::body_force(double X, double t) const {
   return body_force_profile(X) * body_force_factor(t);
 }
 
+std::unique_ptr<BodyForceAtParticles> BarScene::body_force_at(const Eigen::ArrayXd& X) const {
+  return std::make_unique<BarBodyForce>(*this, X);
+}
+
 Particles BarScene::initial_particles(int cells, int ppc) const {
-  Particles P;
-  const Eigen::Index n = Eigen::Index(cells) * ppc;
-  P.resize(n);
-  const double h = 1.0 / cells;
-  for (int i = 0; i < cells; ++i) {
-    for (int k = 0; k < ppc; ++k) {
-      const Eigen::Index p = Eigen::Index(i) * ppc + k;
-      const double X = (i + (k + 0.5) / ppc) * h;
-      P.X[p] = X;
-      P.x[p] = X;
-      P.v[p] = velocity(X, 0.0);
-      P.F[p] = 1.0;
-      P.sigma[p] = 0.0;
-      P.mass[p] = rho0 * h / ppc;
-      P.volume0[p] = h / ppc;
-    }
+  Particles P = reference_layout(cells, ppc);
+  for (Eigen::Index p = 0; p < P.size(); ++p) {
+    P.x[p] = P.X[p];
+    P.v[p] = velocity(P.X[p], 0.0);
+    P.F[p] = 1.0;
+    P.sigma[p] = 0.0;
+  }
+  return P;
+}
+
+// ---------------------------------------------------------------------------------------------
+// steffen
+
+SteffenScene::SteffenScene(double youngs_modulus, double amplitude)
+    : Scene(youngs_modulus, amplitude) {}
+
+double SteffenScene::displacement_profile(double X) const {
+  return A * std::sin(2 * kPi * X);
+}
+double SteffenScene::displacement_factor(double t) const {
+  return std::cos(c * kPi * t);
+}
+
+double SteffenScene::displacement(double X, double t) const {
+  return displacement_profile(X) * displacement_factor(t);
+}
+double SteffenScene::velocity(double X, double t) const {
+  return -A * c * kPi * std::sin(2 * kPi * X) * std::sin(c * kPi * t);
+}
+double SteffenScene::deformation_gradient(double X, double t) const {
+  return 1.0 + 2 * kPi * A * std::cos(2 * kPi * X) * std::cos(c * kPi * t);
+}
+double SteffenScene::stress(double X, double t) const {
+  return law().stress(deformation_gradient(X, t));
+}
+double SteffenScene::body_force(double X, double t) const {
+  const double F = deformation_gradient(X, t);
+  return (c * kPi) * (c * kPi) * displacement(X, t) * (1.0 + 2.0 / (F * F));
+}
+
+std::unique_ptr<BodyForceAtParticles> SteffenScene::body_force_at(const Eigen::ArrayXd& X) const {
+  return std::make_unique<SteffenBodyForce>(*this, X);
+}
+
+Particles SteffenScene::initial_particles(int cells, int ppc) const {
+  Particles P = reference_layout(cells, ppc);
+  const MaterialLaw material_law = law();
+  for (Eigen::Index p = 0; p < P.size(); ++p) {
+    const double X = P.X[p];
+    P.x[p] = X + displacement(X, 0.0);
+    P.v[p] = 0.0;  // v(X, 0) = 0
+    P.F[p] = deformation_gradient(X, 0.0);
+    P.sigma[p] = material_law.stress(P.F[p]);
   }
   return P;
 }

@@ -1,44 +1,153 @@
-// The paper's model problem (section 5.1, DESIGN.md section 1): a 1D bar on [0, 1] with the
-// manufactured solution
-//   u(X, t) = A sin(2 pi X) sin(c pi t),  c = sqrt(E / rho0),
-// the linear material sigma = E (F - 1), and the body force per unit mass that makes u exact,
-//   b(X, t) = 3 (c pi)^2 A sin(2 pi X) sin(c pi t)
-// (the paper's eq. 114 prints "3 A (c pi)^2 u", which counts A twice; substituting u into
-// rho0 u_tt = dP/dX + rho0 b gives this form).
+// The problems the solver runs (params.hpp, SceneKind). A scene declares everything the solver
+// needs to know about a problem: its material law, the boundaries it can be posed with, its
+// initial particle state, the body force that drives it and its exact solution. The solver
+// evaluates only these declarations.
 //
-// Every field is the product of a profile in X and a factor in t. The solver uses that: it keeps
-// the profiles per particle and evaluates the time factors once per step.
+// Both scenes are manufactured solutions on [0, 1] with rho0 = 1 and c = sqrt(E / rho0), in the
+// material description, with the balance of momentum rho0 u_tt = dP/dX + rho0 b and F = 1 + u_X.
+// Their displacements are A sin(2 pi X) times a function of t: zero at X = 0 and X = 1 and
+// periodic, so both accept Dirichlet and periodic boundaries. The displacement is separable,
+// u(X, t) = displacement_profile(X) * displacement_factor(t), which the error observer uses: it
+// keeps the profile per particle and evaluates the factor once per step.
+//
+// bar (the paper's section 5.1, DESIGN.md section 1): linear material sigma = E (F - 1),
+//   u(X, t) = A sin(2 pi X) sin(c pi t),  b(X, t) = 3 (c pi)^2 A sin(2 pi X) sin(c pi t).
+//   The paper's eq. (114) prints "3 A (c pi)^2 u", which counts A twice; substituting u into the
+//   balance of momentum gives this form. The particles start undeformed (x_p = X_p, F_p = 1,
+//   sigma_p = 0) with the exact velocity v(X_p, 0).
+//
+// steffen (Steffen, Wallstedt, Guilkey, Kirby and Berzins 2008): neo-Hookean material
+// sigma = (E / 2) (F - 1 / F) (material.hpp),
+//   u(X, t) = A sin(2 pi X) cos(c pi t),  F(X, t) = 1 + 2 pi A cos(2 pi X) cos(c pi t).
+//   Body force. dP/dX = P'(F) F_X with P'(F) = (E / 2) (1 + 1 / F^2) and F_X = u_XX = -(2 pi)^2 u;
+//   u_tt = -(c pi)^2 u. Hence, with rho0 c^2 = E,
+//     rho0 b = rho0 u_tt - dP/dX = -E pi^2 u + (E / 2) (1 + 1 / F^2) 4 pi^2 u
+//            = E pi^2 u (1 + 2 / F^2),
+//   that is b(X, t) = (c pi)^2 u(X, t) (1 + 2 / F(X, t)^2) per unit mass. For the linear law
+//   P' = E and the same steps give b = 3 (c pi)^2 u, the bar's form. The particles start at the
+//   deformed positions x_p = X_p + u(X_p, 0) at rest (v(X, 0) = 0), with F_p = F(X_p, 0), the
+//   stress of the material at F_p, and the reference volume V_p^0 = h / m (the current volume is
+//   F_p V_p^0).
+//
+// In both scenes m particles per cell sit at the reference positions X_p = (i + (k + 1/2) / m) h
+// with mass rho0 h / m.
 #pragma once
 
-#include <numbers>
+#include <memory>
 
+#include <Eigen/Core>
+
+#include "material.hpp"
+#include "params.hpp"
 #include "particles.hpp"
 
 namespace mpmstab {
 
-struct BarScene {
-  double E;
-  double A;
-  double rho0 = 1.0;
-  double c;  // wave speed sqrt(E / rho0)
+// The body force of a scene at fixed reference positions X_p. The profiles in X are evaluated
+// when it is made; each evaluation then costs one trigonometric value of t and a few operations
+// per particle.
+class BodyForceAtParticles {
+ public:
+  virtual ~BodyForceAtParticles() = default;
+  // b[p] = b(X_p, t), per unit mass.
+  virtual void evaluate(double t, Eigen::ArrayXd& b) const = 0;
+};
 
-  BarScene(double youngs_modulus, double amplitude);
+class Scene {
+ public:
+  Scene(double youngs_modulus, double amplitude);
+  virtual ~Scene() = default;
+
+  double E;           // Young's modulus
+  double A;           // amplitude of the manufactured solution
+  double rho0 = 1.0;  // reference density
+  double c;           // wave speed sqrt(E / rho0)
+
+  // The material law. (The boundaries a scene is posed with are a static declaration of each
+  // scene, supports(), read through scene_supports() below.)
+  virtual Material material() const = 0;
+  MaterialLaw law() const { return {material(), E}; }
 
   // Exact fields at reference position X and time t.
-  double displacement(double X, double t) const;
-  double velocity(double X, double t) const;
-  double stress(double X, double t) const;
-  double body_force(double X, double t) const;  // per unit mass
+  virtual double displacement(double X, double t) const = 0;
+  virtual double velocity(double X, double t) const = 0;
+  virtual double stress(double X, double t) const = 0;
+  virtual double body_force(double X, double t) const = 0;  // per unit mass
 
-  // Separable forms: field(X, t) = profile(X) * factor(t).
-  double displacement_profile(double X) const;  // A sin(2 pi X)
-  double displacement_factor(double t) const;   // sin(c pi t)
-  double body_force_profile(double X) const;    // 3 (c pi)^2 A sin(2 pi X)
-  double body_force_factor(double t) const;     // sin(c pi t)
+  // u(X, t) = displacement_profile(X) * displacement_factor(t).
+  virtual double displacement_profile(double X) const = 0;
+  virtual double displacement_factor(double t) const = 0;
 
-  // m particles per cell at cell-relative positions (k + 1/2) / m, mass rho0 h / m, volume h / m,
-  // F = 1, sigma = 0, velocity v(X_p, 0).
-  Particles initial_particles(int cells, int ppc) const;
+  // The body force at the reference positions X (one per particle).
+  virtual std::unique_ptr<BodyForceAtParticles> body_force_at(const Eigen::ArrayXd& X) const = 0;
+
+  // The particle state at t = 0 on `cells` cells with `ppc` particles per cell.
+  virtual Particles initial_particles(int cells, int ppc) const = 0;
+
+ protected:
+  // The reference layout: X_p, mass rho0 h / m and reference volume h / m; x, v, F and sigma are
+  // left to the scene.
+  Particles reference_layout(int cells, int ppc) const;
 };
+
+class BarScene final : public Scene {
+ public:
+  BarScene(double youngs_modulus, double amplitude);
+
+  Material material() const override { return Material::linear; }
+  static constexpr bool supports(Boundary) { return true; }  // Dirichlet and periodic
+
+  double displacement(double X, double t) const override;
+  double velocity(double X, double t) const override;
+  double stress(double X, double t) const override;
+  double body_force(double X, double t) const override;
+
+  double displacement_profile(double X) const override;  // A sin(2 pi X)
+  double displacement_factor(double t) const override;   // sin(c pi t)
+  // The body force is separable too: b(X, t) = body_force_profile(X) * body_force_factor(t).
+  double body_force_profile(double X) const;  // 3 (c pi)^2 A sin(2 pi X)
+  double body_force_factor(double t) const;   // sin(c pi t)
+
+  std::unique_ptr<BodyForceAtParticles> body_force_at(const Eigen::ArrayXd& X) const override;
+
+  // At rest positions x = X, F = 1, sigma = 0, velocity v(X_p, 0).
+  Particles initial_particles(int cells, int ppc) const override;
+};
+
+class SteffenScene final : public Scene {
+ public:
+  SteffenScene(double youngs_modulus, double amplitude);
+
+  Material material() const override { return Material::neo_hookean; }
+  static constexpr bool supports(Boundary) { return true; }  // Dirichlet and periodic
+
+  double displacement(double X, double t) const override;
+  double velocity(double X, double t) const override;
+  double deformation_gradient(double X, double t) const;  // F = 1 + u_X
+  double stress(double X, double t) const override;       // sigma(F(X, t))
+  double body_force(double X, double t) const override;
+
+  double displacement_profile(double X) const override;  // A sin(2 pi X)
+  double displacement_factor(double t) const override;   // cos(c pi t)
+
+  std::unique_ptr<BodyForceAtParticles> body_force_at(const Eigen::ArrayXd& X) const override;
+
+  // x = X + u(X, 0), v = 0, F = F(X, 0), sigma = sigma(F).
+  Particles initial_particles(int cells, int ppc) const override;
+};
+
+// The scene of a run: p.scene with p.E and p.A.
+std::unique_ptr<Scene> make_scene(const RunParams& p);
+
+// Whether scene `kind` is posed with boundaries `bc`, without making the scene (validate()).
+constexpr bool scene_supports(SceneKind kind, Boundary bc) {
+  switch (kind) {
+    case SceneKind::bar:
+      return BarScene::supports(bc);
+    case SceneKind::steffen:
+      return SteffenScene::supports(bc);
+  }
+  return false;
+}
 
 }  // namespace mpmstab

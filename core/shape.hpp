@@ -1,4 +1,5 @@
-// Shape functions: the linear hat ("mpm") and uGIMP ("gimp", Bardenhagen & Kober 2004).
+// Shape functions: the linear hat ("mpm"), uGIMP ("gimp", Bardenhagen & Kober 2004) and cpGIMP
+// ("cpgimp", the uGIMP average over a particle domain that follows the deformation).
 //
 // Each basis evaluates, for one particle at x, the first node `base` it touches and the weights
 // S_ip and gradients G_ip = dS_ip/dx_p of the `width` consecutive nodes base, base+1, ...
@@ -89,6 +90,55 @@ struct GimpBasis {
     g[0] = (positive_part(1.0 - b) - (1.0 - u)) * inv_2lp;
     g[1] = (b0 - e - u) * inv_2lp;
     g[2] = e * inv_2lp;
+  }
+};
+
+// cpGIMP in 1D: the uGIMP average of the hat over [x - lp, x + lp] with the particle's current
+// half-width lp_p = F_p lp0, lp0 = h / (2 m): the particle domain stretches with F_p (in 1D the
+// deformed domain of a particle is exactly its reference domain times F_p). The formulas are
+// GimpBasis's, carried over up to three cells:
+//   S_ip = (1 / 2lp) * integral_{x-lp}^{x+lp} N_i(y) dy,
+//   G_ip = (N_i(x + lp) - N_i(x - lp)) / 2lp.
+// Valid while 2 lp <= 2 h (F_p <= 2 m): the support then covers at most four nodes,
+// base = floor((x - lp) / h) .. base + 3. A wider particle is a failure of the run (failure.hpp,
+// support_too_wide). With lp = lp0 the values are GimpBasis's up to rounding, and S = G = 0 on
+// node base + 3.
+struct CpGimpBasis {
+  static constexpr int width = 4;
+  double inv_h;
+  double lp0_cells;  // reference half-width lp0 = h / (2 m) in cell units
+
+  CpGimpBasis(double h, double lp0) : inv_h(1.0 / h), lp0_cells(lp0 / h) {}
+
+  void eval(double x, double F, int& base, double* wt, double* g) const {
+    const double lp_cells = F * lp0_cells;
+    const double w = 2.0 * lp_cells;  // support width in cell units, <= 2
+    const double inv_w = 1.0 / w;
+    const double inv_2lp = inv_w * inv_h;
+    // Left edge u in [0, 1) relative to node `base`, right edge b = u + w in [w, 3). The
+    // support's parts in cells [base, base+1], [base+1, base+2] and [base+2, base+3] are
+    // [u, b0], [0, e1] and [0, e2] in local coordinates.
+    const double s = x * inv_h - lp_cells;
+    const double cell = floor_exact(s);
+    base = static_cast<int>(cell);
+    const double u = s - cell;
+    const double b = u + w;
+    const double e2 = positive_part(b - 2.0);
+    const double e1 = positive_part(b - 1.0 - e2);
+    const double b0 = b - e1 - e2;
+    // In each cell, the integrals of (1 - y) and of y over the part.
+    const double right0 = 0.5 * (b0 * b0 - u * u);
+    const double right1 = 0.5 * e1 * e1;
+    const double right2 = 0.5 * e2 * e2;
+    wt[0] = ((b0 - u) - right0) * inv_w;
+    wt[1] = (right0 + e1 - right1) * inv_w;
+    wt[2] = (right1 + e2 - right2) * inv_w;
+    wt[3] = right2 * inv_w;
+    // N at the right edge minus N at the left edge, per node.
+    g[0] = (positive_part(1.0 - b) - (1.0 - u)) * inv_2lp;
+    g[1] = (b0 - e1 - u) * inv_2lp;
+    g[2] = (e1 - e2) * inv_2lp;
+    g[3] = e2 * inv_2lp;
   }
 };
 

@@ -1,55 +1,100 @@
 #include "simulation.hpp"
 
-#include "phases.hpp"
-
 namespace mpmstab {
 
 namespace {
 
-std::variant<LinearBasis, GimpBasis> make_basis(const RunParams& p) {
+std::variant<LinearBasis, GimpBasis, CpGimpBasis> make_basis(const RunParams& p) {
   const double h = 1.0 / p.cells;
-  if (p.method == Method::mpm) return LinearBasis(h);
-  return GimpBasis(h, h / (2.0 * p.ppc));  // fixed half-width lp = h / (2 m)
+  const double lp = h / (2.0 * p.ppc);  // half-width lp = h / (2 m) of an undeformed particle
+  switch (p.method) {
+    case Method::mpm:
+      return LinearBasis(h);
+    case Method::gimp:
+      return GimpBasis(h, lp);
+    case Method::cpgimp:
+      return CpGimpBasis(h, lp);  // lp_p = F_p lp
+  }
+  return GimpBasis(h, lp);
+}
+
+int stencil_width(Method m) {
+  switch (m) {
+    case Method::mpm:
+      return LinearBasis::width;
+    case Method::gimp:
+      return GimpBasis::width;
+    case Method::cpgimp:
+      return CpGimpBasis::width;
+  }
+  return GimpBasis::width;
 }
 
 }  // namespace
 
 Simulation::Simulation(const RunParams& p)
     : params_(p),
-      scene_(p.E, p.A),
-      P_(scene_.initial_particles(p.cells, p.ppc)),
-      G_(p.cells, p.bc),
+      scene_(make_scene(p)),
+      law_(scene_->law()),
+      g2p_rule_{p.transfer, p.flip_fraction, p.position_update},
+      P_(scene_->initial_particles(p.cells, p.ppc)),
+      G_(p.cells, p.bc, p.walls, stencil_width(p.method)),
       basis_(make_basis(p)) {
   const auto n = static_cast<std::size_t>(P_.size());
   stencil_mpm_.resize(p.method == Method::mpm ? n : 0);
   stencil_gimp_.resize(p.method == Method::gimp ? n : 0);
-  body_profile_ = P_.X.unaryExpr([&](double X) { return scene_.body_force_profile(X); });
-  u_profile_ = P_.X.unaryExpr([&](double X) { return scene_.displacement_profile(X); });
+  stencil_cpgimp_.resize(p.method == Method::cpgimp ? n : 0);
+  body_force_ = scene_->body_force_at(P_.X);
+  u_profile_ = P_.X.unaryExpr([&](double X) { return scene_->displacement_profile(X); });
   body_accel_.setZero(P_.size());
 }
 
-template <class Basis, class StencilT>
-void Simulation::step(const Basis& basis, StencilT& stencil, double dt) {
-  body_accel_ = body_profile_ * scene_.body_force_factor(t_);  // b(X_p, t^n)
-  p2g(basis, P_, body_accel_.data(), stencil, G_);             // eqs. (5)-(7)
-  grid_update(G_, dt);                                         // eqs. (7), (8)
-  g2p(stencil, G_, dt, params_.position_update, P_);           // eqs. (9), (10)
-  stress_update(stencil, G_, dt, params_.E, P_);               // eqs. (11), (13), (14)
+template <class Basis>
+void Simulation::step(const Basis& basis, Stencil<Basis::width>& S, double dt, double t_body) {
+  body_force_->evaluate(t_body, body_accel_);  // b(X_p, t^n) or b(X_p, t^{n+1})
+  const double* b = body_accel_.data();
+  switch (params_.update) {
+    case UpdateOrder::usl:
+      p2g(basis, P_, b, S, G_);            // eqs. (5)-(7)
+      grid_update(G_, dt);                 // eqs. (7), (8)
+      g2p(S, G_, dt, g2p_rule_, P_);       // eqs. (9), (10)
+      stress_update(S, G_, dt, law_, P_);  // eqs. (11), (13), (14) with v_i^{n+1}
+      break;
+    case UpdateOrder::usf:
+      p2g(basis, P_, b, S, G_);            // m_i, q_i; f_i is redone with the new stress below
+      grid_velocity(G_);                   // v_i^n = q_i / m_i
+      stress_update(S, G_, dt, law_, P_);  // with v_i^n
+      p2g_force(S, P_, b, G_);             // f_i with the new sigma_p and V_p = F_p V_p^0
+      grid_update(G_, dt);
+      g2p(S, G_, dt, g2p_rule_, P_);
+      break;
+    case UpdateOrder::musl:
+      p2g(basis, P_, b, S, G_);
+      grid_update(G_, dt);
+      g2p(S, G_, dt, g2p_rule_, P_);
+      p2g_momentum(S, P_, G_);             // q_i = sum_p S_ip m_p v_p^{n+1}
+      grid_velocity(G_);                   // v_i = q_i / m_i
+      stress_update(S, G_, dt, law_, P_);  // with the re-mapped v_i
+      break;
+  }
 }
 
 void Simulation::advance_to(double t_next) {
   const double dt = t_next - t_;
+  const double t_body = params_.body_force_time == BodyForceTime::start ? t_ : t_next;
   if (const auto* gimp = std::get_if<GimpBasis>(&basis_)) {
-    step(*gimp, stencil_gimp_, dt);
+    step(*gimp, stencil_gimp_, dt, t_body);
+  } else if (const auto* cpgimp = std::get_if<CpGimpBasis>(&basis_)) {
+    step(*cpgimp, stencil_cpgimp_, dt, t_body);
   } else {
-    step(std::get<LinearBasis>(basis_), stencil_mpm_, dt);
+    step(std::get<LinearBasis>(basis_), stencil_mpm_, dt, t_body);
   }
   t_ = t_next;
   ++n_;
 }
 
 double Simulation::max_error() const {
-  const double factor = scene_.displacement_factor(t_);
+  const double factor = scene_->displacement_factor(t_);
   return ((P_.x - P_.X) - u_profile_ * factor).abs().maxCoeff();
 }
 

@@ -1,12 +1,14 @@
-// One simulation of the bar: the state, and a step that reads as its four phases.
+// One simulation of a scene: the state, and a step that reads as its phases.
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <variant>
 
 #include "grid.hpp"
 #include "params.hpp"
 #include "particles.hpp"
+#include "phases.hpp"
 #include "scene.hpp"
 #include "shape.hpp"
 #include "stencil.hpp"
@@ -18,35 +20,40 @@ class Simulation {
   // `p` must be valid (validate(p) empty).
   explicit Simulation(const RunParams& p);
 
-  // One USL step from time() to t_next:
-  //   p2g -> grid_update -> g2p -> stress_update   (phases.hpp)
+  // One step from time() to t_next, its phases in the order of p.update (phases.hpp):
+  //   usl:  p2g -> grid_update -> g2p -> stress_update
+  //   usf:  p2g -> grid_velocity -> stress_update -> p2g_force -> grid_update -> g2p
+  //   musl: p2g -> grid_update -> g2p -> p2g_momentum -> grid_velocity -> stress_update
   void advance_to(double t_next);
 
-  // max_p |u_p - u(X_p, t)| at the current time, u_p = x_p - X_p.
+  // max_p |u_p - u(X_p, t)| at the current time, u_p = x_p - X_p, u the scene's exact solution.
   double max_error() const;
 
   double time() const { return t_; }
   std::int64_t steps() const { return n_; }
   const RunParams& params() const { return params_; }
-  const BarScene& scene() const { return scene_; }
+  const Scene& scene() const { return *scene_; }
   const Particles& particles() const { return P_; }
   Particles& particles() { return P_; }  // for tests that plant a state
   const Grid& grid() const { return G_; }
 
  private:
-  template <class Basis, class StencilT>
-  void step(const Basis& basis, StencilT& stencil, double dt);
+  template <class Basis>
+  void step(const Basis& basis, Stencil<Basis::width>& S, double dt, double t_body);
 
   RunParams params_;
-  BarScene scene_;
+  std::unique_ptr<Scene> scene_;
+  MaterialLaw law_;
+  ParticleUpdate g2p_rule_;
   Particles P_;
   Grid G_;
-  std::variant<LinearBasis, GimpBasis> basis_;
+  std::variant<LinearBasis, GimpBasis, CpGimpBasis> basis_;
   Stencil<LinearBasis::width> stencil_mpm_;
   Stencil<GimpBasis::width> stencil_gimp_;
-  Eigen::ArrayXd body_profile_;  // 3 (c pi)^2 A sin(2 pi X_p)
-  Eigen::ArrayXd body_accel_;    // b(X_p, t^n) for the current step
-  Eigen::ArrayXd u_profile_;     // A sin(2 pi X_p)
+  Stencil<CpGimpBasis::width> stencil_cpgimp_;
+  std::unique_ptr<BodyForceAtParticles> body_force_;  // b(X_p, t)
+  Eigen::ArrayXd body_accel_;                         // b(X_p, t) for the current step
+  Eigen::ArrayXd u_profile_;                          // displacement profile at X_p
   double t_ = 0;
   std::int64_t n_ = 0;
 };

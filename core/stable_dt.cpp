@@ -6,7 +6,8 @@
 
 namespace mpmstab {
 
-StableDtInputs stable_dt_inputs(const Particles& P, const Grid& G, VelocityNorm vnorm) {
+StableDtInputs stable_dt_inputs(const Particles& P, const Grid& G, VelocityNorm vnorm,
+                                Method method) {
   StableDtInputs in;
   in.F_max = P.F.abs().maxCoeff();
   in.sigma_max = P.sigma.abs().maxCoeff();
@@ -14,8 +15,9 @@ StableDtInputs stable_dt_inputs(const Particles& P, const Grid& G, VelocityNorm 
   if (!std::isfinite(double(in.sigmaF_max))) {  // the product overflowed: take it in long double
     in.sigmaF_max = (P.sigma.cast<long double>() * P.F.cast<long double>()).abs().maxCoeff();
   }
-  const auto nodes = G.velocity.segment(Grid::kOffset, G.nodes());
+  const auto nodes = G.velocity.segment(G.first_node_slot(), G.nodes());
   in.v_norm = vnorm == VelocityNorm::l2 ? nodes.matrix().norm() : nodes.abs().maxCoeff();
+  if (method == Method::cpgimp) in.F_min = P.F.minCoeff();
   return in;
 }
 
@@ -30,8 +32,14 @@ real eq108(const StableDtInputs& in, const StableDtGeometry& geo, StressScaling 
   const real scale = sigma == StressScaling::scaled ? 1 / sqrt_E : real(1);
   const real sigma_max = real(in.sigma_max) * scale;
   const real sigmaF_max = real(in.sigmaF_max) * scale;
-  const real position_term =
-      geo.method == Method::gimp ? 2 / (real(geo.width) * sqrt_m) * sigmaF_max : real(0);
+  real position_term = 0;
+  if (geo.method == Method::gimp) {
+    position_term = 2 / (real(geo.width) * sqrt_m) * sigmaF_max;
+  } else if (geo.method == Method::cpgimp) {
+    // l = min_p F_p h / m. An admissible state has F_min > 0; any other has no stable step.
+    const real l = real(in.F_min) * real(geo.width);
+    position_term = l > 0 ? 2 / (l * sqrt_m) * sigmaF_max : std::numeric_limits<real>::infinity();
+  }
   const real denominator = 4 * m * (sqrt_E + real(in.F_max) + real(in.v_norm)) +
                            9 * real(geo.h) * sqrt_E * (real(in.F_max) + sigma_max + position_term);
   return real(geo.h) * sqrt_m / denominator;

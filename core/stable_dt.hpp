@@ -7,6 +7,9 @@
 // (sigma F)_max = max_p |sigma_p F_p|, ||v|| = norm of the nodal velocity vector, l = 2 lp the
 // particle width. For linear MPM the position-Lipschitz term (2 / (l sqrt m)) (sigma F)_max is
 // absent: the paper shows linear MPM has no such constant (section 4.4, eq. 77 onwards).
+// For cpGIMP, whose widths follow F (l_p = F_p h / m), l is the smallest current width
+// min_p F_p h / m: the bound holds for the narrowest support, where the position-Lipschitz
+// constant of the basis is largest.
 // The options (params.hpp) pick how sigma enters and which norm ||v|| is.
 #pragma once
 
@@ -21,6 +24,7 @@ struct StableDtInputs {
   double sigma_max = 0;        // max_p |sigma_p|
   long double sigmaF_max = 0;  // max_p |sigma_p F_p| (long double: it may exceed a double)
   double v_norm = 0;           // ||v_N||, Euclidean or maximum norm over the distinct nodes
+  double F_min = 1;            // min_p F_p (cpGIMP only, which scales the width by it)
 };
 
 struct StableDtGeometry {
@@ -28,12 +32,13 @@ struct StableDtGeometry {
   double E;
   double h;
   int ppc;       // m
-  double width;  // l = 2 lp = h / m
+  double width;  // l = 2 lp = h / m; for cpGIMP the reference width, times F_min
 };
 
-// Reductions over the state after a step.
+// Reductions over the state after a step (F_min for cpGIMP only).
 // (sigma F)_max is taken as max |sigma_p| |F_p| in long double, so it does not overflow.
-StableDtInputs stable_dt_inputs(const Particles& P, const Grid& G, VelocityNorm vnorm);
+StableDtInputs stable_dt_inputs(const Particles& P, const Grid& G, VelocityNorm vnorm,
+                                Method method);
 
 // Eq. (108). Finite and positive for every finite input: the denominator is >= 4 m sqrt(E) > 0,
 // it is summed again in long double where a double overflows, and the result is at least the

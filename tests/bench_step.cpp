@@ -71,9 +71,9 @@ void BM_Step(benchmark::State& state) {
       benchmark::DoNotOptimize(crossings.update(sim.particles()));
     }
     if constexpr (level == Level::stable_dt || level == Level::instrumented) {
-      benchmark::DoNotOptimize(
-          mpmstab::stable_dt(mpmstab::stable_dt_inputs(sim.particles(), sim.grid(), p.stable.vnorm),
-                             geo, p.stable.sigma));
+      benchmark::DoNotOptimize(mpmstab::stable_dt(
+          mpmstab::stable_dt_inputs(sim.particles(), sim.grid(), p.stable.vnorm, p.method), geo,
+          p.stable.sigma));
     }
   }
   set_counters(state, method, static_cast<double>(sim.particles().size()));

@@ -63,6 +63,28 @@ TEST(DetectFailure, NonPositiveDeformationGradient) {
   }
 }
 
+TEST(DetectFailure, SupportWiderThanTwoCellsForCpGimp) {
+  const int ppc = 2;
+  const double limit = max_admissible_F(Method::cpgimp, ppc);
+  EXPECT_EQ(limit, 4.0);  // lp = F h / (2 m) <= h
+  EXPECT_TRUE(std::isinf(max_admissible_F(Method::gimp, ppc)));
+  EXPECT_TRUE(std::isinf(max_admissible_F(Method::mpm, ppc)));
+  Particles P = healthy();
+  P.F[8] = limit;  // lp = h exactly: admissible
+  EXPECT_FALSE(detect_failure(P, Boundary::dirichlet, limit));
+  P.F[8] = 4.0000001;
+  const auto f = detect_failure(P, Boundary::periodic, limit);
+  ASSERT_TRUE(f);
+  EXPECT_EQ(f->reason, FailureReason::support_too_wide);
+  EXPECT_EQ(f->particle, 8);
+  EXPECT_EQ(to_string(f->reason), "support_too_wide");
+  // Without a limit (uGIMP, MPM) the same state is admissible.
+  EXPECT_FALSE(detect_failure(P, Boundary::dirichlet));
+  // A non-positive F is named first.
+  P.F[12] = -1.0;
+  EXPECT_EQ(detect_failure(P, Boundary::dirichlet, limit)->reason, FailureReason::nonpositive_F);
+}
+
 TEST(DetectFailure, NanIsReportedBeforeOtherReasons) {
   Particles P = healthy();
   P.F[2] = -1.0;

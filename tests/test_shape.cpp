@@ -1,7 +1,11 @@
-// Shape functions: partition of unity, gradients, the five uGIMP branches, continuity.
+// Shape functions: partition of unity, gradients, the five uGIMP branches, continuity, and
+// cpGIMP's supports that follow F.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "shape.hpp"
@@ -161,6 +165,101 @@ TEST(GimpBasis, TouchesAtMostThreeNodesAndNothingBeyond) {
         EXPECT_LE(gimp_reference(x - node * h, h, h / (2 * ppc)).first, 1e-20)
             << "x = " << x << " node " << node;
       }
+    }
+  }
+}
+
+// cpGIMP at a fixed F, with the eval signature of the other bases.
+struct CpGimpAt {
+  static constexpr int width = CpGimpBasis::width;
+  CpGimpBasis basis;
+  double F;
+  void eval(double x, int& base, double* w, double* g) const { basis.eval(x, F, base, w, g); }
+};
+
+// An oracle for any half-width: S_i = (H(x + lp) - H(x - lp)) / 2lp with H the antiderivative of
+// the hat N_i, G_i = (N_i(x + lp) - N_i(x - lp)) / 2lp, in r = (y - X_i) / h.
+std::pair<double, double> average_of_hat(double x, double X_i, double h, double lp) {
+  auto hat = [&](double y) { return std::max(0.0, 1.0 - std::abs(y - X_i) / h); };
+  auto antiderivative = [&](double y) {
+    const double r = (y - X_i) / h;
+    if (r <= -1) return 0.0;
+    if (r <= 0) return h * (1 + r) * (1 + r) / 2;
+    if (r <= 1) return h * (1 - (1 - r) * (1 - r) / 2);
+    return h;
+  };
+  return {(antiderivative(x + lp) - antiderivative(x - lp)) / (2 * lp),
+          (hat(x + lp) - hat(x - lp)) / (2 * lp)};
+}
+
+// F from compressed to the widest admissible support (lp = h at F = 2 m).
+constexpr double kStretches[] = {0.3, 0.9, 1.0, 1.7, 2.0, 2.6, 3.3, 4.0};
+
+TEST(CpGimpBasis, PartitionOfUnityAndZeroGradientSumForEveryStretch) {
+  const int ppc = 2;
+  for (int cells : {1, 10, 100}) {
+    const double h = 1.0 / cells;
+    for (double F : kStretches) {
+      SCOPED_TRACE("cells " + std::to_string(cells) + " F " + std::to_string(F));
+      expect_partition_of_unity(CpGimpAt{CpGimpBasis(h, h / (2 * ppc)), F}, h);
+    }
+  }
+}
+
+TEST(CpGimpBasis, IsTheAverageOfTheHatOverTheStretchedParticle) {
+  const double h = 0.1;
+  for (int ppc : {1, 2}) {
+    for (double F : kStretches) {
+      if (F > 2 * ppc) continue;
+      const double lp = F * h / (2 * ppc);
+      const CpGimpAt basis{CpGimpBasis(h, h / (2 * ppc)), F};
+      for (double x : probe_positions(h)) {
+        for (int node = -1; node <= 11; ++node) {
+          const auto [w, g] = weight_of(basis, x, node);
+          const auto [w_ref, g_ref] = average_of_hat(x, node * h, h, lp);
+          EXPECT_NEAR(w, w_ref, 1e-13) << "x = " << x << " node " << node << " F " << F;
+          EXPECT_NEAR(g * h, g_ref * h, 1e-11) << "x = " << x << " node " << node << " F " << F;
+        }
+      }
+    }
+  }
+}
+
+TEST(CpGimpBasis, SupportWidensWithF) {
+  // A particle at x = 0.5 + h / 8 (h = 0.1, m = 1): the nodes with a non-zero weight.
+  const double h = 0.1, x = 0.5125;
+  int previous = 0;
+  for (double F : kStretches) {
+    if (F > 2) continue;
+    const CpGimpAt basis{CpGimpBasis(h, h / 2), F};
+    int touched = 0;
+    for (int node = 0; node <= 10; ++node)
+      touched += weight_of(basis, x, node).first > 1e-12;
+    EXPECT_GE(touched, previous) << "F = " << F;
+    previous = touched;
+  }
+  // F = 0.3: [0.4975, 0.5275] meets the hats of nodes 4, 5, 6; F = 2 (lp = h):
+  // [0.4125, 0.6125] meets those of nodes 4 to 7.
+  EXPECT_EQ(previous, 4);
+}
+
+TEST(CpGimpBasis, UndeformedIsUGimpToRounding) {
+  const double h = 0.1;
+  for (int ppc : {1, 2, 4}) {
+    const GimpBasis gimp(h, h / (2 * ppc));
+    const CpGimpAt cpgimp{CpGimpBasis(h, h / (2 * ppc)), 1.0};
+    for (double x : probe_positions(h)) {
+      int base_g, base_c;
+      double wg[3], gg[3], wc[4], gc[4];
+      gimp.eval(x, base_g, wg, gg);
+      cpgimp.eval(x, base_c, wc, gc);
+      ASSERT_EQ(base_c, base_g) << x;
+      for (int k = 0; k < 3; ++k) {
+        EXPECT_NEAR(wc[k], wg[k], 1e-14) << "x = " << x << " k " << k;
+        EXPECT_NEAR(gc[k] * h, gg[k] * h, 1e-12) << "x = " << x << " k " << k;
+      }
+      EXPECT_EQ(wc[3], 0.0) << x;
+      EXPECT_EQ(gc[3], 0.0) << x;
     }
   }
 }

@@ -27,12 +27,12 @@ struct HandState {
 
 TEST(StableDt, InputsAreTheMaximaAndTheNodalNorm) {
   HandState s;
-  const auto l2 = stable_dt_inputs(s.P, s.G, VelocityNorm::l2);
+  const auto l2 = stable_dt_inputs(s.P, s.G, VelocityNorm::l2, Method::gimp);
   EXPECT_DOUBLE_EQ(l2.F_max, 1.1);
   EXPECT_NEAR(l2.sigma_max, 3.2, 1e-14);
   EXPECT_NEAR(l2.sigmaF_max, 2.56, 1e-14);
   EXPECT_DOUBLE_EQ(l2.v_norm, 5.0);
-  EXPECT_DOUBLE_EQ(stable_dt_inputs(s.P, s.G, VelocityNorm::max).v_norm, 4.0);
+  EXPECT_DOUBLE_EQ(stable_dt_inputs(s.P, s.G, VelocityNorm::max, Method::gimp).v_norm, 4.0);
 }
 
 // dt = h sqrt(m) / (4 m (sqrt(E) + F_max + ||v||) + 9 h sqrt(E) (F_max + s sigma_max + P))
@@ -66,10 +66,42 @@ TEST(StableDt, Eq108ByHandForEveryOption) {
   };
   for (const auto& c : cases) {
     const StableDtGeometry geo{c.method, 16.0, 0.01, 2, 0.005};
-    const double dt = stable_dt(stable_dt_inputs(s.P, s.G, c.vnorm), geo, c.sigma);
+    const double dt = stable_dt(stable_dt_inputs(s.P, s.G, c.vnorm, c.method), geo, c.sigma);
     EXPECT_NEAR(dt / c.expected, 1.0, 1e-12)
         << to_string(c.method) << " " << to_string(c.sigma) << " " << to_string(c.vnorm);
   }
+}
+
+// cpGIMP: l = min_p F_p h / m = 0.8 * 0.005 = 0.004 in the position term
+// 2 / (l sqrt m) s (sigma F)_max = 353.553 s 2.56:
+//   scaled l2:  0.0141421 / (80.8 + 0.36 (1.1 + 0.8 + 226.274))   = 8.67921e-5
+//   scaled max: 0.0141421 / (72.8 + 0.36 (1.1 + 0.8 + 226.274))   = 9.12733e-5
+//   raw l2:     0.0141421 / (80.8 + 0.36 (1.1 + 3.2 + 905.097))   = 3.46466e-5
+TEST(StableDt, CpGimpUsesTheSmallestCurrentParticleWidth) {
+  HandState s;
+  struct Case {
+    StressScaling sigma;
+    VelocityNorm vnorm;
+    double expected;
+  };
+  const Case cases[] = {
+      {StressScaling::scaled, VelocityNorm::l2, 8.679207795264768e-05},
+      {StressScaling::scaled, VelocityNorm::max, 9.127332565438801e-05},
+      {StressScaling::raw, VelocityNorm::l2, 3.464657368816234e-05},
+  };
+  const StableDtGeometry geo{Method::cpgimp, 16.0, 0.01, 2, 0.005};
+  for (const auto& c : cases) {
+    const auto in = stable_dt_inputs(s.P, s.G, c.vnorm, Method::cpgimp);
+    EXPECT_DOUBLE_EQ(in.F_min, 0.8);
+    EXPECT_NEAR(stable_dt(in, geo, c.sigma) / c.expected, 1.0, 1e-12)
+        << to_string(c.sigma) << " " << to_string(c.vnorm);
+  }
+  // Undeformed, cpGIMP's bound is uGIMP's.
+  s.P.F.setConstant(1.0);
+  s.P.sigma.setConstant(2.0);
+  const StableDtGeometry gimp{Method::gimp, 16.0, 0.01, 2, 0.005};
+  const auto in = stable_dt_inputs(s.P, s.G, VelocityNorm::l2, Method::cpgimp);
+  EXPECT_EQ(stable_dt(in, geo, StressScaling::scaled), stable_dt(in, gimp, StressScaling::scaled));
 }
 
 TEST(StableDt, FiniteAndPositiveForEveryFiniteStateEvenWhenSigmaTimesFOverflows) {
@@ -83,7 +115,8 @@ TEST(StableDt, FiniteAndPositiveForEveryFiniteStateEvenWhenSigmaTimesFOverflows)
       G.velocity.setConstant(1e300);
       for (auto scaling : {StressScaling::scaled, StressScaling::raw}) {
         const StableDtGeometry geo{Method::gimp, 1e8, 1e-5, 1, 1e-5};
-        const double dt = stable_dt(stable_dt_inputs(P, G, VelocityNorm::l2), geo, scaling);
+        const double dt =
+            stable_dt(stable_dt_inputs(P, G, VelocityNorm::l2, Method::gimp), geo, scaling);
         EXPECT_TRUE(std::isfinite(dt)) << F << " " << sigma;
         EXPECT_GT(dt, 0.0) << F << " " << sigma;
       }

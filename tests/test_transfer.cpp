@@ -1,5 +1,6 @@
 // Transfers: p2g conserves mass and momentum, g2p and the velocity gradient reproduce linear
-// nodal fields.
+// nodal fields, for every basis and transfer; the partial phases of USF and MUSL; the grid update
+// with ghost nodes.
 #include <gtest/gtest.h>
 
 #include <random>
@@ -10,15 +11,17 @@
 namespace mpmstab {
 namespace {
 
-Particles random_particles(int n, double lo, double hi, unsigned seed) {
+// F_p is drawn from [0.5, F_hi): with cpGIMP (lp0 = h / 4 below) the supports reach 2 h.
+Particles random_particles(int n, double lo, double hi, unsigned seed, double F_hi = 1.5) {
   std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> pos(lo, hi), val(-1.0, 1.0), pos_val(0.5, 1.5);
+  std::uniform_real_distribution<double> pos(lo, hi), val(-1.0, 1.0), pos_val(0.5, 1.5),
+      stretch(0.5, F_hi);
   Particles P;
   P.resize(n);
   for (int p = 0; p < n; ++p) {
     P.x[p] = P.X[p] = pos(rng);
     P.v[p] = val(rng);
-    P.F[p] = pos_val(rng);
+    P.F[p] = stretch(rng);
     P.sigma[p] = val(rng);
     P.mass[p] = pos_val(rng) * 1e-3;
     P.volume0[p] = pos_val(rng) * 1e-3;
@@ -29,8 +32,8 @@ Particles random_particles(int n, double lo, double hi, unsigned seed) {
 template <class Basis>
 void check_conservation(const Basis& basis, Boundary bc, double lo, double hi) {
   const int cells = 20;
-  Grid G(cells, bc);
-  Particles P = random_particles(300, lo, hi, 42);
+  Grid G(cells, bc, Walls::clip, Basis::width);
+  Particles P = random_particles(300, lo, hi, 42, 3.99);
   Eigen::ArrayXd body = Eigen::ArrayXd::Random(P.size());
   Stencil<Basis::width> S;
   S.resize(P.size());
@@ -73,6 +76,37 @@ TEST(P2G, ConservesAcrossPeriodicWrapGimp) {
   check_conservation(GimpBasis(1.0 / 20, 1.0 / 80), Boundary::periodic, -0.7, 1.7);
 }
 
+TEST(P2G, ConservesMassMomentumAndForceCpGimp) {
+  check_conservation(CpGimpBasis(1.0 / 20, 1.0 / 80), Boundary::dirichlet, 0.0, 1.0);
+}
+
+// Supports up to 2 h wide reach the image slots N + 2 and -1: the folding covers every slot.
+TEST(P2G, ConservesAcrossPeriodicWrapCpGimp) {
+  check_conservation(CpGimpBasis(1.0 / 20, 1.0 / 80), Boundary::periodic, -0.7, 1.7);
+}
+
+// The partial sums of USF and MUSL give p2g's sums bit for bit (same terms, same order).
+TEST(P2G, ForceAndMomentumSumsAloneAreP2gsSums) {
+  const int cells = 20;
+  const GimpBasis basis(1.0 / cells, 1.0 / 80);
+  for (Boundary bc : {Boundary::dirichlet, Boundary::periodic}) {
+    Particles P = random_particles(300, bc == Boundary::periodic ? -0.7 : 0.0,
+                                   bc == Boundary::periodic ? 1.7 : 1.0, 5);
+    const Eigen::ArrayXd body = Eigen::ArrayXd::Random(P.size());
+    Stencil<GimpBasis::width> S;
+    S.resize(P.size());
+    Grid G(cells, bc);
+    p2g(basis, P, body.data(), S, G);
+    Grid alone(cells, bc);
+    alone.force.setConstant(7.0);  // cleared by the partial sums
+    alone.momentum.setConstant(7.0);
+    p2g_force(S, P, body.data(), alone);
+    p2g_momentum(S, P, alone);
+    EXPECT_TRUE((alone.force == G.force).all());
+    EXPECT_TRUE((alone.momentum == G.momentum).all());
+  }
+}
+
 TEST(P2G, MassOfTheBarIsOneOnTheNodes) {
   // rho0 = 1 on [0, 1]: the interior nodes of a uniform particle layout carry mass h each.
   const int cells = 10, ppc = 2;
@@ -107,9 +141,9 @@ TEST(P2G, MassOfTheBarIsOneOnTheNodes) {
 // Set every slot of the grid to linear fields v(X) = a + b X, acc(X) = c + d X, then g2p and
 // the stress update must see exactly those fields at each particle.
 template <class Basis>
-void check_linear_reproduction(const Basis& basis, PositionUpdate mode) {
+void check_linear_reproduction(const Basis& basis, const ParticleUpdate& rule) {
   const int cells = 16;
-  Grid G(cells, Boundary::dirichlet);
+  Grid G(cells, Boundary::dirichlet, Walls::clip, Basis::width);
   const double a = 0.3, b = -1.7, c = 2.0, d = 0.9;
   for (Eigen::Index s = 0; s < G.velocity.size(); ++s) {
     const double X = (s - Grid::kOffset) * G.h;
@@ -121,17 +155,22 @@ void check_linear_reproduction(const Basis& basis, PositionUpdate mode) {
   Eigen::ArrayXd body = Eigen::ArrayXd::Zero(P.size());
   Stencil<Basis::width> S;
   S.resize(P.size());
-  Grid scratch(cells, Boundary::dirichlet);
+  Grid scratch(cells, Boundary::dirichlet, Walls::clip, Basis::width);
   p2g(basis, P, body.data(), S, scratch);  // fills the stencil at x^n
 
   const double dt = 1e-2, E = 5.0;
-  g2p(S, G, dt, mode, P);
-  stress_update(S, G, dt, E, P);
+  g2p(S, G, dt, rule, P);
+  stress_update(S, G, dt, MaterialLaw{Material::linear, E}, P);
+  const double alpha = rule.flip_fraction;
   for (Eigen::Index p = 0; p < P.size(); ++p) {
     const double x0 = before.x[p];
-    const double v_new = before.v[p] + dt * (c + d * x0);
+    const double v_flip = before.v[p] + dt * (c + d * x0);
+    const double v_pic = a + b * x0;
+    const double v_new = rule.transfer == Transfer::flip  ? v_flip
+                         : rule.transfer == Transfer::pic ? v_pic
+                                                          : alpha * v_flip + (1 - alpha) * v_pic;
     EXPECT_NEAR(P.v[p], v_new, 1e-14) << p;
-    const double moved = mode == PositionUpdate::grid ? dt * (a + b * x0) : dt * v_new;
+    const double moved = rule.position == PositionUpdate::grid ? dt * v_pic : dt * v_new;
     EXPECT_NEAR(P.x[p], x0 + moved, 1e-14) << p;
     // L_p = dv/dx = b exactly.
     EXPECT_NEAR(P.F[p], before.F[p] * (1 + dt * b), 1e-13) << p;
@@ -139,14 +178,53 @@ void check_linear_reproduction(const Basis& basis, PositionUpdate mode) {
   }
 }
 
+constexpr ParticleUpdate kFlip{Transfer::flip, 1.0, PositionUpdate::grid};
+
 TEST(G2P, ReproducesLinearFieldsLinear) {
-  check_linear_reproduction(LinearBasis(1.0 / 16), PositionUpdate::grid);
+  check_linear_reproduction(LinearBasis(1.0 / 16), kFlip);
 }
 TEST(G2P, ReproducesLinearFieldsGimp) {
-  check_linear_reproduction(GimpBasis(1.0 / 16, 1.0 / 64), PositionUpdate::grid);
+  check_linear_reproduction(GimpBasis(1.0 / 16, 1.0 / 64), kFlip);
+}
+TEST(G2P, ReproducesLinearFieldsCpGimp) {
+  check_linear_reproduction(CpGimpBasis(1.0 / 16, 1.0 / 64), kFlip);
 }
 TEST(G2P, ParticleVelocityPositionUpdateUsesTheNewParticleVelocity) {
-  check_linear_reproduction(GimpBasis(1.0 / 16, 1.0 / 64), PositionUpdate::particle);
+  check_linear_reproduction(GimpBasis(1.0 / 16, 1.0 / 64),
+                            {Transfer::flip, 1.0, PositionUpdate::particle});
+}
+TEST(G2P, PicTakesTheGridVelocity) {
+  for (auto position : {PositionUpdate::grid, PositionUpdate::particle}) {
+    check_linear_reproduction(GimpBasis(1.0 / 16, 1.0 / 64), {Transfer::pic, 0.95, position});
+  }
+}
+TEST(G2P, BlendMixesFlipAndPic) {
+  for (auto position : {PositionUpdate::grid, PositionUpdate::particle}) {
+    check_linear_reproduction(LinearBasis(1.0 / 16), {Transfer::blend, 0.3, position});
+    check_linear_reproduction(CpGimpBasis(1.0 / 16, 1.0 / 64), {Transfer::blend, 0.9, position});
+  }
+}
+
+TEST(StressUpdate, NeoHookeanLaw) {
+  const int cells = 16;
+  Grid G(cells, Boundary::dirichlet);
+  const double b = -1.7;
+  for (Eigen::Index s = 0; s < G.velocity.size(); ++s)
+    G.velocity[s] = 0.3 + b * (s - Grid::kOffset) * G.h;
+  Particles P = random_particles(100, 0.0, 1.0, 9);
+  const Particles before = P;
+  const Eigen::ArrayXd body = Eigen::ArrayXd::Zero(P.size());
+  Stencil<GimpBasis::width> S;
+  S.resize(P.size());
+  Grid scratch(cells, Boundary::dirichlet);
+  p2g(GimpBasis(1.0 / cells, 1.0 / 64), P, body.data(), S, scratch);
+  const double dt = 1e-2, E = 5.0;
+  stress_update(S, G, dt, MaterialLaw{Material::neo_hookean, E}, P);
+  for (Eigen::Index p = 0; p < P.size(); ++p) {
+    const double F = before.F[p] * (1 + dt * b);
+    EXPECT_NEAR(P.F[p], F, 1e-13) << p;
+    EXPECT_NEAR(P.sigma[p], 0.5 * E * (F - 1 / F), 1e-12) << p;
+  }
 }
 
 TEST(GridUpdate, DirichletNodesAndEmptyNodesStayAtRest) {
@@ -164,6 +242,58 @@ TEST(GridUpdate, DirichletNodesAndEmptyNodesStayAtRest) {
   // v = q / m + dt f / m = 2 + 0.5 * 4 = 4; a = f / m = 4.
   EXPECT_DOUBLE_EQ(G.velocity[o + 1], 4.0);
   EXPECT_DOUBLE_EQ(G.accel[o + 3], 4.0);
+}
+
+TEST(GridUpdate, GhostNodesAreFreeAndTheWallsFixed) {
+  Grid G(4, Boundary::dirichlet, Walls::ghost);
+  G.mass << 1, 1, 1, 0, 1, 1, 1;  // slots -1..5; node 2 empty
+  G.momentum.setConstant(2.0);
+  G.force.setConstant(4.0);
+  grid_update(G, 0.5);
+  const int o = Grid::kOffset;
+  EXPECT_EQ(G.velocity[o + 0], 0.0);  // walls
+  EXPECT_EQ(G.velocity[o + 4], 0.0);
+  EXPECT_EQ(G.velocity[o + 2], 0.0);         // no mass
+  EXPECT_DOUBLE_EQ(G.velocity[o - 1], 4.0);  // ghost nodes: as interior nodes
+  EXPECT_DOUBLE_EQ(G.velocity[o + 5], 4.0);
+  EXPECT_DOUBLE_EQ(G.accel[o - 1], 4.0);
+  EXPECT_EQ(G.first_node_slot(), 0);
+  EXPECT_EQ(G.nodes(), 7);
+}
+
+TEST(GridVelocity, IsMomentumOverMassWithTheBoundaryConditions) {
+  for (Walls walls : {Walls::clip, Walls::ghost}) {
+    Grid G(4, Boundary::dirichlet, walls);
+    G.mass << 2, 1, 2, 0, 4, 1, 2;
+    G.momentum.setConstant(2.0);
+    G.force.setConstant(100.0);  // not used
+    grid_velocity(G);
+    const int o = Grid::kOffset;
+    EXPECT_EQ(G.velocity[o], 0.0);
+    EXPECT_EQ(G.velocity[o + 4], 0.0);
+    EXPECT_EQ(G.velocity[o + 2], 0.0);
+    EXPECT_DOUBLE_EQ(G.velocity[o + 1], 1.0);
+    EXPECT_DOUBLE_EQ(G.velocity[o + 3], 0.5);
+    EXPECT_EQ(G.velocity[o - 1], walls == Walls::ghost ? 1.0 : 0.0);
+  }
+}
+
+// USF folds the images for its v_i^n and again in the grid update: the second fold adds nothing.
+TEST(GridVelocity, PeriodicImagesFoldOnce) {
+  const int cells = 20;
+  Particles P = random_particles(300, -0.7, 1.7, 3);
+  const Eigen::ArrayXd body = Eigen::ArrayXd::Random(P.size());
+  Stencil<GimpBasis::width> S;
+  S.resize(P.size());
+  Grid once(cells, Boundary::periodic), twice(cells, Boundary::periodic);
+  p2g(GimpBasis(1.0 / cells, 1.0 / 80), P, body.data(), S, once);
+  p2g(GimpBasis(1.0 / cells, 1.0 / 80), P, body.data(), S, twice);
+  grid_velocity(twice);
+  grid_update(once, 1e-3);
+  grid_update(twice, 1e-3);
+  EXPECT_TRUE((once.mass == twice.mass).all());
+  EXPECT_TRUE((once.velocity == twice.velocity).all());
+  EXPECT_NEAR(once.mass.segment(Grid::kOffset, cells).sum(), P.mass.sum(), 1e-15 * P.size());
 }
 
 }  // namespace
