@@ -5,6 +5,8 @@
 #include <array>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -174,6 +176,78 @@ TEST(Cli, PoliciesTakeDtOnlyWhenFixed) {
   const auto j = nlohmann::json::parse(json.output);
   EXPECT_EQ(j["policy"], "adaptive");
   EXPECT_LT(j["dt_min"].get<double>(), j["dt_max"].get<double>());
+}
+
+}  // namespace
+
+namespace {
+
+// mpmstab compare --error-at: which of our errors is set beside the paper's Max Error.
+class CompareErrorAt : public ::testing::Test {
+ protected:
+  std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("mpmstab_compare_" + std::to_string(::getpid()));
+  void SetUp() override {
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir / "paper.csv") << "A,E,dt,method,dt_stable,max_error,confidence,evidence\n"
+                                        "0.015,4,1e-3,GIMP,2e-3,1e-5,high,\n"
+                                        "0.015,4,1e-3,MPM,5e-3,5e-5,high,\n";
+    std::ofstream(dir / "t.json") << R"({"name": "t", "report": "table1",
+        "reference": "paper.csv", "record": ["error_over_time", "dt_stable"],
+        "defaults": {"E": 4, "A": 0.015, "T": 1, "dt": 1e-3},
+        "cases": [{"method": "gimp"}, {"method": "mpm"}]})";
+    std::ofstream(dir / "bare.json") << R"({"name": "t", "report": "table1",
+        "reference": "paper.csv", "defaults": {"E": 4, "A": 0.015, "T": 1, "dt": 1e-3},
+        "cases": [{"method": "gimp"}, {"method": "mpm"}]})";
+  }
+  void TearDown() override { std::filesystem::remove_all(dir); }
+  std::string read(const std::filesystem::path& p) {
+    std::ifstream in(p);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  }
+};
+
+TEST_F(CompareErrorAt, ChoosesTheErrorComparedWithThePapers) {
+  const std::string out = " --out " + (dir / "out").string();
+  ASSERT_EQ(mpmstab("sweep " + (dir / "t.json").string() + out).status, 0);
+  const auto rows = nlohmann::json::parse(read(dir / "out/t.json"))["cases"];
+  const double at_T = rows[0]["max_error"].get<double>();
+  const double over_time = rows[0]["max_error_over_time"].get<double>();
+  ASSERT_NE(at_T, over_time);
+  auto shown = [](double v) {  // as the report prints it
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.1e", v);
+    std::string s = buf;
+    const auto e = s.find("e-0");
+    return e == std::string::npos ? s : s.erase(e + 2, 1);
+  };
+
+  Outcome o = mpmstab("compare " + (dir / "t.json").string() + out);
+  ASSERT_EQ(o.status, 0) << o.output;
+  std::string md = read(dir / "out/comparison.md");
+  EXPECT_NE(md.find("max error at T (`max_error`)"), std::string::npos);
+  EXPECT_NE(md.find("| " + shown(at_T) + " |"), std::string::npos) << shown(at_T);
+  EXPECT_NE(md.find("Variants study not run"), std::string::npos);
+
+  o = mpmstab("compare " + (dir / "t.json").string() + out + " --error-at max_over_time");
+  ASSERT_EQ(o.status, 0) << o.output;
+  md = read(dir / "out/comparison.md");
+  EXPECT_NE(md.find("max error over the run (`max_error_over_time`"), std::string::npos);
+  EXPECT_NE(md.find("| " + shown(over_time) + " |"), std::string::npos) << shown(over_time);
+
+  // Bad values and a spec that does not record the error over time are refused, naming the option.
+  o = mpmstab("compare " + (dir / "t.json").string() + out + " --error-at end");
+  EXPECT_EQ(o.status, 2);
+  EXPECT_NE(o.output.find("--error-at: unknown value 'end' (expected T or max_over_time)"),
+            std::string::npos)
+      << o.output;
+  o = mpmstab("compare " + (dir / "bare.json").string() + out + " --error-at max_over_time");
+  EXPECT_EQ(o.status, 2);
+  EXPECT_NE(o.output.find("does not record error_over_time"), std::string::npos) << o.output;
+  o = mpmstab("compare --help");
+  EXPECT_EQ(o.status, 0);
+  EXPECT_NE(o.output.find("--error-at"), std::string::npos);
 }
 
 }  // namespace

@@ -166,6 +166,69 @@ TEST_F(Regression, BlessRewritesOnlyWhatChangedAndLogsIt) {
   EXPECT_NE(log.find("commit"), std::string::npos);
 }
 
+// In a variants experiment two variants may run the same parameters (one differs only in the
+// error it compares): the variant is part of a row's key, so both rows are kept and checked.
+TEST_F(Regression, VariantRowsAreKeyedByTheirVariant) {
+  std::ofstream(dir / "base.json") << R"({"name": "base", "report": "table1",
+      "reference": "paper.csv", "record": ["error_over_time"],
+      "defaults": {"T": 0.05, "cells": 20, "dt": 1e-4},
+      "cases": [{"E": 4, "A": 0.015, "method": "gimp"}, {"E": 64, "A": 0.05, "method": "mpm"}]})";
+  std::ofstream(dir / "v.json") << R"({"name": "v", "report": "variants", "cases_from": "base.json",
+      "variants": [{"name": "default"}, {"name": "over-time", "error_at": "max_over_time"}]})";
+  const std::vector<Spec> v = {load_spec(dir / "v.json")};
+  testing::internal::CaptureStdout();
+  ASSERT_EQ(run_bless(v, options, "variants"), 0);
+  testing::internal::GetCapturedStdout();
+  const std::string blessed = read(options.reference / "v.csv");
+  EXPECT_NE(blessed.find(",variant,"), std::string::npos) << blessed;
+  EXPECT_NE(blessed.find(",over-time,"), std::string::npos) << blessed;
+  EXPECT_NE(blessed.find(",default,"), std::string::npos) << blessed;
+  testing::internal::CaptureStderr();
+  EXPECT_EQ(run_check(v, options), 0) << testing::internal::GetCapturedStderr();
+}
+
+// A blessed file written before the variant column existed reads as rows of no variant.
+TEST_F(Regression, ABlessedFileWithoutTheVariantColumnStillMatches) {
+  testing::internal::CaptureStdout();
+  ASSERT_EQ(run_bless(specs(), options, "first blessing"), 0);
+  testing::internal::GetCapturedStdout();
+  const fs::path file = options.reference / "small.csv";
+  std::istringstream lines(read(file));
+  std::string out, line;
+  std::size_t column = std::string::npos;
+  while (std::getline(lines, line)) {
+    if (line.rfind("method,", 0) == 0) {
+      // Drop the variant column: its index among the comma-separated header fields.
+      std::size_t index = 0;
+      for (std::size_t at = 0, next; at != std::string::npos; at = next, ++index) {
+        next = line.find(',', at);
+        const std::string name = line.substr(at, next == std::string::npos ? next : next - at);
+        if (next != std::string::npos) ++next;
+        if (name == "variant") column = index;
+      }
+      ASSERT_NE(column, std::string::npos) << line;
+    }
+    if (line[0] != '#') {
+      std::vector<std::string> f;
+      std::stringstream ss(line);
+      for (std::string x; std::getline(ss, x, ',');)
+        f.push_back(x);
+      if (line.back() == ',') f.push_back("");
+      f.erase(f.begin() + static_cast<std::ptrdiff_t>(column));
+      line.clear();
+      for (std::size_t i = 0; i < f.size(); ++i)
+        line += (i ? "," : "") + f[i];
+    }
+    out += line + "\n";
+  }
+  std::ofstream(file) << out;
+  ASSERT_EQ(read(file).find("variant"), std::string::npos);
+  testing::internal::CaptureStdout();
+  const auto [status, message] = check();
+  testing::internal::GetCapturedStdout();
+  EXPECT_EQ(status, 0) << message;
+}
+
 TEST_F(Regression, BlessRefusesWithoutAReason) {
   const std::string cmd = std::string(MPMSTAB_BIN) + " bless " + (dir / "small.json").string() +
                           " --reference " + options.reference.string() + " --reason '  ' 2>&1";

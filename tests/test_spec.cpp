@@ -7,6 +7,7 @@
 #include <fstream>
 #include <set>
 
+#include "cache.hpp"
 #include "csv.hpp"
 #include "spec.hpp"
 
@@ -130,6 +131,163 @@ TEST_F(SpecFiles, ErrorsNameTheKeyPath) {
   }
 }
 
+// A base spec of three Table 1 style cells and a variants spec that takes its cases.
+const char* kBase = R"({
+  "name": "base", "report": "table1", "reference": "paper.csv",
+  "record": ["error_over_time", "dt_stable"],
+  "defaults": {"T": 0.05, "cells": 20, "dt": 1e-4},
+  "cases": [{"method": "gimp", "E": 4, "A": 0.015},
+            {"method": "mpm", "E": 4, "A": 0.015},
+            {"method": "gimp", "E": 64, "A": 0.05, "dt_inferred": true}]
+})";
+
+class VariantSpecs : public SpecFiles {
+ protected:
+  void SetUp() override {
+    SpecFiles::SetUp();
+    std::ofstream(dir / "base.json") << kBase;
+  }
+  // A variants spec taking base.json's cases, with these variants (JSON array text).
+  std::string variants(const std::string& list, const std::string& extra = "") {
+    return R"({"name": "v", "report": "variants", "cases_from": "base.json", )" + extra +
+           R"("variants": )" + list + "}";
+  }
+};
+
+TEST_F(VariantSpecs, EveryVariantAppliesItsSettingsToTheCasesItConcerns) {
+  const Spec s = load_spec(write(variants(R"([
+      {"name": "default", "description": "as is"},
+      {"name": "cp+ghost", "set": {"method": "cpgimp", "walls": "ghost"}, "methods": ["gimp"]},
+      {"name": "over-time", "error_at": "max_over_time"},
+      {"name": "blend", "set": {"transfer": "blend", "flip_fraction": 0.9}}])")));
+  EXPECT_EQ(s.report, ReportKind::variants);
+  EXPECT_EQ(s.cases_from.filename(), "base.json");
+  EXPECT_EQ(s.reference, dir / "paper.csv");  // the base spec's, resolved next to it
+  ASSERT_EQ(s.variants.size(), 4u);
+  ASSERT_EQ(s.cases.size(), 3u + 2u + 3u + 3u);
+  EXPECT_TRUE(s.variants[0].baseline);
+  EXPECT_EQ(s.variants[0].change, "none");
+  EXPECT_EQ(s.variants[0].description, "as is");
+  EXPECT_EQ(s.variants[1].changes, 2);
+  EXPECT_EQ(s.variants[1].first_case, 3u);
+  EXPECT_EQ(s.variants[1].cases, 2u);
+  EXPECT_EQ(s.variants[2].change, "error_at = max_over_time");
+  EXPECT_EQ(s.variants[3].changes, 1);  // flip_fraction qualifies transfer
+  // The gimp cells run with cpGIMP and ghost nodes, still compared with the paper's GIMP column.
+  const CaseSpec& cp = s.cases[3];
+  EXPECT_EQ(cp.variant, "cp+ghost");
+  EXPECT_EQ(cp.params.method, Method::cpgimp);
+  EXPECT_EQ(cp.paper_method, Method::gimp);
+  EXPECT_EQ(cp.params.walls, Walls::ghost);
+  EXPECT_EQ(cp.params.T, 0.05);                    // the base spec's defaults
+  EXPECT_TRUE(cp.params.observe.error_over_time);  // and its record
+  EXPECT_TRUE(s.cases[4].dt_inferred);
+  EXPECT_EQ(s.cases[5].error_at, ErrorAt::max_over_time);
+  EXPECT_EQ(s.cases[0].error_at, ErrorAt::T);
+  EXPECT_EQ(s.cases[9].params.flip_fraction, 0.9);
+  // The default's runs are the base spec's runs: same parameters, so the same cache entries.
+  const Spec base = load_spec(dir / "base.json");
+  EXPECT_EQ(canonical_parameters(s.cases[1].params), canonical_parameters(base.cases[1].params));
+}
+
+TEST_F(VariantSpecs, ErrorAtIsACaseKeyOfAnyTableSpec) {
+  const Spec s = load_spec(write(R"({"name": "t", "report": "table1", "reference": "x.csv",
+      "record": ["error_over_time"], "defaults": {"T": 0.05, "dt": 1e-3, "error_at": "max_over_time"},
+      "cases": [{"method": "gimp", "E": 4, "A": 0.01},
+                {"method": "mpm", "E": 4, "A": 0.01, "error_at": "T"}]})"));
+  EXPECT_EQ(s.cases[0].error_at, ErrorAt::max_over_time);
+  EXPECT_EQ(s.cases[1].error_at, ErrorAt::T);
+}
+
+TEST_F(VariantSpecs, ErrorsNameTheKeyPath) {
+  const std::string def = R"({"name": "default"})";
+  std::ofstream(dir / "nested.json")
+      << R"({"name": "n", "report": "variants", "cases_from": "base.json", "variants": [{"name": "d"}]})";
+  std::ofstream(dir / "broken.json") << R"({"name": "b", "report": "table1", "reference": "p.csv",
+      "cases": [{"method": "gimp", "E": -4, "A": 0.01, "dt": 1e-3}]})";
+  struct Case {
+    std::string text;
+    std::string expected;
+  };
+  const std::vector<Case> cases = {
+      {R"({"name": "v", "report": "variants", "cases_from": "absent.json", "variants": [{"name": "d"}]})",
+       "cases_from: " + (dir / "absent.json").string() + " does not exist"},
+      {R"({"name": "v", "report": "variants", "cases_from": ".", "variants": [{"name": "d"}]})",
+       "cases_from: " + (dir / ".").string() + " is not a regular file"},
+      {R"({"name": "v", "report": "variants", "cases_from": "spec.json", "variants": [{"name": "d"}]})",
+       "cases_from: names this spec itself"},
+      {R"({"name": "v", "report": "variants", "cases_from": "nested.json", "variants": [{"name": "d"}]})",
+       "cases_from: " + (dir / "nested.json").string() +
+           ": cases_from: a spec named by cases_from must list its own cases"},
+      {R"({"name": "v", "report": "variants", "cases_from": "broken.json", "variants": [{"name": "d"}]})",
+       "cases_from: " + (dir / "broken.json").string() + ": cases[0].E: must be"},
+      {R"({"name": "v", "report": "variants", "cases_from": 3, "variants": [{"name": "d"}]})",
+       "cases_from: must be a string"},
+      {variants("[" + def + "]",
+                R"("cases": [{"method": "gimp", "E": 4, "A": 0.01, "dt": 1e-3}], )"),
+       "cases: cases and cases_from exclude each other"},
+      {variants("[" + def + "]", R"("defaults": {"T": 1}, )"),
+       "defaults: cases_from takes the cases"},
+      {R"({"name": "v", "report": "variants", "cases_from": "base.json"})",
+       "variants: is required for a variants report"},
+      {R"({"name": "v", "report": "table1", "cases_from": "base.json", "variants": []})",
+       "variants: only a variants report takes variants"},
+      {variants("[]"), "variants: must be a non-empty array"},
+      {variants("[3]"), "variants[0]: must be an object"},
+      {variants(R"([{"description": "x"}])"), "variants[0].name: is required"},
+      {variants(R"([{"name": "A b"}])"), "variants[0].name: must be a non-empty name"},
+      {variants("[" + def + "," + def + "]"), "variants[1].name: repeats 'default'"},
+      {variants("[" + def + R"(, {"name": "w", "sett": {}}])"),
+       "variants[1].sett: unknown key 'sett' (did you mean 'set'?)"},
+      {variants("[" + def + R"(, {"name": "w", "set": []}])"),
+       "variants[1].set: must be an object"},
+      {variants("[" + def + R"(, {"name": "w", "set": {"wals": "ghost"}}])"),
+       "variants[1].set.wals: unknown key 'wals' (did you mean 'walls'?)"},
+      {variants("[" + def + R"(, {"name": "w", "set": {"walls": "open"}}])"),
+       "variants[1].set.walls: unknown value 'open'"},
+      {variants("[" + def + R"(, {"name": "w", "set": {"dt": 1e-5}}])"),
+       "variants[1].set.dt: a variant keeps each cell's E, A and dt"},
+      {variants("[" + def + R"(, {"name": "w", "set": {"error_at": "T"}}])"),
+       "variants[1].set.error_at: is a key of the variant itself"},
+      {variants("[" + def + R"(, {"name": "w", "set": {"dt_inferred": true}}])"),
+       "variants[1].set.dt_inferred"},
+      {variants("[" + def +
+                R"(, {"name": "w", "set": {"transfer": "blend", "flip_fraction": 2}}])"),
+       "variants[1].set.flip_fraction: with base case 0: flip_fraction must be a number in (0, 1)"},
+      {variants("[" + def + R"(, {"name": "w", "set": {"bc": "periodic", "walls": "ghost"}}])"),
+       "variants[1].set.walls: with base case 0"},
+      {variants("[" + def + R"(, {"name": "w", "set": {"method": "mpm"}}])"),
+       "variants[1]: makes base cases 0 and 1 the same run"},
+      {variants("[" + def + R"(, {"name": "w", "methods": "gimp"}])"),
+       "variants[1].methods: must be a non-empty array"},
+      {variants("[" + def + R"(, {"name": "w", "methods": ["gimpp"]}])"),
+       "variants[1].methods[0]: unknown value 'gimpp'"},
+      {variants("[" + def + R"(, {"name": "w", "methods": ["mpm", "mpm"]}])"),
+       "variants[1].methods[1]: repeats 'mpm'"},
+      {variants("[" + def + R"(, {"name": "w", "methods": ["cpgimp"]}])"),
+       "variants[1].methods: matches none of the base cases"},
+      {variants("[" + def + R"(, {"name": "w", "error_at": "end"}])"),
+       "variants[1].error_at: unknown value 'end' (expected T or max_over_time)"},
+      {variants(R"([{"name": "w", "set": {"walls": "ghost"}}])"),
+       "variants: needs one variant that changes nothing"},
+      {variants("[" + def + R"(, {"name": "w", "error_at": "max_over_time"}])",
+                R"("record": [], )"),
+       "variants[1].error_at: max_over_time needs \"error_over_time\" in record"},
+      {R"({"name": "t", "report": "table1", "reference": "x.csv", "cases": [
+          {"method": "gimp", "E": 4, "A": 0.01, "dt": 1e-3, "error_at": "max_over_time"}]})",
+       "cases[0].error_at: max_over_time needs \"error_over_time\" in record"},
+      {R"({"name": "t", "report": "table1", "reference": "x.csv", "cases": [
+          {"method": "gimp", "E": 4, "A": 0.01, "dt": 1e-3, "error_at": "t"}]})",
+       "cases[0].error_at: unknown value 't'"},
+  };
+  for (const auto& c : cases) {
+    const std::string message = error_of(c.text);
+    EXPECT_NE(message.find(c.expected), std::string::npos)
+        << "spec: " << c.text << "\nmessage: " << message;
+    EXPECT_EQ(message.rfind((dir / "spec.json").string(), 0), 0u) << message;  // names the file
+  }
+}
+
 TEST_F(SpecFiles, ADirectoryOrAMissingFileIsRefused) {
   EXPECT_THROW(load_spec(dir), SpecError);
   EXPECT_THROW(load_spec(dir / "absent.json"), SpecError);
@@ -161,13 +319,29 @@ TEST(ShippedSpecs, Table1HoldsExactlyThePapersCells) {
 
 TEST(ShippedSpecs, EverySpecLoads) {
   const fs::path root = MPMSTAB_SOURCE_DIR;
-  for (const char* name : {"table1", "table2", "fig1", "fig2", "fig3"}) {
+  for (const char* name : {"table1", "table2", "fig1", "fig2", "fig3", "variants"}) {
     EXPECT_NO_THROW(load_spec(root / "experiments" / (std::string(name) + ".json"))) << name;
   }
   const Spec fig2 = load_spec(root / "experiments/fig2.json");
   EXPECT_TRUE(fig2.cases[0].params.observe.history);
   const Spec table1 = load_spec(root / "experiments/table1.json");
   EXPECT_FALSE(table1.cases[0].params.observe.history);  // no history where no figure needs it
+}
+
+// The variants study: every Table 1 cell under the default, whose runs are table1.json's.
+TEST(ShippedSpecs, TheVariantsStudyStartsFromTable1sRuns) {
+  const fs::path root = MPMSTAB_SOURCE_DIR;
+  const Spec table1 = load_spec(root / "experiments/table1.json");
+  const Spec v = load_spec(root / "experiments/variants.json");
+  ASSERT_FALSE(v.variants.empty());
+  EXPECT_TRUE(v.variants.front().baseline);
+  ASSERT_EQ(v.variants.front().cases, table1.cases.size());
+  for (std::size_t i = 0; i < table1.cases.size(); ++i) {
+    EXPECT_EQ(canonical_parameters(v.cases[i].params),
+              canonical_parameters(table1.cases[i].params));
+  }
+  for (const auto& vs : v.variants)
+    EXPECT_FALSE(vs.description.empty()) << vs.name;
 }
 
 }  // namespace

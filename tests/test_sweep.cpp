@@ -120,6 +120,44 @@ TEST_F(Sweeps, KeysChangeWithEveryParameterAndWithWhatIsRecorded) {
   EXPECT_EQ(keys.size(), variants.size() + 1);
 }
 
+// Two variants that differ only in the error they compare run the same parameters: the sweep
+// runs each once and both rows carry the same record.
+TEST_F(Sweeps, ARepeatedRunIsComputedOnce) {
+  std::ofstream(dir / "base.json") << R"({"name": "base", "report": "table1",
+      "reference": "paper1.csv", "record": ["error_over_time"],
+      "defaults": {"T": 0.02, "cells": 20, "dt": 1e-4},
+      "cases": [{"E": 4, "A": 0.015, "method": "gimp"}, {"E": 4, "A": 0.015, "method": "mpm"}]})";
+  std::ofstream(dir / "v.json") << R"({"name": "v", "report": "variants", "cases_from": "base.json",
+      "variants": [{"name": "default"}, {"name": "over-time", "error_at": "max_over_time"},
+                   {"name": "pic", "set": {"transfer": "pic"}}]})";
+  const Spec spec = load_spec(dir / "v.json");
+  ASSERT_EQ(spec.cases.size(), 6u);
+  SweepOptions o;
+  o.jobs = 2;
+  o.cache = dir / "out/cache";
+  const SweepOutcome first = run_sweep(spec, o);
+  EXPECT_EQ(first.computed, 4);
+  EXPECT_EQ(first.shared, 2);
+  EXPECT_EQ(first.cached, 0);
+  EXPECT_EQ(first.records[0], first.records[2]);
+  EXPECT_EQ(first.records[1], first.records[3]);
+  std::size_t files = 0;
+  for ([[maybe_unused]] const auto& f : fs::directory_iterator(dir / "out/cache"))
+    ++files;
+  EXPECT_EQ(files, 4u);
+  // Without a cache (make check) the repeated run is still computed once.
+  SweepOptions no_cache;
+  no_cache.jobs = 3;
+  const SweepOutcome again = run_sweep(spec, no_cache);
+  EXPECT_EQ(again.computed, 4);
+  EXPECT_EQ(again.shared, 2);
+  EXPECT_EQ(again.records[0]["result"]["max_error"], first.records[0]["result"]["max_error"]);
+  // A spec built in code with the same case twice (the parser refuses that in a file).
+  Spec twice = load_spec(dir / "small.json");
+  twice.cases.push_back(twice.cases.front());
+  EXPECT_EQ(run_sweep(twice, no_cache).computed, 5);
+}
+
 TEST_F(Sweeps, UnstableCasesAreReportedNotFatal) {
   const Spec spec = load_spec(dir / "small.json");
   const SweepOutcome r = sweep(spec, 2, dir / "out");

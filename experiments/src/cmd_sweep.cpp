@@ -141,16 +141,20 @@ int cmd_sweep(const std::vector<std::string_view>& argv) {
     const int sig = g_signal ? static_cast<int>(g_signal) : SIGINT;
     std::cerr << "\n[" << spec.name << "] interrupted by "
               << (sig == SIGTERM ? "SIGTERM" : "SIGINT") << ": "
-              << outcome.computed + outcome.cached << " of " << spec.cases.size()
+              << outcome.computed + outcome.cached + outcome.shared << " of " << spec.cases.size()
               << " cases finished and are kept in " << options.cache.string()
               << "; no report was written. Run the same command again to resume.\n";
     return 128 + sig;
   }
   write_reports(spec, outcome, out);
   std::cerr << "[" << spec.name << "] " << spec.cases.size() << " cases (" << outcome.computed
-            << " computed, " << outcome.cached << " from the cache, " << outcome.unstable
-            << " unstable) in " << shortest(std::round(outcome.wall_seconds * 100) / 100)
-            << " s -> " << (out / (spec.name + ".md")).string() << "\n";
+            << " computed, " << outcome.cached << " from the cache, "
+            << (outcome.shared
+                    ? std::to_string(outcome.shared) + " sharing the run of an identical case, "
+                    : std::string())
+            << outcome.unstable << " unstable) in "
+            << shortest(std::round(outcome.wall_seconds * 100) / 100) << " s -> "
+            << (out / (spec.name + ".md")).string() << "\n";
   return 0;
 }
 
@@ -166,13 +170,36 @@ int cmd_index(const std::vector<std::string_view>& argv) {
 }
 
 int cmd_compare(const std::vector<std::string_view>& argv) {
-  const Args args(argv, {{"out"}, {"help", false}});
+  const Args args(argv, {{"out"}, {"error-at"}, {"help", false}});
   if (args.flag("help")) {
-    std::cout << "Usage: mpmstab compare <table1 spec> [<supporting spec>...] [--out DIR]\n\n"
-                 "Writes DIR/comparison.md and DIR/comparison.csv: every Table 1 cell against "
-                 "the paper,\nwith its verdict, its class of disagreement and the supporting "
-                 "experiments (courant,\nwalls, crossing, eq108) read from DIR/<name>.json.\n";
+    std::cout
+        << "Usage: mpmstab compare <table1 spec> [<supporting spec>...] [--out DIR]\n"
+           "                       [--error-at T|max_over_time]\n\n"
+           "Writes DIR/comparison.md and DIR/comparison.csv: every Table 1 cell against the "
+           "paper,\nwith its verdict, its class of disagreement and the supporting experiments "
+           "(courant,\nwalls, crossing, eq108) read from DIR/<name>.json. Each class section "
+           "links the variants\nstudy (DIR/variants.json, experiments/variants.json) when it "
+           "has been run.\n\n"
+           "Options:\n"
+           "  --out DIR       folder of the results and of the comparison (default results)\n"
+           "  --error-at X    which of our errors is compared with the paper's \"Max Error\": "
+           "T, the max\n"
+           "                  error at the final time (max_error, the default), or "
+           "max_over_time, the\n"
+           "                  largest over the run (max_error_over_time; the table1 spec must "
+           "record\n"
+           "                  error_over_time). Without it, each case's error_at in the spec "
+           "decides\n"
+           "                  (default T).\n";
     return 0;
+  }
+  std::optional<ErrorAt> error_at;
+  if (auto v = args.value("error-at")) {
+    error_at = parse_error_at(*v);
+    if (!error_at) {
+      throw UsageError("--error-at: unknown value '" + std::string(*v) +
+                       "' (expected T or max_over_time)");
+    }
   }
   auto specs = load_specs(args.positional());
   if (specs.front().report != ReportKind::table1) {
@@ -180,12 +207,20 @@ int cmd_compare(const std::vector<std::string_view>& argv) {
   }
   const Spec table1 = specs.front();
   specs.erase(specs.begin());
+  if (error_at == ErrorAt::max_over_time) {
+    for (const auto& c : table1.cases) {
+      if (!c.params.observe.error_over_time) {
+        throw UsageError("--error-at max_over_time: " + table1.path.string() +
+                         " does not record error_over_time");
+      }
+    }
+  }
   const auto out = output_folder(args);
   if (!std::filesystem::exists(out / (table1.name + ".json"))) {
     throw UsageError((out / (table1.name + ".json")).string() +
                      " does not exist: run mpmstab sweep " + table1.path.string() + " first");
   }
-  write_comparison(table1, specs, out);
+  write_comparison(table1, specs, out, error_at);
   return 0;
 }
 

@@ -12,6 +12,7 @@
 #include "csv.hpp"
 #include "report.hpp"
 #include "report_util.hpp"
+#include "variants.hpp"
 
 namespace mpmstab {
 
@@ -20,34 +21,11 @@ namespace {
 using ojson = nlohmann::ordered_json;
 namespace fs = std::filesystem;
 
-// The classes of (dis)agreement, in the order the report explains them.
-struct ClassInfo {
-  const char* id;
-  const char* title;
-};
-const std::vector<ClassInfo> kClasses = {
-    {"agree-stable", "Agree: both stable, max errors within a factor 3"},
-    {"agree-unstable", "Agree: both unstable"},
-    {"courant-above-1", "Paper stable at a Courant number c dt / h of 1 or more; ours unstable"},
-    {"above-our-edge", "Paper stable just below Courant 1, above where our runs stop surviving"},
-    {"gimp-wall-exit", "GIMP: a particle leaves through a wall (paper stable)"},
-    {"mpm-crossing-failure", "MPM: F <= 0 well below the Courant limit (paper stable)"},
-    {"other-failure", "Other failures where the paper is stable"},
-    {"mpm-error-larger", "MPM: both stable, our max error more than 3 times the paper's"},
-    {"gimp-error-larger", "GIMP: both stable, our max error more than 3 times the paper's"},
-    {"error-smaller", "Both stable, our max error less than a third of the paper's"},
-    {"paper-unstable-ours-stable", "Paper unstable, ours stable"},
-    {"unreadable", "Paper value unreadable in the transcription"},
-};
-
 struct Cell {
   const CaseSpec* spec;
   ojson row;  // our flat result row
   const PaperCell* paper = nullptr;
-  std::string verdict;                    // agree / differ / ...
-  std::string cls;                        // class id
-  std::optional<double> error_ratio;      // ours / paper
-  std::optional<double> dt_stable_ratio;  // ours / paper
+  CellVerdict v;
 };
 
 std::optional<std::vector<ojson>> load_rows(const fs::path& out, const std::string& name) {
@@ -55,13 +33,6 @@ std::optional<std::vector<ojson>> load_rows(const fs::path& out, const std::stri
   if (text.empty()) return std::nullopt;
   const ojson doc = ojson::parse(text);
   return std::vector<ojson>(doc["cases"].begin(), doc["cases"].end());
-}
-
-double quantile(std::vector<double> v, double q) {
-  std::sort(v.begin(), v.end());
-  const double pos = q * (v.size() - 1);
-  const std::size_t i = static_cast<std::size_t>(pos);
-  return i + 1 < v.size() ? v[i] + (pos - i) * (v[i + 1] - v[i]) : v.back();
 }
 
 std::string distribution(const std::vector<double>& v) {
@@ -84,82 +55,6 @@ bool same_cell(const ojson& a, const CaseSpec& c) {
   const auto& p = c.params;
   return a["method"] == std::string(to_string(p.method)) && a["E"].get<double>() == p.E &&
          a["A"].get<double>() == p.A && a["dt"].get<double>() == p.dt;
-}
-
-// Per method and amplitude: the smallest scanned Courant number from which on every run (every
-// E) fails. Runs that fail below it fail for another reason (see the classes below).
-std::map<std::pair<std::string, double>, double> courant_edges(const std::vector<ojson>& rows) {
-  std::map<std::pair<std::string, double>, std::map<double, bool>> all_fail;  // -> C -> all fail
-  for (const auto& r : rows) {
-    const auto key = std::make_pair(r["method"].get<std::string>(), r["A"].get<double>());
-    const double c = std::round(r["courant"].get<double>() * 100) / 100;
-    auto [it, fresh] = all_fail[key].try_emplace(c, true);
-    it->second = it->second && r["stable"] == false;
-  }
-  std::map<std::pair<std::string, double>, double> edge;
-  for (const auto& [key, by_c] : all_fail) {
-    double e = std::numeric_limits<double>::infinity();
-    for (auto it = by_c.rbegin(); it != by_c.rend() && it->second; ++it)
-      e = it->first;
-    edge[key] = e;
-  }
-  return edge;
-}
-
-void classify(Cell& cell, const std::map<std::pair<std::string, double>, double>& edges) {
-  const ojson& r = cell.row;
-  const std::string method = r["method"].get<std::string>();
-  const bool ours_stable = r["stable"].get<bool>();
-  if (!cell.paper || cell.paper->max_error.kind == PaperValue::unreadable) {
-    cell.verdict = "paper unreadable";
-    cell.cls = "unreadable";
-    return;
-  }
-  const bool paper_stable = cell.paper->max_error.kind == PaperValue::number;
-  if (cell.paper->dt_stable.kind == PaperValue::number && r["dt_stable_min"].is_number() &&
-      ours_stable) {
-    cell.dt_stable_ratio = r["dt_stable_min"].get<double>() / cell.paper->dt_stable.value;
-  }
-  if (paper_stable && ours_stable) {
-    const double ours = r["max_error"].get<double>();
-    cell.error_ratio = ours / cell.paper->max_error.value;
-    if (within_factor_3(ours, cell.paper->max_error.value)) {
-      cell.verdict = "agree";
-      cell.cls = "agree-stable";
-    } else if (*cell.error_ratio > 1) {
-      cell.verdict = "differ: our error " + ratio(*cell.error_ratio) + "x";
-      cell.cls = method == "mpm" ? "mpm-error-larger" : "gimp-error-larger";
-    } else {
-      cell.verdict = "differ: our error " + ratio(*cell.error_ratio) + "x";
-      cell.cls = "error-smaller";
-    }
-    return;
-  }
-  if (!paper_stable && !ours_stable) {
-    cell.verdict = "agree: both unstable";
-    cell.cls = "agree-unstable";
-    return;
-  }
-  if (!paper_stable) {
-    cell.verdict = "paper unstable, ours stable";
-    cell.cls = "paper-unstable-ours-stable";
-    return;
-  }
-  cell.verdict = "paper stable, ours unstable";
-  const double courant = r["courant"].get<double>();
-  const auto edge = edges.find({method, r["A"].get<double>()});
-  const std::string reason = r["failure_reason"].get<std::string>();
-  if (courant >= 1.0) {
-    cell.cls = "courant-above-1";
-  } else if (edge != edges.end() && courant >= edge->second * (1 - 1e-9)) {
-    cell.cls = "above-our-edge";
-  } else if (method == "gimp" && reason == "left_domain") {
-    cell.cls = "gimp-wall-exit";
-  } else if (method == "mpm" && reason != "left_domain") {
-    cell.cls = "mpm-crossing-failure";
-  } else {
-    cell.cls = "other-failure";
-  }
 }
 
 const Cell* find_cell(const std::vector<Cell>& cells, const char* method, double E, double A,
@@ -191,7 +86,138 @@ std::string cell_name(const Cell& c) {
 
 }  // namespace
 
-void write_comparison(const Spec& table1, const std::vector<Spec>& support, const fs::path& out) {
+const std::vector<ComparisonClass>& comparison_classes() {
+  static const std::vector<ComparisonClass> classes = {
+      {"agree-stable", "Agree: both stable, max errors within a factor 3", ClassKind::agreement},
+      {"agree-unstable", "Agree: both unstable", ClassKind::agreement},
+      {"courant-above-1", "Paper stable at a Courant number c dt / h of 1 or more; ours unstable",
+       ClassKind::verdict},
+      {"above-our-edge", "Paper stable just below Courant 1, above where our runs stop surviving",
+       ClassKind::verdict},
+      {"gimp-wall-exit", "GIMP: a particle leaves through a wall (paper stable)",
+       ClassKind::verdict},
+      {"mpm-crossing-failure", "MPM: F <= 0 well below the Courant limit (paper stable)",
+       ClassKind::verdict},
+      {"other-failure", "Other failures where the paper is stable", ClassKind::verdict},
+      {"mpm-error-larger", "MPM: both stable, our max error more than 3 times the paper's",
+       ClassKind::error},
+      {"gimp-error-larger", "GIMP: both stable, our max error more than 3 times the paper's",
+       ClassKind::error},
+      {"error-smaller", "Both stable, our max error less than a third of the paper's",
+       ClassKind::error},
+      {"paper-unstable-ours-stable", "Paper unstable, ours stable", ClassKind::verdict},
+      {"unreadable", "Paper value unreadable in the transcription", ClassKind::unreadable},
+  };
+  return classes;
+}
+
+const ComparisonClass* find_class(const std::string& id) {
+  for (const auto& k : comparison_classes()) {
+    if (id == k.id) return &k;
+  }
+  return nullptr;
+}
+
+CourantEdges courant_edges(const std::vector<ojson>& rows) {
+  std::map<std::pair<std::string, double>, std::map<double, bool>> all_fail;  // -> C -> all fail
+  for (const auto& r : rows) {
+    const auto key = std::make_pair(r["method"].get<std::string>(), r["A"].get<double>());
+    const double c = std::round(r["courant"].get<double>() * 100) / 100;
+    auto [it, fresh] = all_fail[key].try_emplace(c, true);
+    it->second = it->second && r["stable"] == false;
+  }
+  CourantEdges edge;
+  for (const auto& [key, by_c] : all_fail) {
+    double e = std::numeric_limits<double>::infinity();
+    for (auto it = by_c.rbegin(); it != by_c.rend() && it->second; ++it)
+      e = it->first;
+    edge[key] = e;
+  }
+  return edge;
+}
+
+bool CellVerdict::same_verdict() const {
+  const ComparisonClass* k = find_class(cls);
+  return k && (k->kind == ClassKind::agreement || k->kind == ClassKind::error);
+}
+
+void AgreementCounts::add(const CellVerdict& v) {
+  if (!v.compared()) return;
+  ++verdicts_compared;
+  if (v.same_verdict()) ++verdicts_agree;
+  if (v.error_ratio) {
+    ++errors_compared;
+    if (v.cls == "agree-stable") ++errors_within;
+    error_ratios.push_back(*v.error_ratio);
+  }
+  if (v.dt_stable_ratio) dt_stable_ratios.push_back(*v.dt_stable_ratio);
+}
+
+CellVerdict classify(const ojson& r, const PaperCell* paper, const CourantEdges& edges,
+                     ErrorAt error_at) {
+  CellVerdict cell;
+  const std::string method = r["method"].get<std::string>();
+  const bool ours_stable = r["stable"].get<bool>();
+  if (!paper || paper->max_error.kind == PaperValue::unreadable) {
+    cell.verdict = "paper unreadable";
+    cell.cls = "unreadable";
+    return cell;
+  }
+  const bool paper_stable = paper->max_error.kind == PaperValue::number;
+  if (paper->dt_stable.kind == PaperValue::number && r["dt_stable_min"].is_number() &&
+      ours_stable) {
+    cell.dt_stable_ratio = r["dt_stable_min"].get<double>() / paper->dt_stable.value;
+  }
+  const std::optional<double> ours = compared_error(r, error_at);
+  if (paper_stable && ours_stable && !ours) {
+    cell.verdict = "our error not recorded";
+    cell.cls = "unreadable";
+    return cell;
+  }
+  if (paper_stable && ours_stable) {
+    cell.error_ratio = *ours / paper->max_error.value;
+    if (within_factor_3(*ours, paper->max_error.value)) {
+      cell.verdict = "agree";
+      cell.cls = "agree-stable";
+    } else if (*cell.error_ratio > 1) {
+      cell.verdict = "differ: our error " + ratio(*cell.error_ratio) + "x";
+      cell.cls = method == "mpm" ? "mpm-error-larger" : "gimp-error-larger";
+    } else {
+      cell.verdict = "differ: our error " + ratio(*cell.error_ratio) + "x";
+      cell.cls = "error-smaller";
+    }
+    return cell;
+  }
+  if (!paper_stable && !ours_stable) {
+    cell.verdict = "agree: both unstable";
+    cell.cls = "agree-unstable";
+    return cell;
+  }
+  if (!paper_stable) {
+    cell.verdict = "paper unstable, ours stable";
+    cell.cls = "paper-unstable-ours-stable";
+    return cell;
+  }
+  cell.verdict = "paper stable, ours unstable";
+  const double courant = r["courant"].get<double>();
+  const auto edge = edges.find({method, r["A"].get<double>()});
+  const std::string reason = r["failure_reason"].get<std::string>();
+  if (courant >= 1.0) {
+    cell.cls = "courant-above-1";
+  } else if (edge != edges.end() && courant >= edge->second * (1 - 1e-9)) {
+    cell.cls = "above-our-edge";
+  } else if (method != "mpm" && reason == "left_domain") {
+    cell.cls = "gimp-wall-exit";
+  } else if (method == "mpm" && reason != "left_domain") {
+    cell.cls = "mpm-crossing-failure";
+  } else {
+    cell.cls = "other-failure";
+  }
+  return cell;
+}
+
+void write_comparison(const Spec& table1, const std::vector<Spec>& support, const fs::path& out,
+                      std::optional<ErrorAt> error_at) {
   const auto rows = load_rows(out, table1.name);
   if (!rows)
     throw std::runtime_error((out / (table1.name + ".json")).string() +
@@ -209,23 +235,27 @@ void write_comparison(const Spec& table1, const std::vector<Spec>& support, cons
     return nullptr;
   };
   const auto paper = read_paper_table1(table1);
-  const auto edges = have("courant") ? courant_edges(exp["courant"])
-                                     : std::map<std::pair<std::string, double>, double>{};
+  const auto edges = have("courant") ? courant_edges(exp["courant"]) : CourantEdges{};
 
+  // The error of a cell compared with the paper's: --error-at, or the case's own choice.
+  auto error_of = [&](const Cell& c) { return error_at.value_or(c.spec->error_at); };
+  auto shown_error = [&](const Cell& c) {
+    const auto e = compared_error(c.row, error_of(c));
+    return e ? sci(*e) : std::string("–");
+  };
   std::vector<Cell> cells;
   for (std::size_t i = 0; i < table1.cases.size(); ++i) {
     Cell c;
     c.spec = &table1.cases[i];
     c.row = (*rows)[i];
-    const auto& p = table1.cases[i].params;
-    const auto it = paper.find({p.A, p.E, p.dt, std::string(to_string(p.method))});
+    const auto it = paper.find(paper_key(table1.cases[i]));
     if (it != paper.end()) c.paper = &it->second;
-    classify(c, edges);
+    c.v = classify(c.row, c.paper, edges, error_at.value_or(table1.cases[i].error_at));
     cells.push_back(std::move(c));
   }
   std::map<std::string, std::vector<const Cell*>> by_class;
   for (const auto& c : cells)
-    by_class[c.cls].push_back(&c);
+    by_class[c.v.cls].push_back(&c);
   auto count = [&](const char* cls) { return by_class.count(cls) ? by_class[cls].size() : 0; };
 
   // ---- comparison.csv: the verdict of every cell (blessed as an expectation).
@@ -238,7 +268,7 @@ void write_comparison(const Spec& table1, const std::vector<Spec>& support, cons
   for (const auto& c : cells) {
     const auto& p = c.spec->params;
     csv << to_string(p.method) << ',' << shortest(p.E) << ',' << shortest(p.A) << ','
-        << shortest(p.dt) << ',' << csv_field(c.verdict) << ',' << c.cls << ','
+        << shortest(p.dt) << ',' << csv_field(c.v.verdict) << ',' << c.v.cls << ','
         << (c.paper ? c.paper->confidence : "") << '\n';
   }
   write_if_changed(out / "comparison.csv", csv.str());
@@ -258,22 +288,23 @@ void write_comparison(const Spec& table1, const std::vector<Spec>& support, cons
         "blessed (`make bless REASON=...`).\n\n";
 
   // Summary counts.
-  int verdicts_compared = 0, verdicts_agree = 0, errors_compared = 0, errors_within = 0;
-  std::vector<double> dt_ratio_mpm, dt_ratio_gimp;
+  AgreementCounts all, mpm_cells, gimp_cells;
   for (const auto& c : cells) {
-    if (c.cls == "unreadable") continue;
-    ++verdicts_compared;
-    static const std::set<std::string> kSameVerdict = {
-        "agree-stable", "agree-unstable", "mpm-error-larger", "gimp-error-larger", "error-smaller"};
-    if (kSameVerdict.count(c.cls)) ++verdicts_agree;
-    if (c.error_ratio) {
-      ++errors_compared;
-      if (c.cls == "agree-stable") ++errors_within;
-    }
-    if (c.dt_stable_ratio) {
-      (c.row["method"] == "mpm" ? dt_ratio_mpm : dt_ratio_gimp).push_back(*c.dt_stable_ratio);
-    }
+    all.add(c.v);
+    (c.row["method"] == "mpm" ? mpm_cells : gimp_cells).add(c.v);
   }
+  const int verdicts_compared = all.verdicts_compared, verdicts_agree = all.verdicts_agree;
+  const int errors_compared = all.errors_compared, errors_within = all.errors_within;
+  const std::vector<double>& dt_ratio_mpm = mpm_cells.dt_stable_ratios;
+  const std::vector<double>& dt_ratio_gimp = gimp_cells.dt_stable_ratios;
+  std::set<ErrorAt> compared;
+  for (const auto& c : cells)
+    compared.insert(error_of(c));
+  const std::string error_text =
+      compared.size() > 1 ? "per case (error_at): at T, or the largest over the run"
+      : *compared.begin() == ErrorAt::T
+          ? "max error at T (`max_error`)"
+          : "max error over the run (`max_error_over_time`, chosen with --error-at or error_at)";
   md << "## Summary\n\n"
      << "| | |\n|---|---|\n"
      << "| cells | " << cells.size() << " (" << count("unreadable")
@@ -282,10 +313,11 @@ void write_comparison(const Spec& table1, const std::vector<Spec>& support, cons
      << " |\n"
      << "| max errors within a factor 3 (both stable) | " << errors_within << " of "
      << errors_compared << " |\n"
+     << "| our error compared with the paper's Max Error | " << error_text << " |\n"
      << "| our dt_stable / paper's, MPM | " << distribution(dt_ratio_mpm) << " |\n"
      << "| our dt_stable / paper's, GIMP | " << distribution(dt_ratio_gimp) << " |\n\n";
   md << "| class | cells |\n|---|---|\n";
-  for (const auto& k : kClasses)
+  for (const auto& k : comparison_classes())
     md << "| [" << k.title << "](#" << k.id << ") | " << count(k.id) << " |\n";
   md << "\n";
 
@@ -302,16 +334,31 @@ void write_comparison(const Spec& table1, const std::vector<Spec>& support, cons
        << (c.spec->dt_inferred ? " (inferred)" : "") << " | " << to_string(p.method) << " | "
        << sci(r["courant"].get<double>()) << " | " << (c.paper ? show(c.paper->dt_stable) : "–")
        << " | " << (r["stable"] == true ? opt_sci(r["dt_stable_min"]) : "\\*") << " | "
-       << (c.dt_stable_ratio ? ratio(*c.dt_stable_ratio) : "–") << " | "
+       << (c.v.dt_stable_ratio ? ratio(*c.v.dt_stable_ratio) : "–") << " | "
        << (c.paper ? show(c.paper->max_error) : "–") << " | "
-       << (r["stable"] == true ? opt_sci(r["max_error"]) : "\\*") << " | "
-       << (c.error_ratio ? ratio(*c.error_ratio) : "–") << " | " << c.verdict << " | [" << c.cls
-       << "](#" << c.cls << ") | "
+       << (r["stable"] == true ? shown_error(c) : "\\*") << " | "
+       << (c.v.error_ratio ? ratio(*c.v.error_ratio) : "–") << " | " << c.v.verdict << " | ["
+       << c.v.cls << "](#" << c.v.cls << ") | "
        << (c.paper ? (c.paper->confidence == "high" ? "high" : "**" + c.paper->confidence + "**")
                    : "–")
        << " |\n";
   }
   md << "\n## Classes of disagreement\n\n";
+
+  // The variants study (experiments/variants.json), if it was run.
+  std::optional<ojson> study;
+  if (const std::string text = read_file(out / "variants.json"); !text.empty()) {
+    const ojson doc = ojson::parse(text);
+    if (doc.contains("study")) study = doc["study"];
+  }
+  auto variants_note = [&](const char* id) {
+    if (!study) {
+      md << "*Variants study not run: `make reproduce` runs `experiments/variants.json` before "
+            "this comparison.*\n\n";
+      return;
+    }
+    md << variants_line(*study, id, "variants.md");
+  };
 
   auto list = [&](const char* cls) {
     std::string s;
@@ -321,7 +368,7 @@ void write_comparison(const Spec& table1, const std::vector<Spec>& support, cons
     return s;
   };
   auto heading = [&](const char* id) {
-    for (const auto& k : kClasses) {
+    for (const auto& k : comparison_classes()) {
       if (std::string(k.id) == id)
         md << "<a id=\"" << id << "\"></a>\n### " << k.title << " (" << count(id) << ")\n\n";
     }
@@ -334,6 +381,7 @@ void write_comparison(const Spec& table1, const std::vector<Spec>& support, cons
   // Courant >= 1 and the edge.
   heading("courant-above-1");
   md << "Cells: " << list("courant-above-1") << ".\n\n";
+  variants_note("courant-above-1");
   md << "An explicit scheme is stable only below a Courant number of order one: a wave must not "
         "cross more than a cell per step. For this problem the discrete dynamics depend on E and "
         "dt only through c dt / h (the manufactured solution and the scheme are invariant when t "
@@ -378,6 +426,7 @@ void write_comparison(const Spec& table1, const std::vector<Spec>& support, cons
 
   heading("above-our-edge");
   md << "Cells: " << list("above-our-edge") << ".\n\n";
+  variants_note("above-our-edge");
   if (have("courant")) {
     md << "From these Courant numbers on, every run of the scan fails, for every E (per method "
           "and A: ";
@@ -398,6 +447,7 @@ void write_comparison(const Spec& table1, const std::vector<Spec>& support, cons
   // Walls.
   heading("gimp-wall-exit");
   md << "Cells: " << list("gimp-wall-exit") << ".\n\n";
+  variants_note("gimp-wall-exit");
   if (have("walls")) {
     int survived = 0, n = 0, meaningless = 0;
     std::vector<double> paper_rel;
@@ -428,9 +478,11 @@ void write_comparison(const Spec& table1, const std::vector<Spec>& support, cons
   // MPM crossings.
   heading("mpm-crossing-failure");
   md << "Cells: " << list("mpm-crossing-failure") << ".\n\n";
+  variants_note("mpm-crossing-failure");
   md << "Explained with the next class: both come from particles crossing cells.\n\n";
   heading("mpm-error-larger");
   md << "Cells: " << list("mpm-error-larger") << ".\n\n";
+  variants_note("mpm-error-larger");
   if (have("crossing")) {
     md << "Linear MPM's shape-function gradient jumps when a particle crosses a cell boundary, "
           "so its internal force is noisy once particles move between cells (the grid-crossing "
@@ -458,7 +510,7 @@ void write_comparison(const Spec& table1, const std::vector<Spec>& support, cons
     std::vector<double> paper_rel, ours_rel;
     for (const Cell* c : by_class["mpm-error-larger"]) {
       paper_rel.push_back(c->paper->max_error.value / c->spec->params.A);
-      ours_rel.push_back(c->row["max_error"].get<double>() / c->spec->params.A);
+      ours_rel.push_back(*compared_error(c->row, error_of(*c)) / c->spec->params.A);
     }
     // Smallest amplitude, and the first amplitude with crossings, for E = 4.
     const ojson* calm_mpm = nullptr;
@@ -506,16 +558,18 @@ void write_comparison(const Spec& table1, const std::vector<Spec>& support, cons
 
   heading("gimp-error-larger");
   md << "Cells: " << list("gimp-error-larger") << ".\n\n";
+  variants_note("gimp-error-larger");
   if (have("walls")) {
     int n = 0;
     std::vector<double> dirichlet, periodic;
     std::string helped;
     for (const Cell* c : by_class["gimp-error-larger"]) {
       const ojson* r = periodic_run(*c);
-      if (!r || (*r)["stable"] != true) continue;
+      const auto periodic_error = r ? compared_error(*r, error_of(*c)) : std::nullopt;
+      if (!periodic_error) continue;
       ++n;
-      const double ours = (*r)["max_error"].get<double>();
-      dirichlet.push_back(*c->error_ratio);
+      const double ours = *periodic_error;
+      dirichlet.push_back(*c->v.error_ratio);
       periodic.push_back(ours / c->paper->max_error.value);
       if (within_factor_3(ours, c->paper->max_error.value)) {
         helped += (helped.empty() ? "" : "; ") + cell_name(*c);
@@ -527,16 +581,16 @@ void write_comparison(const Spec& table1, const std::vector<Spec>& support, cons
           "with periodic boundaries: ours / paper goes from "
        << distribution(dirichlet) << " to " << distribution(periodic) << ". Within a factor 3 "
        << "with periodic boundaries: " << (helped.empty() ? std::string("none") : helped)
-       << ". The walls explain the gap only there; for the other cells of this class the cause "
-          "is not established here, and a study of the documented implementation choices "
-          "(GIMP at the wall, position update, velocity transfer, stress-update order) is the "
-          "way to find it.\n\n";
+       << ". The walls explain the gap only there; what the documented implementation choices "
+          "(GIMP at the wall, position update, velocity transfer, stress-update order and the "
+          "others) do to this class is in the line above and in the variants study.\n\n";
   } else {
     missing("walls");
   }
 
   heading("other-failure");
   md << "Cells: " << list("other-failure") << ".\n\n";
+  variants_note("other-failure");
   if (have("courant") && by_class.count("other-failure")) {
     md << "Each of these fails at a Courant number where the scan ([courant.md](courant.md)) "
           "shows the same method and amplitude on the edge: some values of E survive, others "
@@ -561,8 +615,10 @@ void write_comparison(const Spec& table1, const std::vector<Spec>& support, cons
   }
   heading("error-smaller");
   md << "Cells: " << list("error-smaller") << ".\n\n";
+  variants_note("error-smaller");
   heading("paper-unstable-ours-stable");
   md << "Cells: " << list("paper-unstable-ours-stable") << ".\n\n";
+  variants_note("paper-unstable-ours-stable");
 
   // dt_stable gap.
   md << "<a id=\"dt-stable\"></a>\n### dt_stable: ours against the paper's, every stable cell\n\n"

@@ -21,8 +21,13 @@ namespace {
 namespace fs = std::filesystem;
 using ojson = nlohmann::ordered_json;
 
-// A regression row is identified by every parameter that can change it.
-const std::vector<std::string>& kKeyColumns = parameter_names();
+// A regression row is identified by every parameter that can change it, and in a variants
+// experiment by its variant (two variants may run the same parameters).
+const std::vector<std::string> kKeyColumns = [] {
+  std::vector<std::string> keys = parameter_names();
+  keys.push_back("variant");
+  return keys;
+}();
 
 // Every deterministic result column and how it is compared. Verdicts, reasons and counts are
 // exact; floating-point values use the relative tolerance of the options.
@@ -57,7 +62,8 @@ Table table_from_csv(const fs::path& file) {
 }
 
 // A blessed file written before a key column existed holds runs with that parameter at its
-// default (a new parameter never changes what the old runs did): read the missing cells so.
+// default (a new parameter never changes what the old runs did): read the missing cells so. A
+// missing variant column reads as "" (not a variant).
 Table blessed_table(const fs::path& file) {
   Table t = table_from_csv(file);
   RunResult defaults;
@@ -208,6 +214,8 @@ int run_bless(const std::vector<Spec>& specs, const RegressionOptions& o,
     if (fs::exists(file)) {
       const Table old = keys == kKeyColumns ? blessed_table(file) : table_from_csv(file);
       const auto diffs = compare_tables(old, obtained, keys, rules);
+      // Nothing changed: the file stays as it is, also in the columns it was written with.
+      if (diffs.empty()) return;
       // Keep the old text of every value that still agrees: only changed values are rewritten.
       std::map<std::string, const Row*> old_rows;
       for (const auto& row : old.rows) {

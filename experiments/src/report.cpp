@@ -12,6 +12,7 @@
 #include "cache.hpp"
 #include "csv.hpp"
 #include "report_util.hpp"
+#include "variants.hpp"
 
 namespace mpmstab {
 
@@ -31,6 +32,9 @@ const std::vector<std::string> kColumns = {
     "crossings", "dt_stable_min", "dt_cfl", "dt_sound", "courant", "key",
     // Measurements of the machine: the only columns that differ between identical runs.
     "wall_seconds", "ns_per_particle_step"};
+// Before those, in a variants experiment or where a case compares another error than the one at
+// T: the variant, the paper's column and which error is compared with it.
+const std::vector<std::string> kStudyColumns = {"variant", "paper_method", "error_at"};
 
 // ---------------------------------------------------------------------------------------------
 // Provenance of a set of cases: each field's distinct values, in spec order.
@@ -83,7 +87,6 @@ Table1Summary summarize_table1(const Spec& spec, const std::vector<ojson>& rows,
                                const std::map<Table1Key, PaperCell>& paper) {
   Table1Summary s;
   for (std::size_t i = 0; i < rows.size(); ++i) {
-    const auto& p = spec.cases[i].params;
     const ojson& r = rows[i];
     ++s.cells;
     const bool ours_stable = r["stable"].get<bool>();
@@ -94,7 +97,7 @@ Table1Summary summarize_table1(const Spec& spec, const std::vector<ojson>& rows,
       ++s.ours_unstable;
       ++s.reasons[r["failure_reason"].get<std::string>()];
     }
-    const auto it = paper.find({p.A, p.E, p.dt, std::string(to_string(p.method))});
+    const auto it = paper.find(paper_key(spec.cases[i]));
     if (it == paper.end()) {
       ++s.paper_unknown;
       continue;
@@ -112,9 +115,10 @@ Table1Summary summarize_table1(const Spec& spec, const std::vector<ojson>& rows,
       ++s.paper_stable_ours_not;
       if (r["courant"].get<double>() >= 1.0) ++s.paper_stable_ours_not_courant_ge1;
     }
-    if (paper_stable && ours_stable) {
+    const auto ours = compared_error(r, spec.cases[i].error_at);
+    if (paper_stable && ours) {
       ++s.errors_compared;
-      if (within_factor_3(r["max_error"].get<double>(), pe.value)) ++s.errors_within_3;
+      if (within_factor_3(*ours, pe.value)) ++s.errors_within_3;
     }
   }
   return s;
@@ -147,6 +151,9 @@ std::string table1_summary_text(const Table1Summary& s) {
 
 std::string table1_markdown(const Spec& spec, const std::vector<ojson>& rows, const fs::path& out) {
   const auto paper = read_paper_table1(spec);
+  bool over_time = false;
+  for (const auto& c : spec.cases)
+    over_time = over_time || c.error_at == ErrorAt::max_over_time;
   std::ostringstream md;
   md << "## Results\n\n**Summary.** " << table1_summary_text(summarize_table1(spec, rows, paper))
      << "\n\n";
@@ -159,7 +166,11 @@ std::string table1_markdown(const Spec& spec, const std::vector<ojson>& rows, co
         "eq. (108) (stress "
      << to_string(spec.cases.front().params.stable.sigma) << ", ||v|| "
      << to_string(spec.cases.front().params.stable.vnorm)
-     << "). Cost: wall time of the run and ns per particle-step.\n\n";
+     << "). Cost: wall time of the run and ns per particle-step."
+     << (over_time ? " Max error ours: at T, or the largest over the run where marked (over time), "
+                     "as the case's error_at chooses."
+                   : "")
+     << "\n\n";
 
   // Blocks in the order the spec lists them: E, then A.
   std::vector<std::pair<double, double>> blocks;
@@ -182,18 +193,22 @@ std::string table1_markdown(const Spec& spec, const std::vector<ojson>& rows, co
       const auto& p = cs.params;
       if (p.E != E || p.A != A) continue;
       const ojson& r = rows[i];
-      const auto it = paper.find({p.A, p.E, p.dt, std::string(to_string(p.method))});
+      const auto it = paper.find(paper_key(cs));
       const PaperCell* pc = it == paper.end() ? nullptr : &it->second;
+      const auto ours = compared_error(r, cs.error_at);
       std::string ratio_text = "–";
-      if (pc && pc->max_error.kind == PaperValue::number && r["max_error"].is_number()) {
-        ratio_text = ratio(r["max_error"].get<double>() / pc->max_error.value);
+      if (pc && pc->max_error.kind == PaperValue::number && ours) {
+        ratio_text = ratio(*ours / pc->max_error.value);
       }
       md << "| " << param(p.dt) << (cs.dt_inferred ? " (inferred)" : "") << " | "
          << to_string(p.method) << " | " << sci(r["courant"].get<double>()) << " | "
          << (pc ? show(pc->dt_stable) : "–") << " | "
          << (r["stable"].get<bool>() ? opt_sci(r["dt_stable_min"]) : "\\*") << " | "
          << (pc ? show(pc->max_error) : "–") << " | "
-         << (r["stable"].get<bool>() ? opt_sci(r["max_error"]) : "\\*") << " | " << ratio_text
+         << (!r["stable"].get<bool>() ? std::string("\\*")
+             : ours                   ? sci(*ours)
+                                      : std::string("–"))
+         << (cs.error_at == ErrorAt::max_over_time ? " (over time)" : "") << " | " << ratio_text
          << " | " << verdict(r) << " | " << (pc ? pc->confidence : "not in the paper") << " | "
          << cost(r) << " |\n";
     }
@@ -365,6 +380,7 @@ std::string cases_markdown(const Spec& spec, const std::vector<ojson>& rows) {
         "update", "body_force_time", "dt_stable_sigma", "dt_stable_vnorm"}) {
     if (std::find(params.begin(), params.end(), col) != params.end()) continue;
     const ojson& v = rows.front()[col];
+    if (v.is_null()) continue;  // not applicable to these runs (flip_fraction without a blend)
     fixed_params += std::string(fixed_params.empty() ? "" : ", ") + col + " = " +
                     (v.is_string() ? v.get<std::string>() : shortest(v.get<double>()));
   }
@@ -387,6 +403,7 @@ std::string cases_markdown(const Spec& spec, const std::vector<ojson>& rows) {
       const ojson& v = r[p];
       md << " "
          << (v.is_string() ? v.get<std::string>()
+             : v.is_null() ? std::string("–")
              : p == "dt"   ? param(v.get<double>())
                            : shortest(v.get<double>()))
          << " |";
@@ -999,6 +1016,9 @@ const std::vector<std::string> kEdgeColumns = {"dt_edge",
 ojson flat_row(const CaseSpec& c, const ojson& record) {
   const ojson& r = record["result"];
   ojson row;
+  row["variant"] = c.variant;
+  row["paper_method"] = to_string(c.paper_method);
+  row["error_at"] = to_string(c.error_at);
   for (const auto& col : kColumns) {
     if (col == "dt_inferred") {
       row[col] = c.dt_inferred;
@@ -1035,8 +1055,23 @@ std::string csv_cell(const ojson& v) {
   return csv_field(v.get<std::string>());
 }
 
-const std::vector<std::string>& result_columns() {
-  return kColumns;
+namespace {
+
+bool has_study_columns(const Spec& spec) {
+  if (spec.report == ReportKind::variants) return true;
+  for (const auto& c : spec.cases) {
+    if (c.error_at != ErrorAt::T) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+std::vector<std::string> result_columns(const Spec& spec) {
+  std::vector<std::string> columns;
+  if (has_study_columns(spec)) columns = kStudyColumns;
+  columns.insert(columns.end(), kColumns.begin(), kColumns.end());
+  return columns;
 }
 
 void write_if_changed(const fs::path& path, const std::string& content) {
@@ -1047,9 +1082,15 @@ void write_if_changed(const fs::path& path, const std::string& content) {
 void write_reports(const Spec& spec, const SweepOutcome& outcome, const fs::path& out) {
   fs::create_directories(out);
   std::vector<ojson> rows;
+  const bool study_columns = has_study_columns(spec);
   for (std::size_t i = 0; i < spec.cases.size(); ++i) {
     rows.push_back(flat_row(spec.cases[i], outcome.records[i]));
+    if (!study_columns) {
+      for (const auto& col : kStudyColumns)
+        rows.back().erase(col);
+    }
   }
+  const std::vector<std::string> columns = result_columns(spec);
   const ojson prov = aggregate_provenance(outcome.records);
 
   // Timing of the sweep: a rerun served from the cache keeps the figure of the sweep that
@@ -1081,16 +1122,29 @@ void write_reports(const Spec& spec, const SweepOutcome& outcome, const fs::path
   csv << header
       << "# wall_seconds and ns_per_particle_step are measurements of the machine; every other "
          "column is the same for the same spec whatever the number of jobs.\n";
-  for (std::size_t c = 0; c < kColumns.size(); ++c)
-    csv << (c ? "," : "") << kColumns[c];
+  for (std::size_t c = 0; c < columns.size(); ++c)
+    csv << (c ? "," : "") << columns[c];
   csv << "\n";
   for (const auto& row : rows) {
-    for (std::size_t c = 0; c < kColumns.size(); ++c) {
-      csv << (c ? "," : "") << csv_cell(row[kColumns[c]]);
+    for (std::size_t c = 0; c < columns.size(); ++c) {
+      csv << (c ? "," : "") << csv_cell(row[columns[c]]);
     }
     csv << "\n";
   }
   write_if_changed(out / (spec.name + ".csv"), csv.str());
+
+  // The variants study reads the courant scan of the same folder (for the class above-our-edge).
+  std::optional<VariantsStudy> study;
+  bool have_courant = false;
+  if (spec.report == ReportKind::variants) {
+    CourantEdges edges;
+    if (const std::string text = read_file(out / "courant.json"); !text.empty()) {
+      const ojson courant = ojson::parse(text);
+      edges = courant_edges(std::vector<ojson>(courant["cases"].begin(), courant["cases"].end()));
+      have_courant = true;
+    }
+    study = study_variants(spec, rows, read_paper_table1(spec), edges);
+  }
 
   // JSON: the same content.
   ojson doc;
@@ -1101,6 +1155,7 @@ void write_reports(const Spec& spec, const SweepOutcome& outcome, const fs::path
   doc["provenance"] = prov;
   doc["sweep"] = sweep;
   doc["cases"] = rows;
+  if (study) doc["study"] = study_to_json(*study);
   write_if_changed(json_path, doc.dump(2) + "\n");
 
   // Markdown.
@@ -1130,6 +1185,10 @@ void write_reports(const Spec& spec, const SweepOutcome& outcome, const fs::path
     case ReportKind::edge:
       md << edge_markdown(spec, rows);
       write_if_changed(out / (spec.name + "_data.csv"), edge_data_csv(rows, header));
+      break;
+    case ReportKind::variants:
+      md << variants_markdown(spec, *study, have_courant);
+      write_if_changed(out / (spec.name + "_data.csv"), variants_data_csv(*study, header));
       break;
     case ReportKind::figure:
       md << figure_markdown(spec, rows);
@@ -1203,6 +1262,13 @@ void write_index(const std::vector<Spec>& specs, const fs::path& out) {
       md << "![" << spec->title << "](" << spec->name << ".png)\n\n**What it shows.** "
          << edge_summary_text(rows) << " Details: [" << spec->name << ".md](" << spec->name
          << ".md).\n\n";
+    } else if (spec->report == ReportKind::variants) {
+      md << "![" << spec->title << "](" << spec->name << ".png)\n\n**What it shows.** "
+         << spec->variants.size()
+         << " variants of Table 1's cells, each a documented implementation choice (or a pair) "
+            "changed from the default; per variant and method the agreement with the paper and "
+            "the cost, and which choices can or cannot account for each class of disagreement: ["
+         << spec->name << ".md](" << spec->name << ".md).\n\n";
     } else if (spec->report == ReportKind::cases) {
       int unstable = 0, meaningless = 0;
       for (const auto& r : rows) {

@@ -19,10 +19,12 @@ void write_reports(const Spec& spec, const SweepOutcome& outcome, const std::fil
 // Writes <out>/README.md, the index a reader browses, from the <name>.json of each spec.
 void write_index(const std::vector<Spec>& specs, const std::filesystem::path& out);
 
-// The columns of a result row, in CSV order: the run's (the last two of which are timing
-// measurements), then for edge experiments those of the search.
-std::vector<std::string> result_columns(ReportKind kind);
-// One case as a flat row of result_columns().
+// The CSV columns of a spec's result rows: in a variants experiment (or where a case compares
+// another error than the one at T) the variant, the paper's column and the error compared, then
+// the run's columns (the last two of which are timing measurements).
+std::vector<std::string> result_columns(const Spec& spec);
+// One case as a flat row: every column of result_columns(), for edge experiments also those of
+// the search.
 nlohmann::ordered_json flat_row(const CaseSpec& c, const nlohmann::ordered_json& record);
 // A JSON value as a CSV field: "" for null, shortest round-trip text for numbers.
 std::string csv_cell(const nlohmann::ordered_json& v);

@@ -85,6 +85,13 @@ std::string cost(const ojson& r) {
          fixed(r["ns_per_particle_step"].get<double>(), 1) + " ns";
 }
 
+double quantile(std::vector<double> v, double q) {
+  std::sort(v.begin(), v.end());
+  const double pos = q * double(v.size() - 1);
+  const std::size_t i = static_cast<std::size_t>(pos);
+  return i + 1 < v.size() ? v[i] + (pos - double(i)) * (v[i + 1] - v[i]) : v.back();
+}
+
 std::string link(const fs::path& from_dir, const fs::path& target) {
   return fs::relative(target, from_dir).generic_string();
 }
@@ -108,7 +115,7 @@ std::map<Table1Key, PaperCell> read_paper_table1(const Spec& spec) {
     } else {
       for (const auto& cs : spec.cases) {
         const auto& p = cs.params;
-        if (cs.dt_inferred && p.A == A && p.E == E && to_string(p.method) == method &&
+        if (cs.dt_inferred && p.A == A && p.E == E && to_string(cs.paper_method) == method &&
             !cells.count({A, E, p.dt, method})) {
           dt = p.dt;
         }
@@ -117,6 +124,17 @@ std::map<Table1Key, PaperCell> read_paper_table1(const Spec& spec) {
     cells[{A, E, dt, method}] = c;
   }
   return cells;
+}
+
+std::optional<double> compared_error(const ojson& row, ErrorAt error_at) {
+  if (row["stable"] != true) return std::nullopt;
+  const ojson& v = row[error_at == ErrorAt::T ? "max_error" : "max_error_over_time"];
+  return v.is_number() ? std::optional<double>(v.get<double>()) : std::nullopt;
+}
+
+Table1Key paper_key(const CaseSpec& c) {
+  const auto& p = c.params;
+  return {p.A, p.E, p.dt, std::string(to_string(c.paper_method))};
 }
 
 bool within_factor_3(double ours, double paper) {

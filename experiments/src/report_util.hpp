@@ -5,8 +5,10 @@
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <tuple>
+#include <vector>
 
 #include "spec.hpp"
 
@@ -27,6 +29,8 @@ std::string opt_sci(const nlohmann::ordered_json& v);
 std::string verdict(const nlohmann::ordered_json& row);
 // "0.25 s, 12.7 ns": wall time and ns per particle-step of a flat result row.
 std::string cost(const nlohmann::ordered_json& row);
+// The q-quantile of v (0 <= q <= 1, linear between order statistics); v must not be empty.
+double quantile(std::vector<double> v, double q);
 // Relative link from a report folder to a file.
 std::string link(const std::filesystem::path& from_dir, const std::filesystem::path& target);
 // The whole file, or "" when it cannot be read.
@@ -50,12 +54,20 @@ struct PaperCell {
 
 using Table1Key = std::tuple<double, double, double, std::string>;  // A, E, dt, method
 
+// The paper cell a case is compared with: its A, E, dt and the method of the paper's column
+// (CaseSpec::paper_method, the base case's method in a variants experiment).
+Table1Key paper_key(const CaseSpec& c);
+
 // Our value and the paper's agree within a factor 3: the comparator's rule
 // |a - b| <= (2/3) max(|a|, |b|) (core/compare.hpp).
 bool within_factor_3(double ours, double paper);
 
-// The transcribed Table 1 of a table1 spec, keyed by (A, E, dt, method); cells whose dt the
-// paper does not print are keyed by the dt of the spec's case marked dt_inferred.
+// Our error compared with the paper's "Max Error" in a flat result row: max_error (at T) or
+// max_error_over_time; null when the run failed or the value was not recorded.
+std::optional<double> compared_error(const nlohmann::ordered_json& row, ErrorAt error_at);
+
+// The transcribed Table 1 of a table1 (or variants) spec, keyed by (A, E, dt, method); cells
+// whose dt the paper does not print are keyed by the dt of the spec's case marked dt_inferred.
 std::map<Table1Key, PaperCell> read_paper_table1(const Spec& spec);
 
 }  // namespace mpmstab

@@ -1,5 +1,7 @@
 #include "spec.hpp"
 
+#include <algorithm>
+#include <cstdint>
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -24,11 +26,22 @@ const std::vector<std::string> kCaseKeys = [] {
   std::vector<std::string> keys = parameter_names();
   keys.push_back("max_steps");
   keys.push_back("dt_inferred");
+  keys.push_back("error_at");
   return keys;
 }();
-const std::vector<std::string> kTopKeys = {"name",      "title",    "description",
-                                           "report",    "record",   "history_stride",
-                                           "reference", "defaults", "cases"};
+// What a variant's "set" may change: the run's parameters (a variant's cases keep their base
+// case's dt_inferred, and error_at is a key of the variant itself).
+const std::vector<std::string> kVariantSetKeys = [] {
+  std::vector<std::string> keys = parameter_names();
+  keys.push_back("max_steps");
+  return keys;
+}();
+const std::vector<std::string> kVariantKeys = {"name", "description", "set", "methods", "error_at"};
+const std::vector<std::string> kTopKeys = {"name",   "title",          "description", "report",
+                                           "record", "history_stride", "reference",   "defaults",
+                                           "cases",  "cases_from",     "variants"};
+// A spec named by cases_from is read whole; larger files are refused rather than read.
+constexpr std::uintmax_t kMaxSpecBytes = 4u << 20;
 const std::vector<std::string> kRecordValues = {"error_over_time", "dt_stable", "crossings",
                                                 "history", "final_state"};
 
@@ -132,6 +145,8 @@ class Reader {
       p.stepping.safety = number_at(v, path);
     else if (key == "dt_inferred")
       c.dt_inferred = bool_at(v, path);
+    else if (key == "error_at")
+      c.error_at = choice_at(v, path, parse_error_at, "T or max_over_time");
   }
 
  private:
@@ -190,21 +205,173 @@ std::string_view to_string(ReportKind k) {
       return "tradeoff";
     case ReportKind::extremes:
       return "extremes";
+    case ReportKind::variants:
+      return "variants";
   }
   return "?";
 }
 
-Spec load_spec(const std::filesystem::path& file) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(file, ec)) throw SpecError(file, "", "is a directory");
+std::string_view to_string(ErrorAt e) {
+  return e == ErrorAt::T ? "T" : "max_over_time";
+}
+
+std::optional<ErrorAt> parse_error_at(std::string_view s) {
+  if (s == "T") return ErrorAt::T;
+  if (s == "max_over_time") return ErrorAt::max_over_time;
+  return std::nullopt;
+}
+
+namespace {
+
+std::string read_whole(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);
   if (!in) throw SpecError(file, "", "cannot be read");
   std::stringstream buffer;
   buffer << in.rdbuf();
-  return parse_spec(buffer.str(), file);
+  return buffer.str();
 }
 
-Spec parse_spec(std::string_view text, const std::filesystem::path& file) {
+Spec parse(std::string_view text, const std::filesystem::path& file, bool named_by_cases_from);
+
+// The cases of the spec named by `cases_from` (relative to `file`), validated as a spec of its
+// own: regular file, not too large, itself without cases_from or variants.
+Spec cases_from_spec(const Reader& r, const std::filesystem::path& file, const std::string& name) {
+  const std::filesystem::path base = file.parent_path() / name;
+  std::error_code ec;
+  if (name.empty()) r.fail("cases_from", "must name a spec file, got an empty string");
+  if (!std::filesystem::exists(base, ec)) {
+    r.fail("cases_from", base.string() + " does not exist");
+  }
+  if (!std::filesystem::is_regular_file(base, ec)) {
+    r.fail("cases_from", base.string() + " is not a regular file");
+  }
+  const auto bytes = std::filesystem::file_size(base, ec);
+  if (ec || bytes > kMaxSpecBytes) {
+    r.fail("cases_from", base.string() + " is too large for a spec (over 4 MiB)");
+  }
+  const auto self = std::filesystem::weakly_canonical(file, ec);
+  const auto other = std::filesystem::weakly_canonical(base, ec);
+  if (!ec && !self.empty() && self == other) r.fail("cases_from", "names this spec itself");
+  try {
+    return parse(read_whole(base), base, true);
+  } catch (const SpecError& e) {
+    r.fail("cases_from", e.what());
+  }
+}
+
+// Applies the variants of `doc` to the base cases: spec.cases becomes every variant's cases.
+void expand_variants(const Reader& r, const json& variants, const std::vector<CaseSpec>& base,
+                     Spec& spec) {
+  if (!variants.is_array() || variants.empty()) {
+    r.fail("variants", "must be a non-empty array of variants");
+  }
+  std::set<std::string> names;
+  bool has_default = false;
+  for (std::size_t j = 0; j < variants.size(); ++j) {
+    const std::string at = "variants[" + std::to_string(j) + "]";
+    const json& v = variants[j];
+    if (!v.is_object()) r.fail(at, "must be an object");
+    r.only_known_keys(v, at, kVariantKeys);
+    if (!v.contains("name")) r.fail(at + ".name", "is required");
+    VariantSpec vs;
+    vs.name = r.string_at(v["name"], at + ".name");
+    if (vs.name.empty() || vs.name.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789_+.-") !=
+                               std::string::npos) {
+      r.fail(at + ".name", "must be a non-empty name of [a-z0-9_+.-], got '" + vs.name + "'");
+    }
+    if (!names.insert(vs.name).second) r.fail(at + ".name", "repeats '" + vs.name + "'");
+    if (v.contains("description")) {
+      vs.description = r.string_at(v["description"], at + ".description");
+    }
+    json set = json::object();
+    if (v.contains("set")) {
+      set = v["set"];
+      if (!set.is_object()) r.fail(at + ".set", "must be an object");
+      if (set.contains("error_at")) {
+        r.fail(at + ".set.error_at", "is a key of the variant itself: " + at + ".error_at");
+      }
+      for (const char* key : {"E", "A", "dt"}) {
+        if (set.contains(key)) {
+          r.fail(at + ".set." + key,
+                 "a variant keeps each cell's E, A and dt (it is compared with the same paper "
+                 "cell)");
+        }
+      }
+      if (set.contains("dt_inferred")) {
+        r.fail(at + ".set.dt_inferred", "a variant's cases keep their base case's dt_inferred");
+      }
+      r.only_known_keys(set, at + ".set", kVariantSetKeys);
+    }
+    for (const auto& [key, value] : set.items()) {
+      vs.change += (vs.change.empty() ? "" : ", ") + key + " = " +
+                   (value.is_string() ? value.get<std::string>() : value.dump());
+      if (key != "flip_fraction") ++vs.changes;
+    }
+    std::optional<ErrorAt> error_at;
+    if (v.contains("error_at")) {
+      error_at = r.choice_at(v["error_at"], at + ".error_at", parse_error_at, "T or max_over_time");
+      vs.change += std::string(vs.change.empty() ? "" : ", ") +
+                   "error_at = " + std::string(to_string(*error_at));
+      ++vs.changes;
+    }
+    if (vs.change.empty()) {
+      vs.change = "none";
+      vs.baseline = true;
+      has_default = true;
+    }
+    if (v.contains("methods")) {
+      const json& m = v["methods"];
+      if (!m.is_array() || m.empty()) r.fail(at + ".methods", "must be a non-empty array");
+      for (std::size_t k = 0; k < m.size(); ++k) {
+        const std::string mp = at + ".methods[" + std::to_string(k) + "]";
+        const Method method = r.choice_at(m[k], mp, parse_method, "gimp, cpgimp or mpm");
+        if (std::find(vs.methods.begin(), vs.methods.end(), method) != vs.methods.end()) {
+          r.fail(mp, "repeats '" + std::string(to_string(method)) + "'");
+        }
+        vs.methods.push_back(method);
+      }
+    }
+
+    vs.first_case = spec.cases.size();
+    std::map<std::string, std::size_t> seen;  // canonical parameters -> base case index
+    for (std::size_t i = 0; i < base.size(); ++i) {
+      const CaseSpec& b = base[i];
+      if (!vs.methods.empty() &&
+          std::find(vs.methods.begin(), vs.methods.end(), b.paper_method) == vs.methods.end()) {
+        continue;
+      }
+      CaseSpec cs = b;
+      cs.variant = vs.name;
+      if (error_at) cs.error_at = *error_at;
+      for (const auto& [key, value] : set.items())
+        r.set(cs.params, cs, key, value, at + ".set." + key);
+      const auto issues = validate(cs.params);
+      if (!issues.empty()) {
+        const auto& issue = issues.front();
+        r.fail(set.contains(issue.key) ? at + ".set." + issue.key : at,
+               "with base case " + std::to_string(i) + ": " + issue.key + " " + issue.message);
+      }
+      if (cs.error_at == ErrorAt::max_over_time && !cs.params.observe.error_over_time) {
+        r.fail(at + ".error_at", "max_over_time needs \"error_over_time\" in record");
+      }
+      if (const auto [it, inserted] = seen.emplace(canonical_parameters(cs.params), i); !inserted) {
+        r.fail(at, "makes base cases " + std::to_string(it->second) + " and " + std::to_string(i) +
+                       " the same run");
+      }
+      spec.cases.push_back(std::move(cs));
+    }
+    vs.cases = spec.cases.size() - vs.first_case;
+    if (vs.cases == 0) r.fail(at + ".methods", "matches none of the base cases");
+    spec.variants.push_back(std::move(vs));
+  }
+  if (!has_default) {
+    r.fail("variants",
+           "needs one variant that changes nothing (the default, which the others "
+           "are read against)");
+  }
+}
+
+Spec parse(std::string_view text, const std::filesystem::path& file, bool named_by_cases_from) {
   const Reader r(file);
   const json doc = parse_text(text, file);
   if (!doc.is_object()) r.fail("", "must be a JSON object, got " + std::string(doc.type_name()));
@@ -212,9 +379,24 @@ Spec parse_spec(std::string_view text, const std::filesystem::path& file) {
 
   Spec spec;
   spec.path = file;
-  for (const char* key : {"name", "report", "cases"}) {
+  for (const char* key : {"name", "report"}) {
     if (!doc.contains(key)) r.fail(key, "is required");
   }
+  if (named_by_cases_from) {
+    for (const char* key : {"cases_from", "variants"}) {
+      if (doc.contains(key)) {
+        r.fail(key,
+               "a spec named by cases_from must list its own cases (no nested cases_from, "
+               "no variants)");
+      }
+    }
+  }
+  const bool from = doc.contains("cases_from");
+  if (from && doc.contains("cases")) r.fail("cases", "cases and cases_from exclude each other");
+  if (from && doc.contains("defaults")) {
+    r.fail("defaults", "cases_from takes the cases with their defaults; change them in a variant");
+  }
+  if (!from && !doc.contains("cases")) r.fail("cases", "is required");
   spec.name = r.string_at(doc["name"], "name");
   if (spec.name.empty() ||
       spec.name.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789_-") != std::string::npos) {
@@ -228,7 +410,7 @@ Spec parse_spec(std::string_view text, const std::filesystem::path& file) {
   bool known = false;
   for (ReportKind k :
        {ReportKind::table1, ReportKind::table2, ReportKind::figure, ReportKind::cases,
-        ReportKind::edge, ReportKind::tradeoff, ReportKind::extremes}) {
+        ReportKind::edge, ReportKind::tradeoff, ReportKind::extremes, ReportKind::variants}) {
     if (report == to_string(k)) {
       spec.report = k;
       known = true;
@@ -236,12 +418,32 @@ Spec parse_spec(std::string_view text, const std::filesystem::path& file) {
   }
   if (!known) {
     r.fail("report", "unknown value '" + report +
-                         "' (expected table1, table2, figure, cases, edge, tradeoff or extremes)");
+                         "' (expected table1, table2, figure, cases, edge, tradeoff, extremes or "
+                         "variants)");
+  }
+  if (doc.contains("variants") && spec.report != ReportKind::variants) {
+    r.fail("variants", "only a variants report takes variants");
+  }
+  if (spec.report == ReportKind::variants && !doc.contains("variants")) {
+    r.fail("variants", "is required for a variants report");
+  }
+
+  // The base spec of cases_from, read first: its reference and record are the defaults here.
+  Spec base;
+  if (from) {
+    const std::string name = r.string_at(doc["cases_from"], "cases_from");
+    base = cases_from_spec(r, file, name);
+    if (base.report == ReportKind::edge) {
+      r.fail("cases_from", "an edge experiment's cases have no dt (its search sets it)");
+    }
+    spec.cases_from = base.path;
+    spec.reference = base.reference;
   }
   if (doc.contains("reference")) {
     spec.reference = file.parent_path() / r.string_at(doc["reference"], "reference");
   }
-  if ((spec.report == ReportKind::table1 || spec.report == ReportKind::table2) &&
+  if ((spec.report == ReportKind::table1 || spec.report == ReportKind::table2 ||
+       spec.report == ReportKind::variants) &&
       spec.reference.empty()) {
     r.fail("reference", "is required for a " + report + " report");
   }
@@ -277,58 +479,102 @@ Spec parse_spec(std::string_view text, const std::filesystem::path& file) {
     observe.history_stride = r.integer_at(doc["history_stride"], "history_stride");
   }
 
-  json defaults = json::object();
-  if (doc.contains("defaults")) {
-    defaults = doc["defaults"];
-    if (!defaults.is_object()) r.fail("defaults", "must be an object");
-    r.only_known_keys(defaults, "defaults", kCaseKeys);
-  }
-  const json& cases = doc["cases"];
-  if (!cases.is_array() || cases.empty()) r.fail("cases", "must be a non-empty array of cases");
-  if (spec.report == ReportKind::figure && cases.size() != 1) {
-    r.fail("cases", "a figure experiment has exactly one case");
+  std::vector<CaseSpec> cases;
+  if (from) {
+    // The base cases as their spec defines them; a "record" here replaces the base's.
+    cases = base.cases;
+    if (doc.contains("record") || doc.contains("history_stride")) {
+      for (auto& c : cases) {
+        c.params.observe = observe;
+        const auto issues = validate(c.params);
+        if (!issues.empty()) r.fail(issues.front().key, issues.front().message);
+      }
+    }
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+      if (cases[i].error_at == ErrorAt::max_over_time && !cases[i].params.observe.error_over_time) {
+        r.fail("record", "base case " + std::to_string(i) +
+                             " compares the max error over time: record needs \"error_over_time\"");
+      }
+    }
+  } else {
+    json defaults = json::object();
+    if (doc.contains("defaults")) {
+      defaults = doc["defaults"];
+      if (!defaults.is_object()) r.fail("defaults", "must be an object");
+      r.only_known_keys(defaults, "defaults", kCaseKeys);
+    }
+    const json& list = doc["cases"];
+    if (!list.is_array() || list.empty()) r.fail("cases", "must be a non-empty array of cases");
+    if (spec.report == ReportKind::figure && list.size() != 1) {
+      r.fail("cases", "a figure experiment has exactly one case");
+    }
+
+    std::map<std::string, std::size_t> seen;  // canonical parameters -> first case index
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      const std::string at = "cases[" + std::to_string(i) + "]";
+      const json& c = list[i];
+      if (!c.is_object()) r.fail(at, "must be an object");
+      r.only_known_keys(c, at, kCaseKeys);
+      CaseSpec cs;
+      RunParams& p = cs.params;
+      p.observe = observe;
+      // The source of each key, for error messages: the case itself or the defaults.
+      std::map<std::string, std::string> source;
+      for (const auto& [key, value] : defaults.items()) {
+        r.set(p, cs, key, value, "defaults." + key);
+        source[key] = "defaults." + key;
+      }
+      for (const auto& [key, value] : c.items()) {
+        r.set(p, cs, key, value, at + "." + key);
+        source[key] = at + "." + key;
+      }
+      for (const char* key : {"method", "E", "A"}) {
+        if (!source.count(key)) r.fail(at + "." + key, "is required (in the case or in defaults)");
+      }
+      if (spec.report == ReportKind::edge) {
+        if (source.count("dt")) r.fail(source["dt"], "an edge experiment searches dt: remove it");
+        p.dt = p.T;  // a placeholder that validates; the search sets dt
+      } else if (p.stepping.policy == TimeStepPolicy::fixed && !source.count("dt")) {
+        r.fail(at + ".dt", "is required with the fixed policy (in the case or in defaults)");
+      }
+      const auto issues = validate(p);
+      if (!issues.empty()) {
+        const auto& issue = issues.front();
+        const auto it = source.find(issue.key);
+        r.fail(it != source.end() ? it->second : at + "." + issue.key, issue.message);
+      }
+      if (cs.error_at == ErrorAt::max_over_time && !observe.error_over_time) {
+        r.fail(source["error_at"], "max_over_time needs \"error_over_time\" in record");
+      }
+      if (const auto [it, inserted] = seen.emplace(canonical_parameters(p), i); !inserted) {
+        r.fail(at, "repeats cases[" + std::to_string(it->second) + "]");
+      }
+      cs.paper_method = p.method;
+      cases.push_back(std::move(cs));
+    }
   }
 
-  std::map<std::string, std::size_t> seen;  // canonical parameters -> first case index
-  for (std::size_t i = 0; i < cases.size(); ++i) {
-    const std::string base = "cases[" + std::to_string(i) + "]";
-    const json& c = cases[i];
-    if (!c.is_object()) r.fail(base, "must be an object");
-    r.only_known_keys(c, base, kCaseKeys);
-    CaseSpec cs;
-    RunParams& p = cs.params;
-    p.observe = observe;
-    // The source of each key, for error messages: the case itself or the defaults.
-    std::map<std::string, std::string> source;
-    for (const auto& [key, value] : defaults.items()) {
-      r.set(p, cs, key, value, "defaults." + key);
-      source[key] = "defaults." + key;
-    }
-    for (const auto& [key, value] : c.items()) {
-      r.set(p, cs, key, value, base + "." + key);
-      source[key] = base + "." + key;
-    }
-    for (const char* key : {"method", "E", "A"}) {
-      if (!source.count(key)) r.fail(base + "." + key, "is required (in the case or in defaults)");
-    }
-    if (spec.report == ReportKind::edge) {
-      if (source.count("dt")) r.fail(source["dt"], "an edge experiment searches dt: remove it");
-      p.dt = p.T;  // a placeholder that validates; the search sets dt
-    } else if (p.stepping.policy == TimeStepPolicy::fixed && !source.count("dt")) {
-      r.fail(base + ".dt", "is required with the fixed policy (in the case or in defaults)");
-    }
-    const auto issues = validate(p);
-    if (!issues.empty()) {
-      const auto& issue = issues.front();
-      const auto it = source.find(issue.key);
-      r.fail(it != source.end() ? it->second : base + "." + issue.key, issue.message);
-    }
-    if (const auto [it, inserted] = seen.emplace(canonical_parameters(p), i); !inserted) {
-      r.fail(base, "repeats cases[" + std::to_string(it->second) + "]");
-    }
-    spec.cases.push_back(cs);
+  if (doc.contains("variants")) {
+    expand_variants(r, doc["variants"], cases, spec);
+  } else {
+    spec.cases = std::move(cases);
+  }
+  if (spec.report == ReportKind::figure && spec.cases.size() != 1) {
+    r.fail("cases_from", "a figure experiment has exactly one case");
   }
   return spec;
+}
+
+}  // namespace
+
+Spec load_spec(const std::filesystem::path& file) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(file, ec)) throw SpecError(file, "", "is a directory");
+  return parse_spec(read_whole(file), file);
+}
+
+Spec parse_spec(std::string_view text, const std::filesystem::path& file) {
+  return parse(text, file, false);
 }
 
 }  // namespace mpmstab

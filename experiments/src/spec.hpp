@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -20,11 +21,36 @@ enum class ReportKind {
   edge,      // per case, the largest fixed dt that survives to T (its dt is searched, not given)
   tradeoff,  // error against cost across methods, time-step policies and their parameters
   extremes,  // verdicts over extreme parameters: where and why each method fails
+  variants,  // Table 1's cells under documented implementation choices, against the paper
 };
+
+// Which of our errors is compared with the paper's "Max Error": the max error at T (the
+// design's reading, `max_error`) or the largest over the run (`max_error_over_time`).
+enum class ErrorAt { T, max_over_time };
 
 struct CaseSpec {
   RunParams params;
   bool dt_inferred = false;  // the paper does not print this cell's dt; it is inferred
+  ErrorAt error_at = ErrorAt::T;
+  // Variants experiments: the variant this case belongs to ("" otherwise), and the method of
+  // the paper's column it is compared with: the base case's, also when the variant changes the
+  // method (gimp cells run with cpgimp still compare with the paper's GIMP column).
+  std::string variant;
+  Method paper_method = Method::gimp;
+};
+
+// One variant of a variants experiment: `set` applied to every base case whose method is listed.
+struct VariantSpec {
+  std::string name;
+  std::string description;
+  std::string change;  // the settings it changes, "walls = ghost, error_at = max_over_time"
+  // How many implementation choices it changes: a key of `set` or error_at each count one;
+  // flip_fraction qualifies transfer and does not count on its own.
+  int changes = 0;
+  bool baseline = false;        // changes nothing: the default, which the others are read against
+  std::vector<Method> methods;  // the base cases' methods it applies to; empty: every case
+  std::size_t first_case = 0;   // its cases are Spec::cases[first_case, first_case + cases)
+  std::size_t cases = 0;
 };
 
 struct Spec {
@@ -33,8 +59,10 @@ struct Spec {
   std::string title;
   std::string description;
   ReportKind report = ReportKind::table1;
-  std::filesystem::path reference;  // paper table to compare with (table kinds), resolved
-  std::vector<CaseSpec> cases;      // each with params.observe set from "record"
+  std::filesystem::path reference;    // paper table to compare with (table kinds), resolved
+  std::filesystem::path cases_from;   // the spec whose cases (and defaults) this one takes, if any
+  std::vector<VariantSpec> variants;  // variants experiments: cases holds every variant's cases
+  std::vector<CaseSpec> cases;        // each with params.observe set from "record"
 };
 
 // A spec that cannot be used: `path` is the key path inside the file ("" for the whole file).
@@ -52,5 +80,7 @@ Spec load_spec(const std::filesystem::path& file);
 Spec parse_spec(std::string_view text, const std::filesystem::path& file);
 
 std::string_view to_string(ReportKind k);
+std::string_view to_string(ErrorAt e);
+std::optional<ErrorAt> parse_error_at(std::string_view s);
 
 }  // namespace mpmstab

@@ -6,6 +6,7 @@
 #include <condition_variable>
 #include <cstdio>
 #include <exception>
+#include <map>
 #include <mutex>
 #include <numeric>
 #include <stop_token>
@@ -72,8 +73,8 @@ std::string describe(const RunParams& p) {
 
 class Progress {
  public:
-  Progress(const Spec& spec, bool line, double total_cost)
-      : name_(spec.name), total_(spec.cases.size()), line_(line), total_cost_(total_cost) {}
+  Progress(const Spec& spec, std::size_t runs, bool line, double total_cost)
+      : name_(spec.name), total_(runs), line_(line), total_cost_(total_cost) {}
 
   void done(const RunParams& p, const nlohmann::ordered_json& result, bool from_cache,
             double cost) {
@@ -135,34 +136,46 @@ SweepOutcome run_sweep(const Spec& spec, const SweepOptions& options) {
   const std::size_t n = spec.cases.size();
   const ResultCache cache(options.cache);
   const Provenance provenance = current_provenance(options.jobs);
+  const std::string search = spec.report == ReportKind::edge ? "edge" : "";
+
+  // One run per distinct key: a case repeating an earlier one shares its record.
+  std::vector<std::size_t> same_as(n);
+  std::vector<std::size_t> runs;
+  {
+    std::map<std::string, std::size_t> first;
+    for (std::size_t i = 0; i < n; ++i) {
+      const auto [it, fresh] = first.emplace(case_key(spec.cases[i].params, search), i);
+      same_as[i] = it->second;
+      if (fresh) runs.push_back(i);
+    }
+  }
 
   // Longest cases first, so that the last one to finish is short.
-  std::vector<std::size_t> order(n);
-  std::iota(order.begin(), order.end(), 0);
   std::vector<double> cost(n);
   double total_cost = 0;
-  for (std::size_t i = 0; i < n; ++i)
+  for (std::size_t i : runs)
     total_cost += cost[i] = case_cost(spec.cases[i].params, spec.report);
+  std::vector<std::size_t> order = runs;
   std::stable_sort(order.begin(), order.end(),
                    [&](std::size_t a, std::size_t b) { return cost[a] > cost[b]; });
 
   SweepOutcome out;
   out.records.resize(n);
   std::vector<char> from_cache(n, 0);
-  Progress progress(spec, options.progress_line, total_cost);
+  Progress progress(spec, runs.size(), options.progress_line, total_cost);
   std::atomic<std::size_t> next{0};
+  const std::size_t m = order.size();
   std::exception_ptr error;
   std::mutex error_mutex;
 
   auto cancelled = [&] { return options.cancel && options.cancel->load(); };
   auto worker = [&] {
-    for (std::size_t k; !cancelled() && (k = next.fetch_add(1)) < n;) {
+    for (std::size_t k; !cancelled() && (k = next.fetch_add(1)) < m;) {
       const std::size_t i = order[k];
       const RunParams& p = spec.cases[i].params;
       try {
         std::optional<nlohmann::ordered_json> record;
         const bool cached = !options.cache.empty();
-        const std::string search = spec.report == ReportKind::edge ? "edge" : "";
         if (cached && !options.force) record = cache.load(p, search);
         from_cache[i] = record.has_value();
         if (!record) {
@@ -188,11 +201,11 @@ SweepOutcome run_sweep(const Spec& spec, const SweepOptions& options) {
       } catch (...) {
         std::lock_guard lock(error_mutex);
         if (!error) error = std::current_exception();
-        next = n;  // stop handing out cases
+        next = m;  // stop handing out cases
       }
     }
   };
-  const int jobs = std::max(1, std::min<int>(options.jobs, static_cast<int>(n)));
+  const int jobs = std::max(1, std::min<int>(options.jobs, static_cast<int>(m)));
   std::vector<std::thread> threads;
   for (int t = 1; t < jobs; ++t)
     threads.emplace_back(worker);
@@ -202,11 +215,16 @@ SweepOutcome run_sweep(const Spec& spec, const SweepOptions& options) {
   if (error) std::rethrow_exception(error);
 
   for (std::size_t i = 0; i < n; ++i) {
+    if (same_as[i] != i) out.records[i] = out.records[same_as[i]];
     if (out.records[i].is_null()) {
       out.interrupted = true;  // a case that never finished
       continue;
     }
-    (from_cache[i] ? out.cached : out.computed) += 1;
+    if (same_as[i] != i) {
+      ++out.shared;
+    } else {
+      (from_cache[i] ? out.cached : out.computed) += 1;
+    }
     if (!out.records[i]["result"]["stable"].get<bool>()) ++out.unstable;
   }
   out.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();

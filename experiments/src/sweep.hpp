@@ -26,6 +26,9 @@ struct SweepOutcome {
   std::vector<nlohmann::ordered_json> records;
   int computed = 0;
   int cached = 0;
+  // Cases whose run (canonical parameters and search) repeats an earlier case of the same spec,
+  // for example two variants that differ only in what they compare: run once, record shared.
+  int shared = 0;
   int unstable = 0;
   double wall_seconds = 0;
   bool interrupted = false;  // stopped by `cancel`: records of unfinished cases are null
@@ -36,7 +39,8 @@ struct SweepOutcome {
 double case_cost(const RunParams& p, ReportKind kind);
 
 // Results do not depend on `jobs`: every case is an independent, deterministic computation and
-// the records are returned in spec order.
+// the records are returned in spec order. Cases with the same canonical parameters are computed
+// (or read from the cache) once.
 SweepOutcome run_sweep(const Spec& spec, const SweepOptions& options);
 
 }  // namespace mpmstab

@@ -1,0 +1,81 @@
+// The variants study: Table 1's cells under each documented implementation choice, one at a
+// time and in a few pairs, read against the paper with the comparison's rules (classify() in
+// comparison.hpp): which choices can, and which cannot, account for each class of disagreement.
+#pragma once
+
+#include <filesystem>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "comparison.hpp"
+#include "spec.hpp"
+
+namespace mpmstab {
+
+// One variant, one column of the paper (its base cases' method: "mpm" or "gimp").
+struct VariantMethodSummary {
+  int cells = 0;
+  AgreementCounts counts;
+  double wall_seconds = 0;  // summed over the variant's runs of this column
+};
+
+// One variant, one class of disagreement (the cells' class under the default run).
+struct VariantClassOutcome {
+  int covered = 0;      // cells of the class that the variant ran
+  int agree = 0;        // of those, in agreement with the paper under the variant (agrees_as())
+  int meaningless = 0;  // of those, stable but meaningless: the error over time reached A
+};
+
+struct VariantOutcome {
+  std::string name, description, change;
+  int changes = 0;
+  bool baseline = false;
+  std::map<std::string, VariantMethodSummary> by_method;
+  std::map<std::string, VariantClassOutcome> by_class;
+  int cells = 0;                   // cells it ran
+  int agreeing = 0;                // of those, fully in agreement (CellVerdict::agrees)
+  int agreeing_under_default = 0;  // of its cells, those fully in agreement under the default
+  int breaks = 0;                  // of those, no longer in agreement under this variant
+  double wall_seconds = 0;         // summed over its runs (shared runs count in each variant)
+  std::vector<std::pair<std::string, double>> error_ratios;  // (column, ours / paper) per cell
+};
+
+struct VariantsStudy {
+  std::vector<VariantOutcome> variants;    // in spec order
+  std::size_t baseline = 0;                // index of the default variant
+  int cells = 0;                           // cells of the default variant
+  std::map<std::string, int> class_cells;  // class id -> cells of that class under the default
+};
+
+// Whether a cell of a class agrees with the paper in the sense of that class: the stability
+// verdict for the verdict classes, max errors within a factor 3 for the error classes, and full
+// agreement for the agreement classes.
+bool agrees_as(const CellVerdict& under_variant, ClassKind class_kind);
+
+// Which of the study's verdicts a variant earns for a class (criterion stated in variants.md):
+// accounts when at least half of the class's cells agree under it, partly when some but fewer
+// do, not at all when none does; not applicable when it ran none of them.
+enum class Accounts { yes, partly, no, not_applicable };
+Accounts accounts_for(const VariantClassOutcome& o, int class_cells);
+
+// The study from the flat result rows of a variants spec (rows[i] is spec.cases[i]), the paper's
+// table and the Courant edges of the courant scan (empty without it).
+VariantsStudy study_variants(const Spec& spec, const std::vector<nlohmann::ordered_json>& rows,
+                             const std::map<Table1Key, PaperCell>& paper,
+                             const CourantEdges& edges);
+
+// The study in numbers, stored as "study" in <name>.json; comparison.md reads it from there.
+nlohmann::ordered_json study_to_json(const VariantsStudy& s);
+
+// The report's body (after the spec's title and description) and the figure's data.
+std::string variants_markdown(const Spec& spec, const VariantsStudy& s, bool have_courant);
+std::string variants_data_csv(const VariantsStudy& s, const std::string& header_lines);
+
+// The line of comparison.md for one class, from the "study" object of variants.json: the best
+// single change and the best pair with their numbers, and the variants that account for it.
+std::string variants_line(const nlohmann::ordered_json& study, const std::string& class_id,
+                          const std::string& report_link);
+
+}  // namespace mpmstab

@@ -1,0 +1,193 @@
+// The variants study's arithmetic on a small synthetic input: per-method counts and medians with
+// the comparison's rules, the classes under the default, what each variant fixes and breaks,
+// the accounting criterion, and the line comparison.md prints for a class.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "report_util.hpp"
+#include "spec.hpp"
+#include "variants.hpp"
+
+namespace mpmstab {
+namespace {
+
+namespace fs = std::filesystem;
+using ojson = nlohmann::ordered_json;
+
+class VariantsStudyTest : public ::testing::Test {
+ protected:
+  fs::path dir = fs::temp_directory_path() / ("mpmstab_variants_" + std::to_string(::getpid()));
+  void SetUp() override {
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    std::ofstream(dir / "paper.csv") << "A,E,dt,method,dt_stable,max_error,confidence,evidence\n"
+                                        "0.015,4,1e-3,GIMP,2e-3,1e-5,high,\n"
+                                        "0.015,4,1e-3,MPM,5e-3,5e-5,high,\n"
+                                        "0.015,4,1e-4,GIMP,2e-3,1e-5,high,\n"
+                                        "0.015,4,1e-4,MPM,5e-3,5e-5,high,\n";
+    std::ofstream(dir / "base.json") << R"({"name": "base", "report": "table1",
+        "reference": "paper.csv", "record": ["error_over_time", "dt_stable"],
+        "defaults": {"E": 4, "A": 0.015, "T": 0.01},
+        "cases": [{"method": "gimp", "dt": 1e-3}, {"method": "mpm", "dt": 1e-3},
+                  {"method": "gimp", "dt": 1e-4}, {"method": "mpm", "dt": 1e-4}]})";
+    std::ofstream(dir / "v.json") << R"({"name": "v", "report": "variants",
+        "cases_from": "base.json", "variants": [
+          {"name": "default"},
+          {"name": "ghost", "set": {"walls": "ghost"}, "methods": ["gimp"]},
+          {"name": "pic", "set": {"transfer": "pic"}},
+          {"name": "pic+ghost", "set": {"transfer": "pic", "walls": "ghost"}, "methods": ["gimp"]}]})";
+    spec = load_spec(dir / "v.json");
+  }
+  void TearDown() override { fs::remove_all(dir); }
+
+  static ojson stable(const char* method, double error, double wall = 1.0,
+                      bool meaningless = false) {
+    return {{"method", method},
+            {"A", 0.015},
+            {"stable", true},
+            {"max_error", error},
+            {"max_error_over_time", error * 2},
+            {"dt_stable_min", 1e-4},
+            {"courant", 0.2},
+            {"failure_reason", nullptr},
+            {"meaningless", meaningless},
+            {"wall_seconds", wall}};
+  }
+  static ojson unstable(const char* method, const char* reason) {
+    return {{"method", method},
+            {"A", 0.015},
+            {"stable", false},
+            {"max_error", nullptr},
+            {"max_error_over_time", 1.0},
+            {"dt_stable_min", nullptr},
+            {"courant", 0.02},
+            {"failure_reason", reason},
+            {"meaningless", nullptr},
+            {"wall_seconds", 0.5}};
+  }
+  // Rows in spec order: default (gimp 1e-3, mpm 1e-3, gimp 1e-4, mpm 1e-4), ghost (gimp 1e-3,
+  // gimp 1e-4), pic (all four), pic+ghost (gimp 1e-3, gimp 1e-4).
+  std::vector<ojson> rows(double ghost_gimp_1e4_error) {
+    return {// default: agree, MPM error 100x, GIMP error 10x, MPM failure where the paper is stable
+            stable("gimp", 2e-5), stable("mpm", 5e-3), stable("gimp", 1e-4),
+            unstable("mpm", "nonpositive_F"),
+            // ghost: breaks the agreeing cell, brings the GIMP error class into agreement (or not)
+            stable("gimp", 1e-3), stable("gimp", ghost_gimp_1e4_error),
+            // pic: fixes the MPM error and makes the failing MPM run survive, meaninglessly
+            stable("gimp", 2e-5), stable("mpm", 1e-4), stable("gimp", 1e-4),
+            stable("mpm", 1e-2, 1.0, true),
+            // pic+ghost: nothing in agreement
+            stable("gimp", 1e-3), stable("gimp", 1e-3)};
+  }
+  VariantsStudy study(double ghost_gimp_1e4_error) {
+    return study_variants(spec, rows(ghost_gimp_1e4_error), read_paper_table1(spec), {});
+  }
+  Spec spec;
+};
+
+TEST_F(VariantsStudyTest, CountsFollowTheComparisonsRules) {
+  const VariantsStudy s = study(2e-5);
+  ASSERT_EQ(s.variants.size(), 4u);
+  EXPECT_EQ(s.baseline, 0u);
+  EXPECT_EQ(s.cells, 4);
+  EXPECT_EQ(s.class_cells.at("agree-stable"), 1);
+  EXPECT_EQ(s.class_cells.at("mpm-error-larger"), 1);
+  EXPECT_EQ(s.class_cells.at("gimp-error-larger"), 1);
+  EXPECT_EQ(s.class_cells.at("mpm-crossing-failure"), 1);
+
+  const VariantOutcome& def = s.variants[0];
+  EXPECT_EQ(def.agreeing, 1);
+  EXPECT_EQ(def.breaks, 0);
+  const auto& mpm = def.by_method.at("mpm");
+  EXPECT_EQ(mpm.cells, 2);
+  EXPECT_EQ(mpm.counts.verdicts_agree, 1);
+  EXPECT_EQ(mpm.counts.verdicts_compared, 2);
+  EXPECT_EQ(mpm.counts.errors_within, 0);
+  EXPECT_EQ(mpm.counts.errors_compared, 1);
+  EXPECT_DOUBLE_EQ(mpm.wall_seconds, 1.5);
+  const auto& gimp = def.by_method.at("gimp");
+  EXPECT_EQ(gimp.counts.errors_within, 1);
+  EXPECT_EQ(gimp.counts.errors_compared, 2);
+  EXPECT_DOUBLE_EQ(quantile(gimp.counts.error_ratios, 0.5), 6.0);  // ratios 2 and 10
+  EXPECT_DOUBLE_EQ(def.wall_seconds, 3.5);
+
+  // ghost ran the GIMP cells only: it breaks the agreeing one and fixes the error class.
+  const VariantOutcome& ghost = s.variants[1];
+  EXPECT_EQ(ghost.cells, 2);
+  EXPECT_EQ(ghost.by_method.count("mpm"), 0u);
+  EXPECT_EQ(ghost.agreeing, 1);
+  EXPECT_EQ(ghost.agreeing_under_default, 1);
+  EXPECT_EQ(ghost.breaks, 1);
+  EXPECT_EQ(ghost.by_class.at("gimp-error-larger").agree, 1);
+  EXPECT_EQ(ghost.by_class.count("mpm-error-larger"), 0u);
+
+  // pic: the MPM error within 3x, and the MPM failure becomes a (meaningless) survivor, which
+  // agrees with the paper's verdict but not with its error.
+  const VariantOutcome& pic = s.variants[2];
+  EXPECT_EQ(pic.agreeing, 2);
+  EXPECT_EQ(pic.breaks, 0);
+  EXPECT_EQ(pic.by_class.at("mpm-error-larger").agree, 1);
+  EXPECT_EQ(pic.by_class.at("mpm-crossing-failure").agree, 1);
+  EXPECT_EQ(pic.by_class.at("mpm-crossing-failure").meaningless, 1);
+  EXPECT_EQ(pic.by_class.at("gimp-error-larger").agree, 0);
+  EXPECT_EQ(pic.by_method.at("mpm").counts.verdicts_agree, 2);
+}
+
+TEST_F(VariantsStudyTest, TheFactor3RuleDecidesACellAtItsEdge) {
+  // ours / paper = 2.9 agrees, 3.1 does not: the comparator's rule, not a local one.
+  EXPECT_EQ(study(2.9e-5).variants[1].by_class.at("gimp-error-larger").agree, 1);
+  const VariantsStudy moved = study(3.1e-5);
+  EXPECT_EQ(moved.variants[1].by_class.at("gimp-error-larger").agree, 0);
+  EXPECT_EQ(moved.variants[1].agreeing, 0);
+  const ojson j = study_to_json(moved);
+  EXPECT_EQ(j["classes"]["gimp-error-larger"]["variants"][1]["accounts"], "no");
+  EXPECT_EQ(study_to_json(study(2.9e-5))["classes"]["gimp-error-larger"]["variants"][1]["accounts"],
+            "yes");
+}
+
+TEST_F(VariantsStudyTest, AccountingCriterionIsHalfOfTheClass) {
+  EXPECT_EQ(accounts_for({4, 2, 0}, 4), Accounts::yes);
+  EXPECT_EQ(accounts_for({2, 2, 0}, 4), Accounts::yes);  // half of the class, from a subset
+  EXPECT_EQ(accounts_for({4, 1, 0}, 4), Accounts::partly);
+  EXPECT_EQ(accounts_for({4, 0, 0}, 4), Accounts::no);
+  EXPECT_EQ(accounts_for({0, 0, 0}, 4), Accounts::not_applicable);
+  EXPECT_EQ(accounts_for({1, 1, 0}, 1), Accounts::yes);
+}
+
+TEST_F(VariantsStudyTest, ReportAndComparisonLineAreGeneratedFromTheNumbers) {
+  const VariantsStudy s = study(2e-5);
+  const ojson j = study_to_json(s);
+  EXPECT_EQ(j["default"], "default");
+  EXPECT_EQ(j["classes"]["mpm-error-larger"]["cells"], 1);
+  const std::string line = variants_line(j, "gimp-error-larger", "variants.md");
+  EXPECT_NE(line.find("[variants.md#gimp-error-larger](variants.md#gimp-error-larger)"),
+            std::string::npos)
+      << line;
+  EXPECT_NE(line.find("best single change: `ghost`, 1 of 1 cells agree (it breaks 1 cell that "
+                      "agrees under the default)"),
+            std::string::npos)
+      << line;
+  EXPECT_NE(line.find("best pair: `pic+ghost`, 0 of 1"), std::string::npos) << line;
+  EXPECT_NE(line.find("at least half its cells agree): `ghost`."), std::string::npos) << line;
+  const std::string none = variants_line(j, "error-smaller", "variants.md");
+  EXPECT_NE(none.find("no cell in this class"), std::string::npos) << none;
+
+  const std::string md = variants_markdown(spec, s, false);
+  EXPECT_NE(md.find("<a id=\"gimp-error-larger\"></a>"), std::string::npos);
+  EXPECT_NE(md.find("<a id=\"courant-above-1\"></a>"), std::string::npos);  // empty: still there
+  EXPECT_NE(md.find("Can account for this class (at least half of its 1 cell reach a max error "
+                    "within a factor 3 of the paper's): `ghost` (1 of 1, breaking 1 cell"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("`pic` (1 of 1, 1 of them meaningless)"), std::string::npos) << md;
+  EXPECT_NE(md.find("Under the default, 1 of 4 cells agree fully"), std::string::npos) << md;
+
+  const std::string csv = variants_data_csv(s, "");
+  EXPECT_NE(csv.find("1,1,1,6,default\n"), std::string::npos) << csv;  // GIMP median of 2 and 10
+  EXPECT_NE(csv.find("4,1,2,1,pic+ghost\n"), std::string::npos) << csv;
+}
+
+}  // namespace
+}  // namespace mpmstab
