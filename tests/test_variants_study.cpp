@@ -165,11 +165,16 @@ TEST_F(VariantsStudyTest, ReportAndComparisonLineAreGeneratedFromTheNumbers) {
   EXPECT_NE(line.find("[variants.md#gimp-error-larger](variants.md#gimp-error-larger)"),
             std::string::npos)
       << line;
-  EXPECT_NE(line.find("best single change: `ghost`, 1 of 1 cells agree (it breaks 1 cell that "
-                      "agrees under the default)"),
+  EXPECT_NE(line.find("best single change: `ghost`, 1 of 1 cells agree, breaking 1 cell that "
+                      "agrees under the default"),
             std::string::npos)
       << line;
-  EXPECT_NE(line.find("best pair: `pic+ghost`, 0 of 1"), std::string::npos) << line;
+  EXPECT_NE(line.find("no pair brings any of its 1 cell into agreement"), std::string::npos)
+      << line;
+  const std::string crossing = variants_line(j, "mpm-crossing-failure", "variants.md");
+  EXPECT_NE(crossing.find("`pic`, 1 of 1 cells agree (1 of them meaningless), breaking no cell"),
+            std::string::npos)
+      << crossing;
   EXPECT_NE(line.find("at least half its cells agree): `ghost`."), std::string::npos) << line;
   const std::string none = variants_line(j, "error-smaller", "variants.md");
   EXPECT_NE(none.find("no cell in this class"), std::string::npos) << none;

@@ -32,10 +32,10 @@ std::string agree_text(const VariantClassOutcome& o, int n) {
          (o.meaningless ? ", " + std::to_string(o.meaningless) + " of them meaningless" : "");
 }
 
-// "1 cell that agrees", "3 cells that agree".
+// "no cell that agrees", "1 cell that agrees", "3 cells that agree" (under the default).
 std::string breaking(int n) {
-  return std::to_string(n) + (n == 1 ? " cell that agrees" : " cells that agree") +
-         " under the default";
+  return (n == 0 ? std::string("no") : std::to_string(n)) +
+         (n == 1 || n == 0 ? " cell that agrees" : " cells that agree") + " under the default";
 }
 
 std::string cells_word(int n) {
@@ -211,7 +211,7 @@ std::string class_reading(const VariantsStudy& s, const ComparisonClass& k) {
   const auto n_it = s.class_cells.find(k.id);
   const int n = n_it == s.class_cells.end() ? 0 : n_it->second;
   if (n == 0) return "No cell of Table 1 is in this class under the default run.";
-  std::vector<std::string> yes, partly, no, not_run;
+  std::vector<std::string> yes, partly, no, not_run, mostly_meaningless;
   for (const auto& v : s.variants) {
     if (v.baseline) continue;
     const auto it = v.by_class.find(k.id);
@@ -220,6 +220,9 @@ std::string class_reading(const VariantsStudy& s, const ComparisonClass& k) {
     switch (accounts_for(o, n)) {
       case Accounts::yes:
         yes.push_back(named(v) + " (" + agree_text(o, n) + breaks + ")");
+        if (2 * o.meaningless > o.agree) {
+          mostly_meaningless.push_back(named(v) + " (" + of(o.meaningless, o.agree) + ")");
+        }
         break;
       case Accounts::partly:
         partly.push_back(named(v) + " (" + agree_text(o, n) + breaks + ")");
@@ -245,6 +248,11 @@ std::string class_reading(const VariantsStudy& s, const ComparisonClass& k) {
   if (!yes.empty()) {
     md << "Can account for this class (at least half of its " << cells_word(n) << " reach " << what
        << "): " << join(yes) << ". ";
+    if (!mostly_meaningless.empty()) {
+      md << "But most of the runs that survive under " << join(mostly_meaningless)
+         << " are meaningless (their error over time reached A): they match the paper's verdict, "
+            "not an answer of the size of its Max Error. ";
+    }
   } else {
     md << "No variant accounts for this class: none brings half of its " << cells_word(n) << " to "
        << what << ". ";
@@ -391,8 +399,9 @@ std::string variants_markdown(const Spec& spec, const VariantsStudy& s, bool hav
         "error within a factor 3), and how many cells that agree fully under the default it "
         "breaks (over all its cells). **Criterion:** a variant *accounts* for a class when at "
         "least half of the class's cells agree under it, and *partly* accounts when it brings "
-        "some, but fewer than half, into agreement. The sentences below are generated from the "
-        "tables.\n\n";
+        "some, but fewer than half, into agreement. As in comparison.md, a run that reaches T is "
+        "stable even when its error over time reached A; such runs are counted as *meaningless* "
+        "beside the agreeing cells. The sentences below are generated from the tables.\n\n";
   for (const ComparisonClass* k : disagreement_classes()) {
     const auto n_it = s.class_cells.find(k->id);
     const int n = n_it == s.class_cells.end() ? 0 : n_it->second;
@@ -465,13 +474,19 @@ std::string variants_line(const ojson& study, const std::string& class_id,
     }
     return b;
   };
-  auto describe = [&](const char* what, const ojson* v) {
+  auto describe = [&](const char* what, const char* none, const ojson* v) {
     if (!v) return std::string(what) + ": none ran these cells";
-    return std::string(what) + ": `" + (*v)["name"].get<std::string>() + "`, " +
-           std::to_string((*v)["agree"].get<int>()) + " of " + std::to_string(n) +
-           " cells agree (it breaks " + breaking((*v)["breaks"].get<int>()) + ")";
+    const int agree = (*v)["agree"].get<int>();
+    if (agree == 0)
+      return std::string(none) + " brings any of its " + cells_word(n) + " into agreement";
+    const int meaningless = (*v)["meaningless"].get<int>();
+    return std::string(what) + ": `" + (*v)["name"].get<std::string>() + "`, " + of(agree, n) +
+           " cells agree" +
+           (meaningless ? " (" + std::to_string(meaningless) + " of them meaningless)" : "") +
+           ", breaking " + breaking((*v)["breaks"].get<int>());
   };
-  md << describe("best single change", best(1)) << "; " << describe("best pair", best(2)) << ". ";
+  md << describe("best single change", "no single change", best(1)) << "; "
+     << describe("best pair", "no pair", best(2)) << ". ";
   std::string yes;
   for (const auto& v : c["variants"]) {
     if (v["accounts"] == "yes")
