@@ -184,7 +184,11 @@ TEST_F(Regression, VariantRowsAreKeyedByTheirVariant) {
   EXPECT_NE(blessed.find(",over-time,"), std::string::npos) << blessed;
   EXPECT_NE(blessed.find(",default,"), std::string::npos) << blessed;
   testing::internal::CaptureStderr();
-  EXPECT_EQ(run_check(v, options), 0) << testing::internal::GetCapturedStderr();
+  testing::internal::CaptureStdout();
+  const int status = run_check(v, options);
+  testing::internal::GetCapturedStdout();
+  const std::string message = testing::internal::GetCapturedStderr();
+  EXPECT_EQ(status, 0) << message;
 }
 
 // A blessed file written before the variant column existed reads as rows of no variant.
