@@ -292,7 +292,7 @@ std::string variants_markdown(const Spec& spec, const VariantsStudy& s, bool hav
     const int g = gain->agreeing - gain->agreeing_under_default;
     if (g > 0) {
       md << "The largest net gain over the default is " << named(*gain) << " (" << gain->change
-         << "): " << of(gain->agreeing, gain->cells) << " of its cells agree, against "
+         << "): " << gain->agreeing << " of its " << gain->cells << " cells agree, against "
          << gain->agreeing_under_default << " under the default (" << gain->breaks << " broken). ";
     } else {
       md << "No variant raises the number of cells in full agreement above the default's. ";
