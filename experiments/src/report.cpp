@@ -12,6 +12,7 @@
 #include "cache.hpp"
 #include "csv.hpp"
 #include "report_util.hpp"
+#include "result_json.hpp"
 #include "variants.hpp"
 
 namespace mpmstab {
@@ -427,6 +428,35 @@ std::string cases_markdown(const Spec& spec, const std::vector<ojson>& rows) {
 }
 
 // ---------------------------------------------------------------------------------------------
+// Scenes: studies that run more than one scene report each scene in its own section, the first
+// scene of the spec (the paper's bar) first and in the figure.
+
+struct SceneRows {
+  std::string scene;
+  std::vector<ojson> rows;
+};
+
+std::vector<SceneRows> by_scene(const std::vector<ojson>& rows) {
+  std::vector<SceneRows> groups;
+  for (const auto& r : rows) {
+    const std::string scene = r["scene"].get<std::string>();
+    auto it = std::find_if(groups.begin(), groups.end(),
+                           [&](const SceneRows& g) { return g.scene == scene; });
+    if (it == groups.end()) it = groups.insert(groups.end(), SceneRows{scene, {}});
+    it->rows.push_back(r);
+  }
+  return groups;
+}
+
+std::string scene_title(const std::string& scene) {
+  if (scene == "steffen") {
+    return "Second scene: Steffen et al. (2008), neo-Hookean, u = A sin(2 pi X) cos(c pi t)";
+  }
+  if (scene == "bar") return "The paper's bar";
+  return "Scene " + scene;
+}
+
+// ---------------------------------------------------------------------------------------------
 // Stability edge.
 
 std::string edge_summary_text(const std::vector<ojson>& rows) {
@@ -469,19 +499,29 @@ std::string opt_ratio(const ojson& v) {
   return v.is_number() ? ratio(v.get<double>()) : "–";
 }
 
-std::string edge_markdown(const Spec& spec, const std::vector<ojson>& rows) {
+// The first scene's section has the figure and explains the search; a further scene's section
+// (`first` false) has its own summary and table.
+std::string edge_markdown(const Spec& spec, const std::vector<ojson>& rows, bool first = true) {
   std::ostringstream md;
-  md << "## Results\n\n**Summary.** " << edge_summary_text(rows) << "\n\n![" << spec.title << "]("
-     << spec.name
-     << ".png)\n\nThe search: a scan of dt = (h/c) 2^(k/2) from h/(16c) "
-        "to 4h/c, then bisection between the largest surviving and the smallest failing dt to "
-        "within 2%. dt_edge is the largest dt found to survive to T; \"eq. (108)\" is the "
-        "minimum of the bound over the run at dt_edge. Vector version: ["
-     << spec.name << ".svg](" << spec.name << ".svg); data: [" << spec.name << "_data.csv]("
-     << spec.name << "_data.csv).\n\n"
-     << "| method | A | E | dt_edge | h/c | dt_edge / (h/c) | eq. (108) at dt_edge | dt_edge / "
-        "eq. (108) | max error at dt_edge | monotone | runs | search time |\n"
-        "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  if (!first) {
+    md << "\n## " << scene_title(rows.front()["scene"].get<std::string>()) << "\n\n**Summary.** "
+       << edge_summary_text(rows)
+       << "\n\n| method | A | E | dt_edge | h/c | dt_edge / (h/c) | eq. (108) at dt_edge | "
+          "dt_edge / eq. (108) | max error at dt_edge | monotone | runs | search time |\n"
+          "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  } else {
+    md << "## Results\n\n**Summary.** " << edge_summary_text(rows) << "\n\n![" << spec.title << "]("
+       << spec.name
+       << ".png)\n\nThe search: a scan of dt = (h/c) 2^(k/2) from h/(16c) "
+          "to 4h/c, then bisection between the largest surviving and the smallest failing dt to "
+          "within 2%. dt_edge is the largest dt found to survive to T; \"eq. (108)\" is the "
+          "minimum of the bound over the run at dt_edge. Vector version: ["
+       << spec.name << ".svg](" << spec.name << ".svg); data: [" << spec.name << "_data.csv]("
+       << spec.name << "_data.csv).\n\n"
+       << "| method | A | E | dt_edge | h/c | dt_edge / (h/c) | eq. (108) at dt_edge | dt_edge / "
+          "eq. (108) | max error at dt_edge | monotone | runs | search time |\n"
+          "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  }
   for (const auto& r : rows) {
     const bool found = r["dt_edge"].is_number();
     std::string monotone = r["monotone"] == true ? "yes" : "**no**";
@@ -573,23 +613,30 @@ std::vector<std::optional<std::size_t>> cheapest(const std::vector<ojson>& rows,
   return best;
 }
 
-std::string tradeoff_markdown(const Spec& spec, const std::vector<ojson>& rows) {
+// As edge_markdown: the first scene's section has the figure and the definitions.
+std::string tradeoff_markdown(const Spec& spec, const std::vector<ojson>& rows, bool first = true) {
   std::vector<double> Es;
   for (const auto& r : rows) {
     const double E = r["E"].get<double>();
     if (std::find(Es.begin(), Es.end(), E) == Es.end()) Es.push_back(E);
   }
   std::ostringstream md, advice;
-  md << "## Results\n\nAccuracy is the max error over time (the largest particle displacement "
-        "error after any step), since for most E the exact displacement at T is zero. Cost is "
-        "the wall time of the run (and its number of steps). A run that failed or whose error "
-        "reached A reaches no accuracy. Pareto front: no other setting at the same E is both "
-        "cheaper and more accurate.\n\n!["
-     << spec.title << "](" << spec.name << ".png)\n\n"
-     << "Vector version: [" << spec.name << ".svg](" << spec.name << ".svg); data: [" << spec.name
-     << "_data.csv](" << spec.name << "_data.csv).\n\n";
+  const std::string scene = rows.front()["scene"].get<std::string>();
+  const std::string of_scene = first ? "" : " (" + scene + ")";
+  if (!first) {
+    md << "\n## " << scene_title(scene) << "\n\n";
+  } else {
+    md << "## Results\n\nAccuracy is the max error over time (the largest particle displacement "
+          "error after any step), since for most E the exact displacement at T is zero. Cost is "
+          "the wall time of the run (and its number of steps). A run that failed or whose error "
+          "reached A reaches no accuracy. Pareto front: no other setting at the same E is both "
+          "cheaper and more accurate.\n\n!["
+       << spec.title << "](" << spec.name << ".png)\n\n"
+       << "Vector version: [" << spec.name << ".svg](" << spec.name << ".svg); data: [" << spec.name
+       << "_data.csv](" << spec.name << "_data.csv).\n\n";
+  }
 
-  md << "### The cheapest setting for each accuracy\n\n| E |";
+  md << "### The cheapest setting for each accuracy" << of_scene << "\n\n| E |";
   for (double t : kTargets)
     md << " max error <= " << sci(t, 1) << " |";
   md << "\n|---|";
@@ -738,7 +785,7 @@ std::string tradeoff_markdown(const Spec& spec, const std::vector<ojson>& rows) 
       if (rows[i]["E"].get<double>() == E) idx.push_back(i);
     }
     const auto front = pareto_front(rows, idx);
-    md << "### E = " << shortest(E)
+    md << "### E = " << shortest(E) << of_scene
        << "\n\n| setting | steps | dt range | verdict | max error "
           "over time | wall time | ns / particle-step | Pareto "
           "|\n|---|---|---|---|---|---|---|---|\n";
@@ -1015,7 +1062,7 @@ const std::vector<std::string> kEdgeColumns = {"dt_edge",
 
 ojson flat_row(const CaseSpec& c, const ojson& record) {
   const ojson& r = record["result"];
-  ojson row;
+  ojson row, params;
   row["variant"] = c.variant;
   row["paper_method"] = to_string(c.paper_method);
   row["error_at"] = to_string(c.error_at);
@@ -1026,8 +1073,19 @@ ojson flat_row(const CaseSpec& c, const ojson& record) {
       row[col] = r["failure"].is_null() ? ojson(nullptr) : r["failure"][col.substr(8)];
     } else if (col == "key") {
       row[col] = case_key(c.params);
+    } else if (r.contains(col)) {
+      row[col] = r[col];
     } else {
-      row[col] = r.contains(col) ? r[col] : ojson(nullptr);
+      // A record cached before this column existed: a parameter is read from the case (the
+      // cache key guarantees the record ran with it), a measurement stays missing.
+      if (params.is_null()) {
+        RunResult with_params;
+        with_params.params = c.params;
+        params = to_json(with_params);
+      }
+      const auto& names = parameter_names();
+      const bool is_param = std::find(names.begin(), names.end(), col) != names.end();
+      row[col] = is_param && params.contains(col) ? params[col] : ojson(nullptr);
     }
   }
   if (record.contains("edge")) {
@@ -1178,14 +1236,22 @@ void write_reports(const Spec& spec, const SweepOutcome& outcome, const fs::path
       md << extremes_markdown(spec, rows);
       write_if_changed(out / (spec.name + "_data.csv"), extremes_data_csv(rows, header));
       break;
-    case ReportKind::tradeoff:
-      md << tradeoff_markdown(spec, rows);
-      write_if_changed(out / (spec.name + "_data.csv"), tradeoff_data_csv(rows, header));
+    case ReportKind::tradeoff: {
+      // The figure draws the first scene; every scene has its own tables.
+      const auto scenes = by_scene(rows);
+      for (std::size_t i = 0; i < scenes.size(); ++i)
+        md << tradeoff_markdown(spec, scenes[i].rows, i == 0);
+      write_if_changed(out / (spec.name + "_data.csv"),
+                       tradeoff_data_csv(scenes.front().rows, header));
       break;
-    case ReportKind::edge:
-      md << edge_markdown(spec, rows);
-      write_if_changed(out / (spec.name + "_data.csv"), edge_data_csv(rows, header));
+    }
+    case ReportKind::edge: {
+      const auto scenes = by_scene(rows);
+      for (std::size_t i = 0; i < scenes.size(); ++i)
+        md << edge_markdown(spec, scenes[i].rows, i == 0);
+      write_if_changed(out / (spec.name + "_data.csv"), edge_data_csv(scenes.front().rows, header));
       break;
+    }
     case ReportKind::variants:
       md << variants_markdown(spec, *study, have_courant);
       write_if_changed(out / (spec.name + "_data.csv"), variants_data_csv(*study, header));
@@ -1259,9 +1325,10 @@ void write_index(const std::vector<Spec>& specs, const fs::path& out) {
             "Pareto front and the cheapest setting for each target: ["
          << spec->name << ".md](" << spec->name << ".md).\n\n";
     } else if (spec->report == ReportKind::edge) {
-      md << "![" << spec->title << "](" << spec->name << ".png)\n\n**What it shows.** "
-         << edge_summary_text(rows) << " Details: [" << spec->name << ".md](" << spec->name
-         << ".md).\n\n";
+      md << "![" << spec->title << "](" << spec->name << ".png)\n\n**What it shows.** ";
+      for (const auto& scene : by_scene(rows))
+        md << "*" << scene_title(scene.scene) << ".* " << edge_summary_text(scene.rows) << " ";
+      md << "Details: [" << spec->name << ".md](" << spec->name << ".md).\n\n";
     } else if (spec->report == ReportKind::variants) {
       md << "![" << spec->title << "](" << spec->name << ".png)\n\n**What it shows.** "
          << spec->variants.size()
