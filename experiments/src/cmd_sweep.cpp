@@ -16,6 +16,7 @@
 #include "commands.hpp"
 #include "comparison.hpp"
 #include "csv.hpp"
+#include "merge.hpp"
 #include "performance.hpp"
 #include "regression.hpp"
 #include "report.hpp"
@@ -27,7 +28,8 @@ namespace mpmstab::cli {
 namespace {
 
 constexpr const char* kSweepHelp =
-    R"(Usage: mpmstab sweep <spec.json> [--jobs N] [--out DIR] [--force]
+    R"(Usage: mpmstab sweep <spec.json> [--jobs N] [--out DIR] [--force] [--shard I/N]
+                    [--timing keep|omit]
 
 Runs every case of an experiment spec and writes its reports:
   DIR/<name>.csv    one row per case, every measured quantity, '#' provenance lines
@@ -41,6 +43,16 @@ Options:
   --jobs N   cases run in parallel (default: all cores); results do not depend on N
   --out DIR  output folder (default results)
   --force    compute every case again
+  --shard I/N  run only shard I (0 <= I < N) of the cases and write no report: each case
+             belongs to the shard given by a hash of its key (parameters, solver version), so
+             it always lands in the same shard whatever the order of the spec. The records go
+             to DIR/cache/, with a manifest DIR/<name>.shard-I-of-N.json; 'mpmstab merge'
+             gathers the shards and writes the reports (see experiments/README.md).
+  --timing keep|omit
+             omit: reports leave out the machine measurements (wall times and ns per
+             particle-step read 0, date and threads "omitted"), so that two runs of the same
+             spec compare byte for byte, whatever the machine or the number of shards. The
+             cache keeps the measurements. Default keep.
   --help     show this text
 
 Exit status: 0 when every case ran (unstable runs are results), 2 for an invalid spec or
@@ -78,6 +90,8 @@ void install_stop_handlers() {
   sigaction(SIGTERM, &action, nullptr);
 }
 
+}  // namespace
+
 int default_jobs() {
   const unsigned n = std::thread::hardware_concurrency();
   return n == 0 ? 1 : static_cast<int>(n);
@@ -111,10 +125,39 @@ std::filesystem::path output_folder(const Args& args) {
   return out;
 }
 
+bool omit_timing(const Args& args) {
+  const auto v = args.value("timing");
+  if (!v || *v == "keep") return false;
+  if (*v == "omit") return true;
+  throw UsageError("--timing: unknown value '" + std::string(*v) + "' (expected keep or omit)");
+}
+
+namespace {
+
+Shard parse_shard(std::string_view text) {
+  const auto slash = text.find('/');
+  const std::string_view message = "must be I/N with integers 0 <= I < N <= 100000, got '";
+  if (slash == std::string_view::npos) {
+    throw UsageError("--shard: " + std::string(message) + std::string(text) + "'");
+  }
+  Shard s;
+  try {
+    s.index = static_cast<int>(parse_int(text.substr(0, slash), "shard"));
+    s.count = static_cast<int>(parse_int(text.substr(slash + 1), "shard"));
+  } catch (const UsageError&) {
+    throw UsageError("--shard: " + std::string(message) + std::string(text) + "'");
+  }
+  if (s.count < 1 || s.count > 100000 || s.index < 0 || s.index >= s.count) {
+    throw UsageError("--shard: " + std::string(message) + std::string(text) + "'");
+  }
+  return s;
+}
+
 }  // namespace
 
 int cmd_sweep(const std::vector<std::string_view>& argv) {
-  const Args args(argv, {{"jobs"}, {"out"}, {"force", false}, {"help", false}});
+  const Args args(argv,
+                  {{"jobs"}, {"out"}, {"force", false}, {"shard"}, {"timing"}, {"help", false}});
   if (args.flag("help")) {
     std::cout << kSweepHelp;
     return 0;
@@ -129,6 +172,8 @@ int cmd_sweep(const std::vector<std::string_view>& argv) {
     options.jobs = static_cast<int>(jobs);
   }
   options.force = args.flag("force");
+  if (auto v = args.value("shard")) options.shard = parse_shard(*v);
+  const bool omit = omit_timing(args);
   const Spec spec = load_specs(args.positional()).front();
   const auto out = output_folder(args);
   options.cache = out / "cache";
@@ -146,7 +191,28 @@ int cmd_sweep(const std::vector<std::string_view>& argv) {
               << "; no report was written. Run the same command again to resume.\n";
     return 128 + sig;
   }
-  write_reports(spec, outcome, out);
+  if (options.shard) {
+    // A shard writes its records (in the cache) and a manifest, never a partial report.
+    const Shard& sh = *options.shard;
+    const nlohmann::ordered_json manifest = {{"spec", spec.path.generic_string()},
+                                             {"name", spec.name},
+                                             {"shard", sh.index},
+                                             {"of", sh.count},
+                                             {"cases", spec.cases.size() - outcome.other_shards},
+                                             {"computed", outcome.computed},
+                                             {"cached", outcome.cached},
+                                             {"wall_seconds", outcome.wall_seconds}};
+    write_file_atomically(shard_manifest(out, spec.name, sh), manifest.dump(2) + "\n");
+    std::cerr << "[" << spec.name << "] shard " << sh.index << "/" << sh.count << ": "
+              << spec.cases.size() - outcome.other_shards << " of " << spec.cases.size()
+              << " cases (" << outcome.computed << " computed, " << outcome.cached
+              << " from the cache) in " << shortest(std::round(outcome.wall_seconds * 100) / 100)
+              << " s -> " << options.cache.string() << "\n";
+    return 0;
+  }
+  SweepOutcome reported = outcome;
+  if (omit) omit_machine_measurements(reported);
+  write_reports(spec, reported, out);
   std::cerr << "[" << spec.name << "] " << spec.cases.size() << " cases (" << outcome.computed
             << " computed, " << outcome.cached << " from the cache, "
             << (outcome.shared

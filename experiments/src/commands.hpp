@@ -2,8 +2,12 @@
 // cli::UsageError for bad input (status 2, printed by main).
 #pragma once
 
+#include <filesystem>
 #include <string_view>
 #include <vector>
+
+#include "args.hpp"
+#include "spec.hpp"
 
 namespace mpmstab::cli {
 
@@ -16,5 +20,13 @@ int cmd_performance(const std::vector<std::string_view>& args);
 int cmd_compare(const std::vector<std::string_view>& args);
 int cmd_check(const std::vector<std::string_view>& args);
 int cmd_bless(const std::vector<std::string_view>& args);
+int cmd_merge(const std::vector<std::string_view>& args);
+int cmd_slurm(const std::vector<std::string_view>& args);
+
+// Shared by the commands that read specs and write reports.
+int default_jobs();                                                        // the machine's cores
+std::vector<Spec> load_specs(const std::vector<std::string_view>& paths);  // UsageError if bad
+std::filesystem::path output_folder(const Args& args);  // --out (default results), created
+bool omit_timing(const Args& args);                     // --timing keep|omit (default keep)
 
 }  // namespace mpmstab::cli

@@ -21,6 +21,8 @@ Commands:
   performance  write results/performance.md (benchmark and experiment wall times)
   check   rerun a fast subset of every experiment against the blessed values
   bless   accept the current values as the blessed ones, with a reason
+  merge   write the reports of a sweep that ran in shards (sweep --shard I/N)
+  slurm   write a Slurm job array that runs a sweep in shards, and its merge job
 
 'mpmstab <command> --help' describes a command.
 )";
@@ -45,9 +47,12 @@ int main(int argc, char** argv) {
     if (command == "compare") return mpmstab::cli::cmd_compare(args);
     if (command == "check") return mpmstab::cli::cmd_check(args);
     if (command == "bless") return mpmstab::cli::cmd_bless(args);
+    if (command == "merge") return mpmstab::cli::cmd_merge(args);
+    if (command == "slurm") return mpmstab::cli::cmd_slurm(args);
     std::string message = "unknown command '" + std::string(command) + "'";
-    if (auto guess = mpmstab::cli::nearest(command, {"run", "edge", "sweep", "index", "plot",
-                                                     "compare", "check", "bless", "performance"})) {
+    if (auto guess =
+            mpmstab::cli::nearest(command, {"run", "edge", "sweep", "index", "plot", "compare",
+                                            "check", "bless", "performance", "merge", "slurm"})) {
       message += " (did you mean '" + *guess + "'?)";
     }
     throw mpmstab::cli::UsageError(message);

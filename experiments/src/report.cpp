@@ -1161,7 +1161,7 @@ void write_reports(const Spec& spec, const SweepOutcome& outcome, const fs::path
   }
   double sweep_wall = outcome.wall_seconds;
   const fs::path json_path = out / (spec.name + ".json");
-  if (outcome.computed == 0) {
+  if (outcome.computed == 0 && !outcome.merged && !outcome.timing_omitted) {
     try {
       const ojson previous = ojson::parse(read_file(json_path));
       sweep_wall = previous.at("sweep").at("wall_seconds").get<double>();
@@ -1178,8 +1178,11 @@ void write_reports(const Spec& spec, const SweepOutcome& outcome, const fs::path
   // CSV: one row per case.
   std::ostringstream csv;
   csv << header
-      << "# wall_seconds and ns_per_particle_step are measurements of the machine; every other "
-         "column is the same for the same spec whatever the number of jobs.\n";
+      << (outcome.timing_omitted
+              ? "# machine measurements omitted (--timing omit): wall_seconds and "
+                "ns_per_particle_step read 0.\n"
+              : "# wall_seconds and ns_per_particle_step are measurements of the machine; every "
+                "other column is the same for the same spec whatever the number of jobs.\n");
   for (std::size_t c = 0; c < columns.size(); ++c)
     csv << (c ? "," : "") << columns[c];
   csv << "\n";

@@ -4,6 +4,7 @@
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
+#include <cstdint>
 #include <cstdio>
 #include <exception>
 #include <map>
@@ -131,6 +132,41 @@ class Progress {
 
 }  // namespace
 
+int shard_of(const std::string& case_key, int count) {
+  // The key is 64 bits of FNV-1a; a splitmix64 finalizer spreads them before the modulo.
+  std::uint64_t x = std::stoull(case_key, nullptr, 16);
+  x += 0x9e3779b97f4a7c15ull;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
+  x ^= x >> 31;
+  return static_cast<int>(x % static_cast<std::uint64_t>(count));
+}
+
+void omit_machine_measurements(SweepOutcome& outcome) {
+  for (auto& rec : outcome.records) {
+    if (rec.is_null()) continue;
+    rec["result"]["wall_seconds"] = 0.0;
+    rec["result"]["ns_per_particle_step"] = 0.0;
+    if (rec.contains("edge")) rec["edge"]["wall_seconds"] = 0.0;
+    rec["provenance"]["date"] = "omitted";
+    rec["provenance"]["threads"] = "omitted";
+  }
+  outcome.wall_seconds = 0;
+  outcome.timing_omitted = true;
+}
+
+nlohmann::ordered_json deterministic_part(const nlohmann::ordered_json& record) {
+  nlohmann::ordered_json d = record;
+  d.erase("provenance");
+  d.erase("canonical");
+  if (d.contains("result")) {
+    d["result"].erase("wall_seconds");
+    d["result"].erase("ns_per_particle_step");
+  }
+  if (d.contains("edge")) d["edge"].erase("wall_seconds");
+  return d;
+}
+
 SweepOutcome run_sweep(const Spec& spec, const SweepOptions& options) {
   const auto start = Clock::now();
   const std::size_t n = spec.cases.size();
@@ -138,15 +174,19 @@ SweepOutcome run_sweep(const Spec& spec, const SweepOptions& options) {
   const Provenance provenance = current_provenance(options.jobs);
   const std::string search = spec.report == ReportKind::edge ? "edge" : "";
 
-  // One run per distinct key: a case repeating an earlier one shares its record.
+  // One run per distinct key: a case repeating an earlier one shares its record. A shard runs
+  // only the keys that fall in it.
   std::vector<std::size_t> same_as(n);
   std::vector<std::size_t> runs;
+  std::vector<char> elsewhere(n, 0);
   {
     std::map<std::string, std::size_t> first;
     for (std::size_t i = 0; i < n; ++i) {
-      const auto [it, fresh] = first.emplace(case_key(spec.cases[i].params, search), i);
+      const std::string key = case_key(spec.cases[i].params, search);
+      const auto [it, fresh] = first.emplace(key, i);
       same_as[i] = it->second;
-      if (fresh) runs.push_back(i);
+      elsewhere[i] = options.shard && shard_of(key, options.shard->count) != options.shard->index;
+      if (fresh && !elsewhere[i]) runs.push_back(i);
     }
   }
 
@@ -215,6 +255,10 @@ SweepOutcome run_sweep(const Spec& spec, const SweepOptions& options) {
   if (error) std::rethrow_exception(error);
 
   for (std::size_t i = 0; i < n; ++i) {
+    if (elsewhere[i]) {
+      ++out.other_shards;
+      continue;
+    }
     if (same_as[i] != i) out.records[i] = out.records[same_as[i]];
     if (out.records[i].is_null()) {
       out.interrupted = true;  // a case that never finished

@@ -4,14 +4,28 @@
 #include <atomic>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "spec.hpp"
 
 namespace mpmstab {
 
+// One part of a sweep split over machines: shard `index` of `count`, 0 <= index < count.
+struct Shard {
+  int index = 0;
+  int count = 1;
+};
+
+// The shard a case belongs to: a hash of its cache key (canonical parameters, solver version
+// and search), so that a case always lands in the same shard whatever the order of the cases
+// in the spec, and identical cases land together.
+int shard_of(const std::string& case_key, int count);
+
 struct SweepOptions {
   int jobs = 1;                 // cases run at once
+  std::optional<Shard> shard;   // run only this shard's cases (the others stay null)
   bool force = false;           // compute every case again, ignoring the cache
   std::filesystem::path cache;  // cache folder; empty: compute every case, store nothing
   bool progress_line = false;   // one updating line (terminal) instead of a line per case
@@ -30,9 +44,25 @@ struct SweepOutcome {
   // for example two variants that differ only in what they compare: run once, record shared.
   int shared = 0;
   int unstable = 0;
+  int other_shards = 0;  // cases left to the other shards (their records are null)
   double wall_seconds = 0;
   bool interrupted = false;  // stopped by `cancel`: records of unfinished cases are null
+  // Gathered from shard outputs (mpmstab merge) rather than run here: wall_seconds is the
+  // longest shard's.
+  bool merged = false;
+  // The machine measurements were removed (omit_machine_measurements).
+  bool timing_omitted = false;
 };
+
+// Removes what measures the machine rather than the computation from every record and from the
+// outcome: wall times and ns per particle-step read 0, the date and thread count "omitted".
+// Reports written from the result are the same bytes for the same spec on any machine, in any
+// number of shards (--timing omit).
+void omit_machine_measurements(SweepOutcome& outcome);
+
+// A record without its machine measurements and provenance: what two computations of the same
+// case must agree on.
+nlohmann::ordered_json deterministic_part(const nlohmann::ordered_json& record);
 
 // The work of a case in particle-steps (an estimate for the adaptive policies and for edge
 // searches), for scheduling, progress and the fast subset of make check.

@@ -1,0 +1,109 @@
+#include "merge.hpp"
+
+#include <fstream>
+#include <sstream>
+
+#include "cache.hpp"
+#include "csv.hpp"
+
+namespace mpmstab {
+
+namespace fs = std::filesystem;
+using ojson = nlohmann::ordered_json;
+
+namespace {
+
+std::string describe_case(const RunParams& p) {
+  std::ostringstream s;
+  s << to_string(p.method) << " E=" << shortest(p.E) << " A=" << shortest(p.A)
+    << " dt=" << shortest(p.dt);
+  return s.str();
+}
+
+// Lists the first few items and the count of the rest.
+std::string listing(const std::vector<std::string>& items, std::size_t shown = 10) {
+  std::string s;
+  for (std::size_t i = 0; i < items.size() && i < shown; ++i)
+    s += "\n  " + items[i];
+  if (items.size() > shown) s += "\n  ... and " + std::to_string(items.size() - shown) + " more";
+  return s;
+}
+
+}  // namespace
+
+fs::path shard_manifest(const fs::path& dir, const std::string& name, const Shard& shard) {
+  return dir / (name + ".shard-" + std::to_string(shard.index) + "-of-" +
+                std::to_string(shard.count) + ".json");
+}
+
+SweepOutcome merge_shards(const Spec& spec, const std::vector<fs::path>& dirs) {
+  const std::string search = spec.report == ReportKind::edge ? "edge" : "";
+  std::vector<ResultCache> caches;
+  for (const auto& d : dirs)
+    caches.emplace_back(d / "cache");
+
+  SweepOutcome out;
+  out.merged = true;
+  out.records.resize(spec.cases.size());
+  std::vector<std::string> missing, conflicts;
+  for (std::size_t i = 0; i < spec.cases.size(); ++i) {
+    const RunParams& p = spec.cases[i].params;
+    std::optional<ojson> chosen;
+    std::size_t chosen_dir = 0;
+    for (std::size_t d = 0; d < caches.size(); ++d) {
+      auto record = caches[d].load(p, search);
+      if (!record) continue;
+      if (!chosen) {
+        chosen = std::move(record);
+        chosen_dir = d;
+      } else if (deterministic_part(*record) != deterministic_part(*chosen)) {
+        conflicts.push_back("cases[" + std::to_string(i) + "] " + describe_case(p) + ": " +
+                            dirs[chosen_dir].string() + " and " + dirs[d].string() + " disagree");
+      }
+    }
+    if (!chosen) {
+      missing.push_back("cases[" + std::to_string(i) + "] " + describe_case(p) + " (key " +
+                        case_key(p, search) + ")");
+      continue;
+    }
+    out.records[i] = std::move(*chosen);
+    ++out.cached;
+    if (!out.records[i]["result"]["stable"].get<bool>()) ++out.unstable;
+  }
+  if (!missing.empty() || !conflicts.empty()) {
+    std::string message;
+    if (!missing.empty()) {
+      message += std::to_string(missing.size()) + " of " + std::to_string(spec.cases.size()) +
+                 " cases are in none of the folders (a shard that did not run or did not "
+                 "finish?):" +
+                 listing(missing);
+    }
+    if (!conflicts.empty()) {
+      if (!message.empty()) message += "\n";
+      message += std::to_string(conflicts.size()) +
+                 " cases have results that disagree between folders (different solver builds?):" +
+                 listing(conflicts);
+    }
+    throw MergeError(message);
+  }
+
+  // The merged sweep took as long as its longest shard.
+  for (const auto& d : dirs) {
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(d, ec)) {
+      const std::string file = entry.path().filename().string();
+      if (file.rfind(spec.name + ".shard-", 0) != 0 || entry.path().extension() != ".json")
+        continue;
+      try {
+        std::ifstream in(entry.path());
+        const ojson manifest = ojson::parse(in);
+        out.wall_seconds = std::max(out.wall_seconds, manifest.at("wall_seconds").get<double>());
+      } catch (const std::exception&) {
+        // An unreadable manifest only loses the wall time, not a result.
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace mpmstab

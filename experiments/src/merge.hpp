@@ -1,0 +1,32 @@
+// Gathering a sweep that ran in shards (mpmstab sweep --shard i/N), possibly on many machines,
+// into the outcome a single-machine sweep has, so that the same reports are written from it.
+#pragma once
+
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "spec.hpp"
+#include "sweep.hpp"
+
+namespace mpmstab {
+
+// Cases that cannot be merged: missing from every folder, or present in several with results
+// that disagree. what() lists them (the first few of each, then the counts).
+class MergeError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// The manifest a shard leaves beside its records: <dir>/<name>.shard-<i>-of-<N>.json.
+std::filesystem::path shard_manifest(const std::filesystem::path& dir, const std::string& name,
+                                     const Shard& shard);
+
+// Reads the record of every case of `spec` from <dir>/cache of the given folders. A case found
+// in several folders must agree in everything but the machine measurements; the record of the
+// first folder that has it is used. wall_seconds of the outcome is the longest sweep among the
+// shard manifests found (0 if none). Throws MergeError.
+SweepOutcome merge_shards(const Spec& spec, const std::vector<std::filesystem::path>& dirs);
+
+}  // namespace mpmstab
