@@ -29,13 +29,15 @@ MPMSTAB     := $(BUILD_DIR)/mpmstab
 FUZZ_SECONDS ?= 20
 FUZZ_DIR     ?= build-fuzz
 
-.PHONY: all build deps test check bless fuzz bench reproduce figures format format-check clean help
+.PHONY: all build deps test test-cluster check bless fuzz bench reproduce figures format format-check clean help
 
 all: build
 
 help:
 	@echo "make              install missing packages, configure and build into $(BUILD_DIR)/"
 	@echo "make test         build and run the GoogleTest suite (CTest), then make check"
+	@echo "make test-cluster  shard sweeps on a throwaway local Slurm cluster and with GNU parallel;"
+	@echo "                   the merged reports must equal an unsharded run's, byte for byte"
 	@echo "make fuzz         fuzz the spec parser for FUZZ_SECONDS (default 20) seconds"
 	@echo "make check        rerun a fast subset of every experiment against reference/regression"
 	@echo "make bless REASON=\"...\"  accept the current values as blessed, logged in BLESSED.md"
@@ -67,6 +69,12 @@ test: build
 	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
 	@$(MAKE) --no-print-directory check
 	@$(MAKE) --no-print-directory fuzz
+
+# The cluster workflow end to end (tests/cluster/test_cluster.sh): installs slurm-wlm, munge and
+# parallel if missing, starts a one-node Slurm cluster on localhost in a temporary folder, and
+# compares the merged reports of sharded runs (Slurm job array, GNU parallel) with an unsharded run.
+test-cluster: build
+	MPMSTAB=$(MPMSTAB) tests/cluster/test_cluster.sh
 
 # A bounded fuzz run of the spec parser (libFuzzer, with address and UB sanitizers). New inputs
 # that reach new code are kept in tests/fuzz/corpus (committed); the specs seed it.
