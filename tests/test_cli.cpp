@@ -1,8 +1,6 @@
 // The command line: every invalid input exits 2 naming the option; a valid run prints JSON.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
-#include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -10,25 +8,12 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "support.hpp"
+
 namespace {
 
-struct Outcome {
-  int status;
-  std::string output;  // stdout and stderr together
-};
-
-Outcome mpmstab(const std::string& args) {
-  const std::string command = std::string(MPMSTAB_BIN) + " " + args + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return {-1, "popen failed"};
-  std::string output;
-  std::array<char, 4096> buffer;
-  while (const std::size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) {
-    output.append(buffer.data(), n);
-  }
-  const int raw = pclose(pipe);
-  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, output};
-}
+using Outcome = mpmstab::test_support::CliOutcome;
+using mpmstab::test_support::run_mpmstab;
 
 const std::string kValid = "--method gimp --E 4 --A 0.015 --dt 1e-3 --T 0.01";
 
@@ -44,7 +29,7 @@ std::string with(const std::string& option, const std::string& value) {
 }
 
 TEST(Cli, ValidRunPrintsJsonWithEveryKey) {
-  const Outcome o = mpmstab("run " + kValid + " --json");
+  const Outcome o = run_mpmstab("run " + kValid + " --json");
   ASSERT_EQ(o.status, 0) << o.output;
   const auto j = nlohmann::json::parse(o.output);
   for (const char* key : {"method", "E", "A", "dt", "T", "cells", "ppc", "bc", "stable", "failure",
@@ -58,7 +43,7 @@ TEST(Cli, ValidRunPrintsJsonWithEveryKey) {
 }
 
 TEST(Cli, UnstableRunIsAResultNotAnError) {
-  const Outcome o = mpmstab("run --method gimp --E 1000 --A 0.015 --dt 1e-3 --json");
+  const Outcome o = run_mpmstab("run --method gimp --E 1000 --A 0.015 --dt 1e-3 --json");
   ASSERT_EQ(o.status, 0) << o.output;
   const auto j = nlohmann::json::parse(o.output);
   EXPECT_EQ(j["stable"], false);
@@ -115,7 +100,7 @@ TEST(Cli, InvalidInputExitsTwoAndNamesTheOption) {
       {"--method gimp --E 4 --A 0.015 --dt 1e-9 --T 1", "--dt"},  // over the step cap
   };
   for (const auto& c : cases) {
-    const Outcome o = mpmstab("run " + c.args);
+    const Outcome o = run_mpmstab("run " + c.args);
     EXPECT_EQ(o.status, 2) << c.args << "\n" << o.output;
     EXPECT_NE(o.output.find(c.named), std::string::npos) << c.args << "\n" << o.output;
     EXPECT_EQ(o.output.find("internal error"), std::string::npos) << c.args;
@@ -123,19 +108,19 @@ TEST(Cli, InvalidInputExitsTwoAndNamesTheOption) {
 }
 
 TEST(Cli, UnknownOptionSuggestsTheNearestOne) {
-  const Outcome o = mpmstab("run " + kValid + " --cell 10");
+  const Outcome o = run_mpmstab("run " + kValid + " --cell 10");
   EXPECT_EQ(o.status, 2);
   EXPECT_NE(o.output.find("did you mean --cells"), std::string::npos) << o.output;
 }
 
 TEST(Cli, UnknownCommandAndBareInvocationExitTwo) {
-  EXPECT_EQ(mpmstab("rnu").status, 2);
-  EXPECT_NE(mpmstab("rnu").output.find("did you mean 'run'"), std::string::npos);
-  EXPECT_EQ(mpmstab("").status, 2);
+  EXPECT_EQ(run_mpmstab("rnu").status, 2);
+  EXPECT_NE(run_mpmstab("rnu").output.find("did you mean 'run'"), std::string::npos);
+  EXPECT_EQ(run_mpmstab("").status, 2);
 }
 
 TEST(Cli, HelpExitsZero) {
-  const Outcome o = mpmstab("run --help");
+  const Outcome o = run_mpmstab("run --help");
   EXPECT_EQ(o.status, 0);
   EXPECT_NE(o.output.find("--dt-stable-sigma"), std::string::npos);
 }
@@ -143,15 +128,15 @@ TEST(Cli, HelpExitsZero) {
 TEST(Cli, BadInputWritesNothing) {
   const auto path = std::filesystem::temp_directory_path() / "mpmstab_cli_history_test.csv";
   std::filesystem::remove(path);
-  EXPECT_EQ(mpmstab("run " + with("E", "-4") + " --history " + path.string()).status, 2);
+  EXPECT_EQ(run_mpmstab("run " + with("E", "-4") + " --history " + path.string()).status, 2);
   EXPECT_FALSE(std::filesystem::exists(path));
-  EXPECT_EQ(mpmstab("run " + kValid + " --history " + path.string()).status, 0);
+  EXPECT_EQ(run_mpmstab("run " + kValid + " --history " + path.string()).status, 0);
   EXPECT_TRUE(std::filesystem::exists(path));
   std::filesystem::remove(path);
 }
 
 TEST(Cli, UnwritableHistoryIsAUsageError) {
-  const Outcome o = mpmstab("run " + kValid + " --history /nonexistent-dir/h.csv");
+  const Outcome o = run_mpmstab("run " + kValid + " --history /nonexistent-dir/h.csv");
   EXPECT_EQ(o.status, 2) << o.output;
   EXPECT_NE(o.output.find("--history"), std::string::npos) << o.output;
 }
@@ -161,17 +146,18 @@ TEST(Cli, UnwritableHistoryIsAUsageError) {
 namespace {
 
 TEST(Cli, PoliciesTakeDtOnlyWhenFixed) {
-  EXPECT_EQ(mpmstab("run --method gimp --E 4 --A 0.01 --T 0.01 --policy cfl").status, 0);
-  const Outcome both = mpmstab("run --method gimp --E 4 --A 0.01 --T 0.01 --policy cfl --dt 1e-3");
+  EXPECT_EQ(run_mpmstab("run --method gimp --E 4 --A 0.01 --T 0.01 --policy cfl").status, 0);
+  const Outcome both =
+      run_mpmstab("run --method gimp --E 4 --A 0.01 --T 0.01 --policy cfl --dt 1e-3");
   EXPECT_EQ(both.status, 2);
   EXPECT_NE(both.output.find("--dt"), std::string::npos);
-  const Outcome bad = mpmstab("run --method gimp --E 4 --A 0.01 --policy adaptive --safety 0");
+  const Outcome bad = run_mpmstab("run --method gimp --E 4 --A 0.01 --policy adaptive --safety 0");
   EXPECT_EQ(bad.status, 2);
   EXPECT_NE(bad.output.find("--safety"), std::string::npos);
-  EXPECT_EQ(mpmstab("run --method gimp --E 4 --A 0.01 --policy cfl --cfl-factor -1").status, 2);
-  EXPECT_EQ(mpmstab("run --method gimp --E 4 --A 0.01 --policy sometimes").status, 2);
+  EXPECT_EQ(run_mpmstab("run --method gimp --E 4 --A 0.01 --policy cfl --cfl-factor -1").status, 2);
+  EXPECT_EQ(run_mpmstab("run --method gimp --E 4 --A 0.01 --policy sometimes").status, 2);
   const Outcome json =
-      mpmstab("run --method mpm --E 4 --A 0.01 --T 0.05 --policy adaptive --safety 3 --json");
+      run_mpmstab("run --method mpm --E 4 --A 0.01 --T 0.05 --policy adaptive --safety 3 --json");
   ASSERT_EQ(json.status, 0) << json.output;
   const auto j = nlohmann::json::parse(json.output);
   EXPECT_EQ(j["policy"], "adaptive");
@@ -210,7 +196,7 @@ class CompareErrorAt : public ::testing::Test {
 
 TEST_F(CompareErrorAt, ChoosesTheErrorComparedWithThePapers) {
   const std::string out = " --out " + (dir / "out").string();
-  ASSERT_EQ(mpmstab("sweep " + (dir / "t.json").string() + out).status, 0);
+  ASSERT_EQ(run_mpmstab("sweep " + (dir / "t.json").string() + out).status, 0);
   const auto rows = nlohmann::json::parse(read(dir / "out/t.json"))["cases"];
   const double at_T = rows[0]["max_error"].get<double>();
   const double over_time = rows[0]["max_error_over_time"].get<double>();
@@ -223,29 +209,29 @@ TEST_F(CompareErrorAt, ChoosesTheErrorComparedWithThePapers) {
     return e == std::string::npos ? s : s.erase(e + 2, 1);
   };
 
-  Outcome o = mpmstab("compare " + (dir / "t.json").string() + out);
+  Outcome o = run_mpmstab("compare " + (dir / "t.json").string() + out);
   ASSERT_EQ(o.status, 0) << o.output;
   std::string md = read(dir / "out/comparison.md");
   EXPECT_NE(md.find("max error at T (`max_error`)"), std::string::npos);
   EXPECT_NE(md.find("| " + shown(at_T) + " |"), std::string::npos) << shown(at_T);
   EXPECT_NE(md.find("Variants study not run"), std::string::npos);
 
-  o = mpmstab("compare " + (dir / "t.json").string() + out + " --error-at max_over_time");
+  o = run_mpmstab("compare " + (dir / "t.json").string() + out + " --error-at max_over_time");
   ASSERT_EQ(o.status, 0) << o.output;
   md = read(dir / "out/comparison.md");
   EXPECT_NE(md.find("max error over the run (`max_error_over_time`"), std::string::npos);
   EXPECT_NE(md.find("| " + shown(over_time) + " |"), std::string::npos) << shown(over_time);
 
   // Bad values and a spec that does not record the error over time are refused, naming the option.
-  o = mpmstab("compare " + (dir / "t.json").string() + out + " --error-at end");
+  o = run_mpmstab("compare " + (dir / "t.json").string() + out + " --error-at end");
   EXPECT_EQ(o.status, 2);
   EXPECT_NE(o.output.find("--error-at: unknown value 'end' (expected T or max_over_time)"),
             std::string::npos)
       << o.output;
-  o = mpmstab("compare " + (dir / "bare.json").string() + out + " --error-at max_over_time");
+  o = run_mpmstab("compare " + (dir / "bare.json").string() + out + " --error-at max_over_time");
   EXPECT_EQ(o.status, 2);
   EXPECT_NE(o.output.find("does not record error_over_time"), std::string::npos) << o.output;
-  o = mpmstab("compare --help");
+  o = run_mpmstab("compare --help");
   EXPECT_EQ(o.status, 0);
   EXPECT_NE(o.output.find("--error-at"), std::string::npos);
 }

@@ -1,12 +1,14 @@
 // Hostile input: every bad input to every command gets a message naming the key, option or
 // file, exit status 2, and leaves every existing result file byte for byte unchanged.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
+
+#include "support.hpp"
 
 namespace {
 
@@ -191,11 +193,7 @@ TEST_F(Hostile, EveryBadInputExitsTwoNamesTheCulpritAndChangesNothing) {
   };
   ASSERT_GE(cases.size(), 40u);
   for (const auto& c : cases) {
-    const std::string cmd = std::string(MPMSTAB_BIN) + " " + expand(c.args, dir) + " 2>&1";
-    FILE* pipe = popen(cmd.c_str(), "r");
-    std::string output(16384, '\0');
-    output.resize(fread(output.data(), 1, output.size(), pipe));
-    const int status = WEXITSTATUS(pclose(pipe));
+    const auto [status, output] = mpmstab::test_support::run_mpmstab(expand(c.args, dir));
     EXPECT_EQ(status, 2) << c.args << "\n" << output;
     EXPECT_NE(output.find(expand(c.named, dir)), std::string::npos) << c.args << "\n" << output;
     EXPECT_EQ(output.find("internal error"), std::string::npos) << c.args << "\n" << output;

@@ -2,23 +2,15 @@
 #include <gtest/gtest.h>
 
 #include "run.hpp"
+#include "support.hpp"
 
 namespace mpmstab {
 namespace {
 
-RunParams quick() {
-  RunParams p;
-  p.method = Method::gimp;
-  p.E = 4;
-  p.A = 0.015;
-  p.dt = 1e-3;
-  p.T = 0.2;
-  p.cells = 20;
-  return p;
-}
+using test_support::quick_case;
 
 TEST(Run, StableRunReportsEveryQuantity) {
-  const RunResult r = run(quick());
+  const RunResult r = run(quick_case());
   EXPECT_TRUE(r.stable);
   EXPECT_FALSE(r.failure);
   EXPECT_EQ(r.steps, 200);
@@ -37,12 +29,12 @@ TEST(Run, StableRunReportsEveryQuantity) {
 }
 
 TEST(Run, ObserversThatAreOffComputeNothingAndChangeNothing) {
-  RunParams lean = quick();
+  RunParams lean = quick_case();
   lean.observe.error_over_time = false;
   lean.observe.dt_stable = false;
   lean.observe.crossings = false;
   const RunResult a = run(lean);
-  const RunResult b = run(quick());
+  const RunResult b = run(quick_case());
   EXPECT_FALSE(a.max_error_over_time);
   EXPECT_FALSE(a.crossings);
   EXPECT_FALSE(a.dt_stable_min);
@@ -52,7 +44,7 @@ TEST(Run, ObserversThatAreOffComputeNothingAndChangeNothing) {
 }
 
 TEST(Run, HistoryHasOneRowPerKeptStepWithOnlyTheObservedFields) {
-  RunParams p = quick();
+  RunParams p = quick_case();
   p.observe.history = true;
   const RunResult all = run(p);
   ASSERT_EQ(all.history.size(), 200u);
@@ -77,7 +69,7 @@ TEST(Run, HistoryHasOneRowPerKeptStepWithOnlyTheObservedFields) {
 }
 
 TEST(Run, FinalStateHoldsTheParticlesAndTheExactSolutionAtT) {
-  RunParams p = quick();
+  RunParams p = quick_case();
   EXPECT_FALSE(run(p).final_state);
   p.observe.final_state = true;
   const RunResult r = run(p);
@@ -91,7 +83,7 @@ TEST(Run, FinalStateHoldsTheParticlesAndTheExactSolutionAtT) {
 }
 
 TEST(Run, HistoryOfAFailedRunEndsWithTheLastAdmissibleStep) {
-  RunParams p = quick();
+  RunParams p = quick_case();
   p.E = 1000;  // Courant 3.2 on 20 cells: fails within a few steps
   p.dt = 2e-3;
   p.observe.history = true;
@@ -103,8 +95,8 @@ TEST(Run, HistoryOfAFailedRunEndsWithTheLastAdmissibleStep) {
 }
 
 TEST(Run, IsDeterministic) {
-  const RunResult a = run(quick());
-  const RunResult b = run(quick());
+  const RunResult a = run(quick_case());
+  const RunResult b = run(quick_case());
   EXPECT_EQ(*a.max_error, *b.max_error);
   EXPECT_EQ(*a.max_error_over_time, *b.max_error_over_time);
   EXPECT_EQ(*a.dt_stable_min, *b.dt_stable_min);
@@ -112,7 +104,7 @@ TEST(Run, IsDeterministic) {
 }
 
 TEST(Run, LastStepIsShortenedToLandOnT) {
-  RunParams p = quick();
+  RunParams p = quick_case();
   p.dt = 0.03;  // 6.67 steps in T = 0.2 -> 7 steps, the last one 0.02
   p.E = 0.01;
   p.observe.history = true;
@@ -136,7 +128,7 @@ TEST(Run, FlagsARunWhoseErrorReachesTheAmplitudeAsMeaningless) {
 }
 
 TEST(Run, PositionUpdateOptionChangesTheResultButNotTheVerdict) {
-  RunParams p = quick();
+  RunParams p = quick_case();
   const RunResult grid = run(p);
   p.position_update = PositionUpdate::particle;
   const RunResult particle = run(p);
@@ -148,7 +140,7 @@ TEST(Run, PositionUpdateOptionChangesTheResultButNotTheVerdict) {
 TEST(Run, OneAndEightParticlesPerCellBothWork) {
   for (int ppc : {1, 8}) {
     for (Method m : {Method::mpm, Method::gimp}) {
-      RunParams p = quick();
+      RunParams p = quick_case();
       p.ppc = ppc;
       p.method = m;
       p.A = 1e-3;
@@ -161,7 +153,7 @@ TEST(Run, OneAndEightParticlesPerCellBothWork) {
 }
 
 TEST(Run, PeriodicBarStaysStableAndAccurate) {
-  RunParams p = quick();
+  RunParams p = quick_case();
   p.bc = Boundary::periodic;
   const RunResult r = run(p);
   ASSERT_TRUE(r.stable);

@@ -2,7 +2,6 @@
 // merging them gives the reports of a single sweep byte for byte, refusing what is missing or
 // disagrees.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -15,6 +14,7 @@
 #include "merge.hpp"
 #include "report.hpp"
 #include "spec.hpp"
+#include "support.hpp"
 #include "sweep.hpp"
 
 namespace mpmstab {
@@ -176,21 +176,8 @@ TEST_F(Shards, OmittingMachineMeasurementsKeepsEveryResult) {
   }
 }
 
-struct Outcome {
-  int status;
-  std::string output;
-};
-
-Outcome mpmstab(const std::string& args) {
-  const std::string command = std::string(MPMSTAB_BIN) + " " + args + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  std::string output;
-  char buffer[4096];
-  while (const std::size_t n = fread(buffer, 1, sizeof buffer, pipe))
-    output.append(buffer, n);
-  const int raw = pclose(pipe);
-  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, output};
-}
+using Outcome = test_support::CliOutcome;
+using test_support::run_mpmstab;
 
 TEST_F(Shards, CommandLineRefusesBadShardsAndWritesSlurmScripts) {
   const std::string spec_file = (dir / "small.json").string();
@@ -199,33 +186,34 @@ TEST_F(Shards, CommandLineRefusesBadShardsAndWritesSlurmScripts) {
                            << kCases << "]}";
   const std::string out = " --out " + (dir / "out").string();
   for (const char* bad : {"4/4", "-1/4", "1/0", "a/4", "3", "1/4x"}) {
-    const Outcome o = mpmstab("sweep " + spec_file + " --shard " + bad + out);
+    const Outcome o = run_mpmstab("sweep " + spec_file + " --shard " + bad + out);
     EXPECT_EQ(o.status, 2) << bad << ": " << o.output;
     EXPECT_NE(o.output.find("--shard"), std::string::npos) << bad << ": " << o.output;
   }
-  EXPECT_EQ(mpmstab("sweep " + spec_file + " --timing never" + out).status, 2);
+  EXPECT_EQ(run_mpmstab("sweep " + spec_file + " --timing never" + out).status, 2);
   EXPECT_FALSE(fs::exists(dir / "out" / "small.csv"));
 
   // A shard writes its manifest and no report.
-  const Outcome shard = mpmstab("sweep " + spec_file + " --shard 1/2" + out);
+  const Outcome shard = run_mpmstab("sweep " + spec_file + " --shard 1/2" + out);
   ASSERT_EQ(shard.status, 0) << shard.output;
   EXPECT_TRUE(fs::exists(dir / "out" / "small.shard-1-of-2.json"));
   EXPECT_FALSE(fs::exists(dir / "out" / "small.csv"));
   // Merging only that shard names what is missing, writes nothing.
-  const Outcome partial = mpmstab("merge " + spec_file + " " + (dir / "out").string() + " --out " +
-                                  (dir / "merged").string());
+  const Outcome partial = run_mpmstab("merge " + spec_file + " " + (dir / "out").string() +
+                                      " --out " + (dir / "merged").string());
   EXPECT_EQ(partial.status, 2) << partial.output;
   EXPECT_NE(partial.output.find("in none of the folders"), std::string::npos) << partial.output;
   EXPECT_FALSE(fs::exists(dir / "merged" / "small.csv"));
-  EXPECT_EQ(mpmstab("merge " + spec_file + " " + (dir / "nowhere").string()).status, 2);
+  EXPECT_EQ(run_mpmstab("merge " + spec_file + " " + (dir / "nowhere").string()).status, 2);
 
   const std::string work = (dir / "work").string();
-  EXPECT_EQ(mpmstab("slurm " + spec_file + " --work " + work).status, 2);  // --shards missing
+  EXPECT_EQ(run_mpmstab("slurm " + spec_file + " --work " + work).status, 2);  // --shards missing
   EXPECT_EQ(
-      mpmstab("slurm " + spec_file + " --shards 4 --time '1h; rm -rf /' --work " + work).status, 2);
+      run_mpmstab("slurm " + spec_file + " --shards 4 --time '1h; rm -rf /' --work " + work).status,
+      2);
   const Outcome slurm =
-      mpmstab("slurm " + spec_file + " --shards 4 --partition debug --time 00:10:00 --work " +
-              work + " --timing omit");
+      run_mpmstab("slurm " + spec_file + " --shards 4 --partition debug --time 00:10:00 --work " +
+                  work + " --timing omit");
   ASSERT_EQ(slurm.status, 0) << slurm.output;
   const std::string sweep = read(dir / "work" / "small.sweep.sbatch");
   const std::string merge = read(dir / "work" / "small.merge.sbatch");

@@ -12,6 +12,8 @@
 #include <sstream>
 #include <thread>
 
+#include "support.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -82,12 +84,10 @@ TEST_P(Signals, StopsPromptlyKeepsFinishedCasesAndResumes) {
   EXPECT_FALSE(fs::exists(out / "long.md"));
 
   // The rerun computes only what is missing.
-  const std::string cmd =
-      std::string(MPMSTAB_BIN) + " sweep " + spec + " --jobs 2 --out " + out_s + " 2>&1";
-  FILE* pipe = popen(cmd.c_str(), "r");
-  std::string output(8192, '\0');
-  output.resize(fread(output.data(), 1, output.size(), pipe));
-  EXPECT_EQ(WEXITSTATUS(pclose(pipe)), 0);
+  const auto rerun =
+      mpmstab::test_support::run_mpmstab("sweep " + spec + " --jobs 2 --out " + out_s);
+  EXPECT_EQ(rerun.status, 0);
+  const std::string& output = rerun.output;
   std::ostringstream expected;
   expected << "(" << 24 - kept << " computed, " << kept << " from the cache";
   EXPECT_NE(output.find(expected.str()), std::string::npos) << output;

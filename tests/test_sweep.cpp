@@ -1,7 +1,6 @@
 // Sweeps: results independent of --jobs, the cache reruns nothing unchanged, and bad specs are
 // refused before anything is written.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <filesystem>
 #include <fstream>
@@ -10,6 +9,7 @@
 #include "cache.hpp"
 #include "report.hpp"
 #include "spec.hpp"
+#include "support.hpp"
 #include "sweep.hpp"
 
 namespace mpmstab {
@@ -166,8 +166,7 @@ TEST_F(Sweeps, UnstableCasesAreReportedNotFatal) {
 }
 
 int run_cli(const std::string& args) {
-  const int raw = std::system((std::string(MPMSTAB_BIN) + " " + args + " >/dev/null 2>&1").c_str());
-  return WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  return test_support::run_mpmstab(args).status;
 }
 
 TEST_F(Sweeps, CommandLineRefusesBadSpecsAndLeavesResultsUntouched) {
@@ -177,13 +176,9 @@ TEST_F(Sweeps, CommandLineRefusesBadSpecsAndLeavesResultsUntouched) {
   const std::string before = read(out / "small.csv");
   std::ofstream(dir / "bad.json") << R"({"name": "small", "report": "figure", "cases": [)"
                                      R"({"method": "gimp", "E": 4, "A": 0.01, "dt": -1}]})";
-  const std::string command = std::string(MPMSTAB_BIN) + " sweep " + (dir / "bad.json").string() +
-                              " --out " + out.string() + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  std::string output(4096, '\0');
-  output.resize(fread(output.data(), 1, output.size(), pipe));
-  const int raw = pclose(pipe);
-  EXPECT_EQ(WEXITSTATUS(raw), 2);
+  const auto [status, output] =
+      test_support::run_mpmstab("sweep " + (dir / "bad.json").string() + " --out " + out.string());
+  EXPECT_EQ(status, 2);
   EXPECT_NE(output.find("cases[0].dt"), std::string::npos) << output;
   EXPECT_EQ(read(out / "small.csv"), before);
   EXPECT_EQ(run_cli("sweep " + (dir / "small.json").string() + " --jobs 0"), 2);

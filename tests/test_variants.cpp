@@ -9,22 +9,14 @@
 #include "phases.hpp"
 #include "run.hpp"
 #include "simulation.hpp"
+#include "support.hpp"
 
 namespace mpmstab {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-RunParams quick() {
-  RunParams p;
-  p.method = Method::gimp;
-  p.E = 4;
-  p.A = 0.015;
-  p.dt = 1e-3;
-  p.T = 0.2;
-  p.cells = 20;
-  return p;
-}
+using test_support::quick_case;
 
 Simulation advanced(const RunParams& p, int steps) {
   Simulation sim(p);
@@ -39,7 +31,7 @@ Simulation advanced(const RunParams& p, int steps) {
 // Kinetic energy of a free standing wave after one period, relative to the start: the bar with
 // A = 0 (no body force) and the planted velocity v = V sin(2 pi X), whose period is 1 / c.
 double kinetic_energy_kept(Transfer transfer) {
-  RunParams p = quick();
+  RunParams p = quick_case();
   p.A = 0;
   p.transfer = transfer;
   p.flip_fraction = 0.5;
@@ -70,7 +62,7 @@ TEST(Transfer, PicDampsAFreeVibrationMoreThanFlipAndABlendLiesBetween) {
 // Mass on the distinct nodes of the grid after one step from a state whose first particle was
 // moved towards the wall X = 0, so that its uGIMP support [x - lp, x + lp] crosses it.
 double mass_on_nodes(Walls walls, double* total) {
-  RunParams p = quick();
+  RunParams p = quick_case();
   p.walls = walls;
   Simulation sim(p);
   const double h = 1.0 / p.cells;
@@ -92,7 +84,7 @@ TEST(Walls, GhostNodesKeepThePartitionOfUnityAtAWallAndClipDoesNot) {
 }
 
 TEST(Walls, GhostNodesMoveFreelyAndTheWallsStayFixed) {
-  RunParams p = quick();
+  RunParams p = quick_case();
   p.walls = Walls::ghost;
   Simulation sim(p);
   sim.particles().x[0] = 1.0 / 160;
@@ -110,7 +102,7 @@ TEST(Walls, GhostNodesMoveFreelyAndTheWallsStayFixed) {
 // Until t = 1 / (2 c) = 0.25 the particles next to the walls move inwards; after it their
 // supports cross the walls.
 TEST(Walls, GhostChangesAGimpRunWhoseSupportsCrossAWall) {
-  RunParams p = quick();
+  RunParams p = quick_case();
   p.T = 1;
   const RunResult clip = run(p);
   p.walls = Walls::ghost;
@@ -168,7 +160,7 @@ double stress_update_mismatch(const RunParams& p, const Step& s, const Stencil<3
 }
 
 TEST(UpdateOrder, UslUpdatesTheStressWithTheNewGridVelocity) {
-  const RunParams p = quick();
+  const RunParams p = quick_case();
   const Step s = one_step(p);
   const Mapped start = map_velocity(p, s.before);
   EXPECT_LT(stress_update_mismatch(p, s, start.S, s.grid_after.velocity), 1e-15);
@@ -176,7 +168,7 @@ TEST(UpdateOrder, UslUpdatesTheStressWithTheNewGridVelocity) {
 }
 
 TEST(UpdateOrder, UsfUpdatesTheStressWithTheVelocityOfTheStartOfTheStep) {
-  RunParams p = quick();
+  RunParams p = quick_case();
   p.update = UpdateOrder::usf;
   const Step s = one_step(p);
   const Mapped start = map_velocity(p, s.before);  // v_i^n = q_i / m_i
@@ -185,7 +177,7 @@ TEST(UpdateOrder, UsfUpdatesTheStressWithTheVelocityOfTheStartOfTheStep) {
 }
 
 TEST(UpdateOrder, UsfComputesTheForcesFromTheUpdatedStress) {
-  RunParams p = quick();
+  RunParams p = quick_case();
   p.update = UpdateOrder::usf;
   p.A = 0;  // no body force: f_i is the internal force alone
   Simulation sim(p);
@@ -210,7 +202,7 @@ TEST(UpdateOrder, UsfComputesTheForcesFromTheUpdatedStress) {
 }
 
 TEST(UpdateOrder, MuslRemapsTheUpdatedParticleVelocitiesBeforeTheStressUpdate) {
-  RunParams p = quick();
+  RunParams p = quick_case();
   p.update = UpdateOrder::musl;
   const Step s = one_step(p);
   Particles remapped = s.before;  // positions x^n (the stencil of the step), velocities v^{n+1}
@@ -222,7 +214,7 @@ TEST(UpdateOrder, MuslRemapsTheUpdatedParticleVelocitiesBeforeTheStressUpdate) {
 }
 
 TEST(UpdateOrder, UsfAndMuslChangeTheResultOfARun) {
-  RunParams p = quick();
+  RunParams p = quick_case();
   const RunResult usl = run(p);
   for (UpdateOrder order : {UpdateOrder::usf, UpdateOrder::musl}) {
     p.update = order;
@@ -237,7 +229,7 @@ TEST(UpdateOrder, PeriodicImagesAreFoldedOnceInEveryOrder) {
   // The bar's solution is periodic, so with periodic boundaries every order must give about
   // the Dirichlet run's error; an image slot folded twice would add its mass and momentum again.
   for (UpdateOrder order : {UpdateOrder::usl, UpdateOrder::usf, UpdateOrder::musl}) {
-    RunParams p = quick();
+    RunParams p = quick_case();
     p.update = order;
     const RunResult dirichlet = run(p);
     p.bc = Boundary::periodic;
@@ -254,7 +246,7 @@ TEST(UpdateOrder, PeriodicImagesAreFoldedOnceInEveryOrder) {
 // At t = 0 the bar is at rest in stress (F = 1) and b(X, 0) = 0: with b at the start the first
 // step leaves every particle velocity as it was; with b at the end it adds dt b(X_p, dt).
 TEST(BodyForceTime, EndEvaluatesTheBodyForceAtTheNewTime) {
-  RunParams p = quick();
+  RunParams p = quick_case();
   Simulation start(p);
   const Particles initial = start.particles();
   start.advance_to(p.dt);
@@ -270,7 +262,7 @@ TEST(BodyForceTime, EndEvaluatesTheBodyForceAtTheNewTime) {
     const double expected = p.dt * scene.body_force(P.X[q], p.dt);
     EXPECT_NEAR(P.v[q] - initial.v[q], expected, 0.1 * std::abs(expected) + 1e-12) << q;
   }
-  const RunResult a = run(quick());
+  const RunResult a = run(quick_case());
   const RunResult b = run(p);
   EXPECT_NE(*a.max_error, *b.max_error);
 }
@@ -299,7 +291,7 @@ Stretched stretched(const RunParams& p, double F) {
 }
 
 TEST(CpGimp, SupportsFollowTheDeformationGradient) {
-  const RunParams p = quick();
+  const RunParams p = quick_case();
   const std::size_t mid = 21;  // X = 10.75 h: support [X - F h / 4, X + F h / 4]
   const int expected_nodes[] = {2, 2, 3, 4};
   const double Fs[] = {0.5, 1.0, 2.0, 4.0};  // 4 = 2 m: lp = h, the widest admissible
@@ -332,7 +324,7 @@ TEST(CpGimp, SupportsFollowTheDeformationGradient) {
 }
 
 TEST(CpGimp, ChangesTheResultOnceTheBarDeforms) {
-  RunParams p = quick();
+  RunParams p = quick_case();
   const RunResult gimp = run(p);
   p.method = Method::cpgimp;
   const RunResult cpgimp = run(p);
@@ -377,7 +369,7 @@ TEST(CpGimp, ASupportWiderThanTwoCellsEndsTheRun) {
 }
 
 TEST(Run, AnInadmissibleInitialStateFailsAtStepZero) {
-  RunParams p = quick();
+  RunParams p = quick_case();
   p.scene = SceneKind::steffen;
   p.A = 0.2;  // F(X, 0) = 1 + 2 pi A cos(2 pi X) reaches 1 - 1.26 < 0
   const RunResult r = run(p);

@@ -181,7 +181,7 @@ int cmd_sweep(const std::vector<std::string_view>& argv) {
   options.cancel = &g_stop;
   install_stop_handlers();
 
-  const SweepOutcome outcome = run_sweep(spec, options);
+  SweepOutcome outcome = run_sweep(spec, options);
   if (outcome.interrupted) {
     const int sig = g_signal ? static_cast<int>(g_signal) : SIGINT;
     std::cerr << "\n[" << spec.name << "] interrupted by "
@@ -210,16 +210,16 @@ int cmd_sweep(const std::vector<std::string_view>& argv) {
               << " s -> " << options.cache.string() << "\n";
     return 0;
   }
-  SweepOutcome reported = outcome;
-  if (omit) omit_machine_measurements(reported);
-  write_reports(spec, reported, out);
+  const double wall_seconds = outcome.wall_seconds;  // for the summary line, also when omitted
+  if (omit) omit_machine_measurements(outcome);
+  write_reports(spec, outcome, out);
   std::cerr << "[" << spec.name << "] " << spec.cases.size() << " cases (" << outcome.computed
             << " computed, " << outcome.cached << " from the cache, "
             << (outcome.shared
                     ? std::to_string(outcome.shared) + " sharing the run of an identical case, "
                     : std::string())
             << outcome.unstable << " unstable) in "
-            << shortest(std::round(outcome.wall_seconds * 100) / 100) << " s -> "
+            << shortest(std::round(wall_seconds * 100) / 100) << " s -> "
             << (out / (spec.name + ".md")).string() << "\n";
   return 0;
 }

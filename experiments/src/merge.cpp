@@ -1,10 +1,9 @@
 #include "merge.hpp"
 
+#include <algorithm>
 #include <fstream>
-#include <sstream>
 
 #include "cache.hpp"
-#include "csv.hpp"
 
 namespace mpmstab {
 
@@ -12,13 +11,6 @@ namespace fs = std::filesystem;
 using ojson = nlohmann::ordered_json;
 
 namespace {
-
-std::string describe_case(const RunParams& p) {
-  std::ostringstream s;
-  s << to_string(p.method) << " E=" << shortest(p.E) << " A=" << shortest(p.A)
-    << " dt=" << shortest(p.dt);
-  return s.str();
-}
 
 // Lists the first few items and the count of the rest.
 std::string listing(const std::vector<std::string>& items, std::size_t shown = 10) {

@@ -67,11 +67,6 @@ RunResult run_at_smallest_probe(const RunParams& p, const EdgeResult& e) {
   return run(q);
 }
 
-std::string describe(const RunParams& p) {
-  return std::string(to_string(p.method)) + " E=" + shortest(p.E) + " A=" + shortest(p.A) +
-         " dt=" + shortest(p.dt);
-}
-
 class Progress {
  public:
   Progress(const Spec& spec, std::size_t runs, bool line, double total_cost)
@@ -96,7 +91,7 @@ class Progress {
               ? "stable"
               : "unstable (" + result["failure"]["reason"].get<std::string>() + ")";
       std::fprintf(stderr, "[%s] %zu/%zu %s: %s%s\n", name_.c_str(), done_, total_,
-                   describe(p).c_str(), verdict.c_str(), from_cache ? " [cached]" : "");
+                   describe_case(p).c_str(), verdict.c_str(), from_cache ? " [cached]" : "");
     }
     std::fflush(stderr);
   }
@@ -131,6 +126,11 @@ class Progress {
 };
 
 }  // namespace
+
+std::string describe_case(const RunParams& p) {
+  return std::string(to_string(p.method)) + " E=" + shortest(p.E) + " A=" + shortest(p.A) +
+         " dt=" + shortest(p.dt);
+}
 
 int shard_of(const std::string& case_key, int count) {
   // The key is 64 bits of FNV-1a; a splitmix64 finalizer spreads them before the modulo.

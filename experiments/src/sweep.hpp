@@ -12,6 +12,9 @@
 
 namespace mpmstab {
 
+// A case in one line for messages: "gimp E=4 A=0.015 dt=0.001".
+std::string describe_case(const RunParams& p);
+
 // One part of a sweep split over machines: shard `index` of `count`, 0 <= index < count.
 struct Shard {
   int index = 0;
