@@ -415,8 +415,16 @@ int cmd_plot(const std::vector<std::string_view>& argv) {
                                           " at step " + c["failure_step"].dump();
     dt = shortest(c["dt"]);
   } else {
-    subtitle = std::to_string(doc["cases"].size()) + " cases; the parameters of each are in " +
-               spec.name + ".md";
+    // Studies over several scenes draw the first one (report.cpp: by_scene); say so.
+    std::size_t drawn = 0;
+    for (const auto& r : doc["cases"])
+      drawn += r.value("scene", "") == c.value("scene", "");
+    subtitle = std::to_string(drawn) + " cases";
+    if (drawn < doc["cases"].size()) {
+      subtitle += " of the scene " + c.value("scene", std::string()) + " (of " +
+                  std::to_string(doc["cases"].size()) + "; every scene is in the tables)";
+    }
+    subtitle += "; the parameters of each are in " + spec.name + ".md";
   }
   const auto tmp = out / ("." + spec.name + ".tmp");
   const std::string command = "gnuplot -e \"datafile='" + data.string() + "'; outbase='" +
