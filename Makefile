@@ -10,26 +10,17 @@ WERROR     ?= $(if $(CI),ON,OFF)
 DEB_PACKAGES := cmake g++ make libeigen3-dev nlohmann-json3-dev libgtest-dev libgmock-dev \
                 libbenchmark-dev gnuplot-nox clang-format bc util-linux clang-14 libclang-rt-14-dev
 
-# The paper's experiments, in the order make reproduce runs them.
-TABLES      := table1 table2
-FIGURES     := fig1 fig2 fig3
-SUPPORT     := courant walls crossing eq108
-STUDIES     := edge tradeoff extremes variants
-EXPERIMENTS := $(TABLES) $(FIGURES) $(SUPPORT) $(STUDIES)
-SPECS       := $(EXPERIMENTS:%=experiments/%.json)
-# The experiments whose fast subset (cases of at most 2e7 particle-steps) make check reruns
-# against reference/regression/. The variants study (16 variants of Table 1) is checked on a
-# smaller subset, its cases of at most VARIANTS_BUDGET particle-steps, to keep make check short.
-CHECKED     := $(filter-out variants,$(EXPERIMENTS))
-CHECK_SPECS := $(CHECKED:%=experiments/%.json)
-VARIANTS_BUDGET ?= 2e6
+# Every experiment is a spec in experiments/; `mpmstab list` prints them in the order they run
+# (each after the experiments whose results its study reads), `mpmstab list --figures` those
+# that draw a figure. No list of experiments is kept here. A spec's check_budget bounds the
+# particle-steps of the cases make check reruns (default 2e7).
 RESULTS     ?= results
 MPMSTAB     := $(BUILD_DIR)/mpmstab
 
 FUZZ_SECONDS ?= 20
 FUZZ_DIR     ?= build-fuzz
 
-.PHONY: all build deps test test-cluster check bless fuzz bench reproduce figures format format-check clean help
+.PHONY: all build deps test test-cluster check bless fuzz bench reproduce figures plots format format-check clean help
 
 all: build
 
@@ -87,14 +78,11 @@ fuzz: deps
 	  -dict=tests/fuzz/spec.dict -print_final_stats=1 tests/fuzz/corpus experiments
 
 check: build
-	$(MPMSTAB) check $(CHECK_SPECS) --jobs $(JOBS) --results $(RESULTS)
-	$(MPMSTAB) check experiments/variants.json --budget $(VARIANTS_BUDGET) --jobs $(JOBS) \
-	  --results $(RESULTS)
+	specs=$$($(MPMSTAB) list) && $(MPMSTAB) check $$specs --jobs $(JOBS) --results $(RESULTS)
 
 bless: build
-	$(MPMSTAB) bless $(CHECK_SPECS) --jobs $(JOBS) --results $(RESULTS) --reason "$(REASON)"
-	$(MPMSTAB) bless experiments/variants.json --budget $(VARIANTS_BUDGET) --jobs $(JOBS) \
-	  --results $(RESULTS) --reason "$(REASON)"
+	specs=$$($(MPMSTAB) list) && \
+	  $(MPMSTAB) bless $$specs --jobs $(JOBS) --results $(RESULTS) --reason "$(REASON)"
 
 # The step benchmark (Google Benchmark, 5 repetitions, medians used), pinned to one core.
 bench: build
@@ -102,25 +90,29 @@ bench: build
 	  --benchmark_min_time=0.2 --benchmark_report_aggregates_only=true \
 	  --benchmark_out=$(RESULTS)/benchmark_step.json.tmp --benchmark_out_format=json
 	mv $(RESULTS)/benchmark_step.json.tmp $(RESULTS)/benchmark_step.json
-	$(MPMSTAB) performance $(SPECS) --bench $(RESULTS)/benchmark_step.json --out $(RESULTS)
+	specs=$$($(MPMSTAB) list) && \
+	  $(MPMSTAB) performance $$specs --bench $(RESULTS)/benchmark_step.json --out $(RESULTS)
 
 # Each sweep computes only the cases whose key changed; reports are rewritten only when their
 # content changed, so a figure is redrawn only when its data or its script changed.
 reproduce: build
 	@start=$$(date +%s.%N); \
-	for e in $(EXPERIMENTS); do \
-	  $(MPMSTAB) sweep experiments/$$e.json --jobs $(JOBS) --out $(RESULTS) || exit $$?; \
+	specs=$$($(MPMSTAB) list) || exit $$?; \
+	for s in $$specs; do \
+	  $(MPMSTAB) sweep $$s --jobs $(JOBS) --out $(RESULTS) || exit $$?; \
 	done; \
 	$(MAKE) --no-print-directory figures || exit $$?; \
-	$(MPMSTAB) compare experiments/table1.json $(SUPPORT:%=experiments/%.json) --out $(RESULTS) || exit $$?; \
-	$(MPMSTAB) performance $(SPECS) --bench $(RESULTS)/benchmark_step.json --out $(RESULTS) || exit $$?; \
-	$(MPMSTAB) index $(SPECS) --out $(RESULTS) || exit $$?; \
+	$(MPMSTAB) performance $$specs --bench $(RESULTS)/benchmark_step.json --out $(RESULTS) || exit $$?; \
+	$(MPMSTAB) index $$specs --out $(RESULTS) || exit $$?; \
 	echo "make reproduce: $$(echo "$$(date +%s.%N) - $$start" | bc | xargs printf '%.1f') s wall; reports in $(RESULTS)/README.md"
 
-figures: $(FIGURES:%=$(RESULTS)/%.png) $(STUDIES:%=$(RESULTS)/%.png)
+# The figures of the experiments whose study draws one, each redrawn only when its data or its
+# script changed. FIGURES (names) comes from mpmstab list --figures.
+figures: build
+	@$(MAKE) --no-print-directory plots \
+	  FIGURES="$$($(MPMSTAB) list --figures | sed 's|.*/||; s|\.json$$||')"
 
-$(RESULTS)/fig1.png $(RESULTS)/fig1.svg &: $(RESULTS)/fig1_data.csv experiments/fig1.gp
-	$(MPMSTAB) plot experiments/fig1.json --out $(RESULTS)
+plots: $(FIGURES:%=$(RESULTS)/%.png)
 
 $(RESULTS)/%.png $(RESULTS)/%.svg &: $(RESULTS)/%_data.csv experiments/%.gp experiments/history.gp
 	$(MPMSTAB) plot experiments/$*.json --out $(RESULTS)

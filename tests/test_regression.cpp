@@ -25,6 +25,11 @@ class Regression : public ::testing::Test {
     fs::remove_all(dir);
     fs::create_directories(dir / "results");
     write_spec(0.015);
+    // The comparison study (no cases of its own) declares its verdicts as a blessed output; it
+    // requires the spec of the table it compares, which is not run here.
+    std::ofstream(dir / "table1.json") << R"({"name": "table1", "report": "table1",
+      "reference": "paper.csv", "cases": [{"E": 4, "A": 0.015, "method": "gimp", "dt": 1e-3}]})";
+    std::ofstream(dir / "comparison.json") << R"({"name": "comparison", "report": "comparison"})";
     std::ofstream(dir / "results/comparison.csv")
         << "# verdicts\nmethod,E,A,dt,verdict,class,confidence\n"
            "gimp,4,0.015,0.001,agree,agree-stable,high\n";
@@ -44,7 +49,9 @@ class Regression : public ::testing::Test {
                 {"E": 1e4, "A": 0.05, "method": "gimp", "dt": 1e-3},
                 {"E": 4, "A": 0.01, "method": "gimp", "T": 2}]})";
   }
-  std::vector<Spec> specs() { return {load_spec(dir / "small.json")}; }
+  std::vector<Spec> specs() {
+    return {load_spec(dir / "small.json"), load_spec(dir / "comparison.json")};
+  }
   std::string read(const fs::path& p) {
     std::ifstream in(p);
     std::stringstream s;

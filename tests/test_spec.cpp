@@ -160,7 +160,7 @@ TEST_F(VariantSpecs, EveryVariantAppliesItsSettingsToTheCasesItConcerns) {
       {"name": "cp+ghost", "set": {"method": "cpgimp", "walls": "ghost"}, "methods": ["gimp"]},
       {"name": "over-time", "error_at": "max_over_time"},
       {"name": "blend", "set": {"transfer": "blend", "flip_fraction": 0.9}}])")));
-  EXPECT_EQ(s.report, ReportKind::variants);
+  EXPECT_EQ(s.study, find_study("variants"));
   EXPECT_EQ(s.cases_from.filename(), "base.json");
   EXPECT_EQ(s.reference, dir / "paper.csv");  // the base spec's, resolved next to it
   ASSERT_EQ(s.variants.size(), 4u);

@@ -128,7 +128,7 @@ int cmd_merge(const std::vector<std::string_view>& argv) {
     return 2;
   }
   const fs::path out = output_folder(args);
-  const std::string search = spec.report == ReportKind::edge ? "edge" : "";
+  const std::string search = case_search(spec);
   const ResultCache cache(out / "cache");
   for (std::size_t i = 0; i < spec.cases.size(); ++i) {
     const auto& p = spec.cases[i].params;

@@ -23,6 +23,7 @@ Commands:
   bless   accept the current values as the blessed ones, with a reason
   merge   write the reports of a sweep that ran in shards (sweep --shard I/N)
   slurm   write a Slurm job array that runs a sweep in shards, and its merge job
+  list    the experiment specs in the order they run, or the studies the program knows
 
 'mpmstab <command> --help' describes a command.
 )";
@@ -49,10 +50,11 @@ int main(int argc, char** argv) {
     if (command == "bless") return mpmstab::cli::cmd_bless(args);
     if (command == "merge") return mpmstab::cli::cmd_merge(args);
     if (command == "slurm") return mpmstab::cli::cmd_slurm(args);
+    if (command == "list") return mpmstab::cli::cmd_list(args);
     std::string message = "unknown command '" + std::string(command) + "'";
-    if (auto guess =
-            mpmstab::cli::nearest(command, {"run", "edge", "sweep", "index", "plot", "compare",
-                                            "check", "bless", "performance", "merge", "slurm"})) {
+    if (auto guess = mpmstab::cli::nearest(
+            command, {"run", "edge", "sweep", "index", "plot", "compare", "check", "bless",
+                      "performance", "merge", "slurm", "list"})) {
       message += " (did you mean '" + *guess + "'?)";
     }
     throw mpmstab::cli::UsageError(message);

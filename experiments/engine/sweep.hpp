@@ -69,7 +69,10 @@ nlohmann::ordered_json deterministic_part(const nlohmann::ordered_json& record);
 
 // The work of a case in particle-steps (an estimate for the adaptive policies and for edge
 // searches), for scheduling, progress and the fast subset of make check.
-double case_cost(const RunParams& p, ReportKind kind);
+double case_cost(const RunParams& p, CaseWork work);
+
+// What a spec's cases compute beyond one run, as the cache keys it: "" or "edge".
+std::string case_search(const Spec& spec);
 
 // Results do not depend on `jobs`: every case is an independent, deterministic computation and
 // the records are returned in spec order. Cases with the same canonical parameters are computed

@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <sstream>
 
 #include "atomic_file.hpp"
@@ -145,53 +146,82 @@ std::string cell(const Row& row, const std::string& column) {
   return it == row.cells.end() ? std::string() : it->second;
 }
 
-fs::path verdicts_file(const RegressionOptions& o) {
-  return o.reference / "comparison_verdicts.csv";
+// The blessed expectations of a table a study writes: reference/<spec name>_verdicts.csv.
+fs::path blessed_output_file(const Spec& spec, const RegressionOptions& o) {
+  return o.reference / (spec.name + "_verdicts.csv");
+}
+
+std::vector<ColumnRule> exact_rules(const BlessedOutput& b) {
+  std::vector<ColumnRule> rules;
+  for (const auto& c : b.value_columns)
+    rules.push_back({c, 0, 0, true});
+  return rules;
+}
+
+// The fast subset of an experiment against its blessed values; returns the failures.
+int check_values(const Spec& spec, const RegressionOptions& o, int& cells) {
+  const fs::path file = o.reference / (spec.name + ".csv");
+  if (!fs::exists(file)) {
+    std::cerr << "FAIL " << spec.name << ": no blessed values in " << file.string()
+              << " (run make bless REASON=\"...\")\n";
+    return 1;
+  }
+  const Table obtained = run_subset(fast_subset(spec, budget_of(spec, o)), o);
+  cells += static_cast<int>(obtained.rows.size());
+  int failures = 0;
+  for (const auto& m :
+       compare_tables(blessed_table(file), obtained, kKeyColumns, value_rules(o.rtol))) {
+    std::cerr << "FAIL " << spec.name << ": " << describe(m) << "\n";
+    ++failures;
+  }
+  return failures;
+}
+
+// A table the study wrote into the results against its blessed expectations.
+int check_output(const Spec& spec, const BlessedOutput& b, const RegressionOptions& o) {
+  const fs::path expected = blessed_output_file(spec, o), current = o.results / b.file;
+  if (!fs::exists(expected) || !fs::exists(current)) {
+    std::cerr << "FAIL " << b.what << ": " << expected.string() << " or " << current.string()
+              << " is missing (make reproduce, then make bless)\n";
+    return 1;
+  }
+  int failures = 0;
+  for (const auto& m : compare_tables(table_from_csv(expected), table_from_csv(current),
+                                      b.key_columns, exact_rules(b))) {
+    std::cerr << "FAIL " << b.what << ": " << describe(m) << "\n";
+    ++failures;
+  }
+  return failures;
 }
 
 }  // namespace
+
+double budget_of(const Spec& spec, const RegressionOptions& o) {
+  return o.budget_given || !spec.check_budget ? o.budget : *spec.check_budget;
+}
 
 Spec fast_subset(const Spec& spec, double budget) {
   Spec subset = spec;
   subset.cases.clear();
   for (const auto& c : spec.cases) {
     const auto& p = c.params;
-    if (case_cost(p, spec.report) <= budget) subset.cases.push_back(c);
+    if (case_cost(p, spec.study->work) <= budget) subset.cases.push_back(c);
   }
   return subset;
 }
 
 int run_check(const std::vector<Spec>& specs, const RegressionOptions& o) {
-  int failures = 0, cells = 0;
+  int failures = 0, cells = 0, experiments = 0;
+  std::vector<std::string> outputs;
   for (const auto& spec : specs) {
-    const fs::path file = o.reference / (spec.name + ".csv");
-    if (!fs::exists(file)) {
-      std::cerr << "FAIL " << spec.name << ": no blessed values in " << file.string()
-                << " (run make bless REASON=\"...\")\n";
-      ++failures;
-      continue;
+    if (spec.study->has_cases) {
+      failures += check_values(spec, o, cells);
+      ++experiments;
     }
-    const Spec subset = fast_subset(spec, o.budget);
-    const Table obtained = run_subset(subset, o);
-    cells += static_cast<int>(obtained.rows.size());
-    for (const auto& m :
-         compare_tables(blessed_table(file), obtained, kKeyColumns, value_rules(o.rtol))) {
-      std::cerr << "FAIL " << spec.name << ": " << describe(m) << "\n";
-      ++failures;
+    for (const auto& b : spec.study->blessed) {
+      failures += check_output(spec, b, o);
+      outputs.push_back(b.what);
     }
-  }
-  // The paper-comparison verdicts against their expectations.
-  const fs::path current = o.results / "comparison.csv";
-  if (fs::exists(verdicts_file(o)) && fs::exists(current)) {
-    for (const auto& m : compare_tables(table_from_csv(verdicts_file(o)), table_from_csv(current),
-                                        kVerdictKeys, kVerdictRules)) {
-      std::cerr << "FAIL comparison verdict: " << describe(m) << "\n";
-      ++failures;
-    }
-  } else {
-    std::cerr << "FAIL comparison verdicts: " << verdicts_file(o).string() << " or "
-              << current.string() << " is missing (make reproduce, then make bless)\n";
-    ++failures;
   }
   if (failures) {
     std::cerr << failures
@@ -199,76 +229,76 @@ int run_check(const std::vector<Spec>& specs, const RegressionOptions& o) {
                  "bless it: make bless REASON=\"...\"\n";
     return 1;
   }
-  std::cout << "check: " << cells << " cases of " << specs.size()
-            << " experiments match the blessed values; comparison verdicts unchanged\n";
+  std::cout << "check: " << cells << " cases of " << experiments
+            << " experiments match the blessed values";
+  for (const auto& what : outputs)
+    std::cout << "; " << what << " unchanged";
+  std::cout << "\n";
   return 0;
 }
 
-int run_bless(const std::vector<Spec>& specs, const RegressionOptions& o,
-              const std::string& reason) {
-  fs::create_directories(o.reference);
-  std::vector<std::string> changes;
-  auto bless_table = [&](const std::string& name, const fs::path& file, Table obtained,
-                         const std::vector<std::string>& keys, const std::vector<ColumnRule>& rules,
-                         const std::vector<std::string>& columns, const std::string& comment) {
-    if (fs::exists(file)) {
-      const Table old = keys == kKeyColumns ? blessed_table(file) : table_from_csv(file);
-      const auto diffs = compare_tables(old, obtained, keys, rules);
-      // Nothing changed: the file stays as it is, also in the columns it was written with.
-      if (diffs.empty()) return;
-      // Keep the old text of every value that still agrees: only changed values are rewritten.
-      std::map<std::string, const Row*> old_rows;
-      for (const auto& row : old.rows) {
-        std::string id;
-        for (const auto& k : keys)
-          id += cell(row, k) + "|";
-        old_rows[id] = &row;
-      }
-      for (auto& row : obtained.rows) {
-        std::string id;
-        for (const auto& k : keys)
-          id += cell(row, k) + "|";
-        const auto it = old_rows.find(id);
-        if (it == old_rows.end()) continue;
-        for (const auto& rule : rules) {
-          const std::string before = cell(*it->second, rule.column);
-          if (cells_agree(parse_cell(before), parse_cell(row.cells[rule.column]), rule)) {
-            row.cells[rule.column] = before;
-          }
+namespace {
+
+// Rewrites a blessed table where it differs from `obtained`, keeping the old text of every value
+// that still agrees; appends one line per change to `changes`.
+void bless_table(const std::string& name, const fs::path& file, Table obtained,
+                 const std::vector<std::string>& keys, const std::vector<ColumnRule>& rules,
+                 const std::vector<std::string>& columns, const std::string& comment,
+                 std::vector<std::string>& changes) {
+  if (fs::exists(file)) {
+    const Table old = keys == kKeyColumns ? blessed_table(file) : table_from_csv(file);
+    const auto diffs = compare_tables(old, obtained, keys, rules);
+    // Nothing changed: the file stays as it is, also in the columns it was written with.
+    if (diffs.empty()) return;
+    std::map<std::string, const Row*> old_rows;
+    for (const auto& row : old.rows) {
+      std::string id;
+      for (const auto& k : keys)
+        id += cell(row, k) + "|";
+      old_rows[id] = &row;
+    }
+    for (auto& row : obtained.rows) {
+      std::string id;
+      for (const auto& k : keys)
+        id += cell(row, k) + "|";
+      const auto it = old_rows.find(id);
+      if (it == old_rows.end()) continue;
+      for (const auto& rule : rules) {
+        const std::string before = cell(*it->second, rule.column);
+        if (cells_agree(parse_cell(before), parse_cell(row.cells[rule.column]), rule)) {
+          row.cells[rule.column] = before;
         }
       }
-      for (const auto& m : diffs)
-        changes.push_back(name + ": " + describe(m));
-    } else {
-      changes.push_back(name + ": " + std::to_string(obtained.rows.size()) +
-                        " rows blessed for the first time");
     }
-    write_if_changed(file, to_csv(obtained, columns, comment));
-  };
-
-  for (const auto& spec : specs) {
-    const Spec subset = fast_subset(spec, o.budget);
-    bless_table(spec.name, o.reference / (spec.name + ".csv"), run_subset(subset, o), kKeyColumns,
-                value_rules(o.rtol), value_columns(), blessed_comment(spec, o.budget));
-  }
-  const fs::path current = o.results / "comparison.csv";
-  if (fs::exists(current)) {
-    std::vector<std::string> columns = kVerdictKeys;
-    columns.push_back("verdict");
-    columns.push_back("class");
-    bless_table("comparison verdicts", verdicts_file(o), table_from_csv(current), kVerdictKeys,
-                kVerdictRules, columns,
-                "# blessed verdict of every Table 1 cell against the paper (results/"
-                "comparison.csv); rewritten only by make bless\n");
+    for (const auto& m : diffs)
+      changes.push_back(name + ": " + describe(m));
   } else {
-    std::cerr << "bless: " << current.string()
-              << " is missing: run make reproduce to bless the comparison verdicts too\n";
+    changes.push_back(name + ": " + std::to_string(obtained.rows.size()) +
+                      " rows blessed for the first time");
   }
+  write_if_changed(file, to_csv(obtained, columns, comment));
+}
 
-  if (changes.empty()) {
-    std::cout << "bless: nothing changed; BLESSED.md is left as it is\n";
-    return 0;
+void bless_output(const Spec& spec, const BlessedOutput& b, const RegressionOptions& o,
+                  std::vector<std::string>& changes) {
+  const fs::path current = o.results / b.file;
+  if (!fs::exists(current)) {
+    std::cerr << "bless: " << current.string() << " is missing: run make reproduce to bless the "
+              << b.what << " too\n";
+    return;
   }
+  std::vector<std::string> columns = b.key_columns;
+  columns.insert(columns.end(), b.value_columns.begin(), b.value_columns.end());
+  bless_table(b.what, blessed_output_file(spec, o), table_from_csv(current), b.key_columns,
+              exact_rules(b), columns,
+              "# blessed " + b.what + " (" + (fs::path("results") / b.file).generic_string() +
+                  "); rewritten only by make bless\n",
+              changes);
+}
+
+// Appends the blessing to BLESSED.md: when, at which commit, why, and the cells changed.
+void log_blessing(const std::vector<std::string>& changes, const RegressionOptions& o,
+                  const std::string& reason) {
   const Provenance prov = current_provenance(o.jobs);
   std::ostringstream entry;
   entry << "\n## " << prov.date << ", commit " << prov.commit.substr(0, 12)
@@ -285,6 +315,29 @@ int run_bless(const std::vector<Spec>& specs, const RegressionOptions& o,
   }
   write_file_atomically(log, text + entry.str());
   std::cout << "bless: " << changes.size() << " changes recorded in " << log.string() << "\n";
+}
+
+}  // namespace
+
+int run_bless(const std::vector<Spec>& specs, const RegressionOptions& o,
+              const std::string& reason) {
+  fs::create_directories(o.reference);
+  std::vector<std::string> changes;
+  for (const auto& spec : specs) {
+    if (spec.study->has_cases) {
+      bless_table(spec.name, o.reference / (spec.name + ".csv"),
+                  run_subset(fast_subset(spec, budget_of(spec, o)), o), kKeyColumns,
+                  value_rules(o.rtol), value_columns(), blessed_comment(spec, budget_of(spec, o)),
+                  changes);
+    }
+    for (const auto& b : spec.study->blessed)
+      bless_output(spec, b, o, changes);
+  }
+  if (changes.empty()) {
+    std::cout << "bless: nothing changed; BLESSED.md is left as it is\n";
+    return 0;
+  }
+  log_blessing(changes, o, reason);
   return 0;
 }
 

@@ -30,10 +30,10 @@ using Clock = std::chrono::steady_clock;
 // An edge search costs about as much as 40 runs at the speed-of-sound step h / c.
 }  // namespace
 
-double case_cost(const RunParams& p, ReportKind kind) {
+double case_cost(const RunParams& p, CaseWork work) {
   const double h_over_c = (1.0 / p.cells) / std::sqrt(p.E);
   // The adaptive policies step at about s / 20 of h / c (eq. 108 sits 5 to 200 times below it).
-  const double dt = kind == ReportKind::edge
+  const double dt = work == CaseWork::edge_search
                         ? h_over_c / 40
                         : fixed_step(p).value_or(p.stepping.safety * h_over_c / 20);
   return p.T / dt * double(p.cells) * double(p.ppc);
@@ -167,51 +167,108 @@ nlohmann::ordered_json deterministic_part(const nlohmann::ordered_json& record) 
   return d;
 }
 
+std::string case_search(const Spec& spec) {
+  return spec.study->work == CaseWork::edge_search ? "edge" : "";
+}
+
+namespace {
+
+// Which cases a sweep computes: one run per distinct key (a case repeating an earlier one
+// shares its record), and in a shard only the keys that fall in it; longest first.
+struct SweepPlan {
+  std::vector<std::size_t> same_as;  // the case whose record case i shares (i itself if first)
+  std::vector<char> elsewhere;       // case i belongs to another shard
+  std::vector<std::size_t> order;    // the cases to compute, longest first
+  std::vector<double> cost;          // particle-steps of each case to compute
+  double total_cost = 0;
+};
+
+SweepPlan plan_sweep(const Spec& spec, const SweepOptions& options) {
+  const std::size_t n = spec.cases.size();
+  const std::string search = case_search(spec);
+  SweepPlan plan;
+  plan.same_as.resize(n);
+  plan.elsewhere.assign(n, 0);
+  plan.cost.assign(n, 0);
+  std::map<std::string, std::size_t> first;
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::string key = case_key(spec.cases[i].params, search);
+    const auto [it, fresh] = first.emplace(key, i);
+    plan.same_as[i] = it->second;
+    plan.elsewhere[i] =
+        options.shard && shard_of(key, options.shard->count) != options.shard->index;
+    if (fresh && !plan.elsewhere[i]) plan.order.push_back(i);
+  }
+  for (std::size_t i : plan.order)
+    plan.total_cost += plan.cost[i] = case_cost(spec.cases[i].params, spec.study->work);
+  std::stable_sort(plan.order.begin(), plan.order.end(),
+                   [&](std::size_t a, std::size_t b) { return plan.cost[a] > plan.cost[b]; });
+  return plan;
+}
+
+// Computes one case: its record, or null when it was interrupted (neither cached nor reported).
+nlohmann::ordered_json compute_case(const RunParams& p, CaseWork work,
+                                    const std::atomic<bool>* cancel) {
+  nlohmann::ordered_json rec;
+  if (work == CaseWork::edge_search) {
+    const EdgeResult e = find_edge(p, {}, cancel);
+    if (e.interrupted) return nullptr;
+    rec["result"] = to_json(e.at_edge ? *e.at_edge : run_at_smallest_probe(p, e));
+    rec["edge"] = edge_to_json(e);
+  } else {
+    const RunResult r = run(p, cancel);
+    if (r.interrupted) return nullptr;
+    rec["result"] = to_json(r);
+    if (p.observe.history) rec["history"] = history_to_json(r);
+    if (r.final_state) rec["final_state"] = final_state_json(*r.final_state);
+  }
+  return rec;
+}
+
+// Shares the records of repeated cases and counts what was computed, cached and unstable.
+void tally(const SweepPlan& plan, const std::vector<char>& from_cache, SweepOutcome& out) {
+  for (std::size_t i = 0; i < out.records.size(); ++i) {
+    if (plan.elsewhere[i]) {
+      ++out.other_shards;
+      continue;
+    }
+    const std::size_t first = plan.same_as[i];
+    if (first != i) out.records[i] = out.records[first];
+    if (out.records[i].is_null()) {
+      out.interrupted = true;  // a case that never finished
+      continue;
+    }
+    if (first != i) {
+      ++out.shared;
+    } else {
+      (from_cache[i] ? out.cached : out.computed) += 1;
+    }
+    if (!out.records[i]["result"]["stable"].get<bool>()) ++out.unstable;
+  }
+}
+
+}  // namespace
+
 SweepOutcome run_sweep(const Spec& spec, const SweepOptions& options) {
   const auto start = Clock::now();
-  const std::size_t n = spec.cases.size();
   const ResultCache cache(options.cache);
   const Provenance provenance = current_provenance(options.jobs);
-  const std::string search = spec.report == ReportKind::edge ? "edge" : "";
-
-  // One run per distinct key: a case repeating an earlier one shares its record. A shard runs
-  // only the keys that fall in it.
-  std::vector<std::size_t> same_as(n);
-  std::vector<std::size_t> runs;
-  std::vector<char> elsewhere(n, 0);
-  {
-    std::map<std::string, std::size_t> first;
-    for (std::size_t i = 0; i < n; ++i) {
-      const std::string key = case_key(spec.cases[i].params, search);
-      const auto [it, fresh] = first.emplace(key, i);
-      same_as[i] = it->second;
-      elsewhere[i] = options.shard && shard_of(key, options.shard->count) != options.shard->index;
-      if (fresh && !elsewhere[i]) runs.push_back(i);
-    }
-  }
-
-  // Longest cases first, so that the last one to finish is short.
-  std::vector<double> cost(n);
-  double total_cost = 0;
-  for (std::size_t i : runs)
-    total_cost += cost[i] = case_cost(spec.cases[i].params, spec.report);
-  std::vector<std::size_t> order = runs;
-  std::stable_sort(order.begin(), order.end(),
-                   [&](std::size_t a, std::size_t b) { return cost[a] > cost[b]; });
+  const std::string search = case_search(spec);
+  const SweepPlan plan = plan_sweep(spec, options);
 
   SweepOutcome out;
-  out.records.resize(n);
-  std::vector<char> from_cache(n, 0);
-  Progress progress(spec, runs.size(), options.progress_line, total_cost);
+  out.records.resize(spec.cases.size());
+  std::vector<char> from_cache(spec.cases.size(), 0);
+  Progress progress(spec, plan.order.size(), options.progress_line, plan.total_cost);
   std::atomic<std::size_t> next{0};
-  const std::size_t m = order.size();
+  const std::size_t m = plan.order.size();
   std::exception_ptr error;
   std::mutex error_mutex;
 
   auto cancelled = [&] { return options.cancel && options.cancel->load(); };
   auto worker = [&] {
     for (std::size_t k; !cancelled() && (k = next.fetch_add(1)) < m;) {
-      const std::size_t i = order[k];
+      const std::size_t i = plan.order[k];
       const RunParams& p = spec.cases[i].params;
       try {
         std::optional<nlohmann::ordered_json> record;
@@ -219,24 +276,13 @@ SweepOutcome run_sweep(const Spec& spec, const SweepOptions& options) {
         if (cached && !options.force) record = cache.load(p, search);
         from_cache[i] = record.has_value();
         if (!record) {
-          nlohmann::ordered_json rec;
-          if (spec.report == ReportKind::edge) {
-            const EdgeResult e = find_edge(p, {}, options.cancel);
-            if (e.interrupted) continue;  // unfinished: neither cached nor reported
-            rec["result"] = to_json(e.at_edge ? *e.at_edge : run_at_smallest_probe(p, e));
-            rec["edge"] = edge_to_json(e);
-          } else {
-            const RunResult r = run(p, options.cancel);
-            if (r.interrupted) continue;  // unfinished: neither cached nor reported
-            rec["result"] = to_json(r);
-            if (p.observe.history) rec["history"] = history_to_json(r);
-            if (r.final_state) rec["final_state"] = final_state_json(*r.final_state);
-          }
+          nlohmann::ordered_json rec = compute_case(p, spec.study->work, options.cancel);
+          if (rec.is_null()) continue;
           rec["provenance"] = to_json(provenance);
           if (cached) cache.store(p, rec, search);
           record = std::move(rec);
         }
-        if (!options.quiet) progress.done(p, (*record)["result"], from_cache[i], cost[i]);
+        if (!options.quiet) progress.done(p, (*record)["result"], from_cache[i], plan.cost[i]);
         out.records[i] = std::move(*record);
       } catch (...) {
         std::lock_guard lock(error_mutex);
@@ -253,24 +299,7 @@ SweepOutcome run_sweep(const Spec& spec, const SweepOptions& options) {
   for (auto& t : threads)
     t.join();
   if (error) std::rethrow_exception(error);
-
-  for (std::size_t i = 0; i < n; ++i) {
-    if (elsewhere[i]) {
-      ++out.other_shards;
-      continue;
-    }
-    if (same_as[i] != i) out.records[i] = out.records[same_as[i]];
-    if (out.records[i].is_null()) {
-      out.interrupted = true;  // a case that never finished
-      continue;
-    }
-    if (same_as[i] != i) {
-      ++out.shared;
-    } else {
-      (from_cache[i] ? out.cached : out.computed) += 1;
-    }
-    if (!out.records[i]["result"]["stable"].get<bool>()) ++out.unstable;
-  }
+  tally(plan, from_cache, out);
   out.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return out;
 }

@@ -9,20 +9,9 @@
 #include <vector>
 
 #include "params.hpp"
+#include "study.hpp"
 
 namespace mpmstab {
-
-// The layout of an experiment's report.
-enum class ReportKind {
-  table1,    // Table 1: E blocks, dt rows, MPM and GIMP, paper beside ours
-  table2,    // Table 2: grid crossings per E and A, dt_sound
-  figure,    // one case whose history or final state a gnuplot script draws
-  cases,     // a plain table of every case (supporting experiments)
-  edge,      // per case, the largest fixed dt that survives to T (its dt is searched, not given)
-  tradeoff,  // error against cost across methods, time-step policies and their parameters
-  extremes,  // verdicts over extreme parameters: where and why each method fails
-  variants,  // Table 1's cells under documented implementation choices, against the paper
-};
 
 // Which of our errors is compared with the paper's "Max Error": the max error at T (the
 // design's reading, `max_error`) or the largest over the run (`max_error_over_time`).
@@ -58,11 +47,24 @@ struct Spec {
   std::string name;            // outputs are <out>/<name>.{csv,json,md}
   std::string title;
   std::string description;
-  ReportKind report = ReportKind::table1;
+  const Study* study = nullptr;       // the study named by "report" (never null once parsed)
   std::filesystem::path reference;    // paper table to compare with (table kinds), resolved
   std::filesystem::path cases_from;   // the spec whose cases (and defaults) this one takes, if any
   std::vector<VariantSpec> variants;  // variants experiments: cases holds every variant's cases
   std::vector<CaseSpec> cases;        // each with params.observe set from "record"
+  // Where the experiment stands among the others (mpmstab list, the index of results): after
+  // every experiment it reads, then by this number, then by name.
+  double index_order = 0;
+  // make check reruns the cases needing at most this many particle-steps (unset: the default
+  // budget of mpmstab check).
+  std::optional<double> check_budget;
+  // The experiments whose results the study reads (Study::inputs), as specs beside this one:
+  // every required one, and each optional one whose spec exists.
+  struct Input {
+    std::string name;  // the InputDecl's
+    std::filesystem::path path;
+  };
+  std::vector<Input> inputs;
 };
 
 // A spec that cannot be used: `path` is the key path inside the file ("" for the whole file).
@@ -79,7 +81,6 @@ Spec load_spec(const std::filesystem::path& file);
 // Throws SpecError, and nothing else, for any text (the fuzz target tests/fuzz/ checks that).
 Spec parse_spec(std::string_view text, const std::filesystem::path& file);
 
-std::string_view to_string(ReportKind k);
 std::string_view to_string(ErrorAt e);
 std::optional<ErrorAt> parse_error_at(std::string_view s);
 

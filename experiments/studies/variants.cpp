@@ -5,7 +5,10 @@
 #include <sstream>
 
 #include "csv.hpp"
+#include "paper_table1.hpp"
 #include "report_util.hpp"
+#include "scenes.hpp"
+#include "study.hpp"
 
 namespace mpmstab {
 
@@ -496,5 +499,50 @@ std::string variants_line(const ojson& study, const std::string& class_id,
      << (yes.empty() ? std::string("none of the variants") : yes) << ".\n\n";
   return md.str();
 }
+
+namespace {
+
+// The variants study reads the courant scan (for the class above-our-edge) when it has been run
+// into the same folder.
+StudyReport variants_report(const ReportContext& c) {
+  CourantEdges edges;
+  const StudyInput& courant = c.inputs.at("courant");
+  if (courant.present()) {
+    edges =
+        courant_edges(std::vector<ojson>(courant.doc["cases"].begin(), courant.doc["cases"].end()));
+  }
+  const VariantsStudy study = study_variants(c.spec, c.rows, read_paper_table1(c.spec), edges);
+  return StudyReport{.markdown = variants_markdown(c.spec, study, courant.present()),
+                     .data_csv = variants_data_csv(study, c.csv_header),
+                     .json = study_to_json(study)};
+}
+
+std::string variants_index(const Spec& spec, const std::vector<ojson>&) {
+  std::ostringstream md;
+  md << "![" << spec.title << "](" << spec.name << ".png)\n\n**What it shows.** "
+     << spec.variants.size()
+     << " variants of Table 1's cells, each a documented implementation choice (or a pair) "
+        "changed from the default; per variant and method the agreement with the paper and "
+        "the cost, and which choices can or cannot account for each class of disagreement: ["
+     << spec.name << ".md](" << spec.name << ".md).\n\n";
+  return md.str();
+}
+
+const StudyRegistration kVariants{{
+    .name = "variants",
+    .summary = "Table 1's cells under documented implementation choices, against the paper",
+    .needs_reference = true,
+    .takes_variants = true,
+    .records = {.error_over_time = true, .dt_stable = true},
+    .study_columns = true,
+    .inputs = {{.name = "courant"}},
+    .figure = true,
+    .report = variants_report,
+    .index = variants_index,
+    .figure_subtitle = [](const Spec& spec,
+                          const ojson& doc) { return first_scene_subtitle(spec.name, doc); },
+}};
+
+}  // namespace
 
 }  // namespace mpmstab

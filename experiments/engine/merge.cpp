@@ -29,7 +29,7 @@ fs::path shard_manifest(const fs::path& dir, const std::string& name, const Shar
 }
 
 SweepOutcome merge_shards(const Spec& spec, const std::vector<fs::path>& dirs) {
-  const std::string search = spec.report == ReportKind::edge ? "edge" : "";
+  const std::string search = case_search(spec);
   std::vector<ResultCache> caches;
   for (const auto& d : dirs)
     caches.emplace_back(d / "cache");

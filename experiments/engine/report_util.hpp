@@ -36,38 +36,8 @@ std::string link(const std::filesystem::path& from_dir, const std::filesystem::p
 // The whole file, or "" when it cannot be read.
 std::string read_file(const std::filesystem::path& path);
 
-// A paper cell as transcribed: a number, "*" (unstable), or unreadable/missing text.
-struct PaperValue {
-  enum Kind { number, unstable, unreadable } kind = unreadable;
-  double value = 0;
-  std::string text;
-};
-
-PaperValue paper_value(const std::string& text);
-std::string show(const PaperValue& p);
-
-struct PaperCell {
-  PaperValue dt_stable, max_error;
-  std::string confidence, evidence;
-  bool dt_printed = true;
-};
-
-using Table1Key = std::tuple<double, double, double, std::string>;  // A, E, dt, method
-
-// The paper cell a case is compared with: its A, E, dt and the method of the paper's column
-// (CaseSpec::paper_method, the base case's method in a variants experiment).
-Table1Key paper_key(const CaseSpec& c);
-
-// Our value and the paper's agree within a factor 3: the comparator's rule
-// |a - b| <= (2/3) max(|a|, |b|) (core/compare.hpp).
-bool within_factor_3(double ours, double paper);
-
 // Our error compared with the paper's "Max Error" in a flat result row: max_error (at T) or
 // max_error_over_time; null when the run failed or the value was not recorded.
 std::optional<double> compared_error(const nlohmann::ordered_json& row, ErrorAt error_at);
-
-// The transcribed Table 1 of a table1 (or variants) spec, keyed by (A, E, dt, method); cells
-// whose dt the paper does not print are keyed by the dt of the spec's case marked dt_inferred.
-std::map<Table1Key, PaperCell> read_paper_table1(const Spec& spec);
 
 }  // namespace mpmstab

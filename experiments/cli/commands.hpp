@@ -22,6 +22,7 @@ int cmd_check(const std::vector<std::string_view>& args);
 int cmd_bless(const std::vector<std::string_view>& args);
 int cmd_merge(const std::vector<std::string_view>& args);
 int cmd_slurm(const std::vector<std::string_view>& args);
+int cmd_list(const std::vector<std::string_view>& args);
 
 // Shared by the commands that read specs and write reports.
 int default_jobs();                                                        // the machine's cores

@@ -12,6 +12,7 @@
 #include "csv.hpp"
 #include "report.hpp"
 #include "report_util.hpp"
+#include "study.hpp"
 #include "variants.hpp"
 
 namespace mpmstab {
@@ -666,5 +667,46 @@ void write_comparison(const Spec& table1, const std::vector<Spec>& support, cons
      << "); they are compared like the others but labelled.\n";
   write_if_changed(out / "comparison.md", md.str());
 }
+
+namespace {
+
+// The study: every Table 1 cell of the table1 experiment against the paper, explained by the
+// supporting experiments and the variants study, whichever of them have been run.
+void write_derived_comparison(const DerivedContext& c) {
+  const StudyInput& table1 = c.inputs.at("table1");
+  std::vector<Spec> support;
+  for (const auto& [name, input] : c.inputs) {
+    if (name != "table1" && name != "variants" && input.spec) support.push_back(*input.spec);
+  }
+  std::optional<ErrorAt> error_at;
+  if (c.options.contains("error_at")) {
+    error_at = parse_error_at(c.options["error_at"].get<std::string>());
+  }
+  write_comparison(*table1.spec, support, c.out, error_at);
+}
+
+const StudyRegistration kComparison{{
+    .name = "comparison",
+    .summary = "every Table 1 cell against the paper, each class of disagreement explained",
+    .has_cases = false,
+    .inputs = {{.name = "table1", .required = true},
+               {.name = "courant"},
+               {.name = "walls"},
+               {.name = "crossing"},
+               {.name = "eq108"},
+               {.name = "variants"}},
+    .index = [](const Spec&, const std::vector<ojson>&) -> std::string {
+      return "**Against the paper:** [comparison.md](comparison.md) sets every Table 1 cell "
+             "beside the paper's, with a verdict, and explains each class of disagreement with "
+             "an experiment.\n\n";
+    },
+    .write_derived = write_derived_comparison,
+    .blessed = {{.file = "comparison.csv",
+                 .key_columns = {"method", "E", "A", "dt"},
+                 .value_columns = {"verdict", "class"},
+                 .what = "comparison verdicts"}},
+}};
+
+}  // namespace
 
 }  // namespace mpmstab

@@ -12,7 +12,7 @@
 #include <utility>
 #include <vector>
 
-#include "report_util.hpp"
+#include "paper_table1.hpp"
 #include "spec.hpp"
 
 namespace mpmstab {

@@ -158,6 +158,7 @@ void write_performance(const std::vector<Spec>& specs, const fs::path& bench, co
         "|---|---|---|---|\n";
   double total_wall = 0, total_compute = 0;
   for (const auto& spec : specs) {
+    if (!spec.study->has_cases) continue;  // computed from other experiments' results
     const std::string t = read_file(out / (spec.name + ".json"));
     if (t.empty()) {
       md << "| " << spec.name << " | not run | | |\n";

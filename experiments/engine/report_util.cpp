@@ -32,28 +32,6 @@ std::string ratio(double r) {
   return buf;
 }
 
-PaperValue paper_value(const std::string& text) {
-  PaperValue p;
-  p.text = text;
-  if (text == "*") {
-    p.kind = PaperValue::unstable;
-    return p;
-  }
-  try {
-    std::size_t used = 0;
-    p.value = std::stod(text, &used);
-    if (used == text.size()) p.kind = PaperValue::number;
-  } catch (const std::exception&) {
-  }
-  return p;
-}
-
-std::string show(const PaperValue& p) {
-  if (p.kind == PaperValue::number) return sci(p.value);
-  if (p.kind == PaperValue::unstable) return "*";
-  return p.text.empty() ? "?" : "`" + p.text + "`";
-}
-
 // A parameter: its value to 3 significant digits without trailing zeros ("1e-5", "2.5e-3").
 std::string param(double v) {
   std::string s = sci(v, 3);
@@ -96,51 +74,10 @@ std::string link(const fs::path& from_dir, const fs::path& target) {
   return fs::relative(target, from_dir).generic_string();
 }
 
-// ---------------------------------------------------------------------------------------------
-// Table 1.
-
-std::map<Table1Key, PaperCell> read_paper_table1(const Spec& spec) {
-  std::map<Table1Key, PaperCell> cells;
-  const CsvTable t = read_csv(spec.reference);
-  // Cells without a printed dt are matched to the spec's case marked dt_inferred.
-  for (const auto& row : t.rows) {
-    PaperCell c{paper_value(row.at("dt_stable")), paper_value(row.at("max_error")),
-                row.at("confidence"), row.at("evidence"), row.at("dt") != "?"};
-    std::string method = row.at("method");
-    std::transform(method.begin(), method.end(), method.begin(), ::tolower);
-    const double A = std::stod(row.at("A")), E = std::stod(row.at("E"));
-    double dt = std::nan("");
-    if (c.dt_printed) {
-      dt = std::stod(row.at("dt"));
-    } else {
-      for (const auto& cs : spec.cases) {
-        const auto& p = cs.params;
-        if (cs.dt_inferred && p.A == A && p.E == E && to_string(cs.paper_method) == method &&
-            !cells.count({A, E, p.dt, method})) {
-          dt = p.dt;
-        }
-      }
-    }
-    cells[{A, E, dt, method}] = c;
-  }
-  return cells;
-}
-
 std::optional<double> compared_error(const ojson& row, ErrorAt error_at) {
   if (row["stable"] != true) return std::nullopt;
   const ojson& v = row[error_at == ErrorAt::T ? "max_error" : "max_error_over_time"];
   return v.is_number() ? std::optional<double>(v.get<double>()) : std::nullopt;
-}
-
-Table1Key paper_key(const CaseSpec& c) {
-  const auto& p = c.params;
-  return {p.A, p.E, p.dt, std::string(to_string(c.paper_method))};
-}
-
-bool within_factor_3(double ours, double paper) {
-  static const ColumnRule factor3{"max_error", 0, 2.0 / 3.0, false};
-  return cells_agree(CellValue{CellValue::Kind::number, ours, ""},
-                     CellValue{CellValue::Kind::number, paper, ""}, factor3);
 }
 
 std::string sci(double v, int digits) {

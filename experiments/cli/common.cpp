@@ -1,0 +1,52 @@
+// What the commands that read specs and write reports share: the number of jobs, loading
+// specs, the output folder and the --timing option.
+#include <unistd.h>
+
+#include <filesystem>
+#include <thread>
+
+#include "commands.hpp"
+
+namespace mpmstab::cli {
+
+int default_jobs() {
+  const unsigned n = std::thread::hardware_concurrency();
+  return n == 0 ? 1 : static_cast<int>(n);
+}
+
+std::vector<Spec> load_specs(const std::vector<std::string_view>& paths) {
+  if (paths.empty()) throw UsageError("missing <spec.json>");
+  std::vector<Spec> specs;
+  for (auto path : paths) {
+    try {
+      specs.push_back(load_spec(std::string(path)));
+    } catch (const SpecError& e) {
+      throw UsageError(e.what());
+    }
+  }
+  return specs;
+}
+
+// The output folder must exist or be creatable, and be writable, before anything runs.
+std::filesystem::path output_folder(const Args& args) {
+  const std::filesystem::path out(args.value("out").value_or("results"));
+  std::error_code ec;
+  if (std::filesystem::exists(out, ec) && !std::filesystem::is_directory(out, ec)) {
+    throw UsageError("--out: " + out.string() + " is not a folder");
+  }
+  std::filesystem::create_directories(out, ec);
+  if (ec) throw UsageError("--out: cannot create " + out.string() + ": " + ec.message());
+  if (::access(out.c_str(), W_OK) != 0) {
+    throw UsageError("--out: " + out.string() + " is not writable");
+  }
+  return out;
+}
+
+bool omit_timing(const Args& args) {
+  const auto v = args.value("timing");
+  if (!v || *v == "keep") return false;
+  if (*v == "omit") return true;
+  throw UsageError("--timing: unknown value '" + std::string(*v) + "' (expected keep or omit)");
+}
+
+}  // namespace mpmstab::cli

@@ -1,0 +1,177 @@
+// `mpmstab sweep`: the cases of one spec, run in parallel (or from the cache), and its reports;
+// for a study without cases of its own, its reports from its inputs.
+#include <unistd.h>
+
+#include <atomic>
+#include <cmath>
+#include <csignal>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "atomic_file.hpp"
+#include "commands.hpp"
+#include "csv.hpp"
+#include "merge.hpp"
+#include "report.hpp"
+#include "spec.hpp"
+#include "sweep.hpp"
+
+namespace mpmstab::cli {
+
+namespace {
+
+constexpr const char* kSweepHelp =
+    R"(Usage: mpmstab sweep <spec.json> [--jobs N] [--out DIR] [--force] [--shard I/N]
+                    [--timing keep|omit]
+
+Runs every case of an experiment spec and writes its reports:
+  DIR/<name>.csv    one row per case, every measured quantity, '#' provenance lines
+  DIR/<name>.json   the same content
+  DIR/<name>.md     the paper's layout with the paper's values beside ours
+  DIR/<name>_data.csv  (figures) the history or final state the gnuplot script draws
+Finished cases are cached in DIR/cache/ under a hash of their parameters and the solver
+version, and are not computed again unless that key changes or --force is given.
+
+Options:
+  --jobs N   cases run in parallel (default: all cores); results do not depend on N
+  --out DIR  output folder (default results)
+  --force    compute every case again
+  --shard I/N  run only shard I (0 <= I < N) of the cases and write no report: each case
+             belongs to the shard given by a hash of its key (parameters, solver version), so
+             it always lands in the same shard whatever the order of the spec. The records go
+             to DIR/cache/, with a manifest DIR/<name>.shard-I-of-N.json; 'mpmstab merge'
+             gathers the shards and writes the reports (see experiments/README.md).
+  --timing keep|omit
+             omit: reports leave out the machine measurements (wall times and ns per
+             particle-step read 0, date and threads "omitted"), so that two runs of the same
+             spec compare byte for byte, whatever the machine or the number of shards. The
+             cache keeps the measurements. Default keep.
+  --help     show this text
+
+Exit status: 0 when every case ran (unstable runs are results), 2 for an invalid spec or
+option (nothing is run or written), 1 for an internal error.
+)";
+
+// SIGINT and SIGTERM during a sweep: the handler only raises this flag (async-signal-safe);
+// the sweep stops promptly, keeps its finished cases in the cache and writes no report. A
+// second signal gets the default action (the handler is reset when it runs).
+std::atomic<bool> g_stop{false};
+volatile std::sig_atomic_t g_signal = 0;
+
+extern "C" void on_stop_signal(int sig) {
+  g_signal = sig;
+  g_stop.store(true);
+}
+
+void install_stop_handlers() {
+  struct sigaction action {};
+  action.sa_handler = on_stop_signal;
+  sigemptyset(&action.sa_mask);
+  action.sa_flags = SA_RESETHAND;
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
+}
+
+Shard parse_shard(std::string_view text) {
+  const auto slash = text.find('/');
+  const std::string_view message = "must be I/N with integers 0 <= I < N <= 100000, got '";
+  if (slash == std::string_view::npos) {
+    throw UsageError("--shard: " + std::string(message) + std::string(text) + "'");
+  }
+  Shard s;
+  try {
+    s.index = static_cast<int>(parse_int(text.substr(0, slash), "shard"));
+    s.count = static_cast<int>(parse_int(text.substr(slash + 1), "shard"));
+  } catch (const UsageError&) {
+    throw UsageError("--shard: " + std::string(message) + std::string(text) + "'");
+  }
+  if (s.count < 1 || s.count > 100000 || s.index < 0 || s.index >= s.count) {
+    throw UsageError("--shard: " + std::string(message) + std::string(text) + "'");
+  }
+  return s;
+}
+
+}  // namespace
+
+int cmd_sweep(const std::vector<std::string_view>& argv) {
+  const Args args(argv,
+                  {{"jobs"}, {"out"}, {"force", false}, {"shard"}, {"timing"}, {"help", false}});
+  if (args.flag("help")) {
+    std::cout << kSweepHelp;
+    return 0;
+  }
+  if (args.positional().size() > 1) throw UsageError("sweep takes one spec");
+  SweepOptions options;
+  options.jobs = default_jobs();
+  if (auto v = args.value("jobs")) {
+    const auto jobs = parse_int(*v, "jobs");
+    if (jobs < 1 || jobs > 1024)
+      throw UsageError("--jobs: must be in [1, 1024], got " + std::string(*v));
+    options.jobs = static_cast<int>(jobs);
+  }
+  options.force = args.flag("force");
+  if (auto v = args.value("shard")) options.shard = parse_shard(*v);
+  const bool omit = omit_timing(args);
+  const Spec spec = load_specs(args.positional()).front();
+  const auto out = output_folder(args);
+  if (!spec.study->has_cases) {
+    // A study without cases of its own: its reports from the results of its inputs.
+    if (options.shard) throw UsageError("--shard: " + spec.path.string() + " has no cases");
+    try {
+      write_derived_reports(spec, out);
+    } catch (const MissingInput& e) {
+      throw UsageError(e.what());
+    }
+    std::cerr << "[" << spec.name << "] from " << spec.inputs.size() << " inputs -> "
+              << out.string() << "\n";
+    return 0;
+  }
+  options.cache = out / "cache";
+  options.progress_line = ::isatty(STDERR_FILENO) != 0;
+  options.cancel = &g_stop;
+  install_stop_handlers();
+
+  SweepOutcome outcome = run_sweep(spec, options);
+  if (outcome.interrupted) {
+    const int sig = g_signal ? static_cast<int>(g_signal) : SIGINT;
+    std::cerr << "\n[" << spec.name << "] interrupted by "
+              << (sig == SIGTERM ? "SIGTERM" : "SIGINT") << ": "
+              << outcome.computed + outcome.cached + outcome.shared << " of " << spec.cases.size()
+              << " cases finished and are kept in " << options.cache.string()
+              << "; no report was written. Run the same command again to resume.\n";
+    return 128 + sig;
+  }
+  if (options.shard) {
+    // A shard writes its records (in the cache) and a manifest, never a partial report.
+    const Shard& sh = *options.shard;
+    const nlohmann::ordered_json manifest = {{"spec", spec.path.generic_string()},
+                                             {"name", spec.name},
+                                             {"shard", sh.index},
+                                             {"of", sh.count},
+                                             {"cases", spec.cases.size() - outcome.other_shards},
+                                             {"computed", outcome.computed},
+                                             {"cached", outcome.cached},
+                                             {"wall_seconds", outcome.wall_seconds}};
+    write_file_atomically(shard_manifest(out, spec.name, sh), manifest.dump(2) + "\n");
+    std::cerr << "[" << spec.name << "] shard " << sh.index << "/" << sh.count << ": "
+              << spec.cases.size() - outcome.other_shards << " of " << spec.cases.size()
+              << " cases (" << outcome.computed << " computed, " << outcome.cached
+              << " from the cache) in " << shortest(std::round(outcome.wall_seconds * 100) / 100)
+              << " s -> " << options.cache.string() << "\n";
+    return 0;
+  }
+  const double wall_seconds = outcome.wall_seconds;  // for the summary line, also when omitted
+  if (omit) omit_machine_measurements(outcome);
+  write_reports(spec, outcome, out);
+  std::cerr << "[" << spec.name << "] " << spec.cases.size() << " cases (" << outcome.computed
+            << " computed, " << outcome.cached << " from the cache, "
+            << (outcome.shared
+                    ? std::to_string(outcome.shared) + " sharing the run of an identical case, "
+                    : std::string())
+            << outcome.unstable << " unstable) in "
+            << shortest(std::round(wall_seconds * 100) / 100) << " s -> "
+            << (out / (spec.name + ".md")).string() << "\n";
+  return 0;
+}
+
+}  // namespace mpmstab::cli

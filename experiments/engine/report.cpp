@@ -1,0 +1,415 @@
+#include "report.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "atomic_file.hpp"
+#include "cache.hpp"
+#include "csv.hpp"
+#include "report_util.hpp"
+#include "result_json.hpp"
+#include "study.hpp"
+
+namespace mpmstab {
+
+namespace {
+
+using ojson = nlohmann::ordered_json;
+namespace fs = std::filesystem;
+
+// ---------------------------------------------------------------------------------------------
+// Flat rows: the same columns in the CSV and in the JSON "cases" array.
+
+const std::vector<std::string> kColumns = {
+    "method", "E", "A", "dt", "dt_inferred", "T", "cells", "ppc", "bc", "position_update", "scene",
+    "walls", "transfer", "flip_fraction", "update", "body_force_time", "policy", "cfl_factor",
+    "safety", "dt_stable_sigma", "dt_stable_vnorm", "stable", "failure_reason", "failure_step",
+    "failure_time", "meaningless", "steps", "dt_min", "dt_max", "max_error", "max_error_over_time",
+    "crossings", "dt_stable_min", "dt_cfl", "dt_sound", "courant", "key",
+    // Measurements of the machine: the only columns that differ between identical runs.
+    "wall_seconds", "ns_per_particle_step"};
+// Before those, in a variants experiment or where a case compares another error than the one at
+// T: the variant, the paper's column and which error is compared with it.
+const std::vector<std::string> kStudyColumns = {"variant", "paper_method", "error_at"};
+
+// ---------------------------------------------------------------------------------------------
+// Provenance of a set of cases: each field's distinct values, in spec order.
+
+ojson aggregate_provenance(const std::vector<ojson>& records) {
+  std::vector<std::string> fields = {"commit", "dirty", "compiler", "flags",
+                                     "eigen",  "cpu",   "threads"};
+  ojson out;
+  for (const auto& f : fields) {
+    std::vector<std::pair<std::string, int>> values;
+    for (const auto& rec : records) {
+      const ojson& v = rec["provenance"][f];
+      const std::string s = v.is_string() ? v.get<std::string>() : v.dump();
+      auto it =
+          std::find_if(values.begin(), values.end(), [&](const auto& e) { return e.first == s; });
+      if (it == values.end()) {
+        values.emplace_back(s, 1);
+      } else {
+        ++it->second;
+      }
+    }
+    std::string text;
+    for (const auto& [value, count] : values) {
+      if (!text.empty()) text += "; ";
+      text += value;
+      if (values.size() > 1) text += " (" + std::to_string(count) + " cases)";
+    }
+    out[f] = text;
+  }
+  std::string first, last;
+  for (const auto& rec : records) {
+    const std::string d = rec["provenance"]["date"].get<std::string>();
+    if (first.empty() || d < first) first = d;
+    if (last.empty() || d > last) last = d;
+  }
+  out["date"] = first == last ? first : first + " .. " + last;
+  return out;
+}
+
+}  // namespace
+
+std::string provenance_lines(const ojson& prov) {
+  std::ostringstream s;
+  s << "# commit: " << prov["commit"].get<std::string>()
+    << (prov["dirty"] == "false" ? "" : " (dirty: " + prov["dirty"].get<std::string>() + ")")
+    << "\n# compiler: " << prov["compiler"].get<std::string>()
+    << "\n# flags: " << prov["flags"].get<std::string>()
+    << "\n# eigen: " << prov["eigen"].get<std::string>()
+    << "\n# date: " << prov["date"].get<std::string>()
+    << "\n# cpu: " << prov["cpu"].get<std::string>()
+    << "\n# threads: " << prov["threads"].get<std::string>() << "\n";
+  return s.str();
+}
+
+std::string provenance_markdown(const ojson& prov, const ojson& sweep) {
+  std::ostringstream md;
+  md << "## Provenance\n\n| | |\n|---|---|\n";
+  for (const auto& [k, v] : prov.items())
+    md << "| " << k << " | " << v.get<std::string>() << " |\n";
+  md << "| compute time | " << seconds(sweep["compute_seconds"].get<double>())
+     << " summed over the cases (each timed when it was computed) |\n";
+  md << "| sweep wall time | " << seconds(sweep["wall_seconds"].get<double>())
+     << " (the last sweep that computed a case) |\n";
+  return md.str();
+}
+
+// Extra columns of an edge experiment (the search), after the columns of the run at dt_edge.
+const std::vector<std::string> kEdgeColumns = {"dt_edge",
+                                               "dt_fail",
+                                               "dt_edge_over_cfl",
+                                               "dt_stable_min_at_edge",
+                                               "dt_edge_over_stable",
+                                               "monotone",
+                                               "failed_below_edge",
+                                               "probes",
+                                               "search_seconds"};
+
+ojson flat_row(const CaseSpec& c, const ojson& record) {
+  const ojson& r = record["result"];
+  ojson row, params;
+  row["variant"] = c.variant;
+  row["paper_method"] = to_string(c.paper_method);
+  row["error_at"] = to_string(c.error_at);
+  for (const auto& col : kColumns) {
+    if (col == "dt_inferred") {
+      row[col] = c.dt_inferred;
+    } else if (col == "failure_reason" || col == "failure_step" || col == "failure_time") {
+      row[col] = r["failure"].is_null() ? ojson(nullptr) : r["failure"][col.substr(8)];
+    } else if (col == "key") {
+      row[col] = case_key(c.params);
+    } else if (r.contains(col)) {
+      row[col] = r[col];
+    } else {
+      // A record cached before this column existed: a parameter is read from the case (the
+      // cache key guarantees the record ran with it), a measurement stays missing.
+      if (params.is_null()) {
+        RunResult with_params;
+        with_params.params = c.params;
+        params = to_json(with_params);
+      }
+      const auto& names = parameter_names();
+      const bool is_param = std::find(names.begin(), names.end(), col) != names.end();
+      row[col] = is_param && params.contains(col) ? params[col] : ojson(nullptr);
+    }
+  }
+  if (record.contains("edge")) {
+    const ojson& e = record["edge"];
+    for (const auto& col : kEdgeColumns) {
+      if (col == "failed_below_edge") {
+        row[col] = e[col].size();
+      } else if (col == "probes") {
+        row[col] = e[col].size();
+      } else if (col == "search_seconds") {
+        row[col] = e["wall_seconds"];
+      } else {
+        row[col] = e[col];
+      }
+    }
+  }
+  return row;
+}
+
+std::string csv_cell(const ojson& v) {
+  if (v.is_null()) return "";
+  if (v.is_boolean()) return v.get<bool>() ? "true" : "false";
+  if (v.is_number_float()) return shortest(v.get<double>());
+  if (v.is_number()) return v.dump();
+  return csv_field(v.get<std::string>());
+}
+
+namespace {
+
+bool has_study_columns(const Spec& spec) {
+  if (spec.study->study_columns) return true;
+  for (const auto& c : spec.cases) {
+    if (c.error_at != ErrorAt::T) return true;
+  }
+  return false;
+}
+
+// The flat rows of every case, without the study columns where the spec has none.
+std::vector<ojson> flat_rows(const Spec& spec, const SweepOutcome& outcome) {
+  std::vector<ojson> rows;
+  const bool study_columns = has_study_columns(spec);
+  for (std::size_t i = 0; i < spec.cases.size(); ++i) {
+    rows.push_back(flat_row(spec.cases[i], outcome.records[i]));
+    if (!study_columns) {
+      for (const auto& col : kStudyColumns)
+        rows.back().erase(col);
+    }
+  }
+  return rows;
+}
+
+// Timing of the sweep: a rerun served from the cache keeps the figure of the sweep that
+// computed the results, so that reports do not change when nothing was computed.
+ojson sweep_timing(const std::vector<ojson>& rows, const SweepOutcome& outcome,
+                   const fs::path& json_path) {
+  double compute_seconds = 0;
+  for (const auto& r : rows) {
+    // An edge case's cost is its whole search, not the one run at dt_edge.
+    compute_seconds +=
+        (r.contains("search_seconds") ? r["search_seconds"] : r["wall_seconds"]).get<double>();
+  }
+  double sweep_wall = outcome.wall_seconds;
+  if (outcome.computed == 0 && !outcome.merged && !outcome.timing_omitted) {
+    try {
+      const ojson previous = ojson::parse(read_file(json_path));
+      sweep_wall = previous.at("sweep").at("wall_seconds").get<double>();
+    } catch (const std::exception&) {
+    }
+  }
+  return {
+      {"cases", rows.size()}, {"compute_seconds", compute_seconds}, {"wall_seconds", sweep_wall}};
+}
+
+// <name>.csv: one row per case, under the header lines.
+std::string rows_csv(const std::vector<ojson>& rows, const std::vector<std::string>& columns,
+                     const std::string& header, bool timing_omitted) {
+  std::ostringstream csv;
+  csv << header
+      << (timing_omitted
+              ? "# machine measurements omitted (--timing omit): wall_seconds and "
+                "ns_per_particle_step read 0.\n"
+              : "# wall_seconds and ns_per_particle_step are measurements of the machine; every "
+                "other column is the same for the same spec whatever the number of jobs.\n");
+  for (std::size_t c = 0; c < columns.size(); ++c)
+    csv << (c ? "," : "") << columns[c];
+  csv << "\n";
+  for (const auto& row : rows) {
+    for (std::size_t c = 0; c < columns.size(); ++c) {
+      csv << (c ? "," : "") << csv_cell(row[columns[c]]);
+    }
+    csv << "\n";
+  }
+  return csv.str();
+}
+
+// The title, description and links that open every experiment's Markdown report.
+std::string report_head(const Spec& spec, const fs::path& out) {
+  const std::string spec_path = spec.path.generic_string();
+  std::ostringstream md;
+  md << "# " << spec.title << "\n\n"
+     << spec.description << "\n\nSpec: [`" << spec_path << "`](" << link(out, spec.path)
+     << ") · data: [" << spec.name << ".csv](" << spec.name << ".csv), [" << spec.name << ".json]("
+     << spec.name << ".json) · generated by `make reproduce`.\n\n";
+  return md.str();
+}
+
+}  // namespace
+
+std::vector<std::string> result_columns(const Spec& spec) {
+  std::vector<std::string> columns;
+  if (has_study_columns(spec)) columns = kStudyColumns;
+  columns.insert(columns.end(), kColumns.begin(), kColumns.end());
+  return columns;
+}
+
+void write_if_changed(const fs::path& path, const std::string& content) {
+  if (fs::exists(path) && read_file(path) == content) return;
+  write_file_atomically(path, content);
+}
+
+std::vector<Spec> load_inputs(const Spec& spec) {
+  std::vector<Spec> specs;
+  for (const auto& input : spec.inputs)
+    specs.push_back(load_spec(input.path));
+  return specs;
+}
+
+StudyInputs read_inputs(const Study& study, const std::vector<std::string>& roles,
+                        const std::vector<Spec>& specs, const fs::path& out) {
+  StudyInputs inputs;
+  for (const auto& decl : study.inputs)
+    inputs[decl.name];  // declared but not given: no spec, no results
+  for (std::size_t i = 0; i < specs.size() && i < roles.size(); ++i) {
+    StudyInput& in = inputs[roles[i]];
+    in.spec = &specs[i];
+    if (const std::string text = read_file(out / (specs[i].name + ".json")); !text.empty()) {
+      in.doc = ojson::parse(text);
+    }
+  }
+  for (const auto& decl : study.inputs) {
+    const StudyInput& in = inputs[decl.name];
+    if (decl.required && !in.present()) {
+      const std::string name = in.spec ? in.spec->name : decl.name;
+      throw MissingInput((out / (name + ".json")).string() + " does not exist: run mpmstab sweep " +
+                         (in.spec ? in.spec->path.string() : name + ".json") + " first");
+    }
+  }
+  return inputs;
+}
+
+namespace {
+
+std::vector<std::string> input_roles(const Spec& spec) {
+  std::vector<std::string> roles;
+  for (const auto& input : spec.inputs)
+    roles.push_back(input.name);
+  return roles;
+}
+
+}  // namespace
+
+void write_derived_reports(const Spec& spec, const std::vector<std::string>& roles,
+                           const std::vector<Spec>& input_specs, const fs::path& out,
+                           const ojson& options) {
+  fs::create_directories(out);
+  const StudyInputs inputs = read_inputs(*spec.study, roles, input_specs, out);
+  spec.study->write_derived(DerivedContext{spec, out, inputs, options});
+}
+
+void write_derived_reports(const Spec& spec, const fs::path& out, const ojson& options) {
+  const std::vector<Spec> input_specs = load_inputs(spec);
+  write_derived_reports(spec, input_roles(spec), input_specs, out, options);
+}
+
+void write_reports(const Spec& spec, const SweepOutcome& outcome, const fs::path& out) {
+  fs::create_directories(out);
+  const std::vector<ojson> rows = flat_rows(spec, outcome);
+  const ojson prov = aggregate_provenance(outcome.records);
+  const fs::path json_path = out / (spec.name + ".json");
+  const ojson sweep = sweep_timing(rows, outcome, json_path);
+  const std::string spec_path = spec.path.generic_string();
+  const std::string header = "# experiment: " + spec.name + " (" + spec_path +
+                             ")\n# title: " + spec.title + "\n" + provenance_lines(prov);
+  write_if_changed(out / (spec.name + ".csv"),
+                   rows_csv(rows, result_columns(spec), header, outcome.timing_omitted));
+
+  // The study's part, from the rows and the results of its declared inputs.
+  const std::vector<Spec> input_specs = load_inputs(spec);
+  const StudyInputs inputs = read_inputs(*spec.study, input_roles(spec), input_specs, out);
+  const StudyReport study =
+      spec.study->report(ReportContext{spec, rows, outcome, out, header, inputs});
+
+  ojson doc;
+  doc["experiment"] = spec.name;
+  doc["title"] = spec.title;
+  doc["spec"] = spec_path;
+  doc["report"] = spec.study->name;
+  doc["provenance"] = prov;
+  doc["sweep"] = sweep;
+  doc["cases"] = rows;
+  if (!study.json.is_null()) doc["study"] = study.json;
+  write_if_changed(json_path, doc.dump(2) + "\n");
+  if (study.data_csv) write_if_changed(out / (spec.name + "_data.csv"), *study.data_csv);
+  write_if_changed(out / (spec.name + ".md"), report_head(spec, out) + study.markdown + "\n" +
+                                                  provenance_markdown(prov, sweep));
+}
+
+namespace {
+
+std::string index_intro() {
+  return "# mpmstab results\n\n"
+         "Regenerated by `make reproduce` from the specs in [`experiments/`](../experiments/): "
+         "the experiments of M. Berzins, *Nonlinear stability and time step selection for the MPM "
+         "method*, rerun with this project's solver and set beside the paper's values. Every "
+         "number below is read from the files it links to.\n\n"
+         "**Performance:** [performance.md](performance.md): the step kernel's benchmark, what "
+         "each measured quantity costs, and the wall time of every experiment.\n\n";
+}
+
+std::string index_row(const Spec& spec, const ojson& doc) {
+  int unstable = 0;
+  for (const auto& c : doc["cases"])
+    unstable += c["stable"] == false;
+  std::ostringstream md;
+  md << "| " << spec.title << " | [" << spec.name << ".md](" << spec.name << ".md) | [" << spec.name
+     << ".csv](" << spec.name << ".csv), [" << spec.name << ".json](" << spec.name << ".json) | "
+     << doc["cases"].size() << " | " << unstable << " | "
+     << seconds(doc["sweep"]["compute_seconds"].get<double>()) << " | "
+     << seconds(doc["sweep"]["wall_seconds"].get<double>()) << " |\n";
+  return md.str();
+}
+
+std::string index_section(const Spec& spec, const ojson& doc) {
+  std::ostringstream md;
+  md << "## " << spec.title << "\n\n" << spec.description << "\n\n";
+  const std::vector<ojson> rows(doc["cases"].begin(), doc["cases"].end());
+  md << spec.study->index(spec, rows);
+  md << "Provenance: commit " << doc["provenance"]["commit"].get<std::string>() << ", "
+     << doc["provenance"]["date"].get<std::string>() << ", "
+     << doc["provenance"]["cpu"].get<std::string>() << ", "
+     << doc["provenance"]["threads"].get<std::string>() << " threads; computed in "
+     << seconds(doc["sweep"]["compute_seconds"].get<double>()) << " of case time.\n\n";
+  return md.str();
+}
+
+}  // namespace
+
+void write_index(const std::vector<Spec>& specs, const fs::path& out) {
+  std::ostringstream md;
+  md << index_intro();
+  // A derived study (no cases of its own) is a paragraph of the introduction.
+  for (const auto& spec : specs) {
+    if (!spec.study->has_cases) md << spec.study->index(spec, {});
+  }
+  md << "| experiment | report | data | cases | unstable | compute time | sweep wall time |\n"
+        "|---|---|---|---|---|---|---|\n";
+  std::vector<std::pair<const Spec*, ojson>> docs;
+  for (const auto& spec : specs) {
+    if (!spec.study->has_cases) continue;
+    const std::string text = read_file(out / (spec.name + ".json"));
+    if (text.empty()) {
+      md << "| " << spec.title << " | not generated | | | | | |\n";
+      continue;
+    }
+    docs.emplace_back(&spec, ojson::parse(text));
+    md << index_row(spec, docs.back().second);
+  }
+  md << "\n";
+  for (const auto& [spec, doc] : docs)
+    md << index_section(*spec, doc);
+  write_if_changed(out / "README.md", md.str());
+}
+
+}  // namespace mpmstab

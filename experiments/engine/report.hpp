@@ -1,0 +1,56 @@
+// Reports of an experiment: CSV and JSON (one row per case, with provenance) and a Markdown
+// page whose body, and the data its figure plots, its study writes (study.hpp). Every file is
+// written atomically, and only when its content changed.
+#pragma once
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "spec.hpp"
+#include "sweep.hpp"
+
+namespace mpmstab {
+
+// Writes <out>/<name>.csv, .json, .md and, for studies with a figure, <name>_data.csv.
+void write_reports(const Spec& spec, const SweepOutcome& outcome, const std::filesystem::path& out);
+
+// The specs of a spec's declared inputs (Study::inputs), in their order.
+std::vector<Spec> load_inputs(const Spec& spec);
+// The results of input specs in `out` (null where not run), each under its role: roles[i] is
+// the InputDecl::name that specs[i] fills. Throws MissingInput for a required input not run.
+StudyInputs read_inputs(const Study& study, const std::vector<std::string>& roles,
+                        const std::vector<Spec>& specs, const std::filesystem::path& out);
+
+// A study without cases of its own: its files from its declared inputs (or from `input_specs`
+// in the given roles). `options` are study options from the command line. Throws MissingInput.
+void write_derived_reports(
+    const Spec& spec, const std::filesystem::path& out,
+    const nlohmann::ordered_json& options = nlohmann::ordered_json::object());
+void write_derived_reports(const Spec& spec, const std::vector<std::string>& roles,
+                           const std::vector<Spec>& input_specs, const std::filesystem::path& out,
+                           const nlohmann::ordered_json& options);
+
+// The '#' lines of provenance that head every CSV, and the Markdown provenance section.
+std::string provenance_lines(const nlohmann::ordered_json& prov);
+std::string provenance_markdown(const nlohmann::ordered_json& prov,
+                                const nlohmann::ordered_json& sweep);
+
+// Writes <out>/README.md, the index a reader browses, from the <name>.json of each spec.
+void write_index(const std::vector<Spec>& specs, const std::filesystem::path& out);
+
+// The CSV columns of a spec's result rows: in a variants experiment (or where a case compares
+// another error than the one at T) the variant, the paper's column and the error compared, then
+// the run's columns (the last two of which are timing measurements).
+std::vector<std::string> result_columns(const Spec& spec);
+// One case as a flat row: every column of result_columns(), for edge experiments also those of
+// the search.
+nlohmann::ordered_json flat_row(const CaseSpec& c, const nlohmann::ordered_json& record);
+// A JSON value as a CSV field: "" for null, shortest round-trip text for numbers.
+std::string csv_cell(const nlohmann::ordered_json& v);
+
+// Writes `content` to `path` atomically unless the file already holds exactly that.
+void write_if_changed(const std::filesystem::path& path, const std::string& content);
+
+}  // namespace mpmstab

@@ -1,0 +1,133 @@
+// A study: everything that is specific to one kind of experiment, declared in one place
+// (experiments/studies/<name>.cpp) and registered under the name a spec gives as "report".
+// The engine (spec, sweep, cache, reports) reads a study's declaration and calls its hooks;
+// it never names a study.
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace mpmstab {
+
+struct Spec;
+struct SweepOutcome;
+
+// What one case of a study computes from its parameters.
+enum class CaseWork {
+  run,          // one run to T at the case's dt (or policy)
+  edge_search,  // the largest fixed dt that survives to T: a scan and a bisection of runs
+};
+
+// An experiment whose results a study reads, by the name of its spec (resolved beside the
+// study's spec). A required input must have been run before the study's report is written.
+struct InputDecl {
+  std::string name;
+  bool required = false;
+};
+
+// The results of an experiment a study reads: its spec and its <out>/<name>.json (null when it
+// has not been run into that folder).
+struct StudyInput {
+  const Spec* spec = nullptr;
+  nlohmann::ordered_json doc;
+  bool present() const { return !doc.is_null(); }
+};
+using StudyInputs = std::map<std::string, StudyInput>;  // by InputDecl::name
+
+// A required input whose results are not in the report folder.
+class MissingInput : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// What a study's report is written from.
+struct ReportContext {
+  const Spec& spec;
+  const std::vector<nlohmann::ordered_json>& rows;  // one flat row per case (report.hpp)
+  const SweepOutcome& outcome;                      // the records, for history and final state
+  const std::filesystem::path& out;                 // the report folder
+  const std::string& csv_header;                    // '#' lines heading every CSV it writes
+  const StudyInputs& inputs;                        // the declared inputs, by name
+};
+
+// What a study adds to the files every experiment writes.
+struct StudyReport {
+  std::string markdown;                   // <name>.md between the description and provenance
+  std::optional<std::string> data_csv;    // <name>_data.csv, what its figure script draws
+  nlohmann::ordered_json json = nullptr;  // stored as "study" in <name>.json when not null
+};
+
+// A study that has no cases of its own reads only its inputs and writes its own files.
+struct DerivedContext {
+  const Spec& spec;
+  const std::filesystem::path& out;
+  const StudyInputs& inputs;
+  const nlohmann::ordered_json& options;  // study options given on the command line
+};
+
+// A table a study writes whose rows `make check` compares with blessed expectations
+// (reference/regression/<spec name>_verdicts.csv), beside the blessed run values.
+struct BlessedOutput {
+  std::string file;                        // in the results folder, e.g. "comparison.csv"
+  std::vector<std::string> key_columns;    // identify a row
+  std::vector<std::string> value_columns;  // must match exactly
+  std::string what;                        // "comparison verdicts": how messages name it
+};
+
+struct Study {
+  std::string name;     // the value of a spec's "report"
+  std::string summary;  // one line: what the study shows
+
+  // What a spec of this study must and may contain (checked by the spec parser).
+  CaseWork work = CaseWork::run;
+  bool has_cases = true;         // false: a derived study, computed from its inputs only
+  bool needs_reference = false;  // a paper table to compare with
+  bool takes_variants = false;   // "variants" (and then requires them)
+  bool one_case = false;         // exactly one case (a figure of one run)
+  // What the study's report reads beyond each run's verdict and final error: a spec lists it
+  // in "record" (a column it does not record reads "–"); mpmstab list --studies shows it.
+  struct Records {
+    bool error_over_time = false, dt_stable = false, crossings = false, history = false,
+         final_state = false;
+  } records;
+  // Columns variant, paper_method and error_at in every row (else only where a case compares
+  // another error than the one at T).
+  bool study_columns = false;
+  // Experiments whose results the study reads: they run before it (mpmstab list orders them),
+  // and their <out>/<name>.json is handed to its report.
+  std::vector<InputDecl> inputs;
+  // The study draws a figure: experiments/<spec name>.gp on <out>/<name>_data.csv.
+  bool figure = false;
+
+  // <name>.md's body and the figure data, from the rows of a sweep (studies with cases).
+  std::function<StudyReport(const ReportContext&)> report;
+  // The paragraph of results/README.md, after the spec's title and description: "What it
+  // shows", from the rows of <name>.json.
+  std::function<std::string(const Spec&, const std::vector<nlohmann::ordered_json>& rows)> index;
+  // The figure's subtitle, from <name>.json (studies with a figure).
+  std::function<std::string(const Spec&, const nlohmann::ordered_json& doc)> figure_subtitle;
+  // The value gnuplot's `dt` takes (default "0").
+  std::function<std::string(const nlohmann::ordered_json& doc)> figure_dt;
+  // A derived study's files (has_cases false).
+  std::function<void(const DerivedContext&)> write_derived;
+  // Tables it writes that make check compares with blessed expectations.
+  std::vector<BlessedOutput> blessed;
+};
+
+// The registry: every study linked into the program, by name.
+const Study* find_study(std::string_view name);
+std::vector<const Study*> all_studies();  // by name
+
+// A study file registers its study with a static StudyRegistration.
+struct StudyRegistration {
+  explicit StudyRegistration(Study study);
+};
+
+}  // namespace mpmstab

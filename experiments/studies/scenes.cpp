@@ -1,0 +1,42 @@
+#include "scenes.hpp"
+
+#include <algorithm>
+
+namespace mpmstab {
+
+using ojson = nlohmann::ordered_json;
+
+std::vector<SceneRows> by_scene(const std::vector<ojson>& rows) {
+  std::vector<SceneRows> groups;
+  for (const auto& r : rows) {
+    const std::string scene = r["scene"].get<std::string>();
+    auto it = std::find_if(groups.begin(), groups.end(),
+                           [&](const SceneRows& g) { return g.scene == scene; });
+    if (it == groups.end()) it = groups.insert(groups.end(), SceneRows{scene, {}});
+    it->rows.push_back(r);
+  }
+  return groups;
+}
+
+std::string scene_title(const std::string& scene) {
+  if (scene == "steffen") {
+    return "Second scene: Steffen et al. (2008), neo-Hookean, u = A sin(2 pi X) cos(c pi t)";
+  }
+  if (scene == "bar") return "The paper's bar";
+  return "Scene " + scene;
+}
+
+std::string first_scene_subtitle(const std::string& spec_name, const ojson& doc) {
+  const auto& c = doc["cases"][0];
+  std::size_t drawn = 0;
+  for (const auto& r : doc["cases"])
+    drawn += r.value("scene", "") == c.value("scene", "");
+  std::string subtitle = std::to_string(drawn) + " cases";
+  if (drawn < doc["cases"].size()) {
+    subtitle += " of the scene " + c.value("scene", std::string()) + " (of " +
+                std::to_string(doc["cases"].size()) + "; every scene is in the tables)";
+  }
+  return subtitle + "; the parameters of each are in " + spec_name + ".md";
+}
+
+}  // namespace mpmstab

@@ -1,0 +1,26 @@
+// Scenes: studies that run more than one scene report each scene in its own section, the first
+// scene of the spec (the paper's bar) first and in the figure.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+namespace mpmstab {
+
+struct SceneRows {
+  std::string scene;
+  std::vector<nlohmann::ordered_json> rows;
+};
+
+// The rows grouped by their "scene" column, in the order the scenes first appear.
+std::vector<SceneRows> by_scene(const std::vector<nlohmann::ordered_json>& rows);
+
+// A section title for a scene: "The paper's bar", "Second scene: Steffen et al. (2008), ...".
+std::string scene_title(const std::string& scene);
+
+// The subtitle of a study's figure, which draws the first scene: how many cases it draws, and
+// of how many when other scenes are only in the tables.
+std::string first_scene_subtitle(const std::string& spec_name, const nlohmann::ordered_json& doc);
+
+}  // namespace mpmstab

@@ -1,0 +1,184 @@
+// The paper's Table 1: E blocks, dt rows, MPM and GIMP, the paper's dt stable and max error
+// beside ours, with a summary of where the stability verdicts and errors agree.
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <sstream>
+
+#include "csv.hpp"
+#include "paper_table1.hpp"
+#include "report_util.hpp"
+#include "study.hpp"
+
+namespace mpmstab {
+
+namespace {
+
+using ojson = nlohmann::ordered_json;
+namespace fs = std::filesystem;
+
+struct Table1Summary {
+  int cells = 0, paper_stable = 0, paper_unstable = 0, paper_unknown = 0;
+  int ours_stable = 0, ours_meaningless = 0, ours_unstable = 0;
+  int verdicts_agree = 0, verdicts_compared = 0;
+  int paper_stable_ours_not = 0, paper_stable_ours_not_courant_ge1 = 0;
+  int errors_within_3 = 0, errors_compared = 0;
+  std::map<std::string, int> reasons;
+};
+
+Table1Summary summarize_table1(const Spec& spec, const std::vector<ojson>& rows,
+                               const std::map<Table1Key, PaperCell>& paper) {
+  Table1Summary s;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const ojson& r = rows[i];
+    ++s.cells;
+    const bool ours_stable = r["stable"].get<bool>();
+    if (ours_stable) {
+      ++s.ours_stable;
+      if (r["meaningless"] == true) ++s.ours_meaningless;
+    } else {
+      ++s.ours_unstable;
+      ++s.reasons[r["failure_reason"].get<std::string>()];
+    }
+    const auto it = paper.find(paper_key(spec.cases[i]));
+    if (it == paper.end()) {
+      ++s.paper_unknown;
+      continue;
+    }
+    const PaperValue& pe = it->second.max_error;
+    if (pe.kind == PaperValue::unreadable) {
+      ++s.paper_unknown;
+      continue;
+    }
+    const bool paper_stable = pe.kind == PaperValue::number;
+    (paper_stable ? s.paper_stable : s.paper_unstable) += 1;
+    ++s.verdicts_compared;
+    if (paper_stable == ours_stable) ++s.verdicts_agree;
+    if (paper_stable && !ours_stable) {
+      ++s.paper_stable_ours_not;
+      if (r["courant"].get<double>() >= 1.0) ++s.paper_stable_ours_not_courant_ge1;
+    }
+    const auto ours = compared_error(r, spec.cases[i].error_at);
+    if (paper_stable && ours) {
+      ++s.errors_compared;
+      if (within_factor_3(*ours, pe.value)) ++s.errors_within_3;
+    }
+  }
+  return s;
+}
+
+std::string table1_summary_text(const Table1Summary& s) {
+  std::ostringstream md;
+  md << s.cells << " cells. Paper: " << s.paper_stable << " stable, " << s.paper_unstable
+     << " unstable (`*`), " << s.paper_unknown
+     << " unreadable in the transcription. Ours: " << s.ours_stable << " stable ("
+     << s.ours_meaningless << " of them meaningless: the error over time reached A), "
+     << s.ours_unstable << " unstable";
+  if (!s.reasons.empty()) {
+    md << " (";
+    bool first = true;
+    for (const auto& [reason, count] : s.reasons) {
+      md << (first ? "" : ", ") << reason << " " << count;
+      first = false;
+    }
+    md << ")";
+  }
+  md << ". Stability verdicts agree in " << s.verdicts_agree << " of " << s.verdicts_compared
+     << " cells; the paper lists as stable " << s.paper_stable_ours_not
+     << " cells that are unstable here, " << s.paper_stable_ours_not_courant_ge1
+     << " of them at a Courant number c dt / h >= 1. Where both are stable, our max error is "
+        "within a factor 3 of the paper's in "
+     << s.errors_within_3 << " of " << s.errors_compared << " cells.";
+  return md.str();
+}
+
+std::string table1_markdown(const Spec& spec, const std::vector<ojson>& rows, const fs::path& out) {
+  const auto paper = read_paper_table1(spec);
+  bool over_time = false;
+  for (const auto& c : spec.cases)
+    over_time = over_time || c.error_at == ErrorAt::max_over_time;
+  std::ostringstream md;
+  md << "## Results\n\n**Summary.** " << table1_summary_text(summarize_table1(spec, rows, paper))
+     << "\n\n";
+  md << "Legend: `*` unstable (ours: the reason and the step where the run stopped); "
+        "*meaningless*: the run survived but its error over time reached the amplitude A; "
+        "*inferred*: the paper does not print this cell's dt; *transcription*: the confidence of "
+        "the paper value as transcribed in ["
+     << link(out, spec.reference) << "](" << link(out, spec.reference)
+     << ") (low-confidence cells are data, not truth). dt_stable is the minimum over the run of "
+        "eq. (108) (stress "
+     << to_string(spec.cases.front().params.stable.sigma) << ", ||v|| "
+     << to_string(spec.cases.front().params.stable.vnorm)
+     << "). Cost: wall time of the run and ns per particle-step."
+     << (over_time ? " Max error ours: at T, or the largest over the run where marked (over time), "
+                     "as the case's error_at chooses."
+                   : "")
+     << "\n\n";
+
+  // Blocks in the order the spec lists them: E, then A.
+  std::vector<std::pair<double, double>> blocks;
+  for (const auto& c : spec.cases) {
+    const std::pair<double, double> b{c.params.E, c.params.A};
+    if (std::find(blocks.begin(), blocks.end(), b) == blocks.end()) blocks.push_back(b);
+  }
+  double current_E = std::nan("");
+  for (const auto& [E, A] : blocks) {
+    if (E != current_E) {
+      md << "### E = " << shortest(E) << "\n\n";
+      current_E = E;
+    }
+    md << "**A = " << shortest(A) << "**\n\n";
+    md << "| dt | method | c dt/h | dt_stable paper | dt_stable ours | max error paper | max error "
+          "ours | ours / paper | ours: verdict | transcription | cost |\n";
+    md << "|---|---|---|---|---|---|---|---|---|---|---|\n";
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      const auto& cs = spec.cases[i];
+      const auto& p = cs.params;
+      if (p.E != E || p.A != A) continue;
+      const ojson& r = rows[i];
+      const auto it = paper.find(paper_key(cs));
+      const PaperCell* pc = it == paper.end() ? nullptr : &it->second;
+      const auto ours = compared_error(r, cs.error_at);
+      std::string ratio_text = "–";
+      if (pc && pc->max_error.kind == PaperValue::number && ours) {
+        ratio_text = ratio(*ours / pc->max_error.value);
+      }
+      md << "| " << param(p.dt) << (cs.dt_inferred ? " (inferred)" : "") << " | "
+         << to_string(p.method) << " | " << sci(r["courant"].get<double>()) << " | "
+         << (pc ? show(pc->dt_stable) : "–") << " | "
+         << (r["stable"].get<bool>() ? opt_sci(r["dt_stable_min"]) : "\\*") << " | "
+         << (pc ? show(pc->max_error) : "–") << " | "
+         << (!r["stable"].get<bool>() ? std::string("\\*")
+             : ours                   ? sci(*ours)
+                                      : std::string("–"))
+         << (cs.error_at == ErrorAt::max_over_time ? " (over time)" : "") << " | " << ratio_text
+         << " | " << verdict(r) << " | " << (pc ? pc->confidence : "not in the paper") << " | "
+         << cost(r) << " |\n";
+    }
+    md << "\n";
+  }
+  return md.str();
+}
+
+std::string table1_index(const Spec& spec, const std::vector<ojson>& rows) {
+  const auto paper = read_paper_table1(spec);
+  return "**What it shows.** " + table1_summary_text(summarize_table1(spec, rows, paper)) +
+         " Full table with the paper's values beside ours: [" + spec.name + ".md](" + spec.name +
+         ".md).\n\n";
+}
+
+const StudyRegistration kTable1{{
+    .name = "table1",
+    .summary = "Table 1 of the paper: accuracy and stability per E, A, dt and method",
+    .needs_reference = true,
+    .records = {.error_over_time = true, .dt_stable = true},
+    .report =
+        [](const ReportContext& c) {
+          return StudyReport{.markdown = table1_markdown(c.spec, c.rows, c.out)};
+        },
+    .index = table1_index,
+}};
+
+}  // namespace
+
+}  // namespace mpmstab
