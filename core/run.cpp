@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "crossings.hpp"
 #include "failure.hpp"
@@ -12,143 +13,224 @@
 
 namespace mpmstab {
 
-RunResult run(const RunParams& p, const std::atomic<bool>* cancel) {
-  RunResult r;
-  r.params = p;
-  const Observe& obs = p.observe;
-  const double h = 1.0 / p.cells;
-  const TimeStepPolicy policy = p.stepping.policy;
-  const bool uses_bound = policy == TimeStepPolicy::adaptive || policy == TimeStepPolicy::min;
+namespace {
 
-  // 1. Set up the scene and the quantities that do not depend on the run.
-  Simulation sim(p);
-  r.particles = sim.particles().size();
-  r.c = sim.scene().c;
-  r.dt_cfl = h / r.c;
-  r.dt_sound = 1.0 / r.c;
-  const std::optional<double> fixed_dt = fixed_step(p);
-  if (fixed_dt) r.steps_planned = *step_count(p.T, std::min(*fixed_dt, p.T));
+// The step about to be taken: the time it reaches, and whether it is the last one (it lands
+// on T).
+struct NextStep {
+  double t_next;
+  bool last;
+};
 
-  // 2. The observers this run asked for.
-  std::optional<CrossingCounter> crossing_counter;
-  if (obs.crossings) crossing_counter.emplace(sim.particles(), h);
-  const StableDtGeometry geometry{p.method, p.E, h, p.ppc, h / p.ppc};
-  auto bound_now = [&] {
-    return stable_dt(stable_dt_inputs(sim.particles(), sim.grid(), p.stable.vnorm, p.method),
-                     geometry, p.stable.sigma);
-  };
-  const double max_F = max_admissible_F(p.method, p.ppc);
-  double max_error_over_time = 0;
-  double dt_stable_min = std::numeric_limits<double>::infinity();
-  std::int64_t crossings = 0;
-  if (obs.history && r.steps_planned > 0) {
-    const auto rows = r.steps_planned / obs.history_stride + 1;
-    r.history.reserve(static_cast<std::size_t>(std::min<std::int64_t>(rows, 10'000'000)));
+// One run, from its set-up to its result, as the phases run() calls in order. The state lives
+// in the members so that each phase is a method; each is called once per step or once per run,
+// and nothing is allocated per step but the history rows kept.
+class Driver {
+ public:
+  // 1. Set up the scene and the quantities that do not depend on the run; 2. the observers.
+  explicit Driver(const RunParams& p);
+
+  // A scene's initial state can already be inadmissible (a steffen amplitude with F_p(0) <= 0,
+  // or a cpGIMP support wider than 2 h): the run then fails at step 0, before any step reads it.
+  void check_initial_state();
+
+  // 3. Step to T, checking the state after every step.
+  bool running() const { return !r_.failure && sim_.time() < p_.T; }
+  NextStep next_step() const;
+  bool stops_before_step(const std::atomic<bool>* cancel);
+  void advance(const NextStep& next);
+  bool fails_after_step();
+  void observe_step(bool last);
+
+  // 4. The verdict and the measured quantities; `wall` is the time spent stepping.
+  RunResult result(std::chrono::steady_clock::duration wall);
+
+ private:
+  double bound_now() const;
+  FinalState final_state() const;
+
+  const RunParams& p_;
+  const Observe& obs_;
+  const double h_;
+  const TimeStepPolicy policy_;
+  const bool uses_bound_;  // the policy reads eq. (108) of the current state
+  RunResult r_;
+  Simulation sim_;
+  const std::optional<double> fixed_dt_;  // fixed and cfl policies
+  std::optional<CrossingCounter> crossing_counter_;
+  const StableDtGeometry geometry_;
+  const double max_F_;
+  double max_error_over_time_ = 0;
+  double dt_stable_min_ = std::numeric_limits<double>::infinity();
+  std::int64_t crossings_ = 0;
+  std::optional<HistoryRow> pending_row_;  // last row not kept by the stride
+  double bound_ = 0;                       // eq. (108) of the current state, when read
+  double dt_min_ = std::numeric_limits<double>::infinity();
+  double dt_max_ = 0;
+};
+
+Driver::Driver(const RunParams& p)
+    : p_(p),
+      obs_(p.observe),
+      h_(1.0 / p.cells),
+      policy_(p.stepping.policy),
+      uses_bound_(policy_ == TimeStepPolicy::adaptive || policy_ == TimeStepPolicy::min),
+      sim_(p),
+      fixed_dt_(fixed_step(p)),
+      geometry_{p.method, p.E, h_, p.ppc, h_ / p.ppc},
+      max_F_(max_admissible_F(p.method, p.ppc)) {
+  r_.params = p;
+  r_.particles = sim_.particles().size();
+  r_.c = sim_.scene().c;
+  r_.dt_cfl = h_ / r_.c;
+  r_.dt_sound = 1.0 / r_.c;
+  if (fixed_dt_) r_.steps_planned = *step_count(p.T, std::min(*fixed_dt_, p.T));
+
+  if (obs_.crossings) crossing_counter_.emplace(sim_.particles(), h_);
+  if (obs_.history && r_.steps_planned > 0) {
+    const auto rows = r_.steps_planned / obs_.history_stride + 1;
+    r_.history.reserve(static_cast<std::size_t>(std::min<std::int64_t>(rows, 10'000'000)));
   }
-  std::optional<HistoryRow> pending_row;        // last row not kept by the stride
-  double bound = uses_bound ? bound_now() : 0;  // of the current state
-  double dt_min = std::numeric_limits<double>::infinity(), dt_max = 0;
+  if (uses_bound_) bound_ = bound_now();
+}
 
-  // 3. Step to T, checking the state after every step. A scene's initial state can already be
-  // inadmissible (a steffen amplitude with F_p(0) <= 0, or a cpGIMP support wider than 2 h): the
-  // run then fails at step 0, before any step reads it.
-  if (auto failure = detect_failure(sim.particles(), p.bc, max_F)) r.failure = failure;
-  const auto start = std::chrono::steady_clock::now();
-  while (!r.failure && sim.time() < p.T) {
-    // The next time: fixed steps are counted (t = n dt, no drift); adaptive ones accumulate.
-    double t_next;
-    bool last;
-    if (fixed_dt) {
-      last = sim.steps() + 1 >= r.steps_planned;
-      t_next = last ? p.T : static_cast<double>(sim.steps() + 1) * *fixed_dt;
+// Eq. (108) from the state after the last step (before the first, with ||v|| = 0).
+double Driver::bound_now() const {
+  return stable_dt(stable_dt_inputs(sim_.particles(), sim_.grid(), p_.stable.vnorm, p_.method),
+                   geometry_, p_.stable.sigma);
+}
+
+void Driver::check_initial_state() {
+  if (auto failure = detect_failure(sim_.particles(), p_.bc, max_F_)) r_.failure = failure;
+}
+
+// The next time: fixed steps are counted (t = n dt, no drift); adaptive ones accumulate.
+NextStep Driver::next_step() const {
+  if (fixed_dt_) {
+    const bool last = sim_.steps() + 1 >= r_.steps_planned;
+    return {last ? p_.T : static_cast<double>(sim_.steps() + 1) * *fixed_dt_, last};
+  }
+  double dt = p_.stepping.safety * bound_;
+  if (policy_ == TimeStepPolicy::min) dt = std::min(dt, p_.stepping.cfl_factor * r_.dt_cfl);
+  // Land on T exactly, without leaving a sliver of a step.
+  const bool last = sim_.time() + dt >= p_.T - 1e-9 * dt;
+  return {last ? p_.T : sim_.time() + dt, last};
+}
+
+// Cancellation and the step cap, before the step is taken.
+bool Driver::stops_before_step(const std::atomic<bool>* cancel) {
+  // Cancellation is polled every 1024 steps: cheap, and prompt (well under a second).
+  if (cancel && (sim_.steps() & 1023) == 0 && cancel->load(std::memory_order_relaxed)) {
+    r_.interrupted = true;
+    return true;
+  }
+  if (sim_.steps() >= p_.max_steps) {
+    r_.failure = Failure{FailureReason::step_limit, -1, sim_.steps(), sim_.time()};
+    return true;
+  }
+  return false;
+}
+
+void Driver::advance(const NextStep& next) {
+  // The nominal step for fixed policies (t_next - t differs from it by rounding).
+  const double dt = fixed_dt_ && !next.last ? *fixed_dt_ : next.t_next - sim_.time();
+  if (!next.last || sim_.steps() == 0) {
+    dt_min_ = std::min(dt_min_, dt);
+    dt_max_ = std::max(dt_max_, dt);
+  }
+  sim_.advance_to(next.t_next);
+}
+
+// The failure check after a step ("*" in Table 1); true when the run stops here.
+bool Driver::fails_after_step() {
+  auto failure = detect_failure(sim_.particles(), p_.bc, max_F_);
+  if (!failure) return false;
+  failure->step = sim_.steps();
+  failure->time = sim_.time();
+  r_.failure = failure;
+  // Keep the last admissible step in the history even when the stride skipped it.
+  if (pending_row_) r_.history.push_back(*pending_row_);
+  return true;
+}
+
+// The observers of the state after an admissible step, and its history row.
+void Driver::observe_step(bool last) {
+  HistoryRow row{sim_.steps(), sim_.time(), {}, {}, {}};
+  if (obs_.error_over_time) {
+    const double e = sim_.max_error();
+    max_error_over_time_ = std::max(max_error_over_time_, e);
+    row.error = e;
+  }
+  if (obs_.crossings) {
+    crossings_ += crossing_counter_->update(sim_.particles());
+    row.crossings = crossings_;
+  }
+  if (obs_.dt_stable || uses_bound_) {
+    bound_ = bound_now();
+    if (obs_.dt_stable) {
+      dt_stable_min_ = std::min(dt_stable_min_, bound_);
+      row.dt_stable = bound_;
+    }
+  }
+  if (obs_.history) {
+    if (sim_.steps() % obs_.history_stride == 0 || last) {
+      r_.history.push_back(row);
+      pending_row_.reset();
     } else {
-      double dt = p.stepping.safety * bound;
-      if (policy == TimeStepPolicy::min) dt = std::min(dt, p.stepping.cfl_factor * r.dt_cfl);
-      // Land on T exactly, without leaving a sliver of a step.
-      last = sim.time() + dt >= p.T - 1e-9 * dt;
-      t_next = last ? p.T : sim.time() + dt;
+      pending_row_ = row;
     }
-    // Cancellation is polled every 1024 steps: cheap, and prompt (well under a second).
-    if (cancel && (sim.steps() & 1023) == 0 && cancel->load(std::memory_order_relaxed)) {
-      r.interrupted = true;
-      break;
-    }
-    if (sim.steps() >= p.max_steps) {
-      r.failure = Failure{FailureReason::step_limit, -1, sim.steps(), sim.time()};
-      break;
-    }
-    // The nominal step for fixed policies (t_next - t differs from it by rounding).
-    const double dt = fixed_dt && !last ? *fixed_dt : t_next - sim.time();
-    if (!last || sim.steps() == 0) {
-      dt_min = std::min(dt_min, dt);
-      dt_max = std::max(dt_max, dt);
-    }
-    sim.advance_to(t_next);
-    if (auto failure = detect_failure(sim.particles(), p.bc, max_F)) {
-      failure->step = sim.steps();
-      failure->time = sim.time();
-      r.failure = failure;
-      // Keep the last admissible step in the history even when the stride skipped it.
-      if (pending_row) r.history.push_back(*pending_row);
-      break;
-    }
-    HistoryRow row{sim.steps(), sim.time(), {}, {}, {}};
-    if (obs.error_over_time) {
-      const double e = sim.max_error();
-      max_error_over_time = std::max(max_error_over_time, e);
-      row.error = e;
-    }
-    if (obs.crossings) {
-      crossings += crossing_counter->update(sim.particles());
-      row.crossings = crossings;
-    }
-    if (obs.dt_stable || uses_bound) {
-      bound = bound_now();
-      if (obs.dt_stable) {
-        dt_stable_min = std::min(dt_stable_min, bound);
-        row.dt_stable = bound;
-      }
-    }
-    if (obs.history) {
-      if (sim.steps() % obs.history_stride == 0 || last) {
-        r.history.push_back(row);
-        pending_row.reset();
-      } else {
-        pending_row = row;
-      }
-    }
+  }
+}
+
+// The particles where the run ended, with the exact solution there.
+FinalState Driver::final_state() const {
+  const Particles& P = sim_.particles();
+  const Scene& scene = sim_.scene();
+  const double t = sim_.time();
+  FinalState f{t, P.X, P.x, P.v, P.F, P.sigma, {}, {}, {}};
+  f.u_exact = P.X.unaryExpr([&](double X) { return scene.displacement(X, t); });
+  f.v_exact = P.X.unaryExpr([&](double X) { return scene.velocity(X, t); });
+  f.sigma_exact = P.X.unaryExpr([&](double X) { return scene.stress(X, t); });
+  return f;
+}
+
+RunResult Driver::result(std::chrono::steady_clock::duration wall) {
+  r_.steps = sim_.steps();
+  r_.dt_min = std::isfinite(dt_min_) ? dt_min_ : 0;
+  r_.dt_max = dt_max_;
+  r_.courant = r_.c * dt_max_ / h_;
+  r_.stable = !r_.failure.has_value() && !r_.interrupted;
+  if (r_.stable) r_.max_error = sim_.max_error();  // Table 1's "Max Error"
+  if (obs_.error_over_time) {
+    r_.max_error_over_time = max_error_over_time_;
+    if (r_.stable) r_.meaningless = max_error_over_time_ > 0 && max_error_over_time_ >= p_.A;
+  }
+  if (obs_.crossings) r_.crossings = crossings_;
+  const bool failed_in_a_step = r_.failure && r_.failure->reason != FailureReason::step_limit;
+  if (obs_.dt_stable && r_.steps > (failed_in_a_step ? 1 : 0)) r_.dt_stable_min = dt_stable_min_;
+  if (obs_.final_state) r_.final_state = final_state();
+  r_.wall_seconds = std::chrono::duration<double>(wall).count();
+  if (r_.steps > 0) {
+    r_.ns_per_particle_step = r_.wall_seconds * 1e9 / (double(r_.steps) * double(r_.particles));
+  }
+  return std::move(r_);
+}
+
+}  // namespace
+
+RunResult run(const RunParams& p, const std::atomic<bool>* cancel) {
+  Driver driver(p);
+  driver.check_initial_state();
+  const auto start = std::chrono::steady_clock::now();
+  while (driver.running()) {
+    const NextStep next = driver.next_step();
+    if (driver.stops_before_step(cancel)) break;
+    driver.advance(next);
+    if (driver.fails_after_step()) break;
+    driver.observe_step(next.last);
   }
   const auto stop = std::chrono::steady_clock::now();
-
-  // 4. The verdict and the measured quantities.
-  r.steps = sim.steps();
-  r.dt_min = std::isfinite(dt_min) ? dt_min : 0;
-  r.dt_max = dt_max;
-  r.courant = r.c * dt_max / h;
-  r.stable = !r.failure.has_value() && !r.interrupted;
-  if (r.stable) r.max_error = sim.max_error();
-  if (obs.error_over_time) {
-    r.max_error_over_time = max_error_over_time;
-    if (r.stable) r.meaningless = max_error_over_time > 0 && max_error_over_time >= p.A;
-  }
-  if (obs.crossings) r.crossings = crossings;
-  const bool failed_in_a_step = r.failure && r.failure->reason != FailureReason::step_limit;
-  if (obs.dt_stable && r.steps > (failed_in_a_step ? 1 : 0)) r.dt_stable_min = dt_stable_min;
-  if (obs.final_state) {
-    const Particles& P = sim.particles();
-    const Scene& scene = sim.scene();
-    const double t = sim.time();
-    FinalState f{t, P.X, P.x, P.v, P.F, P.sigma, {}, {}, {}};
-    f.u_exact = P.X.unaryExpr([&](double X) { return scene.displacement(X, t); });
-    f.v_exact = P.X.unaryExpr([&](double X) { return scene.velocity(X, t); });
-    f.sigma_exact = P.X.unaryExpr([&](double X) { return scene.stress(X, t); });
-    r.final_state = std::move(f);
-  }
-  r.wall_seconds = std::chrono::duration<double>(stop - start).count();
-  if (r.steps > 0) {
-    r.ns_per_particle_step = r.wall_seconds * 1e9 / (double(r.steps) * double(r.particles));
-  }
-  return r;
+  return driver.result(stop - start);
 }
 
 }  // namespace mpmstab

@@ -15,10 +15,11 @@ const std::vector<OptionSpec> kRegressionOptions = {
 constexpr const char* kCheckHelp = R"(Usage: mpmstab check <spec.json>... [options]
        mpmstab bless <spec.json>... --reason "..." [options]
 
-check reruns the fast subset of every given experiment (its cases needing at most --budget
-particle-steps, computed afresh, never from the cache), compares them with the blessed values
-in --reference, and compares the paper-comparison verdicts (--results/comparison.csv) with
-their blessed expectations. Every failing cell is printed with its parameters, the column,
+check reruns the fast subset of every given experiment (its cases needing at most its spec's
+check_budget, or --budget, particle-steps, computed afresh, never from the cache), compares
+them with the blessed values in --reference (<name>.csv), and compares the tables a study
+declares as blessed outputs (the comparison's verdicts, --results/comparison.csv) with their
+blessed expectations (<name>_verdicts.csv). Every failing cell is printed with its parameters, the column,
 the expected and obtained values, the relative difference and the tolerance. Exit status 1
 when anything differs.
 
@@ -27,11 +28,12 @@ and the cells changed to --reference/BLESSED.md. It refuses to run without a rea
 
 Options:
   --reference DIR  blessed values (default reference/regression)
-  --results DIR    where comparison.csv is (default results)
+  --results DIR    where the studies wrote their blessed outputs (default results)
   --jobs N         cases run in parallel (default: all cores)
   --rtol X         relative tolerance of floating-point columns (default 0: the runs are
                    deterministic, so any difference is a real change)
-  --budget X       particle-steps of the largest case in the fast subset (default 2e7)
+  --budget X       particle-steps of the largest case in the fast subset, for every spec
+                   (default: each spec's check_budget, else 2e7)
 )";
 
 RegressionOptions regression_options(const Args& args) {

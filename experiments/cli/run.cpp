@@ -1,16 +1,16 @@
 // `mpmstab run`: one case of the bar, measured (DESIGN.md section 4).
-#include <algorithm>
-#include <cstdio>
 #include <iostream>
+#include <optional>
 #include <sstream>
+#include <type_traits>
 
 #include "args.hpp"
 #include "atomic_file.hpp"
 #include "commands.hpp"
-#include "edge.hpp"
 #include "params.hpp"
 #include "result_json.hpp"
 #include "run.hpp"
+#include "run_options.hpp"
 
 namespace mpmstab::cli {
 
@@ -71,140 +71,9 @@ Exit status: 0 when the run completed (stable or not: an unstable run is a resul
 2 for invalid input (nothing is run or written), 1 for an internal error.
 )";
 
-const std::vector<OptionSpec> kOptions = {
-    {"method"},
-    {"E"},
-    {"A"},
-    {"dt"},
-    {"T"},
-    {"cells"},
-    {"ppc"},
-    {"bc"},
-    {"position-update"},
-    {"scene"},
-    {"walls"},
-    {"transfer"},
-    {"flip-fraction"},
-    {"update"},
-    {"body-force-time"},
-    {"dt-stable-sigma"},
-    {"dt-stable-vnorm"},
-    {"max-steps"},
-    {"policy"},
-    {"cfl-factor"},
-    {"safety"},
-    {"history"},
-    {"history-stride"},
-    {"json", false},
-    {"help", false},
-};
+using cli::fmt;  // fmt(double) of run_options.hpp, which the overload below would hide
 
-// Parameter keys (params.hpp) are snake_case; options spell them with dashes.
-std::string option_for_key(std::string key) {
-  std::replace(key.begin(), key.end(), '_', '-');
-  return "--" + key;
-}
-
-std::string_view required(const Args& a, std::string_view name) {
-  auto v = a.value(name);
-  if (!v) throw UsageError("missing required option --" + std::string(name));
-  return *v;
-}
-
-template <class Enum>
-Enum parse_choice(std::string_view text, std::string_view option,
-                  std::optional<Enum> (*parse)(std::string_view), std::string_view choices) {
-  if (auto e = parse(text)) return *e;
-  throw UsageError("--" + std::string(option) + ": unknown value '" + std::string(text) +
-                   "' (expected " + std::string(choices) + ")");
-}
-
-int to_int(std::string_view text, std::string_view option) {
-  const std::int64_t v = parse_int(text, option);
-  if (v < -1'000'000'000 || v > 1'000'000'000) {
-    throw UsageError("--" + std::string(option) + ": " + std::string(text) + " is out of range");
-  }
-  return static_cast<int>(v);
-}
-
-RunParams params_from(const Args& a, bool searching_dt = false) {
-  RunParams p;
-  p.method = parse_choice(required(a, "method"), "method", parse_method, "gimp, cpgimp or mpm");
-  p.E = parse_double(required(a, "E"), "E");
-  p.A = parse_double(required(a, "A"), "A");
-  if (auto v = a.value("policy")) {
-    p.stepping.policy =
-        parse_choice(*v, "policy", parse_time_step_policy, "fixed, cfl, adaptive or min");
-  }
-  if (searching_dt) {
-    p.dt = p.T;  // replaced by the search
-  } else if (p.stepping.policy == TimeStepPolicy::fixed) {
-    p.dt = parse_double(required(a, "dt"), "dt");
-  } else if (auto v = a.value("dt")) {
-    throw UsageError("--dt: only with --policy fixed (the " +
-                     std::string(to_string(p.stepping.policy)) + " policy chooses dt itself)");
-  }
-  if (auto v = a.value("cfl-factor")) p.stepping.cfl_factor = parse_double(*v, "cfl-factor");
-  if (auto v = a.value("safety")) p.stepping.safety = parse_double(*v, "safety");
-  if (auto v = a.value("T")) p.T = parse_double(*v, "T");
-  if (searching_dt) p.dt = p.T;
-  if (auto v = a.value("cells")) p.cells = to_int(*v, "cells");
-  if (auto v = a.value("ppc")) p.ppc = to_int(*v, "ppc");
-  if (auto v = a.value("bc"))
-    p.bc = parse_choice(*v, "bc", parse_boundary, "dirichlet or periodic");
-  if (auto v = a.value("position-update")) {
-    p.position_update =
-        parse_choice(*v, "position-update", parse_position_update, "grid or particle");
-  }
-  if (auto v = a.value("scene")) p.scene = parse_choice(*v, "scene", parse_scene, "bar or steffen");
-  if (auto v = a.value("walls")) p.walls = parse_choice(*v, "walls", parse_walls, "clip or ghost");
-  if (auto v = a.value("transfer")) {
-    p.transfer = parse_choice(*v, "transfer", parse_transfer, "flip, pic or blend");
-  }
-  if (auto v = a.value("flip-fraction")) {
-    if (p.transfer != Transfer::blend)
-      throw UsageError("--flip-fraction: only with --transfer blend");
-    p.flip_fraction = parse_double(*v, "flip-fraction");
-  }
-  if (auto v = a.value("update")) {
-    p.update = parse_choice(*v, "update", parse_update_order, "usl, usf or musl");
-  }
-  if (auto v = a.value("body-force-time")) {
-    p.body_force_time = parse_choice(*v, "body-force-time", parse_body_force_time, "start or end");
-  }
-  if (auto v = a.value("dt-stable-sigma")) {
-    p.stable.sigma = parse_choice(*v, "dt-stable-sigma", parse_stress_scaling, "scaled or raw");
-  }
-  if (auto v = a.value("dt-stable-vnorm")) {
-    p.stable.vnorm = parse_choice(*v, "dt-stable-vnorm", parse_velocity_norm, "l2 or max");
-  }
-  if (auto v = a.value("max-steps")) p.max_steps = parse_int(*v, "max-steps");
-  if (auto v = a.value("history-stride"))
-    p.observe.history_stride = parse_int(*v, "history-stride");
-  p.observe.history = a.value("history").has_value();
-  if (searching_dt) p.dt = p.T;
-  if (p.observe.history && a.value("history")->empty()) {
-    throw UsageError("--history: needs a file name");
-  }
-
-  const auto issues = validate(p);
-  if (!issues.empty()) {
-    std::string message;
-    for (const auto& issue : issues) {
-      if (!message.empty()) message += "\n";
-      message += option_for_key(issue.key) + ": " + issue.message;
-    }
-    throw UsageError(message);
-  }
-  return p;
-}
-
-std::string fmt(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.4g", v);
-  return buf;
-}
-
+// A measurement that may be absent: "-" when it is.
 template <class T>
 std::string fmt(const std::optional<T>& v) {
   if (!v) return "-";
@@ -266,98 +135,10 @@ std::string history_csv(const RunResult& r) {
   return s.str();
 }
 
-constexpr const char* kEdgeHelp =
-    R"(Usage: mpmstab edge --method gimp|cpgimp|mpm --E <x> --A <x> [options]
-
-Finds the real stability edge of one case: the largest fixed dt with which the bar survives
-to T (the scene, method and choices as given). A log-spaced scan dt = (h/c) 2^(k/2) from h/(16c) to 4h/c, then bisection to within
---tolerance. Reports dt_edge, dt_edge / (h/c), dt_edge / (the eq. 108 minimum of the run at
-dt_edge), and warns when stability is not monotone in dt.
-
-Options: --T, --cells, --ppc, --bc, --position-update, --scene, --walls, --transfer,
---flip-fraction, --update, --body-force-time, --dt-stable-sigma, --dt-stable-vnorm,
---max-steps as for 'mpmstab run'; --tolerance <x> (default 0.02); --json.
-)";
-
-// The options of `run` that describe the case (not its dt, policy or history), and the
-// search's tolerance.
-const std::vector<OptionSpec> kEdgeOptions = [] {
-  const std::vector<std::string> searched = {"dt",     "policy",  "cfl-factor",
-                                             "safety", "history", "history-stride"};
-  std::vector<OptionSpec> options;
-  for (const auto& o : kOptions) {
-    if (std::find(searched.begin(), searched.end(), o.name) == searched.end()) {
-      options.push_back(o);
-    }
-  }
-  options.push_back({"tolerance"});
-  return options;
-}();
-
 }  // namespace
 
-int cmd_edge(const std::vector<std::string_view>& argv) {
-  const Args args(argv, kEdgeOptions);
-  if (args.flag("help")) {
-    std::cout << kEdgeHelp;
-    return 0;
-  }
-  if (!args.positional().empty()) {
-    throw UsageError("unexpected argument '" + std::string(args.positional().front()) + "'");
-  }
-  EdgeOptions options;
-  if (auto v = args.value("tolerance")) {
-    options.tolerance = parse_double(*v, "tolerance");
-    if (!(options.tolerance >= 1e-6 && options.tolerance <= 1)) {
-      throw UsageError("--tolerance: must be in [1e-6, 1]");
-    }
-  }
-  const RunParams params = params_from(args, true);
-  const EdgeResult e = find_edge(params, options);
-  nlohmann::ordered_json j = edge_to_json(e);
-  if (args.flag("json")) {
-    nlohmann::ordered_json out = {{"method", to_string(params.method)},
-                                  {"E", params.E},
-                                  {"A", params.A},
-                                  {"T", params.T},
-                                  {"cells", params.cells},
-                                  {"ppc", params.ppc},
-                                  {"bc", to_string(params.bc)}};
-    for (auto& [k, v] : j.items())
-      out[k] = v;
-    std::cout << out.dump(2) << "\n";
-    return 0;
-  }
-  std::cout << "mpmstab edge: " << to_string(params.method) << ", E = " << fmt(params.E)
-            << ", A = " << fmt(params.A) << ", T = " << fmt(params.T) << ", " << params.cells
-            << " cells x " << params.ppc << " ppc, " << to_string(params.bc) << "\n";
-  if (!e.dt_edge) {
-    std::cout << "  no dt from h/(16c) to 4h/c survives to T\n";
-    return 0;
-  }
-  std::cout << "  dt_edge               " << fmt(*e.dt_edge)
-            << (e.dt_fail ? "  (fails at " + fmt(*e.dt_fail) + ")"
-                          : std::string("  (every dt up to T survives)"))
-            << "\n  h/c                   " << fmt(e.dt_cfl) << "\n  dt_edge / (h/c)       "
-            << fmt(*e.dt_edge / e.dt_cfl) << "\n";
-  if (e.at_edge && e.at_edge->dt_stable_min) {
-    std::cout << "  eq. (108) at dt_edge  " << fmt(*e.at_edge->dt_stable_min)
-              << "\n  dt_edge / eq. (108)   " << fmt(*e.dt_edge / *e.at_edge->dt_stable_min)
-              << "\n";
-  }
-  std::cout << "  runs                  " << e.probes.size() << " in " << fmt(e.wall_seconds)
-            << " s\n";
-  if (!e.failed_below_edge.empty()) {
-    std::cout << "  warning: stability is not monotone in dt: smaller steps failed at";
-    for (double dt : e.failed_below_edge)
-      std::cout << " " << fmt(dt);
-    std::cout << "\n";
-  }
-  return 0;
-}
-
 int cmd_run(const std::vector<std::string_view>& argv) {
-  const Args args(argv, kOptions);
+  const Args args(argv, run_options());
   if (args.flag("help")) {
     std::cout << kHelp;
     return 0;

@@ -1,43 +1,21 @@
-// `mpmstab merge` and `mpmstab slurm`: a sweep split into shards that run elsewhere (on a
-// cluster under its scheduler, or over ssh with GNU parallel), gathered into the same reports a
-// single machine writes. See experiments/README.md.
+// `mpmstab slurm`: a Slurm job array that runs a sweep in shards, and the job that merges them
+// (`mpmstab merge`) once every shard succeeded. See experiments/README.md.
 #include <unistd.h>
 
-#include <cmath>
+#include <cstdint>
+#include <filesystem>
 #include <iostream>
 #include <sstream>
+#include <string>
 
 #include "atomic_file.hpp"
-#include "cache.hpp"
 #include "commands.hpp"
-#include "csv.hpp"
-#include "merge.hpp"
-#include "report.hpp"
 
 namespace mpmstab::cli {
 
 namespace {
 
 namespace fs = std::filesystem;
-
-constexpr const char* kMergeHelp =
-    R"(Usage: mpmstab merge <spec.json> <dir>... [--out DIR] [--timing keep|omit]
-
-Gathers the per-case results of a sweep that ran in shards ('mpmstab sweep <spec> --shard
-I/N --out <dir>', one <dir> per shard, or any folders holding <dir>/cache/) and writes the
-reports a single-machine sweep writes: the same files, the same bytes for the same results.
-Every case of the spec must be found in some <dir>; a case found in several must have the
-same results there (machine measurements aside), and the first <dir> listed that has it is
-used. The records are also copied into DIR/cache/, so that later sweeps reuse them.
-
-Options:
-  --out DIR          where the reports go (default results)
-  --timing keep|omit as for 'mpmstab sweep'
-  --help             show this text
-
-Exit status: 0 when the reports were written; 2 for bad input or when cases are missing or
-disagree (each is named; nothing is written); 1 for an internal error.
-)";
 
 constexpr const char* kSlurmHelp =
     R"(Usage: mpmstab slurm <spec.json> --shards N [--partition P] [--time T] [--account A]
@@ -100,48 +78,112 @@ fs::path this_binary() {
   return self;
 }
 
-}  // namespace
+// What the scripts are written from: the checked options and the spec.
+struct SlurmJob {
+  std::int64_t shards = 1;
+  std::int64_t cpus = 1;  // per task, the shard's --jobs
+  bool omit = false;      // --timing omit, passed to the merge
+  std::string spec_arg;   // the spec as given, which the jobs read
+  Spec spec;
+  std::string work;  // scripts, shard outputs and logs
+  std::string out;   // merged reports
+  fs::path binary;   // the mpmstab the jobs run
+  std::string logs;  // WORK/logs
+};
 
-int cmd_merge(const std::vector<std::string_view>& argv) {
-  const Args args(argv, {{"out"}, {"timing"}, {"help", false}});
-  if (args.flag("help")) {
-    std::cout << kMergeHelp;
-    return 0;
+// Checks the options and loads the spec; UsageError for the first bad one.
+SlurmJob job_from(const Args& args) {
+  if (args.positional().size() != 1) throw UsageError("slurm takes one spec");
+  SlurmJob job;
+  const auto shards_text = args.value("shards");
+  if (!shards_text) throw UsageError("missing required option --shards");
+  job.shards = parse_int(*shards_text, "shards");
+  if (job.shards < 1 || job.shards > 10000) {
+    throw UsageError("--shards: must be in [1, 10000], got " + std::string(*shards_text));
   }
-  const auto& pos = args.positional();
-  if (pos.size() < 2) throw UsageError("needs a spec and at least one folder of shard results");
-  const bool omit = omit_timing(args);
-  const Spec spec = load_specs({pos.front()}).front();
-  std::vector<fs::path> dirs;
-  for (std::size_t i = 1; i < pos.size(); ++i) {
-    const fs::path d(pos[i]);
-    std::error_code ec;
-    if (!fs::is_directory(d, ec)) throw UsageError(d.string() + ": not a folder");
-    dirs.push_back(d);
+  if (auto v = args.value("cpus-per-task")) {
+    job.cpus = parse_int(*v, "cpus-per-task");
+    if (job.cpus < 1 || job.cpus > 1024) {
+      throw UsageError("--cpus-per-task: must be in [1, 1024], got " + std::string(*v));
+    }
   }
-  SweepOutcome outcome;
-  try {
-    outcome = merge_shards(spec, dirs);
-  } catch (const MergeError& e) {
-    std::cerr << "mpmstab merge: error: " << spec.name << ": " << e.what()
-              << "\nNothing was written.\n";
-    return 2;
+  job.omit = omit_timing(args);
+  job.spec_arg = std::string(args.positional().front());
+  job.spec = load_specs(args.positional()).front();
+  job.work = std::string(args.value("work").value_or("slurm-" + job.spec.name));
+  job.out = std::string(args.value("out").value_or("results"));
+  job.binary =
+      args.value("mpmstab") ? fs::absolute(std::string(*args.value("mpmstab"))) : this_binary();
+  std::error_code ec;
+  if (!fs::is_regular_file(job.binary, ec) || ::access(job.binary.c_str(), X_OK) != 0) {
+    throw UsageError("--mpmstab: " + job.binary.string() + " is not an executable file");
   }
-  const fs::path out = output_folder(args);
-  const std::string search = case_search(spec);
-  const ResultCache cache(out / "cache");
-  for (std::size_t i = 0; i < spec.cases.size(); ++i) {
-    const auto& p = spec.cases[i].params;
-    const auto present = cache.load(p, search);
-    if (!present || *present != outcome.records[i]) cache.store(p, outcome.records[i], search);
-  }
-  if (omit) omit_machine_measurements(outcome);
-  write_reports(spec, outcome, out);
-  std::cerr << "[" << spec.name << "] merged " << spec.cases.size() << " cases from " << dirs.size()
-            << " folders (" << outcome.unstable << " unstable) -> "
-            << (out / (spec.name + ".md")).string() << "\n";
-  return 0;
+  job.logs = (fs::path(job.work) / "logs").string();
+  return job;
 }
+
+// The #SBATCH directives of both jobs.
+std::string common_directives(const Args& args) {
+  std::ostringstream common;
+  common << "#SBATCH --chdir=" << fs::current_path().string() << "\n";
+  if (auto v = args.value("partition")) {
+    common << "#SBATCH --partition=" << slurm_word(*v, "partition", kNameChars) << "\n";
+  }
+  if (auto v = args.value("time")) {
+    common << "#SBATCH --time=" << slurm_word(*v, "time", kTimeChars) << "\n";
+  }
+  if (auto v = args.value("account")) {
+    common << "#SBATCH --account=" << slurm_word(*v, "account", kNameChars) << "\n";
+  }
+  return common.str();
+}
+
+std::string header(const SlurmJob& job) {
+  return "#!/bin/bash\n# Written by 'mpmstab slurm' for " + job.spec_arg + " (" +
+         std::to_string(job.spec.cases.size()) + " cases in " + std::to_string(job.shards) +
+         " shards).\n";
+}
+
+// The job array: task I runs shard I/N into WORK/shard-I.
+std::string sweep_script(const SlurmJob& job, const std::string& common) {
+  std::ostringstream sweep;
+  sweep << header(job) << "#SBATCH --job-name=mpmstab-" << job.spec.name << "\n#SBATCH --array=0-"
+        << job.shards - 1 << "\n#SBATCH --cpus-per-task=" << job.cpus
+        << "\n#SBATCH --output=" << job.logs << "/" << job.spec.name << "-sweep-%A_%a.out\n"
+        << common << "set -euo pipefail\nexec " << sh_quote(job.binary.string()) << " sweep "
+        << sh_quote(job.spec_arg) << " --shard \"${SLURM_ARRAY_TASK_ID}/" << job.shards
+        << "\" --jobs \"${SLURM_CPUS_PER_TASK:-" << job.cpus << "}\" --out "
+        << sh_quote(job.work + "/shard-") << "\"${SLURM_ARRAY_TASK_ID}\"\n";
+  return sweep.str();
+}
+
+// The merge of every shard's folder into OUT.
+std::string merge_script(const SlurmJob& job, const std::string& common) {
+  std::ostringstream merge;
+  merge << header(job) << "#SBATCH --job-name=mpmstab-" << job.spec.name
+        << "-merge\n#SBATCH --output=" << job.logs << "/" << job.spec.name << "-merge-%j.out\n"
+        << common << "set -euo pipefail\nexec " << sh_quote(job.binary.string()) << " merge "
+        << sh_quote(job.spec_arg);
+  for (std::int64_t i = 0; i < job.shards; ++i)
+    merge << " " << sh_quote(job.work + "/shard-" + std::to_string(i));
+  merge << " --out " << sh_quote(job.out) << (job.omit ? " --timing omit" : "") << "\n";
+  return merge.str();
+}
+
+// Submits the array, then the merge with --dependency=afterok on it.
+std::string submit_script(const SlurmJob& job, const std::string& sweep_file,
+                          const std::string& merge_file) {
+  std::ostringstream submit;
+  submit << "#!/bin/sh\n# Submits the sweep array of " << job.spec_arg
+         << " and its merge, which runs once every array task succeeded.\nset -eu\ncd "
+         << sh_quote(fs::current_path().string()) << "\nsweep=$(sbatch --parsable "
+         << sh_quote(sweep_file)
+         << ")\nsweep=${sweep%%;*}\nmerge=$(sbatch --parsable --dependency=afterok:\"$sweep\" "
+         << sh_quote(merge_file) << ")\necho \"sweep $sweep\"\necho \"merge ${merge%%;*}\"\n";
+  return submit.str();
+}
+
+}  // namespace
 
 int cmd_slurm(const std::vector<std::string_view>& argv) {
   const Args args(argv, {{"shards"},
@@ -158,87 +200,22 @@ int cmd_slurm(const std::vector<std::string_view>& argv) {
     std::cout << kSlurmHelp;
     return 0;
   }
-  if (args.positional().size() != 1) throw UsageError("slurm takes one spec");
-  const auto shards_text = args.value("shards");
-  if (!shards_text) throw UsageError("missing required option --shards");
-  const std::int64_t shards = parse_int(*shards_text, "shards");
-  if (shards < 1 || shards > 10000) {
-    throw UsageError("--shards: must be in [1, 10000], got " + std::string(*shards_text));
-  }
-  std::int64_t cpus = 1;
-  if (auto v = args.value("cpus-per-task")) {
-    cpus = parse_int(*v, "cpus-per-task");
-    if (cpus < 1 || cpus > 1024) {
-      throw UsageError("--cpus-per-task: must be in [1, 1024], got " + std::string(*v));
-    }
-  }
-  const bool omit = omit_timing(args);
-  const std::string spec_arg(args.positional().front());
-  const Spec spec = load_specs(args.positional()).front();
-  const std::string work = std::string(args.value("work").value_or("slurm-" + spec.name));
-  const std::string out = std::string(args.value("out").value_or("results"));
-  const fs::path binary =
-      args.value("mpmstab") ? fs::absolute(std::string(*args.value("mpmstab"))) : this_binary();
+  const SlurmJob job = job_from(args);
+  const std::string common = common_directives(args);
+  const std::string sweep_file = job.work + "/" + job.spec.name + ".sweep.sbatch";
+  const std::string merge_file = job.work + "/" + job.spec.name + ".merge.sbatch";
+  const std::string submit_file = job.work + "/" + job.spec.name + ".submit.sh";
   std::error_code ec;
-  if (!fs::is_regular_file(binary, ec) || ::access(binary.c_str(), X_OK) != 0) {
-    throw UsageError("--mpmstab: " + binary.string() + " is not an executable file");
-  }
-
-  std::ostringstream common;  // directives of both jobs
-  common << "#SBATCH --chdir=" << fs::current_path().string() << "\n";
-  if (auto v = args.value("partition")) {
-    common << "#SBATCH --partition=" << slurm_word(*v, "partition", kNameChars) << "\n";
-  }
-  if (auto v = args.value("time")) {
-    common << "#SBATCH --time=" << slurm_word(*v, "time", kTimeChars) << "\n";
-  }
-  if (auto v = args.value("account")) {
-    common << "#SBATCH --account=" << slurm_word(*v, "account", kNameChars) << "\n";
-  }
-  const std::string logs = (fs::path(work) / "logs").string();
-  const std::string header = "#!/bin/bash\n# Written by 'mpmstab slurm' for " + spec_arg + " (" +
-                             std::to_string(spec.cases.size()) + " cases in " +
-                             std::to_string(shards) + " shards).\n";
-
-  std::ostringstream sweep;
-  sweep << header << "#SBATCH --job-name=mpmstab-" << spec.name << "\n#SBATCH --array=0-"
-        << shards - 1 << "\n#SBATCH --cpus-per-task=" << cpus << "\n#SBATCH --output=" << logs
-        << "/" << spec.name << "-sweep-%A_%a.out\n"
-        << common.str() << "set -euo pipefail\nexec " << sh_quote(binary.string()) << " sweep "
-        << sh_quote(spec_arg) << " --shard \"${SLURM_ARRAY_TASK_ID}/" << shards
-        << "\" --jobs \"${SLURM_CPUS_PER_TASK:-" << cpus << "}\" --out "
-        << sh_quote(work + "/shard-") << "\"${SLURM_ARRAY_TASK_ID}\"\n";
-
-  std::ostringstream merge;
-  merge << header << "#SBATCH --job-name=mpmstab-" << spec.name
-        << "-merge\n#SBATCH --output=" << logs << "/" << spec.name << "-merge-%j.out\n"
-        << common.str() << "set -euo pipefail\nexec " << sh_quote(binary.string()) << " merge "
-        << sh_quote(spec_arg);
-  for (std::int64_t i = 0; i < shards; ++i)
-    merge << " " << sh_quote(work + "/shard-" + std::to_string(i));
-  merge << " --out " << sh_quote(out) << (omit ? " --timing omit" : "") << "\n";
-
-  const std::string sweep_file = work + "/" + spec.name + ".sweep.sbatch";
-  const std::string merge_file = work + "/" + spec.name + ".merge.sbatch";
-  std::ostringstream submit;
-  submit << "#!/bin/sh\n# Submits the sweep array of " << spec_arg
-         << " and its merge, which runs once every array task succeeded.\nset -eu\ncd "
-         << sh_quote(fs::current_path().string()) << "\nsweep=$(sbatch --parsable "
-         << sh_quote(sweep_file)
-         << ")\nsweep=${sweep%%;*}\nmerge=$(sbatch --parsable --dependency=afterok:\"$sweep\" "
-         << sh_quote(merge_file) << ")\necho \"sweep $sweep\"\necho \"merge ${merge%%;*}\"\n";
-
-  fs::create_directories(logs, ec);
-  if (ec) throw UsageError("--work: cannot create " + logs + ": " + ec.message());
-  write_file_atomically(sweep_file, sweep.str());
-  write_file_atomically(merge_file, merge.str());
-  const std::string submit_file = work + "/" + spec.name + ".submit.sh";
-  write_file_atomically(submit_file, submit.str());
+  fs::create_directories(job.logs, ec);
+  if (ec) throw UsageError("--work: cannot create " + job.logs + ": " + ec.message());
+  write_file_atomically(sweep_file, sweep_script(job, common));
+  write_file_atomically(merge_file, merge_script(job, common));
+  write_file_atomically(submit_file, submit_script(job, sweep_file, merge_file));
   fs::permissions(submit_file, fs::perms::owner_exec | fs::perms::group_exec,
                   fs::perm_options::add);
   std::cout << "Wrote " << sweep_file << ", " << merge_file << " and " << submit_file
-            << ".\nSubmit with: sh " << submit_file << "\nThe merged reports will be in " << out
-            << "/" << spec.name << ".md\n";
+            << ".\nSubmit with: sh " << submit_file << "\nThe merged reports will be in " << job.out
+            << "/" << job.spec.name << ".md\n";
   return 0;
 }
 

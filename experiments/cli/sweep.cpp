@@ -93,14 +93,9 @@ Shard parse_shard(std::string_view text) {
 
 }  // namespace
 
-int cmd_sweep(const std::vector<std::string_view>& argv) {
-  const Args args(argv,
-                  {{"jobs"}, {"out"}, {"force", false}, {"shard"}, {"timing"}, {"help", false}});
-  if (args.flag("help")) {
-    std::cout << kSweepHelp;
-    return 0;
-  }
-  if (args.positional().size() > 1) throw UsageError("sweep takes one spec");
+namespace {
+
+SweepOptions sweep_options(const Args& args) {
   SweepOptions options;
   options.jobs = default_jobs();
   if (auto v = args.value("jobs")) {
@@ -111,55 +106,75 @@ int cmd_sweep(const std::vector<std::string_view>& argv) {
   }
   options.force = args.flag("force");
   if (auto v = args.value("shard")) options.shard = parse_shard(*v);
+  return options;
+}
+
+// A study without cases of its own: its reports from the results of its inputs.
+int derive(const Spec& spec, const SweepOptions& options, const std::filesystem::path& out) {
+  if (options.shard) throw UsageError("--shard: " + spec.path.string() + " has no cases");
+  try {
+    write_derived_reports(spec, out);
+  } catch (const MissingInput& e) {
+    throw UsageError(e.what());
+  }
+  std::cerr << "[" << spec.name << "] from " << spec.inputs.size() << " inputs -> " << out.string()
+            << "\n";
+  return 0;
+}
+
+int interrupted(const Spec& spec, const SweepOutcome& outcome, const SweepOptions& options) {
+  const int sig = g_signal ? static_cast<int>(g_signal) : SIGINT;
+  std::cerr << "\n[" << spec.name << "] interrupted by " << (sig == SIGTERM ? "SIGTERM" : "SIGINT")
+            << ": " << outcome.computed + outcome.cached + outcome.shared << " of "
+            << spec.cases.size() << " cases finished and are kept in " << options.cache.string()
+            << "; no report was written. Run the same command again to resume.\n";
+  return 128 + sig;
+}
+
+// A shard writes its records (in the cache) and a manifest, never a partial report.
+int finish_shard(const Spec& spec, const SweepOutcome& outcome, const SweepOptions& options,
+                 const std::filesystem::path& out) {
+  const Shard& sh = *options.shard;
+  const nlohmann::ordered_json manifest = {{"spec", spec.path.generic_string()},
+                                           {"name", spec.name},
+                                           {"shard", sh.index},
+                                           {"of", sh.count},
+                                           {"cases", spec.cases.size() - outcome.other_shards},
+                                           {"computed", outcome.computed},
+                                           {"cached", outcome.cached},
+                                           {"wall_seconds", outcome.wall_seconds}};
+  write_file_atomically(shard_manifest(out, spec.name, sh), manifest.dump(2) + "\n");
+  std::cerr << "[" << spec.name << "] shard " << sh.index << "/" << sh.count << ": "
+            << spec.cases.size() - outcome.other_shards << " of " << spec.cases.size() << " cases ("
+            << outcome.computed << " computed, " << outcome.cached << " from the cache) in "
+            << shortest(std::round(outcome.wall_seconds * 100) / 100) << " s -> "
+            << options.cache.string() << "\n";
+  return 0;
+}
+
+}  // namespace
+
+int cmd_sweep(const std::vector<std::string_view>& argv) {
+  const Args args(argv,
+                  {{"jobs"}, {"out"}, {"force", false}, {"shard"}, {"timing"}, {"help", false}});
+  if (args.flag("help")) {
+    std::cout << kSweepHelp;
+    return 0;
+  }
+  if (args.positional().size() > 1) throw UsageError("sweep takes one spec");
+  SweepOptions options = sweep_options(args);
   const bool omit = omit_timing(args);
   const Spec spec = load_specs(args.positional()).front();
   const auto out = output_folder(args);
-  if (!spec.study->has_cases) {
-    // A study without cases of its own: its reports from the results of its inputs.
-    if (options.shard) throw UsageError("--shard: " + spec.path.string() + " has no cases");
-    try {
-      write_derived_reports(spec, out);
-    } catch (const MissingInput& e) {
-      throw UsageError(e.what());
-    }
-    std::cerr << "[" << spec.name << "] from " << spec.inputs.size() << " inputs -> "
-              << out.string() << "\n";
-    return 0;
-  }
+  if (!spec.study->has_cases) return derive(spec, options, out);
   options.cache = out / "cache";
   options.progress_line = ::isatty(STDERR_FILENO) != 0;
   options.cancel = &g_stop;
   install_stop_handlers();
 
   SweepOutcome outcome = run_sweep(spec, options);
-  if (outcome.interrupted) {
-    const int sig = g_signal ? static_cast<int>(g_signal) : SIGINT;
-    std::cerr << "\n[" << spec.name << "] interrupted by "
-              << (sig == SIGTERM ? "SIGTERM" : "SIGINT") << ": "
-              << outcome.computed + outcome.cached + outcome.shared << " of " << spec.cases.size()
-              << " cases finished and are kept in " << options.cache.string()
-              << "; no report was written. Run the same command again to resume.\n";
-    return 128 + sig;
-  }
-  if (options.shard) {
-    // A shard writes its records (in the cache) and a manifest, never a partial report.
-    const Shard& sh = *options.shard;
-    const nlohmann::ordered_json manifest = {{"spec", spec.path.generic_string()},
-                                             {"name", spec.name},
-                                             {"shard", sh.index},
-                                             {"of", sh.count},
-                                             {"cases", spec.cases.size() - outcome.other_shards},
-                                             {"computed", outcome.computed},
-                                             {"cached", outcome.cached},
-                                             {"wall_seconds", outcome.wall_seconds}};
-    write_file_atomically(shard_manifest(out, spec.name, sh), manifest.dump(2) + "\n");
-    std::cerr << "[" << spec.name << "] shard " << sh.index << "/" << sh.count << ": "
-              << spec.cases.size() - outcome.other_shards << " of " << spec.cases.size()
-              << " cases (" << outcome.computed << " computed, " << outcome.cached
-              << " from the cache) in " << shortest(std::round(outcome.wall_seconds * 100) / 100)
-              << " s -> " << options.cache.string() << "\n";
-    return 0;
-  }
+  if (outcome.interrupted) return interrupted(spec, outcome, options);
+  if (options.shard) return finish_shard(spec, outcome, options, out);
   const double wall_seconds = outcome.wall_seconds;  // for the summary line, also when omitted
   if (omit) omit_machine_measurements(outcome);
   write_reports(spec, outcome, out);

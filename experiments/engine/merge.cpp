@@ -29,6 +29,11 @@ fs::path shard_manifest(const fs::path& dir, const std::string& name, const Shar
 }
 
 SweepOutcome merge_shards(const Spec& spec, const std::vector<fs::path>& dirs) {
+  if (!spec.study->has_cases) {
+    throw MergeError(spec.path.string() + " has no cases to merge: the " + spec.study->name +
+                     " study is written from its inputs (mpmstab sweep " + spec.path.string() +
+                     ")");
+  }
   const std::string search = case_search(spec);
   std::vector<ResultCache> caches;
   for (const auto& d : dirs)

@@ -26,7 +26,7 @@ std::filesystem::path shard_manifest(const std::filesystem::path& dir, const std
 // Reads the record of every case of `spec` from <dir>/cache of the given folders. A case found
 // in several folders must agree in everything but the machine measurements; the record of the
 // first folder that has it is used. wall_seconds of the outcome is the longest sweep among the
-// shard manifests found (0 if none). Throws MergeError.
+// shard manifests found (0 if none). Throws MergeError, also for a study without cases.
 SweepOutcome merge_shards(const Spec& spec, const std::vector<std::filesystem::path>& dirs);
 
 }  // namespace mpmstab

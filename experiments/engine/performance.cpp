@@ -1,7 +1,9 @@
 #include "performance.hpp"
 
+#include <algorithm>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <ostream>
 #include <sstream>
 
 #include "csv.hpp"
@@ -39,119 +41,149 @@ struct Figure {
   double median = 0, cv = 0;
 };
 
-}  // namespace
+// The benchmark's figures: name ("BM_Step") -> method -> median and coefficient of variation,
+// with the names in the order the benchmark ran them.
+struct BenchFigures {
+  std::map<std::string, std::map<std::string, Figure>> fig;
+  std::vector<std::string> order;
 
-void write_performance(const std::vector<Spec>& specs, const fs::path& bench, const fs::path& out) {
-  std::ostringstream md;
-  md << "# Performance\n\nWhat a result costs: the step kernel measured with Google Benchmark "
-        "(`make bench`, `tests/bench_step.cpp`), what each measured quantity adds to it, and the "
-        "wall time of every experiment of `make reproduce`.\n\n";
+  const Figure* find(const std::string& base, const std::string& method) const {
+    const auto b = fig.find(base);
+    if (b == fig.end()) return nullptr;
+    const auto m = b->second.find(method);
+    return m == b->second.end() ? nullptr : &m->second;
+  }
+  // 0 when the benchmark did not run.
+  double median(const std::string& base, const std::string& method) const {
+    const Figure* f = find(base, method);
+    return f ? f->median : 0.0;
+  }
+};
 
+BenchFigures read_figures(const ojson& doc) {
+  BenchFigures b;
+  for (const auto& entry : doc["benchmarks"]) {
+    const std::string run = entry.value("run_name", entry.value("name", ""));
+    const std::string base = run.substr(0, run.find('/'));
+    const std::string method = entry.value("label", "");
+    const std::string agg = entry.value("aggregate_name", "");
+    if (agg != "median" && agg != "cv") continue;
+    if (!entry.contains("ns_per_particle_step")) continue;
+    if (std::find(b.order.begin(), b.order.end(), base) == b.order.end()) b.order.push_back(base);
+    auto& f = b.fig[base][method];
+    if (agg == "median") f.median = entry["ns_per_particle_step"].get<double>();
+    if (agg == "cv") f.cv = entry["ns_per_particle_step"].get<double>();
+  }
+  return b;
+}
+
+// The table of every benchmark, with the machine it ran on.
+void write_kernel_table(std::ostream& md, const BenchFigures& b, const ojson& ctx) {
+  md << "## The step kernel\n\nThe paper's bar, 100 cells x 2 particles = 200 particles, one "
+        "core, median of "
+     << (b.fig.count("BM_Step") ? "the repetitions" : "–")
+     << " (coefficient of variation in "
+        "brackets). Measured "
+     << ctx.value("date", "") << " on " << ctx.value("host_name", "") << ", "
+     << ctx.value("num_cpus", 0) << " CPUs at " << ctx.value("mhz_per_cpu", 0.0)
+     << " MHz, the benchmark "
+        "library's own build "
+     << ctx.value("library_build_type", "")
+     << " (Debian's package; the measured code is built -O3).\n\n"
+     << "| benchmark | what it runs | GIMP ns / particle-step | MPM ns / particle-step |\n"
+        "|---|---|---|---|\n";
+  const std::map<std::string, std::string> what = {
+      {"BM_StepBaseline", "a straightforward loop-per-particle step (the starting point)"},
+      {"BM_Step", "the four phases: p2g, grid update, g2p, stress update"},
+      {"BM_StepChecked", "+ the failure check every run makes after each step"},
+      {"BM_StepInstrumented", "+ every observer: error over time, eq. (108), crossings"},
+      {"BM_StepError", "+ the check and the error-over-time observer"},
+      {"BM_StepStableDt", "+ the check and the eq. (108) observer"},
+      {"BM_StepCrossings", "+ the check and the crossings observer"}};
+  auto cell = [&](const std::string& base, const char* m) {
+    const Figure* f = b.find(base, m);
+    if (!f) return std::string("–");
+    return fixed(f->median, 2) + " (" + fixed(100 * f->cv, 1) + "%)";
+  };
+  for (const auto& base : b.order) {
+    md << "| " << base << " | " << (what.count(base) ? what.at(base) : "") << " | "
+       << cell(base, "gimp") << " | " << cell(base, "mpm") << " |\n";
+  }
+}
+
+// Per method: the step against its target and the baseline, and what the check and each
+// observer add to it.
+void write_kernel_summary(std::ostream& md, const BenchFigures& b) {
+  md << "\n";
+  for (const char* m : {"gimp", "mpm"}) {
+    const double step = b.median("BM_Step", m), base = b.median("BM_StepBaseline", m);
+    const double target = std::string(m) == "gimp" ? 5.0 : 4.0;
+    md << "- " << m << ": " << fixed(step, 2) << " ns per particle-step, target " << target
+       << " ns: **" << (step > 0 && step <= target ? "met" : "not met") << "**";
+    if (base > 0) md << "; " << fixed(base / step, 1) << " times faster than the baseline";
+    const double checked = b.median("BM_StepChecked", m);
+    const double instrumented = b.median("BM_StepInstrumented", m);
+    if (checked > 0 && instrumented > 0) {
+      md << "; the failure check adds " << fixed(checked - step, 2) << " ns, the observers another "
+         << fixed(instrumented - checked, 2) << " ns";
+    }
+    for (const auto& [name, label] :
+         {std::pair{"BM_StepError", "error over time"}, std::pair{"BM_StepStableDt", "eq. (108)"},
+          std::pair{"BM_StepCrossings", "crossings"}}) {
+      const double with = b.median(name, m);
+      if (with > 0 && checked > 0)
+        md << "; " << label << " alone " << fixed(with - checked, 2) << " ns";
+    }
+    md << ".\n";
+  }
+  md << "\nDifferences below the coefficient of variation are within the noise.\n";
+}
+
+// The hand-counted flops per particle-step and the fraction of the core's peak they reach.
+void write_flops(std::ostream& md, const BenchFigures& b, double mhz) {
+  md << "\n### Floating-point work and the fraction of peak\n\nCounted by hand from "
+        "`core/shape.hpp` and `core/phases.hpp` (additions, multiplications and divisions; "
+        "the grid update is per node, counted per particle at 99 nodes for 200 particles):\n\n"
+        "| method | shape functions | p2g | grid update | g2p | stress update | body force | "
+        "total | measured GFLOP/s | of a 16 / 32 flop-per-cycle peak |\n"
+        "|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const FlopCount& f : {kGimp, kMpm}) {
+    const double ns = b.median("BM_Step", f.method);
+    const double gflops = ns > 0 ? f.total() / ns : 0;
+    const double narrow = mhz * 1e-3 * kPeakNarrow, wide = mhz * 1e-3 * kPeakWide;  // GFLOP/s
+    md << "| " << f.method << " | " << shortest(f.shape) << " | " << shortest(f.p2g) << " | "
+       << shortest(f.grid) << " | " << shortest(f.g2p) << " | " << shortest(f.stress) << " | "
+       << shortest(f.body) << " | " << shortest(f.total()) << " | " << fixed(gflops, 1) << " | "
+       << (narrow > 0
+               ? fixed(100 * gflops / narrow, 0) + "% / " + fixed(100 * gflops / wide, 0) + "%"
+               : "–")
+       << " |\n";
+  }
+  md << "\nPeak at the benchmark's reported clock of " << mhz
+     << " MHz (the cores run faster under load, about 3.6 GHz by a dependent-multiply timing "
+        "loop, which lowers these fractions by about a quarter). What limits the step is not "
+        "arithmetic: the additions into the grid must stay in particle order to keep the "
+        "results bit for bit, and a core retires about one store per cycle.\n\n";
+}
+
+// The benchmark's sections, or a note that its output is missing.
+void write_benchmark(std::ostream& md, const fs::path& bench) {
   const std::string text = read_file(bench);
   if (text.empty()) {
     md << "*No benchmark figures: " << bench.generic_string() << " is missing (run `make bench`)."
        << "*\n\n";
-  } else {
-    const ojson doc = ojson::parse(text);
-    // name ("BM_Step") -> method -> median and coefficient of variation
-    std::map<std::string, std::map<std::string, Figure>> fig;
-    std::vector<std::string> order;
-    for (const auto& b : doc["benchmarks"]) {
-      const std::string run = b.value("run_name", b.value("name", ""));
-      const std::string base = run.substr(0, run.find('/'));
-      const std::string method = b.value("label", "");
-      const std::string agg = b.value("aggregate_name", "");
-      if (agg != "median" && agg != "cv") continue;
-      if (!b.contains("ns_per_particle_step")) continue;
-      if (std::find(order.begin(), order.end(), base) == order.end()) order.push_back(base);
-      auto& f = fig[base][method];
-      if (agg == "median") f.median = b["ns_per_particle_step"].get<double>();
-      if (agg == "cv") f.cv = b["ns_per_particle_step"].get<double>();
-    }
-    const ojson& ctx = doc["context"];
-    const double mhz = ctx.value("mhz_per_cpu", 0.0);
-    md << "## The step kernel\n\nThe paper's bar, 100 cells x 2 particles = 200 particles, one "
-          "core, median of "
-       << (fig.count("BM_Step") ? "the repetitions" : "–")
-       << " (coefficient of variation in "
-          "brackets). Measured "
-       << ctx.value("date", "") << " on " << ctx.value("host_name", "") << ", "
-       << ctx.value("num_cpus", 0) << " CPUs at " << mhz
-       << " MHz, the benchmark "
-          "library's own build "
-       << ctx.value("library_build_type", "")
-       << " (Debian's package; the measured code is built -O3).\n\n"
-       << "| benchmark | what it runs | GIMP ns / particle-step | MPM ns / particle-step |\n"
-          "|---|---|---|---|\n";
-    const std::map<std::string, std::string> what = {
-        {"BM_StepBaseline", "a straightforward loop-per-particle step (the starting point)"},
-        {"BM_Step", "the four phases: p2g, grid update, g2p, stress update"},
-        {"BM_StepChecked", "+ the failure check every run makes after each step"},
-        {"BM_StepInstrumented", "+ every observer: error over time, eq. (108), crossings"},
-        {"BM_StepError", "+ the check and the error-over-time observer"},
-        {"BM_StepStableDt", "+ the check and the eq. (108) observer"},
-        {"BM_StepCrossings", "+ the check and the crossings observer"}};
-    auto cell = [&](const std::string& base, const char* m) {
-      if (!fig[base].count(m)) return std::string("–");
-      const Figure& f = fig[base][m];
-      return fixed(f.median, 2) + " (" + fixed(100 * f.cv, 1) + "%)";
-    };
-    for (const auto& base : order) {
-      md << "| " << base << " | " << (what.count(base) ? what.at(base) : "") << " | "
-         << cell(base, "gimp") << " | " << cell(base, "mpm") << " |\n";
-    }
-    auto median = [&](const std::string& base, const char* m) {
-      return fig.count(base) && fig[base].count(m) ? fig[base][m].median : 0.0;
-    };
-    md << "\n";
-    for (const char* m : {"gimp", "mpm"}) {
-      const double step = median("BM_Step", m), base = median("BM_StepBaseline", m);
-      const double target = std::string(m) == "gimp" ? 5.0 : 4.0;
-      md << "- " << m << ": " << fixed(step, 2) << " ns per particle-step, target " << target
-         << " ns: **" << (step > 0 && step <= target ? "met" : "not met") << "**";
-      if (base > 0) md << "; " << fixed(base / step, 1) << " times faster than the baseline";
-      const double checked = median("BM_StepChecked", m);
-      const double instrumented = median("BM_StepInstrumented", m);
-      if (checked > 0 && instrumented > 0) {
-        md << "; the failure check adds " << fixed(checked - step, 2)
-           << " ns, the observers another " << fixed(instrumented - checked, 2) << " ns";
-      }
-      for (const auto& [name, label] :
-           {std::pair{"BM_StepError", "error over time"}, std::pair{"BM_StepStableDt", "eq. (108)"},
-            std::pair{"BM_StepCrossings", "crossings"}}) {
-        const double with = median(name, m);
-        if (with > 0 && checked > 0)
-          md << "; " << label << " alone " << fixed(with - checked, 2) << " ns";
-      }
-      md << ".\n";
-    }
-    md << "\nDifferences below the coefficient of variation are within the noise.\n"
-          "\n### Floating-point work and the fraction of peak\n\nCounted by hand from "
-          "`core/shape.hpp` and `core/phases.hpp` (additions, multiplications and divisions; "
-          "the grid update is per node, counted per particle at 99 nodes for 200 particles):\n\n"
-          "| method | shape functions | p2g | grid update | g2p | stress update | body force | "
-          "total | measured GFLOP/s | of a 16 / 32 flop-per-cycle peak |\n"
-          "|---|---|---|---|---|---|---|---|---|---|\n";
-    for (const FlopCount& f : {kGimp, kMpm}) {
-      const double ns = median("BM_Step", f.method);
-      const double gflops = ns > 0 ? f.total() / ns : 0;
-      const double narrow = mhz * 1e-3 * kPeakNarrow, wide = mhz * 1e-3 * kPeakWide;  // GFLOP/s
-      md << "| " << f.method << " | " << shortest(f.shape) << " | " << shortest(f.p2g) << " | "
-         << shortest(f.grid) << " | " << shortest(f.g2p) << " | " << shortest(f.stress) << " | "
-         << shortest(f.body) << " | " << shortest(f.total()) << " | " << fixed(gflops, 1) << " | "
-         << (narrow > 0
-                 ? fixed(100 * gflops / narrow, 0) + "% / " + fixed(100 * gflops / wide, 0) + "%"
-                 : "–")
-         << " |\n";
-    }
-    md << "\nPeak at the benchmark's reported clock of " << mhz
-       << " MHz (the cores run faster under load, about 3.6 GHz by a dependent-multiply timing "
-          "loop, which lowers these fractions by about a quarter). What limits the step is not "
-          "arithmetic: the additions into the grid must stay in particle order to keep the "
-          "results bit for bit, and a core retires about one store per cycle.\n\n";
+    return;
   }
+  const ojson doc = ojson::parse(text);
+  const BenchFigures figures = read_figures(doc);
+  const ojson& ctx = doc["context"];
+  write_kernel_table(md, figures, ctx);
+  write_kernel_summary(md, figures);
+  write_flops(md, figures, ctx.value("mhz_per_cpu", 0.0));
+}
 
-  // Experiments.
+// Compute and wall time of every experiment that runs cases, from <out>/<name>.json.
+void write_experiment_times(std::ostream& md, const std::vector<Spec>& specs, const fs::path& out) {
   md << "## Wall time of every experiment\n\nThe sweep wall time is that of the last sweep "
         "that computed a case (cached reruns take milliseconds); compute time is the sum of the "
         "cases' own run times.\n\n| experiment | cases | compute time | sweep wall time |\n"
@@ -175,6 +207,17 @@ void write_performance(const std::vector<Spec>& specs, const fs::path& bench, co
   md << "| all | | " << seconds(total_compute) << " | " << seconds(total_wall) << " |\n\n"
      << "`make reproduce` prints its own wall time when it ends; with every case cached it takes "
         "about a second.\n";
+}
+
+}  // namespace
+
+void write_performance(const std::vector<Spec>& specs, const fs::path& bench, const fs::path& out) {
+  std::ostringstream md;
+  md << "# Performance\n\nWhat a result costs: the step kernel measured with Google Benchmark "
+        "(`make bench`, `tests/bench_step.cpp`), what each measured quantity adds to it, and the "
+        "wall time of every experiment of `make reproduce`.\n\n";
+  write_benchmark(md, bench);
+  write_experiment_times(md, specs, out);
   write_if_changed(out / "performance.md", md.str());
 }
 

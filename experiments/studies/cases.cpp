@@ -1,15 +1,9 @@
 // Supporting experiments: a plain table of every case, the parameters that vary and the measured
 // quantities the spec records.
 #include <algorithm>
-#include <cmath>
-#include <cstdint>
-#include <map>
-#include <optional>
-#include <set>
 #include <sstream>
 
 #include "csv.hpp"
-
 #include "report_util.hpp"
 #include "study.hpp"
 
@@ -18,16 +12,19 @@ namespace mpmstab {
 namespace {
 
 using ojson = nlohmann::ordered_json;
-namespace fs = std::filesystem;
 
-// A plain table of every case: the parameters that vary, then the measured quantities.
+// Parameters shown as a column where the cases differ and stated once where they do not; method,
+// E, A and dt always have a column.
+const std::vector<std::string> kOptionalParams = {
+    "T", "cells", "ppc", "bc", "position_update", "scene", "walls",
+    // The transfer and the order of the update, and the form of the eq. (108) bound.
+    "transfer", "flip_fraction", "update", "body_force_time", "dt_stable_sigma", "dt_stable_vnorm"};
 
-std::string cases_markdown(const Spec& spec, const std::vector<ojson>& rows) {
-  // Parameter columns shown: always method, E, A, dt; the others only where cases differ.
+// The parameter columns: method, E, A, dt, then every optional parameter that differs between
+// the cases.
+std::vector<std::string> varying_params(const std::vector<ojson>& rows) {
   std::vector<std::string> params = {"method", "E", "A", "dt"};
-  for (const char* col :
-       {"T", "cells", "ppc", "bc", "position_update", "scene", "walls", "transfer", "flip_fraction",
-        "update", "body_force_time", "dt_stable_sigma", "dt_stable_vnorm"}) {
+  for (const std::string& col : kOptionalParams) {
     for (const auto& r : rows) {
       if (r[col] != rows.front()[col]) {
         params.push_back(col);
@@ -35,27 +32,26 @@ std::string cases_markdown(const Spec& spec, const std::vector<ojson>& rows) {
       }
     }
   }
-  const auto& observe = spec.cases.front().params.observe;
-  std::ostringstream md;
-  int unstable = 0, meaningless = 0;
-  for (const auto& r : rows) {
-    unstable += r["stable"] == false;
-    meaningless += r["meaningless"] == true;
-  }
-  md << "## Results\n\n"
-     << rows.size() << " cases: " << rows.size() - unstable << " stable (" << meaningless
-     << " meaningless: the error over time reached A), " << unstable << " unstable.";
-  std::string fixed_params;
-  for (const char* col :
-       {"T", "cells", "ppc", "bc", "position_update", "scene", "walls", "transfer", "flip_fraction",
-        "update", "body_force_time", "dt_stable_sigma", "dt_stable_vnorm"}) {
+  return params;
+}
+
+// "T = 1, cells = 100, ...": the optional parameters without a column, common to every case.
+std::string common_params(const std::vector<ojson>& rows, const std::vector<std::string>& params) {
+  std::string text;
+  for (const std::string& col : kOptionalParams) {
     if (std::find(params.begin(), params.end(), col) != params.end()) continue;
     const ojson& v = rows.front()[col];
     if (v.is_null()) continue;  // not applicable to these runs (flip_fraction without a blend)
-    fixed_params += std::string(fixed_params.empty() ? "" : ", ") + col + " = " +
-                    (v.is_string() ? v.get<std::string>() : shortest(v.get<double>()));
+    text += std::string(text.empty() ? "" : ", ") + col + " = " +
+            (v.is_string() ? v.get<std::string>() : shortest(v.get<double>()));
   }
-  md << " Common to all: " << fixed_params << ".\n\n|";
+  return text;
+}
+
+// The header of the table: the parameter columns, then the measured quantities the spec records.
+std::string cases_header(const std::vector<std::string>& params, const Observe& observe) {
+  std::ostringstream md;
+  md << "|";
   for (const auto& p : params)
     md << " " << p << " |";
   md << " c dt/h | verdict | max error |";
@@ -68,44 +64,75 @@ std::string cases_markdown(const Spec& spec, const std::vector<ojson>& rows) {
   for (std::size_t k = 0; k < n_cols; ++k)
     md << "---|";
   md << "\n";
-  for (const auto& r : rows) {
-    md << "|";
-    for (const auto& p : params) {
-      const ojson& v = r[p];
-      md << " "
-         << (v.is_string() ? v.get<std::string>()
-             : v.is_null() ? std::string("–")
-             : p == "dt"   ? param(v.get<double>())
-                           : shortest(v.get<double>()))
-         << " |";
-    }
-    md << " " << sci(r["courant"].get<double>()) << " | " << verdict(r) << " | "
-       << opt_sci(r["max_error"]) << " |";
-    if (observe.error_over_time) {
-      md << " " << opt_sci(r["max_error_over_time"]) << " | "
-         << (r["max_error_over_time"].is_number() && r["A"].get<double>() > 0
-                 ? ratio(r["max_error_over_time"].get<double>() / r["A"].get<double>())
-                 : "–")
-         << " |";
-    }
-    if (observe.dt_stable) md << " " << opt_sci(r["dt_stable_min"]) << " |";
-    if (observe.crossings) {
-      md << " " << (r["crossings"].is_null() ? std::string("–") : r["crossings"].dump()) << " |";
-    }
-    md << " " << cost(r) << " |\n";
+  return md.str();
+}
+
+// One case: its parameters and what it measured.
+std::string case_row(const ojson& r, const std::vector<std::string>& params,
+                     const Observe& observe) {
+  std::ostringstream md;
+  md << "|";
+  for (const auto& p : params) {
+    const ojson& v = r[p];
+    md << " "
+       << (v.is_string() ? v.get<std::string>()
+           : v.is_null() ? std::string("–")
+           : p == "dt"   ? param(v.get<double>())
+                         : shortest(v.get<double>()))
+       << " |";
   }
+  md << " " << sci(r["courant"].get<double>()) << " | " << verdict(r) << " | "
+     << opt_sci(r["max_error"]) << " |";
+  if (observe.error_over_time) {
+    md << " " << opt_sci(r["max_error_over_time"]) << " | "
+       << (r["max_error_over_time"].is_number() && r["A"].get<double>() > 0
+               ? ratio(r["max_error_over_time"].get<double>() / r["A"].get<double>())
+               : "–")
+       << " |";
+  }
+  if (observe.dt_stable) md << " " << opt_sci(r["dt_stable_min"]) << " |";
+  if (observe.crossings) {
+    md << " " << (r["crossings"].is_null() ? std::string("–") : r["crossings"].dump()) << " |";
+  }
+  md << " " << cost(r) << " |\n";
+  return md.str();
+}
+
+// How many cases failed, and how many survived with an error over time that reached A.
+struct VerdictCounts {
+  int unstable = 0, meaningless = 0;
+};
+
+VerdictCounts count_verdicts(const std::vector<ojson>& rows) {
+  VerdictCounts n;
+  for (const auto& r : rows) {
+    n.unstable += r["stable"] == false;
+    n.meaningless += r["meaningless"] == true;
+  }
+  return n;
+}
+
+// The verdicts counted, the parameters common to every case, then one row per case.
+std::string cases_markdown(const Spec& spec, const std::vector<ojson>& rows) {
+  const auto params = varying_params(rows);
+  const auto& observe = spec.cases.front().params.observe;
+  const VerdictCounts n = count_verdicts(rows);
+  std::ostringstream md;
+  md << "## Results\n\n"
+     << rows.size() << " cases: " << rows.size() - n.unstable << " stable (" << n.meaningless
+     << " meaningless: the error over time reached A), " << n.unstable << " unstable."
+     << " Common to all: " << common_params(rows, params) << ".\n\n"
+     << cases_header(params, observe);
+  for (const auto& r : rows)
+    md << case_row(r, params, observe);
   return md.str();
 }
 
 std::string cases_index(const Spec& spec, const std::vector<ojson>& rows) {
-  int unstable = 0, meaningless = 0;
-  for (const auto& r : rows) {
-    unstable += r["stable"] == false;
-    meaningless += r["meaningless"] == true;
-  }
+  const VerdictCounts n = count_verdicts(rows);
   std::ostringstream md;
-  md << "**What it shows.** " << rows.size() << " cases, " << unstable << " unstable, "
-     << meaningless << " meaningless; it supports the explanations in [comparison.md]"
+  md << "**What it shows.** " << rows.size() << " cases, " << n.unstable << " unstable, "
+     << n.meaningless << " meaningless; it supports the explanations in [comparison.md]"
      << "(comparison.md). Full table: [" << spec.name << ".md](" << spec.name << ".md).\n\n";
   return md.str();
 }

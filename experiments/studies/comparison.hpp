@@ -14,6 +14,7 @@
 
 #include "paper_table1.hpp"
 #include "spec.hpp"
+#include "study.hpp"
 
 namespace mpmstab {
 
@@ -69,12 +70,12 @@ struct AgreementCounts {
 CellVerdict classify(const nlohmann::ordered_json& row, const PaperCell* paper,
                      const CourantEdges& edges, ErrorAt error_at);
 
-// Reads <out>/<name>.json of the table1 spec and of the supporting experiments (by name:
-// courant, walls, crossing, eq108; any that is missing is reported as not run) and the variants
-// study <out>/variants.json if present, and writes <out>/comparison.md and <out>/comparison.csv
-// (one row per cell: verdict and class). `error_at`, when given, replaces every case's own
+// Writes <out>/comparison.md and <out>/comparison.csv (one row per cell: verdict and class) from
+// the study's inputs, by name: "table1" (required: its spec and results), the supporting
+// experiments "courant", "walls", "crossing" and "eq108", and the "variants" study; an input
+// without results is reported as not run. `error_at`, when given, replaces every case's own
 // choice of the error compared with the paper's.
-void write_comparison(const Spec& table1, const std::vector<Spec>& support,
-                      const std::filesystem::path& out, std::optional<ErrorAt> error_at = {});
+void write_comparison(const StudyInputs& inputs, const std::filesystem::path& out,
+                      std::optional<ErrorAt> error_at = {});
 
 }  // namespace mpmstab

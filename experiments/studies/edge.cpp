@@ -1,11 +1,7 @@
 // The stability edge: per case, the largest fixed dt that survives to T, against h/c and the
 // eq. (108) bound, one section per scene.
 #include <algorithm>
-#include <cmath>
-#include <cstdint>
 #include <map>
-#include <optional>
-#include <set>
 #include <sstream>
 
 #include "csv.hpp"
@@ -20,6 +16,8 @@ namespace {
 
 using ojson = nlohmann::ordered_json;
 
+// Per method, the range of the edge over h/c and over the eq. (108) bound; how many searches
+// found stability not monotone in dt, and how many found no surviving dt.
 std::string edge_summary_text(const std::vector<ojson>& rows) {
   std::map<std::string, std::vector<double>> over_cfl, over_bound;
   int non_monotone = 0, none = 0;
@@ -60,29 +58,13 @@ std::string opt_ratio(const ojson& v) {
   return v.is_number() ? ratio(v.get<double>()) : "–";
 }
 
-// The first scene's section has the figure and explains the search; a further scene's section
-// (`first` false) has its own summary and table.
-std::string edge_markdown(const Spec& spec, const std::vector<ojson>& rows, bool first = true) {
+// Per case: the edge found, against h/c and the eq. (108) bound at that dt, and what the search
+// cost.
+std::string edge_table(const std::vector<ojson>& rows) {
   std::ostringstream md;
-  if (!first) {
-    md << "\n## " << scene_title(rows.front()["scene"].get<std::string>()) << "\n\n**Summary.** "
-       << edge_summary_text(rows)
-       << "\n\n| method | A | E | dt_edge | h/c | dt_edge / (h/c) | eq. (108) at dt_edge | "
-          "dt_edge / eq. (108) | max error at dt_edge | monotone | runs | search time |\n"
-          "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
-  } else {
-    md << "## Results\n\n**Summary.** " << edge_summary_text(rows) << "\n\n![" << spec.title << "]("
-       << spec.name
-       << ".png)\n\nThe search: a scan of dt = (h/c) 2^(k/2) from h/(16c) "
-          "to 4h/c, then bisection between the largest surviving and the smallest failing dt to "
-          "within 2%. dt_edge is the largest dt found to survive to T; \"eq. (108)\" is the "
-          "minimum of the bound over the run at dt_edge. Vector version: ["
-       << spec.name << ".svg](" << spec.name << ".svg); data: [" << spec.name << "_data.csv]("
-       << spec.name << "_data.csv).\n\n"
-       << "| method | A | E | dt_edge | h/c | dt_edge / (h/c) | eq. (108) at dt_edge | dt_edge / "
-          "eq. (108) | max error at dt_edge | monotone | runs | search time |\n"
-          "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
-  }
+  md << "| method | A | E | dt_edge | h/c | dt_edge / (h/c) | eq. (108) at dt_edge | "
+        "dt_edge / eq. (108) | max error at dt_edge | monotone | runs | search time |\n"
+        "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& r : rows) {
     const bool found = r["dt_edge"].is_number();
     std::string monotone = r["monotone"] == true ? "yes" : "**no**";
@@ -97,6 +79,27 @@ std::string edge_markdown(const Spec& spec, const std::vector<ojson>& rows, bool
        << " | " << (found ? opt_sci(r["max_error"]) : "–") << " | " << monotone << " | "
        << r["probes"].dump() << " | " << seconds(r["search_seconds"].get<double>()) << " |\n";
   }
+  return md.str();
+}
+
+// One scene's section: the first scene's has the figure and explains the search; a further
+// scene's (`first` false) is headed by the scene. Each has its own summary and table.
+std::string edge_markdown(const Spec& spec, const std::vector<ojson>& rows, bool first) {
+  std::ostringstream md;
+  if (!first) {
+    md << "\n## " << scene_title(rows.front()["scene"].get<std::string>()) << "\n\n**Summary.** "
+       << edge_summary_text(rows) << "\n\n";
+  } else {
+    md << "## Results\n\n**Summary.** " << edge_summary_text(rows) << "\n\n![" << spec.title << "]("
+       << spec.name
+       << ".png)\n\nThe search: a scan of dt = (h/c) 2^(k/2) from h/(16c) "
+          "to 4h/c, then bisection between the largest surviving and the smallest failing dt to "
+          "within 2%. dt_edge is the largest dt found to survive to T; \"eq. (108)\" is the "
+          "minimum of the bound over the run at dt_edge. Vector version: ["
+       << spec.name << ".svg](" << spec.name << ".svg); data: [" << spec.name << "_data.csv]("
+       << spec.name << "_data.csv).\n\n";
+  }
+  md << edge_table(rows);
   return md.str();
 }
 

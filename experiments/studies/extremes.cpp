@@ -1,17 +1,16 @@
-// The extremes: verdicts over extreme parameters, and per method where and why it fails.
+// The extremes: verdicts over extreme parameters (Courant numbers from far below 1 to far above
+// it, amplitudes from a tiny fraction of a cell to many cells), and per method where and why it
+// fails.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <map>
-#include <optional>
-#include <set>
 #include <sstream>
 
 #include "csv.hpp"
 #include "report.hpp"
 #include "report_util.hpp"
 #include "scenes.hpp"
-
 #include "study.hpp"
 
 namespace mpmstab {
@@ -19,8 +18,6 @@ namespace mpmstab {
 namespace {
 
 using ojson = nlohmann::ordered_json;
-
-// The extremes: where and why each method fails.
 
 // 0 stable, 1 stable but meaningless, 2 unstable.
 int verdict_code(const ojson& r) {
@@ -38,10 +35,41 @@ bool stable_output_is_finite(const ojson& r) {
   return r["crossings"].is_number();
 }
 
-std::string extremes_markdown(const Spec& spec, const std::vector<ojson>& rows) {
+// Failure reasons with their counts: "left_domain 1, nonpositive_F 73".
+std::string reason_counts(const std::map<std::string, int>& reasons) {
+  std::ostringstream s;
+  bool first = true;
+  for (const auto& [reason, n] : reasons) {
+    s << (first ? "" : ", ") << reason << " " << n;
+    first = false;
+  }
+  return s.str();
+}
+
+// The case that took longest: its wall time and its parameters.
+struct Slowest {
+  double seconds = 0;
+  std::string name;
+};
+
+Slowest slowest_case(const std::vector<ojson>& rows) {
+  Slowest slowest;
+  for (const auto& r : rows) {
+    if (r["wall_seconds"].get<double>() > slowest.seconds) {
+      slowest.seconds = r["wall_seconds"].get<double>();
+      slowest.name = r["method"].get<std::string>() + " E=" + shortest(r["E"].get<double>()) +
+                     " A=" + shortest(r["A"].get<double>()) +
+                     " dt=" + param(r["dt"].get<double>()) + " cells=" + r["cells"].dump() +
+                     " ppc=" + r["ppc"].dump();
+    }
+  }
+  return slowest;
+}
+
+// The opening: how many cases reached each verdict and why the unstable ones failed, whether
+// any stable output holds a NaN or an infinity, the slowest case, and the figure.
+std::string extremes_summary(const Spec& spec, const std::vector<ojson>& rows) {
   int stable = 0, meaningless = 0, bad_output = 0;
-  double slowest = 0;
-  std::string slowest_case;
   std::map<std::string, int> reasons;
   for (const auto& r : rows) {
     const int v = verdict_code(r);
@@ -49,102 +77,94 @@ std::string extremes_markdown(const Spec& spec, const std::vector<ojson>& rows) 
     meaningless += v == 1;
     if (v == 2) ++reasons[r["failure_reason"].get<std::string>()];
     if (v < 2 && !stable_output_is_finite(r)) ++bad_output;
-    if (r["wall_seconds"].get<double>() > slowest) {
-      slowest = r["wall_seconds"].get<double>();
-      slowest_case = r["method"].get<std::string>() + " E=" + shortest(r["E"].get<double>()) +
-                     " A=" + shortest(r["A"].get<double>()) +
-                     " dt=" + param(r["dt"].get<double>()) + " cells=" + r["cells"].dump() +
-                     " ppc=" + r["ppc"].dump();
-    }
   }
+  const Slowest slowest = slowest_case(rows);
   std::ostringstream md;
   md << "## Results\n\n**Summary.** " << rows.size()
      << " cases, every one with a verdict: " << stable << " stable, " << meaningless
-     << " stable but meaningless (the error over time "
-     << "reached A), " << rows.size() - stable - meaningless << " unstable (";
-  bool first = true;
-  for (const auto& [reason, n] : reasons) {
-    md << (first ? "" : ", ") << reason << " " << n;
-    first = false;
-  }
-  md << "). Stable outputs holding a NaN or an infinity: " << bad_output
-     << ". The slowest case took " << seconds(slowest) << " (" << slowest_case << ").\n\n"
+     << " stable but meaningless (the error over time reached A), "
+     << rows.size() - stable - meaningless << " unstable (" << reason_counts(reasons)
+     << "). Stable outputs holding a NaN or an infinity: " << bad_output
+     << ". The slowest case took " << seconds(slowest.seconds) << " (" << slowest.name << ").\n\n"
      << "![" << spec.title << "](" << spec.name << ".png)\n\nVector version: [" << spec.name
      << ".svg](" << spec.name << ".svg); data: [" << spec.name << "_data.csv](" << spec.name
      << "_data.csv).\n\n";
+  return md.str();
+}
 
-  // Where and why, per method: by Courant number and by amplitude in cells.
-  struct Band {
-    const char* name;
-    double lo, hi;
-  };
-  const std::vector<Band> courant_bands = {{"c dt/h < 0.5", 0, 0.5},
-                                           {"0.5 <= c dt/h < 1", 0.5, 1},
-                                           {"1 <= c dt/h < 10", 1, 10},
-                                           {"c dt/h >= 10", 10, 1e300}};
-  const std::vector<Band> amplitude_bands = {{"A/h < 1e-3", 0, 1e-3},
-                                             {"1e-3 <= A/h < 0.1", 1e-3, 0.1},
-                                             {"0.1 <= A/h < 1", 0.1, 1},
-                                             {"A/h >= 1 (particles cross cells)", 1, 1e300}};
-  auto table = [&](const std::string& method, const std::vector<Band>& bands, bool by_courant) {
-    md << "| " << (by_courant ? "Courant number" : "amplitude in cells")
-       << " | runs | stable | "
-          "meaningless | unstable: reasons |\n|---|---|---|---|---|\n";
-    for (const auto& b : bands) {
-      int n = 0, s = 0, m = 0;
-      std::map<std::string, int> why;
-      for (const auto& r : rows) {
-        if (r["method"] != method) continue;
-        const double x = by_courant ? r["courant"].get<double>()
-                                    : r["A"].get<double>() * r["cells"].get<double>();
-        if (x < b.lo || x >= b.hi) continue;
-        ++n;
-        const int v = verdict_code(r);
-        s += v == 0;
-        m += v == 1;
-        if (v == 2) ++why[r["failure_reason"].get<std::string>()];
-      }
-      md << "| " << b.name << " | " << n << " | " << s << " | " << m << " | ";
-      bool f = true;
-      for (const auto& [reason, k] : why) {
-        md << (f ? "" : ", ") << reason << " " << k;
-        f = false;
-      }
-      md << (why.empty() ? "none" : "") << " |\n";
-    }
-    md << "\n";
-  };
-  for (const char* method : {"gimp", "mpm"}) {
-    md << "### " << method << "\n\n";
-    table(method, courant_bands, true);
-    table(method, amplitude_bands, false);
-  }
-  // The reading, computed: what happens at and above Courant 1, and what the failures below
-  // it have in common.
-  md << "Reading (computed from the rows): ";
-  for (const char* method : {"gimp", "mpm"}) {
-    int above = 0, above_failed = 0, below_failed = 0, below_failed_crossing = 0;
-    std::int64_t longest_survivor = 0;
+// A band of Courant numbers c dt/h or of amplitudes in cells A/h: lo <= x < hi.
+struct Band {
+  const char* name;
+  double lo, hi;
+};
+const std::vector<Band> kCourantBands = {{"c dt/h < 0.5", 0, 0.5},
+                                         {"0.5 <= c dt/h < 1", 0.5, 1},
+                                         {"1 <= c dt/h < 10", 1, 10},
+                                         {"c dt/h >= 10", 10, 1e300}};
+const std::vector<Band> kAmplitudeBands = {{"A/h < 1e-3", 0, 1e-3},
+                                           {"1e-3 <= A/h < 0.1", 1e-3, 0.1},
+                                           {"0.1 <= A/h < 1", 0.1, 1},
+                                           {"A/h >= 1 (particles cross cells)", 1, 1e300}};
+
+// Where one method fails: per band of the Courant number (`by_courant`) or of the amplitude in
+// cells, how many runs fall in it, their verdicts and the reasons of the failures.
+std::string band_table(const std::vector<ojson>& rows, const std::string& method,
+                       const std::vector<Band>& bands, bool by_courant) {
+  std::ostringstream md;
+  md << "| " << (by_courant ? "Courant number" : "amplitude in cells")
+     << " | runs | stable | meaningless | unstable: reasons |\n|---|---|---|---|---|\n";
+  for (const auto& b : bands) {
+    int n = 0, s = 0, m = 0;
+    std::map<std::string, int> why;
     for (const auto& r : rows) {
       if (r["method"] != method) continue;
-      const bool failed = r["stable"] != true;
-      if (r["courant"].get<double>() >= 1) {
-        ++above;
-        above_failed += failed;
-        if (!failed) longest_survivor = std::max(longest_survivor, r["steps"].get<std::int64_t>());
-      } else if (failed) {
-        ++below_failed;
-        below_failed_crossing += r["A"].get<double>() * r["cells"].get<double>() >= 1;
-      }
+      const double x =
+          by_courant ? r["courant"].get<double>() : r["A"].get<double>() * r["cells"].get<double>();
+      if (x < b.lo || x >= b.hi) continue;
+      ++n;
+      const int v = verdict_code(r);
+      s += v == 0;
+      m += v == 1;
+      if (v == 2) ++why[r["failure_reason"].get<std::string>()];
     }
-    md << method << ": " << above_failed << " of " << above
-       << " runs at c dt/h >= 1 fail; the ones that survive ran " << longest_survivor
-       << " steps at most (T is short there), too few for the instability to grow. Below "
-          "Courant 1, "
-       << below_failed << " runs fail, " << below_failed_crossing << " of them with A/h >= 1, "
-       << "where particles cross cells. ";
+    md << "| " << b.name << " | " << n << " | " << s << " | " << m << " | " << reason_counts(why)
+       << (why.empty() ? "none" : "") << " |\n";
   }
-  md << "\n\n";
+  md << "\n";
+  return md.str();
+}
+
+// The reading for one method, computed from the rows: how many runs at and above Courant 1
+// fail and how long the survivors ran, and how many of the failures below Courant 1 have
+// particles crossing cells.
+std::string method_reading(const std::vector<ojson>& rows, const char* method) {
+  int above = 0, above_failed = 0, below_failed = 0, below_failed_crossing = 0;
+  std::int64_t longest_survivor = 0;
+  for (const auto& r : rows) {
+    if (r["method"] != method) continue;
+    const bool failed = r["stable"] != true;
+    if (r["courant"].get<double>() >= 1) {
+      ++above;
+      above_failed += failed;
+      if (!failed) longest_survivor = std::max(longest_survivor, r["steps"].get<std::int64_t>());
+    } else if (failed) {
+      ++below_failed;
+      below_failed_crossing += r["A"].get<double>() * r["cells"].get<double>() >= 1;
+    }
+  }
+  std::ostringstream md;
+  md << method << ": " << above_failed << " of " << above
+     << " runs at c dt/h >= 1 fail; the ones that survive ran " << longest_survivor
+     << " steps at most (T is short there), too few for the instability to grow. Below "
+        "Courant 1, "
+     << below_failed << " runs fail, " << below_failed_crossing << " of them with A/h >= 1, "
+     << "where particles cross cells. ";
+  return md.str();
+}
+
+// Every case: its parameters, Courant number, verdict, error over time and cost.
+std::string every_case_table(const std::vector<ojson>& rows) {
+  std::ostringstream md;
   md << "### Every case\n\n| method | bc | E | A | dt | T | cells | ppc | c dt/h | verdict | "
         "max error over time | cost |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& r : rows) {
@@ -155,6 +175,22 @@ std::string extremes_markdown(const Spec& spec, const std::vector<ojson>& rows) 
        << " | " << verdict(r) << " | " << opt_sci(r["max_error_over_time"]) << " | " << cost(r)
        << " |\n";
   }
+  return md.str();
+}
+
+// The report: the summary, per method its band tables, the reading and every case.
+std::string extremes_markdown(const Spec& spec, const std::vector<ojson>& rows) {
+  std::ostringstream md;
+  md << extremes_summary(spec, rows);
+  for (const char* method : {"gimp", "mpm"}) {
+    md << "### " << method << "\n\n"
+       << band_table(rows, method, kCourantBands, true)
+       << band_table(rows, method, kAmplitudeBands, false);
+  }
+  md << "Reading (computed from the rows): ";
+  for (const char* method : {"gimp", "mpm"})
+    md << method_reading(rows, method);
+  md << "\n\n" << every_case_table(rows);
   return md.str();
 }
 

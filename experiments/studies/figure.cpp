@@ -1,10 +1,4 @@
 // A figure: one run whose history or final state a gnuplot script draws.
-#include <algorithm>
-#include <cmath>
-#include <cstdint>
-#include <map>
-#include <optional>
-#include <set>
 #include <sstream>
 
 #include "csv.hpp"
@@ -19,6 +13,7 @@ namespace {
 
 using ojson = nlohmann::ordered_json;
 
+// The figure, then the run in one table row: its parameters, verdict, errors and cost.
 std::string figure_markdown(const Spec& spec, const std::vector<ojson>& rows) {
   const ojson& r = rows.front();
   const auto& p = spec.cases.front().params;

@@ -92,14 +92,12 @@ std::string table1_summary_text(const Table1Summary& s) {
   return md.str();
 }
 
-std::string table1_markdown(const Spec& spec, const std::vector<ojson>& rows, const fs::path& out) {
-  const auto paper = read_paper_table1(spec);
+// What the marks and columns mean, with the source of the paper values.
+std::string table1_legend(const Spec& spec, const fs::path& out) {
   bool over_time = false;
   for (const auto& c : spec.cases)
     over_time = over_time || c.error_at == ErrorAt::max_over_time;
   std::ostringstream md;
-  md << "## Results\n\n**Summary.** " << table1_summary_text(summarize_table1(spec, rows, paper))
-     << "\n\n";
   md << "Legend: `*` unstable (ours: the reason and the step where the run stopped); "
         "*meaningless*: the run survived but its error over time reached the amplitude A; "
         "*inferred*: the paper does not print this cell's dt; *transcription*: the confidence of "
@@ -114,8 +112,43 @@ std::string table1_markdown(const Spec& spec, const std::vector<ojson>& rows, co
                      "as the case's error_at chooses."
                    : "")
      << "\n\n";
+  return md.str();
+}
 
-  // Blocks in the order the spec lists them: E, then A.
+// One cell of the table: the paper's dt_stable and max error beside ours, our verdict, the
+// confidence of the transcription and the cost.
+std::string table1_row(const CaseSpec& cs, const ojson& r,
+                       const std::map<Table1Key, PaperCell>& paper) {
+  const auto& p = cs.params;
+  const auto it = paper.find(paper_key(cs));
+  const PaperCell* pc = it == paper.end() ? nullptr : &it->second;
+  const auto ours = compared_error(r, cs.error_at);
+  std::string ratio_text = "–";
+  if (pc && pc->max_error.kind == PaperValue::number && ours) {
+    ratio_text = ratio(*ours / pc->max_error.value);
+  }
+  std::ostringstream md;
+  md << "| " << param(p.dt) << (cs.dt_inferred ? " (inferred)" : "") << " | " << to_string(p.method)
+     << " | " << sci(r["courant"].get<double>()) << " | " << (pc ? show(pc->dt_stable) : "–")
+     << " | " << (r["stable"].get<bool>() ? opt_sci(r["dt_stable_min"]) : "\\*") << " | "
+     << (pc ? show(pc->max_error) : "–") << " | "
+     << (!r["stable"].get<bool>() ? std::string("\\*")
+         : ours                   ? sci(*ours)
+                                  : std::string("–"))
+     << (cs.error_at == ErrorAt::max_over_time ? " (over time)" : "") << " | " << ratio_text
+     << " | " << verdict(r) << " | " << (pc ? pc->confidence : "not in the paper") << " | "
+     << cost(r) << " |\n";
+  return md.str();
+}
+
+// The summary, the legend, then one table per (E, A) block in the order the spec lists them,
+// under a heading per E.
+std::string table1_markdown(const Spec& spec, const std::vector<ojson>& rows, const fs::path& out) {
+  const auto paper = read_paper_table1(spec);
+  std::ostringstream md;
+  md << "## Results\n\n**Summary.** " << table1_summary_text(summarize_table1(spec, rows, paper))
+     << "\n\n"
+     << table1_legend(spec, out);
   std::vector<std::pair<double, double>> blocks;
   for (const auto& c : spec.cases) {
     const std::pair<double, double> b{c.params.E, c.params.A};
@@ -132,28 +165,8 @@ std::string table1_markdown(const Spec& spec, const std::vector<ojson>& rows, co
           "ours | ours / paper | ours: verdict | transcription | cost |\n";
     md << "|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (std::size_t i = 0; i < rows.size(); ++i) {
-      const auto& cs = spec.cases[i];
-      const auto& p = cs.params;
-      if (p.E != E || p.A != A) continue;
-      const ojson& r = rows[i];
-      const auto it = paper.find(paper_key(cs));
-      const PaperCell* pc = it == paper.end() ? nullptr : &it->second;
-      const auto ours = compared_error(r, cs.error_at);
-      std::string ratio_text = "–";
-      if (pc && pc->max_error.kind == PaperValue::number && ours) {
-        ratio_text = ratio(*ours / pc->max_error.value);
-      }
-      md << "| " << param(p.dt) << (cs.dt_inferred ? " (inferred)" : "") << " | "
-         << to_string(p.method) << " | " << sci(r["courant"].get<double>()) << " | "
-         << (pc ? show(pc->dt_stable) : "–") << " | "
-         << (r["stable"].get<bool>() ? opt_sci(r["dt_stable_min"]) : "\\*") << " | "
-         << (pc ? show(pc->max_error) : "–") << " | "
-         << (!r["stable"].get<bool>() ? std::string("\\*")
-             : ours                   ? sci(*ours)
-                                      : std::string("–"))
-         << (cs.error_at == ErrorAt::max_over_time ? " (over time)" : "") << " | " << ratio_text
-         << " | " << verdict(r) << " | " << (pc ? pc->confidence : "not in the paper") << " | "
-         << cost(r) << " |\n";
+      const auto& p = spec.cases[i].params;
+      if (p.E == E && p.A == A) md << table1_row(spec.cases[i], rows[i], paper);
     }
     md << "\n";
   }

@@ -1,15 +1,11 @@
 // The paper's Table 2: grid crossings per E and A beside the paper's approximate counts, and both
 // readings of its dt_sound column.
 #include <algorithm>
-#include <cmath>
 #include <cstdint>
 #include <map>
-#include <optional>
-#include <set>
 #include <sstream>
 
 #include "csv.hpp"
-
 #include "report_util.hpp"
 #include "study.hpp"
 
@@ -54,37 +50,50 @@ std::string table2_summary_text(const Spec& spec, const std::vector<ojson>& rows
   return md.str();
 }
 
-std::string table2_markdown(const Spec& spec, const std::vector<ojson>& rows, const fs::path& out) {
-  const CsvTable paper = read_csv(spec.reference);
-  std::map<double, std::map<std::string, std::string>> paper_by_E;
-  for (const auto& row : paper.rows)
-    paper_by_E[std::stod(row.at("E"))] = row;
-
+// The cases of the spec and the paper's table they are compared with.
+struct Table2Data {
+  const Spec& spec;
+  const std::vector<ojson>& rows;
+  CsvTable paper;
+  std::map<double, std::map<std::string, std::string>> paper_by_E;  // E -> the paper's row
+  // The values of E and A and the methods, in the order the spec first lists them.
   std::vector<double> Es, As;
   std::vector<std::string> methods;
-  for (const auto& c : spec.cases) {
-    if (std::find(Es.begin(), Es.end(), c.params.E) == Es.end()) Es.push_back(c.params.E);
-    if (std::find(As.begin(), As.end(), c.params.A) == As.end()) As.push_back(c.params.A);
-    const std::string m(to_string(c.params.method));
-    if (std::find(methods.begin(), methods.end(), m) == methods.end()) methods.push_back(m);
+
+  Table2Data(const Spec& s, const std::vector<ojson>& r)
+      : spec(s), rows(r), paper(read_csv(s.reference)) {
+    for (const auto& row : paper.rows)
+      paper_by_E[std::stod(row.at("E"))] = row;
+    for (const auto& c : spec.cases) {
+      if (std::find(Es.begin(), Es.end(), c.params.E) == Es.end()) Es.push_back(c.params.E);
+      if (std::find(As.begin(), As.end(), c.params.A) == As.end()) As.push_back(c.params.A);
+      const std::string m(to_string(c.params.method));
+      if (std::find(methods.begin(), methods.end(), m) == methods.end()) methods.push_back(m);
+    }
   }
-  auto find_row = [&](double E, double A, const std::string& m) -> const ojson* {
+
+  // Our row for (E, A, method); null when the spec has no such case.
+  const ojson* find_row(double E, double A, const std::string& m) const {
     for (std::size_t i = 0; i < rows.size(); ++i) {
       const auto& p = spec.cases[i].params;
       if (p.E == E && p.A == A && to_string(p.method) == m) return &rows[i];
     }
     return nullptr;
-  };
-  auto crossings = [](const ojson* r) -> std::string {
-    if (!r || !(*r)["crossings"].is_number()) return "–";
-    std::string s = std::to_string((*r)["crossings"].get<std::int64_t>());
-    if (!(*r)["stable"].get<bool>()) {
-      s = "\\* " + s + " (to step " + std::to_string((*r)["failure_step"].get<std::int64_t>()) +
-          ")";
-    }
-    return s;
-  };
+  }
+};
 
+// Our crossing count; for a run that became unstable, "\* n (to step k)".
+std::string crossings(const ojson* r) {
+  if (!r || !(*r)["crossings"].is_number()) return "–";
+  std::string s = std::to_string((*r)["crossings"].get<std::int64_t>());
+  if (!(*r)["stable"].get<bool>()) {
+    s = "\\* " + s + " (to step " + std::to_string((*r)["failure_step"].get<std::int64_t>()) + ")";
+  }
+  return s;
+}
+
+// The summary and what the columns mean, with the source of the paper values.
+std::string table2_intro(const Spec& spec, const std::vector<ojson>& rows, const fs::path& out) {
   std::ostringstream md;
   md << "## Results\n\n**Summary.** " << table2_summary_text(spec, rows)
      << "\n\nCrossings: the number of cell boundaries passed by all particles over the "
@@ -95,48 +104,73 @@ std::string table2_markdown(const Spec& spec, const std::vector<ojson>& rows, co
      << " for every E. dt_sound: the paper's column equals 1/c; the speed-of-sound limit of "
         "the grid is h/c. Paper values from ["
      << link(out, spec.reference) << "](" << link(out, spec.reference) << ").\n\n";
+  return md.str();
+}
+
+// One E of the crossings table: per A the paper's count, then per method ours and ours / paper
+// (for a run that reached T); then the paper's dt_sound, 1/c and h/c.
+std::string crossings_row(const Table2Data& d, double E) {
+  const auto pit = d.paper_by_E.find(E);
+  std::ostringstream md;
+  md << "| " << shortest(E) << " |";
+  for (double A : d.As) {
+    std::string paper_count = "–";
+    double paper_n = 0;
+    if (pit != d.paper_by_E.end()) {
+      const std::string col = "crossings_A" + shortest(A);
+      if (pit->second.count(col)) {
+        paper_count = pit->second.at(col);
+        paper_n = std::stod(paper_count);
+      }
+    }
+    md << " " << paper_count << " |";
+    for (const auto& m : d.methods) {
+      const ojson* r = d.find_row(E, A, m);
+      std::string ratio_text = "–";
+      if (r && (*r)["stable"].get<bool>() && (*r)["crossings"].is_number() && paper_n > 0) {
+        ratio_text = ratio((*r)["crossings"].get<double>() / paper_n);
+      }
+      md << " " << crossings(r) << " | " << ratio_text << " |";
+    }
+  }
+  const ojson* any = d.find_row(E, d.As.front(), d.methods.front());
+  md << " " << (pit != d.paper_by_E.end() ? pit->second.at("dt_sound") : "–") << " | "
+     << (any ? sci((*any)["dt_sound"].get<double>(), 4) : "–") << " | "
+     << (any ? sci((*any)["dt_cfl"].get<double>(), 4) : "–") << " |\n";
+  return md.str();
+}
+
+// The paper's Table 2 with ours beside it: one row per E.
+std::string crossings_table(const Table2Data& d) {
+  std::ostringstream md;
   md << "| E |";
-  for (double A : As) {
+  for (double A : d.As) {
     md << " A = " << shortest(A) << ": paper |";
-    for (const auto& m : methods)
+    for (const auto& m : d.methods)
       md << " ours " << m << " | " << m << " / paper |";
   }
   md << " dt_sound paper | 1/c | h/c |\n|---|";
-  for (std::size_t k = 0; k < As.size() * (1 + 2 * methods.size()); ++k)
+  for (std::size_t k = 0; k < d.As.size() * (1 + 2 * d.methods.size()); ++k)
     md << "---|";
   md << "---|---|---|\n";
-  for (double E : Es) {
-    const auto pit = paper_by_E.find(E);
-    md << "| " << shortest(E) << " |";
-    for (double A : As) {
-      std::string paper_count = "–";
-      double paper_n = 0;
-      if (pit != paper_by_E.end()) {
-        const std::string col = "crossings_A" + shortest(A);
-        if (pit->second.count(col)) {
-          paper_count = pit->second.at(col);
-          paper_n = std::stod(paper_count);
-        }
-      }
-      md << " " << paper_count << " |";
-      for (const auto& m : methods) {
-        const ojson* r = find_row(E, A, m);
-        std::string ratio_text = "–";
-        if (r && (*r)["stable"].get<bool>() && (*r)["crossings"].is_number() && paper_n > 0) {
-          ratio_text = ratio((*r)["crossings"].get<double>() / paper_n);
-        }
-        md << " " << crossings(r) << " | " << ratio_text << " |";
-      }
-    }
-    const ojson* any = find_row(E, As.front(), methods.front());
-    md << " " << (pit != paper_by_E.end() ? pit->second.at("dt_sound") : "–") << " | "
-       << (any ? sci((*any)["dt_sound"].get<double>(), 4) : "–") << " | "
-       << (any ? sci((*any)["dt_cfl"].get<double>(), 4) : "–") << " |\n";
-  }
+  for (double E : d.Es)
+    md << crossings_row(d, E);
+  return md.str();
+}
+
+// The notes the transcription of the paper's table records.
+std::string transcription_notes(const CsvTable& paper) {
+  std::ostringstream md;
   md << "\nNotes from the transcription: ";
   for (const auto& row : paper.rows) {
     if (!row.at("note").empty()) md << "E = " << row.at("E") << ": " << row.at("note") << ". ";
   }
+  return md.str();
+}
+
+// Every case: its verdict, crossings and cost.
+std::string every_case_table(const Spec& spec, const std::vector<ojson>& rows) {
+  std::ostringstream md;
   md << "\n\nEvery case: its verdict and cost.\n\n| E | A | method | dt | c dt/h | verdict | "
         "crossings | cost |\n|---|---|---|---|---|---|---|---|\n";
   for (std::size_t i = 0; i < rows.size(); ++i) {
@@ -146,6 +180,12 @@ std::string table2_markdown(const Spec& spec, const std::vector<ojson>& rows, co
        << " | " << crossings(&rows[i]) << " | " << cost(rows[i]) << " |\n";
   }
   return md.str();
+}
+
+std::string table2_markdown(const Spec& spec, const std::vector<ojson>& rows, const fs::path& out) {
+  const Table2Data d(spec, rows);
+  return table2_intro(spec, rows, out) + crossings_table(d) + transcription_notes(d.paper) +
+         every_case_table(spec, rows);
 }
 
 const StudyRegistration kTable2{{
@@ -160,8 +200,7 @@ const StudyRegistration kTable2{{
     .index =
         [](const Spec& spec, const std::vector<ojson>&) {
           return "**What it shows.** Our crossing counts beside the paper's approximate ones, per "
-                 "E "
-                 "and A, and both readings of dt_sound: [" +
+                 "E and A, and both readings of dt_sound: [" +
                  spec.name + ".md](" + spec.name + ".md).\n\n";
         },
 }};

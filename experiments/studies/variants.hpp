@@ -1,11 +1,14 @@
 // The variants study: Table 1's cells under each documented implementation choice, one at a
 // time and in a few pairs, read against the paper with the comparison's rules (classify() in
 // comparison.hpp): which choices can, and which cannot, account for each class of disagreement.
+// The numbers are computed in variants_analysis.cpp, the report is written in
+// variants_report.cpp, and variants.cpp registers the study.
 #pragma once
 
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -77,5 +80,19 @@ std::string variants_data_csv(const VariantsStudy& s, const std::string& header_
 // single change and the best pair with their numbers, and the variants that account for it.
 std::string variants_line(const nlohmann::ordered_json& study, const std::string& class_id,
                           const std::string& report_link);
+
+// Shared by the study's numbers (variants_analysis.cpp) and its report (variants_report.cpp).
+
+// The classes of disagreement the study reads (the verdict and error classes), in report order.
+std::vector<const ComparisonClass*> variants_disagreement_classes();
+
+// The cells of a class under the default run (0 when none is in it).
+int class_cell_count(const VariantsStudy& s, const std::string& class_id);
+
+// A variant's outcome for a class (all zero when it ran none of the class's cells).
+VariantClassOutcome class_outcome(const VariantOutcome& v, const std::string& class_id);
+
+// The median of a list of ratios, none when it is empty.
+std::optional<double> median_ratio(const std::vector<double>& ratios);
 
 }  // namespace mpmstab

@@ -1,0 +1,115 @@
+// `mpmstab edge`: the largest fixed dt with which one case survives to T (core/edge.hpp).
+#include <algorithm>
+#include <iostream>
+#include <ostream>
+#include <string>
+
+#include "args.hpp"
+#include "commands.hpp"
+#include "edge.hpp"
+#include "params.hpp"
+#include "result_json.hpp"
+#include "run_options.hpp"
+
+namespace mpmstab::cli {
+
+namespace {
+
+constexpr const char* kEdgeHelp =
+    R"(Usage: mpmstab edge --method gimp|cpgimp|mpm --E <x> --A <x> [options]
+
+Finds the real stability edge of one case: the largest fixed dt with which the bar survives
+to T (the scene, method and choices as given). A log-spaced scan dt = (h/c) 2^(k/2) from h/(16c) to 4h/c, then bisection to within
+--tolerance. Reports dt_edge, dt_edge / (h/c), dt_edge / (the eq. 108 minimum of the run at
+dt_edge), and warns when stability is not monotone in dt.
+
+Options: --T, --cells, --ppc, --bc, --position-update, --scene, --walls, --transfer,
+--flip-fraction, --update, --body-force-time, --dt-stable-sigma, --dt-stable-vnorm,
+--max-steps as for 'mpmstab run'; --tolerance <x> (default 0.02); --json.
+)";
+
+// The options of `run` that describe the case (not its dt, policy or history), and the
+// search's tolerance.
+std::vector<OptionSpec> edge_options() {
+  const std::vector<std::string> searched = {"dt",     "policy",  "cfl-factor",
+                                             "safety", "history", "history-stride"};
+  std::vector<OptionSpec> options;
+  for (const auto& o : run_options()) {
+    if (std::find(searched.begin(), searched.end(), o.name) == searched.end()) {
+      options.push_back(o);
+    }
+  }
+  options.push_back({"tolerance"});
+  return options;
+}
+
+// The case, then the search's result (edge_to_json).
+nlohmann::ordered_json edge_json(const RunParams& params, const EdgeResult& e) {
+  nlohmann::ordered_json out = {{"method", to_string(params.method)},
+                                {"E", params.E},
+                                {"A", params.A},
+                                {"T", params.T},
+                                {"cells", params.cells},
+                                {"ppc", params.ppc},
+                                {"bc", to_string(params.bc)}};
+  nlohmann::ordered_json j = edge_to_json(e);
+  for (auto& [k, v] : j.items())
+    out[k] = v;
+  return out;
+}
+
+void print_summary(std::ostream& out, const RunParams& params, const EdgeResult& e) {
+  out << "mpmstab edge: " << to_string(params.method) << ", E = " << fmt(params.E)
+      << ", A = " << fmt(params.A) << ", T = " << fmt(params.T) << ", " << params.cells
+      << " cells x " << params.ppc << " ppc, " << to_string(params.bc) << "\n";
+  if (!e.dt_edge) {
+    out << "  no dt from h/(16c) to 4h/c survives to T\n";
+    return;
+  }
+  out << "  dt_edge               " << fmt(*e.dt_edge)
+      << (e.dt_fail ? "  (fails at " + fmt(*e.dt_fail) + ")"
+                    : std::string("  (every dt up to T survives)"))
+      << "\n  h/c                   " << fmt(e.dt_cfl) << "\n  dt_edge / (h/c)       "
+      << fmt(*e.dt_edge / e.dt_cfl) << "\n";
+  if (e.at_edge && e.at_edge->dt_stable_min) {
+    out << "  eq. (108) at dt_edge  " << fmt(*e.at_edge->dt_stable_min)
+        << "\n  dt_edge / eq. (108)   " << fmt(*e.dt_edge / *e.at_edge->dt_stable_min) << "\n";
+  }
+  out << "  runs                  " << e.probes.size() << " in " << fmt(e.wall_seconds) << " s\n";
+  if (!e.failed_below_edge.empty()) {
+    out << "  warning: stability is not monotone in dt: smaller steps failed at";
+    for (double dt : e.failed_below_edge)
+      out << " " << fmt(dt);
+    out << "\n";
+  }
+}
+
+}  // namespace
+
+int cmd_edge(const std::vector<std::string_view>& argv) {
+  const Args args(argv, edge_options());
+  if (args.flag("help")) {
+    std::cout << kEdgeHelp;
+    return 0;
+  }
+  if (!args.positional().empty()) {
+    throw UsageError("unexpected argument '" + std::string(args.positional().front()) + "'");
+  }
+  EdgeOptions options;
+  if (auto v = args.value("tolerance")) {
+    options.tolerance = parse_double(*v, "tolerance");
+    if (!(options.tolerance >= 1e-6 && options.tolerance <= 1)) {
+      throw UsageError("--tolerance: must be in [1e-6, 1]");
+    }
+  }
+  const RunParams params = params_from(args, true);
+  const EdgeResult e = find_edge(params, options);
+  if (args.flag("json")) {
+    std::cout << edge_json(params, e).dump(2) << "\n";
+  } else {
+    print_summary(std::cout, params, e);
+  }
+  return 0;
+}
+
+}  // namespace mpmstab::cli

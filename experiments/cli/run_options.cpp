@@ -1,0 +1,167 @@
+#include "run_options.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <optional>
+
+namespace mpmstab::cli {
+
+namespace {
+
+// Parameter keys (params.hpp) are snake_case; options spell them with dashes.
+std::string option_for_key(std::string key) {
+  std::replace(key.begin(), key.end(), '_', '-');
+  return "--" + key;
+}
+
+std::string_view required(const Args& a, std::string_view name) {
+  auto v = a.value(name);
+  if (!v) throw UsageError("missing required option --" + std::string(name));
+  return *v;
+}
+
+template <class Enum>
+Enum parse_choice(std::string_view text, std::string_view option,
+                  std::optional<Enum> (*parse)(std::string_view), std::string_view choices) {
+  if (auto e = parse(text)) return *e;
+  throw UsageError("--" + std::string(option) + ": unknown value '" + std::string(text) +
+                   "' (expected " + std::string(choices) + ")");
+}
+
+int to_int(std::string_view text, std::string_view option) {
+  const std::int64_t v = parse_int(text, option);
+  if (v < -1'000'000'000 || v > 1'000'000'000) {
+    throw UsageError("--" + std::string(option) + ": " + std::string(text) + " is out of range");
+  }
+  return static_cast<int>(v);
+}
+
+// --policy, --dt, --cfl-factor, --safety and --T.
+void read_time_stepping(const Args& a, bool searching_dt, RunParams& p) {
+  if (auto v = a.value("policy")) {
+    p.stepping.policy =
+        parse_choice(*v, "policy", parse_time_step_policy, "fixed, cfl, adaptive or min");
+  }
+  if (!searching_dt) {
+    if (p.stepping.policy == TimeStepPolicy::fixed) {
+      p.dt = parse_double(required(a, "dt"), "dt");
+    } else if (a.value("dt")) {
+      throw UsageError("--dt: only with --policy fixed (the " +
+                       std::string(to_string(p.stepping.policy)) + " policy chooses dt itself)");
+    }
+  }
+  if (auto v = a.value("cfl-factor")) p.stepping.cfl_factor = parse_double(*v, "cfl-factor");
+  if (auto v = a.value("safety")) p.stepping.safety = parse_double(*v, "safety");
+  if (auto v = a.value("T")) p.T = parse_double(*v, "T");
+  if (searching_dt) p.dt = p.T;  // replaced by the search
+}
+
+// The grid, the boundary conditions and the implementation choices (params.hpp).
+void read_choices(const Args& a, RunParams& p) {
+  if (auto v = a.value("cells")) p.cells = to_int(*v, "cells");
+  if (auto v = a.value("ppc")) p.ppc = to_int(*v, "ppc");
+  if (auto v = a.value("bc"))
+    p.bc = parse_choice(*v, "bc", parse_boundary, "dirichlet or periodic");
+  if (auto v = a.value("position-update")) {
+    p.position_update =
+        parse_choice(*v, "position-update", parse_position_update, "grid or particle");
+  }
+  if (auto v = a.value("scene")) p.scene = parse_choice(*v, "scene", parse_scene, "bar or steffen");
+  if (auto v = a.value("walls")) p.walls = parse_choice(*v, "walls", parse_walls, "clip or ghost");
+  if (auto v = a.value("transfer")) {
+    p.transfer = parse_choice(*v, "transfer", parse_transfer, "flip, pic or blend");
+  }
+  if (auto v = a.value("flip-fraction")) {
+    if (p.transfer != Transfer::blend)
+      throw UsageError("--flip-fraction: only with --transfer blend");
+    p.flip_fraction = parse_double(*v, "flip-fraction");
+  }
+  if (auto v = a.value("update")) {
+    p.update = parse_choice(*v, "update", parse_update_order, "usl, usf or musl");
+  }
+  if (auto v = a.value("body-force-time")) {
+    p.body_force_time = parse_choice(*v, "body-force-time", parse_body_force_time, "start or end");
+  }
+}
+
+// The options of eq. (108), the step cap and the history.
+void read_measurements(const Args& a, RunParams& p) {
+  if (auto v = a.value("dt-stable-sigma")) {
+    p.stable.sigma = parse_choice(*v, "dt-stable-sigma", parse_stress_scaling, "scaled or raw");
+  }
+  if (auto v = a.value("dt-stable-vnorm")) {
+    p.stable.vnorm = parse_choice(*v, "dt-stable-vnorm", parse_velocity_norm, "l2 or max");
+  }
+  if (auto v = a.value("max-steps")) p.max_steps = parse_int(*v, "max-steps");
+  if (auto v = a.value("history-stride"))
+    p.observe.history_stride = parse_int(*v, "history-stride");
+  p.observe.history = a.value("history").has_value();
+  if (p.observe.history && a.value("history")->empty()) {
+    throw UsageError("--history: needs a file name");
+  }
+}
+
+// One UsageError naming, line by line, every option that validate() rejects.
+void throw_if_invalid(const RunParams& p) {
+  const auto issues = validate(p);
+  if (issues.empty()) return;
+  std::string message;
+  for (const auto& issue : issues) {
+    if (!message.empty()) message += "\n";
+    message += option_for_key(issue.key) + ": " + issue.message;
+  }
+  throw UsageError(message);
+}
+
+}  // namespace
+
+const std::vector<OptionSpec>& run_options() {
+  static const std::vector<OptionSpec> options = {
+      {"method"},
+      {"E"},
+      {"A"},
+      {"dt"},
+      {"T"},
+      {"cells"},
+      {"ppc"},
+      {"bc"},
+      {"position-update"},
+      {"scene"},
+      {"walls"},
+      {"transfer"},
+      {"flip-fraction"},
+      {"update"},
+      {"body-force-time"},
+      {"dt-stable-sigma"},
+      {"dt-stable-vnorm"},
+      {"max-steps"},
+      {"policy"},
+      {"cfl-factor"},
+      {"safety"},
+      {"history"},
+      {"history-stride"},
+      {"json", false},
+      {"help", false},
+  };
+  return options;
+}
+
+RunParams params_from(const Args& a, bool searching_dt) {
+  RunParams p;
+  p.method = parse_choice(required(a, "method"), "method", parse_method, "gimp, cpgimp or mpm");
+  p.E = parse_double(required(a, "E"), "E");
+  p.A = parse_double(required(a, "A"), "A");
+  read_time_stepping(a, searching_dt, p);
+  read_choices(a, p);
+  read_measurements(a, p);
+  throw_if_invalid(p);
+  return p;
+}
+
+std::string fmt(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.4g", v);
+  return buf;
+}
+
+}  // namespace mpmstab::cli

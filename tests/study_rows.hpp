@@ -1,0 +1,80 @@
+// Synthetic result rows and a report context, for testing what a study writes from its rows
+// without running the solver.
+#pragma once
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "spec.hpp"
+#include "study.hpp"
+#include "sweep.hpp"
+
+namespace mpmstab::test_support {
+
+// A stable row of the bar with every column the studies read; tests change what they need.
+inline nlohmann::ordered_json study_row(const std::string& method, double E) {
+  return {{"method", method},
+          {"E", E},
+          {"A", 0.015},
+          {"dt", 1e-4},
+          {"T", 1.0},
+          {"cells", 100},
+          {"ppc", 2},
+          {"bc", "dirichlet"},
+          {"scene", "bar"},
+          {"policy", "fixed"},
+          {"cfl_factor", 0.5},
+          {"safety", 1.0},
+          {"stable", true},
+          {"failure_reason", nullptr},
+          {"failure_step", nullptr},
+          {"failure_time", nullptr},
+          {"meaningless", false},
+          {"steps", 10000},
+          {"dt_min", 1e-4},
+          {"dt_max", 1e-4},
+          {"max_error", 1e-6},
+          {"max_error_over_time", 1e-5},
+          {"crossings", 0},
+          {"dt_stable_min", 1e-5},
+          {"dt_cfl", 0.005},
+          {"dt_sound", 0.5},
+          {"courant", 0.02},
+          {"wall_seconds", 0.1},
+          {"ns_per_particle_step", 5.0}};
+}
+
+// Makes a row unstable: `reason` at step 10.
+inline void fail_row(nlohmann::ordered_json& r, const std::string& reason) {
+  r["stable"] = false;
+  r["failure_reason"] = reason;
+  r["failure_step"] = 10;
+  r["failure_time"] = 1e-3;
+  r["max_error"] = r["max_error_over_time"] = nullptr;
+}
+
+// What the study registered under `study` writes for these rows.
+inline StudyReport study_report(const std::string& study,
+                                const std::vector<nlohmann::ordered_json>& rows) {
+  Spec spec;
+  spec.name = std::string("s");  // moved in: GCC 12 warns (-Wrestrict) on copying a literal
+  spec.title = std::string("S");
+  spec.study = find_study(study);
+  const SweepOutcome outcome;
+  const std::filesystem::path out = std::filesystem::temp_directory_path();
+  const std::string header = "# header\n";
+  const StudyInputs inputs;
+  return spec.study->report(ReportContext{spec, rows, outcome, out, header, inputs});
+}
+
+// The line of `text` that contains `needle` ("" if none).
+inline std::string line_with(const std::string& text, const std::string& needle) {
+  const auto at = text.find(needle);
+  if (at == std::string::npos) return "";
+  const auto begin = text.rfind('\n', at) + 1;
+  return text.substr(begin, text.find('\n', at) - begin);
+}
+
+}  // namespace mpmstab::test_support
