@@ -124,26 +124,16 @@ std::string edge_index(const Spec& spec, const std::vector<ojson>& rows) {
   return md.str();
 }
 
-// The figure draws the first scene; every scene has its own section.
-StudyReport edge_report(const ReportContext& c) {
-  StudyReport report;
-  const auto scenes = by_scene(c.rows);
-  for (std::size_t i = 0; i < scenes.size(); ++i)
-    report.markdown += edge_markdown(c.spec, scenes[i].rows, i == 0);
-  report.data_csv = edge_data_csv(scenes.front().rows, c.csv_header);
-  return report;
-}
-
 const StudyRegistration kEdge{{
     .name = "edge",
     .summary = "the largest fixed dt that survives to T, per case (a search over dt)",
     .work = CaseWork::edge_search,
     .records = {.error_over_time = true},
     .figure = true,
-    .report = edge_report,
+    .report =
+        [](const ReportContext& c) { return report_by_scene(c, edge_markdown, edge_data_csv); },
     .index = edge_index,
-    .figure_subtitle = [](const Spec& spec,
-                          const ojson& doc) { return first_scene_subtitle(spec.name, doc); },
+    .figure_subtitle = first_scene_subtitle,
 }};
 
 }  // namespace

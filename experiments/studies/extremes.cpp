@@ -230,8 +230,7 @@ const StudyRegistration kExtremes{{
                              .data_csv = extremes_data_csv(c.rows, c.csv_header)};
         },
     .index = extremes_index,
-    .figure_subtitle = [](const Spec& spec,
-                          const ojson& doc) { return first_scene_subtitle(spec.name, doc); },
+    .figure_subtitle = first_scene_subtitle,
 }};
 
 }  // namespace

@@ -26,7 +26,7 @@ std::string scene_title(const std::string& scene) {
   return "Scene " + scene;
 }
 
-std::string first_scene_subtitle(const std::string& spec_name, const ojson& doc) {
+std::string first_scene_subtitle(const Spec& spec, const ojson& doc) {
   const auto& c = doc["cases"][0];
   std::size_t drawn = 0;
   for (const auto& r : doc["cases"])
@@ -36,7 +36,16 @@ std::string first_scene_subtitle(const std::string& spec_name, const ojson& doc)
     subtitle += " of the scene " + c.value("scene", std::string()) + " (of " +
                 std::to_string(doc["cases"].size()) + "; every scene is in the tables)";
   }
-  return subtitle + "; the parameters of each are in " + spec_name + ".md";
+  return subtitle + "; the parameters of each are in " + spec.name + ".md";
+}
+
+StudyReport report_by_scene(const ReportContext& c, SceneSection section, SceneData data) {
+  StudyReport report;
+  const auto scenes = by_scene(c.rows);
+  for (std::size_t i = 0; i < scenes.size(); ++i)
+    report.markdown += section(c.spec, scenes[i].rows, i == 0);
+  report.data_csv = data(scenes.front().rows, c.csv_header);
+  return report;
 }
 
 }  // namespace mpmstab

@@ -6,6 +6,9 @@
 #include <string>
 #include <vector>
 
+#include "spec.hpp"
+#include "study.hpp"
+
 namespace mpmstab {
 
 struct SceneRows {
@@ -20,7 +23,15 @@ std::vector<SceneRows> by_scene(const std::vector<nlohmann::ordered_json>& rows)
 std::string scene_title(const std::string& scene);
 
 // The subtitle of a study's figure, which draws the first scene: how many cases it draws, and
-// of how many when other scenes are only in the tables.
-std::string first_scene_subtitle(const std::string& spec_name, const nlohmann::ordered_json& doc);
+// of how many when other scenes are only in the tables (a Study::figure_subtitle).
+std::string first_scene_subtitle(const Spec& spec, const nlohmann::ordered_json& doc);
+
+// A study's report with one section per scene, the first (the paper's bar) with the figure,
+// and the figure's data from the first scene's rows.
+using SceneSection = std::string (*)(const Spec& spec,
+                                     const std::vector<nlohmann::ordered_json>& rows, bool first);
+using SceneData = std::string (*)(const std::vector<nlohmann::ordered_json>& rows,
+                                  const std::string& csv_header);
+StudyReport report_by_scene(const ReportContext& c, SceneSection section, SceneData data);
 
 }  // namespace mpmstab

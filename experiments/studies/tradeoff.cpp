@@ -374,22 +374,15 @@ std::string tradeoff_data_csv(const std::vector<ojson>& rows, const std::string&
   return csv.str();
 }
 
-// The figure draws the first scene; every scene has its own tables.
-StudyReport tradeoff_report(const ReportContext& c) {
-  StudyReport report;
-  const auto scenes = by_scene(c.rows);
-  for (std::size_t i = 0; i < scenes.size(); ++i)
-    report.markdown += tradeoff_markdown(c.spec, scenes[i].rows, i == 0);
-  report.data_csv = tradeoff_data_csv(scenes.front().rows, c.csv_header);
-  return report;
-}
-
 const StudyRegistration kTradeoff{{
     .name = "tradeoff",
     .summary = "error against cost across methods, time-step policies and their parameters",
     .records = {.error_over_time = true},
     .figure = true,
-    .report = tradeoff_report,
+    .report =
+        [](const ReportContext& c) {
+          return report_by_scene(c, tradeoff_markdown, tradeoff_data_csv);
+        },
     .index =
         [](const Spec& spec, const std::vector<ojson>&) {
           return "![" + spec.title + "](" + spec.name + ".png)\n\n**What it shows.** The cost of " +
@@ -397,8 +390,7 @@ const StudyRegistration kTradeoff{{
                  "Pareto front and the cheapest setting for each target: [" +
                  spec.name + ".md](" + spec.name + ".md).\n\n";
         },
-    .figure_subtitle = [](const Spec& spec,
-                          const ojson& doc) { return first_scene_subtitle(spec.name, doc); },
+    .figure_subtitle = first_scene_subtitle,
 }};
 
 }  // namespace

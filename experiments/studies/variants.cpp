@@ -50,8 +50,7 @@ const StudyRegistration kVariants{{
     .figure = true,
     .report = variants_report,
     .index = variants_index,
-    .figure_subtitle = [](const Spec& spec,
-                          const ojson& doc) { return first_scene_subtitle(spec.name, doc); },
+    .figure_subtitle = first_scene_subtitle,
 }};
 
 }  // namespace
