@@ -125,6 +125,16 @@ TEST(Cli, HelpExitsZero) {
   EXPECT_NE(o.output.find("--dt-stable-sigma"), std::string::npos);
 }
 
+// The version names the build a result would come from: solver version, commit, compiler, flags.
+TEST(Cli, VersionNamesTheBuild) {
+  const Outcome o = run_mpmstab("--version");
+  EXPECT_EQ(o.status, 0);
+  for (const char* field : {"mpmstab ", "solver version ", "commit: ", "compiler: ", "flags: "})
+    EXPECT_NE(o.output.find(field), std::string::npos) << field << "\n" << o.output;
+  EXPECT_NE(o.output.find("-ffp-contract=off"), std::string::npos) << o.output;
+  EXPECT_EQ(run_mpmstab("--version extra").status, 2);
+}
+
 TEST(Cli, BadInputWritesNothing) {
   const auto path = std::filesystem::temp_directory_path() / "mpmstab_cli_history_test.csv";
   std::filesystem::remove(path);

@@ -6,6 +6,8 @@
 
 #include "args.hpp"
 #include "commands.hpp"
+#include "provenance.hpp"
+#include "version.hpp"
 
 namespace {
 
@@ -25,13 +27,22 @@ Commands:
   slurm   write a Slurm job array that runs a sweep in shards, and its merge job
   list    the experiment specs in the order they run, or the studies the program knows
 
-'mpmstab <command> --help' describes a command.
+'mpmstab <command> --help' describes a command; 'mpmstab --version' prints the version, the
+commit, the compiler and the flags of this build.
 )";
 
 }  // namespace
 
 int main(int argc, char** argv) {
   std::vector<std::string_view> args(argv + 1, argv + argc);
+  if (args.size() == 1 && args[0] == "--version") {
+    const mpmstab::Provenance p = mpmstab::current_provenance(1);
+    std::cout << "mpmstab " << MPMSTAB_VERSION << ", solver version " << mpmstab::kSolverVersion
+              << "\ncommit: " << p.commit << (p.dirty ? " (with uncommitted changes)" : "")
+              << "\ncompiler: " << p.compiler << "\nflags: " << p.flags << "\neigen: " << p.eigen
+              << "\n";
+    return 0;
+  }
   if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
     (args.empty() ? std::cerr : std::cout) << kUsage;
     return args.empty() ? 2 : 0;
