@@ -137,6 +137,12 @@ bool default_choices(const RunParams& p) {
          p.update == d.update && p.body_force_time == d.body_force_time;
 }
 
+std::optional<ParamIssue> check_dt_given(TimeStepPolicy policy) {
+  if (policy == TimeStepPolicy::fixed) return std::nullopt;
+  return ParamIssue{"dt", "only with policy fixed (the " + std::string(to_string(policy)) +
+                              " policy chooses dt itself)"};
+}
+
 std::optional<double> fixed_step(const RunParams& p) {
   switch (p.stepping.policy) {
     case TimeStepPolicy::fixed:

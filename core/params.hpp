@@ -124,6 +124,10 @@ const std::vector<std::string>& parameter_names();
 // All checks on a RunParams, in one place. Empty result: the parameters are valid.
 std::vector<ParamIssue> validate(const RunParams& p);
 
+// The one check on what was given rather than on the values: a dt given with a policy that
+// chooses dt itself is refused (the command line and the specs both ask it).
+std::optional<ParamIssue> check_dt_given(TimeStepPolicy policy);
+
 // Number of time steps the run takes: ceil(T / dt), the last one shortened to land on T.
 // Returns nullopt when the count does not fit in 64 bits.
 std::optional<std::int64_t> step_count(double T, double dt);

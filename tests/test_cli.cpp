@@ -1,5 +1,6 @@
 // The command line: every invalid input exits 2 naming the option; a valid run prints JSON.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -172,6 +173,36 @@ TEST(Cli, PoliciesTakeDtOnlyWhenFixed) {
   const auto j = nlohmann::json::parse(json.output);
   EXPECT_EQ(j["policy"], "adaptive");
   EXPECT_LT(j["dt_min"].get<double>(), j["dt_max"].get<double>());
+}
+
+// The spec and the command line refuse a dt given with a policy that chooses its own, with the
+// same message after the name of the option or key.
+TEST(Cli, SpecsRefuseDtWithAPolicyAsTheCommandLineDoes) {
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("mpmstab_cli_dt_policy_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "case.json") << R"({"name": "c", "report": "cases", "cases": [
+      {"method": "gimp", "E": 4, "A": 0.01, "T": 0.01, "policy": "cfl", "dt": 1e-3}]})";
+  std::ofstream(dir / "defaults.json") << R"({"name": "d", "report": "cases",
+      "defaults": {"dt": 1e-3}, "cases": [{"method": "gimp", "E": 4, "A": 0.01, "T": 0.01},
+      {"method": "gimp", "E": 4, "A": 0.01, "T": 0.01, "policy": "adaptive"}]})";
+  const Outcome cli =
+      run_mpmstab("run --method gimp --E 4 --A 0.01 --T 0.01 --policy cfl --dt 1e-3");
+  const Outcome spec =
+      run_mpmstab("sweep " + (dir / "case.json").string() + " --out " + (dir / "out").string());
+  const Outcome defaults =
+      run_mpmstab("sweep " + (dir / "defaults.json").string() + " --out " + (dir / "out").string());
+  const std::string message = "only with policy fixed (the cfl policy chooses dt itself)";
+  EXPECT_EQ(cli.status, 2);
+  EXPECT_NE(cli.output.find("--dt: " + message), std::string::npos) << cli.output;
+  EXPECT_EQ(spec.status, 2);
+  EXPECT_NE(spec.output.find("cases[0].dt: " + message), std::string::npos) << spec.output;
+  EXPECT_EQ(defaults.status, 2);
+  EXPECT_NE(defaults.output.find("defaults.dt: only with policy fixed (the adaptive policy"),
+            std::string::npos)
+      << defaults.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out/c.md"));
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

@@ -46,8 +46,8 @@ void read_time_stepping(const Args& a, bool searching_dt, RunParams& p) {
     if (p.stepping.policy == TimeStepPolicy::fixed) {
       p.dt = parse_double(required(a, "dt"), "dt");
     } else if (a.value("dt")) {
-      throw UsageError("--dt: only with --policy fixed (the " +
-                       std::string(to_string(p.stepping.policy)) + " policy chooses dt itself)");
+      const ParamIssue issue = *check_dt_given(p.stepping.policy);
+      throw UsageError(option_for_key(issue.key) + ": " + issue.message);
     }
   }
   if (auto v = a.value("cfl-factor")) p.stepping.cfl_factor = parse_double(*v, "cfl-factor");

@@ -533,6 +533,8 @@ CaseSpec read_case(const Reader& r, const json& defaults, const json& c, const s
     p.dt = p.T;  // a placeholder that validates; the search sets dt
   } else if (p.stepping.policy == TimeStepPolicy::fixed && !source.count("dt")) {
     r.fail(at + ".dt", "is required with the fixed policy (in the case or in defaults)");
+  } else if (source.count("dt")) {
+    if (const auto issue = check_dt_given(p.stepping.policy)) r.fail(source["dt"], issue->message);
   }
   const auto issues = validate(p);
   if (!issues.empty()) {
