@@ -12,7 +12,7 @@
 
 namespace mpmstab {
 
-// Shape functions (DESIGN.md section 2): linear hat ("mpm"), uGIMP with fixed half-width
+// Shape functions (docs/design.md, "The scheme"): linear hat ("mpm"), uGIMP with fixed half-width
 // lp = h / (2 m) ("gimp"), or cpGIMP, whose half-width follows the deformation, lp = F_p h / (2 m)
 // ("cpgimp"); a cpGIMP particle wider than two cells (lp > h) ends the run (support_too_wide).
 enum class Method { mpm, gimp, cpgimp };
@@ -30,7 +30,7 @@ enum class Boundary { dirichlet, periodic };
 // updated particle velocity v_p^{n+1} (the paper's eq. 10).
 enum class PositionUpdate { grid, particle };
 
-// Documented implementation choices of the MPM literature (DESIGN.md section 2). The first
+// Documented implementation choices of the MPM literature (docs/design.md, "The scheme"). The first
 // value of each is the default.
 //  - walls (Dirichlet, GIMP supports): `clip` keeps nodes on [0, 1] only, so what a support
 //    puts beyond a wall is dropped; `ghost` adds one free node beyond each wall (as codes that

@@ -1,5 +1,5 @@
-// The phases of one step, symplectic Euler A (paper sections 2 and 4; DESIGN.md section 2).
-// Equation numbers are the paper's.
+// The phases of one step, symplectic Euler A (paper sections 2 and 4; docs/design.md, "The
+// scheme"). Equation numbers are the paper's.
 //
 //   p2g           mass, momentum and force to the grid                   eqs. (5)-(7)
 //   grid_update   nodal acceleration and velocity, boundary conditions   eqs. (7), (8)

@@ -1,4 +1,4 @@
-// Everything one run measures (DESIGN.md section 3).
+// Everything one run measures (docs/design.md, "Measured quantities").
 #pragma once
 
 #include <cstdint>

@@ -1,4 +1,4 @@
-// `mpmstab run`: one case of the bar, measured (DESIGN.md section 4).
+// `mpmstab run`: one case of the bar, measured (docs/design.md, "Measured quantities").
 #include <iostream>
 #include <optional>
 #include <sstream>

@@ -97,7 +97,8 @@ std::string table2_intro(const Spec& spec, const std::vector<ojson>& rows, const
   std::ostringstream md;
   md << "## Results\n\n**Summary.** " << table2_summary_text(spec, rows)
      << "\n\nCrossings: the number of cell boundaries passed by all particles over the "
-        "run (DESIGN.md section 3). `*`: the run became unstable; the count is up to the failure. "
+        "run ([design](../docs/design.md#measured-quantities)). `*`: the run became unstable; the "
+        "count is up to the failure. "
         "The paper's counts are \"approximate\"; its dt and method for them are not stated. Ours "
         "use dt = "
      << param(spec.cases.front().params.dt)
