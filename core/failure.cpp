@@ -17,6 +17,8 @@ std::string_view to_string(FailureReason r) {
       return "left_domain";
     case FailureReason::step_limit:
       return "step_limit";
+    case FailureReason::dt_collapse:
+      return "dt_collapse";
   }
   return "?";
 }

@@ -1,8 +1,10 @@
 // Failure detection: the run stops as unstable ("*" in Table 1) when a particle leaves the
 // domain (Dirichlet), any state value is not finite, or some F_p <= 0. With cpGIMP it also stops
 // when a particle's half-width lp_p = F_p h / (2 m) exceeds h (F_p > 2 m): its support would
-// then cover more nodes than the basis has (shape.hpp, CpGimpBasis). A run whose time-step
-// policy needs more steps than the cap stops with step_limit (set by the run driver).
+// then cover more nodes than the basis has (shape.hpp, CpGimpBasis). The run driver sets two
+// more: step_limit when a run needs more steps than its cap, and dt_collapse when an adaptive or
+// min policy asks for a step below kDtCollapseFraction of the CFL step h / c (params.hpp): the
+// policy itself has failed, whatever the state.
 #pragma once
 
 #include <cstdint>
@@ -15,7 +17,14 @@
 
 namespace mpmstab {
 
-enum class FailureReason { non_finite, nonpositive_F, support_too_wide, left_domain, step_limit };
+enum class FailureReason {
+  non_finite,
+  nonpositive_F,
+  support_too_wide,
+  left_domain,
+  step_limit,
+  dt_collapse
+};
 
 std::string_view to_string(FailureReason r);
 

@@ -65,6 +65,13 @@ enum class VelocityNorm { l2, max };
 // grid velocity exists yet and the bound is taken with ||v|| = 0.
 enum class TimeStepPolicy { fixed, cfl, adaptive, min };
 
+// An adaptive or min run stops as unstable (dt_collapse) when the step its policy asks for falls
+// below this fraction of the CFL step h / c: a run needing more than 1000 steps per cell
+// crossing time of the wave is a policy that has failed, not a slow run (the bound collapses as
+// the stress of a tangled state grows; GIMP at E = 1e8, A = 0.3 would otherwise take ~2e8 steps).
+// The last step, shortened to land on T, is not checked.
+inline constexpr double kDtCollapseFraction = 1e-3;
+
 struct TimeStepping {
   TimeStepPolicy policy = TimeStepPolicy::fixed;
   double cfl_factor = 0.5;  // C

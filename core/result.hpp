@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <string_view>
 #include <vector>
 
 #include <Eigen/Core>
@@ -29,6 +30,13 @@ struct FinalState {
   Eigen::ArrayXd u_exact, v_exact, sigma_exact;  // exact solution at (X_p, time)
 };
 
+// The verdict of a run (docs/design.md, "Outcomes"): unstable (it stopped with a failure),
+// meaningless (it survived to T but its error over time reached the amplitude A: the answer is as
+// large as the solution) or stable (survived, error over time below A).
+enum class Outcome { unstable, meaningless, stable };
+
+std::string_view to_string(Outcome o);
+
 struct RunResult {
   RunParams params;
   std::int64_t particles = 0;
@@ -38,6 +46,7 @@ struct RunResult {
   // it is the only one.
   double dt_min = 0;
   double dt_max = 0;
+  double dt_mean = 0;  // time reached / steps (T / steps for a run that reached T); 0 if no step
 
   bool stable = false;
   std::optional<Failure> failure;  // set when !stable
@@ -48,14 +57,18 @@ struct RunResult {
   // Largest error over all steps completed before a failure (observer error_over_time).
   std::optional<double> max_error_over_time;
   // The run survived but its error over time reached A: the answer is as large as the solution.
+  // Unset when the run failed or error_over_time was not observed.
   std::optional<bool> meaningless;
+  // unstable, meaningless or stable; unset only for a run that survived without observing its
+  // error over time (the edge search's probes), whose meaningfulness is unknown.
+  std::optional<Outcome> outcome;
   std::optional<std::int64_t> crossings;
   std::optional<double> dt_stable_min;  // min of eq. (108) over the steps (observer dt_stable)
 
   double c = 0;         // wave speed sqrt(E / rho0)
   double dt_cfl = 0;    // h / c, the classical speed-of-sound limit
   double dt_sound = 0;  // 1 / c, Table 2's "dt_sound" column
-  double courant = 0;   // c dt / h
+  double courant = 0;   // c dt / h: dt the fixed step, or the largest adaptive one (0 if none)
 
   double wall_seconds = 0;
   double ns_per_particle_step = 0;

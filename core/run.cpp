@@ -37,7 +37,7 @@ class Driver {
   // 3. Step to T, checking the state after every step.
   bool running() const { return !r_.failure && sim_.time() < p_.T; }
   NextStep next_step() const;
-  bool stops_before_step(const std::atomic<bool>* cancel);
+  bool stops_before_step(const NextStep& next, const std::atomic<bool>* cancel);
   void advance(const NextStep& next);
   bool fails_after_step();
   void observe_step(bool last);
@@ -117,8 +117,8 @@ NextStep Driver::next_step() const {
   return {last ? p_.T : sim_.time() + dt, last};
 }
 
-// Cancellation and the step cap, before the step is taken.
-bool Driver::stops_before_step(const std::atomic<bool>* cancel) {
+// Cancellation, the step cap and a collapsed adaptive step, before the step is taken.
+bool Driver::stops_before_step(const NextStep& next, const std::atomic<bool>* cancel) {
   // Cancellation is polled every 1024 steps: cheap, and prompt (well under a second).
   if (cancel && (sim_.steps() & 1023) == 0 && cancel->load(std::memory_order_relaxed)) {
     r_.interrupted = true;
@@ -126,6 +126,10 @@ bool Driver::stops_before_step(const std::atomic<bool>* cancel) {
   }
   if (sim_.steps() >= p_.max_steps) {
     r_.failure = Failure{FailureReason::step_limit, -1, sim_.steps(), sim_.time()};
+    return true;
+  }
+  if (uses_bound_ && !next.last && next.t_next - sim_.time() < kDtCollapseFraction * r_.dt_cfl) {
+    r_.failure = Failure{FailureReason::dt_collapse, -1, sim_.steps(), sim_.time()};
     return true;
   }
   return false;
@@ -198,15 +202,25 @@ RunResult Driver::result(std::chrono::steady_clock::duration wall) {
   r_.steps = sim_.steps();
   r_.dt_min = std::isfinite(dt_min_) ? dt_min_ : 0;
   r_.dt_max = dt_max_;
-  r_.courant = r_.c * dt_max_ / h_;
+  if (r_.steps > 0) r_.dt_mean = sim_.time() / static_cast<double>(r_.steps);
+  // Fixed and cfl policies: the Courant number of their step, even for a run that failed before
+  // its first step; adaptive ones: of the largest step taken.
+  r_.courant = r_.c * (fixed_dt_ ? std::min(*fixed_dt_, p_.T) : dt_max_) / h_;
   r_.stable = !r_.failure.has_value() && !r_.interrupted;
   if (r_.stable) r_.max_error = sim_.max_error();  // Table 1's "Max Error"
   if (obs_.error_over_time) {
     r_.max_error_over_time = max_error_over_time_;
     if (r_.stable) r_.meaningless = max_error_over_time_ > 0 && max_error_over_time_ >= p_.A;
   }
+  if (!r_.stable && !r_.interrupted) {
+    r_.outcome = Outcome::unstable;
+  } else if (r_.meaningless) {
+    r_.outcome = *r_.meaningless ? Outcome::meaningless : Outcome::stable;
+  }
   if (obs_.crossings) r_.crossings = crossings_;
-  const bool failed_in_a_step = r_.failure && r_.failure->reason != FailureReason::step_limit;
+  // step_limit and dt_collapse stop before a step; the other failures are found after one.
+  const bool failed_in_a_step = r_.failure && r_.failure->reason != FailureReason::step_limit &&
+                                r_.failure->reason != FailureReason::dt_collapse;
   if (obs_.dt_stable && r_.steps > (failed_in_a_step ? 1 : 0)) r_.dt_stable_min = dt_stable_min_;
   if (obs_.final_state) r_.final_state = final_state();
   r_.wall_seconds = std::chrono::duration<double>(wall).count();
@@ -218,13 +232,25 @@ RunResult Driver::result(std::chrono::steady_clock::duration wall) {
 
 }  // namespace
 
+std::string_view to_string(Outcome o) {
+  switch (o) {
+    case Outcome::unstable:
+      return "unstable";
+    case Outcome::meaningless:
+      return "meaningless";
+    case Outcome::stable:
+      return "stable";
+  }
+  return "?";
+}
+
 RunResult run(const RunParams& p, const std::atomic<bool>* cancel) {
   Driver driver(p);
   driver.check_initial_state();
   const auto start = std::chrono::steady_clock::now();
   while (driver.running()) {
     const NextStep next = driver.next_step();
-    if (driver.stops_before_step(cancel)) break;
+    if (driver.stops_before_step(next, cancel)) break;
     driver.advance(next);
     if (driver.fails_after_step()) break;
     driver.observe_step(next.last);

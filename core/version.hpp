@@ -3,5 +3,5 @@
 #pragma once
 
 namespace mpmstab {
-inline constexpr const char* kSolverVersion = "1";
+inline constexpr const char* kSolverVersion = "2";
 }  // namespace mpmstab

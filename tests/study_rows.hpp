@@ -25,16 +25,17 @@ inline nlohmann::ordered_json study_row(const std::string& method, double E) {
           {"bc", "dirichlet"},
           {"scene", "bar"},
           {"policy", "fixed"},
-          {"cfl_factor", 0.5},
-          {"safety", 1.0},
-          {"stable", true},
+          {"cfl_factor", nullptr},
+          {"safety", nullptr},
+          {"outcome", "stable"},
           {"failure_reason", nullptr},
           {"failure_step", nullptr},
           {"failure_time", nullptr},
-          {"meaningless", false},
+          {"failure_particle", nullptr},
           {"steps", 10000},
           {"dt_min", 1e-4},
           {"dt_max", 1e-4},
+          {"dt_mean", 1e-4},
           {"max_error", 1e-6},
           {"max_error_over_time", 1e-5},
           {"crossings", 0},
@@ -42,17 +43,22 @@ inline nlohmann::ordered_json study_row(const std::string& method, double E) {
           {"dt_cfl", 0.005},
           {"dt_sound", 0.5},
           {"courant", 0.02},
-          {"wall_seconds", 0.1},
-          {"ns_per_particle_step", 5.0}};
+          {"particles", 200}};
 }
 
 // Makes a row unstable: `reason` at step 10.
 inline void fail_row(nlohmann::ordered_json& r, const std::string& reason) {
-  r["stable"] = false;
+  r["outcome"] = "unstable";
   r["failure_reason"] = reason;
   r["failure_step"] = 10;
   r["failure_time"] = 1e-3;
   r["max_error"] = r["max_error_over_time"] = nullptr;
+}
+
+// Makes a row meaningless: it survived, but its error over time reached A.
+inline void meaningless_row(nlohmann::ordered_json& r) {
+  r["outcome"] = "meaningless";
+  r["max_error_over_time"] = r["A"];
 }
 
 // What the study registered under `study` writes for these rows.

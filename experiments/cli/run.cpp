@@ -57,15 +57,24 @@ Options:
   --policy fixed|cfl|adaptive|min
                            time-step policy (default fixed): fixed dt; dt = C h / c;
                            dt_n = s * eq. (108) bound of the current state; or the minimum
-                           of the last two. Every policy lands exactly on T.
+                           of the last two. Every policy lands exactly on T. An
+                           adaptive or min run whose step falls below 1e-3 h/c stops as
+                           unstable with the reason dt_collapse.
   --cfl-factor <C>         Courant factor of the cfl and min policies (default 0.5)
   --safety <s>             factor on the eq. (108) bound, adaptive and min (default 1)
   --max-steps <n>          refuse runs needing more steps (default 200000000); an adaptive
                            run that reaches it stops with the verdict step_limit
   --history <file.csv>     also write the per-step history (error, eq. 108, crossings)
   --history-stride <n>     keep every n-th step in the history (default 1)
-  --json                   print one JSON object instead of the text summary
+  --json                   print the run's record (one JSON object, the same as a row of
+                           a sweep's results) instead of the text summary; the wall time
+                           goes to standard error
   --help                   show this text
+
+Every quantity printed (outcome, steps, dt_min/dt_max/dt_mean, max_error,
+max_error_over_time, dt_stable_min, crossings, dt_cfl, courant, ...) is defined with its
+unit in docs/design.md, "Measured quantities". The outcome is unstable (the run stopped:
+reason and step), meaningless (it reached T but its error over time reached A) or stable.
 
 Exit status: 0 when the run completed (stable or not: an unstable run is a result),
 2 for invalid input (nothing is run or written), 1 for an internal error.
@@ -87,16 +96,20 @@ std::string fmt(const std::optional<T>& v) {
 std::string text_summary(const RunResult& r) {
   const RunParams& p = r.params;
   std::ostringstream s;
+  const bool fixed = p.stepping.policy == TimeStepPolicy::fixed;
   s << "mpmstab run: " << to_string(p.method) << ", E = " << fmt(p.E) << ", A = " << fmt(p.A)
-    << ", dt = " << fmt(p.dt) << ", T = " << fmt(p.T) << ", " << p.cells << " cells x " << p.ppc
-    << " ppc, " << to_string(p.bc) << "\n";
-  std::string verdict = r.stable ? "stable" : "unstable";
+    << (fixed ? ", dt = " + fmt(p.dt) : ", policy " + std::string(to_string(p.stepping.policy)))
+    << ", T = " << fmt(p.T) << ", " << p.cells << " cells x " << p.ppc << " ppc, "
+    << to_string(p.bc) << "\n";
+  std::string verdict(r.outcome ? to_string(*r.outcome) : "survived (error over time not measured)");
   if (r.failure) {
     verdict += " (" + std::string(to_string(r.failure->reason)) + " at step " +
-               std::to_string(r.failure->step) + ", t = " + fmt(r.failure->time) + ", particle " +
-               std::to_string(r.failure->particle) + ")";
+               std::to_string(r.failure->step) + ", t = " + fmt(r.failure->time) +
+               (r.failure->particle >= 0 ? ", particle " + std::to_string(r.failure->particle)
+                                         : std::string()) +
+               ")";
   }
-  if (r.meaningless.value_or(false)) verdict += ", meaningless: error over time reached A";
+  if (r.outcome == Outcome::meaningless) verdict += " (the error over time reached A)";
   auto line = [&](std::string_view key, const std::string& value) {
     s << "  " << key << std::string(22 - key.size(), ' ') << value << "\n";
   };
@@ -104,7 +117,9 @@ std::string text_summary(const RunResult& r) {
   line("steps", std::to_string(r.steps) +
                     (r.steps_planned ? " of " + std::to_string(r.steps_planned) : std::string()) +
                     "  (policy " + std::string(to_string(p.stepping.policy)) + ", dt " +
-                    fmt(r.dt_min) + " to " + fmt(r.dt_max) + ")");
+                    (r.steps ? fmt(r.dt_min) + " to " + fmt(r.dt_max) + ", mean " + fmt(r.dt_mean)
+                             : std::string("-")) +
+                    ")");
   line("max_error", fmt(r.max_error));
   line("max_error_over_time", fmt(r.max_error_over_time));
   line("dt_stable_min", fmt(r.dt_stable_min) + "  (eq. 108, sigma " +
@@ -114,8 +129,9 @@ std::string text_summary(const RunResult& r) {
   line("dt_cfl = h/c", fmt(r.dt_cfl));
   line("dt_sound = 1/c", fmt(r.dt_sound));
   line("courant = c dt/h", fmt(r.courant) + (r.dt_min != r.dt_max ? "  (largest dt)" : ""));
+  line("particle-steps", std::to_string(r.particles * r.steps));
   line("wall_seconds", fmt(r.wall_seconds));
-  line("ns/particle-step", fmt(r.ns_per_particle_step));
+  line("ns/particle-step", r.steps ? fmt(r.ns_per_particle_step) : std::string("-"));
   return s.str();
 }
 
@@ -157,6 +173,10 @@ int cmd_run(const std::vector<std::string_view>& argv) {
   }
   if (args.flag("json")) {
     std::cout << to_json(result).dump(2) << "\n";
+    std::cerr << "wall time " << fmt(result.wall_seconds) << " s"
+              << (result.steps ? ", " + fmt(result.ns_per_particle_step) + " ns per particle-step"
+                               : std::string())
+              << "\n";
   } else {
     std::cout << text_summary(result);
   }

@@ -65,7 +65,7 @@ SweepOutcome merge_shards(const Spec& spec, const std::vector<fs::path>& dirs) {
     }
     out.records[i] = std::move(*chosen);
     ++out.cached;
-    if (!out.records[i]["result"]["stable"].get<bool>()) ++out.unstable;
+    if (out.records[i]["result"]["outcome"] == "unstable") ++out.unstable;
   }
   if (!missing.empty() || !conflicts.empty()) {
     std::string message;

@@ -182,29 +182,42 @@ void write_benchmark(std::ostream& md, const fs::path& bench) {
   write_flops(md, figures, ctx.value("mhz_per_cpu", 0.0));
 }
 
-// Compute and wall time of every experiment that runs cases, from <out>/<name>.json.
+// Compute and wall time of every experiment that runs cases, from <out>/timings.json.
 void write_experiment_times(std::ostream& md, const std::vector<Spec>& specs, const fs::path& out) {
-  md << "## Wall time of every experiment\n\nThe sweep wall time is that of the last sweep "
-        "that computed a case (cached reruns take milliseconds); compute time is the sum of the "
-        "cases' own run times.\n\n| experiment | cases | compute time | sweep wall time |\n"
-        "|---|---|---|---|\n";
+  md << "## Wall time of every experiment\n\nFrom [timings.json](timings.json), the one file "
+        "of the machine's measurements (every other result file is the same on any machine). "
+        "The sweep wall time is that of the last sweep that computed a case (cached reruns take "
+        "milliseconds); compute time is the sum of the cases' own run times.\n\n"
+        "| experiment | cases | compute time | sweep wall time | median ns per particle-step |\n"
+        "|---|---|---|---|---|\n";
+  ojson timings = ojson::object();
+  if (const std::string t = read_file(out / "timings.json"); !t.empty()) {
+    try {
+      timings = ojson::parse(t);
+    } catch (const std::exception&) {
+    }
+  }
   double total_wall = 0, total_compute = 0;
   for (const auto& spec : specs) {
     if (!spec.study->has_cases) continue;  // computed from other experiments' results
-    const std::string t = read_file(out / (spec.name + ".json"));
-    if (t.empty()) {
-      md << "| " << spec.name << " | not run | | |\n";
+    if (!timings.contains(spec.name)) {
+      md << "| " << spec.name << " | not run | | | |\n";
       continue;
     }
-    const ojson doc = ojson::parse(t);
-    const double wall = doc["sweep"]["wall_seconds"].get<double>();
-    const double compute = doc["sweep"]["compute_seconds"].get<double>();
+    const ojson& e = timings[spec.name];
+    const double wall = e["sweep_wall_seconds"].get<double>();
+    const double compute = e["compute_seconds"].get<double>();
+    std::vector<double> ns;
+    for (const auto& c : e["per_case"]) {
+      if (c["ns_per_particle_step"].is_number()) ns.push_back(c["ns_per_particle_step"]);
+    }
     total_wall += wall;
     total_compute += compute;
-    md << "| [" << spec.name << "](" << spec.name << ".md) | " << doc["cases"].size() << " | "
-       << seconds(compute) << " | " << seconds(wall) << " |\n";
+    md << "| [" << spec.name << "](" << spec.name << ".md) | " << e["cases"].dump() << " | "
+       << seconds(compute) << " | " << seconds(wall) << " | "
+       << (ns.empty() ? std::string("-") : fixed(quantile(ns, 0.5), 1)) << " |\n";
   }
-  md << "| all | | " << seconds(total_compute) << " | " << seconds(total_wall) << " |\n\n"
+  md << "| all | | " << seconds(total_compute) << " | " << seconds(total_wall) << " | |\n\n"
      << "`make reproduce` prints its own wall time when it ends; with every case cached it takes "
         "about a second.\n";
 }

@@ -25,14 +25,17 @@ namespace fs = std::filesystem;
 // ---------------------------------------------------------------------------------------------
 // Flat rows: the same columns in the CSV and in the JSON "cases" array.
 
-const std::vector<std::string> kColumns = {
-    "method", "E", "A", "dt", "dt_inferred", "T", "cells", "ppc", "bc", "position_update", "scene",
-    "walls", "transfer", "flip_fraction", "update", "body_force_time", "policy", "cfl_factor",
-    "safety", "dt_stable_sigma", "dt_stable_vnorm", "stable", "failure_reason", "failure_step",
-    "failure_time", "meaningless", "steps", "dt_min", "dt_max", "max_error", "max_error_over_time",
-    "crossings", "dt_stable_min", "dt_cfl", "dt_sound", "courant", "key",
-    // Measurements of the machine: the only columns that differ between identical runs.
-    "wall_seconds", "ns_per_particle_step"};
+// The record's columns (result_json.hpp) with, after dt, whether the paper's dt was inferred and,
+// last, the case's cache key.
+const std::vector<std::string> kColumns = [] {
+  std::vector<std::string> cols;
+  for (const auto& c : record_columns()) {
+    cols.push_back(c);
+    if (c == "dt") cols.push_back("dt_inferred");
+  }
+  cols.push_back("key");
+  return cols;
+}();
 // Before those, in a variants experiment or where a case compares another error than the one at
 // T: the variant, the paper's column and which error is compared with it.
 const std::vector<std::string> kStudyColumns = {"variant", "paper_method", "error_at"};
@@ -90,70 +93,35 @@ std::string provenance_lines(const ojson& prov) {
   return s.str();
 }
 
-std::string provenance_markdown(const ojson& prov, const ojson& sweep) {
+std::string provenance_markdown(const ojson& prov) {
   std::ostringstream md;
   md << "## Provenance\n\n| | |\n|---|---|\n";
   for (const auto& [k, v] : prov.items())
     md << "| " << k << " | " << v.get<std::string>() << " |\n";
-  md << "| compute time | " << seconds(sweep["compute_seconds"].get<double>())
-     << " summed over the cases (each timed when it was computed) |\n";
-  md << "| sweep wall time | " << seconds(sweep["wall_seconds"].get<double>())
-     << " (the last sweep that computed a case) |\n";
+  md << "\nWall times of these cases: [timings.json](timings.json) and "
+        "[performance.md](performance.md).\n";
   return md.str();
 }
 
-// Extra columns of an edge experiment (the search), after the columns of the run at dt_edge.
-const std::vector<std::string> kEdgeColumns = {"dt_edge",
-                                               "dt_fail",
-                                               "dt_edge_over_cfl",
-                                               "dt_stable_min_at_edge",
-                                               "dt_edge_over_stable",
-                                               "monotone",
-                                               "failed_below_edge",
-                                               "probes",
-                                               "search_seconds"};
-
 ojson flat_row(const CaseSpec& c, const ojson& record) {
   const ojson& r = record["result"];
-  ojson row, params;
+  ojson row;
   row["variant"] = c.variant;
   row["paper_method"] = to_string(c.paper_method);
   row["error_at"] = to_string(c.error_at);
   for (const auto& col : kColumns) {
     if (col == "dt_inferred") {
       row[col] = c.dt_inferred;
-    } else if (col == "failure_reason" || col == "failure_step" || col == "failure_time") {
-      row[col] = r["failure"].is_null() ? ojson(nullptr) : r["failure"][col.substr(8)];
     } else if (col == "key") {
       row[col] = case_key(c.params);
-    } else if (r.contains(col)) {
-      row[col] = r[col];
     } else {
-      // A record cached before this column existed: a parameter is read from the case (the
-      // cache key guarantees the record ran with it), a measurement stays missing.
-      if (params.is_null()) {
-        RunResult with_params;
-        with_params.params = c.params;
-        params = to_json(with_params);
-      }
-      const auto& names = parameter_names();
-      const bool is_param = std::find(names.begin(), names.end(), col) != names.end();
-      row[col] = is_param && params.contains(col) ? params[col] : ojson(nullptr);
+      row[col] = r.at(col);
     }
   }
   if (record.contains("edge")) {
-    const ojson& e = record["edge"];
-    for (const auto& col : kEdgeColumns) {
-      if (col == "failed_below_edge") {
-        row[col] = e[col].size();
-      } else if (col == "probes") {
-        row[col] = e[col].size();
-      } else if (col == "search_seconds") {
-        row[col] = e["wall_seconds"];
-      } else {
-        row[col] = e[col];
-      }
-    }
+    const ojson extra = edge_columns(record["edge"]);
+    for (auto it = extra.begin(); it != extra.end(); ++it)
+      row[it.key()] = it.value();
   }
   return row;
 }
@@ -190,38 +158,60 @@ std::vector<ojson> flat_rows(const Spec& spec, const SweepOutcome& outcome) {
   return rows;
 }
 
-// Timing of the sweep: a rerun served from the cache keeps the figure of the sweep that
-// computed the results, so that reports do not change when nothing was computed.
-ojson sweep_timing(const std::vector<ojson>& rows, const SweepOutcome& outcome,
-                   const fs::path& json_path) {
+// The machine's measurements of a sweep, for results/timings.json: each case's wall time (an
+// edge case's whole search) and ns per particle-step, their sum, and the wall time of the sweep.
+// A rerun served from the cache keeps the sweep wall time of the sweep that computed the cases.
+ojson sweep_timing(const Spec& spec, const SweepOutcome& outcome, const ojson& previous) {
+  ojson cases = ojson::array();
   double compute_seconds = 0;
-  for (const auto& r : rows) {
-    // An edge case's cost is its whole search, not the one run at dt_edge.
-    compute_seconds +=
-        (r.contains("search_seconds") ? r["search_seconds"] : r["wall_seconds"]).get<double>();
+  for (std::size_t i = 0; i < spec.cases.size(); ++i) {
+    const ojson& t = outcome.records[i]["timing"];
+    compute_seconds += t["wall_seconds"].get<double>();
+    cases.push_back({{"key", case_key(spec.cases[i].params)},
+                     {"wall_seconds", t["wall_seconds"]},
+                     {"ns_per_particle_step", t["ns_per_particle_step"]}});
   }
   double sweep_wall = outcome.wall_seconds;
-  if (outcome.computed == 0 && !outcome.merged && !outcome.timing_omitted) {
+  if (outcome.computed == 0 && !outcome.merged && !outcome.timing_omitted &&
+      previous.contains("sweep_wall_seconds")) {
+    sweep_wall = previous["sweep_wall_seconds"].get<double>();
+  }
+  return {{"cases", spec.cases.size()},
+          {"compute_seconds", compute_seconds},
+          {"sweep_wall_seconds", sweep_wall},
+          {"per_case", cases}};
+}
+
+// results/timings.json: the one file of machine measurements, an entry per experiment, updated
+// in place for the experiment just swept (experiments in name order).
+void write_timings(const Spec& spec, const SweepOutcome& outcome, const fs::path& out) {
+  const fs::path path = out / "timings.json";
+  ojson all = ojson::object();
+  if (const std::string text = read_file(path); !text.empty()) {
     try {
-      const ojson previous = ojson::parse(read_file(json_path));
-      sweep_wall = previous.at("sweep").at("wall_seconds").get<double>();
+      all = ojson::parse(text);
     } catch (const std::exception&) {
+      all = ojson::object();  // unreadable: rebuilt from the experiments swept from now on
     }
   }
-  return {
-      {"cases", rows.size()}, {"compute_seconds", compute_seconds}, {"wall_seconds", sweep_wall}};
+  const ojson previous = all.contains(spec.name) ? all[spec.name] : ojson::object();
+  std::map<std::string, ojson> sorted;
+  for (auto& [k, v] : all.items())
+    sorted[k] = v;
+  sorted[spec.name] = sweep_timing(spec, outcome, previous);
+  ojson doc = ojson::object();
+  for (auto& [k, v] : sorted)
+    doc[k] = std::move(v);
+  write_if_changed(path, doc.dump(1) + "\n");
 }
 
 // <name>.csv: one row per case, under the header lines.
 std::string rows_csv(const std::vector<ojson>& rows, const std::vector<std::string>& columns,
-                     const std::string& header, bool timing_omitted) {
+                     const std::string& header) {
   std::ostringstream csv;
   csv << header
-      << (timing_omitted
-              ? "# machine measurements omitted (--timing omit): wall_seconds and "
-                "ns_per_particle_step read 0.\n"
-              : "# wall_seconds and ns_per_particle_step are measurements of the machine; every "
-                "other column is the same for the same spec whatever the number of jobs.\n");
+      << "# every column is the same for the same spec whatever the machine and the number of "
+         "jobs; columns are defined in docs/design.md; wall times are in timings.json.\n";
   for (std::size_t c = 0; c < columns.size(); ++c)
     csv << (c ? "," : "") << columns[c];
   csv << "\n";
@@ -318,12 +308,12 @@ void write_reports(const Spec& spec, const SweepOutcome& outcome, const fs::path
   const std::vector<ojson> rows = flat_rows(spec, outcome);
   const ojson prov = aggregate_provenance(outcome.records);
   const fs::path json_path = out / (spec.name + ".json");
-  const ojson sweep = sweep_timing(rows, outcome, json_path);
+  write_timings(spec, outcome, out);
   const std::string spec_path = spec.path.generic_string();
   const std::string header = "# experiment: " + spec.name + " (" + spec_path +
                              ")\n# title: " + spec.title + "\n" + provenance_lines(prov);
   write_if_changed(out / (spec.name + ".csv"),
-                   rows_csv(rows, result_columns(spec), header, outcome.timing_omitted));
+                   rows_csv(rows, result_columns(spec), header));
 
   // The study's part, from the rows and the results of its declared inputs.
   const std::vector<Spec> input_specs = load_inputs(spec);
@@ -337,13 +327,12 @@ void write_reports(const Spec& spec, const SweepOutcome& outcome, const fs::path
   doc["spec"] = spec_path;
   doc["report"] = spec.study->name;
   doc["provenance"] = prov;
-  doc["sweep"] = sweep;
   doc["cases"] = rows;
   if (!study.json.is_null()) doc["study"] = study.json;
   write_if_changed(json_path, doc.dump(2) + "\n");
   if (study.data_csv) write_if_changed(out / (spec.name + "_data.csv"), *study.data_csv);
   write_if_changed(out / (spec.name + ".md"), report_head(spec, out) + study.markdown + "\n" +
-                                                  provenance_markdown(prov, sweep));
+                                                  provenance_markdown(prov));
 }
 
 namespace {
@@ -359,15 +348,14 @@ std::string index_intro() {
 }
 
 std::string index_row(const Spec& spec, const ojson& doc) {
-  int unstable = 0;
+  std::map<std::string, int> n;
   for (const auto& c : doc["cases"])
-    unstable += c["stable"] == false;
+    ++n[c["outcome"].is_string() ? c["outcome"].get<std::string>() : "unknown"];
   std::ostringstream md;
   md << "| " << spec.title << " | [" << spec.name << ".md](" << spec.name << ".md) | [" << spec.name
      << ".csv](" << spec.name << ".csv), [" << spec.name << ".json](" << spec.name << ".json) | "
-     << doc["cases"].size() << " | " << unstable << " | "
-     << seconds(doc["sweep"]["compute_seconds"].get<double>()) << " | "
-     << seconds(doc["sweep"]["wall_seconds"].get<double>()) << " |\n";
+     << doc["cases"].size() << " | " << n["unstable"] << " | " << n["meaningless"] << " | "
+     << n["stable"] << " |\n";
   return md.str();
 }
 
@@ -379,8 +367,7 @@ std::string index_section(const Spec& spec, const ojson& doc) {
   md << "Provenance: commit " << doc["provenance"]["commit"].get<std::string>() << ", "
      << doc["provenance"]["date"].get<std::string>() << ", "
      << doc["provenance"]["cpu"].get<std::string>() << ", "
-     << doc["provenance"]["threads"].get<std::string>() << " threads; computed in "
-     << seconds(doc["sweep"]["compute_seconds"].get<double>()) << " of case time.\n\n";
+     << doc["provenance"]["threads"].get<std::string>() << " threads.\n\n";
   return md.str();
 }
 
@@ -393,7 +380,10 @@ void write_index(const std::vector<Spec>& specs, const fs::path& out) {
   for (const auto& spec : specs) {
     if (!spec.study->has_cases) md << spec.study->index(spec, {});
   }
-  md << "| experiment | report | data | cases | unstable | compute time | sweep wall time |\n"
+  md << "Outcomes (docs/design.md): *unstable*, the run stopped with a failure; *meaningless*, it "
+        "survived but its error over time reached the amplitude A; *stable*, neither. Wall times: "
+        "[performance.md](performance.md).\n\n"
+        "| experiment | report | data | cases | unstable | meaningless | stable |\n"
         "|---|---|---|---|---|---|---|\n";
   std::vector<std::pair<const Spec*, ojson>> docs;
   for (const auto& spec : specs) {

@@ -13,7 +13,8 @@
 
 namespace mpmstab {
 
-// Writes <out>/<name>.csv, .json, .md and, for studies with a figure, <name>_data.csv.
+// Writes <out>/<name>.csv, .json, .md and, for studies with a figure, <name>_data.csv; the
+// sweep's wall times go to <out>/timings.json, the only file that changes between identical runs.
 void write_reports(const Spec& spec, const SweepOutcome& outcome, const std::filesystem::path& out);
 
 // The specs of a spec's declared inputs (Study::inputs), in their order.
@@ -34,15 +35,14 @@ void write_derived_reports(const Spec& spec, const std::vector<std::string>& rol
 
 // The '#' lines of provenance that head every CSV, and the Markdown provenance section.
 std::string provenance_lines(const nlohmann::ordered_json& prov);
-std::string provenance_markdown(const nlohmann::ordered_json& prov,
-                                const nlohmann::ordered_json& sweep);
+std::string provenance_markdown(const nlohmann::ordered_json& prov);
 
 // Writes <out>/README.md, the index a reader browses, from the <name>.json of each spec.
 void write_index(const std::vector<Spec>& specs, const std::filesystem::path& out);
 
 // The CSV columns of a spec's result rows: in a variants experiment (or where a case compares
 // another error than the one at T) the variant, the paper's column and the error compared, then
-// the run's columns (the last two of which are timing measurements).
+// the run's record columns (result_json.hpp), dt_inferred and the case key.
 std::vector<std::string> result_columns(const Spec& spec);
 // One case as a flat row: every column of result_columns(), for edge experiments also those of
 // the search.

@@ -48,19 +48,37 @@ std::string opt_sci(const ojson& v) {
   return v.is_number() ? sci(v.get<double>()) : "–";
 }
 
-// Our verdict, in the notation of the table: "*" for unstable, with the reason and step.
-std::string verdict(const ojson& r) {
-  if (!r["stable"].get<bool>()) {
-    return "\\* " + r["failure_reason"].get<std::string>() + " at step " +
-           std::to_string(r["failure_step"].get<std::int64_t>()) +
-           " (t = " + sci(r["failure_time"].get<double>()) + ")";
-  }
-  return r["meaningless"] == true ? "stable, meaningless (error reached A)" : "stable";
+std::string outcome(const ojson& r) {
+  const ojson& o = r["outcome"];
+  return o.is_string() ? o.get<std::string>() : std::string();
 }
 
-std::string cost(const ojson& r) {
-  return seconds(r["wall_seconds"].get<double>()) + ", " +
-         fixed(r["ns_per_particle_step"].get<double>(), 1) + " ns";
+bool survived(const ojson& r) {
+  return outcome(r) != "unstable";
+}
+
+// Our verdict, in the notation of the table: "*" for unstable, with the reason and step.
+std::string verdict(const ojson& r) {
+  if (survived(r)) {
+    return outcome(r) == "meaningless" ? "meaningless (survived; error over time reached A)"
+                                        : "stable";
+  }
+  std::string s = "\\* ";
+  s += r["failure_reason"].get<std::string>();
+  s += " at step ";
+  s += std::to_string(r["failure_step"].get<std::int64_t>());
+  s += " (t = ";
+  s += sci(r["failure_time"].get<double>());
+  s += ")";
+  return s;
+}
+
+double particle_steps(const ojson& r) {
+  return r["particles"].get<double>() * r["steps"].get<double>();
+}
+
+std::string work(const ojson& r) {
+  return sci(particle_steps(r));
 }
 
 double quantile(std::vector<double> v, double q) {
@@ -75,7 +93,7 @@ std::string link(const fs::path& from_dir, const fs::path& target) {
 }
 
 std::optional<double> compared_error(const ojson& row, ErrorAt error_at) {
-  if (row["stable"] != true) return std::nullopt;
+  if (!survived(row)) return std::nullopt;
   const ojson& v = row[error_at == ErrorAt::T ? "max_error" : "max_error_over_time"];
   return v.is_number() ? std::optional<double>(v.get<double>()) : std::nullopt;
 }

@@ -25,10 +25,16 @@ std::string ratio(double r);
 std::string param(double v);
 // A JSON number in sci(), or "–" for null.
 std::string opt_sci(const nlohmann::ordered_json& v);
-// Our verdict for a flat result row: "stable", "stable, meaningless ...", "\\* reason at step n".
+// The outcome of a flat record: "unstable", "meaningless", "stable" ("" where not measured).
+std::string outcome(const nlohmann::ordered_json& row);
+// The run of a flat record survived to T: its outcome is meaningless or stable.
+bool survived(const nlohmann::ordered_json& row);
+// Our verdict for a flat record: "stable", "meaningless (...)", "\\* reason at step n (t = ..)".
 std::string verdict(const nlohmann::ordered_json& row);
-// "0.25 s, 12.7 ns": wall time and ns per particle-step of a flat result row.
-std::string cost(const nlohmann::ordered_json& row);
+// The deterministic cost of a run: particles x steps (an edge case: of its run at dt_edge).
+double particle_steps(const nlohmann::ordered_json& row);
+// particle_steps() in sci(): "2.4e5".
+std::string work(const nlohmann::ordered_json& row);
 // The q-quantile of v (0 <= q <= 1, linear between order statistics); v must not be empty.
 double quantile(std::vector<double> v, double q);
 // Relative link from a report folder to a file.

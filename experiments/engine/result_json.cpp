@@ -13,13 +13,30 @@ nlohmann::ordered_json or_null(const std::optional<T>& v) {
 
 }  // namespace
 
+const std::vector<std::string>& record_columns() {
+  static const std::vector<std::string> columns = {
+      // What was asked: the parameters (a parameter the run did not use is null).
+      "method", "E", "A", "dt", "T", "cells", "ppc", "bc", "position_update", "scene", "walls",
+      "transfer", "flip_fraction", "update", "body_force_time", "policy", "cfl_factor", "safety",
+      "dt_stable_sigma", "dt_stable_vnorm",
+      // What the run did.
+      "outcome", "failure_reason", "failure_step", "failure_time", "failure_particle", "steps",
+      "dt_min", "dt_max", "dt_mean", "max_error", "max_error_over_time", "crossings",
+      "dt_stable_min", "dt_cfl", "dt_sound", "courant", "particles", "solver_version"};
+  return columns;
+}
+
 nlohmann::ordered_json to_json(const RunResult& r) {
+  using ojson = nlohmann::ordered_json;
   const RunParams& p = r.params;
-  nlohmann::ordered_json j;
+  const TimeStepPolicy policy = p.stepping.policy;
+  const bool ran = r.steps > 0;
+  ojson j;
   j["method"] = to_string(p.method);
   j["E"] = p.E;
   j["A"] = p.A;
-  j["dt"] = p.dt;
+  // The step that was used: only a fixed policy uses the given dt.
+  j["dt"] = policy == TimeStepPolicy::fixed ? ojson(p.dt) : ojson(nullptr);
   j["T"] = p.T;
   j["cells"] = p.cells;
   j["ppc"] = p.ppc;
@@ -28,40 +45,43 @@ nlohmann::ordered_json to_json(const RunResult& r) {
   j["scene"] = to_string(p.scene);
   j["walls"] = to_string(p.walls);
   j["transfer"] = to_string(p.transfer);
-  j["flip_fraction"] = p.transfer == Transfer::blend ? nlohmann::ordered_json(p.flip_fraction)
-                                                     : nlohmann::ordered_json(nullptr);
+  j["flip_fraction"] = p.transfer == Transfer::blend ? ojson(p.flip_fraction) : ojson(nullptr);
   j["update"] = to_string(p.update);
   j["body_force_time"] = to_string(p.body_force_time);
-  j["policy"] = to_string(p.stepping.policy);
-  j["cfl_factor"] = p.stepping.cfl_factor;
-  j["safety"] = p.stepping.safety;
-  j["stable"] = r.stable;
-  if (r.failure) {
-    j["failure"] = {{"reason", to_string(r.failure->reason)},
-                    {"step", r.failure->step},
-                    {"time", r.failure->time},
-                    {"particle", r.failure->particle}};
-  } else {
-    j["failure"] = nullptr;
-  }
-  j["meaningless"] = or_null(r.meaningless);
+  j["policy"] = to_string(policy);
+  const bool uses_cfl = policy == TimeStepPolicy::cfl || policy == TimeStepPolicy::min;
+  const bool uses_bound = policy == TimeStepPolicy::adaptive || policy == TimeStepPolicy::min;
+  j["cfl_factor"] = uses_cfl ? ojson(p.stepping.cfl_factor) : ojson(nullptr);
+  j["safety"] = uses_bound ? ojson(p.stepping.safety) : ojson(nullptr);
+  j["dt_stable_sigma"] = to_string(p.stable.sigma);
+  j["dt_stable_vnorm"] = to_string(p.stable.vnorm);
+  j["outcome"] = r.outcome ? ojson(to_string(*r.outcome)) : ojson(nullptr);
+  const Failure* f = r.failure ? &*r.failure : nullptr;
+  j["failure_reason"] = f ? ojson(to_string(f->reason)) : ojson(nullptr);
+  j["failure_step"] = f ? ojson(f->step) : ojson(nullptr);
+  j["failure_time"] = f ? ojson(f->time) : ojson(nullptr);
+  j["failure_particle"] = f && f->particle >= 0 ? ojson(f->particle) : ojson(nullptr);
   j["steps"] = r.steps;
-  j["dt_min"] = r.dt_min;
-  j["dt_max"] = r.dt_max;
+  j["dt_min"] = ran ? ojson(r.dt_min) : ojson(nullptr);
+  j["dt_max"] = ran ? ojson(r.dt_max) : ojson(nullptr);
+  j["dt_mean"] = ran ? ojson(r.dt_mean) : ojson(nullptr);
   j["max_error"] = or_null(r.max_error);
   j["max_error_over_time"] = or_null(r.max_error_over_time);
   j["crossings"] = or_null(r.crossings);
   j["dt_stable_min"] = or_null(r.dt_stable_min);
-  j["dt_stable_sigma"] = to_string(p.stable.sigma);
-  j["dt_stable_vnorm"] = to_string(p.stable.vnorm);
   j["dt_cfl"] = r.dt_cfl;
   j["dt_sound"] = r.dt_sound;
-  j["courant"] = r.courant;
+  const bool fixed_step = policy == TimeStepPolicy::fixed || policy == TimeStepPolicy::cfl;
+  j["courant"] = fixed_step || ran ? ojson(r.courant) : ojson(nullptr);
   j["particles"] = r.particles;
-  j["wall_seconds"] = r.wall_seconds;
-  j["ns_per_particle_step"] = r.ns_per_particle_step;
   j["solver_version"] = kSolverVersion;
   return j;
+}
+
+nlohmann::ordered_json timing_json(const RunResult& r) {
+  return {{"wall_seconds", r.wall_seconds},
+          {"ns_per_particle_step", r.steps > 0 ? nlohmann::ordered_json(r.ns_per_particle_step)
+                                               : nlohmann::ordered_json(nullptr)}};
 }
 
 nlohmann::ordered_json history_to_json(const RunResult& r) {
@@ -99,8 +119,18 @@ nlohmann::ordered_json edge_to_json(const EdgeResult& e) {
                       {"steps", p.steps}});
   }
   j["probes"] = probes;
-  j["wall_seconds"] = e.wall_seconds;
   return j;
+}
+
+nlohmann::ordered_json edge_columns(const nlohmann::ordered_json& edge) {
+  nlohmann::ordered_json row;
+  for (const char* col : {"dt_edge", "dt_fail", "dt_edge_over_cfl", "dt_stable_min_at_edge",
+                          "dt_edge_over_stable", "monotone"}) {
+    row[col] = edge[col];
+  }
+  row["failed_below_edge"] = edge["failed_below_edge"].size();
+  row["probes"] = edge["probes"].size();
+  return row;
 }
 
 }  // namespace mpmstab

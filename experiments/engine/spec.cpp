@@ -456,7 +456,9 @@ void resolve_inputs(const Reader& r, const std::filesystem::path& file, Spec& sp
 // What every case records: nothing beyond its verdict and final error unless listed.
 Observe read_observe(const Reader& r, const json& doc) {
   Observe observe;
-  observe.error_over_time = observe.dt_stable = observe.crossings = false;
+  observe.dt_stable = observe.crossings = false;
+  // Always on: every record's outcome (meaningless or stable) is read from the error over time.
+  observe.error_over_time = true;
   if (doc.contains("record")) {
     const json& rec = doc["record"];
     if (!rec.is_array()) r.fail("record", "must be an array of strings");

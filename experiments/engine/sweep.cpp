@@ -76,7 +76,7 @@ class Progress {
             double cost) {
     std::lock_guard lock(mutex_);
     ++done_;
-    if (!result["stable"].get<bool>()) ++unstable_;
+    if (result["outcome"] == "unstable") ++unstable_;
     if (from_cache) {
       total_cost_ -= cost;  // cached cases take no time: leave them out of the estimate
     } else {
@@ -87,9 +87,9 @@ class Progress {
       if (done_ == total_) std::fputc('\n', stderr);
     } else {
       std::string verdict =
-          result["stable"].get<bool>()
-              ? "stable"
-              : "unstable (" + result["failure"]["reason"].get<std::string>() + ")";
+          result["outcome"] == "unstable"
+              ? "unstable (" + result["failure_reason"].get<std::string>() + ")"
+              : result["outcome"].get<std::string>();
       std::fprintf(stderr, "[%s] %zu/%zu %s: %s%s\n", name_.c_str(), done_, total_,
                    describe_case(p).c_str(), verdict.c_str(), from_cache ? " [cached]" : "");
     }
@@ -145,9 +145,7 @@ int shard_of(const std::string& case_key, int count) {
 void omit_machine_measurements(SweepOutcome& outcome) {
   for (auto& rec : outcome.records) {
     if (rec.is_null()) continue;
-    rec["result"]["wall_seconds"] = 0.0;
-    rec["result"]["ns_per_particle_step"] = 0.0;
-    if (rec.contains("edge")) rec["edge"]["wall_seconds"] = 0.0;
+    rec["timing"] = {{"wall_seconds", 0.0}, {"ns_per_particle_step", 0.0}};
     rec["provenance"]["date"] = "omitted";
     rec["provenance"]["threads"] = "omitted";
   }
@@ -159,11 +157,7 @@ nlohmann::ordered_json deterministic_part(const nlohmann::ordered_json& record) 
   nlohmann::ordered_json d = record;
   d.erase("provenance");
   d.erase("canonical");
-  if (d.contains("result")) {
-    d["result"].erase("wall_seconds");
-    d["result"].erase("ns_per_particle_step");
-  }
-  if (d.contains("edge")) d["edge"].erase("wall_seconds");
+  d.erase("timing");
   return d;
 }
 
@@ -213,12 +207,17 @@ nlohmann::ordered_json compute_case(const RunParams& p, CaseWork work,
   if (work == CaseWork::edge_search) {
     const EdgeResult e = find_edge(p, {}, cancel);
     if (e.interrupted) return nullptr;
-    rec["result"] = to_json(e.at_edge ? *e.at_edge : run_at_smallest_probe(p, e));
+    const RunResult at = e.at_edge ? *e.at_edge : run_at_smallest_probe(p, e);
+    rec["result"] = to_json(at);
     rec["edge"] = edge_to_json(e);
+    // The cost of an edge case is its whole search.
+    rec["timing"] = timing_json(at);
+    rec["timing"]["wall_seconds"] = e.wall_seconds;
   } else {
     const RunResult r = run(p, cancel);
     if (r.interrupted) return nullptr;
     rec["result"] = to_json(r);
+    rec["timing"] = timing_json(r);
     if (p.observe.history) rec["history"] = history_to_json(r);
     if (r.final_state) rec["final_state"] = final_state_json(*r.final_state);
   }
@@ -243,7 +242,7 @@ void tally(const SweepPlan& plan, const std::vector<char>& from_cache, SweepOutc
     } else {
       (from_cache[i] ? out.cached : out.computed) += 1;
     }
-    if (!out.records[i]["result"]["stable"].get<bool>()) ++out.unstable;
+    if (out.records[i]["result"]["outcome"] == "unstable") ++out.unstable;
   }
 }
 

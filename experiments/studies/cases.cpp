@@ -58,7 +58,7 @@ std::string cases_header(const std::vector<std::string>& params, const Observe& 
   if (observe.error_over_time) md << " max error over time | over time / A |";
   if (observe.dt_stable) md << " dt_stable min |";
   if (observe.crossings) md << " crossings |";
-  md << " cost |\n|";
+  md << " particle-steps |\n|";
   const std::size_t n_cols = params.size() + 4 + (observe.error_over_time ? 2 : 0) +
                              (observe.dt_stable ? 1 : 0) + (observe.crossings ? 1 : 0);
   for (std::size_t k = 0; k < n_cols; ++k)
@@ -81,7 +81,7 @@ std::string case_row(const ojson& r, const std::vector<std::string>& params,
                          : shortest(v.get<double>()))
        << " |";
   }
-  md << " " << sci(r["courant"].get<double>()) << " | " << verdict(r) << " | "
+  md << " " << opt_sci(r["courant"]) << " | " << verdict(r) << " | "
      << opt_sci(r["max_error"]) << " |";
   if (observe.error_over_time) {
     md << " " << opt_sci(r["max_error_over_time"]) << " | "
@@ -94,7 +94,7 @@ std::string case_row(const ojson& r, const std::vector<std::string>& params,
   if (observe.crossings) {
     md << " " << (r["crossings"].is_null() ? std::string("–") : r["crossings"].dump()) << " |";
   }
-  md << " " << cost(r) << " |\n";
+  md << " " << work(r) << " |\n";
   return md.str();
 }
 
@@ -106,8 +106,8 @@ struct VerdictCounts {
 VerdictCounts count_verdicts(const std::vector<ojson>& rows) {
   VerdictCounts n;
   for (const auto& r : rows) {
-    n.unstable += r["stable"] == false;
-    n.meaningless += r["meaningless"] == true;
+    n.unstable += outcome(r) == "unstable";
+    n.meaningless += outcome(r) == "meaningless";
   }
   return n;
 }
@@ -119,8 +119,9 @@ std::string cases_markdown(const Spec& spec, const std::vector<ojson>& rows) {
   const VerdictCounts n = count_verdicts(rows);
   std::ostringstream md;
   md << "## Results\n\n"
-     << rows.size() << " cases: " << rows.size() - n.unstable << " stable (" << n.meaningless
-     << " meaningless: the error over time reached A), " << n.unstable << " unstable."
+     << rows.size() << " cases: " << rows.size() - n.unstable - n.meaningless << " stable, "
+     << n.meaningless << " meaningless (survived, but the error over time reached A), "
+     << n.unstable << " unstable."
      << " Common to all: " << common_params(rows, params) << ".\n\n"
      << cases_header(params, observe);
   for (const auto& r : rows)

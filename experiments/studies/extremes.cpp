@@ -21,15 +21,15 @@ using ojson = nlohmann::ordered_json;
 
 // 0 stable, 1 stable but meaningless, 2 unstable.
 int verdict_code(const ojson& r) {
-  if (r["stable"] != true) return 2;
-  return r["meaningless"] == true ? 1 : 0;
+  const std::string o = outcome(r);
+  return o == "unstable" ? 2 : o == "meaningless" ? 1 : 0;
 }
 
 // A stable run's measured quantities must all be finite numbers (JSON has no NaN: a NaN would
 // have been written as null).
 bool stable_output_is_finite(const ojson& r) {
   for (const char* key : {"max_error", "max_error_over_time", "dt_stable_min", "dt_min", "dt_max",
-                          "courant", "wall_seconds"}) {
+                          "dt_mean", "courant"}) {
     if (!r[key].is_number() || !std::isfinite(r[key].get<double>())) return false;
   }
   return r["crossings"].is_number();
@@ -46,17 +46,17 @@ std::string reason_counts(const std::map<std::string, int>& reasons) {
   return s.str();
 }
 
-// The case that took longest: its wall time and its parameters.
+// The case with the most work (particle-steps, deterministic): its work and its parameters.
 struct Slowest {
-  double seconds = 0;
+  double work = 0;
   std::string name;
 };
 
 Slowest slowest_case(const std::vector<ojson>& rows) {
   Slowest slowest;
   for (const auto& r : rows) {
-    if (r["wall_seconds"].get<double>() > slowest.seconds) {
-      slowest.seconds = r["wall_seconds"].get<double>();
+    if (particle_steps(r) > slowest.work) {
+      slowest.work = particle_steps(r);
       slowest.name = r["method"].get<std::string>() + " E=" + shortest(r["E"].get<double>()) +
                      " A=" + shortest(r["A"].get<double>()) +
                      " dt=" + param(r["dt"].get<double>()) + " cells=" + r["cells"].dump() +
@@ -85,7 +85,8 @@ std::string extremes_summary(const Spec& spec, const std::vector<ojson>& rows) {
      << " stable but meaningless (the error over time reached A), "
      << rows.size() - stable - meaningless << " unstable (" << reason_counts(reasons)
      << "). Stable outputs holding a NaN or an infinity: " << bad_output
-     << ". The slowest case took " << seconds(slowest.seconds) << " (" << slowest.name << ").\n\n"
+     << ". The largest case took " << sci(slowest.work) << " particle-steps (" << slowest.name
+     << ").\n\n"
      << "![" << spec.title << "](" << spec.name << ".png)\n\nVector version: [" << spec.name
      << ".svg](" << spec.name << ".svg); data: [" << spec.name << "_data.csv](" << spec.name
      << "_data.csv).\n\n";
@@ -142,7 +143,7 @@ std::string method_reading(const std::vector<ojson>& rows, const char* method) {
   std::int64_t longest_survivor = 0;
   for (const auto& r : rows) {
     if (r["method"] != method) continue;
-    const bool failed = r["stable"] != true;
+    const bool failed = outcome(r) == "unstable";
     if (r["courant"].get<double>() >= 1) {
       ++above;
       above_failed += failed;
@@ -166,13 +167,13 @@ std::string method_reading(const std::vector<ojson>& rows, const char* method) {
 std::string every_case_table(const std::vector<ojson>& rows) {
   std::ostringstream md;
   md << "### Every case\n\n| method | bc | E | A | dt | T | cells | ppc | c dt/h | verdict | "
-        "max error over time | cost |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+        "max error over time | particle-steps |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& r : rows) {
     md << "| " << r["method"].get<std::string>() << " | " << r["bc"].get<std::string>() << " | "
        << shortest(r["E"].get<double>()) << " | " << shortest(r["A"].get<double>()) << " | "
        << param(r["dt"].get<double>()) << " | " << param(r["T"].get<double>()) << " | "
-       << r["cells"].dump() << " | " << r["ppc"].dump() << " | " << sci(r["courant"].get<double>())
-       << " | " << verdict(r) << " | " << opt_sci(r["max_error_over_time"]) << " | " << cost(r)
+       << r["cells"].dump() << " | " << r["ppc"].dump() << " | " << opt_sci(r["courant"])
+       << " | " << verdict(r) << " | " << opt_sci(r["max_error_over_time"]) << " | " << work(r)
        << " |\n";
   }
   return md.str();
@@ -210,7 +211,7 @@ std::string extremes_data_csv(const std::vector<ojson>& rows, const std::string&
 std::string extremes_index(const Spec& spec, const std::vector<ojson>& rows) {
   int unstable = 0;
   for (const auto& r : rows)
-    unstable += r["stable"] == false;
+    unstable += outcome(r) == "unstable";
   std::ostringstream md;
   md << "![" << spec.title << "](" << spec.name << ".png)\n\n**What it shows.** " << rows.size()
      << " cases at the extremes, each with a verdict (" << unstable

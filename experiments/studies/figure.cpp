@@ -22,13 +22,13 @@ std::string figure_markdown(const Spec& spec, const std::vector<ojson>& rows) {
   md << "Vector version: [" << spec.name << ".svg](" << spec.name << ".svg); data: [" << spec.name
      << "_data.csv](" << spec.name << "_data.csv).\n\n";
   md << "| method | E | A | dt | c dt/h | steps | verdict | max error at end | max error over "
-        "time | dt_stable min | crossings | cost |\n|---|---|---|---|---|---|---|---|---|---|---|"
+        "time | dt_stable min | crossings | particle-steps |\n|---|---|---|---|---|---|---|---|---|---|---|"
         "---|\n";
   md << "| " << to_string(p.method) << " | " << shortest(p.E) << " | " << shortest(p.A) << " | "
      << param(p.dt) << " | " << sci(r["courant"].get<double>()) << " | " << r["steps"].dump()
      << " of " << *step_count(p.T, p.dt) << " | " << verdict(r) << " | " << opt_sci(r["max_error"])
      << " | " << opt_sci(r["max_error_over_time"]) << " | " << opt_sci(r["dt_stable_min"]) << " | "
-     << (r["crossings"].is_null() ? std::string("–") : r["crossings"].dump()) << " | " << cost(r)
+     << (r["crossings"].is_null() ? std::string("–") : r["crossings"].dump()) << " | " << work(r)
      << " |\n";
   return md.str();
 }
@@ -82,9 +82,12 @@ std::string figure_subtitle(const Spec&, const ojson& doc) {
       ", A = " + shortest(c["A"].get<double>()) + ", dt = " + shortest(c["dt"].get<double>()) +
       ", " + c["cells"].dump() + " cells x " + c["ppc"].dump() + " ppc, " +
       c["bc"].get<std::string>() + "; ";
-  return subtitle + (c["stable"] == true ? "stable to T"
-                                         : "unstable: " + c["failure_reason"].get<std::string>() +
-                                               " at step " + c["failure_step"].dump());
+  if (outcome(c) == "unstable") {
+    return subtitle + "unstable: " + c["failure_reason"].get<std::string>() + " at step " +
+           c["failure_step"].dump();
+  }
+  return subtitle + (outcome(c) == "meaningless" ? "meaningless: survived to T, error reached A"
+                                                 : "stable to T");
 }
 
 const StudyRegistration kFigure{{

@@ -22,6 +22,7 @@ struct Table1Summary {
   int ours_stable = 0, ours_meaningless = 0, ours_unstable = 0;
   int verdicts_agree = 0, verdicts_compared = 0;
   int paper_stable_ours_not = 0, paper_stable_ours_not_courant_ge1 = 0;
+  int paper_stable_ours_meaningless = 0, paper_unstable_ours_meaningless = 0;
   int errors_within_3 = 0, errors_compared = 0;
   std::map<std::string, int> reasons;
 };
@@ -32,10 +33,11 @@ Table1Summary summarize_table1(const Spec& spec, const std::vector<ojson>& rows,
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const ojson& r = rows[i];
     ++s.cells;
-    const bool ours_stable = r["stable"].get<bool>();
-    if (ours_stable) {
+    const std::string ours_outcome = outcome(r);
+    if (ours_outcome == "stable") {
       ++s.ours_stable;
-      if (r["meaningless"] == true) ++s.ours_meaningless;
+    } else if (ours_outcome == "meaningless") {
+      ++s.ours_meaningless;
     } else {
       ++s.ours_unstable;
       ++s.reasons[r["failure_reason"].get<std::string>()];
@@ -53,13 +55,17 @@ Table1Summary summarize_table1(const Spec& spec, const std::vector<ojson>& rows,
     const bool paper_stable = pe.kind == PaperValue::number;
     (paper_stable ? s.paper_stable : s.paper_unstable) += 1;
     ++s.verdicts_compared;
-    if (paper_stable == ours_stable) ++s.verdicts_agree;
-    if (paper_stable && !ours_stable) {
+    // A meaningless run agrees with neither verdict of the paper: it is counted on its own.
+    if (ours_outcome == "meaningless") {
+      (paper_stable ? s.paper_stable_ours_meaningless : s.paper_unstable_ours_meaningless) += 1;
+    } else if (paper_stable == (ours_outcome == "stable")) {
+      ++s.verdicts_agree;
+    } else if (paper_stable) {
       ++s.paper_stable_ours_not;
       if (r["courant"].get<double>() >= 1.0) ++s.paper_stable_ours_not_courant_ge1;
     }
     const auto ours = compared_error(r, spec.cases[i].error_at);
-    if (paper_stable && ours) {
+    if (paper_stable && ours && ours_outcome == "stable") {
       ++s.errors_compared;
       if (within_factor_3(*ours, pe.value)) ++s.errors_within_3;
     }
@@ -71,8 +77,8 @@ std::string table1_summary_text(const Table1Summary& s) {
   std::ostringstream md;
   md << s.cells << " cells. Paper: " << s.paper_stable << " stable, " << s.paper_unstable
      << " unstable (`*`), " << s.paper_unknown
-     << " unreadable in the transcription. Ours: " << s.ours_stable << " stable ("
-     << s.ours_meaningless << " of them meaningless: the error over time reached A), "
+     << " unreadable in the transcription. Ours: " << s.ours_stable << " stable, "
+     << s.ours_meaningless << " meaningless (survived, but the error over time reached A), "
      << s.ours_unstable << " unstable";
   if (!s.reasons.empty()) {
     md << " (";
@@ -86,7 +92,11 @@ std::string table1_summary_text(const Table1Summary& s) {
   md << ". Stability verdicts agree in " << s.verdicts_agree << " of " << s.verdicts_compared
      << " cells; the paper lists as stable " << s.paper_stable_ours_not
      << " cells that are unstable here, " << s.paper_stable_ours_not_courant_ge1
-     << " of them at a Courant number c dt / h >= 1. Where both are stable, our max error is "
+     << " of them at a Courant number c dt / h >= 1. Meaningless here, counted as agreeing with "
+        "neither verdict: "
+     << s.paper_stable_ours_meaningless << " cells the paper lists as stable and "
+     << s.paper_unstable_ours_meaningless
+     << " it marks `*`. Where both are stable (ours: stable, not meaningless), our max error is "
         "within a factor 3 of the paper's in "
      << s.errors_within_3 << " of " << s.errors_compared << " cells.";
   return md.str();
@@ -107,7 +117,8 @@ std::string table1_legend(const Spec& spec, const fs::path& out) {
         "eq. (108) (stress "
      << to_string(spec.cases.front().params.stable.sigma) << ", ||v|| "
      << to_string(spec.cases.front().params.stable.vnorm)
-     << "). Cost: wall time of the run and ns per particle-step."
+     << "). Work: particles x steps of the run (deterministic; wall times are in "
+        "[performance.md](performance.md)). Quantities are defined in docs/design.md."
      << (over_time ? " Max error ours: at T, or the largest over the run where marked (over time), "
                      "as the case's error_at chooses."
                    : "")
@@ -116,7 +127,7 @@ std::string table1_legend(const Spec& spec, const fs::path& out) {
 }
 
 // One cell of the table: the paper's dt_stable and max error beside ours, our verdict, the
-// confidence of the transcription and the cost.
+// confidence of the transcription and the work.
 std::string table1_row(const CaseSpec& cs, const ojson& r,
                        const std::map<Table1Key, PaperCell>& paper) {
   const auto& p = cs.params;
@@ -130,14 +141,14 @@ std::string table1_row(const CaseSpec& cs, const ojson& r,
   std::ostringstream md;
   md << "| " << param(p.dt) << (cs.dt_inferred ? " (inferred)" : "") << " | " << to_string(p.method)
      << " | " << sci(r["courant"].get<double>()) << " | " << (pc ? show(pc->dt_stable) : "–")
-     << " | " << (r["stable"].get<bool>() ? opt_sci(r["dt_stable_min"]) : "\\*") << " | "
+     << " | " << (survived(r) ? opt_sci(r["dt_stable_min"]) : "\\*") << " | "
      << (pc ? show(pc->max_error) : "–") << " | "
-     << (!r["stable"].get<bool>() ? std::string("\\*")
-         : ours                   ? sci(*ours)
-                                  : std::string("–"))
+     << (!survived(r) ? std::string("\\*")
+         : ours       ? sci(*ours)
+                      : std::string("–"))
      << (cs.error_at == ErrorAt::max_over_time ? " (over time)" : "") << " | " << ratio_text
      << " | " << verdict(r) << " | " << (pc ? pc->confidence : "not in the paper") << " | "
-     << cost(r) << " |\n";
+     << work(r) << " |\n";
   return md.str();
 }
 
@@ -162,7 +173,7 @@ std::string table1_markdown(const Spec& spec, const std::vector<ojson>& rows, co
     }
     md << "**A = " << shortest(A) << "**\n\n";
     md << "| dt | method | c dt/h | dt_stable paper | dt_stable ours | max error paper | max error "
-          "ours | ours / paper | ours: verdict | transcription | cost |\n";
+          "ours | ours / paper | ours: verdict | transcription | particle-steps |\n";
     md << "|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (std::size_t i = 0; i < rows.size(); ++i) {
       const auto& p = spec.cases[i].params;

@@ -24,7 +24,7 @@ std::string table2_summary_text(const Spec& spec, const std::vector<ojson>& rows
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const auto& p = spec.cases[i].params;
     const std::string m(to_string(p.method));
-    if (!rows[i]["stable"].get<bool>()) {
+    if (!survived(rows[i])) {
       ++unstable[m];
       continue;
     }
@@ -86,7 +86,7 @@ struct Table2Data {
 std::string crossings(const ojson* r) {
   if (!r || !(*r)["crossings"].is_number()) return "–";
   std::string s = std::to_string((*r)["crossings"].get<std::int64_t>());
-  if (!(*r)["stable"].get<bool>()) {
+  if (!survived(*r)) {
     s = "\\* " + s + " (to step " + std::to_string((*r)["failure_step"].get<std::int64_t>()) + ")";
   }
   return s;
@@ -128,7 +128,7 @@ std::string crossings_row(const Table2Data& d, double E) {
     for (const auto& m : d.methods) {
       const ojson* r = d.find_row(E, A, m);
       std::string ratio_text = "–";
-      if (r && (*r)["stable"].get<bool>() && (*r)["crossings"].is_number() && paper_n > 0) {
+      if (r && survived(*r) && (*r)["crossings"].is_number() && paper_n > 0) {
         ratio_text = ratio((*r)["crossings"].get<double>() / paper_n);
       }
       md << " " << crossings(r) << " | " << ratio_text << " |";
@@ -169,16 +169,16 @@ std::string transcription_notes(const CsvTable& paper) {
   return md.str();
 }
 
-// Every case: its verdict, crossings and cost.
+// Every case: its verdict, crossings and work.
 std::string every_case_table(const Spec& spec, const std::vector<ojson>& rows) {
   std::ostringstream md;
-  md << "\n\nEvery case: its verdict and cost.\n\n| E | A | method | dt | c dt/h | verdict | "
-        "crossings | cost |\n|---|---|---|---|---|---|---|---|\n";
+  md << "\n\nEvery case: its verdict and work (particle-steps).\n\n| E | A | method | dt | "
+        "c dt/h | verdict | crossings | particle-steps |\n|---|---|---|---|---|---|---|---|\n";
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const auto& p = spec.cases[i].params;
     md << "| " << shortest(p.E) << " | " << shortest(p.A) << " | " << to_string(p.method) << " | "
        << param(p.dt) << " | " << sci(rows[i]["courant"].get<double>()) << " | " << verdict(rows[i])
-       << " | " << crossings(&rows[i]) << " | " << cost(rows[i]) << " |\n";
+       << " | " << crossings(&rows[i]) << " | " << work(rows[i]) << " |\n";
   }
   return md.str();
 }
