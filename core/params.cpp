@@ -137,10 +137,31 @@ bool default_choices(const RunParams& p) {
          p.update == d.update && p.body_force_time == d.body_force_time;
 }
 
-std::optional<ParamIssue> check_dt_given(TimeStepPolicy policy) {
-  if (policy == TimeStepPolicy::fixed) return std::nullopt;
-  return ParamIssue{"dt", "only with policy fixed (the " + std::string(to_string(policy)) +
-                              " policy chooses dt itself)"};
+std::optional<ParamIssue> check_given(const RunParams& p, std::string_view key) {
+  const TimeStepPolicy policy = p.stepping.policy;
+  const std::string name(to_string(policy));
+  if (key == "dt" && policy != TimeStepPolicy::fixed) {
+    return ParamIssue{"dt", "only with policy fixed (the " + name + " policy chooses dt itself)"};
+  }
+  if (key == "cfl_factor" && policy != TimeStepPolicy::cfl && policy != TimeStepPolicy::min) {
+    return ParamIssue{"cfl_factor",
+                      "only with policy cfl or min (the " + name + " policy does not use it)"};
+  }
+  if (key == "safety" && policy != TimeStepPolicy::adaptive && policy != TimeStepPolicy::min) {
+    return ParamIssue{"safety",
+                      "only with policy adaptive or min (the " + name + " policy does not use it)"};
+  }
+  if (key == "flip_fraction" && p.transfer != Transfer::blend) {
+    return ParamIssue{
+        "flip_fraction",
+        "only with transfer = blend (" + std::string(to_string(p.transfer)) + " does not use it)"};
+  }
+  return std::nullopt;
+}
+
+const std::vector<std::string>& conditional_parameters() {
+  static const std::vector<std::string> keys = {"dt", "cfl_factor", "safety", "flip_fraction"};
+  return keys;
 }
 
 std::optional<double> fixed_step(const RunParams& p) {

@@ -131,9 +131,13 @@ const std::vector<std::string>& parameter_names();
 // All checks on a RunParams, in one place. Empty result: the parameters are valid.
 std::vector<ParamIssue> validate(const RunParams& p);
 
-// The one check on what was given rather than on the values: a dt given with a policy that
-// chooses dt itself is refused (the command line and the specs both ask it).
-std::optional<ParamIssue> check_dt_given(TimeStepPolicy policy);
+// The check on what was given rather than on the values: a parameter that the rest of `p` does
+// not use is refused when given (a dt with a policy that chooses dt itself, a cfl_factor or a
+// safety the policy ignores, a flip_fraction without a blend), so that every record holds only
+// what the run used. The command line and the specs both ask it, after reading every value.
+std::optional<ParamIssue> check_given(const RunParams& p, std::string_view key);
+// The keys check_given can refuse.
+const std::vector<std::string>& conditional_parameters();
 
 // Number of time steps the run takes: ceil(T / dt), the last one shortened to land on T.
 // Returns nullopt when the count does not fit in 64 bits.

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -9,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "result_json.hpp"
 #include "support.hpp"
 
 namespace {
@@ -32,23 +34,26 @@ std::string with(const std::string& option, const std::string& value) {
 TEST(Cli, ValidRunPrintsJsonWithEveryKey) {
   const Outcome o = run_mpmstab("run " + kValid + " --json");
   ASSERT_EQ(o.status, 0) << o.output;
-  const auto j = nlohmann::json::parse(o.output);
-  for (const char* key : {"method", "E", "A", "dt", "T", "cells", "ppc", "bc", "stable", "failure",
-                          "steps", "max_error", "max_error_over_time", "crossings", "dt_stable_min",
-                          "dt_cfl", "courant", "wall_seconds", "ns_per_particle_step"}) {
-    EXPECT_TRUE(j.contains(key)) << key;
-  }
-  EXPECT_EQ(j["stable"], true);
-  EXPECT_TRUE(j["failure"].is_null());
+  const auto j = nlohmann::ordered_json::parse(o.output);
+  // Exactly the record's columns, in order: the same shape as a sweep's rows.
+  std::vector<std::string> keys;
+  for (const auto& [k, v] : j.items())
+    keys.push_back(k);
+  EXPECT_EQ(keys, mpmstab::record_columns());
+  EXPECT_EQ(j["outcome"], "stable");
+  EXPECT_TRUE(j["failure_reason"].is_null());
+  EXPECT_TRUE(j["failure_step"].is_null());
   EXPECT_EQ(j["steps"], 10);
+  EXPECT_FALSE(j.contains("wall_seconds"));  // a machine measurement, not a result
 }
 
 TEST(Cli, UnstableRunIsAResultNotAnError) {
   const Outcome o = run_mpmstab("run --method gimp --E 1000 --A 0.015 --dt 1e-3 --json");
   ASSERT_EQ(o.status, 0) << o.output;
   const auto j = nlohmann::json::parse(o.output);
-  EXPECT_EQ(j["stable"], false);
-  EXPECT_FALSE(j["failure"]["reason"].get<std::string>().empty());
+  EXPECT_EQ(j["outcome"], "unstable");
+  EXPECT_FALSE(j["failure_reason"].get<std::string>().empty());
+  EXPECT_TRUE(j["failure_step"].is_number());
   EXPECT_TRUE(j["max_error"].is_null());
 }
 
@@ -203,6 +208,137 @@ TEST(Cli, SpecsRefuseDtWithAPolicyAsTheCommandLineDoes) {
       << defaults.output;
   EXPECT_FALSE(std::filesystem::exists(dir / "out/c.md"));
   std::filesystem::remove_all(dir);
+}
+
+// The two front doors, a spec's case and `mpmstab run`, go through one validation: every
+// combination below is refused by both with the same message (or accepted by both).
+class OneValidation : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir = std::filesystem::temp_directory_path() /
+          ("mpmstab_one_validation_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+  }
+  void TearDown() override { std::filesystem::remove_all(dir); }
+
+  // The command line for the parameters of `c` (keys as in a spec, '_' spelt '-').
+  static std::string command_line(const nlohmann::ordered_json& c) {
+    std::string args = "run";
+    for (const auto& [key, value] : c.items()) {
+      std::string option = key;
+      std::replace(option.begin(), option.end(), '_', '-');
+      args += " --" + option + " " + (value.is_string() ? value.get<std::string>() : value.dump());
+    }
+    return args;
+  }
+
+  // The text after "<prefix>" up to the end of its line ("" if absent).
+  static std::string after(const std::string& text, const std::string& prefix) {
+    const auto at = text.find(prefix);
+    if (at == std::string::npos) return "";
+    const auto begin = at + prefix.size();
+    return text.substr(begin, text.find('\n', begin) - begin);
+  }
+
+  std::filesystem::path dir;
+};
+
+TEST_F(OneValidation, TheCommandLineAndASpecRefuseTheSameCombinationsWithTheSameMessage) {
+  using J = nlohmann::ordered_json;
+  const J base = {{"method", "gimp"}, {"E", 4}, {"A", 0.01}, {"T", 0.01}};
+  auto with = [&](J extra) {
+    J c = base;
+    for (auto& [k, v] : extra.items())
+      c[k] = v;
+    return c;
+  };
+  struct Case {
+    J params;
+    std::string refused_key;  // "" when both must accept
+  };
+  const std::vector<Case> cases = {
+      {with({{"dt", 1e-3}, {"E", -1}}), "E"},
+      {with({{"dt", 1e-3}, {"E", 0}}), "E"},
+      {with({{"dt", 1e-3}, {"A", -0.1}}), "A"},
+      {with({{"dt", 0}}), "dt"},
+      {with({{"dt", -1e-3}}), "dt"},
+      {with({{"dt", 0.5}}), "dt"},  // dt > T
+      {with({{"dt", 1e-3}, {"cells", 0}}), "cells"},
+      {with({{"dt", 1e-3}, {"ppc", 0}}), "ppc"},
+      {with({{"dt", 1e-12}}), "dt"},  // over the step cap
+      {with({{"policy", "cfl"}, {"dt", 1e-3}}), "dt"},
+      {with({{"policy", "adaptive"}, {"dt", 1e-3}}), "dt"},
+      {with({{"policy", "min"}, {"dt", 1e-3}}), "dt"},
+      {with({{"dt", 1e-3}, {"cfl_factor", 0.2}}), "cfl_factor"},
+      {with({{"policy", "adaptive"}, {"cfl_factor", 0.2}}), "cfl_factor"},
+      {with({{"dt", 1e-3}, {"safety", 2}}), "safety"},
+      {with({{"policy", "cfl"}, {"safety", 2}}), "safety"},
+      {with({{"policy", "cfl"}, {"cfl_factor", 0}}), "cfl_factor"},
+      {with({{"policy", "adaptive"}, {"safety", -1}}), "safety"},
+      {with({{"dt", 1e-3}, {"flip_fraction", 0.5}}), "flip_fraction"},
+      {with({{"dt", 1e-3}, {"transfer", "blend"}, {"flip_fraction", 1}}), "flip_fraction"},
+      {with({{"dt", 1e-3}, {"bc", "periodic"}, {"walls", "ghost"}}), "walls"},
+      {with({{"dt", 1e-3}, {"T", 0}}), "T"},
+      // accepted by both
+      {with({{"dt", 1e-3}}), ""},
+      {with({{"policy", "cfl"}}), ""},
+      {with({{"policy", "cfl"}, {"cfl_factor", 0.25}}), ""},
+      {with({{"policy", "adaptive"}, {"safety", 0.5}}), ""},
+      {with({{"policy", "min"}, {"safety", 0.5}, {"cfl_factor", 0.25}}), ""},
+      {with({{"dt", 1e-3}, {"transfer", "blend"}, {"flip_fraction", 0.9}}), ""},
+  };
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const Case& c = cases[i];
+    std::string name = "v";
+    name += std::to_string(i);
+    const J spec = {{"name", name}, {"report", "cases"}, {"cases", {c.params}}};
+    const auto path = dir / (name + ".json");
+    std::ofstream(path) << spec.dump();
+    const Outcome cli = run_mpmstab(command_line(c.params));
+    const Outcome swept =
+        run_mpmstab("sweep " + path.string() + " --out " + (dir / "out").string());
+    const std::string what = c.params.dump();
+    if (c.refused_key.empty()) {
+      EXPECT_EQ(cli.status, 0) << what << "\n" << cli.output;
+      EXPECT_EQ(swept.status, 0) << what << "\n" << swept.output;
+      continue;
+    }
+    std::string option = c.refused_key;
+    std::replace(option.begin(), option.end(), '_', '-');
+    std::string cli_prefix = "--";
+    cli_prefix += option;
+    cli_prefix += ": ";
+    std::string spec_prefix = "cases[0].";
+    spec_prefix += c.refused_key;
+    spec_prefix += ": ";
+    const std::string from_cli = after(cli.output, cli_prefix);
+    const std::string from_spec = after(swept.output, spec_prefix);
+    EXPECT_EQ(cli.status, 2) << what << "\n" << cli.output;
+    EXPECT_EQ(swept.status, 2) << what << "\n" << swept.output;
+    EXPECT_FALSE(from_cli.empty()) << what << "\n" << cli.output;
+    EXPECT_EQ(from_cli, from_spec) << what << "\n" << cli.output << "\n" << swept.output;
+  }
+}
+
+// `mpmstab run --json` and a sweep of the same case give the same record (the command line
+// records every quantity by default; the spec lists them).
+TEST_F(OneValidation, RunAndASpecGiveTheSameRecord) {
+  std::ofstream(dir / "cfl.json") << R"({"name": "cfl", "report": "cases",
+      "record": ["error_over_time", "dt_stable", "crossings"], "cases": [
+      {"method": "gimp", "E": 64, "A": 0.015, "T": 0.1, "policy": "cfl"}]})";
+  const Outcome one = run_mpmstab("run --method gimp --E 64 --A 0.015 --T 0.1 --policy cfl --json");
+  ASSERT_EQ(one.status, 0) << one.output;
+  ASSERT_EQ(run_mpmstab("sweep " + (dir / "cfl.json").string() + " --out " + (dir / "out").string())
+                .status,
+            0);
+  const auto record = nlohmann::ordered_json::parse(one.output);
+  std::ifstream in(dir / "out/cfl.json");
+  const auto row = nlohmann::ordered_json::parse(in)["cases"][0];
+  EXPECT_TRUE(record["dt"].is_null());  // the cfl policy chose its own step
+  EXPECT_DOUBLE_EQ(record["dt_mean"].get<double>(),
+                   record["T"].get<double>() / record["steps"].get<double>());
+  for (const auto& [key, value] : record.items())
+    EXPECT_EQ(row[key], value) << key;
 }
 
 }  // namespace

@@ -56,8 +56,8 @@ TEST_F(SpecFiles, AGoodSpecLoadsWithDefaultsAndRecordFlags) {
   EXPECT_EQ(p.ppc, 2);  // not in the spec: the solver's default
   EXPECT_TRUE(p.observe.history);
   EXPECT_TRUE(p.observe.crossings);
-  EXPECT_FALSE(p.observe.dt_stable);  // not asked for: not computed
-  EXPECT_FALSE(p.observe.error_over_time);
+  EXPECT_FALSE(p.observe.dt_stable);       // not asked for: not computed
+  EXPECT_TRUE(p.observe.error_over_time);  // always: every record's outcome reads it
   EXPECT_EQ(p.observe.history_stride, 5);
 }
 
@@ -270,12 +270,6 @@ TEST_F(VariantSpecs, ErrorsNameTheKeyPath) {
        "variants[1].error_at: unknown value 'end' (expected T or max_over_time)"},
       {variants(R"([{"name": "w", "set": {"walls": "ghost"}}])"),
        "variants: needs one variant that changes nothing"},
-      {variants("[" + def + R"(, {"name": "w", "error_at": "max_over_time"}])",
-                R"("record": [], )"),
-       "variants[1].error_at: max_over_time needs \"error_over_time\" in record"},
-      {R"({"name": "t", "report": "table1", "reference": "x.csv", "cases": [
-          {"method": "gimp", "E": 4, "A": 0.01, "dt": 1e-3, "error_at": "max_over_time"}]})",
-       "cases[0].error_at: max_over_time needs \"error_over_time\" in record"},
       {R"({"name": "t", "report": "table1", "reference": "x.csv", "cases": [
           {"method": "gimp", "E": 4, "A": 0.01, "dt": 1e-3, "error_at": "t"}]})",
        "cases[0].error_at: unknown value 't'"},

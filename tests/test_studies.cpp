@@ -32,7 +32,7 @@ const StudyRegistration kThrowaway{{
         [](const ReportContext& c) {
           int stable = 0;
           for (const auto& r : c.rows)
-            stable += r["stable"] == true;
+            stable += r["outcome"] != "unstable";
           return StudyReport{.markdown = "## Results\n\n" + std::to_string(stable) + " of " +
                                          std::to_string(c.rows.size()) + " runs reached T.\n",
                              .json = {{"stable", stable}}};
@@ -166,8 +166,8 @@ TEST_F(Studies, ANewStudyNeedsOnlyItsDeclarationAndASpec) {
   const SweepOutcome outcome = run_sweep(spec, o);
   write_reports(spec, outcome, dir / "out");
   const std::string md = read(dir / "out/count.md");
-  const int stable = outcome.records[0]["result"]["stable"].get<bool>() +
-                     outcome.records[1]["result"]["stable"].get<bool>();
+  const int stable = (outcome.records[0]["result"]["outcome"] != "unstable") +
+                     (outcome.records[1]["result"]["outcome"] != "unstable");
   EXPECT_NE(md.find(std::to_string(stable) + " of 2 runs reached T."), std::string::npos) << md;
   const auto doc = ojson::parse(read(dir / "out/count.json"));
   EXPECT_EQ(doc["report"], "throwaway");

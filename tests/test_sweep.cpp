@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include "cache.hpp"
@@ -44,17 +45,23 @@ class Sweeps : public ::testing::Test {
     s << in.rdbuf();
     return s.str();
   }
-  // CSV rows without the '#' lines and without the two timing columns (the last two).
+  // CSV rows without the '#' lines (every column is a result: timings are kept apart).
   std::vector<std::string> deterministic_rows(const fs::path& csv) {
     std::vector<std::string> rows;
     std::istringstream in(read(csv));
     for (std::string line; std::getline(in, line);) {
       if (line.empty() || line[0] == '#') continue;
-      for (int k = 0; k < 2; ++k)
-        line.erase(line.rfind(','));
       rows.push_back(line);
     }
     return rows;
+  }
+  // Every file of a results folder but its cache, by name.
+  std::map<std::string, std::string> files(const fs::path& out) {
+    std::map<std::string, std::string> content;
+    for (const auto& e : fs::directory_iterator(out)) {
+      if (e.is_regular_file()) content[e.path().filename().string()] = read(e.path());
+    }
+    return content;
   }
   SweepOutcome sweep(const Spec& spec, int jobs, const fs::path& out, bool force = false) {
     SweepOptions o;
@@ -76,6 +83,29 @@ TEST_F(Sweeps, ResultsDoNotDependOnTheNumberOfJobs) {
   ASSERT_EQ(one.size(), 6u);  // header + 5 cases
   EXPECT_EQ(one, deterministic_rows(dir / "two/small.csv"));
   EXPECT_EQ(one, deterministic_rows(dir / "five/small.csv"));
+}
+
+// A file changes only when a result changes: recomputing every case (another number of jobs,
+// another wall time) rewrites timings.json and nothing else.
+TEST_F(Sweeps, RecomputingChangesOnlyTheTimingsFile) {
+  const Spec spec = load_spec(dir / "small.json");
+  sweep(spec, 1, dir / "out");
+  const auto before = files(dir / "out");
+  sweep(spec, 2, dir / "out", true);
+  const auto after = files(dir / "out");
+  ASSERT_EQ(before.size(), after.size());
+  for (const auto& [name, text] : before) {
+    if (name == "timings.json") continue;
+    EXPECT_EQ(text, after.at(name)) << name;
+  }
+  ASSERT_TRUE(before.count("timings.json"));
+  const auto timings = nlohmann::ordered_json::parse(after.at("timings.json"));
+  EXPECT_EQ(timings["small"]["per_case"].size(), 5u);
+  EXPECT_EQ(timings["small"]["threads"], "2");  // of the sweep that computed the cases
+  for (const auto& [name, text] : after)
+    EXPECT_EQ(text.find("wall_seconds"),
+              name == "timings.json" ? text.find("wall_seconds") : std::string::npos)
+        << name;
 }
 
 TEST_F(Sweeps, TheCacheRerunsNothingUnchangedAndOnlyWhatChanged) {

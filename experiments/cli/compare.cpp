@@ -14,17 +14,6 @@ namespace {
 // The study this command writes.
 constexpr std::string_view kStudy = "comparison";
 
-// --error-at max_over_time needs the error over time in every row compared.
-void check_error_at(const Spec& compared, const nlohmann::ordered_json& options) {
-  if (options["error_at"] != "max_over_time") return;
-  for (const auto& c : compared.cases) {
-    if (!c.params.observe.error_over_time) {
-      throw UsageError("--error-at max_over_time: " + compared.path.string() +
-                       " does not record error_over_time");
-    }
-  }
-}
-
 int derive(const Spec& derived, const std::filesystem::path& out,
            const nlohmann::ordered_json& options) {
   try {
@@ -79,7 +68,6 @@ int cmd_compare(const std::vector<std::string_view>& argv) {
   // compared with the paper first.
   if (specs.size() == 1 && !specs.front().study->has_cases) {
     const Spec& derived = specs.front();
-    if (options.contains("error_at")) check_error_at(load_inputs(derived).front(), options);
     return derive(derived, out, options);
   }
   const Study* study = find_study(kStudy);
@@ -87,7 +75,6 @@ int cmd_compare(const std::vector<std::string_view>& argv) {
   if (specs.front().study->name != first) {
     throw UsageError(specs.front().path.string() + ": the first spec must be a " + first + " spec");
   }
-  if (options.contains("error_at")) check_error_at(specs.front(), options);
   std::vector<std::string> roles = {first};
   for (std::size_t i = 1; i < specs.size(); ++i)
     roles.push_back(specs[i].name);

@@ -67,8 +67,8 @@ Options:
   --history <file.csv>     also write the per-step history (error, eq. 108, crossings)
   --history-stride <n>     keep every n-th step in the history (default 1)
   --json                   print the run's record (one JSON object, the same as a row of
-                           a sweep's results) instead of the text summary; the wall time
-                           goes to standard error
+                           a sweep's results) instead of the text summary; the record
+                           holds no wall time (the text summary shows it)
   --help                   show this text
 
 Every quantity printed (outcome, steps, dt_min/dt_max/dt_mean, max_error,
@@ -101,7 +101,8 @@ std::string text_summary(const RunResult& r) {
     << (fixed ? ", dt = " + fmt(p.dt) : ", policy " + std::string(to_string(p.stepping.policy)))
     << ", T = " << fmt(p.T) << ", " << p.cells << " cells x " << p.ppc << " ppc, "
     << to_string(p.bc) << "\n";
-  std::string verdict(r.outcome ? to_string(*r.outcome) : "survived (error over time not measured)");
+  std::string verdict(r.outcome ? to_string(*r.outcome)
+                                : "survived (error over time not measured)");
   if (r.failure) {
     verdict += " (" + std::string(to_string(r.failure->reason)) + " at step " +
                std::to_string(r.failure->step) + ", t = " + fmt(r.failure->time) +
@@ -173,10 +174,6 @@ int cmd_run(const std::vector<std::string_view>& argv) {
   }
   if (args.flag("json")) {
     std::cout << to_json(result).dump(2) << "\n";
-    std::cerr << "wall time " << fmt(result.wall_seconds) << " s"
-              << (result.steps ? ", " + fmt(result.ns_per_particle_step) + " ns per particle-step"
-                               : std::string())
-              << "\n";
   } else {
     std::cout << text_summary(result);
   }

@@ -45,9 +45,6 @@ void read_time_stepping(const Args& a, bool searching_dt, RunParams& p) {
   if (!searching_dt) {
     if (p.stepping.policy == TimeStepPolicy::fixed) {
       p.dt = parse_double(required(a, "dt"), "dt");
-    } else if (a.value("dt")) {
-      const ParamIssue issue = *check_dt_given(p.stepping.policy);
-      throw UsageError(option_for_key(issue.key) + ": " + issue.message);
     }
   }
   if (auto v = a.value("cfl-factor")) p.stepping.cfl_factor = parse_double(*v, "cfl-factor");
@@ -71,11 +68,7 @@ void read_choices(const Args& a, RunParams& p) {
   if (auto v = a.value("transfer")) {
     p.transfer = parse_choice(*v, "transfer", parse_transfer, "flip, pic or blend");
   }
-  if (auto v = a.value("flip-fraction")) {
-    if (p.transfer != Transfer::blend)
-      throw UsageError("--flip-fraction: only with --transfer blend");
-    p.flip_fraction = parse_double(*v, "flip-fraction");
-  }
+  if (auto v = a.value("flip-fraction")) p.flip_fraction = parse_double(*v, "flip-fraction");
   if (auto v = a.value("update")) {
     p.update = parse_choice(*v, "update", parse_update_order, "usl, usf or musl");
   }
@@ -154,6 +147,16 @@ RunParams params_from(const Args& a, bool searching_dt) {
   read_time_stepping(a, searching_dt, p);
   read_choices(a, p);
   read_measurements(a, p);
+  // What was given but is not used, then the values: the order and the messages of a spec.
+  for (const auto& key : conditional_parameters()) {
+    if (key == "dt" && searching_dt) continue;
+    std::string option = key;
+    std::replace(option.begin(), option.end(), '_', '-');
+    if (!a.value(option)) continue;
+    if (const auto issue = check_given(p, key)) {
+      throw UsageError(option_for_key(issue->key) + ": " + issue->message);
+    }
+  }
   throw_if_invalid(p);
   return p;
 }

@@ -33,11 +33,11 @@ const std::vector<std::string> kKeyColumns = [] {
 // Every deterministic result column and how it is compared. Verdicts, reasons and counts are
 // exact; floating-point values use the relative tolerance of the options.
 std::vector<ColumnRule> value_rules(double rtol) {
-  return {{"stable", 0, 0, true},
+  return {{"outcome", 0, 0, true},
           {"failure_reason", 0, 0, true},
           {"failure_step", 0, 0, false},
-          {"meaningless", 0, 0, true},
           {"steps", 0, 0, false},
+          {"dt_mean", 0, rtol, false},
           {"max_error", 0, rtol, false},
           {"max_error_over_time", 0, rtol, false},
           {"crossings", 0, 0, false},

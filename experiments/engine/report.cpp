@@ -87,9 +87,7 @@ std::string provenance_lines(const ojson& prov) {
     << "\n# compiler: " << prov["compiler"].get<std::string>()
     << "\n# flags: " << prov["flags"].get<std::string>()
     << "\n# eigen: " << prov["eigen"].get<std::string>()
-    << "\n# date: " << prov["date"].get<std::string>()
-    << "\n# cpu: " << prov["cpu"].get<std::string>()
-    << "\n# threads: " << prov["threads"].get<std::string>() << "\n";
+    << "\n# cpu: " << prov["cpu"].get<std::string>() << "\n";
   return s.str();
 }
 
@@ -161,7 +159,8 @@ std::vector<ojson> flat_rows(const Spec& spec, const SweepOutcome& outcome) {
 // The machine's measurements of a sweep, for results/timings.json: each case's wall time (an
 // edge case's whole search) and ns per particle-step, their sum, and the wall time of the sweep.
 // A rerun served from the cache keeps the sweep wall time of the sweep that computed the cases.
-ojson sweep_timing(const Spec& spec, const SweepOutcome& outcome, const ojson& previous) {
+ojson sweep_timing(const Spec& spec, const SweepOutcome& outcome, const ojson& when,
+                   const ojson& previous) {
   ojson cases = ojson::array();
   double compute_seconds = 0;
   for (std::size_t i = 0; i < spec.cases.size(); ++i) {
@@ -176,15 +175,15 @@ ojson sweep_timing(const Spec& spec, const SweepOutcome& outcome, const ojson& p
       previous.contains("sweep_wall_seconds")) {
     sweep_wall = previous["sweep_wall_seconds"].get<double>();
   }
-  return {{"cases", spec.cases.size()},
-          {"compute_seconds", compute_seconds},
-          {"sweep_wall_seconds", sweep_wall},
-          {"per_case", cases}};
+  return {{"cases", spec.cases.size()},       {"date", when["date"]},
+          {"threads", when["threads"]},       {"compute_seconds", compute_seconds},
+          {"sweep_wall_seconds", sweep_wall}, {"per_case", cases}};
 }
 
 // results/timings.json: the one file of machine measurements, an entry per experiment, updated
 // in place for the experiment just swept (experiments in name order).
-void write_timings(const Spec& spec, const SweepOutcome& outcome, const fs::path& out) {
+void write_timings(const Spec& spec, const SweepOutcome& outcome, const ojson& when,
+                   const fs::path& out) {
   const fs::path path = out / "timings.json";
   ojson all = ojson::object();
   if (const std::string text = read_file(path); !text.empty()) {
@@ -198,7 +197,7 @@ void write_timings(const Spec& spec, const SweepOutcome& outcome, const fs::path
   std::map<std::string, ojson> sorted;
   for (auto& [k, v] : all.items())
     sorted[k] = v;
-  sorted[spec.name] = sweep_timing(spec, outcome, previous);
+  sorted[spec.name] = sweep_timing(spec, outcome, when, previous);
   ojson doc = ojson::object();
   for (auto& [k, v] : sorted)
     doc[k] = std::move(v);
@@ -306,14 +305,18 @@ void write_derived_reports(const Spec& spec, const fs::path& out, const ojson& o
 void write_reports(const Spec& spec, const SweepOutcome& outcome, const fs::path& out) {
   fs::create_directories(out);
   const std::vector<ojson> rows = flat_rows(spec, outcome);
-  const ojson prov = aggregate_provenance(outcome.records);
+  // When and with how many threads the cases ran go with the timings: the reports hold only
+  // what fixes the results (the build and the machine).
+  ojson prov = aggregate_provenance(outcome.records);
+  const ojson when = {{"date", prov["date"]}, {"threads", prov["threads"]}};
+  prov.erase("date");
+  prov.erase("threads");
   const fs::path json_path = out / (spec.name + ".json");
-  write_timings(spec, outcome, out);
+  write_timings(spec, outcome, when, out);
   const std::string spec_path = spec.path.generic_string();
   const std::string header = "# experiment: " + spec.name + " (" + spec_path +
                              ")\n# title: " + spec.title + "\n" + provenance_lines(prov);
-  write_if_changed(out / (spec.name + ".csv"),
-                   rows_csv(rows, result_columns(spec), header));
+  write_if_changed(out / (spec.name + ".csv"), rows_csv(rows, result_columns(spec), header));
 
   // The study's part, from the rows and the results of its declared inputs.
   const std::vector<Spec> input_specs = load_inputs(spec);
@@ -331,8 +334,8 @@ void write_reports(const Spec& spec, const SweepOutcome& outcome, const fs::path
   if (!study.json.is_null()) doc["study"] = study.json;
   write_if_changed(json_path, doc.dump(2) + "\n");
   if (study.data_csv) write_if_changed(out / (spec.name + "_data.csv"), *study.data_csv);
-  write_if_changed(out / (spec.name + ".md"), report_head(spec, out) + study.markdown + "\n" +
-                                                  provenance_markdown(prov));
+  write_if_changed(out / (spec.name + ".md"),
+                   report_head(spec, out) + study.markdown + "\n" + provenance_markdown(prov));
 }
 
 namespace {
@@ -365,9 +368,7 @@ std::string index_section(const Spec& spec, const ojson& doc) {
   const std::vector<ojson> rows(doc["cases"].begin(), doc["cases"].end());
   md << spec.study->index(spec, rows);
   md << "Provenance: commit " << doc["provenance"]["commit"].get<std::string>() << ", "
-     << doc["provenance"]["date"].get<std::string>() << ", "
-     << doc["provenance"]["cpu"].get<std::string>() << ", "
-     << doc["provenance"]["threads"].get<std::string>() << " threads.\n\n";
+     << doc["provenance"]["cpu"].get<std::string>() << ".\n\n";
   return md.str();
 }
 

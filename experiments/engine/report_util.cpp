@@ -61,7 +61,7 @@ bool survived(const ojson& r) {
 std::string verdict(const ojson& r) {
   if (survived(r)) {
     return outcome(r) == "meaningless" ? "meaningless (survived; error over time reached A)"
-                                        : "stable";
+                                       : "stable";
   }
   std::string s = "\\* ";
   s += r["failure_reason"].get<std::string>();

@@ -335,14 +335,16 @@ void apply_variant(const Reader& r, VariantDecl& d, const std::string& at,
     if (d.error_at) cs.error_at = *d.error_at;
     for (const auto& [key, value] : d.set.items())
       r.set(cs.params, cs, key, value, at + ".set." + key);
+    for (const auto& [key, value] : d.set.items()) {
+      if (const auto issue = check_given(cs.params, key)) {
+        r.fail(at + ".set." + key, "with base case " + std::to_string(i) + ": " + issue->message);
+      }
+    }
     const auto issues = validate(cs.params);
     if (!issues.empty()) {
       const auto& issue = issues.front();
       r.fail(d.set.contains(issue.key) ? at + ".set." + issue.key : at,
              "with base case " + std::to_string(i) + ": " + issue.key + " " + issue.message);
-    }
-    if (cs.error_at == ErrorAt::max_over_time && !cs.params.observe.error_over_time) {
-      r.fail(at + ".error_at", "max_over_time needs \"error_over_time\" in record");
     }
     if (const auto [it, inserted] = seen.emplace(canonical_parameters(cs.params), i); !inserted) {
       r.fail(at, "makes base cases " + std::to_string(it->second) + " and " + std::to_string(i) +
@@ -500,12 +502,6 @@ std::vector<CaseSpec> cases_of_base(const Reader& r, const json& doc, const Spec
       if (!issues.empty()) r.fail(issues.front().key, issues.front().message);
     }
   }
-  for (std::size_t i = 0; i < cases.size(); ++i) {
-    if (cases[i].error_at == ErrorAt::max_over_time && !cases[i].params.observe.error_over_time) {
-      r.fail("record", "base case " + std::to_string(i) +
-                           " compares the max error over time: record needs \"error_over_time\"");
-    }
-  }
   return cases;
 }
 
@@ -535,17 +531,16 @@ CaseSpec read_case(const Reader& r, const json& defaults, const json& c, const s
     p.dt = p.T;  // a placeholder that validates; the search sets dt
   } else if (p.stepping.policy == TimeStepPolicy::fixed && !source.count("dt")) {
     r.fail(at + ".dt", "is required with the fixed policy (in the case or in defaults)");
-  } else if (source.count("dt")) {
-    if (const auto issue = check_dt_given(p.stepping.policy)) r.fail(source["dt"], issue->message);
+  }
+  for (const auto& key : conditional_parameters()) {
+    if (!source.count(key) || (key == "dt" && study.work == CaseWork::edge_search)) continue;
+    if (const auto issue = check_given(p, key)) r.fail(source[key], issue->message);
   }
   const auto issues = validate(p);
   if (!issues.empty()) {
     const auto& issue = issues.front();
     const auto it = source.find(issue.key);
     r.fail(it != source.end() ? it->second : at + "." + issue.key, issue.message);
-  }
-  if (cs.error_at == ErrorAt::max_over_time && !observe.error_over_time) {
-    r.fail(source["error_at"], "max_over_time needs \"error_over_time\" in record");
   }
   cs.paper_method = p.method;
   return cs;

@@ -86,10 +86,9 @@ class Progress {
       draw();
       if (done_ == total_) std::fputc('\n', stderr);
     } else {
-      std::string verdict =
-          result["outcome"] == "unstable"
-              ? "unstable (" + result["failure_reason"].get<std::string>() + ")"
-              : result["outcome"].get<std::string>();
+      std::string verdict = result["outcome"] == "unstable"
+                                ? "unstable (" + result["failure_reason"].get<std::string>() + ")"
+                                : result["outcome"].get<std::string>();
       std::fprintf(stderr, "[%s] %zu/%zu %s: %s%s\n", name_.c_str(), done_, total_,
                    describe_case(p).c_str(), verdict.c_str(), from_cache ? " [cached]" : "");
     }

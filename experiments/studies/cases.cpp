@@ -81,8 +81,8 @@ std::string case_row(const ojson& r, const std::vector<std::string>& params,
                          : shortest(v.get<double>()))
        << " |";
   }
-  md << " " << opt_sci(r["courant"]) << " | " << verdict(r) << " | "
-     << opt_sci(r["max_error"]) << " |";
+  md << " " << opt_sci(r["courant"]) << " | " << verdict(r) << " | " << opt_sci(r["max_error"])
+     << " |";
   if (observe.error_over_time) {
     md << " " << opt_sci(r["max_error_over_time"]) << " | "
        << (r["max_error_over_time"].is_number() && r["A"].get<double>() > 0

@@ -167,14 +167,14 @@ std::string method_reading(const std::vector<ojson>& rows, const char* method) {
 std::string every_case_table(const std::vector<ojson>& rows) {
   std::ostringstream md;
   md << "### Every case\n\n| method | bc | E | A | dt | T | cells | ppc | c dt/h | verdict | "
-        "max error over time | particle-steps |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+        "max error over time | particle-steps "
+        "|\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& r : rows) {
     md << "| " << r["method"].get<std::string>() << " | " << r["bc"].get<std::string>() << " | "
        << shortest(r["E"].get<double>()) << " | " << shortest(r["A"].get<double>()) << " | "
        << param(r["dt"].get<double>()) << " | " << param(r["T"].get<double>()) << " | "
-       << r["cells"].dump() << " | " << r["ppc"].dump() << " | " << opt_sci(r["courant"])
-       << " | " << verdict(r) << " | " << opt_sci(r["max_error_over_time"]) << " | " << work(r)
-       << " |\n";
+       << r["cells"].dump() << " | " << r["ppc"].dump() << " | " << opt_sci(r["courant"]) << " | "
+       << verdict(r) << " | " << opt_sci(r["max_error_over_time"]) << " | " << work(r) << " |\n";
   }
   return md.str();
 }

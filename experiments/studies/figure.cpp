@@ -22,7 +22,8 @@ std::string figure_markdown(const Spec& spec, const std::vector<ojson>& rows) {
   md << "Vector version: [" << spec.name << ".svg](" << spec.name << ".svg); data: [" << spec.name
      << "_data.csv](" << spec.name << "_data.csv).\n\n";
   md << "| method | E | A | dt | c dt/h | steps | verdict | max error at end | max error over "
-        "time | dt_stable min | crossings | particle-steps |\n|---|---|---|---|---|---|---|---|---|---|---|"
+        "time | dt_stable min | crossings | particle-steps "
+        "|\n|---|---|---|---|---|---|---|---|---|---|---|"
         "---|\n";
   md << "| " << to_string(p.method) << " | " << shortest(p.E) << " | " << shortest(p.A) << " | "
      << param(p.dt) << " | " << sci(r["courant"].get<double>()) << " | " << r["steps"].dump()
