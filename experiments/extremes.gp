@@ -1,8 +1,10 @@
 # extremes.gp -- the verdict of every extremes case in the plane (Courant number, amplitude in
-# cells), log-log, one panel per method.
+# cells), log-log, one panel per method. Cases at one spot are drawn once: the verdicts of a spot
+# side by side (stable left, meaningless centre, unstable right, a quarter decade apart), the
+# marker growing with the number of cases, and that number printed when it is more than 1.
 #
-# Reads : datafile (results/extremes_data.csv): '#' lines, then method,courant,A_over_h,verdict
-#         (method 0 mpm, 1 gimp; verdict 0 stable, 1 meaningless, 2 unstable).
+# Reads : datafile (results/extremes_data.csv): '#' lines, then method,courant,A_over_h,verdict,
+#         cases (method 0 mpm, 1 gimp; verdict 0 stable, 1 meaningless, 2 unstable).
 # Writes: outbase.png and outbase.svg.
 # Variables: datafile, outbase (required), subtitle (optional).
 
@@ -17,6 +19,10 @@ set datafile commentschars '#'
 set datafile columnheaders
 
 sel(m, v, x) = ($1 == m && $4 == v && $2 > 0 && $3 > 0) ? x : 1/0
+# The verdicts of one spot side by side: x shifted by a quarter decade per verdict.
+shift(v) = 10 ** ((v - 1) * 0.25)
+size(n) = 0.9 + 0.6 * log10(n)
+many(n) = n > 1 ? sprintf("%d", n) : ""
 
 do for [ext in "png svg"] {
     if (ext eq "png") {
@@ -42,9 +48,12 @@ do for [ext in "png svg"] {
         } else {
             unset key
         }
-        plot datafile using (sel(m, 0, $2)):(sel(m, 0, $3)) with points pt 6 ps 1.2 lc rgb "#2ca02c" title "stable", \
-             datafile using (sel(m, 1, $2)):(sel(m, 1, $3)) with points pt 8 ps 1.2 lc rgb "#ff7f0e" title "stable, meaningless (error reached A)", \
-             datafile using (sel(m, 2, $2)):(sel(m, 2, $3)) with points pt 2 ps 1.0 lc rgb "#d62728" title "unstable"
+        plot datafile using (sel(m, 0, $2 * shift(0))):(sel(m, 0, $3)):(size($5)) with points pt 6 ps variable lc rgb "#2ca02c" title "stable", \
+             datafile using (sel(m, 1, $2 * shift(1))):(sel(m, 1, $3)):(size($5)) with points pt 8 ps variable lc rgb "#ff7f0e" title "meaningless (survived, error reached A)", \
+             datafile using (sel(m, 2, $2 * shift(2))):(sel(m, 2, $3)):(size($5)) with points pt 2 ps variable lc rgb "#d62728" title "unstable", \
+             datafile using (sel(m, 0, $2 * shift(0))):(sel(m, 0, $3)):(many($5)) with labels offset 0,0.9 font "sans,8" tc rgb "#2ca02c" notitle, \
+             datafile using (sel(m, 1, $2 * shift(1))):(sel(m, 1, $3)):(many($5)) with labels offset 0,0.9 font "sans,8" tc rgb "#ff7f0e" notitle, \
+             datafile using (sel(m, 2, $2 * shift(2))):(sel(m, 2, $3)):(many($5)) with labels offset 0,0.9 font "sans,8" tc rgb "#d62728" notitle
     }
     unset multiplot
     unset output

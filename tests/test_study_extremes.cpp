@@ -14,7 +14,7 @@ TEST(ExtremesStudy, EveryRunHasAVerdictCountedInItsBand) {
   std::vector<ojson> rows;
   ojson stable = study_row("gimp", 4);  // Courant 0.02, A/h 1.5
   ojson meaningless = stable;
-  meaningless["meaningless"] = true;
+  test_support::meaningless_row(meaningless);
   ojson unstable = stable;
   unstable["courant"] = 3.0;
   test_support::fail_row(unstable, "left_domain");
@@ -22,8 +22,8 @@ TEST(ExtremesStudy, EveryRunHasAVerdictCountedInItsBand) {
   nan_output["dt_stable_min"] = nullptr;
   rows = {stable, meaningless, unstable, nan_output};
   const auto report = test_support::study_report("extremes", rows);
-  EXPECT_NE(report.markdown.find("4 cases, every one with a verdict: 2 stable, 1 stable but "
-                                 "meaningless (the error over time reached A), 1 unstable "
+  EXPECT_NE(report.markdown.find("4 cases, every one with a verdict: 2 stable, 1 meaningless "
+                                 "(survived, but the error over time reached A), 1 unstable "
                                  "(left_domain 1). Stable outputs holding a NaN or an "
                                  "infinity: 1."),
             std::string::npos)
@@ -33,8 +33,10 @@ TEST(ExtremesStudy, EveryRunHasAVerdictCountedInItsBand) {
   EXPECT_NE(report.markdown.find("| 1 <= c dt/h < 10 | 1 | 0 | 0 | left_domain 1 |"),
             std::string::npos)
       << report.markdown;
-  // The figure's data: one point per run with its verdict code (0, 1 or 2).
-  EXPECT_NE(report.data_csv->find("1,0.02,1.5,0\n1,0.02,1.5,1\n1,3,1.5,2\n"), std::string::npos)
+  // The figure's data: one row per spot and verdict code (0, 1 or 2), with its number of runs:
+  // the two stable runs at one spot are drawn once, counted 2.
+  EXPECT_NE(report.data_csv->find("1,2e-2,1.5,0,2\n1,2e-2,1.5,1,1\n1,3,1.5,2,1\n"),
+            std::string::npos)
       << *report.data_csv;
 }
 

@@ -42,30 +42,30 @@ class VariantsStudyTest : public ::testing::Test {
   }
   void TearDown() override { fs::remove_all(dir); }
 
-  static ojson stable(const char* method, double error, double wall = 1.0,
+  static ojson stable(const char* method, double error, double steps = 10000,
                       bool meaningless = false) {
     return {{"method", method},
             {"A", 0.015},
-            {"stable", true},
+            {"outcome", meaningless ? "meaningless" : "stable"},
             {"max_error", error},
             {"max_error_over_time", error * 2},
             {"dt_stable_min", 1e-4},
             {"courant", 0.2},
             {"failure_reason", nullptr},
-            {"meaningless", meaningless},
-            {"wall_seconds", wall}};
+            {"particles", 1},
+            {"steps", steps}};
   }
   static ojson unstable(const char* method, const char* reason) {
     return {{"method", method},
             {"A", 0.015},
-            {"stable", false},
+            {"outcome", "unstable"},
             {"max_error", nullptr},
             {"max_error_over_time", 1.0},
             {"dt_stable_min", nullptr},
             {"courant", 0.02},
             {"failure_reason", reason},
-            {"meaningless", nullptr},
-            {"wall_seconds", 0.5}};
+            {"particles", 1},
+            {"steps", 5000}};
   }
   // Rows in spec order: default (gimp 1e-3, mpm 1e-3, gimp 1e-4, mpm 1e-4), ghost (gimp 1e-3,
   // gimp 1e-4), pic (all four), pic+ghost (gimp 1e-3, gimp 1e-4).
@@ -77,7 +77,7 @@ class VariantsStudyTest : public ::testing::Test {
             stable("gimp", 1e-3), stable("gimp", ghost_gimp_1e4_error),
             // pic: fixes the MPM error and makes the failing MPM run survive, meaninglessly
             stable("gimp", 2e-5), stable("mpm", 1e-4), stable("gimp", 1e-4),
-            stable("mpm", 1e-2, 1.0, true),
+            stable("mpm", 1e-2, 10000, true),
             // pic+ghost: nothing in agreement
             stable("gimp", 1e-3), stable("gimp", 1e-3)};
   }
@@ -106,12 +106,12 @@ TEST_F(VariantsStudyTest, CountsFollowTheComparisonsRules) {
   EXPECT_EQ(mpm.counts.verdicts_compared, 2);
   EXPECT_EQ(mpm.counts.errors_within, 0);
   EXPECT_EQ(mpm.counts.errors_compared, 1);
-  EXPECT_DOUBLE_EQ(mpm.wall_seconds, 1.5);
+  EXPECT_DOUBLE_EQ(mpm.particle_steps, 15000);
   const auto& gimp = def.by_method.at("gimp");
   EXPECT_EQ(gimp.counts.errors_within, 1);
   EXPECT_EQ(gimp.counts.errors_compared, 2);
   EXPECT_DOUBLE_EQ(quantile(gimp.counts.error_ratios, 0.5), 6.0);  // ratios 2 and 10
-  EXPECT_DOUBLE_EQ(def.wall_seconds, 3.5);
+  EXPECT_DOUBLE_EQ(def.particle_steps, 35000);
 
   // ghost ran the GIMP cells only: it breaks the agreeing one and fixes the error class.
   const VariantOutcome& ghost = s.variants[1];

@@ -42,10 +42,11 @@ Options:
              to DIR/cache/, with a manifest DIR/<name>.shard-I-of-N.json; 'mpmstab merge'
              gathers the shards and writes the reports (see experiments/README.md).
   --timing keep|omit
-             omit: reports leave out the machine measurements (wall times and ns per
-             particle-step read 0, date and threads "omitted"), so that two runs of the same
-             spec compare byte for byte, whatever the machine or the number of shards. The
-             cache keeps the measurements. Default keep.
+             The reports never hold machine measurements: wall times, ns per
+             particle-step, date and threads go to DIR/timings.json only. omit writes
+             zeros (and "omitted") there too, so that two whole folders compare byte for
+             byte, whatever the machine or the number of shards. The cache keeps the
+             measurements. Default keep.
   --help     show this text
 
 Exit status: 0 when every case ran (unstable runs are results), 2 for an invalid spec or

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <map>
 #include <sstream>
+#include <tuple>
 
 #include "csv.hpp"
 #include "report.hpp"
@@ -82,7 +83,7 @@ std::string extremes_summary(const Spec& spec, const std::vector<ojson>& rows) {
   std::ostringstream md;
   md << "## Results\n\n**Summary.** " << rows.size()
      << " cases, every one with a verdict: " << stable << " stable, " << meaningless
-     << " stable but meaningless (the error over time reached A), "
+     << " meaningless (survived, but the error over time reached A), "
      << rows.size() - stable - meaningless << " unstable (" << reason_counts(reasons)
      << "). Stable outputs holding a NaN or an infinity: " << bad_output
      << ". The largest case took " << sci(slowest.work) << " particle-steps (" << slowest.name
@@ -195,17 +196,42 @@ std::string extremes_markdown(const Spec& spec, const std::vector<ojson>& rows) 
   return md.str();
 }
 
+// The cases drawn at one spot of the figure: a method, a Courant number, an amplitude in cells
+// and a verdict. Many cases share a spot (they differ in E, T, cells or ppc): they are drawn once,
+// with their count.
+using Spot = std::tuple<int, std::string, std::string, int>;
+
+std::map<Spot, int> spots(const std::vector<ojson>& rows) {
+  std::map<Spot, int> n;
+  for (const auto& r : rows) {
+    ++n[{r["method"] == "gimp" ? 1 : 0, param(r["courant"].get<double>()),
+         param(r["A"].get<double>() * r["cells"].get<double>()), verdict_code(r)}];
+  }
+  return n;
+}
+
 std::string extremes_data_csv(const std::vector<ojson>& rows, const std::string& header_lines) {
   std::ostringstream csv;
   csv << header_lines
-      << "# method: 0 mpm, 1 gimp; verdict: 0 stable, 1 meaningless, 2 unstable\n"
-         "method,courant,A_over_h,verdict\n";
-  for (const auto& r : rows) {
-    csv << (r["method"] == "gimp" ? 1 : 0) << ',' << shortest(r["courant"].get<double>()) << ','
-        << shortest(r["A"].get<double>() * r["cells"].get<double>()) << ',' << verdict_code(r)
-        << '\n';
+      << "# one row per spot: method (0 mpm, 1 gimp), Courant number, amplitude in cells, verdict "
+         "(0 stable, 1 meaningless, 2 unstable) and the number of cases there\n"
+         "method,courant,A_over_h,verdict,cases\n";
+  for (const auto& [spot, count] : spots(rows)) {
+    const auto& [method, courant, a_over_h, verdict] = spot;
+    csv << method << ',' << courant << ',' << a_over_h << ',' << verdict << ',' << count << '\n';
   }
   return csv.str();
+}
+
+// What the figure draws: every case, at fewer spots than cases.
+std::string extremes_subtitle(const Spec&, const ojson& doc) {
+  const std::vector<ojson> rows(doc["cases"].begin(), doc["cases"].end());
+  std::string s = std::to_string(rows.size());
+  s += " cases at ";
+  s += std::to_string(spots(rows).size());
+  s += " spots; the verdicts of one spot side by side, the marker growing with its number of "
+       "cases (printed when more than 1)";
+  return s;
 }
 
 std::string extremes_index(const Spec& spec, const std::vector<ojson>& rows) {
@@ -231,7 +257,7 @@ const StudyRegistration kExtremes{{
                              .data_csv = extremes_data_csv(c.rows, c.csv_header)};
         },
     .index = extremes_index,
-    .figure_subtitle = first_scene_subtitle,
+    .figure_subtitle = extremes_subtitle,
 }};
 
 }  // namespace

@@ -21,7 +21,7 @@ namespace mpmstab {
 struct VariantMethodSummary {
   int cells = 0;
   AgreementCounts counts;
-  double wall_seconds = 0;  // summed over the variant's runs of this column
+  double particle_steps = 0;  // work summed over the variant's runs of this column
 };
 
 // One variant, one class of disagreement (the cells' class under the default run).
@@ -41,7 +41,7 @@ struct VariantOutcome {
   int agreeing = 0;                // of those, fully in agreement (CellVerdict::agrees)
   int agreeing_under_default = 0;  // of its cells, those fully in agreement under the default
   int breaks = 0;                  // of those, no longer in agreement under this variant
-  double wall_seconds = 0;         // summed over its runs (shared runs count in each variant)
+  double particle_steps = 0;       // work summed over its runs (shared runs count in each)
   std::vector<std::pair<std::string, double>> error_ratios;  // (column, ours / paper) per cell
 };
 

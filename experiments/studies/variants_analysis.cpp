@@ -44,12 +44,12 @@ void tally_case(VariantOutcome& o, const CellReader& read, std::size_t i,
   const ojson& row = read.rows[i];
   const std::string column(to_string(c.paper_method));
   const CellVerdict v = read(i);
-  const double wall = row["wall_seconds"].get<double>();
+  const double work = particle_steps(row);
   auto& m = o.by_method[column];
   ++m.cells;
   m.counts.add(v);
-  m.wall_seconds += wall;
-  o.wall_seconds += wall;
+  m.particle_steps += work;
+  o.particle_steps += work;
   ++o.cells;
   if (v.agrees()) ++o.agreeing;
   if (v.error_ratio) o.error_ratios.emplace_back(column, *v.error_ratio);
@@ -60,7 +60,7 @@ void tally_case(VariantOutcome& o, const CellReader& read, std::size_t i,
   ++co.covered;
   if (k && agrees_as(v, k->kind)) {
     ++co.agree;
-    if (row["stable"] == true && row["meaningless"] == true) ++co.meaningless;
+    if (outcome(row) == "meaningless") ++co.meaningless;
   }
   if (d->second.agrees()) {
     ++o.agreeing_under_default;
@@ -100,7 +100,7 @@ ojson variant_json(const VariantOutcome& v) {
   e["agreeing"] = v.agreeing;
   e["agreeing_under_default"] = v.agreeing_under_default;
   e["breaks"] = v.breaks;
-  e["wall_seconds"] = v.wall_seconds;
+  e["particle_steps"] = v.particle_steps;
   ojson by_method = ojson::object();
   for (const auto& [column, m] : v.by_method) {
     const auto err = median_ratio(m.counts.error_ratios);
@@ -112,7 +112,7 @@ ojson variant_json(const VariantOutcome& v) {
                          {"errors_compared", m.counts.errors_compared},
                          {"median_error_ratio", err ? ojson(*err) : ojson(nullptr)},
                          {"median_dt_stable_ratio", dts ? ojson(*dts) : ojson(nullptr)},
-                         {"wall_seconds", m.wall_seconds}};
+                         {"particle_steps", m.particle_steps}};
   }
   e["by_method"] = by_method;
   return e;

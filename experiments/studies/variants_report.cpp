@@ -213,10 +213,12 @@ void write_method(std::ostream& md, const Spec& spec, bool have_courant) {
         "paper value is unreadable are not compared. A variant that changes the method (cpGIMP) "
         "is still compared with the paper's GIMP column. Our error is the max error at T unless "
         "the variant's `error_at` says otherwise. Medians are over the cells where both are "
-        "stable (max error) or where ours is stable and the paper prints dt_stable. Wall time: "
-        "the sum of the wall times of the variant's runs; runs with the same parameters in two "
-        "variants (the `error_at` variant and the default, for example) are computed once and "
-        "counted in both. A cell's class is its class in comparison.md, that is under the "
+        "stable (max error) or where ours is stable and the paper prints dt_stable. Work: the "
+        "particle-steps (particles x steps) of the variant's runs, summed; runs with the same "
+        "parameters in two variants (the `error_at` variant and the default, for example) are "
+        "computed once and counted in both. Wall times are in [performance.md](performance.md). "
+        "A meaningless run (it survived, but its error over time reached A) never agrees with a "
+        "stable cell of the paper. A cell's class is its class in comparison.md, that is under the "
         "default run"
      << (have_courant ? ""
                       : " (the Courant scan, courant.json, was not available: the class "
@@ -231,11 +233,11 @@ void write_method(std::ostream& md, const Spec& spec, bool have_courant) {
 void write_every_variant(std::ostream& md, const VariantsStudy& s) {
   md << "### Every variant\n\n"
         "| variant | change | what it is | cells in full agreement | agreeing under the default "
-        "that it breaks | wall time |\n|---|---|---|---|---|---|\n";
+        "that it breaks | particle-steps |\n|---|---|---|---|---|---|\n";
   for (const auto& v : s.variants) {
     md << "| " << named(v) << " | " << v.change << " | " << v.description << " | "
        << of(v.agreeing, v.cells) << " | " << of(v.breaks, v.agreeing_under_default) << " | "
-       << seconds(v.wall_seconds) << " |\n";
+       << sci(v.particle_steps) << " |\n";
   }
 }
 
@@ -245,7 +247,7 @@ void write_per_method(std::ostream& md, const VariantsStudy& s) {
         "paper's, of the cells with a readable paper value. Within 3x: of the cells where both "
         "are stable. Ratios are ours / paper.\n\n"
         "| variant | method | cells | verdicts agree | max error within 3x | median max error "
-        "ratio | median dt_stable ratio | wall time |\n|---|---|---|---|---|---|---|---|\n";
+        "ratio | median dt_stable ratio | particle-steps |\n|---|---|---|---|---|---|---|---|\n";
   for (const auto& v : s.variants) {
     for (const char* column : {"mpm", "gimp"}) {
       const auto it = v.by_method.find(column);
@@ -255,7 +257,7 @@ void write_per_method(std::ostream& md, const VariantsStudy& s) {
          << of(m.counts.verdicts_agree, m.counts.verdicts_compared) << " | "
          << of(m.counts.errors_within, m.counts.errors_compared) << " | "
          << opt_ratio(median_ratio(m.counts.error_ratios)) << " | "
-         << opt_ratio(median_ratio(m.counts.dt_stable_ratios)) << " | " << seconds(m.wall_seconds)
+         << opt_ratio(median_ratio(m.counts.dt_stable_ratios)) << " | " << sci(m.particle_steps)
          << " |\n";
     }
   }
