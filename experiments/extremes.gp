@@ -3,8 +3,9 @@
 # side by side (stable left, meaningless centre, unstable right, a quarter decade apart), the
 # marker growing with the number of cases, and that number printed when it is more than 1.
 #
-# Reads : datafile (results/extremes_data.csv): '#' lines, then method,courant,A_over_h,verdict,
-#         cases (method 0 mpm, 1 gimp; verdict 0 stable, 1 meaningless, 2 unstable).
+# Reads : datafile (results/extremes_data.csv): '#' lines, then the header
+#         method,courant,A_over_h,verdict,cases
+#         (method 0 mpm, 1 gimp; verdict 0 stable, 1 meaningless, 2 unstable).
 # Writes: outbase.png and outbase.svg.
 # Variables: datafile, outbase (required), subtitle (optional).
 

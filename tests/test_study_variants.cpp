@@ -5,9 +5,11 @@
 
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include "report_util.hpp"
 #include "spec.hpp"
+#include "study.hpp"
 #include "variants.hpp"
 
 namespace mpmstab {
@@ -133,6 +135,27 @@ TEST_F(VariantsStudyTest, CountsFollowTheComparisonsRules) {
   EXPECT_EQ(pic.by_class.at("mpm-crossing-failure").meaningless, 1);
   EXPECT_EQ(pic.by_class.at("gimp-error-larger").agree, 0);
   EXPECT_EQ(pic.by_method.at("mpm").counts.verdicts_agree, 2);
+}
+
+// The figure draws one point per cell where both are stable (kind 0 rows of its data file);
+// its title counts exactly those.
+TEST_F(VariantsStudyTest, TheFigureTitleCountsThePointsItDraws) {
+  const VariantsStudy s = study(2.9e-5);
+  std::istringstream csv(variants_data_csv(s, ""));
+  int points = 0;
+  for (std::string line; std::getline(csv, line);) {
+    if (line.empty() || line[0] == '#' || line.rfind("x,", 0) == 0) continue;
+    const auto first = line.find(',');
+    const auto second = line.find(',', first + 1);
+    points += line.substr(second + 1, 2) == "0,";
+  }
+  EXPECT_GT(points, 0);
+  nlohmann::ordered_json doc;
+  doc["cases"] = rows(2.9e-5);
+  doc["study"] = study_to_json(s);
+  const std::string title = find_study("variants")->figure_subtitle(spec, doc);
+  EXPECT_NE(title.find(std::to_string(points) + " cell ratios drawn"), std::string::npos)
+      << title << " (" << points << " points)";
 }
 
 TEST_F(VariantsStudyTest, TheFactor3RuleDecidesACellAtItsEdge) {

@@ -67,7 +67,7 @@ std::string figure_index(const Spec& spec, const std::vector<ojson>& rows) {
   const ojson& r = rows.front();
   std::ostringstream md;
   md << "![" << spec.title << "](" << spec.name << ".png)\n\n**What it shows.** This run "
-     << (r["stable"] == true ? "reached T" : "did not reach T") << ": " << verdict(r) << "; "
+     << (survived(r) ? "reached T" : "did not reach T") << ": " << verdict(r) << "; "
      << r["steps"].dump() << " steps, max error over time " << opt_sci(r["max_error_over_time"])
      << ", eq. (108) minimum " << opt_sci(r["dt_stable_min"])
      << " against dt = " << param(r["dt"].get<double>()) << ". Details: [" << spec.name << ".md]("
@@ -75,14 +75,32 @@ std::string figure_index(const Spec& spec, const std::vector<ojson>& rows) {
   return md.str();
 }
 
-// The run in one line under the figure's title.
+// What the data file holds: the rows drawn (history steps or particles), for the title.
+ojson figure_json(const ojson& record) {
+  if (record.contains("final_state")) {
+    return {{"drawn", record["final_state"]["X"].size()}, {"drawn_what", "particles"}};
+  }
+  if (record.contains("history")) {
+    return {{"drawn", record["history"].size()}, {"drawn_what", "recorded steps"}};
+  }
+  return {{"drawn", 0}, {"drawn_what", "rows"}};
+}
+
+// The run in one line under the figure's title, with what the figure draws.
 std::string figure_subtitle(const Spec&, const ojson& doc) {
   const auto& c = doc["cases"][0];
+  std::string drawn;
+  if (doc.contains("study")) {
+    drawn = doc["study"]["drawn"].dump();
+    drawn += " ";
+    drawn += doc["study"]["drawn_what"].get<std::string>();
+    drawn += " drawn; ";
+  }
   std::string subtitle =
       c["method"].get<std::string>() + ", E = " + shortest(c["E"].get<double>()) +
       ", A = " + shortest(c["A"].get<double>()) + ", dt = " + shortest(c["dt"].get<double>()) +
       ", " + c["cells"].dump() + " cells x " + c["ppc"].dump() + " ppc, " +
-      c["bc"].get<std::string>() + "; ";
+      c["bc"].get<std::string>() + "; " + drawn;
   if (outcome(c) == "unstable") {
     return subtitle + "unstable: " + c["failure_reason"].get<std::string>() + " at step " +
            c["failure_step"].dump();
@@ -99,8 +117,10 @@ const StudyRegistration kFigure{{
     .figure = true,
     .report =
         [](const ReportContext& c) {
+          const ojson& record = c.outcome.records.front();
           return StudyReport{.markdown = figure_markdown(c.spec, c.rows),
-                             .data_csv = figure_data_csv(c.outcome.records.front(), c.csv_header)};
+                             .data_csv = figure_data_csv(record, c.csv_header),
+                             .json = figure_json(record)};
         },
     .index = figure_index,
     .figure_subtitle = figure_subtitle,
