@@ -1,10 +1,15 @@
-# edge.gp -- the stability edge against E (log-log): the largest fixed dt that survives to T for
-# each method and amplitude, the speed-of-sound limit h/c, and the eq. (108) bound of the run at
-# that dt.
+# edge.gp -- the edges in dt against E, in units of h/c: for each method and amplitude the
+# survival edge (the largest fixed dt that survives to T; filled markers, solid lines) and the
+# accuracy edge (the largest that keeps the error at T within 2 times the smallest dt's; open
+# markers, dashed lines), one panel per scene, with h/c (1) and a cross where the run at the
+# survival edge is meaningless.
 #
-# Reads : datafile (results/edge_data.csv): '#' lines, then the header
-#         E,method,A,dt_edge,dt_cfl,dt_stable_min_at_edge (method 0 = mpm, 1 = gimp); an empty
-#         dt_edge means no dt of the scan survived.
+# Reads : datafile (results/edge_data.csv): '#' lines (the counts and the cases not drawn, with
+#         the reason), then the header
+#         panel,series,E,dt_edge_over_cfl,dt_accurate_over_cfl,meaningless_at_edge
+#         (panel 0 the bar, 1 the second scene; series 1 GIMP A = 0.015, 2 GIMP A = 0.05,
+#         3 MPM A = 0.015, 4 MPM A = 0.05); an empty dt_accurate_over_cfl: no accuracy edge.
+#         One row per drawn case.
 # Writes: outbase.png and outbase.svg.
 # Variables: datafile, outbase (required), subtitle (optional).
 
@@ -19,31 +24,68 @@ set datafile commentschars '#'
 set datafile columnheaders
 set datafile missing ''
 
-sel(m, a, v) = ($2 == m && abs($3 - a) < 1e-12 && v > 0) ? v : 1/0
+sel(p, s, v) = ($1 == p && $2 == s) ? v : 1/0
+cfl(p) = ($1 == p) ? 1 : 1/0
+meaningless(p) = ($1 == p && $6 == 1) ? $4 : 1/0
+
+# One y range for both panels: the survival edges (the accuracy edges lie below them) and h/c.
+stats datafile using 4 nooutput
+ylow = floor(STATS_min * 10 - 0.5) / 10.0
+yhigh = ceil((STATS_max > 1 ? STATS_max : 1) * 10 + 0.5) / 10.0
+
+array colour[4] = ["#1f77b4", "#6baed6", "#d62728", "#ff9896"]
+array filled[4] = [7, 5, 9, 11]
+array open[4] = [6, 4, 8, 10]
+array name[4] = ["GIMP, A = 0.015", "GIMP, A = 0.05", "MPM, A = 0.015", "MPM, A = 0.05"]
 
 do for [ext in "png svg"] {
     if (ext eq "png") {
-        set terminal pngcairo size 1000,700 font "sans,11" noenhanced
+        set terminal pngcairo size 1200,760 font "sans,11" noenhanced
     } else {
-        set terminal svg size 1000,700 dynamic font "sans,11" noenhanced background "white"
+        set terminal svg size 1200,760 dynamic font "sans,11" noenhanced background "white"
     }
     set output outbase . "." . ext
-    set title "Stability edge against E: largest fixed dt surviving to T = 1, h/c and eq. (108)" . (strlen(subtitle) > 0 ? "\n" . subtitle : "")
-    set logscale xy
-    set format y "%.0e"
-    set xlabel "Young's modulus E (dimensionless model units)"
-    set ylabel "time step dt"
-    set grid xtics ytics mxtics mytics lc rgb "#e0e0e0"
-    set key below horizontal maxcols 3 samplen 3 spacing 1.1
+    set multiplot title "Survival and accuracy edges against E, in units of h/c" . (strlen(subtitle) > 0 ? "\n" . subtitle : "")
+    set logscale x
     set xrange [2:20000]
-    plot datafile using 1:5 with lines lw 2 lc rgb "black" title "h/c (speed of sound)", \
-         datafile using 1:(sel(1, 0.015, $4)) with linespoints pt 7 ps 1.2 lc rgb "#1f77b4" title "dt_edge, GIMP, A = 0.015", \
-         datafile using 1:(sel(1, 0.05, $4)) with linespoints pt 5 ps 1.1 lc rgb "#6baed6" title "dt_edge, GIMP, A = 0.05", \
-         datafile using 1:(sel(0, 0.015, $4)) with linespoints pt 9 ps 1.3 lc rgb "#d62728" title "dt_edge, MPM, A = 0.015", \
-         datafile using 1:(sel(0, 0.05, $4)) with linespoints pt 11 ps 1.3 lc rgb "#ff9896" title "dt_edge, MPM, A = 0.05", \
-         datafile using 1:(sel(1, 0.015, $6)) with points pt 6 ps 1.2 lc rgb "#1f77b4" title "eq. (108) at dt_edge, GIMP, A = 0.015", \
-         datafile using 1:(sel(1, 0.05, $6)) with points pt 4 ps 1.1 lc rgb "#6baed6" title "eq. (108) at dt_edge, GIMP, A = 0.05", \
-         datafile using 1:(sel(0, 0.015, $6)) with points pt 8 ps 1.2 lc rgb "#d62728" title "eq. (108) at dt_edge, MPM, A = 0.015", \
-         datafile using 1:(sel(0, 0.05, $6)) with points pt 10 ps 1.2 lc rgb "#ff9896" title "eq. (108) at dt_edge, MPM, A = 0.05"
+    set yrange [ylow:yhigh]
+    set xlabel "Young's modulus E (dimensionless model units)"
+    set ylabel "dt / (h/c)"
+    set grid xtics ytics mxtics lc rgb "#e0e0e0"
+    unset key
+    set tmargin at screen 0.87
+    set bmargin at screen 0.3
+    do for [p = 0:1] {
+        set title (p == 0 ? "The paper's bar" : "Second scene: Steffen et al. (2008), neo-Hookean")
+        set lmargin at screen (p == 0 ? 0.07 : 0.56)
+        set rmargin at screen (p == 0 ? 0.48 : 0.97)
+        plot datafile using 3:(cfl(p)) with linespoints lw 1.5 pt 1 ps 1.2 lc rgb "black", \
+             datafile using 3:(meaningless(p)) with points pt 2 ps 2.6 lw 1.5 lc rgb "black", \
+             for [s = 1:4] datafile using 3:(sel(p, s, $4)) with linespoints lw 1.5 pt filled[s] ps 1.2 lc rgb colour[s], \
+             for [s = 1:4] datafile using 3:(sel(p, s, $5)) with linespoints lw 1.5 dt 2 pt open[s] ps 1.8 lc rgb colour[s]
+    }
+    # The legend of both panels, below them.
+    unset title
+    unset xlabel
+    unset ylabel
+    unset logscale x
+    unset grid
+    unset border
+    unset tics
+    set xrange [0:1]
+    set yrange [0:1]
+    set lmargin at screen 0.07
+    set rmargin at screen 0.97
+    set tmargin at screen 0.2
+    set bmargin at screen 0.01
+    set key center center horizontal maxrows 5 samplen 3 spacing 1.1
+    plot NaN with linespoints lw 1.5 pt 1 ps 1.2 lc rgb "black" title "h/c (speed-of-sound limit)", \
+         for [s = 1:4] NaN with linespoints lw 1.5 pt filled[s] ps 1.2 lc rgb colour[s] title "survival edge, " . name[s], \
+         NaN with points pt 2 ps 2.6 lw 1.5 lc rgb "black" title "run at the survival edge meaningless", \
+         for [s = 1:4] NaN with linespoints lw 1.5 dt 2 pt open[s] ps 1.8 lc rgb colour[s] title "accuracy edge, " . name[s]
+    unset multiplot
     unset output
+    set border
+    set tics
+    unset key
 }

@@ -1,11 +1,14 @@
-# tradeoff.gp -- speed against accuracy: max error over time against wall time (left) and
-# against the number of steps (right), one row per E, log-log, by method and time-step policy.
+# tradeoff.gp -- speed against accuracy: max error over time against the work of the run
+# (particle-steps, particles x steps), one panel per E, log-log, one series per method,
+# time-step policy and grid, each with its marker and legend entry.
 #
 # Reads : datafile (results/tradeoff_data.csv): '#' lines, then the header
-#         E,method,policy,steps,wall_seconds,error (method 0 mpm, 1 gimp; policy 0 fixed, 1 cfl,
-#         2 adaptive, 3 min; error empty when the run failed or its error reached A).
+#         E,panel,series,method,policy,cells,grid,particle_steps,steps,error and one row per run
+#         drawn (stable, with an error; the runs left out are counted in the subtitle). panel:
+#         0.. per E; series: 0.. per (method, policy, cells); method 0 mpm, 1 gimp, 2 cpgimp;
+#         policy 0 fixed, 1 cfl, 2 adaptive, 3 min; grid: the rank of cells, 0 the coarsest.
 # Writes: outbase.png and outbase.svg.
-# Variables: datafile, outbase (required), subtitle (optional).
+# Variables: datafile, outbase (required), subtitle (optional: the runs drawn and left out).
 
 if (!exists("datafile") || !exists("outbase")) {
     print "tradeoff.gp: datafile and outbase must be set"
@@ -18,38 +21,74 @@ set datafile commentschars '#'
 set datafile columnheaders
 set datafile missing ''
 
-array Es[3] = [4, 64, 1000]
+# The panels and the series, read from the data: each series' method, policy, cells and grid.
+stats datafile using "panel" nooutput
+panels = int(STATS_max) + 1
+stats datafile using "series" nooutput
+nseries = int(STATS_max) + 1
+array panel_E[panels]
+do for [k = 1:panels] {
+    stats datafile using (column("panel") == k - 1 ? column("E") : 1/0) nooutput
+    panel_E[k] = STATS_min
+}
+array s_method[nseries]
+array s_policy[nseries]
+array s_cells[nseries]
+array s_grid[nseries]
+do for [s = 1:nseries] {
+    stats datafile using (column("series") == s - 1 ? column("method") : 1/0) nooutput
+    s_method[s] = int(STATS_min)
+    stats datafile using (column("series") == s - 1 ? column("policy") : 1/0) nooutput
+    s_policy[s] = int(STATS_min)
+    stats datafile using (column("series") == s - 1 ? column("cells") : 1/0) nooutput
+    s_cells[s] = int(STATS_min)
+    stats datafile using (column("series") == s - 1 ? column("grid") : 1/0) nooutput
+    s_grid[s] = int(STATS_min)
+}
+stats datafile using "cells" nooutput
+coarsest = int(STATS_min)
+
+# Colour by method and grid (three shades each), marker by policy: filled for GIMP and cpGIMP,
+# open for MPM.
+array method_name[3] = ["MPM", "GIMP", "cpGIMP"]
 array policy_name[4] = ["fixed dt", "CFL C h/c", "adaptive s x eq. (108)", "min(CFL, s x eq. (108))"]
 array policy_pt[4] = [7, 5, 9, 13]
-sel(E, m, p, x) = (abs($1 - E) < 1e-9 && $2 == m && $3 == p && $6 > 0) ? x : 1/0
+array colour[9] = ["#d62728", "#ff7f0e", "#9467bd", "#1f77b4", "#17becf", "#2ca02c", \
+                   "#8c564b", "#e377c2", "#7f7f7f"]
+s_colour(s) = colour[3 * s_method[s] + (s_grid[s] > 2 ? 2 : s_grid[s]) + 1]
+s_pt(s) = policy_pt[s_policy[s] + 1] - (s_method[s] == 0 ? 1 : 0)
+s_title(s) = sprintf("%s, %s%s", method_name[s_method[s] + 1], policy_name[s_policy[s] + 1], \
+                     s_cells[s] != coarsest ? sprintf(", %d cells", s_cells[s]) : "")
+sel(k, s, x) = (column("panel") == k - 1 && column("series") == s - 1) ? x : 1/0
 
+height = 120 + 360 * panels
 do for [ext in "png svg"] {
     if (ext eq "png") {
-        set terminal pngcairo size 1100,1200 font "sans,10" noenhanced
+        set terminal pngcairo size 1100,height font "sans,10" noenhanced
     } else {
-        set terminal svg size 1100,1200 dynamic font "sans,10" noenhanced background "white"
+        set terminal svg size 1100,height dynamic font "sans,10" noenhanced background "white"
     }
     set output outbase . "." . ext
-    set multiplot layout 3,2 title "Speed against accuracy: max error over time against cost (log-log)" . (strlen(subtitle) > 0 ? "\n" . subtitle : "") \
-        margins 0.07,0.74,0.06,0.92 spacing 0.08,0.07
+    set multiplot layout panels,1 title "Speed against accuracy: max error over time against particle-steps (log-log)" . (strlen(subtitle) > 0 ? "\n" . subtitle : "") \
+        margins 0.08,0.68,0.06,0.92 spacing 0.08,0.07
     set logscale xy
+    set format x "%.0e"
     set format y "%.0e"
     set grid xtics ytics lc rgb "#e0e0e0"
-    do for [row = 1:3] {
-        E = Es[row]
-        do for [col = 1:2] {
-            xcol = (col == 1) ? 5 : 4
-            set xlabel (col == 1 ? "wall time of the run (s)" : "time steps")
-            set ylabel sprintf("E = %g: max error over time", E)
-            if (col == 2 && row == 1) {
-                set key at screen 0.99, screen 0.90 right top vertical samplen 2 spacing 1.2
-            } else {
-                unset key
-            }
-            plot for [m = 1:0:-1] for [p = 0:3] datafile using (sel(E, m, p, column(xcol))):(sel(E, m, p, $6)) \
-                 with points pt (policy_pt[p + 1] - (m == 0 ? 1 : 0)) ps 1.3 \
-                 lc rgb (m == 1 ? "#1f77b4" : "#d62728") \
-                 title sprintf("%s, %s", (m == 1 ? "GIMP" : "MPM"), policy_name[p + 1])
+    set xlabel "work of the run: particle-steps (particles x steps)"
+    do for [k = 1:panels] {
+        set ylabel sprintf("E = %g: max error over time", panel_E[k])
+        if (k == 1) {
+            set key at screen 0.99, screen 0.90 right top vertical samplen 1 spacing 1.2 \
+                title sprintf("%d cells unless named", coarsest)
+            plot for [s = 1:nseries] keyentry with points pt s_pt(s) ps 1.3 lc rgb s_colour(s) \
+                     title s_title(s), \
+                 for [s = 1:nseries] datafile using (sel(k, s, column("particle_steps"))):(sel(k, s, column("error"))) \
+                     with points pt s_pt(s) ps 1.3 lc rgb s_colour(s) notitle
+        } else {
+            unset key
+            plot for [s = 1:nseries] datafile using (sel(k, s, column("particle_steps"))):(sel(k, s, column("error"))) \
+                     with points pt s_pt(s) ps 1.3 lc rgb s_colour(s) notitle
         }
     }
     unset multiplot

@@ -1,5 +1,6 @@
 // The comparison study: which of our errors is set beside the paper's Max Error, from its own
-// spec or from the specs of its inputs, and the options it refuses.
+// spec or from the specs of its inputs, and the options it refuses; a meaningless run is never
+// counted as agreeing; the sections of the paper's Figs. 1-3, from synthetic inputs.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -10,6 +11,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "comparison.hpp"
+#include "study_rows.hpp"
 #include "support.hpp"
 
 using Outcome = mpmstab::test_support::CliOutcome;
@@ -31,9 +34,6 @@ class CompareErrorAt : public ::testing::Test {
     std::ofstream(dir / "t.json") << R"({"name": "t", "report": "table1",
         "reference": "paper.csv", "record": ["error_over_time", "dt_stable"],
         "defaults": {"E": 4, "A": 0.015, "T": 1, "dt": 1e-3},
-        "cases": [{"method": "gimp"}, {"method": "mpm"}]})";
-    std::ofstream(dir / "bare.json") << R"({"name": "t", "report": "table1",
-        "reference": "paper.csv", "defaults": {"E": 4, "A": 0.015, "T": 1, "dt": 1e-3},
         "cases": [{"method": "gimp"}, {"method": "mpm"}]})";
   }
   void TearDown() override { std::filesystem::remove_all(dir); }
@@ -71,15 +71,12 @@ TEST_F(CompareErrorAt, ChoosesTheErrorComparedWithThePapers) {
   EXPECT_NE(md.find("max error over the run (`max_error_over_time`"), std::string::npos);
   EXPECT_NE(md.find("| " + shown(over_time) + " |"), std::string::npos) << shown(over_time);
 
-  // Bad values and a spec that does not record the error over time are refused, naming the option.
+  // A bad value is refused, naming the option.
   o = run_mpmstab("compare " + (dir / "t.json").string() + out + " --error-at end");
   EXPECT_EQ(o.status, 2);
   EXPECT_NE(o.output.find("--error-at: unknown value 'end' (expected T or max_over_time)"),
             std::string::npos)
       << o.output;
-  o = run_mpmstab("compare " + (dir / "bare.json").string() + out + " --error-at max_over_time");
-  EXPECT_EQ(o.status, 2);
-  EXPECT_NE(o.output.find("does not record error_over_time"), std::string::npos) << o.output;
   o = run_mpmstab("compare --help");
   EXPECT_EQ(o.status, 0);
   EXPECT_NE(o.output.find("--error-at"), std::string::npos);
@@ -111,3 +108,260 @@ TEST_F(CompareErrorAt, TheComparisonSpecReadsTheTableBesideIt) {
 }
 
 }  // namespace
+
+namespace mpmstab {
+namespace {
+
+namespace fs = std::filesystem;
+using ojson = nlohmann::ordered_json;
+using test_support::fail_row;
+using test_support::line_with;
+using test_support::meaningless_row;
+using test_support::study_row;
+
+// A meaningless run survived to T, but its answer is as large as the solution: it agrees with
+// neither of the paper's verdicts and is counted on its own.
+TEST(ComparisonVerdicts, AMeaninglessRowIsNotCountedAsAgreeing) {
+  PaperCell stable{paper_value("2e-3"), paper_value("1e-5"), "high", "", true};
+  PaperCell unstable{paper_value("*"), paper_value("*"), "high", "", true};
+  ojson row = study_row("gimp", 4);
+  row["max_error"] = 1.2e-5;  // within a factor 3 of the paper's: agrees while stable
+  CellVerdict v = classify(row, &stable, {}, ErrorAt::T);
+  EXPECT_EQ(v.cls, "agree-stable");
+  EXPECT_TRUE(v.agrees());
+
+  meaningless_row(row);
+  for (const PaperCell* paper : {&stable, &unstable}) {
+    v = classify(row, paper, {}, ErrorAt::T);
+    EXPECT_EQ(v.cls, "ours-meaningless");
+    EXPECT_FALSE(v.agrees());
+    EXPECT_FALSE(v.same_verdict());
+    EXPECT_FALSE(v.error_ratio);
+    EXPECT_FALSE(v.dt_stable_ratio);
+    AgreementCounts counts;
+    counts.add(v);
+    EXPECT_EQ(counts.verdicts_compared, 1);
+    EXPECT_EQ(counts.verdicts_agree, 0);
+    EXPECT_EQ(counts.meaningless, 1);
+    EXPECT_EQ(counts.errors_compared, 0);
+  }
+  EXPECT_EQ(classify(row, &stable, {}, ErrorAt::T).verdict, "paper stable, ours meaningless");
+  const ComparisonClass* k = find_class("ours-meaningless");
+  ASSERT_NE(k, nullptr);
+  EXPECT_NE(k->kind, ClassKind::agreement);
+}
+
+// The comparison written from synthetic inputs: two Table 1 cells and the three figures, with
+// the paper's figures transcribed beside its Table 1.
+class ComparisonFigures : public ::testing::Test {
+ protected:
+  fs::path dir = fs::temp_directory_path() / ("mpmstab_cmp_figures_" + std::to_string(::getpid()));
+  Spec table1;
+  StudyInputs inputs;
+
+  void SetUp() override {
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    std::ofstream(dir / "paper.csv") << "A,E,dt,method,dt_stable,max_error,confidence,evidence\n"
+                                        "0.015,4,1e-3,GIMP,2e-3,1e-5,high,\n"
+                                        "0.015,4,1e-3,MPM,5e-3,5e-5,high,\n";
+    write_figures("8500");
+    std::ofstream(dir / "table1.json") << R"({"name": "table1", "report": "table1",
+        "reference": "paper.csv", "record": ["error_over_time", "dt_stable"],
+        "defaults": {"E": 4, "A": 0.015, "T": 1, "dt": 1e-3},
+        "cases": [{"method": "gimp"}, {"method": "mpm"}]})";
+    table1 = load_spec(dir / "table1.json");
+
+    ojson gimp = study_row("gimp", 4), mpm = study_row("mpm", 4);
+    gimp["dt"] = mpm["dt"] = 1e-3;
+    gimp["max_error"] = 1.2e-5;  // agrees with the paper's 1e-5
+    meaningless_row(mpm);        // would agree by its error at T, but is meaningless
+    mpm["max_error"] = 5e-5;
+    input("table1", {gimp, mpm}).spec = &table1;
+
+    // Figs. 1 and 2: the same case, failing at step 11440 where the paper's run reaches T.
+    ojson fig2 = figure_row(1e-5);
+    fail_row(fig2, "left_domain");
+    fig2["steps"] = fig2["failure_step"] = 11440;
+    fig2["failure_time"] = 0.1144;
+    fig2["max_error_over_time"] = 0.108;
+    fig2["crossings"] = 22880;  // 2 per step
+    fig2["dt_stable_min"] = 5e-8;
+    ojson& doc2 = input("fig2", {fig2}).doc;
+    doc2["history"] = ojson::array();
+    for (int step : {20, 5000, 11420, 11439}) {
+      doc2["history"].push_back({{"step", step},
+                                 {"time", step * 1e-5},
+                                 {"error", step == 5000 ? 0.108 : 1e-3},
+                                 {"dt_stable", step == 11420 ? 5e-8 : 1e-6},
+                                 {"crossings", step}});
+    }
+    // Fig. 3: failing at step 14, 30 crossings per step.
+    ojson fig3 = figure_row(1e-4);
+    fail_row(fig3, "nonpositive_F");
+    fig3["steps"] = fig3["failure_step"] = 14;
+    fig3["crossings"] = 420;
+    input("fig3", {fig3});
+
+    // The variant runs of Fig. 2's case: periodic boundaries reach T with an error below A, the
+    // ghost nodes reach T as a meaningless run.
+    ojson periodic = figure_row(1e-5), ghost = figure_row(1e-5);
+    periodic["bc"] = "periodic";
+    periodic["steps"] = 100000;
+    ghost["walls"] = "ghost";
+    ghost["steps"] = 100000;
+    meaningless_row(ghost);
+    ghost["max_error_over_time"] = 0.15;
+    input("fig2_variants", {fig2, periodic, ghost});
+  }
+  void TearDown() override { fs::remove_all(dir); }
+
+  // The transcription of the figures, with Fig. 3's failure at `fig3_steps`.
+  void write_figures(const std::string& fig3_steps) {
+    std::ofstream(dir / "figures.csv")
+        << "figure,method,E,A,dt,quantity,value,confidence,section,evidence\n"
+           "fig1,GIMP,1e4,6e-2,1e-5,outcome,survived,high,section 5.2,'end of integration'\n"
+           "fig1,GIMP,1e4,6e-2,1e-5,steps,100000,high,section 5.2,'end of integration'\n"
+           "fig2,GIMP,1e4,6e-2,1e-5,outcome,survived,medium,section 5.2,'Figure 2 shows'\n"
+           "fig2,GIMP,1e4,6e-2,1e-5,steps,100000,medium,section 5.2,'Figure 2 shows'\n"
+           "fig2,GIMP,1e4,6e-2,1e-5,peak_error,?,,Fig. 2,only in the plot\n"
+           "fig3,GIMP,1e4,6e-2,1e-4,outcome,unstable,high,section 5.2,'the calculation fails'\n"
+           "fig3,GIMP,1e4,6e-2,1e-4,steps,"
+        << fig3_steps
+        << ",medium,section 5.2,'the calculation fails'\n"
+           "fig3,GIMP,1e4,6e-2,1e-4,crossings_per_step,more than fig2,medium,section 5.2,"
+           "'more grid-crossing errors'\n";
+  }
+  // The bar with E = 1e4 (c = 100) on 100 cells: c dt / h = 1e4 dt.
+  static ojson figure_row(double dt) {
+    ojson r = study_row("gimp", 1e4);
+    r["A"] = 0.06;
+    r["dt"] = dt;
+    r["courant"] = 1e4 * dt;
+    for (const auto& [key, value] : {std::pair{"position_update", "grid"},
+                                     {"walls", "clip"},
+                                     {"transfer", "flip"},
+                                     {"update", "usl"},
+                                     {"body_force_time", "start"}}) {
+      r[key] = value;
+    }
+    return r;
+  }
+  StudyInput& input(const std::string& name, const std::vector<ojson>& rows) {
+    StudyInput& in = inputs[name];
+    in.doc["cases"] = rows;
+    return in;
+  }
+  std::string comparison() {
+    fs::create_directories(dir / "out");
+    write_comparison(inputs, dir / "out");
+    std::ifstream in(dir / "out/comparison.md");
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  }
+  // The part of the report from a figure's heading to the next one.
+  static std::string section(const std::string& md, const std::string& figure) {
+    const auto at = md.find("<a id=\"" + figure + "\"></a>");
+    if (at == std::string::npos) return "";
+    return md.substr(at, md.find("<a id=\"fig", at + 1) - at);
+  }
+};
+
+TEST_F(ComparisonFigures, SectionsSetThePapersObservablesBesideOurs) {
+  const std::string md = comparison();
+  ASSERT_NE(md.find("## Figures 1-3: the paper's observables beside ours"), std::string::npos);
+
+  const std::string fig2 = section(md, "fig2");
+  ASSERT_NE(fig2.find("### Fig. 2: gimp, E = 10000, A = 0.06, dt = 1e-5"), std::string::npos)
+      << fig2;
+  EXPECT_EQ(
+      line_with(fig2, "| run |"),
+      "| run | reaches T | \\* left_domain at step 11440 (t = 1.1e-1) | differ: ours fails |");
+  EXPECT_EQ(line_with(fig2, "| steps |"),
+            "| steps | 100000 | 11440 of 100000 | differ: ours 0.11x |");
+  EXPECT_EQ(line_with(fig2, "| peak error over time |"),
+            "| peak error over time | not stated | 1.1e-1 = 1.8 A (step 5000) | – |");
+  EXPECT_EQ(line_with(fig2, "| eq. (108) bound, minimum |"),
+            "| eq. (108) bound, minimum | not stated | 5.0e-8 (step 11420) | – |");
+  EXPECT_NE(line_with(fig2, "| eq. (108) bound, smallest at |")
+                .find("step 11420 (failure at step 11440); 0.05 x its median"),
+            std::string::npos)
+      << fig2;
+  EXPECT_EQ(line_with(fig2, "| grid crossings |"),
+            "| grid crossings | not stated | 22880 (2 per step) | – |");
+  EXPECT_NE(fig2.find("Class: [gimp-wall-exit](#gimp-wall-exit)"), std::string::npos) << fig2;
+  EXPECT_NE(fig2.find("- 'Figure 2 shows'"), std::string::npos) << fig2;
+
+  // Fig. 1 is not run; its variant runs are Fig. 2's, shown under Fig. 2.
+  const std::string fig1 = section(md, "fig1");
+  EXPECT_NE(fig1.find("*Our run of it (`experiments/fig1.json`) has not been run"),
+            std::string::npos)
+      << fig1;
+  EXPECT_NE(fig2.find("| bc = periodic | stable | 100000 |"), std::string::npos) << fig2;
+  EXPECT_NE(fig2.find("The paper's run is reproduced by: bc = periodic."), std::string::npos)
+      << fig2;
+  EXPECT_NE(fig2.find("Reaching T only as meaningless runs (error over time at least A): walls "
+                      "= ghost (2.5 A)."),
+            std::string::npos)
+      << fig2;
+
+  // Fig. 3: both fail, ours far sooner: the class of our failure (Courant 1); more crossings per
+  // step than Fig. 2, as the paper says.
+  const std::string fig3 = section(md, "fig3");
+  EXPECT_EQ(line_with(fig3, "| run |"),
+            "| run | fails | \\* nonpositive_F at step 14 (t = 1.0e-3) | agree |");
+  EXPECT_EQ(line_with(fig3, "| steps |"), "| steps | 8500 | 14 of 10000 | differ: ours 0.0016x |");
+  EXPECT_EQ(
+      line_with(fig3, "| grid crossings per step, against Fig. 2 |"),
+      "| grid crossings per step, against Fig. 2 | more than Fig. 2 | 30 against 2 | agree |");
+  EXPECT_NE(fig3.find("Class: [courant-above-1](#courant-above-1)"), std::string::npos) << fig3;
+  EXPECT_NE(fig3.find("*No variant runs of this case have been run"), std::string::npos) << fig3;
+
+  EXPECT_NE(md.find("[fig1](#fig1): not run; [fig2](#fig2): gimp-wall-exit; [fig3](#fig3): "
+                    "courant-above-1"),
+            std::string::npos);
+}
+
+TEST_F(ComparisonFigures, AChangedPaperValueChangesTheVerdict) {
+  std::string fig3 = section(comparison(), "fig3");
+  EXPECT_EQ(line_with(fig3, "| steps |"), "| steps | 8500 | 14 of 10000 | differ: ours 0.0016x |");
+  EXPECT_NE(fig3.find("Class: [courant-above-1]"), std::string::npos) << fig3;
+
+  write_figures("20");
+  fig3 = section(comparison(), "fig3");
+  EXPECT_EQ(line_with(fig3, "| steps |"), "| steps | 20 | 14 of 10000 | agree |");
+  EXPECT_NE(fig3.find("Class: [agree-unstable]"), std::string::npos) << fig3;
+}
+
+TEST_F(ComparisonFigures, AMeaninglessRunAgreesWithNeitherVerdict) {
+  std::string md = comparison();
+  // Table 1: the meaningless MPM cell is counted on its own, not with the agreeing one.
+  EXPECT_EQ(line_with(md, "| stability verdicts agreeing |"),
+            "| stability verdicts agreeing | 1 of 2 |");
+  EXPECT_EQ(line_with(md, "| ours meaningless (agreeing with neither verdict) |"),
+            "| ours meaningless (agreeing with neither verdict) | 1 of 2 |");
+  EXPECT_EQ(line_with(md, "| paper stable |"), "| paper stable | 1 | 1 | 0 |");
+  EXPECT_NE(line_with(md, "| 4 | 0.015 | 1e-3 | mpm |").find("| stable | meaningless |"),
+            std::string::npos);
+  EXPECT_NE(line_with(md, "| 4 | 0.015 | 1e-3 | mpm |").find("[ours-meaningless]"),
+            std::string::npos);
+  std::ifstream csv(dir / "out/comparison.csv");
+  const std::string verdicts(std::istreambuf_iterator<char>(csv), {});
+  EXPECT_NE(verdicts.find("mpm,4,0.015,0.001,\"paper stable, ours meaningless\",ours-meaningless"),
+            std::string::npos)
+      << verdicts;
+
+  // A figure whose run reaches T as a meaningless run does not agree with the paper's.
+  ojson& fig2 = inputs["fig2"].doc["cases"][0];
+  fig2 = figure_row(1e-5);
+  fig2["steps"] = 100000;
+  meaningless_row(fig2);
+  md = comparison();
+  const std::string section2 = section(md, "fig2");
+  EXPECT_EQ(line_with(section2, "| run |"),
+            "| run | reaches T | meaningless (survived; error over time reached A) | differ: ours "
+            "meaningless |");
+  EXPECT_NE(section2.find("Class: [ours-meaningless]"), std::string::npos) << section2;
+}
+
+}  // namespace
+}  // namespace mpmstab

@@ -1,7 +1,13 @@
-// The edge study's summary of its searches: the range of the edge against h/c and eq. (108),
-// and the searches that found stability not monotone in dt or no surviving dt at all.
+// The edge search and its study: the survival edge and the accuracy edge of a case, the flips
+// of a survival that is not monotone in dt, the columns they add to a row, and the report and
+// figure data written from the rows.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <sstream>
+
+#include "edge.hpp"
+#include "result_json.hpp"
 #include "study_rows.hpp"
 
 namespace mpmstab {
@@ -10,32 +16,277 @@ namespace {
 using ojson = nlohmann::ordered_json;
 using test_support::study_row;
 
-TEST(EdgeStudy, SummaryRangesAndNonMonotoneSearches) {
-  std::vector<ojson> rows;
-  for (double over_cfl : {0.5, 0.8}) {
-    ojson r = study_row("gimp", 4);
-    r["dt_edge"] = over_cfl * 0.005;
-    r["dt_fail"] = over_cfl * 0.0051;
-    r["dt_edge_over_cfl"] = over_cfl;
-    r["dt_stable_min_at_edge"] = 1e-5;
-    r["dt_edge_over_stable"] = over_cfl * 500;
-    r["monotone"] = over_cfl < 0.6;
-    r["failed_below_edge"] = over_cfl < 0.6 ? 0 : 2;
-    r["probes"] = 12;
-    r["search_seconds"] = 1.0;
-    rows.push_back(r);
+constexpr double kCfl = 0.005;  // h/c of the bar at E = 4
+
+// A synthetic case in units of h/c: survives below `edge` except in [fail_low, fail_high);
+// error at T 1e-5 up to `accurate`, 1e-2 above it.
+struct SyntheticCase {
+  double edge = 0.82, accurate = 0.79, fail_low = 10, fail_high = 10;
+  bool reference_meaningless = false;
+  std::vector<bool> outcome_asked;
+
+  EdgeProbe operator()(double dt, bool outcome) {
+    outcome_asked.push_back(outcome);
+    const double x = dt / kCfl;
+    EdgeProbe p;
+    p.dt = dt;
+    p.survived = x <= edge && !(x >= fail_low && x < fail_high);
+    p.steps = std::int64_t(std::ceil(1 / dt));
+    if (!p.survived) {
+      p.reason = FailureReason::nonpositive_F;
+      p.outcome = Outcome::unstable;
+      return p;
+    }
+    p.max_error = x <= accurate ? 1e-5 : 1e-2;
+    if (outcome) p.outcome = reference_meaningless ? Outcome::meaningless : Outcome::stable;
+    return p;
   }
-  ojson none = rows.front();
-  none["dt_edge"] = none["dt_edge_over_cfl"] = none["dt_edge_over_stable"] = nullptr;
-  rows.push_back(none);
-  const std::string md = test_support::study_report("edge", rows).markdown;
-  EXPECT_NE(md.find("gimp: the largest surviving fixed dt is 0.5 to 0.8 times h/c and 2.5e+02 "
-                    "to 4e+02 times the eq. (108) bound of that run."),
+};
+
+EdgeResult search(SyntheticCase& c) {
+  return find_edge(kCfl, 1.0, [&](double dt, bool outcome) { return c(dt, outcome); });
+}
+
+TEST(EdgeSearch, AccuracyEdgeBelowTheSurvivalEdge) {
+  SyntheticCase c;
+  const EdgeResult e = search(c);
+  ASSERT_TRUE(e.dt_edge && e.dt_fail && e.dt_accurate && e.dt_inaccurate);
+  // Survival: the largest survivor within 2% of 0.82 h/c.
+  EXPECT_LE(*e.dt_edge, 0.82 * kCfl);
+  EXPECT_GT(*e.dt_fail, 0.82 * kCfl);
+  EXPECT_LE(*e.dt_fail / *e.dt_edge, 1.02);
+  // Accuracy: the last dt with the reference's error, within 2% of 0.79 h/c, below dt_edge.
+  EXPECT_LE(*e.dt_accurate, 0.79 * kCfl);
+  EXPECT_GT(*e.dt_inaccurate, 0.79 * kCfl);
+  EXPECT_LE(*e.dt_inaccurate / *e.dt_accurate, 1.02);
+  EXPECT_LT(*e.dt_accurate * 1.02, *e.dt_edge);
+  EXPECT_EQ(*e.dt_reference, kCfl / 16);
+  EXPECT_EQ(*e.max_error_reference, 1e-5);
+  EXPECT_TRUE(e.flips.empty());
+  // Only the reference (the first probe, which survives) is asked for its outcome.
+  ASSERT_FALSE(c.outcome_asked.empty());
+  EXPECT_TRUE(c.outcome_asked.front());
+  EXPECT_EQ(std::count(c.outcome_asked.begin(), c.outcome_asked.end(), true), 1);
+
+  const ojson j = edge_to_json(e);
+  EXPECT_EQ(j["accuracy_factor"], 2.0);
+  EXPECT_EQ(j["dt_accurate"], *e.dt_accurate);
+  EXPECT_EQ(j["max_error_at_accurate"], 1e-5);
+  EXPECT_EQ(j["monotone"], true);
+  EXPECT_EQ(j["probes"].size(), e.probes.size());
+  EXPECT_TRUE(j["probes"][0].contains("max_error"));
+  const ojson row = edge_columns(j);
+  EXPECT_EQ(row["dt_accurate_over_cfl"], *e.dt_accurate / kCfl);
+  EXPECT_EQ(row["dt_inaccurate"], *e.dt_inaccurate);
+  EXPECT_EQ(row["survival_flips"].get<std::string>(), "");
+  EXPECT_EQ(row["failed_below_edge"], 0);
+}
+
+TEST(EdgeSearch, NoAccuracyEdgeWhenTheReferenceIsMeaningless) {
+  SyntheticCase c;
+  c.reference_meaningless = true;
+  const EdgeResult e = search(c);
+  ASSERT_TRUE(e.dt_edge);
+  EXPECT_EQ(*e.dt_reference, kCfl / 16);
+  EXPECT_FALSE(e.dt_accurate);
+  const ojson row = edge_columns(edge_to_json(e));
+  EXPECT_TRUE(row["dt_accurate"].is_null());
+  EXPECT_TRUE(row["outcome_at_accurate"].is_null());
+}
+
+TEST(EdgeSearch, NonMonotoneSurvivalIsFlaggedWithItsFlips) {
+  // Fails between 0.3 and 0.4 h/c: the scan's 0.354 h/c fails, 0.5 h/c survives again.
+  SyntheticCase c;
+  c.fail_low = 0.3;
+  c.fail_high = 0.4;
+  const EdgeResult e = search(c);
+  ASSERT_TRUE(e.dt_edge);
+  EXPECT_LE(*e.dt_edge, 0.82 * kCfl);
+  ASSERT_EQ(e.flips.size(), 2u);
+  EXPECT_FALSE(e.flips[0].survives);
+  EXPECT_GE(e.flips[0].dt, 0.3 * kCfl);
+  EXPECT_LT(e.flips[0].below, 0.3 * kCfl);
+  EXPECT_TRUE(e.flips[1].survives);
+  EXPECT_DOUBLE_EQ(e.flips[1].dt, 0.5 * kCfl);
+  EXPECT_LT(e.flips[1].below, 0.4 * kCfl);
+  // The accuracy edge stops below the first failure above the reference.
+  ASSERT_TRUE(e.dt_accurate);
+  EXPECT_LT(*e.dt_accurate, 0.3 * kCfl);
+  EXPECT_EQ(*e.dt_inaccurate, e.flips[0].dt);
+
+  const ojson j = edge_to_json(e);
+  EXPECT_EQ(j["monotone"], false);
+  ASSERT_EQ(j["survival_flips"].size(), 2u);
+  EXPECT_EQ(j["survival_flips"][1]["dt"], e.flips[1].dt);
+  const ojson row = edge_columns(j);
+  std::string expected = "fails ";
+  expected += ojson(e.flips[0].dt).dump();
+  expected += "; survives ";
+  expected += ojson(e.flips[1].dt).dump();
+  EXPECT_EQ(row["survival_flips"].get<std::string>(), expected);
+  EXPECT_GE(row["failed_below_edge"].get<int>(), 1);
+}
+
+// A small real case: GIMP at E = 4 survives to about 0.82 h/c, but the run there is meaningless;
+// the accuracy edge lies below it, its run stable with the error of the smallest dt.
+TEST(EdgeSearch, GimpAtE4SurvivesFurtherThanItStaysAccurate) {
+  RunParams p;
+  p.method = Method::gimp;
+  p.E = 4;
+  p.A = 0.015;
+  const EdgeResult e = find_edge(p);
+  ASSERT_TRUE(e.dt_edge && e.dt_accurate && e.at_edge);
+  EXPECT_EQ(e.at_edge->outcome, Outcome::meaningless);
+  EXPECT_LT(*e.dt_accurate, *e.dt_edge);
+  const ojson j = edge_to_json(e);
+  EXPECT_EQ(j["outcome_at_accurate"].get<std::string>(), "stable");
+  EXPECT_LE(j["max_error_at_accurate"].get<double>(), 2 * *e.max_error_reference);
+  EXPECT_EQ(j["search_particle_steps"], e.particle_steps);
+  std::int64_t probe_steps = 0;
+  for (const auto& probe : e.probes)
+    probe_steps += probe.steps * 200;
+  EXPECT_GT(e.particle_steps, probe_steps);  // the measured runs at both edges count too
+}
+
+// Rows of the bar at E = 4: gimp with both edges (the survival edge meaningless), gimp whose
+// survival flips, mpm without a surviving dt.
+std::vector<ojson> edge_rows() {
+  ojson a = study_row("gimp", 4);
+  test_support::meaningless_row(a);
+  a["dt_edge"] = 0.0041;
+  a["dt_fail"] = 0.00416;
+  a["dt_edge_over_cfl"] = 0.82;
+  a["dt_stable_min_at_edge"] = 1e-4;
+  a["dt_edge_over_stable"] = 41.0;
+  a["monotone"] = true;
+  a["dt_reference"] = 0.0003125;
+  a["max_error_reference"] = 1e-5;
+  a["dt_accurate"] = 0.00394;
+  a["dt_inaccurate"] = 0.00398;
+  a["dt_accurate_over_cfl"] = 0.788;
+  a["max_error_at_accurate"] = 6e-6;
+  a["outcome_at_accurate"] = "stable";
+  a["search_particle_steps"] = 2.4e6;
+  a["failed_below_edge"] = 0;
+  a["survival_flips"] = "";
+  a["probes"] = 20;
+  ojson b = a;
+  b["A"] = 0.05;
+  b["outcome"] = "stable";
+  b["dt_edge"] = 0.0035;
+  b["dt_edge_over_cfl"] = 0.7;
+  b["dt_accurate"] = b["dt_accurate_over_cfl"] = b["max_error_at_accurate"] = nullptr;
+  b["outcome_at_accurate"] = nullptr;
+  b["monotone"] = false;
+  b["failed_below_edge"] = 1;
+  b["survival_flips"] = "fails 0.000625; survives 0.00088388347648318";
+  ojson none = study_row("mpm", 4);
+  test_support::fail_row(none, "nonpositive_F");
+  for (const char* k :
+       {"dt_edge", "dt_fail", "dt_edge_over_cfl", "dt_stable_min_at_edge", "dt_edge_over_stable",
+        "dt_reference", "max_error_reference", "dt_accurate", "dt_inaccurate",
+        "dt_accurate_over_cfl", "max_error_at_accurate", "outcome_at_accurate"})
+    none[k] = nullptr;
+  none["monotone"] = true;
+  none["failed_below_edge"] = 0;
+  none["survival_flips"] = "";
+  none["probes"] = 13;
+  none["search_particle_steps"] = 2.8e6;
+  return {a, b, none};
+}
+
+TEST(EdgeStudy, ReportStatesTheRuleAndReadsBothEdgesFromTheRows) {
+  const std::string md = test_support::study_report("edge", edge_rows()).markdown;
+  // The rule.
+  EXPECT_NE(md.find("dt_accurate is the last dt tried before the first that fails or has an "
+                    "error at T more than 2 times the reference's"),
             std::string::npos)
       << md;
-  EXPECT_NE(md.find("1 of 3 searches found stability not monotone in dt"), std::string::npos) << md;
-  EXPECT_NE(md.find("1 found no surviving dt in the scan"), std::string::npos) << md;
-  EXPECT_NE(md.find("**no** (2 smaller dt failed)"), std::string::npos) << md;
+  EXPECT_NE(md.find("A case whose reference run is meaningless has no accuracy edge."),
+            std::string::npos);
+  // The reading, computed from the rows.
+  EXPECT_NE(md.find("Of 3 searches, 2 found a survival edge and 1 no surviving dt in the scan."),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("gimp: the survival edge is 0.700 to 0.820 h/c, and the run there is "
+                    "meaningless in 1 of 2 cases; the accuracy edge is 0.788 h/c, below the "
+                    "survival edge in 1 of 1 cases (down to 0.96 times it); 1 has no accuracy "
+                    "edge"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("mpm: no dt of the scan survives (1 case)."), std::string::npos) << md;
+  EXPECT_NE(md.find("1 of 3 searches found survival not monotone in dt (a dt below the survival "
+                    "edge fails): gimp, A = 0.05, E = 4 (fails from 6.25e-4, survives from "
+                    "8.84e-4)."),
+            std::string::npos)
+      << md;
+  // The table: both edges with h/c, the flips, the cost without wall times.
+  EXPECT_NE(md.find("| gimp | 0.015 | 4 | 5.00e-3 | 4.10e-3 (0.820) | meaningless | 1.0e-6 | "
+                    "3.94e-3 (0.788) | 1.0e-5 → 6.0e-6 | 1.0e-4 (41) | monotone | 20 | 2.4e6 |"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("none (reference meaningless)"), std::string::npos);
+  EXPECT_NE(md.find("**not monotone**: fails from 6.25e-4, survives from 8.84e-4"),
+            std::string::npos);
+  EXPECT_NE(md.find("| mpm | 0.015 | 4 | 5.00e-3 | none in the scan |"), std::string::npos);
+  EXPECT_EQ(md.find("seconds"), std::string::npos);
+  EXPECT_EQ(md.find(" ms "), std::string::npos);
+}
+
+// The number of data lines of a CSV (after the '#' lines and the header).
+int data_lines(const std::string& csv) {
+  std::istringstream in(csv);
+  std::string line;
+  int n = -1;  // the header
+  while (std::getline(in, line))
+    n += !line.empty() && line[0] != '#';
+  return n;
+}
+
+TEST(EdgeStudy, FigureDataHasARowPerDrawnCaseAndTheTitleCountsThem) {
+  std::vector<ojson> rows = edge_rows();
+  ojson steffen = rows[0];
+  steffen["scene"] = "steffen";
+  rows.push_back(steffen);
+  ojson cpgimp = rows[0];
+  cpgimp["method"] = "cpgimp";
+  rows.push_back(cpgimp);
+  const StudyReport report = test_support::study_report("edge", rows);
+  ASSERT_TRUE(report.data_csv);
+  const std::string& csv = *report.data_csv;
+  // Drawn: the two gimp cases of the bar and the one of the second scene.
+  EXPECT_EQ(data_lines(csv), 3) << csv;
+  EXPECT_NE(csv.find("panel,series,E,dt_edge_over_cfl,dt_accurate_over_cfl,meaningless_at_edge\n"
+                     "0,1,4,0.82,0.788,1\n0,2,4,0.7,,0\n1,1,4,0.82,0.788,1\n"),
+            std::string::npos)
+      << csv;
+  // Not drawn, each with its reason, in the data and in the report.
+  EXPECT_NE(csv.find("# not drawn, no dt of the scan survives: bar: mpm, A = 0.015, E = 4\n"),
+            std::string::npos)
+      << csv;
+  EXPECT_NE(csv.find("# not drawn, a method and amplitude the figure has no series for: bar: "
+                     "cpgimp, A = 0.015, E = 4\n"),
+            std::string::npos)
+      << csv;
+  EXPECT_NE(report.markdown.find("**Drawn.** 3 of 5 cases, 2 of them with their accuracy edge. "
+                                 "Not drawn, a method and amplitude the figure has no series for "
+                                 "(1): bar: cpgimp, A = 0.015, E = 4. Not drawn, no dt of the "
+                                 "scan survives (1): bar: mpm, A = 0.015, E = 4. Drawn "
+                                 "without an accuracy edge"),
+            std::string::npos)
+      << report.markdown;
+  // The title's count is the data's.
+  Spec spec;
+  spec.name = std::string("edge");
+  ojson doc;
+  doc["cases"] = rows;
+  const std::string subtitle = find_study("edge")->figure_subtitle(spec, doc);
+  EXPECT_EQ(subtitle.rfind(std::to_string(data_lines(csv)) + " of 5 cases drawn (2 with an "
+                                                             "accuracy edge)",
+                           0),
+            0u)
+      << subtitle;
+  EXPECT_NE(subtitle.find("each listed in edge.md"), std::string::npos);
 }
 
 }  // namespace

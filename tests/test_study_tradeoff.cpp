@@ -1,7 +1,10 @@
-// The trade study's reading of its rows: the Pareto front of (wall time, error), the cheapest
-// setting for each accuracy, a run that failed or whose error reached A reaching no accuracy,
-// and the largest safety factor that survived at every E.
+// The trade study's reading of its rows: cost in particle-steps (the Pareto front and the
+// cheapest setting for each accuracy), only a stable run reaching an accuracy, the runs of each
+// policy by how they ended, each parameter value advised only with a 1.5x margin of stable rows
+// and naming them, and a figure whose data and title count the runs it draws.
 #include <gtest/gtest.h>
+
+#include <sstream>
 
 #include "study_rows.hpp"
 
@@ -12,67 +15,267 @@ using ojson = nlohmann::ordered_json;
 using test_support::line_with;
 using test_support::study_row;
 
-ojson fixed_run(double dt, double error, double wall) {
+ojson fixed_run(double dt, double error, int steps, int particles = 200) {
   ojson r = study_row("gimp", 4);
   r["dt"] = dt;
   r["max_error_over_time"] = error;
-  r["wall_seconds"] = wall;
+  r["steps"] = steps;
+  r["particles"] = particles;
   return r;
 }
 
-ojson adaptive_run(const std::string& method, double E, double s, bool stable) {
+// A run under `policy` ("cfl", "adaptive") with its parameter C or s at `value`.
+ojson policy_run(const std::string& method, double E, const std::string& policy, double value) {
   ojson r = study_row(method, E);
-  r["policy"] = "adaptive";
-  r["safety"] = s;
-  if (!stable) test_support::fail_row(r, "nonpositive_F");
+  r["policy"] = policy;
+  r["dt"] = nullptr;
+  r[policy == "cfl" ? "cfl_factor" : "safety"] = value;
   return r;
 }
 
-TEST(TradeoffStudy, ParetoFrontAndCheapestSettingPerAccuracy) {
+ojson failed(ojson r, const std::string& reason) {
+  test_support::fail_row(r, reason);
+  return r;
+}
+
+ojson meaningless(ojson r) {
+  test_support::meaningless_row(r);
+  return r;
+}
+
+std::string markdown(const std::vector<ojson>& rows) {
+  return test_support::study_report("tradeoff", rows).markdown;
+}
+
+// The data lines of a CSV: neither '#' lines nor the header.
+std::vector<std::string> data_lines(const std::string& csv) {
+  std::vector<std::string> lines;
+  std::istringstream in(csv);
+  std::string line;
+  bool header = true;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    if (header) {
+      header = false;
+      continue;
+    }
+    lines.push_back(line);
+  }
+  return lines;
+}
+
+TEST(TradeoffStudy, ParetoFrontAndCheapestSettingRankByParticleSteps) {
   std::vector<ojson> rows = {
-      fixed_run(1e-3, 2e-4, 1.0),   // cheapest, reaches 1e-3 only
-      fixed_run(1e-4, 5e-6, 4.0),   // the only one to reach 1e-5
-      fixed_run(2e-4, 5e-4, 6.0),   // dominated: dearer and less accurate than 1e-3
-      fixed_run(5e-5, 9e-5, 2.0),   // reaches 1e-4 more cheaply than 1e-4
-      fixed_run(1e-5, 1e-7, 0.5)};  // cheapest and best, but meaningless: reaches nothing
-  rows[4]["meaningless"] = true;
-  const std::string md = test_support::study_report("tradeoff", rows).markdown;
+      fixed_run(1e-3, 2e-4, 1000),       // 2e5 particle-steps, reaches 1e-3 only
+      fixed_run(1e-4, 5e-6, 4000),       // 8e5, the only one to reach 1e-5
+      fixed_run(2e-4, 5e-4, 6000),       // 1.2e6: dominated by dt=1e-3
+      fixed_run(5e-5, 9e-5, 2000),       // 4e5: reaches 1e-4 more cheaply than dt=1e-4
+      fixed_run(3e-4, 8e-5, 500, 1600),  // fewest steps, but 8e5 particle-steps: dominated
+      fixed_run(4e-4, 8e-6, 1000, 800),  // 8e5 as dt=1e-4: equal cost, larger error
+      fixed_run(1e-5, 1e-7, 100)};       // cheapest and best, but meaningless: reaches nothing
+  test_support::meaningless_row(rows[6]);
+  const std::string md = markdown(rows);
 
   const std::string cheapest = line_with(md, "| 4 |");
-  EXPECT_NE(cheapest.find("| gimp fixed dt=1e-3: 2.0e-4 in 1.00 s"), std::string::npos) << cheapest;
-  EXPECT_NE(cheapest.find("| gimp fixed dt=5e-5: 9.0e-5 in 2.00 s"), std::string::npos) << cheapest;
-  EXPECT_NE(cheapest.find("| gimp fixed dt=1e-4: 5.0e-6 in 4.00 s"), std::string::npos) << cheapest;
+  EXPECT_NE(cheapest.find("| gimp fixed dt=1e-3: 2.0e-4 in 2.0e5 particle-steps (1000 steps) |"),
+            std::string::npos)
+      << cheapest;
+  EXPECT_NE(cheapest.find("| gimp fixed dt=5e-5: 9.0e-5 in 4.0e5 particle-steps (2000 steps) |"),
+            std::string::npos)
+      << cheapest;
+  // dt=1e-4 and dt=4e-4 cost the same; the smaller error ranks first.
+  EXPECT_NE(cheapest.find("| gimp fixed dt=1e-4: 5.0e-6 in 8.0e5 particle-steps (4000 steps) |"),
+            std::string::npos)
+      << cheapest;
 
-  EXPECT_NE(line_with(md, "| gimp fixed dt=1e-3 |").find("**yes**"), std::string::npos);
-  EXPECT_NE(line_with(md, "| gimp fixed dt=5e-5 |").find("**yes**"), std::string::npos);
-  EXPECT_NE(line_with(md, "| gimp fixed dt=1e-4 |").find("**yes**"), std::string::npos);
-  EXPECT_EQ(line_with(md, "| gimp fixed dt=2e-4 |").find("**yes**"), std::string::npos);
-  EXPECT_EQ(line_with(md, "| gimp fixed dt=1e-5 |").find("**yes**"), std::string::npos);
-  EXPECT_NE(md.find("The cheapest setting for a target accuracy is gimp fixed in 3 of the 3"),
+  for (const char* on_front : {"dt=1e-3", "dt=5e-5", "dt=1e-4"}) {
+    EXPECT_NE(line_with(md, std::string("| gimp fixed ") + on_front + " |").find("**yes**"),
+              std::string::npos)
+        << on_front;
+  }
+  for (const char* off_front : {"dt=2e-4", "dt=3e-4", "dt=4e-4", "dt=1e-5"}) {
+    EXPECT_EQ(line_with(md, std::string("| gimp fixed ") + off_front + " |").find("**yes**"),
+              std::string::npos)
+        << off_front;
+  }
+  EXPECT_NE(line_with(md, "| gimp fixed dt=3e-4 |").find("| 500 | 8.0e5 |"), std::string::npos);
+  EXPECT_NE(md.find("The cheapest setting for a target accuracy, in particle-steps, is gimp fixed "
+                    "in 3 of the 3"),
             std::string::npos)
       << md;
-
-  // The figure's data: an empty error where the run reaches no accuracy.
-  const std::string data = *test_support::study_report("tradeoff", rows).data_csv;
-  EXPECT_NE(data.find("4,1,0,10000,0.5,\n"), std::string::npos) << data;
 }
 
-TEST(TradeoffStudy, LargestSafetyFactorIsTheOneThatSurvivedAtEveryE) {
+TEST(TradeoffStudy, NoWallTimeIsReadAndTheReportLinksWhereTheyAre) {
+  std::vector<ojson> rows = {fixed_run(1e-3, 2e-4, 1000), fixed_run(1e-4, 5e-6, 4000)};
+  rows[0]["wall_seconds"] = 987.654;  // a column rows no longer have: never read
+  rows[1]["wall_seconds"] = 0.000123;
+  const auto report = test_support::study_report("tradeoff", rows);
+  for (const std::string& out : {report.markdown, *report.data_csv, report.json.dump()}) {
+    EXPECT_EQ(out.find("987"), std::string::npos) << out;
+    EXPECT_EQ(out.find("0.000123"), std::string::npos) << out;
+    EXPECT_EQ(out.find("wall_seconds"), std::string::npos) << out;
+  }
+  EXPECT_NE(report.markdown.find("[performance.md](performance.md)"), std::string::npos);
+  EXPECT_EQ(report.markdown, test_support::study_report("tradeoff", rows).markdown);
+}
+
+TEST(TradeoffStudy, ValueNotAdvisedWhenARowUpTo1_5TimesItIsUnstableOrMeaningless) {
   std::vector<ojson> rows;
   for (double E : {4.0, 1e4}) {
-    for (double s : {1.0, 2.0, 4.0, 8.0, 16.0}) {
-      // GIMP fails from s = 8 at E = 1e4 only; MPM from s = 2 everywhere.
-      rows.push_back(adaptive_run("gimp", E, s, !(E == 1e4 && s >= 8)));
-      rows.push_back(adaptive_run("mpm", E, s, s < 2));
+    for (double s : {1.0, 2.0, 3.0, 4.0, 6.0}) {
+      // GIMP fails at s = 4 at E = 1e4 only (s = 6 survives there); MPM's s = 3 is meaningless
+      // at E = 4.
+      ojson g = policy_run("gimp", E, "adaptive", s);
+      rows.push_back(E == 1e4 && s == 4 ? failed(g, "nonpositive_F") : g);
+      ojson m = policy_run("mpm", E, "adaptive", s);
+      rows.push_back(E == 4 && s == 3 ? meaningless(m) : m);
     }
   }
-  const std::string md = test_support::study_report("tradeoff", rows).markdown;
-  EXPECT_NE(md.find("The adaptive step survives at every E up to s = 4 for gimp."),
+  const std::string md = markdown(rows);
+  // s = 3 would need every row up to s = 4.5 (checked at s = 6), and s = 4 fails.
+  const std::string gimp = line_with(md, "| gimp adaptive |");
+  EXPECT_NE(gimp.find("| s up to 2 |"), std::string::npos) << gimp;
+  EXPECT_NE(
+      gimp.find("| s = 3: gimp adaptive s=4 at E = 10000 (bar): \\* nonpositive_F at step 10"),
+      std::string::npos)
+      << gimp;
+  // s = 2 would need s = 3, which is meaningless at E = 4.
+  const std::string mpm = line_with(md, "| mpm adaptive |");
+  EXPECT_NE(mpm.find("| s up to 1 |"), std::string::npos) << mpm;
+  EXPECT_NE(mpm.find("| s = 2: mpm adaptive s=3 at E = 4 (bar): meaningless"), std::string::npos)
+      << mpm;
+  EXPECT_NE(md.find("the rows of every scene advise s up to 2 for gimp adaptive (rests on"),
             std::string::npos)
       << md;
-  EXPECT_NE(md.find("The adaptive step survives at every E up to s = 1 for mpm."),
+
+  // With the smallest value failing, no value qualifies.
+  rows = {failed(policy_run("mpm", 4, "cfl", 0.1), "dt_collapse"), policy_run("mpm", 4, "cfl", 0.2),
+          policy_run("mpm", 4, "cfl", 0.4)};
+  const std::string none = line_with(markdown(rows), "| mpm cfl |");
+  EXPECT_NE(none.find("| no value qualifies | – | – | C = 0.1: mpm cfl C=0.1 at E = 4 (bar): \\* "
+                      "dt_collapse"),
+            std::string::npos)
+      << none;
+
+  // The advice rests on every scene: a meaningless run of the second scene withholds it.
+  rows = {policy_run("gimp", 4, "cfl", 0.1), policy_run("gimp", 4, "cfl", 0.25),
+          policy_run("gimp", 4, "cfl", 0.5)};
+  for (ojson r : std::vector<ojson>(rows)) {
+    r["scene"] = "steffen";
+    rows.push_back(r["cfl_factor"] == 0.25 ? meaningless(r) : r);
+  }
+  const std::string scenes = line_with(markdown(rows), "| gimp cfl |");
+  EXPECT_NE(scenes.find("| no value qualifies | – | – | C = 0.1: gimp cfl C=0.25 at E = 4 "
+                        "(steffen): meaningless"),
+            std::string::npos)
+      << scenes;
+}
+
+TEST(TradeoffStudy, AdvisedValueNamesItsRowsAndTheValueCheckedBeyondIt) {
+  std::vector<ojson> rows;
+  for (double E : {4.0, 1e4}) {
+    for (double C : {0.1, 0.25, 0.5}) {
+      rows.push_back(policy_run("gimp", E, "cfl", C));
+    }
+  }
+  ojson fine = policy_run("gimp", 4, "cfl", 0.5);
+  fine["cells"] = 400;
+  rows.push_back(fine);
+  const std::string md = markdown(rows);
+  const std::string gimp = line_with(md, "| gimp cfl |");
+  EXPECT_NE(gimp.find("| C up to 0.25 | 7 rows: gimp cfl C = 0.1..0.5 at E = 4 and 10000 on 100 "
+                      "and 400 cells in the scene bar, all stable | C = 0.5 (1.5x = 0.375) |"),
+            std::string::npos)
+      << gimp;
+  // C = 0.5 is stable everywhere, but nothing was run at 0.75 or beyond.
+  EXPECT_NE(gimp.find("| C = 0.5: no row at 1.5x (C = 0.75) at E = 4 and 10000; margin not "
+                      "checked |"),
+            std::string::npos)
+      << gimp;
+
+  // A margin run at one E only does not check the other.
+  rows.push_back(policy_run("gimp", 4, "cfl", 0.8));
+  const std::string one_E = line_with(markdown(rows), "| gimp cfl |");
+  EXPECT_NE(one_E.find("| C up to 0.25 |"), std::string::npos) << one_E;
+  EXPECT_NE(one_E.find("| C = 0.5: no row at 1.5x (C = 0.75) at E = 10000; margin not checked"),
+            std::string::npos)
+      << one_E;
+
+  // A single value has nothing beyond it: not advised.
+  const std::string single =
+      line_with(markdown({policy_run("gimp", 4, "cfl", 0.5)}), "| gimp cfl |");
+  EXPECT_NE(single.find("| no value qualifies |"), std::string::npos) << single;
+  EXPECT_NE(single.find("margin not checked"), std::string::npos) << single;
+}
+
+TEST(TradeoffStudy, RunsThatStoppedAreCountedPerPolicyAndReason) {
+  ojson min_run = policy_run("gimp", 4, "adaptive", 4);
+  min_run["policy"] = "min";
+  min_run["cfl_factor"] = 0.5;
+  const std::vector<ojson> rows = {fixed_run(1e-4, 1e-5, 10000),
+                                   meaningless(fixed_run(1e-3, 1e-5, 1000)),
+                                   failed(policy_run("gimp", 4, "cfl", 0.9), "nonpositive_F"),
+                                   policy_run("gimp", 4, "cfl", 0.5),
+                                   failed(policy_run("gimp", 4, "adaptive", 16), "dt_collapse"),
+                                   failed(policy_run("gimp", 4, "adaptive", 8), "dt_collapse"),
+                                   failed(policy_run("gimp", 4, "adaptive", 4), "left_domain"),
+                                   policy_run("gimp", 4, "adaptive", 1),
+                                   failed(min_run, "dt_collapse")};
+  const auto report = test_support::study_report("tradeoff", rows);
+  const std::string& md = report.markdown;
+  EXPECT_NE(md.find("| policy | runs | stable | meaningless | unstable | dt_collapse | left_domain "
+                    "| nonpositive_F |"),
             std::string::npos)
       << md;
+  EXPECT_NE(md.find("| fixed | 2 | 1 | 1 | 0 | 0 | 0 | 0 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| cfl | 2 | 1 | 0 | 1 | 0 | 0 | 1 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| adaptive | 4 | 1 | 0 | 3 | 2 | 1 | 0 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| min | 1 | 0 | 0 | 1 | 1 | 0 | 0 |"), std::string::npos) << md;
+
+  const ojson& endings = report.json["endings"]["bar"];
+  EXPECT_EQ(endings["adaptive"]["failure_reasons"]["dt_collapse"], 2);
+  EXPECT_EQ(endings["min"]["failure_reasons"]["dt_collapse"], 1);
+  EXPECT_EQ(endings["cfl"]["failure_reasons"]["dt_collapse"], 0);
+  EXPECT_EQ(endings["cfl"]["failure_reasons"]["nonpositive_F"], 1);
+  EXPECT_EQ(endings["fixed"]["meaningless"], 1);
+}
+
+TEST(TradeoffStudy, DataFileHasOneRowPerDrawnRunAndTheTitleCountsThem) {
+  std::vector<ojson> rows = {fixed_run(1e-4, 1e-5, 10000),
+                             failed(fixed_run(1e-3, 1e-5, 1000), "non_finite"),
+                             meaningless(fixed_run(3e-4, 1e-5, 3334)),
+                             policy_run("gimp", 64, "cfl", 0.5),
+                             failed(policy_run("mpm", 64, "adaptive", 8), "dt_collapse"),
+                             policy_run("mpm", 64, "adaptive", 1)};
+  ojson fine = policy_run("gimp", 64, "cfl", 0.5);
+  fine["cells"] = 400;
+  fine["particles"] = 800;
+  fine["steps"] = 800;
+  rows.push_back(fine);
+  ojson other_scene = fixed_run(1e-4, 1e-5, 10000);  // in the tables only
+  other_scene["scene"] = "steffen";
+  rows.push_back(other_scene);
+
+  const std::string data = *test_support::study_report("tradeoff", rows).data_csv;
+  const auto lines = data_lines(data);
+  ASSERT_EQ(lines.size(), 4u) << data;
+  EXPECT_NE(data.find("E,panel,series,method,policy,cells,grid,particle_steps,steps,error\n"),
+            std::string::npos)
+      << data;
+  EXPECT_EQ(lines[0], "4,0,0,1,0,100,0,2000000,10000,1e-05");
+  EXPECT_EQ(lines[1], "64,1,1,1,1,100,0,2000000,10000,1e-05");
+  EXPECT_EQ(lines[2], "64,1,2,0,2,100,0,2000000,10000,1e-05");
+  EXPECT_EQ(lines[3], "64,1,3,1,1,400,1,640000,800,1e-05");
+
+  Spec spec;
+  spec.name = std::string("tradeoff");
+  ojson doc = {{"cases", rows}};
+  const std::string subtitle = find_study("tradeoff")->figure_subtitle(spec, doc);
+  EXPECT_EQ(subtitle,
+            "4 of 7 runs of the scene bar drawn; left out: 2 unstable, 1 meaningless; every run "
+            "of every scene is in tradeoff.md");
+  EXPECT_EQ(subtitle.find('\''), std::string::npos);
+  EXPECT_NE(data.find("# 4 of 7 runs of the scene bar drawn"), std::string::npos) << data;
 }
 
 }  // namespace

@@ -1,4 +1,5 @@
-// `mpmstab edge`: the largest fixed dt with which one case survives to T (core/edge.hpp).
+// `mpmstab edge`: the largest fixed dt with which one case survives to T, and the largest that
+// stays accurate (core/edge.hpp).
 #include <algorithm>
 #include <iostream>
 #include <ostream>
@@ -18,10 +19,13 @@ namespace {
 constexpr const char* kEdgeHelp =
     R"(Usage: mpmstab edge --method gimp|cpgimp|mpm --E <x> --A <x> [options]
 
-Finds the real stability edge of one case: the largest fixed dt with which the bar survives
-to T (the scene, method and choices as given). A log-spaced scan dt = (h/c) 2^(k/2) from h/(16c) to 4h/c, then bisection to within
---tolerance. Reports dt_edge, dt_edge / (h/c), dt_edge / (the eq. 108 minimum of the run at
-dt_edge), and warns when stability is not monotone in dt.
+Finds the real edges of one case in fixed dt (the scene, method and choices as given): the
+survival edge dt_edge, the largest dt with which the bar survives to T, and the accuracy edge
+dt_accurate, the largest dt up to which every dt tried from the reference (the smallest that
+survives) survives with an error at T within 2 times the reference's and whose run is not
+meaningless. A log-spaced scan dt = (h/c) 2^(k/2) from h/(16c) to 4h/c, then bisection to
+within --tolerance. Reports both edges against h/c, dt_edge / (the eq. 108 minimum of the run
+at dt_edge), and warns with the dts where survival flips when it is not monotone in dt.
 
 Options: --T, --cells, --ppc, --bc, --position-update, --scene, --walls, --transfer,
 --flip-fraction, --update, --body-force-time, --dt-stable-sigma, --dt-stable-vnorm,
@@ -71,15 +75,33 @@ void print_summary(std::ostream& out, const RunParams& params, const EdgeResult&
                     : std::string("  (every dt up to T survives)"))
       << "\n  h/c                   " << fmt(e.dt_cfl) << "\n  dt_edge / (h/c)       "
       << fmt(*e.dt_edge / e.dt_cfl) << "\n";
-  if (e.at_edge && e.at_edge->dt_stable_min) {
-    out << "  eq. (108) at dt_edge  " << fmt(*e.at_edge->dt_stable_min)
-        << "\n  dt_edge / eq. (108)   " << fmt(*e.dt_edge / *e.at_edge->dt_stable_min) << "\n";
+  if (e.at_edge) {
+    if (e.at_edge->outcome)
+      out << "  outcome at dt_edge    " << to_string(*e.at_edge->outcome) << "\n";
+    if (e.at_edge->max_error)
+      out << "  error at T there      " << fmt(*e.at_edge->max_error) << "\n";
+    if (e.at_edge->dt_stable_min) {
+      out << "  eq. (108) at dt_edge  " << fmt(*e.at_edge->dt_stable_min)
+          << "\n  dt_edge / eq. (108)   " << fmt(*e.dt_edge / *e.at_edge->dt_stable_min) << "\n";
+    }
   }
-  out << "  runs                  " << e.probes.size() << " in " << fmt(e.wall_seconds) << " s\n";
-  if (!e.failed_below_edge.empty()) {
-    out << "  warning: stability is not monotone in dt: smaller steps failed at";
-    for (double dt : e.failed_below_edge)
-      out << " " << fmt(dt);
+  out << "  reference             dt " << fmt(*e.dt_reference) << ", error at T "
+      << fmt(*e.max_error_reference) << "\n";
+  if (e.dt_accurate) {
+    out << "  dt_accurate           " << fmt(*e.dt_accurate) << "  (error at T within "
+        << fmt(e.accuracy_factor) << " x the reference's"
+        << (e.dt_inaccurate ? "; not at " + fmt(*e.dt_inaccurate) : std::string()) << ")"
+        << "\n  dt_accurate / (h/c)   " << fmt(*e.dt_accurate / e.dt_cfl) << "\n";
+  } else {
+    out << "  dt_accurate           none: the reference run is meaningless\n";
+  }
+  out << "  runs                  " << e.probes.size() << ", " << fmt(double(e.particle_steps))
+      << " particle-steps, in " << fmt(e.wall_seconds) << " s\n";
+  if (!e.flips.empty()) {
+    out << "  warning: survival is not monotone in dt: as dt grows it";
+    for (const auto& f : e.flips)
+      out << (&f == &e.flips.front() ? " " : ", ")
+          << (f.survives ? "survives from " : "fails from ") << fmt(f.dt);
     out << "\n";
   }
 }

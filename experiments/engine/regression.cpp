@@ -47,6 +47,14 @@ std::vector<ColumnRule> value_rules(double rtol) {
           // edge experiments: the bracket of the search and its warnings
           {"dt_edge", 0, rtol, false},
           {"dt_fail", 0, rtol, false},
+          {"dt_reference", 0, rtol, false},
+          {"max_error_reference", 0, rtol, false},
+          {"dt_accurate", 0, rtol, false},
+          {"dt_inaccurate", 0, rtol, false},
+          {"max_error_at_accurate", 0, rtol, false},
+          {"outcome_at_accurate", 0, 0, true},
+          {"survival_flips", 0, 0, true},
+          {"search_particle_steps", 0, 0, false},
           {"monotone", 0, 0, true},
           {"failed_below_edge", 0, 0, false},
           {"probes", 0, 0, false}};

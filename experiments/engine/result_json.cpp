@@ -97,26 +97,51 @@ nlohmann::ordered_json history_to_json(const RunResult& r) {
 }
 
 nlohmann::ordered_json edge_to_json(const EdgeResult& e) {
-  nlohmann::ordered_json j;
+  using ojson = nlohmann::ordered_json;
+  auto over_cfl = [&](const std::optional<double>& dt) {
+    return dt ? ojson(*dt / e.dt_cfl) : ojson(nullptr);
+  };
+  ojson j;
   j["dt_cfl"] = e.dt_cfl;
+  // The survival edge.
   j["dt_edge"] = or_null(e.dt_edge);
   j["dt_fail"] = or_null(e.dt_fail);
-  j["dt_edge_over_cfl"] = e.dt_edge ? nlohmann::ordered_json(*e.dt_edge / e.dt_cfl) : nullptr;
+  j["dt_edge_over_cfl"] = over_cfl(e.dt_edge);
   const bool have_bound = e.dt_edge && e.at_edge && e.at_edge->dt_stable_min;
   const double bound = have_bound ? e.at_edge->dt_stable_min.value() : 0.0;
-  j["dt_stable_min_at_edge"] = have_bound ? nlohmann::ordered_json(bound) : nullptr;
-  j["dt_edge_over_stable"] =
-      have_bound ? nlohmann::ordered_json(e.dt_edge.value() / bound) : nullptr;
+  j["dt_stable_min_at_edge"] = have_bound ? ojson(bound) : nullptr;
+  j["dt_edge_over_stable"] = have_bound ? ojson(e.dt_edge.value() / bound) : nullptr;
   j["above_scan"] = e.above_scan;
-  j["monotone"] = e.failed_below_edge.empty();
+  j["monotone"] = e.flips.empty();
   j["failed_below_edge"] = e.failed_below_edge;
-  auto probes = nlohmann::ordered_json::array();
+  auto flips = ojson::array();
+  for (const auto& f : e.flips)
+    flips.push_back({{"below", f.below}, {"dt", f.dt}, {"survives", f.survives}});
+  j["survival_flips"] = flips;
+  // The accuracy edge.
+  j["accuracy_factor"] = e.accuracy_factor;
+  j["dt_reference"] = or_null(e.dt_reference);
+  j["max_error_reference"] = or_null(e.max_error_reference);
+  j["dt_accurate"] = or_null(e.dt_accurate);
+  j["dt_inaccurate"] = or_null(e.dt_inaccurate);
+  j["dt_accurate_over_cfl"] = over_cfl(e.dt_accurate);
+  const EdgeProbe* at_accurate = nullptr;
+  for (const auto& p : e.probes) {
+    if (e.dt_accurate && p.dt == *e.dt_accurate) at_accurate = &p;
+  }
+  j["max_error_at_accurate"] = at_accurate ? or_null(at_accurate->max_error) : nullptr;
+  j["outcome_at_accurate"] = at_accurate && at_accurate->outcome
+                                 ? ojson(to_string(*at_accurate->outcome))
+                                 : ojson(nullptr);
+  j["search_particle_steps"] = e.particle_steps;
+  auto probes = ojson::array();
   for (const auto& p : e.probes) {
     probes.push_back({{"dt", p.dt},
-                      {"stable", p.stable},
-                      {"reason", p.reason ? nlohmann::ordered_json(to_string(*p.reason))
-                                          : nlohmann::ordered_json(nullptr)},
-                      {"steps", p.steps}});
+                      {"survived", p.survived},
+                      {"reason", p.reason ? ojson(to_string(*p.reason)) : ojson(nullptr)},
+                      {"steps", p.steps},
+                      {"max_error", or_null(p.max_error)},
+                      {"outcome", p.outcome ? ojson(to_string(*p.outcome)) : ojson(nullptr)}});
   }
   j["probes"] = probes;
   return j;
@@ -124,11 +149,22 @@ nlohmann::ordered_json edge_to_json(const EdgeResult& e) {
 
 nlohmann::ordered_json edge_columns(const nlohmann::ordered_json& edge) {
   nlohmann::ordered_json row;
-  for (const char* col : {"dt_edge", "dt_fail", "dt_edge_over_cfl", "dt_stable_min_at_edge",
-                          "dt_edge_over_stable", "monotone"}) {
-    row[col] = edge[col];
+  for (const char* col :
+       {"dt_edge", "dt_fail", "dt_edge_over_cfl", "dt_stable_min_at_edge", "dt_edge_over_stable",
+        "monotone", "dt_reference", "max_error_reference", "dt_accurate", "dt_inaccurate",
+        "dt_accurate_over_cfl", "max_error_at_accurate", "outcome_at_accurate",
+        "search_particle_steps"}) {
+    row[col] = edge.contains(col) ? edge[col] : nlohmann::ordered_json(nullptr);
   }
   row["failed_below_edge"] = edge["failed_below_edge"].size();
+  // "fails 0.00119; survives 0.00168": each dt from which survival changes, in increasing dt.
+  std::string flips;
+  for (const auto& f : edge.value("survival_flips", nlohmann::ordered_json::array())) {
+    if (!flips.empty()) flips += "; ";
+    flips += f["survives"].get<bool>() ? "survives " : "fails ";
+    flips += f["dt"].dump();
+  }
+  row["survival_flips"] = flips;
   row["probes"] = edge["probes"].size();
   return row;
 }

@@ -161,7 +161,9 @@ nlohmann::ordered_json deterministic_part(const nlohmann::ordered_json& record) 
 }
 
 std::string case_search(const Spec& spec) {
-  return spec.study->work == CaseWork::edge_search ? "edge" : "";
+  // The search's name is part of an edge case's key: a search that measures more (the accuracy
+  // edge) must not reuse the records of an older one.
+  return spec.study->work == CaseWork::edge_search ? "edge-accuracy" : "";
 }
 
 namespace {

@@ -30,6 +30,9 @@ const std::vector<ComparisonClass>& comparison_classes() {
       {"mpm-crossing-failure", "MPM: F <= 0 well below the Courant limit (paper stable)",
        ClassKind::verdict},
       {"other-failure", "Other failures where the paper is stable", ClassKind::verdict},
+      {"ours-meaningless",
+       "Ours meaningless: survived to T, but the error over time reached A (never agreeing)",
+       ClassKind::verdict},
       {"mpm-error-larger", "MPM: both stable, our max error more than 3 times the paper's",
        ClassKind::error},
       {"gimp-error-larger", "GIMP: both stable, our max error more than 3 times the paper's",
@@ -55,7 +58,7 @@ CourantEdges courant_edges(const std::vector<ojson>& rows) {
     const auto key = std::make_pair(r["method"].get<std::string>(), r["A"].get<double>());
     const double c = std::round(r["courant"].get<double>() * 100) / 100;
     auto [it, fresh] = all_fail[key].try_emplace(c, true);
-    it->second = it->second && r["stable"] == false;
+    it->second = it->second && outcome(r) == "unstable";
   }
   CourantEdges edge;
   for (const auto& [key, by_c] : all_fail) {
@@ -76,6 +79,7 @@ void AgreementCounts::add(const CellVerdict& v) {
   if (!v.compared()) return;
   ++verdicts_compared;
   if (v.same_verdict()) ++verdicts_agree;
+  if (v.cls == "ours-meaningless") ++meaningless;
   if (v.error_ratio) {
     ++errors_compared;
     if (v.cls == "agree-stable") ++errors_within;
@@ -84,11 +88,23 @@ void AgreementCounts::add(const CellVerdict& v) {
   if (v.dt_stable_ratio) dt_stable_ratios.push_back(*v.dt_stable_ratio);
 }
 
+std::string failure_class(const ojson& r, const CourantEdges& edges) {
+  const std::string method = r["method"].get<std::string>();
+  const double courant = r["courant"].get<double>();
+  const auto edge = edges.find({method, r["A"].get<double>()});
+  const std::string reason = r["failure_reason"].get<std::string>();
+  if (courant >= 1.0) return "courant-above-1";
+  if (edge != edges.end() && courant >= edge->second * (1 - 1e-9)) return "above-our-edge";
+  if (method != "mpm" && reason == "left_domain") return "gimp-wall-exit";
+  if (method == "mpm" && reason != "left_domain") return "mpm-crossing-failure";
+  return "other-failure";
+}
+
 CellVerdict classify(const ojson& r, const PaperCell* paper, const CourantEdges& edges,
                      ErrorAt error_at) {
   CellVerdict cell;
   const std::string method = r["method"].get<std::string>();
-  const bool ours_stable = r["stable"].get<bool>();
+  const std::string ours = outcome(r);
   if (!paper || paper->max_error.kind == PaperValue::unreadable) {
     cell.verdict = "paper unreadable";
     cell.cls = "unreadable";
@@ -96,18 +112,26 @@ CellVerdict classify(const ojson& r, const PaperCell* paper, const CourantEdges&
   }
   const bool paper_stable = paper->max_error.kind == PaperValue::number;
   if (paper->dt_stable.kind == PaperValue::number && r["dt_stable_min"].is_number() &&
-      ours_stable) {
+      ours == "stable") {
     cell.dt_stable_ratio = r["dt_stable_min"].get<double>() / paper->dt_stable.value;
   }
-  const std::optional<double> ours = compared_error(r, error_at);
-  if (paper_stable && ours_stable && !ours) {
+  if (ours == "meaningless") {
+    // It survived, but its answer is as large as the solution: it agrees with neither verdict.
+    cell.verdict =
+        paper_stable ? "paper stable, ours meaningless" : "paper unstable, ours meaningless";
+    cell.cls = "ours-meaningless";
+    return cell;
+  }
+  const bool ours_stable = ours == "stable";
+  const std::optional<double> error = compared_error(r, error_at);
+  if (paper_stable && ours_stable && !error) {
     cell.verdict = "our error not recorded";
     cell.cls = "unreadable";
     return cell;
   }
   if (paper_stable && ours_stable) {
-    cell.error_ratio = *ours / paper->max_error.value;
-    if (within_factor_3(*ours, paper->max_error.value)) {
+    cell.error_ratio = *error / paper->max_error.value;
+    if (within_factor_3(*error, paper->max_error.value)) {
       cell.verdict = "agree";
       cell.cls = "agree-stable";
     } else if (*cell.error_ratio > 1) {
@@ -130,20 +154,7 @@ CellVerdict classify(const ojson& r, const PaperCell* paper, const CourantEdges&
     return cell;
   }
   cell.verdict = "paper stable, ours unstable";
-  const double courant = r["courant"].get<double>();
-  const auto edge = edges.find({method, r["A"].get<double>()});
-  const std::string reason = r["failure_reason"].get<std::string>();
-  if (courant >= 1.0) {
-    cell.cls = "courant-above-1";
-  } else if (edge != edges.end() && courant >= edge->second * (1 - 1e-9)) {
-    cell.cls = "above-our-edge";
-  } else if (method != "mpm" && reason == "left_domain") {
-    cell.cls = "gimp-wall-exit";
-  } else if (method == "mpm" && reason != "left_domain") {
-    cell.cls = "mpm-crossing-failure";
-  } else {
-    cell.cls = "other-failure";
-  }
+  cell.cls = failure_class(r, edges);
   return cell;
 }
 
@@ -161,18 +172,24 @@ void write_derived_comparison(const DerivedContext& c) {
 
 const StudyRegistration kComparison{{
     .name = "comparison",
-    .summary = "every Table 1 cell against the paper, each class of disagreement explained",
+    .summary = "every Table 1 cell and Figs. 1-3 against the paper, each disagreement explained",
     .has_cases = false,
     .inputs = {{.name = "table1", .required = true},
                {.name = "courant"},
                {.name = "walls"},
                {.name = "crossing"},
                {.name = "eq108"},
-               {.name = "variants"}},
+               {.name = "variants"},
+               {.name = "fig1"},
+               {.name = "fig2"},
+               {.name = "fig3"},
+               {.name = "fig2_variants"},
+               {.name = "fig3_variants"}},
     .index = [](const Spec&, const std::vector<ojson>&) -> std::string {
       return "**Against the paper:** [comparison.md](comparison.md) sets every Table 1 cell "
              "beside the paper's, with a verdict, and explains each class of disagreement with "
-             "an experiment.\n\n";
+             "an experiment; then what the paper's text says about its Figs. 1-3 beside our "
+             "runs of them.\n\n";
     },
     .write_derived = write_derived_comparison,
     .blessed = {{.file = "comparison.csv",

@@ -1,7 +1,8 @@
 // The paper comparison: every Table 1 cell, ours beside the paper's, with a verdict and a class
-// of disagreement, and a section per class with its explanation and the supporting experiment.
-// The rules that give a cell its verdict and class live here, once, for every report that
-// compares with the paper (the comparison and the variants study).
+// of disagreement, and a section per class with its explanation and the supporting experiment;
+// then the paper's Figs. 1-3, their observables beside those of our runs. The rules that give a
+// cell its verdict and class live here, once, for every report that compares with the paper (the
+// comparison and the variants study).
 #pragma once
 
 #include <filesystem>
@@ -41,14 +42,17 @@ const ComparisonClass* find_class(const std::string& id);
 using CourantEdges = std::map<std::pair<std::string, double>, double>;
 CourantEdges courant_edges(const std::vector<nlohmann::ordered_json>& courant_rows);
 
-// One cell against the paper.
+// One cell against the paper. Our outcome is one of three (report_util.hpp's outcome()):
+// unstable, meaningless (survived to T, but the error over time reached A) and stable; the
+// paper's is stable or `*`. A meaningless run agrees with neither of the paper's verdicts: it is
+// a class of its own (ours-meaningless), never counted as agreeing.
 struct CellVerdict {
   std::string verdict;                    // "agree", "differ: our error 7.6x", ...
   std::string cls;                        // class id
   std::optional<double> error_ratio;      // ours / paper, both stable
   std::optional<double> dt_stable_ratio;  // ours / paper, both numbers and ours stable
   bool compared() const { return cls != "unreadable"; }
-  // Both stable or both unstable.
+  // Both stable (ours not meaningless) or both unstable.
   bool same_verdict() const;
   // Fully in agreement: same verdict, and the max errors within a factor 3 where both stable.
   bool agrees() const { return cls == "agree-stable" || cls == "agree-unstable"; }
@@ -58,6 +62,7 @@ struct CellVerdict {
 struct AgreementCounts {
   int verdicts_compared = 0;             // cells with a readable paper value
   int verdicts_agree = 0;                // of those, with the same stability verdict
+  int meaningless = 0;                   // of those, ours meaningless (never agreeing)
   int errors_compared = 0;               // both stable
   int errors_within = 0;                 // of those, max errors within a factor 3
   std::vector<double> error_ratios;      // ours / paper, both stable
@@ -70,10 +75,63 @@ struct AgreementCounts {
 CellVerdict classify(const nlohmann::ordered_json& row, const PaperCell* paper,
                      const CourantEdges& edges, ErrorAt error_at);
 
+// The class of our failed run (a flat row whose outcome is unstable) where the paper's run goes
+// on: courant-above-1, above-our-edge, gimp-wall-exit, mpm-crossing-failure or other-failure.
+std::string failure_class(const nlohmann::ordered_json& row, const CourantEdges& edges);
+
+// ---- The paper's Figs. 1-3 against our runs of them (comparison_figures.cpp).
+
+// One observable of a figure as the paper states it (reference/paper/figures.csv): a number, a
+// word ("survived", "unstable", "more than fig2"), or "?" where only the plot would show it.
+struct PaperObservable {
+  std::string quantity, value, confidence, section, evidence;
+  bool stated() const { return !value.empty() && value != "?"; }
+};
+
+// A figure of the paper: the case it shows and what its text says about it.
+struct PaperFigure {
+  std::string name;  // "fig1": also the name of the experiment that runs it
+  std::string method;
+  double E = 0, A = 0, dt = 0;
+  std::vector<PaperObservable> observables;  // in the order of the file
+  const PaperObservable* find(const std::string& quantity) const;
+};
+
+// The transcription of the figures, in the order of the file; empty when the file is absent.
+std::vector<PaperFigure> read_paper_figures(const std::filesystem::path& csv);
+
+// The experiments that rerun a figure's case under each documented implementation choice: the
+// comparison reads the one whose first case is the figure's.
+const std::vector<std::string>& figure_variant_inputs();
+
+// What comparison.md says about the figures: a section per figure (the paper's observables
+// beside ours, each with a verdict; the figure's class; the variant runs of its case), and per
+// figure its class for the summary.
+struct FigureSections {
+  std::string markdown;
+  std::vector<std::pair<std::string, std::string>> classes;  // (figure, class id), paper order
+};
+
+// A Table 1 cell as a figure's section quotes it: the cell nearest to the figure's case.
+struct QuotedCell {
+  std::string method;
+  double E = 0, A = 0, dt = 0;
+  std::string paper, ours, cls;  // the paper's max error, our verdict, the cell's class
+};
+
+// The figure sections from the transcription (`transcription` is its path, as the report links
+// it), the study's inputs by name (each figure's experiment, the variant runs and the courant
+// scan; an input without results is reported as not run) and the Table 1 cells.
+FigureSections figure_sections(const std::vector<PaperFigure>& paper,
+                               const std::string& transcription, const StudyInputs& inputs,
+                               const CourantEdges& edges, const std::vector<QuotedCell>& table1);
+
 // Writes <out>/comparison.md and <out>/comparison.csv (one row per cell: verdict and class) from
 // the study's inputs, by name: "table1" (required: its spec and results), the supporting
-// experiments "courant", "walls", "crossing" and "eq108", and the "variants" study; an input
-// without results is reported as not run. `error_at`, when given, replaces every case's own
+// experiments "courant", "walls", "crossing" and "eq108", the "variants" study, the figures
+// "fig1", "fig2", "fig3" and their variant runs (figure_variant_inputs()); an input without
+// results is reported as not run. The transcription of the figures is read from figures.csv
+// beside the table1 spec's reference. `error_at`, when given, replaces every case's own
 // choice of the error compared with the paper's.
 void write_comparison(const StudyInputs& inputs, const std::filesystem::path& out,
                       std::optional<ErrorAt> error_at = {});

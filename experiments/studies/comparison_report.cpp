@@ -1,8 +1,10 @@
 // The comparison's report: comparison.csv (the verdict and class of every Table 1 cell) and
 // comparison.md (a summary, every cell beside the paper's, then a section per class of
-// disagreement with the experiment of ours that explains it). Everything is read from the
-// study's inputs: the table1 experiment, the supporting experiments (courant, walls, crossing,
-// eq108) and the variants study; a section whose experiment has not been run says so.
+// disagreement with the experiment of ours that explains it, then the paper's Figs. 1-3 beside
+// our runs of them, written in comparison_figures.cpp). Everything is read from the study's
+// inputs: the table1 experiment, the supporting experiments (courant, walls, crossing, eq108),
+// the variants study, the figures and their variant runs; a section whose experiment has not
+// been run says so.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -237,7 +239,42 @@ std::vector<double> dt_stable_ratios(const Comparison& cmp, bool mpm) {
 }
 
 // The agreement in numbers, and how many cells each class holds.
-void summary(std::ostream& md, const Comparison& cmp) {
+// The paper's verdict of a cell ("stable", "*", or "?" when unreadable) and ours.
+std::string paper_verdict(const Cell& c) {
+  if (!c.paper || c.paper->max_error.kind == PaperValue::unreadable) return "?";
+  return c.paper->max_error.kind == PaperValue::number ? "stable" : "*";
+}
+
+// Our verdict in a few words: "stable", "meaningless" or "\* reason at step n (t = ...)".
+std::string short_verdict(const ojson& row) {
+  return survived(row) ? outcome(row) : verdict(row);
+}
+
+std::string our_verdict(const ojson& row) {
+  const std::string o = outcome(row);
+  return o == "unstable" ? "\\*" : o;
+}
+
+// How many cells have each pair of verdicts: the paper's (rows) against ours (columns).
+void verdict_table(std::ostream& md, const Comparison& cmp) {
+  std::map<std::string, std::map<std::string, int>> n;
+  for (const auto& c : cmp.cells)
+    ++n[paper_verdict(c)][outcome(c.row)];
+  md << "| cells by verdict | ours stable | ours meaningless | ours unstable (`*`) |\n"
+        "|---|---|---|---|\n";
+  for (const char* p : {"stable", "*", "?"}) {
+    if (!n.count(p)) continue;
+    const std::string name = std::string(p) == "*"   ? "paper unstable (`*`)"
+                             : std::string(p) == "?" ? "paper unreadable"
+                                                     : "paper stable";
+    md << "| " << name << " | " << n[p]["stable"] << " | " << n[p]["meaningless"] << " | "
+       << n[p]["unstable"] << " |\n";
+  }
+  md << "\nThe verdicts agree on the diagonal only: a meaningless run (it reached T, but its "
+        "error over time reached A) agrees with neither of the paper's verdicts.\n\n";
+}
+
+void summary(std::ostream& md, const Comparison& cmp, const FigureSections& figures) {
   AgreementCounts all;
   for (const auto& c : cmp.cells)
     all.add(c.v);
@@ -247,12 +284,24 @@ void summary(std::ostream& md, const Comparison& cmp) {
      << " with an unreadable paper value) |\n"
      << "| stability verdicts agreeing | " << all.verdicts_agree << " of " << all.verdicts_compared
      << " |\n"
+     << "| ours meaningless (agreeing with neither verdict) | " << all.meaningless << " of "
+     << all.verdicts_compared << " |\n"
      << "| max errors within a factor 3 (both stable) | " << all.errors_within << " of "
      << all.errors_compared << " |\n"
      << "| our error compared with the paper's Max Error | " << compared_error_text(cmp) << " |\n"
      << "| our dt_stable / paper's, MPM | " << distribution(dt_stable_ratios(cmp, true)) << " |\n"
      << "| our dt_stable / paper's, GIMP | " << distribution(dt_stable_ratios(cmp, false))
-     << " |\n\n";
+     << " |\n";
+  if (!figures.classes.empty()) {
+    md << "| Figs. 1-3, class of each ([below](#figures)) | ";
+    for (std::size_t i = 0; i < figures.classes.size(); ++i) {
+      const auto& [fig, cls] = figures.classes[i];
+      md << (i ? "; " : "") << "[" << fig << "](#" << fig << "): " << cls;
+    }
+    md << " |\n";
+  }
+  md << "\n";
+  verdict_table(md, cmp);
   md << "| class | cells |\n|---|---|\n";
   for (const auto& k : comparison_classes())
     md << "| [" << k.title << "](#" << k.id << ") | " << cmp.count(k.id) << " |\n";
@@ -261,20 +310,23 @@ void summary(std::ostream& md, const Comparison& cmp) {
 
 // Every cell: the paper's dt_stable and max error beside ours, the ratios, verdict and class.
 void cell_table(std::ostream& md, const Comparison& cmp) {
-  md << "## Every cell\n\nRatios are ours / paper. `*`: unstable. Confidence: of the "
+  md << "## Every cell\n\nRatios are ours / paper. `*`: unstable; meaningless: reached T, but "
+        "the error over time reached A (its errors are shown, not compared). Confidence: of the "
         "transcription.\n\n"
-        "| E | A | dt | method | c dt/h | dt_stable paper | ours | ratio | max error paper | ours "
-        "| ratio | verdict | class | confidence |\n"
-        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+        "| E | A | dt | method | c dt/h | verdict paper | ours | dt_stable paper | ours | ratio "
+        "| max error paper | ours | ratio | verdict | class | confidence |\n"
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& c : cmp.cells) {
     const auto& p = c.spec->params;
     const ojson& r = c.row;
     const auto error = compared_error(r, cmp.error_of(c));
-    const bool stable = r["stable"] == true;
+    const bool stable = survived(r);
+    const std::string pv = paper_verdict(c);
     md << "| " << shortest(p.E) << " | " << shortest(p.A) << " | " << param(p.dt)
        << (c.spec->dt_inferred ? " (inferred)" : "") << " | " << to_string(p.method) << " | "
-       << sci(r["courant"].get<double>()) << " | " << (c.paper ? show(c.paper->dt_stable) : "–")
-       << " | " << (stable ? opt_sci(r["dt_stable_min"]) : "\\*") << " | "
+       << sci(r["courant"].get<double>()) << " | " << (pv == "*" ? "\\*" : pv) << " | "
+       << our_verdict(r) << " | " << (c.paper ? show(c.paper->dt_stable) : "–") << " | "
+       << (stable ? opt_sci(r["dt_stable_min"]) : "\\*") << " | "
        << (c.v.dt_stable_ratio ? ratio(*c.v.dt_stable_ratio) : "–") << " | "
        << (c.paper ? show(c.paper->max_error) : "–") << " | "
        << (stable ? (error ? sci(*error) : std::string("–")) : "\\*") << " | "
@@ -325,8 +377,8 @@ void courant_scan_table(std::ostream& md, const Comparison& cmp) {
     groups.insert(g);
     auto& [ok, n] = by_c[c][g];
     ++n;
-    if (r["stable"] == true) ++ok;
-    if (c >= 1 && r["stable"] == false) {
+    if (survived(r)) ++ok;
+    if (c >= 1 && outcome(r) == "unstable") {
       worst_step = std::max(worst_step, r["failure_step"].get<std::int64_t>());
     }
   }
@@ -393,7 +445,7 @@ void gimp_wall_exit_section(std::ostream& md, const Comparison& cmp) {
     not_run(md, "walls");
     return;
   }
-  int survived = 0, n = 0, meaningless = 0;
+  int reached = 0, n = 0, meaningless = 0;
   std::vector<double> paper_rel;
   for (const Cell* c : cmp.in_class("gimp-wall-exit")) {
     if (c->paper && c->paper->max_error.kind == PaperValue::number) {
@@ -401,8 +453,8 @@ void gimp_wall_exit_section(std::ostream& md, const Comparison& cmp) {
     }
     if (const ojson* r = periodic_run(cmp, *c)) {
       ++n;
-      survived += (*r)["stable"] == true;
-      meaningless += (*r)["meaningless"] == true;
+      reached += survived(*r);
+      meaningless += outcome(*r) == "meaningless";
     }
   }
   md << "All have A = 0.05 (displacements of five cells) and E >= 1000. The paper's own max "
@@ -411,7 +463,7 @@ void gimp_wall_exit_section(std::ostream& md, const Comparison& cmp) {
      << " times A: in the paper too the answer is of the size of the solution. "
         "**Experiment** ([walls.md](walls.md)): the same cells with periodic boundaries "
         "(dt >= 1e-5): "
-     << survived << " of " << n << " reach T, " << meaningless << " of those with an error "
+     << reached << " of " << n << " reach T, " << meaningless << " of those with an error "
      << "over time of at least A. The walls decide how the run ends (a particle pushed out "
         "through a wall, where our GIMP drops the weight of nodes beyond it), not whether the "
         "answer is meaningful: it is not, in either code.\n\n";
@@ -435,9 +487,8 @@ void crossing_table(std::ostream& md, const Comparison& cmp) {
         "|---|---|---|---|---|\n";
   const Rows& rows = cmp.rows("crossing");
   auto rel = [](const ojson& x) {
-    return x["stable"] == true
-               ? ratio(x["max_error_over_time"].get<double>() / x["A"].get<double>())
-               : "\\* " + x["failure_reason"].get<std::string>();
+    return survived(x) ? ratio(x["max_error_over_time"].get<double>() / x["A"].get<double>())
+                       : "\\* " + x["failure_reason"].get<std::string>();
   };
   for (const auto& r : rows) {
     if (r["method"] != "mpm") continue;
@@ -462,7 +513,7 @@ struct CalmAndCrossing {
 CalmAndCrossing calm_and_crossing(const Rows& crossing) {
   CalmAndCrossing runs;
   for (const auto& r : crossing) {
-    if (r["E"].get<double>() != 4.0 || r["stable"] != true) continue;
+    if (r["E"].get<double>() != 4.0 || !survived(r)) continue;
     const bool mpm = r["method"] == "mpm";
     const ojson*& calm = mpm ? runs.calm_mpm : runs.calm_gimp;
     if (!calm || r["A"].get<double>() < (*calm)["A"].get<double>()) calm = &r;
@@ -503,14 +554,14 @@ void crossing_summary(std::ostream& md, const Comparison& cmp) {
 // not what makes them fail. Closes the section of the next class, which explains both.
 void periodic_mpm_failures(std::ostream& md, const Comparison& cmp) {
   if (!cmp.have("walls")) return;
-  int survived = 0, n = 0;
+  int reached = 0, n = 0;
   for (const Cell* c : cmp.in_class("mpm-crossing-failure")) {
     if (const ojson* r = periodic_run(cmp, *c)) {
       ++n;
-      survived += (*r)["stable"] == true;
+      reached += survived(*r);
     }
   }
-  md << "With periodic boundaries ([walls.md](walls.md)), " << survived << " of " << n
+  md << "With periodic boundaries ([walls.md](walls.md)), " << reached << " of " << n
      << " of the MPM failures of the previous class (F <= 0 below the Courant limit) with dt "
         ">= 1e-5 reach T: the walls are not what makes MPM fail.\n\n";
 }
@@ -537,9 +588,12 @@ void gimp_error_larger_section(std::ostream& md, const Comparison& cmp) {
   }
   std::vector<double> dirichlet, periodic;
   std::string helped;
+  int meaningless = 0;
   for (const Cell* c : cmp.in_class("gimp-error-larger")) {
     const ojson* r = periodic_run(cmp, *c);
-    const auto periodic_error = r ? compared_error(*r, cmp.error_of(*c)) : std::nullopt;
+    if (r && outcome(*r) == "meaningless") ++meaningless;
+    const bool stable = r && outcome(*r) == "stable";
+    const auto periodic_error = stable ? compared_error(*r, cmp.error_of(*c)) : std::nullopt;
     if (!periodic_error) continue;
     const double ours = *periodic_error;
     dirichlet.push_back(*c->v.error_ratio);
@@ -552,11 +606,43 @@ void gimp_error_larger_section(std::ostream& md, const Comparison& cmp) {
         "support reaches past the wall loses part of its weight (the design's default). "
         "**Experiment** ([walls.md](walls.md)): the cells of this class with dt >= 1e-5 rerun "
         "with periodic boundaries: ours / paper goes from "
-     << distribution(dirichlet) << " to " << distribution(periodic) << ". Within a factor 3 "
-     << "with periodic boundaries: " << (helped.empty() ? std::string("none") : helped)
+     << distribution(dirichlet) << " to " << distribution(periodic)
+     << " over the periodic runs that are stable (" << meaningless
+     << " meaningless, not compared). Within a factor 3 with periodic boundaries: "
+     << (helped.empty() ? std::string("none") : helped)
      << ". The walls explain the gap only there; what the documented implementation choices "
         "(GIMP at the wall, position update, velocity transfer, stress-update order and the "
         "others) do to this class is in the line above and in the variants study.\n\n";
+}
+
+// Our runs that reached T with an error over time of at least A: a class of their own, never
+// counted as agreeing with either of the paper's verdicts.
+void ours_meaningless_section(std::ostream& md, const Comparison& cmp) {
+  class_opening(md, cmp, "ours-meaningless");
+  const auto& cells = cmp.in_class("ours-meaningless");
+  if (cells.empty()) return;
+  md << "These runs reached T, but at some step their error was as large as the amplitude A of "
+        "the solution: their answer is meaningless, so the cell agrees with neither of the "
+        "paper's verdicts, whatever its error at T.\n\n"
+        "| cell | paper max error | ours at T | ours over time / A | with periodic boundaries "
+        "([walls.md](walls.md)) |\n|---|---|---|---|---|\n";
+  bool all_mpm = true;
+  for (const Cell* c : cells) {
+    const ojson& r = c->row;
+    all_mpm = all_mpm && r["method"] == "mpm";
+    const ojson* periodic = cmp.have("walls") ? periodic_run(cmp, *c) : nullptr;
+    md << "| " << cell_name(*c) << " | " << (c->paper ? show(c->paper->max_error) : "–") << " | "
+       << opt_sci(r["max_error"]) << " | "
+       << (r["max_error_over_time"].is_number()
+               ? ratio(r["max_error_over_time"].get<double>() / r["A"].get<double>())
+               : std::string("–"))
+       << " | " << (periodic ? short_verdict(*periodic) : std::string("–")) << " |\n";
+  }
+  md << "\n";
+  if (all_mpm) {
+    md << "All are MPM cells: the grid-crossing error of the [MPM error class](#mpm-error-larger), "
+          "grown to the size of the solution.\n\n";
+  }
 }
 
 // The remaining failures: each at a Courant number where the scan is on the edge for its
@@ -576,7 +662,7 @@ void other_failure_section(std::ostream& md, const Comparison& cmp) {
         continue;
       }
       ++n;
-      ok += r["stable"] == true;
+      ok += survived(r);
     }
     md << "| " << cell_name(*c) << " | " << shortest(cr) << " | " << verdict(c->row) << " | "
        << (n ? std::to_string(ok) + " of " + std::to_string(n) : std::string("not scanned"))
@@ -591,7 +677,7 @@ std::map<std::string, std::map<std::string, std::vector<double>>> eq108_ratios(
     const Comparison& cmp) {
   std::map<std::string, std::map<std::string, std::vector<double>>> per_option;
   for (const auto& r : cmp.rows("eq108")) {
-    if (!r["dt_stable_min"].is_number() || r["stable"] != true) continue;
+    if (!r["dt_stable_min"].is_number() || outcome(r) != "stable") continue;
     for (const auto& c : cmp.cells) {
       if (!same_cell(r, *c.spec) || !c.paper || c.paper->dt_stable.kind != PaperValue::number) {
         continue;
@@ -644,11 +730,11 @@ void unreadable_section(std::ostream& md, const Comparison& cmp) {
 }
 
 // comparison.md: the summary, every cell, then the classes of disagreement in the order of
-// comparison_classes(), with the dt_stable gap before the unreadable cells.
-void write_markdown(const Comparison& cmp) {
+// comparison_classes(), with the dt_stable gap before the unreadable cells, then the figures.
+void write_markdown(const Comparison& cmp, const FigureSections& figures) {
   std::ostringstream md;
   introduction(md, cmp);
-  summary(md, cmp);
+  summary(md, cmp, figures);
   cell_table(md, cmp);
   courant_above_1_section(md, cmp);
   above_our_edge_section(md, cmp);
@@ -657,10 +743,12 @@ void write_markdown(const Comparison& cmp) {
   mpm_error_larger_section(md, cmp);
   gimp_error_larger_section(md, cmp);
   other_failure_section(md, cmp);
+  ours_meaningless_section(md, cmp);
   class_opening(md, cmp, "error-smaller");
   class_opening(md, cmp, "paper-unstable-ours-stable");
   dt_stable_section(md, cmp);
   unreadable_section(md, cmp);
+  md << "\n<a id=\"figures\"></a>\n" << figures.markdown;
   write_if_changed(cmp.out / "comparison.md", md.str());
 }
 
@@ -681,7 +769,16 @@ void write_comparison(const StudyInputs& inputs, const fs::path& out,
   if (cmp.have("courant")) cmp.edges = courant_edges(cmp.rows("courant"));
   compare_cells(cmp, case_rows(table1->second.doc));
   write_verdicts_csv(cmp);
-  write_markdown(cmp);
+  // The transcription of the figures lies beside that of Table 1.
+  const fs::path figures_csv = cmp.table1.reference.parent_path() / "figures.csv";
+  std::vector<QuotedCell> quoted;
+  for (const auto& c : cmp.cells) {
+    const auto& p = c.spec->params;
+    quoted.push_back({std::string(to_string(p.method)), p.E, p.A, p.dt,
+                      c.paper ? show(c.paper->max_error) : "–", short_verdict(c.row), c.v.cls});
+  }
+  write_markdown(cmp, figure_sections(read_paper_figures(figures_csv), link(out, figures_csv),
+                                      inputs, cmp.edges, quoted));
 }
 
 }  // namespace mpmstab

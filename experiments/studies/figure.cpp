@@ -75,13 +75,17 @@ std::string figure_index(const Spec& spec, const std::vector<ojson>& rows) {
   return md.str();
 }
 
-// What the data file holds: the rows drawn (history steps or particles), for the title.
+// What the data file holds: the rows drawn (history steps or particles), for the title, and the
+// history of a history figure.
 ojson figure_json(const ojson& record) {
   if (record.contains("final_state")) {
     return {{"drawn", record["final_state"]["X"].size()}, {"drawn_what", "particles"}};
   }
   if (record.contains("history")) {
-    return {{"drawn", record["history"].size()}, {"drawn_what", "recorded steps"}};
+    // The history itself too: other studies (the comparison with the paper's figures) read it.
+    return {{"drawn", record["history"].size()},
+            {"drawn_what", "recorded steps"},
+            {"history", record["history"]}};
   }
   return {{"drawn", 0}, {"drawn_what", "rows"}};
 }

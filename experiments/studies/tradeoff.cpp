@@ -1,14 +1,19 @@
 // The speed/accuracy trade: error against cost across methods, time-step policies and their
-// parameters; the cheapest setting for each accuracy, advice computed from the rows, and per E
-// every setting with the Pareto front marked.
+// parameters. Cost is the deterministic work of a run, particles x steps (particle-steps); the
+// machine's wall times are kept apart (performance.md, timings.json), so a rerun writes the same
+// report. From the rows of every scene: each parameter value advised with a margin, and the rows
+// it rests on. Per scene: the cheapest setting for each accuracy, how the runs of each policy
+// ended, and per E every setting with the Pareto front marked.
 #include <algorithm>
+#include <limits>
 #include <map>
 #include <optional>
 #include <set>
 #include <sstream>
+#include <tuple>
 
 #include "csv.hpp"
-#include "report.hpp"
+#include "params.hpp"
 #include "report_util.hpp"
 #include "scenes.hpp"
 #include "study.hpp"
@@ -19,10 +24,42 @@ namespace {
 
 using ojson = nlohmann::ordered_json;
 
+// A string column of a row.
+std::string text(const ojson& r, const char* key) {
+  return r[key].get<std::string>();
+}
+
+// ---------------------------------------------------------------------------------------------
+// Settings and their parameters (docs/design.md, "Time-step policies")
+
+const std::vector<std::string> kPolicies = {"fixed", "cfl", "adaptive", "min"};
+
+// The parameter a policy is advised on: the fixed dt, the CFL factor C or the safety factor s
+// (the min policy: s, at its C).
+const char* parameter_key(const std::string& policy) {
+  if (policy == "fixed") return "dt";
+  return policy == "cfl" ? "cfl_factor" : "safety";
+}
+
+const char* parameter_symbol(const std::string& policy) {
+  if (policy == "fixed") return "dt";
+  return policy == "cfl" ? "C" : "s";
+}
+
+double parameter(const ojson& r) {
+  return r[parameter_key(text(r, "policy"))].get<double>();
+}
+
+// A parameter value as the report writes it: "1e-4" for a dt, "0.25" for C or s.
+std::string parameter_text(const std::string& policy, double v) {
+  return policy == "fixed" ? param(v) : shortest(v);
+}
+
 // A setting's name: "gimp cfl C=0.5", "mpm adaptive s=2", "gimp fixed dt=1e-4".
 std::string setting(const ojson& r) {
-  const std::string policy = r["policy"].get<std::string>();
-  std::string s = r["method"].get<std::string>() + " " + policy;
+  const std::string policy = text(r, "policy");
+  std::string s = text(r, "method");
+  s += " " + policy;
   if (policy == "fixed") s += " dt=" + param(r["dt"].get<double>());
   if (policy == "cfl" || policy == "min") s += " C=" + shortest(r["cfl_factor"].get<double>());
   if (policy == "adaptive" || policy == "min") s += " s=" + shortest(r["safety"].get<double>());
@@ -30,28 +67,41 @@ std::string setting(const ojson& r) {
   return s;
 }
 
-// The accuracy of a run: its max error over time, when the run is stable and meaningful.
+// ---------------------------------------------------------------------------------------------
+// Accuracy and cost
+
+// The accuracy of a run: its max error over time, when its outcome is stable. A run that failed
+// or whose error reached A reaches none (docs/design.md, "Outcomes").
 std::optional<double> accuracy(const ojson& r) {
-  if (r["stable"] != true || r["meaningless"] == true || !r["max_error_over_time"].is_number()) {
-    return std::nullopt;
-  }
+  if (outcome(r) != "stable" || !r["max_error_over_time"].is_number()) return std::nullopt;
   return r["max_error_over_time"].get<double>();
 }
 
-// Indices of the runs on the Pareto front of (wall time, error): no other run is both cheaper
-// and more accurate.
+// Whether run i ranks before run j on cost: fewer particle-steps, then the smaller error, then
+// the earlier row. A total order, so that every ranking is the same on every rerun.
+bool cheaper(const std::vector<ojson>& rows, std::size_t i, std::size_t j) {
+  const double ci = particle_steps(rows[i]), cj = particle_steps(rows[j]);
+  if (ci != cj) return ci < cj;
+  constexpr double kNone = std::numeric_limits<double>::infinity();
+  const double ei = accuracy(rows[i]).value_or(kNone), ej = accuracy(rows[j]).value_or(kNone);
+  if (ei != ej) return ei < ej;
+  return i < j;
+}
+
+// Indices of the runs on the Pareto front of (particle-steps, error): no other run is both
+// cheaper and more accurate. Runs equal in both are both on it.
 std::set<std::size_t> pareto_front(const std::vector<ojson>& rows,
                                    const std::vector<std::size_t>& idx) {
   std::set<std::size_t> front;
   for (std::size_t i : idx) {
     const auto ei = accuracy(rows[i]);
     if (!ei) continue;
-    const double ci = rows[i]["wall_seconds"].get<double>();
+    const double ci = particle_steps(rows[i]);
     bool dominated = false;
     for (std::size_t j : idx) {
       const auto ej = accuracy(rows[j]);
       if (j == i || !ej) continue;
-      const double cj = rows[j]["wall_seconds"].get<double>();
+      const double cj = particle_steps(rows[j]);
       if (cj <= ci && *ej <= *ei && (cj < ci || *ej < *ei)) dominated = true;
     }
     if (!dominated) front.insert(i);
@@ -61,7 +111,7 @@ std::set<std::size_t> pareto_front(const std::vector<ojson>& rows,
 
 const std::vector<double> kTargets = {1e-3, 1e-4, 1e-5};
 
-// The cheapest run (by wall time) of `idx` reaching each target error.
+// The cheapest run (cheaper()) of `idx` reaching each target error.
 std::vector<std::optional<std::size_t>> cheapest(const std::vector<ojson>& rows,
                                                  const std::vector<std::size_t>& idx) {
   std::vector<std::optional<std::size_t>> best(kTargets.size());
@@ -69,10 +119,7 @@ std::vector<std::optional<std::size_t>> cheapest(const std::vector<ojson>& rows,
     for (std::size_t i : idx) {
       const auto e = accuracy(rows[i]);
       if (!e || *e > kTargets[t]) continue;
-      if (!best[t] ||
-          rows[i]["wall_seconds"].get<double>() < rows[*best[t]]["wall_seconds"].get<double>()) {
-        best[t] = i;
-      }
+      if (!best[t] || cheaper(rows, i, *best[t])) best[t] = i;
     }
   }
   return best;
@@ -100,22 +147,390 @@ struct TradeRows {
     return idx;
   }
 
-  // The run at E of `method` under `policy` on `cells` cells whose parameter (the safety factor
-  // of the adaptive policy, else the CFL factor) is `value`; null when the sweep has none.
-  const ojson* find(double E, const char* method, const char* policy, double value,
+  // The run at E of `method` under `policy` on `cells` cells whose parameter (parameter()) is
+  // `value`; null when the sweep has none.
+  const ojson* find(double E, const std::string& method, const std::string& policy, double value,
                     int cells) const {
     for (const auto& r : rows) {
-      if (r["E"].get<double>() != E || r["method"] != method || r["policy"] != policy ||
-          r["cells"].get<int>() != cells) {
-        continue;
+      if (r["E"].get<double>() == E && text(r, "method") == method && text(r, "policy") == policy &&
+          r["cells"].get<int>() == cells && parameter(r) == value) {
+        return &r;
       }
-      const double v = std::string(policy) == "adaptive" ? r["safety"].get<double>()
-                                                         : r["cfl_factor"].get<double>();
-      if (v == value) return &r;
     }
     return nullptr;
   }
 };
+
+// "4, 64 and 1000".
+std::string list_of(const std::vector<std::string>& items) {
+  std::string s;
+  for (std::size_t k = 0; k < items.size(); ++k) {
+    if (k > 0) s += k + 1 == items.size() ? " and " : ", ";
+    s += items[k];
+  }
+  return s;
+}
+
+std::string list_of_E(const std::vector<double>& Es) {
+  std::vector<std::string> items;
+  for (double E : Es)
+    items.push_back(shortest(E));
+  return list_of(items);
+}
+
+// ---------------------------------------------------------------------------------------------
+// How the runs ended, per policy (docs/design.md, "Outcomes")
+
+struct Endings {
+  int runs = 0;
+  std::map<std::string, int> outcomes;  // by outcome(): unstable, meaningless, stable
+  std::map<std::string, int> reasons;   // the unstable runs, by failure_reason
+};
+
+std::map<std::string, Endings> endings_by_policy(const std::vector<ojson>& rows) {
+  std::map<std::string, Endings> by_policy;
+  for (const auto& p : kPolicies)
+    by_policy[p];
+  for (const auto& r : rows) {
+    Endings& e = by_policy[text(r, "policy")];
+    ++e.runs;
+    ++e.outcomes[outcome(r)];
+    if (outcome(r) == "unstable") ++e.reasons[text(r, "failure_reason")];
+  }
+  return by_policy;
+}
+
+// The failure reasons the table has a column for: dt_collapse always, then every other reason
+// some run stopped with, alphabetically.
+std::vector<std::string> reason_columns(const std::map<std::string, Endings>& by_policy) {
+  std::set<std::string> others;
+  for (const auto& [p, e] : by_policy) {
+    for (const auto& [reason, n] : e.reasons) {
+      if (reason != "dt_collapse") others.insert(reason);
+    }
+  }
+  std::vector<std::string> columns = {"dt_collapse"};
+  columns.insert(columns.end(), others.begin(), others.end());
+  return columns;
+}
+
+int count_of(const std::map<std::string, int>& m, const std::string& key) {
+  const auto it = m.find(key);
+  return it == m.end() ? 0 : it->second;
+}
+
+// Per policy, the runs and how they ended; the unstable ones per failure reason.
+std::string endings_table(const std::vector<ojson>& rows, const std::string& of_scene) {
+  const auto by_policy = endings_by_policy(rows);
+  const auto reasons = reason_columns(by_policy);
+  std::ostringstream md;
+  md << "### How the runs ended" << of_scene
+     << "\n\nPer time-step policy, the runs that were stable, meaningless (survived, but the "
+        "error over time reached A) and unstable, and the unstable ones by the reason they "
+        "stopped. dt_collapse: the adaptive or min policy asked for a step below "
+     << sci(kDtCollapseFraction, 1) << " times the CFL step h/c.\n\n"
+     << "| policy | runs | stable | meaningless | unstable |";
+  for (const auto& reason : reasons)
+    md << " " << reason << " |";
+  md << "\n|---|---|---|---|---|";
+  for (std::size_t k = 0; k < reasons.size(); ++k)
+    md << "---|";
+  md << "\n";
+  for (const auto& p : kPolicies) {
+    const Endings& e = by_policy.at(p);
+    md << "| " << p << " | " << e.runs << " | " << count_of(e.outcomes, "stable") << " | "
+       << count_of(e.outcomes, "meaningless") << " | " << count_of(e.outcomes, "unstable") << " |";
+    for (const auto& reason : reasons)
+      md << " " << count_of(e.reasons, reason) << " |";
+    md << "\n";
+  }
+  md << "\n";
+  return md.str();
+}
+
+ojson endings_json(const std::vector<ojson>& rows) {
+  ojson j = ojson::object();
+  for (const auto& [p, e] : endings_by_policy(rows)) {
+    ojson reasons = {{"dt_collapse", count_of(e.reasons, "dt_collapse")}};
+    for (const auto& [reason, n] : e.reasons)
+      reasons[reason] = n;
+    j[p] = {{"runs", e.runs},
+            {"stable", count_of(e.outcomes, "stable")},
+            {"meaningless", count_of(e.outcomes, "meaningless")},
+            {"unstable", count_of(e.outcomes, "unstable")},
+            {"failure_reasons", reasons}};
+  }
+  return j;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Advice with a margin: a value v of a parameter is advised for a method and policy only if,
+// at every E of the scene, they were run at v and at some p >= 1.5 v, and every one of their
+// runs with the parameter up to p (on every grid) is stable. The largest such v is advised.
+
+constexpr double kMargin = 1.5;
+
+// The runs one piece of advice is about: one method under one policy (the min policy at one C).
+struct AdviceGroup {
+  std::string method, policy;
+  std::optional<double> cfl_factor;  // the min policy's C
+
+  bool holds(const ojson& r) const {
+    return text(r, "method") == method && text(r, "policy") == policy &&
+           (!cfl_factor || r["cfl_factor"].get<double>() == *cfl_factor);
+  }
+  // "gimp cfl", "gimp min at C = 0.5".
+  std::string name() const {
+    std::string s = method + " " + policy;
+    if (cfl_factor) s += " at C = " + shortest(*cfl_factor);
+    return s;
+  }
+  std::string value(double v) const {
+    return std::string(parameter_symbol(policy)) + " = " + parameter_text(policy, v);
+  }
+};
+
+// The groups of a scene: by method in the order they first appear, then by policy.
+std::vector<AdviceGroup> advice_groups(const std::vector<ojson>& rows) {
+  std::vector<std::string> methods;
+  for (const auto& r : rows) {
+    const std::string m = text(r, "method");
+    if (std::find(methods.begin(), methods.end(), m) == methods.end()) methods.push_back(m);
+  }
+  std::vector<AdviceGroup> groups;
+  for (const auto& m : methods) {
+    for (const auto& p : kPolicies) {
+      std::set<double> Cs;
+      bool any = false;
+      for (const auto& r : rows) {
+        if (text(r, "method") != m || text(r, "policy") != p) continue;
+        any = true;
+        if (p == "min") Cs.insert(r["cfl_factor"].get<double>());
+      }
+      if (!any) continue;
+      if (p != "min") groups.push_back({m, p, std::nullopt});
+      for (double C : Cs)
+        groups.push_back({m, p, C});
+    }
+  }
+  return groups;
+}
+
+// The rule applied to one value v of a group's parameter.
+struct ValueCheck {
+  double value = 0;
+  bool advised = false;
+  std::vector<std::size_t> rests_on;  // the group's runs up to the checking value, per E
+  std::vector<double> checked;        // per E, the smallest value run at or beyond 1.5 v
+  std::string why_not;                // why it is not advised
+};
+
+// The group's runs at E, by parameter (then row order).
+std::vector<std::size_t> group_rows_at(const TradeRows& t, const AdviceGroup& g, double E) {
+  std::vector<std::size_t> idx;
+  for (std::size_t i : t.at(E)) {
+    if (g.holds(t.rows[i])) idx.push_back(i);
+  }
+  std::stable_sort(idx.begin(), idx.end(), [&](std::size_t a, std::size_t b) {
+    return parameter(t.rows[a]) < parameter(t.rows[b]);
+  });
+  return idx;
+}
+
+// The smallest parameter of `idx` at or beyond `at_least` (a relative 1e-9 below it counts, so
+// that 1.5 x 1e-4 finds a run at 1.5e-4).
+std::optional<double> first_at_or_beyond(const TradeRows& t, const std::vector<std::size_t>& idx,
+                                         double at_least) {
+  for (std::size_t i : idx) {
+    const double p = parameter(t.rows[i]);
+    if (p >= at_least * (1 - 1e-9)) return p;
+  }
+  return std::nullopt;
+}
+
+// "gimp cfl C=0.7 at E = 4 (bar): \* nonpositive_F at step 258 (t = 9.0e-1)".
+std::string row_verdict(const ojson& r) {
+  return setting(r) + " at E = " + shortest(r["E"].get<double>()) + " (" + text(r, "scene") +
+         "): " + verdict(r);
+}
+
+// Whether v is advised (the rule above), and the rows it rests on or why not. A run that is not
+// stable up to the checking value (or, with none, among all the group's runs at E) tells first,
+// then a value not run at some E, then a margin that no run checks.
+ValueCheck check_value(const TradeRows& t, const AdviceGroup& g, double v) {
+  ValueCheck c;
+  c.value = v;
+  std::vector<double> not_run, unchecked;  // the values of E
+  for (double E : t.Es) {
+    const auto idx = group_rows_at(t, g, E);
+    const auto p = first_at_or_beyond(t, idx, kMargin * v);
+    const double limit = p.value_or(std::numeric_limits<double>::infinity());
+    for (std::size_t i : idx) {
+      if (parameter(t.rows[i]) > limit) break;
+      if (outcome(t.rows[i]) != "stable" && c.why_not.empty()) {
+        c.why_not = row_verdict(t.rows[i]);
+      }
+      c.rests_on.push_back(i);
+    }
+    const bool run_at_v = std::any_of(idx.begin(), idx.end(),
+                                      [&](std::size_t i) { return parameter(t.rows[i]) == v; });
+    if (!run_at_v) not_run.push_back(E);
+    if (p) {
+      c.checked.push_back(*p);
+    } else {
+      unchecked.push_back(E);
+    }
+  }
+  if (c.why_not.empty() && !not_run.empty()) c.why_not = "not run at E = " + list_of_E(not_run);
+  if (c.why_not.empty() && !unchecked.empty()) {
+    c.why_not = "no row at 1.5x (" + g.value(kMargin * v) + ") at E = " + list_of_E(unchecked) +
+                "; margin not checked";
+  }
+  c.advised = c.why_not.empty();
+  return c;
+}
+
+// The advice for one group: the largest value advised (if any) and the next value run, which
+// is not.
+struct Advice {
+  AdviceGroup group;
+  std::optional<ValueCheck> advised;
+  ValueCheck next;
+};
+
+Advice advise(const TradeRows& t, const AdviceGroup& g) {
+  std::set<double> values;
+  for (const auto& r : t.rows) {
+    if (g.holds(r)) values.insert(parameter(r));
+  }
+  Advice a{g, std::nullopt, {}};
+  std::vector<ValueCheck> checks;
+  for (double v : values)
+    checks.push_back(check_value(t, g, v));
+  std::size_t next = 0;
+  for (std::size_t k = 0; k < checks.size(); ++k) {
+    if (checks[k].advised) {
+      a.advised = checks[k];
+      next = k + 1;
+    }
+  }
+  // The largest value (positive, as validate() asks) has no run at 1.5 times it, so some value
+  // is always left not advised.
+  static_assert(kMargin > 1);
+  a.next = checks.at(next);
+  return a;
+}
+
+std::vector<Advice> advice_for(const TradeRows& t) {
+  std::vector<Advice> all;
+  for (const auto& g : advice_groups(t.rows))
+    all.push_back(advise(t, g));
+  return all;
+}
+
+// The advice of one method and policy (null when the scene has none).
+const Advice* advice_of(const std::vector<Advice>& all, const std::string& method,
+                        const std::string& policy) {
+  for (const auto& a : all) {
+    if (a.group.method == method && a.group.policy == policy) return &a;
+  }
+  return nullptr;
+}
+
+// "36 rows: gimp cfl C = 0.05..0.5 at E = 4, 64 and 1000 on 100, 200 and 400 cells in the
+// scenes bar and steffen".
+std::string describe_rows(const TradeRows& t, const AdviceGroup& g,
+                          const std::vector<std::size_t>& idx) {
+  std::set<double> values;
+  std::set<int> cells;
+  std::vector<double> Es;
+  std::vector<std::string> scenes;
+  for (std::size_t i : idx) {
+    values.insert(parameter(t.rows[i]));
+    cells.insert(t.rows[i]["cells"].get<int>());
+    const double E = t.rows[i]["E"].get<double>();
+    if (std::find(Es.begin(), Es.end(), E) == Es.end()) Es.push_back(E);
+    const std::string scene = text(t.rows[i], "scene");
+    if (std::find(scenes.begin(), scenes.end(), scene) == scenes.end()) scenes.push_back(scene);
+  }
+  std::string s = std::to_string(idx.size()) + " rows: " + g.name() + (g.cfl_factor ? ", " : " ") +
+                  parameter_symbol(g.policy) + " = " + parameter_text(g.policy, *values.begin());
+  if (values.size() > 1) s += ".." + parameter_text(g.policy, *values.rbegin());
+  s += " at E = " + list_of_E(Es);
+  if (cells.size() > 1 || *cells.begin() != 100) {
+    std::vector<std::string> names;
+    for (int n : cells)
+      names.push_back(std::to_string(n));
+    s += " on " + list_of(names) + " cells";
+  }
+  return s + (scenes.size() > 1 ? " in the scenes " : " in the scene ") + list_of(scenes);
+}
+
+// "C = 0.5": the value checked beyond the advised one (a range when it differs between values
+// of E).
+std::string checked_text(const AdviceGroup& g, const ValueCheck& c) {
+  const auto [lo, hi] = std::minmax_element(c.checked.begin(), c.checked.end());
+  std::string s = g.value(*lo);
+  if (*hi != *lo) s += " to " + parameter_text(g.policy, *hi);
+  return s;
+}
+
+// "C up to 0.25".
+std::string advised_text(const Advice& a) {
+  return std::string(parameter_symbol(a.group.policy)) + " up to " +
+         parameter_text(a.group.policy, a.advised->value);
+}
+
+// The rule, and per method and policy the value advised, the rows it rests on, the value checked
+// beyond it and why the next value run is not advised.
+std::string advice_table(const TradeRows& t, const std::vector<Advice>& all) {
+  std::ostringstream md;
+  md << "The rule: a value v of a parameter (a fixed dt, the CFL factor C, the safety factor s) "
+        "is advised for a method and policy only if, at every E the study runs ("
+     << list_of_E(t.Es)
+     << "), they were run at v and at some p >= 1.5 v, and every one of their runs with the "
+        "parameter up to p (on every grid, in every scene) is stable: not unstable, not "
+        "meaningless. The largest such v is advised; p is the value checked beyond it. A value "
+        "with no run at 1.5 times it or beyond is not advised: its margin is not checked.\n\n"
+     << "| method and policy | advised | rests on | checked to | the next value run, not advised "
+        "|\n|---|---|---|---|---|\n";
+  for (const auto& a : all) {
+    md << "| " << a.group.name() << " | ";
+    if (a.advised) {
+      md << advised_text(a) << " | " << describe_rows(t, a.group, a.advised->rests_on)
+         << ", all stable | " << checked_text(a.group, *a.advised)
+         << " (1.5x = " << parameter_text(a.group.policy, kMargin * a.advised->value) << ") | ";
+    } else {
+      md << "no value qualifies | – | – | ";
+    }
+    md << a.group.value(a.next.value) << ": " << a.next.why_not << " |\n";
+  }
+  md << "\n";
+  return md.str();
+}
+
+ojson advice_json(const TradeRows& t, const std::vector<Advice>& all) {
+  ojson j = ojson::array();
+  for (const auto& a : all) {
+    ojson g = {{"method", a.group.method},
+               {"policy", a.group.policy},
+               {"cfl_factor", a.group.cfl_factor ? ojson(*a.group.cfl_factor) : ojson(nullptr)},
+               {"parameter", parameter_key(a.group.policy)},
+               {"advised", a.advised ? ojson(a.advised->value) : ojson(nullptr)},
+               {"rests_on",
+                a.advised ? ojson(describe_rows(t, a.group, a.advised->rests_on)) : ojson(nullptr)},
+               {"checked_to", a.advised ? ojson(*std::max_element(a.advised->checked.begin(),
+                                                                  a.advised->checked.end()))
+                                        : ojson(nullptr)},
+               {"next_value", a.next.value},
+               {"next_not_advised", a.next.why_not}};
+    j.push_back(g);
+  }
+  return j;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The advice paragraph
 
 // Per E (in the order of TradeRows::Es), the cheapest run reaching each target.
 using CheapestByE = std::vector<std::vector<std::optional<std::size_t>>>;
@@ -134,19 +549,24 @@ std::map<std::string, int> wins_by_policy(const TradeRows& t, const CheapestByE&
     for (const auto& b : per_target) {
       if (!b) continue;
       const ojson& r = t.rows[*b];
-      ++count[r["method"].get<std::string>() + " " + r["policy"].get<std::string>()];
+      ++count[text(r, "method") + " " + text(r, "policy")];
     }
   }
   return count;
 }
 
-// The first scene's opening: what accuracy and cost mean here, and the figure.
+// The first scene's opening: what accuracy and cost mean here, where the wall times are, and
+// the figure.
 std::string results_intro(const Spec& spec) {
   std::ostringstream md;
   md << "## Results\n\nAccuracy is the max error over time (the largest particle displacement "
         "error after any step), since for most E the exact displacement at T is zero. Cost is "
-        "the wall time of the run (and its number of steps). A run that failed or whose error "
-        "reached A reaches no accuracy. Pareto front: no other setting at the same E is both "
+        "the work of the run in particle-steps (particles x steps), which a rerun reproduces "
+        "exactly; ties are broken by the smaller error, then by the order of the spec. The wall "
+        "times of these runs are measurements of the machine and are kept apart: see "
+        "[performance.md](performance.md) and [timings.json](timings.json). Only a stable run "
+        "reaches an accuracy: a run that failed (unstable) or whose error reached A "
+        "(meaningless) reaches none. Pareto front: no other setting at the same E is both "
         "cheaper and more accurate.\n\n!["
      << spec.title << "](" << spec.name << ".png)\n\n"
      << "Vector version: [" << spec.name << ".svg](" << spec.name << ".svg); data: [" << spec.name
@@ -158,7 +578,9 @@ std::string results_intro(const Spec& spec) {
 std::string cheapest_table(const TradeRows& t, const CheapestByE& best,
                            const std::string& of_scene) {
   std::ostringstream md;
-  md << "### The cheapest setting for each accuracy" << of_scene << "\n\n| E |";
+  md << "### The cheapest setting for each accuracy" << of_scene
+     << "\n\nEach reached the accuracy in one run; whether its parameter is safe to use is the "
+        "advice above, which asks for a margin.\n\n| E |";
   for (double target : kTargets)
     md << " max error <= " << sci(target, 1) << " |";
   md << "\n|---|";
@@ -173,17 +595,18 @@ std::string cheapest_table(const TradeRows& t, const CheapestByE& best,
         continue;
       }
       const ojson& r = t.rows[*b];
-      md << " " << setting(r) << ": " << sci(r["max_error_over_time"].get<double>()) << " in "
-         << seconds(r["wall_seconds"].get<double>()) << ", " << r["steps"].dump() << " steps |";
+      md << " " << setting(r) << ": " << sci(*accuracy(r)) << " in " << work(r)
+         << " particle-steps (" << r["steps"].dump() << " steps) |";
     }
     md << "\n";
   }
   return md.str();
 }
 
-// Which method and policy is most often the cheapest way to a target accuracy.
+// Which method and policy is most often the cheapest way to a target accuracy (the first by
+// name on a tie).
 std::string cheapest_overall_sentence(const std::map<std::string, int>& winners) {
-  if (winners.empty()) return "";
+  if (winners.empty()) return "No setting reaches any of the target accuracies. ";
   const auto top =
       std::max_element(winners.begin(), winners.end(),
                        [](const auto& a, const auto& b) { return a.second < b.second; });
@@ -191,8 +614,8 @@ std::string cheapest_overall_sentence(const std::map<std::string, int>& winners)
   for (const auto& [k, n] : winners)
     reached += n;
   std::ostringstream s;
-  s << "The cheapest setting for a target accuracy is " << top->first << " in " << top->second
-    << " of the " << reached << " (E, target) pairs that some setting reaches. ";
+  s << "The cheapest setting for a target accuracy, in particle-steps, is " << top->first << " in "
+    << top->second << " of the " << reached << " (E, target) pairs that some setting reaches. ";
   return s.str();
 }
 
@@ -203,8 +626,9 @@ std::string gimp_spread_sentences(const TradeRows& t) {
   for (double E : t.Es) {
     std::vector<double> errs;
     for (const auto& r : t.rows) {
-      if (r["E"].get<double>() == E && r["method"] == "gimp" && r["cells"].get<int>() == 100 &&
-          (r["policy"] == "cfl" || r["policy"] == "fixed") && accuracy(r)) {
+      const std::string policy = text(r, "policy");
+      if (r["E"].get<double>() == E && text(r, "method") == "gimp" &&
+          r["cells"].get<int>() == 100 && (policy == "cfl" || policy == "fixed") && accuracy(r)) {
         errs.push_back(*accuracy(r));
       }
     }
@@ -234,9 +658,10 @@ std::string refinement_sentence(const TradeRows& t) {
       refined_better += *accuracy(*g400) < *accuracy(*g100);
     }
   }
+  if (refined_total == 0) return "";
   std::ostringstream s;
   s << "Below the real edge the error is set by the grid, not by dt: a smaller step costs "
-       "time and buys nothing. A finer grid lowered GIMP's error at "
+       "work and buys nothing. A finer grid lowered GIMP's error at "
     << refined_better << " of " << refined_total
     << " values of E (400 against 100 cells); where it did not, the cause is not established "
        "here, so refinement is worth checking, not assuming. ";
@@ -267,111 +692,280 @@ std::string bound_stepping_sentence(const TradeRows& t) {
   return s.str();
 }
 
-// Per method, the largest safety factor of the adaptive step that survived at every E.
-std::string largest_safe_safety_sentences(const TradeRows& t) {
-  std::ostringstream s;
-  for (const char* m : {"gimp", "mpm"}) {
-    double largest = 0;
-    for (double s_value : {1.0, 2.0, 4.0, 8.0, 16.0}) {
-      bool all = true;
-      for (double E : t.Es) {
-        const ojson* a = t.find(E, m, "adaptive", s_value, 100);
-        all = all && a && (*a)["stable"] == true;
-      }
-      if (all) largest = s_value;
+// What the advice table advises, in one sentence: every method and policy with the value
+// advised and the rows it rests on, then those for which no value qualifies.
+std::string advised_sentence(const TradeRows& t, const std::vector<Advice>& all) {
+  std::vector<std::string> advised, none;
+  for (const auto& a : all) {
+    if (a.advised) {
+      advised.push_back(advised_text(a) + " for " + a.group.name() + " (rests on " +
+                        describe_rows(t, a.group, a.advised->rests_on) + "; checked to " +
+                        checked_text(a.group, *a.advised) + ")");
+    } else {
+      none.push_back(a.group.name());
     }
-    s << "The adaptive step survives at every E up to s = " << shortest(largest) << " for " << m
-      << ". ";
   }
-  return s.str();
+  std::string s =
+      "With a 1.5x margin (the rule and the next value of each are in the table below), the "
+      "rows of every scene advise ";
+  s += advised.empty() ? "no value of any parameter" : list_of(advised);
+  s += ". ";
+  if (!none.empty()) s += "No value qualifies for " + list_of(none) + ". ";
+  return s;
 }
 
-// Per E, the best accuracy MPM reaches against the best GIMP reaches.
-std::string mpm_against_gimp_sentences(const TradeRows& t) {
+// Per E, the best accuracy MPM reaches against the best GIMP reaches; whether GIMP's is the
+// better at every E where both reach one.
+struct MethodComparison {
+  std::string sentences;
+  int gimp_better = 0, compared = 0;
+};
+
+MethodComparison mpm_against_gimp(const TradeRows& t) {
+  MethodComparison c;
   std::ostringstream s;
   for (double E : t.Es) {
     std::optional<double> best_gimp, best_mpm;
     for (const auto& r : t.rows) {
-      if (r["E"].get<double>() != E || !accuracy(r)) continue;
-      auto& best = r["method"] == "gimp" ? best_gimp : best_mpm;
+      const std::string m = text(r, "method");
+      if (r["E"].get<double>() != E || !accuracy(r) || (m != "gimp" && m != "mpm")) continue;
+      auto& best = m == "gimp" ? best_gimp : best_mpm;
       if (!best || *accuracy(r) < *best) best = accuracy(r);
     }
     if (best_gimp && best_mpm) {
       s << "E = " << shortest(E) << ": the best MPM error is " << sci(*best_mpm) << ", GIMP's "
         << sci(*best_gimp) << ". ";
+      ++c.compared;
+      c.gimp_better += *best_gimp < *best_mpm;
     }
   }
-  return s.str();
+  c.sentences = s.str();
+  return c;
 }
 
-// The advice paragraph: every sentence but the conclusion is computed from the rows.
-std::string what_to_pick(const TradeRows& t, const std::map<std::string, int>& winners) {
-  return "**What to pick.** " + cheapest_overall_sentence(winners) + gimp_spread_sentences(t) +
-         refinement_sentence(t) + bound_stepping_sentence(t) + largest_safe_safety_sentences(t) +
-         mpm_against_gimp_sentences(t) +
-         "So: use GIMP; pick the grid for the accuracy you need, then the largest step that "
-         "is safely stable, which the CFL rule with C around 0.5 gives at a known wave speed "
-         "(the real edge is at C = 0.5 to 0.8, see [edge.md](edge.md)); where the wave speed "
-         "is not known in advance, the adaptive eq. (108) step with s up to the value above "
-         "is a safe, if cautious, substitute.";
+// The conclusion, from the comparison of the methods (summed over the scenes) and GIMP's advised
+// CFL and adaptive steps.
+std::string conclusion(const std::vector<Advice>& all, const MethodComparison& c) {
+  std::string s = "GIMP's best error is below MPM's at " + std::to_string(c.gimp_better) +
+                  " of the " + std::to_string(c.compared) +
+                  " (scene, E) pairs where both reach an accuracy. So: ";
+  if (c.compared > 0 && c.gimp_better == c.compared) {
+    s += "use GIMP; ";
+  } else {
+    s += "the method is a choice per problem; ";
+  }
+  s += "pick the grid for the accuracy you need, then the largest step advised with its margin. ";
+  const Advice* cfl = advice_of(all, "gimp", "cfl");
+  const Advice* adaptive = advice_of(all, "gimp", "adaptive");
+  if (cfl && cfl->advised) {
+    s += "At a known wave speed that is GIMP's CFL rule with " + advised_text(*cfl) +
+         " (the edge study, [edge.md](edge.md), finds where the real edge lies); ";
+  } else {
+    s += "These rows advise no CFL factor for GIMP; ";
+  }
+  if (adaptive && adaptive->advised) {
+    s += "where the wave speed is not known in advance, the adaptive eq. (108) step with " +
+         advised_text(*adaptive) + " is a safe, if cautious, substitute.";
+  } else {
+    s += "they advise no safety factor of the adaptive eq. (108) step either way.";
+  }
+  return s;
 }
 
-// Every setting at one E with its steps, dt range, verdict, error and cost; the Pareto front
-// marked.
+// What one scene's rows show: every sentence is computed from them.
+std::string what_the_rows_show(const TradeRows& t, const std::map<std::string, int>& winners) {
+  std::string s = "**What the rows show.** " + cheapest_overall_sentence(winners) +
+                  gimp_spread_sentences(t) + refinement_sentence(t) + bound_stepping_sentence(t) +
+                  mpm_against_gimp(t).sentences;
+  while (s.back() == ' ')
+    s.pop_back();
+  return s;
+}
+
+// The advice of the study, from the rows of every scene: the paragraph, the rule and the table.
+std::string advice_section(const std::vector<ojson>& rows) {
+  const TradeRows all(rows);
+  const auto advice = advice_for(all);
+  MethodComparison methods;
+  for (const auto& sc : by_scene(rows)) {
+    const MethodComparison c = mpm_against_gimp(TradeRows(sc.rows));
+    methods.gimp_better += c.gimp_better;
+    methods.compared += c.compared;
+  }
+  return "### What to pick: advice from the rows of every scene\n\n**What to pick.** " +
+         advised_sentence(all, advice) + conclusion(advice, methods) + "\n\n" +
+         advice_table(all, advice);
+}
+
+// ---------------------------------------------------------------------------------------------
+// The tables per E and the scene's section
+
+// Every setting at one E with its steps, particle-steps, dt range, verdict and error; the
+// Pareto front marked.
 std::string settings_table(const TradeRows& t, double E, const std::string& of_scene) {
   const auto idx = t.at(E);
   const auto front = pareto_front(t.rows, idx);
   std::ostringstream md;
   md << "### E = " << shortest(E) << of_scene
-     << "\n\n| setting | steps | dt range | verdict | max error over time | wall time | "
-        "ns / particle-step | Pareto |\n|---|---|---|---|---|---|---|---|\n";
+     << "\n\n| setting | steps | particle-steps | dt range | mean dt | verdict | max error over "
+        "time | Pareto |\n|---|---|---|---|---|---|---|---|\n";
   for (std::size_t i : idx) {
     const ojson& r = t.rows[i];
-    md << "| " << setting(r) << " | " << r["steps"].dump() << " | "
-       << sci(r["dt_min"].get<double>()) << " to " << sci(r["dt_max"].get<double>()) << " | "
-       << verdict(r) << " | " << opt_sci(r["max_error_over_time"]) << " | "
-       << seconds(r["wall_seconds"].get<double>()) << " | "
-       << fixed(r["ns_per_particle_step"].get<double>(), 1) << " | "
+    md << "| " << setting(r) << " | " << r["steps"].dump() << " | " << work(r) << " | "
+       << opt_sci(r["dt_min"]) << " to " << opt_sci(r["dt_max"]) << " | " << opt_sci(r["dt_mean"])
+       << " | " << verdict(r) << " | " << opt_sci(r["max_error_over_time"]) << " | "
        << (front.count(i) ? "**yes**" : "") << " |\n";
   }
   md << "\n";
   return md.str();
 }
 
-// One scene's section. The first scene's has the figure and the definitions; a further
-// scene's (`first` false) is headed by the scene and its tables name it.
-std::string tradeoff_markdown(const Spec& spec, const std::vector<ojson>& rows, bool first) {
+// One scene's section, headed by the scene; a further scene's (`first` false) tables name it.
+std::string scene_markdown(const std::vector<ojson>& rows, bool first) {
   const TradeRows t(rows);
   const std::string scene = rows.front()["scene"].get<std::string>();
   const std::string of_scene = first ? "" : " (" + scene + ")";
   const auto best = cheapest_by_E(t);
   std::ostringstream md;
-  if (first) {
-    md << results_intro(spec);
-  } else {
-    md << "\n## " << scene_title(scene) << "\n\n";
-  }
+  md << "## " << scene_title(scene) << "\n\n";
   md << cheapest_table(t, best, of_scene) << "\n"
-     << what_to_pick(t, wins_by_policy(t, best)) << "\n\n";
+     << what_the_rows_show(t, wins_by_policy(t, best)) << "\n\n"
+     << endings_table(rows, of_scene);
   for (double E : t.Es)
     md << settings_table(t, E, of_scene);
   return md.str();
 }
 
-std::string tradeoff_data_csv(const std::vector<ojson>& rows, const std::string& header_lines) {
-  std::ostringstream csv;
-  csv << header_lines
-      << "# method: 0 mpm, 1 gimp; policy: 0 fixed, 1 cfl, 2 adaptive, 3 min; error empty when "
-         "the run failed or its error reached A\nE,method,policy,steps,wall_seconds,error\n";
+// ---------------------------------------------------------------------------------------------
+// The figure: the first scene's stable runs, error against particle-steps
+
+// A run the figure draws: stable, with an error a log axis can show.
+bool drawn(const ojson& r) {
+  const auto e = accuracy(r);
+  return e && *e > 0;
+}
+
+// The runs of a scene the figure draws and those it leaves out, by outcome.
+struct FigureCount {
+  std::string scene;
+  std::size_t runs = 0, drawn = 0, unstable = 0, meaningless = 0, no_error = 0;
+};
+
+FigureCount figure_count(const std::vector<ojson>& rows) {
+  FigureCount n;
+  n.scene = rows.front()["scene"].get<std::string>();
+  n.runs = rows.size();
   for (const auto& r : rows) {
-    const std::string p = r["policy"].get<std::string>();
-    const int policy = p == "fixed" ? 0 : p == "cfl" ? 1 : p == "adaptive" ? 2 : 3;
-    const auto e = accuracy(r);
-    csv << shortest(r["E"].get<double>()) << ',' << (r["method"] == "gimp" ? 1 : 0) << ',' << policy
-        << ',' << r["steps"].dump() << ',' << csv_cell(r["wall_seconds"]) << ','
-        << (e ? shortest(*e) : "") << '\n';
+    if (drawn(r)) {
+      ++n.drawn;
+    } else if (outcome(r) == "unstable") {
+      ++n.unstable;
+    } else if (outcome(r) == "meaningless") {
+      ++n.meaningless;
+    } else {
+      ++n.no_error;
+    }
+  }
+  return n;
+}
+
+// "120 of 136 runs of the scene bar drawn; left out: 14 unstable, 2 meaningless". No single
+// quotes: it is handed to gnuplot inside them.
+std::string figure_count_text(const FigureCount& n) {
+  std::string s = std::to_string(n.drawn) + " of " + std::to_string(n.runs) +
+                  " runs of the scene " + n.scene +
+                  " drawn; left out: " + std::to_string(n.unstable) + " unstable, " +
+                  std::to_string(n.meaningless) + " meaningless";
+  if (n.no_error > 0) s += ", " + std::to_string(n.no_error) + " stable without an error to draw";
+  return s;
+}
+
+int method_code(const std::string& m) {
+  return m == "mpm" ? 0 : m == "gimp" ? 1 : 2;
+}
+
+int policy_code(const std::string& p) {
+  return static_cast<int>(std::find(kPolicies.begin(), kPolicies.end(), p) - kPolicies.begin());
+}
+
+// The index of `key` in `seen`, appended when new: panels and series in the order they first
+// appear.
+template <class T>
+std::size_t index_in(std::vector<T>& seen, const T& key) {
+  const auto it = std::find(seen.begin(), seen.end(), key);
+  if (it != seen.end()) return static_cast<std::size_t>(it - seen.begin());
+  seen.push_back(key);
+  return seen.size() - 1;
+}
+
+// One row per run drawn: its panel (E), its series (method, policy, grid) and grid rank
+// (0 the coarsest), its cost and its error.
+std::string tradeoff_data_csv(const std::vector<ojson>& rows, const std::string& header_lines) {
+  const TradeRows t(rows);
+  std::set<int> grids;
+  for (const auto& r : rows)
+    grids.insert(r["cells"].get<int>());
+  std::vector<std::tuple<std::string, std::string, int>> series;
+  std::ostringstream csv;
+  csv << header_lines << "# " << figure_count_text(figure_count(rows)) << "\n"
+      << "# one row per run drawn (stable, with an error); panel: the index of E; series: the "
+         "index of (method, policy, cells) in the order of the spec; method: 0 mpm, 1 gimp, 2 "
+         "cpgimp; policy: 0 fixed, 1 cfl, 2 adaptive, 3 min; grid: the rank of cells, 0 the "
+         "coarsest\nE,panel,series,method,policy,cells,grid,particle_steps,steps,error\n";
+  for (const auto& r : rows) {
+    if (!drawn(r)) continue;
+    const double E = r["E"].get<double>();
+    const int cells = r["cells"].get<int>();
+    const std::size_t panel =
+        static_cast<std::size_t>(std::find(t.Es.begin(), t.Es.end(), E) - t.Es.begin());
+    const std::size_t s = index_in(series, {text(r, "method"), text(r, "policy"), cells});
+    csv << shortest(E) << ',' << panel << ',' << s << ',' << method_code(text(r, "method")) << ','
+        << policy_code(text(r, "policy")) << ',' << cells << ','
+        << std::distance(grids.begin(), grids.find(cells)) << ','
+        << static_cast<long long>(particle_steps(r)) << ',' << r["steps"].dump() << ','
+        << shortest(*accuracy(r)) << '\n';
   }
   return csv.str();
+}
+
+// The figure's subtitle: what it draws and leaves out of the first scene.
+std::string tradeoff_subtitle(const Spec& spec, const ojson& doc) {
+  const std::vector<ojson> rows(doc["cases"].begin(), doc["cases"].end());
+  std::string s = figure_count_text(figure_count(by_scene(rows).front().rows));
+  return s + "; every run of every scene is in " + spec.name + ".md";
+}
+
+// The study's JSON: the advice from every scene's rows, per scene how the runs of each policy
+// ended, and what the figure draws.
+ojson tradeoff_json(const std::vector<ojson>& rows) {
+  const TradeRows all(rows);
+  ojson endings = ojson::object();
+  for (const auto& sc : by_scene(rows))
+    endings[sc.scene] = endings_json(sc.rows);
+  const FigureCount n = figure_count(by_scene(rows).front().rows);
+  return {{"margin", kMargin},
+          {"advice", advice_json(all, advice_for(all))},
+          {"endings", endings},
+          {"figure",
+           {{"scene", n.scene},
+            {"runs", n.runs},
+            {"drawn", n.drawn},
+            {"unstable", n.unstable},
+            {"meaningless", n.meaningless},
+            {"stable_without_error", n.no_error}}}};
+}
+
+// The report: the definitions and the figure, the advice from every scene's rows, then one
+// section per scene; the figure's data from the first scene (the paper's bar).
+StudyReport tradeoff_report(const ReportContext& c) {
+  const auto scenes = by_scene(c.rows);
+  StudyReport report;
+  report.markdown = results_intro(c.spec) + advice_section(c.rows);
+  for (std::size_t i = 0; i < scenes.size(); ++i)
+    report.markdown += scene_markdown(scenes[i].rows, i == 0);
+  report.data_csv = tradeoff_data_csv(scenes.front().rows, c.csv_header);
+  report.json = tradeoff_json(c.rows);
+  return report;
 }
 
 const StudyRegistration kTradeoff{{
@@ -379,18 +973,16 @@ const StudyRegistration kTradeoff{{
     .summary = "error against cost across methods, time-step policies and their parameters",
     .records = {.error_over_time = true},
     .figure = true,
-    .report =
-        [](const ReportContext& c) {
-          return report_by_scene(c, tradeoff_markdown, tradeoff_data_csv);
-        },
+    .report = tradeoff_report,
     .index =
         [](const Spec& spec, const std::vector<ojson>&) {
           return "![" + spec.title + "](" + spec.name + ".png)\n\n**What it shows.** The cost of " +
-                 "each accuracy across methods, time-step policies and their parameters, the "
-                 "Pareto front and the cheapest setting for each target: [" +
+                 "each accuracy in particle-steps across methods, time-step policies and their "
+                 "parameters, the Pareto front, the cheapest setting for each target and the "
+                 "values advised with a 1.5x margin: [" +
                  spec.name + ".md](" + spec.name + ".md).\n\n";
         },
-    .figure_subtitle = first_scene_subtitle,
+    .figure_subtitle = tradeoff_subtitle,
 }};
 
 }  // namespace
