@@ -70,7 +70,11 @@ RunResult run_at_smallest_probe(const RunParams& p, const EdgeResult& e) {
 class Progress {
  public:
   Progress(const Spec& spec, std::size_t runs, bool line, double total_cost)
-      : name_(spec.name), total_(runs), line_(line), total_cost_(total_cost) {}
+      : name_(spec.name),
+        searching_(spec.study->work == CaseWork::edge_search),
+        total_(runs),
+        line_(line),
+        total_cost_(total_cost) {}
 
   void done(const RunParams& p, const nlohmann::ordered_json& result, bool from_cache,
             double cost) {
@@ -89,8 +93,11 @@ class Progress {
       std::string verdict = result["outcome"] == "unstable"
                                 ? "unstable (" + result["failure_reason"].get<std::string>() + ")"
                                 : result["outcome"].get<std::string>();
-      std::fprintf(stderr, "[%s] %zu/%zu %s: %s%s\n", name_.c_str(), done_, total_,
-                   describe_case(p).c_str(), verdict.c_str(), from_cache ? " [cached]" : "");
+      // An edge case's dt is the search's to find: its line names the case without it.
+      std::string what = describe_case(p);
+      if (searching_) what = what.substr(0, what.rfind(" dt=")) + " (dt searched)";
+      std::fprintf(stderr, "[%s] %zu/%zu %s: %s%s\n", name_.c_str(), done_, total_, what.c_str(),
+                   verdict.c_str(), from_cache ? " [cached]" : "");
     }
     std::fflush(stderr);
   }
@@ -118,6 +125,7 @@ class Progress {
 
   std::mutex mutex_;
   std::string name_;
+  bool searching_;
   std::size_t total_, done_ = 0, unstable_ = 0;
   bool line_;
   double total_cost_, done_cost_ = 0;
