@@ -14,6 +14,7 @@
 #include "report_util.hpp"
 #include "result_json.hpp"
 #include "study.hpp"
+#include "version.hpp"
 
 namespace mpmstab {
 
@@ -82,22 +83,22 @@ ojson aggregate_provenance(const std::vector<ojson>& records) {
 
 std::string provenance_lines(const ojson& prov) {
   std::ostringstream s;
-  s << "# commit: " << prov["commit"].get<std::string>()
-    << (prov["dirty"] == "false" ? "" : " (dirty: " + prov["dirty"].get<std::string>() + ")")
+  s << "# solver version: " << kSolverVersion
     << "\n# compiler: " << prov["compiler"].get<std::string>()
     << "\n# flags: " << prov["flags"].get<std::string>()
     << "\n# eigen: " << prov["eigen"].get<std::string>()
-    << "\n# cpu: " << prov["cpu"].get<std::string>() << "\n";
+    << "\n# the commit, CPU, date and threads of the runs: timings.json\n";
   return s.str();
 }
 
 std::string provenance_markdown(const ojson& prov) {
   std::ostringstream md;
-  md << "## Provenance\n\n| | |\n|---|---|\n";
+  md << "## Provenance\n\n| | |\n|---|---|\n| solver version | " << kSolverVersion << " |\n";
   for (const auto& [k, v] : prov.items())
     md << "| " << k << " | " << v.get<std::string>() << " |\n";
-  md << "\nWall times of these cases: [timings.json](timings.json) and "
-        "[performance.md](performance.md).\n";
+  md << "\nWhat can differ between runs with the same results (the commit, CPU, date and thread "
+        "count of the runs, and their wall times) is in [timings.json](timings.json), summarised "
+        "in [performance.md](performance.md).\n";
   return md.str();
 }
 
@@ -308,9 +309,11 @@ void write_reports(const Spec& spec, const SweepOutcome& outcome, const fs::path
   // When and with how many threads the cases ran go with the timings: the reports hold only
   // what fixes the results (the build and the machine).
   ojson prov = aggregate_provenance(outcome.records);
-  const ojson when = {{"date", prov["date"]}, {"threads", prov["threads"]}};
-  prov.erase("date");
-  prov.erase("threads");
+  ojson when;
+  for (const char* k : {"commit", "dirty", "cpu", "date", "threads"}) {
+    when[k] = prov[k];
+    prov.erase(k);
+  }
   const fs::path json_path = out / (spec.name + ".json");
   write_timings(spec, outcome, when, out);
   const std::string spec_path = spec.path.generic_string();
@@ -367,8 +370,10 @@ std::string index_section(const Spec& spec, const ojson& doc) {
   md << "## " << spec.title << "\n\n" << spec.description << "\n\n";
   const std::vector<ojson> rows(doc["cases"].begin(), doc["cases"].end());
   md << spec.study->index(spec, rows);
-  md << "Provenance: commit " << doc["provenance"]["commit"].get<std::string>() << ", "
-     << doc["provenance"]["cpu"].get<std::string>() << ".\n\n";
+  md << "Provenance: solver version " << kSolverVersion << ", "
+     << doc["provenance"]["compiler"].get<std::string>() << ", Eigen "
+     << doc["provenance"]["eigen"].get<std::string>()
+     << " (the commit and machine of the runs: [timings.json](timings.json)).\n\n";
   return md.str();
 }
 
