@@ -211,7 +211,9 @@ void introduction(std::ostream& md, const Comparison& cmp) {
      << cmp.table1.name
      << ".md)). The paper's code made choices its text does not fix, so cells disagree; each "
         "class of disagreement below is explained by an experiment of ours, never by tuning a "
-        "parameter. Low-confidence transcriptions are labelled in the table. This report never "
+        "parameter. The outcomes, the quantities and the classes are defined in "
+        "[docs/design.md](../docs/design.md). Low-confidence transcriptions are labelled in the "
+        "table. This report never "
         "fails CI; every cell's verdict is stored in "
         "[`reference/regression/comparison_verdicts.csv`](../reference/regression/"
         "comparison_verdicts.csv) and a change of any verdict fails `make check` until it is "
