@@ -175,6 +175,7 @@ const StudyRegistration kComparison{{
     .summary = "every Table 1 cell and Figs. 1-3 against the paper, each disagreement explained",
     .has_cases = false,
     .inputs = {{.name = "table1", .required = true},
+               {.name = "peers"},
                {.name = "courant"},
                {.name = "walls"},
                {.name = "crossing"},

@@ -50,6 +50,7 @@ struct Comparison {
   std::map<Table1Key, PaperCell> paper;  // the transcribed Table 1
   std::map<std::string, Rows> support;   // the supporting experiments run, by input name
   const ojson* variants = nullptr;       // the variants study's "study" object; null: not run
+  const ojson* peers = nullptr;          // the peers study's "study" object; null: not run
   CourantEdges edges;                    // from the courant scan; empty without it
   std::vector<Cell> cells;               // in the order of the table1 spec's cases
   std::map<std::string, std::vector<const Cell*>> by_class;
@@ -78,15 +79,15 @@ Rows case_rows(const ojson& doc) {
 std::map<std::string, Rows> supporting_rows(const StudyInputs& inputs) {
   std::map<std::string, Rows> rows;
   for (const auto& [name, input] : inputs) {
-    if (name != "table1" && name != "variants" && input.present())
+    if (name != "table1" && name != "variants" && name != "peers" && input.present())
       rows[name] = case_rows(input.doc);
   }
   return rows;
 }
 
-// The "study" object of the variants study's results, or null when it has not been run.
-const ojson* variants_study(const StudyInputs& inputs) {
-  const auto it = inputs.find("variants");
+// The "study" object of an input study's results (variants, peers), or null when not run.
+const ojson* study_object(const StudyInputs& inputs, const std::string& name) {
+  const auto it = inputs.find(name);
   if (it == inputs.end() || !it->second.present() || !it->second.doc.contains("study")) {
     return nullptr;
   }
@@ -205,10 +206,20 @@ void write_verdicts_csv(const Comparison& cmp) {
 // What the report is and how its verdicts are kept.
 void introduction(std::ostream& md, const Comparison& cmp) {
   const std::string reference = link(cmp.out, cmp.table1.reference);
-  md << "# Our results against the paper, cell by cell\n\n"
-        "Every cell of the paper's Table 1 (as transcribed in ["
-     << reference << "](" << reference << ")) beside ours ([" << cmp.table1.name << ".md]("
-     << cmp.table1.name
+  md << "# Our results against the paper, cell by cell\n\n";
+  if (cmp.peers) {
+    md << "**Checked against independent code first.** Our solver reproduces Uintah's 1D MPM "
+          "code on "
+       << (*cmp.peers)["agree"].dump() << " of " << (*cmp.peers)["cases"].dump()
+       << " cases of the paper's bar (same outcome, same failure step, errors within the stated "
+          "tolerances: [peers.md](peers.md)). So where we disagree with the paper below, the "
+          "disagreement comes from choices the paper's text leaves open or from the paper's "
+          "values, not from a defect that independent code would show.\n\n";
+  } else {
+    md << "The check against independent code (peers.md) has not been run into this folder.\n\n";
+  }
+  md << "Every cell of the paper's Table 1 (as transcribed in [" << reference << "](" << reference
+     << ")) beside ours ([" << cmp.table1.name << ".md](" << cmp.table1.name
      << ".md)). The paper's code made choices its text does not fix, so cells disagree; each "
         "class of disagreement below is explained by an experiment of ours, never by tuning a "
         "parameter. The outcomes, the quantities and the classes are defined in "
@@ -767,7 +778,8 @@ void write_comparison(const StudyInputs& inputs, const fs::path& out,
   }
   Comparison cmp(*table1->second.spec, out, error_at);
   cmp.support = supporting_rows(inputs);
-  cmp.variants = variants_study(inputs);
+  cmp.variants = study_object(inputs, "variants");
+  cmp.peers = study_object(inputs, "peers");
   if (cmp.have("courant")) cmp.edges = courant_edges(cmp.rows("courant"));
   compare_cells(cmp, case_rows(table1->second.doc));
   write_verdicts_csv(cmp);
