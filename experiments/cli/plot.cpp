@@ -1,11 +1,14 @@
 // `mpmstab plot`: a study's figure, drawn by gnuplot from its data.
-#include <cstdlib>
+#include <unistd.h>
+
 #include <filesystem>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
+#include "atomic_file.hpp"
 #include "commands.hpp"
 #include "csv.hpp"
+#include "process.hpp"
 #include "report_util.hpp"
 
 namespace mpmstab::cli {
@@ -17,6 +20,37 @@ constexpr const char* kPlotHelp = R"(Usage: mpmstab plot <spec.json> [--out DIR]
 Draws a figure experiment with gnuplot: runs experiments/<name>.gp (beside the spec) on
 DIR/<name>_data.csv and writes DIR/<name>.png and DIR/<name>.svg atomically.
 )";
+
+// A gnuplot string literal holding `s` as data: single-quoted (inside which only a doubled quote
+// is special), with every control character (a newline would end the statement) made a space.
+std::string gnuplot_string(const std::string& s) {
+  std::string q = "'";
+  for (const char ch : s) {
+    const auto c = static_cast<unsigned char>(ch);
+    if (c == '\'') {
+      q += "''";
+    } else if (c < 0x20 || c == 0x7f) {
+      q += ' ';
+    } else {
+      q += ch;
+    }
+  }
+  return q + "'";
+}
+
+// The script's variables, as gnuplot statements that only assign data.
+std::string plot_variables(const std::filesystem::path& data, const std::filesystem::path& outbase,
+                           const std::string& subtitle, const std::string& dt_text) {
+  double dt = 0;
+  try {
+    dt = std::stod(dt_text);
+  } catch (const std::exception&) {
+    dt = 0;
+  }
+  return "datafile = " + gnuplot_string(data.string()) +
+         "\noutbase = " + gnuplot_string(outbase.string()) +
+         "\nsubtitle = " + gnuplot_string(subtitle) + "\ndt = " + shortest(dt) + "\n";
+}
 
 }  // namespace
 
@@ -41,12 +75,17 @@ int cmd_plot(const std::vector<std::string_view>& argv) {
   const auto doc = nlohmann::ordered_json::parse(read_file(summary));
   const std::string subtitle = spec.study->figure_subtitle(spec, doc);
   const std::string dt = spec.study->figure_dt ? spec.study->figure_dt(doc) : "0";
-  const auto tmp = out / ("." + spec.name + ".tmp");
-  const std::string command = "gnuplot -e \"datafile='" + data.string() + "'; outbase='" +
-                              tmp.string() + "'; subtitle='" + subtitle + "'; dt=" + dt + "\" '" +
-                              script.string() + "'";
-  if (std::system(command.c_str()) != 0) {
-    throw std::runtime_error("gnuplot failed: " + command);
+  // gnuplot is started without a shell: its variables come from a file of assignments (the
+  // values quoted as data), then the script, both as arguments.
+  const std::string stem = "." + spec.name + "." + std::to_string(::getpid());
+  const auto tmp = out / (stem + ".tmp");
+  const auto variables = out / (stem + ".vars.gp");
+  write_file_atomically(variables, plot_variables(data, tmp, subtitle, dt));
+  const int status = run_program_visible({"gnuplot", variables.string(), script.string()});
+  std::filesystem::remove(variables);
+  if (status != 0) {
+    throw std::runtime_error("gnuplot failed (status " + std::to_string(status) + ") on " +
+                             script.string());
   }
   for (const char* ext : {".png", ".svg"}) {
     std::filesystem::rename(tmp.string() + ext, out / (spec.name + ext));

@@ -45,8 +45,22 @@ Options:
   --help             show this text
 )";
 
-// A word for /bin/sh: single-quoted, with embedded single quotes escaped.
+// Text that goes into a job script: a control character (a newline would start a new line of
+// the script) is refused.
+const std::string& no_control(const std::string& s) {
+  for (const char ch : s) {
+    const auto c = static_cast<unsigned char>(ch);
+    if (c < 0x20 || c == 0x7f) {
+      throw UsageError("a control character in '" + s.substr(0, s.find(ch)) +
+                       "...' cannot go into a job script");
+    }
+  }
+  return s;
+}
+
+// A word for /bin/sh: single-quoted, with embedded single quotes escaped; no control character.
 std::string sh_quote(const std::string& s) {
+  no_control(s);
   std::string q = "'";
   for (char c : s) {
     if (c == '\'') {
@@ -125,7 +139,7 @@ SlurmJob job_from(const Args& args) {
 // The #SBATCH directives of both jobs.
 std::string common_directives(const Args& args) {
   std::ostringstream common;
-  common << "#SBATCH --chdir=" << fs::current_path().string() << "\n";
+  common << "#SBATCH --chdir=" << no_control(fs::current_path().string()) << "\n";
   if (auto v = args.value("partition")) {
     common << "#SBATCH --partition=" << slurm_word(*v, "partition", kNameChars) << "\n";
   }

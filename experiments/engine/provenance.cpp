@@ -1,26 +1,25 @@
 #include "provenance.hpp"
 
 #include <Eigen/Core>
-#include <array>
 #include <chrono>
 #include <cstdio>
 #include <ctime>
 #include <fstream>
+#include <string>
+#include <vector>
+
+#include "process.hpp"
 
 namespace mpmstab {
 
 namespace {
 
-// First line of a command's standard output ("" when it fails).
-std::string first_line_of(const std::string& command) {
-  FILE* pipe = popen((command + " 2>/dev/null").c_str(), "r");
-  if (!pipe) return "";
-  std::array<char, 512> buf{};
-  std::string out;
-  if (fgets(buf.data(), buf.size(), pipe)) out = buf.data();
-  const int status = pclose(pipe);
-  if (status != 0) return "";
-  while (!out.empty() && (out.back() == '\n' || out.back() == '\r'))
+// First line of a git command's standard output in the source tree ("" when it fails).
+std::string git_line(std::vector<std::string> args) {
+  args.insert(args.begin(), {"git", "-C", MPMSTAB_SOURCE_DIR});
+  std::string out = run_program(args).value_or("");
+  out = out.substr(0, out.find('\n'));
+  while (!out.empty() && out.back() == '\r')
     out.pop_back();
   return out;
 }
@@ -50,13 +49,12 @@ std::string utc_now() {
 
 Provenance current_provenance(int threads) {
   Provenance p;
-  const std::string git = std::string("git -C '") + MPMSTAB_SOURCE_DIR + "' ";
-  p.commit = first_line_of(git + "rev-parse HEAD");
+  p.commit = git_line({"rev-parse", "HEAD"});
   if (p.commit.empty()) {
     p.commit = "unknown";
   } else {
     p.dirty =
-        !first_line_of(git + "status --porcelain --untracked-files=no -- . ':(exclude)results'")
+        !git_line({"status", "--porcelain", "--untracked-files=no", "--", ".", ":(exclude)results"})
              .empty();
   }
   p.compiler = MPMSTAB_COMPILER;
