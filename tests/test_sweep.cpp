@@ -102,6 +102,10 @@ TEST_F(Sweeps, RecomputingChangesOnlyTheTimingsFile) {
   const auto timings = nlohmann::ordered_json::parse(after.at("timings.json"));
   EXPECT_EQ(timings["small"]["per_case"].size(), 5u);
   EXPECT_EQ(timings["small"]["threads"], "2");  // of the sweep that computed the cases
+  // The build that computed them: its commit (or "unknown" outside a git checkout) and machine.
+  EXPECT_FALSE(timings["small"]["commit"].get<std::string>().empty());
+  EXPECT_TRUE(timings["small"].contains("dirty"));
+  EXPECT_FALSE(timings["small"]["cpu"].get<std::string>().empty());
   for (const auto& [name, text] : after)
     EXPECT_EQ(text.find("wall_seconds"),
               name == "timings.json" ? text.find("wall_seconds") : std::string::npos)

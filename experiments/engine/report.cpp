@@ -176,9 +176,15 @@ ojson sweep_timing(const Spec& spec, const SweepOutcome& outcome, const ojson& w
       previous.contains("sweep_wall_seconds")) {
     sweep_wall = previous["sweep_wall_seconds"].get<double>();
   }
-  return {{"cases", spec.cases.size()},       {"date", when["date"]},
-          {"threads", when["threads"]},       {"compute_seconds", compute_seconds},
-          {"sweep_wall_seconds", sweep_wall}, {"per_case", cases}};
+  return {{"cases", spec.cases.size()},
+          {"commit", when["commit"]},
+          {"dirty", when["dirty"]},
+          {"cpu", when["cpu"]},
+          {"date", when["date"]},
+          {"threads", when["threads"]},
+          {"compute_seconds", compute_seconds},
+          {"sweep_wall_seconds", sweep_wall},
+          {"per_case", cases}};
 }
 
 // results/timings.json: the one file of machine measurements, an entry per experiment, updated
