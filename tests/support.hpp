@@ -2,10 +2,13 @@
 #pragma once
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <array>
+#include <cerrno>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include "params.hpp"
 
@@ -16,16 +19,73 @@ struct CliOutcome {
   std::string output;  // stdout and stderr together
 };
 
-// Runs build/mpmstab with `args` (a shell command line) and collects all it prints.
+// Splits `line` into words as a shell would for plain words and quotes: whitespace separates;
+// '...' keeps everything; "..." keeps everything but \" and \\. Nothing else is special: no
+// variable, no substitution, no redirection (the program is started without a shell).
+inline std::vector<std::string> words(const std::string& line) {
+  std::vector<std::string> out;
+  std::string w;
+  bool in_word = false;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (c == ' ' || c == '\t' || c == '\n') {
+      if (in_word) out.push_back(w);
+      w.clear();
+      in_word = false;
+    } else if (c == '\'') {
+      in_word = true;
+      for (++i; i < line.size() && line[i] != '\''; ++i)
+        w += line[i];
+    } else if (c == '"') {
+      in_word = true;
+      for (++i; i < line.size() && line[i] != '"'; ++i) {
+        if (line[i] == '\\' && i + 1 < line.size() && (line[i + 1] == '"' || line[i + 1] == '\\'))
+          ++i;
+        w += line[i];
+      }
+    } else {
+      in_word = true;
+      w += c;
+    }
+  }
+  if (in_word) out.push_back(w);
+  return out;
+}
+
+// Runs build/mpmstab with the words of `args` (no shell) and collects all it prints on its
+// standard output and error.
 inline CliOutcome run_mpmstab(const std::string& args) {
-  const std::string command = std::string(MPMSTAB_BIN) + " " + args + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return {-1, "popen failed"};
+  std::vector<std::string> argv = words(args);
+  argv.insert(argv.begin(), MPMSTAB_BIN);
+  int fd[2];
+  if (pipe(fd) != 0) return {-1, "pipe failed"};
+  const pid_t pid = fork();
+  if (pid == 0) {
+    close(fd[0]);
+    dup2(fd[1], STDOUT_FILENO);
+    dup2(fd[1], STDERR_FILENO);
+    close(fd[1]);
+    std::vector<char*> v;
+    for (auto& a : argv)
+      v.push_back(a.data());
+    v.push_back(nullptr);
+    execv(MPMSTAB_BIN, v.data());
+    _exit(127);
+  }
+  close(fd[1]);
   std::string output;
   std::array<char, 4096> buffer;
-  while (const std::size_t n = fread(buffer.data(), 1, buffer.size(), pipe))
-    output.append(buffer.data(), n);
-  const int raw = pclose(pipe);
+  for (ssize_t n; (n = read(fd[0], buffer.data(), buffer.size())) != 0;) {
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      break;
+    }
+    output.append(buffer.data(), static_cast<std::size_t>(n));
+  }
+  close(fd[0]);
+  int raw = 0;
+  while (waitpid(pid, &raw, 0) < 0 && errno == EINTR) {
+  }
   return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, output};
 }
 

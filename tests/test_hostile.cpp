@@ -47,9 +47,10 @@ class Hostile : public ::testing::Test {
     write("t1.json", R"({"name": "t1", "report": "table1", "reference": "ref.csv",
       "defaults": {"T": 0.01, "cells": 10}, "cases": [{"method": "gimp", "E": 4, "A": 0.01, "dt": 1e-3}]})");
     write("ref.csv", "A,E,dt,method,dt_stable,max_error,confidence,evidence\n");
-    const std::string cmd = std::string(MPMSTAB_BIN) + " sweep " + (dir / "good.json").string() +
-                            " --out " + (dir / "out").string() + " >/dev/null 2>&1";
-    ASSERT_EQ(std::system(cmd.c_str()), 0);
+    ASSERT_EQ(mpmstab::test_support::run_mpmstab("sweep " + (dir / "good.json").string() +
+                                                 " --out " + (dir / "out").string())
+                  .status,
+              0);
     before = snapshot();
     ASSERT_GE(before.size(), 4u);
   }

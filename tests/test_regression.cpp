@@ -10,6 +10,7 @@
 
 #include "regression.hpp"
 #include "spec.hpp"
+#include "support.hpp"
 
 namespace mpmstab {
 namespace {
@@ -241,15 +242,13 @@ TEST_F(Regression, ABlessedFileWithoutTheVariantColumnStillMatches) {
 }
 
 TEST_F(Regression, BlessRefusesWithoutAReason) {
-  const std::string cmd = std::string(MPMSTAB_BIN) + " bless " + (dir / "small.json").string() +
-                          " --reference " + options.reference.string() + " --reason '  ' 2>&1";
-  const int raw = std::system(cmd.c_str());
-  EXPECT_EQ(WEXITSTATUS(raw), 2);
+  const auto blank =
+      test_support::run_mpmstab("bless " + (dir / "small.json").string() + " --reference " +
+                                options.reference.string() + " --reason '  '");
+  EXPECT_EQ(blank.status, 2) << blank.output;
   EXPECT_FALSE(fs::exists(options.reference / "BLESSED.md"));
-  const int none = std::system(
-      (std::string(MPMSTAB_BIN) + " bless " + (dir / "small.json").string() + " >/dev/null 2>&1")
-          .c_str());
-  EXPECT_EQ(WEXITSTATUS(none), 2);
+  const auto none = test_support::run_mpmstab("bless " + (dir / "small.json").string());
+  EXPECT_EQ(none.status, 2) << none.output;
 }
 
 }  // namespace
