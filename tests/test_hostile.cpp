@@ -116,6 +116,13 @@ TEST_F(Hostile, EveryBadInputExitsTwoNamesTheCulpritAndChangesNothing) {
   write(
       "badname.json",
       R"({"name": "../escape", "report": "cases", "cases": [{"method": "gimp", "E": 4, "A": 0.01, "dt": 1e-3}]})");
+  // Names that would overwrite a file another command (or another experiment) writes.
+  for (const char* name : {"performance", "timings", "benchmark_step", "fig1_data", "comparison"}) {
+    write(
+        std::string("reserved_") + name + ".json",
+        std::string(R"({"name": ")") + name +
+            R"(", "report": "cases", "cases": [{"method": "gimp", "E": 4, "A": 0.01, "dt": 1e-3}]})");
+  }
   write(
       "dup.json",
       R"({"name": "x", "report": "cases", "cases": [{"method": "gimp", "E": 4, "A": 0.01, "dt": 1e-3}, {"method": "gimp", "E": 4, "A": 0.01, "dt": 1e-3}]})");
@@ -167,6 +174,11 @@ TEST_F(Hostile, EveryBadInputExitsTwoNamesTheCulpritAndChangesNothing) {
       {"sweep DIR/missing.json --out DIR/out", "cases[0].E: is required"},
       {"sweep DIR/defaults.json --out DIR/out", "defaults.ppc"},
       {"sweep DIR/badname.json --out DIR/out", "name:"},
+      {"sweep DIR/reserved_performance.json --out DIR/out", "'performance' is reserved"},
+      {"sweep DIR/reserved_timings.json --out DIR/out", "'timings' is reserved"},
+      {"sweep DIR/reserved_benchmark_step.json --out DIR/out", "'benchmark_step' is reserved"},
+      {"sweep DIR/reserved_fig1_data.json --out DIR/out", "'fig1_data' is reserved"},
+      {"sweep DIR/reserved_comparison.json --out DIR/out", "'comparison' is reserved"},
       {"sweep DIR/dup.json --out DIR/out", "cases[1]: repeats cases[0]"},
       {"sweep DIR/edge_dt.json --out DIR/out", "cases[0].dt"},
       {"sweep DIR/adir.json --out DIR/out", "is a directory"},

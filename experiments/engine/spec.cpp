@@ -382,6 +382,26 @@ void expand_variants(const Reader& r, const json& variants, const std::vector<Ca
 // ---------------------------------------------------------------------------------------------
 // The spec's parts, in the order parse() reads them.
 
+// Files of the results folder that no experiment's name may claim: those other commands write
+// (performance.md, benchmark_step.json, timings.json, the cache folder), the comparison's files
+// (written under that name whatever its spec is called), and <name>_data, which would collide
+// with the figure data of the experiment <name>.
+void check_reserved_name(const Reader& r, const std::string& name, const std::string& report) {
+  static const std::vector<std::string> reserved = {"performance", "benchmark_step", "timings",
+                                                    "cache", "readme"};
+  const bool taken = std::find(reserved.begin(), reserved.end(), name) != reserved.end() ||
+                     (name == "comparison" && report != "comparison");
+  const std::string suffix = "_data";
+  const bool data = name.size() > suffix.size() &&
+                    name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
+  if (taken || data) {
+    r.fail("name", "'" + name + "' is reserved: " +
+                       (data ? "<name>_data.csv is the figure data of the experiment <name>"
+                             : "another command writes a file of that name in the results "
+                               "folder"));
+  }
+}
+
 // The keys that say what the spec is: name, title, description and the study ("report"), and
 // which of cases, cases_from and variants it may have.
 void read_header(const Reader& r, const json& doc, bool named_by_cases_from, Spec& spec) {
@@ -402,6 +422,7 @@ void read_header(const Reader& r, const json& doc, bool named_by_cases_from, Spe
       spec.name.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789_-") != std::string::npos) {
     r.fail("name", "must be a non-empty file name of [a-z0-9_-], got '" + spec.name + "'");
   }
+  check_reserved_name(r, spec.name, r.string_at(doc["report"], "report"));
   if (doc.contains("title")) spec.title = r.string_at(doc["title"], "title");
   if (doc.contains("description")) {
     spec.description = r.string_at(doc["description"], "description");
