@@ -7,6 +7,7 @@
 #include "args.hpp"
 #include "commands.hpp"
 #include "provenance.hpp"
+#include "report.hpp"
 #include "version.hpp"
 
 namespace {
@@ -72,6 +73,9 @@ int main(int argc, char** argv) {
   } catch (const mpmstab::cli::UsageError& e) {
     std::cerr << "mpmstab " << command << ": error: " << e.what() << "\n"
               << "Try 'mpmstab " << command << " --help'.\n";
+    return 2;
+  } catch (const mpmstab::BadResults& e) {
+    std::cerr << "mpmstab " << command << ": error: " << e.what() << "\n";
     return 2;
   } catch (const std::exception& e) {
     std::cerr << "mpmstab " << command << ": internal error: " << e.what() << "\n";

@@ -9,6 +9,7 @@
 #include "commands.hpp"
 #include "csv.hpp"
 #include "process.hpp"
+#include "report.hpp"
 #include "report_util.hpp"
 
 namespace mpmstab::cli {
@@ -72,7 +73,7 @@ int cmd_plot(const std::vector<std::string_view>& argv) {
   for (const auto& f : {script, data, summary}) {
     if (!std::filesystem::exists(f)) throw UsageError(f.string() + " does not exist");
   }
-  const auto doc = nlohmann::ordered_json::parse(read_file(summary));
+  const auto doc = load_results(spec, out);
   const std::string subtitle = spec.study->figure_subtitle(spec, doc);
   const std::string dt = spec.study->figure_dt ? spec.study->figure_dt(doc) : "0";
   // gnuplot is started without a shell: its variables come from a file of assignments (the

@@ -261,6 +261,57 @@ void write_if_changed(const fs::path& path, const std::string& content) {
   write_file_atomically(path, content);
 }
 
+namespace {
+
+// The JSON type every record column may hold: a number, a string or a boolean, or null.
+bool fits(const ojson& v, const ojson& example) {
+  if (v.is_null()) return true;
+  if (example.is_number()) return v.is_number();
+  if (example.is_string()) return v.is_string();
+  if (example.is_boolean()) return v.is_boolean();
+  return v.is_primitive();
+}
+
+}  // namespace
+
+ojson load_results(const Spec& spec, const fs::path& out) {
+  const fs::path file = out / (spec.name + ".json");
+  const std::string text = read_file(file);
+  if (text.empty()) return nullptr;
+  auto bad = [&](const std::string& what) {
+    return BadResults(file.string() + ": " + what + " (not what `mpmstab sweep " +
+                      spec.path.generic_string() + "` writes; rerun it)");
+  };
+  ojson doc;
+  try {
+    doc = ojson::parse(text);
+  } catch (const ojson::parse_error& e) {
+    throw bad(std::string("malformed JSON: ") + e.what());
+  }
+  if (!doc.is_object()) throw bad("must be a JSON object");
+  if (doc.contains("study") && !doc["study"].is_object()) throw bad("study: must be an object");
+  if (!spec.study->has_cases) return doc;
+  if (!doc.contains("cases") || !doc["cases"].is_array()) throw bad("cases: must be an array");
+  if (doc["cases"].size() != spec.cases.size()) {
+    throw bad("cases: " + std::to_string(doc["cases"].size()) + " rows for the spec's " +
+              std::to_string(spec.cases.size()) + " cases");
+  }
+  RunResult example_run;
+  example_run.outcome = Outcome::stable;
+  example_run.steps = 1;
+  const ojson example = to_json(example_run);
+  for (std::size_t i = 0; i < doc["cases"].size(); ++i) {
+    const ojson& row = doc["cases"][i];
+    const std::string at = "cases[" + std::to_string(i) + "]";
+    if (!row.is_object()) throw bad(at + ": must be an object");
+    for (const auto& col : record_columns()) {
+      if (!row.contains(col)) throw bad(at + "." + col + ": is missing");
+      if (!fits(row[col], example[col])) throw bad(at + "." + col + ": has the wrong type");
+    }
+  }
+  return doc;
+}
+
 std::vector<Spec> load_inputs(const Spec& spec) {
   std::vector<Spec> specs;
   for (const auto& input : spec.inputs)
@@ -276,9 +327,7 @@ StudyInputs read_inputs(const Study& study, const std::vector<std::string>& role
   for (std::size_t i = 0; i < specs.size() && i < roles.size(); ++i) {
     StudyInput& in = inputs[roles[i]];
     in.spec = &specs[i];
-    if (const std::string text = read_file(out / (specs[i].name + ".json")); !text.empty()) {
-      in.doc = ojson::parse(text);
-    }
+    in.doc = load_results(specs[i], out);
   }
   for (const auto& decl : study.inputs) {
     const StudyInput& in = inputs[decl.name];
@@ -406,12 +455,12 @@ void write_index(const std::vector<Spec>& specs, const fs::path& out) {
   std::vector<std::pair<const Spec*, ojson>> docs;
   for (const auto& spec : specs) {
     if (!spec.study->has_cases) continue;
-    const std::string text = read_file(out / (spec.name + ".json"));
-    if (text.empty()) {
+    ojson doc = load_results(spec, out);
+    if (doc.is_null()) {
       md << "| " << spec.title << " | not generated | | | | | |\n";
       continue;
     }
-    docs.emplace_back(&spec, ojson::parse(text));
+    docs.emplace_back(&spec, std::move(doc));
     md << index_row(spec, docs.back().second);
   }
   md << "\n";

@@ -13,6 +13,19 @@
 
 namespace mpmstab {
 
+// A results file (<out>/<name>.json) that is not what a sweep of its spec writes: not JSON, not
+// an object, or cases that are missing, of another count or without the record's columns.
+class BadResults : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Reads <out>/<name>.json and checks its shape against the spec before any study reads it: an
+// object whose "cases" are the spec's cases, each an object with every record column (of the
+// JSON type a record gives it) and whose "study", if present, is an object. Throws BadResults
+// naming the file and the first defect; an absent file is null.
+nlohmann::ordered_json load_results(const Spec& spec, const std::filesystem::path& out);
+
 // Writes <out>/<name>.csv, .json, .md and, for studies with a figure, <name>_data.csv; the
 // sweep's wall times go to <out>/timings.json, the only file that changes between identical runs.
 void write_reports(const Spec& spec, const SweepOutcome& outcome, const std::filesystem::path& out);
