@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -73,6 +74,22 @@ inline StudyReport study_report(const std::string& study,
   const std::string header = "# header\n";
   const StudyInputs inputs;
   return spec.study->report(ReportContext{spec, rows, outcome, out, header, inputs});
+}
+
+// The data lines of a CSV: neither its '#' lines nor its header.
+inline std::vector<std::string> data_lines(const std::string& csv) {
+  std::vector<std::string> lines;
+  std::istringstream in(csv);
+  bool header = true;
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    if (header) {
+      header = false;
+      continue;
+    }
+    lines.push_back(line);
+  }
+  return lines;
 }
 
 // The line of `text` that contains `needle` ("" if none).

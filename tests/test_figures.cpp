@@ -16,23 +16,8 @@ namespace mpmstab {
 namespace {
 
 using ojson = nlohmann::ordered_json;
+using test_support::data_lines;
 using test_support::study_row;
-
-// The data lines of a CSV: neither '#' lines nor the header.
-std::vector<std::string> data_lines(const std::string& csv) {
-  std::vector<std::string> lines;
-  std::istringstream in(csv);
-  bool header = true;
-  for (std::string line; std::getline(in, line);) {
-    if (line.empty() || line[0] == '#') continue;
-    if (header) {
-      header = false;
-      continue;
-    }
-    lines.push_back(line);
-  }
-  return lines;
-}
 
 // The header line of a CSV (the first line that is not a '#' line).
 std::string header_of(const std::string& csv) {

@@ -233,16 +233,6 @@ TEST(EdgeStudy, ReportStatesTheRuleAndReadsBothEdgesFromTheRows) {
   EXPECT_EQ(md.find(" ms "), std::string::npos);
 }
 
-// The number of data lines of a CSV (after the '#' lines and the header).
-int data_lines(const std::string& csv) {
-  std::istringstream in(csv);
-  std::string line;
-  int n = -1;  // the header
-  while (std::getline(in, line))
-    n += !line.empty() && line[0] != '#';
-  return n;
-}
-
 TEST(EdgeStudy, FigureDataHasARowPerDrawnCaseAndTheTitleCountsThem) {
   std::vector<ojson> rows = edge_rows();
   ojson steffen = rows[0];
@@ -255,7 +245,7 @@ TEST(EdgeStudy, FigureDataHasARowPerDrawnCaseAndTheTitleCountsThem) {
   ASSERT_TRUE(report.data_csv);
   const std::string& csv = *report.data_csv;
   // Drawn: the two gimp cases of the bar and the one of the second scene.
-  EXPECT_EQ(data_lines(csv), 3) << csv;
+  EXPECT_EQ(test_support::data_lines(csv).size(), 3u) << csv;
   EXPECT_NE(csv.find("panel,series,E,dt_edge_over_cfl,dt_accurate_over_cfl,meaningless_at_edge\n"
                      "0,1,4,0.82,0.788,1\n0,2,4,0.7,,0\n1,1,4,0.82,0.788,1\n"),
             std::string::npos)
@@ -281,8 +271,9 @@ TEST(EdgeStudy, FigureDataHasARowPerDrawnCaseAndTheTitleCountsThem) {
   ojson doc;
   doc["cases"] = rows;
   const std::string subtitle = find_study("edge")->figure_subtitle(spec, doc);
-  EXPECT_EQ(subtitle.rfind(std::to_string(data_lines(csv)) + " of 5 cases drawn (2 with an "
-                                                             "accuracy edge)",
+  EXPECT_EQ(subtitle.rfind(std::to_string(test_support::data_lines(csv).size()) +
+                               " of 5 cases drawn (2 with an "
+                               "accuracy edge)",
                            0),
             0u)
       << subtitle;

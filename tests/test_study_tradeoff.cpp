@@ -47,23 +47,6 @@ std::string markdown(const std::vector<ojson>& rows) {
   return test_support::study_report("tradeoff", rows).markdown;
 }
 
-// The data lines of a CSV: neither '#' lines nor the header.
-std::vector<std::string> data_lines(const std::string& csv) {
-  std::vector<std::string> lines;
-  std::istringstream in(csv);
-  std::string line;
-  bool header = true;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    if (header) {
-      header = false;
-      continue;
-    }
-    lines.push_back(line);
-  }
-  return lines;
-}
-
 TEST(TradeoffStudy, ParetoFrontAndCheapestSettingRankByParticleSteps) {
   std::vector<ojson> rows = {
       fixed_run(1e-3, 2e-4, 1000),       // 2e5 particle-steps, reaches 1e-3 only
@@ -257,7 +240,7 @@ TEST(TradeoffStudy, DataFileHasOneRowPerDrawnRunAndTheTitleCountsThem) {
   rows.push_back(other_scene);
 
   const std::string data = *test_support::study_report("tradeoff", rows).data_csv;
-  const auto lines = data_lines(data);
+  const auto lines = test_support::data_lines(data);
   ASSERT_EQ(lines.size(), 4u) << data;
   EXPECT_NE(data.find("E,panel,series,method,policy,cells,grid,particle_steps,steps,error\n"),
             std::string::npos)

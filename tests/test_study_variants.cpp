@@ -5,11 +5,11 @@
 
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 
 #include "report_util.hpp"
 #include "spec.hpp"
 #include "study.hpp"
+#include "study_rows.hpp"
 #include "variants.hpp"
 
 namespace mpmstab {
@@ -141,10 +141,8 @@ TEST_F(VariantsStudyTest, CountsFollowTheComparisonsRules) {
 // its title counts exactly those.
 TEST_F(VariantsStudyTest, TheFigureTitleCountsThePointsItDraws) {
   const VariantsStudy s = study(2.9e-5);
-  std::istringstream csv(variants_data_csv(s, ""));
   int points = 0;
-  for (std::string line; std::getline(csv, line);) {
-    if (line.empty() || line[0] == '#' || line.rfind("x,", 0) == 0) continue;
+  for (const auto& line : test_support::data_lines(variants_data_csv(s, ""))) {
     const auto first = line.find(',');
     const auto second = line.find(',', first + 1);
     points += line.substr(second + 1, 2) == "0,";

@@ -47,11 +47,10 @@ int cmd_compare(const std::vector<std::string_view>& argv) {
            "T, the max\n"
            "                  error at the final time (max_error, the default), or "
            "max_over_time, the\n"
-           "                  largest over the run (max_error_over_time; the table1 spec must "
-           "record\n"
-           "                  error_over_time). Without it, each case's error_at in the spec "
-           "decides\n"
-           "                  (default T).\n";
+           "                  largest over the run (max_error_over_time, which every run "
+           "records).\n"
+           "                  Without it, each case's error_at in the spec decides (default "
+           "T).\n";
     return 0;
   }
   nlohmann::ordered_json options = nlohmann::ordered_json::object();

@@ -54,12 +54,12 @@ SweepOutcome merge_shards(const Spec& spec, const std::vector<fs::path>& dirs) {
         chosen = std::move(record);
         chosen_dir = d;
       } else if (deterministic_part(*record) != deterministic_part(*chosen)) {
-        conflicts.push_back("cases[" + std::to_string(i) + "] " + describe_case(p) + ": " +
+        conflicts.push_back("cases[" + std::to_string(i) + "] " + describe_case(p, search) + ": " +
                             dirs[chosen_dir].string() + " and " + dirs[d].string() + " disagree");
       }
     }
     if (!chosen) {
-      missing.push_back("cases[" + std::to_string(i) + "] " + describe_case(p) + " (key " +
+      missing.push_back("cases[" + std::to_string(i) + "] " + describe_case(p, search) + " (key " +
                         case_key(p, search) + ")");
       continue;
     }

@@ -554,7 +554,7 @@ CaseSpec read_case(const Reader& r, const json& defaults, const json& c, const s
     r.fail(at + ".dt", "is required with the fixed policy (in the case or in defaults)");
   }
   for (const auto& key : conditional_parameters()) {
-    if (!source.count(key) || (key == "dt" && study.work == CaseWork::edge_search)) continue;
+    if (!source.count(key)) continue;  // (an edge spec's dt was refused above)
     if (const auto issue = check_given(p, key)) r.fail(source[key], issue->message);
   }
   const auto issues = validate(p);

@@ -71,7 +71,7 @@ class Progress {
  public:
   Progress(const Spec& spec, std::size_t runs, bool line, double total_cost)
       : name_(spec.name),
-        searching_(spec.study->work == CaseWork::edge_search),
+        search_(case_search(spec)),
         total_(runs),
         line_(line),
         total_cost_(total_cost) {}
@@ -93,11 +93,9 @@ class Progress {
       std::string verdict = result["outcome"] == "unstable"
                                 ? "unstable (" + result["failure_reason"].get<std::string>() + ")"
                                 : result["outcome"].get<std::string>();
-      // An edge case's dt is the search's to find: its line names the case without it.
-      std::string what = describe_case(p);
-      if (searching_) what = what.substr(0, what.rfind(" dt=")) + " (dt searched)";
-      std::fprintf(stderr, "[%s] %zu/%zu %s: %s%s\n", name_.c_str(), done_, total_, what.c_str(),
-                   verdict.c_str(), from_cache ? " [cached]" : "");
+      std::fprintf(stderr, "[%s] %zu/%zu %s: %s%s\n", name_.c_str(), done_, total_,
+                   describe_case(p, search_).c_str(), verdict.c_str(),
+                   from_cache ? " [cached]" : "");
     }
     std::fflush(stderr);
   }
@@ -125,7 +123,7 @@ class Progress {
 
   std::mutex mutex_;
   std::string name_;
-  bool searching_;
+  std::string search_;
   std::size_t total_, done_ = 0, unstable_ = 0;
   bool line_;
   double total_cost_, done_cost_ = 0;
@@ -134,9 +132,20 @@ class Progress {
 
 }  // namespace
 
-std::string describe_case(const RunParams& p) {
-  return std::string(to_string(p.method)) + " E=" + shortest(p.E) + " A=" + shortest(p.A) +
-         " dt=" + shortest(p.dt);
+std::string describe_case(const RunParams& p, const std::string& search) {
+  std::string s = std::string(to_string(p.method)) + " E=" + shortest(p.E) + " A=" + shortest(p.A);
+  if (!search.empty()) return s + " (dt searched)";
+  switch (p.stepping.policy) {
+    case TimeStepPolicy::fixed:
+      return s + " dt=" + shortest(p.dt);
+    case TimeStepPolicy::cfl:
+      return s + " cfl C=" + shortest(p.stepping.cfl_factor);
+    case TimeStepPolicy::adaptive:
+      return s + " adaptive s=" + shortest(p.stepping.safety);
+    case TimeStepPolicy::min:
+      return s + " min C=" + shortest(p.stepping.cfl_factor) + " s=" + shortest(p.stepping.safety);
+  }
+  return s;
 }
 
 int shard_of(const std::string& case_key, int count) {

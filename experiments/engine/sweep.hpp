@@ -12,8 +12,10 @@
 
 namespace mpmstab {
 
-// A case in one line for messages: "gimp E=4 A=0.015 dt=0.001".
-std::string describe_case(const RunParams& p);
+// A case in one line for messages: "gimp E=4 A=0.015 dt=0.001", with the step its policy uses
+// ("cfl C=0.5", "adaptive s=2"), or "(dt searched)" for a case whose dt a search finds (`search`
+// as case_search gives it).
+std::string describe_case(const RunParams& p, const std::string& search = "");
 
 // One part of a sweep split over machines: shard `index` of `count`, 0 <= index < count.
 struct Shard {
