@@ -211,9 +211,9 @@ TEST_F(VariantSpecs, ErrorsNameTheKeyPath) {
   };
   const std::vector<Case> cases = {
       {R"({"name": "v", "report": "variants", "cases_from": "absent.json", "variants": [{"name": "d"}]})",
-       "cases_from: " + (dir / "absent.json").string() + " does not exist"},
+       "cases_from: " + (dir / "absent.json").string() + ": does not exist"},
       {R"({"name": "v", "report": "variants", "cases_from": ".", "variants": [{"name": "d"}]})",
-       "cases_from: " + (dir / ".").string() + " is not a regular file"},
+       "cases_from: " + (dir / ".").string() + ": is a directory"},
       {R"({"name": "v", "report": "variants", "cases_from": "spec.json", "variants": [{"name": "d"}]})",
        "cases_from: names this spec itself"},
       {R"({"name": "v", "report": "variants", "cases_from": "nested.json", "variants": [{"name": "d"}]})",

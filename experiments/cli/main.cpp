@@ -1,4 +1,5 @@
 // build/mpmstab: the command-line front end.
+#include <csignal>
 #include <exception>
 #include <iostream>
 #include <string_view>
@@ -6,8 +7,10 @@
 
 #include "args.hpp"
 #include "commands.hpp"
+#include "files.hpp"
 #include "provenance.hpp"
 #include "report.hpp"
+#include "spec.hpp"
 #include "version.hpp"
 
 namespace {
@@ -35,6 +38,9 @@ commit, the compiler and the flags of this build.
 }  // namespace
 
 int main(int argc, char** argv) {
+  // A closed standard output (mpmstab ... | head) must not kill the program before its reports
+  // are written: a write to it then fails with EPIPE instead, which the streams ignore.
+  std::signal(SIGPIPE, SIG_IGN);
   std::vector<std::string_view> args(argv + 1, argv + argc);
   if (args.size() == 1 && args[0] == "--version") {
     const mpmstab::Provenance p = mpmstab::current_provenance(1);
@@ -74,7 +80,10 @@ int main(int argc, char** argv) {
     std::cerr << "mpmstab " << command << ": error: " << e.what() << "\n"
               << "Try 'mpmstab " << command << " --help'.\n";
     return 2;
-  } catch (const mpmstab::BadResults& e) {
+  } catch (const mpmstab::InputError& e) {  // a refused input file or output target
+    std::cerr << "mpmstab " << command << ": error: " << e.what() << "\n";
+    return 2;
+  } catch (const mpmstab::SpecError& e) {
     std::cerr << "mpmstab " << command << ": error: " << e.what() << "\n";
     return 2;
   } catch (const std::exception& e) {

@@ -52,6 +52,8 @@ int cmd_merge(const std::vector<std::string_view>& argv) {
     if (!fs::is_directory(d, ec)) throw UsageError(d.string() + ": not a folder");
     dirs.push_back(d);
   }
+  const fs::path out = output_folder(args);
+  check_inputs(spec, out);
   SweepOutcome outcome;
   try {
     outcome = merge_shards(spec, dirs);
@@ -60,7 +62,6 @@ int cmd_merge(const std::vector<std::string_view>& argv) {
               << "\nNothing was written.\n";
     return 2;
   }
-  const fs::path out = output_folder(args);
   const std::string search = case_search(spec);
   const ResultCache cache(out / "cache");
   for (std::size_t i = 0; i < spec.cases.size(); ++i) {

@@ -5,9 +5,9 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
-#include "atomic_file.hpp"
 #include "commands.hpp"
 #include "csv.hpp"
+#include "files.hpp"
 #include "process.hpp"
 #include "report.hpp"
 #include "report_util.hpp"
@@ -70,27 +70,33 @@ int cmd_plot(const std::vector<std::string_view>& argv) {
   const auto script = spec.path.parent_path() / (spec.name + ".gp");
   const auto data = out / (spec.name + "_data.csv");
   const auto summary = out / (spec.name + ".json");
+  // 1. Inputs: regular files of bounded size (gnuplot never opens a FIFO or a device through
+  // us); targets: regular files or absent.
   for (const auto& f : {script, data, summary}) {
-    if (!std::filesystem::exists(f)) throw UsageError(f.string() + " does not exist");
+    if (!read_if_present(f)) throw UsageError(f.string() + " does not exist");
   }
+  for (const char* ext : {".png", ".svg"})
+    require_regular_or_absent(out / (spec.name + ext));
   const auto doc = load_results(spec, out);
   const std::string subtitle = spec.study->figure_subtitle(spec, doc);
   const std::string dt = spec.study->figure_dt ? spec.study->figure_dt(doc) : "0";
-  // gnuplot is started without a shell: its variables come from a file of assignments (the
-  // values quoted as data), then the script, both as arguments.
-  const std::string stem = "." + spec.name + "." + std::to_string(::getpid());
-  const auto tmp = out / (stem + ".tmp");
-  const auto variables = out / (stem + ".vars.gp");
-  write_file_atomically(variables, plot_variables(data, tmp, subtitle, dt));
+  // 2. gnuplot, started without a shell, draws into a private staging folder (mode 0700, random
+  // name): its variables come from a file of assignments (the values quoted as data), then the
+  // script, both as arguments.
+  const StagingFolder staging(out);
+  const auto drawn = staging.path() / spec.name;
+  const auto variables = staging.path() / "variables.gp";
+  write_file_atomically(variables, plot_variables(data, drawn, subtitle, dt));
   const int status = run_program_visible({"gnuplot", variables.string(), script.string()});
-  std::filesystem::remove(variables);
   if (status != 0) {
     throw std::runtime_error("gnuplot failed (status " + std::to_string(status) + ") on " +
                              script.string());
   }
-  for (const char* ext : {".png", ".svg"}) {
-    std::filesystem::rename(tmp.string() + ext, out / (spec.name + ext));
-  }
+  // 3. Both figures are published together, each only if it changed.
+  ReportBatch figures;
+  for (const char* ext : {".png", ".svg"})
+    write_if_changed(out / (spec.name + ext), read_input(drawn.string() + ext));
+  figures.publish();
   return 0;
 }
 

@@ -5,8 +5,8 @@
 #include <type_traits>
 
 #include "args.hpp"
-#include "atomic_file.hpp"
 #include "commands.hpp"
+#include "files.hpp"
 #include "params.hpp"
 #include "result_json.hpp"
 #include "run.hpp"

@@ -8,8 +8,8 @@
 #include <sstream>
 #include <string>
 
-#include "atomic_file.hpp"
 #include "commands.hpp"
+#include "files.hpp"
 
 namespace mpmstab::cli {
 

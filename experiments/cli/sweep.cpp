@@ -8,9 +8,9 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
-#include "atomic_file.hpp"
 #include "commands.hpp"
 #include "csv.hpp"
+#include "files.hpp"
 #include "merge.hpp"
 #include "report.hpp"
 #include "spec.hpp"
@@ -165,27 +165,35 @@ int cmd_sweep(const std::vector<std::string_view>& argv) {
   if (args.positional().size() > 1) throw UsageError("sweep takes one spec");
   SweepOptions options = sweep_options(args);
   const bool omit = omit_timing(args);
+  // 1. Every input is read and checked before any work: a refusal leaves every file as it was.
   const Spec spec = load_specs(args.positional()).front();
   const auto out = output_folder(args);
+  check_inputs(spec, out);
   if (!spec.study->has_cases) return derive(spec, options, out);
   options.cache = out / "cache";
   options.progress_line = ::isatty(STDERR_FILENO) != 0;
   options.cancel = &g_stop;
   install_stop_handlers();
 
+  // 2. The cases, from the cache or computed.
   SweepOutcome outcome = run_sweep(spec, options);
   if (outcome.interrupted) return interrupted(spec, outcome, options);
   if (options.shard) return finish_shard(spec, outcome, options, out);
   const double wall_seconds = outcome.wall_seconds;  // for the summary line, also when omitted
   if (omit) omit_machine_measurements(outcome);
+  // 3. The reports, published together.
   write_reports(spec, outcome, out);
   std::cerr << "[" << spec.name << "] " << spec.cases.size() << " cases (" << outcome.computed
             << " computed, " << outcome.cached << " from the cache, "
             << (outcome.shared
                     ? std::to_string(outcome.shared) + " sharing the run of an identical case, "
                     : std::string())
-            << outcome.unstable << " unstable) in "
-            << shortest(std::round(wall_seconds * 100) / 100) << " s -> "
+            << outcome.unstable << " unstable"
+            << (outcome.rejected ? "; " + std::to_string(outcome.rejected) +
+                                       " cache records failed their checksum or shape and were "
+                                       "computed again"
+                                 : std::string())
+            << ") in " << shortest(std::round(wall_seconds * 100) / 100) << " s -> "
             << (out / (spec.name + ".md")).string() << "\n";
   return 0;
 }

@@ -4,8 +4,10 @@
 #include <fstream>
 #include <sstream>
 
-#include "atomic_file.hpp"
 #include "csv.hpp"
+#include "files.hpp"
+#include "result_json.hpp"
+#include "strict_json.hpp"
 #include "version.hpp"
 
 namespace mpmstab {
@@ -41,9 +43,9 @@ std::string canonical(const RunParams& p, const std::string& search) {
 }
 }  // namespace
 
-std::string case_key(const RunParams& p, const std::string& search) {
+std::string fnv1a_hex(std::string_view text) {
   std::uint64_t h = 1469598103934665603ull;
-  for (const unsigned char c : canonical(p, search)) {
+  for (const unsigned char c : text) {
     h ^= c;
     h *= 1099511628211ull;
   }
@@ -52,28 +54,66 @@ std::string case_key(const RunParams& p, const std::string& search) {
   return buf;
 }
 
-std::optional<nlohmann::ordered_json> ResultCache::load(const RunParams& p,
-                                                        const std::string& search) const {
-  std::ifstream in(dir_ / (case_key(p, search) + ".json"), std::ios::binary);
-  if (!in) return std::nullopt;
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  try {
-    auto record = nlohmann::ordered_json::parse(buffer.str());
-    // A hash collision or a stale file must not pass for this case.
-    if (record.value("canonical", "") != canonical(p, search)) return std::nullopt;
-    return record;
-  } catch (const nlohmann::json::exception&) {
-    return std::nullopt;  // unreadable: compute again
+std::string case_key(const RunParams& p, const std::string& search) {
+  return fnv1a_hex(canonical(p, search));
+}
+
+namespace {
+
+// The checksum of a record: its canonical parameters and its content without the checksum.
+std::string checksum(const nlohmann::ordered_json& record, const std::string& canonical_text) {
+  nlohmann::ordered_json content = record;
+  content.erase("checksum");
+  return fnv1a_hex(canonical_text + "\n" + content.dump());
+}
+
+// A stored record's checks, in order; true when it may stand for the case.
+bool intact(const nlohmann::ordered_json& record, const std::string& canonical_text) {
+  if (!record.is_object()) return false;
+  const auto canon = record.find("canonical");
+  const auto sum = record.find("checksum");
+  if (canon == record.end() || sum == record.end() || *canon != canonical_text ||
+      !sum->is_string() || *sum != checksum(record, canonical_text)) {
+    return false;
   }
+  const auto result = record.find("result");
+  const auto provenance = record.find("provenance");
+  return result != record.end() && record_defect(*result).empty() && provenance != record.end() &&
+         provenance->is_object();
+}
+
+}  // namespace
+
+CacheLookup ResultCache::lookup(const RunParams& p, const std::string& search) const {
+  const std::filesystem::path file = dir_ / (case_key(p, search) + ".json");
+  CacheLookup found;
+  try {
+    const std::optional<std::string> text = read_if_present(file);
+    if (!text) return found;
+    auto record = parse_json_strict<nlohmann::ordered_json>(*text, file);
+    if (intact(record, canonical(p, search))) {
+      found.record = std::move(record);
+      return found;
+    }
+  } catch (const InputError&) {
+    // not a regular file, too large, not JSON: computed again below
+  }
+  found.rejected = true;
+  return found;
 }
 
 void ResultCache::store(const RunParams& p, nlohmann::ordered_json record,
                         const std::string& search) const {
   std::filesystem::create_directories(dir_);
+  const std::string canonical_text = canonical(p, search);
   record["key"] = case_key(p, search);
-  record["canonical"] = canonical(p, search);
-  write_file_atomically(dir_ / (case_key(p, search) + ".json"), record.dump());
+  record["canonical"] = canonical_text;
+  record.erase("checksum");
+  // Checksummed as it will be read back (the reader turns -0 into 0, NaN was written as null).
+  const std::filesystem::path file = dir_ / (case_key(p, search) + ".json");
+  record = parse_json_strict<nlohmann::ordered_json>(record.dump(), file);
+  record["checksum"] = checksum(record, canonical_text);
+  write_file_atomically(file, record.dump());
 }
 
 }  // namespace mpmstab

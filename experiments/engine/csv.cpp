@@ -1,5 +1,7 @@
 #include "csv.hpp"
 
+#include "files.hpp"
+
 #include <charconv>
 #include <fstream>
 #include <sstream>
@@ -43,8 +45,7 @@ std::vector<std::string> next_record(const std::string& text, std::size_t& pos, 
     }
   }
   if (quoted) {
-    throw std::runtime_error(file.string() + ": line " + std::to_string(start_line) +
-                             ": unterminated quoted field");
+    throw InputError(file, "line " + std::to_string(start_line) + ": unterminated quoted field");
   }
   fields.push_back(std::move(field));
   return fields;
@@ -53,11 +54,7 @@ std::vector<std::string> next_record(const std::string& text, std::size_t& pos, 
 }  // namespace
 
 CsvTable read_csv(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw std::runtime_error(file.string() + ": cannot be read");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  const std::string text = buffer.str();
+  const std::string text = read_input(file);
   CsvTable table;
   std::size_t pos = 0, line = 1;
   while (pos < text.size() && text[pos] == '#') {
@@ -65,16 +62,16 @@ CsvTable read_csv(const std::filesystem::path& file) {
     pos = pos == std::string::npos ? text.size() : pos + 1;
     ++line;
   }
-  if (pos >= text.size()) throw std::runtime_error(file.string() + ": no header line");
+  if (pos >= text.size()) throw InputError(file, "no header line");
   table.header = next_record(text, pos, line, file);
   while (pos < text.size()) {
     const std::size_t record_line = line;
     auto fields = next_record(text, pos, line, file);
     if (fields.size() == 1 && fields[0].empty()) continue;  // blank line
     if (fields.size() != table.header.size()) {
-      throw std::runtime_error(file.string() + ": line " + std::to_string(record_line) + ": " +
-                               std::to_string(fields.size()) + " fields, header has " +
-                               std::to_string(table.header.size()));
+      throw InputError(file, "line " + std::to_string(record_line) + ": " +
+                                 std::to_string(fields.size()) + " fields, header has " +
+                                 std::to_string(table.header.size()));
     }
     std::map<std::string, std::string> row;
     for (std::size_t i = 0; i < fields.size(); ++i)

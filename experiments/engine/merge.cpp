@@ -4,6 +4,7 @@
 #include <fstream>
 
 #include "cache.hpp"
+#include "strict_json.hpp"
 
 namespace mpmstab {
 
@@ -92,8 +93,7 @@ SweepOutcome merge_shards(const Spec& spec, const std::vector<fs::path>& dirs) {
       if (file.rfind(spec.name + ".shard-", 0) != 0 || entry.path().extension() != ".json")
         continue;
       try {
-        std::ifstream in(entry.path());
-        const ojson manifest = ojson::parse(in);
+        const ojson manifest = read_json_file(entry.path());
         out.wall_seconds = std::max(out.wall_seconds, manifest.at("wall_seconds").get<double>());
       } catch (const std::exception&) {
         // An unreadable manifest only loses the wall time, not a result.

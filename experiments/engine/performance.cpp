@@ -7,8 +7,10 @@
 #include <sstream>
 
 #include "csv.hpp"
+#include "files.hpp"
 #include "report.hpp"
 #include "report_util.hpp"
+#include "strict_json.hpp"
 
 namespace mpmstab {
 
@@ -168,13 +170,13 @@ void write_flops(std::ostream& md, const BenchFigures& b, double mhz) {
 
 // The benchmark's sections, or a note that its output is missing.
 void write_benchmark(std::ostream& md, const fs::path& bench) {
-  const std::string text = read_file(bench);
+  const std::string text = read_if_present(bench).value_or("");
   if (text.empty()) {
     md << "*No benchmark figures: " << bench.generic_string() << " is missing (run `make bench`)."
        << "*\n\n";
     return;
   }
-  const ojson doc = ojson::parse(text);
+  const ojson doc = parse_json_strict<ojson>(text, bench);
   const BenchFigures figures = read_figures(doc);
   const ojson& ctx = doc["context"];
   write_kernel_table(md, figures, ctx);
@@ -191,11 +193,12 @@ void write_experiment_times(std::ostream& md, const std::vector<Spec>& specs, co
         "| experiment | cases | compute time | sweep wall time | median ns per particle-step |\n"
         "|---|---|---|---|---|\n";
   ojson timings = ojson::object();
-  if (const std::string t = read_file(out / "timings.json"); !t.empty()) {
+  if (const auto t = read_if_present(out / "timings.json"); t && !t->empty()) {
     try {
-      timings = ojson::parse(t);
-    } catch (const std::exception&) {
+      timings = parse_json_strict<ojson>(*t, out / "timings.json");
+    } catch (const InputError&) {
     }
+    if (!timings.is_object()) timings = ojson::object();
   }
   double total_wall = 0, total_compute = 0;
   for (const auto& spec : specs) {

@@ -6,9 +6,9 @@
 #include <map>
 #include <sstream>
 
-#include "atomic_file.hpp"
 #include "compare.hpp"
 #include "csv.hpp"
+#include "files.hpp"
 #include "provenance.hpp"
 #include "report.hpp"
 #include "report_util.hpp"
@@ -315,7 +315,7 @@ void log_blessing(const std::vector<std::string>& changes, const RegressionOptio
   for (const auto& c : changes)
     entry << "- " << c << "\n";
   const fs::path log = o.reference / "BLESSED.md";
-  std::string text = read_file(log);
+  std::string text = read_if_present(log).value_or("");
   if (text.empty()) {
     text =
         "# Blessed regression values\n\nEvery change of `reference/regression/` by `make "

@@ -8,11 +8,12 @@
 #include <set>
 #include <sstream>
 
-#include "atomic_file.hpp"
 #include "cache.hpp"
 #include "csv.hpp"
+#include "files.hpp"
 #include "report_util.hpp"
 #include "result_json.hpp"
+#include "strict_json.hpp"
 #include "study.hpp"
 #include "version.hpp"
 
@@ -173,10 +174,11 @@ ojson sweep_timing(const Spec& spec, const SweepOutcome& outcome, const ojson& w
   }
   double sweep_wall = outcome.wall_seconds;
   if (outcome.computed == 0 && !outcome.merged && !outcome.timing_omitted &&
-      previous.contains("sweep_wall_seconds")) {
+      previous.contains("sweep_wall_seconds") && previous["sweep_wall_seconds"].is_number()) {
     sweep_wall = previous["sweep_wall_seconds"].get<double>();
   }
   return {{"cases", spec.cases.size()},
+          {"cache_records_rejected", outcome.rejected},
           {"commit", when["commit"]},
           {"dirty", when["dirty"]},
           {"cpu", when["cpu"]},
@@ -193,12 +195,13 @@ void write_timings(const Spec& spec, const SweepOutcome& outcome, const ojson& w
                    const fs::path& out) {
   const fs::path path = out / "timings.json";
   ojson all = ojson::object();
-  if (const std::string text = read_file(path); !text.empty()) {
+  if (const auto text = read_if_present(path); text && !text->empty()) {
     try {
-      all = ojson::parse(text);
-    } catch (const std::exception&) {
+      all = parse_json_strict<ojson>(*text, path);
+    } catch (const InputError&) {
       all = ojson::object();  // unreadable: rebuilt from the experiments swept from now on
     }
+    if (!all.is_object()) all = ojson::object();
   }
   const ojson previous = all.contains(spec.name) ? all[spec.name] : ojson::object();
   std::map<std::string, ojson> sorted;
@@ -256,37 +259,20 @@ std::vector<std::string> result_columns(const Spec& spec) {
   return columns;
 }
 
-void write_if_changed(const fs::path& path, const std::string& content) {
-  if (fs::exists(path) && read_file(path) == content) return;
-  write_file_atomically(path, content);
-}
-
-namespace {
-
-// The JSON type every record column may hold: a number, a string or a boolean, or null.
-bool fits(const ojson& v, const ojson& example) {
-  if (v.is_null()) return true;
-  if (example.is_number()) return v.is_number();
-  if (example.is_string()) return v.is_string();
-  if (example.is_boolean()) return v.is_boolean();
-  return v.is_primitive();
-}
-
-}  // namespace
-
 ojson load_results(const Spec& spec, const fs::path& out) {
   const fs::path file = out / (spec.name + ".json");
-  const std::string text = read_file(file);
-  if (text.empty()) return nullptr;
+  const std::optional<std::string> text = read_if_present(file);
+  if (!text) return nullptr;
   auto bad = [&](const std::string& what) {
     return BadResults(file.string() + ": " + what + " (not what `mpmstab sweep " +
                       spec.path.generic_string() + "` writes; rerun it)");
   };
   ojson doc;
+  if (text->find_first_not_of(" \t\r\n") == std::string::npos) throw bad("is empty");
   try {
-    doc = ojson::parse(text);
-  } catch (const ojson::parse_error& e) {
-    throw bad(std::string("malformed JSON: ") + e.what());
+    doc = parse_json_strict<ojson>(*text, file);
+  } catch (const InputError& e) {
+    throw bad(e.detail());
   }
   if (!doc.is_object()) throw bad("must be a JSON object");
   if (doc.contains("study") && !doc["study"].is_object()) throw bad("study: must be an object");
@@ -296,26 +282,22 @@ ojson load_results(const Spec& spec, const fs::path& out) {
     throw bad("cases: " + std::to_string(doc["cases"].size()) + " rows for the spec's " +
               std::to_string(spec.cases.size()) + " cases");
   }
-  RunResult example_run;
-  example_run.outcome = Outcome::stable;
-  example_run.steps = 1;
-  const ojson example = to_json(example_run);
   for (std::size_t i = 0; i < doc["cases"].size(); ++i) {
-    const ojson& row = doc["cases"][i];
-    const std::string at = "cases[" + std::to_string(i) + "]";
-    if (!row.is_object()) throw bad(at + ": must be an object");
-    for (const auto& col : record_columns()) {
-      if (!row.contains(col)) throw bad(at + "." + col + ": is missing");
-      if (!fits(row[col], example[col])) throw bad(at + "." + col + ": has the wrong type");
-    }
+    const std::string defect = record_defect(doc["cases"][i]);
+    if (!defect.empty()) throw bad("cases[" + std::to_string(i) + "]" + defect);
   }
   return doc;
 }
 
 std::vector<Spec> load_inputs(const Spec& spec) {
   std::vector<Spec> specs;
-  for (const auto& input : spec.inputs)
-    specs.push_back(load_spec(input.path));
+  for (const auto& input : spec.inputs) {
+    try {
+      specs.push_back(load_spec(input.path));
+    } catch (const SpecError& e) {
+      throw InputError(spec.path, std::string("an input's spec is refused: ") + e.what());
+    }
+  }
   return specs;
 }
 
@@ -351,12 +333,27 @@ std::vector<std::string> input_roles(const Spec& spec) {
 
 }  // namespace
 
+void check_inputs(const Spec& spec, const fs::path& out) {
+  if (!spec.reference.empty()) {
+    if (read_csv(spec.reference).header.empty()) throw InputError(spec.reference, "has no columns");
+  }
+  const std::vector<Spec> input_specs = load_inputs(spec);
+  read_inputs(*spec.study, input_roles(spec), input_specs, out);
+  std::error_code ec;
+  const fs::path cache = out / "cache";
+  if (fs::exists(fs::symlink_status(cache, ec)) && !fs::is_directory(cache, ec)) {
+    throw InputError(cache, "is not a folder (the sweep keeps its finished cases there)");
+  }
+}
+
 void write_derived_reports(const Spec& spec, const std::vector<std::string>& roles,
                            const std::vector<Spec>& input_specs, const fs::path& out,
                            const ojson& options) {
   fs::create_directories(out);
   const StudyInputs inputs = read_inputs(*spec.study, roles, input_specs, out);
+  ReportBatch batch;  // the study's files are published together, or none of them
   spec.study->write_derived(DerivedContext{spec, out, inputs, options});
+  batch.publish();
 }
 
 void write_derived_reports(const Spec& spec, const fs::path& out, const ojson& options) {
@@ -366,6 +363,7 @@ void write_derived_reports(const Spec& spec, const fs::path& out, const ojson& o
 
 void write_reports(const Spec& spec, const SweepOutcome& outcome, const fs::path& out) {
   fs::create_directories(out);
+  ReportBatch batch;  // every file below is published together, or none of them
   const std::vector<ojson> rows = flat_rows(spec, outcome);
   // When and with how many threads the cases ran go with the timings: the reports hold only
   // what fixes the results (the build and the machine).
@@ -400,6 +398,7 @@ void write_reports(const Spec& spec, const SweepOutcome& outcome, const fs::path
   if (study.data_csv) write_if_changed(out / (spec.name + "_data.csv"), *study.data_csv);
   write_if_changed(out / (spec.name + ".md"),
                    report_head(spec, out) + study.markdown + "\n" + provenance_markdown(prov));
+  batch.publish();
 }
 
 namespace {

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "files.hpp"
 #include "spec.hpp"
 #include "sweep.hpp"
 
@@ -15,9 +16,9 @@ namespace mpmstab {
 
 // A results file (<out>/<name>.json) that is not what a sweep of its spec writes: not JSON, not
 // an object, or cases that are missing, of another count or without the record's columns.
-class BadResults : public std::runtime_error {
+class BadResults : public InputError {
  public:
-  using std::runtime_error::runtime_error;
+  using InputError::InputError;
 };
 
 // Reads <out>/<name>.json and checks its shape against the spec before any study reads it: an
@@ -25,6 +26,12 @@ class BadResults : public std::runtime_error {
 // JSON type a record gives it) and whose "study", if present, is an object. Throws BadResults
 // naming the file and the first defect; an absent file is null.
 nlohmann::ordered_json load_results(const Spec& spec, const std::filesystem::path& out);
+
+// Everything a sweep or a derived study of `spec` will read, checked before any work: the
+// reference table (a regular CSV file of bounded size with a header), the spec of every input
+// and its results in `out` (present if required, of the right shape), and the cache folder (a
+// folder if it exists). Throws InputError (exit status 2) naming the first defect.
+void check_inputs(const Spec& spec, const std::filesystem::path& out);
 
 // Writes <out>/<name>.csv, .json, .md and, for studies with a figure, <name>_data.csv; the
 // sweep's wall times go to <out>/timings.json, the only file that changes between identical runs.
@@ -62,8 +69,5 @@ std::vector<std::string> result_columns(const Spec& spec);
 nlohmann::ordered_json flat_row(const CaseSpec& c, const nlohmann::ordered_json& record);
 // A JSON value as a CSV field: "" for null, shortest round-trip text for numbers.
 std::string csv_cell(const nlohmann::ordered_json& v);
-
-// Writes `content` to `path` atomically unless the file already holds exactly that.
-void write_if_changed(const std::filesystem::path& path, const std::string& content);
 
 }  // namespace mpmstab

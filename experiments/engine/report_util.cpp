@@ -115,12 +115,5 @@ std::string sci(double v, int digits) {
   return mantissa + "e" + (negative ? "-" : "") + exponent;
 }
 
-std::string read_file(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return "";
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
-}
 
 }  // namespace mpmstab

@@ -39,8 +39,6 @@ std::string work(const nlohmann::ordered_json& row);
 double quantile(std::vector<double> v, double q);
 // Relative link from a report folder to a file.
 std::string link(const std::filesystem::path& from_dir, const std::filesystem::path& target);
-// The whole file, or "" when it cannot be read.
-std::string read_file(const std::filesystem::path& path);
 
 // Our error compared with the paper's "Max Error" in a flat result row: max_error (at T) or
 // max_error_over_time; null when the run failed or the value was not recorded.

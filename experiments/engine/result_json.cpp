@@ -169,4 +169,41 @@ nlohmann::ordered_json edge_columns(const nlohmann::ordered_json& edge) {
   return row;
 }
 
+namespace {
+
+// The JSON type a record column may hold, as the example's: a number, a string or a boolean, or
+// null.
+bool fits(const nlohmann::ordered_json& v, const nlohmann::ordered_json& example) {
+  if (v.is_null()) return true;
+  if (example.is_number()) return v.is_number();
+  if (example.is_string()) return v.is_string();
+  if (example.is_boolean()) return v.is_boolean();
+  return v.is_primitive();
+}
+
+}  // namespace
+
+std::string record_defect(const nlohmann::ordered_json& row) {
+  static const nlohmann::ordered_json example = [] {  // a record with every column's JSON type
+    RunResult r;
+    r.outcome = Outcome::stable;
+    r.steps = 1;
+    return to_json(r);
+  }();
+  if (!row.is_object()) return ": must be an object";
+  for (const auto& col : record_columns()) {
+    const auto it = row.find(col);
+    if (it == row.end()) return "." + col + ": is missing";
+    if (!fits(*it, example[col])) return "." + col + ": has the wrong type";
+  }
+  if (const auto& outcome = row["outcome"]; outcome.is_string()) {
+    const std::string& o = outcome.get_ref<const std::string&>();
+    bool known = false;
+    for (const Outcome each : {Outcome::unstable, Outcome::meaningless, Outcome::stable})
+      known = known || o == to_string(each);
+    if (!known) return ".outcome: must be unstable, meaningless or stable (or null)";
+  }
+  return "";
+}
+
 }  // namespace mpmstab

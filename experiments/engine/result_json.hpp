@@ -18,6 +18,10 @@ namespace mpmstab {
 // the machine are not in it: see timing_json.
 const std::vector<std::string>& record_columns();
 nlohmann::ordered_json to_json(const RunResult& r);
+// The first way `row` differs from a record's shape ("" if none): an object with every column
+// of record_columns(), each null or of the JSON type a record gives it, and an outcome that is
+// unstable, meaningless or stable. Every reader of stored records checks it first.
+std::string record_defect(const nlohmann::ordered_json& row);
 
 // The machine's measurements of a run: wall_seconds and ns_per_particle_step. They differ between
 // identical runs, so they are kept apart from the record (results/timings.json).

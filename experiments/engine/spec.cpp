@@ -11,6 +11,8 @@
 
 #include "args.hpp"
 #include "cache.hpp"
+#include "files.hpp"
+#include "strict_json.hpp"
 
 namespace mpmstab {
 
@@ -159,28 +161,9 @@ json parse_text(std::string_view text, const std::filesystem::path& file) {
     throw SpecError(file, "", "is empty");
   }
   try {
-    return json::parse(text);
-  } catch (const json::parse_error& e) {
-    // Line and column of the byte where parsing stopped.
-    std::size_t line = 1, column = 1;
-    for (std::size_t i = 0; i + 1 < e.byte && i < text.size(); ++i) {
-      if (text[i] == '\n') {
-        ++line;
-        column = 1;
-      } else {
-        ++column;
-      }
-    }
-    std::string what = e.what();
-    if (const auto at = what.find("syntax error"); at != std::string::npos) what = what.substr(at);
-    throw SpecError(file, "",
-                    "malformed JSON at line " + std::to_string(line) + ", column " +
-                        std::to_string(column) + ": " + what);
-  } catch (const json::exception& e) {
-    // For example a number that overflows a double ("1e999").
-    std::string what = e.what();
-    if (const auto at = what.find("] "); at != std::string::npos) what = what.substr(at + 2);
-    throw SpecError(file, "", "malformed JSON: " + what);
+    return parse_json_strict<json>(text, file);
+  } catch (const InputError& e) {
+    throw SpecError(file, "", e.detail());
   }
 }
 
@@ -203,11 +186,11 @@ std::optional<ErrorAt> parse_error_at(std::string_view s) {
 namespace {
 
 std::string read_whole(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw SpecError(file, "", "cannot be read");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
+  try {
+    return read_input(file, kMaxSpecBytes);
+  } catch (const InputError& e) {
+    throw SpecError(file, "", e.detail());
+  }
 }
 
 Spec parse(std::string_view text, const std::filesystem::path& file, bool named_by_cases_from);
@@ -218,16 +201,6 @@ Spec cases_from_spec(const Reader& r, const std::filesystem::path& file, const s
   const std::filesystem::path base = file.parent_path() / name;
   std::error_code ec;
   if (name.empty()) r.fail("cases_from", "must name a spec file, got an empty string");
-  if (!std::filesystem::exists(base, ec)) {
-    r.fail("cases_from", base.string() + " does not exist");
-  }
-  if (!std::filesystem::is_regular_file(base, ec)) {
-    r.fail("cases_from", base.string() + " is not a regular file");
-  }
-  const auto bytes = std::filesystem::file_size(base, ec);
-  if (ec || bytes > kMaxSpecBytes) {
-    r.fail("cases_from", base.string() + " is too large for a spec (over 4 MiB)");
-  }
   const auto self = std::filesystem::weakly_canonical(file, ec);
   const auto other = std::filesystem::weakly_canonical(base, ec);
   if (!ec && !self.empty() && self == other) r.fail("cases_from", "names this spec itself");

@@ -14,6 +14,8 @@
 #include <string_view>
 #include <vector>
 
+#include "files.hpp"
+
 namespace mpmstab {
 
 struct Spec;
@@ -42,9 +44,9 @@ struct StudyInput {
 using StudyInputs = std::map<std::string, StudyInput>;  // by InputDecl::name
 
 // A required input whose results are not in the report folder.
-class MissingInput : public std::runtime_error {
+class MissingInput : public InputError {
  public:
-  using std::runtime_error::runtime_error;
+  using InputError::InputError;
 };
 
 // What a study's report is written from.

@@ -173,6 +173,7 @@ nlohmann::ordered_json deterministic_part(const nlohmann::ordered_json& record) 
   nlohmann::ordered_json d = record;
   d.erase("provenance");
   d.erase("canonical");
+  d.erase("checksum");  // covers the provenance and timing, which may differ
   d.erase("timing");
   return d;
 }
@@ -278,6 +279,7 @@ SweepOutcome run_sweep(const Spec& spec, const SweepOptions& options) {
   std::vector<char> from_cache(spec.cases.size(), 0);
   Progress progress(spec, plan.order.size(), options.progress_line, plan.total_cost);
   std::atomic<std::size_t> next{0};
+  std::atomic<int> rejected{0};
   const std::size_t m = plan.order.size();
   std::exception_ptr error;
   std::mutex error_mutex;
@@ -290,7 +292,11 @@ SweepOutcome run_sweep(const Spec& spec, const SweepOptions& options) {
       try {
         std::optional<nlohmann::ordered_json> record;
         const bool cached = !options.cache.empty();
-        if (cached && !options.force) record = cache.load(p, search);
+        if (cached && !options.force) {
+          CacheLookup found = cache.lookup(p, search);
+          if (found.rejected) ++rejected;
+          record = std::move(found.record);
+        }
         from_cache[i] = record.has_value();
         if (!record) {
           nlohmann::ordered_json rec = compute_case(p, spec.study->work, options.cancel);
@@ -317,6 +323,7 @@ SweepOutcome run_sweep(const Spec& spec, const SweepOptions& options) {
     t.join();
   if (error) std::rethrow_exception(error);
   tally(plan, from_cache, out);
+  out.rejected = rejected.load();
   out.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return out;
 }

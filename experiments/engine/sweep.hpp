@@ -49,6 +49,8 @@ struct SweepOutcome {
   // for example two variants that differ only in what they compare: run once, record shared.
   int shared = 0;
   int unstable = 0;
+  // Cache files that failed their checks (see ResultCache) and were computed again.
+  int rejected = 0;
   int other_shards = 0;  // cases left to the other shards (their records are null)
   double wall_seconds = 0;
   bool interrupted = false;  // stopped by `cancel`: records of unfinished cases are null

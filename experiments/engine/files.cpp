@@ -1,0 +1,346 @@
+#include "files.hpp"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/file.h>
+#include <sys/random.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <iostream>
+#include <memory>
+#include <set>
+
+namespace mpmstab {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string errno_text() {
+  return std::strerror(errno);
+}
+
+std::string mib(std::uintmax_t bytes) {
+  return std::to_string(bytes >> 20) + " MiB";
+}
+
+// 16 random hex digits from the kernel's generator.
+std::string random_hex() {
+  unsigned char bytes[8];
+  std::size_t got = 0;
+  while (got < sizeof bytes) {
+    const ssize_t n = ::getrandom(bytes + got, sizeof bytes - got, 0);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      throw std::runtime_error("getrandom: " + errno_text());
+    }
+    got += static_cast<std::size_t>(n);
+  }
+  char hex[17];
+  for (std::size_t i = 0; i < sizeof bytes; ++i)
+    std::snprintf(hex + 2 * i, 3, "%02x", bytes[i]);
+  return hex;
+}
+
+// ".<target name>.<pid>.<random>.tmp": hidden, unique, and tells which process wrote it.
+fs::path temporary_beside(const fs::path& target) {
+  std::string name(1, '.');  // built step by step: GCC 12 misreads "." + std::string (-Wrestrict)
+  name += target.filename().string();
+  name += '.';
+  name += std::to_string(static_cast<long>(::getpid()));
+  name += '.';
+  name += random_hex();
+  name += ".tmp";
+  return target.parent_path() / name;
+}
+
+void close_quietly(int fd) {
+  if (fd >= 0) ::close(fd);
+}
+
+// Writes `content` to a fresh temporary beside `target` and returns its path.
+fs::path write_temporary(const fs::path& target, std::string_view content) {
+  fs::path tmp;
+  int fd = -1;
+  for (int attempt = 0; attempt < 8 && fd < 0; ++attempt) {
+    tmp = temporary_beside(target);
+    fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
+    if (fd < 0 && errno != EEXIST) break;
+  }
+  auto fail = [&](const std::string& what) {
+    const std::string reason = errno_text();
+    close_quietly(fd);
+    if (fd >= 0) ::unlink(tmp.c_str());
+    throw std::runtime_error("cannot write " + target.string() + ": " + what + ": " + reason);
+  };
+  if (fd < 0) fail("creating a temporary file");
+  std::size_t done = 0;
+  while (done < content.size()) {
+    const ssize_t n = ::write(fd, content.data() + done, content.size() - done);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      fail("write");
+    }
+    done += static_cast<std::size_t>(n);
+  }
+  if (::fsync(fd) != 0) fail("fsync");
+  const int closed = ::close(fd);
+  fd = -1;
+  if (closed != 0) {
+    ::unlink(tmp.c_str());
+    throw std::runtime_error("cannot write " + target.string() + ": close: " + errno_text());
+  }
+  return tmp;
+}
+
+void rename_over(const fs::path& from, const fs::path& target) {
+  if (::rename(from.c_str(), target.c_str()) != 0) {
+    const std::string reason = errno_text();
+    ::unlink(from.c_str());
+    throw std::runtime_error("cannot write " + target.string() + ": rename: " + reason);
+  }
+}
+
+// The pid in a name made by temporary_beside or StagingFolder, or -1.
+long writer_pid(const std::string& name) {
+  std::string stem;
+  if (name.size() > 4 && name.ends_with(".tmp")) {
+    stem = name.substr(0, name.size() - 4);
+  } else if (name.size() > 8 && name.ends_with(".staging")) {
+    stem = name.substr(0, name.size() - 8);
+  } else {
+    return -1;
+  }
+  const auto random_dot = stem.rfind('.');
+  if (random_dot == std::string::npos || stem.size() - random_dot != 17) return -1;
+  const auto pid_dot = stem.rfind('.', random_dot - 1);
+  if (pid_dot == std::string::npos || pid_dot + 1 >= random_dot) return -1;
+  const std::string pid = stem.substr(pid_dot + 1, random_dot - pid_dot - 1);
+  if (pid.size() > 9 || !std::all_of(pid.begin(), pid.end(), ::isdigit)) return -1;
+  return std::stol(pid);
+}
+
+thread_local ReportBatch* t_active = nullptr;
+
+}  // namespace
+
+std::optional<std::string> read_if_present(const fs::path& path, std::uintmax_t max_bytes) {
+  // O_NONBLOCK: opening a FIFO must not wait for a writer; it is refused below.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) {
+    if (errno == ENOENT) return std::nullopt;
+    throw InputError(path, "cannot be read: " + errno_text());
+  }
+  struct stat st {};
+  if (::fstat(fd, &st) != 0) {
+    const std::string reason = errno_text();
+    ::close(fd);
+    throw InputError(path, "cannot be read: " + reason);
+  }
+  if (!S_ISREG(st.st_mode)) {
+    ::close(fd);
+    throw InputError(path, S_ISDIR(st.st_mode) ? "is a directory, not a file"
+                                               : "is not a regular file (a FIFO, a device or a "
+                                                 "socket is never read)");
+  }
+  if (static_cast<std::uintmax_t>(st.st_size) > max_bytes) {
+    ::close(fd);
+    throw InputError(path, "is larger than the limit of " + mib(max_bytes) + " for an input");
+  }
+  std::string text;
+  text.resize(static_cast<std::size_t>(st.st_size));
+  std::size_t done = 0;
+  for (;;) {
+    if (done == text.size()) {
+      if (text.size() > max_bytes) break;
+      text.resize(std::max<std::size_t>(text.size() * 2, 4096));  // the file grew meanwhile
+    }
+    const ssize_t n = ::read(fd, text.data() + done, text.size() - done);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      const std::string reason = errno_text();
+      ::close(fd);
+      throw InputError(path, "cannot be read: " + reason);
+    }
+    if (n == 0) break;
+    done += static_cast<std::size_t>(n);
+  }
+  ::close(fd);
+  if (done > max_bytes) {
+    throw InputError(path, "is larger than the limit of " + mib(max_bytes) + " for an input");
+  }
+  text.resize(done);
+  return text;
+}
+
+std::string read_input(const fs::path& path, std::uintmax_t max_bytes) {
+  auto text = read_if_present(path, max_bytes);
+  if (!text) throw InputError(path, "does not exist");
+  return std::move(*text);
+}
+
+void require_regular_or_absent(const fs::path& path) {
+  struct stat st {};
+  if (::lstat(path.c_str(), &st) != 0) {
+    if (errno == ENOENT) return;
+    throw InputError(path, "cannot be inspected: " + errno_text());
+  }
+  if (S_ISREG(st.st_mode)) return;
+  const char* what = S_ISLNK(st.st_mode)                          ? "a symbolic link"
+                     : S_ISDIR(st.st_mode)                        ? "a directory"
+                     : S_ISFIFO(st.st_mode)                       ? "a FIFO"
+                     : S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode) ? "a device"
+                                                                  : "not a regular file";
+  throw InputError(path, std::string("exists and is ") + what +
+                             "; the program writes only over regular files (remove it first)");
+}
+
+void write_file_atomically(const fs::path& path, std::string_view content) {
+  require_regular_or_absent(path);
+  rename_over(write_temporary(path, content), path);
+}
+
+void write_if_changed(const fs::path& path, const std::string& content) {
+  if (ReportBatch* batch = ReportBatch::active()) {
+    batch->add(path, content);
+    return;
+  }
+  require_regular_or_absent(path);
+  if (read_if_present(path) == content) return;
+  write_file_atomically(path, content);
+}
+
+StagingFolder::StagingFolder(const fs::path& parent) {
+  for (int attempt = 0; attempt < 8; ++attempt) {
+    std::string name(1, '.');
+    name += std::to_string(static_cast<long>(::getpid()));
+    name += '.';
+    name += random_hex();
+    name += ".staging";
+    path_ = parent / name;
+    if (::mkdir(path_.c_str(), 0700) == 0) return;
+    if (errno != EEXIST) break;
+  }
+  throw std::runtime_error("cannot create a staging folder in " + parent.string() + ": " +
+                           errno_text());
+}
+
+StagingFolder::~StagingFolder() {
+  std::error_code ec;
+  fs::remove_all(path_, ec);
+}
+
+FolderLock::FolderLock(const fs::path& folder) {
+  const fs::path file = folder / ".mpmstab.lock";
+  fd_ = ::open(file.c_str(), O_RDWR | O_CREAT | O_NOFOLLOW | O_CLOEXEC | O_NONBLOCK, 0644);
+  if (fd_ < 0) throw InputError(file, "cannot be opened as a lock file: " + errno_text());
+  struct stat st {};
+  if (::fstat(fd_, &st) != 0 || !S_ISREG(st.st_mode)) {
+    ::close(fd_);
+    throw InputError(file, "is not a regular file; cannot lock " + folder.string());
+  }
+  if (::flock(fd_, LOCK_EX | LOCK_NB) == 0) return;
+  if (errno != EWOULDBLOCK) {
+    const std::string reason = errno_text();
+    ::close(fd_);
+    throw InputError(file, "cannot be locked: " + reason);
+  }
+  std::cerr << "waiting for " << file.string() << ": another mpmstab is writing its reports to "
+            << folder.string() << "\n";
+  while (::flock(fd_, LOCK_EX) != 0) {
+    if (errno == EINTR) continue;
+    const std::string reason = errno_text();
+    ::close(fd_);
+    throw InputError(file, "cannot be locked: " + reason);
+  }
+}
+
+FolderLock::~FolderLock() {
+  if (fd_ >= 0) ::close(fd_);  // closing releases the lock
+}
+
+std::size_t remove_stale_temporaries(const fs::path& folder) {
+  std::size_t removed = 0;
+  std::error_code ec;
+  for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.empty() || name[0] != '.') continue;
+    const long pid = writer_pid(name);
+    if (pid <= 0 || pid == static_cast<long>(::getpid())) continue;
+    if (::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH) continue;  // still running
+    std::error_code rm;
+    if (fs::remove_all(it->path(), rm) > 0 && !rm) ++removed;
+  }
+  return removed;
+}
+
+ReportBatch::ReportBatch() {
+  if (t_active) throw std::logic_error("report batches do not nest");
+  t_active = this;
+}
+
+ReportBatch::~ReportBatch() {
+  if (t_active == this) t_active = nullptr;
+}
+
+ReportBatch* ReportBatch::active() {
+  return t_active;
+}
+
+void ReportBatch::add(const fs::path& path, std::string content) {
+  for (auto& [p, c] : files_) {
+    if (p == path) {
+      c = std::move(content);  // the last version of a file written twice wins
+      return;
+    }
+  }
+  files_.emplace_back(path, std::move(content));
+}
+
+std::size_t ReportBatch::publish() {
+  t_active = nullptr;
+  open_ = false;
+  std::set<fs::path> folders;
+  for (const auto& [path, content] : files_)
+    folders.insert(path.parent_path());
+  std::vector<std::unique_ptr<FolderLock>> locks;  // in sorted order: no two publishers deadlock
+  for (const auto& folder : folders) {
+    locks.push_back(std::make_unique<FolderLock>(folder));
+    remove_stale_temporaries(folder);
+  }
+  // 1. Every target must be writable over and is compared before anything is written.
+  std::vector<std::size_t> changed;
+  for (std::size_t i = 0; i < files_.size(); ++i) {
+    require_regular_or_absent(files_[i].first);
+    if (read_if_present(files_[i].first) != files_[i].second) changed.push_back(i);
+  }
+  // 2. All temporaries, then 3. all renames: a failure before the renames leaves every file as
+  // it was.
+  std::vector<fs::path> temporaries;
+  try {
+    for (const std::size_t i : changed)
+      temporaries.push_back(write_temporary(files_[i].first, files_[i].second));
+  } catch (...) {
+    for (const auto& t : temporaries)
+      ::unlink(t.c_str());
+    throw;
+  }
+  for (std::size_t k = 0; k < changed.size(); ++k) {
+    try {
+      rename_over(temporaries[k], files_[changed[k]].first);
+    } catch (...) {
+      for (std::size_t j = k + 1; j < temporaries.size(); ++j)
+        ::unlink(temporaries[j].c_str());
+      throw;
+    }
+  }
+  files_.clear();
+  return changed.size();
+}
+
+}  // namespace mpmstab

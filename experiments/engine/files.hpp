@@ -1,0 +1,117 @@
+// Every file the program reads or writes goes through this one place.
+//
+// Reading: only a regular file of bounded size is read; a FIFO, a device or a folder is refused
+// without blocking on it. Writing: a temporary file with a random name is created beside the
+// target (O_CREAT | O_EXCL | O_NOFOLLOW, so nothing planted at that name is followed), written,
+// flushed to disk and renamed over the target; a target that exists and is not a regular file
+// (a symbolic link, a FIFO, a device, a folder) is refused. Readers therefore see the old content
+// or the new one, never a part, and nothing outside the target's folder is ever written.
+//
+// A report set is whole or absent: while a ReportBatch is open, write_if_changed only collects
+// the files; ReportBatch::publish() then writes every temporary and renames them one after the
+// other under an exclusive lock on the folder, so two sweeps never interleave their files.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace mpmstab {
+
+// An input or an output the program refuses; the command exits with status 2. The message names
+// the file.
+class InputError : public std::runtime_error {
+ public:
+  explicit InputError(const std::string& message) : std::runtime_error(message) {}
+  // "<path>: <detail>"; detail() is the part after the path.
+  InputError(const std::filesystem::path& path, std::string detail)
+      : std::runtime_error(path.string() + ": " + detail), detail_(std::move(detail)) {}
+  const std::string& detail() const { return detail_; }
+
+ private:
+  std::string detail_;
+};
+
+// The largest input read (spec, reference, results, cache record, benchmark): 64 MiB.
+inline constexpr std::uintmax_t kMaxInputBytes = std::uintmax_t{64} << 20;
+
+// The content of a regular file of at most `max_bytes`. Throws InputError naming the path when it
+// is absent, not a regular file, too large or unreadable.
+std::string read_input(const std::filesystem::path& path,
+                       std::uintmax_t max_bytes = kMaxInputBytes);
+
+// As read_input, but an absent file gives std::nullopt.
+std::optional<std::string> read_if_present(const std::filesystem::path& path,
+                                           std::uintmax_t max_bytes = kMaxInputBytes);
+
+// Throws InputError when `path` exists and is not a regular file (lstat: a symbolic link is not
+// one): the program never writes over such a thing.
+void require_regular_or_absent(const std::filesystem::path& path);
+
+// Writes `content` to `path` through a fresh temporary file and a rename. Throws InputError for a
+// refused target, std::runtime_error naming the path when the folder cannot be written.
+void write_file_atomically(const std::filesystem::path& path, std::string_view content);
+
+// As write_file_atomically, unless the file already holds exactly `content` (then it is left as
+// it is, modification time included). Inside an open ReportBatch the file is only collected.
+void write_if_changed(const std::filesystem::path& path, const std::string& content);
+
+// A private folder (mode 0700, random name, removed with everything in it on destruction) inside
+// `parent`, for another program's outputs before they are published.
+class StagingFolder {
+ public:
+  explicit StagingFolder(const std::filesystem::path& parent);
+  ~StagingFolder();
+  StagingFolder(const StagingFolder&) = delete;
+  StagingFolder& operator=(const StagingFolder&) = delete;
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+// An exclusive lock (flock) on <folder>/.mpmstab.lock, held for the object's lifetime. A second
+// holder waits, after saying on stderr whom it waits for.
+class FolderLock {
+ public:
+  explicit FolderLock(const std::filesystem::path& folder);
+  ~FolderLock();
+  FolderLock(const FolderLock&) = delete;
+  FolderLock& operator=(const FolderLock&) = delete;
+
+ private:
+  int fd_ = -1;
+};
+
+// Removes the temporaries and staging folders in `folder` left by a process that no longer runs
+// (killed while writing). Returns how many it removed.
+std::size_t remove_stale_temporaries(const std::filesystem::path& folder);
+
+// The files of one report set, published together (see above). Batches do not nest; one is open
+// per thread at most.
+class ReportBatch {
+ public:
+  ReportBatch();
+  ~ReportBatch();  // an unpublished batch writes nothing
+  ReportBatch(const ReportBatch&) = delete;
+  ReportBatch& operator=(const ReportBatch&) = delete;
+
+  // Writes every collected file whose content changed: all temporaries first, then the renames,
+  // under the lock of each folder written to. Returns how many files changed.
+  std::size_t publish();
+
+  // The batch open on this thread, if any.
+  static ReportBatch* active();
+  void add(const std::filesystem::path& path, std::string content);
+
+ private:
+  std::vector<std::pair<std::filesystem::path, std::string>> files_;
+  bool open_ = true;
+};
+
+}  // namespace mpmstab
