@@ -219,7 +219,6 @@ std::vector<ParamIssue> validate(const RunParams& p) {
   };
   constexpr int kMaxCells = 10'000'000;
   constexpr int kMaxPpc = 64;
-  constexpr double kMaxParticles = 1e8;
 
   if (!std::isfinite(p.E) || !(p.E > 0)) bad("E", "must be a finite number > 0, got " + show(p.E));
   if (!std::isfinite(p.A) || !(p.A >= 0))
@@ -245,8 +244,12 @@ std::vector<ParamIssue> validate(const RunParams& p) {
     bad("ppc",
         "must be an integer in [1, " + std::to_string(kMaxPpc) + "], got " + std::to_string(p.ppc));
   }
-  if (p.cells >= 1 && p.ppc >= 1 && double(p.cells) * p.ppc > kMaxParticles) {
-    bad("cells", "cells * ppc must not exceed 1e8 particles");
+  if (p.cells >= 1 && p.ppc >= 1 && run_bytes(p) > kMaxRunBytes) {
+    bad("cells", "cells * ppc = " + show(double(p.cells) * p.ppc) + " particles need about " +
+                     show(std::round(run_bytes(p) / double(1 << 20))) + " MiB (" +
+                     std::to_string(kBytesPerParticle) +
+                     " bytes per particle); the limit is 2048 MiB (" +
+                     show(std::floor(double(kMaxRunBytes) / kBytesPerParticle)) + " particles)");
   }
   if (p.transfer == Transfer::blend &&
       (!std::isfinite(p.flip_fraction) || !(p.flip_fraction > 0) || !(p.flip_fraction < 1))) {
@@ -259,6 +262,21 @@ std::vector<ParamIssue> validate(const RunParams& p) {
   if (p.max_steps < 1) bad("max_steps", "must be >= 1, got " + std::to_string(p.max_steps));
   if (p.observe.history_stride < 1) {
     bad("history_stride", "must be >= 1, got " + std::to_string(p.observe.history_stride));
+  } else if (p.observe.history && p.max_steps >= 1) {
+    // The rows a run keeps in memory: every stride-th of its steps (at most max_steps with a
+    // state-dependent policy).
+    std::optional<std::int64_t> steps;
+    if (fixed && std::isfinite(p.dt) && p.dt > 0 && std::isfinite(p.T) && p.T > 0) {
+      steps = step_count(p.T, std::min(p.dt, p.T));
+    } else if (!fixed) {
+      steps = p.max_steps;
+    }
+    if (steps && *steps / p.observe.history_stride > kMaxHistoryRows) {
+      bad("history_stride", "keeps " + show(double(*steps / p.observe.history_stride)) +
+                                " history rows in memory; the limit is " +
+                                show(double(kMaxHistoryRows)) + " (raise history_stride" +
+                                (fixed ? "" : " or lower max_steps") + ")");
+    }
   }
   // A scene declares the boundaries it is posed with (scene.hpp).
   if (!scene_supports(p.scene, p.bc)) {

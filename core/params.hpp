@@ -128,6 +128,18 @@ struct ParamIssue {
 // columns (the command line spells them with '-' for '_'). max_steps is a limit, not listed.
 const std::vector<std::string>& parameter_names();
 
+// Resource limits, so that no input can make a run allocate until the kernel kills it.
+// Memory: the particle arrays (7 state arrays, the stencil's node index, weights and gradients
+// for up to 4 nodes, the observers' per-particle values) take at most kBytesPerParticle per
+// particle and the grid 40 bytes per node; a run may need at most kMaxRunBytes (2 GiB).
+inline constexpr std::int64_t kBytesPerParticle = 160;
+inline constexpr std::int64_t kMaxRunBytes = std::int64_t{2} << 30;
+inline double run_bytes(const RunParams& p) {
+  return double(p.cells) * p.ppc * kBytesPerParticle + (double(p.cells) + 1) * 40.0;
+}
+// History rows kept in memory (about 40 bytes each); a longer history is streamed instead.
+inline constexpr std::int64_t kMaxHistoryRows = 10'000'000;
+
 // All checks on a RunParams, in one place. Empty result: the parameters are valid.
 std::vector<ParamIssue> validate(const RunParams& p);
 

@@ -28,7 +28,7 @@ struct NextStep {
 class Driver {
  public:
   // 1. Set up the scene and the quantities that do not depend on the run; 2. the observers.
-  explicit Driver(const RunParams& p);
+  Driver(const RunParams& p, const HistorySink& sink);
 
   // A scene's initial state can already be inadmissible (a steffen amplitude with F_p(0) <= 0,
   // or a cpGIMP support wider than 2 h): the run then fails at step 0, before any step reads it.
@@ -48,9 +48,12 @@ class Driver {
  private:
   double bound_now() const;
   FinalState final_state() const;
+  void keep(const HistoryRow& row);
 
   const RunParams& p_;
   const Observe& obs_;
+  const HistorySink& sink_;
+  const bool history_;  // rows are made: kept (observe.history) or handed to the sink
   const double h_;
   const TimeStepPolicy policy_;
   const bool uses_bound_;  // the policy reads eq. (108) of the current state
@@ -69,9 +72,11 @@ class Driver {
   double dt_max_ = 0;
 };
 
-Driver::Driver(const RunParams& p)
+Driver::Driver(const RunParams& p, const HistorySink& sink)
     : p_(p),
       obs_(p.observe),
+      sink_(sink),
+      history_(p.observe.history || static_cast<bool>(sink)),
       h_(1.0 / p.cells),
       policy_(p.stepping.policy),
       uses_bound_(policy_ == TimeStepPolicy::adaptive || policy_ == TimeStepPolicy::min),
@@ -87,7 +92,7 @@ Driver::Driver(const RunParams& p)
   if (fixed_dt_) r_.steps_planned = *step_count(p.T, std::min(*fixed_dt_, p.T));
 
   if (obs_.crossings) crossing_counter_.emplace(sim_.particles(), h_);
-  if (obs_.history && r_.steps_planned > 0) {
+  if (obs_.history && !sink_ && r_.steps_planned > 0) {
     const auto rows = r_.steps_planned / obs_.history_stride + 1;
     r_.history.reserve(static_cast<std::size_t>(std::min<std::int64_t>(rows, 10'000'000)));
   }
@@ -153,7 +158,7 @@ bool Driver::fails_after_step() {
   failure->time = sim_.time();
   r_.failure = failure;
   // Keep the last admissible step in the history even when the stride skipped it.
-  if (pending_row_) r_.history.push_back(*pending_row_);
+  if (pending_row_) keep(*pending_row_);
   return true;
 }
 
@@ -176,13 +181,21 @@ void Driver::observe_step(bool last) {
       row.dt_stable = bound_;
     }
   }
-  if (obs_.history) {
+  if (history_) {
     if (sim_.steps() % obs_.history_stride == 0 || last) {
-      r_.history.push_back(row);
+      keep(row);
       pending_row_.reset();
     } else {
       pending_row_ = row;
     }
+  }
+}
+
+void Driver::keep(const HistoryRow& row) {
+  if (sink_) {
+    sink_(row);
+  } else {
+    r_.history.push_back(row);
   }
 }
 
@@ -244,8 +257,8 @@ std::string_view to_string(Outcome o) {
   return "?";
 }
 
-RunResult run(const RunParams& p, const std::atomic<bool>* cancel) {
-  Driver driver(p);
+RunResult run(const RunParams& p, const std::atomic<bool>* cancel, const HistorySink& history) {
+  Driver driver(p, history);
   driver.check_initial_state();
   const auto start = std::chrono::steady_clock::now();
   while (driver.running()) {

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <atomic>
+#include <functional>
 
 #include "params.hpp"
 #include "result.hpp"
@@ -12,6 +13,13 @@ namespace mpmstab {
 // with stable = false and the failure's reason, step and time. When `cancel` is given and
 // becomes true, the run stops within a few thousand steps and returns with interrupted = true
 // (such a result is incomplete: it is neither a verdict nor to be cached).
-RunResult run(const RunParams& p, const std::atomic<bool>* cancel = nullptr);
+//
+// With a `history` sink, the run hands it every history row as it is made (every
+// observe.history_stride-th step, and the last admissible one) and keeps none: the memory of a
+// run does not grow with its length. Without one, the rows are kept in RunResult::history when
+// observe.history is set (validate() bounds their number).
+using HistorySink = std::function<void(const HistoryRow&)>;
+RunResult run(const RunParams& p, const std::atomic<bool>* cancel = nullptr,
+              const HistorySink& history = {});
 
 }  // namespace mpmstab

@@ -136,19 +136,18 @@ std::string text_summary(const RunResult& r) {
   return s.str();
 }
 
-std::string history_csv(const RunResult& r) {
+// One line of the history CSV (header: kHistoryHeader).
+constexpr std::string_view kHistoryHeader = "step,time,error,dt_stable,crossings\n";
+std::string history_line(const HistoryRow& h) {
   std::ostringstream s;
   s.precision(17);
-  s << "step,time,error,dt_stable,crossings\n";
-  for (const auto& h : r.history) {
-    s << h.step << ',' << h.time << ',';
-    if (h.error) s << *h.error;
-    s << ',';
-    if (h.dt_stable) s << *h.dt_stable;
-    s << ',';
-    if (h.crossings) s << *h.crossings;
-    s << '\n';
-  }
+  s << h.step << ',' << h.time << ',';
+  if (h.error) s << *h.error;
+  s << ',';
+  if (h.dt_stable) s << *h.dt_stable;
+  s << ',';
+  if (h.crossings) s << *h.crossings;
+  s << '\n';
   return s.str();
 }
 
@@ -164,14 +163,21 @@ int cmd_run(const std::vector<std::string_view>& argv) {
     throw UsageError("unexpected argument '" + std::string(args.positional().front()) + "'");
   }
   const RunParams params = params_from(args);
-  const RunResult result = run(params);
+  // The history file is checked before the run and its rows streamed into a temporary file as
+  // the run makes them; it replaces FILE only when the run is over.
+  std::optional<FileWriter> history;
   if (auto path = args.value("history")) {
     try {
-      write_file_atomically(std::string(*path), history_csv(result));
+      history.emplace(std::string(*path));
     } catch (const std::runtime_error& e) {
       throw UsageError(std::string("--history: ") + e.what());
     }
+    history->write(kHistoryHeader);
   }
+  HistorySink sink;
+  if (history) sink = [&history](const HistoryRow& h) { history->write(history_line(h)); };
+  const RunResult result = run(params, nullptr, sink);
+  if (history) history->commit();
   if (args.flag("json")) {
     std::cout << to_json(result).dump(2) << "\n";
   } else {

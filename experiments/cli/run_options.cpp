@@ -88,8 +88,9 @@ void read_measurements(const Args& a, RunParams& p) {
   if (auto v = a.value("max-steps")) p.max_steps = parse_int(*v, "max-steps");
   if (auto v = a.value("history-stride"))
     p.observe.history_stride = parse_int(*v, "history-stride");
-  p.observe.history = a.value("history").has_value();
-  if (p.observe.history && a.value("history")->empty()) {
+  // --history FILE streams the rows into FILE as the run makes them (run()'s sink): none is
+  // kept in memory, so observe.history (rows kept) stays off.
+  if (a.value("history") && a.value("history")->empty()) {
     throw UsageError("--history: needs a file name");
   }
 }

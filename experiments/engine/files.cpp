@@ -59,42 +59,52 @@ fs::path temporary_beside(const fs::path& target) {
   return target.parent_path() / name;
 }
 
-void close_quietly(int fd) {
-  if (fd >= 0) ::close(fd);
+// A fresh temporary beside `target`, opened for writing; sets `tmp` to its path.
+int open_temporary(const fs::path& target, fs::path& tmp) {
+  for (int attempt = 0; attempt < 8; ++attempt) {
+    tmp = temporary_beside(target);
+    const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
+    if (fd >= 0) return fd;
+    if (errno != EEXIST) break;
+  }
+  throw std::runtime_error("cannot write " + target.string() +
+                           ": creating a temporary file: " + errno_text());
+}
+
+// Writes all of `data` to `fd`; on failure closes it, removes `tmp` and throws.
+void write_all(int fd, std::string_view data, const fs::path& tmp, const fs::path& target) {
+  std::size_t done = 0;
+  while (done < data.size()) {
+    const ssize_t n = ::write(fd, data.data() + done, data.size() - done);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      const std::string reason = errno_text();
+      ::close(fd);
+      ::unlink(tmp.c_str());
+      throw std::runtime_error("cannot write " + target.string() + ": write: " + reason);
+    }
+    done += static_cast<std::size_t>(n);
+  }
+}
+
+// Flushes `fd` to disk and closes it; on failure removes `tmp` and throws.
+void finish(int fd, const fs::path& tmp, const fs::path& target) {
+  const bool synced = ::fsync(fd) == 0;
+  const std::string reason = errno_text();
+  const bool closed = ::close(fd) == 0;
+  if (!synced || !closed) {
+    ::unlink(tmp.c_str());
+    throw std::runtime_error("cannot write " + target.string() + ": " +
+                             (synced ? "close: " + errno_text() : "fsync: " + reason));
+  }
 }
 
 // Writes `content` to a fresh temporary beside `target` and returns its path.
 fs::path write_temporary(const fs::path& target, std::string_view content) {
   fs::path tmp;
-  int fd = -1;
-  for (int attempt = 0; attempt < 8 && fd < 0; ++attempt) {
-    tmp = temporary_beside(target);
-    fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
-    if (fd < 0 && errno != EEXIST) break;
-  }
-  auto fail = [&](const std::string& what) {
-    const std::string reason = errno_text();
-    close_quietly(fd);
-    if (fd >= 0) ::unlink(tmp.c_str());
-    throw std::runtime_error("cannot write " + target.string() + ": " + what + ": " + reason);
-  };
-  if (fd < 0) fail("creating a temporary file");
-  std::size_t done = 0;
-  while (done < content.size()) {
-    const ssize_t n = ::write(fd, content.data() + done, content.size() - done);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      fail("write");
-    }
-    done += static_cast<std::size_t>(n);
-  }
-  if (::fsync(fd) != 0) fail("fsync");
-  const int closed = ::close(fd);
-  fd = -1;
-  if (closed != 0) {
-    ::unlink(tmp.c_str());
-    throw std::runtime_error("cannot write " + target.string() + ": close: " + errno_text());
-  }
+  const int fd = open_temporary(target, tmp);
+  write_all(fd, content, tmp, target);
+  finish(fd, tmp, target);
   return tmp;
 }
 
@@ -203,6 +213,47 @@ void require_regular_or_absent(const fs::path& path) {
 void write_file_atomically(const fs::path& path, std::string_view content) {
   require_regular_or_absent(path);
   rename_over(write_temporary(path, content), path);
+}
+
+FileWriter::FileWriter(const fs::path& target) : target_(target) {
+  require_regular_or_absent(target_);
+  fd_ = open_temporary(target_, temporary_);
+}
+
+FileWriter::~FileWriter() {
+  if (fd_ >= 0) {
+    ::close(fd_);
+    ::unlink(temporary_.c_str());
+  }
+}
+
+void FileWriter::flush() {
+  const int fd = fd_;
+  fd_ = -1;  // write_all closes it on failure
+  write_all(fd, buffer_, temporary_, target_);
+  fd_ = fd;
+  buffer_.clear();
+}
+
+void FileWriter::write(std::string_view text) {
+  if (fd_ < 0) throw std::logic_error("FileWriter: write after commit");
+  buffer_ += text;
+  if (buffer_.size() >= (std::size_t{1} << 20)) flush();
+}
+
+void FileWriter::commit() {
+  if (fd_ < 0) throw std::logic_error("FileWriter: commit twice");
+  flush();
+  const int fd = fd_;
+  fd_ = -1;
+  finish(fd, temporary_, target_);
+  try {
+    require_regular_or_absent(target_);  // planted while the run ran?
+  } catch (...) {
+    ::unlink(temporary_.c_str());
+    throw;
+  }
+  rename_over(temporary_, target_);
 }
 
 void write_if_changed(const fs::path& path, const std::string& content) {

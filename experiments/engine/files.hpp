@@ -57,6 +57,25 @@ void require_regular_or_absent(const std::filesystem::path& path);
 // refused target, std::runtime_error naming the path when the folder cannot be written.
 void write_file_atomically(const std::filesystem::path& path, std::string_view content);
 
+// A file written piece by piece and published at the end as write_file_atomically publishes it:
+// the target is checked at construction and untouched until commit(); destroyed without
+// commit(), the temporary is removed. Writes are buffered (1 MiB).
+class FileWriter {
+ public:
+  explicit FileWriter(const std::filesystem::path& target);
+  ~FileWriter();
+  FileWriter(const FileWriter&) = delete;
+  FileWriter& operator=(const FileWriter&) = delete;
+  void write(std::string_view text);
+  void commit();
+
+ private:
+  void flush();
+  std::filesystem::path target_, temporary_;
+  int fd_ = -1;
+  std::string buffer_;
+};
+
 // As write_file_atomically, unless the file already holds exactly `content` (then it is left as
 // it is, modification time included). Inside an open ReportBatch the file is only collected.
 void write_if_changed(const std::filesystem::path& path, const std::string& content);

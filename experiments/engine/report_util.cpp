@@ -115,5 +115,4 @@ std::string sci(double v, int digits) {
   return mantissa + "e" + (negative ? "-" : "") + exponent;
 }
 
-
 }  // namespace mpmstab
