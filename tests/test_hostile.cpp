@@ -1,6 +1,7 @@
 // Hostile input: every bad input to every command gets a message naming the key, option or
 // file, exit status 2, and leaves every existing result file byte for byte unchanged.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -132,6 +133,98 @@ TEST_F(Hostile, EveryBadInputExitsTwoNamesTheCulpritAndChangesNothing) {
   fs::create_directories(dir / "adir.json");
   write("afile", "x");
 
+  // Loose JSON: duplicate keys, a byte-order mark, control characters in any string.
+  const std::string gcase = R"({"method": "gimp", "E": 4, "A": 0.01, "dt": 1e-3})";
+  auto spec_with = [&](const std::string& name, const std::string& members) {
+    write(name, R"({"name": "x", "report": "cases", )" + members + "}");
+  };
+  spec_with("dup_top.json", R"("name": "y", "cases": [)" + gcase + "]");
+  spec_with("dup_case.json",
+            R"("cases": [{"method": "gimp", "E": 4, "E": 8, "A": 0.01, "dt": 1e-3}])");
+  spec_with("dup_defaults.json", R"("defaults": {"T": 0.5, "T": 0.01}, "cases": [)" + gcase + "]");
+  write("bom.json", "\xEF\xBB\xBF" + std::string(R"({"name": "x", "report": "cases", "cases": [)") +
+                        gcase + "]}");
+  spec_with("title_nl.json", R"("title": "two\nlines", "cases": [)" + gcase + "]");
+  spec_with("title_cr.json", R"("title": "a\rb", "cases": [)" + gcase + "]");
+  spec_with("desc_tab.json", R"("description": "a\tb", "cases": [)" + gcase + "]");
+  spec_with("title_esc.json", R"("title": "a\u001b[31mred", "cases": [)" + gcase + "]");
+  spec_with("title_nul.json", R"("title": "a\u0000b", "cases": [)" + gcase + "]");
+  spec_with("title_del.json", "\"title\": \"a\x7f b\", \"cases\": [" + gcase + "]");
+  spec_with("key_nl.json",
+            R"("cases": [{"method": "gimp", "E": 4, "A": 0.01, "dt": 1e-3, "c\nells": 10}])");
+  spec_with("scene_nl.json",
+            R"("cases": [{"method": "gimp", "E": 4, "A": 0.01, "dt": 1e-3, "scene": "sine\n"}])");
+  spec_with("nan_string.json",
+            R"("cases": [{"method": "gimp", "E": "NaN", "A": 0.01, "dt": 1e-3}])");
+  spec_with("inf_string.json",
+            R"("cases": [{"method": "gimp", "E": "Infinity", "A": 0.01, "dt": 1e-3}])");
+  spec_with("neg_zero_E.json",
+            R"("cases": [{"method": "gimp", "E": -0.0, "A": 0.01, "dt": 1e-3}])");
+  spec_with("nan_literal.json",
+            R"("cases": [{"method": "gimp", "E": NaN, "A": 0.01, "dt": 1e-3}])");
+  spec_with("trailing.json", R"("cases": [)" + gcase + "]} {");
+  spec_with("comment.json", R"(/* c */ "cases": [)" + gcase + "]");
+  // Bounded resources.
+  spec_with(
+      "memory.json",
+      R"("cases": [{"method": "gimp", "E": 4, "A": 0.01, "dt": 1e-3, "cells": 10000000, "ppc": 4}])");
+  write(
+      "history_rows.json",
+      R"({"name": "x", "report": "cases", "record": ["history"], "cases": [{"method": "gimp", "E": 4, "A": 0.01, "dt": 1e-8, "T": 1}]})");
+  write(
+      "history_adaptive.json",
+      R"({"name": "x", "report": "cases", "record": ["history"], "cases": [{"method": "gimp", "E": 4, "A": 0.01, "policy": "adaptive"}]})");
+  {
+    std::ofstream big(dir / "big.json");
+    big << R"({"name": "x", "report": "cases", "description": ")" << std::string(5u << 20, 'a')
+        << R"(", "cases": [)" << gcase << "]}";
+  }
+  {
+    std::ofstream(dir / "huge_ref.csv") << "A,E\n";
+    fs::resize_file(dir / "huge_ref.csv", (std::uintmax_t{64} << 20) + 1);  // sparse
+  }
+  // Inputs that are not regular files: reading must not block or eat memory.
+  ASSERT_EQ(::mkfifo((dir / "fifo.json").c_str(), 0644), 0);
+  ASSERT_EQ(::mkfifo((dir / "fifo.csv").c_str(), 0644), 0);
+  fs::create_symlink("/dev/zero", dir / "zero.json");
+  auto t1_with_reference = [&](const std::string& name, const std::string& reference) {
+    write(
+        name,
+        R"({"name": "t1", "report": "table1", "reference": ")" + reference +
+            R"(", "defaults": {"T": 0.01, "cells": 10}, "cases": [{"method": "gimp", "E": 4, "A": 0.01, "dt": 1e-3}]})");
+  };
+  t1_with_reference("ref_fifo.json", "fifo.csv");
+  t1_with_reference("ref_zero.json", "/dev/zero");
+  t1_with_reference("ref_absent.json", "absent.csv");
+  t1_with_reference("ref_dir.json", "adir.json");
+  t1_with_reference("ref_huge.json", "huge_ref.csv");
+  write("ref_unterminated.csv", "A,E,dt\n\"0.01,4,1e-3\n");
+  t1_with_reference("ref_unterminated.json", "ref_unterminated.csv");
+  write("ref_fields.csv", "A,E,dt\n0.01,4\n");
+  t1_with_reference("ref_fields.json", "ref_fields.csv");
+  write("ref_empty.csv", "");
+  t1_with_reference("ref_empty.json", "ref_empty.csv");
+  // Results files that are not what a sweep writes, each in a folder of its own.
+  const std::vector<std::pair<std::string, std::string>> bad_results = {
+      {"empty", ""},
+      {"cases_empty", R"({"cases": []})"},
+      {"case_empty", R"({"cases": [{}, {}]})"},
+      {"truncated", R"({"cases": [{"method": "gimp")"},
+      {"array", "[]"},
+      {"dup", R"({"cases": [], "cases": []})"},
+      {"bom", "\xEF\xBB\xBF{}"},
+      {"cases_string", R"({"cases": "none"})"},
+  };
+  for (const auto& [name, text] : bad_results) {
+    fs::create_directories(dir / ("res_" + name));
+    std::ofstream(dir / ("res_" + name) / "good.json") << text;
+  }
+  // A shard folder whose cache holds garbage under the right keys is no source of results.
+  fs::create_directories(dir / "shard_bad" / "cache");
+  for (const auto& e : fs::directory_iterator(dir / "out" / "cache")) {
+    std::ofstream(dir / "shard_bad" / "cache" / e.path().filename()) << R"({"result": 1})";
+  }
+
   const std::vector<Bad> cases = {
       // run
       {"run --method gimp --E -1 --A 0.01 --dt 1e-3", "--E"},
@@ -203,8 +296,73 @@ TEST_F(Hostile, EveryBadInputExitsTwoNamesTheCulpritAndChangesNothing) {
       {"bless DIR/good.json --reference DIR/out/ref", "--reason"},
       {"bless DIR/malformed.json --reason x --reference DIR/out/ref", "malformed JSON"},
       {"frobnicate", "frobnicate"},
+      // strict JSON, each refusal naming the key's path
+      {"sweep DIR/dup_top.json --out DIR/out", "name: is given twice"},
+      {"sweep DIR/dup_case.json --out DIR/out", "cases[0].E: is given twice"},
+      {"sweep DIR/dup_defaults.json --out DIR/out", "defaults.T: is given twice"},
+      {"sweep DIR/bom.json --out DIR/out", "byte-order mark"},
+      {"sweep DIR/title_nl.json --out DIR/out", "title: contains the control character U+000A"},
+      {"sweep DIR/title_cr.json --out DIR/out", "title: contains the control character U+000D"},
+      {"sweep DIR/desc_tab.json --out DIR/out", "description: contains the control character"},
+      {"sweep DIR/title_esc.json --out DIR/out", "title: contains the control character U+001B"},
+      {"sweep DIR/title_nul.json --out DIR/out", "title: contains the control character U+0000"},
+      {"sweep DIR/title_del.json --out DIR/out", "title: contains the control character U+007F"},
+      {"sweep DIR/key_nl.json --out DIR/out", "a key contains the control character"},
+      {"sweep DIR/scene_nl.json --out DIR/out", "cases[0].scene: contains the control character"},
+      {"sweep DIR/nan_string.json --out DIR/out", "cases[0].E: must be a number"},
+      {"sweep DIR/inf_string.json --out DIR/out", "cases[0].E: must be a number"},
+      {"sweep DIR/neg_zero_E.json --out DIR/out", "cases[0].E"},
+      {"sweep DIR/nan_literal.json --out DIR/out", "malformed JSON"},
+      {"sweep DIR/trailing.json --out DIR/out", "malformed JSON"},
+      {"sweep DIR/comment.json --out DIR/out", "malformed JSON"},
+      // bounded resources
+      {"sweep DIR/memory.json --out DIR/out", "the limit is 2048 MiB"},
+      {"run --method gimp --E 4 --A 0.01 --dt 1e-3 --cells 10000000 --ppc 2", "2048 MiB"},
+      {"sweep DIR/history_rows.json --out DIR/out", "history rows in memory; the limit is"},
+      {"sweep DIR/history_adaptive.json --out DIR/out", "or lower max_steps"},
+      {"sweep DIR/big.json --out DIR/out", "larger than the limit of 4 MiB"},
+      {"sweep DIR/ref_huge.json --out DIR/out", "larger than the limit of 64 MiB"},
+      // inputs that are not regular files: refused at once, never read
+      {"sweep DIR/fifo.json --out DIR/out", "fifo.json: is not a regular file"},
+      {"sweep DIR/zero.json --out DIR/out", "zero.json: is not a regular file"},
+      {"sweep /dev/zero --out DIR/out", "/dev/zero: is not a regular file"},
+      {"index DIR/fifo.json --out DIR/out", "fifo.json: is not a regular file"},
+      {"plot DIR/fifo.json --out DIR/out", "fifo.json: is not a regular file"},
+      {"check DIR/zero.json --reference DIR/out", "zero.json: is not a regular file"},
+      // a reference that cannot be read is refused before any case runs
+      {"sweep DIR/ref_fifo.json --out DIR/out", "fifo.csv: is not a regular file"},
+      {"sweep DIR/ref_zero.json --out DIR/out", "/dev/zero: is not a regular file"},
+      {"sweep DIR/ref_absent.json --out DIR/out", "absent.csv: does not exist"},
+      {"sweep DIR/ref_dir.json --out DIR/out", "adir.json: is a directory"},
+      {"sweep DIR/ref_unterminated.json --out DIR/out", "unterminated quoted field"},
+      {"sweep DIR/ref_fields.json --out DIR/out", "2 fields, header has 3"},
+      {"sweep DIR/ref_empty.json --out DIR/out", "no header line"},
+      {"compare DIR/fifo.json --out DIR/out", "fifo.json: is not a regular file"},
+      // results files that are not what a sweep writes
+      {"index DIR/good.json --out DIR/res_empty", "res_empty/good.json: is empty"},
+      {"index DIR/good.json --out DIR/res_cases_empty", "0 rows for the spec's 2 cases"},
+      {"index DIR/good.json --out DIR/res_case_empty", "cases[0].method: is missing"},
+      {"index DIR/good.json --out DIR/res_truncated", "malformed JSON"},
+      {"index DIR/good.json --out DIR/res_array", "must be a JSON object"},
+      {"index DIR/good.json --out DIR/res_dup", "cases: is given twice"},
+      {"index DIR/good.json --out DIR/res_bom", "byte-order mark"},
+      {"index DIR/good.json --out DIR/res_cases_string", "cases: must be an array"},
+      {"merge DIR/good.json DIR/shard_bad --out DIR/out", "are in none of the folders"},
+      {"merge DIR/good.json DIR/absent_shard --out DIR/out", "not a folder"},
+      // the history file: never anything but a regular file
+      {"run --method gimp --E 4 --A 0.01 --dt 1e-3 --history /dev/null", "a device"},
+      {"run --method gimp --E 4 --A 0.01 --dt 1e-3 --history DIR/fifo.csv", "a FIFO"},
+      {"run --method gimp --E 4 --A 0.01 --dt 1e-3 --history DIR/zero.json", "a symbolic link"},
+      {"run --method gimp --E 4 --A 0.01 --dt 1e-3 --history DIR/adir.json", "a directory"},
+      // a reason is one line of the audit log
+      {"bless DIR/good.json --reference DIR/out/ref --reason 'a\n## forged'", "--reason"},
+      {"bless DIR/good.json --reference DIR/out/ref --reason 'a\x1b[2Jb'", "--reason"},
+      {"bless DIR/good.json --reference DIR/out/ref --reason 'a\rb'", "--reason"},
+      // job scripts: no control character in any value
+      {"slurm DIR/good.json --shards 2 --partition 'p\n#SBATCH --x' --out DIR/out", "--partition"},
+      {"slurm DIR/good.json --shards 2 --account 'a\tb' --out DIR/out", "--account"},
   };
-  ASSERT_GE(cases.size(), 40u);
+  ASSERT_GE(cases.size(), 120u);
   for (const auto& c : cases) {
     const auto [status, output] = mpmstab::test_support::run_mpmstab(expand(c.args, dir));
     EXPECT_EQ(status, 2) << c.args << "\n" << output;
@@ -213,6 +371,64 @@ TEST_F(Hostile, EveryBadInputExitsTwoNamesTheCulpritAndChangesNothing) {
   }
   // Every existing result is byte for byte as it was, and nothing was added.
   EXPECT_EQ(snapshot(), before);
+}
+
+// A symbolic link (to a file outside the folder, or to a device), a FIFO or a folder planted at
+// each name a sweep writes: the sweep exits 2 naming it, the trap is still there and what it
+// points to is unchanged. Each trap gets a results folder of its own.
+TEST_F(Hostile, TrapsAtEveryOutputNameAreRefusedAndLeftAsTheyAre) {
+  const fs::path outside = dir / "outside.txt";
+  std::ofstream(outside) << "precious\n";
+  int n = 0;
+  for (const char* name : {"good.csv", "good.json", "good.md", "timings.json", ".mpmstab.lock"}) {
+    for (const char* kind : {"symlink", "device", "fifo", "folder"}) {
+      const fs::path folder = dir / ("trap_" + std::to_string(n++));
+      fs::create_directories(folder);
+      const fs::path trap = folder / name;
+      if (std::string(kind) == "symlink") fs::create_symlink(outside, trap);
+      if (std::string(kind) == "device") fs::create_symlink("/dev/null", trap);
+      if (std::string(kind) == "fifo") {
+        ASSERT_EQ(::mkfifo(trap.c_str(), 0644), 0);
+      }
+      if (std::string(kind) == "folder") fs::create_directories(trap);
+      const auto [status, output] = mpmstab::test_support::run_mpmstab(
+          "sweep " + (dir / "good.json").string() + " --out " + folder.string());
+      EXPECT_EQ(status, 2) << name << " as " << kind << "\n" << output;
+      EXPECT_NE(output.find(trap.string()), std::string::npos) << output;
+      EXPECT_EQ(output.find("internal error"), std::string::npos) << output;
+      const auto st = fs::symlink_status(trap);
+      EXPECT_TRUE(fs::is_symlink(st) || fs::is_fifo(st) || fs::is_directory(st)) << trap;
+      // No report of the set was published beside the trap.
+      for (const char* other : {"good.csv", "good.json", "good.md"}) {
+        if (std::string(other) != name) {
+          EXPECT_FALSE(fs::exists(folder / other)) << trap;
+        }
+      }
+    }
+  }
+  EXPECT_EQ(read(outside), "precious\n");
+  EXPECT_EQ(snapshot(), before);
+}
+
+// Temporaries cannot be planted: their names are random and created with O_EXCL | O_NOFOLLOW,
+// so a link at any name the old scheme used (<file>.tmp.<pid>) leads nowhere.
+TEST_F(Hostile, LinksAtGuessableTemporaryNamesAreNotFollowed) {
+  const fs::path folder = dir / "guess";
+  fs::create_directories(folder);
+  const fs::path outside = dir / "outside_tmp.txt";
+  std::ofstream(outside) << "precious\n";
+  // The next pids the program may get, for every file it writes.
+  const long pid = static_cast<long>(::getpid());
+  for (const char* name : {"good.csv", "good.json", "good.md", "timings.json"}) {
+    for (long p = pid; p < pid + 64; ++p)
+      fs::create_symlink(outside, folder / (std::string(name) + ".tmp." + std::to_string(p)));
+    fs::create_symlink(outside, folder / (std::string(".") + name + ".tmp"));
+  }
+  const auto [status, output] = mpmstab::test_support::run_mpmstab(
+      "sweep " + (dir / "good.json").string() + " --out " + folder.string());
+  EXPECT_EQ(status, 0) << output;
+  EXPECT_EQ(read(outside), "precious\n");
+  EXPECT_TRUE(fs::is_regular_file(fs::symlink_status(folder / "good.md")));
 }
 
 }  // namespace

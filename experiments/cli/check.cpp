@@ -81,6 +81,13 @@ int cmd_bless(const std::vector<std::string_view>& argv) {
   if (reason.find_first_not_of(" \t\n") == std::string::npos) {
     throw UsageError("--reason: a blessing needs a reason, e.g. make bless REASON=\"...\"");
   }
+  // One line of the audit log: a line break could forge an entry of its own.
+  for (const unsigned char c : reason) {
+    if (c < 0x20 || c == 0x7f) {
+      throw UsageError("--reason: must be one line without control characters (found byte " +
+                       std::to_string(static_cast<int>(c)) + ")");
+    }
+  }
   const auto specs = load_specs(args.positional());
   return run_bless(specs, regression_options(args), reason);
 }
