@@ -17,7 +17,7 @@ DEB_PACKAGES := cmake g++ make libeigen3-dev nlohmann-json3-dev libgtest-dev lib
 RESULTS     ?= results
 MPMSTAB     := $(BUILD_DIR)/mpmstab
 
-FUZZ_SECONDS ?= 20
+FUZZ_SECONDS ?= 60
 FUZZ_DIR     ?= build-fuzz
 
 .PHONY: all build deps test test-cluster check bless fuzz bench reproduce figures plots format format-check clean help
@@ -29,7 +29,7 @@ help:
 	@echo "make test         build and run the GoogleTest suite (CTest), then make check"
 	@echo "make test-cluster  shard sweeps on a throwaway local Slurm cluster and with GNU parallel;"
 	@echo "                   the merged reports must equal an unsharded run's, byte for byte"
-	@echo "make fuzz         fuzz the spec parser for FUZZ_SECONDS (default 20) seconds"
+	@echo "make fuzz         fuzz the spec, results and cache readers, FUZZ_SECONDS (default 60) each"
 	@echo "make check        rerun a fast subset of every experiment against reference/regression"
 	@echo "make bless REASON=\"...\"  accept the current values as blessed, logged in BLESSED.md"
 	@echo "make reproduce    rerun the paper's experiments (cached cases are not rerun), write results/"
@@ -67,15 +67,21 @@ test: build
 test-cluster: build
 	MPMSTAB=$(MPMSTAB) tests/cluster/test_cluster.sh
 
-# A bounded fuzz run of the spec parser (libFuzzer, with address and UB sanitizers). New inputs
-# that reach new code are kept in tests/fuzz/corpus (committed); the specs seed it.
+# A bounded fuzz run, FUZZ_SECONDS each, of the three readers of outside text (libFuzzer, with
+# address and UB sanitizers): the spec parser, the results reader and the cache reader. New
+# inputs that reach new code are kept in tests/fuzz/corpus* (committed); the specs and
+# tests/fuzz/seeds (a real results file and cache record) seed them.
 fuzz: deps
 	@test -f $(FUZZ_DIR)/CMakeCache.txt || cmake -S . -B $(FUZZ_DIR) -DMPMSTAB_FUZZ=ON \
 	  -DCMAKE_CXX_COMPILER=clang++-14 -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMPMSTAB_ARCH= > /dev/null
-	cmake --build $(FUZZ_DIR) -j $(JOBS) --target fuzz_spec
-	mkdir -p tests/fuzz/corpus
+	cmake --build $(FUZZ_DIR) -j $(JOBS) --target fuzz_spec fuzz_results fuzz_cache
+	mkdir -p tests/fuzz/corpus tests/fuzz/corpus_results tests/fuzz/corpus_cache
 	$(FUZZ_DIR)/tests/fuzz/fuzz_spec -max_total_time=$(FUZZ_SECONDS) -max_len=4096 \
 	  -dict=tests/fuzz/spec.dict -print_final_stats=1 tests/fuzz/corpus experiments
+	$(FUZZ_DIR)/tests/fuzz/fuzz_results -max_total_time=$(FUZZ_SECONDS) -max_len=8192 \
+	  -dict=tests/fuzz/spec.dict -print_final_stats=1 tests/fuzz/corpus_results tests/fuzz/seeds/results
+	$(FUZZ_DIR)/tests/fuzz/fuzz_cache -max_total_time=$(FUZZ_SECONDS) -max_len=8192 \
+	  -dict=tests/fuzz/spec.dict -print_final_stats=1 tests/fuzz/corpus_cache tests/fuzz/seeds/cache
 
 check: build
 	specs=$$($(MPMSTAB) list) && $(MPMSTAB) check $$specs --jobs $(JOBS) --results $(RESULTS)

@@ -302,4 +302,44 @@ TEST_F(Files, TheStreamedHistoryEqualsTheKeptOne) {
   }
 }
 
+// The fuzz seeds reach both answers of the cache reader: the committed record of the fuzz
+// target's case passes every check, the other case's record (another key) is rejected.
+TEST_F(Files, TheCacheFuzzSeedsPassAndFailAsIntended) {
+  mpmstab::RunParams p = mpmstab::test_support::quick_case();
+  p.E = 4;
+  p.A = 0.01;
+  p.dt = 1e-3;
+  p.T = 0.01;
+  p.cells = 10;
+  p.observe.dt_stable = false;
+  p.observe.crossings = false;
+  const fs::path seeds = fs::path(MPMSTAB_SOURCE_DIR) / "tests/fuzz/seeds/cache";
+  const auto good = mpmstab::ResultCache::check(read(seeds / "gimp.json"), "gimp.json", p);
+  EXPECT_TRUE(good.record.has_value());
+  const auto other =
+      mpmstab::ResultCache::check(read(seeds / "mpm_other_case.json"), "mpm_other_case.json", p);
+  EXPECT_TRUE(other.rejected);
+}
+
+// Two plots of one figure at once: each draws in a private staging folder, so neither reads the
+// other's half-written image; both succeed and leave no staging folder behind.
+TEST_F(Files, TwoPlotsOfOneFigureAtOnceDoNotCollide) {
+  const std::string spec = std::string(MPMSTAB_SOURCE_DIR) + "/experiments/fig3.json";
+  const std::string out = (dir / "out").string();
+  ASSERT_EQ(run_mpmstab("sweep " + spec + " --out " + out).status, 0);
+  mpmstab::test_support::CliOutcome a{}, b{};
+  std::thread first([&] { a = run_mpmstab("plot " + spec + " --out " + out); });
+  std::thread second([&] { b = run_mpmstab("plot " + spec + " --out " + out); });
+  first.join();
+  second.join();
+  EXPECT_EQ(a.status, 0) << a.output;
+  EXPECT_EQ(b.status, 0) << b.output;
+  EXPECT_GT(fs::file_size(dir / "out" / "fig3.png"), 1000u);
+  EXPECT_GT(fs::file_size(dir / "out" / "fig3.svg"), 1000u);
+  for (const auto& e : fs::directory_iterator(dir / "out")) {
+    const std::string name = e.path().filename().string();
+    EXPECT_FALSE(name.ends_with(".staging") || name.ends_with(".tmp")) << name;
+  }
+}
+
 }  // namespace

@@ -219,6 +219,16 @@ TEST_F(Hostile, EveryBadInputExitsTwoNamesTheCulpritAndChangesNothing) {
     fs::create_directories(dir / ("res_" + name));
     std::ofstream(dir / ("res_" + name) / "good.json") << text;
   }
+  // A blessed table that is not a table; a figure's results that are not results.
+  fs::create_directories(dir / "reg_bad");
+  std::ofstream(dir / "reg_bad" / "good.csv") << "method,E\n\"gimp,4\n";
+  fs::create_directories(dir / "reg_fifo");
+  ASSERT_EQ(::mkfifo((dir / "reg_fifo" / "good.csv").c_str(), 0644), 0);
+  fs::create_directories(dir / "plot_bad");
+  std::ofstream(dir / "plot_bad" / "fig3_data.csv") << "x\n1\n";
+  std::ofstream(dir / "plot_bad" / "fig3.json") << R"({"cases": [{}]})";
+  fs::create_directories(dir / "t1_bad");
+  std::ofstream(dir / "t1_bad" / "t1.json") << R"({"cases": [{"method": 1}]})";
   // A shard folder whose cache holds garbage under the right keys is no source of results.
   fs::create_directories(dir / "shard_bad" / "cache");
   for (const auto& e : fs::directory_iterator(dir / "out" / "cache")) {
@@ -348,6 +358,11 @@ TEST_F(Hostile, EveryBadInputExitsTwoNamesTheCulpritAndChangesNothing) {
       {"index DIR/good.json --out DIR/res_bom", "byte-order mark"},
       {"index DIR/good.json --out DIR/res_cases_string", "cases: must be an array"},
       {"merge DIR/good.json DIR/shard_bad --out DIR/out", "are in none of the folders"},
+      {"check DIR/good.json --reference DIR/reg_bad", "reg_bad/good.csv: line 2: unterminated"},
+      {"check DIR/good.json --reference DIR/reg_fifo", "reg_fifo/good.csv: is not a regular"},
+      {"plot " MPMSTAB_SOURCE_DIR "/experiments/fig3.json --out DIR/plot_bad",
+       "plot_bad/fig3.json: cases[0].method: is missing"},
+      {"compare DIR/t1.json --out DIR/t1_bad", "t1_bad/t1.json: cases[0].method: has the wrong"},
       {"merge DIR/good.json DIR/absent_shard --out DIR/out", "not a folder"},
       // the history file: never anything but a regular file
       {"run --method gimp --E 4 --A 0.01 --dt 1e-3 --history /dev/null", "a device"},

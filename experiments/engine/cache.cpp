@@ -86,17 +86,29 @@ bool intact(const nlohmann::ordered_json& record, const std::string& canonical_t
 
 CacheLookup ResultCache::lookup(const RunParams& p, const std::string& search) const {
   const std::filesystem::path file = dir_ / (case_key(p, search) + ".json");
+  std::optional<std::string> text;
+  try {
+    text = read_if_present(file);
+  } catch (const InputError&) {
+    return CacheLookup{std::nullopt, true};  // not a regular file, too large: computed again
+  }
+  if (!text) return {};
+  return check(*text, file, p, search);
+}
+
+CacheLookup ResultCache::check(std::string_view text, const std::filesystem::path& file,
+                               const RunParams& p, const std::string& search) {
   CacheLookup found;
   try {
-    const std::optional<std::string> text = read_if_present(file);
-    if (!text) return found;
-    auto record = parse_json_strict<nlohmann::ordered_json>(*text, file);
+    auto record = parse_json_strict<nlohmann::ordered_json>(text, file);
     if (intact(record, canonical(p, search))) {
       found.record = std::move(record);
       return found;
     }
   } catch (const InputError&) {
-    // not a regular file, too large, not JSON: computed again below
+    // not JSON: computed again
+  } catch (const nlohmann::json::exception&) {
+    // (not expected after parsing; a record that cannot be checked is not used)
   }
   found.rejected = true;
   return found;

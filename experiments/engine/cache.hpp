@@ -44,6 +44,9 @@ class ResultCache {
   // The stored record of this case, if present, made from exactly these parameters and intact.
   // `search` names what was computed from the parameters beyond one run ("" or "edge").
   CacheLookup lookup(const RunParams& p, const std::string& search = "") const;
+  // The checks of lookup on the text of a stored record read from `file`. Never throws.
+  static CacheLookup check(std::string_view text, const std::filesystem::path& file,
+                           const RunParams& p, const std::string& search = "");
   std::optional<nlohmann::ordered_json> load(const RunParams& p,
                                              const std::string& search = "") const {
     return lookup(p, search).record;

@@ -263,14 +263,18 @@ ojson load_results(const Spec& spec, const fs::path& out) {
   const fs::path file = out / (spec.name + ".json");
   const std::optional<std::string> text = read_if_present(file);
   if (!text) return nullptr;
+  return parse_results(*text, file, spec);
+}
+
+ojson parse_results(std::string_view text, const fs::path& file, const Spec& spec) {
   auto bad = [&](const std::string& what) {
     return BadResults(file.string() + ": " + what + " (not what `mpmstab sweep " +
                       spec.path.generic_string() + "` writes; rerun it)");
   };
   ojson doc;
-  if (text->find_first_not_of(" \t\r\n") == std::string::npos) throw bad("is empty");
+  if (text.find_first_not_of(" \t\r\n") == std::string_view::npos) throw bad("is empty");
   try {
-    doc = parse_json_strict<ojson>(*text, file);
+    doc = parse_json_strict<ojson>(text, file);
   } catch (const InputError& e) {
     throw bad(e.detail());
   }

@@ -26,6 +26,9 @@ class BadResults : public InputError {
 // JSON type a record gives it) and whose "study", if present, is an object. Throws BadResults
 // naming the file and the first defect; an absent file is null.
 nlohmann::ordered_json load_results(const Spec& spec, const std::filesystem::path& out);
+// The checks of load_results on text read from `file`.
+nlohmann::ordered_json parse_results(std::string_view text, const std::filesystem::path& file,
+                                     const Spec& spec);
 
 // Everything a sweep or a derived study of `spec` will read, checked before any work: the
 // reference table (a regular CSV file of bounded size with a header), the spec of every input
