@@ -171,6 +171,7 @@ int cmd_sweep(const std::vector<std::string_view>& argv) {
   check_inputs(spec, out);
   if (!spec.study->has_cases) return derive(spec, options, out);
   options.cache = out / "cache";
+  remove_stale_temporaries(options.cache);  // of a sweep killed while storing a record
   options.progress_line = ::isatty(STDERR_FILENO) != 0;
   options.cancel = &g_stop;
   install_stop_handlers();
