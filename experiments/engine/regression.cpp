@@ -321,7 +321,7 @@ void log_blessing(const std::vector<std::string>& changes, const RegressionOptio
         "# Blessed regression values\n\nEvery change of `reference/regression/` by `make "
         "bless`: when, at which commit, why, and which cells changed.\n";
   }
-  write_file_atomically(log, text + entry.str());
+  write_if_changed(log, text + entry.str());
   std::cout << "bless: " << changes.size() << " changes recorded in " << log.string() << "\n";
 }
 
@@ -330,6 +330,8 @@ void log_blessing(const std::vector<std::string>& changes, const RegressionOptio
 int run_bless(const std::vector<Spec>& specs, const RegressionOptions& o,
               const std::string& reason) {
   fs::create_directories(o.reference);
+  // The blessed tables and the log entry are published together, or none of them.
+  ReportBatch batch;
   std::vector<std::string> changes;
   for (const auto& spec : specs) {
     if (spec.study->has_cases) {
@@ -346,6 +348,7 @@ int run_bless(const std::vector<Spec>& specs, const RegressionOptions& o,
     return 0;
   }
   log_blessing(changes, o, reason);
+  batch.publish();
   return 0;
 }
 
