@@ -72,8 +72,12 @@ int cmd_merge(const std::vector<std::string_view>& argv) {
   if (omit) omit_machine_measurements(outcome);
   write_reports(spec, outcome, out);
   std::cerr << "[" << spec.name << "] merged " << spec.cases.size() << " cases from " << dirs.size()
-            << " folders (" << outcome.unstable << " unstable) -> "
-            << (out / (spec.name + ".md")).string() << "\n";
+            << " folders (" << outcome.unstable << " unstable"
+            << (outcome.rejected ? "; " + std::to_string(outcome.rejected) +
+                                       " records in the folders failed their checksum or shape "
+                                       "and were ignored"
+                                 : std::string())
+            << ") -> " << (out / (spec.name + ".md")).string() << "\n";
   return 0;
 }
 

@@ -49,7 +49,9 @@ SweepOutcome merge_shards(const Spec& spec, const std::vector<fs::path>& dirs) {
     std::optional<ojson> chosen;
     std::size_t chosen_dir = 0;
     for (std::size_t d = 0; d < caches.size(); ++d) {
-      auto record = caches[d].load(p, search);
+      CacheLookup found = caches[d].lookup(p, search);
+      if (found.rejected) ++out.rejected;
+      auto record = std::move(found.record);
       if (!record) continue;
       if (!chosen) {
         chosen = std::move(record);
