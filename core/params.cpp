@@ -23,8 +23,11 @@ std::string show(double v) {
 template <class Enum, std::size_t N>
 using Names = std::array<std::pair<Enum, std::string_view>, N>;
 
-constexpr Names<Method, 3> kMethods{
-    {{Method::mpm, "mpm"}, {Method::gimp, "gimp"}, {Method::cpgimp, "cpgimp"}}};
+constexpr Names<Method, 5> kMethods{{{Method::mpm, "mpm"},
+                                     {Method::gimp, "gimp"},
+                                     {Method::cpgimp, "cpgimp"},
+                                     {Method::bspline2, "bspline2"},
+                                     {Method::bspline3, "bspline3"}}};
 constexpr Names<SceneKind, 2> kScenes{{{SceneKind::bar, "bar"}, {SceneKind::steffen, "steffen"}}};
 constexpr Names<Walls, 2> kWalls{{{Walls::clip, "clip"}, {Walls::ghost, "ghost"}}};
 constexpr Names<Transfer, 3> kTransfers{
@@ -258,6 +261,19 @@ std::vector<ParamIssue> validate(const RunParams& p) {
   }
   if (p.walls == Walls::ghost && p.bc != Boundary::dirichlet) {
     bad("walls", "ghost nodes apply to bc = dirichlet only (a periodic grid has no walls)");
+  }
+  if (!has_eq108(p.method)) {
+    if (p.walls == Walls::ghost) {
+      bad("walls",
+          "a B-spline eliminates its node beyond each wall (linear extrapolation); free "
+          "ghost nodes apply to mpm, gimp and cpgimp");
+    }
+    if (p.stepping.policy == TimeStepPolicy::adaptive || p.stepping.policy == TimeStepPolicy::min) {
+      bad("policy", "the " + std::string(to_string(p.stepping.policy)) +
+                        " policy steps by eq. (108), which is derived for mpm, gimp and cpgimp "
+                        "only; use fixed or cfl with " +
+                        std::string(to_string(p.method)));
+    }
   }
   if (p.max_steps < 1) bad("max_steps", "must be >= 1, got " + std::to_string(p.max_steps));
   if (p.observe.history_stride < 1) {

@@ -14,8 +14,17 @@ namespace mpmstab {
 
 // Shape functions (docs/design.md, "The scheme"): linear hat ("mpm"), uGIMP with fixed half-width
 // lp = h / (2 m) ("gimp"), or cpGIMP, whose half-width follows the deformation, lp = F_p h / (2 m)
-// ("cpgimp"); a cpGIMP particle wider than two cells (lp > h) ends the run (support_too_wide).
-enum class Method { mpm, gimp, cpgimp };
+// ("cpgimp"); a cpGIMP particle wider than two cells (lp > h) ends the run (support_too_wide);
+// or the uniform quadratic or cubic B-spline ("bspline2", "bspline3"), whose node beyond a
+// Dirichlet wall is eliminated by linear extrapolation (shape.hpp). Eq. (108) is derived for the
+// first three only: with a B-spline the adaptive and min policies are refused and dt_stable is
+// not measured.
+enum class Method { mpm, gimp, cpgimp, bspline2, bspline3 };
+
+// The paper's bound eq. (108) exists for this basis (mpm, gimp, cpgimp).
+constexpr bool has_eq108(Method m) {
+  return m == Method::mpm || m == Method::gimp || m == Method::cpgimp;
+}
 
 // The problem being solved (scene.hpp): the paper's bar ("bar", section 5.1: linear material,
 // u = A sin(2 pi X) sin(c pi t)) or the manufactured solution of Steffen, Wallstedt, Guilkey,

@@ -209,6 +209,16 @@ void p2g(const GimpBasis& basis, const Particles& P, const double* body_accel,
   p2g_any(basis, P, body_accel, S, G);
 }
 
+void p2g(const BSpline2Basis& basis, const Particles& P, const double* body_accel,
+         Stencil<BSpline2Basis::width>& S, Grid& G) {
+  p2g_any(basis, P, body_accel, S, G);
+}
+
+void p2g(const BSpline3Basis& basis, const Particles& P, const double* body_accel,
+         Stencil<BSpline3Basis::width>& S, Grid& G) {
+  p2g_any(basis, P, body_accel, S, G);
+}
+
 void p2g(const CpGimpBasis& basis, const Particles& P, const double* body_accel,
          Stencil<CpGimpBasis::width>& S, Grid& G) {
   p2g_any(basis, P, body_accel, S, G);

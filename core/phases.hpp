@@ -44,6 +44,10 @@ void p2g(const GimpBasis& basis, const Particles& P, const double* body_accel,
          Stencil<GimpBasis::width>& S, Grid& G);
 void p2g(const CpGimpBasis& basis, const Particles& P, const double* body_accel,
          Stencil<CpGimpBasis::width>& S, Grid& G);
+void p2g(const BSpline2Basis& basis, const Particles& P, const double* body_accel,
+         Stencil<BSpline2Basis::width>& S, Grid& G);
+void p2g(const BSpline3Basis& basis, const Particles& P, const double* body_accel,
+         Stencil<BSpline3Basis::width>& S, Grid& G);
 
 // The force sum of p2g alone, over the stencil p2g kept, with the current stress and volume:
 // f_i = sum_p ( -G_ip sigma_p F_p V_p^0 + S_ip m_p b_p ). USF calls it after its stress update.

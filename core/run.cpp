@@ -54,6 +54,9 @@ class Driver {
   const Observe& obs_;
   const HistorySink& sink_;
   const bool history_;  // rows are made: kept (observe.history) or handed to the sink
+  // eq. (108) is observed: asked for, and derived for the basis (params.hpp, has_eq108); with
+  // a B-spline dt_stable stays unmeasured (null), never a number of another basis's formula.
+  const bool dt_stable_;
   const double h_;
   const TimeStepPolicy policy_;
   const bool uses_bound_;  // the policy reads eq. (108) of the current state
@@ -77,6 +80,7 @@ Driver::Driver(const RunParams& p, const HistorySink& sink)
       obs_(p.observe),
       sink_(sink),
       history_(p.observe.history || static_cast<bool>(sink)),
+      dt_stable_(p.observe.dt_stable && has_eq108(p.method)),
       h_(1.0 / p.cells),
       policy_(p.stepping.policy),
       uses_bound_(policy_ == TimeStepPolicy::adaptive || policy_ == TimeStepPolicy::min),
@@ -174,9 +178,9 @@ void Driver::observe_step(bool last) {
     crossings_ += crossing_counter_->update(sim_.particles());
     row.crossings = crossings_;
   }
-  if (obs_.dt_stable || uses_bound_) {
+  if (dt_stable_ || uses_bound_) {
     bound_ = bound_now();
-    if (obs_.dt_stable) {
+    if (dt_stable_) {
       dt_stable_min_ = std::min(dt_stable_min_, bound_);
       row.dt_stable = bound_;
     }
@@ -234,7 +238,7 @@ RunResult Driver::result(std::chrono::steady_clock::duration wall) {
   // step_limit and dt_collapse stop before a step; the other failures are found after one.
   const bool failed_in_a_step = r_.failure && r_.failure->reason != FailureReason::step_limit &&
                                 r_.failure->reason != FailureReason::dt_collapse;
-  if (obs_.dt_stable && r_.steps > (failed_in_a_step ? 1 : 0)) r_.dt_stable_min = dt_stable_min_;
+  if (dt_stable_ && r_.steps > (failed_in_a_step ? 1 : 0)) r_.dt_stable_min = dt_stable_min_;
   if (obs_.final_state) r_.final_state = final_state();
   r_.wall_seconds = std::chrono::duration<double>(wall).count();
   if (r_.steps > 0) {

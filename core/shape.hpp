@@ -1,5 +1,6 @@
-// Shape functions: the linear hat ("mpm"), uGIMP ("gimp", Bardenhagen & Kober 2004) and cpGIMP
-// ("cpgimp", the uGIMP average over a particle domain that follows the deformation).
+// Shape functions: the linear hat ("mpm"), uGIMP ("gimp", Bardenhagen & Kober 2004), cpGIMP
+// ("cpgimp", the uGIMP average over a particle domain that follows the deformation) and the
+// uniform quadratic and cubic B-splines ("bspline2", "bspline3"; Steffen, Kirby & Berzins 2008).
 //
 // Each basis evaluates, for one particle at x, the first node `base` it touches and the weights
 // S_ip and gradients G_ip = dS_ip/dx_p of the `width` consecutive nodes base, base+1, ...
@@ -139,6 +140,107 @@ struct CpGimpBasis {
     g[1] = (b0 - e1 - u) * inv_2lp;
     g[2] = (e1 - e2) * inv_2lp;
     g[3] = e2 * inv_2lp;
+  }
+};
+
+// Ghost-node elimination at a Dirichlet wall, for bases wider than a cell: a B-spline of a
+// particle next to the wall X = 0 touches the node X_{-1} = -h beyond it (and, at X = 1, the node
+// X_{N+1} = 1 + h). That node is not a degree of freedom: its value is extrapolated linearly from
+// the first two nodes inside, c_{-1} = 2 c_0 - c_1 (c_{N+1} = 2 c_N - c_{N-1}), so its weight is
+// moved onto them: S_0 += 2 S_{-1}, S_1 -= S_{-1}, and the same for the gradients. This keeps
+// partition of unity and the reproduction of linear fields, and with the wall's velocity fixed at
+// 0 it makes the ghost velocity the odd reflection -c_1. (Plain truncation, dropping S_{-1},
+// would lose partition of unity.) The weight folded in can make S_1 negative next to a wall.
+template <int W>
+inline void eliminate_ghost_nodes(int base, int cells, double* w, double* g) {
+  // Left: only node -1 can be beyond the wall, at slot 0 when base == -1.
+  const double left = base == -1 ? 1.0 : 0.0;
+  const double wl = left * w[0], gl = left * g[0];
+  w[0] -= wl;
+  w[1] += 2.0 * wl;
+  w[2] -= wl;
+  g[0] -= gl;
+  g[1] += 2.0 * gl;
+  g[2] -= gl;
+  // Right: node N + 1, at slot k = N + 1 - base (2 <= k < W when touched).
+  for (int k = 2; k < W; ++k) {
+    const double right = base + k == cells + 1 ? 1.0 : 0.0;
+    const double wr = right * w[k], gr = right * g[k];
+    w[k] -= wr;
+    w[k - 1] += 2.0 * wr;
+    w[k - 2] -= wr;
+    g[k] -= gr;
+    g[k - 1] += 2.0 * gr;
+    g[k - 2] -= gr;
+  }
+}
+
+// Uniform quadratic B-spline, N(r) in units of h (as in Steffen, Kirby & Berzins 2008):
+//   N = 3/4 - r^2 for |r| <= 1/2,  (3/2 - |r|)^2 / 2 for 1/2 <= |r| <= 3/2,  0 beyond.
+// C1 across cells; a particle touches three nodes, base = floor(x / h - 1/2). With t the
+// particle's position from node base + 1/2 in cell units, t in [0, 1):
+//   S = ((1 - t)^2 / 2, 3/4 - (t - 1/2)^2, t^2 / 2),  G = (t - 1, 1 - 2t, t) / h.
+// With Dirichlet walls the ghost node beyond each wall is eliminated (eliminate_ghost_nodes).
+struct BSpline2Basis {
+  static constexpr int width = 3;
+  double inv_h;
+  int cells;
+  bool walls;  // Dirichlet: eliminate the ghost nodes
+
+  BSpline2Basis(double h, int n_cells, bool dirichlet)
+      : inv_h(1.0 / h), cells(n_cells), walls(dirichlet) {}
+
+  void eval(double x, int& base, double* w, double* g) const {
+    const double s = x * inv_h - 0.5;
+    const double cell = floor_exact(s);
+    base = static_cast<int>(cell);
+    const double t = s - cell;
+    const double c = t - 0.5;
+    w[0] = 0.5 * (1.0 - t) * (1.0 - t);
+    w[1] = 0.75 - c * c;
+    w[2] = 0.5 * t * t;
+    g[0] = (t - 1.0) * inv_h;
+    g[1] = -2.0 * c * inv_h;
+    g[2] = t * inv_h;
+    if (walls) eliminate_ghost_nodes<width>(base, cells, w, g);
+  }
+};
+
+// Uniform cubic B-spline, N(r) in units of h (as in Steffen, Kirby & Berzins 2008):
+//   N = 2/3 - r^2 + |r|^3 / 2 for |r| <= 1,  (2 - |r|)^3 / 6 for 1 <= |r| <= 2,  0 beyond.
+// C2 across cells; a particle touches four nodes, base = floor(x / h) - 1. With t the position
+// in its cell, t in [0, 1):
+//   S = ((1 - t)^3, 3t^3 - 6t^2 + 4, -3t^3 + 3t^2 + 3t + 1, t^3) / 6,
+//   G = (-(1 - t)^2, 3t^2 - 4t, -3t^2 + 2t + 1, t^2) / (2h).
+// With Dirichlet walls the ghost node beyond each wall is eliminated (eliminate_ghost_nodes); a
+// particle exactly on the wall X = 1 also touches node N + 2, with weight 0.
+struct BSpline3Basis {
+  static constexpr int width = 4;
+  double inv_h;
+  int cells;
+  bool walls;
+
+  BSpline3Basis(double h, int n_cells, bool dirichlet)
+      : inv_h(1.0 / h), cells(n_cells), walls(dirichlet) {}
+
+  void eval(double x, int& base, double* w, double* g) const {
+    const double s = x * inv_h;
+    const double cell = floor_exact(s);
+    base = static_cast<int>(cell) - 1;
+    const double t = s - cell;
+    const double u = 1.0 - t;
+    const double t2 = t * t, t3 = t2 * t;
+    constexpr double sixth = 1.0 / 6.0;
+    w[0] = u * u * u * sixth;
+    w[1] = (3.0 * t3 - 6.0 * t2 + 4.0) * sixth;
+    w[2] = (-3.0 * t3 + 3.0 * t2 + 3.0 * t + 1.0) * sixth;
+    w[3] = t3 * sixth;
+    const double half_inv_h = 0.5 * inv_h;
+    g[0] = -u * u * half_inv_h;
+    g[1] = (3.0 * t2 - 4.0 * t) * half_inv_h;
+    g[2] = (-3.0 * t2 + 2.0 * t + 1.0) * half_inv_h;
+    g[3] = t2 * half_inv_h;
+    if (walls) eliminate_ghost_nodes<width>(base, cells, w, g);
   }
 };
 

@@ -1,12 +1,16 @@
 #include "simulation.hpp"
 
+#include <type_traits>
+
 namespace mpmstab {
 
 namespace {
 
-std::variant<LinearBasis, GimpBasis, CpGimpBasis> make_basis(const RunParams& p) {
+std::variant<LinearBasis, GimpBasis, CpGimpBasis, BSpline2Basis, BSpline3Basis> make_basis(
+    const RunParams& p) {
   const double h = 1.0 / p.cells;
   const double lp = h / (2.0 * p.ppc);  // half-width lp = h / (2 m) of an undeformed particle
+  const bool walls = p.bc == Boundary::dirichlet;
   switch (p.method) {
     case Method::mpm:
       return LinearBasis(h);
@@ -14,6 +18,10 @@ std::variant<LinearBasis, GimpBasis, CpGimpBasis> make_basis(const RunParams& p)
       return GimpBasis(h, lp);
     case Method::cpgimp:
       return CpGimpBasis(h, lp);  // lp_p = F_p lp
+    case Method::bspline2:
+      return BSpline2Basis(h, p.cells, walls);
+    case Method::bspline3:
+      return BSpline3Basis(h, p.cells, walls);
   }
   return GimpBasis(h, lp);
 }
@@ -26,6 +34,10 @@ int stencil_width(Method m) {
       return GimpBasis::width;
     case Method::cpgimp:
       return CpGimpBasis::width;
+    case Method::bspline2:
+      return BSpline2Basis::width;
+    case Method::bspline3:
+      return BSpline3Basis::width;
   }
   return GimpBasis::width;
 }
@@ -41,9 +53,10 @@ Simulation::Simulation(const RunParams& p)
       G_(p.cells, p.bc, p.walls, stencil_width(p.method)),
       basis_(make_basis(p)) {
   const auto n = static_cast<std::size_t>(P_.size());
-  stencil_mpm_.resize(p.method == Method::mpm ? n : 0);
-  stencil_gimp_.resize(p.method == Method::gimp ? n : 0);
-  stencil_cpgimp_.resize(p.method == Method::cpgimp ? n : 0);
+  const int width = stencil_width(p.method);
+  stencil2_.resize(width == 2 ? n : 0);
+  stencil3_.resize(width == 3 ? n : 0);
+  stencil4_.resize(width == 4 ? n : 0);
   body_force_ = scene_->body_force_at(P_.X);
   u_profile_ = P_.X.unaryExpr([&](double X) { return scene_->displacement_profile(X); });
   body_accel_.setZero(P_.size());
@@ -79,16 +92,26 @@ void Simulation::step(const Basis& basis, Stencil<Basis::width>& S, double dt, d
   }
 }
 
+template <int W>
+Stencil<W>& Simulation::stencil() {
+  if constexpr (W == 2) {
+    return stencil2_;
+  } else if constexpr (W == 3) {
+    return stencil3_;
+  } else {
+    return stencil4_;
+  }
+}
+
 void Simulation::advance_to(double t_next) {
   const double dt = t_next - t_;
   const double t_body = params_.body_force_time == BodyForceTime::start ? t_ : t_next;
-  if (const auto* gimp = std::get_if<GimpBasis>(&basis_)) {
-    step(*gimp, stencil_gimp_, dt, t_body);
-  } else if (const auto* cpgimp = std::get_if<CpGimpBasis>(&basis_)) {
-    step(*cpgimp, stencil_cpgimp_, dt, t_body);
-  } else {
-    step(std::get<LinearBasis>(basis_), stencil_mpm_, dt, t_body);
-  }
+  std::visit(
+      [&](const auto& basis) {
+        constexpr int W = std::decay_t<decltype(basis)>::width;
+        step(basis, stencil<W>(), dt, t_body);
+      },
+      basis_);
   t_ = t_next;
   ++n_;
 }

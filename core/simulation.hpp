@@ -47,10 +47,13 @@ class Simulation {
   ParticleUpdate g2p_rule_;
   Particles P_;
   Grid G_;
-  std::variant<LinearBasis, GimpBasis, CpGimpBasis> basis_;
-  Stencil<LinearBasis::width> stencil_mpm_;
-  Stencil<GimpBasis::width> stencil_gimp_;
-  Stencil<CpGimpBasis::width> stencil_cpgimp_;
+  std::variant<LinearBasis, GimpBasis, CpGimpBasis, BSpline2Basis, BSpline3Basis> basis_;
+  // One stencil per width; only the one of the run's basis is allocated.
+  Stencil<2> stencil2_;
+  Stencil<3> stencil3_;
+  Stencil<4> stencil4_;
+  template <int W>
+  Stencil<W>& stencil();
   std::unique_ptr<BodyForceAtParticles> body_force_;  // b(X_p, t)
   Eigen::ArrayXd body_accel_;                         // b(X_p, t) for the current step
   Eigen::ArrayXd u_profile_;                          // displacement profile at X_p

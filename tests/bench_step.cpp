@@ -41,7 +41,7 @@ void set_counters(benchmark::State& state, Method method, double particles) {
   state.counters["ns_per_particle_step"] =
       benchmark::Counter(particles * 1e-9, benchmark::Counter::kIsIterationInvariantRate |
                                                benchmark::Counter::kInvert);
-  state.SetLabel(method == Method::gimp ? "gimp" : "mpm");
+  state.SetLabel(std::string(to_string(method)));
 }
 
 template <Level level>
@@ -219,6 +219,12 @@ BENCHMARK(BM_Step<Level::stable_dt>)->Name("BM_StepStableDt")->Apply(methods);
 BENCHMARK(BM_Step<Level::crossings>)->Name("BM_StepCrossings")->Apply(methods);
 BENCHMARK(BM_Step<Level::instrumented>)->Name("BM_StepInstrumented")->Apply(methods);
 BENCHMARK(BM_StepBaseline)->Apply(methods);
+// The B-spline bases' step, against BM_Step's gimp in the same run (no baseline: that is for the
+// paper's two bases).
+BENCHMARK(BM_Step<Level::step>)
+    ->Name("BM_StepBSpline")
+    ->Arg(static_cast<int>(Method::bspline2))
+    ->Arg(static_cast<int>(Method::bspline3));
 
 }  // namespace
 

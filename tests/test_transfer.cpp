@@ -85,6 +85,15 @@ TEST(P2G, ConservesAcrossPeriodicWrapCpGimp) {
   check_conservation(CpGimpBasis(1.0 / 20, 1.0 / 80), Boundary::periodic, -0.7, 1.7);
 }
 
+// B-splines: with the ghost nodes eliminated at Dirichlet walls (their weight moved onto the two
+// first nodes inside) and across the periodic wrap.
+TEST(P2G, ConservesMassMomentumAndForceBSplines) {
+  check_conservation(BSpline2Basis(1.0 / 20, 20, true), Boundary::dirichlet, 0.0, 1.0);
+  check_conservation(BSpline3Basis(1.0 / 20, 20, true), Boundary::dirichlet, 0.0, 1.0);
+  check_conservation(BSpline2Basis(1.0 / 20, 20, false), Boundary::periodic, -0.7, 1.7);
+  check_conservation(BSpline3Basis(1.0 / 20, 20, false), Boundary::periodic, -0.7, 1.7);
+}
+
 // The partial sums of USF and MUSL give p2g's sums bit for bit (same terms, same order).
 TEST(P2G, ForceAndMomentumSumsAloneAreP2gsSums) {
   const int cells = 20;
@@ -188,6 +197,10 @@ TEST(G2P, ReproducesLinearFieldsGimp) {
 }
 TEST(G2P, ReproducesLinearFieldsCpGimp) {
   check_linear_reproduction(CpGimpBasis(1.0 / 16, 1.0 / 64), kFlip);
+}
+TEST(G2P, ReproducesLinearFieldsBSplines) {
+  check_linear_reproduction(BSpline2Basis(1.0 / 16, 16, true), kFlip);
+  check_linear_reproduction(BSpline3Basis(1.0 / 16, 16, true), kFlip);
 }
 TEST(G2P, ParticleVelocityPositionUpdateUsesTheNewParticleVelocity) {
   check_linear_reproduction(GimpBasis(1.0 / 16, 1.0 / 64),

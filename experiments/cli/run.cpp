@@ -17,15 +17,17 @@ namespace mpmstab::cli {
 namespace {
 
 constexpr const char* kHelp =
-    R"(Usage: mpmstab run --method gimp|cpgimp|mpm --E <x> --A <x> --dt <x> [options]
+    R"(Usage: mpmstab run --method <basis> --E <x> --A <x> --dt <x> [options]
 
 Runs one case of a 1D scene to time T (default: the paper's bar, manufactured solution
 u = A sin(2 pi X) sin(c pi t), c = sqrt(E)) and reports its verdict and every measured
 quantity.
 
 Required:
-  --method gimp|cpgimp|mpm shape functions: uGIMP, cpGIMP (half-width follows F) or
-                           linear MPM
+  --method <basis>         shape functions: gimp (uGIMP), cpgimp (half-width follows F), mpm
+                           (linear hat), bspline2 or bspline3 (quadratic or cubic B-spline,
+                           the node beyond a Dirichlet wall eliminated by linear
+                           extrapolation; fixed or cfl policy only, dt_stable not measured)
   --E <x>                  Young's modulus, > 0
   --A <x>                  amplitude of the solution, >= 0
   --dt <x>                 time step, 0 < dt <= T (the last step is shortened to land on T);
