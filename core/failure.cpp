@@ -24,7 +24,7 @@ std::string_view to_string(FailureReason r) {
 }
 
 double max_admissible_F(Method method, int ppc) {
-  return method == Method::cpgimp ? 2.0 * ppc : std::numeric_limits<double>::infinity();
+  return follows_F(method) ? 2.0 * ppc : std::numeric_limits<double>::infinity();
 }
 
 std::optional<Failure> detect_failure(const Particles& P, Boundary bc, double max_F) {

@@ -23,11 +23,12 @@ std::string show(double v) {
 template <class Enum, std::size_t N>
 using Names = std::array<std::pair<Enum, std::string_view>, N>;
 
-constexpr Names<Method, 5> kMethods{{{Method::mpm, "mpm"},
+constexpr Names<Method, 6> kMethods{{{Method::mpm, "mpm"},
                                      {Method::gimp, "gimp"},
                                      {Method::cpgimp, "cpgimp"},
                                      {Method::bspline2, "bspline2"},
-                                     {Method::bspline3, "bspline3"}}};
+                                     {Method::bspline3, "bspline3"},
+                                     {Method::cpdi, "cpdi"}}};
 constexpr Names<SceneKind, 2> kScenes{{{SceneKind::bar, "bar"}, {SceneKind::steffen, "steffen"}}};
 constexpr Names<Walls, 2> kWalls{{{Walls::clip, "clip"}, {Walls::ghost, "ghost"}}};
 constexpr Names<Transfer, 3> kTransfers{
@@ -263,7 +264,7 @@ std::vector<ParamIssue> validate(const RunParams& p) {
     bad("walls", "ghost nodes apply to bc = dirichlet only (a periodic grid has no walls)");
   }
   if (!has_eq108(p.method)) {
-    if (p.walls == Walls::ghost) {
+    if (is_bspline(p.method) && p.walls == Walls::ghost) {
       bad("walls",
           "a B-spline eliminates its node beyond each wall (linear extrapolation); free "
           "ghost nodes apply to mpm, gimp and cpgimp");

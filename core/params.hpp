@@ -16,10 +16,21 @@ namespace mpmstab {
 // lp = h / (2 m) ("gimp"), or cpGIMP, whose half-width follows the deformation, lp = F_p h / (2 m)
 // ("cpgimp"); a cpGIMP particle wider than two cells (lp > h) ends the run (support_too_wide);
 // or the uniform quadratic or cubic B-spline ("bspline2", "bspline3"), whose node beyond a
-// Dirichlet wall is eliminated by linear extrapolation (shape.hpp). Eq. (108) is derived for the
-// first three only: with a B-spline the adaptive and min policies are refused and dt_stable is
-// not measured.
-enum class Method { mpm, gimp, cpgimp, bspline2, bspline3 };
+// Dirichlet wall is eliminated by linear extrapolation (shape.hpp); or CPDI ("cpdi": the hat
+// interpolated linearly between the two corners of cpGIMP's domain, which F_p carries). Eq. (108)
+// is derived for the first three only: with the others the adaptive and min policies are refused
+// and dt_stable is not measured.
+enum class Method { mpm, gimp, cpgimp, bspline2, bspline3, cpdi };
+
+// The basis is a B-spline (bspline2, bspline3): it eliminates its node beyond a Dirichlet wall.
+constexpr bool is_bspline(Method m) {
+  return m == Method::bspline2 || m == Method::bspline3;
+}
+
+// The particle's domain follows F_p (cpgimp, cpdi): wider than two cells it ends the run.
+constexpr bool follows_F(Method m) {
+  return m == Method::cpgimp || m == Method::cpdi;
+}
 
 // The paper's bound eq. (108) exists for this basis (mpm, gimp, cpgimp).
 constexpr bool has_eq108(Method m) {

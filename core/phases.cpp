@@ -86,8 +86,8 @@ inline void evaluate_block(const Basis& basis, const Particles& P, const double*
     if constexpr (kPeriodic) xp -= std::floor(xp);
     int bp;
     double wp[W], gp[W];
-    if constexpr (std::is_same_v<Basis, CpGimpBasis>) {
-      basis.eval(xp, F[j], bp, wp, gp);  // half-width F_p lp0
+    if constexpr (requires { basis.eval(xp, F[j], bp, wp, gp); }) {
+      basis.eval(xp, F[j], bp, wp, gp);  // a domain that follows F_p (cpGIMP, CPDI)
     } else {
       basis.eval(xp, bp, wp, gp);
     }
@@ -216,6 +216,11 @@ void p2g(const BSpline2Basis& basis, const Particles& P, const double* body_acce
 
 void p2g(const BSpline3Basis& basis, const Particles& P, const double* body_accel,
          Stencil<BSpline3Basis::width>& S, Grid& G) {
+  p2g_any(basis, P, body_accel, S, G);
+}
+
+void p2g(const CpdiBasis& basis, const Particles& P, const double* body_accel,
+         Stencil<CpdiBasis::width>& S, Grid& G) {
   p2g_any(basis, P, body_accel, S, G);
 }
 

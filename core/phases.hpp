@@ -44,6 +44,8 @@ void p2g(const GimpBasis& basis, const Particles& P, const double* body_accel,
          Stencil<GimpBasis::width>& S, Grid& G);
 void p2g(const CpGimpBasis& basis, const Particles& P, const double* body_accel,
          Stencil<CpGimpBasis::width>& S, Grid& G);
+void p2g(const CpdiBasis& basis, const Particles& P, const double* body_accel,
+         Stencil<CpdiBasis::width>& S, Grid& G);
 void p2g(const BSpline2Basis& basis, const Particles& P, const double* body_accel,
          Stencil<BSpline2Basis::width>& S, Grid& G);
 void p2g(const BSpline3Basis& basis, const Particles& P, const double* body_accel,

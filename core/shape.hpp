@@ -1,5 +1,6 @@
 // Shape functions: the linear hat ("mpm"), uGIMP ("gimp", Bardenhagen & Kober 2004), cpGIMP
-// ("cpgimp", the uGIMP average over a particle domain that follows the deformation) and the
+// ("cpgimp", the uGIMP average over a particle domain that follows the deformation), CPDI
+// ("cpdi", the corner interpolation of Sadeghirad et al. 2011 over that domain) and the
 // uniform quadratic and cubic B-splines ("bspline2", "bspline3"; Steffen, Kirby & Berzins 2008).
 //
 // Each basis evaluates, for one particle at x, the first node `base` it touches and the weights
@@ -241,6 +242,43 @@ struct BSpline3Basis {
     g[2] = (-3.0 * t2 + 2.0 * t + 1.0) * half_inv_h;
     g[3] = t2 * half_inv_h;
     if (walls) eliminate_ghost_nodes<width>(base, cells, w, g);
+  }
+};
+
+// CPDI in 1D (Sadeghirad, Brannon and Burghardt 2011, CPDI1): the particle domain is the segment
+// between its two corners x_1,2 = x -/+ lp, lp = F_p lp0 (corners carried by F_p, as cpGIMP's
+// half-width), and inside it the hat N_i is replaced by its linear interpolant between the
+// corners. Integrated over the domain, that gives
+//   S_ip = (N_i(x_1) + N_i(x_2)) / 2,   G_ip = (N_i(x_2) - N_i(x_1)) / (x_2 - x_1).
+// G is cpGIMP's exactly; S equals cpGIMP's (the exact average of N_i) while the domain lies in
+// one cell, where N_i is linear, and differs when a node lies inside the domain (N_i has its
+// kink there, which the interpolant cuts off). Valid, as cpGIMP, while 2 lp <= 2 h (F_p <= 2 m):
+// four nodes, base = floor((x - lp) / h) .. base + 3.
+struct CpdiBasis {
+  static constexpr int width = 4;
+  double inv_h;
+  double lp0_cells;  // reference half-width lp0 = h / (2 m) in cell units
+
+  CpdiBasis(double h, double lp0) : inv_h(1.0 / h), lp0_cells(lp0 / h) {}
+
+  void eval(double x, double F, int& base, double* wt, double* g) const {
+    const double lp_cells = F * lp0_cells;
+    const double s1 = x * inv_h - lp_cells;  // corners in cell units
+    const double cell = floor_exact(s1);
+    base = static_cast<int>(cell);
+    const double u = s1 - cell;             // corner 1 in cell [base, base + 1]
+    const double v = u + 2.0 * lp_cells;    // corner 2, relative to node base, in [0, 3)
+    const double c2_cell = floor_exact(v);  // its cell: 0, 1 or 2
+    const double f = v - c2_cell;
+    const int c2 = static_cast<int>(c2_cell);
+    const double inv_2lp = 0.5 / lp_cells * inv_h;
+    for (int k = 0; k < width; ++k) {
+      // The hat of node base + k at the corners: N(corner) = max(0, 1 - |corner - k|).
+      const double n1 = positive_part(1.0 - std::abs(u - k));
+      const double n2 = (k == c2 ? 1.0 - f : 0.0) + (k == c2 + 1 ? f : 0.0);
+      wt[k] = 0.5 * (n1 + n2);
+      g[k] = (n2 - n1) * inv_2lp;
+    }
   }
 };
 

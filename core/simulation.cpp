@@ -6,8 +6,8 @@ namespace mpmstab {
 
 namespace {
 
-std::variant<LinearBasis, GimpBasis, CpGimpBasis, BSpline2Basis, BSpline3Basis> make_basis(
-    const RunParams& p) {
+std::variant<LinearBasis, GimpBasis, CpGimpBasis, BSpline2Basis, BSpline3Basis, CpdiBasis>
+make_basis(const RunParams& p) {
   const double h = 1.0 / p.cells;
   const double lp = h / (2.0 * p.ppc);  // half-width lp = h / (2 m) of an undeformed particle
   const bool walls = p.bc == Boundary::dirichlet;
@@ -22,6 +22,8 @@ std::variant<LinearBasis, GimpBasis, CpGimpBasis, BSpline2Basis, BSpline3Basis> 
       return BSpline2Basis(h, p.cells, walls);
     case Method::bspline3:
       return BSpline3Basis(h, p.cells, walls);
+    case Method::cpdi:
+      return CpdiBasis(h, lp);  // corners at x -/+ F_p lp
   }
   return GimpBasis(h, lp);
 }
@@ -38,6 +40,8 @@ int stencil_width(Method m) {
       return BSpline2Basis::width;
     case Method::bspline3:
       return BSpline3Basis::width;
+    case Method::cpdi:
+      return CpdiBasis::width;
   }
   return GimpBasis::width;
 }

@@ -47,7 +47,7 @@ class Simulation {
   ParticleUpdate g2p_rule_;
   Particles P_;
   Grid G_;
-  std::variant<LinearBasis, GimpBasis, CpGimpBasis, BSpline2Basis, BSpline3Basis> basis_;
+  std::variant<LinearBasis, GimpBasis, CpGimpBasis, BSpline2Basis, BSpline3Basis, CpdiBasis> basis_;
   // One stencil per width; only the one of the run's basis is allocated.
   Stencil<2> stencil2_;
   Stencil<3> stencil3_;

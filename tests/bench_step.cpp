@@ -219,10 +219,12 @@ BENCHMARK(BM_Step<Level::stable_dt>)->Name("BM_StepStableDt")->Apply(methods);
 BENCHMARK(BM_Step<Level::crossings>)->Name("BM_StepCrossings")->Apply(methods);
 BENCHMARK(BM_Step<Level::instrumented>)->Name("BM_StepInstrumented")->Apply(methods);
 BENCHMARK(BM_StepBaseline)->Apply(methods);
-// The B-spline bases' step, against BM_Step's gimp in the same run (no baseline: that is for the
+// The other bases' step, against BM_Step's gimp in the same run (no baseline: that is for the
 // paper's two bases).
 BENCHMARK(BM_Step<Level::step>)
-    ->Name("BM_StepBSpline")
+    ->Name("BM_StepNewBases")
+    ->Arg(static_cast<int>(Method::cpgimp))
+    ->Arg(static_cast<int>(Method::cpdi))
     ->Arg(static_cast<int>(Method::bspline2))
     ->Arg(static_cast<int>(Method::bspline3));
 

@@ -198,6 +198,13 @@ TEST(G2P, ReproducesLinearFieldsGimp) {
 TEST(G2P, ReproducesLinearFieldsCpGimp) {
   check_linear_reproduction(CpGimpBasis(1.0 / 16, 1.0 / 64), kFlip);
 }
+TEST(P2G, ConservesMassMomentumAndForceCpdi) {
+  check_conservation(CpdiBasis(1.0 / 20, 1.0 / 80), Boundary::dirichlet, 0.0, 1.0);
+  check_conservation(CpdiBasis(1.0 / 20, 1.0 / 80), Boundary::periodic, -0.7, 1.7);
+}
+TEST(G2P, ReproducesLinearFieldsCpdi) {
+  check_linear_reproduction(CpdiBasis(1.0 / 16, 1.0 / 64), kFlip);
+}
 TEST(G2P, ReproducesLinearFieldsBSplines) {
   check_linear_reproduction(BSpline2Basis(1.0 / 16, 16, true), kFlip);
   check_linear_reproduction(BSpline3Basis(1.0 / 16, 16, true), kFlip);

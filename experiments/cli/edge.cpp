@@ -17,7 +17,7 @@ namespace mpmstab::cli {
 namespace {
 
 constexpr const char* kEdgeHelp =
-    R"(Usage: mpmstab edge --method gimp|cpgimp|mpm|bspline2|bspline3 --E <x> --A <x> [options]
+    R"(Usage: mpmstab edge --method <basis> --E <x> --A <x> [options]
 
 Finds the real edges of one case in fixed dt (the scene, method and choices as given): the
 survival edge dt_edge, the largest dt with which the bar survives to T, and the accuracy edge

@@ -27,7 +27,9 @@ Required:
   --method <basis>         shape functions: gimp (uGIMP), cpgimp (half-width follows F), mpm
                            (linear hat), bspline2 or bspline3 (quadratic or cubic B-spline,
                            the node beyond a Dirichlet wall eliminated by linear
-                           extrapolation; fixed or cfl policy only, dt_stable not measured)
+                           extrapolation) or cpdi (the hat interpolated between the corners
+                           of cpGIMP's domain); the last three with the fixed or cfl policy
+                           only, dt_stable not measured
   --E <x>                  Young's modulus, > 0
   --A <x>                  amplitude of the solution, >= 0
   --dt <x>                 time step, 0 < dt <= T (the last step is shortened to land on T);

@@ -143,7 +143,7 @@ const std::vector<OptionSpec>& run_options() {
 RunParams params_from(const Args& a, bool searching_dt) {
   RunParams p;
   p.method = parse_choice(required(a, "method"), "method", parse_method,
-                          "gimp, cpgimp, mpm, bspline2 or bspline3");
+                          "gimp, cpgimp, mpm, bspline2, bspline3 or cpdi");
   p.E = parse_double(required(a, "E"), "E");
   p.A = parse_double(required(a, "A"), "A");
   read_time_stepping(a, searching_dt, p);

@@ -105,7 +105,7 @@ class Reader {
   void set(RunParams& p, CaseSpec& c, const std::string& key, const json& v,
            const std::string& path) const {
     if (key == "method")
-      p.method = choice_at(v, path, parse_method, "gimp, cpgimp, mpm, bspline2 or bspline3");
+      p.method = choice_at(v, path, parse_method, "gimp, cpgimp, mpm, bspline2, bspline3 or cpdi");
     else if (key == "E")
       p.E = number_at(v, path);
     else if (key == "A")
@@ -250,7 +250,7 @@ std::vector<Method> variant_methods(const Reader& r, const json& v, const std::s
   for (std::size_t k = 0; k < m.size(); ++k) {
     const std::string mp = at + ".methods[" + std::to_string(k) + "]";
     const Method method =
-        r.choice_at(m[k], mp, parse_method, "gimp, cpgimp, mpm, bspline2 or bspline3");
+        r.choice_at(m[k], mp, parse_method, "gimp, cpgimp, mpm, bspline2, bspline3 or cpdi");
     if (std::find(methods.begin(), methods.end(), method) != methods.end()) {
       r.fail(mp, "repeats '" + std::string(to_string(method)) + "'");
     }
