@@ -266,16 +266,13 @@ struct CpdiBasis {
     const double s1 = x * inv_h - lp_cells;  // corners in cell units
     const double cell = floor_exact(s1);
     base = static_cast<int>(cell);
-    const double u = s1 - cell;             // corner 1 in cell [base, base + 1]
-    const double v = u + 2.0 * lp_cells;    // corner 2, relative to node base, in [0, 3)
-    const double c2_cell = floor_exact(v);  // its cell: 0, 1 or 2
-    const double f = v - c2_cell;
-    const int c2 = static_cast<int>(c2_cell);
+    const double u = s1 - cell;           // corner 1, relative to node base, in [0, 1)
+    const double v = u + 2.0 * lp_cells;  // corner 2, relative to node base, in [0, 3)
     const double inv_2lp = 0.5 / lp_cells * inv_h;
     for (int k = 0; k < width; ++k) {
       // The hat of node base + k at the corners: N(corner) = max(0, 1 - |corner - k|).
       const double n1 = positive_part(1.0 - std::abs(u - k));
-      const double n2 = (k == c2 ? 1.0 - f : 0.0) + (k == c2 + 1 ? f : 0.0);
+      const double n2 = positive_part(1.0 - std::abs(v - k));
       wt[k] = 0.5 * (n1 + n2);
       g[k] = (n2 - n1) * inv_2lp;
     }
