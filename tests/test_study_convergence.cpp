@@ -1,0 +1,56 @@
+// The convergence study: the orders it fits are the slopes of the errors it tabulates, and a run
+// that did not end stable leaves its point out of the fit.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include "support.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string read(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+TEST(ConvergenceStudy, TheFittedOrderIsTheSlopeOfTheTabulatedErrors) {
+  const fs::path dir = fs::temp_directory_path() / ("mpmstab_conv_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ofstream(dir / "conv.json") << R"({"name": "conv", "report": "convergence",
+    "record": ["error_over_time"], "defaults": {"A": 0.001, "T": 0.25, "E": 64, "dt": 2e-5},
+    "cases": [{"method": "bspline2", "cells": 25}, {"method": "bspline2", "cells": 50},
+              {"method": "bspline2", "cells": 100},
+              {"method": "mpm", "cells": 25, "dt": 0.2, "T": 0.5},
+              {"method": "mpm", "cells": 50}, {"method": "mpm", "cells": 100}]})";
+  const auto r = mpmstab::test_support::run_mpmstab("sweep " + (dir / "conv.json").string() +
+                                                    " --out " + (dir / "out").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  const std::string md = read(dir / "out" / "conv.md");
+  // | 64 | bspline2 | e25 | e50 | e100 | order |
+  const std::regex row(
+      R"(\| 64 \| bspline2 \| ([0-9.e-]+) \| ([0-9.e-]+) \| ([0-9.e-]+) \| ([0-9.]+) \|)");
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(md, m, row)) << md;
+  const double e25 = std::stod(m[1]), e100 = std::stod(m[3]), order = std::stod(m[4]);
+  // Three points, equally spaced in log h: the least-squares slope is that of the end points
+  // (to the two digits the table prints).
+  EXPECT_NEAR(order, std::log(e25 / e100) / std::log(4.0), 0.1) << md;
+  EXPECT_GT(order, 2.0) << md;
+  // MPM's coarsest run steps past T at once (dt = 0.2 > h/c): unstable, so only two points
+  // remain and no order is fitted.
+  const std::regex mpm_row(R"(\| 64 \| mpm \| unstable \| [0-9.e-]+ \| [0-9.e-]+ \| – \|)");
+  EXPECT_TRUE(std::regex_search(md, mpm_row)) << md;
+  EXPECT_TRUE(fs::exists(dir / "out" / "conv_data.csv"));
+  fs::remove_all(dir);
+}
+
+}  // namespace
