@@ -31,8 +31,10 @@ constexpr Names<Method, 6> kMethods{{{Method::mpm, "mpm"},
                                      {Method::cpdi, "cpdi"}}};
 constexpr Names<SceneKind, 2> kScenes{{{SceneKind::bar, "bar"}, {SceneKind::steffen, "steffen"}}};
 constexpr Names<Walls, 2> kWalls{{{Walls::clip, "clip"}, {Walls::ghost, "ghost"}}};
-constexpr Names<Transfer, 3> kTransfers{
-    {{Transfer::flip, "flip"}, {Transfer::pic, "pic"}, {Transfer::blend, "blend"}}};
+constexpr Names<Transfer, 4> kTransfers{{{Transfer::flip, "flip"},
+                                         {Transfer::pic, "pic"},
+                                         {Transfer::blend, "blend"},
+                                         {Transfer::apic, "apic"}}};
 constexpr Names<UpdateOrder, 3> kUpdateOrders{
     {{UpdateOrder::usl, "usl"}, {UpdateOrder::usf, "usf"}, {UpdateOrder::musl, "musl"}}};
 constexpr Names<BodyForceTime, 2> kBodyForceTimes{

@@ -57,13 +57,15 @@ enum class PositionUpdate { grid, particle };
 //    extend the grid by one cell do), which takes part in every phase like an interior node; the
 //    walls X = 0 and X = 1 stay fixed.
 //  - transfer (particle velocity in g2p): FLIP v_p += dt sum_i S_ip a_i; PIC v_p = sum_i S_ip v_i;
-//    blend = flip_fraction * FLIP + (1 - flip_fraction) * PIC.
+//    blend = flip_fraction * FLIP + (1 - flip_fraction) * PIC; APIC (Jiang et al. 2015): PIC's
+//    velocity plus an affine velocity C_p per particle, C_p = sum_i G_ip v_i, which p2g carries
+//    to the nodes as m_p (v_p + C_p (X_i - x_p)).
 //  - update (when the stress is updated): USL after g2p with v_i^{n+1}; USF before the forces are
 //    computed, with v_i^n = q_i / m_i (the paper's section 6); MUSL after g2p with the grid
 //    velocity re-mapped from the updated particle velocities.
 //  - body_force_time: b(X_p, t) at the start t^n of a step or at its end t^{n+1}.
 enum class Walls { clip, ghost };
-enum class Transfer { flip, pic, blend };
+enum class Transfer { flip, pic, blend, apic };
 enum class UpdateOrder { usl, usf, musl };
 enum class BodyForceTime { start, end };
 

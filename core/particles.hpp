@@ -14,6 +14,9 @@ struct Particles {
   Eigen::ArrayXd mass;     // m_p = rho0 h / m
   Eigen::ArrayXd volume0;  // V_p^0 = h / m; the current volume is V_p = F_p V_p^0 (eq. 6)
 
+  // APIC's affine velocity C_p (dv/dx) per particle: sized only when the transfer is apic.
+  Eigen::ArrayXd C;
+
   Eigen::Index size() const { return x.size(); }
 
   void resize(Eigen::Index n) {

@@ -341,7 +341,7 @@ void g2p_any(const Stencil<W>& S, const Grid& G, double dt, Particles& P) {
                              P.x.data(), P.v.data(), dt);
 }
 
-// PIC and blended transfers (phases.hpp), one particle after the other.
+// PIC, blended and APIC transfers (phases.hpp), one particle after the other.
 template <int W, Transfer kTransfer>
 void g2p_pic_blend(const Stencil<W>& S, const Grid& G, double dt, const ParticleUpdate& rule,
                    Particles& P) {
@@ -357,6 +357,9 @@ void g2p_pic_blend(const Stencil<W>& S, const Grid& G, double dt, const Particle
     if constexpr (kTransfer == Transfer::blend) {
       const double v_flip = P.v[p] + dt * interpolate<W>(w, p, a_i, b);
       v_new = alpha * v_flip + (1.0 - alpha) * v_grid;
+    }
+    if constexpr (kTransfer == Transfer::apic) {
+      P.C[p] = interpolate<W>(rows<W>(S.g), p, v_i, b);  // C_p = sum_i G_ip v_i
     }
     P.v[p] = v_new;
     P.x[p] += dt * (grid_position ? v_grid : v_new);
@@ -392,6 +395,23 @@ void g2p(const Stencil<W>& S, const Grid& G, double dt, const ParticleUpdate& ru
       return g2p_pic_blend<W, Transfer::pic>(S, G, dt, rule, P);
     case Transfer::blend:
       return g2p_pic_blend<W, Transfer::blend>(S, G, dt, rule, P);
+    case Transfer::apic:
+      return g2p_pic_blend<W, Transfer::apic>(S, G, dt, rule, P);
+  }
+}
+
+template <int W>
+void p2g_affine(const Stencil<W>& S, const Particles& P, Grid& G) {
+  double* q = G.momentum.data();
+  const bool periodic = G.bc == Boundary::periodic;
+  for (std::size_t p = 0; p < static_cast<std::size_t>(P.size()); ++p) {
+    const double x = periodic ? P.x[p] - std::floor(P.x[p]) : P.x[p];
+    const double mC = P.mass[p] * P.C[p];
+    const int b = S.base[p];  // storage slot of the first node
+    for (int k = 0; k < W; ++k) {
+      const double X = (b - Grid::kOffset + k) * G.h;
+      q[b + k] += S.w[k][p] * mC * (X - x);
+    }
   }
 }
 
@@ -415,6 +435,7 @@ void stress_update(const Stencil<W>& S, const Grid& G, double dt, const Material
   template void p2g_force(const Stencil<W>&, const Particles&, const double*, Grid&);           \
   template void p2g_momentum(const Stencil<W>&, const Particles&, Grid&);                       \
   template void g2p(const Stencil<W>&, const Grid&, double, const ParticleUpdate&, Particles&); \
+  template void p2g_affine(const Stencil<W>&, const Particles&, Grid&);                         \
   template void stress_update(const Stencil<W>&, const Grid&, double, const MaterialLaw&,       \
                               Particles&);
 MPMSTAB_INSTANTIATE(LinearBasis::width)

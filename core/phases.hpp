@@ -84,10 +84,17 @@ struct ParticleUpdate {
 //   flip:  v_p += dt sum_i S_ip a_i
 //   pic:   v_p  = sum_i S_ip v_i
 //   blend: v_p  = alpha (v_p + dt sum_i S_ip a_i) + (1 - alpha) sum_i S_ip v_i
+//   apic:  v_p  = sum_i S_ip v_i and C_p = sum_i G_ip v_i (P.C sized)
 // and position: x_p += dt sum_i S_ip v_i (default) or, with PositionUpdate::particle,
 // x_p += dt v_p^{n+1} (eq. 10).
 template <int W>
 void g2p(const Stencil<W>& S, const Grid& G, double dt, const ParticleUpdate& rule, Particles& P);
+
+// APIC's part of p2g, after p2g (or p2g_momentum): q_i += sum_p S_ip m_p C_p (X_i - x_p), over
+// the stencil p2g kept (x_p taken in [0, 1) with periodic boundaries, as the stencil was).
+// With C_p = dv/dx of an affine velocity field, the nodes then hold that field exactly.
+template <int W>
+void p2g_affine(const Stencil<W>& S, const Particles& P, Grid& G);
 
 // stress update: L_p = sum_i G_ip v_i with the velocity in G (eq. 11); F_p <- F_p (1 + dt L_p)
 // (eq. 13); sigma_p = sigma(F_p) by the material law. For the linear law of eq. (109) this equals

@@ -64,21 +64,25 @@ Simulation::Simulation(const RunParams& p)
   body_force_ = scene_->body_force_at(P_.X);
   u_profile_ = P_.X.unaryExpr([&](double X) { return scene_->displacement_profile(X); });
   body_accel_.setZero(P_.size());
+  if (p.transfer == Transfer::apic) P_.C.setZero(P_.size());  // starts from v_p alone
 }
 
 template <class Basis>
 void Simulation::step(const Basis& basis, Stencil<Basis::width>& S, double dt, double t_body) {
   body_force_->evaluate(t_body, body_accel_);  // b(X_p, t^n) or b(X_p, t^{n+1})
   const double* b = body_accel_.data();
+  const bool apic = params_.transfer == Transfer::apic;
   switch (params_.update) {
     case UpdateOrder::usl:
       p2g(basis, P_, b, S, G_);            // eqs. (5)-(7)
+      if (apic) p2g_affine(S, P_, G_);     // APIC: q_i += sum_p S_ip m_p C_p (X_i - x_p)
       grid_update(G_, dt);                 // eqs. (7), (8)
       g2p(S, G_, dt, g2p_rule_, P_);       // eqs. (9), (10)
       stress_update(S, G_, dt, law_, P_);  // eqs. (11), (13), (14) with v_i^{n+1}
       break;
     case UpdateOrder::usf:
-      p2g(basis, P_, b, S, G_);            // m_i, q_i; f_i is redone with the new stress below
+      p2g(basis, P_, b, S, G_);  // m_i, q_i; f_i is redone with the new stress below
+      if (apic) p2g_affine(S, P_, G_);
       grid_velocity(G_);                   // v_i^n = q_i / m_i
       stress_update(S, G_, dt, law_, P_);  // with v_i^n
       p2g_force(S, P_, b, G_);             // f_i with the new sigma_p and V_p = F_p V_p^0
@@ -87,9 +91,11 @@ void Simulation::step(const Basis& basis, Stencil<Basis::width>& S, double dt, d
       break;
     case UpdateOrder::musl:
       p2g(basis, P_, b, S, G_);
+      if (apic) p2g_affine(S, P_, G_);
       grid_update(G_, dt);
       g2p(S, G_, dt, g2p_rule_, P_);
       p2g_momentum(S, P_, G_);             // q_i = sum_p S_ip m_p v_p^{n+1}
+      if (apic) p2g_affine(S, P_, G_);     // with C_p from this g2p
       grid_velocity(G_);                   // v_i = q_i / m_i
       stress_update(S, G_, dt, law_, P_);  // with the re-mapped v_i
       break;

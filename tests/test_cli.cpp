@@ -93,7 +93,7 @@ TEST(Cli, InvalidInputExitsTwoAndNamesTheOption) {
       {with("scene", "beam"), "--scene"},
       {with("walls", "mirror"), "--walls"},
       {with("walls", "ghost") + " --bc periodic", "--walls"},  // a periodic grid has no walls
-      {with("transfer", "apic"), "--transfer"},
+      {with("transfer", "xpic"), "--transfer"},
       {with("flip-fraction", "0.5"), "--flip-fraction"},  // only with --transfer blend
       {with("transfer", "blend") + " --flip-fraction 1", "--flip-fraction"},
       {with("transfer", "blend") + " --flip-fraction nan", "--flip-fraction"},

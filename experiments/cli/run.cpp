@@ -48,8 +48,9 @@ Options:
                            u = A sin(2 pi X) cos(c pi t)
   --walls clip|ghost       GIMP supports at a Dirichlet wall: nodes on [0, 1] only
                            (default) or one free ghost node beyond each wall
-  --transfer flip|pic|blend
-                           particle velocity update (default flip)
+  --transfer flip|pic|blend|apic
+                           particle velocity update (default flip); apic: PIC with an affine
+                           velocity per particle (Jiang et al. 2015)
   --flip-fraction <a>      FLIP share of a blend, 0 < a < 1 (default 0.95)
   --update usl|usf|musl    stress update last (default), first (the paper's section 6),
                            or last with the grid velocity re-mapped from the particles

@@ -66,7 +66,7 @@ void read_choices(const Args& a, RunParams& p) {
   if (auto v = a.value("scene")) p.scene = parse_choice(*v, "scene", parse_scene, "bar or steffen");
   if (auto v = a.value("walls")) p.walls = parse_choice(*v, "walls", parse_walls, "clip or ghost");
   if (auto v = a.value("transfer")) {
-    p.transfer = parse_choice(*v, "transfer", parse_transfer, "flip, pic or blend");
+    p.transfer = parse_choice(*v, "transfer", parse_transfer, "flip, pic, blend or apic");
   }
   if (auto v = a.value("flip-fraction")) p.flip_fraction = parse_double(*v, "flip-fraction");
   if (auto v = a.value("update")) {

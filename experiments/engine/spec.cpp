@@ -127,7 +127,7 @@ class Reader {
     else if (key == "walls")
       p.walls = choice_at(v, path, parse_walls, "clip or ghost");
     else if (key == "transfer")
-      p.transfer = choice_at(v, path, parse_transfer, "flip, pic or blend");
+      p.transfer = choice_at(v, path, parse_transfer, "flip, pic, blend or apic");
     else if (key == "flip_fraction")
       p.flip_fraction = number_at(v, path);
     else if (key == "update")
