@@ -8,7 +8,8 @@
 #         the reason), then the header
 #         panel,series,E,dt_edge_over_cfl,dt_accurate_over_cfl,meaningless_at_edge
 #         (panel 0 the bar, 1 the second scene; series 1 GIMP A = 0.015, 2 GIMP A = 0.05,
-#         3 MPM A = 0.015, 4 MPM A = 0.05); an empty dt_accurate_over_cfl: no accuracy edge.
+#         3 MPM A = 0.015, 4 MPM A = 0.05, 5 CPDI, 6 quadratic B-spline, 7 cubic B-spline, at
+#         A = 0.015); an empty dt_accurate_over_cfl: no accuracy edge.
 #         One row per drawn case.
 # Writes: outbase.png and outbase.svg.
 # Variables: datafile, outbase (required), subtitle (optional).
@@ -33,16 +34,17 @@ stats datafile using 4 nooutput
 ylow = floor(STATS_min * 10 - 0.5) / 10.0
 yhigh = ceil((STATS_max > 1 ? STATS_max : 1) * 10 + 0.5) / 10.0
 
-array colour[4] = ["#1f77b4", "#6baed6", "#d62728", "#ff9896"]
-array filled[4] = [7, 5, 9, 11]
-array open[4] = [6, 4, 8, 10]
-array name[4] = ["GIMP, A = 0.015", "GIMP, A = 0.05", "MPM, A = 0.015", "MPM, A = 0.05"]
+array colour[7] = ["#1f77b4", "#6baed6", "#d62728", "#ff9896", "#2ca02c", "#9467bd", "#8c564b"]
+array filled[7] = [7, 5, 9, 11, 13, 15, 3]
+array open[7] = [6, 4, 8, 10, 12, 14, 2]
+array name[7] = ["GIMP, A = 0.015", "GIMP, A = 0.05", "MPM, A = 0.015", "MPM, A = 0.05", \
+                 "CPDI, A = 0.015", "B-spline 2, A = 0.015", "B-spline 3, A = 0.015"]
 
 do for [ext in "png svg"] {
     if (ext eq "png") {
-        set terminal pngcairo size 1200,760 font "sans,11" noenhanced
+        set terminal pngcairo size 1200,900 font "sans,11" noenhanced
     } else {
-        set terminal svg size 1200,760 dynamic font "sans,11" noenhanced background "white"
+        set terminal svg size 1200,900 dynamic font "sans,11" noenhanced background "white"
     }
     set output outbase . "." . ext
     set multiplot title "Survival and accuracy edges against E, in units of h/c" . (strlen(subtitle) > 0 ? "\n" . subtitle : "")
@@ -54,15 +56,15 @@ do for [ext in "png svg"] {
     set grid xtics ytics mxtics lc rgb "#e0e0e0"
     unset key
     set tmargin at screen 0.87
-    set bmargin at screen 0.3
+    set bmargin at screen 0.34
     do for [p = 0:1] {
         set title (p == 0 ? "The paper's bar" : "Second scene: Steffen et al. (2008), neo-Hookean")
         set lmargin at screen (p == 0 ? 0.07 : 0.56)
         set rmargin at screen (p == 0 ? 0.48 : 0.97)
         plot datafile using 3:(cfl(p)) with linespoints lw 1.5 pt 1 ps 1.2 lc rgb "black", \
              datafile using 3:(meaningless(p)) with points pt 2 ps 2.6 lw 1.5 lc rgb "black", \
-             for [s = 1:4] datafile using 3:(sel(p, s, $4)) with linespoints lw 1.5 pt filled[s] ps 1.2 lc rgb colour[s], \
-             for [s = 1:4] datafile using 3:(sel(p, s, $5)) with linespoints lw 1.5 dt 2 pt open[s] ps 1.8 lc rgb colour[s]
+             for [s = 1:7] datafile using 3:(sel(p, s, $4)) with linespoints lw 1.5 pt filled[s] ps 1.2 lc rgb colour[s], \
+             for [s = 1:7] datafile using 3:(sel(p, s, $5)) with linespoints lw 1.5 dt 2 pt open[s] ps 1.8 lc rgb colour[s]
     }
     # The legend of both panels, below them.
     unset title
@@ -76,13 +78,13 @@ do for [ext in "png svg"] {
     set yrange [0:1]
     set lmargin at screen 0.07
     set rmargin at screen 0.97
-    set tmargin at screen 0.2
+    set tmargin at screen 0.25
     set bmargin at screen 0.01
-    set key center center horizontal maxrows 5 samplen 3 spacing 1.1
+    set key center center horizontal maxrows 8 samplen 3 spacing 1.0
     plot NaN with linespoints lw 1.5 pt 1 ps 1.2 lc rgb "black" title "h/c (speed-of-sound limit)", \
-         for [s = 1:4] NaN with linespoints lw 1.5 pt filled[s] ps 1.2 lc rgb colour[s] title "survival edge, " . name[s], \
+         for [s = 1:7] NaN with linespoints lw 1.5 pt filled[s] ps 1.2 lc rgb colour[s] title "survival edge, " . name[s], \
          NaN with points pt 2 ps 2.6 lw 1.5 lc rgb "black" title "run at the survival edge meaningless", \
-         for [s = 1:4] NaN with linespoints lw 1.5 dt 2 pt open[s] ps 1.8 lc rgb colour[s] title "accuracy edge, " . name[s]
+         for [s = 1:7] NaN with linespoints lw 1.5 dt 2 pt open[s] ps 1.8 lc rgb colour[s] title "accuracy edge, " . name[s]
     unset multiplot
     unset output
     set border

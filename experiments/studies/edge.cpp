@@ -205,7 +205,8 @@ std::string edge_table(const std::vector<ojson>& rows) {
 // The figure: one panel per scene, one series per method and amplitude.
 const std::vector<std::string> kPanels = {"bar", "steffen"};
 const std::vector<std::pair<std::string, double>> kSeries = {
-    {"gimp", 0.015}, {"gimp", 0.05}, {"mpm", 0.015}, {"mpm", 0.05}};
+    {"gimp", 0.015}, {"gimp", 0.05},      {"mpm", 0.015},     {"mpm", 0.05},
+    {"cpdi", 0.015}, {"bspline2", 0.015}, {"bspline3", 0.015}};
 
 int panel_of(const ojson& r) {
   const auto it = std::find(kPanels.begin(), kPanels.end(), r["scene"].get<std::string>());
@@ -338,7 +339,8 @@ std::string edge_data_csv(const std::vector<ojson>& rows, const std::string& hea
         << "\n";
   }
   csv << "# panel: 0 the bar, 1 the second scene (steffen); series: 1 gimp A = 0.015, 2 gimp "
-         "A = 0.05, 3 mpm A = 0.015, 4 mpm A = 0.05; dt in units of h/c; meaningless_at_edge: "
+         "A = 0.05, 3 mpm A = 0.015, 4 mpm A = 0.05, 5 cpdi, 6 bspline2, 7 bspline3 A = 0.015; dt "
+         "in units of h/c; meaningless_at_edge: "
          "1 when the run at the survival edge is meaningless\n"
          "panel,series,E,dt_edge_over_cfl,dt_accurate_over_cfl,meaningless_at_edge\n";
   for (const ojson* r : drawn) {
