@@ -4,8 +4,9 @@
 # marker growing with the number of cases, and that number printed when it is more than 1.
 #
 # Reads : datafile (results/extremes_data.csv): '#' lines, then the header
-#         method,courant,A_over_h,verdict,cases
-#         (method 0 mpm, 1 gimp; verdict 0 stable, 1 meaningless, 2 unstable).
+#         method,courant,A_over_h,verdict,cases,name
+#         (method: its panel, 0..; verdict 0 stable, 1 meaningless, 2 unstable; name: the
+#         method's name, the panel's title).
 # Writes: outbase.png and outbase.svg.
 # Variables: datafile, outbase (required), subtitle (optional).
 
@@ -25,15 +26,26 @@ shift(v) = 10 ** ((v - 1) * 0.25)
 size(n) = 0.9 + 0.6 * log10(n)
 many(n) = n > 1 ? sprintf("%d", n) : ""
 
+# The panels and their titles, from the data.
+stats datafile using "method" nooutput
+panels = int(STATS_max) + 1
+array title_of[panels]
+do for [m = 1:panels] {
+    title_of[m] = ""
+    stats datafile using (column("method") == m - 1 ? (title_of[m] = strcol("name"), 0) : 1/0) nooutput
+}
+rows = panels > 2 ? 2 : 1
+cols = int(ceil(panels / real(rows)))
+
 do for [ext in "png svg"] {
     if (ext eq "png") {
-        set terminal pngcairo size 1100,600 font "sans,11" noenhanced
+        set terminal pngcairo size 550 * cols,(rows == 1 ? 600 : 1000) font "sans,11" noenhanced
     } else {
-        set terminal svg size 1100,600 dynamic font "sans,11" noenhanced background "white"
+        set terminal svg size 550 * cols,(rows == 1 ? 600 : 1000) dynamic font "sans,11" noenhanced background "white"
     }
     set output outbase . "." . ext
-    set multiplot layout 1,2 title "Verdicts at the extremes: Courant number against amplitude in cells" . (strlen(subtitle) > 0 ? "\n" . subtitle : "") \
-        margins 0.08,0.98,0.22,0.86 spacing 0.08,0
+    set multiplot layout rows,cols title "Verdicts at the extremes: Courant number against amplitude in cells" . (strlen(subtitle) > 0 ? "\n" . subtitle : "") \
+        margins 0.08,0.98,(rows == 1 ? 0.22 : 0.14),(rows == 1 ? 0.86 : 0.91) spacing 0.08,0.09
     set logscale xy
     set format x "%.0e"
     set format y "%.0e"
@@ -42,10 +54,10 @@ do for [ext in "png svg"] {
     set grid xtics ytics lc rgb "#e0e0e0"
     set xrange [1e-9:1e7]
     set yrange [1e-8:1e5]
-    do for [m = 1:0:-1] {
-        set title (m == 1 ? "GIMP" : "MPM")
-        if (m == 0) {
-            set key at screen 0.5, screen 0.06 center bottom horizontal samplen 2
+    do for [m = 0:panels - 1] {
+        set title title_of[m + 1]
+        if (m == panels - 1) {
+            set key at screen 0.5, screen 0.02 center bottom horizontal samplen 2
         } else {
             unset key
         }

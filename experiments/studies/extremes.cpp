@@ -139,7 +139,7 @@ std::string band_table(const std::vector<ojson>& rows, const std::string& method
 // The reading for one method, computed from the rows: how many runs at and above Courant 1
 // fail and how long the survivors ran, and how many of the failures below Courant 1 have
 // particles crossing cells.
-std::string method_reading(const std::vector<ojson>& rows, const char* method) {
+std::string method_reading(const std::vector<ojson>& rows, const std::string& method) {
   int above = 0, above_failed = 0, below_failed = 0, below_failed_crossing = 0;
   std::int64_t longest_survivor = 0;
   for (const auto& r : rows) {
@@ -180,17 +180,32 @@ std::string every_case_table(const std::vector<ojson>& rows) {
   return md.str();
 }
 
+// The methods of the rows, the paper's first, then the others in a fixed order.
+std::vector<std::string> methods_of(const std::vector<ojson>& rows) {
+  std::vector<std::string> present;
+  for (const char* m : {"gimp", "mpm", "cpgimp", "cpdi", "bspline2", "bspline3"}) {
+    for (const auto& r : rows) {
+      if (r["method"] == m) {
+        present.emplace_back(m);
+        break;
+      }
+    }
+  }
+  return present;
+}
+
 // The report: the summary, per method its band tables, the reading and every case.
 std::string extremes_markdown(const Spec& spec, const std::vector<ojson>& rows) {
   std::ostringstream md;
   md << extremes_summary(spec, rows);
-  for (const char* method : {"gimp", "mpm"}) {
+  const std::vector<std::string> methods = methods_of(rows);
+  for (const std::string& method : methods) {
     md << "### " << method << "\n\n"
        << band_table(rows, method, kCourantBands, true)
        << band_table(rows, method, kAmplitudeBands, false);
   }
   md << "Reading (computed from the rows): ";
-  for (const char* method : {"gimp", "mpm"})
+  for (const std::string& method : methods)
     md << method_reading(rows, method);
   md << "\n\n" << every_case_table(rows);
   return md.str();
@@ -202,9 +217,11 @@ std::string extremes_markdown(const Spec& spec, const std::vector<ojson>& rows) 
 using Spot = std::tuple<int, std::string, std::string, int>;
 
 std::map<Spot, int> spots(const std::vector<ojson>& rows) {
+  const std::vector<std::string> methods = methods_of(rows);
   std::map<Spot, int> n;
   for (const auto& r : rows) {
-    ++n[{r["method"] == "gimp" ? 1 : 0, param(r["courant"].get<double>()),
+    const auto m = std::find(methods.begin(), methods.end(), r["method"].get<std::string>());
+    ++n[{int(m - methods.begin()), param(r["courant"].get<double>()),
          param(r["A"].get<double>() * r["cells"].get<double>()), verdict_code(r)}];
   }
   return n;
@@ -213,12 +230,15 @@ std::map<Spot, int> spots(const std::vector<ojson>& rows) {
 std::string extremes_data_csv(const std::vector<ojson>& rows, const std::string& header_lines) {
   std::ostringstream csv;
   csv << header_lines
-      << "# one row per spot: method (0 mpm, 1 gimp), Courant number, amplitude in cells, verdict "
-         "(0 stable, 1 meaningless, 2 unstable) and the number of cases there\n"
-         "method,courant,A_over_h,verdict,cases\n";
+      << "# one row per spot: method (its panel, 0..), Courant number, amplitude in cells, "
+         "verdict (0 stable, 1 meaningless, 2 unstable), the number of cases there and the "
+         "method's name\n"
+         "method,courant,A_over_h,verdict,cases,name\n";
+  const std::vector<std::string> methods = methods_of(rows);
   for (const auto& [spot, count] : spots(rows)) {
     const auto& [method, courant, a_over_h, verdict] = spot;
-    csv << method << ',' << courant << ',' << a_over_h << ',' << verdict << ',' << count << '\n';
+    csv << method << ',' << courant << ',' << a_over_h << ',' << verdict << ',' << count << ','
+        << methods[static_cast<std::size_t>(method)] << '\n';
   }
   return csv.str();
 }
