@@ -156,9 +156,9 @@ std::string method_reading(const std::vector<ojson>& rows, const std::string& me
   }
   std::ostringstream md;
   md << method << ": " << above_failed << " of " << above
-     << " runs at c dt/h >= 1 fail; the ones that survive ran " << longest_survivor
-     << " steps at most (T is short there), too few for the instability to grow. Below "
-        "Courant 1, "
+     << " runs at c dt/h >= 1 fail; the longest survivor there ran " << longest_survivor
+     << " steps (a survivor above Courant 1 is stable only if its basis's edge lies above "
+        "it: edge.md). Below Courant 1, "
      << below_failed << " runs fail, " << below_failed_crossing << " of them with A/h >= 1, "
      << "where particles cross cells. ";
   return md.str();
