@@ -220,5 +220,39 @@ TEST(BSpline, RefusesWhatEq108AndTheWallNodesDoNotCover) {
   EXPECT_EQ(issues.front().key, "walls");
 }
 
+// Every new basis with every scene, both boundary kinds, every update order and the FLIP and
+// APIC transfers: a verdict each, and at this small amplitude a stable one (72 runs).
+TEST(NewBases, RunWithEverySceneBoundaryUpdateOrderAndTransfer) {
+  int runs = 0;
+  for (const Method m : {Method::bspline2, Method::bspline3, Method::cpdi}) {
+    for (const SceneKind scene : {SceneKind::bar, SceneKind::steffen}) {
+      for (const Boundary bc : {Boundary::dirichlet, Boundary::periodic}) {
+        for (const UpdateOrder u : {UpdateOrder::usl, UpdateOrder::usf, UpdateOrder::musl}) {
+          for (const Transfer t : {Transfer::flip, Transfer::apic}) {
+            RunParams p;
+            p.method = m;
+            p.scene = scene;
+            p.bc = bc;
+            p.update = u;
+            p.transfer = t;
+            p.E = 64;
+            p.A = 0.01;
+            p.dt = 1e-4;
+            p.T = 0.1;
+            p.cells = 50;
+            ASSERT_TRUE(validate(p).empty());
+            const RunResult r = run(p);
+            EXPECT_EQ(r.outcome, Outcome::stable)
+                << to_string(m) << " " << to_string(scene) << " " << to_string(bc) << " "
+                << to_string(u) << " " << to_string(t);
+            ++runs;
+          }
+        }
+      }
+    }
+  }
+  EXPECT_EQ(runs, 72);
+}
+
 }  // namespace
 }  // namespace mpmstab
