@@ -9,6 +9,7 @@
 #include "params.hpp"
 #include "run.hpp"
 #include "shape.hpp"
+#include "support.hpp"
 
 namespace mpmstab {
 namespace {
@@ -196,13 +197,9 @@ TEST(BSpline, ConvergesAtLeastSecondOrderInH) {
 // number of another basis's formula), and the policies that step by it are refused, as are free
 // ghost nodes (the B-splines eliminate theirs).
 TEST(BSpline, RefusesWhatEq108AndTheWallNodesDoNotCover) {
-  RunParams p;
+  RunParams p = test_support::quick_case();
   p.method = Method::bspline2;
-  p.E = 4;
-  p.A = 0.015;
-  p.dt = 1e-3;
   p.T = 0.05;
-  p.cells = 20;
   ASSERT_TRUE(validate(p).empty());
   const RunResult r = run(p);
   EXPECT_FALSE(r.dt_stable_min.has_value());

@@ -73,7 +73,7 @@ int cmd_plot(const std::vector<std::string_view>& argv) {
   // 1. Inputs: regular files of bounded size (gnuplot never opens a FIFO or a device through
   // us); targets: regular files or absent.
   for (const auto& f : {script, data, summary}) {
-    if (!read_if_present(f)) throw UsageError(f.string() + " does not exist");
+    if (!input_exists(f)) throw UsageError(f.string() + " does not exist");
   }
   for (const char* ext : {".png", ".svg"})
     require_regular_or_absent(out / (spec.name + ext));

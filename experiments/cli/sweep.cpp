@@ -166,10 +166,11 @@ int cmd_sweep(const std::vector<std::string_view>& argv) {
   SweepOptions options = sweep_options(args);
   const bool omit = omit_timing(args);
   // 1. Every input is read and checked before any work: a refusal leaves every file as it was.
+  // (A study without cases reads its inputs before it writes anything: derive checks them.)
   const Spec spec = load_specs(args.positional()).front();
   const auto out = output_folder(args);
-  check_inputs(spec, out);
   if (!spec.study->has_cases) return derive(spec, options, out);
+  check_inputs(spec, out);
   options.cache = out / "cache";
   remove_stale_temporaries(options.cache);  // of a sweep killed while storing a record
   options.progress_line = ::isatty(STDERR_FILENO) != 0;

@@ -139,11 +139,15 @@ thread_local ReportBatch* t_active = nullptr;
 
 }  // namespace
 
-std::optional<std::string> read_if_present(const fs::path& path, std::uintmax_t max_bytes) {
+namespace {
+
+// Opens `path` for reading when it is a regular file of at most `max_bytes`, and gives its size;
+// -1 when it does not exist. Throws InputError otherwise, without reading a byte.
+int open_input(const fs::path& path, std::uintmax_t max_bytes, std::uintmax_t& size) {
   // O_NONBLOCK: opening a FIFO must not wait for a writer; it is refused below.
   const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
   if (fd < 0) {
-    if (errno == ENOENT) return std::nullopt;
+    if (errno == ENOENT) return -1;
     throw InputError(path, "cannot be read: " + errno_text());
   }
   struct stat st {};
@@ -162,8 +166,26 @@ std::optional<std::string> read_if_present(const fs::path& path, std::uintmax_t 
     ::close(fd);
     throw InputError(path, "is larger than the limit of " + mib(max_bytes) + " for an input");
   }
+  size = static_cast<std::uintmax_t>(st.st_size);
+  return fd;
+}
+
+}  // namespace
+
+bool input_exists(const fs::path& path, std::uintmax_t max_bytes) {
+  std::uintmax_t size = 0;
+  const int fd = open_input(path, max_bytes, size);
+  if (fd < 0) return false;
+  ::close(fd);
+  return true;
+}
+
+std::optional<std::string> read_if_present(const fs::path& path, std::uintmax_t max_bytes) {
+  std::uintmax_t size = 0;
+  const int fd = open_input(path, max_bytes, size);
+  if (fd < 0) return std::nullopt;
   std::string text;
-  text.resize(static_cast<std::size_t>(st.st_size));
+  text.resize(static_cast<std::size_t>(size));
   std::size_t done = 0;
   for (;;) {
     if (done == text.size()) {
@@ -355,7 +377,6 @@ void ReportBatch::add(const fs::path& path, std::string content) {
 
 std::size_t ReportBatch::publish() {
   t_active = nullptr;
-  open_ = false;
   std::set<fs::path> folders;
   for (const auto& [path, content] : files_)
     folders.insert(path.parent_path());

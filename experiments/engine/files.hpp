@@ -45,6 +45,10 @@ inline constexpr std::uintmax_t kMaxInputBytes = std::uintmax_t{64} << 20;
 std::string read_input(const std::filesystem::path& path,
                        std::uintmax_t max_bytes = kMaxInputBytes);
 
+// Whether `path` exists, with read_input's checks on it (a regular file of at most `max_bytes`,
+// else InputError), without reading it: for files another program will read.
+bool input_exists(const std::filesystem::path& path, std::uintmax_t max_bytes = kMaxInputBytes);
+
 // As read_input, but an absent file gives std::nullopt.
 std::optional<std::string> read_if_present(const std::filesystem::path& path,
                                            std::uintmax_t max_bytes = kMaxInputBytes);
@@ -130,7 +134,6 @@ class ReportBatch {
 
  private:
   std::vector<std::pair<std::filesystem::path, std::string>> files_;
-  bool open_ = true;
 };
 
 }  // namespace mpmstab
