@@ -253,8 +253,8 @@ std::vector<ParamIssue> validate(const RunParams& p) {
   if (p.cells >= 1 && p.ppc >= 1 && run_bytes(p) > kMaxRunBytes) {
     bad("cells", "cells * ppc = " + show(double(p.cells) * p.ppc) + " particles need about " +
                      show(std::round(run_bytes(p) / double(1 << 20))) + " MiB (" +
-                     std::to_string(kBytesPerParticle) +
-                     " bytes per particle); the limit is 2048 MiB (" +
+                     std::to_string(kBytesPerParticle) + " bytes per particle); the limit is " +
+                     std::to_string(kMaxRunBytes >> 20) + " MiB (" +
                      show(std::floor(double(kMaxRunBytes) / kBytesPerParticle)) + " particles)");
   }
   if (p.transfer == Transfer::blend &&

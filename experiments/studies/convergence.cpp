@@ -112,7 +112,7 @@ std::string sweep_table(const std::map<Key, std::vector<Point>>& g, const std::s
   return md.str();
 }
 
-std::string convergence_markdown(const Spec& spec, const std::vector<ojson>& rows) {
+std::string convergence_markdown(const std::vector<ojson>& rows) {
   const auto g = groups(rows);
   const ojson& first = rows.front();
   std::ostringstream md;
@@ -129,7 +129,6 @@ std::string convergence_markdown(const Spec& spec, const std::vector<ojson>& row
         "the error stops falling with dt and the fitted order is near 0: the time error is "
         "then below the grid's.\n\n"
      << sweep_table(g, "dt") << "\n";
-  (void)spec;
   return md.str();
 }
 
@@ -195,7 +194,7 @@ const StudyRegistration kConvergence{{
     .figure = true,
     .report =
         [](const ReportContext& c) {
-          return StudyReport{.markdown = convergence_markdown(c.spec, c.rows),
+          return StudyReport{.markdown = convergence_markdown(c.rows),
                              .data_csv = convergence_data(c.rows, c.csv_header)};
         },
     .index = convergence_index,
