@@ -33,6 +33,8 @@ struct Grid {
   Eigen::ArrayXd force;     // f_i (internal + body)
   Eigen::ArrayXd velocity;  // v_i^{n+1}
   Eigen::ArrayXd accel;     // a_i^{n+1}
+  // XPIC and FMPM (xpic.hpp): the correction w_i that g2p adds to v_i. Sized only for them.
+  Eigen::ArrayXd correction;
 
   static constexpr int kOffset = 1;  // storage index of node 0
 

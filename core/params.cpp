@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <tuple>
 #include <utility>
 
 #include "scene.hpp"
@@ -30,11 +31,14 @@ constexpr Names<Method, 6> kMethods{{{Method::mpm, "mpm"},
                                      {Method::bspline3, "bspline3"},
                                      {Method::cpdi, "cpdi"}}};
 constexpr Names<SceneKind, 2> kScenes{{{SceneKind::bar, "bar"}, {SceneKind::steffen, "steffen"}}};
-constexpr Names<Walls, 2> kWalls{{{Walls::clip, "clip"}, {Walls::ghost, "ghost"}}};
-constexpr Names<Transfer, 4> kTransfers{{{Transfer::flip, "flip"},
+constexpr Names<Walls, 3> kWalls{
+    {{Walls::clip, "clip"}, {Walls::ghost, "ghost"}, {Walls::modified, "modified"}}};
+constexpr Names<Transfer, 6> kTransfers{{{Transfer::flip, "flip"},
                                          {Transfer::pic, "pic"},
                                          {Transfer::blend, "blend"},
-                                         {Transfer::apic, "apic"}}};
+                                         {Transfer::apic, "apic"},
+                                         {Transfer::xpic, "xpic"},
+                                         {Transfer::fmpm, "fmpm"}}};
 constexpr Names<UpdateOrder, 3> kUpdateOrders{
     {{UpdateOrder::usl, "usl"}, {UpdateOrder::usf, "usf"}, {UpdateOrder::musl, "musl"}}};
 constexpr Names<BodyForceTime, 2> kBodyForceTimes{
@@ -137,6 +141,38 @@ std::optional<BodyForceTime> parse_body_force_time(std::string_view s) {
   return parse(kBodyForceTimes, s);
 }
 
+std::string nondefault_choices(const RunParams& p) {
+  const RunParams d;
+  std::string text;
+  auto add = [&](std::string_view key, std::string value) {
+    text += ", ";
+    text += key;
+    text += ' ';
+    text += value;
+  };
+  if (p.position_update != d.position_update)
+    add("position_update", std::string(to_string(p.position_update)));
+  if (p.scene != d.scene) add("scene", std::string(to_string(p.scene)));
+  if (p.walls != d.walls) add("walls", std::string(to_string(p.walls)));
+  if (p.transfer != d.transfer) {
+    std::string t(to_string(p.transfer));
+    std::string order;
+    if (p.transfer == Transfer::blend) order = show(p.flip_fraction);
+    if (p.transfer == Transfer::xpic) order = std::to_string(p.xpic_order);
+    if (p.transfer == Transfer::fmpm) order = std::to_string(p.fmpm_order);
+    if (!order.empty()) {
+      t += '(';
+      t += order;
+      t += ')';
+    }
+    add("transfer", t);
+  }
+  if (p.update != d.update) add("update", std::string(to_string(p.update)));
+  if (p.body_force_time != d.body_force_time)
+    add("body_force_time", std::string(to_string(p.body_force_time)));
+  return text;
+}
+
 bool default_choices(const RunParams& p) {
   const RunParams d;
   return p.scene == d.scene && p.walls == d.walls && p.transfer == d.transfer &&
@@ -162,11 +198,20 @@ std::optional<ParamIssue> check_given(const RunParams& p, std::string_view key) 
         "flip_fraction",
         "only with transfer = blend (" + std::string(to_string(p.transfer)) + " does not use it)"};
   }
+  for (const auto& [order_key, transfer] :
+       {std::pair{"xpic_order", Transfer::xpic}, std::pair{"fmpm_order", Transfer::fmpm}}) {
+    if (key == order_key && p.transfer != transfer) {
+      return ParamIssue{std::string(order_key),
+                        "only with transfer = " + std::string(to_string(transfer)) + " (" +
+                            std::string(to_string(p.transfer)) + " does not use it)"};
+    }
+  }
   return std::nullopt;
 }
 
 const std::vector<std::string>& conditional_parameters() {
-  static const std::vector<std::string> keys = {"dt", "cfl_factor", "safety", "flip_fraction"};
+  static const std::vector<std::string> keys = {
+      "dt", "cfl_factor", "safety", "flip_fraction", "xpic_order", "fmpm_order"};
   return keys;
 }
 
@@ -208,6 +253,8 @@ const std::vector<std::string>& parameter_names() {
                                                  "walls",
                                                  "transfer",
                                                  "flip_fraction",
+                                                 "xpic_order",
+                                                 "fmpm_order",
                                                  "update",
                                                  "body_force_time",
                                                  "dt_stable_sigma",
@@ -261,6 +308,30 @@ std::vector<ParamIssue> validate(const RunParams& p) {
       (!std::isfinite(p.flip_fraction) || !(p.flip_fraction > 0) || !(p.flip_fraction < 1))) {
     bad("flip_fraction",
         "must be a number in (0, 1) for transfer = blend, got " + show(p.flip_fraction));
+  }
+  for (const auto& [key, order, transfer] :
+       {std::tuple{"xpic_order", p.xpic_order, Transfer::xpic},
+        std::tuple{"fmpm_order", p.fmpm_order, Transfer::fmpm}}) {
+    if (p.transfer == transfer && (order < 1 || order > kMaxTransferOrder)) {
+      bad(key, "must be an integer in [1, " + std::to_string(kMaxTransferOrder) +
+                   "] for transfer = " + std::string(to_string(transfer)) + ", got " +
+                   std::to_string(order));
+    }
+  }
+  if (p.walls == Walls::modified) {
+    if (!is_bspline(p.method)) {
+      bad("walls", "the boundary-modified splines apply to bspline2 and bspline3 only, not " +
+                       std::string(to_string(p.method)));
+    } else if (p.bc != Boundary::dirichlet) {
+      bad("walls",
+          "boundary-modified splines apply to bc = dirichlet only (a periodic grid has "
+          "no walls)");
+    } else if (p.cells < 4) {
+      bad("cells",
+          "boundary-modified splines need cells >= 4 (two modified nodes at each "
+          "wall), got " +
+              std::to_string(p.cells));
+    }
   }
   if (p.walls == Walls::ghost && p.bc != Boundary::dirichlet) {
     bad("walls", "ghost nodes apply to bc = dirichlet only (a periodic grid has no walls)");

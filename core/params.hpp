@@ -55,17 +55,23 @@ enum class PositionUpdate { grid, particle };
 //  - walls (Dirichlet, GIMP supports): `clip` keeps nodes on [0, 1] only, so what a support
 //    puts beyond a wall is dropped; `ghost` adds one free node beyond each wall (as codes that
 //    extend the grid by one cell do), which takes part in every phase like an interior node; the
-//    walls X = 0 and X = 1 stay fixed.
+//    walls X = 0 and X = 1 stay fixed. For the B-splines: `clip` eliminates the node beyond each
+//    wall by linear extrapolation, `modified` uses the boundary-modified splines of Steffen,
+//    Kirby and Berzins (2008) (shape.hpp, SplineWalls); `ghost` is refused for them and
+//    `modified` for every other basis.
 //  - transfer (particle velocity in g2p): FLIP v_p += dt sum_i S_ip a_i; PIC v_p = sum_i S_ip v_i;
 //    blend = flip_fraction * FLIP + (1 - flip_fraction) * PIC; APIC (Jiang et al. 2015): PIC's
 //    velocity plus an affine velocity C_p per particle, C_p = sum_i G_ip v_i, which p2g carries
-//    to the nodes as m_p (v_p + C_p (X_i - x_p)).
+//    to the nodes as m_p (v_p + C_p (X_i - x_p)); XPIC(m) (Hammerquist and Nairn 2017) and FMPM(k)
+//    (Nairn and Hammerquist 2021): PIC with the grid velocity corrected by m (or k) terms of the
+//    series that approximates the full mass matrix (xpic.hpp), of order `xpic_order` or
+//    `fmpm_order`; order 1 is PIC.
 //  - update (when the stress is updated): USL after g2p with v_i^{n+1}; USF before the forces are
 //    computed, with v_i^n = q_i / m_i (the paper's section 6); MUSL after g2p with the grid
 //    velocity re-mapped from the updated particle velocities.
 //  - body_force_time: b(X_p, t) at the start t^n of a step or at its end t^{n+1}.
-enum class Walls { clip, ghost };
-enum class Transfer { flip, pic, blend, apic };
+enum class Walls { clip, ghost, modified };
+enum class Transfer { flip, pic, blend, apic, xpic, fmpm };
 enum class UpdateOrder { usl, usf, musl };
 enum class BodyForceTime { start, end };
 
@@ -116,6 +122,10 @@ struct Observe {
   std::int64_t history_stride = 1;  // keep every k-th step in the history (and the last one)
 };
 
+// The largest order of XPIC(m) and FMPM(k): each order adds one pass from the grid to the
+// particles and back per step.
+inline constexpr int kMaxTransferOrder = 32;
+
 struct RunParams {
   Method method = Method::gimp;
   double E = 4.0;    // Young's modulus
@@ -130,6 +140,8 @@ struct RunParams {
   Walls walls = Walls::clip;
   Transfer transfer = Transfer::flip;
   double flip_fraction = 0.95;  // FLIP share of a blend (transfer = blend only), in (0, 1)
+  int xpic_order = 2;           // m of XPIC(m) (transfer = xpic only), 1..kMaxTransferOrder
+  int fmpm_order = 2;           // k of FMPM(k) (transfer = fmpm only), 1..kMaxTransferOrder
   UpdateOrder update = UpdateOrder::usl;
   BodyForceTime body_force_time = BodyForceTime::start;
   StableDtOptions stable;
@@ -204,6 +216,10 @@ std::optional<Walls> parse_walls(std::string_view s);
 std::optional<Transfer> parse_transfer(std::string_view s);
 std::optional<UpdateOrder> parse_update_order(std::string_view s);
 std::optional<BodyForceTime> parse_body_force_time(std::string_view s);
+
+// The implementation choices that differ from their defaults, for a one-line summary:
+// ", walls modified, transfer xpic(3), update usf" (empty when all are at their defaults).
+std::string nondefault_choices(const RunParams& p);
 
 // True when every implementation choice above (scene, walls, transfer, update, body_force_time)
 // is at its default: the runs of solver version 1, whose cache keys do not name these choices.

@@ -2,6 +2,7 @@
 // operation for operation, so that the results are the same bits: vector lanes are independent
 // particles or nodes, and each grid node still sums its contributions in particle order.
 #include "phases.hpp"
+#include "grid_nodes.hpp"
 #include "p2g_kernel.hpp"
 
 #include <array>
@@ -12,6 +13,10 @@
 #include <utility>
 
 namespace mpmstab {
+
+using detail::copy_to_images;
+using detail::fold_images;
+using detail::on_free_nodes;
 
 void p2g(const LinearBasis& basis, const Particles& P, const double* body_accel,
          Stencil<LinearBasis::width>& S, Grid& G) {
@@ -58,69 +63,6 @@ void p2g_momentum(const Stencil<W>& S, const Particles& P, Grid& G) {
 // ---------------------------------------------------------------------------------------------
 // Grid update, eqs. (7), (8).
 namespace {
-
-int wrap(int i, int N) {
-  return ((i % N) + N) % N;
-}
-
-// Periodic images (grid.hpp): slot -1 and every padding slot from node N on, in that order.
-template <class Visit>
-void for_each_image(const Grid& G, Visit&& visit) {
-  visit(-1);
-  for (int i = G.cells; i < G.slots() - Grid::kOffset; ++i)
-    visit(i);
-}
-
-// Adds each image slot into its node and clears the slot: folding twice adds nothing.
-void fold_images(const Grid& G, std::initializer_list<double*> arrays) {
-  constexpr int o = Grid::kOffset;
-  for_each_image(G, [&](int i) {
-    for (double* arr : arrays) {
-      arr[o + wrap(i, G.cells)] += arr[o + i];
-      arr[o + i] = 0.0;
-    }
-  });
-}
-
-void copy_to_images(const Grid& G, std::initializer_list<double*> arrays) {
-  constexpr int o = Grid::kOffset;
-  for_each_image(G, [&](int i) {
-    for (double* arr : arrays)
-      arr[o + i] = arr[o + wrap(i, G.cells)];
-  });
-}
-
-// Runs update(lo, hi) on the slots [lo, hi) of free nodes and sets v = a = 0 on the others.
-template <class Update>
-void on_free_nodes(Grid& G, Update&& update) {
-  constexpr int o = Grid::kOffset;
-  const int N = G.cells;
-  double* v = G.velocity.data();
-  double* a = G.accel.data();
-  auto fixed = [&](int lo, int hi) {
-    for (int s = lo; s < hi; ++s)
-      v[s] = a[s] = 0.0;
-  };
-  if (G.bc == Boundary::periodic) {  // nodes 0 .. N-1; the images are copied after
-    fixed(0, o);
-    update(o, o + N);
-    fixed(o + N, G.slots());
-  } else if (!G.ghost_nodes()) {  // nodes 1 .. N-1; the walls 0 and N and the padding fixed
-    fixed(0, o + 1);
-    update(o + 1, o + N);
-    fixed(o + N, G.slots());
-  } else {
-    // Ghost nodes -1 and N + 1 are free too. Fixing them as well would give the same results
-    // as clip: what p2g puts on a node acts only through that node's a_i and v_i, which would
-    // be zero.
-    update(o - 1, o);
-    fixed(o, o + 1);
-    update(o + 1, o + N);
-    fixed(o + N, o + N + 1);
-    update(o + N + 1, o + N + 2);
-    fixed(o + N + 2, G.slots());
-  }
-}
 
 // a_i = f_i / m_i and v_i = q_i / m_i + dt a_i on slots [lo, hi), 0 where m_i = 0 (the
 // quotients computed there are discarded). Vectorized across nodes.
@@ -341,7 +283,7 @@ void g2p_any(const Stencil<W>& S, const Grid& G, double dt, Particles& P) {
                              P.x.data(), P.v.data(), dt);
 }
 
-// PIC, blended and APIC transfers (phases.hpp), one particle after the other.
+// PIC, blended, APIC, XPIC and FMPM transfers (phases.hpp), one particle after the other.
 template <int W, Transfer kTransfer>
 void g2p_pic_blend(const Stencil<W>& S, const Grid& G, double dt, const ParticleUpdate& rule,
                    Particles& P) {
@@ -360,6 +302,9 @@ void g2p_pic_blend(const Stencil<W>& S, const Grid& G, double dt, const Particle
     }
     if constexpr (kTransfer == Transfer::apic) {
       P.C[p] = interpolate<W>(rows<W>(S.g), p, v_i, b);  // C_p = sum_i G_ip v_i
+    }
+    if constexpr (kTransfer == Transfer::xpic) {
+      v_new = v_grid + interpolate<W>(w, p, G.correction.data(), b);  // + sum_i S_ip w_i
     }
     P.v[p] = v_new;
     P.x[p] += dt * (grid_position ? v_grid : v_new);
@@ -397,6 +342,10 @@ void g2p(const Stencil<W>& S, const Grid& G, double dt, const ParticleUpdate& ru
       return g2p_pic_blend<W, Transfer::blend>(S, G, dt, rule, P);
     case Transfer::apic:
       return g2p_pic_blend<W, Transfer::apic>(S, G, dt, rule, P);
+    case Transfer::xpic:
+      return g2p_pic_blend<W, Transfer::xpic>(S, G, dt, rule, P);
+    case Transfer::fmpm:  // PIC with the velocity fmpm_velocity left in G
+      return g2p_pic_blend<W, Transfer::pic>(S, G, dt, rule, P);
   }
 }
 

@@ -85,6 +85,8 @@ struct ParticleUpdate {
 //   pic:   v_p  = sum_i S_ip v_i
 //   blend: v_p  = alpha (v_p + dt sum_i S_ip a_i) + (1 - alpha) sum_i S_ip v_i
 //   apic:  v_p  = sum_i S_ip v_i and C_p = sum_i G_ip v_i (P.C sized)
+//   xpic:  v_p  = sum_i S_ip (v_i + w_i), w = G.correction (xpic.hpp)
+//   fmpm:  as pic, with the velocity fmpm_velocity left in G (xpic.hpp)
 // and position: x_p += dt sum_i S_ip v_i (default) or, with PositionUpdate::particle,
 // x_p += dt v_p^{n+1} (eq. 10).
 template <int W>

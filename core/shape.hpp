@@ -176,20 +176,141 @@ inline void eliminate_ghost_nodes(int base, int cells, double* w, double* g) {
   }
 }
 
+// How a B-spline basis meets a Dirichlet wall (params.hpp, walls):
+//  - none:      periodic grid, no wall;
+//  - eliminate: the uniform splines, with the ghost node beyond each wall eliminated by linear
+//               extrapolation (eliminate_ghost_nodes; walls = clip);
+//  - modified:  the boundary-modified splines of Steffen, Kirby and Berzins (2008) (walls =
+//               modified): the B-splines of the open knot vector that repeats the wall's knot
+//               p + 1 times, the first two of them merged into the wall node's function, so
+//               that each node keeps one function (BSpline2Wall, BSpline3Wall). Partition of
+//               unity holds, every function but the wall node's vanishes on the wall, and every
+//               derivative vanishes there; linear fields are not reproduced in the first cells
+//               (sum_i X_i S_ip != x_p there), which the tests show.
+enum class SplineWalls { none, eliminate, modified };
+
+// The modified functions of the two nodes next to the left wall X_0 = 0, as functions of
+// xi = (x - X_i) / h; value and d/dxi. The right wall uses them mirrored.
+struct BSpline2Wall {
+  // Node 0: 4/3 of the uniform quadratic spline on [0, 3/2).
+  static void node0(double xi, double& w, double& d) {
+    if (xi < 0.5) {
+      w = (3.0 - 4.0 * xi * xi) / 3.0;
+      d = -8.0 * xi / 3.0;
+    } else if (xi < 1.5) {
+      const double r = 3.0 - 2.0 * xi;
+      w = r * r / 6.0;
+      d = -2.0 * r / 3.0;
+    } else {
+      w = d = 0.0;
+    }
+  }
+  // Node 1, on [-1, 3/2).
+  static void node1(double xi, double& w, double& d) {
+    if (xi < -1.0) {
+      w = d = 0.0;
+    } else if (xi < -0.5) {
+      const double r = 1.0 + xi;
+      w = 4.0 * r * r / 3.0;
+      d = 8.0 * r / 3.0;
+    } else if (xi < 0.5) {
+      w = (17.0 + 4.0 * xi - 28.0 * xi * xi) / 24.0;
+      d = (4.0 - 56.0 * xi) / 24.0;
+    } else if (xi < 1.5) {
+      const double r = 3.0 - 2.0 * xi;
+      w = r * r / 8.0;
+      d = -r / 2.0;
+    } else {
+      w = d = 0.0;
+    }
+  }
+};
+
+struct BSpline3Wall {
+  // Node 0: 3/2 of the uniform cubic spline on [0, 2).
+  static void node0(double xi, double& w, double& d) {
+    if (xi < 1.0) {
+      w = (3.0 * xi * xi * xi - 6.0 * xi * xi + 4.0) / 4.0;
+      d = (9.0 * xi * xi - 12.0 * xi) / 4.0;
+    } else if (xi < 2.0) {
+      const double r = 2.0 - xi;
+      w = r * r * r / 4.0;
+      d = -3.0 * r * r / 4.0;
+    } else {
+      w = d = 0.0;
+    }
+  }
+  // Node 1, on [-1, 2).
+  static void node1(double xi, double& w, double& d) {
+    if (xi < -1.0) {
+      w = d = 0.0;
+    } else if (xi < 0.0) {
+      const double r = 1.0 + xi;
+      w = r * r * (7.0 - 11.0 * xi) / 12.0;
+      d = r * (3.0 - 33.0 * xi) / 12.0;
+    } else if (xi < 1.0) {
+      w = (7.0 * xi * xi * xi - 15.0 * xi * xi + 3.0 * xi + 7.0) / 12.0;
+      d = (21.0 * xi * xi - 30.0 * xi + 3.0) / 12.0;
+    } else if (xi < 2.0) {
+      const double r = 2.0 - xi;
+      w = r * r * r / 6.0;
+      d = -r * r / 2.0;
+    } else {
+      w = d = 0.0;
+    }
+  }
+};
+
+// Replaces the uniform values of the nodes next to each wall by the modified functions of Wall:
+// nodes 0 and 1 (N and N - 1, mirrored) get Wall's functions, nodes beyond the walls get 0. The
+// nodes from 2 to N - 2 keep the uniform spline (needs cells >= 4, which validate() asks).
+template <class Wall, int W>
+inline void modify_at_walls(double x, double inv_h, int base, int cells, double* w, double* g) {
+  if (base >= 2 && base + W - 1 <= cells - 2) return;  // no node next to a wall
+  const double s = x * inv_h;
+  for (int k = 0; k < W; ++k) {
+    const int i = base + k;
+    double value = 0.0, slope = 0.0;
+    if (i < 0 || i > cells) {
+      w[k] = g[k] = 0.0;
+      continue;
+    }
+    if (i == 0) {
+      Wall::node0(s, value, slope);
+    } else if (i == 1) {
+      Wall::node1(s - 1.0, value, slope);
+    } else if (i == cells) {
+      Wall::node0(cells - s, value, slope);
+      slope = -slope;
+    } else if (i == cells - 1) {
+      Wall::node1(cells - 1 - s, value, slope);
+      slope = -slope;
+    } else {
+      continue;  // uniform
+    }
+    w[k] = value;
+    g[k] = slope * inv_h;
+  }
+}
+
 // Uniform quadratic B-spline, N(r) in units of h (as in Steffen, Kirby & Berzins 2008):
 //   N = 3/4 - r^2 for |r| <= 1/2,  (3/2 - |r|)^2 / 2 for 1/2 <= |r| <= 3/2,  0 beyond.
 // C1 across cells; a particle touches three nodes, base = floor(x / h - 1/2). With t the
 // particle's position from node base + 1/2 in cell units, t in [0, 1):
 //   S = ((1 - t)^2 / 2, 3/4 - (t - 1/2)^2, t^2 / 2),  G = (t - 1, 1 - 2t, t) / h.
-// With Dirichlet walls the ghost node beyond each wall is eliminated (eliminate_ghost_nodes).
+// With Dirichlet walls the ghost node beyond each wall is eliminated (eliminate_ghost_nodes) or
+// the splines are the boundary-modified ones (BSpline2Wall).
 struct BSpline2Basis {
   static constexpr int width = 3;
   double inv_h;
   int cells;
-  bool walls;  // Dirichlet: eliminate the ghost nodes
+  SplineWalls walls;
 
+  BSpline2Basis(double h, int n_cells, SplineWalls wall_kind)
+      : inv_h(1.0 / h), cells(n_cells), walls(wall_kind) {}
+  // Dirichlet: eliminate the ghost nodes.
   BSpline2Basis(double h, int n_cells, bool dirichlet)
-      : inv_h(1.0 / h), cells(n_cells), walls(dirichlet) {}
+      : BSpline2Basis(h, n_cells, dirichlet ? SplineWalls::eliminate : SplineWalls::none) {}
 
   void eval(double x, int& base, double* w, double* g) const {
     const double s = x * inv_h - 0.5;
@@ -203,7 +324,9 @@ struct BSpline2Basis {
     g[0] = (t - 1.0) * inv_h;
     g[1] = -2.0 * c * inv_h;
     g[2] = t * inv_h;
-    if (walls) eliminate_ghost_nodes<width>(base, cells, w, g);
+    if (walls == SplineWalls::eliminate) eliminate_ghost_nodes<width>(base, cells, w, g);
+    if (walls == SplineWalls::modified)
+      modify_at_walls<BSpline2Wall, width>(x, inv_h, base, cells, w, g);
   }
 };
 
@@ -213,16 +336,19 @@ struct BSpline2Basis {
 // in its cell, t in [0, 1):
 //   S = ((1 - t)^3, 3t^3 - 6t^2 + 4, -3t^3 + 3t^2 + 3t + 1, t^3) / 6,
 //   G = (-(1 - t)^2, 3t^2 - 4t, -3t^2 + 2t + 1, t^2) / (2h).
-// With Dirichlet walls the ghost node beyond each wall is eliminated (eliminate_ghost_nodes); a
-// particle exactly on the wall X = 1 also touches node N + 2, with weight 0.
+// With Dirichlet walls the ghost node beyond each wall is eliminated (eliminate_ghost_nodes) or
+// the splines are the boundary-modified ones (BSpline3Wall); a particle exactly on the wall
+// X = 1 also touches node N + 2, with weight 0.
 struct BSpline3Basis {
   static constexpr int width = 4;
   double inv_h;
   int cells;
-  bool walls;
+  SplineWalls walls;
 
+  BSpline3Basis(double h, int n_cells, SplineWalls wall_kind)
+      : inv_h(1.0 / h), cells(n_cells), walls(wall_kind) {}
   BSpline3Basis(double h, int n_cells, bool dirichlet)
-      : inv_h(1.0 / h), cells(n_cells), walls(dirichlet) {}
+      : BSpline3Basis(h, n_cells, dirichlet ? SplineWalls::eliminate : SplineWalls::none) {}
 
   void eval(double x, int& base, double* w, double* g) const {
     const double s = x * inv_h;
@@ -241,7 +367,9 @@ struct BSpline3Basis {
     g[1] = (3.0 * t2 - 4.0 * t) * half_inv_h;
     g[2] = (-3.0 * t2 + 2.0 * t + 1.0) * half_inv_h;
     g[3] = t2 * half_inv_h;
-    if (walls) eliminate_ghost_nodes<width>(base, cells, w, g);
+    if (walls == SplineWalls::eliminate) eliminate_ghost_nodes<width>(base, cells, w, g);
+    if (walls == SplineWalls::modified)
+      modify_at_walls<BSpline3Wall, width>(x, inv_h, base, cells, w, g);
   }
 };
 

@@ -10,7 +10,9 @@ std::variant<LinearBasis, GimpBasis, CpGimpBasis, BSpline2Basis, BSpline3Basis, 
 make_basis(const RunParams& p) {
   const double h = 1.0 / p.cells;
   const double lp = h / (2.0 * p.ppc);  // half-width lp = h / (2 m) of an undeformed particle
-  const bool walls = p.bc == Boundary::dirichlet;
+  const SplineWalls walls = p.bc == Boundary::periodic   ? SplineWalls::none
+                            : p.walls == Walls::modified ? SplineWalls::modified
+                                                         : SplineWalls::eliminate;
   switch (p.method) {
     case Method::mpm:
       return LinearBasis(h);
@@ -65,6 +67,18 @@ Simulation::Simulation(const RunParams& p)
   u_profile_ = P_.X.unaryExpr([&](double X) { return scene_->displacement_profile(X); });
   body_accel_.setZero(P_.size());
   if (p.transfer == Transfer::apic) P_.C.setZero(P_.size());  // starts from v_p alone
+  if (p.transfer == Transfer::xpic) G_.correction.setZero(G_.slots());
+}
+
+template <int W>
+void Simulation::series_phase(const Stencil<W>& S) {
+  if (params_.transfer == Transfer::xpic) xpic_correction(S, P_, params_.xpic_order, G_, series_);
+  if (params_.transfer == Transfer::fmpm) fmpm_velocity(S, P_, params_.fmpm_order, G_, series_);
+}
+
+template <int W>
+void Simulation::full_mass_velocity(const Stencil<W>& S) {
+  if (params_.transfer == Transfer::fmpm) fmpm_velocity(S, P_, params_.fmpm_order, G_, series_);
 }
 
 template <class Basis>
@@ -77,6 +91,7 @@ void Simulation::step(const Basis& basis, Stencil<Basis::width>& S, double dt, d
       p2g(basis, P_, b, S, G_);            // eqs. (5)-(7)
       if (apic) p2g_affine(S, P_, G_);     // APIC: q_i += sum_p S_ip m_p C_p (X_i - x_p)
       grid_update(G_, dt);                 // eqs. (7), (8)
+      series_phase(S);                     // XPIC, FMPM: the full-mass correction w_i
       g2p(S, G_, dt, g2p_rule_, P_);       // eqs. (9), (10)
       stress_update(S, G_, dt, law_, P_);  // eqs. (11), (13), (14) with v_i^{n+1}
       break;
@@ -84,19 +99,23 @@ void Simulation::step(const Basis& basis, Stencil<Basis::width>& S, double dt, d
       p2g(basis, P_, b, S, G_);  // m_i, q_i; f_i is redone with the new stress below
       if (apic) p2g_affine(S, P_, G_);
       grid_velocity(G_);                   // v_i^n = q_i / m_i
+      full_mass_velocity(S);               // FMPM: v_i^n from the full mass matrix series
       stress_update(S, G_, dt, law_, P_);  // with v_i^n
       p2g_force(S, P_, b, G_);             // f_i with the new sigma_p and V_p = F_p V_p^0
       grid_update(G_, dt);
+      series_phase(S);
       g2p(S, G_, dt, g2p_rule_, P_);
       break;
     case UpdateOrder::musl:
       p2g(basis, P_, b, S, G_);
       if (apic) p2g_affine(S, P_, G_);
       grid_update(G_, dt);
+      series_phase(S);
       g2p(S, G_, dt, g2p_rule_, P_);
-      p2g_momentum(S, P_, G_);             // q_i = sum_p S_ip m_p v_p^{n+1}
-      if (apic) p2g_affine(S, P_, G_);     // with C_p from this g2p
-      grid_velocity(G_);                   // v_i = q_i / m_i
+      p2g_momentum(S, P_, G_);          // q_i = sum_p S_ip m_p v_p^{n+1}
+      if (apic) p2g_affine(S, P_, G_);  // with C_p from this g2p
+      grid_velocity(G_);                // v_i = q_i / m_i
+      full_mass_velocity(S);
       stress_update(S, G_, dt, law_, P_);  // with the re-mapped v_i
       break;
   }

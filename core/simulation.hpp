@@ -12,6 +12,7 @@
 #include "scene.hpp"
 #include "shape.hpp"
 #include "stencil.hpp"
+#include "xpic.hpp"
 
 namespace mpmstab {
 
@@ -24,6 +25,8 @@ class Simulation {
   //   usl:  p2g -> grid_update -> g2p -> stress_update
   //   usf:  p2g -> grid_velocity -> stress_update -> p2g_force -> grid_update -> g2p
   //   musl: p2g -> grid_update -> g2p -> p2g_momentum -> grid_velocity -> stress_update
+  // APIC adds p2g_affine after each momentum sum; XPIC and FMPM add their series (xpic.hpp)
+  // between grid_update and g2p.
   void advance_to(double t_next);
 
   // max_p |u_p - u(X_p, t)| at the current time, u_p = x_p - X_p, u the scene's exact solution.
@@ -40,6 +43,12 @@ class Simulation {
  private:
   template <class Basis>
   void step(const Basis& basis, Stencil<Basis::width>& S, double dt, double t_body);
+  // XPIC's and FMPM's correction of the grid velocity, after grid_update (xpic.hpp).
+  template <int W>
+  void series_phase(const Stencil<W>& S);
+  // FMPM's series after grid_velocity (USF's v^n, MUSL's re-mapped velocity).
+  template <int W>
+  void full_mass_velocity(const Stencil<W>& S);
 
   RunParams params_;
   std::unique_ptr<Scene> scene_;
@@ -57,6 +66,7 @@ class Simulation {
   std::unique_ptr<BodyForceAtParticles> body_force_;  // b(X_p, t)
   Eigen::ArrayXd body_accel_;                         // b(X_p, t) for the current step
   Eigen::ArrayXd u_profile_;                          // displacement profile at X_p
+  SeriesWork series_;                                 // XPIC and FMPM only
   double t_ = 0;
   std::int64_t n_ = 0;
 };

@@ -93,7 +93,11 @@ TEST(Cli, InvalidInputExitsTwoAndNamesTheOption) {
       {with("scene", "beam"), "--scene"},
       {with("walls", "mirror"), "--walls"},
       {with("walls", "ghost") + " --bc periodic", "--walls"},  // a periodic grid has no walls
-      {with("transfer", "xpic"), "--transfer"},
+      {with("transfer", "mls"), "--transfer"},
+      {with("transfer", "xpic") + " --xpic-order 0", "--xpic-order"},
+      {with("transfer", "fmpm") + " --fmpm-order 1.5", "--fmpm-order"},
+      {with("fmpm-order", "2"), "--fmpm-order"},          // only with --transfer fmpm
+      {with("walls", "modified"), "--walls"},             // B-splines only (the base case is gimp)
       {with("flip-fraction", "0.5"), "--flip-fraction"},  // only with --transfer blend
       {with("transfer", "blend") + " --flip-fraction 1", "--flip-fraction"},
       {with("transfer", "blend") + " --flip-fraction nan", "--flip-fraction"},

@@ -28,7 +28,7 @@ within --tolerance. Reports both edges against h/c, dt_edge / (the eq. 108 minim
 at dt_edge), and warns with the dts where survival flips when it is not monotone in dt.
 
 Options: --T, --cells, --ppc, --bc, --position-update, --scene, --walls, --transfer,
---flip-fraction, --update, --body-force-time, --dt-stable-sigma, --dt-stable-vnorm,
+--flip-fraction, --xpic-order, --fmpm-order, --update, --body-force-time, --dt-stable-sigma, --dt-stable-vnorm,
 --max-steps as for 'mpmstab run'; --tolerance <x> (default 0.02); --json.
 )";
 
@@ -65,7 +65,8 @@ nlohmann::ordered_json edge_json(const RunParams& params, const EdgeResult& e) {
 void print_summary(std::ostream& out, const RunParams& params, const EdgeResult& e) {
   out << "mpmstab edge: " << to_string(params.method) << ", E = " << fmt(params.E)
       << ", A = " << fmt(params.A) << ", T = " << fmt(params.T) << ", " << params.cells
-      << " cells x " << params.ppc << " ppc, " << to_string(params.bc) << "\n";
+      << " cells x " << params.ppc << " ppc, " << to_string(params.bc) << nondefault_choices(params)
+      << "\n";
   if (!e.dt_edge) {
     out << "  no dt from h/(16c) to 4h/c survives to T\n";
     return;

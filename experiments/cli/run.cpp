@@ -48,10 +48,14 @@ Options:
                            u = A sin(2 pi X) cos(c pi t)
   --walls clip|ghost       GIMP supports at a Dirichlet wall: nodes on [0, 1] only
                            (default) or one free ghost node beyond each wall
-  --transfer flip|pic|blend|apic
+  --transfer flip|pic|blend|apic|xpic|fmpm
                            particle velocity update (default flip); apic: PIC with an affine
-                           velocity per particle (Jiang et al. 2015)
+                           velocity per particle (Jiang et al. 2015); xpic: XPIC(m)
+                           (Hammerquist and Nairn 2017); fmpm: FMPM(k) (Nairn and
+                           Hammerquist 2021); order 1 of either is PIC
   --flip-fraction <a>      FLIP share of a blend, 0 < a < 1 (default 0.95)
+  --xpic-order <m>         m of XPIC(m), 1..32 (default 2; transfer xpic only)
+  --fmpm-order <k>         k of FMPM(k), 1..32 (default 2; transfer fmpm only)
   --update usl|usf|musl    stress update last (default), first (the paper's section 6),
                            or last with the grid velocity re-mapped from the particles
   --body-force-time start|end
@@ -105,7 +109,7 @@ std::string text_summary(const RunResult& r) {
   s << "mpmstab run: " << to_string(p.method) << ", E = " << fmt(p.E) << ", A = " << fmt(p.A)
     << (fixed ? ", dt = " + fmt(p.dt) : ", policy " + std::string(to_string(p.stepping.policy)))
     << ", T = " << fmt(p.T) << ", " << p.cells << " cells x " << p.ppc << " ppc, "
-    << to_string(p.bc) << "\n";
+    << to_string(p.bc) << nondefault_choices(p) << "\n";
   std::string verdict(r.outcome ? to_string(*r.outcome)
                                 : "survived (error over time not measured)");
   if (r.failure) {

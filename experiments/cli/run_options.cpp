@@ -64,11 +64,15 @@ void read_choices(const Args& a, RunParams& p) {
         parse_choice(*v, "position-update", parse_position_update, "grid or particle");
   }
   if (auto v = a.value("scene")) p.scene = parse_choice(*v, "scene", parse_scene, "bar or steffen");
-  if (auto v = a.value("walls")) p.walls = parse_choice(*v, "walls", parse_walls, "clip or ghost");
+  if (auto v = a.value("walls"))
+    p.walls = parse_choice(*v, "walls", parse_walls, "clip, ghost or modified");
   if (auto v = a.value("transfer")) {
-    p.transfer = parse_choice(*v, "transfer", parse_transfer, "flip, pic, blend or apic");
+    p.transfer =
+        parse_choice(*v, "transfer", parse_transfer, "flip, pic, blend, apic, xpic or fmpm");
   }
   if (auto v = a.value("flip-fraction")) p.flip_fraction = parse_double(*v, "flip-fraction");
+  if (auto v = a.value("xpic-order")) p.xpic_order = to_int(*v, "xpic-order");
+  if (auto v = a.value("fmpm-order")) p.fmpm_order = to_int(*v, "fmpm-order");
   if (auto v = a.value("update")) {
     p.update = parse_choice(*v, "update", parse_update_order, "usl, usf or musl");
   }
@@ -124,6 +128,8 @@ const std::vector<OptionSpec>& run_options() {
       {"walls"},
       {"transfer"},
       {"flip-fraction"},
+      {"xpic-order"},
+      {"fmpm-order"},
       {"update"},
       {"body-force-time"},
       {"dt-stable-sigma"},

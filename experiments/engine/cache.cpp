@@ -32,6 +32,8 @@ std::string canonical_parameters(const RunParams& p) {
     s << ";scene=" << to_string(p.scene) << ";walls=" << to_string(p.walls)
       << ";transfer=" << to_string(p.transfer);
     if (p.transfer == Transfer::blend) s << ";flip_fraction=" << shortest(p.flip_fraction);
+    if (p.transfer == Transfer::xpic) s << ";xpic_order=" << p.xpic_order;
+    if (p.transfer == Transfer::fmpm) s << ";fmpm_order=" << p.fmpm_order;
     s << ";update=" << to_string(p.update) << ";body_force_time=" << to_string(p.body_force_time);
   }
   return s.str();

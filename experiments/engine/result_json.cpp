@@ -17,8 +17,8 @@ const std::vector<std::string>& record_columns() {
   static const std::vector<std::string> columns = {
       // What was asked: the parameters (a parameter the run did not use is null).
       "method", "E", "A", "dt", "T", "cells", "ppc", "bc", "position_update", "scene", "walls",
-      "transfer", "flip_fraction", "update", "body_force_time", "policy", "cfl_factor", "safety",
-      "dt_stable_sigma", "dt_stable_vnorm",
+      "transfer", "flip_fraction", "xpic_order", "fmpm_order", "update", "body_force_time",
+      "policy", "cfl_factor", "safety", "dt_stable_sigma", "dt_stable_vnorm",
       // What the run did.
       "outcome", "failure_reason", "failure_step", "failure_time", "failure_particle", "steps",
       "dt_min", "dt_max", "dt_mean", "max_error", "max_error_over_time", "crossings",
@@ -46,6 +46,8 @@ nlohmann::ordered_json to_json(const RunResult& r) {
   j["walls"] = to_string(p.walls);
   j["transfer"] = to_string(p.transfer);
   j["flip_fraction"] = p.transfer == Transfer::blend ? ojson(p.flip_fraction) : ojson(nullptr);
+  j["xpic_order"] = p.transfer == Transfer::xpic ? ojson(p.xpic_order) : ojson(nullptr);
+  j["fmpm_order"] = p.transfer == Transfer::fmpm ? ojson(p.fmpm_order) : ojson(nullptr);
   j["update"] = to_string(p.update);
   j["body_force_time"] = to_string(p.body_force_time);
   j["policy"] = to_string(policy);

@@ -125,11 +125,15 @@ class Reader {
     else if (key == "scene")
       p.scene = choice_at(v, path, parse_scene, "bar or steffen");
     else if (key == "walls")
-      p.walls = choice_at(v, path, parse_walls, "clip or ghost");
+      p.walls = choice_at(v, path, parse_walls, "clip, ghost or modified");
     else if (key == "transfer")
-      p.transfer = choice_at(v, path, parse_transfer, "flip, pic, blend or apic");
+      p.transfer = choice_at(v, path, parse_transfer, "flip, pic, blend, apic, xpic or fmpm");
     else if (key == "flip_fraction")
       p.flip_fraction = number_at(v, path);
+    else if (key == "xpic_order")
+      p.xpic_order = int_at(v, path);
+    else if (key == "fmpm_order")
+      p.fmpm_order = int_at(v, path);
     else if (key == "update")
       p.update = choice_at(v, path, parse_update_order, "usl, usf or musl");
     else if (key == "body_force_time")
@@ -276,7 +280,7 @@ VariantDecl read_variant(const Reader& r, const json& v, const std::string& at) 
   for (const auto& [key, value] : d.set.items()) {
     vs.change += (vs.change.empty() ? "" : ", ") + key + " = " +
                  (value.is_string() ? value.get<std::string>() : value.dump());
-    if (key != "flip_fraction") ++vs.changes;
+    if (key != "flip_fraction" && key != "xpic_order" && key != "fmpm_order") ++vs.changes;
   }
   if (v.contains("error_at")) {
     d.error_at = r.choice_at(v["error_at"], at + ".error_at", parse_error_at, "T or max_over_time");

@@ -18,7 +18,8 @@ using ojson = nlohmann::ordered_json;
 const std::vector<std::string> kOptionalParams = {
     "T", "cells", "ppc", "bc", "position_update", "scene", "walls",
     // The transfer and the order of the update, and the form of the eq. (108) bound.
-    "transfer", "flip_fraction", "update", "body_force_time", "dt_stable_sigma", "dt_stable_vnorm"};
+    "transfer", "flip_fraction", "xpic_order", "fmpm_order", "update", "body_force_time",
+    "dt_stable_sigma", "dt_stable_vnorm"};
 
 // The parameter columns: method, E, A, dt, then every optional parameter that differs between
 // the cases.

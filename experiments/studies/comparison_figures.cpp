@@ -34,8 +34,8 @@ const std::vector<std::string> kQuantities = {
 
 // The parameters that tell a variant run from the figure's own run (the first case of its spec).
 const std::vector<std::string> kChoiceParams = {
-    "method",        "bc",     "walls",           "position_update", "transfer",
-    "flip_fraction", "update", "body_force_time", "dt_stable_sigma", "dt_stable_vnorm"};
+    "method",     "bc",         "walls",  "position_update", "transfer",        "flip_fraction",
+    "xpic_order", "fmpm_order", "update", "body_force_time", "dt_stable_sigma", "dt_stable_vnorm"};
 
 // ---- Our runs.
 
