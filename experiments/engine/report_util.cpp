@@ -81,6 +81,27 @@ std::string work(const ojson& r) {
   return sci(particle_steps(r));
 }
 
+std::optional<double> loglog_slope(const std::vector<std::pair<double, double>>& points) {
+  std::vector<std::pair<double, double>> xy;
+  for (const auto& [x, y] : points) {
+    if (x > 0 && y > 0) xy.emplace_back(std::log(x), std::log(y));
+  }
+  if (xy.size() < 3) return std::nullopt;
+  double mx = 0, my = 0;
+  for (const auto& [x, y] : xy) {
+    mx += x;
+    my += y;
+  }
+  mx /= double(xy.size());
+  my /= double(xy.size());
+  double sxy = 0, sxx = 0;
+  for (const auto& [x, y] : xy) {
+    sxy += (x - mx) * (y - my);
+    sxx += (x - mx) * (x - mx);
+  }
+  return sxx > 0 ? std::optional<double>(sxy / sxx) : std::nullopt;
+}
+
 double quantile(std::vector<double> v, double q) {
   std::sort(v.begin(), v.end());
   const double pos = q * double(v.size() - 1);

@@ -37,6 +37,9 @@ double particle_steps(const nlohmann::ordered_json& row);
 std::string work(const nlohmann::ordered_json& row);
 // The q-quantile of v (0 <= q <= 1, linear between order statistics); v must not be empty.
 double quantile(std::vector<double> v, double q);
+// Least-squares slope of log(y) against log(x) over the points with x, y > 0: a fitted order.
+// nullopt with fewer than three such points.
+std::optional<double> loglog_slope(const std::vector<std::pair<double, double>>& points);
 // Relative link from a report folder to a file.
 std::string link(const std::filesystem::path& from_dir, const std::filesystem::path& target);
 

@@ -37,27 +37,13 @@ struct Point {
   std::string verdict;
 };
 
-// Least-squares slope of log(error) against log(x) over the points with an error; nullopt with
-// fewer than three.
+// The fitted order over the points with an error (at least three).
 std::optional<double> fitted_order(const std::vector<Point>& points) {
   std::vector<std::pair<double, double>> xy;
   for (const auto& p : points) {
-    if (p.error && *p.error > 0) xy.emplace_back(std::log(p.x), std::log(*p.error));
+    if (p.error) xy.emplace_back(p.x, *p.error);
   }
-  if (xy.size() < 3) return std::nullopt;
-  double mx = 0, my = 0;
-  for (const auto& [x, y] : xy) {
-    mx += x;
-    my += y;
-  }
-  mx /= xy.size();
-  my /= xy.size();
-  double sxy = 0, sxx = 0;
-  for (const auto& [x, y] : xy) {
-    sxy += (x - mx) * (y - my);
-    sxx += (x - mx) * (x - mx);
-  }
-  return sxx > 0 ? std::optional<double>(sxy / sxx) : std::nullopt;
+  return loglog_slope(xy);
 }
 
 // The rows grouped by (sweep, E, method), each group's points in the order of the spec.

@@ -1,0 +1,340 @@
+// Choosing a method: one row per method (basis x velocity transfer x update order) with the
+// error at Table 1's setting, the orders in h and dt, the survival and accuracy edges at a tiny
+// amplitude, the counted work per particle-step, and the cheapest setting that reaches an error
+// of 1e-4 and 1e-6 on the bar. The edges are this study's own cases (edge searches); everything
+// else comes from the rows of methods_grid, which it reads.
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <tuple>
+
+#include "csv.hpp"
+#include "report_util.hpp"
+#include "study.hpp"
+
+namespace mpmstab {
+
+namespace {
+
+using ojson = nlohmann::ordered_json;
+
+bool has(const ojson& r, const char* column) {
+  return r.contains(column) && r[column].is_number();
+}
+
+// What identifies a method in a row: basis, wall treatment, transfer and its order, update.
+using MethodKey = std::tuple<std::string, std::string, std::string, int, std::string>;
+MethodKey key_of(const ojson& r) {
+  const std::string transfer = r["transfer"].get<std::string>();
+  int order = 0;
+  if (transfer == "xpic" && has(r, "xpic_order")) order = r["xpic_order"].get<int>();
+  if (transfer == "fmpm" && has(r, "fmpm_order")) order = r["fmpm_order"].get<int>();
+  return {r["method"].get<std::string>(), r["walls"].get<std::string>(), transfer, order,
+          r["update"].get<std::string>()};
+}
+
+std::string basis_text(const MethodKey& k) {
+  const auto& [method, walls, transfer, order, update] = k;
+  if (walls == "modified") return method + " (modified)";
+  return method;
+}
+
+std::string transfer_text(const MethodKey& k) {
+  const auto& [method, walls, transfer, order, update] = k;
+  return order > 0 ? transfer + "(" + std::to_string(order) + ")" : transfer;
+}
+
+// The nodes a particle touches (Basis::width).
+int stencil_nodes(const std::string& method) {
+  if (method == "mpm") return 2;
+  if (method == "gimp" || method == "bspline2") return 3;
+  return 4;  // cpgimp, cpdi, bspline3
+}
+
+// Passes over the particle's stencil per step, counted from Simulation::step: p2g, g2p and the
+// stress update (3); USF adds p2g_force, MUSL p2g_momentum; APIC adds p2g_affine (twice with
+// MUSL) and the interpolation of C_p in g2p; XPIC(m) adds 2 (m - 1) for its series and one for
+// the correction in g2p; FMPM(k) adds 2 (k - 1) per series, run once (USL) or twice (USF, MUSL).
+int stencil_passes(const MethodKey& k) {
+  const auto& [method, walls, transfer, order, update] = k;
+  int passes = 3;
+  if (update != "usl") passes += 1;
+  if (transfer == "apic") passes += update == "musl" ? 3 : 2;
+  if (transfer == "xpic") passes += 2 * (order - 1) + 1;
+  if (transfer == "fmpm") passes += 2 * (order - 1) * (update == "usl" ? 1 : 2);
+  return passes;
+}
+
+int node_visits(const MethodKey& k) {
+  return stencil_nodes(std::get<0>(k)) * stencil_passes(k);
+}
+
+struct Setting {
+  const ojson* row = nullptr;
+  double work = 0;  // particle-steps x node visits
+};
+
+struct MethodRow {
+  MethodKey key;
+  const ojson* edge = nullptr;    // this study's edge search
+  const ojson* table1 = nullptr;  // methods_grid: 100 cells, dt = 1e-4
+  std::vector<const ojson*> grid;
+  std::optional<double> order_h, order_dt;
+  std::optional<Setting> cheapest_4, cheapest_6;
+};
+
+bool is_table1_setting(const ojson& r) {
+  return r["policy"].get<std::string>() == "fixed" && r["cells"].get<int>() == 100 &&
+         has(r, "dt") && r["dt"].get<double>() == 1e-4;
+}
+
+std::optional<double> error_of(const ojson& r) {
+  if (outcome(r) != "stable" || !has(r, "max_error")) return std::nullopt;
+  return r["max_error"].get<double>();
+}
+
+double dt_of(const ojson& r) {
+  return has(r, "dt") ? r["dt"].get<double>()
+                      : r["cfl_factor"].get<double>() * r["dt_cfl"].get<double>();
+}
+
+std::vector<MethodRow> method_rows(const std::vector<ojson>& edges,
+                                   const std::vector<ojson>& grid) {
+  std::vector<MethodRow> rows;
+  std::map<MethodKey, std::size_t> index;
+  for (const auto& r : edges) {
+    index[key_of(r)] = rows.size();
+    rows.push_back(MethodRow{.key = key_of(r), .edge = &r});
+  }
+  for (const auto& r : grid) {
+    const auto it = index.find(key_of(r));
+    if (it == index.end()) continue;
+    MethodRow& m = rows[it->second];
+    m.grid.push_back(&r);
+    if (is_table1_setting(r)) m.table1 = &r;
+  }
+  for (MethodRow& m : rows) {
+    std::vector<std::pair<double, double>> h_points, dt_points;
+    const double visits = node_visits(m.key);
+    for (const ojson* r : m.grid) {
+      const auto e = error_of(*r);
+      const bool cfl = (*r)["policy"].get<std::string>() == "cfl";
+      const bool finest_dt = cfl && (*r)["cfl_factor"].get<double>() == 0.2;
+      if (e && finest_dt) h_points.emplace_back(1.0 / (*r)["cells"].get<double>(), *e);
+      if (e && (*r)["cells"].get<int>() == 100) dt_points.emplace_back(dt_of(*r), *e);
+      if (!e) continue;
+      const double w = particle_steps(*r) * visits;
+      for (auto [target, best] : {std::pair{1e-4, &m.cheapest_4}, std::pair{1e-6, &m.cheapest_6}}) {
+        if (*e <= target && (!*best || w < (*best)->work)) *best = Setting{r, w};
+      }
+    }
+    m.order_h = loglog_slope(h_points);
+    m.order_dt = loglog_slope(dt_points);
+  }
+  return rows;
+}
+
+std::string order_text(const std::optional<double>& o) {
+  return o ? fixed(*o, 2) : std::string("–");
+}
+
+std::string setting_text(const std::optional<Setting>& s) {
+  if (!s) return "not reached";
+  const ojson& r = *s->row;
+  std::ostringstream t;
+  t << r["cells"].get<int>() << " cells, ";
+  if (r["policy"].get<std::string>() == "cfl") {
+    t << "C = " << shortest(r["cfl_factor"].get<double>());
+  } else {
+    t << "dt = " << param(r["dt"].get<double>());
+  }
+  t << " (" << sci(s->work) << ")";
+  return t.str();
+}
+
+std::string edge_text(const ojson& r, const char* column) {
+  return has(r, column) ? fixed(r[column].get<double>(), 3) : std::string("none");
+}
+
+std::string table1_text(const MethodRow& m) {
+  if (!m.table1) return "–";
+  const auto e = error_of(*m.table1);
+  return e ? sci(*e) : verdict(*m.table1);
+}
+
+// The reading: the choices the table supports, computed from its rows.
+std::string reading(const std::vector<MethodRow>& rows) {
+  const MethodRow* best_error = nullptr;
+  const MethodRow* widest = nullptr;
+  const MethodRow* cheap4 = nullptr;
+  const MethodRow* cheap6 = nullptr;
+  std::size_t unstable_table1 = 0, reach6 = 0;
+  for (const auto& m : rows) {
+    const auto e = m.table1 ? error_of(*m.table1) : std::nullopt;
+    if (!e) ++unstable_table1;
+    if (e && (!best_error || *e < *error_of(*best_error->table1))) best_error = &m;
+    if (has(*m.edge, "dt_edge_over_cfl") &&
+        (!widest || (*m.edge)["dt_edge_over_cfl"].get<double>() >
+                        (*widest->edge)["dt_edge_over_cfl"].get<double>())) {
+      widest = &m;
+    }
+    if (m.cheapest_4 && (!cheap4 || m.cheapest_4->work < cheap4->cheapest_4->work)) cheap4 = &m;
+    if (m.cheapest_6) ++reach6;
+    if (m.cheapest_6 && (!cheap6 || m.cheapest_6->work < cheap6->cheapest_6->work)) cheap6 = &m;
+  }
+  auto name = [](const MethodRow& m) {
+    return basis_text(m.key) + " / " + transfer_text(m.key) + " / " + std::get<4>(m.key);
+  };
+  std::ostringstream md;
+  md << "Of " << rows.size() << " methods, " << rows.size() - unstable_table1
+     << " end stable at Table 1's setting";
+  if (best_error) {
+    md << "; the smallest error there is " << sci(*error_of(*best_error->table1)) << " ("
+       << name(*best_error) << ")";
+  }
+  md << ". ";
+  if (widest) {
+    md << "The widest survival edge at the tiny amplitude is "
+       << fixed((*widest->edge)["dt_edge_over_cfl"].get<double>(), 3) << " h/c (" << name(*widest)
+       << "). ";
+  }
+  if (cheap4) {
+    md << "An error of 1e-4 costs least with " << name(*cheap4) << ": "
+       << setting_text(cheap4->cheapest_4) << ". ";
+  }
+  if (cheap6) {
+    md << reach6 << " methods reach 1e-6 within the grid; the cheapest is " << name(*cheap6) << ": "
+       << setting_text(cheap6->cheapest_6) << ".";
+  } else {
+    md << "No method reaches 1e-6 within the grid.";
+  }
+  return md.str();
+}
+
+std::string methods_table(const std::vector<MethodRow>& rows) {
+  std::ostringstream md;
+  md << "| basis | transfer | update | error at Table 1's setting | order in h | order in dt | "
+        "survival edge (h/c) | accuracy edge (h/c) | node visits per particle-step | cheapest "
+        "for 1e-4 (node visits) | cheapest for 1e-6 (node visits) |\n"
+        "|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const auto& m : rows) {
+    md << "| " << basis_text(m.key) << " | " << transfer_text(m.key) << " | " << std::get<4>(m.key)
+       << " | " << table1_text(m) << " | " << order_text(m.order_h) << " | "
+       << order_text(m.order_dt) << " | " << edge_text(*m.edge, "dt_edge_over_cfl");
+    if (has(*m.edge, "dt_edge") && outcome(*m.edge) == "meaningless") md << " (meaningless)";
+    md << " | " << edge_text(*m.edge, "dt_accurate_over_cfl") << " | " << node_visits(m.key)
+       << " | " << setting_text(m.cheapest_4) << " | " << setting_text(m.cheapest_6) << " |\n";
+  }
+  return md.str();
+}
+
+std::vector<ojson> grid_rows(const StudyInputs& inputs) {
+  const StudyInput& in = inputs.at("methods_grid");
+  if (!in.present()) return {};
+  return std::vector<ojson>(in.doc["cases"].begin(), in.doc["cases"].end());
+}
+
+const std::vector<std::string> kBases = {"mpm",
+                                         "gimp",
+                                         "cpgimp",
+                                         "cpdi",
+                                         "bspline2",
+                                         "bspline3",
+                                         "bspline2 (modified)",
+                                         "bspline3 (modified)"};
+const std::vector<std::string> kTransfers = {"flip", "pic", "apic", "xpic(2)", "fmpm(2)"};
+const std::vector<std::string> kUpdates = {"usl", "usf", "musl"};
+
+int index_in(const std::vector<std::string>& list, const std::string& s) {
+  const auto it = std::find(list.begin(), list.end(), s);
+  return it == list.end() ? -1 : int(it - list.begin());
+}
+
+// <name>_data.csv: one row per method with an error at Table 1's setting and a survival edge.
+std::string methods_data(const std::vector<MethodRow>& rows, const std::string& header) {
+  std::ostringstream csv;
+  csv << header
+      << "# panel: update order (0 usl, 1 usf, 2 musl); series: basis (0 mpm, 1 gimp, 2 cpgimp, "
+         "3 cpdi, 4 bspline2, 5 bspline3, 6 bspline2 modified, 7 bspline3 modified); shape: "
+         "transfer (0 flip, 1 pic, 2 apic, 3 xpic(2), 4 fmpm(2))\n"
+      << "panel,series,shape,edge_over_cfl,error\n";
+  for (const auto& m : rows) {
+    const auto e = m.table1 ? error_of(*m.table1) : std::nullopt;
+    if (!e || !has(*m.edge, "dt_edge_over_cfl")) continue;
+    csv << index_in(kUpdates, std::get<4>(m.key)) << ',' << index_in(kBases, basis_text(m.key))
+        << ',' << index_in(kTransfers, transfer_text(m.key)) << ','
+        << shortest((*m.edge)["dt_edge_over_cfl"].get<double>()) << ',' << shortest(*e) << '\n';
+  }
+  return csv.str();
+}
+
+StudyReport methods_report(const ReportContext& c) {
+  const std::vector<ojson> grid = grid_rows(c.inputs);
+  const auto rows = method_rows(c.rows, grid);
+  std::ostringstream md;
+  md << "## Results\n\n**Reading.** " << reading(rows) << "\n\n![" << c.spec.title << "]("
+     << c.spec.name << ".png)\n\nThe figure places each method by its survival edge at the tiny "
+     << "amplitude (x) and its error at Table 1's setting (y), one panel per update order; a "
+     << "method unstable at that setting or without an edge is left out. Vector version: ["
+     << c.spec.name << ".svg](" << c.spec.name << ".svg); data: [" << c.spec.name << "_data.csv]("
+     << c.spec.name << "_data.csv).\n\n"
+     << "How to read a row:\n\n"
+     << "- *error at Table 1's setting*: max_p |u_p - u(X_p, T)| at T = 1 on the bar, E = 64, "
+        "A = 0.015, 100 cells x 2 particles, dt = 1e-4 (the verdict where the run did not end "
+        "stable);\n"
+     << "- *order in h*: least-squares slope of log(error) against log(h) over 25, 50 and 100 "
+        "cells at C = c dt / h = 0.2; *order in dt*: against log(dt) on 100 cells over C = 0.8, "
+        "0.4, 0.2 and dt = 1e-4 (C = 0.08); at least three stable runs, `–` otherwise. An order "
+        "in dt near 0 means the grid's error hides the time error;\n"
+     << "- *survival edge*: the largest fixed dt with which the bar at A = 1e-4, E = 64 survives "
+        "to T = 1, in units of h/c; *accuracy edge*: the largest dt up to which its error stays "
+        "within 2 times that of the smallest dt that survives (the edge study's rules);\n"
+     << "- *node visits per particle-step*: the nodes of the stencil times the passes over it "
+        "that one step makes (counted from the code: p2g, g2p and the stress update, plus what "
+        "the update order and the transfer add), a deterministic measure of the work; the "
+        "measured time per particle-step is in performance.md;\n"
+     << "- *cheapest for 1e-4 / 1e-6*: of the 10 settings of methods_grid (the Table 1 setting "
+        "and 25, 50, 100 cells at C = 0.8, 0.4, 0.2), the one with the fewest node visits "
+        "(particle-steps x node visits per particle-step, in brackets) whose run ends stable "
+        "with an error at T at most the target; a meaningless or unstable run never counts.\n\n";
+  if (grid.empty()) {
+    md << "methods_grid has not been run into this folder: the columns it provides are `–`.\n\n";
+  }
+  md << methods_table(rows);
+  return StudyReport{.markdown = md.str(), .data_csv = methods_data(rows, c.csv_header)};
+}
+
+std::string methods_index(const Spec& spec, const std::vector<ojson>& rows) {
+  std::ostringstream md;
+  md << "![" << spec.title << "](" << spec.name << ".png)\n\n**What it shows.** " << rows.size()
+     << " methods (basis x transfer x update order), each with its error, orders, edges, work "
+        "and the cheapest setting for a target error: the table to choose a method and a time "
+        "step from. Details: ["
+     << spec.name << ".md](" << spec.name << ".md).\n\n";
+  return md.str();
+}
+
+std::string methods_subtitle(const Spec&, const ojson& doc) {
+  std::size_t n = 0;
+  for (const auto& r : doc["cases"])
+    n += has(r, "dt_edge_over_cfl") ? 1 : 0;
+  return std::to_string(n) + " methods with a survival edge; E = 64, 100 cells";
+}
+
+const StudyRegistration kMethods{{
+    .name = "methods",
+    .summary = "one row per method: error, orders, tiny-amplitude edges, work, cheapest setting "
+               "for a target error",
+    .work = CaseWork::edge_search,
+    .inputs = {{.name = "methods_grid", .required = true}},
+    .figure = true,
+    .report = methods_report,
+    .index = methods_index,
+    .figure_subtitle = methods_subtitle,
+}};
+
+}  // namespace
+
+}  // namespace mpmstab
