@@ -68,6 +68,23 @@ void on_node_ranges(const Grid& G, Update&& update, Fixed&& fixed) {
   }
 }
 
+// out_i = num_i / m_i on free nodes with mass, 0 on the others and on fixed slots; periodic images
+// copied from their nodes. `num` and the masses must be folded already; `out` may be `num`.
+inline void divide_by_mass(const Grid& G, const double* num, double* out) {
+  const double* m = G.mass.data();
+  on_node_ranges(
+      G,
+      [&](int lo, int hi) {
+        for (int s = lo; s < hi; ++s)
+          out[s] = m[s] > 0.0 ? num[s] / m[s] : 0.0;
+      },
+      [&](int lo, int hi) {
+        for (int s = lo; s < hi; ++s)
+          out[s] = 0.0;
+      });
+  if (G.bc == Boundary::periodic) copy_to_images(G, {out});
+}
+
 // on_node_ranges with v = a = 0 on the fixed slots.
 template <class Update>
 void on_free_nodes(Grid& G, Update&& update) {

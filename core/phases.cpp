@@ -93,15 +93,8 @@ void grid_update(Grid& G, double dt) {
 }
 
 void grid_velocity(Grid& G) {
-  double* m = G.mass.data();
-  double* q = G.momentum.data();
-  double* v = G.velocity.data();
-  if (G.bc == Boundary::periodic) fold_images(G, {m, q});
-  on_free_nodes(G, [&](int lo, int hi) {
-    for (int s = lo; s < hi; ++s)
-      v[s] = m[s] > 0.0 ? q[s] / m[s] : 0.0;
-  });
-  if (G.bc == Boundary::periodic) copy_to_images(G, {v});
+  if (G.bc == Boundary::periodic) fold_images(G, {G.mass.data(), G.momentum.data()});
+  detail::divide_by_mass(G, G.momentum.data(), G.velocity.data());
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -293,6 +293,15 @@ inline void modify_at_walls(double x, double inv_h, int base, int cells, double*
   }
 }
 
+// The wall treatment `walls` applied to the uniform weights of a B-spline (Wall: its modified
+// functions).
+template <class Wall, int W>
+inline void apply_spline_walls(SplineWalls walls, double x, double inv_h, int base, int cells,
+                               double* w, double* g) {
+  if (walls == SplineWalls::eliminate) eliminate_ghost_nodes<W>(base, cells, w, g);
+  if (walls == SplineWalls::modified) modify_at_walls<Wall, W>(x, inv_h, base, cells, w, g);
+}
+
 // Uniform quadratic B-spline, N(r) in units of h (as in Steffen, Kirby & Berzins 2008):
 //   N = 3/4 - r^2 for |r| <= 1/2,  (3/2 - |r|)^2 / 2 for 1/2 <= |r| <= 3/2,  0 beyond.
 // C1 across cells; a particle touches three nodes, base = floor(x / h - 1/2). With t the
@@ -324,9 +333,7 @@ struct BSpline2Basis {
     g[0] = (t - 1.0) * inv_h;
     g[1] = -2.0 * c * inv_h;
     g[2] = t * inv_h;
-    if (walls == SplineWalls::eliminate) eliminate_ghost_nodes<width>(base, cells, w, g);
-    if (walls == SplineWalls::modified)
-      modify_at_walls<BSpline2Wall, width>(x, inv_h, base, cells, w, g);
+    apply_spline_walls<BSpline2Wall, width>(walls, x, inv_h, base, cells, w, g);
   }
 };
 
@@ -367,9 +374,7 @@ struct BSpline3Basis {
     g[1] = (3.0 * t2 - 4.0 * t) * half_inv_h;
     g[2] = (-3.0 * t2 + 2.0 * t + 1.0) * half_inv_h;
     g[3] = t2 * half_inv_h;
-    if (walls == SplineWalls::eliminate) eliminate_ghost_nodes<width>(base, cells, w, g);
-    if (walls == SplineWalls::modified)
-      modify_at_walls<BSpline3Wall, width>(x, inv_h, base, cells, w, g);
+    apply_spline_walls<BSpline3Wall, width>(walls, x, inv_h, base, cells, w, g);
   }
 };
 

@@ -30,6 +30,8 @@ make_basis(const RunParams& p) {
   return GimpBasis(h, lp);
 }
 
+}  // namespace
+
 int stencil_width(Method m) {
   switch (m) {
     case Method::mpm:
@@ -47,8 +49,6 @@ int stencil_width(Method m) {
   }
   return GimpBasis::width;
 }
-
-}  // namespace
 
 Simulation::Simulation(const RunParams& p)
     : params_(p),

@@ -16,6 +16,9 @@
 
 namespace mpmstab {
 
+// The nodes a particle of basis `m` touches (its Basis::width).
+int stencil_width(Method m);
+
 class Simulation {
  public:
   // `p` must be valid (validate(p) empty).

@@ -29,19 +29,8 @@ void apply_Q(const Stencil<W>& S, const Particles& P, const Grid& G, const Eigen
       out[b + k] += S.w[k][p] * mu;
   }
   double* o = out.data();
-  const double* m = G.mass.data();
   if (G.bc == Boundary::periodic) detail::fold_images(G, {o});
-  detail::on_node_ranges(
-      G,
-      [&](int lo, int hi) {
-        for (int s = lo; s < hi; ++s)
-          o[s] = m[s] > 0.0 ? o[s] / m[s] : 0.0;
-      },
-      [&](int lo, int hi) {
-        for (int s = lo; s < hi; ++s)
-          o[s] = 0.0;
-      });
-  if (G.bc == Boundary::periodic) detail::copy_to_images(G, {o});
+  detail::divide_by_mass(G, o, o);
 }
 
 void size_work(const Grid& G, const Particles& P, SeriesWork& work) {
@@ -71,20 +60,7 @@ template <int W>
 void xpic_correction(const Stencil<W>& S, const Particles& P, int m, Grid& G, SeriesWork& work) {
   // v^n = q_i / m_i with the boundary conditions, from the folded sums of grid_update.
   work.start.resize(G.slots());
-  double* v = work.start.data();
-  const double* q = G.momentum.data();
-  const double* mass = G.mass.data();
-  detail::on_node_ranges(
-      G,
-      [&](int lo, int hi) {
-        for (int s = lo; s < hi; ++s)
-          v[s] = mass[s] > 0.0 ? q[s] / mass[s] : 0.0;
-      },
-      [&](int lo, int hi) {
-        for (int s = lo; s < hi; ++s)
-          v[s] = 0.0;
-      });
-  if (G.bc == Boundary::periodic) detail::copy_to_images(G, {v});
+  detail::divide_by_mass(G, G.momentum.data(), work.start.data());
   series_correction(S, P, G, m, work.start, G.correction, work);
 }
 

@@ -102,4 +102,18 @@ inline RunParams quick_case() {
   return p;
 }
 
+// The bar at a small amplitude and a small step, so that the spatial error shows: E = 4,
+// A = 1e-3, dt = 1e-4, T = 0.5, 2 particles per cell on `cells` cells.
+inline RunParams small_amplitude_bar(Method m, int cells) {
+  RunParams p;
+  p.method = m;
+  p.E = 4;
+  p.A = 1e-3;
+  p.dt = 1e-4;
+  p.T = 0.5;
+  p.cells = cells;
+  p.ppc = 2;
+  return p;
+}
+
 }  // namespace mpmstab::test_support

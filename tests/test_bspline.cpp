@@ -173,14 +173,7 @@ TEST(BSpline, ConvergesAtLeastSecondOrderInH) {
   for (const Method m : {Method::bspline2, Method::bspline3}) {
     std::vector<double> errors;
     for (const int cells : {25, 50, 100}) {
-      RunParams p;
-      p.method = m;
-      p.E = 4;
-      p.A = 1e-3;
-      p.dt = 1e-4;
-      p.T = 0.5;
-      p.cells = cells;
-      p.ppc = 2;
+      const RunParams p = test_support::small_amplitude_bar(m, cells);
       ASSERT_TRUE(validate(p).empty());
       const RunResult r = run(p);
       ASSERT_EQ(r.outcome, Outcome::stable) << to_string(m) << " cells " << cells;

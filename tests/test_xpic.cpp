@@ -58,23 +58,20 @@ TEST(Xpic, OrderOneIsPicToTheBit) {
   }
 }
 
-// A small state with scattered particles, as dense matrices: S (particles x slots), the particle
-// masses W and the nodal masses m_i = sum_p m_p S_ip.
+// A small state as dense matrices: S (particles x slots) and the particle masses W.
 struct Dense {
   Eigen::MatrixXd S;
-  Eigen::VectorXd mp, mi;
+  Eigen::VectorXd mp;
 };
 
-template <class Basis>
-Dense dense_of(const Basis& basis, const Particles& P, const Stencil<Basis::width>& St, int slots) {
+template <int W>
+Dense dense_of(const Particles& P, const Stencil<W>& St, int slots) {
   Dense d;
   d.S = Eigen::MatrixXd::Zero(P.size(), slots);
   for (Eigen::Index p = 0; p < P.size(); ++p)
-    for (int k = 0; k < Basis::width; ++k)
+    for (int k = 0; k < W; ++k)
       d.S(p, St.base[p] + k) += St.w[k][p];
   d.mp = P.mass.matrix();
-  d.mi = d.S.transpose() * d.mp;
-  (void)basis;
   return d;
 }
 
@@ -94,20 +91,32 @@ Particles scattered(int n, unsigned seed) {
   return P;
 }
 
+// `n` scattered particles mapped to the grid and the grid updated: the state g2p starts from.
+template <class Basis>
+struct Mapped {
+  Grid G;
+  Particles P;
+  Stencil<Basis::width> S;
+};
+
+template <class Basis>
+Mapped<Basis> mapped(const Basis& basis, Boundary bc, int cells, int n, unsigned seed, double dt) {
+  Mapped<Basis> s{Grid(cells, bc, Walls::clip, Basis::width), scattered(n, seed), {}};
+  const Eigen::ArrayXd body = Eigen::ArrayXd::Zero(s.P.size());
+  s.S.resize(s.P.size());
+  p2g(basis, s.P, body.data(), s.S, s.G);
+  grid_update(s.G, dt);
+  return s;
+}
+
 // Periodic grid (no fixed node): the series and XPIC's particle update against dense matrices.
 template <class Basis>
 void check_against_dense(const Basis& basis, int m) {
   const int cells = 8;
   const double dt = 1e-3;
-  Grid G(cells, Boundary::periodic, Walls::clip, Basis::width);
-  Particles P = scattered(40, 5);
-  const Eigen::ArrayXd body = Eigen::ArrayXd::Zero(P.size());
-  Stencil<Basis::width> S;
-  S.resize(P.size());
-  p2g(basis, P, body.data(), S, G);
-  grid_update(G, dt);
+  auto [G, P, S] = mapped(basis, Boundary::periodic, cells, 40, 5, dt);
   // Fold the dense S onto the N distinct nodes (slot o + wrap(i)).
-  Dense d = dense_of(basis, P, S, G.slots());
+  const Dense d = dense_of(P, S, G.slots());
   Eigen::MatrixXd Sn = Eigen::MatrixXd::Zero(P.size(), cells);
   for (int s = 0; s < G.slots(); ++s)
     Sn.col(((s - Grid::kOffset) % cells + cells) % cells) += d.S.col(s);
@@ -168,13 +177,7 @@ TEST(Xpic, SeriesAndParticleUpdateEqualTheirDenseMatrixForms) {
 TEST(Xpic, SeriesKeepsTheWallsFixed) {
   const int cells = 10;
   const GimpBasis basis(1.0 / cells, 1.0 / (4 * cells));
-  Grid G(cells, Boundary::dirichlet, Walls::clip, GimpBasis::width);
-  Particles P = scattered(60, 9);
-  const Eigen::ArrayXd body = Eigen::ArrayXd::Zero(P.size());
-  Stencil<GimpBasis::width> S;
-  S.resize(P.size());
-  p2g(basis, P, body.data(), S, G);
-  grid_update(G, 1e-3);
+  auto [G, P, S] = mapped(basis, Boundary::dirichlet, cells, 60, 9, 1e-3);
   const Eigen::ArrayXd v = G.velocity;
   SeriesWork work;
   fmpm_velocity(S, P, 4, G, work);
@@ -182,7 +185,7 @@ TEST(Xpic, SeriesKeepsTheWallsFixed) {
   EXPECT_EQ(G.velocity[o], 0.0);
   EXPECT_EQ(G.velocity[o + cells], 0.0);
   // Dense form on the free nodes 1..N-1: Q restricted, fixed rows zero.
-  Dense d = dense_of(basis, P, S, G.slots());
+  const Dense d = dense_of(P, S, G.slots());
   const int n = G.slots();
   Eigen::MatrixXd Q = Eigen::MatrixXd::Zero(n, n);
   for (int s = o + 1; s < o + cells; ++s)

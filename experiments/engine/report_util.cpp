@@ -73,6 +73,10 @@ std::string verdict(const ojson& r) {
   return s;
 }
 
+bool has_number(const ojson& r, const char* column) {
+  return r.contains(column) && r[column].is_number();
+}
+
 double particle_steps(const ojson& r) {
   return r["particles"].get<double>() * r["steps"].get<double>();
 }

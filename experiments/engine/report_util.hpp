@@ -25,6 +25,8 @@ std::string ratio(double r);
 std::string param(double v);
 // A JSON number in sci(), or "–" for null.
 std::string opt_sci(const nlohmann::ordered_json& v);
+// The row has a number in `column` (not null, not missing).
+bool has_number(const nlohmann::ordered_json& row, const char* column);
 // The outcome of a flat record: "unstable", "meaningless", "stable" ("" where not measured).
 std::string outcome(const nlohmann::ordered_json& row);
 // The run of a flat record survived to T: its outcome is meaningless or stable.

@@ -19,10 +19,6 @@ namespace {
 
 using ojson = nlohmann::ordered_json;
 
-bool has(const ojson& r, const char* column) {
-  return r.contains(column) && r[column].is_number();
-}
-
 // A dt in units of h/c: "0.823".
 std::string in_cfl(double v) {
   return fixed(v, 3);
@@ -88,16 +84,16 @@ std::string edge_summary_text(const std::vector<ojson>& rows) {
   for (const auto& r : rows) {
     PerMethod& m = per[r["method"].get<std::string>()];
     ++m.cases;
-    if (!has(r, "dt_edge")) {
+    if (!has_number(r, "dt_edge")) {
       ++none;
       continue;
     }
     ++m.with_edge;
     m.edge.push_back(r["dt_edge_over_cfl"].get<double>());
     m.meaningless += outcome(r) == "meaningless";
-    if (has(r, "dt_edge_over_stable"))
+    if (has_number(r, "dt_edge_over_stable"))
       m.over_bound.push_back(r["dt_edge_over_stable"].get<double>());
-    if (has(r, "dt_accurate")) {
+    if (has_number(r, "dt_accurate")) {
       m.accurate.push_back(r["dt_accurate_over_cfl"].get<double>());
       const double below = r["dt_accurate"].get<double>() / r["dt_edge"].get<double>();
       m.accurate_over_edge.push_back(below);
@@ -173,7 +169,7 @@ std::string edge_table(const std::vector<ojson>& rows) {
         "eq. (108) at dt_edge (dt_edge / it) | survival in dt | probes | particle-steps |\n"
         "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& r : rows) {
-    const bool found = has(r, "dt_edge");
+    const bool found = has_number(r, "dt_edge");
     md << "| " << r["method"].get<std::string>() << " | " << shortest(r["A"].get<double>()) << " | "
        << shortest(r["E"].get<double>()) << " | " << sci(r["dt_cfl"].get<double>(), 3) << " | ";
     if (!found) {
@@ -182,7 +178,7 @@ std::string edge_table(const std::vector<ojson>& rows) {
       md << sci(r["dt_edge"].get<double>(), 3) << " ("
          << in_cfl(r["dt_edge_over_cfl"].get<double>()) << ") | " << outcome(r) << " | "
          << opt_sci(r["max_error"]) << " | ";
-      if (has(r, "dt_accurate")) {
+      if (has_number(r, "dt_accurate")) {
         md << sci(r["dt_accurate"].get<double>(), 3) << " ("
            << in_cfl(r["dt_accurate_over_cfl"].get<double>()) << ") | ";
       } else {
@@ -190,7 +186,7 @@ std::string edge_table(const std::vector<ojson>& rows) {
       }
       md << opt_sci(r["max_error_reference"]) << " → " << opt_sci(r["max_error_at_accurate"])
          << " | " << opt_sci(r["dt_stable_min_at_edge"]);
-      if (has(r, "dt_edge_over_stable"))
+      if (has_number(r, "dt_edge_over_stable"))
         md << " (" << ratio(r["dt_edge_over_stable"].get<double>()) << ")";
       md << " | ";
     }
@@ -227,7 +223,7 @@ int series_of(const ojson& r) {
 std::string not_drawn_reason(const ojson& r) {
   if (panel_of(r) < 0) return "a scene the figure has no panel for";
   if (series_of(r) == 0) return "a method and amplitude the figure has no series for";
-  if (!has(r, "dt_edge")) return "no dt of the scan survives";
+  if (!has_number(r, "dt_edge")) return "no dt of the scan survives";
   return "";
 }
 
@@ -247,7 +243,7 @@ FigureCount figure_count(const std::vector<ojson>& rows) {
       continue;
     }
     ++c.drawn;
-    if (has(r, "dt_accurate")) {
+    if (has_number(r, "dt_accurate")) {
       ++c.with_accuracy;
     } else {
       c.no_accuracy.push_back(&r);

@@ -12,6 +12,7 @@
 
 #include "csv.hpp"
 #include "report_util.hpp"
+#include "simulation.hpp"
 #include "study.hpp"
 
 namespace mpmstab {
@@ -20,17 +21,13 @@ namespace {
 
 using ojson = nlohmann::ordered_json;
 
-bool has(const ojson& r, const char* column) {
-  return r.contains(column) && r[column].is_number();
-}
-
 // What identifies a method in a row: basis, wall treatment, transfer and its order, update.
 using MethodKey = std::tuple<std::string, std::string, std::string, int, std::string>;
 MethodKey key_of(const ojson& r) {
   const std::string transfer = r["transfer"].get<std::string>();
   int order = 0;
-  if (transfer == "xpic" && has(r, "xpic_order")) order = r["xpic_order"].get<int>();
-  if (transfer == "fmpm" && has(r, "fmpm_order")) order = r["fmpm_order"].get<int>();
+  if (transfer == "xpic" && has_number(r, "xpic_order")) order = r["xpic_order"].get<int>();
+  if (transfer == "fmpm" && has_number(r, "fmpm_order")) order = r["fmpm_order"].get<int>();
   return {r["method"].get<std::string>(), r["walls"].get<std::string>(), transfer, order,
           r["update"].get<std::string>()};
 }
@@ -44,13 +41,6 @@ std::string basis_text(const MethodKey& k) {
 std::string transfer_text(const MethodKey& k) {
   const auto& [method, walls, transfer, order, update] = k;
   return order > 0 ? transfer + "(" + std::to_string(order) + ")" : transfer;
-}
-
-// The nodes a particle touches (Basis::width).
-int stencil_nodes(const std::string& method) {
-  if (method == "mpm") return 2;
-  if (method == "gimp" || method == "bspline2") return 3;
-  return 4;  // cpgimp, cpdi, bspline3
 }
 
 // Passes over the particle's stencil per step, counted from Simulation::step: p2g, g2p and the
@@ -67,8 +57,10 @@ int stencil_passes(const MethodKey& k) {
   return passes;
 }
 
+// 0 for a basis this program does not know (a results file written by hand).
 int node_visits(const MethodKey& k) {
-  return stencil_nodes(std::get<0>(k)) * stencil_passes(k);
+  const auto method = parse_method(std::get<0>(k));
+  return method ? stencil_width(*method) * stencil_passes(k) : 0;
 }
 
 struct Setting {
@@ -87,17 +79,17 @@ struct MethodRow {
 
 bool is_table1_setting(const ojson& r) {
   return r["policy"].get<std::string>() == "fixed" && r["cells"].get<int>() == 100 &&
-         has(r, "dt") && r["dt"].get<double>() == 1e-4;
+         has_number(r, "dt") && r["dt"].get<double>() == 1e-4;
 }
 
 std::optional<double> error_of(const ojson& r) {
-  if (outcome(r) != "stable" || !has(r, "max_error")) return std::nullopt;
+  if (outcome(r) != "stable" || !has_number(r, "max_error")) return std::nullopt;
   return r["max_error"].get<double>();
 }
 
 double dt_of(const ojson& r) {
-  return has(r, "dt") ? r["dt"].get<double>()
-                      : r["cfl_factor"].get<double>() * r["dt_cfl"].get<double>();
+  return has_number(r, "dt") ? r["dt"].get<double>()
+                             : r["cfl_factor"].get<double>() * r["dt_cfl"].get<double>();
 }
 
 std::vector<MethodRow> method_rows(const std::vector<ojson>& edges,
@@ -155,7 +147,7 @@ std::string setting_text(const std::optional<Setting>& s) {
 }
 
 std::string edge_text(const ojson& r, const char* column) {
-  return has(r, column) ? fixed(r[column].get<double>(), 3) : std::string("none");
+  return has_number(r, column) ? fixed(r[column].get<double>(), 3) : std::string("none");
 }
 
 std::string table1_text(const MethodRow& m) {
@@ -175,7 +167,7 @@ std::string reading(const std::vector<MethodRow>& rows) {
     const auto e = m.table1 ? error_of(*m.table1) : std::nullopt;
     if (!e) ++unstable_table1;
     if (e && (!best_error || *e < *error_of(*best_error->table1))) best_error = &m;
-    if (has(*m.edge, "dt_edge_over_cfl") &&
+    if (has_number(*m.edge, "dt_edge_over_cfl") &&
         (!widest || (*m.edge)["dt_edge_over_cfl"].get<double>() >
                         (*widest->edge)["dt_edge_over_cfl"].get<double>())) {
       widest = &m;
@@ -223,7 +215,7 @@ std::string methods_table(const std::vector<MethodRow>& rows) {
     md << "| " << basis_text(m.key) << " | " << transfer_text(m.key) << " | " << std::get<4>(m.key)
        << " | " << table1_text(m) << " | " << order_text(m.order_h) << " | "
        << order_text(m.order_dt) << " | " << edge_text(*m.edge, "dt_edge_over_cfl");
-    if (has(*m.edge, "dt_edge") && outcome(*m.edge) == "meaningless") md << " (meaningless)";
+    if (has_number(*m.edge, "dt_edge") && outcome(*m.edge) == "meaningless") md << " (meaningless)";
     md << " | " << edge_text(*m.edge, "dt_accurate_over_cfl") << " | " << node_visits(m.key)
        << " | " << setting_text(m.cheapest_4) << " | " << setting_text(m.cheapest_6) << " |\n";
   }
@@ -262,7 +254,7 @@ std::string methods_data(const std::vector<MethodRow>& rows, const std::string& 
       << "panel,series,shape,edge_over_cfl,error\n";
   for (const auto& m : rows) {
     const auto e = m.table1 ? error_of(*m.table1) : std::nullopt;
-    if (!e || !has(*m.edge, "dt_edge_over_cfl")) continue;
+    if (!e || !has_number(*m.edge, "dt_edge_over_cfl")) continue;
     csv << index_in(kUpdates, std::get<4>(m.key)) << ',' << index_in(kBases, basis_text(m.key))
         << ',' << index_in(kTransfers, transfer_text(m.key)) << ','
         << shortest((*m.edge)["dt_edge_over_cfl"].get<double>()) << ',' << shortest(*e) << '\n';
@@ -319,7 +311,7 @@ std::string methods_index(const Spec& spec, const std::vector<ojson>& rows) {
 std::string methods_subtitle(const Spec&, const ojson& doc) {
   std::size_t n = 0;
   for (const auto& r : doc["cases"])
-    n += has(r, "dt_edge_over_cfl") ? 1 : 0;
+    n += has_number(r, "dt_edge_over_cfl") ? 1 : 0;
   return std::to_string(n) + " methods with a survival edge; E = 64, 100 cells";
 }
 
