@@ -2,6 +2,7 @@
 // operation for operation, so that the results are the same bits: vector lanes are independent
 // particles or nodes, and each grid node still sums its contributions in particle order.
 #include "phases.hpp"
+#include "g2p_kernel.hpp"
 #include "grid_nodes.hpp"
 #include "p2g_kernel.hpp"
 
@@ -31,33 +32,6 @@ void p2g(const GimpBasis& basis, const Particles& P, const double* body_accel,
 void p2g(const CpGimpBasis& basis, const Particles& P, const double* body_accel,
          Stencil<CpGimpBasis::width>& S, Grid& G) {
   p2g_any(basis, P, body_accel, S, G);
-}
-
-// The partial p2g sums of USF and MUSL: plain scatters over the kept stencil, in particle order,
-// with p2g's arithmetic per contribution.
-template <int W>
-void p2g_force(const Stencil<W>& S, const Particles& P, const double* body_accel, Grid& G) {
-  G.force.setZero();
-  double* f_i = G.force.data();
-  for (Eigen::Index p = 0; p < P.size(); ++p) {
-    const double stress_volume = -P.sigma[p] * P.F[p] * P.volume0[p];  // V_p = F_p V_p^0
-    const double body = P.mass[p] * body_accel[p];
-    const int b = S.base[p];
-    for (int k = 0; k < W; ++k)
-      f_i[b + k] += S.g[k][p] * stress_volume + S.w[k][p] * body;
-  }
-}
-
-template <int W>
-void p2g_momentum(const Stencil<W>& S, const Particles& P, Grid& G) {
-  G.momentum.setZero();
-  double* q_i = G.momentum.data();
-  for (Eigen::Index p = 0; p < P.size(); ++p) {
-    const double mom = P.mass[p] * P.v[p];
-    const int b = S.base[p];
-    for (int k = 0; k < W; ++k)
-      q_i[b + k] += S.w[k][p] * mom;
-  }
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -101,19 +75,6 @@ void grid_velocity(Grid& G) {
 // g2p, eqs. (9), (10), and the stress update, eqs. (11), (13), (14).
 namespace {
 
-template <int W>
-using Rows = std::array<const double*, W>;  // S_ip (or G_ip) of slot k and particle p: [k][p]
-
-// sum_k S_ip field_i over the stencil of particle p, summed from 0 in slot order: the arithmetic
-// of one particle. The AVX-512 versions do the same operations in the same order in each lane.
-template <int W>
-inline double interpolate(const Rows<W>& wk, std::size_t p, const double* __restrict field, int b) {
-  double s = 0;
-  for (int k = 0; k < W; ++k)
-    s += wk[k][p] * field[b + k];
-  return s;
-}
-
 template <int W, bool kGridPosition>
 inline void g2p_particle(std::size_t p, const int* __restrict base, const Rows<W>& w,
                          const double* __restrict a_i, const double* __restrict v_i,
@@ -155,45 +116,7 @@ MPMSTAB_SIMD_CLONES void stress_loop(std::size_t n, const int* __restrict base, 
 }
 
 #if MPMSTAB_AVX512
-// AVX-512, 8 particles at a time. Their stencils nearly always lie within the 16 grid slots
-// from the first particle's base b0, so a grid array is read with two vector loads and the value
-// at base_p + k of each particle is picked by one permutation, instead of a gather. A block that
-// does not fit (particles far apart or out of order) takes the scalar path.
-struct Slots16 {
-  __m512d lo, hi;  // field[b0 .. b0 + 15]; slots past the end of the array read as 0
-};
-
-MPMSTAB_AVX512_TARGET inline Slots16 load16(const double* field, int b0, int slots) {
-  // Slots that exist from b0 on, at most the 16 read (>= W, as the stencil fits).
-  const unsigned avail = slots - b0 < 16 ? static_cast<unsigned>(slots - b0) : 16u;
-  const auto lo = static_cast<__mmask8>(_bzhi_u32(0xFF, avail));
-  const auto hi = static_cast<__mmask8>(_bzhi_u32(0xFF, avail > 8 ? avail - 8 : 0));
-  return {_mm512_maskz_loadu_pd(lo, field + b0), _mm512_maskz_loadu_pd(hi, field + b0 + 8)};
-}
-
-// base_p - b0 of particles p0 .. p0 + 7 as 64-bit lanes; false if a stencil leaves the slots.
-template <int W>
-MPMSTAB_AVX512_TARGET inline bool relative_bases(const int* base, std::size_t p0, __m512i& r) {
-  const __m256i rel = _mm256_sub_epi32(
-      _mm256_loadu_si256(reinterpret_cast<const __m256i*>(base + p0)), _mm256_set1_epi32(base[p0]));
-  if (_mm256_cmple_epu32_mask(rel, _mm256_set1_epi32(16 - W)) != 0xFF) return false;
-  r = _mm512_maskz_cvtepu32_epi64(0xFF, rel);
-  return true;
-}
-
-// interpolate() for particles p0 .. p0 + 7.
-template <int W>
-MPMSTAB_AVX512_TARGET inline __m512d interpolate8(const Rows<W>& wk, std::size_t p0,
-                                                  const Slots16& f, __m512i r) {
-  __m512d s = _mm512_setzero_pd();
-  for (int k = 0; k < W; ++k) {
-    const __m512d fk =
-        _mm512_permutex2var_pd(f.lo, _mm512_add_epi64(r, _mm512_set1_epi64(k)), f.hi);
-    s = _mm512_add_pd(s, _mm512_mul_pd(_mm512_loadu_pd(wk[k] + p0), fk));
-  }
-  return s;
-}
-
+// FLIP's g2p and the stress update, 8 particles at a time (g2p_kernel.hpp).
 template <int W, bool kGridPosition>
 MPMSTAB_AVX512_TARGET void g2p_avx512(std::size_t n, const int* __restrict base, const Rows<W> w,
                                       const double* __restrict a_i, const double* __restrict v_i,
@@ -247,20 +170,7 @@ MPMSTAB_AVX512_TARGET void stress_avx512(std::size_t n, const int* __restrict ba
   for (; p0 < n; ++p0)
     stress_particle<W>(p0, base, g, v_i, F, sig, dt, E);
 }
-
-bool use_avx512() {
-  static const bool yes = __builtin_cpu_supports("x86-64-v4");
-  return yes;
-}
 #endif
-
-template <int W>
-Rows<W> rows(const std::array<AlignedVector<double>, W>& a) {
-  Rows<W> r;
-  for (int k = 0; k < W; ++k)
-    r[k] = a[k].data();
-  return r;
-}
 
 template <int W, bool kGridPosition>
 void g2p_any(const Stencil<W>& S, const Grid& G, double dt, Particles& P) {
@@ -274,34 +184,6 @@ void g2p_any(const Stencil<W>& S, const Grid& G, double dt, Particles& P) {
 #endif
   g2p_loop<W, kGridPosition>(n, S.base.data(), rows<W>(S.w), G.accel.data(), G.velocity.data(),
                              P.x.data(), P.v.data(), dt);
-}
-
-// PIC, blended, APIC, XPIC and FMPM transfers (phases.hpp), one particle after the other.
-template <int W, Transfer kTransfer>
-void g2p_pic_blend(const Stencil<W>& S, const Grid& G, double dt, const ParticleUpdate& rule,
-                   Particles& P) {
-  const Rows<W> w = rows<W>(S.w);
-  const double* a_i = G.accel.data();
-  const double* v_i = G.velocity.data();
-  const double alpha = rule.flip_fraction;
-  const bool grid_position = rule.position == PositionUpdate::grid;
-  for (std::size_t p = 0; p < static_cast<std::size_t>(P.size()); ++p) {
-    const int b = S.base[p];
-    const double v_grid = interpolate<W>(w, p, v_i, b);  // sum_i S_ip v_i
-    double v_new = v_grid;
-    if constexpr (kTransfer == Transfer::blend) {
-      const double v_flip = P.v[p] + dt * interpolate<W>(w, p, a_i, b);
-      v_new = alpha * v_flip + (1.0 - alpha) * v_grid;
-    }
-    if constexpr (kTransfer == Transfer::apic) {
-      P.C[p] = interpolate<W>(rows<W>(S.g), p, v_i, b);  // C_p = sum_i G_ip v_i
-    }
-    if constexpr (kTransfer == Transfer::xpic) {
-      v_new = v_grid + interpolate<W>(w, p, G.correction.data(), b);  // + sum_i S_ip w_i
-    }
-    P.v[p] = v_new;
-    P.x[p] += dt * (grid_position ? v_grid : v_new);
-  }
 }
 
 // Stress update with a material law other than the linear one, one particle after the other.
@@ -330,30 +212,11 @@ void g2p(const Stencil<W>& S, const Grid& G, double dt, const ParticleUpdate& ru
       }
       return;
     case Transfer::pic:
-      return g2p_pic_blend<W, Transfer::pic>(S, G, dt, rule, P);
     case Transfer::blend:
-      return g2p_pic_blend<W, Transfer::blend>(S, G, dt, rule, P);
     case Transfer::apic:
-      return g2p_pic_blend<W, Transfer::apic>(S, G, dt, rule, P);
     case Transfer::xpic:
-      return g2p_pic_blend<W, Transfer::xpic>(S, G, dt, rule, P);
-    case Transfer::fmpm:  // PIC with the velocity fmpm_velocity left in G
-      return g2p_pic_blend<W, Transfer::pic>(S, G, dt, rule, P);
-  }
-}
-
-template <int W>
-void p2g_affine(const Stencil<W>& S, const Particles& P, Grid& G) {
-  double* q = G.momentum.data();
-  const bool periodic = G.bc == Boundary::periodic;
-  for (std::size_t p = 0; p < static_cast<std::size_t>(P.size()); ++p) {
-    const double x = periodic ? P.x[p] - std::floor(P.x[p]) : P.x[p];
-    const double mC = P.mass[p] * P.C[p];
-    const int b = S.base[p];  // storage slot of the first node
-    for (int k = 0; k < W; ++k) {
-      const double X = (b - Grid::kOffset + k) * G.h;
-      q[b + k] += S.w[k][p] * mC * (X - x);
-    }
+    case Transfer::fmpm:
+      return detail::g2p_other_transfer(S, G, dt, rule, P);  // transfers.cpp
   }
 }
 
@@ -374,10 +237,7 @@ void stress_update(const Stencil<W>& S, const Grid& G, double dt, const Material
 }
 
 #define MPMSTAB_INSTANTIATE(W)                                                                  \
-  template void p2g_force(const Stencil<W>&, const Particles&, const double*, Grid&);           \
-  template void p2g_momentum(const Stencil<W>&, const Particles&, Grid&);                       \
   template void g2p(const Stencil<W>&, const Grid&, double, const ParticleUpdate&, Particles&); \
-  template void p2g_affine(const Stencil<W>&, const Particles&, Grid&);                         \
   template void stress_update(const Stencil<W>&, const Grid&, double, const MaterialLaw&,       \
                               Particles&);
 MPMSTAB_INSTANTIATE(LinearBasis::width)

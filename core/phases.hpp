@@ -16,11 +16,11 @@
 // reuse them (Stencil).
 //
 // The kernels of the default choices live in phases.cpp, each compiled for three instruction sets
-// and chosen when the program starts (see MPMSTAB_SIMD_CLONES there). Every version gives the
-// same bits: loops are vectorized across particles or nodes, never inside a sum, and nothing is
-// contracted to FMA. cpGIMP runs on the same kernels with stencils of four nodes. What only the
-// other choices use (the partial phases of USF and MUSL, PIC and blended transfers, the
-// neo-Hookean stress) is written as plain loops.
+// and chosen when the program starts (MPMSTAB_SIMD_CLONES, simd.hpp); the other transfers and
+// the partial sums of USF, MUSL and APIC live in transfers.cpp, with the same vector loops. Every
+// version gives the same bits: loops are vectorized across particles or nodes, never inside a
+// sum, and nothing is contracted to FMA. cpGIMP runs on the same kernels with stencils of four
+// nodes. The neo-Hookean stress update is a plain loop.
 #pragma once
 
 #include "grid.hpp"

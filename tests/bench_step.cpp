@@ -228,6 +228,50 @@ BENCHMARK(BM_Step<Level::step>)
     ->Arg(static_cast<int>(Method::bspline2))
     ->Arg(static_cast<int>(Method::bspline3));
 
+// GIMP's step under each update order and transfer other than USL-FLIP (the choices of the
+// methods study), against BM_Step's gimp in the same run.
+struct Scheme {
+  const char* label;
+  mpmstab::UpdateOrder update;
+  mpmstab::Transfer transfer;
+  int order;  // xpic_order or fmpm_order
+};
+constexpr Scheme kSchemes[] = {
+    {"usf/flip", mpmstab::UpdateOrder::usf, mpmstab::Transfer::flip, 1},
+    {"musl/flip", mpmstab::UpdateOrder::musl, mpmstab::Transfer::flip, 1},
+    {"usl/pic", mpmstab::UpdateOrder::usl, mpmstab::Transfer::pic, 1},
+    {"usl/blend", mpmstab::UpdateOrder::usl, mpmstab::Transfer::blend, 1},
+    {"usl/apic", mpmstab::UpdateOrder::usl, mpmstab::Transfer::apic, 1},
+    {"usl/xpic(2)", mpmstab::UpdateOrder::usl, mpmstab::Transfer::xpic, 2},
+    {"usl/fmpm(2)", mpmstab::UpdateOrder::usl, mpmstab::Transfer::fmpm, 2},
+    {"usf/pic", mpmstab::UpdateOrder::usf, mpmstab::Transfer::pic, 1},
+    {"musl/pic", mpmstab::UpdateOrder::musl, mpmstab::Transfer::pic, 1},
+};
+
+void BM_StepScheme(benchmark::State& state) {
+  const Scheme& scheme = kSchemes[state.range(0)];
+  auto p = bar(Method::gimp);
+  p.update = scheme.update;
+  p.transfer = scheme.transfer;
+  if (scheme.transfer == mpmstab::Transfer::blend) p.flip_fraction = 0.95;
+  if (scheme.transfer == mpmstab::Transfer::xpic) p.xpic_order = scheme.order;
+  if (scheme.transfer == mpmstab::Transfer::fmpm) p.fmpm_order = scheme.order;
+  mpmstab::Simulation sim(p);
+  std::int64_t n = 0;
+  for (auto _ : state) {
+    if (n == 1000) {
+      state.PauseTiming();
+      sim = mpmstab::Simulation(p);
+      n = 0;
+      state.ResumeTiming();
+    }
+    sim.advance_to(static_cast<double>(++n) * p.dt);
+  }
+  set_counters(state, Method::gimp, static_cast<double>(sim.particles().size()));
+  state.SetLabel(scheme.label);
+}
+BENCHMARK(BM_StepScheme)->DenseRange(0, static_cast<int>(std::size(kSchemes)) - 1);
+
 }  // namespace
 
 BENCHMARK_MAIN();

@@ -1,0 +1,23 @@
+// Instruction-set macros of the kernels (phases.cpp, p2g_bases.cpp, transfers.cpp). Internal to
+// core/.
+#pragma once
+
+// Instruction sets. MPMSTAB_SIMD_CLONES compiles a function for AVX-512 (x86-64-v4), AVX2
+// (x86-64-v3) and the build's own target; the loader picks the best one the CPU has (GCC function
+// multiversioning). g2p and the stress update also have hand-written AVX-512 versions, chosen
+// at run time (use_avx512). FMA contraction stays off in every version (-ffp-contract=off).
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#include <immintrin.h>
+#define MPMSTAB_SIMD_CLONES \
+  __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+#define MPMSTAB_AVX512 1
+#define MPMSTAB_AVX512_TARGET __attribute__((target("arch=x86-64-v4")))
+#else
+#define MPMSTAB_SIMD_CLONES
+#define MPMSTAB_AVX512 0
+#endif
+#if defined(__GNUC__) && !defined(__clang__)
+#define MPMSTAB_IVDEP _Pragma("GCC ivdep")  // the per-slot arrays of a stencil do not overlap
+#else
+#define MPMSTAB_IVDEP
+#endif
