@@ -38,10 +38,23 @@ struct Failure {
 // The largest admissible F_p of a method: 2 m for cpGIMP (lp_p <= h), unbounded otherwise.
 double max_admissible_F(Method method, int ppc);
 
+// The extremes of a particle state that the failure check and eq. (108) read, taken in one pass
+// over the particles (vectorized): every run computes them once per step and hands them to both.
+struct StateExtremes {
+  bool finite = true;  // every x_p, v_p, F_p and sigma_p is finite
+  double F_min = 0, F_max = 0;
+  double F_abs_max = 0, sigma_abs_max = 0, sigmaF_abs_max = 0;  // max_p |F_p|, |s_p|, |s_p F_p|
+  double x_min = 0, x_max = 0;
+};
+StateExtremes state_extremes(const Particles& P);
+
 // Checks every particle; nullopt if the state is admissible. When several particles fail, the
 // reason reported is the first in the order non_finite, nonpositive_F, support_too_wide (some
 // F_p > max_F), left_domain.
 std::optional<Failure> detect_failure(const Particles& P, Boundary bc,
+                                      double max_F = std::numeric_limits<double>::infinity());
+// The same from the state's extremes, already taken (e = state_extremes(P)).
+std::optional<Failure> detect_failure(const Particles& P, const StateExtremes& e, Boundary bc,
                                       double max_F = std::numeric_limits<double>::infinity());
 
 }  // namespace mpmstab

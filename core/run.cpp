@@ -71,6 +71,7 @@ class Driver {
   std::int64_t crossings_ = 0;
   std::optional<HistoryRow> pending_row_;  // last row not kept by the stride
   double bound_ = 0;                       // eq. (108) of the current state, when read
+  StateExtremes extremes_;                 // of the state after the last check
   double dt_min_ = std::numeric_limits<double>::infinity();
   double dt_max_ = 0;
 };
@@ -100,17 +101,22 @@ Driver::Driver(const RunParams& p, const HistorySink& sink)
     const auto rows = r_.steps_planned / obs_.history_stride + 1;
     r_.history.reserve(static_cast<std::size_t>(std::min<std::int64_t>(rows, 10'000'000)));
   }
+  extremes_ = state_extremes(sim_.particles());
   if (uses_bound_) bound_ = bound_now();
 }
 
 // Eq. (108) from the state after the last step (before the first, with ||v|| = 0).
 double Driver::bound_now() const {
-  return stable_dt(stable_dt_inputs(sim_.particles(), sim_.grid(), p_.stable.vnorm, p_.method),
-                   geometry_, p_.stable.sigma);
+  return stable_dt(
+      stable_dt_inputs(sim_.particles(), extremes_, sim_.grid(), p_.stable.vnorm, p_.method),
+      geometry_, p_.stable.sigma);
 }
 
 void Driver::check_initial_state() {
-  if (auto failure = detect_failure(sim_.particles(), p_.bc, max_F_)) r_.failure = failure;
+  extremes_ = state_extremes(sim_.particles());
+  if (auto failure = detect_failure(sim_.particles(), extremes_, p_.bc, max_F_)) {
+    r_.failure = failure;
+  }
 }
 
 // The next time: fixed steps are counted (t = n dt, no drift); adaptive ones accumulate.
@@ -156,7 +162,8 @@ void Driver::advance(const NextStep& next) {
 
 // The failure check after a step ("*" in Table 1); true when the run stops here.
 bool Driver::fails_after_step() {
-  auto failure = detect_failure(sim_.particles(), p_.bc, max_F_);
+  extremes_ = state_extremes(sim_.particles());  // read again by eq. (108) in observe_step
+  auto failure = detect_failure(sim_.particles(), extremes_, p_.bc, max_F_);
   if (!failure) return false;
   failure->step = sim_.steps();
   failure->time = sim_.time();

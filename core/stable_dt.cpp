@@ -8,16 +8,21 @@ namespace mpmstab {
 
 StableDtInputs stable_dt_inputs(const Particles& P, const Grid& G, VelocityNorm vnorm,
                                 Method method) {
+  return stable_dt_inputs(P, state_extremes(P), G, vnorm, method);
+}
+
+StableDtInputs stable_dt_inputs(const Particles& P, const StateExtremes& e, const Grid& G,
+                                VelocityNorm vnorm, Method method) {
   StableDtInputs in;
-  in.F_max = P.F.abs().maxCoeff();
-  in.sigma_max = P.sigma.abs().maxCoeff();
-  in.sigmaF_max = (P.sigma * P.F).abs().maxCoeff();
+  in.F_max = e.F_abs_max;
+  in.sigma_max = e.sigma_abs_max;
+  in.sigmaF_max = e.sigmaF_abs_max;
   if (!std::isfinite(double(in.sigmaF_max))) {  // the product overflowed: take it in long double
     in.sigmaF_max = (P.sigma.cast<long double>() * P.F.cast<long double>()).abs().maxCoeff();
   }
   const auto nodes = G.velocity.segment(G.first_node_slot(), G.nodes());
   in.v_norm = vnorm == VelocityNorm::l2 ? nodes.matrix().norm() : nodes.abs().maxCoeff();
-  if (method == Method::cpgimp) in.F_min = P.F.minCoeff();
+  if (method == Method::cpgimp) in.F_min = e.F_min;
   return in;
 }
 

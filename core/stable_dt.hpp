@@ -13,6 +13,7 @@
 // The options (params.hpp) pick how sigma enters and which norm ||v|| is.
 #pragma once
 
+#include "failure.hpp"
 #include "grid.hpp"
 #include "params.hpp"
 #include "particles.hpp"
@@ -39,6 +40,9 @@ struct StableDtGeometry {
 // (sigma F)_max is taken as max |sigma_p| |F_p| in long double, so it does not overflow.
 StableDtInputs stable_dt_inputs(const Particles& P, const Grid& G, VelocityNorm vnorm,
                                 Method method);
+// The same from the state's extremes, already taken (e = state_extremes(P), failure.hpp).
+StableDtInputs stable_dt_inputs(const Particles& P, const StateExtremes& e, const Grid& G,
+                                VelocityNorm vnorm, Method method);
 
 // Eq. (108). Finite and positive for every finite input: the denominator is >= 4 m sqrt(E) > 0,
 // it is summed again in long double where a double overflows, and the result is at least the
