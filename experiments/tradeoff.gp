@@ -5,7 +5,8 @@
 # Reads : datafile (results/tradeoff_data.csv): '#' lines, then the header
 #         E,panel,series,method,policy,cells,grid,particle_steps,steps,error and one row per run
 #         drawn (stable, with an error; the runs left out are counted in the subtitle). panel:
-#         0.. per E; series: 0.. per (method, policy, cells); method 0 mpm, 1 gimp, 2 cpgimp;
+#         0.. per E; series: 0.. per (method, policy, cells); method 0 mpm, 1 gimp, 2 cpgimp,
+#         3 bspline2, 4 bspline3, 5 cpdi, 6 gimp/apic, 7 gimp/xpic(2), 8 gimp/fmpm(2), 9 another;
 #         policy 0 fixed, 1 cfl, 2 adaptive, 3 min; grid: the rank of cells, 0 the coarsest.
 # Writes: outbase.png and outbase.svg.
 # Variables: datafile, outbase (required), subtitle (optional: the runs drawn and left out).
@@ -48,14 +49,18 @@ do for [s = 1:nseries] {
 stats datafile using "cells" nooutput
 coarsest = int(STATS_min)
 
-# Colour by method and grid (three shades each), marker by policy: filled for GIMP and cpGIMP,
-# open for MPM.
-array method_name[3] = ["MPM", "GIMP", "cpGIMP"]
+# Colour by method: the paper's MPM and GIMP and cpGIMP in three shades by grid, the others one
+# colour each (they run on the coarsest grid only); marker by policy, open for MPM.
+array method_name[10] = ["MPM", "GIMP", "cpGIMP", "B-spline 2", "B-spline 3", "CPDI", \
+                         "GIMP, APIC", "GIMP, XPIC(2)", "GIMP, FMPM(2)", "another"]
+array other_colour[7] = ["#bcbd22", "#000000", "#393b79", "#ad494a", "#637939", "#d6616b", \
+                         "#aaaaaa"]
 array policy_name[4] = ["fixed dt", "CFL C h/c", "adaptive s x eq. (108)", "min(CFL, s x eq. (108))"]
 array policy_pt[4] = [7, 5, 9, 13]
 array colour[9] = ["#d62728", "#ff7f0e", "#9467bd", "#1f77b4", "#17becf", "#2ca02c", \
                    "#8c564b", "#e377c2", "#7f7f7f"]
-s_colour(s) = colour[3 * s_method[s] + (s_grid[s] > 2 ? 2 : s_grid[s]) + 1]
+s_colour(s) = s_method[s] < 3 ? colour[3 * s_method[s] + (s_grid[s] > 2 ? 2 : s_grid[s]) + 1] \
+                              : other_colour[s_method[s] - 2]
 s_pt(s) = policy_pt[s_policy[s] + 1] - (s_method[s] == 0 ? 1 : 0)
 s_title(s) = sprintf("%s, %s%s", method_name[s_method[s] + 1], policy_name[s_policy[s] + 1], \
                      s_cells[s] != coarsest ? sprintf(", %d cells", s_cells[s]) : "")

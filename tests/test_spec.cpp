@@ -190,6 +190,23 @@ TEST_F(VariantSpecs, EveryVariantAppliesItsSettingsToTheCasesItConcerns) {
   EXPECT_EQ(canonical_parameters(s.cases[1].params), canonical_parameters(base.cases[1].params));
 }
 
+// dt_at_least keeps the base cases whose fixed dt is at least its value, and says so.
+TEST_F(VariantSpecs, DtAtLeastRunsOnlyTheCellsWithLargerSteps) {
+  std::ofstream(dir / "steps.json") << R"({"name": "steps", "report": "table1",
+      "reference": "paper.csv", "defaults": {"T": 0.01, "E": 4, "A": 0.015},
+      "cases": [{"method": "gimp", "dt": 1e-3}, {"method": "gimp", "dt": 1e-5},
+                {"method": "mpm", "dt": 1e-4}, {"method": "mpm", "dt": 1e-6}]})";
+  const Spec s = load_spec(write(R"({"name": "v", "report": "variants", "cases_from": "steps.json",
+      "variants": [{"name": "default"},
+                   {"name": "pic", "set": {"transfer": "pic"}, "dt_at_least": 1e-4}]})"));
+  ASSERT_EQ(s.cases.size(), 4u + 2u);
+  EXPECT_EQ(s.variants[1].cases, 2u);
+  EXPECT_EQ(s.cases[4].params.dt, 1e-3);
+  EXPECT_EQ(s.cases[5].params.dt, 1e-4);
+  EXPECT_EQ(s.variants[1].change, "transfer = pic; only the cells with dt >= 0.0001");
+  EXPECT_EQ(s.variants[1].changes, 1);
+}
+
 TEST_F(VariantSpecs, ErrorAtIsACaseKeyOfAnyTableSpec) {
   const Spec s = load_spec(write(R"({"name": "t", "report": "table1", "reference": "x.csv",
       "record": ["error_over_time"], "defaults": {"T": 0.05, "dt": 1e-3, "error_at": "max_over_time"},
@@ -266,6 +283,14 @@ TEST_F(VariantSpecs, ErrorsNameTheKeyPath) {
        "variants[1].methods[1]: repeats 'mpm'"},
       {variants("[" + def + R"(, {"name": "w", "methods": ["cpgimp"]}])"),
        "variants[1].methods: matches none of the base cases"},
+      {variants("[" + def + R"(, {"name": "w", "set": {"transfer": "pic"}, "dt_at_least": 0}])"),
+       "variants[1].dt_at_least: must be a positive number"},
+      {variants("[" + def + R"(, {"name": "w", "set": {"transfer": "pic"}, "dt_at_least": "1"}])"),
+       "variants[1].dt_at_least: must be a number"},
+      {variants("[" + def + R"(, {"name": "w", "set": {"transfer": "pic"}, "dt_at_least": 1}])"),
+       "variants[1].dt_at_least: matches none of the base cases"},
+      {variants(R"([{"name": "d", "dt_at_least": 1e-5}])"),
+       "variants[0].dt_at_least: the default variant runs every cell"},
       {variants("[" + def + R"(, {"name": "w", "error_at": "end"}])"),
        "variants[1].error_at: unknown value 'end' (expected T or max_over_time)"},
       {variants(R"([{"name": "w", "set": {"walls": "ghost"}}])"),

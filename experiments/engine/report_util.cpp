@@ -77,6 +77,29 @@ bool has_number(const ojson& r, const char* column) {
   return r.contains(column) && r[column].is_number();
 }
 
+std::string method_label(const ojson& r) {
+  std::string s = r["method"].get<std::string>();
+  auto column = [&](const char* key) {
+    return r.contains(key) && r[key].is_string() ? r[key].get<std::string>() : std::string();
+  };
+  const std::string transfer = column("transfer"), update = column("update");
+  if (!transfer.empty() && transfer != "flip") {
+    s += '/';
+    s += transfer;
+    for (const char* order : {"flip_fraction", "xpic_order", "fmpm_order"}) {
+      if (!has_number(r, order)) continue;
+      s += '(';
+      s += shortest(r[order].get<double>());
+      s += ')';
+    }
+  }
+  if (!update.empty() && update != "usl") {
+    s += '/';
+    s += update;
+  }
+  return s;
+}
+
 double particle_steps(const ojson& r) {
   return r["particles"].get<double>() * r["steps"].get<double>();
 }

@@ -27,6 +27,10 @@ std::string param(double v);
 std::string opt_sci(const nlohmann::ordered_json& v);
 // The row has a number in `column` (not null, not missing).
 bool has_number(const nlohmann::ordered_json& row, const char* column);
+// The method of a flat record as the trade study names it: the basis, then the transfer (with
+// its order or FLIP share) where it is not FLIP and the update order where it is not USL: "gimp",
+// "gimp/xpic(2)", "bspline3/usf". Rows without those columns are named by their basis.
+std::string method_label(const nlohmann::ordered_json& row);
 // The outcome of a flat record: "unstable", "meaningless", "stable" ("" where not measured).
 std::string outcome(const nlohmann::ordered_json& row);
 // The run of a flat record survived to T: its outcome is meaningless or stable.

@@ -39,7 +39,8 @@ const std::vector<std::string> kVariantSetKeys = [] {
   keys.push_back("max_steps");
   return keys;
 }();
-const std::vector<std::string> kVariantKeys = {"name", "description", "set", "methods", "error_at"};
+const std::vector<std::string> kVariantKeys = {"name",    "description", "set",
+                                               "methods", "error_at",    "dt_at_least"};
 const std::vector<std::string> kTopKeys = {
     "name",     "title", "description", "report",   "record",      "history_stride", "reference",
     "defaults", "cases", "cases_from",  "variants", "index_order", "check_budget"};
@@ -293,6 +294,15 @@ VariantDecl read_variant(const Reader& r, const json& v, const std::string& at) 
     vs.baseline = true;
   }
   vs.methods = variant_methods(r, v, at);
+  if (v.contains("dt_at_least")) {
+    const double dt = r.number_at(v["dt_at_least"], at + ".dt_at_least");
+    if (!(dt > 0) || !std::isfinite(dt)) r.fail(at + ".dt_at_least", "must be a positive number");
+    if (vs.baseline) r.fail(at + ".dt_at_least", "the default variant runs every cell");
+    vs.dt_at_least = dt;
+    std::ostringstream only;
+    only << "; only the cells with dt >= " << dt;
+    vs.change += only.str();
+  }
   return d;
 }
 
@@ -307,6 +317,13 @@ void apply_variant(const Reader& r, VariantDecl& d, const std::string& at,
     if (!vs.methods.empty() &&
         std::find(vs.methods.begin(), vs.methods.end(), b.paper_method) == vs.methods.end()) {
       continue;
+    }
+    if (vs.dt_at_least) {
+      if (b.params.stepping.policy != TimeStepPolicy::fixed) {
+        r.fail(at + ".dt_at_least", "needs base cases with a fixed dt; base case " +
+                                        std::to_string(i) + " chooses its own");
+      }
+      if (b.params.dt < *vs.dt_at_least) continue;
     }
     CaseSpec cs = b;
     cs.variant = vs.name;
@@ -331,7 +348,9 @@ void apply_variant(const Reader& r, VariantDecl& d, const std::string& at,
     spec.cases.push_back(std::move(cs));
   }
   vs.cases = spec.cases.size() - vs.first_case;
-  if (vs.cases == 0) r.fail(at + ".methods", "matches none of the base cases");
+  if (vs.cases == 0) {
+    r.fail(at + (vs.dt_at_least ? ".dt_at_least" : ".methods"), "matches none of the base cases");
+  }
 }
 
 // Applies the variants of `doc` to the base cases: spec.cases becomes every variant's cases.

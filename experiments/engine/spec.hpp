@@ -38,7 +38,10 @@ struct VariantSpec {
   int changes = 0;
   bool baseline = false;        // changes nothing: the default, which the others are read against
   std::vector<Method> methods;  // the base cases' methods it applies to; empty: every case
-  std::size_t first_case = 0;   // its cases are Spec::cases[first_case, first_case + cases)
+  // Only the base cases whose fixed dt is at least this (a variant too costly to run on the
+  // smallest steps); none: every step.
+  std::optional<double> dt_at_least;
+  std::size_t first_case = 0;  // its cases are Spec::cases[first_case, first_case + cases)
   std::size_t cases = 0;
 };
 

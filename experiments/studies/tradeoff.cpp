@@ -58,7 +58,7 @@ std::string parameter_text(const std::string& policy, double v) {
 // A setting's name: "gimp cfl C=0.5", "mpm adaptive s=2", "gimp fixed dt=1e-4".
 std::string setting(const ojson& r) {
   const std::string policy = text(r, "policy");
-  std::string s = text(r, "method");
+  std::string s = method_label(r);
   s += " " + policy;
   if (policy == "fixed") s += " dt=" + param(r["dt"].get<double>());
   if (policy == "cfl" || policy == "min") s += " C=" + shortest(r["cfl_factor"].get<double>());
@@ -152,7 +152,7 @@ struct TradeRows {
   const ojson* find(double E, const std::string& method, const std::string& policy, double value,
                     int cells) const {
     for (const auto& r : rows) {
-      if (r["E"].get<double>() == E && text(r, "method") == method && text(r, "policy") == policy &&
+      if (r["E"].get<double>() == E && method_label(r) == method && text(r, "policy") == policy &&
           r["cells"].get<int>() == cells && parameter(r) == value) {
         return &r;
       }
@@ -276,7 +276,7 @@ struct AdviceGroup {
   std::optional<double> cfl_factor;  // the min policy's C
 
   bool holds(const ojson& r) const {
-    return text(r, "method") == method && text(r, "policy") == policy &&
+    return method_label(r) == method && text(r, "policy") == policy &&
            (!cfl_factor || r["cfl_factor"].get<double>() == *cfl_factor);
   }
   // "gimp cfl", "gimp min at C = 0.5".
@@ -294,7 +294,7 @@ struct AdviceGroup {
 std::vector<AdviceGroup> advice_groups(const std::vector<ojson>& rows) {
   std::vector<std::string> methods;
   for (const auto& r : rows) {
-    const std::string m = text(r, "method");
+    const std::string m = method_label(r);
     if (std::find(methods.begin(), methods.end(), m) == methods.end()) methods.push_back(m);
   }
   std::vector<AdviceGroup> groups;
@@ -303,7 +303,7 @@ std::vector<AdviceGroup> advice_groups(const std::vector<ojson>& rows) {
       std::set<double> Cs;
       bool any = false;
       for (const auto& r : rows) {
-        if (text(r, "method") != m || text(r, "policy") != p) continue;
+        if (method_label(r) != m || text(r, "policy") != p) continue;
         any = true;
         if (p == "min") Cs.insert(r["cfl_factor"].get<double>());
       }
@@ -549,7 +549,7 @@ std::map<std::string, int> wins_by_policy(const TradeRows& t, const CheapestByE&
     for (const auto& b : per_target) {
       if (!b) continue;
       const ojson& r = t.rows[*b];
-      ++count[text(r, "method") + " " + text(r, "policy")];
+      ++count[method_label(r) + " " + text(r, "policy")];
     }
   }
   return count;
@@ -627,8 +627,8 @@ std::string gimp_spread_sentences(const TradeRows& t) {
     std::vector<double> errs;
     for (const auto& r : t.rows) {
       const std::string policy = text(r, "policy");
-      if (r["E"].get<double>() == E && text(r, "method") == "gimp" &&
-          r["cells"].get<int>() == 100 && (policy == "cfl" || policy == "fixed") && accuracy(r)) {
+      if (r["E"].get<double>() == E && method_label(r) == "gimp" && r["cells"].get<int>() == 100 &&
+          (policy == "cfl" || policy == "fixed") && accuracy(r)) {
         errs.push_back(*accuracy(r));
       }
     }
@@ -727,7 +727,7 @@ MethodComparison mpm_against_gimp(const TradeRows& t) {
   for (double E : t.Es) {
     std::optional<double> best_gimp, best_mpm;
     for (const auto& r : t.rows) {
-      const std::string m = text(r, "method");
+      const std::string m = method_label(r);
       if (r["E"].get<double>() != E || !accuracy(r) || (m != "gimp" && m != "mpm")) continue;
       auto& best = m == "gimp" ? best_gimp : best_mpm;
       if (!best || *accuracy(r) < *best) best = accuracy(r);
@@ -880,8 +880,15 @@ std::string figure_count_text(const FigureCount& n) {
   return s;
 }
 
+// The methods the figure names (tradeoff.gp's method_name), in its order; any other is drawn as
+// "other" (code 9).
+const std::vector<std::string> kFigureMethods = {"mpm",       "gimp",         "cpgimp",
+                                                 "bspline2",  "bspline3",     "cpdi",
+                                                 "gimp/apic", "gimp/xpic(2)", "gimp/fmpm(2)"};
+
 int method_code(const std::string& m) {
-  return m == "mpm" ? 0 : m == "gimp" ? 1 : 2;
+  return static_cast<int>(std::find(kFigureMethods.begin(), kFigureMethods.end(), m) -
+                          kFigureMethods.begin());
 }
 
 int policy_code(const std::string& p) {
@@ -910,7 +917,8 @@ std::string tradeoff_data_csv(const std::vector<ojson>& rows, const std::string&
   csv << header_lines << "# " << figure_count_text(figure_count(rows)) << "\n"
       << "# one row per run drawn (stable, with an error); panel: the index of E; series: the "
          "index of (method, policy, cells) in the order of the spec; method: 0 mpm, 1 gimp, 2 "
-         "cpgimp; policy: 0 fixed, 1 cfl, 2 adaptive, 3 min; grid: the rank of cells, 0 the "
+         "cpgimp, 3 bspline2, 4 bspline3, 5 cpdi, 6 gimp/apic, 7 gimp/xpic(2), 8 gimp/fmpm(2), 9 "
+         "another; policy: 0 fixed, 1 cfl, 2 adaptive, 3 min; grid: the rank of cells, 0 the "
          "coarsest\nE,panel,series,method,policy,cells,grid,particle_steps,steps,error\n";
   for (const auto& r : rows) {
     if (!drawn(r)) continue;
@@ -918,8 +926,8 @@ std::string tradeoff_data_csv(const std::vector<ojson>& rows, const std::string&
     const int cells = r["cells"].get<int>();
     const std::size_t panel =
         static_cast<std::size_t>(std::find(t.Es.begin(), t.Es.end(), E) - t.Es.begin());
-    const std::size_t s = index_in(series, {text(r, "method"), text(r, "policy"), cells});
-    csv << shortest(E) << ',' << panel << ',' << s << ',' << method_code(text(r, "method")) << ','
+    const std::size_t s = index_in(series, {method_label(r), text(r, "policy"), cells});
+    csv << shortest(E) << ',' << panel << ',' << s << ',' << method_code(method_label(r)) << ','
         << policy_code(text(r, "policy")) << ',' << cells << ','
         << std::distance(grids.begin(), grids.find(cells)) << ','
         << static_cast<long long>(particle_steps(r)) << ',' << r["steps"].dump() << ','
