@@ -49,7 +49,7 @@ do for [format in "png svg"] {
         set terminal svg size 1500,500 font "Arial,10"
     }
     set output outbase . "." . format
-    set multiplot layout 1, panels title "Error at T against h, every basis (" . subtitle . ")"
+    set multiplot layout 1, panels title "Error at T against h, every method (" . subtitle . ")"
     do for [k = 1:panels] {
         set title sprintf("E = %g", panel_E[k])
         plot for [s = 1:nseries] datafile \

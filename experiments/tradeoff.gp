@@ -53,7 +53,7 @@ coarsest = int(STATS_min)
 # colour each (they run on the coarsest grid only); marker by policy, open for MPM.
 array method_name[10] = ["MPM", "GIMP", "cpGIMP", "B-spline 2", "B-spline 3", "CPDI", \
                          "GIMP, APIC", "GIMP, XPIC(2)", "GIMP, FMPM(2)", "another"]
-array other_colour[7] = ["#bcbd22", "#000000", "#393b79", "#ad494a", "#637939", "#d6616b", \
+array other_colour[7] = ["#bcbd22", "#000000", "#393b79", "#843c39", "#637939", "#7b4173", \
                          "#aaaaaa"]
 array policy_name[4] = ["fixed dt", "CFL C h/c", "adaptive s x eq. (108)", "min(CFL, s x eq. (108))"]
 array policy_pt[4] = [7, 5, 9, 13]
@@ -69,13 +69,13 @@ sel(k, s, x) = (column("panel") == k - 1 && column("series") == s - 1) ? x : 1/0
 height = 120 + 360 * panels
 do for [ext in "png svg"] {
     if (ext eq "png") {
-        set terminal pngcairo size 1100,height font "sans,10" noenhanced
+        set terminal pngcairo size 1600,height font "sans,10" noenhanced
     } else {
-        set terminal svg size 1100,height dynamic font "sans,10" noenhanced background "white"
+        set terminal svg size 1600,height dynamic font "sans,10" noenhanced background "white"
     }
     set output outbase . "." . ext
     set multiplot layout panels,1 title "Speed against accuracy: max error over time against particle-steps (log-log)" . (strlen(subtitle) > 0 ? "\n" . subtitle : "") \
-        margins 0.08,0.68,0.06,0.92 spacing 0.08,0.07
+        margins 0.06,0.52,0.06,0.92 spacing 0.08,0.07
     set logscale xy
     set format x "%.0e"
     set format y "%.0e"
@@ -84,7 +84,7 @@ do for [ext in "png svg"] {
     do for [k = 1:panels] {
         set ylabel sprintf("E = %g: max error over time", panel_E[k])
         if (k == 1) {
-            set key at screen 0.99, screen 0.90 right top vertical samplen 1 spacing 1.2 \
+            set key at screen 0.99, screen 0.90 right top vertical maxrows 60 samplen 1 spacing 1.2 \
                 title sprintf("%d cells unless named", coarsest)
             plot for [s = 1:nseries] keyentry with points pt s_pt(s) ps 1.3 lc rgb s_colour(s) \
                      title s_title(s), \

@@ -116,6 +116,7 @@ void write_kernel_table(std::ostream& md, const BenchFigures& b, const ojson& ct
   std::ostringstream others;
   const double gimp = b.median("BM_Step", "gimp");
   for (const auto& base : b.order) {
+    if (base == "BM_StepScheme") continue;  // below
     for (const auto& [method, f] : b.fig.at(base)) {
       if (method == "gimp" || method == "mpm") continue;
       others << "| " << method << " | " << base << " | " << fixed(f.median, 2) << " ("
@@ -127,6 +128,17 @@ void write_kernel_table(std::ostream& md, const BenchFigures& b, const ojson& ct
     md << "\nThe other bases, the same four phases:\n\n"
           "| basis | benchmark | ns / particle-step | against GIMP's BM_Step |\n|---|---|---|---|\n"
        << others.str();
+  }
+  // GIMP under the other update orders and transfers (BM_StepScheme: the whole step of each),
+  // by name.
+  if (b.fig.count("BM_StepScheme")) {
+    md << "\nGIMP under the other update orders and transfers (update / transfer; USL with FLIP is "
+          "BM_Step's gimp):\n\n| update / transfer | ns / particle-step | against GIMP's BM_Step "
+          "|\n|---|---|---|\n";
+    for (const auto& [scheme, f] : b.fig.at("BM_StepScheme")) {
+      md << "| " << scheme << " | " << fixed(f.median, 2) << " (" << fixed(100 * f.cv, 1) << "%) | "
+         << (gimp > 0 ? fixed(f.median / gimp, 2) + "x" : std::string("–")) << " |\n";
+    }
   }
 }
 

@@ -57,7 +57,7 @@ std::map<Key, std::vector<Point>> groups(const std::vector<ojson>& rows) {
                                  : "C = " + shortest(r["cfl_factor"].get<double>());
     p.verdict = outcome(r);
     if (p.verdict == "stable" && r["max_error"].is_number()) p.error = r["max_error"].get<double>();
-    g[{sweep_of(r), r["E"].get<double>(), r["method"].get<std::string>()}].push_back(p);
+    g[{sweep_of(r), r["E"].get<double>(), method_label(r)}].push_back(p);
   }
   for (auto& [key, points] : g)
     std::sort(points.begin(), points.end(),
@@ -126,7 +126,7 @@ std::string convergence_data(const std::vector<ojson>& rows, const std::string& 
   for (const auto& r : rows) {
     if (sweep_of(r) != "h") continue;
     panel.emplace(r["E"].get<double>(), 0);
-    series.emplace(r["method"].get<std::string>(), 0);
+    series.emplace(method_label(r), 0);
   }
   int k = 0;
   for (auto& [E, p] : panel)
@@ -138,7 +138,7 @@ std::string convergence_data(const std::vector<ojson>& rows, const std::string& 
   csv << header << "E,panel,series,method,h,error\n";
   for (const auto& r : rows) {
     if (sweep_of(r) != "h" || outcome(r) != "stable" || !r["max_error"].is_number()) continue;
-    const std::string method = r["method"].get<std::string>();
+    const std::string method = method_label(r);
     csv << shortest(r["E"].get<double>()) << "," << panel[r["E"].get<double>()] << ","
         << series[method] << "," << method << "," << shortest(variable(r)) << ","
         << shortest(r["max_error"].get<double>()) << "\n";

@@ -58,7 +58,7 @@ Slowest slowest_case(const std::vector<ojson>& rows) {
   for (const auto& r : rows) {
     if (particle_steps(r) > slowest.work) {
       slowest.work = particle_steps(r);
-      slowest.name = r["method"].get<std::string>() + " E=" + shortest(r["E"].get<double>()) +
+      slowest.name = method_label(r) + " E=" + shortest(r["E"].get<double>()) +
                      " A=" + shortest(r["A"].get<double>()) +
                      " dt=" + param(r["dt"].get<double>()) + " cells=" + r["cells"].dump() +
                      " ppc=" + r["ppc"].dump();
@@ -119,7 +119,7 @@ std::string band_table(const std::vector<ojson>& rows, const std::string& method
     int n = 0, s = 0, m = 0;
     std::map<std::string, int> why;
     for (const auto& r : rows) {
-      if (r["method"] != method) continue;
+      if (method_label(r) != method) continue;
       const double x =
           by_courant ? r["courant"].get<double>() : r["A"].get<double>() * r["cells"].get<double>();
       if (x < b.lo || x >= b.hi) continue;
@@ -143,7 +143,7 @@ std::string method_reading(const std::vector<ojson>& rows, const std::string& me
   int above = 0, above_failed = 0, below_failed = 0, below_failed_crossing = 0;
   std::int64_t longest_survivor = 0;
   for (const auto& r : rows) {
-    if (r["method"] != method) continue;
+    if (method_label(r) != method) continue;
     const bool failed = outcome(r) == "unstable";
     if (r["courant"].get<double>() >= 1) {
       ++above;
@@ -171,7 +171,7 @@ std::string every_case_table(const std::vector<ojson>& rows) {
         "max error over time | particle-steps "
         "|\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& r : rows) {
-    md << "| " << r["method"].get<std::string>() << " | " << r["bc"].get<std::string>() << " | "
+    md << "| " << method_label(r) << " | " << r["bc"].get<std::string>() << " | "
        << shortest(r["E"].get<double>()) << " | " << shortest(r["A"].get<double>()) << " | "
        << param(r["dt"].get<double>()) << " | " << param(r["T"].get<double>()) << " | "
        << r["cells"].dump() << " | " << r["ppc"].dump() << " | " << opt_sci(r["courant"]) << " | "
@@ -180,16 +180,21 @@ std::string every_case_table(const std::vector<ojson>& rows) {
   return md.str();
 }
 
-// The methods of the rows, the paper's first, then the others in a fixed order.
+// The methods of the rows (method_label: the basis, then a transfer other than FLIP), the
+// paper's first, then the other bases in a fixed order, then the rest as they first appear.
 std::vector<std::string> methods_of(const std::vector<ojson>& rows) {
   std::vector<std::string> present;
   for (const char* m : {"gimp", "mpm", "cpgimp", "cpdi", "bspline2", "bspline3"}) {
     for (const auto& r : rows) {
-      if (r["method"] == m) {
+      if (method_label(r) == m) {
         present.emplace_back(m);
         break;
       }
     }
+  }
+  for (const auto& r : rows) {
+    const std::string m = method_label(r);
+    if (std::find(present.begin(), present.end(), m) == present.end()) present.push_back(m);
   }
   return present;
 }
@@ -220,7 +225,7 @@ std::map<Spot, int> spots(const std::vector<ojson>& rows) {
   const std::vector<std::string> methods = methods_of(rows);
   std::map<Spot, int> n;
   for (const auto& r : rows) {
-    const auto m = std::find(methods.begin(), methods.end(), r["method"].get<std::string>());
+    const auto m = std::find(methods.begin(), methods.end(), method_label(r));
     ++n[{int(m - methods.begin()), param(r["courant"].get<double>()),
          param(r["A"].get<double>() * r["cells"].get<double>()), verdict_code(r)}];
   }
