@@ -49,10 +49,33 @@ struct Window {
   double f[W];  //
 };
 
+// The boundary-modified B-splines' values for the particles of a block next to a wall, one at a
+// time (shape.hpp). Out of line, so that evaluate_block stays small enough to be inlined, and so
+// vectorized, in each instruction set's p2g_kernel.
+template <class Basis, int W = Basis::width>
+__attribute__((noinline)) void modify_block(const Basis& basis, const double* x, int len,
+                                            const int* base, double* const* w, double* const* g) {
+  for (int j = 0; j < len; ++j) {
+    double wp[W], gp[W];
+    for (int k = 0; k < W; ++k) {
+      wp[k] = w[k][j];
+      gp[k] = g[k][j];
+    }
+    basis.modify(x[j], base[j] - Grid::kOffset, wp, gp);
+    for (int k = 0; k < W; ++k) {
+      w[k][j] = wp[k];
+      g[k][j] = gp[k];
+    }
+  }
+}
+
+// Always inlined into p2g_kernel: each of its instruction-set clones then vectorizes the loops
+// for its own vector width (not inlined, it would be compiled once, for the baseline).
 template <bool kPeriodic, class Basis>
-inline void evaluate_block(const Basis& basis, const Particles& P, const double* body_accel,
-                           Eigen::Index p0, int len, Stencil<Basis::width>& S,
-                           Contributions<Basis::width>& C) {
+__attribute__((always_inline)) inline void evaluate_block(const Basis& basis, const Particles& P,
+                                                          const double* body_accel, Eigen::Index p0,
+                                                          int len, Stencil<Basis::width>& S,
+                                                          Contributions<Basis::width>& C) {
   constexpr int W = Basis::width;
   const double* __restrict x = P.x.data() + p0;
   const double* __restrict v = P.v.data() + p0;
@@ -67,6 +90,19 @@ inline void evaluate_block(const Basis& basis, const Particles& P, const double*
     w[k] = S.w[k].data() + p0;
     g[k] = S.g[k].data() + p0;
   }
+  // What particle j adds to its nodes, from its S_ip and G_ip.
+  auto contribute = [&](int j, const double* wp, const double* gp) __attribute__((always_inline)) {
+    const double mass = m_p[j];
+    const double mom = mass * v[j];
+    const double stress_volume = -sig[j] * F[j] * V0[j];  // V_p = F_p V_p^0 (eq. 6)
+    const double body = mass * b_p[j];
+    for (int k = 0; k < W; ++k) {
+      C.mq[k][j][0] = wp[k] * mass;
+      C.mq[k][j][1] = wp[k] * mom;
+      C.f[k][j] = gp[k] * stress_volume + wp[k] * body;
+    }
+  };
+  // S_ip, G_ip, the base node and the contributions of every particle of the block.
   MPMSTAB_IVDEP
   for (int j = 0; j < len; ++j) {
     double xp = x[j];
@@ -75,20 +111,30 @@ inline void evaluate_block(const Basis& basis, const Particles& P, const double*
     double wp[W], gp[W];
     if constexpr (requires { basis.eval(xp, F[j], bp, wp, gp); }) {
       basis.eval(xp, F[j], bp, wp, gp);  // a domain that follows F_p (cpGIMP, CPDI)
+    } else if constexpr (requires { basis.eval_vector(xp, bp, wp, gp); }) {
+      basis.eval_vector(xp, bp, wp, gp);  // B-splines: the walls' modification below
     } else {
       basis.eval(xp, bp, wp, gp);
     }
     base[j] = bp + Grid::kOffset;
-    const double mass = m_p[j];
-    const double mom = mass * v[j];
-    const double stress_volume = -sig[j] * F[j] * V0[j];  // V_p = F_p V_p^0 (eq. 6)
-    const double body = mass * b_p[j];
     for (int k = 0; k < W; ++k) {
       w[k][j] = wp[k];
       g[k][j] = gp[k];
-      C.mq[k][j][0] = wp[k] * mass;
-      C.mq[k][j][1] = wp[k] * mom;
-      C.f[k][j] = gp[k] * stress_volume + wp[k] * body;
+    }
+    contribute(j, wp, gp);
+  }
+  // B-splines with modified walls (shape.hpp): the particles next to a wall get the modified
+  // values, and the block's contributions are made again from them.
+  if constexpr (requires { basis.modifies(); }) {
+    if (!basis.modifies()) return;
+    modify_block(basis, x, len, base, w, g);
+    for (int j = 0; j < len; ++j) {
+      double wp[W], gp[W];
+      for (int k = 0; k < W; ++k) {
+        wp[k] = w[k][j];
+        gp[k] = g[k][j];
+      }
+      contribute(j, wp, gp);
     }
   }
 }

@@ -152,8 +152,16 @@ struct CpGimpBasis {
 // partition of unity and the reproduction of linear fields, and with the wall's velocity fixed at
 // 0 it makes the ghost velocity the odd reflection -c_1. (Plain truncation, dropping S_{-1},
 // would lose partition of unity.) The weight folded in can make S_1 negative next to a wall.
+// With `active` false the values are left as they are, by a select rather than a branch, so that
+// a loop over particles that calls it stays free of control flow (and vectorizes).
 template <int W>
-inline void eliminate_ghost_nodes(int base, int cells, double* w, double* g) {
+inline void eliminate_ghost_nodes(int base, int cells, double* w_io, double* g_io,
+                                  bool active = true) {
+  double w[W], g[W];
+  for (int k = 0; k < W; ++k) {
+    w[k] = w_io[k];
+    g[k] = g_io[k];
+  }
   // Left: only node -1 can be beyond the wall, at slot 0 when base == -1.
   const double left = base == -1 ? 1.0 : 0.0;
   const double wl = left * w[0], gl = left * g[0];
@@ -173,6 +181,10 @@ inline void eliminate_ghost_nodes(int base, int cells, double* w, double* g) {
     g[k] -= gr;
     g[k - 1] += 2.0 * gr;
     g[k - 2] -= gr;
+  }
+  for (int k = 0; k < W; ++k) {
+    w_io[k] = active ? w[k] : w_io[k];
+    g_io[k] = active ? g[k] : g_io[k];
   }
 }
 
@@ -293,14 +305,10 @@ inline void modify_at_walls(double x, double inv_h, int base, int cells, double*
   }
 }
 
-// The wall treatment `walls` applied to the uniform weights of a B-spline (Wall: its modified
-// functions).
-template <class Wall, int W>
-inline void apply_spline_walls(SplineWalls walls, double x, double inv_h, int base, int cells,
-                               double* w, double* g) {
-  if (walls == SplineWalls::eliminate) eliminate_ghost_nodes<W>(base, cells, w, g);
-  if (walls == SplineWalls::modified) modify_at_walls<Wall, W>(x, inv_h, base, cells, w, g);
-}
+// p2g evaluates a B-spline in two parts (p2g_kernel.hpp): eval_vector, the uniform splines with
+// the ghost nodes eliminated, branch-free so that the loop over particles vectorizes; then, with
+// modified walls only, modify() on the particles next to a wall, one at a time. eval() is the
+// two together.
 
 // Uniform quadratic B-spline, N(r) in units of h (as in Steffen, Kirby & Berzins 2008):
 //   N = 3/4 - r^2 for |r| <= 1/2,  (3/2 - |r|)^2 / 2 for 1/2 <= |r| <= 3/2,  0 beyond.
@@ -314,14 +322,22 @@ struct BSpline2Basis {
   double inv_h;
   int cells;
   SplineWalls walls;
+  bool eliminate;  // walls == eliminate
 
   BSpline2Basis(double h, int n_cells, SplineWalls wall_kind)
-      : inv_h(1.0 / h), cells(n_cells), walls(wall_kind) {}
+      : inv_h(1.0 / h),
+        cells(n_cells),
+        walls(wall_kind),
+        eliminate(wall_kind == SplineWalls::eliminate) {}
   // Dirichlet: eliminate the ghost nodes.
   BSpline2Basis(double h, int n_cells, bool dirichlet)
       : BSpline2Basis(h, n_cells, dirichlet ? SplineWalls::eliminate : SplineWalls::none) {}
 
   void eval(double x, int& base, double* w, double* g) const {
+    eval_vector(x, base, w, g);
+    if (modifies()) modify(x, base, w, g);
+  }
+  void eval_vector(double x, int& base, double* w, double* g) const {
     const double s = x * inv_h - 0.5;
     const double cell = floor_exact(s);
     base = static_cast<int>(cell);
@@ -333,7 +349,11 @@ struct BSpline2Basis {
     g[0] = (t - 1.0) * inv_h;
     g[1] = -2.0 * c * inv_h;
     g[2] = t * inv_h;
-    apply_spline_walls<BSpline2Wall, width>(walls, x, inv_h, base, cells, w, g);
+    eliminate_ghost_nodes<width>(base, cells, w, g, eliminate);
+  }
+  bool modifies() const { return walls == SplineWalls::modified; }
+  void modify(double x, int base, double* w, double* g) const {
+    modify_at_walls<BSpline2Wall, width>(x, inv_h, base, cells, w, g);
   }
 };
 
@@ -351,13 +371,21 @@ struct BSpline3Basis {
   double inv_h;
   int cells;
   SplineWalls walls;
+  bool eliminate;  // walls == eliminate
 
   BSpline3Basis(double h, int n_cells, SplineWalls wall_kind)
-      : inv_h(1.0 / h), cells(n_cells), walls(wall_kind) {}
+      : inv_h(1.0 / h),
+        cells(n_cells),
+        walls(wall_kind),
+        eliminate(wall_kind == SplineWalls::eliminate) {}
   BSpline3Basis(double h, int n_cells, bool dirichlet)
       : BSpline3Basis(h, n_cells, dirichlet ? SplineWalls::eliminate : SplineWalls::none) {}
 
   void eval(double x, int& base, double* w, double* g) const {
+    eval_vector(x, base, w, g);
+    if (modifies()) modify(x, base, w, g);
+  }
+  void eval_vector(double x, int& base, double* w, double* g) const {
     const double s = x * inv_h;
     const double cell = floor_exact(s);
     base = static_cast<int>(cell) - 1;
@@ -374,7 +402,11 @@ struct BSpline3Basis {
     g[1] = (3.0 * t2 - 4.0 * t) * half_inv_h;
     g[2] = (-3.0 * t2 + 2.0 * t + 1.0) * half_inv_h;
     g[3] = t2 * half_inv_h;
-    apply_spline_walls<BSpline3Wall, width>(walls, x, inv_h, base, cells, w, g);
+    eliminate_ghost_nodes<width>(base, cells, w, g, eliminate);
+  }
+  bool modifies() const { return walls == SplineWalls::modified; }
+  void modify(double x, int base, double* w, double* g) const {
+    modify_at_walls<BSpline3Wall, width>(x, inv_h, base, cells, w, g);
   }
 };
 
