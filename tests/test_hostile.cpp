@@ -257,6 +257,11 @@ TEST_F(Hostile, EveryBadInputExitsTwoNamesTheCulpritAndChangesNothing) {
       {"edge --method gimp --E -4 --A 0.01", "--E"},
       {"edge --method gimp --E 4 --A 0.01 --dt 1e-3", "--dt"},
       {"edge --method gimp --E 4 --A 0.01 --tolerance 0", "--tolerance"},
+      {"spectral --method gimpp --E 4", "--method"},
+      {"spectral --method gimp --E -4", "--E"},
+      {"spectral --method gimp --E 4 --dt 1e-3", "--dt"},
+      {"spectral --method gimp --E 4 --cells 100000", "--cells"},
+      {"spectral --method gimp --E 4 --transfer xpic --xpic-order 0", "--xpic-order"},
       // sweep
       {"sweep DIR/malformed.json --out DIR/out", "malformed JSON"},
       {"sweep DIR/empty.json --out DIR/out", "is empty"},

@@ -20,6 +20,7 @@ constexpr const char* kUsage = R"(Usage: mpmstab <command> [options]
 Commands:
   run     run one case of the paper's 1D bar and report every measured quantity
   edge    find the largest fixed dt with which one case survives to T
+  spectral  the largest dt at which the linearised step of a scheme amplifies nothing
   sweep   run the cases of an experiment spec in parallel and write its reports
   index   write results/README.md, the index of the reports
   plot    draw a figure experiment with gnuplot
@@ -59,6 +60,7 @@ int main(int argc, char** argv) {
   try {
     if (command == "run") return mpmstab::cli::cmd_run(args);
     if (command == "edge") return mpmstab::cli::cmd_edge(args);
+    if (command == "spectral") return mpmstab::cli::cmd_spectral(args);
     if (command == "sweep") return mpmstab::cli::cmd_sweep(args);
     if (command == "index") return mpmstab::cli::cmd_index(args);
     if (command == "plot") return mpmstab::cli::cmd_plot(args);

@@ -146,12 +146,12 @@ const std::vector<OptionSpec>& run_options() {
   return options;
 }
 
-RunParams params_from(const Args& a, bool searching_dt) {
+RunParams params_from(const Args& a, bool searching_dt, bool amplitude_required) {
   RunParams p;
   p.method = parse_choice(required(a, "method"), "method", parse_method,
                           "gimp, cpgimp, mpm, bspline2, bspline3 or cpdi");
   p.E = parse_double(required(a, "E"), "E");
-  p.A = parse_double(required(a, "A"), "A");
+  p.A = amplitude_required || a.value("A") ? parse_double(required(a, "A"), "A") : 0.0;
   read_time_stepping(a, searching_dt, p);
   read_choices(a, p);
   read_measurements(a, p);

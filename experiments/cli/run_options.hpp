@@ -14,8 +14,9 @@ namespace mpmstab::cli {
 const std::vector<OptionSpec>& run_options();
 
 // The parameters given by the options, validated (UsageError names every bad option). With
-// `searching_dt` (edge) no dt is read: dt = T, the search replaces it.
-RunParams params_from(const Args& a, bool searching_dt = false);
+// `searching_dt` (edge, spectral) no dt is read: dt = T, the search replaces it. Without
+// `amplitude_required` (spectral) a missing --A is 0.
+RunParams params_from(const Args& a, bool searching_dt = false, bool amplitude_required = true);
 
 // A number in the text summaries: four significant digits.
 std::string fmt(double v);

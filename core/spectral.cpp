@@ -1,0 +1,120 @@
+#include "spectral.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+
+#include "simulation.hpp"
+
+namespace mpmstab {
+
+namespace {
+
+// The size of the central difference, in the scaled state (v / c, F - 1, C h / c): small
+// enough that cpGIMP's and CPDI's widths, which follow F, move by a negligible O(eps^2), large
+// enough that the differences stay far above round-off.
+constexpr double kEps = 1e-6;
+
+// p with what the linearisation about rest needs: no amplitude (the body force of either scene
+// vanishes with A, so rest is a fixed point of the step) and one step.
+RunParams at_rest(const RunParams& p, double dt) {
+  RunParams q = p;
+  q.A = 0;
+  q.stepping.policy = TimeStepPolicy::fixed;
+  q.dt = dt;
+  q.T = dt;
+  q.observe = Observe{};
+  return q;
+}
+
+// The scaled state after one step from rest plus `delta` (scaled), particles at `x`.
+Eigen::VectorXd step_from(const RunParams& q, const Eigen::ArrayXd& x, const Eigen::VectorXd& delta,
+                          double c, double h) {
+  Simulation sim(q);
+  Particles& P = sim.particles();
+  const Eigen::Index n = P.size();
+  const bool apic = q.transfer == Transfer::apic;
+  const MaterialLaw law = sim.scene().law();
+  P.x = x;
+  P.v = delta.segment(0, n).array() * c;
+  P.F = 1.0 + delta.segment(n, n).array();
+  for (Eigen::Index k = 0; k < n; ++k)
+    P.sigma[k] = law.stress(P.F[k]);
+  if (apic) P.C = delta.segment(2 * n, n).array() * (c / h);
+  sim.advance_to(q.dt);
+  Eigen::VectorXd out(delta.size());
+  out.segment(0, n) = P.v.matrix() / c;
+  out.segment(n, n) = (P.F - 1.0).matrix();
+  if (apic) out.segment(2 * n, n) = P.C.matrix() * (h / c);
+  return out;
+}
+
+// The largest eigenvalue's modulus and, when asked, its eigenvector's moduli.
+double radius_and_mode(const Eigen::MatrixXd& M, Eigen::ArrayXd* mode) {
+  Eigen::EigenSolver<Eigen::MatrixXd> es(M, mode != nullptr);
+  const Eigen::VectorXcd lambda = es.eigenvalues();
+  Eigen::Index k = 0;
+  const double r = lambda.cwiseAbs().maxCoeff(&k);
+  if (mode) *mode = es.eigenvectors().col(k).cwiseAbs().array();
+  return r;
+}
+
+}  // namespace
+
+Eigen::Index spectral_state_size(const RunParams& p) {
+  const Eigen::Index n = static_cast<Eigen::Index>(p.cells) * p.ppc;
+  return (p.transfer == Transfer::apic ? 3 : 2) * n;
+}
+
+Eigen::MatrixXd linear_step_map(const RunParams& p, const Eigen::ArrayXd& x, double courant) {
+  const double h = 1.0 / p.cells;
+  const double c = Simulation(p).scene().c;
+  const RunParams q = at_rest(p, courant * h / c);
+  const Eigen::Index size = spectral_state_size(p);
+  Eigen::MatrixXd M(size, size);
+  Eigen::VectorXd delta = Eigen::VectorXd::Zero(size);
+  for (Eigen::Index j = 0; j < size; ++j) {
+    delta[j] = kEps;
+    const Eigen::VectorXd plus = step_from(q, x, delta, c, h);
+    delta[j] = -kEps;
+    const Eigen::VectorXd minus = step_from(q, x, delta, c, h);
+    delta[j] = 0;
+    M.col(j) = (plus - minus) / (2 * kEps);
+  }
+  return M;
+}
+
+double spectral_radius(const Eigen::MatrixXd& M) {
+  return radius_and_mode(M, nullptr);
+}
+
+SpectralLimit spectral_limit(const RunParams& p) {
+  SpectralLimit out;
+  const Eigen::ArrayXd x = Simulation(p).particles().x;  // the scene's initial layout
+  auto amplifies = [&](double courant) {
+    ++out.evaluations;
+    return spectral_radius(linear_step_map(p, x, courant)) > 1 + kSpectralTolerance;
+  };
+  // Upwards by factors of 1.25 to the first amplifying Courant number, then bisection.
+  double lo = 0, hi = 0.01;
+  while (!amplifies(hi)) {
+    lo = hi;
+    hi *= 1.25;
+    if (hi > kMaxSpectralCourant) return out;
+  }
+  while (hi - lo > 1e-4 * hi) {
+    const double mid = 0.5 * (lo + hi);
+    (amplifies(mid) ? hi : lo) = mid;
+  }
+  out.courant = lo;
+  Eigen::ArrayXd mode;
+  out.radius_above = radius_and_mode(linear_step_map(p, x, hi), &mode);
+  ++out.evaluations;
+  const Eigen::Index n = x.size();
+  const double top = mode.maxCoeff();
+  if (top > 0) mode /= top;
+  out.mode_v = mode.segment(0, n);
+  out.mode_strain = mode.segment(n, n);
+  return out;
+}
+
+}  // namespace mpmstab

@@ -1,0 +1,56 @@
+// The spectral limit of a scheme: the largest time step at which its one-step map, linearised
+// about rest with the particles frozen where they are, does not amplify any state
+// (docs/design.md, "The spectral limit").
+//
+// The state of the map is, per particle, the velocity and the strain, and APIC's affine
+// velocity: s = (v_p / c, F_p - 1, C_p h / c). Linearised about rest (v_p = 0, F_p = 1,
+// sigma_p = 0, C_p = 0) with the positions x_p frozen, one step of every scheme of this program
+// is linear in s, and in these units it depends on dt only through the Courant number
+// c dt / h: the limit is a Courant number, the same for every E. The map is taken from the
+// program's own step (Simulation::advance_to) by central differences, column by column, so it
+// is the map of exactly the code that runs; a quadratic term of the step (sigma_p F_p V_p^0,
+// F_p (1 + dt L_p)) cancels exactly in a central difference.
+#pragma once
+
+#include <Eigen/Core>
+#include <optional>
+
+#include "params.hpp"
+
+namespace mpmstab {
+
+// The largest Courant number searched, and the round-off tolerance on the spectral radius: a
+// map is taken as not amplifying when its spectral radius is at most 1 + kSpectralTolerance.
+inline constexpr double kMaxSpectralCourant = 8.0;
+inline constexpr double kSpectralTolerance = 1e-8;
+// The largest state the dense eigen-solver is asked for (particles x values per particle).
+inline constexpr Eigen::Index kMaxSpectralState = 1200;
+
+struct SpectralLimit {
+  // c dt / h at the limit; none when the map does not amplify up to kMaxSpectralCourant.
+  std::optional<double> courant;
+  double radius_above = 0;  // the spectral radius just above the limit (growth per step)
+  // The eigenvector of the largest eigenvalue just above the limit, as |component| per
+  // particle, normalised to a largest value of 1: its velocity part and its strain part.
+  Eigen::ArrayXd mode_v, mode_strain;
+  int evaluations = 0;  // maps built and solved
+};
+
+// The state size of p's map: 2 per particle, 3 with APIC.
+Eigen::Index spectral_state_size(const RunParams& p);
+
+// The linearised one-step map at the Courant number `courant`, about rest with the particles at
+// `x` (their count and order those of p's scene). `p` must be valid.
+Eigen::MatrixXd linear_step_map(const RunParams& p, const Eigen::ArrayXd& x, double courant);
+
+// The largest modulus of the eigenvalues of a square matrix.
+double spectral_radius(const Eigen::MatrixXd& M);
+
+// The spectral limit of p's scheme at the initial particle layout of its scene: the first
+// Courant number, searched upwards from 0.01 by factors of 1.25 and then by bisection to a
+// relative 1e-4, at which the spectral radius exceeds 1 + kSpectralTolerance. Requires a state
+// of at most kMaxSpectralState values. E, A (but for the layout), dt, T and the policy do not
+// enter.
+SpectralLimit spectral_limit(const RunParams& p);
+
+}  // namespace mpmstab
