@@ -119,6 +119,7 @@ struct Observe {
   bool crossings = true;            // cell-boundary crossings
   bool history = false;             // per-step rows (error, eq. 108, cumulative crossings)
   bool final_state = false;         // the particle state at the end, with the exact solution
+  bool spectral = false;            // the spectral limit of the initial layout (spectral.hpp)
   std::int64_t history_stride = 1;  // keep every k-th step in the history (and the last one)
 };
 

@@ -64,6 +64,11 @@ struct RunResult {
   std::optional<Outcome> outcome;
   std::optional<std::int64_t> crossings;
   std::optional<double> dt_stable_min;  // min of eq. (108) over the steps (observer dt_stable)
+  // The spectral limit of the scheme at the initial layout (observe.spectral; none when the
+  // state is too large for the dense solver or nothing amplifies up to kMaxSpectralCourant):
+  // c dt / h, and dt for this E.
+  std::optional<double> courant_spectral;
+  std::optional<double> dt_spectral;
 
   double c = 0;         // wave speed sqrt(E / rho0)
   double dt_cfl = 0;    // h / c, the classical speed-of-sound limit

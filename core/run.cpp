@@ -9,6 +9,7 @@
 #include "crossings.hpp"
 #include "failure.hpp"
 #include "simulation.hpp"
+#include "spectral.hpp"
 #include "stable_dt.hpp"
 
 namespace mpmstab {
@@ -103,6 +104,12 @@ Driver::Driver(const RunParams& p, const HistorySink& sink)
   }
   extremes_ = state_extremes(sim_.particles());
   if (uses_bound_) bound_ = bound_now();
+  if (obs_.spectral) {
+    if (const auto c = spectral_courant(p)) {
+      r_.courant_spectral = *c;
+      r_.dt_spectral = *c * h_ / r_.c;
+    }
+  }
 }
 
 // Eq. (108) from the state after the last step (before the first, with ||v|| = 0).

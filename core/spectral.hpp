@@ -33,7 +33,8 @@ struct SpectralLimit {
   // The eigenvector of the largest eigenvalue just above the limit, as |component| per
   // particle, normalised to a largest value of 1: its velocity part and its strain part.
   Eigen::ArrayXd mode_v, mode_strain;
-  int evaluations = 0;  // maps built and solved
+  int evaluations = 0;  // maps built from the step
+  int solves = 0;       // eigenvalue problems solved
 };
 
 // The state size of p's map: 2 per particle, 3 with APIC.
@@ -47,10 +48,14 @@ Eigen::MatrixXd linear_step_map(const RunParams& p, const Eigen::ArrayXd& x, dou
 double spectral_radius(const Eigen::MatrixXd& M);
 
 // The spectral limit of p's scheme at the initial particle layout of its scene: the first
-// Courant number, searched upwards from 0.01 by factors of 1.25 and then by bisection to a
+// Courant number, searched upwards from 1/4 by factors of 1.4 and then by bisection to a
 // relative 1e-4, at which the spectral radius exceeds 1 + kSpectralTolerance. Requires a state
 // of at most kMaxSpectralState values. E, A (but for the layout), dt, T and the policy do not
 // enter.
 SpectralLimit spectral_limit(const RunParams& p);
+
+// spectral_limit(p).courant, computed once per scheme, grid and layout in a process (shared by
+// threads); none when the state is larger than kMaxSpectralState or nothing amplifies.
+std::optional<double> spectral_courant(const RunParams& p);
 
 }  // namespace mpmstab

@@ -24,7 +24,8 @@ std::string canonical_parameters(const RunParams& p) {
     << ";policy=" << to_string(p.stepping.policy)
     << ";cfl_factor=" << shortest(p.stepping.cfl_factor)
     << ";safety=" << shortest(p.stepping.safety) << ";record=" << (o.error_over_time ? "e" : "")
-    << (o.dt_stable ? "s" : "") << (o.crossings ? "c" : "") << (o.final_state ? "f" : "");
+    << (o.dt_stable ? "s" : "") << (o.crossings ? "c" : "") << (o.final_state ? "f" : "")
+    << (o.spectral ? "p" : "");
   if (o.history) s << "h" << o.history_stride;
   // The implementation choices came after the first cached runs: they enter the key only when
   // one differs from its default, so that the keys of default runs did not change.

@@ -42,6 +42,7 @@ std::vector<ColumnRule> value_rules(double rtol) {
           {"max_error_over_time", 0, rtol, false},
           {"crossings", 0, 0, false},
           {"dt_stable_min", 0, rtol, false},
+          {"courant_spectral", 0, rtol, false},
           {"dt_min", 0, rtol, false},
           {"dt_max", 0, rtol, false},
           // edge experiments: the bracket of the search and its warnings

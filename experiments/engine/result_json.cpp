@@ -22,7 +22,8 @@ const std::vector<std::string>& record_columns() {
       // What the run did.
       "outcome", "failure_reason", "failure_step", "failure_time", "failure_particle", "steps",
       "dt_min", "dt_max", "dt_mean", "max_error", "max_error_over_time", "crossings",
-      "dt_stable_min", "dt_cfl", "dt_sound", "courant", "particles", "solver_version"};
+      "dt_stable_min", "dt_cfl", "dt_sound", "courant", "courant_spectral", "dt_spectral",
+      "particles", "solver_version"};
   return columns;
 }
 
@@ -75,6 +76,8 @@ nlohmann::ordered_json to_json(const RunResult& r) {
   j["dt_sound"] = r.dt_sound;
   const bool fixed_step = policy == TimeStepPolicy::fixed || policy == TimeStepPolicy::cfl;
   j["courant"] = fixed_step || ran ? ojson(r.courant) : ojson(nullptr);
+  j["courant_spectral"] = or_null(r.courant_spectral);
+  j["dt_spectral"] = or_null(r.dt_spectral);
   j["particles"] = r.particles;
   j["solver_version"] = kSolverVersion;
   return j;

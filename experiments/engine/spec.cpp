@@ -46,8 +46,8 @@ const std::vector<std::string> kTopKeys = {
     "defaults", "cases", "cases_from",  "variants", "index_order", "check_budget"};
 // A spec named by cases_from is read whole; larger files are refused rather than read.
 constexpr std::uintmax_t kMaxSpecBytes = 4u << 20;
-const std::vector<std::string> kRecordValues = {"error_over_time", "dt_stable", "crossings",
-                                                "history", "final_state"};
+const std::vector<std::string> kRecordValues = {"error_over_time", "dt_stable",   "crossings",
+                                                "history",         "final_state", "spectral"};
 
 class Reader {
  public:
@@ -495,6 +495,8 @@ Observe read_observe(const Reader& r, const json& doc) {
         observe.history = true;
       else if (what == "final_state")
         observe.final_state = true;
+      else if (what == "spectral")
+        observe.spectral = true;
       else {
         std::string message = "unknown value '" + what + "'";
         if (auto guess = cli::nearest(what, kRecordValues))

@@ -158,20 +158,28 @@ const char* kRule =
     "probes run without observers (their error at T is measured at the end); the outcome is "
     "measured for the reference and at both edges. Survival is *not monotone* when a dt below "
     "the survival edge fails; the flips column lists, in increasing dt, each dt from which the "
-    "run fails or survives again (between it and the dt tried just below it).";
+    "run fails or survives again (between it and the dt tried just below it). The *spectral "
+    "limit* is the Courant number at which the scheme, linearised about rest with the particles "
+    "of the initial layout frozen, starts to amplify (docs/design.md, \"The spectral limit\"): "
+    "the edge of a tiny amplitude; the edges here, at the paper's amplitudes, fall below it or, "
+    "where a growing mode saturates instead of failing, above it.";
 
 // Per case: both edges against h/c, the run at the survival edge, the errors at T, eq. (108),
 // the flips and what the search cost.
 std::string edge_table(const std::vector<ojson>& rows) {
   std::ostringstream md;
-  md << "| method | A | E | h/c | survival edge dt_edge (h/c) | run at dt_edge | error at T "
-        "there | accuracy edge dt_accurate (h/c) | error at T: reference → at dt_accurate | "
-        "eq. (108) at dt_edge (dt_edge / it) | survival in dt | probes | particle-steps |\n"
-        "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  md << "| method | A | E | h/c | spectral limit (h/c) | survival edge dt_edge (h/c) | run at "
+        "dt_edge | error at T there | accuracy edge dt_accurate (h/c) | error at T: reference → "
+        "at dt_accurate | eq. (108) at dt_edge (dt_edge / it) | survival in dt | probes | "
+        "particle-steps |\n"
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& r : rows) {
     const bool found = has_number(r, "dt_edge");
     md << "| " << r["method"].get<std::string>() << " | " << shortest(r["A"].get<double>()) << " | "
-       << shortest(r["E"].get<double>()) << " | " << sci(r["dt_cfl"].get<double>(), 3) << " | ";
+       << shortest(r["E"].get<double>()) << " | " << sci(r["dt_cfl"].get<double>(), 3) << " | "
+       << (has_number(r, "courant_spectral") ? in_cfl(r["courant_spectral"].get<double>())
+                                             : std::string("–"))
+       << " | ";
     if (!found) {
       md << "none in the scan | – | – | – | – | – | ";
     } else {
