@@ -1,5 +1,7 @@
 #include "params.hpp"
 
+#include "spectral.hpp"
+
 #include <array>
 #include <cmath>
 #include <limits>
@@ -50,10 +52,11 @@ constexpr Names<PositionUpdate, 2> kPositionUpdates{
 constexpr Names<StressScaling, 2> kScalings{
     {{StressScaling::scaled, "scaled"}, {StressScaling::raw, "raw"}}};
 constexpr Names<VelocityNorm, 2> kNorms{{{VelocityNorm::l2, "l2"}, {VelocityNorm::max, "max"}}};
-constexpr Names<TimeStepPolicy, 4> kPolicies{{{TimeStepPolicy::fixed, "fixed"},
+constexpr Names<TimeStepPolicy, 5> kPolicies{{{TimeStepPolicy::fixed, "fixed"},
                                               {TimeStepPolicy::cfl, "cfl"},
                                               {TimeStepPolicy::adaptive, "adaptive"},
-                                              {TimeStepPolicy::min, "min"}}};
+                                              {TimeStepPolicy::min, "min"},
+                                              {TimeStepPolicy::spectral, "spectral"}}};
 
 template <class Enum, std::size_t N>
 std::string_view name_of(const Names<Enum, N>& table, Enum e) {
@@ -189,9 +192,10 @@ std::optional<ParamIssue> check_given(const RunParams& p, std::string_view key) 
     return ParamIssue{"cfl_factor",
                       "only with policy cfl or min (the " + name + " policy does not use it)"};
   }
-  if (key == "safety" && policy != TimeStepPolicy::adaptive && policy != TimeStepPolicy::min) {
-    return ParamIssue{"safety",
-                      "only with policy adaptive or min (the " + name + " policy does not use it)"};
+  if (key == "safety" && policy != TimeStepPolicy::adaptive && policy != TimeStepPolicy::min &&
+      policy != TimeStepPolicy::spectral) {
+    return ParamIssue{"safety", "only with policy adaptive, min or spectral (the " + name +
+                                    " policy does not use it)"};
   }
   if (key == "flip_fraction" && p.transfer != Transfer::blend) {
     return ParamIssue{
@@ -348,6 +352,15 @@ std::vector<ParamIssue> validate(const RunParams& p) {
                         "only; use fixed or cfl with " +
                         std::string(to_string(p.method)));
     }
+  }
+  if (p.stepping.policy == TimeStepPolicy::spectral && p.cells >= 1 && p.ppc >= 1 &&
+      spectral_state_size(p) > kMaxSpectralState) {
+    bad("policy",
+        "the spectral policy computes the spectral limit with a dense solver, for at "
+        "most " +
+            std::to_string(kMaxSpectralState / 2) + " particles (" +
+            std::to_string(kMaxSpectralState / 3) + " with apic); got " +
+            std::to_string(static_cast<long long>(p.cells) * p.ppc));
   }
   if (p.max_steps < 1) bad("max_steps", "must be >= 1, got " + std::to_string(p.max_steps));
   if (p.observe.history_stride < 1) {

@@ -88,10 +88,16 @@ enum class VelocityNorm { l2, max };
 //  - fixed:    dt as given;
 //  - cfl:      dt = C h / c, the speed-of-sound rule with Courant factor C (`cfl_factor`);
 //  - adaptive: dt_n = s * eq. (108) bound of the current state (`safety` s);
-//  - min:      dt_n = min(C h / c, s * eq. (108) bound).
+//  - min:      dt_n = min(C h / c, s * eq. (108) bound);
+//  - spectral: dt_n = s * the spectral limit (spectral.hpp) of the particles' layout when it was
+//              last computed: at the start, and again, at the current layout, each time the
+//              largest displacement any particle has reached from its initial position grows
+//              by another h. A run computes it at most max|u| / h + 1 times (the first, at the
+//              scene's initial layout, once per process), each about 0.5-0.8 s of CPU at 200
+//              particles; at most 600 particles.
 // The bound of the current state is the one after the previous step; before the first step no
 // grid velocity exists yet and the bound is taken with ||v|| = 0.
-enum class TimeStepPolicy { fixed, cfl, adaptive, min };
+enum class TimeStepPolicy { fixed, cfl, adaptive, min, spectral };
 
 // An adaptive or min run stops as unstable (dt_collapse) when the step its policy asks for falls
 // below this fraction of the CFL step h / c: a run needing more than 1000 steps per cell

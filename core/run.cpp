@@ -60,7 +60,8 @@ class Driver {
   const bool dt_stable_;
   const double h_;
   const TimeStepPolicy policy_;
-  const bool uses_bound_;  // the policy reads eq. (108) of the current state
+  const bool uses_bound_;       // the policy reads eq. (108) of the current state
+  const bool spectral_policy_;  // the policy reads the spectral limit of a recent layout
   RunResult r_;
   Simulation sim_;
   const std::optional<double> fixed_dt_;  // fixed and cfl policies
@@ -73,6 +74,9 @@ class Driver {
   std::optional<HistoryRow> pending_row_;  // last row not kept by the stride
   double bound_ = 0;                       // eq. (108) of the current state, when read
   StateExtremes extremes_;                 // of the state after the last check
+  Eigen::ArrayXd initial_x_;               // spectral policy: the initial positions,
+  double next_excursion_ = 0;              // the excursion from them that recomputes the limit,
+  double limit_dt_ = 0;                    // and the limit last computed, as dt
   double dt_min_ = std::numeric_limits<double>::infinity();
   double dt_max_ = 0;
 };
@@ -86,6 +90,7 @@ Driver::Driver(const RunParams& p, const HistorySink& sink)
       h_(1.0 / p.cells),
       policy_(p.stepping.policy),
       uses_bound_(policy_ == TimeStepPolicy::adaptive || policy_ == TimeStepPolicy::min),
+      spectral_policy_(policy_ == TimeStepPolicy::spectral),
       sim_(p),
       fixed_dt_(fixed_step(p)),
       geometry_{p.method, p.E, h_, p.ppc, h_ / p.ppc},
@@ -104,12 +109,18 @@ Driver::Driver(const RunParams& p, const HistorySink& sink)
   }
   extremes_ = state_extremes(sim_.particles());
   if (uses_bound_) bound_ = bound_now();
-  if (obs_.spectral) {
+  if (obs_.spectral || spectral_policy_) {
     if (const auto c = spectral_courant(p)) {
       r_.courant_spectral = *c;
       r_.dt_spectral = *c * h_ / r_.c;
     }
   }
+  if (spectral_policy_) {
+    initial_x_ = sim_.particles().x;
+    next_excursion_ = h_;
+    limit_dt_ = r_.dt_spectral.value_or(kMaxSpectralCourant * r_.dt_cfl);
+  }
+  if (!obs_.spectral) r_.courant_spectral = r_.dt_spectral = std::nullopt;
 }
 
 // Eq. (108) from the state after the last step (before the first, with ||v|| = 0).
@@ -132,7 +143,7 @@ NextStep Driver::next_step() const {
     const bool last = sim_.steps() + 1 >= r_.steps_planned;
     return {last ? p_.T : static_cast<double>(sim_.steps() + 1) * *fixed_dt_, last};
   }
-  double dt = p_.stepping.safety * bound_;
+  double dt = p_.stepping.safety * (spectral_policy_ ? limit_dt_ : bound_);
   if (policy_ == TimeStepPolicy::min) dt = std::min(dt, p_.stepping.cfl_factor * r_.dt_cfl);
   // Land on T exactly, without leaving a sliver of a step.
   const bool last = sim_.time() + dt >= p_.T - 1e-9 * dt;
@@ -197,6 +208,17 @@ void Driver::observe_step(bool last) {
     if (dt_stable_) {
       dt_stable_min_ = std::min(dt_stable_min_, bound_);
       row.dt_stable = bound_;
+    }
+  }
+  // The spectral policy's limit again, at the current layout, each time the largest
+  // displacement any particle has reached from its initial position grows by another h: at most
+  // max|u| / h + 1 computations in a run (params.hpp).
+  if (spectral_policy_ && !last) {
+    const double excursion = (sim_.particles().x - initial_x_).abs().maxCoeff();
+    if (excursion > next_excursion_) {
+      const auto c = spectral_limit(p_, sim_.particles().x, limit_dt_ / r_.dt_cfl).courant;
+      limit_dt_ = c.value_or(kMaxSpectralCourant) * r_.dt_cfl;
+      next_excursion_ = (std::floor(excursion / h_) + 1) * h_;
     }
   }
   if (history_) {

@@ -92,8 +92,12 @@ double spectral_radius(const Eigen::MatrixXd& M) {
 }
 
 SpectralLimit spectral_limit(const RunParams& p) {
+  return spectral_limit(p, Simulation(p).particles().x);  // the scene's initial layout
+}
+
+SpectralLimit spectral_limit(const RunParams& p, const Eigen::ArrayXd& x,
+                             std::optional<double> near) {
   SpectralLimit out;
-  const Eigen::ArrayXd x = Simulation(p).particles().x;  // the scene's initial layout
   // Every scheme's map is a polynomial of degree two in the Courant number (docs/design.md):
   // M(C) = M0 + C M1 + C^2 M2 from the maps at C = 0, 1 and 2, checked against the map at
   // C = 1/2; where the check fails, each Courant number gets its own map.
@@ -115,7 +119,12 @@ SpectralLimit spectral_limit(const RunParams& p) {
     return spectral_radius(map_at(courant)) > 1 + kSpectralTolerance;
   };
   // Upwards from 1/4 by factors of 1.4 to the first amplifying Courant number, then bisection.
+  // Near a known limit, the bracket starts at 0.9 and 1.1 times it.
   double lo = 0, hi = 0.25;
+  if (near && *near > 0 && !amplifies(0.9 * *near)) {
+    lo = 0.9 * *near;
+    hi = 1.1 * *near;
+  }
   while (!amplifies(hi)) {
     lo = hi;
     hi *= 1.4;

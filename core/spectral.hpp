@@ -53,6 +53,11 @@ double spectral_radius(const Eigen::MatrixXd& M);
 // of at most kMaxSpectralState values. E, A (but for the layout), dt, T and the policy do not
 // enter.
 SpectralLimit spectral_limit(const RunParams& p);
+// The same with the particles frozen at `x` (their count and order those of p's scene); `near`,
+// a limit expected close by (another layout's), starts the search at 0.9 and 1.1 times it: a
+// window of amplification that opened and closed again below 0.9 times it would be missed.
+SpectralLimit spectral_limit(const RunParams& p, const Eigen::ArrayXd& x,
+                             std::optional<double> near = std::nullopt);
 
 // spectral_limit(p).courant, computed once per scheme, grid and layout in a process (shared by
 // threads); none when the state is larger than kMaxSpectralState or nothing amplifies.

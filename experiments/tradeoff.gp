@@ -7,7 +7,7 @@
 #         drawn (stable, with an error; the runs left out are counted in the subtitle). panel:
 #         0.. per E; series: 0.. per (method, policy, cells); method 0 mpm, 1 gimp, 2 cpgimp,
 #         3 bspline2, 4 bspline3, 5 cpdi, 6 gimp/apic, 7 gimp/xpic(2), 8 gimp/fmpm(2), 9 another;
-#         policy 0 fixed, 1 cfl, 2 adaptive, 3 min; grid: the rank of cells, 0 the coarsest.
+#         policy 0 fixed, 1 cfl, 2 adaptive, 3 min, 4 spectral; grid: the rank of cells, 0 the coarsest.
 # Writes: outbase.png and outbase.svg.
 # Variables: datafile, outbase (required), subtitle (optional: the runs drawn and left out).
 
@@ -55,8 +55,9 @@ array method_name[10] = ["MPM", "GIMP", "cpGIMP", "B-spline 2", "B-spline 3", "C
                          "GIMP, APIC", "GIMP, XPIC(2)", "GIMP, FMPM(2)", "another"]
 array other_colour[7] = ["#bcbd22", "#000000", "#393b79", "#843c39", "#637939", "#7b4173", \
                          "#aaaaaa"]
-array policy_name[4] = ["fixed dt", "CFL C h/c", "adaptive s x eq. (108)", "min(CFL, s x eq. (108))"]
-array policy_pt[4] = [7, 5, 9, 13]
+array policy_name[5] = ["fixed dt", "CFL C h/c", "adaptive s x eq. (108)", "min(CFL, s x eq. (108))", \
+                        "s x spectral limit"]
+array policy_pt[5] = [7, 5, 9, 13, 11]
 array colour[9] = ["#d62728", "#ff7f0e", "#9467bd", "#1f77b4", "#17becf", "#2ca02c", \
                    "#8c564b", "#e377c2", "#7f7f7f"]
 s_colour(s) = s_method[s] < 3 ? colour[3 * s_method[s] + (s_grid[s] > 2 ? 2 : s_grid[s]) + 1] \

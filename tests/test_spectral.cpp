@@ -137,5 +137,28 @@ TEST(Spectral, LimitAgreesWithTheMeasuredTinyAmplitudeEdgeWithinFivePercent) {
   }
 }
 
+// The spectral policy steps at s times the limit: at s = 0.5 the first step is half the limit and
+// the run stays bounded; at s = 1.2 a run at A = 1e-6 grows.
+TEST(Spectral, PolicyStepsAtAFractionOfTheLimit) {
+  RunParams p;
+  p.method = Method::gimp;
+  p.cells = 10;
+  p.E = 1;
+  p.A = 1e-6;
+  p.T = 50;
+  p.stepping.policy = TimeStepPolicy::spectral;
+  p.stepping.safety = 0.5;
+  p.observe.error_over_time = true;
+  const auto limit = spectral_limit(p).courant;
+  ASSERT_TRUE(limit.has_value());
+  const RunResult half = run(p);
+  EXPECT_TRUE(half.stable);
+  EXPECT_NEAR(half.dt_max, 0.5 * *limit / p.cells, 1e-12);  // c = 1, h = 1/10
+  EXPECT_LE(*half.max_error_over_time, 3 * p.A);
+  p.stepping.safety = 1.2;
+  const RunResult above = run(p);
+  EXPECT_TRUE(!above.stable || *above.max_error_over_time > 3 * p.A);
+}
+
 }  // namespace
 }  // namespace mpmstab

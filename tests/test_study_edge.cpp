@@ -180,6 +180,7 @@ std::vector<ojson> edge_rows() {
   b["monotone"] = false;
   b["failed_below_edge"] = 1;
   b["survival_flips"] = "fails 0.000625; survives 0.00088388347648318";
+  a["courant_spectral"] = 0.7564;  // recorded for the first row only
   ojson none = study_row("mpm", 4);
   test_support::fail_row(none, "nonpositive_F");
   for (const char* k :
@@ -220,15 +221,17 @@ TEST(EdgeStudy, ReportStatesTheRuleAndReadsBothEdgesFromTheRows) {
                     "8.84e-4)."),
             std::string::npos)
       << md;
-  // The table: both edges with h/c, the flips, the cost without wall times.
-  EXPECT_NE(md.find("| gimp | 0.015 | 4 | 5.00e-3 | 4.10e-3 (0.820) | meaningless | 1.0e-6 | "
-                    "3.94e-3 (0.788) | 1.0e-5 → 6.0e-6 | 1.0e-4 (41) | monotone | 20 | 2.4e6 |"),
-            std::string::npos)
+  // The table: the spectral limit (where recorded), both edges with h/c, the flips, the cost
+  // without wall times.
+  EXPECT_NE(
+      md.find("| gimp | 0.015 | 4 | 5.00e-3 | 0.756 | 4.10e-3 (0.820) | meaningless | 1.0e-6 | "
+              "3.94e-3 (0.788) | 1.0e-5 → 6.0e-6 | 1.0e-4 (41) | monotone | 20 | 2.4e6 |"),
+      std::string::npos)
       << md;
   EXPECT_NE(md.find("none (reference meaningless)"), std::string::npos);
   EXPECT_NE(md.find("**not monotone**: fails from 6.25e-4, survives from 8.84e-4"),
             std::string::npos);
-  EXPECT_NE(md.find("| mpm | 0.015 | 4 | 5.00e-3 | none in the scan |"), std::string::npos);
+  EXPECT_NE(md.find("| mpm | 0.015 | 4 | 5.00e-3 | – | none in the scan |"), std::string::npos);
   EXPECT_EQ(md.find("seconds"), std::string::npos);
   EXPECT_EQ(md.find(" ms "), std::string::npos);
 }

@@ -63,14 +63,17 @@ Options:
   --dt-stable-sigma scaled|raw
                            stress in eq. (108) scaled by 1/sqrt(E) (default) or not
   --dt-stable-vnorm l2|max norm of the nodal velocity in eq. (108) (default l2)
-  --policy fixed|cfl|adaptive|min
+  --policy fixed|cfl|adaptive|min|spectral
                            time-step policy (default fixed): fixed dt; dt = C h / c;
-                           dt_n = s * eq. (108) bound of the current state; or the minimum
-                           of the last two. Every policy lands exactly on T. An
-                           adaptive or min run whose step falls below 1e-3 h/c stops as
-                           unstable with the reason dt_collapse.
+                           dt_n = s * eq. (108) bound of the current state; the minimum
+                           of the last two; or dt = s * the spectral limit of the layout
+                           (recomputed each time the largest displacement from the
+                           initial layout grows by another h; at most 600 particles). Every policy lands exactly on T. An adaptive or
+                           min run whose step falls below 1e-3 h/c stops as unstable with
+                           the reason dt_collapse.
   --cfl-factor <C>         Courant factor of the cfl and min policies (default 0.5)
-  --safety <s>             factor on the eq. (108) bound, adaptive and min (default 1)
+  --safety <s>             factor on the eq. (108) bound (adaptive, min) or on the
+                           spectral limit (spectral) (default 1)
   --max-steps <n>          refuse runs needing more steps (default 200000000); an adaptive
                            run that reaches it stops with the verdict step_limit
   --history <file.csv>     also write the per-step history (error, eq. 108, crossings)

@@ -40,7 +40,7 @@ int to_int(std::string_view text, std::string_view option) {
 void read_time_stepping(const Args& a, bool searching_dt, RunParams& p) {
   if (auto v = a.value("policy")) {
     p.stepping.policy =
-        parse_choice(*v, "policy", parse_time_step_policy, "fixed, cfl, adaptive or min");
+        parse_choice(*v, "policy", parse_time_step_policy, "fixed, cfl, adaptive, min or spectral");
   }
   if (!searching_dt) {
     if (p.stepping.policy == TimeStepPolicy::fixed) {

@@ -53,7 +53,8 @@ nlohmann::ordered_json to_json(const RunResult& r) {
   j["body_force_time"] = to_string(p.body_force_time);
   j["policy"] = to_string(policy);
   const bool uses_cfl = policy == TimeStepPolicy::cfl || policy == TimeStepPolicy::min;
-  const bool uses_bound = policy == TimeStepPolicy::adaptive || policy == TimeStepPolicy::min;
+  const bool uses_bound = policy == TimeStepPolicy::adaptive || policy == TimeStepPolicy::min ||
+                          policy == TimeStepPolicy::spectral;
   j["cfl_factor"] = uses_cfl ? ojson(p.stepping.cfl_factor) : ojson(nullptr);
   j["safety"] = uses_bound ? ojson(p.stepping.safety) : ojson(nullptr);
   j["dt_stable_sigma"] = to_string(p.stable.sigma);

@@ -146,7 +146,8 @@ class Reader {
     else if (key == "max_steps")
       p.max_steps = integer_at(v, path);
     else if (key == "policy")
-      p.stepping.policy = choice_at(v, path, parse_time_step_policy, "fixed, cfl, adaptive or min");
+      p.stepping.policy =
+          choice_at(v, path, parse_time_step_policy, "fixed, cfl, adaptive, min or spectral");
     else if (key == "cfl_factor")
       p.stepping.cfl_factor = number_at(v, path);
     else if (key == "safety")

@@ -144,6 +144,8 @@ std::string describe_case(const RunParams& p, const std::string& search) {
       return s + " adaptive s=" + shortest(p.stepping.safety);
     case TimeStepPolicy::min:
       return s + " min C=" + shortest(p.stepping.cfl_factor) + " s=" + shortest(p.stepping.safety);
+    case TimeStepPolicy::spectral:
+      return s + " spectral s=" + shortest(p.stepping.safety);
   }
   return s;
 }

@@ -32,7 +32,7 @@ std::string text(const ojson& r, const char* key) {
 // ---------------------------------------------------------------------------------------------
 // Settings and their parameters (docs/design.md, "Time-step policies")
 
-const std::vector<std::string> kPolicies = {"fixed", "cfl", "adaptive", "min"};
+const std::vector<std::string> kPolicies = {"fixed", "cfl", "adaptive", "min", "spectral"};
 
 // The parameter a policy is advised on: the fixed dt, the CFL factor C or the safety factor s
 // (the min policy: s, at its C).
@@ -62,7 +62,8 @@ std::string setting(const ojson& r) {
   s += " " + policy;
   if (policy == "fixed") s += " dt=" + param(r["dt"].get<double>());
   if (policy == "cfl" || policy == "min") s += " C=" + shortest(r["cfl_factor"].get<double>());
-  if (policy == "adaptive" || policy == "min") s += " s=" + shortest(r["safety"].get<double>());
+  if (policy == "adaptive" || policy == "min" || policy == "spectral")
+    s += " s=" + shortest(r["safety"].get<double>());
   if (r["cells"].get<int>() != 100) s += ", " + r["cells"].dump() + " cells";
   return s;
 }
@@ -918,7 +919,8 @@ std::string tradeoff_data_csv(const std::vector<ojson>& rows, const std::string&
       << "# one row per run drawn (stable, with an error); panel: the index of E; series: the "
          "index of (method, policy, cells) in the order of the spec; method: 0 mpm, 1 gimp, 2 "
          "cpgimp, 3 bspline2, 4 bspline3, 5 cpdi, 6 gimp/apic, 7 gimp/xpic(2), 8 gimp/fmpm(2), 9 "
-         "another; policy: 0 fixed, 1 cfl, 2 adaptive, 3 min; grid: the rank of cells, 0 the "
+         "another; policy: 0 fixed, 1 cfl, 2 adaptive, 3 min, 4 spectral; grid: the rank of cells, "
+         "0 the "
          "coarsest\nE,panel,series,method,policy,cells,grid,particle_steps,steps,error\n";
   for (const auto& r : rows) {
     if (!drawn(r)) continue;
