@@ -13,10 +13,16 @@ namespace mpmstab {
 
 namespace {
 
-// The size of the central difference, in the scaled state (v / c, F - 1, C h / c): small
-// enough that cpGIMP's and CPDI's widths, which follow F, move by a negligible O(eps^2), large
-// enough that the differences stay far above round-off.
+// The size of the central difference, in the scaled state (v / c, F - 1, C h / c): 1e-6, small
+// enough that the quadratic terms cancel to round-off and large enough that F' - 1 (stored as
+// F' near 1) keeps about 10 digits. cpGIMP's and CPDI's weights follow F and, at the uniform
+// layout, have a kink at F = 1 (each particle's domain ends on a node): a central difference
+// across it errs by O(eps), which at 1e-6 (2e-7 in the map) pushed their neutral eigenvalues past
+// 1 + 1e-8 and gave a spurious limit of 0.16 instead of GIMP's 0.756. For their F columns the
+// step is 2^-27 (about 7.5e-9, exact in 1 +/- eps), where the kink's error and the rounding of
+// F' - 1 are both near 1e-8 of an entry.
 constexpr double kEps = 1e-6;
+constexpr double kEpsAcrossKink = 0x1p-27;
 
 // p with what the linearisation about rest needs: no amplitude (the body force of either scene
 // vanishes with A, so rest is a fixed point of the step) and one step.
@@ -76,13 +82,16 @@ Eigen::MatrixXd linear_step_map(const RunParams& p, const Eigen::ArrayXd& x, dou
   const Eigen::Index size = spectral_state_size(p);
   Eigen::MatrixXd M(size, size);
   Eigen::VectorXd delta = Eigen::VectorXd::Zero(size);
+  const Eigen::Index n = x.size();
   for (Eigen::Index j = 0; j < size; ++j) {
-    delta[j] = kEps;
+    const bool strain = j >= n && j < 2 * n;
+    const double eps = strain && follows_F(p.method) ? kEpsAcrossKink : kEps;
+    delta[j] = eps;
     const Eigen::VectorXd plus = step_from(q, x, delta, c, h);
-    delta[j] = -kEps;
+    delta[j] = -eps;
     const Eigen::VectorXd minus = step_from(q, x, delta, c, h);
     delta[j] = 0;
-    M.col(j) = (plus - minus) / (2 * kEps);
+    M.col(j) = (plus - minus) / (2 * eps);
   }
   return M;
 }

