@@ -109,18 +109,21 @@ Driver::Driver(const RunParams& p, const HistorySink& sink)
   }
   extremes_ = state_extremes(sim_.particles());
   if (uses_bound_) bound_ = bound_now();
-  if (obs_.spectral || spectral_policy_) {
-    if (const auto c = spectral_courant(p)) {
-      r_.courant_spectral = *c;
-      r_.dt_spectral = *c * h_ / r_.c;
-    }
+  // The spectral limit of the initial layout: recorded when asked, the first step of the
+  // spectral policy.
+  std::optional<double> limit;
+  if (obs_.spectral || spectral_policy_) limit = spectral_courant(p);
+  const std::optional<double> limit_dt =
+      limit ? std::optional<double>(*limit * h_ / r_.c) : std::nullopt;
+  if (obs_.spectral) {
+    r_.courant_spectral = limit;
+    r_.dt_spectral = limit_dt;
   }
   if (spectral_policy_) {
     initial_x_ = sim_.particles().x;
     next_excursion_ = h_;
-    limit_dt_ = r_.dt_spectral.value_or(kMaxSpectralCourant * r_.dt_cfl);
+    limit_dt_ = limit_dt.value_or(kMaxSpectralCourant * r_.dt_cfl);
   }
-  if (!obs_.spectral) r_.courant_spectral = r_.dt_spectral = std::nullopt;
 }
 
 // Eq. (108) from the state after the last step (before the first, with ||v|| = 0).

@@ -2,6 +2,7 @@
 // at a tiny amplitude under the spectral policy, at 0.95 and at 1.05 times the limit. The limit
 // is confirmed when the first stays bounded and the second grows.
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <optional>
 #include <sstream>
