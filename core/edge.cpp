@@ -184,13 +184,16 @@ EdgeResult search(const RunParams& base, const EdgeOptions& o, const std::atomic
   RunParams lean = base;
   lean.observe = Observe{};
   lean.observe.error_over_time = lean.observe.dt_stable = lean.observe.crossings = false;
+  if (o.bound) lean.observe.error_over_time = true;
   RunParams outcome_only = lean;
   outcome_only.observe.error_over_time = true;
   const EdgeSurvey survey = [&](double dt, bool outcome) {
     const RunResult r = run_at(outcome ? outcome_only : lean, dt);
+    const bool bounded =
+        !o.bound || (r.max_error_over_time && *r.max_error_over_time <= *o.bound * base.A);
     return EdgeProbe{
-        dt,      r.stable,    r.failure ? std::optional(r.failure->reason) : std::nullopt,
-        r.steps, r.max_error, r.stable ? r.outcome : std::optional(Outcome::unstable)};
+        dt,      r.stable && bounded, r.failure ? std::optional(r.failure->reason) : std::nullopt,
+        r.steps, r.max_error,         r.stable ? r.outcome : std::optional(Outcome::unstable)};
   };
   // The run at the survival edge, with the params' observers and its outcome.
   RunParams measured = base;

@@ -28,6 +28,10 @@ struct EdgeOptions {
   int per_octave = 2;
   // A dt is accurate when its error at T is at most this many times the reference's.
   double accuracy_factor = 2;
+  // When set, a probe survives only when it also stays bounded: its error over time ends at
+  // most bound x A. A mode that grows but has not yet failed by T then counts as failing (the
+  // edge of a tiny amplitude, where growth does not reach a failure within T).
+  std::optional<double> bound;
 };
 
 // One run of the search. The probes run without observers: whether a surviving run is

@@ -22,6 +22,17 @@ std::string show(double v) {
   return s.str();
 }
 
+// The shortest text that reads back as v.
+std::string brief(double v) {
+  for (int digits = 1; digits < 17; ++digits) {
+    std::ostringstream s;
+    s.precision(digits);
+    s << v;
+    if (std::stod(s.str()) == v) return s.str();
+  }
+  return show(v);
+}
+
 // Name tables: one place for every enum's spelling.
 template <class Enum, std::size_t N>
 using Names = std::array<std::pair<Enum, std::string_view>, N>;
@@ -171,6 +182,8 @@ std::string nondefault_choices(const RunParams& p) {
     add("transfer", t);
   }
   if (p.update != d.update) add("update", std::string(to_string(p.update)));
+  if (p.layout.shift != d.layout.shift) add("shift", brief(p.layout.shift));
+  if (p.layout.jitter != d.layout.jitter) add("jitter", brief(p.layout.jitter));
   if (p.body_force_time != d.body_force_time)
     add("body_force_time", std::string(to_string(p.body_force_time)));
   return text;
@@ -179,7 +192,8 @@ std::string nondefault_choices(const RunParams& p) {
 bool default_choices(const RunParams& p) {
   const RunParams d;
   return p.scene == d.scene && p.walls == d.walls && p.transfer == d.transfer &&
-         p.update == d.update && p.body_force_time == d.body_force_time;
+         p.update == d.update && p.body_force_time == d.body_force_time &&
+         p.layout.shift == d.layout.shift && p.layout.jitter == d.layout.jitter;
 }
 
 std::optional<ParamIssue> check_given(const RunParams& p, std::string_view key) {
@@ -260,6 +274,8 @@ const std::vector<std::string>& parameter_names() {
                                                  "xpic_order",
                                                  "fmpm_order",
                                                  "update",
+                                                 "shift",
+                                                 "jitter",
                                                  "body_force_time",
                                                  "dt_stable_sigma",
                                                  "dt_stable_vnorm",
@@ -321,6 +337,20 @@ std::vector<ParamIssue> validate(const RunParams& p) {
                    "] for transfer = " + std::string(to_string(transfer)) + ", got " +
                    std::to_string(order));
     }
+  }
+  if (!std::isfinite(p.layout.shift) || !(p.layout.shift > -0.5) || !(p.layout.shift < 0.5)) {
+    bad("shift", "must be a number in (-0.5, 0.5) (a fraction of the particle spacing), got " +
+                     show(p.layout.shift));
+  }
+  if (!std::isfinite(p.layout.jitter) || !(p.layout.jitter >= 0) || !(p.layout.jitter < 1)) {
+    bad("jitter", "must be a number in [0, 1) (a fraction of the particle spacing), got " +
+                      show(p.layout.jitter));
+  }
+  if (p.layout.jitter > 0 && std::abs(p.layout.shift) + p.layout.jitter / 2 >= 0.5) {
+    bad("jitter",
+        "|shift| + jitter / 2 must stay below 0.5, so that every particle keeps its "
+        "cell; got shift " +
+            brief(p.layout.shift) + ", jitter " + brief(p.layout.jitter));
   }
   if (p.walls == Walls::modified) {
     if (!is_bspline(p.method)) {

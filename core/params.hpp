@@ -90,10 +90,11 @@ enum class VelocityNorm { l2, max };
 //  - adaptive: dt_n = s * eq. (108) bound of the current state (`safety` s);
 //  - min:      dt_n = min(C h / c, s * eq. (108) bound);
 //  - spectral: dt_n = s * the spectral limit (spectral.hpp) of the particles' layout when it was
-//              last computed: at the start, and again, at the current layout, each time the
-//              largest displacement any particle has reached from its initial position grows
-//              by another h. A run computes it at most max|u| / h + 1 times (the first, at the
-//              scene's initial layout, once per process), each about 0.5-0.8 s of CPU at 200
+//              last computed: at the start (the limit the record carries: Bloch for a uniform
+//              layout, about 25 ms once per scheme in a process), and again, at the current
+//              layout, by the dense map, each time the largest displacement any particle has
+//              reached from its initial position grows by another h. A run computes it at most
+//              max|u| / h + 1 times, each recomputation about 0.2-0.8 s of CPU at 100-200
 //              particles; at most 600 particles.
 // The bound of the current state is the one after the previous step; before the first step no
 // grid velocity exists yet and the bound is taken with ||v|| = 0.
@@ -120,18 +121,31 @@ struct StableDtOptions {
 // What a run measures beyond its verdict and final error. A run computes only what is asked:
 // each flag switches a per-step observer on; all are cheap, histories are off by default.
 struct Observe {
-  bool error_over_time = true;      // max_error_over_time (and the "meaningless" flag)
-  bool dt_stable = true;            // minimum of eq. (108) over the run
-  bool crossings = true;            // cell-boundary crossings
-  bool history = false;             // per-step rows (error, eq. 108, cumulative crossings)
-  bool final_state = false;         // the particle state at the end, with the exact solution
-  bool spectral = false;            // the spectral limit of the initial layout (spectral.hpp)
+  bool error_over_time = true;  // max_error_over_time (and the "meaningless" flag)
+  bool dt_stable = true;        // minimum of eq. (108) over the run
+  bool crossings = true;        // cell-boundary crossings
+  bool history = false;         // per-step rows (error, eq. 108, cumulative crossings)
+  bool final_state = false;     // the particle state at the end, with the exact solution
+  // The dense spectral limit of an initial layout that is not uniform (spectral.hpp; a uniform
+  // layout's Bloch limit is on every record).
+  bool spectral = false;
   std::int64_t history_stride = 1;  // keep every k-th step in the history (and the last one)
 };
 
 // The largest order of XPIC(m) and FMPM(k): each order adds one pass from the grid to the
 // particles and back per step.
 inline constexpr int kMaxTransferOrder = 32;
+
+// The initial particle layout, from the uniform one: particle k of cell i starts at
+// X = (i + (k + 1/2 + shift + jitter u_ik) / ppc) h, with u_ik in [-1/2, 1/2) a fixed
+// pseudo-random sequence of the particle's index (SplitMix64, the same on every platform).
+// shift in (-1/2, 1/2) moves every particle by the same fraction of the spacing h / ppc (a
+// uniform layout; near 1/2 every cell's last particle sits near a node); jitter in [0, 1) moves
+// each by its own (particles keep their order and their cell).
+struct Layout {
+  double shift = 0;
+  double jitter = 0;
+};
 
 struct RunParams {
   Method method = Method::gimp;
@@ -150,6 +164,7 @@ struct RunParams {
   int xpic_order = 2;           // m of XPIC(m) (transfer = xpic only), 1..kMaxTransferOrder
   int fmpm_order = 2;           // k of FMPM(k) (transfer = fmpm only), 1..kMaxTransferOrder
   UpdateOrder update = UpdateOrder::usl;
+  Layout layout;
   BodyForceTime body_force_time = BodyForceTime::start;
   StableDtOptions stable;
   TimeStepping stepping;

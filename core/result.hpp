@@ -14,6 +14,13 @@
 namespace mpmstab {
 
 // One row per recorded step. A field whose observer is off holds nullopt.
+// How a spectral limit was computed: the dense map of every particle (walls included), or the
+// Bloch symbol of the interior of a uniform layout (bloch.hpp).
+enum class SpectralAnalysis { dense, bloch };
+constexpr std::string_view to_string(SpectralAnalysis a) {
+  return a == SpectralAnalysis::bloch ? "bloch" : "dense";
+}
+
 struct HistoryRow {
   std::int64_t step = 0;
   double time = 0;
@@ -69,6 +76,7 @@ struct RunResult {
   // c dt / h, and dt for this E.
   std::optional<double> courant_spectral;
   std::optional<double> dt_spectral;
+  std::optional<SpectralAnalysis> spectral_analysis;  // how courant_spectral was computed
 
   double c = 0;         // wave speed sqrt(E / rho0)
   double dt_cfl = 0;    // h / c, the classical speed-of-sound limit

@@ -6,6 +6,7 @@
 #include <limits>
 #include <optional>
 
+#include "bloch.hpp"
 #include "crossings.hpp"
 #include "failure.hpp"
 #include "simulation.hpp"
@@ -109,20 +110,24 @@ Driver::Driver(const RunParams& p, const HistorySink& sink)
   }
   extremes_ = state_extremes(sim_.particles());
   if (uses_bound_) bound_ = bound_now();
-  // The spectral limit of the initial layout: recorded when asked, the first step of the
-  // spectral policy.
-  std::optional<double> limit;
-  if (obs_.spectral || spectral_policy_) limit = spectral_courant(p);
-  const std::optional<double> limit_dt =
-      limit ? std::optional<double>(*limit * h_ / r_.c) : std::nullopt;
-  if (obs_.spectral) {
-    r_.courant_spectral = limit;
-    r_.dt_spectral = limit_dt;
+  // The spectral limit of the initial layout, on every record: Bloch where the layout is
+  // uniform, the dense map where it is not and the spec records `spectral`. The spectral policy
+  // takes its first step from it (the dense limit where none is recorded) and its later ones
+  // from the dense limit of the layout it has reached.
+  if (bloch_applies(p)) {
+    r_.courant_spectral = spectral_courant(p, SpectralAnalysis::bloch);
+    r_.spectral_analysis = SpectralAnalysis::bloch;
+  } else if (obs_.spectral && spectral_state_size(p) <= kMaxSpectralState) {
+    r_.courant_spectral = spectral_courant(p, SpectralAnalysis::dense);
+    r_.spectral_analysis = SpectralAnalysis::dense;
   }
+  if (r_.courant_spectral) r_.dt_spectral = *r_.courant_spectral * h_ / r_.c;
   if (spectral_policy_) {
     initial_x_ = sim_.particles().x;
     next_excursion_ = h_;
-    limit_dt_ = limit_dt.value_or(kMaxSpectralCourant * r_.dt_cfl);
+    const auto c =
+        r_.spectral_analysis ? r_.courant_spectral : spectral_courant(p, SpectralAnalysis::dense);
+    limit_dt_ = c.value_or(kMaxSpectralCourant) * r_.dt_cfl;
   }
 }
 

@@ -49,10 +49,19 @@ class SteffenBodyForce final : public BodyForceAtParticles {
 
 }  // namespace
 
+double layout_jitter_unit(std::uint64_t index) {
+  // SplitMix64 (Steele, Lea and Flood 2014) of the index: 53 bits to [0, 1), less 1/2.
+  std::uint64_t z = index + 0x9E3779B97F4A7C15ULL;
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+  z ^= z >> 31;
+  return double(z >> 11) * 0x1p-53 - 0.5;
+}
+
 Scene::Scene(double youngs_modulus, double amplitude)
     : E(youngs_modulus), A(amplitude), c(std::sqrt(youngs_modulus / rho0)) {}
 
-Particles Scene::reference_layout(int cells, int ppc) const {
+Particles Scene::reference_layout(int cells, int ppc, const Layout& layout) const {
   Particles P;
   const Eigen::Index n = Eigen::Index(cells) * ppc;
   P.resize(n);
@@ -60,7 +69,9 @@ Particles Scene::reference_layout(int cells, int ppc) const {
   for (int i = 0; i < cells; ++i) {
     for (int k = 0; k < ppc; ++k) {
       const Eigen::Index p = Eigen::Index(i) * ppc + k;
-      P.X[p] = (i + (k + 0.5) / ppc) * h;
+      const double offset =
+          layout.jitter == 0 ? 0.0 : layout.jitter * layout_jitter_unit(std::uint64_t(p));
+      P.X[p] = (i + (k + 0.5 + layout.shift + offset) / ppc) * h;
       P.mass[p] = rho0 * h / ppc;
       P.volume0[p] = h / ppc;
     }
@@ -108,8 +119,8 @@ std::unique_ptr<BodyForceAtParticles> BarScene::body_force_at(const Eigen::Array
   return std::make_unique<BarBodyForce>(*this, X);
 }
 
-Particles BarScene::initial_particles(int cells, int ppc) const {
-  Particles P = reference_layout(cells, ppc);
+Particles BarScene::initial_particles(int cells, int ppc, const Layout& layout) const {
+  Particles P = reference_layout(cells, ppc, layout);
   for (Eigen::Index p = 0; p < P.size(); ++p) {
     P.x[p] = P.X[p];
     P.v[p] = velocity(P.X[p], 0.0);
@@ -153,8 +164,8 @@ std::unique_ptr<BodyForceAtParticles> SteffenScene::body_force_at(const Eigen::A
   return std::make_unique<SteffenBodyForce>(*this, X);
 }
 
-Particles SteffenScene::initial_particles(int cells, int ppc) const {
-  Particles P = reference_layout(cells, ppc);
+Particles SteffenScene::initial_particles(int cells, int ppc, const Layout& layout) const {
+  Particles P = reference_layout(cells, ppc, layout);
   const MaterialLaw material_law = law();
   for (Eigen::Index p = 0; p < P.size(); ++p) {
     const double X = P.X[p];

@@ -33,6 +33,7 @@
 // with mass rho0 h / m.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 
 #include <Eigen/Core>
@@ -82,13 +83,16 @@ class Scene {
   virtual std::unique_ptr<BodyForceAtParticles> body_force_at(const Eigen::ArrayXd& X) const = 0;
 
   // The particle state at t = 0 on `cells` cells with `ppc` particles per cell.
-  virtual Particles initial_particles(int cells, int ppc) const = 0;
+  virtual Particles initial_particles(int cells, int ppc, const Layout& layout = {}) const = 0;
 
  protected:
   // The reference layout: X_p, mass rho0 h / m and reference volume h / m; x, v, F and sigma are
   // left to the scene.
-  Particles reference_layout(int cells, int ppc) const;
+  Particles reference_layout(int cells, int ppc, const Layout& layout) const;
 };
+
+// The jitter's pseudo-random value of particle `index`, in [-1/2, 1/2) (Layout).
+double layout_jitter_unit(std::uint64_t index);
 
 class BarScene final : public Scene {
  public:
@@ -111,7 +115,7 @@ class BarScene final : public Scene {
   std::unique_ptr<BodyForceAtParticles> body_force_at(const Eigen::ArrayXd& X) const override;
 
   // At rest positions x = X, F = 1, sigma = 0, velocity v(X_p, 0).
-  Particles initial_particles(int cells, int ppc) const override;
+  Particles initial_particles(int cells, int ppc, const Layout& layout = {}) const override;
 };
 
 class SteffenScene final : public Scene {
@@ -133,7 +137,7 @@ class SteffenScene final : public Scene {
   std::unique_ptr<BodyForceAtParticles> body_force_at(const Eigen::ArrayXd& X) const override;
 
   // x = X + u(X, 0), v = 0, F = F(X, 0), sigma = sigma(F).
-  Particles initial_particles(int cells, int ppc) const override;
+  Particles initial_particles(int cells, int ppc, const Layout& layout = {}) const override;
 };
 
 // The scene of a run: p.scene with p.E and p.A.

@@ -55,7 +55,7 @@ Simulation::Simulation(const RunParams& p)
       scene_(make_scene(p)),
       law_(scene_->law()),
       g2p_rule_{p.transfer, p.flip_fraction, p.position_update},
-      P_(scene_->initial_particles(p.cells, p.ppc)),
+      P_(scene_->initial_particles(p.cells, p.ppc, p.layout)),
       G_(p.cells, p.bc, p.walls, stencil_width(p.method)),
       basis_(make_basis(p)) {
   const auto n = static_cast<std::size_t>(P_.size());

@@ -7,6 +7,7 @@
 #include <sstream>
 #include <string>
 
+#include "bloch.hpp"
 #include "simulation.hpp"
 
 namespace mpmstab {
@@ -75,15 +76,17 @@ Eigen::Index spectral_state_size(const RunParams& p) {
   return (p.transfer == Transfer::apic ? 3 : 2) * n;
 }
 
-Eigen::MatrixXd linear_step_map(const RunParams& p, const Eigen::ArrayXd& x, double courant) {
+Eigen::MatrixXd linear_step_columns(const RunParams& p, const Eigen::ArrayXd& x, double courant,
+                                    const std::vector<Eigen::Index>& columns) {
   const double h = 1.0 / p.cells;
   const double c = Simulation(p).scene().c;
   const RunParams q = at_rest(p, courant * h / c);
   const Eigen::Index size = spectral_state_size(p);
-  Eigen::MatrixXd M(size, size);
+  Eigen::MatrixXd M(size, Eigen::Index(columns.size()));
   Eigen::VectorXd delta = Eigen::VectorXd::Zero(size);
   const Eigen::Index n = x.size();
-  for (Eigen::Index j = 0; j < size; ++j) {
+  for (std::size_t col = 0; col < columns.size(); ++col) {
+    const Eigen::Index j = columns[col];
     const bool strain = j >= n && j < 2 * n;
     const double eps = strain && follows_F(p.method) ? kEpsAcrossKink : kEps;
     delta[j] = eps;
@@ -91,9 +94,55 @@ Eigen::MatrixXd linear_step_map(const RunParams& p, const Eigen::ArrayXd& x, dou
     delta[j] = -eps;
     const Eigen::VectorXd minus = step_from(q, x, delta, c, h);
     delta[j] = 0;
-    M.col(j) = (plus - minus) / (2 * eps);
+    M.col(Eigen::Index(col)) = (plus - minus) / (2 * eps);
   }
   return M;
+}
+
+Eigen::MatrixXd linear_step_map(const RunParams& p, const Eigen::ArrayXd& x, double courant) {
+  std::vector<Eigen::Index> all(std::size_t(spectral_state_size(p)));
+  for (std::size_t j = 0; j < all.size(); ++j)
+    all[j] = Eigen::Index(j);
+  return linear_step_columns(p, x, courant, all);
+}
+
+std::function<Eigen::MatrixXd(double)> quadratic_in_courant(
+    const std::function<Eigen::MatrixXd(double)>& build, int& builds) {
+  const Eigen::MatrixXd A0 = build(0.0), A1 = build(1.0), A2 = build(2.0), half = build(0.5);
+  builds += 4;
+  const Eigen::MatrixXd M2 = 0.5 * (A2 - 2.0 * A1 + A0), M1 = A1 - A0 - M2;
+  const bool quadratic =
+      (A0 + 0.5 * M1 + 0.25 * M2 - half).cwiseAbs().maxCoeff() <= 1e-8 * (1 + half.norm());
+  if (quadratic) {
+    return [A0, M1, M2](double C) -> Eigen::MatrixXd { return A0 + C * M1 + C * C * M2; };
+  }
+  return [build, &builds](double C) -> Eigen::MatrixXd {
+    ++builds;
+    return build(C);
+  };
+}
+
+std::optional<std::pair<double, double>> first_amplifying_courant(
+    const std::function<bool(double)>& amplifies, std::optional<double> near, int& calls) {
+  auto test = [&](double C) {
+    ++calls;
+    return amplifies(C);
+  };
+  double lo = 0, hi = 0.25;
+  if (near && *near > 0 && !test(0.9 * *near)) {
+    lo = 0.9 * *near;
+    hi = 1.1 * *near;
+  }
+  while (!test(hi)) {
+    lo = hi;
+    hi *= 1.4;
+    if (hi > kMaxSpectralCourant) return std::nullopt;
+  }
+  while (hi - lo > 1e-4 * hi) {
+    const double mid = 0.5 * (lo + hi);
+    (test(mid) ? hi : lo) = mid;
+  }
+  return std::pair{lo, hi};
 }
 
 double spectral_radius(const Eigen::MatrixXd& M) {
@@ -107,49 +156,17 @@ SpectralLimit spectral_limit(const RunParams& p) {
 SpectralLimit spectral_limit(const RunParams& p, const Eigen::ArrayXd& x,
                              std::optional<double> near) {
   SpectralLimit out;
-  // Every scheme's map is a polynomial of degree two in the Courant number (docs/design.md):
-  // M(C) = M0 + C M1 + C^2 M2 from the maps at C = 0, 1 and 2, checked against the map at
-  // C = 1/2; where the check fails, each Courant number gets its own map.
-  const Eigen::MatrixXd A0 = linear_step_map(p, x, 0.0), A1 = linear_step_map(p, x, 1.0),
-                        A2 = linear_step_map(p, x, 2.0);
-  const Eigen::MatrixXd M2 = 0.5 * (A2 - 2.0 * A1 + A0), M1 = A1 - A0 - M2;
-  const Eigen::MatrixXd half = linear_step_map(p, x, 0.5);
-  const bool quadratic =
-      (A0 + 0.5 * M1 + 0.25 * M2 - half).cwiseAbs().maxCoeff() <= 1e-8 * (1 + half.norm());
-  out.evaluations = 4;
-  auto map_at = [&](double courant) -> Eigen::MatrixXd {
-    if (quadratic) return A0 + courant * M1 + courant * courant * M2;
-    ++out.evaluations;
-    return linear_step_map(p, x, courant);
-  };
-  int solves = 0;
-  auto amplifies = [&](double courant) {
-    ++solves;
-    return spectral_radius(map_at(courant)) > 1 + kSpectralTolerance;
-  };
-  // Upwards from 1/4 by factors of 1.4 to the first amplifying Courant number, then bisection.
-  // Near a known limit, the bracket starts at 0.9 and 1.1 times it.
-  double lo = 0, hi = 0.25;
-  if (near && *near > 0 && !amplifies(0.9 * *near)) {
-    lo = 0.9 * *near;
-    hi = 1.1 * *near;
-  }
-  while (!amplifies(hi)) {
-    lo = hi;
-    hi *= 1.4;
-    if (hi > kMaxSpectralCourant) {
-      out.solves = solves;
-      return out;
-    }
-  }
-  while (hi - lo > 1e-4 * hi) {
-    const double mid = 0.5 * (lo + hi);
-    (amplifies(mid) ? hi : lo) = mid;
-  }
-  out.courant = lo;
+  // Every scheme's map is a polynomial of degree two in the Courant number (docs/design.md).
+  const auto map_at =
+      quadratic_in_courant([&](double C) { return linear_step_map(p, x, C); }, out.evaluations);
+  const auto bracket = first_amplifying_courant(
+      [&](double C) { return spectral_radius(map_at(C)) > 1 + kSpectralTolerance; }, near,
+      out.solves);
+  if (!bracket) return out;
+  out.courant = bracket->first;
   Eigen::ArrayXd mode;
-  out.radius_above = radius_and_mode(map_at(hi), &mode);
-  out.solves = solves + 1;
+  out.radius_above = radius_and_mode(map_at(bracket->second), &mode);
+  ++out.solves;
   const Eigen::Index n = x.size();
   const double top = mode.maxCoeff();
   if (top > 0) mode /= top;
@@ -162,32 +179,35 @@ namespace {
 
 // What the limit depends on: the scheme, the grid and the layout (the steffen scene's depends on
 // A; the bar's is uniform at every A).
-std::string spectral_key(const RunParams& p) {
+std::string spectral_key(const RunParams& p, bool bloch) {
   std::ostringstream k;
   k << to_string(p.method) << '/' << to_string(p.walls) << '/' << to_string(p.bc) << '/'
     << to_string(p.scene) << '/' << to_string(p.transfer) << '/' << to_string(p.update) << '/'
-    << p.cells << '/' << p.ppc;
+    << (bloch ? 0 : p.cells) << '/' << p.ppc;  // Bloch: the same for every grid
   if (p.transfer == Transfer::xpic) k << "/x" << p.xpic_order;
   if (p.transfer == Transfer::fmpm) k << "/f" << p.fmpm_order;
   k.precision(17);
   if (p.transfer == Transfer::blend) k << "/b" << p.flip_fraction;
   if (p.scene != SceneKind::bar) k << "/A" << p.A;
+  k << "/s" << p.layout.shift << "/j" << p.layout.jitter;
   return k.str();
 }
 
 }  // namespace
 
-std::optional<double> spectral_courant(const RunParams& p) {
-  if (spectral_state_size(p) > kMaxSpectralState) return std::nullopt;
+std::optional<double> spectral_courant(const RunParams& p, SpectralAnalysis analysis) {
+  const bool bloch = analysis == SpectralAnalysis::bloch;
+  if (bloch ? !bloch_applies(p) : spectral_state_size(p) > kMaxSpectralState) return std::nullopt;
   static std::mutex mutex;
   static std::map<std::string, std::optional<double>> known;
-  const std::string key = spectral_key(p);
+  const std::string key = std::string(to_string(analysis)) + '/' + spectral_key(p, bloch);
   {
     const std::lock_guard<std::mutex> lock(mutex);
     if (const auto it = known.find(key); it != known.end()) return it->second;
   }
-  const std::optional<double> c = spectral_limit(p).courant;  // outside the lock: two threads
-  const std::lock_guard<std::mutex> lock(mutex);              // may compute the same, once each
+  // Outside the lock: two threads may compute the same, once each.
+  const std::optional<double> c = (bloch ? bloch_limit(p) : spectral_limit(p)).courant;
+  const std::lock_guard<std::mutex> lock(mutex);
   known.emplace(key, c);
   return c;
 }

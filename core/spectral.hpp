@@ -13,9 +13,12 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <functional>
 #include <optional>
+#include <vector>
 
 #include "params.hpp"
+#include "result.hpp"
 
 namespace mpmstab {
 
@@ -27,12 +30,16 @@ inline constexpr double kSpectralTolerance = 1e-8;
 inline constexpr Eigen::Index kMaxSpectralState = 1200;
 
 struct SpectralLimit {
+  SpectralAnalysis analysis = SpectralAnalysis::dense;
   // c dt / h at the limit; none when the map does not amplify up to kMaxSpectralCourant.
   std::optional<double> courant;
   double radius_above = 0;  // the spectral radius just above the limit (growth per step)
   // The eigenvector of the largest eigenvalue just above the limit, as |component| per
-  // particle, normalised to a largest value of 1: its velocity part and its strain part.
+  // particle, normalised to a largest value of 1: its velocity part and its strain part (dense:
+  // every particle; Bloch: the particles of one cell).
   Eigen::ArrayXd mode_v, mode_strain;
+  // Bloch: the limiting mode's wavenumber theta / pi, 1 for a mode alternating from cell to cell.
+  std::optional<double> wavenumber;
   int evaluations = 0;  // maps built from the step
   int solves = 0;       // eigenvalue problems solved
 };
@@ -43,6 +50,23 @@ Eigen::Index spectral_state_size(const RunParams& p);
 // The linearised one-step map at the Courant number `courant`, about rest with the particles at
 // `x` (their count and order those of p's scene). `p` must be valid.
 Eigen::MatrixXd linear_step_map(const RunParams& p, const Eigen::ArrayXd& x, double courant);
+// The columns `columns` of that map (state index: velocity of particle k at k, its strain at
+// n + k, its APIC affine term at 2 n + k, for n particles).
+Eigen::MatrixXd linear_step_columns(const RunParams& p, const Eigen::ArrayXd& x, double courant,
+                                    const std::vector<Eigen::Index>& columns);
+
+// A map that is a polynomial of degree two in the Courant number, M(C) = M0 + C M1 + C^2 M2,
+// from `build` at C = 0, 1 and 2, checked against build(1/2); where the check fails, every C
+// is built. `builds` counts the calls of `build`.
+std::function<Eigen::MatrixXd(double)> quadratic_in_courant(
+    const std::function<Eigen::MatrixXd(double)>& build, int& builds);
+
+// The search for the first amplifying Courant number: up from 1/4 by factors of 1.4 (to
+// kMaxSpectralCourant), then bisection to a relative 1e-4; `near`, a limit expected close by,
+// starts the bracket at 0.9 and 1.1 times it. Returns (largest not amplifying, smallest
+// amplifying), none when nothing amplifies; `calls` counts the calls of `amplifies`.
+std::optional<std::pair<double, double>> first_amplifying_courant(
+    const std::function<bool(double)>& amplifies, std::optional<double> near, int& calls);
 
 // The largest modulus of the eigenvalues of a square matrix.
 double spectral_radius(const Eigen::MatrixXd& M);
@@ -59,8 +83,9 @@ SpectralLimit spectral_limit(const RunParams& p);
 SpectralLimit spectral_limit(const RunParams& p, const Eigen::ArrayXd& x,
                              std::optional<double> near = std::nullopt);
 
-// spectral_limit(p).courant, computed once per scheme, grid and layout in a process (shared by
-// threads); none when the state is larger than kMaxSpectralState or nothing amplifies.
-std::optional<double> spectral_courant(const RunParams& p);
+// The limit of p's initial layout by `analysis`, computed once per scheme, grid (dense only)
+// and layout in a process, shared by threads. None when the analysis does not apply (dense:
+// a state above kMaxSpectralState; Bloch: bloch_applies(p) false) or nothing amplifies.
+std::optional<double> spectral_courant(const RunParams& p, SpectralAnalysis analysis);
 
 }  // namespace mpmstab

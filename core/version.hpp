@@ -3,5 +3,5 @@
 #pragma once
 
 namespace mpmstab {
-inline constexpr const char* kSolverVersion = "2";
+inline constexpr const char* kSolverVersion = "3";
 }  // namespace mpmstab

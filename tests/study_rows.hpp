@@ -23,6 +23,8 @@ inline nlohmann::ordered_json study_row(const std::string& method, double E) {
           {"T", 1.0},
           {"cells", 100},
           {"ppc", 2},
+          {"shift", 0.0},
+          {"jitter", 0.0},
           {"bc", "dirichlet"},
           {"scene", "bar"},
           {"policy", "fixed"},

@@ -28,7 +28,7 @@ within --tolerance. Reports both edges against h/c, dt_edge / (the eq. 108 minim
 at dt_edge), and warns with the dts where survival flips when it is not monotone in dt.
 
 Options: --T, --cells, --ppc, --bc, --position-update, --scene, --walls, --transfer,
---flip-fraction, --xpic-order, --fmpm-order, --update, --body-force-time, --dt-stable-sigma, --dt-stable-vnorm,
+--flip-fraction, --xpic-order, --fmpm-order, --update, --shift, --jitter, --body-force-time, --dt-stable-sigma, --dt-stable-vnorm,
 --max-steps as for 'mpmstab run'; --tolerance <x> (default 0.02); --json.
 )";
 

@@ -56,6 +56,10 @@ Options:
   --flip-fraction <a>      FLIP share of a blend, 0 < a < 1 (default 0.95)
   --xpic-order <m>         m of XPIC(m), 1..32 (default 2; transfer xpic only)
   --fmpm-order <k>         k of FMPM(k), 1..32 (default 2; transfer fmpm only)
+  --shift <s>              move every particle by s times the spacing h / ppc, s in (-0.5, 0.5)
+                           (default 0: centred in its slot; near 0.5 a particle sits near a node)
+  --jitter <j>             move each particle by j times the spacing times its own fixed
+                           pseudo-random number in [-1/2, 1/2), j in [0, 1) (default 0)
   --update usl|usf|musl    stress update last (default), first (the paper's section 6),
                            or last with the grid velocity re-mapped from the particles
   --body-force-time start|end

@@ -73,6 +73,8 @@ void read_choices(const Args& a, RunParams& p) {
   if (auto v = a.value("flip-fraction")) p.flip_fraction = parse_double(*v, "flip-fraction");
   if (auto v = a.value("xpic-order")) p.xpic_order = to_int(*v, "xpic-order");
   if (auto v = a.value("fmpm-order")) p.fmpm_order = to_int(*v, "fmpm-order");
+  if (auto v = a.value("shift")) p.layout.shift = parse_double(*v, "shift");
+  if (auto v = a.value("jitter")) p.layout.jitter = parse_double(*v, "jitter");
   if (auto v = a.value("update")) {
     p.update = parse_choice(*v, "update", parse_update_order, "usl, usf or musl");
   }
@@ -131,6 +133,8 @@ const std::vector<OptionSpec>& run_options() {
       {"xpic-order"},
       {"fmpm-order"},
       {"update"},
+      {"shift"},
+      {"jitter"},
       {"body-force-time"},
       {"dt-stable-sigma"},
       {"dt-stable-vnorm"},

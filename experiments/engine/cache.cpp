@@ -36,6 +36,8 @@ std::string canonical_parameters(const RunParams& p) {
     if (p.transfer == Transfer::xpic) s << ";xpic_order=" << p.xpic_order;
     if (p.transfer == Transfer::fmpm) s << ";fmpm_order=" << p.fmpm_order;
     s << ";update=" << to_string(p.update) << ";body_force_time=" << to_string(p.body_force_time);
+    if (p.layout.shift != 0) s << ";shift=" << shortest(p.layout.shift);
+    if (p.layout.jitter != 0) s << ";jitter=" << shortest(p.layout.jitter);
   }
   return s.str();
 }

@@ -100,6 +100,21 @@ std::string method_label(const ojson& r) {
   return s;
 }
 
+std::string scheme_label(const ojson& r) {
+  std::string s = method_label(r);
+  if (has_number(r, "ppc") && r["ppc"].get<int>() != 2)
+    s += " (ppc " + std::to_string(r["ppc"].get<int>()) + ")";
+  for (const char* key : {"shift", "jitter"}) {
+    if (!has_number(r, key) || r[key].get<double>() == 0) continue;
+    s += " (";
+    s += key;
+    s += ' ';
+    s += shortest(r[key].get<double>());
+    s += ')';
+  }
+  return s;
+}
+
 double particle_steps(const ojson& r) {
   return r["particles"].get<double>() * r["steps"].get<double>();
 }

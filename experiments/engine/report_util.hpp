@@ -31,6 +31,9 @@ bool has_number(const nlohmann::ordered_json& row, const char* column);
 // its order or FLIP share) where it is not FLIP and the update order where it is not USL: "gimp",
 // "gimp/xpic(2)", "bspline3/usf". Rows without those columns are named by their basis.
 std::string method_label(const nlohmann::ordered_json& row);
+// method_label with the particles per cell where not 2 and the layout where not uniform:
+// "gimp/usf (ppc 4)", "mpm (shift 0.45)", "gimp (jitter 0.5)".
+std::string scheme_label(const nlohmann::ordered_json& row);
 // The outcome of a flat record: "unstable", "meaningless", "stable" ("" where not measured).
 std::string outcome(const nlohmann::ordered_json& row);
 // The run of a flat record survived to T: its outcome is meaningless or stable.

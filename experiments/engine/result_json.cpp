@@ -17,13 +17,13 @@ const std::vector<std::string>& record_columns() {
   static const std::vector<std::string> columns = {
       // What was asked: the parameters (a parameter the run did not use is null).
       "method", "E", "A", "dt", "T", "cells", "ppc", "bc", "position_update", "scene", "walls",
-      "transfer", "flip_fraction", "xpic_order", "fmpm_order", "update", "body_force_time",
-      "policy", "cfl_factor", "safety", "dt_stable_sigma", "dt_stable_vnorm",
+      "transfer", "flip_fraction", "xpic_order", "fmpm_order", "update", "shift", "jitter",
+      "body_force_time", "policy", "cfl_factor", "safety", "dt_stable_sigma", "dt_stable_vnorm",
       // What the run did.
       "outcome", "failure_reason", "failure_step", "failure_time", "failure_particle", "steps",
       "dt_min", "dt_max", "dt_mean", "max_error", "max_error_over_time", "crossings",
       "dt_stable_min", "dt_cfl", "dt_sound", "courant", "courant_spectral", "dt_spectral",
-      "particles", "solver_version"};
+      "spectral_analysis", "particles", "solver_version"};
   return columns;
 }
 
@@ -50,6 +50,8 @@ nlohmann::ordered_json to_json(const RunResult& r) {
   j["xpic_order"] = p.transfer == Transfer::xpic ? ojson(p.xpic_order) : ojson(nullptr);
   j["fmpm_order"] = p.transfer == Transfer::fmpm ? ojson(p.fmpm_order) : ojson(nullptr);
   j["update"] = to_string(p.update);
+  j["shift"] = p.layout.shift;
+  j["jitter"] = p.layout.jitter;
   j["body_force_time"] = to_string(p.body_force_time);
   j["policy"] = to_string(policy);
   const bool uses_cfl = policy == TimeStepPolicy::cfl || policy == TimeStepPolicy::min;
@@ -79,6 +81,8 @@ nlohmann::ordered_json to_json(const RunResult& r) {
   j["courant"] = fixed_step || ran ? ojson(r.courant) : ojson(nullptr);
   j["courant_spectral"] = or_null(r.courant_spectral);
   j["dt_spectral"] = or_null(r.dt_spectral);
+  j["spectral_analysis"] =
+      r.spectral_analysis ? ojson(to_string(*r.spectral_analysis)) : ojson(nullptr);
   j["particles"] = r.particles;
   j["solver_version"] = kSolverVersion;
   return j;

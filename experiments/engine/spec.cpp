@@ -135,6 +135,10 @@ class Reader {
       p.xpic_order = int_at(v, path);
     else if (key == "fmpm_order")
       p.fmpm_order = int_at(v, path);
+    else if (key == "shift")
+      p.layout.shift = number_at(v, path);
+    else if (key == "jitter")
+      p.layout.jitter = number_at(v, path);
     else if (key == "update")
       p.update = choice_at(v, path, parse_update_order, "usl, usf or musl");
     else if (key == "body_force_time")

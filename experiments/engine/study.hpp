@@ -14,6 +14,7 @@
 #include <string_view>
 #include <vector>
 
+#include "edge.hpp"
 #include "files.hpp"
 
 namespace mpmstab {
@@ -89,6 +90,7 @@ struct Study {
 
   // What a spec of this study must and may contain (checked by the spec parser).
   CaseWork work = CaseWork::run;
+  EdgeOptions edge;              // the search of an edge_search study
   bool has_cases = true;         // false: a derived study, computed from its inputs only
   bool needs_reference = false;  // a paper table to compare with
   bool takes_variants = false;   // "variants" (and then requires them)

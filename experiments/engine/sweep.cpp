@@ -183,7 +183,19 @@ nlohmann::ordered_json deterministic_part(const nlohmann::ordered_json& record) 
 std::string case_search(const Spec& spec) {
   // The search's name is part of an edge case's key: a search that measures more (the accuracy
   // edge) must not reuse the records of an older one.
-  return spec.study->work == CaseWork::edge_search ? "edge-accuracy" : "";
+  if (spec.study->work != CaseWork::edge_search) return "";
+  const EdgeOptions& o = spec.study->edge;
+  const EdgeOptions d;
+  std::ostringstream s;
+  s << "edge-accuracy";
+  if (o.tolerance != d.tolerance || o.scan_low != d.scan_low || o.scan_high != d.scan_high ||
+      o.per_octave != d.per_octave || o.accuracy_factor != d.accuracy_factor) {
+    s << ";tolerance=" << shortest(o.tolerance) << ";scan=" << shortest(o.scan_low) << ","
+      << shortest(o.scan_high) << "," << o.per_octave
+      << ";accuracy=" << shortest(o.accuracy_factor);
+  }
+  if (o.bound) s << ";bound=" << shortest(*o.bound);
+  return s.str();
 }
 
 namespace {
@@ -222,11 +234,11 @@ SweepPlan plan_sweep(const Spec& spec, const SweepOptions& options) {
 }
 
 // Computes one case: its record, or null when it was interrupted (neither cached nor reported).
-nlohmann::ordered_json compute_case(const RunParams& p, CaseWork work,
+nlohmann::ordered_json compute_case(const RunParams& p, const Study& study,
                                     const std::atomic<bool>* cancel) {
   nlohmann::ordered_json rec;
-  if (work == CaseWork::edge_search) {
-    const EdgeResult e = find_edge(p, {}, cancel);
+  if (study.work == CaseWork::edge_search) {
+    const EdgeResult e = find_edge(p, study.edge, cancel);
     if (e.interrupted) return nullptr;
     const RunResult at = e.at_edge ? *e.at_edge : run_at_smallest_probe(p, e);
     rec["result"] = to_json(at);
@@ -301,7 +313,7 @@ SweepOutcome run_sweep(const Spec& spec, const SweepOptions& options) {
         }
         from_cache[i] = record.has_value();
         if (!record) {
-          nlohmann::ordered_json rec = compute_case(p, spec.study->work, options.cancel);
+          nlohmann::ordered_json rec = compute_case(p, *spec.study, options.cancel);
           if (rec.is_null()) continue;
           rec["provenance"] = to_json(provenance);
           if (cached) cache.store(p, rec, search);
