@@ -208,13 +208,14 @@ std::string reading(const std::vector<MethodRow>& rows) {
 std::string methods_table(const std::vector<MethodRow>& rows) {
   std::ostringstream md;
   md << "| basis | transfer | update | error at Table 1's setting | order in h | order in dt | "
-        "survival edge (h/c) | accuracy edge (h/c) | node visits per particle-step | cheapest "
-        "for 1e-4 (node visits) | cheapest for 1e-6 (node visits) |\n"
-        "|---|---|---|---|---|---|---|---|---|---|---|\n";
+        "spectral limit (h/c) | survival edge (h/c) | accuracy edge (h/c) | node visits per "
+        "particle-step | cheapest for 1e-4 (node visits) | cheapest for 1e-6 (node visits) |\n"
+        "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& m : rows) {
     md << "| " << basis_text(m.key) << " | " << transfer_text(m.key) << " | " << std::get<4>(m.key)
        << " | " << table1_text(m) << " | " << order_text(m.order_h) << " | "
-       << order_text(m.order_dt) << " | " << edge_text(*m.edge, "dt_edge_over_cfl");
+       << order_text(m.order_dt) << " | " << edge_text(*m.edge, "courant_spectral") << " | "
+       << edge_text(*m.edge, "dt_edge_over_cfl");
     if (has_number(*m.edge, "dt_edge") && outcome(*m.edge) == "meaningless") md << " (meaningless)";
     md << " | " << edge_text(*m.edge, "dt_accurate_over_cfl") << " | " << node_visits(m.key)
        << " | " << setting_text(m.cheapest_4) << " | " << setting_text(m.cheapest_6) << " |\n";
@@ -280,6 +281,10 @@ StudyReport methods_report(const ReportContext& c) {
         "cells at C = c dt / h = 0.2; *order in dt*: against log(dt) on 100 cells over C = 0.8, "
         "0.4, 0.2 and dt = 1e-4 (C = 0.08); at least three stable runs, `–` otherwise. An order "
         "in dt near 0 means the grid's error hides the time error;\n"
+     << "- *spectral limit*: the largest c dt / h at which the scheme's map, linearised about "
+        "rest at the uniform layout, amplifies nothing: the Bloch limit of the interior "
+        "(docs/design.md, \"The spectral limit\"; the walls' treatment does not enter it; "
+        "spectral.md checks each by runs); `none` when nothing amplifies up to 8;\n"
      << "- *survival edge*: the largest fixed dt with which the bar at A = 1e-4, E = 64 survives "
         "to T = 1, in units of h/c; *accuracy edge*: the largest dt up to which its error stays "
         "within 2 times that of the smallest dt that survives (the edge study's rules);\n"
