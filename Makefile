@@ -102,14 +102,14 @@ bench: build
 	specs=$$($(MPMSTAB) list) && \
 	  $(MPMSTAB) performance $$specs --bench $(RESULTS)/benchmark_step.json --out $(RESULTS)
 
-# Each sweep computes only the cases whose key changed; reports are rewritten only when their
-# content changed, so a figure is redrawn only when its data or its script changed.
+# Every experiment's cases in one queue (mpmstab reproduce): only the cases whose key changed are
+# computed, longest first on JOBS threads, and each experiment's reports are written as soon as
+# it is complete; reports are rewritten only when their content changed, so a figure is redrawn
+# only when its data or its script changed.
 reproduce: build
 	@start=$$(date +%s.%N); \
 	specs=$$($(MPMSTAB) list) || exit $$?; \
-	for s in $$specs; do \
-	  $(MPMSTAB) sweep $$s --jobs $(JOBS) --out $(RESULTS) || exit $$?; \
-	done; \
+	$(MPMSTAB) reproduce $$specs --jobs $(JOBS) --out $(RESULTS) || exit $$?; \
 	$(MAKE) --no-print-directory figures || exit $$?; \
 	$(MPMSTAB) performance $$specs --bench $(RESULTS)/benchmark_step.json --out $(RESULTS) || exit $$?; \
 	$(MPMSTAB) index $$specs --out $(RESULTS) || exit $$?; \

@@ -203,6 +203,94 @@ int run_cli(const std::string& args) {
   return test_support::run_mpmstab(args).status;
 }
 
+// Several specs in one queue (mpmstab reproduce): the same records and reports as a sweep of
+// each, a case repeated across specs computed once, and bad input refused before anything is
+// written.
+TEST_F(Sweeps, OneQueueForSeveralSpecsGivesTheSameResultsAndRunsARepeatedCaseOnce) {
+  std::ofstream(dir / "paper1.csv") << "A,E,dt,method,dt_stable,max_error,confidence,evidence\n"
+                                       "0.015,4,1e-4,GIMP,4e-3,1e-5,high,\n"
+                                       "0.015,4,1e-4,MPM,1e-2,1e-5,high,\n";
+  std::ofstream(dir / "base.json") << R"({"name": "base", "report": "table1",
+      "reference": "paper1.csv", "record": ["error_over_time"],
+      "defaults": {"T": 0.02, "cells": 20, "dt": 1e-4},
+      "cases": [{"E": 4, "A": 0.015, "method": "gimp"}, {"E": 4, "A": 0.015, "method": "mpm"}]})";
+  std::ofstream(dir / "v.json") << R"({"name": "v", "report": "variants", "cases_from": "base.json",
+      "variants": [{"name": "default"}, {"name": "pic", "set": {"transfer": "pic"}}]})";
+  const std::vector<Spec> specs = {load_spec(dir / "small.json"), load_spec(dir / "base.json"),
+                                   load_spec(dir / "v.json")};
+  // Each alone.
+  for (const auto& spec : specs)
+    sweep(spec, 1, dir / "alone");
+  // In one queue: v's two default cases are base's, computed once.
+  SweepOptions o;
+  o.jobs = 3;
+  o.cache = dir / "queue/cache";
+  std::vector<std::size_t> order;
+  const std::vector<SweepOutcome> outcomes =
+      run_sweeps({&specs[0], &specs[1], &specs[2]}, o, [&](std::size_t s, SweepOutcome& r) {
+        order.push_back(s);
+        write_reports(specs[s], r, dir / "queue");
+      });
+  ASSERT_EQ(order.size(), 3u);
+  std::size_t cache_files = 0;
+  for ([[maybe_unused]] const auto& f : fs::directory_iterator(dir / "queue/cache"))
+    ++cache_files;
+  EXPECT_EQ(cache_files, 5u + 2u + 2u);  // small's 5, base's 2, v's 2 with pic; v's defaults shared
+  for (const char* name : {"small", "base", "v"}) {
+    for (const char* ext : {".csv", ".json"}) {
+      EXPECT_EQ(deterministic_rows(dir / "queue" / (std::string(name) + ext)),
+                deterministic_rows(dir / "alone" / (std::string(name) + ext)))
+          << name << ext;
+    }
+  }
+  // The command: every spec given, a study that reads another written after it.
+  std::ofstream(dir / "paper_t1.csv") << read(dir / "paper1.csv");
+  const auto [status, output] = test_support::run_mpmstab(
+      "reproduce " + (dir / "small.json").string() + " " + (dir / "base.json").string() + " " +
+      (dir / "v.json").string() + " --jobs 2 --out " + (dir / "cli").string());
+  ASSERT_EQ(status, 0) << output;
+  EXPECT_NE(output.find("[reproduce] 9/9 cases"), std::string::npos) << output;
+  EXPECT_NE(output.find("[reproduce] 3 experiments in"), std::string::npos) << output;
+  EXPECT_EQ(read(dir / "cli/small.csv").empty(), false);
+  EXPECT_NE(read(dir / "cli/timings.json").find("\"(reproduce)\""), std::string::npos);
+  // Refused before any work: a missing spec, a bad option, no spec, two specs of one name.
+  const std::string before = read(dir / "cli/small.csv");
+  EXPECT_EQ(run_cli("reproduce " + (dir / "small.json").string() + " " +
+                    (dir / "absent.json").string() + " --out " + (dir / "cli").string()),
+            2);
+  EXPECT_EQ(run_cli("reproduce " + (dir / "small.json").string() + " --jobs 0"), 2);
+  EXPECT_EQ(run_cli("reproduce"), 2);
+  EXPECT_EQ(run_cli("reproduce " + (dir / "small.json").string() + " " +
+                    (dir / "small.json").string() + " --out " + (dir / "cli").string()),
+            2);
+  EXPECT_EQ(read(dir / "cli/small.csv"), before);
+}
+
+// A study that reads another experiment is written after it, whatever the order given: the
+// spectral study shows the spectral_edge experiment's measured edge even when listed first.
+TEST_F(Sweeps, OneQueueWritesAnExperimentAfterTheOnesItReads) {
+  std::ofstream(dir / "spectral_edge.json") << R"({"name": "spectral_edge", "title": "E",
+      "report": "spectral_edge", "record": ["error_over_time"],
+      "defaults": {"E": 1, "T": 2, "cells": 10, "ppc": 2},
+      "cases": [{"method": "mpm", "A": 1e-6}]})";
+  std::ofstream(dir / "spectral.json") << R"({"name": "spectral", "title": "S",
+      "report": "spectral", "record": ["error_over_time", "dt_stable"],
+      "defaults": {"E": 1, "A": 1e-6, "T": 2, "cells": 10, "policy": "spectral"},
+      "cases": [{"method": "mpm", "safety": 0.95}, {"method": "mpm", "safety": 1.05}]})";
+  const auto [status, output] = test_support::run_mpmstab(
+      "reproduce " + (dir / "spectral.json").string() + " " +
+      (dir / "spectral_edge.json").string() + " --jobs 2 --out " + (dir / "out").string());
+  ASSERT_EQ(status, 0) << output;
+  EXPECT_LT(output.find("[spectral_edge] 1 cases"), output.find("[spectral] 2 cases")) << output;
+  const std::string md = read(dir / "out/spectral.md");
+  const std::string start = "| mpm | 0.7559 | bloch | ";
+  const auto row = md.find(start);
+  ASSERT_NE(row, std::string::npos) << md;
+  // The measured edge column holds a number (the input was read), not "–".
+  const char first = md[row + start.size()];
+  EXPECT_TRUE(first >= '0' && first <= '9') << md.substr(row, 80);
+}
+
 TEST_F(Sweeps, CommandLineRefusesBadSpecsAndLeavesResultsUntouched) {
   const fs::path out = dir / "out";
   ASSERT_EQ(run_cli("sweep " + (dir / "small.json").string() + " --jobs 2 --out " + out.string()),

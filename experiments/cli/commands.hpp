@@ -15,6 +15,7 @@ int cmd_run(const std::vector<std::string_view>& args);
 int cmd_edge(const std::vector<std::string_view>& args);
 int cmd_spectral(const std::vector<std::string_view>& args);
 int cmd_sweep(const std::vector<std::string_view>& args);
+int cmd_reproduce(const std::vector<std::string_view>& args);
 int cmd_index(const std::vector<std::string_view>& args);
 int cmd_plot(const std::vector<std::string_view>& args);
 int cmd_performance(const std::vector<std::string_view>& args);

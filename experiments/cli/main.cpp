@@ -22,6 +22,7 @@ Commands:
   edge    find the largest fixed dt with which one case survives to T
   spectral  the largest dt at which the linearised step of a scheme amplifies nothing
   sweep   run the cases of an experiment spec in parallel and write its reports
+  reproduce  run the cases of several specs in one queue, writing each one's reports when done
   index   write results/README.md, the index of the reports
   plot    draw a figure experiment with gnuplot
   compare write results/comparison.md: every Table 1 cell against the paper
@@ -62,6 +63,7 @@ int main(int argc, char** argv) {
     if (command == "edge") return mpmstab::cli::cmd_edge(args);
     if (command == "spectral") return mpmstab::cli::cmd_spectral(args);
     if (command == "sweep") return mpmstab::cli::cmd_sweep(args);
+    if (command == "reproduce") return mpmstab::cli::cmd_reproduce(args);
     if (command == "index") return mpmstab::cli::cmd_index(args);
     if (command == "plot") return mpmstab::cli::cmd_plot(args);
     if (command == "performance") return mpmstab::cli::cmd_performance(args);

@@ -1,17 +1,24 @@
 // `mpmstab sweep`: the cases of one spec, run in parallel (or from the cache), and its reports;
-// for a study without cases of its own, its reports from its inputs.
+// for a study without cases of its own, its reports from its inputs. `mpmstab reproduce`: the
+// cases of several specs in one queue, each spec's reports written as soon as it is complete.
 #include <unistd.h>
 
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <csignal>
 #include <iostream>
+#include <map>
 #include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+#include <stdexcept>
 
 #include "commands.hpp"
 #include "csv.hpp"
 #include "files.hpp"
 #include "merge.hpp"
+#include "provenance.hpp"
 #include "report.hpp"
 #include "spec.hpp"
 #include "sweep.hpp"
@@ -51,6 +58,26 @@ Options:
 
 Exit status: 0 when every case ran (unstable runs are results), 2 for an invalid spec or
 option (nothing is run or written), 1 for an internal error.
+)";
+
+constexpr const char* kReproduceHelp =
+    R"(Usage: mpmstab reproduce <spec.json>... [--jobs N] [--out DIR] [--force]
+                        [--timing keep|omit]
+
+Runs the cases of every spec given in one queue, longest first by their estimated
+particle-steps, on N threads: no thread idles while another finishes a long case of another
+experiment, and a case repeated within or across experiments (the same cache key) runs once.
+Each experiment's reports (as 'mpmstab sweep' writes them) are written as soon as its cases are
+done and the experiments it reads have been written; a study without cases of its own is
+written when its inputs are. One progress line covers the whole run: cases done of all,
+particle-steps done of the estimated total, elapsed time and the time to go at the rate
+measured so far (on a terminal redrawn in place, otherwise printed every 10 s).
+
+The specs are taken in the order given ('mpmstab list' prints them in the order make reproduce
+uses). An input that none of them produces must already be in DIR. Options as for 'mpmstab
+sweep' (no --shard). Exit status: 0 when every case ran, 2 for an invalid spec or option
+(nothing is run or written), 1 for an internal error, 128 + the signal when interrupted (the
+finished cases stay in the cache; reports of complete experiments stay written).
 )";
 
 // SIGINT and SIGTERM during a sweep: the handler only raises this flag (async-signal-safe);
@@ -154,6 +181,135 @@ int finish_shard(const Spec& spec, const SweepOutcome& outcome, const SweepOptio
 }
 
 }  // namespace
+
+namespace {
+
+std::string summary_line(const Spec& spec, const SweepOutcome& outcome, double wall_seconds,
+                         const std::filesystem::path& out) {
+  std::ostringstream line;
+  line << "[" << spec.name << "] " << spec.cases.size() << " cases (" << outcome.computed
+       << " computed, " << outcome.cached << " from the cache, "
+       << (outcome.shared
+               ? std::to_string(outcome.shared) + " sharing the run of an identical case, "
+               : std::string())
+       << outcome.unstable << " unstable"
+       << (outcome.rejected ? "; " + std::to_string(outcome.rejected) +
+                                  " cache records failed their checksum or shape and were "
+                                  "computed again"
+                            : std::string())
+       << ") in " << shortest(std::round(wall_seconds * 100) / 100) << " s -> "
+       << (out / (spec.name + ".md")).string() << "\n";
+  return line.str();
+}
+
+}  // namespace
+
+int cmd_reproduce(const std::vector<std::string_view>& argv) {
+  const Args args(argv, {{"jobs"}, {"out"}, {"force", false}, {"timing"}, {"help", false}});
+  if (args.flag("help")) {
+    std::cout << kReproduceHelp;
+    return 0;
+  }
+  if (args.positional().empty()) throw UsageError("reproduce takes one or more specs");
+  SweepOptions options = sweep_options(args);
+  const bool omit = omit_timing(args);
+  // 1. Every spec, and every input none of them produces, is read and checked before any work.
+  const std::vector<Spec> specs = load_specs(args.positional());
+  const auto out = output_folder(args);
+  std::set<std::string> produced;
+  for (const auto& spec : specs) {
+    if (!produced.insert(spec.name).second) {
+      throw UsageError(spec.path.string() + ": a second experiment named '" + spec.name + "'");
+    }
+  }
+  std::vector<std::set<std::string>> waits_for(specs.size());
+  for (std::size_t s = 0; s < specs.size(); ++s) {
+    for (const auto& input : load_inputs(specs[s]))
+      if (produced.count(input.name)) waits_for[s].insert(input.name);
+    try {
+      check_inputs(specs[s], out, produced);
+    } catch (const MissingInput& e) {
+      throw UsageError(e.what());
+    }
+  }
+  options.cache = out / "cache";
+  remove_stale_temporaries(options.cache);
+  options.progress_line = ::isatty(STDERR_FILENO) != 0;
+  options.cancel = &g_stop;
+  install_stop_handlers();
+
+  // 2. One queue; each experiment published once complete and once what it reads is written.
+  std::vector<const Spec*> pointers;
+  for (const auto& spec : specs)
+    pointers.push_back(&spec);
+  std::map<std::size_t, SweepOutcome> waiting;  // complete, not yet published
+  std::set<std::string> written;
+  int computed = 0, cases = 0;
+  double particle_steps = 0;
+  const auto start = std::chrono::steady_clock::now();
+  auto publish_ready = [&] {
+    for (bool again = true; again;) {
+      again = false;
+      for (auto it = waiting.begin(); it != waiting.end();) {
+        const std::size_t s = it->first;
+        if (!std::includes(written.begin(), written.end(), waits_for[s].begin(),
+                           waits_for[s].end())) {
+          ++it;
+          continue;
+        }
+        const Spec& spec = specs[s];
+        std::string line;
+        if (!spec.study->has_cases) {
+          write_derived_reports(spec, out);
+          line = "[" + spec.name + "] from " + std::to_string(spec.inputs.size()) + " inputs -> " +
+                 out.string() + "\n";
+        } else {
+          SweepOutcome& outcome = it->second;
+          const double wall = outcome.wall_seconds;
+          computed += outcome.computed;
+          cases += int(spec.cases.size());
+          for (const auto& record : outcome.records)
+            particle_steps += record_particle_steps(record);
+          if (omit) omit_machine_measurements(outcome);
+          write_reports(spec, outcome, out);
+          line = summary_line(spec, outcome, wall, out);
+        }
+        if (options.progress_line) std::cerr << "\r\033[K";
+        std::cerr << line << std::flush;
+        written.insert(spec.name);
+        it = waiting.erase(it);
+        again = true;
+      }
+    }
+  };
+  const std::vector<SweepOutcome> rest =
+      run_sweeps(pointers, options, [&](std::size_t s, SweepOutcome& outcome) {
+        waiting.emplace(s, std::move(outcome));
+        publish_ready();
+      });
+  for (std::size_t s = 0; s < specs.size(); ++s) {
+    if (rest[s].interrupted) return interrupted(specs[s], rest[s], options);
+  }
+  if (!waiting.empty()) {
+    throw std::logic_error("reproduce: an experiment waits for an input that never came");
+  }
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const Provenance when = current_provenance(options.jobs);
+  write_reproduce_timing(out,
+                         {{"experiments", specs.size()},
+                          {"cases", cases},
+                          {"computed", computed},
+                          {"particle_steps", particle_steps},
+                          {"commit", when.commit},
+                          {"cpu", when.cpu},
+                          {"threads", options.jobs},
+                          {"wall_seconds", omit ? 0.0 : wall}},
+                         computed > 0);
+  std::cerr << "[reproduce] " << specs.size() << " experiments in "
+            << shortest(std::round(wall * 10) / 10) << " s -> " << out.string() << "\n";
+  return 0;
+}
 
 int cmd_sweep(const std::vector<std::string_view>& argv) {
   const Args args(argv,

@@ -198,6 +198,13 @@ void write_flops(std::ostream& md, const BenchFigures& b, double mhz) {
 }
 
 // The benchmark's sections, or a note that its output is missing.
+// The benchmark's figures, none when the file is missing.
+BenchFigures bench_figures(const fs::path& bench) {
+  const std::string text = read_if_present(bench).value_or("");
+  if (text.empty()) return {};
+  return read_figures(parse_json_strict<ojson>(text, bench));
+}
+
 void write_benchmark(std::ostream& md, const fs::path& bench) {
   const std::string text = read_if_present(bench).value_or("");
   if (text.empty()) {
@@ -213,14 +220,19 @@ void write_benchmark(std::ostream& md, const fs::path& bench) {
   write_flops(md, figures, ctx.value("mhz_per_cpu", 0.0));
 }
 
-// Compute and wall time of every experiment that runs cases, from <out>/timings.json.
-void write_experiment_times(std::ostream& md, const std::vector<Spec>& specs, const fs::path& out) {
-  md << "## Wall time of every experiment\n\nFrom [timings.json](timings.json), the one file "
+// The work, CPU time and wall time of every experiment that runs cases, and of the whole
+// reproduction, from <out>/timings.json, against what the kernel's speed allows.
+void write_experiment_times(std::ostream& md, const std::vector<Spec>& specs, const fs::path& out,
+                            const BenchFigures& bench) {
+  md << "## The cost of every experiment\n\nFrom [timings.json](timings.json), the one file "
         "of the machine's measurements (every other result file is the same on any machine). "
-        "The sweep wall time is that of the last sweep that computed a case (cached reruns take "
-        "milliseconds); compute time is the sum of the cases' own run times.\n\n"
-        "| experiment | cases | compute time | sweep wall time | median ns per particle-step |\n"
-        "|---|---|---|---|---|\n";
+        "Particle-steps (particles x steps, of every run of an edge search) are the "
+        "deterministic work; CPU time is the sum of the cases' own run times; wall time is the "
+        "span from the experiment's first case's start to its last case's end in the run that "
+        "computed them (`make reproduce` runs every experiment's cases in one queue, so the "
+        "spans overlap).\n\n"
+        "| experiment | cases | particle-steps | CPU time | wall time | median ns per "
+        "particle-step |\n|---|---|---|---|---|---|\n";
   ojson timings = ojson::object();
   if (const auto t = read_if_present(out / "timings.json"); t && !t->empty()) {
     try {
@@ -229,29 +241,52 @@ void write_experiment_times(std::ostream& md, const std::vector<Spec>& specs, co
     }
     if (!timings.is_object()) timings = ojson::object();
   }
-  double total_wall = 0, total_compute = 0;
+  double total_compute = 0, total_work = 0;
   for (const auto& spec : specs) {
     if (!spec.study->has_cases) continue;  // computed from other experiments' results
     if (!timings.contains(spec.name)) {
-      md << "| " << spec.name << " | not run | | | |\n";
+      md << "| " << spec.name << " | not run | | | | |\n";
       continue;
     }
     const ojson& e = timings[spec.name];
     const double wall = e["sweep_wall_seconds"].get<double>();
     const double compute = e["compute_seconds"].get<double>();
+    const double work = e.contains("particle_steps") ? e["particle_steps"].get<double>() : 0.0;
     std::vector<double> ns;
     for (const auto& c : e["per_case"]) {
       if (c["ns_per_particle_step"].is_number()) ns.push_back(c["ns_per_particle_step"]);
     }
-    total_wall += wall;
     total_compute += compute;
+    total_work += work;
     md << "| [" << spec.name << "](" << spec.name << ".md) | " << e["cases"].dump() << " | "
-       << seconds(compute) << " | " << seconds(wall) << " | "
+       << sci(work) << " | " << seconds(compute) << " | " << seconds(wall) << " | "
        << (ns.empty() ? std::string("-") : fixed(quantile(ns, 0.5), 1)) << " |\n";
   }
-  md << "| all | | " << seconds(total_compute) << " | " << seconds(total_wall) << " | |\n\n"
-     << "`make reproduce` prints its own wall time when it ends; with every case cached it takes "
-        "about a second.\n";
+  md << "| all | | " << sci(total_work) << " | " << seconds(total_compute) << " | | "
+     << (total_work > 0 ? fixed(1e9 * total_compute / total_work, 1) : std::string("-"))
+     << " (mean) |\n\n";
+  if (timings.contains(kReproduceTiming)) {
+    const ojson& r = timings[kReproduceTiming];
+    const double wall = r["wall_seconds"].get<double>();
+    const int threads = r["threads"].get<int>();
+    const double kernel = bench.median("BM_StepInstrumented", "gimp");
+    md << "**The whole reproduction.** The last `make reproduce` that computed cases ran "
+       << r["cases"].dump() << " cases (" << r["computed"].dump() << " computed) of "
+       << r["experiments"].dump() << " experiments on " << threads << " threads in **"
+       << seconds(wall) << "** wall. At 100% of its " << threads
+       << " threads the CPU time above would take " << seconds(total_compute / threads)
+       << (wall > 0 ? " (" + fixed(100 * total_compute / threads / wall, 0) + "% of the wall)"
+                    : std::string(""));
+    if (kernel > 0) {
+      md << "; at the step kernel's speed with every observer (BM_StepInstrumented, GIMP, "
+         << fixed(kernel, 2) << " ns per particle-step) its " << sci(total_work)
+         << " particle-steps would take " << seconds(total_work * kernel * 1e-9 / threads);
+    }
+    md << ".\n";
+  } else {
+    md << "`make reproduce` prints its own wall time when it ends and records it in "
+          "timings.json.\n";
+  }
 }
 
 }  // namespace
@@ -262,7 +297,7 @@ void write_performance(const std::vector<Spec>& specs, const fs::path& bench, co
         "(`make bench`, `tests/bench_step.cpp`), what each measured quantity adds to it, and the "
         "wall time of every experiment of `make reproduce`.\n\n";
   write_benchmark(md, bench);
-  write_experiment_times(md, specs, out);
+  write_experiment_times(md, specs, out, bench_figures(bench));
   write_if_changed(out / "performance.md", md.str());
 }
 

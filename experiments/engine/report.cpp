@@ -164,10 +164,11 @@ std::vector<ojson> flat_rows(const Spec& spec, const SweepOutcome& outcome) {
 ojson sweep_timing(const Spec& spec, const SweepOutcome& outcome, const ojson& when,
                    const ojson& previous) {
   ojson cases = ojson::array();
-  double compute_seconds = 0;
+  double compute_seconds = 0, particle_steps = 0;
   for (std::size_t i = 0; i < spec.cases.size(); ++i) {
     const ojson& t = outcome.records[i]["timing"];
     compute_seconds += t["wall_seconds"].get<double>();
+    particle_steps += record_particle_steps(outcome.records[i]);
     cases.push_back({{"key", case_key(spec.cases[i].params)},
                      {"wall_seconds", t["wall_seconds"]},
                      {"ns_per_particle_step", t["ns_per_particle_step"]}});
@@ -184,16 +185,13 @@ ojson sweep_timing(const Spec& spec, const SweepOutcome& outcome, const ojson& w
           {"cpu", when["cpu"]},
           {"date", when["date"]},
           {"threads", when["threads"]},
+          {"particle_steps", particle_steps},
           {"compute_seconds", compute_seconds},
           {"sweep_wall_seconds", sweep_wall},
           {"per_case", cases}};
 }
 
-// results/timings.json: the one file of machine measurements, an entry per experiment, updated
-// in place for the experiment just swept (experiments in name order).
-void write_timings(const Spec& spec, const SweepOutcome& outcome, const ojson& when,
-                   const fs::path& out) {
-  const fs::path path = out / "timings.json";
+ojson read_timings(const fs::path& path) {
   ojson all = ojson::object();
   if (const auto text = read_if_present(path); text && !text->empty()) {
     try {
@@ -203,16 +201,42 @@ void write_timings(const Spec& spec, const SweepOutcome& outcome, const ojson& w
     }
     if (!all.is_object()) all = ojson::object();
   }
-  const ojson previous = all.contains(spec.name) ? all[spec.name] : ojson::object();
+  return all;
+}
+
+// The entries in name order, `name` replaced by `entry`.
+void store_timing(const fs::path& path, ojson all, const std::string& name, ojson entry) {
   std::map<std::string, ojson> sorted;
   for (auto& [k, v] : all.items())
     sorted[k] = v;
-  sorted[spec.name] = sweep_timing(spec, outcome, when, previous);
+  sorted[name] = std::move(entry);
   ojson doc = ojson::object();
   for (auto& [k, v] : sorted)
     doc[k] = std::move(v);
   write_if_changed(path, doc.dump(1) + "\n");
 }
+
+// results/timings.json: the one file of machine measurements, an entry per experiment, updated
+// in place for the experiment just swept (experiments in name order).
+void write_timings(const Spec& spec, const SweepOutcome& outcome, const ojson& when,
+                   const fs::path& out) {
+  const fs::path path = out / "timings.json";
+  ojson all = read_timings(path);
+  const ojson previous = all.contains(spec.name) ? all[spec.name] : ojson::object();
+  ojson entry = sweep_timing(spec, outcome, when, previous);
+  store_timing(path, std::move(all), spec.name, std::move(entry));
+}
+
+}  // namespace
+
+void write_reproduce_timing(const fs::path& out, const ojson& entry, bool computed) {
+  const fs::path path = out / "timings.json";
+  ojson all = read_timings(path);
+  if (!computed && all.contains(kReproduceTiming)) return;  // keep the run that computed
+  store_timing(path, std::move(all), kReproduceTiming, entry);
+}
+
+namespace {
 
 // <name>.csv: one row per case, under the header lines.
 std::string rows_csv(const std::vector<ojson>& rows, const std::vector<std::string>& columns,
@@ -338,11 +362,26 @@ std::vector<std::string> input_roles(const Spec& spec) {
 }  // namespace
 
 void check_inputs(const Spec& spec, const fs::path& out) {
+  check_inputs(spec, out, {});
+}
+
+void check_inputs(const Spec& spec, const fs::path& out, const std::set<std::string>& produced) {
   if (!spec.reference.empty()) {
     if (read_csv(spec.reference).header.empty()) throw InputError(spec.reference, "has no columns");
   }
-  const std::vector<Spec> input_specs = load_inputs(spec);
-  read_inputs(*spec.study, input_roles(spec), input_specs, out);
+  std::vector<Spec> input_specs = load_inputs(spec);
+  std::vector<std::string> roles = input_roles(spec);
+  // What the run will produce is not read now (an earlier result there would be replaced), and
+  // need not be there yet.
+  Study study = *spec.study;
+  for (std::size_t i = input_specs.size(); i-- > 0;) {
+    if (!produced.count(input_specs[i].name)) continue;
+    for (auto& decl : study.inputs)
+      if (decl.name == roles[i]) decl.required = false;
+    input_specs.erase(input_specs.begin() + std::ptrdiff_t(i));
+    roles.erase(roles.begin() + std::ptrdiff_t(i));
+  }
+  read_inputs(study, roles, input_specs, out);
   std::error_code ec;
   const fs::path cache = out / "cache";
   if (fs::exists(fs::symlink_status(cache, ec)) && !fs::is_directory(cache, ec)) {

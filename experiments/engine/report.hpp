@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,17 @@ nlohmann::ordered_json parse_results(std::string_view text, const std::filesyste
 // and its results in `out` (present if required, of the right shape), and the cache folder (a
 // folder if it exists). Throws InputError (exit status 2) naming the first defect.
 void check_inputs(const Spec& spec, const std::filesystem::path& out);
+
+// The entry of <out>/timings.json for the last `mpmstab reproduce` (its wall time, threads,
+// cases, particle-steps): replaced by a run that computed cases, kept by one served entirely
+// from the cache.
+inline constexpr const char* kReproduceTiming = "(reproduce)";
+void write_reproduce_timing(const std::filesystem::path& out, const nlohmann::ordered_json& entry,
+                            bool computed);
+// The same, but an input named in `produced` (experiments a run will write before this one's
+// reports) is not looked for in `out`.
+void check_inputs(const Spec& spec, const std::filesystem::path& out,
+                  const std::set<std::string>& produced);
 
 // Writes <out>/<name>.csv, .json, .md and, for studies with a figure, <name>_data.csv; the
 // sweep's wall times go to <out>/timings.json, the only file that changes between identical runs.

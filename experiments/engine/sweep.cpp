@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <exception>
+#include <functional>
 #include <map>
 #include <mutex>
 #include <numeric>
@@ -67,66 +68,105 @@ RunResult run_at_smallest_probe(const RunParams& p, const EdgeResult& e) {
   return run(q);
 }
 
+// Progress of one sweep or of several in one queue. On a terminal, one line redrawn as cases
+// finish and every second; off a terminal, a line per case for one sweep, or for several a line
+// every kPeriodicSeconds. The line: cases done of all, particle-steps done of the estimated
+// total (the estimate of each case replaced by its measured work as it finishes), elapsed time
+// and the time to go at the rate measured so far.
 class Progress {
  public:
-  Progress(const Spec& spec, std::size_t runs, bool line, double total_cost)
-      : name_(spec.name),
-        search_(case_search(spec)),
+  static constexpr double kPeriodicSeconds = 10;
+
+  Progress(std::string label, std::size_t runs, double total_cost, bool line, bool per_case)
+      : label_(std::move(label)),
         total_(runs),
         line_(line),
+        per_case_(per_case),
         total_cost_(total_cost) {}
 
-  void done(const RunParams& p, const nlohmann::ordered_json& result, bool from_cache,
-            double cost) {
+  void done(const Spec& spec, const RunParams& p, const nlohmann::ordered_json& rec,
+            bool from_cache, double cost) {
     std::lock_guard lock(mutex_);
     ++done_;
+    const auto& result = rec["result"];
     if (result["outcome"] == "unstable") ++unstable_;
     if (from_cache) {
       total_cost_ -= cost;  // cached cases take no time: leave them out of the estimate
     } else {
       done_cost_ += cost;
+      const double work = record_particle_steps(rec);
+      done_work_ += work;
+      estimated_work_ += work - cost;
     }
     if (line_) {
-      draw();
-      if (done_ == total_) std::fputc('\n', stderr);
-    } else {
+      draw('\r');
+    } else if (per_case_) {
       std::string verdict = result["outcome"] == "unstable"
                                 ? "unstable (" + result["failure_reason"].get<std::string>() + ")"
                                 : result["outcome"].get<std::string>();
-      std::fprintf(stderr, "[%s] %zu/%zu %s: %s%s\n", name_.c_str(), done_, total_,
-                   describe_case(p, search_).c_str(), verdict.c_str(),
+      std::fprintf(stderr, "[%s] %zu/%zu %s: %s%s\n", spec.name.c_str(), done_, total_,
+                   describe_case(p, case_search(spec)).c_str(), verdict.c_str(),
                    from_cache ? " [cached]" : "");
     }
     std::fflush(stderr);
   }
 
-  // Redraws the terminal line (elapsed time moves on during long cases).
+  // Redraws the line (elapsed time moves on during long cases), or prints it when the period
+  // has passed.
   void tick() {
     std::lock_guard lock(mutex_);
-    if (line_ && done_ < total_) {
-      draw();
-      std::fflush(stderr);
+    if (done_ == total_) return;
+    if (line_) {
+      draw('\r');
+    } else if (!per_case_ && elapsed() >= last_print_ + kPeriodicSeconds) {
+      last_print_ = elapsed();
+      draw('\n');
     }
+    std::fflush(stderr);
+  }
+
+  // A message on its own line, the progress line redrawn after it on a terminal.
+  void say(const std::string& text) {
+    std::lock_guard lock(mutex_);
+    if (line_) std::fputs("\r\033[K", stderr);
+    std::fputs(text.c_str(), stderr);
+    if (line_ && done_ < total_) draw('\r');
+    std::fflush(stderr);
+  }
+
+  void finish() {
+    std::lock_guard lock(mutex_);
+    if (line_ || !per_case_) draw('\n');
+    std::fflush(stderr);
   }
 
  private:
-  void draw() const {
-    const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
-    const double rate = done_cost_ > 0 ? done_cost_ / elapsed : 0;
+  double elapsed() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
+
+  void draw(char end) const {
+    const double t = elapsed();
+    const double rate = done_cost_ > 0 ? done_cost_ / t : 0;
     char left[48] = "estimating";
-    if (rate > 0) {
-      std::snprintf(left, sizeof left, "~%.0f s left", (total_cost_ - done_cost_) / rate);
+    if (done_ == total_) {
+      std::snprintf(left, sizeof left, "done");
+    } else if (rate > 0) {
+      std::snprintf(left, sizeof left, "~%.0f s to go", (total_cost_ - done_cost_) / rate);
     }
-    std::fprintf(stderr, "\r[%s] %zu/%zu cases, %zu unstable, %.0f s elapsed, %s   ", name_.c_str(),
-                 done_, total_, unstable_, elapsed, left);
+    const double work_total = total_cost_ + estimated_work_;
+    std::fprintf(stderr,
+                 "%s[%s] %zu/%zu cases, %zu unstable, %.2g of ~%.2g particle-steps, %.0f s "
+                 "elapsed, %s   %s",
+                 end == '\r' ? "\r" : "", label_.c_str(), done_, total_, unstable_, done_work_,
+                 work_total, t, left, end == '\n' ? "\n" : "");
   }
 
   std::mutex mutex_;
-  std::string name_;
-  std::string search_;
+  std::string label_;
   std::size_t total_, done_ = 0, unstable_ = 0;
-  bool line_;
+  bool line_, per_case_;
   double total_cost_, done_cost_ = 0;
+  double done_work_ = 0, estimated_work_ = 0;  // measured work, and its excess over the estimate
+  double last_print_ = 0;
   Clock::time_point start_ = Clock::now();
 };
 
@@ -148,6 +188,12 @@ std::string describe_case(const RunParams& p, const std::string& search) {
       return s + " spectral s=" + shortest(p.stepping.safety);
   }
   return s;
+}
+
+double record_particle_steps(const nlohmann::ordered_json& rec) {
+  if (rec.contains("edge")) return rec["edge"]["search_particle_steps"].get<double>();
+  const auto& r = rec["result"];
+  return r["steps"].get<double>() * r["particles"].get<double>();
 }
 
 int shard_of(const std::string& case_key, int count) {
@@ -281,65 +327,170 @@ void tally(const SweepPlan& plan, const std::vector<char>& from_cache, SweepOutc
 
 }  // namespace
 
-SweepOutcome run_sweep(const Spec& spec, const SweepOptions& options) {
+namespace {
+
+// A distinct case to compute, and the cases of the specs that share its record.
+struct Task {
+  const Spec* spec = nullptr;  // of its first use
+  std::size_t index = 0;
+  std::string search;
+  double cost = 0;
+  std::vector<std::pair<std::size_t, std::size_t>> uses;  // (spec, case)
+};
+
+}  // namespace
+
+std::vector<SweepOutcome> run_sweeps(
+    const std::vector<const Spec*>& specs, const SweepOptions& options,
+    const std::function<void(std::size_t, SweepOutcome&)>& complete) {
   const auto start = Clock::now();
+  auto since_start = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
   const ResultCache cache(options.cache);
   const Provenance provenance = current_provenance(options.jobs);
-  const std::string search = case_search(spec);
-  const SweepPlan plan = plan_sweep(spec, options);
 
-  SweepOutcome out;
-  out.records.resize(spec.cases.size());
-  std::vector<char> from_cache(spec.cases.size(), 0);
-  Progress progress(spec, plan.order.size(), options.progress_line, plan.total_cost);
+  // 1. One plan per spec, then one task per distinct case over every spec, longest first.
+  const std::size_t n = specs.size();
+  std::vector<SweepPlan> plans;
+  std::vector<SweepOutcome> out(n);
+  std::vector<std::vector<char>> from_cache(n);
+  std::vector<std::size_t> remaining(n);
+  std::vector<double> first_start(n, -1), last_end(n, 0);
+  std::vector<Task> tasks;
+  std::map<std::string, std::size_t> task_of;
+  double total_cost = 0;
+  for (std::size_t s = 0; s < n; ++s) {
+    const Spec& spec = *specs[s];
+    plans.push_back(spec.study->has_cases ? plan_sweep(spec, options) : SweepPlan{});
+    out[s].records.resize(spec.cases.size());
+    from_cache[s].assign(spec.cases.size(), 0);
+    remaining[s] = plans[s].order.size();
+    const std::string search = case_search(spec);
+    for (std::size_t i : plans[s].order) {
+      const std::string key = case_key(spec.cases[i].params, search);
+      const auto [it, fresh] = task_of.emplace(key, tasks.size());
+      if (fresh) {
+        tasks.push_back({&spec, i, search, plans[s].cost[i], {}});
+        total_cost += plans[s].cost[i];
+      }
+      tasks[it->second].uses.emplace_back(s, i);
+    }
+  }
+  std::stable_sort(tasks.begin(), tasks.end(),
+                   [](const Task& a, const Task& b) { return a.cost > b.cost; });
+
+  // 2. The workers take the tasks in that order; a spec whose last case finished is queued for
+  // the caller.
+  const bool several = n > 1;
+  Progress progress(several ? std::string("reproduce") : specs.front()->name, tasks.size(),
+                    total_cost, options.progress_line, !several);
+  std::mutex mutex;
+  std::condition_variable changed;
+  std::vector<std::size_t> finished;
+  for (std::size_t s = 0; s < n; ++s)
+    if (remaining[s] == 0) finished.push_back(s);
   std::atomic<std::size_t> next{0};
   std::atomic<int> rejected{0};
-  const std::size_t m = plan.order.size();
+  std::size_t workers_running = 0;
   std::exception_ptr error;
-  std::mutex error_mutex;
-
   auto cancelled = [&] { return options.cancel && options.cancel->load(); };
   auto worker = [&] {
-    for (std::size_t k; !cancelled() && (k = next.fetch_add(1)) < m;) {
-      const std::size_t i = plan.order[k];
-      const RunParams& p = spec.cases[i].params;
+    for (std::size_t k; !cancelled() && (k = next.fetch_add(1)) < tasks.size();) {
+      const Task& task = tasks[k];
+      const RunParams& p = task.spec->cases[task.index].params;
+      const double began = since_start();
       try {
         std::optional<nlohmann::ordered_json> record;
         const bool cached = !options.cache.empty();
         if (cached && !options.force) {
-          CacheLookup found = cache.lookup(p, search);
+          CacheLookup found = cache.lookup(p, task.search);
           if (found.rejected) ++rejected;
           record = std::move(found.record);
         }
-        from_cache[i] = record.has_value();
+        const bool hit = record.has_value();
         if (!record) {
-          nlohmann::ordered_json rec = compute_case(p, *spec.study, options.cancel);
+          nlohmann::ordered_json rec = compute_case(p, *task.spec->study, options.cancel);
           if (rec.is_null()) continue;
           rec["provenance"] = to_json(provenance);
-          if (cached) cache.store(p, rec, search);
+          if (cached) cache.store(p, rec, task.search);
           record = std::move(rec);
         }
-        if (!options.quiet) progress.done(p, (*record)["result"], from_cache[i], plan.cost[i]);
-        out.records[i] = std::move(*record);
+        if (!options.quiet) progress.done(*task.spec, p, *record, hit, task.cost);
+        const double ended = since_start();
+        std::lock_guard lock(mutex);
+        for (const auto& [s, i] : task.uses) {
+          out[s].records[i] = *record;
+          from_cache[s][i] = hit;
+          if (first_start[s] < 0 || began < first_start[s]) first_start[s] = began;
+          last_end[s] = std::max(last_end[s], ended);
+          if (--remaining[s] == 0) finished.push_back(s);
+        }
+        changed.notify_all();
       } catch (...) {
-        std::lock_guard lock(error_mutex);
+        std::lock_guard lock(mutex);
         if (!error) error = std::current_exception();
-        next = m;  // stop handing out cases
+        next = tasks.size();  // stop handing out cases
+        changed.notify_all();
       }
     }
+    std::lock_guard lock(mutex);
+    --workers_running;
+    changed.notify_all();
   };
-  const int jobs = std::max(1, std::min<int>(options.jobs, static_cast<int>(m)));
+  const int jobs = std::max(1, std::min<int>(options.jobs, static_cast<int>(tasks.size())));
   std::vector<std::thread> threads;
-  for (int t = 1; t < jobs; ++t)
+  workers_running = tasks.empty() ? 0 : std::size_t(jobs);
+  for (std::size_t t = 0; t < workers_running; ++t)
     threads.emplace_back(worker);
-  worker();
-  for (auto& t : threads)
-    t.join();
+
+  // 3. The caller's thread hands each finished spec over (its records counted and shared) while
+  // the workers go on, and redraws the progress line.
+  std::size_t delivered = 0;
+  auto join = [&] {
+    for (auto& t : threads)
+      if (t.joinable()) t.join();
+  };
+  try {
+    while (delivered < n) {
+      std::unique_lock lock(mutex);
+      changed.wait_for(lock, std::chrono::seconds(1),
+                       [&] { return !finished.empty() || error || workers_running == 0; });
+      if (error) break;
+      if (finished.empty()) {
+        if (workers_running == 0) break;  // interrupted: some specs never finish
+        lock.unlock();
+        if (!options.quiet) progress.tick();
+        continue;
+      }
+      const std::size_t s = finished.front();
+      finished.erase(finished.begin());
+      lock.unlock();
+      tally(plans[s], from_cache[s], out[s]);
+      out[s].wall_seconds = first_start[s] < 0 ? 0 : last_end[s] - first_start[s];
+      out[s].rejected = rejected.load();  // so far, over the whole queue
+      ++delivered;
+      if (complete) complete(s, out[s]);
+    }
+  } catch (...) {
+    next = tasks.size();
+    join();
+    throw;
+  }
+  join();
   if (error) std::rethrow_exception(error);
-  tally(plan, from_cache, out);
-  out.rejected = rejected.load();
-  out.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  if (!options.quiet && several) progress.finish();
+  for (std::size_t s = 0; s < n; ++s) {
+    out[s].rejected = rejected.load();  // over the whole queue
+    if (remaining[s] != 0) {
+      tally(plans[s], from_cache[s], out[s]);
+      out[s].interrupted = true;
+    }
+  }
+  if (!several && !out.empty()) out.front().wall_seconds = since_start();
   return out;
+}
+
+SweepOutcome run_sweep(const Spec& spec, const SweepOptions& options) {
+  return std::move(run_sweeps({&spec}, options, nullptr).front());
 }
 
 }  // namespace mpmstab

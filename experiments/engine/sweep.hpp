@@ -3,6 +3,7 @@
 
 #include <atomic>
 #include <filesystem>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -71,9 +72,26 @@ void omit_machine_measurements(SweepOutcome& outcome);
 // case must agree on.
 nlohmann::ordered_json deterministic_part(const nlohmann::ordered_json& record);
 
+// The deterministic work of a finished case's record: particles x steps of its run, or of every
+// run of its search.
+double record_particle_steps(const nlohmann::ordered_json& record);
+
 // The work of a case in particle-steps (an estimate for the adaptive policies and for edge
 // searches), for scheduling, progress and the fast subset of make check.
 double case_cost(const RunParams& p, CaseWork work);
+
+// Several specs' cases in one queue (make reproduce): every case not in the cache, over every
+// spec, runs once (a case repeated within or across specs shares one record), longest first on
+// options.jobs threads, so that no thread idles while another finishes a long case. As each
+// spec's last case finishes, complete(index, outcome) is called on the caller's thread with its
+// final outcome (the caller may take it) while the workers go on; a spec without cases to run
+// is complete at once. The outcome's wall_seconds is the span from its first case's start to
+// its last case's end; `rejected` counts over the whole queue. One progress line covers all.
+// Returns the outcomes (those taken by `complete` left as it left them); a spec that never
+// completed (interrupted) has `interrupted` set.
+std::vector<SweepOutcome> run_sweeps(
+    const std::vector<const Spec*>& specs, const SweepOptions& options,
+    const std::function<void(std::size_t, SweepOutcome&)>& complete);
 
 // What a spec's cases compute beyond one run, as the cache keys it: "" or "edge".
 std::string case_search(const Spec& spec);
