@@ -17,7 +17,7 @@ class CrossingCounter {
 
  private:
   double inv_h_;
-  std::vector<int> cell_;
+  std::vector<double> cell_;  // floor(x / h) of each particle, a whole number
 };
 
 }  // namespace mpmstab

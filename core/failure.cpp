@@ -33,8 +33,12 @@ double max_admissible_F(Method method, int ppc) {
 namespace {
 
 // One pass with Eigen's vectorized reductions per quantity: the portable version.
-StateExtremes extremes_by_array(const Particles& P) {
+StateExtremes extremes_by_array(const Particles& P, const ErrorTerms* error) {
   StateExtremes e;
+  if (error) {
+    const Eigen::Map<const Eigen::ArrayXd> X(error->X, P.size()), u(error->u, P.size());
+    e.error_max = ((P.x - X) - u * error->factor).abs().maxCoeff();
+  }
   // v * 0 is NaN exactly when v is NaN or infinite: the sum is zero for a finite state.
   e.finite = (P.x * 0.0 + P.v * 0.0 + P.F * 0.0 + P.sigma * 0.0).sum() == 0.0;
   e.F_min = P.F.minCoeff();
@@ -70,9 +74,11 @@ MPMSTAB_AVX512_TARGET inline __m512d abs8(__m512d a) {
   return _mm512_andnot_pd(_mm512_set1_pd(-0.0), a);
 }
 
-// Every quantity in one pass, 8 particles at a time. Minima and maxima are exact in any order;
-// the values are read only when the state is finite (the poison sum is zero).
-MPMSTAB_AVX512_TARGET StateExtremes extremes_avx512(const Particles& P) {
+// Every quantity in one pass, 8 particles at a time (and the error when `with_error`). Minima and
+// maxima are exact in any order; the values are read only when the state is finite (the poison
+// sum is zero).
+template <bool with_error>
+MPMSTAB_AVX512_TARGET StateExtremes extremes_avx512(const Particles& P, const ErrorTerms* error) {
   const auto n = static_cast<std::size_t>(P.size());
   const double *x = P.x.data(), *v = P.v.data(), *F = P.F.data(), *s = P.sigma.data();
   const double inf = std::numeric_limits<double>::infinity();
@@ -80,9 +86,19 @@ MPMSTAB_AVX512_TARGET StateExtremes extremes_avx512(const Particles& P) {
   __m512d poison = zero, F_min = _mm512_set1_pd(inf), F_max = _mm512_set1_pd(-inf);
   __m512d F_abs = zero, s_abs = zero, sF_abs = zero;
   __m512d x_min = _mm512_set1_pd(inf), x_max = _mm512_set1_pd(-inf);
+  __m512d err = zero;
+  const double* X = with_error ? error->X : nullptr;
+  const double* u = with_error ? error->u : nullptr;
+  const double f = with_error ? error->factor : 0.0;
+  const __m512d f8 = _mm512_set1_pd(f);
   std::size_t p = 0;
   for (; p + 8 <= n; p += 8) {
     const __m512d xp = _mm512_loadu_pd(x + p), vp = _mm512_loadu_pd(v + p);
+    if constexpr (with_error) {
+      const __m512d d = _mm512_sub_pd(_mm512_sub_pd(xp, _mm512_loadu_pd(X + p)),
+                                      _mm512_mul_pd(_mm512_loadu_pd(u + p), f8));
+      err = max8(err, abs8(d));
+    }
     const __m512d Fp = _mm512_loadu_pd(F + p), sp = _mm512_loadu_pd(s + p);
     poison = _mm512_add_pd(
         poison, _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(xp, zero), _mm512_mul_pd(vp, zero)),
@@ -104,7 +120,11 @@ MPMSTAB_AVX512_TARGET StateExtremes extremes_avx512(const Particles& P) {
   e.sigmaF_abs_max = lane_max(sF_abs);
   e.x_min = lane_min(x_min);
   e.x_max = lane_max(x_max);
+  if constexpr (with_error) e.error_max = lane_max(err);
   for (; p < n; ++p) {
+    if constexpr (with_error) {
+      e.error_max = std::max(e.error_max, std::abs((x[p] - X[p]) - u[p] * f));
+    }
     poison_tail += x[p] * 0.0 + v[p] * 0.0 + F[p] * 0.0 + s[p] * 0.0;
     e.F_min = std::min(e.F_min, F[p]);
     e.F_max = std::max(e.F_max, F[p]);
@@ -121,12 +141,14 @@ MPMSTAB_AVX512_TARGET StateExtremes extremes_avx512(const Particles& P) {
 
 }  // namespace
 
-StateExtremes state_extremes(const Particles& P) {
+StateExtremes state_extremes(const Particles& P, const ErrorTerms* error) {
 #if MPMSTAB_AVX512
   static const bool avx512 = __builtin_cpu_supports("x86-64-v4");
-  if (avx512 && P.size() > 0) return extremes_avx512(P);
+  if (avx512 && P.size() > 0) {
+    return error ? extremes_avx512<true>(P, error) : extremes_avx512<false>(P, nullptr);
+  }
 #endif
-  return extremes_by_array(P);
+  return extremes_by_array(P, error);
 }
 
 std::optional<Failure> detect_failure(const Particles& P, Boundary bc, double max_F) {

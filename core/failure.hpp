@@ -45,8 +45,17 @@ struct StateExtremes {
   double F_min = 0, F_max = 0;
   double F_abs_max = 0, sigma_abs_max = 0, sigmaF_abs_max = 0;  // max_p |F_p|, |s_p|, |s_p F_p|
   double x_min = 0, x_max = 0;
+  double error_max = 0;  // max_p |x_p - X_p - u_p f| when ErrorTerms were given (else 0)
 };
-StateExtremes state_extremes(const Particles& P);
+// The error of a manufactured solution u(X, t) = u_p f(t), taken in the same pass when given:
+// the error-over-time observer's value, max_p |(x_p - X_p) - u_p f|, computed as
+// Simulation::max_error computes it (the same rounding: the same result bit for bit).
+struct ErrorTerms {
+  const double* X = nullptr;  // reference positions, one per particle
+  const double* u = nullptr;  // displacement profile u_p
+  double factor = 0;          // f(t)
+};
+StateExtremes state_extremes(const Particles& P, const ErrorTerms* error = nullptr);
 
 // Checks every particle; nullopt if the state is admissible. When several particles fail, the
 // reason reported is the first in the order non_finite, nonpositive_F, support_too_wide (some

@@ -145,6 +145,10 @@ void Simulation::advance_to(double t_next) {
   ++n_;
 }
 
+ErrorTerms Simulation::error_terms() const {
+  return {P_.X.data(), u_profile_.data(), scene_->displacement_factor(t_)};
+}
+
 double Simulation::max_error() const {
   const double factor = scene_->displacement_factor(t_);
   return ((P_.x - P_.X) - u_profile_ * factor).abs().maxCoeff();

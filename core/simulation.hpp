@@ -5,6 +5,7 @@
 #include <memory>
 #include <variant>
 
+#include "failure.hpp"
 #include "grid.hpp"
 #include "params.hpp"
 #include "particles.hpp"
@@ -34,6 +35,8 @@ class Simulation {
 
   // max_p |u_p - u(X_p, t)| at the current time, u_p = x_p - X_p, u the scene's exact solution.
   double max_error() const;
+  // What max_error reads, for the fused pass of state_extremes (the same value).
+  ErrorTerms error_terms() const;
 
   double time() const { return t_; }
   std::int64_t steps() const { return n_; }

@@ -245,7 +245,8 @@ int cmd_reproduce(const std::vector<std::string_view>& argv) {
   std::map<std::size_t, SweepOutcome> waiting;  // complete, not yet published
   std::set<std::string> written;
   int computed = 0, cases = 0;
-  double particle_steps = 0;
+  double particle_steps = 0, compute_seconds = 0;
+  std::set<std::string> counted;  // a record shared by several cases or experiments counts once
   const auto start = std::chrono::steady_clock::now();
   auto publish_ready = [&] {
     for (bool again = true; again;) {
@@ -268,8 +269,12 @@ int cmd_reproduce(const std::vector<std::string_view>& argv) {
           const double wall = outcome.wall_seconds;
           computed += outcome.computed;
           cases += int(spec.cases.size());
-          for (const auto& record : outcome.records)
+          for (const auto& record : outcome.records) {
+            const std::string key = record.value("key", std::string());
+            if (!key.empty() && !counted.insert(key).second) continue;
             particle_steps += record_particle_steps(record);
+            compute_seconds += record["timing"]["wall_seconds"].get<double>();
+          }
           if (omit) omit_machine_measurements(outcome);
           write_reports(spec, outcome, out);
           line = summary_line(spec, outcome, wall, out);
@@ -301,6 +306,7 @@ int cmd_reproduce(const std::vector<std::string_view>& argv) {
                           {"cases", cases},
                           {"computed", computed},
                           {"particle_steps", particle_steps},
+                          {"compute_seconds", omit ? 0.0 : compute_seconds},
                           {"commit", when.commit},
                           {"cpu", when.cpu},
                           {"threads", options.jobs},

@@ -269,20 +269,28 @@ void write_experiment_times(std::ostream& md, const std::vector<Spec>& specs, co
     const ojson& r = timings[kReproduceTiming];
     const double wall = r["wall_seconds"].get<double>();
     const int threads = r["threads"].get<int>();
+    // Each distinct case once (none in an entry written before it was recorded).
+    const double cpu = r.contains("compute_seconds") ? r["compute_seconds"].get<double>() : 0.0;
+    const double work = r["particle_steps"].get<double>();
     const double kernel = bench.median("BM_StepInstrumented", "gimp");
     md << "**The whole reproduction.** The last `make reproduce` that computed cases ran "
-       << r["cases"].dump() << " cases (" << r["computed"].dump() << " computed) of "
+       << r["cases"].dump() << " cases (" << r["computed"].dump() << " computed; "
+       << sci(work) << " particle-steps, each distinct case counted once) of "
        << r["experiments"].dump() << " experiments on " << threads << " threads in **"
-       << seconds(wall) << "** wall. At 100% of its " << threads
-       << " threads the CPU time above would take " << seconds(total_compute / threads)
-       << (wall > 0 ? " (" + fixed(100 * total_compute / threads / wall, 0) + "% of the wall)"
-                    : std::string(""));
+       << seconds(wall) << "** wall.";
+    if (cpu > 0) {
+      md << " Their CPU time, " << seconds(cpu) << ", at 100% of " << threads
+         << " threads would take " << seconds(cpu / threads)
+         << (wall > 0 ? " (" + fixed(100 * cpu / threads / wall, 0) + "% of the wall)"
+                      : std::string(""));
+    }
     if (kernel > 0) {
       md << "; at the step kernel's speed with every observer (BM_StepInstrumented, GIMP, "
-         << fixed(kernel, 2) << " ns per particle-step) its " << sci(total_work)
-         << " particle-steps would take " << seconds(total_work * kernel * 1e-9 / threads);
+         << fixed(kernel, 2) << " ns per particle-step) it would take "
+         << seconds(work * kernel * 1e-9 / threads);
     }
-    md << ".\n";
+    md << ". The table's CPU times and particle-steps count a case shared by two experiments "
+          "in each.\n";
   } else {
     md << "`make reproduce` prints its own wall time when it ends and records it in "
           "timings.json.\n";
