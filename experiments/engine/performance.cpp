@@ -119,9 +119,13 @@ void write_kernel_table(std::ostream& md, const BenchFigures& b, const ojson& ct
     if (base == "BM_StepScheme") continue;  // below
     for (const auto& [method, f] : b.fig.at(base)) {
       if (method == "gimp" || method == "mpm") continue;
+      // Target: within 1.6 times GIMP's step.
       others << "| " << method << " | " << base << " | " << fixed(f.median, 2) << " ("
              << fixed(100 * f.cv, 1) << "%) | "
-             << (gimp > 0 ? fixed(f.median / gimp, 2) + "x" : std::string("–")) << " |\n";
+             << (gimp > 0 ? fixed(f.median / gimp, 2) + "x (target 1.6x: " +
+                                (f.median <= 1.6 * gimp ? "met" : "**not met**") + ")"
+                          : std::string("–"))
+             << " |\n";
     }
   }
   if (!others.str().empty()) {
@@ -148,12 +152,19 @@ void write_kernel_summary(std::ostream& md, const BenchFigures& b) {
   md << "\n";
   for (const char* m : {"gimp", "mpm"}) {
     const double step = b.median("BM_Step", m), base = b.median("BM_StepBaseline", m);
-    const double target = std::string(m) == "gimp" ? 5.0 : 4.0;
-    md << "- " << m << ": " << fixed(step, 2) << " ns per particle-step, target " << target
-       << " ns: **" << (step > 0 && step <= target ? "met" : "not met") << "**";
-    if (base > 0) md << "; " << fixed(base / step, 1) << " times faster than the baseline";
     const double checked = b.median("BM_StepChecked", m);
     const double instrumented = b.median("BM_StepInstrumented", m);
+    // The targets: bare step and step with every observer (GIMP 2.5 / 3.0 ns, MPM 2.0 / 2.5).
+    const bool gimp = std::string(m) == "gimp";
+    const double bare_target = gimp ? 2.5 : 2.0, observed_target = gimp ? 3.0 : 2.5;
+    auto verdict = [](double v, double target) {
+      return std::string(v > 0 && v <= target ? "met" : "not met");
+    };
+    md << "- " << m << ": " << fixed(step, 2) << " ns per particle-step bare (target "
+       << fixed(bare_target, 1) << " ns: **" << verdict(step, bare_target) << "**), "
+       << fixed(instrumented, 2) << " ns with every observer (target " << fixed(observed_target, 1)
+       << " ns: **" << verdict(instrumented, observed_target) << "**)";
+    if (base > 0) md << "; " << fixed(base / step, 1) << " times faster than the baseline";
     if (checked > 0 && instrumented > 0) {
       md << "; the failure check adds " << fixed(checked - step, 2) << " ns, the observers another "
          << fixed(instrumented - checked, 2) << " ns";
