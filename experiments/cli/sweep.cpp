@@ -14,6 +14,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "cache.hpp"
 #include "commands.hpp"
 #include "csv.hpp"
 #include "files.hpp"
@@ -269,11 +270,11 @@ int cmd_reproduce(const std::vector<std::string_view>& argv) {
           const double wall = outcome.wall_seconds;
           computed += outcome.computed;
           cases += int(spec.cases.size());
-          for (const auto& record : outcome.records) {
-            const std::string key = record.value("key", std::string());
-            if (!key.empty() && !counted.insert(key).second) continue;
-            particle_steps += record_particle_steps(record);
-            compute_seconds += record["timing"]["wall_seconds"].get<double>();
+          const std::string search = case_search(spec);
+          for (std::size_t i = 0; i < spec.cases.size(); ++i) {
+            if (!counted.insert(case_key(spec.cases[i].params, search)).second) continue;
+            particle_steps += record_particle_steps(outcome.records[i]);
+            compute_seconds += outcome.records[i]["timing"]["wall_seconds"].get<double>();
           }
           if (omit) omit_machine_measurements(outcome);
           write_reports(spec, outcome, out);
