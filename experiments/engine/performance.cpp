@@ -285,10 +285,9 @@ void write_experiment_times(std::ostream& md, const std::vector<Spec>& specs, co
     const double work = r["particle_steps"].get<double>();
     const double kernel = bench.median("BM_StepInstrumented", "gimp");
     md << "**The whole reproduction.** The last `make reproduce` that computed cases ran "
-       << r["cases"].dump() << " cases (" << r["computed"].dump() << " computed; "
-       << sci(work) << " particle-steps, each distinct case counted once) of "
-       << r["experiments"].dump() << " experiments on " << threads << " threads in **"
-       << seconds(wall) << "** wall.";
+       << r["cases"].dump() << " cases (" << r["computed"].dump() << " computed; " << sci(work)
+       << " particle-steps, each distinct case counted once) of " << r["experiments"].dump()
+       << " experiments on " << threads << " threads in **" << seconds(wall) << "** wall.";
     if (cpu > 0) {
       md << " Their CPU time, " << seconds(cpu) << ", at 100% of " << threads
          << " threads would take " << seconds(cpu / threads)
