@@ -348,18 +348,7 @@ int cmd_sweep(const std::vector<std::string_view>& argv) {
   if (omit) omit_machine_measurements(outcome);
   // 3. The reports, published together.
   write_reports(spec, outcome, out);
-  std::cerr << "[" << spec.name << "] " << spec.cases.size() << " cases (" << outcome.computed
-            << " computed, " << outcome.cached << " from the cache, "
-            << (outcome.shared
-                    ? std::to_string(outcome.shared) + " sharing the run of an identical case, "
-                    : std::string())
-            << outcome.unstable << " unstable"
-            << (outcome.rejected ? "; " + std::to_string(outcome.rejected) +
-                                       " cache records failed their checksum or shape and were "
-                                       "computed again"
-                                 : std::string())
-            << ") in " << shortest(std::round(wall_seconds * 100) / 100) << " s -> "
-            << (out / (spec.name + ".md")).string() << "\n";
+  std::cerr << summary_line(spec, outcome, wall_seconds, out);
   return 0;
 }
 
