@@ -149,10 +149,7 @@ SpectralLimit bloch_limit(const RunParams& p) {
   Eigen::ComplexEigenSolver<Eigen::MatrixXcd> es(symbol(R, pr, peak.theta), true);
   Eigen::Index top = 0;
   es.eigenvalues().cwiseAbs().maxCoeff(&top);
-  Eigen::ArrayXd mode = es.eigenvectors().col(top).cwiseAbs().array();
-  if (mode.maxCoeff() > 0) mode /= mode.maxCoeff();
-  out.mode_v = mode.segment(0, p.ppc);
-  out.mode_strain = mode.segment(p.ppc, p.ppc);
+  set_limiting_mode(out, es.eigenvectors().col(top).cwiseAbs().array(), p.ppc);
   return out;
 }
 

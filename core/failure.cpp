@@ -35,10 +35,7 @@ namespace {
 // One pass with Eigen's vectorized reductions per quantity: the portable version.
 StateExtremes extremes_by_array(const Particles& P, const ErrorTerms* error) {
   StateExtremes e;
-  if (error) {
-    const Eigen::Map<const Eigen::ArrayXd> X(error->X, P.size()), u(error->u, P.size());
-    e.error_max = ((P.x - X) - u * error->factor).abs().maxCoeff();
-  }
+  if (error) e.error_max = max_error(P, *error);
   // v * 0 is NaN exactly when v is NaN or infinite: the sum is zero for a finite state.
   e.finite = (P.x * 0.0 + P.v * 0.0 + P.F * 0.0 + P.sigma * 0.0).sum() == 0.0;
   e.F_min = P.F.minCoeff();
@@ -140,6 +137,11 @@ MPMSTAB_AVX512_TARGET StateExtremes extremes_avx512(const Particles& P, const Er
 #endif
 
 }  // namespace
+
+double max_error(const Particles& P, const ErrorTerms& error) {
+  const Eigen::Map<const Eigen::ArrayXd> X(error.X, P.size()), u(error.u, P.size());
+  return ((P.x - X) - u * error.factor).abs().maxCoeff();
+}
 
 StateExtremes state_extremes(const Particles& P, const ErrorTerms* error) {
 #if MPMSTAB_AVX512

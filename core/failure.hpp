@@ -56,6 +56,8 @@ struct ErrorTerms {
   double factor = 0;          // f(t)
 };
 StateExtremes state_extremes(const Particles& P, const ErrorTerms* error = nullptr);
+// max_p |(x_p - X_p) - u_p f| alone (the portable form of the fused pass's error).
+double max_error(const Particles& P, const ErrorTerms& error);
 
 // Checks every particle; nullopt if the state is admissible. When several particles fail, the
 // reason reported is the first in the order non_finite, nonpositive_F, support_too_wide (some

@@ -190,8 +190,12 @@ void Driver::advance(const NextStep& next) {
 bool Driver::fails_after_step() {
   // Read again by eq. (108) and the error-over-time observer in observe_step (the error is
   // taken in the same pass).
-  const ErrorTerms terms = sim_.error_terms();
-  extremes_ = state_extremes(sim_.particles(), obs_.error_over_time ? &terms : nullptr);
+  if (obs_.error_over_time) {
+    const ErrorTerms terms = sim_.error_terms();
+    extremes_ = state_extremes(sim_.particles(), &terms);
+  } else {
+    extremes_ = state_extremes(sim_.particles());
+  }
   auto failure = detect_failure(sim_.particles(), extremes_, p_.bc, max_F_);
   if (!failure) return false;
   failure->step = sim_.steps();

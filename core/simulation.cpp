@@ -150,8 +150,7 @@ ErrorTerms Simulation::error_terms() const {
 }
 
 double Simulation::max_error() const {
-  const double factor = scene_->displacement_factor(t_);
-  return ((P_.x - P_.X) - u_profile_ * factor).abs().maxCoeff();
+  return mpmstab::max_error(P_, error_terms());
 }
 
 }  // namespace mpmstab

@@ -71,6 +71,13 @@ double radius_and_mode(const Eigen::MatrixXd& M, Eigen::ArrayXd* mode) {
 
 }  // namespace
 
+void set_limiting_mode(SpectralLimit& out, Eigen::ArrayXd moduli, Eigen::Index particles) {
+  const double top = moduli.maxCoeff();
+  if (top > 0) moduli /= top;
+  out.mode_v = moduli.segment(0, particles);
+  out.mode_strain = moduli.segment(particles, particles);
+}
+
 Eigen::Index spectral_state_size(const RunParams& p) {
   const Eigen::Index n = static_cast<Eigen::Index>(p.cells) * p.ppc;
   return (p.transfer == Transfer::apic ? 3 : 2) * n;
@@ -167,11 +174,7 @@ SpectralLimit spectral_limit(const RunParams& p, const Eigen::ArrayXd& x,
   Eigen::ArrayXd mode;
   out.radius_above = radius_and_mode(map_at(bracket->second), &mode);
   ++out.solves;
-  const Eigen::Index n = x.size();
-  const double top = mode.maxCoeff();
-  if (top > 0) mode /= top;
-  out.mode_v = mode.segment(0, n);
-  out.mode_strain = mode.segment(n, n);
+  set_limiting_mode(out, std::move(mode), x.size());
   return out;
 }
 

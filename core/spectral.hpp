@@ -44,6 +44,11 @@ struct SpectralLimit {
   int solves = 0;       // eigenvalue problems solved
 };
 
+// Sets out's limiting mode from the moduli of an eigenvector ordered as the state (velocities
+// of `particles` particles, then their strains, then any APIC terms), normalised to a largest
+// component of 1.
+void set_limiting_mode(SpectralLimit& out, Eigen::ArrayXd moduli, Eigen::Index particles);
+
 // The state size of p's map: 2 per particle, 3 with APIC.
 Eigen::Index spectral_state_size(const RunParams& p);
 

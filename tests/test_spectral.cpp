@@ -19,19 +19,29 @@
 namespace mpmstab {
 namespace {
 
+// The bar at a tiny amplitude, where the linearised map governs: E = 1 (c = 1), A = 1e-6, its
+// error over time observed.
+RunParams tiny_bar(Method m, int cells, double T) {
+  RunParams p;
+  p.method = m;
+  p.cells = cells;
+  p.E = 1;
+  p.A = 1e-6;
+  p.T = T;
+  p.observe.error_over_time = true;
+  return p;
+}
+
 // MPM and GIMP with USL and USF, FLIP and PIC: the schemes whose limits the tests check against
-// measured edges and the dense map, each with `cells` cells at E = 1 (c = 1).
-std::vector<RunParams> linear_schemes(int cells) {
+// measured edges and the dense map, each a tiny_bar of `cells` cells to T.
+std::vector<RunParams> linear_schemes(int cells, double T) {
   std::vector<RunParams> out;
   for (const Method m : {Method::mpm, Method::gimp}) {
     for (const UpdateOrder u : {UpdateOrder::usl, UpdateOrder::usf}) {
       for (const Transfer t : {Transfer::flip, Transfer::pic}) {
-        RunParams p;
-        p.method = m;
+        RunParams p = tiny_bar(m, cells, T);
         p.update = u;
         p.transfer = t;
-        p.cells = cells;
-        p.E = 1;
         out.push_back(p);
       }
     }
@@ -106,13 +116,7 @@ TEST(Spectral, LimitIsOneCourantNumberForEveryE) {
 // A run of the bar at A = 1e-6 for T = 20 stays bounded at 0.9 of the limit and grows at 1.1.
 TEST(Spectral, RunsBelowTheLimitStayBoundedAndAboveItGrow) {
   for (const Method m : {Method::mpm, Method::gimp}) {
-    RunParams p;
-    p.method = m;
-    p.cells = 10;
-    p.E = 1;
-    p.A = 1e-6;
-    p.T = 20;
-    p.observe.error_over_time = true;
+    RunParams p = tiny_bar(m, 10, 20);
     const SpectralLimit s = spectral_limit(p);
     ASSERT_TRUE(s.courant.has_value());
     const double h = 1.0 / p.cells;
@@ -135,10 +139,7 @@ TEST(Spectral, RunsBelowTheLimitStayBoundedAndAboveItGrow) {
 // limit.
 // It agrees with the spectral limit within 5% for MPM and GIMP, USL and USF, FLIP and PIC.
 TEST(Spectral, LimitAgreesWithTheMeasuredTinyAmplitudeEdgeWithinFivePercent) {
-  for (RunParams p : linear_schemes(10)) {
-    p.A = 1e-6;
-    p.T = 200;
-    p.observe.error_over_time = true;
+  for (RunParams p : linear_schemes(10, 200)) {
     const double h = 1.0 / p.cells;
     auto bounded = [&](double C) {
       p.dt = C * h;
@@ -162,15 +163,9 @@ TEST(Spectral, LimitAgreesWithTheMeasuredTinyAmplitudeEdgeWithinFivePercent) {
 // The spectral policy steps at s times the limit: at s = 0.5 the first step is half the limit and
 // the run stays bounded; at s = 1.2 a run at A = 1e-6 grows.
 TEST(Spectral, PolicyStepsAtAFractionOfTheLimit) {
-  RunParams p;
-  p.method = Method::gimp;
-  p.cells = 10;
-  p.E = 1;
-  p.A = 1e-6;
-  p.T = 50;
+  RunParams p = tiny_bar(Method::gimp, 10, 50);
   p.stepping.policy = TimeStepPolicy::spectral;
   p.stepping.safety = 0.5;
-  p.observe.error_over_time = true;
   const auto limit = bloch_limit(p).courant;  // what the record carries, a uniform layout
   ASSERT_TRUE(limit.has_value());
   const RunResult half = run(p);
@@ -217,7 +212,7 @@ TEST(Bloch, SymbolOfOneParticlePerCellIsTheHandDerivedMatrix) {
 // GIMP with USL and USF, FLIP and PIC (the walls' own modes do not limit these schemes; on 50
 // cells the two agree within 0.11%), and the same for every number of cells.
 TEST(Bloch, AgreesWithTheDenseLimitOfABar) {
-  for (RunParams p : linear_schemes(30)) {
+  for (RunParams p : linear_schemes(30, 1)) {
     const auto bloch = bloch_limit(p).courant;
     const auto dense = spectral_limit(p).courant;
     ASSERT_TRUE(bloch && dense);
@@ -254,12 +249,7 @@ TEST(Bloch, EveryRunRecordsTheLimitOfItsInitialLayout) {
 // 3 A to T = 200 (2600 steps), within 2% of the spectral limit for MPM (USL, FLIP), where
 // survival alone does not see the growth before T.
 TEST(Bloch, TheBoundedEdgeSearchFindsTheLimit) {
-  RunParams p;
-  p.method = Method::mpm;
-  p.cells = 10;
-  p.E = 1;
-  p.A = 1e-6;
-  p.T = 200;
+  RunParams p = tiny_bar(Method::mpm, 10, 200);
   EdgeOptions o;
   o.tolerance = 0.005;
   o.bound = 3;

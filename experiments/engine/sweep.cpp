@@ -125,15 +125,6 @@ class Progress {
     std::fflush(stderr);
   }
 
-  // A message on its own line, the progress line redrawn after it on a terminal.
-  void say(const std::string& text) {
-    std::lock_guard lock(mutex_);
-    if (line_) std::fputs("\r\033[K", stderr);
-    std::fputs(text.c_str(), stderr);
-    if (line_ && done_ < total_) draw('\r');
-    std::fflush(stderr);
-  }
-
   void finish() {
     std::lock_guard lock(mutex_);
     if (line_ || !per_case_) draw('\n');

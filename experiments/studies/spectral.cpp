@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
 #include <map>
 #include <optional>
@@ -14,6 +13,7 @@
 #include <vector>
 
 #include "csv.hpp"
+#include "paper_table1.hpp"
 #include "report_util.hpp"
 #include "study.hpp"
 
@@ -187,11 +187,10 @@ std::string paper_table(const std::filesystem::path& reference,
                    [](unsigned char ch) { return char(std::tolower(ch)); });
     if (std::find(keys.begin(), keys.end(), std::pair{method, A}) == keys.end())
       keys.emplace_back(method, A);
-    char* end = nullptr;
-    const std::string& text = r.at("dt_stable");
-    const double v = std::strtod(text.c_str(), &end);
-    if (end == text.c_str() || *end != '\0' || !(v > 0)) continue;  // '*', '4.?e-6'
-    values[{method, A, E}].push_back(v * std::sqrt(E) * kPaperCells);
+    // Table 1's own reading of a cell: '*' and unreadable text ('4.?e-6') are no number.
+    const PaperValue dt_stable = paper_value(r.at("dt_stable"));
+    if (dt_stable.kind != PaperValue::number || !(dt_stable.value > 0)) continue;
+    values[{method, A, E}].push_back(dt_stable.value * std::sqrt(E) * kPaperCells);
   }
   std::sort(Es.begin(), Es.end());
   auto limit_of = [&](const std::string& method) -> std::string {
