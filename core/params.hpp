@@ -117,6 +117,11 @@ struct StableDtOptions {
   StressScaling sigma = StressScaling::scaled;
   VelocityNorm vnorm = VelocityNorm::l2;
 };
+// The four choices of StableDtOptions, numbered 0..3 (RunResult::dt_stable_min_of_option).
+inline constexpr int kStableDtOptionCount = 4;
+inline int option_index(const StableDtOptions& o) {
+  return 2 * static_cast<int>(o.sigma) + static_cast<int>(o.vnorm);
+}
 
 // What a run measures beyond its verdict and final error. A run computes only what is asked:
 // each flag switches a per-step observer on; all are cheap, histories are off by default.
@@ -129,6 +134,10 @@ struct Observe {
   // The dense spectral limit of an initial layout that is not uniform (spectral.hpp; a uniform
   // layout's Bloch limit is on every record).
   bool spectral = false;
+  // eq. (108) under every StableDtOptions, not only the run's own (RunResult::
+  // dt_stable_min_of_option). Where the policy does not read eq. (108), the options change only
+  // what is observed: one run then gives the records of cases that differ only in them.
+  bool dt_stable_every_option = false;
   std::int64_t history_stride = 1;  // keep every k-th step in the history (and the last one)
 };
 

@@ -1,6 +1,7 @@
 // Everything one run measures (docs/design.md, "Measured quantities").
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string_view>
@@ -71,6 +72,8 @@ struct RunResult {
   std::optional<Outcome> outcome;
   std::optional<std::int64_t> crossings;
   std::optional<double> dt_stable_min;  // min of eq. (108) over the steps (observer dt_stable)
+  // The same under each StableDtOptions, by option_index (observe.dt_stable_every_option).
+  std::array<std::optional<double>, kStableDtOptionCount> dt_stable_min_of_option;
   // The spectral limit of the scheme at the initial layout (observe.spectral; none when the
   // state is too large for the dense solver or nothing amplifies up to kMaxSpectralCourant):
   // c dt / h, and dt for this E.

@@ -1,6 +1,7 @@
 #include "run.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -49,6 +50,7 @@ class Driver {
 
  private:
   double bound_now() const;
+  void observe_every_option();
   FinalState final_state() const;
   void keep(const HistoryRow& row);
 
@@ -71,6 +73,8 @@ class Driver {
   const double max_F_;
   double max_error_over_time_ = 0;
   double dt_stable_min_ = std::numeric_limits<double>::infinity();
+  std::array<double, kStableDtOptionCount> dt_stable_min_of_option_;  // every_option_ only
+  const bool every_option_;  // eq. (108) under every StableDtOptions
   std::int64_t crossings_ = 0;
   std::optional<HistoryRow> pending_row_;  // last row not kept by the stride
   double bound_ = 0;                       // eq. (108) of the current state, when read
@@ -95,7 +99,9 @@ Driver::Driver(const RunParams& p, const HistorySink& sink)
       sim_(p),
       fixed_dt_(fixed_step(p)),
       geometry_{p.method, p.E, h_, p.ppc, h_ / p.ppc},
-      max_F_(max_admissible_F(p.method, p.ppc)) {
+      max_F_(max_admissible_F(p.method, p.ppc)),
+      every_option_(dt_stable_ && p.observe.dt_stable_every_option) {
+  dt_stable_min_of_option_.fill(std::numeric_limits<double>::infinity());
   r_.params = p;
   r_.particles = sim_.particles().size();
   r_.c = sim_.scene().c;
@@ -136,6 +142,22 @@ double Driver::bound_now() const {
   return stable_dt(
       stable_dt_inputs(sim_.particles(), extremes_, sim_.grid(), p_.stable.vnorm, p_.method),
       geometry_, p_.stable.sigma);
+}
+
+// eq. (108) of the state after the last step under each StableDtOptions, into their minima;
+// bound_ is the run's own option's, computed as bound_now() computes it.
+void Driver::observe_every_option() {
+  for (const VelocityNorm vnorm : {VelocityNorm::l2, VelocityNorm::max}) {
+    const StableDtInputs in =
+        stable_dt_inputs(sim_.particles(), extremes_, sim_.grid(), vnorm, p_.method);
+    for (const StressScaling sigma : {StressScaling::scaled, StressScaling::raw}) {
+      const StableDtOptions option{sigma, vnorm};
+      const double dt = stable_dt(in, geometry_, sigma);
+      double& low = dt_stable_min_of_option_[option_index(option)];
+      low = std::min(low, dt);
+      if (option_index(option) == option_index(p_.stable)) bound_ = dt;
+    }
+  }
 }
 
 void Driver::check_initial_state() {
@@ -219,7 +241,11 @@ void Driver::observe_step(bool last) {
     row.crossings = crossings_;
   }
   if (dt_stable_ || uses_bound_) {
-    bound_ = bound_now();
+    if (every_option_) {
+      observe_every_option();
+    } else {
+      bound_ = bound_now();
+    }
     if (dt_stable_) {
       dt_stable_min_ = std::min(dt_stable_min_, bound_);
       row.dt_stable = bound_;
@@ -289,7 +315,13 @@ RunResult Driver::result(std::chrono::steady_clock::duration wall) {
   // step_limit and dt_collapse stop before a step; the other failures are found after one.
   const bool failed_in_a_step = r_.failure && r_.failure->reason != FailureReason::step_limit &&
                                 r_.failure->reason != FailureReason::dt_collapse;
-  if (dt_stable_ && r_.steps > (failed_in_a_step ? 1 : 0)) r_.dt_stable_min = dt_stable_min_;
+  if (dt_stable_ && r_.steps > (failed_in_a_step ? 1 : 0)) {
+    r_.dt_stable_min = dt_stable_min_;
+    if (every_option_) {
+      for (int k = 0; k < kStableDtOptionCount; ++k)
+        r_.dt_stable_min_of_option[k] = dt_stable_min_of_option_[k];
+    }
+  }
   if (obs_.final_state) r_.final_state = final_state();
   r_.wall_seconds = std::chrono::duration<double>(wall).count();
   if (r_.steps > 0) {

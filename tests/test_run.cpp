@@ -1,6 +1,8 @@
 // The run driver: observers compute only what is asked, verdicts, determinism, landing on T.
 #include <gtest/gtest.h>
 
+#include <set>
+
 #include "run.hpp"
 #include "support.hpp"
 
@@ -41,6 +43,35 @@ TEST(Run, ObserversThatAreOffComputeNothingAndChangeNothing) {
   EXPECT_FALSE(a.meaningless);
   ASSERT_TRUE(a.max_error && b.max_error);
   EXPECT_EQ(*a.max_error, *b.max_error);  // bit for bit: observers only read the state
+}
+
+// One run observing eq. (108) under every option gives, for each, the minimum a run with that
+// option gives, bit for bit, and the same trajectory; the options' minima differ.
+TEST(Run, EveryOptionOfEq108IsWhatARunWithThatOptionMeasures) {
+  RunParams shared = quick_case();
+  shared.A = 0.05;  // a stress and a velocity large enough to tell the options apart
+  shared.observe.dt_stable_every_option = true;
+  const RunResult all = run(shared);
+  ASSERT_TRUE(all.dt_stable_min && all.max_error);
+  std::set<double> minima;
+  for (const StressScaling sigma : {StressScaling::scaled, StressScaling::raw}) {
+    for (const VelocityNorm vnorm : {VelocityNorm::l2, VelocityNorm::max}) {
+      RunParams own = shared;
+      own.observe.dt_stable_every_option = false;
+      own.stable = {sigma, vnorm};
+      const RunResult r = run(own);
+      const auto& of_option = all.dt_stable_min_of_option[option_index(own.stable)];
+      ASSERT_TRUE(r.dt_stable_min && of_option);
+      EXPECT_EQ(*of_option, *r.dt_stable_min);
+      EXPECT_EQ(*r.max_error, *all.max_error);
+      EXPECT_EQ(*r.crossings, *all.crossings);
+      minima.insert(*r.dt_stable_min);
+    }
+  }
+  EXPECT_EQ(minima.size(), 4u);
+  EXPECT_EQ(*all.dt_stable_min, *all.dt_stable_min_of_option[option_index(shared.stable)]);
+  // Not asked: none kept.
+  EXPECT_FALSE(run(quick_case()).dt_stable_min_of_option[0]);
 }
 
 TEST(Run, HistoryHasOneRowPerKeptStepWithOnlyTheObservedFields) {

@@ -192,6 +192,62 @@ TEST_F(Sweeps, ARepeatedRunIsComputedOnce) {
   EXPECT_EQ(run_sweep(twice, no_cache).computed, 5);
 }
 
+// Cases that differ only in eq. (108)'s options share one run; each record is the one its own
+// run gives (timing aside), whatever the job count, with or without a cache. Under the adaptive
+// policy, which steps by eq. (108), the options change the trajectory and each case runs alone.
+TEST_F(Sweeps, CasesDifferingOnlyInEq108OptionsShareOneRun) {
+  std::ofstream(dir / "eq.json") << R"({"name": "eq", "report": "cases",
+      "record": ["error_over_time", "dt_stable"],
+      "defaults": {"T": 0.05, "cells": 20, "method": "gimp", "A": 0.05},
+      "cases": [
+        {"E": 64, "dt": 1e-4}, {"E": 64, "dt": 1e-4, "dt_stable_sigma": "raw"},
+        {"E": 64, "dt": 1e-4, "dt_stable_vnorm": "max"},
+        {"E": 64, "dt": 1e-4, "dt_stable_sigma": "raw", "dt_stable_vnorm": "max"},
+        {"E": 100, "dt": 1e-4, "dt_stable_sigma": "raw"},
+        {"E": 64, "policy": "adaptive", "safety": 0.5},
+        {"E": 64, "policy": "adaptive", "safety": 0.5, "dt_stable_sigma": "raw"}]})";
+  const Spec spec = load_spec(dir / "eq.json");
+  SweepOptions o;
+  o.jobs = 2;
+  o.cache = dir / "out/cache";
+  const SweepOutcome shared = run_sweep(spec, o);
+  ASSERT_EQ(shared.computed, 7);
+  std::map<int, int> runs_giving;  // records_of_run -> records
+  for (const auto& rec : shared.records) {
+    const auto& t = rec["timing"];
+    ++runs_giving[t.contains("records_of_run") ? t["records_of_run"].get<int>() : 1];
+  }
+  EXPECT_EQ(runs_giving[4], 4);  // the four options of E = 64 at a fixed dt
+  EXPECT_EQ(runs_giving[1], 3);  // E = 100 alone, and the adaptive cases
+  for (std::size_t i = 0; i < spec.cases.size(); ++i) {
+    SCOPED_TRACE(i);
+    Spec one = spec;
+    one.cases = {spec.cases[i]};
+    const SweepOutcome alone = run_sweep(one, SweepOptions{});
+    EXPECT_EQ(deterministic_part(alone.records[0]), deterministic_part(shared.records[i]));
+  }
+  EXPECT_NE(shared.records[0]["result"]["dt_stable_min"],
+            shared.records[1]["result"]["dt_stable_min"]);
+  EXPECT_NE(shared.records[5]["result"]["steps"], shared.records[6]["result"]["steps"]);
+  // The shared run's work counts once: each of its four records carries a quarter.
+  const auto& r0 = shared.records[0]["result"];
+  EXPECT_DOUBLE_EQ(record_particle_steps(shared.records[0]),
+                   r0["steps"].get<double>() * r0["particles"].get<double>() / 4);
+  // From the cache, a case whose partners are cached is not computed again; without a cache
+  // (make check) the run is shared too.
+  std::size_t file = 0;
+  for (const auto& f : fs::directory_iterator(dir / "out/cache"))
+    if (++file == 2) fs::remove(f.path());
+  const SweepOutcome again = run_sweep(spec, o);
+  EXPECT_EQ(again.computed, 1);
+  EXPECT_EQ(again.cached, 6);
+  SweepOptions no_cache;
+  no_cache.jobs = 1;
+  const SweepOutcome check = run_sweep(spec, no_cache);
+  for (std::size_t i = 0; i < spec.cases.size(); ++i)
+    EXPECT_EQ(deterministic_part(check.records[i]), deterministic_part(shared.records[i]));
+}
+
 TEST_F(Sweeps, UnstableCasesAreReportedNotFatal) {
   const Spec spec = load_spec(dir / "small.json");
   const SweepOutcome r = sweep(spec, 2, dir / "out");

@@ -238,7 +238,10 @@ void write_experiment_times(std::ostream& md, const std::vector<Spec>& specs, co
   md << "## The cost of every experiment\n\nFrom [timings.json](timings.json), the one file "
         "of the machine's measurements (every other result file is the same on any machine). "
         "Particle-steps (particles x steps, of every run of an edge search) are the "
-        "deterministic work; CPU time is the sum of the cases' own run times; wall time is the "
+        "deterministic work; CPU time is the sum of the cases' own run times. Cases that differ "
+        "only in eq. (108)'s options, at a policy that does not step by eq. (108), share one run "
+        "(its trajectory is theirs): each counts its share of that run's particle-steps and "
+        "time. Wall time is the "
         "span from the experiment's first case's start to its last case's end in the run that "
         "computed them (`make reproduce` runs every experiment's cases in one queue, so the "
         "spans overlap).\n\n"
@@ -286,7 +289,7 @@ void write_experiment_times(std::ostream& md, const std::vector<Spec>& specs, co
     const double kernel = bench.median("BM_StepInstrumented", "gimp");
     md << "**The whole reproduction.** The last `make reproduce` that computed cases ran "
        << r["cases"].dump() << " cases (" << r["computed"].dump() << " computed; " << sci(work)
-       << " particle-steps, each distinct case counted once) of " << r["experiments"].dump()
+       << " particle-steps, each run counted once) of " << r["experiments"].dump()
        << " experiments on " << threads << " threads in **" << seconds(wall) << "** wall.";
     if (cpu > 0) {
       md << " Their CPU time, " << seconds(cpu) << ", at 100% of " << threads

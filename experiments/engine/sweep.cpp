@@ -11,6 +11,7 @@
 #include <map>
 #include <mutex>
 #include <numeric>
+#include <optional>
 #include <stop_token>
 #include <thread>
 
@@ -184,7 +185,9 @@ std::string describe_case(const RunParams& p, const std::string& search) {
 double record_particle_steps(const nlohmann::ordered_json& rec) {
   if (rec.contains("edge")) return rec["edge"]["search_particle_steps"].get<double>();
   const auto& r = rec["result"];
-  return r["steps"].get<double>() * r["particles"].get<double>();
+  const double run = r["steps"].get<double>() * r["particles"].get<double>();
+  const auto& t = rec["timing"];
+  return t.contains("records_of_run") ? run / t["records_of_run"].get<double>() : run;
 }
 
 int shard_of(const std::string& case_key, int count) {
@@ -270,11 +273,21 @@ SweepPlan plan_sweep(const Spec& spec, const SweepOptions& options) {
   return plan;
 }
 
+// The record of a run's result.
+nlohmann::ordered_json run_record(const RunResult& r) {
+  nlohmann::ordered_json rec;
+  rec["result"] = to_json(r);
+  rec["timing"] = timing_json(r);
+  if (r.params.observe.history) rec["history"] = history_to_json(r);
+  if (r.final_state) rec["final_state"] = final_state_json(*r.final_state);
+  return rec;
+}
+
 // Computes one case: its record, or null when it was interrupted (neither cached nor reported).
 nlohmann::ordered_json compute_case(const RunParams& p, const Study& study,
                                     const std::atomic<bool>* cancel) {
-  nlohmann::ordered_json rec;
   if (study.work == CaseWork::edge_search) {
+    nlohmann::ordered_json rec;
     const EdgeResult e = find_edge(p, study.edge, cancel);
     if (e.interrupted) return nullptr;
     const RunResult at = e.at_edge ? *e.at_edge : run_at_smallest_probe(p, e);
@@ -283,15 +296,50 @@ nlohmann::ordered_json compute_case(const RunParams& p, const Study& study,
     // The cost of an edge case is its whole search.
     rec["timing"] = timing_json(at);
     rec["timing"]["wall_seconds"] = e.wall_seconds;
-  } else {
-    const RunResult r = run(p, cancel);
-    if (r.interrupted) return nullptr;
-    rec["result"] = to_json(r);
-    rec["timing"] = timing_json(r);
-    if (p.observe.history) rec["history"] = history_to_json(r);
-    if (r.final_state) rec["final_state"] = final_state_json(*r.final_state);
+    return rec;
   }
-  return rec;
+  const RunResult r = run(p, cancel);
+  if (r.interrupted) return nullptr;
+  return run_record(r);
+}
+
+// Cases that differ only in eq. (108)'s options share their trajectory when the policy does not
+// read eq. (108): one run observes the bound under every option and gives each case its record,
+// the same as its own run would (the same state, the same functions; only the timing differs).
+// Edge searches and histories (whose rows carry the bound of one option) run alone.
+bool shares_trajectory(const RunParams& p, const std::string& search) {
+  const TimeStepPolicy policy = p.stepping.policy;
+  return search.empty() && !p.observe.history && policy != TimeStepPolicy::adaptive &&
+         policy != TimeStepPolicy::min;
+}
+
+std::string trajectory_key(const RunParams& p) {
+  RunParams q = p;
+  q.stable = StableDtOptions{};
+  return case_key(q, "trajectory");
+}
+
+// The records of cases that share one trajectory (shares_trajectory, the same trajectory_key),
+// from one run; nulls when it was interrupted. Each record's timing has its share of the run's
+// wall time and the number of records the run gave (records_of_run).
+std::vector<nlohmann::ordered_json> compute_shared(const std::vector<const RunParams*>& cases,
+                                                   const std::atomic<bool>* cancel) {
+  RunParams q = *cases.front();
+  q.observe.dt_stable_every_option = true;
+  const RunResult r = run(q, cancel);
+  if (r.interrupted) return std::vector<nlohmann::ordered_json>(cases.size());
+  std::vector<nlohmann::ordered_json> records;
+  for (const RunParams* p : cases) {
+    RunResult own = r;
+    own.params = *p;
+    own.params.observe.dt_stable_every_option = false;
+    if (own.dt_stable_min) own.dt_stable_min = r.dt_stable_min_of_option[option_index(p->stable)];
+    nlohmann::ordered_json rec = run_record(own);
+    rec["timing"]["wall_seconds"] = r.wall_seconds / double(cases.size());
+    rec["timing"]["records_of_run"] = cases.size();
+    records.push_back(std::move(rec));
+  }
+  return records;
 }
 
 // Shares the records of repeated cases and counts what was computed, cached and unstable.
@@ -327,6 +375,9 @@ struct Task {
   std::string search;
   double cost = 0;
   std::vector<std::pair<std::size_t, std::size_t>> uses;  // (spec, case)
+  // Tasks whose trajectory is this one's (shares_trajectory): computed by the same run.
+  std::vector<std::size_t> partners;
+  bool partner = false;  // computed by another task's run
 };
 
 }  // namespace
@@ -360,7 +411,7 @@ std::vector<SweepOutcome> run_sweeps(
       const std::string key = case_key(spec.cases[i].params, search);
       const auto [it, fresh] = task_of.emplace(key, tasks.size());
       if (fresh) {
-        tasks.push_back({&spec, i, search, plans[s].cost[i], {}});
+        tasks.push_back({&spec, i, search, plans[s].cost[i], {}, {}, false});
         total_cost += plans[s].cost[i];
       }
       tasks[it->second].uses.emplace_back(s, i);
@@ -368,6 +419,22 @@ std::vector<SweepOutcome> run_sweeps(
   }
   std::stable_sort(tasks.begin(), tasks.end(),
                    [](const Task& a, const Task& b) { return a.cost > b.cost; });
+  // Tasks that share a trajectory go with the first of them (and cost nothing more).
+  std::vector<std::size_t> queue;
+  std::map<std::string, std::size_t> lead_of;
+  for (std::size_t k = 0; k < tasks.size(); ++k) {
+    const RunParams& p = tasks[k].spec->cases[tasks[k].index].params;
+    if (shares_trajectory(p, tasks[k].search)) {
+      const auto [it, fresh] = lead_of.emplace(trajectory_key(p), k);
+      if (!fresh) {
+        tasks[it->second].partners.push_back(k);
+        tasks[k].partner = true;
+        total_cost -= tasks[k].cost;
+        continue;
+      }
+    }
+    queue.push_back(k);
+  }
 
   // 2. The workers take the tasks in that order; a spec whose last case finished is queued for
   // the caller.
@@ -384,42 +451,71 @@ std::vector<SweepOutcome> run_sweeps(
   std::size_t workers_running = 0;
   std::exception_ptr error;
   auto cancelled = [&] { return options.cancel && options.cancel->load(); };
+  // Hands a finished task's record to every case that uses it.
+  auto deliver = [&](const Task& task, const nlohmann::ordered_json& record, bool hit,
+                     double began) {
+    const RunParams& p = task.spec->cases[task.index].params;
+    if (!options.quiet) progress.done(*task.spec, p, record, hit, task.partner ? 0.0 : task.cost);
+    const double ended = since_start();
+    std::lock_guard lock(mutex);
+    for (const auto& [s, i] : task.uses) {
+      out[s].records[i] = record;
+      from_cache[s][i] = hit;
+      if (first_start[s] < 0 || began < first_start[s]) first_start[s] = began;
+      last_end[s] = std::max(last_end[s], ended);
+      if (--remaining[s] == 0) finished.push_back(s);
+    }
+    changed.notify_all();
+  };
+  const bool cached = !options.cache.empty();
   auto worker = [&] {
-    for (std::size_t k; !cancelled() && (k = next.fetch_add(1)) < tasks.size();) {
-      const Task& task = tasks[k];
-      const RunParams& p = task.spec->cases[task.index].params;
+    for (std::size_t q; !cancelled() && (q = next.fetch_add(1)) < queue.size();) {
+      const Task& lead = tasks[queue[q]];
       const double began = since_start();
       try {
-        std::optional<nlohmann::ordered_json> record;
-        const bool cached = !options.cache.empty();
-        if (cached && !options.force) {
-          CacheLookup found = cache.lookup(p, task.search);
-          if (found.rejected) ++rejected;
-          record = std::move(found.record);
+        // The lead and its partners: each from the cache if there, the rest computed by one run.
+        std::vector<const Task*> members{&lead};
+        for (std::size_t k : lead.partners)
+          members.push_back(&tasks[k]);
+        std::vector<std::optional<nlohmann::ordered_json>> records(members.size());
+        std::vector<std::size_t> missing;
+        for (std::size_t m = 0; m < members.size(); ++m) {
+          const Task& task = *members[m];
+          if (cached && !options.force) {
+            CacheLookup found = cache.lookup(task.spec->cases[task.index].params, task.search);
+            if (found.rejected) ++rejected;
+            records[m] = std::move(found.record);
+          }
+          if (!records[m]) missing.push_back(m);
         }
-        const bool hit = record.has_value();
-        if (!record) {
-          nlohmann::ordered_json rec = compute_case(p, *task.spec->study, options.cancel);
-          if (rec.is_null()) continue;
+        std::vector<nlohmann::ordered_json> computed;
+        if (missing.size() == 1) {
+          const Task& task = *members[missing.front()];
+          computed.push_back(
+              compute_case(task.spec->cases[task.index].params, *task.spec->study, options.cancel));
+        } else if (missing.size() > 1) {
+          std::vector<const RunParams*> params;
+          for (std::size_t m : missing)
+            params.push_back(&members[m]->spec->cases[members[m]->index].params);
+          computed = compute_shared(params, options.cancel);
+        }
+        for (std::size_t c = 0; c < missing.size(); ++c) {
+          nlohmann::ordered_json& rec = computed[c];
+          if (rec.is_null()) continue;  // interrupted
+          const Task& task = *members[missing[c]];
           rec["provenance"] = to_json(provenance);
-          if (cached) cache.store(p, rec, task.search);
-          record = std::move(rec);
+          if (cached) cache.store(task.spec->cases[task.index].params, rec, task.search);
+          records[missing[c]] = std::move(rec);
         }
-        if (!options.quiet) progress.done(*task.spec, p, *record, hit, task.cost);
-        const double ended = since_start();
-        std::lock_guard lock(mutex);
-        for (const auto& [s, i] : task.uses) {
-          out[s].records[i] = *record;
-          from_cache[s][i] = hit;
-          if (first_start[s] < 0 || began < first_start[s]) first_start[s] = began;
-          last_end[s] = std::max(last_end[s], ended);
-          if (--remaining[s] == 0) finished.push_back(s);
+        for (std::size_t m = 0; m < members.size(); ++m) {
+          if (!records[m]) continue;
+          const bool hit = std::find(missing.begin(), missing.end(), m) == missing.end();
+          deliver(*members[m], *records[m], hit, began);
         }
-        changed.notify_all();
       } catch (...) {
         std::lock_guard lock(mutex);
         if (!error) error = std::current_exception();
-        next = tasks.size();  // stop handing out cases
+        next = queue.size();  // stop handing out cases
         changed.notify_all();
       }
     }
@@ -427,9 +523,9 @@ std::vector<SweepOutcome> run_sweeps(
     --workers_running;
     changed.notify_all();
   };
-  const int jobs = std::max(1, std::min<int>(options.jobs, static_cast<int>(tasks.size())));
+  const int jobs = std::max(1, std::min<int>(options.jobs, static_cast<int>(queue.size())));
   std::vector<std::thread> threads;
-  workers_running = tasks.empty() ? 0 : std::size_t(jobs);
+  workers_running = queue.empty() ? 0 : std::size_t(jobs);
   for (std::size_t t = 0; t < workers_running; ++t)
     threads.emplace_back(worker);
 
@@ -462,7 +558,7 @@ std::vector<SweepOutcome> run_sweeps(
       if (complete) complete(s, out[s]);
     }
   } catch (...) {
-    next = tasks.size();
+    next = queue.size();
     join();
     throw;
   }
