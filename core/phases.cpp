@@ -2,6 +2,7 @@
 // operation for operation, so that the results are the same bits: vector lanes are independent
 // particles or nodes, and each grid node still sums its contributions in particle order.
 #include "phases.hpp"
+#include "extremes_kernel.hpp"
 #include "g2p_kernel.hpp"
 #include "grid_nodes.hpp"
 #include "p2g_kernel.hpp"
@@ -170,6 +171,65 @@ MPMSTAB_AVX512_TARGET void stress_avx512(std::size_t n, const int* __restrict ba
   for (; p0 < n; ++p0)
     stress_particle<W>(p0, base, g, v_i, F, sig, dt, E);
 }
+
+// USL with FLIP: g2p_avx512 and stress_avx512 in one pass, and with kCheck the extremes of what
+// they write (extremes_kernel.hpp).
+template <int W, bool kGridPosition, bool kCheck, bool kError>
+MPMSTAB_AVX512_TARGET void g2p_stress_avx512(std::size_t n, const int* __restrict base,
+                                             const Rows<W> w, const Rows<W> g,
+                                             const double* __restrict a_i,
+                                             const double* __restrict v_i, int slots, Particles& P,
+                                             double dt, double E, const StateCheck* check) {
+  double* __restrict x = P.x.data();
+  double* __restrict v = P.v.data();
+  double* __restrict F = P.F.data();
+  double* __restrict sig = P.sigma.data();
+  const __m512d dt8 = _mm512_set1_pd(dt), E8 = _mm512_set1_pd(E), one = _mm512_set1_pd(1.0);
+  Extremes8<kError> e(kError ? check->error : nullptr);
+  std::size_t p0 = 0;
+  for (; p0 + 8 <= n; p0 += 8) {
+    __m512i r;
+    if (!relative_bases<W>(base, p0, r)) {
+      for (std::size_t p = p0; p < p0 + 8; ++p) {
+        g2p_particle<W, kGridPosition>(p, base, w, a_i, v_i, x, v, dt);
+        stress_particle<W>(p, base, g, v_i, F, sig, dt, E);
+      }
+      if constexpr (kCheck) {
+        e.add(p0, _mm512_loadu_pd(x + p0), _mm512_loadu_pd(v + p0), _mm512_loadu_pd(F + p0),
+              _mm512_loadu_pd(sig + p0));
+      }
+      continue;
+    }
+    const int b0 = base[p0];
+    const Slots16 vel = load16(v_i, b0, slots);
+    // g2p (g2p_avx512).
+    const __m512d a = interpolate8<W>(w, p0, load16(a_i, b0, slots), r);
+    const __m512d vp = _mm512_add_pd(_mm512_loadu_pd(v + p0), _mm512_mul_pd(dt8, a));
+    _mm512_storeu_pd(v + p0, vp);
+    __m512d dx;
+    if constexpr (kGridPosition) {
+      dx = _mm512_mul_pd(dt8, interpolate8<W>(w, p0, vel, r));
+    } else {
+      dx = _mm512_mul_pd(dt8, vp);
+    }
+    const __m512d xp = _mm512_add_pd(_mm512_loadu_pd(x + p0), dx);
+    _mm512_storeu_pd(x + p0, xp);
+    // The stress update (stress_avx512).
+    const __m512d L = interpolate8<W>(g, p0, vel, r);
+    const __m512d Fp =
+        _mm512_mul_pd(_mm512_loadu_pd(F + p0), _mm512_add_pd(one, _mm512_mul_pd(dt8, L)));
+    _mm512_storeu_pd(F + p0, Fp);
+    const __m512d sp = _mm512_mul_pd(E8, _mm512_sub_pd(Fp, one));
+    _mm512_storeu_pd(sig + p0, sp);
+    if constexpr (kCheck) e.add(p0, xp, vp, Fp, sp);
+  }
+  for (; p0 < n; ++p0) {
+    g2p_particle<W, kGridPosition>(p0, base, w, a_i, v_i, x, v, dt);
+    stress_particle<W>(p0, base, g, v_i, F, sig, dt, E);
+    if constexpr (kCheck) e.add_one(p0, x[p0], v[p0], F[p0], sig[p0]);
+  }
+  if constexpr (kCheck) *check->extremes = e.result();
+}
 #endif
 
 template <int W, bool kGridPosition>
@@ -236,10 +296,47 @@ void stress_update(const Stencil<W>& S, const Grid& G, double dt, const Material
                  E);
 }
 
+template <int W>
+bool g2p_and_stress(const Stencil<W>& S, const Grid& G, double dt, const ParticleUpdate& rule,
+                    const MaterialLaw& law, Particles& P, const StateCheck* check) {
+#if MPMSTAB_AVX512
+  if (!use_avx512() || rule.transfer != Transfer::flip || law.kind != Material::linear) {
+    return false;
+  }
+  const auto n = static_cast<std::size_t>(P.size());
+  const int slots = static_cast<int>(G.velocity.size());
+  auto pass = [&]<bool kGridPosition, bool kCheck, bool kError>() {
+    g2p_stress_avx512<W, kGridPosition, kCheck, kError>(
+        n, S.base.data(), rows<W>(S.w), rows<W>(S.g), G.accel.data(), G.velocity.data(), slots, P,
+        dt, law.E, check);
+  };
+  auto with_check = [&]<bool kGridPosition>() {
+    if (!check) {
+      pass.template operator()<kGridPosition, false, false>();
+    } else if (check->error) {
+      pass.template operator()<kGridPosition, true, true>();
+    } else {
+      pass.template operator()<kGridPosition, true, false>();
+    }
+  };
+  if (rule.position == PositionUpdate::grid) {
+    with_check.template operator()<true>();
+  } else {
+    with_check.template operator()<false>();
+  }
+  return true;
+#else
+  (void)S, (void)G, (void)dt, (void)rule, (void)law, (void)P, (void)check;
+  return false;
+#endif
+}
+
 #define MPMSTAB_INSTANTIATE(W)                                                                  \
   template void g2p(const Stencil<W>&, const Grid&, double, const ParticleUpdate&, Particles&); \
   template void stress_update(const Stencil<W>&, const Grid&, double, const MaterialLaw&,       \
-                              Particles&);
+                              Particles&);                                                      \
+  template bool g2p_and_stress(const Stencil<W>&, const Grid&, double, const ParticleUpdate&,   \
+                               const MaterialLaw&, Particles&, const StateCheck*);
 MPMSTAB_INSTANTIATE(LinearBasis::width)
 MPMSTAB_INSTANTIATE(GimpBasis::width)
 MPMSTAB_INSTANTIATE(CpGimpBasis::width)

@@ -23,6 +23,7 @@
 // nodes. The neo-Hookean stress update is a plain loop.
 #pragma once
 
+#include "failure.hpp"
 #include "grid.hpp"
 #include "material.hpp"
 #include "params.hpp"
@@ -104,5 +105,20 @@ void p2g_affine(const Stencil<W>& S, const Particles& P, Grid& G);
 template <int W>
 void stress_update(const Stencil<W>& S, const Grid& G, double dt, const MaterialLaw& law,
                    Particles& P);
+
+// The state check after a step (failure.hpp): `extremes`, to be filled with state_extremes's
+// values for the state the step leaves, with the error over time when `error` is given.
+struct StateCheck {
+  const ErrorTerms* error = nullptr;
+  StateExtremes* extremes = nullptr;
+};
+
+// USL's g2p then stress update as one pass over the particles, where the step allows it (FLIP,
+// the linear law, a CPU with AVX-512): each particle's arithmetic is the two phases', and with a
+// `check` the extremes are taken from the values as they are written, instead of in a pass of
+// their own. Returns false, having done nothing, where it does not apply.
+template <int W>
+bool g2p_and_stress(const Stencil<W>& S, const Grid& G, double dt, const ParticleUpdate& rule,
+                    const MaterialLaw& law, Particles& P, const StateCheck* check);
 
 }  // namespace mpmstab

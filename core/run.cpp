@@ -205,19 +205,13 @@ void Driver::advance(const NextStep& next) {
     dt_min_ = std::min(dt_min_, dt);
     dt_max_ = std::max(dt_max_, dt);
   }
-  sim_.advance_to(next.t_next);
+  // The state's extremes come with the step, read by the check, eq. (108) and the error over
+  // time (taken in the same pass).
+  sim_.advance_to(next.t_next, &extremes_, obs_.error_over_time);
 }
 
 // The failure check after a step ("*" in Table 1); true when the run stops here.
 bool Driver::fails_after_step() {
-  // Read again by eq. (108) and the error-over-time observer in observe_step (the error is
-  // taken in the same pass).
-  if (obs_.error_over_time) {
-    const ErrorTerms terms = sim_.error_terms();
-    extremes_ = state_extremes(sim_.particles(), &terms);
-  } else {
-    extremes_ = state_extremes(sim_.particles());
-  }
   auto failure = detect_failure(sim_.particles(), extremes_, p_.bc, max_F_);
   if (!failure) return false;
   failure->step = sim_.steps();

@@ -82,16 +82,18 @@ void Simulation::full_mass_velocity(const Stencil<W>& S) {
 }
 
 template <class Basis>
-void Simulation::step(const Basis& basis, Stencil<Basis::width>& S, double dt, double t_body) {
+bool Simulation::step(const Basis& basis, Stencil<Basis::width>& S, double dt, double t_body,
+                      const StateCheck* check) {
   body_force_->evaluate(t_body, body_accel_);  // b(X_p, t^n) or b(X_p, t^{n+1})
   const double* b = body_accel_.data();
   const bool apic = params_.transfer == Transfer::apic;
   switch (params_.update) {
     case UpdateOrder::usl:
-      p2g(basis, P_, b, S, G_);            // eqs. (5)-(7)
-      if (apic) p2g_affine(S, P_, G_);     // APIC: q_i += sum_p S_ip m_p C_p (X_i - x_p)
-      grid_update(G_, dt);                 // eqs. (7), (8)
-      series_phase(S);                     // XPIC, FMPM: the full-mass correction w_i
+      p2g(basis, P_, b, S, G_);         // eqs. (5)-(7)
+      if (apic) p2g_affine(S, P_, G_);  // APIC: q_i += sum_p S_ip m_p C_p (X_i - x_p)
+      grid_update(G_, dt);              // eqs. (7), (8)
+      series_phase(S);                  // XPIC, FMPM: the full-mass correction w_i
+      if (g2p_and_stress(S, G_, dt, g2p_rule_, law_, P_, check)) return check != nullptr;
       g2p(S, G_, dt, g2p_rule_, P_);       // eqs. (9), (10)
       stress_update(S, G_, dt, law_, P_);  // eqs. (11), (13), (14) with v_i^{n+1}
       break;
@@ -119,6 +121,7 @@ void Simulation::step(const Basis& basis, Stencil<Basis::width>& S, double dt, d
       stress_update(S, G_, dt, law_, P_);  // with the re-mapped v_i
       break;
   }
+  return false;
 }
 
 template <int W>
@@ -132,21 +135,29 @@ Stencil<W>& Simulation::stencil() {
   }
 }
 
-void Simulation::advance_to(double t_next) {
+void Simulation::advance_to(double t_next, StateExtremes* extremes, bool with_error) {
   const double dt = t_next - t_;
   const double t_body = params_.body_force_time == BodyForceTime::start ? t_ : t_next;
-  std::visit(
+  ErrorTerms terms;
+  if (extremes && with_error) terms = error_terms_at(t_next);
+  const StateCheck check{extremes && with_error ? &terms : nullptr, extremes};
+  const bool checked = std::visit(
       [&](const auto& basis) {
         constexpr int W = std::decay_t<decltype(basis)>::width;
-        step(basis, stencil<W>(), dt, t_body);
+        return step(basis, stencil<W>(), dt, t_body, extremes ? &check : nullptr);
       },
       basis_);
   t_ = t_next;
   ++n_;
+  if (extremes && !checked) *extremes = state_extremes(P_, check.error);
+}
+
+ErrorTerms Simulation::error_terms_at(double t) const {
+  return {P_.X.data(), u_profile_.data(), scene_->displacement_factor(t)};
 }
 
 ErrorTerms Simulation::error_terms() const {
-  return {P_.X.data(), u_profile_.data(), scene_->displacement_factor(t_)};
+  return error_terms_at(t_);
 }
 
 double Simulation::max_error() const {

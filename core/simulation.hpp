@@ -31,7 +31,10 @@ class Simulation {
   //   musl: p2g -> grid_update -> g2p -> p2g_momentum -> grid_velocity -> stress_update
   // APIC adds p2g_affine after each momentum sum; XPIC and FMPM add their series (xpic.hpp)
   // between grid_update and g2p.
-  void advance_to(double t_next);
+  // With `extremes`, the state check after the step: state_extremes of the state it leaves (with
+  // the error over time at t_next when `with_error`), taken in USL's last pass where the step
+  // allows it (g2p_and_stress), else in a pass after the step; the same values either way.
+  void advance_to(double t_next, StateExtremes* extremes = nullptr, bool with_error = false);
 
   // max_p |u_p - u(X_p, t)| at the current time, u_p = x_p - X_p, u the scene's exact solution.
   double max_error() const;
@@ -47,8 +50,11 @@ class Simulation {
   const Grid& grid() const { return G_; }
 
  private:
+  // True if it took the check (`check` given and USL's last phases ran as g2p_and_stress).
   template <class Basis>
-  void step(const Basis& basis, Stencil<Basis::width>& S, double dt, double t_body);
+  bool step(const Basis& basis, Stencil<Basis::width>& S, double dt, double t_body,
+            const StateCheck* check);
+  ErrorTerms error_terms_at(double t) const;
   // XPIC's and FMPM's correction of the grid velocity, after grid_update (xpic.hpp).
   template <int W>
   void series_phase(const Stencil<W>& S);

@@ -3,6 +3,8 @@
 // with ghost nodes.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
 #include <random>
 
 #include "phases.hpp"
@@ -245,6 +247,103 @@ TEST(StressUpdate, NeoHookeanLaw) {
     EXPECT_NEAR(P.F[p], F, 1e-13) << p;
     EXPECT_NEAR(P.sigma[p], 0.5 * E * (F - 1 / F), 1e-12) << p;
   }
+}
+
+// USL's g2p and stress update as one pass, with the state check taken as the values are
+// written: the same state as the two phases and the same extremes as state_extremes, bit for
+// bit, for particles in order (8 at a time), out of order (one at a time) and a tail of 3.
+template <class Basis>
+void check_one_pass(const Basis& basis, bool sorted, PositionUpdate position) {
+  const int cells = 25;
+  Particles P = random_particles(203, 0.0, 1.0, 11);
+  if (sorted) {
+    for (Eigen::Index p = 0; p < P.size(); ++p)
+      P.x[p] = P.X[p] = (p + 0.5 + 0.3 * std::sin(3.0 * p)) / P.size();
+  }
+  Grid G(cells, Boundary::dirichlet, Walls::clip, Basis::width);
+  const Eigen::ArrayXd body = Eigen::ArrayXd::Random(P.size());
+  Stencil<Basis::width> S;
+  S.resize(P.size());
+  p2g(basis, P, body.data(), S, G);
+  const double dt = 2e-3;
+  grid_update(G, dt);
+  const ParticleUpdate rule{Transfer::flip, 0.95, position};
+  const MaterialLaw law{Material::linear, 30.0};
+  const Eigen::ArrayXd u = Eigen::ArrayXd::Random(P.size());
+  const ErrorTerms terms{P.X.data(), u.data(), 0.37};
+  for (const bool plant_nan : {false, true}) {
+    SCOPED_TRACE(plant_nan);
+    Particles two = P, one = P;
+    if (plant_nan) two.v[57] = one.v[57] = std::numeric_limits<double>::quiet_NaN();
+    g2p(S, G, dt, rule, two);
+    stress_update(S, G, dt, law, two);
+    StateExtremes taken;
+    const StateCheck check{&terms, &taken};
+    if (!g2p_and_stress(S, G, dt, rule, law, one, &check)) GTEST_SKIP() << "no AVX-512 here";
+    for (Eigen::Index p = 0; p < P.size(); ++p) {
+      if (plant_nan && p == 57) continue;  // NaN != NaN
+      ASSERT_EQ(one.x[p], two.x[p]) << p;
+      ASSERT_EQ(one.v[p], two.v[p]) << p;
+      ASSERT_EQ(one.F[p], two.F[p]) << p;
+      ASSERT_EQ(one.sigma[p], two.sigma[p]) << p;
+    }
+    // The definitions, one particle at a time.
+    StateExtremes e;
+    e.finite = two.x.isFinite().all() && two.v.isFinite().all() && two.F.isFinite().all() &&
+               two.sigma.isFinite().all();
+    e.F_min = two.F.minCoeff();
+    e.F_max = two.F.maxCoeff();
+    e.F_abs_max = two.F.abs().maxCoeff();
+    e.sigma_abs_max = two.sigma.abs().maxCoeff();
+    e.sigmaF_abs_max = (two.sigma * two.F).abs().maxCoeff();
+    e.x_min = two.x.minCoeff();
+    e.x_max = two.x.maxCoeff();
+    for (Eigen::Index p = 0; p < P.size(); ++p)
+      e.error_max = std::max(e.error_max, std::abs((two.x[p] - P.X[p]) - u[p] * terms.factor));
+    for (const StateExtremes& got : {taken, state_extremes(two, &terms)}) {
+      EXPECT_EQ(got.finite, e.finite);
+      if (plant_nan) continue;  // the values are read only for a finite state
+      EXPECT_EQ(got.F_min, e.F_min);
+      EXPECT_EQ(got.F_max, e.F_max);
+      EXPECT_EQ(got.F_abs_max, e.F_abs_max);
+      EXPECT_EQ(got.sigma_abs_max, e.sigma_abs_max);
+      EXPECT_EQ(got.sigmaF_abs_max, e.sigmaF_abs_max);
+      EXPECT_EQ(got.x_min, e.x_min);
+      EXPECT_EQ(got.x_max, e.x_max);
+      EXPECT_EQ(got.error_max, e.error_max);
+    }
+    EXPECT_EQ(taken.finite, !plant_nan);
+    if (plant_nan) continue;
+    EXPECT_GT(taken.error_max, 0);
+  }
+}
+
+TEST(G2PAndStress, OnePassIsTheTwoPhasesAndTheCheckBitForBit) {
+  for (const bool sorted : {true, false}) {
+    for (const auto position : {PositionUpdate::grid, PositionUpdate::particle}) {
+      SCOPED_TRACE(sorted);
+      check_one_pass(LinearBasis(1.0 / 25), sorted, position);
+      check_one_pass(GimpBasis(1.0 / 25, 1.0 / 100), sorted, position);
+      check_one_pass(CpGimpBasis(1.0 / 25, 1.0 / 100), sorted, position);
+    }
+  }
+}
+
+// Where the one pass does not apply (PIC, another material law), it does nothing.
+TEST(G2PAndStress, DoesNothingWhereItDoesNotApply) {
+  Particles P = random_particles(40, 0.0, 1.0, 5);
+  const Particles before = P;
+  Grid G(10, Boundary::dirichlet);
+  Stencil<GimpBasis::width> S;
+  S.resize(P.size());
+  const Eigen::ArrayXd body = Eigen::ArrayXd::Zero(P.size());
+  p2g(GimpBasis(0.1, 0.025), P, body.data(), S, G);
+  grid_update(G, 1e-3);
+  EXPECT_FALSE(g2p_and_stress(S, G, 1e-3, ParticleUpdate{Transfer::pic, 0.95, PositionUpdate::grid},
+                              MaterialLaw{Material::linear, 4.0}, P, nullptr));
+  EXPECT_FALSE(g2p_and_stress(S, G, 1e-3, ParticleUpdate{}, MaterialLaw{Material::neo_hookean, 4.0},
+                              P, nullptr));
+  EXPECT_TRUE((P.x == before.x).all() && (P.F == before.F).all());
 }
 
 TEST(GridUpdate, DirichletNodesAndEmptyNodesStayAtRest) {
