@@ -15,6 +15,8 @@
 #include "failure.hpp"
 #include "simd.hpp"
 
+#define MPMSTAB_INLINE __attribute__((always_inline)) inline
+
 namespace mpmstab {
 
 #if MPMSTAB_AVX512
@@ -43,6 +45,9 @@ MPMSTAB_AVX512_TARGET inline __m512d abs8(__m512d a) {
 }
 
 // The running extremes: add() takes 8 particles, add_one() one (a tail), result() the values.
+// Every member function is inlined, so that the accumulators stay in registers through a pass
+// (called out of line, result() takes the object's address and GCC keeps it in memory: every
+// add() then stored and reloaded them, 0.98 ns per particle-step for USL's one pass, GIMP).
 // With `with_error`, the error max_p |(x_p - X_p) - u_p f| of the ErrorTerms too.
 template <bool with_error>
 struct Extremes8 {
@@ -73,7 +78,8 @@ struct Extremes8 {
   }
 
   // Particles p .. p + 7 with these x, v, F and sigma.
-  MPMSTAB_AVX512_TARGET void add(std::size_t p, __m512d xp, __m512d vp, __m512d Fp, __m512d sp) {
+  MPMSTAB_AVX512_TARGET MPMSTAB_INLINE void add(std::size_t p, __m512d xp, __m512d vp, __m512d Fp,
+                                                __m512d sp) {
     if constexpr (with_error) {
       const __m512d d = _mm512_sub_pd(_mm512_sub_pd(xp, _mm512_loadu_pd(X + p)),
                                       _mm512_mul_pd(_mm512_loadu_pd(u + p), f8));
@@ -90,7 +96,7 @@ struct Extremes8 {
   }
 
   // One particle p (the arithmetic of a lane).
-  void add_one(std::size_t p, double x, double v, double F, double s) {
+  MPMSTAB_INLINE void add_one(std::size_t p, double x, double v, double F, double s) {
     StateExtremes& e = tail;
     if constexpr (with_error) e.error_max = std::max(e.error_max, std::abs((x - X[p]) - u[p] * f));
     if (!std::isfinite(x) || !std::isfinite(v) || !std::isfinite(F) || !std::isfinite(s)) {
@@ -104,7 +110,7 @@ struct Extremes8 {
     e.x_max = std::max(e.x_max, x);
   }
 
-  MPMSTAB_AVX512_TARGET StateExtremes result() const {
+  MPMSTAB_AVX512_TARGET MPMSTAB_INLINE StateExtremes result() const {
     StateExtremes e;
     e.F_min = std::min(lane_min(F_min), tail.F_min);
     e.F_max = std::max(lane_max(F_max), tail.F_max);

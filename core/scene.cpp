@@ -13,14 +13,16 @@ constexpr double kPi = std::numbers::pi;
 class BarBodyForce final : public BodyForceAtParticles {
  public:
   BarBodyForce(const BarScene& scene, const Eigen::ArrayXd& X)
-      : scene_(scene),
+      : scene_(&scene),
         profile_(X.unaryExpr([&](double Xp) { return scene.body_force_profile(Xp); })) {}
+  BarBodyForce(const BarBodyForce&) = delete;
+  BarBodyForce& operator=(const BarBodyForce&) = delete;
   void evaluate(double t, Eigen::ArrayXd& b) const override {
-    b = profile_ * scene_.body_force_factor(t);
+    b = profile_ * scene_->body_force_factor(t);
   }
 
  private:
-  BarScene scene_;
+  const BarScene* scene_;   // its time factor (time_sine)
   Eigen::ArrayXd profile_;  // 3 (c pi)^2 A sin(2 pi X_p)
 };
 
@@ -92,14 +94,21 @@ BarScene::BarScene(double youngs_modulus, double amplitude) : Scene(youngs_modul
 double BarScene::displacement_profile(double X) const {
   return A * std::sin(2 * kPi * X);
 }
+double BarScene::time_sine(double t) const {
+  if (t != sine_t_) {
+    sine_t_ = t;
+    sine_ = std::sin(c * kPi * t);
+  }
+  return sine_;
+}
 double BarScene::displacement_factor(double t) const {
-  return std::sin(c * kPi * t);
+  return time_sine(t);
 }
 double BarScene::body_force_profile(double X) const {
   return 3.0 * (c * kPi) * (c * kPi) * A * std::sin(2 * kPi * X);
 }
 double BarScene::body_force_factor(double t) const {
-  return std::sin(c * kPi * t);
+  return time_sine(t);
 }
 
 double BarScene::displacement(double X, double t) const {

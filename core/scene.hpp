@@ -34,6 +34,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <memory>
 
 #include <Eigen/Core>
@@ -112,10 +113,18 @@ class BarScene final : public Scene {
   double body_force_profile(double X) const;  // 3 (c pi)^2 A sin(2 pi X)
   double body_force_factor(double t) const;   // sin(c pi t)
 
+  // The body force at particles X reads this scene (which must outlive it).
   std::unique_ptr<BodyForceAtParticles> body_force_at(const Eigen::ArrayXd& X) const override;
 
   // At rest positions x = X, F = 1, sigma = 0, velocity v(X_p, 0).
   Particles initial_particles(int cells, int ppc, const Layout& layout = {}) const override;
+
+ private:
+  // sin(c pi t), both time factors, for the last t asked: a run asks at t^{n+1} for the error
+  // after a step, then at the same time for the body force of the next step (its t^n).
+  double time_sine(double t) const;
+  mutable double sine_t_ = std::numeric_limits<double>::quiet_NaN();
+  mutable double sine_ = 0;
 };
 
 class SteffenScene final : public Scene {
