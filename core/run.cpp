@@ -70,6 +70,7 @@ class Driver {
   const std::optional<double> fixed_dt_;  // fixed and cfl policies
   std::optional<CrossingCounter> crossing_counter_;
   const StableDtGeometry geometry_;
+  const StableDtConstants eq108_constants_;  // of geometry_
   const double max_F_;
   double max_error_over_time_ = 0;
   double dt_stable_min_ = std::numeric_limits<double>::infinity();
@@ -99,6 +100,7 @@ Driver::Driver(const RunParams& p, const HistorySink& sink)
       sim_(p),
       fixed_dt_(fixed_step(p)),
       geometry_{p.method, p.E, h_, p.ppc, h_ / p.ppc},
+      eq108_constants_(stable_dt_constants(geometry_)),
       max_F_(max_admissible_F(p.method, p.ppc)),
       every_option_(dt_stable_ && p.observe.dt_stable_every_option) {
   dt_stable_min_of_option_.fill(std::numeric_limits<double>::infinity());
@@ -141,7 +143,7 @@ Driver::Driver(const RunParams& p, const HistorySink& sink)
 double Driver::bound_now() const {
   return stable_dt(
       stable_dt_inputs(sim_.particles(), extremes_, sim_.grid(), p_.stable.vnorm, p_.method),
-      geometry_, p_.stable.sigma);
+      geometry_, eq108_constants_, p_.stable.sigma);
 }
 
 // eq. (108) of the state after the last step under each StableDtOptions, into their minima;
@@ -152,7 +154,7 @@ void Driver::observe_every_option() {
         stable_dt_inputs(sim_.particles(), extremes_, sim_.grid(), vnorm, p_.method);
     for (const StressScaling sigma : {StressScaling::scaled, StressScaling::raw}) {
       const StableDtOptions option{sigma, vnorm};
-      const double dt = stable_dt(in, geometry_, sigma);
+      const double dt = stable_dt(in, geometry_, eq108_constants_, sigma);
       double& low = dt_stable_min_of_option_[option_index(option)];
       low = std::min(low, dt);
       if (option_index(option) == option_index(p_.stable)) bound_ = dt;

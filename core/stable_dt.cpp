@@ -28,39 +28,69 @@ StableDtInputs stable_dt_inputs(const Particles& P, const StateExtremes& e, cons
 
 namespace {
 
+// The geometry's factors of eq. (108) in the floating-point type `real`.
+template <class real>
+struct Factors {
+  real four_m, sqrt_m, sqrt_E, inv_sqrt_E, nine_h_sqrt_E, h_sqrt_m, gimp_position;
+};
+
+template <class real>
+Factors<real> factors(const StableDtGeometry& geo) {
+  Factors<real> f;
+  const real m = geo.ppc;
+  f.four_m = 4 * m;
+  f.sqrt_m = std::sqrt(m);
+  f.sqrt_E = std::sqrt(real(geo.E));
+  f.inv_sqrt_E = 1 / f.sqrt_E;
+  f.nine_h_sqrt_E = 9 * real(geo.h) * f.sqrt_E;
+  f.h_sqrt_m = real(geo.h) * f.sqrt_m;
+  f.gimp_position = 2 / (real(geo.width) * f.sqrt_m);
+  return f;
+}
+
 // Eq. (108) in the floating-point type `real`.
 template <class real>
-real eq108(const StableDtInputs& in, const StableDtGeometry& geo, StressScaling sigma) {
-  const real m = geo.ppc;
-  const real sqrt_m = std::sqrt(m);
-  const real sqrt_E = std::sqrt(real(geo.E));
-  const real scale = sigma == StressScaling::scaled ? 1 / sqrt_E : real(1);
+real eq108(const StableDtInputs& in, const StableDtGeometry& geo, const Factors<real>& f,
+           StressScaling sigma) {
+  const real scale = sigma == StressScaling::scaled ? f.inv_sqrt_E : real(1);
   const real sigma_max = real(in.sigma_max) * scale;
   const real sigmaF_max = real(in.sigmaF_max) * scale;
   real position_term = 0;
   if (geo.method == Method::gimp) {
-    position_term = 2 / (real(geo.width) * sqrt_m) * sigmaF_max;
+    position_term = f.gimp_position * sigmaF_max;
   } else if (geo.method == Method::cpgimp) {
     // l = min_p F_p h / m. An admissible state has F_min > 0; any other has no stable step.
     const real l = real(in.F_min) * real(geo.width);
-    position_term = l > 0 ? 2 / (l * sqrt_m) * sigmaF_max : std::numeric_limits<real>::infinity();
+    position_term = l > 0 ? 2 / (l * f.sqrt_m) * sigmaF_max : std::numeric_limits<real>::infinity();
   }
-  const real denominator = 4 * m * (sqrt_E + real(in.F_max) + real(in.v_norm)) +
-                           9 * real(geo.h) * sqrt_E * (real(in.F_max) + sigma_max + position_term);
-  return real(geo.h) * sqrt_m / denominator;
+  const real denominator = f.four_m * (f.sqrt_E + real(in.F_max) + real(in.v_norm)) +
+                           f.nine_h_sqrt_E * (real(in.F_max) + sigma_max + position_term);
+  return f.h_sqrt_m / denominator;
 }
 
 }  // namespace
 
-double stable_dt(const StableDtInputs& in, const StableDtGeometry& geo, StressScaling sigma) {
+StableDtConstants stable_dt_constants(const StableDtGeometry& geo) {
+  const Factors<double> f = factors<double>(geo);
+  return {f.four_m, f.sqrt_m, f.sqrt_E, f.inv_sqrt_E, f.nine_h_sqrt_E, f.h_sqrt_m, f.gimp_position};
+}
+
+double stable_dt(const StableDtInputs& in, const StableDtGeometry& geo, const StableDtConstants& c,
+                 StressScaling sigma) {
   // In double; where an extreme but finite state overflows a double (for example
   // (sigma F)_max times 2 / (l sqrt m)), again in long double. A bound smaller than the
   // smallest positive double is that double: no step is stable.
-  double dt = eq108<double>(in, geo, sigma);
+  const Factors<double> f{c.four_m,        c.sqrt_m,   c.sqrt_E,       c.inv_sqrt_E,
+                          c.nine_h_sqrt_E, c.h_sqrt_m, c.gimp_position};
+  double dt = eq108<double>(in, geo, f, sigma);
   if (!(dt > 0) || !std::isfinite(dt)) {
-    dt = static_cast<double>(eq108<long double>(in, geo, sigma));
+    dt = static_cast<double>(eq108<long double>(in, geo, factors<long double>(geo), sigma));
   }
   return std::max(dt, std::numeric_limits<double>::denorm_min());
+}
+
+double stable_dt(const StableDtInputs& in, const StableDtGeometry& geo, StressScaling sigma) {
+  return stable_dt(in, geo, stable_dt_constants(geo), sigma);
 }
 
 }  // namespace mpmstab
