@@ -64,7 +64,7 @@ MPMSTAB_AVX512_TARGET StateExtremes extremes_avx512(const Particles& P, const Er
   for (; p < n; ++p)
     e.add_one(p, x[p], v[p], F[p], s[p]);
   const StateExtremes result = e.result();
-  _mm256_zeroupper();  // as g2p_stress_avx512 (phases.cpp) does
+  _mm256_zeroupper();  // as particle_pass_avx512 (phases.cpp) does
   return result;
 }
 #endif

@@ -117,69 +117,18 @@ MPMSTAB_SIMD_CLONES void stress_loop(std::size_t n, const int* __restrict base, 
 }
 
 #if MPMSTAB_AVX512
-// FLIP's g2p and the stress update, 8 particles at a time (g2p_kernel.hpp).
-template <int W, bool kGridPosition>
-MPMSTAB_AVX512_TARGET void g2p_avx512(std::size_t n, const int* __restrict base, const Rows<W> w,
-                                      const double* __restrict a_i, const double* __restrict v_i,
-                                      int slots, double* __restrict x, double* __restrict v,
-                                      double dt) {
-  const __m512d dt8 = _mm512_set1_pd(dt);
-  std::size_t p0 = 0;
-  for (; p0 + 8 <= n; p0 += 8) {
-    __m512i r;
-    if (!relative_bases<W>(base, p0, r)) {
-      for (std::size_t p = p0; p < p0 + 8; ++p)
-        g2p_particle<W, kGridPosition>(p, base, w, a_i, v_i, x, v, dt);
-      continue;
-    }
-    const int b0 = base[p0];
-    const __m512d a = interpolate8<W>(w, p0, load16(a_i, b0, slots), r);
-    const __m512d vp = _mm512_add_pd(_mm512_loadu_pd(v + p0), _mm512_mul_pd(dt8, a));
-    _mm512_storeu_pd(v + p0, vp);
-    __m512d dx;
-    if constexpr (kGridPosition) {
-      dx = _mm512_mul_pd(dt8, interpolate8<W>(w, p0, load16(v_i, b0, slots), r));
-    } else {
-      dx = _mm512_mul_pd(dt8, vp);
-    }
-    _mm512_storeu_pd(x + p0, _mm512_add_pd(_mm512_loadu_pd(x + p0), dx));
-  }
-  for (; p0 < n; ++p0)
-    g2p_particle<W, kGridPosition>(p0, base, w, a_i, v_i, x, v, dt);
-}
-
-template <int W>
-MPMSTAB_AVX512_TARGET void stress_avx512(std::size_t n, const int* __restrict base, const Rows<W> g,
-                                         const double* __restrict v_i, int slots,
-                                         double* __restrict F, double* __restrict sig, double dt,
-                                         double E) {
-  const __m512d dt8 = _mm512_set1_pd(dt), E8 = _mm512_set1_pd(E), one = _mm512_set1_pd(1.0);
-  std::size_t p0 = 0;
-  for (; p0 + 8 <= n; p0 += 8) {
-    __m512i r;
-    if (!relative_bases<W>(base, p0, r)) {
-      for (std::size_t p = p0; p < p0 + 8; ++p)
-        stress_particle<W>(p, base, g, v_i, F, sig, dt, E);
-      continue;
-    }
-    const __m512d L = interpolate8<W>(g, p0, load16(v_i, base[p0], slots), r);
-    const __m512d Fp =
-        _mm512_mul_pd(_mm512_loadu_pd(F + p0), _mm512_add_pd(one, _mm512_mul_pd(dt8, L)));
-    _mm512_storeu_pd(F + p0, Fp);
-    _mm512_storeu_pd(sig + p0, _mm512_mul_pd(E8, _mm512_sub_pd(Fp, one)));
-  }
-  for (; p0 < n; ++p0)
-    stress_particle<W>(p0, base, g, v_i, F, sig, dt, E);
-}
-
-// USL with FLIP: g2p_avx512 and stress_avx512 in one pass, and with kCheck the extremes of what
-// they write (extremes_kernel.hpp).
-template <int W, bool kGridPosition, bool kCheck, bool kError>
-MPMSTAB_AVX512_TARGET void g2p_stress_avx512(std::size_t n, const int* __restrict base,
-                                             const Rows<W> w, const Rows<W> g,
-                                             const double* __restrict a_i,
-                                             const double* __restrict v_i, int slots, Particles& P,
-                                             double dt, double E, const StateCheck* check) {
+// The passes over the particles from the grid, 8 particles at a time (g2p_kernel.hpp): FLIP's
+// g2p (kG2p), the stress update with the linear law (kStress), or both in one pass (USL), each
+// lane doing the operations of g2p_particle and stress_particle; with kCheck, the state's
+// extremes (and with kError the error over time) taken from the values as the pass writes them,
+// the others read (extremes_kernel.hpp).
+template <int W, bool kG2p, bool kStress, bool kGridPosition, bool kCheck, bool kError>
+MPMSTAB_AVX512_TARGET void particle_pass_avx512(std::size_t n, const int* __restrict base,
+                                                const Rows<W> w, const Rows<W> g,
+                                                const double* __restrict a_i,
+                                                const double* __restrict v_i, int slots,
+                                                Particles& P, double dt, double E,
+                                                const StateCheck* check) {
   double* __restrict x = P.x.data();
   double* __restrict v = P.v.data();
   double* __restrict F = P.F.data();
@@ -191,8 +140,8 @@ MPMSTAB_AVX512_TARGET void g2p_stress_avx512(std::size_t n, const int* __restric
     __m512i r;
     if (!relative_bases<W>(base, p0, r)) {
       for (std::size_t p = p0; p < p0 + 8; ++p) {
-        g2p_particle<W, kGridPosition>(p, base, w, a_i, v_i, x, v, dt);
-        stress_particle<W>(p, base, g, v_i, F, sig, dt, E);
+        if constexpr (kG2p) g2p_particle<W, kGridPosition>(p, base, w, a_i, v_i, x, v, dt);
+        if constexpr (kStress) stress_particle<W>(p, base, g, v_i, F, sig, dt, E);
       }
       if constexpr (kCheck) {
         e.add(p0, _mm512_loadu_pd(x + p0), _mm512_loadu_pd(v + p0), _mm512_loadu_pd(F + p0),
@@ -201,31 +150,40 @@ MPMSTAB_AVX512_TARGET void g2p_stress_avx512(std::size_t n, const int* __restric
       continue;
     }
     const int b0 = base[p0];
-    const Slots16 vel = load16(v_i, b0, slots);
-    // g2p (g2p_avx512).
-    const __m512d a = interpolate8<W>(w, p0, load16(a_i, b0, slots), r);
-    const __m512d vp = _mm512_add_pd(_mm512_loadu_pd(v + p0), _mm512_mul_pd(dt8, a));
-    _mm512_storeu_pd(v + p0, vp);
-    __m512d dx;
-    if constexpr (kGridPosition) {
-      dx = _mm512_mul_pd(dt8, interpolate8<W>(w, p0, vel, r));
-    } else {
-      dx = _mm512_mul_pd(dt8, vp);
+    Slots16 vel;
+    if constexpr (kStress || kGridPosition) vel = load16(v_i, b0, slots);
+    __m512d xp, vp, Fp, sp;
+    if constexpr (kG2p) {  // g2p_particle
+      const __m512d a = interpolate8<W>(w, p0, load16(a_i, b0, slots), r);
+      vp = _mm512_add_pd(_mm512_loadu_pd(v + p0), _mm512_mul_pd(dt8, a));
+      _mm512_storeu_pd(v + p0, vp);
+      __m512d dx;
+      if constexpr (kGridPosition) {
+        dx = _mm512_mul_pd(dt8, interpolate8<W>(w, p0, vel, r));
+      } else {
+        dx = _mm512_mul_pd(dt8, vp);
+      }
+      xp = _mm512_add_pd(_mm512_loadu_pd(x + p0), dx);
+      _mm512_storeu_pd(x + p0, xp);
+    } else if constexpr (kCheck) {
+      xp = _mm512_loadu_pd(x + p0);
+      vp = _mm512_loadu_pd(v + p0);
     }
-    const __m512d xp = _mm512_add_pd(_mm512_loadu_pd(x + p0), dx);
-    _mm512_storeu_pd(x + p0, xp);
-    // The stress update (stress_avx512).
-    const __m512d L = interpolate8<W>(g, p0, vel, r);
-    const __m512d Fp =
-        _mm512_mul_pd(_mm512_loadu_pd(F + p0), _mm512_add_pd(one, _mm512_mul_pd(dt8, L)));
-    _mm512_storeu_pd(F + p0, Fp);
-    const __m512d sp = _mm512_mul_pd(E8, _mm512_sub_pd(Fp, one));
-    _mm512_storeu_pd(sig + p0, sp);
+    if constexpr (kStress) {  // stress_particle
+      const __m512d L = interpolate8<W>(g, p0, vel, r);
+      Fp = _mm512_mul_pd(_mm512_loadu_pd(F + p0), _mm512_add_pd(one, _mm512_mul_pd(dt8, L)));
+      _mm512_storeu_pd(F + p0, Fp);
+      sp = _mm512_mul_pd(E8, _mm512_sub_pd(Fp, one));
+      _mm512_storeu_pd(sig + p0, sp);
+    } else if constexpr (kCheck) {
+      Fp = _mm512_loadu_pd(F + p0);
+      sp = _mm512_loadu_pd(sig + p0);
+    }
     if constexpr (kCheck) e.add(p0, xp, vp, Fp, sp);
   }
   for (; p0 < n; ++p0) {
-    g2p_particle<W, kGridPosition>(p0, base, w, a_i, v_i, x, v, dt);
-    stress_particle<W>(p0, base, g, v_i, F, sig, dt, E);
+    if constexpr (kG2p) g2p_particle<W, kGridPosition>(p0, base, w, a_i, v_i, x, v, dt);
+    if constexpr (kStress) stress_particle<W>(p0, base, g, v_i, F, sig, dt, E);
     if constexpr (kCheck) e.add_one(p0, x[p0], v[p0], F[p0], sig[p0]);
   }
   if constexpr (kCheck) *check->extremes = e.result();
@@ -233,20 +191,43 @@ MPMSTAB_AVX512_TARGET void g2p_stress_avx512(std::size_t n, const int* __restric
   // vzeroupper here; without it the next step's body force took 4x its time on this CPU).
   _mm256_zeroupper();
 }
+
+// One pass of particle_pass_avx512 over the run's arrays, the check's flags chosen at run time.
+template <int W, bool kG2p, bool kStress, bool kGridPosition>
+void particle_pass(const Stencil<W>& S, const Grid& G, double dt, double E, Particles& P,
+                   const StateCheck* check) {
+  const auto pass = [&]<bool kCheck, bool kError>() {
+    particle_pass_avx512<W, kG2p, kStress, kGridPosition, kCheck, kError>(
+        static_cast<std::size_t>(P.size()), S.base.data(), rows<W>(S.w), rows<W>(S.g),
+        G.accel.data(), G.velocity.data(), static_cast<int>(G.velocity.size()), P, dt, E, check);
+  };
+  if (!check) {
+    pass.template operator()<false, false>();
+  } else if (check->error) {
+    pass.template operator()<true, true>();
+  } else {
+    pass.template operator()<true, false>();
+  }
+}
+
+template <int W, bool kG2p, bool kStress>
+void particle_pass(const Stencil<W>& S, const Grid& G, double dt, double E, PositionUpdate position,
+                   Particles& P, const StateCheck* check) {
+  if (position == PositionUpdate::grid) {
+    particle_pass<W, kG2p, kStress, true>(S, G, dt, E, P, check);
+  } else {
+    particle_pass<W, kG2p, kStress, false>(S, G, dt, E, P, check);
+  }
+}
 #endif
 
 template <int W, bool kGridPosition>
 void g2p_any(const Stencil<W>& S, const Grid& G, double dt, Particles& P) {
-  const auto n = static_cast<std::size_t>(P.size());
 #if MPMSTAB_AVX512
-  if (use_avx512()) {
-    return g2p_avx512<W, kGridPosition>(n, S.base.data(), rows<W>(S.w), G.accel.data(),
-                                        G.velocity.data(), static_cast<int>(G.velocity.size()),
-                                        P.x.data(), P.v.data(), dt);
-  }
+  if (use_avx512()) return particle_pass<W, true, false, kGridPosition>(S, G, dt, 0.0, P, nullptr);
 #endif
-  g2p_loop<W, kGridPosition>(n, S.base.data(), rows<W>(S.w), G.accel.data(), G.velocity.data(),
-                             P.x.data(), P.v.data(), dt);
+  g2p_loop<W, kGridPosition>(static_cast<std::size_t>(P.size()), S.base.data(), rows<W>(S.w),
+                             G.accel.data(), G.velocity.data(), P.x.data(), P.v.data(), dt);
 }
 
 // Stress update with a material law other than the linear one, one particle after the other.
@@ -287,16 +268,39 @@ template <int W>
 void stress_update(const Stencil<W>& S, const Grid& G, double dt, const MaterialLaw& law,
                    Particles& P) {
   if (law.kind != Material::linear) return stress_update_law(S, G, dt, law, P);
-  const auto n = static_cast<std::size_t>(P.size());
-  const double E = law.E;
 #if MPMSTAB_AVX512
   if (use_avx512()) {
-    return stress_avx512<W>(n, S.base.data(), rows<W>(S.g), G.velocity.data(),
-                            static_cast<int>(G.velocity.size()), P.F.data(), P.sigma.data(), dt, E);
+    return particle_pass<W, false, true, false>(S, G, dt, law.E, P, nullptr);
   }
 #endif
-  stress_loop<W>(n, S.base.data(), rows<W>(S.g), G.velocity.data(), P.F.data(), P.sigma.data(), dt,
-                 E);
+  stress_loop<W>(static_cast<std::size_t>(P.size()), S.base.data(), rows<W>(S.g), G.velocity.data(),
+                 P.F.data(), P.sigma.data(), dt, law.E);
+}
+
+template <int W>
+bool g2p(const Stencil<W>& S, const Grid& G, double dt, const ParticleUpdate& rule, Particles& P,
+         const StateCheck* check) {
+#if MPMSTAB_AVX512
+  if (check && use_avx512() && rule.transfer == Transfer::flip) {
+    particle_pass<W, true, false>(S, G, dt, 0.0, rule.position, P, check);
+    return true;
+  }
+#endif
+  g2p(S, G, dt, rule, P);
+  return false;
+}
+
+template <int W>
+bool stress_update(const Stencil<W>& S, const Grid& G, double dt, const MaterialLaw& law,
+                   Particles& P, const StateCheck* check) {
+#if MPMSTAB_AVX512
+  if (check && use_avx512() && law.kind == Material::linear) {
+    particle_pass<W, false, true, false>(S, G, dt, law.E, P, check);
+    return true;
+  }
+#endif
+  stress_update(S, G, dt, law, P);
+  return false;
 }
 
 template <int W>
@@ -306,27 +310,7 @@ bool g2p_and_stress(const Stencil<W>& S, const Grid& G, double dt, const Particl
   if (!use_avx512() || rule.transfer != Transfer::flip || law.kind != Material::linear) {
     return false;
   }
-  const auto n = static_cast<std::size_t>(P.size());
-  const int slots = static_cast<int>(G.velocity.size());
-  auto pass = [&]<bool kGridPosition, bool kCheck, bool kError>() {
-    g2p_stress_avx512<W, kGridPosition, kCheck, kError>(
-        n, S.base.data(), rows<W>(S.w), rows<W>(S.g), G.accel.data(), G.velocity.data(), slots, P,
-        dt, law.E, check);
-  };
-  auto with_check = [&]<bool kGridPosition>() {
-    if (!check) {
-      pass.template operator()<kGridPosition, false, false>();
-    } else if (check->error) {
-      pass.template operator()<kGridPosition, true, true>();
-    } else {
-      pass.template operator()<kGridPosition, true, false>();
-    }
-  };
-  if (rule.position == PositionUpdate::grid) {
-    with_check.template operator()<true>();
-  } else {
-    with_check.template operator()<false>();
-  }
+  particle_pass<W, true, true>(S, G, dt, law.E, rule.position, P, check);
   return true;
 #else
   (void)S, (void)G, (void)dt, (void)rule, (void)law, (void)P, (void)check;
@@ -339,7 +323,11 @@ bool g2p_and_stress(const Stencil<W>& S, const Grid& G, double dt, const Particl
   template void stress_update(const Stencil<W>&, const Grid&, double, const MaterialLaw&,       \
                               Particles&);                                                      \
   template bool g2p_and_stress(const Stencil<W>&, const Grid&, double, const ParticleUpdate&,   \
-                               const MaterialLaw&, Particles&, const StateCheck*);
+                               const MaterialLaw&, Particles&, const StateCheck*);              \
+  template bool g2p(const Stencil<W>&, const Grid&, double, const ParticleUpdate&, Particles&,  \
+                    const StateCheck*);                                                         \
+  template bool stress_update(const Stencil<W>&, const Grid&, double, const MaterialLaw&,       \
+                              Particles&, const StateCheck*);
 MPMSTAB_INSTANTIATE(LinearBasis::width)
 MPMSTAB_INSTANTIATE(GimpBasis::width)
 MPMSTAB_INSTANTIATE(CpGimpBasis::width)

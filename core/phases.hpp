@@ -121,4 +121,15 @@ template <int W>
 bool g2p_and_stress(const Stencil<W>& S, const Grid& G, double dt, const ParticleUpdate& rule,
                     const MaterialLaw& law, Particles& P, const StateCheck* check);
 
+// g2p and stress_update as the last phase of a step (USF ends with g2p, MUSL and USL with
+// another transfer than FLIP with the stress update), with a `check` (or none) to take in their
+// own pass where they can (g2p: FLIP; the stress update: the linear law; both: a CPU with
+// AVX-512). They always do the phase; true if they took the check.
+template <int W>
+bool g2p(const Stencil<W>& S, const Grid& G, double dt, const ParticleUpdate& rule, Particles& P,
+         const StateCheck* check);
+template <int W>
+bool stress_update(const Stencil<W>& S, const Grid& G, double dt, const MaterialLaw& law,
+                   Particles& P, const StateCheck* check);
+
 }  // namespace mpmstab

@@ -94,9 +94,8 @@ bool Simulation::step(const Basis& basis, Stencil<Basis::width>& S, double dt, d
       grid_update(G_, dt);              // eqs. (7), (8)
       series_phase(S);                  // XPIC, FMPM: the full-mass correction w_i
       if (g2p_and_stress(S, G_, dt, g2p_rule_, law_, P_, check)) return check != nullptr;
-      g2p(S, G_, dt, g2p_rule_, P_);       // eqs. (9), (10)
-      stress_update(S, G_, dt, law_, P_);  // eqs. (11), (13), (14) with v_i^{n+1}
-      break;
+      g2p(S, G_, dt, g2p_rule_, P_);                     // eqs. (9), (10)
+      return stress_update(S, G_, dt, law_, P_, check);  // eqs. (11), (13), (14) with v_i^{n+1}
     case UpdateOrder::usf:
       p2g(basis, P_, b, S, G_);  // m_i, q_i; f_i is redone with the new stress below
       if (apic) p2g_affine(S, P_, G_);
@@ -106,8 +105,7 @@ bool Simulation::step(const Basis& basis, Stencil<Basis::width>& S, double dt, d
       p2g_force(S, P_, b, G_);             // f_i with the new sigma_p and V_p = F_p V_p^0
       grid_update(G_, dt);
       series_phase(S);
-      g2p(S, G_, dt, g2p_rule_, P_);
-      break;
+      return g2p(S, G_, dt, g2p_rule_, P_, check);
     case UpdateOrder::musl:
       p2g(basis, P_, b, S, G_);
       if (apic) p2g_affine(S, P_, G_);
@@ -118,8 +116,7 @@ bool Simulation::step(const Basis& basis, Stencil<Basis::width>& S, double dt, d
       if (apic) p2g_affine(S, P_, G_);  // with C_p from this g2p
       grid_velocity(G_);                // v_i = q_i / m_i
       full_mass_velocity(S);
-      stress_update(S, G_, dt, law_, P_);  // with the re-mapped v_i
-      break;
+      return stress_update(S, G_, dt, law_, P_, check);  // with the re-mapped v_i
   }
   return false;
 }
