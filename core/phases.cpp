@@ -56,6 +56,18 @@ MPMSTAB_SIMD_CLONES void nodal_update(const double* __restrict m, const double* 
 
 }  // namespace
 
+namespace detail {
+
+MPMSTAB_SIMD_CLONES void divide_where_mass(const double* m, const double* num, double* out, int lo,
+                                           int hi) {
+  for (int s = lo; s < hi; ++s) {
+    const double quotient = num[s] / m[s];
+    out[s] = m[s] > 0.0 ? quotient : 0.0;
+  }
+}
+
+}  // namespace detail
+
 void grid_update(Grid& G, double dt) {
   double* m = G.mass.data();
   double* q = G.momentum.data();

@@ -3,11 +3,22 @@
 #include <cmath>
 #include <numbers>
 
+#include "simd.hpp"
+
 namespace mpmstab {
 
 namespace {
 
 constexpr double kPi = std::numbers::pi;
+
+// out[p] = a[p] * f, compiled for each instruction set (simd.hpp): a product per element, the
+// same bits in any of them. Every step of the bar runs it; in the build's baseline (SSE) it took
+// about 3% of a run.
+MPMSTAB_SIMD_CLONES void scale(const double* __restrict a, double f, double* __restrict out,
+                               Eigen::Index n) {
+  for (Eigen::Index p = 0; p < n; ++p)
+    out[p] = a[p] * f;
+}
 
 // b(X_p, t) = profile[p] * sin(c pi t): the bar's separable body force.
 class BarBodyForce final : public BodyForceAtParticles {
@@ -18,7 +29,8 @@ class BarBodyForce final : public BodyForceAtParticles {
   BarBodyForce(const BarBodyForce&) = delete;
   BarBodyForce& operator=(const BarBodyForce&) = delete;
   void evaluate(double t, Eigen::ArrayXd& b) const override {
-    b = profile_ * scene_->body_force_factor(t);
+    b.resize(profile_.size());
+    scale(profile_.data(), scene_->body_force_factor(t), b.data(), profile_.size());
   }
 
  private:
