@@ -15,8 +15,6 @@
 #include "failure.hpp"
 #include "simd.hpp"
 
-#define MPMSTAB_INLINE __attribute__((always_inline)) inline
-
 namespace mpmstab {
 
 #if MPMSTAB_AVX512

@@ -68,11 +68,12 @@ void on_node_ranges(const Grid& G, Update&& update, Fixed&& fixed) {
   }
 }
 
-// out_i = num_i / m_i on free nodes with mass, 0 on the others and on fixed slots; periodic images
-// copied from their nodes. `num` and the masses must be folded already; `out` may be `num`.
 // out_s = num_s / m_s where m_s > 0, else 0, on slots [lo, hi) (phases.cpp: vectorized for each
 // instruction set; the quotients where m_s = 0 are computed and dropped). `out` may be `num`.
 void divide_where_mass(const double* m, const double* num, double* out, int lo, int hi);
+
+// out_i = num_i / m_i on free nodes with mass, 0 on the others and on fixed slots; periodic images
+// copied from their nodes. `num` and the masses must be folded already; `out` may be `num`.
 
 inline void divide_by_mass(const Grid& G, const double* num, double* out) {
   const double* m = G.mass.data();

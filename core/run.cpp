@@ -163,7 +163,7 @@ void Driver::observe_every_option() {
 }
 
 void Driver::check_initial_state() {
-  extremes_ = state_extremes(sim_.particles());
+  // extremes_: of the initial state, taken in the constructor.
   if (auto failure = detect_failure(sim_.particles(), extremes_, p_.bc, max_F_)) {
     r_.failure = failure;
   }

@@ -16,6 +16,8 @@
 #define MPMSTAB_SIMD_CLONES
 #define MPMSTAB_AVX512 0
 #endif
+// A kernel's helper that must be inlined into each instruction set's version of its caller.
+#define MPMSTAB_INLINE __attribute__((always_inline)) inline
 #if defined(__GNUC__) && !defined(__clang__)
 #define MPMSTAB_IVDEP _Pragma("GCC ivdep")  // the per-slot arrays of a stencil do not overlap
 #else

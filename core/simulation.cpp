@@ -153,12 +153,8 @@ ErrorTerms Simulation::error_terms_at(double t) const {
   return {P_.X.data(), u_profile_.data(), scene_->displacement_factor(t)};
 }
 
-ErrorTerms Simulation::error_terms() const {
-  return error_terms_at(t_);
-}
-
 double Simulation::max_error() const {
-  return mpmstab::max_error(P_, error_terms());
+  return mpmstab::max_error(P_, error_terms_at(t_));
 }
 
 }  // namespace mpmstab

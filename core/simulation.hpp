@@ -32,14 +32,13 @@ class Simulation {
   // APIC adds p2g_affine after each momentum sum; XPIC and FMPM add their series (xpic.hpp)
   // between grid_update and g2p.
   // With `extremes`, the state check after the step: state_extremes of the state it leaves (with
-  // the error over time at t_next when `with_error`), taken in USL's last pass where the step
-  // allows it (g2p_and_stress), else in a pass after the step; the same values either way.
+  // the error over time at t_next when `with_error`), taken in the step's last pass where it can
+  // (phases.hpp: g2p_and_stress, g2p, stress_update), else in a pass after the step; the same
+  // values either way.
   void advance_to(double t_next, StateExtremes* extremes = nullptr, bool with_error = false);
 
   // max_p |u_p - u(X_p, t)| at the current time, u_p = x_p - X_p, u the scene's exact solution.
   double max_error() const;
-  // What max_error reads, for the fused pass of state_extremes (the same value).
-  ErrorTerms error_terms() const;
 
   double time() const { return t_; }
   std::int64_t steps() const { return n_; }
@@ -50,10 +49,11 @@ class Simulation {
   const Grid& grid() const { return G_; }
 
  private:
-  // True if it took the check (`check` given and USL's last phases ran as g2p_and_stress).
+  // True if its last phase took the check (`check` given, where phases.hpp says it can).
   template <class Basis>
   bool step(const Basis& basis, Stencil<Basis::width>& S, double dt, double t_body,
             const StateCheck* check);
+  // What max_error reads at time t; the state check takes the same error in its pass.
   ErrorTerms error_terms_at(double t) const;
   // XPIC's and FMPM's correction of the grid velocity, after grid_update (xpic.hpp).
   template <int W>

@@ -373,11 +373,12 @@ struct Task {
   const Spec* spec = nullptr;  // of its first use
   std::size_t index = 0;
   std::string search;
-  double cost = 0;
+  double cost = 0;  // particle-steps; 0 for a task computed by another's run
   std::vector<std::pair<std::size_t, std::size_t>> uses;  // (spec, case)
   // Tasks whose trajectory is this one's (shares_trajectory): computed by the same run.
   std::vector<std::size_t> partners;
-  bool partner = false;  // computed by another task's run
+
+  const RunParams& params() const { return spec->cases[index].params; }
 };
 
 }  // namespace
@@ -411,7 +412,7 @@ std::vector<SweepOutcome> run_sweeps(
       const std::string key = case_key(spec.cases[i].params, search);
       const auto [it, fresh] = task_of.emplace(key, tasks.size());
       if (fresh) {
-        tasks.push_back({&spec, i, search, plans[s].cost[i], {}, {}, false});
+        tasks.push_back({&spec, i, search, plans[s].cost[i], {}, {}});
         total_cost += plans[s].cost[i];
       }
       tasks[it->second].uses.emplace_back(s, i);
@@ -423,13 +424,13 @@ std::vector<SweepOutcome> run_sweeps(
   std::vector<std::size_t> queue;
   std::map<std::string, std::size_t> lead_of;
   for (std::size_t k = 0; k < tasks.size(); ++k) {
-    const RunParams& p = tasks[k].spec->cases[tasks[k].index].params;
+    const RunParams& p = tasks[k].params();
     if (shares_trajectory(p, tasks[k].search)) {
       const auto [it, fresh] = lead_of.emplace(trajectory_key(p), k);
       if (!fresh) {
         tasks[it->second].partners.push_back(k);
-        tasks[k].partner = true;
         total_cost -= tasks[k].cost;
+        tasks[k].cost = 0;
         continue;
       }
     }
@@ -454,8 +455,7 @@ std::vector<SweepOutcome> run_sweeps(
   // Hands a finished task's record to every case that uses it.
   auto deliver = [&](const Task& task, const nlohmann::ordered_json& record, bool hit,
                      double began) {
-    const RunParams& p = task.spec->cases[task.index].params;
-    if (!options.quiet) progress.done(*task.spec, p, record, hit, task.partner ? 0.0 : task.cost);
+    if (!options.quiet) progress.done(*task.spec, task.params(), record, hit, task.cost);
     const double ended = since_start();
     std::lock_guard lock(mutex);
     for (const auto& [s, i] : task.uses) {
@@ -482,7 +482,7 @@ std::vector<SweepOutcome> run_sweeps(
         for (std::size_t m = 0; m < members.size(); ++m) {
           const Task& task = *members[m];
           if (cached && !options.force) {
-            CacheLookup found = cache.lookup(task.spec->cases[task.index].params, task.search);
+            CacheLookup found = cache.lookup(task.params(), task.search);
             if (found.rejected) ++rejected;
             records[m] = std::move(found.record);
           }
@@ -491,12 +491,11 @@ std::vector<SweepOutcome> run_sweeps(
         std::vector<nlohmann::ordered_json> computed;
         if (missing.size() == 1) {
           const Task& task = *members[missing.front()];
-          computed.push_back(
-              compute_case(task.spec->cases[task.index].params, *task.spec->study, options.cancel));
+          computed.push_back(compute_case(task.params(), *task.spec->study, options.cancel));
         } else if (missing.size() > 1) {
           std::vector<const RunParams*> params;
           for (std::size_t m : missing)
-            params.push_back(&members[m]->spec->cases[members[m]->index].params);
+            params.push_back(&members[m]->params());
           computed = compute_shared(params, options.cancel);
         }
         for (std::size_t c = 0; c < missing.size(); ++c) {
@@ -504,7 +503,7 @@ std::vector<SweepOutcome> run_sweeps(
           if (rec.is_null()) continue;  // interrupted
           const Task& task = *members[missing[c]];
           rec["provenance"] = to_json(provenance);
-          if (cached) cache.store(task.spec->cases[task.index].params, rec, task.search);
+          if (cached) cache.store(task.params(), rec, task.search);
           records[missing[c]] = std::move(rec);
         }
         for (std::size_t m = 0; m < members.size(); ++m) {
