@@ -106,7 +106,7 @@ __attribute__((always_inline)) inline void evaluate_block(const Basis& basis, co
   MPMSTAB_IVDEP
   for (int j = 0; j < len; ++j) {
     double xp = x[j];
-    if constexpr (kPeriodic) xp -= std::floor(xp);
+    if constexpr (kPeriodic) xp = fractional_part(xp);
     int bp;
     double wp[W], gp[W];
     if constexpr (requires { basis.eval(xp, F[j], bp, wp, gp); }) {

@@ -22,6 +22,19 @@ inline double floor_exact(double s) {
   return r > s ? r - 1.0 : r;
 }
 
+// x - floor(x), bit for bit as with std::floor, for every x (the periodic wrap of a position).
+// std::floor's loop does not vectorize without -fno-trapping-math; this one does. Adding and
+// subtracting 2^52 with x's sign rounds x to an integer exactly for |x| < 2^52; from 2^52 up
+// (and for inf and NaN) x is its own floor. The + 0.0 turns the -0.0 that x = -0.0 gives here
+// into the +0.0 that -0.0 - floor(-0.0) gives; it leaves every other value as it is.
+inline double fractional_part(double x) {
+  const double k = std::copysign(4503599627370496.0, x);  // 2^52
+  const double r = (x + k) - k;
+  const double below = r > x ? r - 1.0 : r;
+  const double fl = std::abs(x) < 4503599627370496.0 ? below : x;
+  return (x - fl) + 0.0;
+}
+
 // floor(s) as an int, for s well inside int range.
 inline int floor_to_int(double s) {
   return static_cast<int>(floor_exact(s));

@@ -129,7 +129,7 @@ void p2g_affine(const Stencil<W>& S, const Particles& P, Grid& G) {
   scatter_in_order<W>(S.base, P.size(), G.momentum.data(), [&](Eigen::Index p0, int len, auto& C) {
     for (int j = 0; j < len; ++j) {
       const auto p = p0 + j;
-      const double x = periodic ? xs[p] - std::floor(xs[p]) : xs[p];
+      const double x = periodic ? fractional_part(xs[p]) : xs[p];
       const double mC = m_p[p] * Cp[p];
       const int b = base[p];  // storage slot of the first node
       for (int k = 0; k < W; ++k) {

@@ -3,7 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <limits>
+#include <random>
 #include <string>
 #include <utility>
 #include <vector>
@@ -267,6 +271,33 @@ TEST(CpGimpBasis, UndeformedIsUGimpToRounding) {
 TEST(FloorToInt, MatchesFloor) {
   for (double s : {-2.5, -1.0, -0.5, -1e-300, 0.0, 0.5, 1.0, 99.999999, 100.0}) {
     EXPECT_EQ(floor_to_int(s), static_cast<int>(std::floor(s))) << s;
+  }
+}
+
+// The periodic wrap must give the bits std::floor gives, sign of zero included, everywhere: at
+// the edges of the exact range (2^51, 2^52), past it, at +-0, inf and NaN, and at random values.
+TEST(FractionalPart, IsXMinusFloorXBitForBit) {
+  const auto bits = [](double v) { return std::bit_cast<std::uint64_t>(v); };
+  std::vector<double> xs = {0.0,  -0.0,           1e-300,          -1e-300, 0.5,   -0.5,       1.0,
+                            -1.0, 0.999999999999, -0.999999999999, 99.5,    -99.5, 1.0 - 1e-16};
+  for (double e : {0x1p51, 0x1p52, 0x1p53, 1e300}) {
+    for (double d : {-1.5, -1.0, -0.5, 0.0, 0.5, 1.0, 1.5}) {
+      xs.push_back(e + d);
+      xs.push_back(-(e + d));
+    }
+  }
+  xs.push_back(std::numeric_limits<double>::infinity());
+  xs.push_back(-std::numeric_limits<double>::infinity());
+  xs.push_back(std::numeric_limits<double>::quiet_NaN());
+  xs.push_back(std::numeric_limits<double>::denorm_min());
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-3.0, 3.0);
+  std::uniform_int_distribution<int> scale(-60, 60);
+  for (int i = 0; i < 20000; ++i)
+    xs.push_back(std::ldexp(u(rng), scale(rng)));
+  for (double x : xs) {
+    const double expected = x - std::floor(x);
+    EXPECT_EQ(bits(fractional_part(x)), bits(expected)) << x;
   }
 }
 
