@@ -253,7 +253,7 @@ void Driver::observe_step(bool last) {
   if (spectral_policy_ && !last) {
     const double excursion = (sim_.particles().x - initial_x_).abs().maxCoeff();
     if (excursion > next_excursion_) {
-      const auto c = spectral_limit(p_, sim_.particles().x, limit_dt_ / r_.dt_cfl).courant;
+      const auto c = spectral_courant_at(p_, sim_.particles().x, limit_dt_ / r_.dt_cfl);
       limit_dt_ = c.value_or(kMaxSpectralCourant) * r_.dt_cfl;
       next_excursion_ = (std::floor(excursion / h_) + 1) * h_;
     }

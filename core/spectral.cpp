@@ -160,22 +160,46 @@ SpectralLimit spectral_limit(const RunParams& p) {
   return spectral_limit(p, Simulation(p).particles().x);  // the scene's initial layout
 }
 
+namespace {
+
+// The search of spectral_limit: the map as a function of C, and the bracket of its limit.
+struct SpectralSearch {
+  std::function<Eigen::MatrixXd(double)> map_at;
+  std::optional<std::pair<double, double>> bracket;
+};
+
+SpectralSearch search_limit(const RunParams& p, const Eigen::ArrayXd& x, std::optional<double> near,
+                            SpectralLimit& out) {
+  SpectralSearch s;
+  // Every scheme's map is a polynomial of degree two in the Courant number (docs/design.md).
+  s.map_at = quadratic_in_courant([&p, &x](double C) { return linear_step_map(p, x, C); },
+                                  out.evaluations);
+  s.bracket = first_amplifying_courant(
+      [&](double C) { return spectral_radius(s.map_at(C)) > 1 + kSpectralTolerance; }, near,
+      out.solves);
+  if (s.bracket) out.courant = s.bracket->first;
+  return s;
+}
+
+}  // namespace
+
 SpectralLimit spectral_limit(const RunParams& p, const Eigen::ArrayXd& x,
                              std::optional<double> near) {
   SpectralLimit out;
-  // Every scheme's map is a polynomial of degree two in the Courant number (docs/design.md).
-  const auto map_at =
-      quadratic_in_courant([&](double C) { return linear_step_map(p, x, C); }, out.evaluations);
-  const auto bracket = first_amplifying_courant(
-      [&](double C) { return spectral_radius(map_at(C)) > 1 + kSpectralTolerance; }, near,
-      out.solves);
-  if (!bracket) return out;
-  out.courant = bracket->first;
+  const SpectralSearch s = search_limit(p, x, near, out);
+  if (!s.bracket) return out;
   Eigen::ArrayXd mode;
-  out.radius_above = radius_and_mode(map_at(bracket->second), &mode);
+  out.radius_above = radius_and_mode(s.map_at(s.bracket->second), &mode);
   ++out.solves;
   set_limiting_mode(out, std::move(mode), x.size());
   return out;
+}
+
+std::optional<double> spectral_courant_at(const RunParams& p, const Eigen::ArrayXd& x,
+                                          std::optional<double> near) {
+  SpectralLimit out;
+  search_limit(p, x, near, out);
+  return out.courant;
 }
 
 namespace {
@@ -209,7 +233,8 @@ std::optional<double> spectral_courant(const RunParams& p, SpectralAnalysis anal
     if (const auto it = known.find(key); it != known.end()) return it->second;
   }
   // Outside the lock: two threads may compute the same, once each.
-  const std::optional<double> c = (bloch ? bloch_limit(p) : spectral_limit(p)).courant;
+  const std::optional<double> c =
+      bloch ? bloch_limit(p).courant : spectral_courant_at(p, Simulation(p).particles().x);
   const std::lock_guard<std::mutex> lock(mutex);
   known.emplace(key, c);
   return c;

@@ -88,6 +88,11 @@ SpectralLimit spectral_limit(const RunParams& p);
 SpectralLimit spectral_limit(const RunParams& p, const Eigen::ArrayXd& x,
                              std::optional<double> near = std::nullopt);
 
+// spectral_limit(p, x, near).courant, without the limiting mode and its eigenvector solve: what
+// the spectral policy needs at each new layout.
+std::optional<double> spectral_courant_at(const RunParams& p, const Eigen::ArrayXd& x,
+                                          std::optional<double> near = std::nullopt);
+
 // The limit of p's initial layout by `analysis`, computed once per scheme, grid (dense only)
 // and layout in a process, shared by threads. None when the analysis does not apply (dense:
 // a state above kMaxSpectralState; Bloch: bloch_applies(p) false) or nothing amplifies.

@@ -177,6 +177,21 @@ TEST(Spectral, PolicyStepsAtAFractionOfTheLimit) {
   EXPECT_TRUE(!above.stable || *above.max_error_over_time > 3 * p.A);
 }
 
+// The spectral policy's limit at a new layout skips the limiting mode, not the search: the same
+// Courant number as spectral_limit's, bit for bit, on a jittered layout and with a starting guess.
+TEST(Spectral, LimitWithoutTheModeIsTheSameCourantNumber) {
+  for (const Method m : {Method::mpm, Method::gimp}) {
+    RunParams p = tiny_bar(m, 10, 20);
+    p.layout.jitter = 0.3;
+    const Eigen::ArrayXd x = Simulation(p).particles().x;
+    const SpectralLimit full = spectral_limit(p, x);
+    ASSERT_TRUE(full.courant.has_value());
+    EXPECT_EQ(spectral_courant_at(p, x), full.courant);
+    const SpectralLimit near = spectral_limit(p, x, 1.05 * *full.courant);
+    EXPECT_EQ(spectral_courant_at(p, x, 1.05 * *full.courant), near.courant);
+  }
+}
+
 // The Bloch symbol of linear MPM, one particle at each cell's centre, USL with FLIP, derived by
 // hand. Node i lies between particles i - 1 and i; each particle gives 1/2 of its mass and
 // momentum to its two nodes, so v_i = (v_{i-1} + v_i) / 2 and a_i = (c^2 / h)(e_i - e_{i-1}). For
