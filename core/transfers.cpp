@@ -29,8 +29,8 @@ struct FieldWindow {
 };
 
 template <int W>
-inline void scatter_field(const int* base, int len, const FieldBlock<W>& C, FieldWindow<W>& win,
-                          double* __restrict field) {
+MPMSTAB_INLINE void scatter_field(const int* base, int len, const FieldBlock<W>& C,
+                                  FieldWindow<W>& win, double* __restrict field) {
   int b = win.b;
   double v[W];
   for (int k = 0; k < W; ++k)
@@ -62,7 +62,8 @@ inline void scatter_field(const int* base, int len, const FieldBlock<W>& C, Fiel
 // field[base_p + k] += contribution(p, k, out) for every particle, in particle order; `fill`
 // writes out.c[k][j] for the particles p0 .. p0 + len - 1 of a block. The field is not cleared.
 template <int W, class Fill>
-void scatter_in_order(const AlignedVector<int>& base, Eigen::Index n, double* field, Fill fill) {
+MPMSTAB_INLINE void scatter_in_order(const AlignedVector<int>& base, Eigen::Index n, double* field,
+                                     Fill fill) {
   FieldBlock<W> C;
   FieldWindow<W> win;
   win.b = base.empty() ? 0 : base[0];
@@ -80,45 +81,68 @@ void scatter_in_order(const AlignedVector<int>& base, Eigen::Index n, double* fi
 
 }  // namespace
 
+// The kernels of p2g_force and p2g_momentum, compiled for each instruction set (the fill loops
+// vectorize across particles at the widest vector the CPU has).
+namespace {
+
 template <int W>
-void p2g_force(const Stencil<W>& S, const Particles& P, const double* body_accel, Grid& G) {
+MPMSTAB_SIMD_CLONES void force_kernel(const Stencil<W>& S, const Particles& P,
+                                      const double* body_accel, Grid& G) {
   G.force.setZero();
   const double* __restrict sig = P.sigma.data();
   const double* __restrict F = P.F.data();
   const double* __restrict V0 = P.volume0.data();
   const double* __restrict m_p = P.mass.data();
   const Rows<W> w = rows<W>(S.w), g = rows<W>(S.g);
-  scatter_in_order<W>(S.base, P.size(), G.force.data(), [&](Eigen::Index p0, int len, auto& C) {
-    MPMSTAB_IVDEP
-    for (int j = 0; j < len; ++j) {
-      const auto p = p0 + j;
-      const double stress_volume = -sig[p] * F[p] * V0[p];  // V_p = F_p V_p^0
-      const double body = m_p[p] * body_accel[p];
-      for (int k = 0; k < W; ++k)
-        C.c[k][j] = g[k][p] * stress_volume + w[k][p] * body;
-    }
-  });
+  scatter_in_order<W>(
+      S.base, P.size(),
+      G.force.data(), [&](Eigen::Index p0, int len, auto& C) __attribute__((always_inline)) {
+        MPMSTAB_IVDEP
+        for (int j = 0; j < len; ++j) {
+          const auto p = p0 + j;
+          const double stress_volume = -sig[p] * F[p] * V0[p];  // V_p = F_p V_p^0
+          const double body = m_p[p] * body_accel[p];
+          for (int k = 0; k < W; ++k)
+            C.c[k][j] = g[k][p] * stress_volume + w[k][p] * body;
+        }
+      });
 }
 
 template <int W>
-void p2g_momentum(const Stencil<W>& S, const Particles& P, Grid& G) {
+MPMSTAB_SIMD_CLONES void momentum_kernel(const Stencil<W>& S, const Particles& P, Grid& G) {
   G.momentum.setZero();
   const double* __restrict v = P.v.data();
   const double* __restrict m_p = P.mass.data();
   const Rows<W> w = rows<W>(S.w);
-  scatter_in_order<W>(S.base, P.size(), G.momentum.data(), [&](Eigen::Index p0, int len, auto& C) {
-    MPMSTAB_IVDEP
-    for (int j = 0; j < len; ++j) {
-      const auto p = p0 + j;
-      const double mom = m_p[p] * v[p];
-      for (int k = 0; k < W; ++k)
-        C.c[k][j] = w[k][p] * mom;
-    }
-  });
+  scatter_in_order<W>(
+      S.base, P.size(),
+      G.momentum.data(), [&](Eigen::Index p0, int len, auto& C) __attribute__((always_inline)) {
+        MPMSTAB_IVDEP
+        for (int j = 0; j < len; ++j) {
+          const auto p = p0 + j;
+          const double mom = m_p[p] * v[p];
+          for (int k = 0; k < W; ++k)
+            C.c[k][j] = w[k][p] * mom;
+        }
+      });
+}
+
+}  // namespace
+
+template <int W>
+void p2g_force(const Stencil<W>& S, const Particles& P, const double* body_accel, Grid& G) {
+  force_kernel<W>(S, P, body_accel, G);
 }
 
 template <int W>
-void p2g_affine(const Stencil<W>& S, const Particles& P, Grid& G) {
+void p2g_momentum(const Stencil<W>& S, const Particles& P, Grid& G) {
+  momentum_kernel<W>(S, P, G);
+}
+
+namespace {
+
+template <int W>
+MPMSTAB_SIMD_CLONES void affine_kernel(const Stencil<W>& S, const Particles& P, Grid& G) {
   const bool periodic = G.bc == Boundary::periodic;
   const double h = G.h;
   const double* __restrict xs = P.x.data();
@@ -126,18 +150,27 @@ void p2g_affine(const Stencil<W>& S, const Particles& P, Grid& G) {
   const double* __restrict m_p = P.mass.data();
   const int* __restrict base = S.base.data();
   const Rows<W> w = rows<W>(S.w);
-  scatter_in_order<W>(S.base, P.size(), G.momentum.data(), [&](Eigen::Index p0, int len, auto& C) {
-    for (int j = 0; j < len; ++j) {
-      const auto p = p0 + j;
-      const double x = periodic ? fractional_part(xs[p]) : xs[p];
-      const double mC = m_p[p] * Cp[p];
-      const int b = base[p];  // storage slot of the first node
-      for (int k = 0; k < W; ++k) {
-        const double X = (b - Grid::kOffset + k) * h;
-        C.c[k][j] = w[k][p] * mC * (X - x);
-      }
-    }
-  });
+  scatter_in_order<W>(
+      S.base, P.size(),
+      G.momentum.data(), [&](Eigen::Index p0, int len, auto& C) __attribute__((always_inline)) {
+        for (int j = 0; j < len; ++j) {
+          const auto p = p0 + j;
+          const double x = periodic ? fractional_part(xs[p]) : xs[p];
+          const double mC = m_p[p] * Cp[p];
+          const int b = base[p];  // storage slot of the first node
+          for (int k = 0; k < W; ++k) {
+            const double X = (b - Grid::kOffset + k) * h;
+            C.c[k][j] = w[k][p] * mC * (X - x);
+          }
+        }
+      });
+}
+
+}  // namespace
+
+template <int W>
+void p2g_affine(const Stencil<W>& S, const Particles& P, Grid& G) {
+  affine_kernel<W>(S, P, G);
 }
 
 namespace {
