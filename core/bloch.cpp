@@ -3,9 +3,12 @@
 #include <Eigen/Eigenvalues>
 #include <cmath>
 #include <complex>
+#include <functional>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "simulation.hpp"
@@ -70,20 +73,55 @@ Probe interior_probe(const RunParams& p) {
 // The symbol S(theta) from the middle cell's response R: a mode s_j = s e^{i j theta} maps to
 // (S s) e^{i j theta}, S = sum_d M_{j, j+d} e^{i d theta} = sum_d B_d e^{-i d theta}, where B_d
 // (the response of cell m + d to cell m) is M_{j, j-d} by the translation invariance.
-Eigen::MatrixXcd symbol(const Eigen::MatrixXd& R, const Probe& pr, double theta) {
+// R's nonzero entries, in the order the sum takes them (rows, then columns), with the cell offset
+// d of each: built once per R, then S at every wavenumber from them and one phase per offset.
+struct SymbolTerms {
+  Eigen::Index size = 0;  // S is size x size
+  int min_d = 0;          // offsets from min_d to min_d + phases - 1
+  int phases = 0;
+  struct Term {
+    Eigen::Index i, j;
+    int d;
+    double value;
+  };
+  std::vector<Term> terms;
+};
+
+SymbolTerms symbol_terms(const Eigen::MatrixXd& R, const Probe& pr) {
   const int ppc = pr.bar.ppc;
   const Eigen::Index n = Eigen::Index(pr.bar.cells) * ppc;
-  const Eigen::Index k = R.cols();
-  Eigen::MatrixXcd S = Eigen::MatrixXcd::Zero(k, k);
+  SymbolTerms t;
+  t.size = R.cols();
+  int max_d = 0;
   for (Eigen::Index row = 0; row < R.rows(); ++row) {
     const Eigen::Index value = row / n, particle = row % n;
     const int d = int(particle / ppc) - pr.middle;
     const Eigen::Index i = value * ppc + particle % ppc;
-    const std::complex<double> phase = std::polar(1.0, -d * theta);
-    for (Eigen::Index j = 0; j < k; ++j)
-      if (R(row, j) != 0) S(i, j) += R(row, j) * phase;
+    for (Eigen::Index j = 0; j < t.size; ++j) {
+      if (R(row, j) == 0) continue;
+      if (t.terms.empty() || d < t.min_d) t.min_d = d;
+      if (t.terms.empty() || d > max_d) max_d = d;
+      t.terms.push_back({i, j, d, R(row, j)});
+    }
   }
+  t.phases = t.terms.empty() ? 0 : max_d - t.min_d + 1;
+  return t;
+}
+
+// S(theta): each term adds value * e^{-i d theta}, in R's order (the same sums, bit for bit, as
+// adding R(row, j) * std::polar(1, -d theta) row by row).
+Eigen::MatrixXcd symbol(const SymbolTerms& t, double theta) {
+  std::vector<std::complex<double>> phase(std::size_t(t.phases));
+  for (int k = 0; k < t.phases; ++k)
+    phase[std::size_t(k)] = std::polar(1.0, -(t.min_d + k) * theta);
+  Eigen::MatrixXcd S = Eigen::MatrixXcd::Zero(t.size, t.size);
+  for (const SymbolTerms::Term& term : t.terms)
+    S(term.i, term.j) += term.value * phase[std::size_t(term.d - t.min_d)];
   return S;
+}
+
+Eigen::MatrixXcd symbol(const Eigen::MatrixXd& R, const Probe& pr, double theta) {
+  return symbol(symbol_terms(R, pr), theta);
 }
 
 struct Peak {
@@ -96,10 +134,11 @@ struct Peak {
 Peak peak_radius(const Eigen::MatrixXd& R, const Probe& pr, int& solves,
                  double stop_above = std::numeric_limits<double>::infinity()) {
   Peak peak;
+  const SymbolTerms terms = symbol_terms(R, pr);
   Eigen::ComplexEigenSolver<Eigen::MatrixXcd> es;
   for (int j = kBlochSamples; j >= 0; --j) {
     const double theta = kPi * j / kBlochSamples;
-    es.compute(symbol(R, pr, theta), false);
+    es.compute(symbol(terms, theta), false);
     const double r = es.eigenvalues().cwiseAbs().maxCoeff();
     ++solves;
     if (r > peak.radius) peak = {r, theta};
@@ -123,26 +162,45 @@ Eigen::MatrixXcd bloch_symbol(const RunParams& p, double courant, double theta) 
   return symbol(linear_step_columns(pr.bar, pr.x, courant, pr.columns), pr, theta);
 }
 
-SpectralLimit bloch_limit(const RunParams& p) {
+namespace {
+
+// The search of bloch_limit: the probe, the response as a function of C, and the bracket.
+struct BlochSearch {
+  Probe probe;
+  std::function<Eigen::MatrixXd(double)> response_at;
+  std::optional<std::pair<double, double>> bracket;
+};
+
+BlochSearch search_bloch(const RunParams& p, SpectralLimit& out) {
   if (!bloch_applies(p)) {
     throw std::invalid_argument("bloch_limit: needs a uniform layout and a symbol of at most " +
                                 std::to_string(kMaxBlochSymbol) + " values");
   }
-  SpectralLimit out;
   out.analysis = SpectralAnalysis::bloch;
-  const Probe pr = interior_probe(p);
-  const auto response_at = quadratic_in_courant(
-      [&](double C) { return linear_step_columns(pr.bar, pr.x, C, pr.columns); }, out.evaluations);
+  BlochSearch s{interior_probe(p), {}, {}};
+  const Probe& pr = s.probe;
+  s.response_at = quadratic_in_courant(
+      [&pr](double C) { return linear_step_columns(pr.bar, pr.x, C, pr.columns); },
+      out.evaluations);
   const double threshold = 1 + kSpectralTolerance;
   int calls = 0;
-  const auto bracket = first_amplifying_courant(
+  s.bracket = first_amplifying_courant(
       [&](double C) {
-        return peak_radius(response_at(C), pr, out.solves, threshold).radius > threshold;
+        return peak_radius(s.response_at(C), pr, out.solves, threshold).radius > threshold;
       },
       std::nullopt, calls);
-  if (!bracket) return out;
-  out.courant = bracket->first;
-  const Eigen::MatrixXd R = response_at(bracket->second);
+  if (s.bracket) out.courant = s.bracket->first;
+  return s;
+}
+
+}  // namespace
+
+SpectralLimit bloch_limit(const RunParams& p) {
+  SpectralLimit out;
+  const BlochSearch s = search_bloch(p, out);
+  if (!s.bracket) return out;
+  const Probe& pr = s.probe;
+  const Eigen::MatrixXd R = s.response_at(s.bracket->second);
   const Peak peak = peak_radius(R, pr, out.solves);
   out.radius_above = peak.radius;
   out.wavenumber = peak.theta / kPi;
@@ -151,6 +209,12 @@ SpectralLimit bloch_limit(const RunParams& p) {
   es.eigenvalues().cwiseAbs().maxCoeff(&top);
   set_limiting_mode(out, es.eigenvectors().col(top).cwiseAbs().array(), p.ppc);
   return out;
+}
+
+std::optional<double> bloch_courant(const RunParams& p) {
+  SpectralLimit out;
+  search_bloch(p, out);
+  return out.courant;
 }
 
 }  // namespace mpmstab

@@ -13,6 +13,8 @@
 // differ where a wall mode limits: the spectral study shows both).
 #pragma once
 
+#include <optional>
+
 #include <Eigen/Core>
 
 #include "params.hpp"
@@ -43,5 +45,8 @@ Eigen::MatrixXcd bloch_symbol(const RunParams& p, double courant, double theta);
 // Requires bloch_applies(p). The mode is that of the largest eigenvalue just above the limit:
 // its wavenumber and its |velocity| and |strain| per particle of a cell.
 SpectralLimit bloch_limit(const RunParams& p);
+// bloch_limit(p).courant without the mode (the sweep over every wavenumber just above the limit
+// and an eigenvector solve): what each run's record carries.
+std::optional<double> bloch_courant(const RunParams& p);
 
 }  // namespace mpmstab

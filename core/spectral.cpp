@@ -234,7 +234,7 @@ std::optional<double> spectral_courant(const RunParams& p, SpectralAnalysis anal
   }
   // Outside the lock: two threads may compute the same, once each.
   const std::optional<double> c =
-      bloch ? bloch_limit(p).courant : spectral_courant_at(p, Simulation(p).particles().x);
+      bloch ? bloch_courant(p) : spectral_courant_at(p, Simulation(p).particles().x);
   const std::lock_guard<std::mutex> lock(mutex);
   known.emplace(key, c);
   return c;
