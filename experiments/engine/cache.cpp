@@ -130,7 +130,7 @@ void ResultCache::store(const RunParams& p, nlohmann::ordered_json record,
   const std::filesystem::path file = dir_ / (case_key(p, search) + ".json");
   record = parse_json_strict<nlohmann::ordered_json>(record.dump(), file);
   record["checksum"] = checksum(record, canonical_text);
-  write_file_atomically(file, record.dump());
+  write_file_atomically(file, record.dump(), Durability::checksummed);
 }
 
 }  // namespace mpmstab

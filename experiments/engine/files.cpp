@@ -87,9 +87,11 @@ void write_all(int fd, std::string_view data, const fs::path& tmp, const fs::pat
   }
 }
 
-// Flushes `fd` to disk and closes it; on failure removes `tmp` and throws.
-void finish(int fd, const fs::path& tmp, const fs::path& target) {
-  const bool synced = ::fsync(fd) == 0;
+// Flushes `fd` to disk (unless `durability` says not) and closes it; on failure removes `tmp`
+// and throws.
+void finish(int fd, const fs::path& tmp, const fs::path& target,
+            Durability durability = Durability::flushed) {
+  const bool synced = durability == Durability::checksummed || ::fsync(fd) == 0;
   const std::string reason = errno_text();
   const bool closed = ::close(fd) == 0;
   if (!synced || !closed) {
@@ -100,11 +102,12 @@ void finish(int fd, const fs::path& tmp, const fs::path& target) {
 }
 
 // Writes `content` to a fresh temporary beside `target` and returns its path.
-fs::path write_temporary(const fs::path& target, std::string_view content) {
+fs::path write_temporary(const fs::path& target, std::string_view content,
+                         Durability durability = Durability::flushed) {
   fs::path tmp;
   const int fd = open_temporary(target, tmp);
   write_all(fd, content, tmp, target);
-  finish(fd, tmp, target);
+  finish(fd, tmp, target, durability);
   return tmp;
 }
 
@@ -232,9 +235,9 @@ void require_regular_or_absent(const fs::path& path) {
                              "; the program writes only over regular files (remove it first)");
 }
 
-void write_file_atomically(const fs::path& path, std::string_view content) {
+void write_file_atomically(const fs::path& path, std::string_view content, Durability durability) {
   require_regular_or_absent(path);
-  rename_over(write_temporary(path, content), path);
+  rename_over(write_temporary(path, content, durability), path);
 }
 
 FileWriter::FileWriter(const fs::path& target) : target_(target) {
