@@ -130,20 +130,25 @@ struct Peak {
 };
 
 // The largest spectral radius over the wavenumbers, from theta = pi down (where the worst mode
-// of most schemes lies); with `stop_above`, the first radius above it is returned at once.
+// of most schemes lies); with `stop_above`, the first radius above it is returned at once, and
+// `first`, a sample index, is tried before the others (where the last amplification was: whether
+// some radius exceeds `stop_above` does not depend on the order the samples are tried in).
 Peak peak_radius(const Eigen::MatrixXd& R, const Probe& pr, int& solves,
-                 double stop_above = std::numeric_limits<double>::infinity()) {
+                 double stop_above = std::numeric_limits<double>::infinity(), int first = -1) {
   Peak peak;
   const SymbolTerms terms = symbol_terms(R, pr);
   Eigen::ComplexEigenSolver<Eigen::MatrixXcd> es;
-  for (int j = kBlochSamples; j >= 0; --j) {
+  const auto sample = [&](int j) {
     const double theta = kPi * j / kBlochSamples;
     es.compute(symbol(terms, theta), false);
     const double r = es.eigenvalues().cwiseAbs().maxCoeff();
     ++solves;
     if (r > peak.radius) peak = {r, theta};
-    if (r > stop_above) break;
-  }
+    return r > stop_above;
+  };
+  if (first >= 0 && sample(first)) return peak;
+  for (int j = kBlochSamples; j >= 0; --j)
+    if (j != first && sample(j)) break;
   return peak;
 }
 
@@ -184,9 +189,12 @@ BlochSearch search_bloch(const RunParams& p, SpectralLimit& out) {
       out.evaluations);
   const double threshold = 1 + kSpectralTolerance;
   int calls = 0;
+  int last = -1;  // the sample index of the last amplification found, tried first
   s.bracket = first_amplifying_courant(
       [&](double C) {
-        return peak_radius(s.response_at(C), pr, out.solves, threshold).radius > threshold;
+        const Peak peak = peak_radius(s.response_at(C), pr, out.solves, threshold, last);
+        if (peak.radius > threshold) last = int(std::lround(peak.theta / kPi * kBlochSamples));
+        return peak.radius > threshold;
       },
       std::nullopt, calls);
   if (s.bracket) out.courant = s.bracket->first;
