@@ -1,5 +1,8 @@
 // build/mpmstab: the command-line front end.
 #include <csignal>
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 #include <exception>
 #include <iostream>
 #include <string_view>
@@ -43,6 +46,13 @@ int main(int argc, char** argv) {
   // A closed standard output (mpmstab ... | head) must not kill the program before its reports
   // are written: a write to it then fails with EPIPE instead, which the streams ignore.
   std::signal(SIGPIPE, SIG_IGN);
+#ifdef __GLIBC__
+  // The arrays of a run (a particle array of the largest cases is 6 MB) are kept by the allocator
+  // when freed and reused by the next run, rather than returned to the system and faulted in
+  // again page by page: extremes (1344 cases) 13.3 -> 12.4 s wall, 2.9 -> 1.8 s of system time.
+  mallopt(M_MMAP_THRESHOLD, 256 << 20);
+  mallopt(M_TRIM_THRESHOLD, 512 << 20);
+#endif
   std::vector<std::string_view> args(argv + 1, argv + argc);
   if (args.size() == 1 && args[0] == "--version") {
     const mpmstab::Provenance p = mpmstab::current_provenance(1);
