@@ -71,7 +71,7 @@ __attribute__((noinline)) void modify_block(const Basis& basis, const double* x,
 
 // Always inlined into p2g_kernel: each of its instruction-set clones then vectorizes the loops
 // for its own vector width (not inlined, it would be compiled once, for the baseline).
-template <bool kPeriodic, class Basis>
+template <bool kPeriodic, bool kForce, class Basis>
 __attribute__((always_inline)) inline void evaluate_block(const Basis& basis, const Particles& P,
                                                           const double* body_accel, Eigen::Index p0,
                                                           int len, Stencil<Basis::width>& S,
@@ -83,7 +83,7 @@ __attribute__((always_inline)) inline void evaluate_block(const Basis& basis, co
   const double* __restrict sig = P.sigma.data() + p0;
   const double* __restrict m_p = P.mass.data() + p0;
   const double* __restrict V0 = P.volume0.data() + p0;
-  const double* __restrict b_p = body_accel + p0;
+  const double* __restrict b_p = kForce ? body_accel + p0 : nullptr;
   int* __restrict base = S.base.data() + p0;
   double *w[W], *g[W];
   for (int k = 0; k < W; ++k) {
@@ -94,12 +94,15 @@ __attribute__((always_inline)) inline void evaluate_block(const Basis& basis, co
   auto contribute = [&](int j, const double* wp, const double* gp) __attribute__((always_inline)) {
     const double mass = m_p[j];
     const double mom = mass * v[j];
-    const double stress_volume = -sig[j] * F[j] * V0[j];  // V_p = F_p V_p^0 (eq. 6)
-    const double body = mass * b_p[j];
     for (int k = 0; k < W; ++k) {
       C.mq[k][j][0] = wp[k] * mass;
       C.mq[k][j][1] = wp[k] * mom;
-      C.f[k][j] = gp[k] * stress_volume + wp[k] * body;
+    }
+    if constexpr (kForce) {
+      const double stress_volume = -sig[j] * F[j] * V0[j];  // V_p = F_p V_p^0 (eq. 6)
+      const double body = mass * b_p[j];
+      for (int k = 0; k < W; ++k)
+        C.f[k][j] = gp[k] * stress_volume + wp[k] * body;
     }
   };
   // S_ip, G_ip, the base node and the contributions of every particle of the block.
@@ -141,7 +144,7 @@ __attribute__((always_inline)) inline void evaluate_block(const Basis& basis, co
 
 // Always inlined into p2g_kernel, as evaluate_block is (out of line it is compiled once, for the
 // baseline: BM_Step, GIMP, 3.5 -> 6.3 ns per particle-step when GCC chose not to inline it).
-template <int W>
+template <int W, bool kForce>
 __attribute__((always_inline)) inline void scatter_block(const int* base, int len,
                                                          const Contributions<W>& C, Window<W>& win,
                                                          double* __restrict m_i,
@@ -160,22 +163,22 @@ __attribute__((always_inline)) inline void scatter_block(const int* base, int le
       if (bp == b + 1) {  // the usual move: node b leaves, node b + W enters
         m_i[b] = mq[0][0];
         q_i[b] = mq[0][1];
-        f_i[b] = f[0];
+        if constexpr (kForce) f_i[b] = f[0];
         for (int k = 0; k + 1 < W; ++k) {
           mq[k] = mq[k + 1];
           f[k] = f[k + 1];
         }
         mq[W - 1] = Pair{m_i[bp + W - 1], q_i[bp + W - 1]};
-        f[W - 1] = f_i[bp + W - 1];
+        if constexpr (kForce) f[W - 1] = f_i[bp + W - 1];
       } else {
         for (int k = 0; k < W; ++k) {
           m_i[b + k] = mq[k][0];
           q_i[b + k] = mq[k][1];
-          f_i[b + k] = f[k];
+          if constexpr (kForce) f_i[b + k] = f[k];
         }
         for (int k = 0; k < W; ++k) {
           mq[k] = Pair{m_i[bp + k], q_i[bp + k]};
-          f[k] = f_i[bp + k];
+          if constexpr (kForce) f[k] = f_i[bp + k];
         }
       }
       b = bp;
@@ -184,7 +187,7 @@ __attribute__((always_inline)) inline void scatter_block(const int* base, int le
       Pair c;
       std::memcpy(&c, C.mq[k][j], sizeof c);
       mq[k] += c;
-      f[k] += C.f[k][j];
+      if constexpr (kForce) f[k] += C.f[k][j];
     }
   }
   win.b = b;
@@ -194,13 +197,13 @@ __attribute__((always_inline)) inline void scatter_block(const int* base, int le
   }
 }
 
-template <bool kPeriodic, class Basis>
+template <bool kPeriodic, bool kForce, class Basis>
 MPMSTAB_SIMD_CLONES void p2g_kernel(const Basis& basis, const Particles& P,
                                     const double* body_accel, Stencil<Basis::width>& S, Grid& G) {
   constexpr int W = Basis::width;
   G.mass.setZero();
   G.momentum.setZero();
-  G.force.setZero();
+  if constexpr (kForce) G.force.setZero();
   Window<W> win;  // at slot 0, which holds the cleared values
   for (int k = 0; k < W; ++k) {
     win.mq[k] = Pair{0.0, 0.0};
@@ -211,27 +214,30 @@ MPMSTAB_SIMD_CLONES void p2g_kernel(const Basis& basis, const Particles& P,
   for (Eigen::Index p0 = 0; p0 < n; p0 += kBlock) {
     const int len = n - p0 < kBlock ? static_cast<int>(n - p0) : kBlock;
     if (len == kBlock) {  // a constant trip count vectorizes best
-      evaluate_block<kPeriodic>(basis, P, body_accel, p0, kBlock, S, C);
+      evaluate_block<kPeriodic, kForce>(basis, P, body_accel, p0, kBlock, S, C);
     } else {
-      evaluate_block<kPeriodic>(basis, P, body_accel, p0, len, S, C);
+      evaluate_block<kPeriodic, kForce>(basis, P, body_accel, p0, len, S, C);
     }
-    scatter_block(S.base.data() + p0, len, C, win, G.mass.data(), G.momentum.data(),
-                  G.force.data());
+    scatter_block<W, kForce>(S.base.data() + p0, len, C, win, G.mass.data(), G.momentum.data(),
+                             G.force.data());
   }
   for (int k = 0; k < W; ++k) {
     G.mass[win.b + k] = win.mq[k][0];
     G.momentum[win.b + k] = win.mq[k][1];
-    G.force[win.b + k] = win.f[k];
+    if constexpr (kForce) G.force[win.b + k] = win.f[k];
   }
 }
 
 template <class Basis>
 void p2g_any(const Basis& basis, const Particles& P, const double* body_accel,
              Stencil<Basis::width>& S, Grid& G) {
-  if (G.bc == Boundary::periodic) {
-    p2g_kernel<true>(basis, P, body_accel, S, G);
-  } else {
-    p2g_kernel<false>(basis, P, body_accel, S, G);
+  const bool periodic = G.bc == Boundary::periodic;
+  if (body_accel) {
+    (periodic ? p2g_kernel<true, true, Basis> : p2g_kernel<false, true, Basis>)(basis, P,
+                                                                                body_accel, S, G);
+  } else {  // m_i and q_i only (USF, whose f_i comes after its stress update)
+    (periodic ? p2g_kernel<true, false, Basis> : p2g_kernel<false, false, Basis>)(basis, P,
+                                                                                  body_accel, S, G);
   }
 }
 

@@ -38,7 +38,9 @@ namespace mpmstab {
 // `body_accel[p]` is b(X_p, t) at the time the step evaluates it. The grid is cleared first;
 // each node receives its contributions in particle order. With periodic boundaries the positions
 // are kept unwrapped and the stencil is taken at the image in [0, 1). The state must be
-// admissible (failure.hpp): finite positions and, for cpGIMP, 0 < F_p <= 2 m.
+// admissible (failure.hpp): finite positions and, for cpGIMP, 0 < F_p <= 2 m. With `body_accel`
+// null, m_i and q_i only: f_i is not summed and left as it was (USF, which sums it after its
+// stress update with p2g_force).
 void p2g(const LinearBasis& basis, const Particles& P, const double* body_accel,
          Stencil<LinearBasis::width>& S, Grid& G);
 void p2g(const GimpBasis& basis, const Particles& P, const double* body_accel,

@@ -97,7 +97,7 @@ bool Simulation::step(const Basis& basis, Stencil<Basis::width>& S, double dt, d
       g2p(S, G_, dt, g2p_rule_, P_);                     // eqs. (9), (10)
       return stress_update(S, G_, dt, law_, P_, check);  // eqs. (11), (13), (14) with v_i^{n+1}
     case UpdateOrder::usf:
-      p2g(basis, P_, b, S, G_);  // m_i, q_i; f_i is redone with the new stress below
+      p2g(basis, P_, nullptr, S, G_);  // m_i, q_i; f_i with the new stress below
       if (apic) p2g_affine(S, P_, G_);
       grid_velocity(G_);                   // v_i^n = q_i / m_i
       full_mass_velocity(S);               // FMPM: v_i^n from the full mass matrix series

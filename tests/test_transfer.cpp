@@ -196,6 +196,33 @@ TEST(P2G, SumsAreThePlainScatterBitForBitInAnyParticleOrder) {
   }
 }
 
+// USF's p2g (no body force given) sums m_i and q_i alone, bit for bit those of the full p2g, and
+// leaves f_i as it was (its p2g_force comes after the stress update).
+TEST(P2G, WithoutABodyForceSumsMassAndMomentumAlone) {
+  const int cells = 20;
+  const GimpBasis basis(1.0 / cells, 1.0 / 80);
+  for (Boundary bc : {Boundary::dirichlet, Boundary::periodic}) {
+    const Particles P = random_particles(300, bc == Boundary::periodic ? -0.7 : 0.0,
+                                         bc == Boundary::periodic ? 1.7 : 1.0, 9);
+    const Eigen::ArrayXd body = Eigen::ArrayXd::Random(P.size());
+    Stencil<GimpBasis::width> S, S_alone;
+    S.resize(std::size_t(P.size()));
+    S_alone.resize(std::size_t(P.size()));
+    Grid G(cells, bc), alone(cells, bc);
+    p2g(basis, P, body.data(), S, G);
+    alone.force.setConstant(7.0);
+    p2g(basis, P, nullptr, S_alone, alone);
+    EXPECT_TRUE((alone.mass == G.mass).all());
+    EXPECT_TRUE((alone.momentum == G.momentum).all());
+    EXPECT_TRUE((alone.force == 7.0).all());
+    EXPECT_EQ(S_alone.base, S.base);
+    for (int k = 0; k < GimpBasis::width; ++k) {
+      EXPECT_EQ(S_alone.w[k], S.w[k]);
+      EXPECT_EQ(S_alone.g[k], S.g[k]);
+    }
+  }
+}
+
 TEST(P2G, MassOfTheBarIsOneOnTheNodes) {
   // rho0 = 1 on [0, 1]: the interior nodes of a uniform particle layout carry mass h each.
   const int cells = 10, ppc = 2;
