@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <utility>
 
 #include "simd.hpp"
 
@@ -23,9 +24,9 @@ MPMSTAB_SIMD_CLONES void scale(const double* __restrict a, double f, double* __r
 // b(X_p, t) = profile[p] * sin(c pi t): the bar's separable body force.
 class BarBodyForce final : public BodyForceAtParticles {
  public:
-  BarBodyForce(const BarScene& scene, const Eigen::ArrayXd& X)
-      : scene_(&scene),
-        profile_(X.unaryExpr([&](double Xp) { return scene.body_force_profile(Xp); })) {}
+  // profile: body_force_profile(X_p), from the scene's sines of X.
+  BarBodyForce(const BarScene& scene, Eigen::ArrayXd profile)
+      : scene_(&scene), profile_(std::move(profile)) {}
   BarBodyForce(const BarBodyForce&) = delete;
   BarBodyForce& operator=(const BarBodyForce&) = delete;
   void evaluate(double t, Eigen::ArrayXd& b) const override {
@@ -106,6 +107,16 @@ BarScene::BarScene(double youngs_modulus, double amplitude) : Scene(youngs_modul
 double BarScene::displacement_profile(double X) const {
   return A * std::sin(2 * kPi * X);
 }
+const Eigen::ArrayXd& BarScene::space_sines(const Eigen::ArrayXd& X) const {
+  if (sines_X_.size() != X.size() || !(sines_X_ == X).all()) {
+    sines_X_ = X;
+    sines_ = X.unaryExpr([](double Xp) { return std::sin(2 * kPi * Xp); });
+  }
+  return sines_;
+}
+Eigen::ArrayXd BarScene::displacement_profiles(const Eigen::ArrayXd& X) const {
+  return A * space_sines(X);  // displacement_profile's A * sin(2 pi X)
+}
 double BarScene::time_sine(double t) const {
   if (t != sine_t_) {
     sine_t_ = t;
@@ -137,14 +148,19 @@ double BarScene::body_force(double X, double t) const {
 }
 
 std::unique_ptr<BodyForceAtParticles> BarScene::body_force_at(const Eigen::ArrayXd& X) const {
-  return std::make_unique<BarBodyForce>(*this, X);
+  // body_force_profile's 3 (c pi)^2 A sin(2 pi X), its products in its order.
+  const double factor = 3.0 * (c * kPi) * (c * kPi) * A;
+  return std::make_unique<BarBodyForce>(*this, factor * space_sines(X));
 }
 
 Particles BarScene::initial_particles(int cells, int ppc, const Layout& layout) const {
   Particles P = reference_layout(cells, ppc, layout);
+  // velocity(X_p, 0), its products in its order, from the scene's sines of X.
+  const Eigen::ArrayXd& sines = space_sines(P.X);
+  const double amplitude = A * c * kPi, time_factor = std::cos(c * kPi * 0.0);
   for (Eigen::Index p = 0; p < P.size(); ++p) {
     P.x[p] = P.X[p];
-    P.v[p] = velocity(P.X[p], 0.0);
+    P.v[p] = amplitude * sines[p] * time_factor;
     P.F[p] = 1.0;
     P.sigma[p] = 0.0;
   }

@@ -64,7 +64,7 @@ Simulation::Simulation(const RunParams& p)
   stencil3_.resize(width == 3 ? n : 0);
   stencil4_.resize(width == 4 ? n : 0);
   body_force_ = scene_->body_force_at(P_.X);
-  u_profile_ = P_.X.unaryExpr([&](double X) { return scene_->displacement_profile(X); });
+  u_profile_ = scene_->displacement_profiles(P_.X);
   body_accel_.setZero(P_.size());
   if (p.transfer == Transfer::apic) P_.C.setZero(P_.size());  // starts from v_p alone
   if (p.transfer == Transfer::xpic) G_.correction.setZero(G_.slots());
