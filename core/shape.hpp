@@ -10,6 +10,8 @@
 
 #include <cmath>
 
+#include "simd.hpp"
+
 namespace mpmstab {
 
 // floor(s) as a double, exactly, for |s| < 2^51. Adding and subtracting 1.5 * 2^52 rounds s to
@@ -53,7 +55,7 @@ struct LinearBasis {
 
   explicit LinearBasis(double h) : inv_h(1.0 / h) {}
 
-  void eval(double x, int& base, double* w, double* g) const {
+  MPMSTAB_INLINE void eval(double x, int& base, double* w, double* g) const {
     const double s = x * inv_h;
     const double cell = floor_exact(s);
     base = static_cast<int>(cell);
@@ -86,7 +88,7 @@ struct GimpBasis {
         inv_2lp(1.0 / (2.0 * lp)),
         lp_cells(lp / h) {}
 
-  void eval(double x, int& base, double* wt, double* g) const {
+  MPMSTAB_INLINE void eval(double x, int& base, double* wt, double* g) const {
     // Left edge of the support in cell units, relative to node `base`: u in [0, 1).
     const double s = x * inv_h - lp_cells;
     const double cell = floor_exact(s);
@@ -125,7 +127,7 @@ struct CpGimpBasis {
 
   CpGimpBasis(double h, double lp0) : inv_h(1.0 / h), lp0_cells(lp0 / h) {}
 
-  void eval(double x, double F, int& base, double* wt, double* g) const {
+  MPMSTAB_INLINE void eval(double x, double F, int& base, double* wt, double* g) const {
     const double lp_cells = F * lp0_cells;
     const double w = 2.0 * lp_cells;  // support width in cell units, <= 2
     const double inv_w = 1.0 / w;
@@ -346,11 +348,11 @@ struct BSpline2Basis {
   BSpline2Basis(double h, int n_cells, bool dirichlet)
       : BSpline2Basis(h, n_cells, dirichlet ? SplineWalls::eliminate : SplineWalls::none) {}
 
-  void eval(double x, int& base, double* w, double* g) const {
+  MPMSTAB_INLINE void eval(double x, int& base, double* w, double* g) const {
     eval_vector(x, base, w, g);
     if (modifies()) modify(x, base, w, g);
   }
-  void eval_vector(double x, int& base, double* w, double* g) const {
+  MPMSTAB_INLINE void eval_vector(double x, int& base, double* w, double* g) const {
     const double s = x * inv_h - 0.5;
     const double cell = floor_exact(s);
     base = static_cast<int>(cell);
@@ -394,11 +396,11 @@ struct BSpline3Basis {
   BSpline3Basis(double h, int n_cells, bool dirichlet)
       : BSpline3Basis(h, n_cells, dirichlet ? SplineWalls::eliminate : SplineWalls::none) {}
 
-  void eval(double x, int& base, double* w, double* g) const {
+  MPMSTAB_INLINE void eval(double x, int& base, double* w, double* g) const {
     eval_vector(x, base, w, g);
     if (modifies()) modify(x, base, w, g);
   }
-  void eval_vector(double x, int& base, double* w, double* g) const {
+  MPMSTAB_INLINE void eval_vector(double x, int& base, double* w, double* g) const {
     const double s = x * inv_h;
     const double cell = floor_exact(s);
     base = static_cast<int>(cell) - 1;
@@ -439,7 +441,7 @@ struct CpdiBasis {
 
   CpdiBasis(double h, double lp0) : inv_h(1.0 / h), lp0_cells(lp0 / h) {}
 
-  void eval(double x, double F, int& base, double* wt, double* g) const {
+  MPMSTAB_INLINE void eval(double x, double F, int& base, double* wt, double* g) const {
     const double lp_cells = F * lp0_cells;
     const double s1 = x * inv_h - lp_cells;  // corners in cell units
     const double cell = floor_exact(s1);

@@ -1,5 +1,5 @@
-// Instruction-set macros of the kernels (phases.cpp, p2g_bases.cpp, transfers.cpp). Internal to
-// core/.
+// Instruction-set and inlining macros of the kernels (phases.cpp, p2g_bases.cpp, transfers.cpp)
+// and of the shape functions they inline (shape.hpp). Used by core/ only.
 #pragma once
 
 // Instruction sets. MPMSTAB_SIMD_CLONES compiles a function for AVX-512 (x86-64-v4), AVX2
