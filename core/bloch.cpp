@@ -127,6 +127,7 @@ Eigen::MatrixXcd symbol(const Eigen::MatrixXd& R, const Probe& pr, double theta)
 struct Peak {
   double radius = 0;
   double theta = 0;
+  int sample = -1;  // theta = pi sample / kBlochSamples
 };
 
 // The largest spectral radius over the wavenumbers, from theta = pi down (where the worst mode
@@ -138,17 +139,17 @@ Peak peak_radius(const Eigen::MatrixXd& R, const Probe& pr, int& solves,
   Peak peak;
   const SymbolTerms terms = symbol_terms(R, pr);
   Eigen::ComplexEigenSolver<Eigen::MatrixXcd> es;
-  const auto sample = [&](int j) {
+  const auto solve_at = [&](int j) {
     const double theta = kPi * j / kBlochSamples;
     es.compute(symbol(terms, theta), false);
     const double r = es.eigenvalues().cwiseAbs().maxCoeff();
     ++solves;
-    if (r > peak.radius) peak = {r, theta};
+    if (r > peak.radius) peak = {r, theta, j};
     return r > stop_above;
   };
-  if (first >= 0 && sample(first)) return peak;
+  if (first >= 0 && solve_at(first)) return peak;
   for (int j = kBlochSamples; j >= 0; --j)
-    if (j != first && sample(j)) break;
+    if (j != first && solve_at(j)) break;
   return peak;
 }
 
@@ -193,8 +194,9 @@ BlochSearch search_bloch(const RunParams& p, SpectralLimit& out) {
   s.bracket = first_amplifying_courant(
       [&](double C) {
         const Peak peak = peak_radius(s.response_at(C), pr, out.solves, threshold, last);
-        if (peak.radius > threshold) last = int(std::lround(peak.theta / kPi * kBlochSamples));
-        return peak.radius > threshold;
+        const bool amplifies = peak.radius > threshold;
+        if (amplifies) last = peak.sample;
+        return amplifies;
       },
       std::nullopt, calls);
   if (s.bracket) out.courant = s.bracket->first;

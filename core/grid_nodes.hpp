@@ -74,7 +74,6 @@ void divide_where_mass(const double* m, const double* num, double* out, int lo, 
 
 // out_i = num_i / m_i on free nodes with mass, 0 on the others and on fixed slots; periodic images
 // copied from their nodes. `num` and the masses must be folded already; `out` may be `num`.
-
 inline void divide_by_mass(const Grid& G, const double* num, double* out) {
   const double* m = G.mass.data();
   on_node_ranges(

@@ -28,15 +28,10 @@ StableDtInputs stable_dt_inputs(const Particles& P, const StateExtremes& e, cons
 
 namespace {
 
-// The geometry's factors of eq. (108) in the floating-point type `real`.
+// The factors of geo in the floating-point type `real`.
 template <class real>
-struct Factors {
-  real four_m, sqrt_m, sqrt_E, inv_sqrt_E, nine_h_sqrt_E, h_sqrt_m, gimp_position;
-};
-
-template <class real>
-Factors<real> factors(const StableDtGeometry& geo) {
-  Factors<real> f;
+StableDtFactors<real> factors(const StableDtGeometry& geo) {
+  StableDtFactors<real> f;
   const real m = geo.ppc;
   f.four_m = 4 * m;
   f.sqrt_m = std::sqrt(m);
@@ -50,7 +45,7 @@ Factors<real> factors(const StableDtGeometry& geo) {
 
 // Eq. (108) in the floating-point type `real`.
 template <class real>
-real eq108(const StableDtInputs& in, const StableDtGeometry& geo, const Factors<real>& f,
+real eq108(const StableDtInputs& in, const StableDtGeometry& geo, const StableDtFactors<real>& f,
            StressScaling sigma) {
   const real scale = sigma == StressScaling::scaled ? f.inv_sqrt_E : real(1);
   const real sigma_max = real(in.sigma_max) * scale;
@@ -71,8 +66,7 @@ real eq108(const StableDtInputs& in, const StableDtGeometry& geo, const Factors<
 }  // namespace
 
 StableDtConstants stable_dt_constants(const StableDtGeometry& geo) {
-  const Factors<double> f = factors<double>(geo);
-  return {f.four_m, f.sqrt_m, f.sqrt_E, f.inv_sqrt_E, f.nine_h_sqrt_E, f.h_sqrt_m, f.gimp_position};
+  return factors<double>(geo);
 }
 
 double stable_dt(const StableDtInputs& in, const StableDtGeometry& geo, const StableDtConstants& c,
@@ -80,9 +74,7 @@ double stable_dt(const StableDtInputs& in, const StableDtGeometry& geo, const St
   // In double; where an extreme but finite state overflows a double (for example
   // (sigma F)_max times 2 / (l sqrt m)), again in long double. A bound smaller than the
   // smallest positive double is that double: no step is stable.
-  const Factors<double> f{c.four_m,        c.sqrt_m,   c.sqrt_E,       c.inv_sqrt_E,
-                          c.nine_h_sqrt_E, c.h_sqrt_m, c.gimp_position};
-  double dt = eq108<double>(in, geo, f, sigma);
+  double dt = eq108<double>(in, geo, c, sigma);
   if (!(dt > 0) || !std::isfinite(dt)) {
     dt = static_cast<double>(eq108<long double>(in, geo, factors<long double>(geo), sigma));
   }

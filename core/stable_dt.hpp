@@ -49,17 +49,20 @@ StableDtInputs stable_dt_inputs(const Particles& P, const StateExtremes& e, cons
 // smallest positive double.
 double stable_dt(const StableDtInputs& in, const StableDtGeometry& geo, StressScaling sigma);
 
-// The factors of eq. (108) that depend on the geometry alone (square roots, products), for a
-// run that evaluates it every step: stable_dt with them is stable_dt without them, bit for bit.
-struct StableDtConstants {
-  double four_m = 0;         // 4 m
-  double sqrt_m = 0;         // sqrt(m)
-  double sqrt_E = 0;         // sqrt(E)
-  double inv_sqrt_E = 0;     // 1 / sqrt(E), the scaled stress's factor
-  double nine_h_sqrt_E = 0;  // 9 h sqrt(E)
-  double h_sqrt_m = 0;       // h sqrt(m)
-  double gimp_position = 0;  // 2 / (l sqrt(m)), uGIMP's position-Lipschitz factor
+// The factors of eq. (108) that depend on the geometry alone (square roots, products), in the
+// floating-point type `real`: once per run for a run that evaluates it every step (stable_dt
+// with them is stable_dt without them, bit for bit).
+template <class real>
+struct StableDtFactors {
+  real four_m = 0;         // 4 m
+  real sqrt_m = 0;         // sqrt(m)
+  real sqrt_E = 0;         // sqrt(E)
+  real inv_sqrt_E = 0;     // 1 / sqrt(E), the scaled stress's factor
+  real nine_h_sqrt_E = 0;  // 9 h sqrt(E)
+  real h_sqrt_m = 0;       // h sqrt(m)
+  real gimp_position = 0;  // 2 / (l sqrt(m)), uGIMP's position-Lipschitz factor
 };
+using StableDtConstants = StableDtFactors<double>;
 StableDtConstants stable_dt_constants(const StableDtGeometry& geo);
 double stable_dt(const StableDtInputs& in, const StableDtGeometry& geo,
                  const StableDtConstants& constants, StressScaling sigma);

@@ -79,11 +79,8 @@ MPMSTAB_INLINE void scatter_in_order(const AlignedVector<int>& base, Eigen::Inde
       field[win.b + k] = win.v[k];
 }
 
-}  // namespace
-
-// The kernels of p2g_force and p2g_momentum, compiled for each instruction set (the fill loops
-// vectorize across particles at the widest vector the CPU has).
-namespace {
+// The kernels of p2g_force, p2g_momentum and p2g_affine, compiled for each instruction set (the
+// fill loops vectorize across particles at the widest vector the CPU has).
 
 template <int W>
 MPMSTAB_SIMD_CLONES void force_kernel(const Stencil<W>& S, const Particles& P,
@@ -127,20 +124,6 @@ MPMSTAB_SIMD_CLONES void momentum_kernel(const Stencil<W>& S, const Particles& P
       });
 }
 
-}  // namespace
-
-template <int W>
-void p2g_force(const Stencil<W>& S, const Particles& P, const double* body_accel, Grid& G) {
-  force_kernel<W>(S, P, body_accel, G);
-}
-
-template <int W>
-void p2g_momentum(const Stencil<W>& S, const Particles& P, Grid& G) {
-  momentum_kernel<W>(S, P, G);
-}
-
-namespace {
-
 template <int W>
 MPMSTAB_SIMD_CLONES void affine_kernel(const Stencil<W>& S, const Particles& P, Grid& G) {
   const bool periodic = G.bc == Boundary::periodic;
@@ -167,6 +150,16 @@ MPMSTAB_SIMD_CLONES void affine_kernel(const Stencil<W>& S, const Particles& P, 
 }
 
 }  // namespace
+
+template <int W>
+void p2g_force(const Stencil<W>& S, const Particles& P, const double* body_accel, Grid& G) {
+  force_kernel<W>(S, P, body_accel, G);
+}
+
+template <int W>
+void p2g_momentum(const Stencil<W>& S, const Particles& P, Grid& G) {
+  momentum_kernel<W>(S, P, G);
+}
 
 template <int W>
 void p2g_affine(const Stencil<W>& S, const Particles& P, Grid& G) {
