@@ -40,8 +40,12 @@ struct FinalState {
 
 // The verdict of a run (docs/design.md, "Outcomes"): unstable (it stopped with a failure),
 // meaningless (it survived to T but its error over time reached the amplitude A: the answer is as
-// large as the solution) or stable (survived, error over time below A).
-enum class Outcome { unstable, meaningless, stable };
+// large as the solution), stable (survived, error over time below A), or too_short (it reached T
+// in fewer than kMinStepsToJudge steps: so few steps judge nothing, whatever its error).
+enum class Outcome { unstable, meaningless, stable, too_short };
+
+// A run that reaches T in fewer steps than this gets no verdict but too_short.
+inline constexpr long long kMinStepsToJudge = 10;
 
 std::string_view to_string(Outcome o);
 

@@ -307,6 +307,7 @@ RunResult Driver::result(std::chrono::steady_clock::duration wall) {
   } else if (r_.meaningless) {
     r_.outcome = *r_.meaningless ? Outcome::meaningless : Outcome::stable;
   }
+  if (r_.outcome && r_.stable && r_.steps < kMinStepsToJudge) r_.outcome = Outcome::too_short;
   if (obs_.crossings) r_.crossings = crossings_;
   // step_limit and dt_collapse stop before a step; the other failures are found after one.
   const bool failed_in_a_step = r_.failure && r_.failure->reason != FailureReason::step_limit &&
@@ -336,6 +337,8 @@ std::string_view to_string(Outcome o) {
       return "meaningless";
     case Outcome::stable:
       return "stable";
+    case Outcome::too_short:
+      return "too_short";
   }
   return "?";
 }

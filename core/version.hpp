@@ -3,5 +3,5 @@
 #pragma once
 
 namespace mpmstab {
-inline constexpr const char* kSolverVersion = "3";
+inline constexpr const char* kSolverVersion = "4";
 }  // namespace mpmstab

@@ -64,9 +64,11 @@ inline void meaningless_row(nlohmann::ordered_json& r) {
   r["max_error_over_time"] = r["A"];
 }
 
-// What the study registered under `study` writes for these rows.
+// What the study registered under `study` writes for these rows (and these follow-up rows, in
+// the order its follow_up hook asks for them).
 inline StudyReport study_report(const std::string& study,
-                                const std::vector<nlohmann::ordered_json>& rows) {
+                                const std::vector<nlohmann::ordered_json>& rows,
+                                const std::vector<nlohmann::ordered_json>& follow_up = {}) {
   Spec spec;
   spec.name = std::string("s");  // moved in: GCC 12 warns (-Wrestrict) on copying a literal
   spec.title = std::string("S");
@@ -75,7 +77,7 @@ inline StudyReport study_report(const std::string& study,
   const std::filesystem::path out = std::filesystem::temp_directory_path();
   const std::string header = "# header\n";
   const StudyInputs inputs;
-  return spec.study->report(ReportContext{spec, rows, outcome, out, header, inputs});
+  return spec.study->report(ReportContext{spec, rows, outcome, out, header, inputs, follow_up});
 }
 
 // The data lines of a CSV: neither its '#' lines nor its header.

@@ -74,8 +74,9 @@ TEST(Figures, AHistoryFigureDrawsEveryRecordedStepItsTitleCounts) {
   const std::filesystem::path out = std::filesystem::temp_directory_path();
   const std::string header = "# header\n";
   const StudyInputs inputs;
+  const std::vector<ojson> follow_up;
   const StudyReport report =
-      spec.study->report(ReportContext{spec, rows, outcome, out, header, inputs});
+      spec.study->report(ReportContext{spec, rows, outcome, out, header, inputs, follow_up});
   ASSERT_TRUE(report.data_csv);
   EXPECT_EQ(data_lines(*report.data_csv).size(), 3u);
   const std::string title = subtitle("figure", rows, report);

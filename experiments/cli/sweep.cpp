@@ -28,6 +28,18 @@ namespace mpmstab::cli {
 
 namespace {
 
+// Follow-up runs (Study::follow_up) on the sweep's threads and through its cache, quietly: the
+// progress line belongs to the main queue.
+FollowUpRunner follow_up_runner(const SweepOptions& options) {
+  return [options](const Spec& follow) {
+    SweepOptions o = options;
+    o.quiet = true;
+    o.progress_line = false;
+    o.shard.reset();
+    return run_sweep(follow, o);
+  };
+}
+
 constexpr const char* kSweepHelp =
     R"(Usage: mpmstab sweep <spec.json> [--jobs N] [--out DIR] [--force] [--shard I/N]
                     [--timing keep|omit]
@@ -277,7 +289,7 @@ int cmd_reproduce(const std::vector<std::string_view>& argv) {
             compute_seconds += outcome.records[i]["timing"]["wall_seconds"].get<double>();
           }
           if (omit) omit_machine_measurements(outcome);
-          write_reports(spec, outcome, out);
+          write_reports(spec, outcome, out, follow_up_runner(options));
           line = summary_line(spec, outcome, wall, out);
         }
         if (options.progress_line) std::cerr << "\r\033[K";
@@ -347,7 +359,7 @@ int cmd_sweep(const std::vector<std::string_view>& argv) {
   const double wall_seconds = outcome.wall_seconds;  // for the summary line, also when omitted
   if (omit) omit_machine_measurements(outcome);
   // 3. The reports, published together.
-  write_reports(spec, outcome, out);
+  write_reports(spec, outcome, out, follow_up_runner(options));
   std::cerr << summary_line(spec, outcome, wall_seconds, out);
   return 0;
 }

@@ -187,8 +187,7 @@ int check_values(const Spec& spec, const RegressionOptions& o, int& cells) {
 }
 
 // A table the study wrote into the results against its blessed expectations.
-int check_output(const Spec& spec, const BlessedOutput& b, const RegressionOptions& o) {
-  const fs::path expected = blessed_output_file(spec, o), current = o.results / b.file;
+int check_table(const BlessedOutput& b, const fs::path& expected, const fs::path& current) {
   if (!fs::exists(expected) || !fs::exists(current)) {
     std::cerr << "FAIL " << b.what << ": " << expected.string() << " or " << current.string()
               << " is missing (make reproduce, then make bless)\n";
@@ -201,6 +200,26 @@ int check_output(const Spec& spec, const BlessedOutput& b, const RegressionOptio
     ++failures;
   }
   return failures;
+}
+
+int check_output(const Spec& spec, const BlessedOutput& b, const RegressionOptions& o) {
+  return check_table(b, blessed_output_file(spec, o), o.results / b.file);
+}
+
+// Every report's conclusions (claims.hpp): <results>/<name>_claims.csv, whose truth values are
+// blessed in <reference>/<name>_claims.csv. A report without claims has neither file.
+BlessedOutput claims_output(const Spec& spec) {
+  return {.file = spec.name + "_claims.csv",
+          .key_columns = {"claim"},
+          .value_columns = {"holds"},
+          .what = spec.name + " claims"};
+}
+fs::path blessed_claims_file(const Spec& spec, const RegressionOptions& o) {
+  return o.reference / (spec.name + "_claims.csv");
+}
+bool has_claims(const Spec& spec, const RegressionOptions& o) {
+  return fs::exists(o.results / claims_output(spec).file) ||
+         fs::exists(blessed_claims_file(spec, o));
 }
 
 }  // namespace
@@ -220,7 +239,7 @@ Spec fast_subset(const Spec& spec, double budget) {
 }
 
 int run_check(const std::vector<Spec>& specs, const RegressionOptions& o) {
-  int failures = 0, cells = 0, experiments = 0;
+  int failures = 0, cells = 0, experiments = 0, claim_reports = 0;
   std::vector<std::string> outputs;
   for (const auto& spec : specs) {
     if (spec.study->has_cases) {
@@ -230,6 +249,11 @@ int run_check(const std::vector<Spec>& specs, const RegressionOptions& o) {
     for (const auto& b : spec.study->blessed) {
       failures += check_output(spec, b, o);
       outputs.push_back(b.what);
+    }
+    if (has_claims(spec, o)) {
+      const BlessedOutput b = claims_output(spec);
+      failures += check_table(b, blessed_claims_file(spec, o), o.results / b.file);
+      ++claim_reports;
     }
   }
   if (failures) {
@@ -242,7 +266,7 @@ int run_check(const std::vector<Spec>& specs, const RegressionOptions& o) {
             << " experiments match the blessed values";
   for (const auto& what : outputs)
     std::cout << "; " << what << " unchanged";
-  std::cout << "\n";
+  std::cout << "; the conclusions of " << claim_reports << " reports hold as blessed\n";
   return 0;
 }
 
@@ -288,9 +312,8 @@ void bless_table(const std::string& name, const fs::path& file, Table obtained,
   write_if_changed(file, to_csv(obtained, columns, comment));
 }
 
-void bless_output(const Spec& spec, const BlessedOutput& b, const RegressionOptions& o,
-                  std::vector<std::string>& changes) {
-  const fs::path current = o.results / b.file;
+void bless_file(const BlessedOutput& b, const fs::path& current, const fs::path& blessed,
+                std::vector<std::string>& changes) {
   if (!fs::exists(current)) {
     std::cerr << "bless: " << current.string() << " is missing: run make reproduce to bless the "
               << b.what << " too\n";
@@ -298,11 +321,15 @@ void bless_output(const Spec& spec, const BlessedOutput& b, const RegressionOpti
   }
   std::vector<std::string> columns = b.key_columns;
   columns.insert(columns.end(), b.value_columns.begin(), b.value_columns.end());
-  bless_table(b.what, blessed_output_file(spec, o), table_from_csv(current), b.key_columns,
-              exact_rules(b), columns,
+  bless_table(b.what, blessed, table_from_csv(current), b.key_columns, exact_rules(b), columns,
               "# blessed " + b.what + " (" + (fs::path("results") / b.file).generic_string() +
                   "); rewritten only by make bless\n",
               changes);
+}
+
+void bless_output(const Spec& spec, const BlessedOutput& b, const RegressionOptions& o,
+                  std::vector<std::string>& changes) {
+  bless_file(b, o.results / b.file, blessed_output_file(spec, o), changes);
 }
 
 // Appends the blessing to BLESSED.md: when, at which commit, why, and the cells changed.
@@ -343,6 +370,10 @@ int run_bless(const std::vector<Spec>& specs, const RegressionOptions& o,
     }
     for (const auto& b : spec.study->blessed)
       bless_output(spec, b, o, changes);
+    if (has_claims(spec, o)) {
+      const BlessedOutput b = claims_output(spec);
+      bless_file(b, o.results / b.file, blessed_claims_file(spec, o), changes);
+    }
   }
   if (changes.empty()) {
     std::cout << "bless: nothing changed; BLESSED.md is left as it is\n";

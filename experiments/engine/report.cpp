@@ -404,7 +404,47 @@ void write_derived_reports(const Spec& spec, const fs::path& out, const ojson& o
   write_derived_reports(spec, input_roles(spec), input_specs, out, options);
 }
 
-void write_reports(const Spec& spec, const SweepOutcome& outcome, const fs::path& out) {
+namespace {
+
+// The follow-up runs a study asks for, as flat rows in its order.
+std::vector<ojson> follow_up_rows(const Spec& spec, const std::vector<ojson>& rows,
+                                  const FollowUpRunner& runner) {
+  if (!spec.study->follow_up) return {};
+  const std::vector<RunParams> params = spec.study->follow_up(FollowUpContext{spec, rows});
+  if (params.empty()) return {};
+  // The same study, but every follow-up is one run (an edge study's too).
+  Study runs = *spec.study;
+  runs.work = CaseWork::run;
+  Spec follow = spec;
+  follow.study = &runs;
+  follow.variants.clear();
+  follow.cases.clear();
+  for (const auto& p : params) {
+    CaseSpec c;
+    c.params = p;
+    if (const auto issues = validate(c.params); !issues.empty())
+      throw std::logic_error(spec.name + ": a follow-up run is not valid: " + issues.front().key +
+                             ": " + issues.front().message);
+    follow.cases.push_back(c);
+  }
+  SweepOutcome done;
+  if (runner) {
+    done = runner(follow);
+  } else {
+    SweepOptions options;
+    options.quiet = true;
+    done = run_sweep(follow, options);
+  }
+  std::vector<ojson> out;
+  for (std::size_t i = 0; i < follow.cases.size(); ++i)
+    out.push_back(flat_row(follow.cases[i], done.records.at(i)));
+  return out;
+}
+
+}  // namespace
+
+void write_reports(const Spec& spec, const SweepOutcome& outcome, const fs::path& out,
+                   const FollowUpRunner& runner) {
   fs::create_directories(out);
   ReportBatch batch;  // every file below is published together, or none of them
   const std::vector<ojson> rows = flat_rows(spec, outcome);
@@ -426,8 +466,9 @@ void write_reports(const Spec& spec, const SweepOutcome& outcome, const fs::path
   // The study's part, from the rows and the results of its declared inputs.
   const std::vector<Spec> input_specs = load_inputs(spec);
   const StudyInputs inputs = read_inputs(*spec.study, input_roles(spec), input_specs, out);
+  const std::vector<ojson> follow_up = follow_up_rows(spec, rows, runner);
   const StudyReport study =
-      spec.study->report(ReportContext{spec, rows, outcome, out, header, inputs});
+      spec.study->report(ReportContext{spec, rows, outcome, out, header, inputs, follow_up});
 
   ojson doc;
   doc["experiment"] = spec.name;
@@ -437,10 +478,13 @@ void write_reports(const Spec& spec, const SweepOutcome& outcome, const fs::path
   doc["provenance"] = prov;
   doc["cases"] = rows;
   if (!study.json.is_null()) doc["study"] = study.json;
+  if (!study.claims.empty()) doc["claims"] = claims_json(study.claims);
   write_if_changed(json_path, doc.dump(2) + "\n");
+  write_claims(out, spec.name, study.claims, header);
   if (study.data_csv) write_if_changed(out / (spec.name + "_data.csv"), *study.data_csv);
-  write_if_changed(out / (spec.name + ".md"),
-                   report_head(spec, out) + study.markdown + "\n" + provenance_markdown(prov));
+  write_if_changed(out / (spec.name + ".md"), report_head(spec, out) +
+                                                  claims_markdown(study.claims) + study.markdown +
+                                                  "\n" + provenance_markdown(prov));
   batch.publish();
 }
 

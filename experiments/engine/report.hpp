@@ -4,6 +4,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <string>
@@ -48,9 +49,16 @@ void write_reproduce_timing(const std::filesystem::path& out, const nlohmann::or
 void check_inputs(const Spec& spec, const std::filesystem::path& out,
                   const std::set<std::string>& produced);
 
-// Writes <out>/<name>.csv, .json, .md and, for studies with a figure, <name>_data.csv; the
-// sweep's wall times go to <out>/timings.json, the only file that changes between identical runs.
-void write_reports(const Spec& spec, const SweepOutcome& outcome, const std::filesystem::path& out);
+// Computes a study's follow-up runs (Study::follow_up): the cases of `follow_up_spec`, a spec
+// whose study does one run per case. The commands pass run_sweep with their cache and threads.
+using FollowUpRunner = std::function<SweepOutcome(const Spec& follow_up_spec)>;
+
+// Writes <out>/<name>.csv, .json, .md, <name>_claims.csv for a study that draws conclusions and,
+// for studies with a figure, <name>_data.csv; the sweep's wall times go to <out>/timings.json,
+// the only file that changes between identical runs. Follow-up runs are computed by `runner`
+// (none given: one thread, no cache).
+void write_reports(const Spec& spec, const SweepOutcome& outcome, const std::filesystem::path& out,
+                   const FollowUpRunner& runner = {});
 
 // The specs of a spec's declared inputs (Study::inputs), in their order.
 std::vector<Spec> load_inputs(const Spec& spec);

@@ -60,6 +60,10 @@ bool survived(const ojson& r) {
 // Our verdict, in the notation of the table: "*" for unstable, with the reason and step.
 std::string verdict(const ojson& r) {
   if (survived(r)) {
+    if (outcome(r) == "too_short") {
+      return "too short to judge (reached T in " + r["steps"].dump() + " steps, fewer than " +
+             std::to_string(kMinStepsToJudge) + ")";
+    }
     return outcome(r) == "meaningless" ? "meaningless (survived; error over time reached A)"
                                        : "stable";
   }

@@ -34,11 +34,13 @@ std::string method_label(const nlohmann::ordered_json& row);
 // method_label with the particles per cell where not 2 and the layout where not uniform:
 // "gimp/usf (ppc 4)", "mpm (shift 0.45)", "gimp (jitter 0.5)".
 std::string scheme_label(const nlohmann::ordered_json& row);
-// The outcome of a flat record: "unstable", "meaningless", "stable" ("" where not measured).
+// The outcome of a flat record: "unstable", "meaningless", "stable", "too_short" ("" where not
+// measured).
 std::string outcome(const nlohmann::ordered_json& row);
 // The run of a flat record survived to T: its outcome is meaningless or stable.
 bool survived(const nlohmann::ordered_json& row);
-// Our verdict for a flat record: "stable", "meaningless (...)", "\\* reason at step n (t = ..)".
+// Our verdict for a flat record: "stable", "meaningless (...)", "too short to judge (...)",
+// "\\* reason at step n (t = ..)".
 std::string verdict(const nlohmann::ordered_json& row);
 // The deterministic cost of a run: particles x steps (an edge case: of its run at dt_edge).
 double particle_steps(const nlohmann::ordered_json& row);

@@ -209,9 +209,10 @@ std::string record_defect(const nlohmann::ordered_json& row) {
   if (const auto& outcome = row["outcome"]; outcome.is_string()) {
     const std::string& o = outcome.get_ref<const std::string&>();
     bool known = false;
-    for (const Outcome each : {Outcome::unstable, Outcome::meaningless, Outcome::stable})
+    for (const Outcome each :
+         {Outcome::unstable, Outcome::meaningless, Outcome::stable, Outcome::too_short})
       known = known || o == to_string(each);
-    if (!known) return ".outcome: must be unstable, meaningless or stable (or null)";
+    if (!known) return ".outcome: must be unstable, meaningless, stable or too_short (or null)";
   }
   return "";
 }

@@ -14,8 +14,10 @@
 #include <string_view>
 #include <vector>
 
+#include "claims.hpp"
 #include "edge.hpp"
 #include "files.hpp"
+#include "params.hpp"
 
 namespace mpmstab {
 
@@ -58,6 +60,15 @@ struct ReportContext {
   const std::filesystem::path& out;                 // the report folder
   const std::string& csv_header;                    // '#' lines heading every CSV it writes
   const StudyInputs& inputs;                        // the declared inputs, by name
+  // The follow-up runs the study asked for (Study::follow_up), as flat rows in the order it
+  // asked: empty when it asks for none.
+  const std::vector<nlohmann::ordered_json>& follow_up;
+};
+
+// What a study's follow-up runs are chosen from: its spec and the rows of its cases.
+struct FollowUpContext {
+  const Spec& spec;
+  const std::vector<nlohmann::ordered_json>& rows;  // rows[i] is the record of spec.cases[i]
 };
 
 // What a study adds to the files every experiment writes.
@@ -65,6 +76,9 @@ struct StudyReport {
   std::string markdown;                   // <name>.md between the description and provenance
   std::optional<std::string> data_csv;    // <name>_data.csv, what its figure script draws
   nlohmann::ordered_json json = nullptr;  // stored as "study" in <name>.json when not null
+  // Its conclusions (claims.hpp): printed in <name>.md before the body, stored as "claims" in
+  // <name>.json and in <name>_claims.csv, which make check compares with the blessed truth values.
+  std::vector<Claim> claims;
 };
 
 // A study that has no cases of its own reads only its inputs and writes its own files.
@@ -110,6 +124,10 @@ struct Study {
   // The study draws a figure: experiments/<spec name>.gp on <out>/<name>_data.csv.
   bool figure = false;
 
+  // Runs chosen from the rows of its cases (a confirming run of a recommendation, an ensemble of
+  // perturbed layouts near an edge): computed after its cases, through the cache like any case
+  // (always one run each), and handed to `report` as ReportContext::follow_up.
+  std::function<std::vector<RunParams>(const FollowUpContext&)> follow_up;
   // <name>.md's body and the figure data, from the rows of a sweep (studies with cases).
   std::function<StudyReport(const ReportContext&)> report;
   // The paragraph of results/README.md, after the spec's title and description: "What it

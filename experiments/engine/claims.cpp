@@ -1,0 +1,160 @@
+#include "claims.hpp"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "csv.hpp"
+#include "files.hpp"
+#include "report_util.hpp"
+
+namespace mpmstab {
+
+using ojson = nlohmann::ordered_json;
+
+Claim& Claim::value(std::string name, std::string text) {
+  values.emplace_back(std::move(name), std::move(text));
+  return *this;
+}
+
+Claim& Claim::count(std::string name, long long n) {
+  return value(std::move(name), std::to_string(n));
+}
+
+Claim& Claim::number(std::string name, double v, int digits) {
+  const double a = std::fabs(v);
+  std::string text;
+  if (std::isfinite(v) && a >= 0.01 && a < 1e4) {
+    std::ostringstream s;
+    s.precision(digits < 3 ? 3 : digits);
+    s << v;
+    text = s.str();
+  } else {
+    text = sci(v, digits);
+  }
+  return value(std::move(name), text);
+}
+
+Claim claim(std::string id, std::string statement, std::string evidence) {
+  Claim c;
+  c.id = std::move(id);
+  c.statement = std::move(statement);
+  c.evidence = std::move(evidence);
+  return c;
+}
+
+std::string render(const Claim& c, std::string_view text) {
+  std::string out;
+  for (std::size_t i = 0; i < text.size();) {
+    if (text[i] != '{') {
+      out += text[i++];
+      continue;
+    }
+    const std::size_t close = text.find('}', i);
+    if (close == std::string_view::npos)
+      throw std::logic_error("claim " + c.id + ": unclosed '{' in \"" + std::string(text) + "\"");
+    const std::string name(text.substr(i + 1, close - i - 1));
+    bool found = false;
+    for (const auto& [n, v] : c.values) {
+      if (n != name) continue;
+      out += v;
+      found = true;
+      break;
+    }
+    if (!found) throw std::logic_error("claim " + c.id + ": no value for {" + name + "}");
+    i = close + 1;
+  }
+  return out;
+}
+
+std::string render_statement(const Claim& c) {
+  return render(c, c.statement);
+}
+
+std::string claims_markdown(const std::vector<Claim>& claims) {
+  if (claims.empty()) return "";
+  int holding = 0;
+  for (const auto& c : claims)
+    holding += c.holds;
+  std::ostringstream md;
+  md << "## Conclusions\n\n"
+     << "Each conclusion of this report is a claim computed from its records: the sentence's "
+        "numbers come from the rows, a predicate decides it, and it is printed whether it holds or "
+        "not. "
+     << holding << " of " << claims.size()
+     << " hold. Their truth values are in the CSV `_claims` file beside this report and `make "
+        "check` compares them with the blessed ones.\n\n"
+     << "| claim | what decides it | holds |\n|---|---|---|\n";
+  for (const auto& c : claims) {
+    md << "| " << render_statement(c) << " | "
+       << (c.evidence.empty() ? std::string("–") : render(c, c.evidence)) << " | "
+       << (c.holds ? "**holds**" : "**does not hold**") << " |\n";
+  }
+  md << "\n";
+  return md.str();
+}
+
+ojson claims_json(const std::vector<Claim>& claims) {
+  ojson a = ojson::array();
+  for (const auto& c : claims) {
+    ojson values = ojson::object();
+    for (const auto& [n, v] : c.values)
+      values[n] = v;
+    a.push_back({{"id", c.id},
+                 {"template", c.statement},
+                 {"evidence_template", c.evidence},
+                 {"values", values},
+                 {"statement", render_statement(c)},
+                 {"evidence", c.evidence.empty() ? std::string() : render(c, c.evidence)},
+                 {"holds", c.holds}});
+  }
+  return a;
+}
+
+std::string claims_csv(const std::vector<Claim>& claims, const std::string& header) {
+  std::ostringstream csv;
+  csv << header << "claim,holds,statement\n";
+  for (const auto& c : claims)
+    csv << csv_field(c.id) << ',' << (c.holds ? "yes" : "no") << ','
+        << csv_field(render_statement(c)) << '\n';
+  return csv.str();
+}
+
+void write_claims(const std::filesystem::path& out, const std::string& name,
+                  const std::vector<Claim>& claims, const std::string& header) {
+  if (claims.empty()) return;
+  write_if_changed(out / (name + "_claims.csv"), claims_csv(claims, header));
+}
+
+const std::vector<std::string>& claim_name_tokens() {
+  static const std::vector<std::string> tokens = {
+      "eq. (108)", "eqs. (105)-(108)", "Table 1", "Table 2", "Fig. 1",  "Fig. 2",
+      "Fig. 3",    "Figs. 1-3",        "1D",      "l2",      "xpic(2)", "fmpm(2)",
+      "bspline2",  "bspline3",         "XPIC(2)", "FMPM(2)"};
+  return tokens;
+}
+
+std::string hand_typed_digits(std::string_view text) {
+  std::string digits;
+  for (std::size_t i = 0; i < text.size();) {
+    if (text[i] == '{') {
+      const std::size_t close = text.find('}', i);
+      i = close == std::string_view::npos ? text.size() : close + 1;
+      continue;
+    }
+    bool token = false;
+    for (const auto& t : claim_name_tokens()) {
+      if (text.substr(i, t.size()) == t) {
+        i += t.size();
+        token = true;
+        break;
+      }
+    }
+    if (token) continue;
+    if (text[i] >= '0' && text[i] <= '9') digits += text[i];
+    ++i;
+  }
+  return digits;
+}
+
+}  // namespace mpmstab
