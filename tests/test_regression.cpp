@@ -137,7 +137,7 @@ TEST_F(Regression, AChangedVerdictFailsCheckUntilBlessed) {
   testing::internal::GetCapturedStdout();
   std::ofstream(dir / "results/comparison.csv")
       << "method,E,A,dt,verdict,class,confidence\n"
-         "gimp,4,0.015,0.001,paper stable ours unstable,courant-above-1,high\n";
+         "gimp,4,0.015,0.001,paper stable ours unstable,above-spectral-limit,high\n";
   const auto [status, message] = check();
   EXPECT_EQ(status, 1);
   EXPECT_NE(message.find("comparison verdict"), std::string::npos) << message;

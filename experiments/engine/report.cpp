@@ -408,9 +408,9 @@ namespace {
 
 // The follow-up runs a study asks for, as flat rows in its order.
 std::vector<ojson> follow_up_rows(const Spec& spec, const std::vector<ojson>& rows,
-                                  const FollowUpRunner& runner) {
+                                  const StudyInputs& inputs, const FollowUpRunner& runner) {
   if (!spec.study->follow_up) return {};
-  const std::vector<RunParams> params = spec.study->follow_up(FollowUpContext{spec, rows});
+  const std::vector<RunParams> params = spec.study->follow_up(FollowUpContext{spec, rows, inputs});
   if (params.empty()) return {};
   // The same study, but every follow-up is one run (an edge study's too).
   Study runs = *spec.study;
@@ -466,7 +466,7 @@ void write_reports(const Spec& spec, const SweepOutcome& outcome, const fs::path
   // The study's part, from the rows and the results of its declared inputs.
   const std::vector<Spec> input_specs = load_inputs(spec);
   const StudyInputs inputs = read_inputs(*spec.study, input_roles(spec), input_specs, out);
-  const std::vector<ojson> follow_up = follow_up_rows(spec, rows, runner);
+  const std::vector<ojson> follow_up = follow_up_rows(spec, rows, inputs, runner);
   const StudyReport study =
       spec.study->report(ReportContext{spec, rows, outcome, out, header, inputs, follow_up});
 

@@ -69,6 +69,7 @@ struct ReportContext {
 struct FollowUpContext {
   const Spec& spec;
   const std::vector<nlohmann::ordered_json>& rows;  // rows[i] is the record of spec.cases[i]
+  const StudyInputs& inputs;                        // the declared inputs, by name
 };
 
 // What a study adds to the files every experiment writes.

@@ -21,9 +21,12 @@ const std::vector<ComparisonClass>& comparison_classes() {
   static const std::vector<ComparisonClass> classes = {
       {"agree-stable", "Agree: both stable, max errors within a factor 3", ClassKind::agreement},
       {"agree-unstable", "Agree: both unstable", ClassKind::agreement},
-      {"courant-above-1", "Paper stable at a Courant number c dt / h of 1 or more; ours unstable",
+      {"above-spectral-limit",
+       "Paper stable at a Courant number c dt / h above the scheme's spectral limit (the linear "
+       "limit of this step at the paper's layout); ours unstable",
        ClassKind::verdict},
-      {"above-our-edge", "Paper stable just below Courant 1, above where our runs stop surviving",
+      {"above-our-edge",
+       "Paper stable below the spectral limit, at or above where our runs stop surviving",
        ClassKind::verdict},
       {"gimp-wall-exit", "GIMP: a particle leaves through a wall (paper stable)",
        ClassKind::verdict},
@@ -93,7 +96,8 @@ std::string failure_class(const ojson& r, const CourantEdges& edges) {
   const double courant = r["courant"].get<double>();
   const auto edge = edges.find({method, r["A"].get<double>()});
   const std::string reason = r["failure_reason"].get<std::string>();
-  if (courant >= 1.0) return "courant-above-1";
+  if (r["courant_spectral"].is_number() && courant > r["courant_spectral"].get<double>())
+    return "above-spectral-limit";
   if (edge != edges.end() && courant >= edge->second * (1 - 1e-9)) return "above-our-edge";
   if (method != "mpm" && reason == "left_domain") return "gimp-wall-exit";
   if (method == "mpm" && reason != "left_domain") return "mpm-crossing-failure";

@@ -313,7 +313,8 @@ double scan_courant(const ojson& row) {
   return std::round(row.at("courant").get<double>() * 100) / 100;
 }
 
-// What the courant scan says at the figure's Courant number (courant-above-1 and above-our-edge).
+// What the courant scan says at the figure's Courant number (above-spectral-limit and
+// above-our-edge).
 std::string courant_context(const ojson& row, const StudyInputs& inputs) {
   const auto it = inputs.find("courant");
   if (it == inputs.end() || !it->second.present()) {
@@ -534,7 +535,7 @@ void figure_section(std::ostream& md, const PaperFigure& f, const std::vector<Pa
   const ComparisonClass* c = find_class(k.cls);
   md << ". Class: [" << k.cls << "](#" << k.cls << ")"
      << (c ? std::string(", *") + c->title + "*" : std::string()) << ": " << k.why << ".";
-  if (k.cls == "courant-above-1" || k.cls == "above-our-edge") {
+  if (k.cls == "above-spectral-limit" || k.cls == "above-our-edge") {
     md << " " << courant_context(*row, inputs);
   }
   if (const QuotedCell* near = nearest_cell(*row, table1)) {

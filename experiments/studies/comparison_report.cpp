@@ -15,6 +15,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "claims.hpp"
 #include "comparison.hpp"
 #include "csv.hpp"
 #include "report.hpp"
@@ -51,6 +52,9 @@ struct Comparison {
   std::map<std::string, Rows> support;   // the supporting experiments run, by input name
   const ojson* variants = nullptr;       // the variants study's "study" object; null: not run
   const ojson* peers = nullptr;          // the peers study's "study" object; null: not run
+  Rows peer_rows;                        // the peers experiment's cases (empty: not run)
+  const ojson* ensemble = nullptr;       // table1's ensemble per cell; null: not in its results
+  std::vector<Claim> claims;             // the conclusions (claims.hpp)
   CourantEdges edges;                    // from the courant scan; empty without it
   std::vector<Cell> cells;               // in the order of the table1 spec's cases
   std::map<std::string, std::vector<const Cell*>> by_class;
@@ -203,18 +207,64 @@ void write_verdicts_csv(const Comparison& cmp) {
 
 // ---- comparison.md: the summary and the table of every cell.
 
+// What the peers experiment covered, counted from its cases: per method and dt, how many runs,
+// how many compared at the table's T and how many only up to an earlier time.
+std::string peer_coverage(const Comparison& cmp) {
+  std::map<std::pair<std::string, double>, std::vector<double>> runs;  // -> each compared T
+  for (const auto& r : cmp.peer_rows)
+    runs[{r["method"].get<std::string>(), r["dt"].get<double>()}].push_back(r["T"].get<double>());
+  const double table_T = cmp.table1.cases.front().params.T;
+  std::ostringstream s;
+  s << "Our solver was run beside independent code (Uintah's 1D MPM code) on "
+    << cmp.peer_rows.size() << " cases of the paper's bar, and agrees on "
+    << (*cmp.peers)["agree"].dump() << " of " << (*cmp.peers)["cases"].dump()
+    << " (same outcome and failure step, errors within the stated tolerances: "
+       "[peers.md](peers.md)). Those cases cover only:";
+  bool first = true;
+  for (const auto& [k, Ts] : runs) {
+    int complete = 0;
+    double lo = table_T, hi = 0;
+    for (const double T : Ts) {
+      if (T >= table_T) {
+        ++complete;
+      } else {
+        lo = std::min(lo, T);
+        hi = std::max(hi, T);
+      }
+    }
+    s << (first ? " " : "; ") << k.first << " at dt = " << param(k.second) << ": " << Ts.size()
+      << " runs, " << complete << " compared at T = " << shortest(table_T);
+    if (complete < int(Ts.size()))
+      s << " and " << Ts.size() - complete << " only up to T = " << shortest(lo) << " to "
+        << shortest(hi) << " (the peer run stopped there)";
+    first = false;
+  }
+  std::set<std::string> methods;
+  for (const auto& [k, Ts] : runs)
+    methods.insert(k.first);
+  s << ". Table 1's methods not among them: ";
+  first = true;
+  for (const auto& c : cmp.table1.cases) {
+    const std::string m(to_string(c.params.method));
+    if (methods.count(m)) continue;
+    methods.insert(m);
+    s << (first ? "" : ", ") << m;
+    first = false;
+  }
+  if (first) s << "none";
+  s << ".";
+  return s.str();
+}
+
 // What the report is and how its verdicts are kept.
 void introduction(std::ostream& md, const Comparison& cmp) {
   const std::string reference = link(cmp.out, cmp.table1.reference);
   md << "# Our results against the paper, cell by cell\n\n";
-  if (cmp.peers) {
-    md << "**Checked against independent code first.** Our solver reproduces Uintah's 1D MPM "
-          "code on "
-       << (*cmp.peers)["agree"].dump() << " of " << (*cmp.peers)["cases"].dump()
-       << " cases of the paper's bar (same outcome, same failure step, errors within the stated "
-          "tolerances: [peers.md](peers.md)). So where we disagree with the paper below, the "
-          "disagreement comes from choices the paper's text leaves open or from the paper's "
-          "values, not from a defect that independent code would show.\n\n";
+  if (cmp.peers && !cmp.peer_rows.empty()) {
+    md << "**What independent code covered.** " << peer_coverage(cmp)
+       << " Where we disagree with the paper below outside that coverage, the solver has not been "
+          "checked against independent code on that method or step; a disagreement there may "
+          "come from the paper's choices, the paper's values, or ours.\n\n";
   } else {
     md << "The check against independent code (peers.md) has not been run into this folder.\n\n";
   }
@@ -391,7 +441,8 @@ void courant_scan_table(std::ostream& md, const Comparison& cmp) {
     auto& [ok, n] = by_c[c][g];
     ++n;
     if (survived(r)) ++ok;
-    if (c >= 1 && outcome(r) == "unstable") {
+    if (r["courant_spectral"].is_number() && c > r["courant_spectral"].get<double>() &&
+        outcome(r) == "unstable") {
       worst_step = std::max(worst_step, r["failure_step"].get<std::int64_t>());
     }
   }
@@ -410,18 +461,21 @@ void courant_scan_table(std::ostream& md, const Comparison& cmp) {
       md << " " << per.at(g).first << " |";
     md << "\n";
   }
-  md << "\nEvery run at a Courant number of 1 or more fails, within at most " << worst_step
-     << " steps. The paper's stable entries at Courant numbers from 1 to 3.2 cannot come from "
-        "this scheme with the stated dt on a 100-cell grid.\n\n";
+  md << "\nRuns above their scheme's spectral limit that fail stop within at most " << worst_step
+     << " steps (the conclusions above count every such run). The paper's stable entries above "
+        "the limit cannot come from this scheme with the stated dt on the paper's grid and "
+        "layout.\n\n";
 }
 
 // Paper stable at c dt / h >= 1: beyond the stability limit of any explicit scheme.
 void courant_above_1_section(std::ostream& md, const Comparison& cmp) {
-  class_opening(md, cmp, "courant-above-1");
-  md << "An explicit scheme is stable only below a Courant number of order one: a wave must not "
-        "cross more than a cell per step. For this problem the discrete dynamics depend on E and "
-        "dt only through c dt / h (the manufactured solution and the scheme are invariant when t "
-        "is scaled by c), so one scan over the Courant number covers every E. ";
+  class_opening(md, cmp, "above-spectral-limit");
+  md << "Linearised about rest, the step of each scheme amplifies some mode above its spectral "
+        "limit (spectral.md; USL with FLIP at the paper's two particles per cell: the limit on "
+        "each record, in the table above). Above it a run fails from rounding alone, whatever the "
+        "amplitude. For this problem the discrete dynamics depend on E and dt only through c dt "
+        "/ h (the manufactured solution and the scheme are invariant when t is scaled by c), so "
+        "one scan over the Courant number covers every E. ";
   if (cmp.have("courant")) {
     courant_scan_table(md, cmp);
   } else {
@@ -444,10 +498,10 @@ void above_our_edge_section(std::ostream& md, const Comparison& cmp) {
        << (std::isfinite(c) ? shortest(c) : std::string("none"));
     first = false;
   }
-  md << "). The linear limit of this step for linear elements with a lumped mass is c dt / h "
-        "= 1; our nonlinear runs fail below it, while the paper lists these cells as stable. "
-        "Runs that fail at smaller Courant numbers fail for the reasons of the classes "
-        "below.\n\n";
+  md << "). These cells lie below their scheme's spectral limit (spectral.md), so their failure "
+        "is not the linear instability of the step but nonlinear growth at this amplitude, while "
+        "the paper lists them as stable. Runs that fail at smaller Courant numbers fail for the "
+        "reasons of the classes below.\n\n";
 }
 
 // GIMP runs ending with a particle pushed out through a wall: the walls experiment reruns them
@@ -744,9 +798,71 @@ void unreadable_section(std::ostream& md, const Comparison& cmp) {
 
 // comparison.md: the summary, every cell, then the classes of disagreement in the order of
 // comparison_classes(), with the dt_stable gap before the unreadable cells, then the figures.
+// The comparison's conclusions, each decided by the cells.
+std::vector<Claim> comparison_claims(const Comparison& cmp) {
+  std::vector<Claim> claims;
+  int above = 0, above_fail = 0;
+  std::map<std::string, std::vector<double>> paper_dt_stable;  // method -> c dt_stable / h
+  std::map<std::string, double> limit;
+  int sensitive = 0, sensitive_paper_stable = 0;
+  for (std::size_t i = 0; i < cmp.cells.size(); ++i) {
+    const Cell& c = cmp.cells[i];
+    const ojson& r = c.row;
+    if (!r["courant_spectral"].is_number()) continue;
+    const double lim = r["courant_spectral"].get<double>();
+    const std::string m = r["method"].get<std::string>();
+    limit[m] = lim;
+    if (r["courant"].get<double>() > lim) {
+      ++above;
+      above_fail += outcome(r) == "unstable";
+    }
+    if (c.paper && c.paper->dt_stable.kind == PaperValue::number) {
+      paper_dt_stable[m].push_back(c.paper->dt_stable.value * std::sqrt(r["E"].get<double>()) *
+                                   r["cells"].get<double>());
+    }
+    if (cmp.ensemble && i < cmp.ensemble->size() && (*cmp.ensemble)[i]["sensitive"] == true) {
+      ++sensitive;
+      sensitive_paper_stable += c.paper && c.paper->max_error.kind == PaperValue::number;
+    }
+  }
+  Claim a = claim("above-limit-fails",
+                  "Every Table 1 cell run above its scheme's spectral limit fails here",
+                  "{fail} of {above} such cells fail");
+  a.count("fail", above_fail).count("above", above);
+  a.holds = above_fail == above;
+  claims.push_back(a);
+  for (const auto& [m, v] : paper_dt_stable) {
+    const double lo = *std::min_element(v.begin(), v.end());
+    const double hi = *std::max_element(v.begin(), v.end());
+    Claim b = claim("paper-dt-stable-vs-limit-" + m,
+                    "The paper's dt stable column for {method}, in units of h/c, lies below the "
+                    "scheme's spectral limit",
+                    "{lo} to {hi} h/c over {n} cells against a limit of {limit}");
+    b.value("method", m)
+        .number("lo", lo, 3)
+        .number("hi", hi, 3)
+        .count("n", static_cast<long long>(v.size()))
+        .number("limit", limit[m], 3);
+    b.holds = hi <= limit[m];
+    claims.push_back(b);
+  }
+  if (cmp.ensemble) {
+    Claim e = claim("no-sensitive-cell",
+                    "No cell's verdict changes when its layout is perturbed far below the "
+                    "discretisation error",
+                    "{sensitive} cells are sensitive ({paper_stable} of them stable in the paper); "
+                    "they are counted apart in table1.md");
+    e.count("sensitive", sensitive).count("paper_stable", sensitive_paper_stable);
+    e.holds = sensitive == 0;
+    claims.push_back(e);
+  }
+  return claims;
+}
+
 void write_markdown(const Comparison& cmp, const FigureSections& figures) {
   std::ostringstream md;
   introduction(md, cmp);
+  md << claims_markdown(cmp.claims);
   summary(md, cmp, figures);
   cell_table(md, cmp);
   courant_above_1_section(md, cmp);
@@ -780,8 +896,14 @@ void write_comparison(const StudyInputs& inputs, const fs::path& out,
   cmp.support = supporting_rows(inputs);
   cmp.variants = study_object(inputs, "variants");
   cmp.peers = study_object(inputs, "peers");
+  if (const auto p = inputs.find("peers"); p != inputs.end() && p->second.present())
+    cmp.peer_rows = case_rows(p->second.doc);
+  if (const ojson& t = table1->second.doc; t.contains("study") && t["study"].contains("ensemble"))
+    cmp.ensemble = &t["study"]["ensemble"];
   if (cmp.have("courant")) cmp.edges = courant_edges(cmp.rows("courant"));
   compare_cells(cmp, case_rows(table1->second.doc));
+  cmp.claims = comparison_claims(cmp);
+  write_claims(out, "comparison", cmp.claims, "# experiment: comparison\n");
   write_verdicts_csv(cmp);
   // The transcription of the figures lies beside that of Table 1.
   const fs::path figures_csv = cmp.table1.reference.parent_path() / "figures.csv";

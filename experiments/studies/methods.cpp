@@ -10,6 +10,7 @@
 #include <sstream>
 #include <tuple>
 
+#include "advice.hpp"
 #include "csv.hpp"
 #include "report_util.hpp"
 #include "simulation.hpp"
@@ -66,7 +67,22 @@ int node_visits(const MethodKey& k) {
 struct Setting {
   const ojson* row = nullptr;
   double work = 0;  // particle-steps x node visits
+  Advice advice;    // the advice rule on it (advice.hpp), with its confirming runs
 };
+
+// The error targets a user chooses a setting for.
+const std::vector<double> kTargets = {1e-4, 1e-6};
+
+// The settings of methods_grid that pass parts (a) and (b) of the advice rule for the loosest
+// target (a candidate for a tighter target is one for the looser too): their confirming runs are
+// the study's follow-up runs, two per candidate in this order.
+std::vector<std::size_t> candidates(const std::vector<ojson>& grid) {
+  const double loosest = *std::max_element(kTargets.begin(), kTargets.end());
+  std::vector<std::size_t> out;
+  for (std::size_t i = 0; i < grid.size(); ++i)
+    if (candidate(grid[i], loosest)) out.push_back(i);
+  return out;
+}
 
 struct MethodRow {
   MethodKey key;
@@ -74,7 +90,7 @@ struct MethodRow {
   const ojson* table1 = nullptr;  // methods_grid: 100 cells, dt = 1e-4
   std::vector<const ojson*> grid;
   std::optional<double> order_h, order_dt;
-  std::optional<Setting> cheapest_4, cheapest_6;
+  std::vector<std::optional<Setting>> recommended;  // per target of kTargets
 };
 
 bool is_table1_setting(const ojson& r) {
@@ -92,8 +108,13 @@ double dt_of(const ojson& r) {
                              : r["cfl_factor"].get<double>() * r["dt_cfl"].get<double>();
 }
 
-std::vector<MethodRow> method_rows(const std::vector<ojson>& edges,
-                                   const std::vector<ojson>& grid) {
+std::vector<MethodRow> method_rows(const std::vector<ojson>& edges, const std::vector<ojson>& grid,
+                                   const std::vector<ojson>& follow_up) {
+  // The confirming runs of each candidate, by its row in the grid.
+  std::map<const ojson*, std::vector<ojson>> confirming;
+  const auto cands = candidates(grid);
+  for (std::size_t k = 0; k < cands.size() && 2 * k + 1 < follow_up.size(); ++k)
+    confirming[&grid[cands[k]]] = {follow_up[2 * k], follow_up[2 * k + 1]};
   std::vector<MethodRow> rows;
   std::map<MethodKey, std::size_t> index;
   for (const auto& r : edges) {
@@ -104,10 +125,12 @@ std::vector<MethodRow> method_rows(const std::vector<ojson>& edges,
     const auto it = index.find(key_of(r));
     if (it == index.end()) continue;
     MethodRow& m = rows[it->second];
+    m.recommended.resize(kTargets.size());
     m.grid.push_back(&r);
     if (is_table1_setting(r)) m.table1 = &r;
   }
   for (MethodRow& m : rows) {
+    m.recommended.resize(kTargets.size());
     std::vector<std::pair<double, double>> h_points, dt_points;
     const double visits = node_visits(m.key);
     for (const ojson* r : m.grid) {
@@ -116,10 +139,13 @@ std::vector<MethodRow> method_rows(const std::vector<ojson>& edges,
       const bool finest_dt = cfl && (*r)["cfl_factor"].get<double>() == 0.2;
       if (e && finest_dt) h_points.emplace_back(1.0 / (*r)["cells"].get<double>(), *e);
       if (e && (*r)["cells"].get<int>() == 100) dt_points.emplace_back(dt_of(*r), *e);
-      if (!e) continue;
       const double w = particle_steps(*r) * visits;
-      for (auto [target, best] : {std::pair{1e-4, &m.cheapest_4}, std::pair{1e-6, &m.cheapest_6}}) {
-        if (*e <= target && (!*best || w < (*best)->work)) *best = Setting{r, w};
+      const auto conf = confirming.find(r);
+      for (std::size_t t = 0; t < kTargets.size(); ++t) {
+        if (conf == confirming.end()) continue;
+        Advice a = judge(*r, kTargets[t], conf->second);
+        auto& best = m.recommended[t];
+        if (a.recommended() && (!best || w < best->work)) best = Setting{r, w, std::move(a)};
       }
     }
     m.order_h = loglog_slope(h_points);
@@ -133,7 +159,7 @@ std::string order_text(const std::optional<double>& o) {
 }
 
 std::string setting_text(const std::optional<Setting>& s) {
-  if (!s) return "not reached";
+  if (!s) return "none passes the rule";
   const ojson& r = *s->row;
   std::ostringstream t;
   t << r["cells"].get<int>() << " cells, ";
@@ -156,13 +182,15 @@ std::string table1_text(const MethodRow& m) {
   return e ? sci(*e) : verdict(*m.table1);
 }
 
-// The reading: the choices the table supports, computed from its rows.
+std::string method_name(const MethodRow& m) {
+  return basis_text(m.key) + " / " + transfer_text(m.key) + " / " + std::get<4>(m.key);
+}
+
+// The reading: facts of the table, every number from its rows.
 std::string reading(const std::vector<MethodRow>& rows) {
   const MethodRow* best_error = nullptr;
   const MethodRow* widest = nullptr;
-  const MethodRow* cheap4 = nullptr;
-  const MethodRow* cheap6 = nullptr;
-  std::size_t unstable_table1 = 0, reach6 = 0;
+  std::size_t unstable_table1 = 0;
   for (const auto& m : rows) {
     const auto e = m.table1 ? error_of(*m.table1) : std::nullopt;
     if (!e) ++unstable_table1;
@@ -172,36 +200,54 @@ std::string reading(const std::vector<MethodRow>& rows) {
                         (*widest->edge)["dt_edge_over_cfl"].get<double>())) {
       widest = &m;
     }
-    if (m.cheapest_4 && (!cheap4 || m.cheapest_4->work < cheap4->cheapest_4->work)) cheap4 = &m;
-    if (m.cheapest_6) ++reach6;
-    if (m.cheapest_6 && (!cheap6 || m.cheapest_6->work < cheap6->cheapest_6->work)) cheap6 = &m;
   }
-  auto name = [](const MethodRow& m) {
-    return basis_text(m.key) + " / " + transfer_text(m.key) + " / " + std::get<4>(m.key);
-  };
   std::ostringstream md;
   md << "Of " << rows.size() << " methods, " << rows.size() - unstable_table1
      << " end stable at Table 1's setting";
   if (best_error) {
-    md << "; the smallest error there is " << sci(*error_of(*best_error->table1)) << " ("
-       << name(*best_error) << ")";
+    md << "; the smallest error at T there is " << sci(*error_of(*best_error->table1)) << " ("
+       << method_name(*best_error) << ")";
   }
   md << ". ";
   if (widest) {
     md << "The widest survival edge at the tiny amplitude is "
-       << fixed((*widest->edge)["dt_edge_over_cfl"].get<double>(), 3) << " h/c (" << name(*widest)
-       << "). ";
+       << fixed((*widest->edge)["dt_edge_over_cfl"].get<double>(), 3) << " h/c ("
+       << method_name(*widest) << "), a run of this length only: the edge is not a recommended "
+       << "step (see the rule below).";
   }
-  if (cheap4) {
-    md << "An error of 1e-4 costs least with " << name(*cheap4) << ": "
-       << setting_text(cheap4->cheapest_4) << ". ";
+  return md.str();
+}
+
+// The recommendations: per target, the cheapest setting of every method that passes the advice
+// rule, the cheapest of them named, and the claim that each passes its confirming runs.
+std::string recommendations(const std::vector<MethodRow>& rows, std::vector<Claim>& claims) {
+  std::ostringstream md;
+  md << "**Recommendations.** A setting is recommended only under the one advice rule of every "
+        "study (docs/design.md, \"Advice\"): "
+     << describe_rule() << ".\n\n";
+  for (std::size_t t = 0; t < kTargets.size(); ++t) {
+    std::vector<Advice> all;
+    const MethodRow* cheapest = nullptr;
+    for (const auto& m : rows) {
+      if (m.recommended.size() <= t || !m.recommended[t]) continue;
+      all.push_back(m.recommended[t]->advice);
+      if (!cheapest || m.recommended[t]->work < cheapest->recommended[t]->work) cheapest = &m;
+    }
+    md << "- error " << sci(kTargets[t], 1) << ": " << all.size() << " of " << rows.size()
+       << " methods have a setting of methods_grid that passes the rule";
+    if (cheapest) {
+      const Setting& s = *cheapest->recommended[t];
+      md << "; the cheapest is " << method_name(*cheapest) << " at " << setting_text(s)
+         << ", c dt/h " << shortest((*s.row)["courant"].get<double>()) << " (limit "
+         << fixed((*s.row)["courant_spectral"].get<double>(), 3) << "), error over time "
+         << sci((*s.row)["max_error_over_time"].get<double>())
+         << "; confirming runs: " << describe_confirming(s.advice.confirming[0]) << "; "
+         << describe_confirming(s.advice.confirming[1]);
+    }
+    md << ".\n";
+    claims.push_back(recommendations_claim(all, kTargets[t]));
   }
-  if (cheap6) {
-    md << reach6 << " methods reach 1e-6 within the grid; the cheapest is " << name(*cheap6) << ": "
-       << setting_text(cheap6->cheapest_6) << ".";
-  } else {
-    md << "No method reaches 1e-6 within the grid.";
-  }
+  md << "\n";
   return md.str();
 }
 
@@ -209,7 +255,8 @@ std::string methods_table(const std::vector<MethodRow>& rows) {
   std::ostringstream md;
   md << "| basis | transfer | update | error at Table 1's setting | order in h | order in dt | "
         "spectral limit (h/c) | survival edge (h/c) | accuracy edge (h/c) | node visits per "
-        "particle-step | cheapest for 1e-4 (node visits) | cheapest for 1e-6 (node visits) |\n"
+        "particle-step | recommended for 1e-4 (node visits) | recommended for 1e-6 (node visits) "
+        "|\n"
         "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& m : rows) {
     md << "| " << basis_text(m.key) << " | " << transfer_text(m.key) << " | " << std::get<4>(m.key)
@@ -218,7 +265,8 @@ std::string methods_table(const std::vector<MethodRow>& rows) {
        << edge_text(*m.edge, "dt_edge_over_cfl");
     if (has_number(*m.edge, "dt_edge") && outcome(*m.edge) == "meaningless") md << " (meaningless)";
     md << " | " << edge_text(*m.edge, "dt_accurate_over_cfl") << " | " << node_visits(m.key)
-       << " | " << setting_text(m.cheapest_4) << " | " << setting_text(m.cheapest_6) << " |\n";
+       << " | " << setting_text(m.recommended[0]) << " | " << setting_text(m.recommended[1])
+       << " |\n";
   }
   return md.str();
 }
@@ -263,11 +311,26 @@ std::string methods_data(const std::vector<MethodRow>& rows, const std::string& 
   return csv.str();
 }
 
+// The confirming runs of every candidate setting (advice.hpp), two per candidate.
+std::vector<RunParams> methods_follow_up(const FollowUpContext& c) {
+  const StudyInput& in = c.inputs.at("methods_grid");
+  if (!in.present() || !in.spec) return {};
+  const std::vector<ojson> grid(in.doc["cases"].begin(), in.doc["cases"].end());
+  std::vector<RunParams> runs;
+  for (const std::size_t i : candidates(grid)) {
+    for (auto& p : confirming_runs(in.spec->cases.at(i).params))
+      runs.push_back(std::move(p));
+  }
+  return runs;
+}
+
 StudyReport methods_report(const ReportContext& c) {
   const std::vector<ojson> grid = grid_rows(c.inputs);
-  const auto rows = method_rows(c.rows, grid);
+  const auto rows = method_rows(c.rows, grid, c.follow_up);
+  std::vector<Claim> claims;
   std::ostringstream md;
-  md << "## Results\n\n**Reading.** " << reading(rows) << "\n\n![" << c.spec.title << "]("
+  md << "## Results\n\n**Reading.** " << reading(rows) << "\n\n"
+     << recommendations(rows, claims) << "![" << c.spec.title << "]("
      << c.spec.name << ".png)\n\nThe figure places each method by its survival edge at the tiny "
      << "amplitude (x) and its error at Table 1's setting (y), one panel per update order; a "
      << "method unstable at that setting or without an edge is left out. Vector version: ["
@@ -292,15 +355,18 @@ StudyReport methods_report(const ReportContext& c) {
         "that one step makes (counted from the code: p2g, g2p and the stress update, plus what "
         "the update order and the transfer add), a deterministic measure of the work; the "
         "measured time per particle-step is in performance.md;\n"
-     << "- *cheapest for 1e-4 / 1e-6*: of the 10 settings of methods_grid (the Table 1 setting "
-        "and 25, 50, 100 cells at C = 0.8, 0.4, 0.2), the one with the fewest node visits "
-        "(particle-steps x node visits per particle-step, in brackets) whose run ends stable "
-        "with an error at T at most the target; a meaningless or unstable run never counts.\n\n";
+     << "- *recommended for a target*: of the settings of methods_grid (the Table 1 setting and "
+        "the grids and Courant numbers it sweeps), the one with the fewest node visits "
+        "(particle-steps x node visits per particle-step, in brackets) that passes the advice "
+        "rule above for that target, confirming runs included; a meaningless, unstable or too "
+        "short run never counts.\n\n";
   if (grid.empty()) {
     md << "methods_grid has not been run into this folder: the columns it provides are `–`.\n\n";
   }
   md << methods_table(rows);
-  return StudyReport{.markdown = md.str(), .data_csv = methods_data(rows, c.csv_header)};
+  return StudyReport{.markdown = md.str(),
+                     .data_csv = methods_data(rows, c.csv_header),
+                     .claims = std::move(claims)};
 }
 
 std::string methods_index(const Spec& spec, const std::vector<ojson>& rows) {
@@ -327,6 +393,7 @@ const StudyRegistration kMethods{{
     .work = CaseWork::edge_search,
     .inputs = {{.name = "methods_grid", .required = true}},
     .figure = true,
+    .follow_up = methods_follow_up,
     .report = methods_report,
     .index = methods_index,
     .figure_subtitle = methods_subtitle,

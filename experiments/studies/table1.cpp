@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "csv.hpp"
+#include "ensemble.hpp"
 #include "paper_table1.hpp"
 #include "report_util.hpp"
 #include "study.hpp"
@@ -19,25 +20,36 @@ namespace fs = std::filesystem;
 
 struct Table1Summary {
   int cells = 0, paper_stable = 0, paper_unstable = 0, paper_unknown = 0;
-  int ours_stable = 0, ours_meaningless = 0, ours_unstable = 0;
+  int ours_stable = 0, ours_meaningless = 0, ours_unstable = 0, ours_too_short = 0;
   int verdicts_agree = 0, verdicts_compared = 0;
-  int paper_stable_ours_not = 0, paper_stable_ours_not_courant_ge1 = 0;
+  // Cells whose ensemble disagrees with their verdict: counted apart from the agreement.
+  int sensitive = 0, sensitive_agree = 0;
+  int paper_stable_ours_not = 0, paper_stable_ours_not_above_limit = 0;
   int paper_stable_ours_meaningless = 0, paper_unstable_ours_meaningless = 0;
   int errors_within_3 = 0, errors_compared = 0;
   std::map<std::string, int> reasons;
 };
 
+bool above_limit(const ojson& r) {
+  return has_number(r, "courant_spectral") &&
+         r["courant"].get<double>() > r["courant_spectral"].get<double>();
+}
+
 Table1Summary summarize_table1(const Spec& spec, const std::vector<ojson>& rows,
-                               const std::map<Table1Key, PaperCell>& paper) {
+                               const std::map<Table1Key, PaperCell>& paper,
+                               const std::vector<EnsembleResult>& ensembles) {
   Table1Summary s;
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const ojson& r = rows[i];
     ++s.cells;
     const std::string ours_outcome = outcome(r);
+    const bool sensitive = i < ensembles.size() && ensembles[i].sensitive();
     if (ours_outcome == "stable") {
       ++s.ours_stable;
     } else if (ours_outcome == "meaningless") {
       ++s.ours_meaningless;
+    } else if (ours_outcome == "too_short") {
+      ++s.ours_too_short;
     } else {
       ++s.ours_unstable;
       ++s.reasons[r["failure_reason"].get<std::string>()];
@@ -54,15 +66,20 @@ Table1Summary summarize_table1(const Spec& spec, const std::vector<ojson>& rows,
     }
     const bool paper_stable = pe.kind == PaperValue::number;
     (paper_stable ? s.paper_stable : s.paper_unstable) += 1;
+    if (sensitive) {
+      ++s.sensitive;
+      s.sensitive_agree += paper_stable == (ours_outcome == "stable");
+      continue;
+    }
     ++s.verdicts_compared;
     // A meaningless run agrees with neither verdict of the paper: it is counted on its own.
-    if (ours_outcome == "meaningless") {
+    if (ours_outcome == "meaningless" || ours_outcome == "too_short") {
       (paper_stable ? s.paper_stable_ours_meaningless : s.paper_unstable_ours_meaningless) += 1;
     } else if (paper_stable == (ours_outcome == "stable")) {
       ++s.verdicts_agree;
     } else if (paper_stable) {
       ++s.paper_stable_ours_not;
-      if (r["courant"].get<double>() >= 1.0) ++s.paper_stable_ours_not_courant_ge1;
+      if (above_limit(r)) ++s.paper_stable_ours_not_above_limit;
     }
     const auto ours = compared_error(r, spec.cases[i].error_at);
     if (paper_stable && ours && ours_outcome == "stable") {
@@ -89,11 +106,17 @@ std::string table1_summary_text(const Table1Summary& s) {
     }
     md << ")";
   }
-  md << ". Stability verdicts agree in " << s.verdicts_agree << " of " << s.verdicts_compared
-     << " cells; the paper lists as stable " << s.paper_stable_ours_not
-     << " cells that are unstable here, " << s.paper_stable_ours_not_courant_ge1
-     << " of them at a Courant number c dt / h >= 1. Meaningless here, counted as agreeing with "
-        "neither verdict: "
+  if (s.ours_too_short) md << ", " << s.ours_too_short << " too short to judge";
+  md << ". Sensitive here (a perturbed layout changes the verdict: column *ensemble*), counted "
+        "apart: "
+     << s.sensitive << " cells with a paper verdict, of which " << s.sensitive_agree
+     << " match the paper's verdict as run. Of the other cells, stability verdicts agree in "
+     << s.verdicts_agree << " of " << s.verdicts_compared << "; the paper lists as stable "
+     << s.paper_stable_ours_not << " cells that are unstable here, "
+     << s.paper_stable_ours_not_above_limit
+     << " of them at a Courant number c dt / h above the scheme's spectral limit (the linear "
+        "limit of the step at the uniform layout: spectral.md). Meaningless here, counted as "
+        "agreeing with neither verdict: "
      << s.paper_stable_ours_meaningless << " cells the paper lists as stable and "
      << s.paper_unstable_ours_meaningless
      << " it marks `*`. Where both are stable (ours: stable, not meaningless), our max error is "
@@ -129,7 +152,7 @@ std::string table1_legend(const Spec& spec, const fs::path& out) {
 // One cell of the table: the paper's dt_stable and max error beside ours, our verdict, the
 // confidence of the transcription and the work.
 std::string table1_row(const CaseSpec& cs, const ojson& r,
-                       const std::map<Table1Key, PaperCell>& paper) {
+                       const std::map<Table1Key, PaperCell>& paper, const std::string& ensemble) {
   const auto& p = cs.params;
   const auto it = paper.find(paper_key(cs));
   const PaperCell* pc = it == paper.end() ? nullptr : &it->second;
@@ -148,18 +171,34 @@ std::string table1_row(const CaseSpec& cs, const ojson& r,
                       : std::string("–"))
      << (cs.error_at == ErrorAt::max_over_time ? " (over time)" : "") << " | " << ratio_text
      << " | " << verdict(r) << " | " << (pc ? pc->confidence : "not in the paper") << " | "
-     << work(r) << " |\n";
+     << work(r) << " | " << ensemble << " |\n";
+  return md.str();
+}
+
+std::string ensemble_legend() {
+  std::ostringstream md;
+  md << "*ensemble*: a cell near its edge (unstable below its spectral limit, meaningless, or "
+        "stable with an error over time of at least "
+     << shortest(kNearErrorFraction) << " A or c dt/h above the limit / "
+     << shortest(kNearLimitMargin) << ") is rerun with " << kEnsembleMembers
+     << " layouts shifted or jittered by a few " << sci(kEnsemblePerturbation, 1)
+     << " of the particle spacing, far below the discretisation error; it is *robust* when "
+        "every member ends as it does, **sensitive** otherwise (with the members' outcomes). A "
+        "near cell whose members would each cost more than "
+     << sci(kEnsembleMemberBudget, 2)
+     << " particle-steps is not rerun (cost), and says so (docs/design.md, \"Ensembles\").\n\n";
   return md.str();
 }
 
 // The summary, the legend, then one table per (E, A) block in the order the spec lists them,
 // under a heading per E.
-std::string table1_markdown(const Spec& spec, const std::vector<ojson>& rows, const fs::path& out) {
+std::string table1_markdown(const Spec& spec, const std::vector<ojson>& rows, const fs::path& out,
+                            const std::vector<EnsembleResult>& ensembles) {
   const auto paper = read_paper_table1(spec);
   std::ostringstream md;
-  md << "## Results\n\n**Summary.** " << table1_summary_text(summarize_table1(spec, rows, paper))
-     << "\n\n"
-     << table1_legend(spec, out);
+  md << "## Results\n\n**Summary.** "
+     << table1_summary_text(summarize_table1(spec, rows, paper, ensembles)) << "\n\n"
+     << table1_legend(spec, out) << ensemble_legend();
   std::vector<std::pair<double, double>> blocks;
   for (const auto& c : spec.cases) {
     const std::pair<double, double> b{c.params.E, c.params.A};
@@ -173,11 +212,12 @@ std::string table1_markdown(const Spec& spec, const std::vector<ojson>& rows, co
     }
     md << "**A = " << shortest(A) << "**\n\n";
     md << "| dt | method | c dt/h | dt_stable paper | dt_stable ours | max error paper | max error "
-          "ours | ours / paper | ours: verdict | transcription | particle-steps |\n";
-    md << "|---|---|---|---|---|---|---|---|---|---|---|\n";
+          "ours | ours / paper | ours: verdict | transcription | particle-steps | ensemble |\n";
+    md << "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (std::size_t i = 0; i < rows.size(); ++i) {
       const auto& p = spec.cases[i].params;
-      if (p.E == E && p.A == A) md << table1_row(spec.cases[i], rows[i], paper);
+      if (p.E == E && p.A == A)
+        md << table1_row(spec.cases[i], rows[i], paper, ensemble_text(rows[i], ensembles[i]));
     }
     md << "\n";
   }
@@ -185,10 +225,73 @@ std::string table1_markdown(const Spec& spec, const std::vector<ojson>& rows, co
 }
 
 std::string table1_index(const Spec& spec, const std::vector<ojson>& rows) {
-  const auto paper = read_paper_table1(spec);
-  return "**What it shows.** " + table1_summary_text(summarize_table1(spec, rows, paper)) +
-         " Full table with the paper's values beside ours: [" + spec.name + ".md](" + spec.name +
-         ".md).\n\n";
+  return "**What it shows.** The " + std::to_string(rows.size()) +
+         " cells of the paper's Table 1 beside ours, each with its verdict, its errors, the "
+         "paper's values and whether its verdict survives a perturbed layout. Full table, "
+         "agreement counts and conclusions: [" +
+         spec.name + ".md](" + spec.name + ".md).\n\n";
+}
+
+// The ensembles of the cells near their edge (ensemble.hpp), in row order.
+std::vector<RunParams> table1_follow_up(const FollowUpContext& c) {
+  std::vector<RunParams> runs;
+  for (std::size_t i = 0; i < c.rows.size(); ++i) {
+    if (ensemble_need(c.rows[i]) != EnsembleNeed::near) continue;
+    for (auto& p : ensemble_members(c.spec.cases[i].params))
+      runs.push_back(std::move(p));
+  }
+  return runs;
+}
+
+std::vector<EnsembleResult> table1_ensembles(const std::vector<ojson>& rows,
+                                             const std::vector<ojson>& follow_up) {
+  std::vector<EnsembleResult> out;
+  std::size_t next = 0;
+  for (const auto& r : rows) {
+    const EnsembleNeed need = ensemble_need(r);
+    std::vector<ojson> members;
+    if (need == EnsembleNeed::near) {
+      for (int k = 0; k < kEnsembleMembers && next < follow_up.size(); ++k)
+        members.push_back(follow_up[next++]);
+    }
+    out.push_back(ensemble_result(r, need, members));
+  }
+  return out;
+}
+
+std::vector<Claim> table1_claims(const std::vector<ojson>& rows,
+                                 const std::vector<EnsembleResult>& ensembles) {
+  int above = 0, stable_above = 0, tested = 0, sensitive = 0, costly = 0;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    if (above_limit(rows[i])) {
+      ++above;
+      stable_above += outcome(rows[i]) == "stable";
+    }
+    tested += ensembles[i].members > 0;
+    sensitive += ensembles[i].sensitive();
+    costly += ensembles[i].need == EnsembleNeed::too_costly;
+  }
+  std::vector<Claim> claims;
+  Claim a = claim("none-stable-above-limit",
+                  "No cell run at a Courant number c dt/h above its scheme's spectral limit ends "
+                  "stable",
+                  "{stable_above} of {above} such cells end stable");
+  a.count("stable_above", stable_above).count("above", above);
+  a.holds = stable_above == 0;
+  claims.push_back(a);
+  Claim b = claim("verdicts-robust",
+                  "The verdict of every cell near its edge survives a perturbation of its layout "
+                  "by a few {unit} of the particle spacing",
+                  "{sensitive} of {tested} cells rerun as an ensemble of {members} are sensitive; "
+                  "{costly} cells near their edge were not rerun (cost)");
+  b.value("unit", sci(kEnsemblePerturbation, 1))
+      .count("sensitive", sensitive)
+      .count("tested", tested)
+      .count("members", kEnsembleMembers)
+      .count("costly", costly);
+  b.holds = sensitive == 0;
+  claims.push_back(b);
+  return claims;
 }
 
 const StudyRegistration kTable1{{
@@ -196,9 +299,16 @@ const StudyRegistration kTable1{{
     .summary = "Table 1 of the paper: accuracy and stability per E, A, dt and method",
     .needs_reference = true,
     .records = {.error_over_time = true, .dt_stable = true},
+    .follow_up = table1_follow_up,
     .report =
         [](const ReportContext& c) {
-          return StudyReport{.markdown = table1_markdown(c.spec, c.rows, c.out)};
+          const auto ensembles = table1_ensembles(c.rows, c.follow_up);
+          ojson json = {{"ensemble", ojson::array()}};
+          for (std::size_t i = 0; i < c.rows.size(); ++i)
+            json["ensemble"].push_back(ensemble_json(c.rows[i], ensembles[i]));
+          return StudyReport{.markdown = table1_markdown(c.spec, c.rows, c.out, ensembles),
+                             .json = json,
+                             .claims = table1_claims(c.rows, ensembles)};
         },
     .index = table1_index,
 }};

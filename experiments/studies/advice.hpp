@@ -1,0 +1,71 @@
+// The one rule by which a study recommends a setting (a method, a grid and a time step), used by
+// every study that advises (methods, tradeoff, edge): docs/design.md, "Advice". A setting is
+// recommended only if
+//   (a) its Courant number c dt / h is at most the scheme's spectral limit at its layout divided
+//       by limit_margin,
+//   (b) its error over time (the largest error after any step, never the error at one instant)
+//       is at most the target divided by error_margin, in a run that ends stable, and
+//   (c) its confirming runs -- the same setting on a grid `refine` times finer at the same c dt/h,
+//       and on a layout jittered by `jitter` -- both meet (a) and (b) as well.
+// The rule, its margins and the confirming runs are printed with every recommendation.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "claims.hpp"
+#include "params.hpp"
+
+namespace mpmstab {
+
+struct AdviceRule {
+  double limit_margin = 1.25;  // (a): c dt / h <= limit / limit_margin
+  double error_margin = 2;     // (b): error over time <= target / error_margin
+  int refine = 2;              // (c): cells x refine, dt / refine (same c dt / h)
+  double jitter = 0.05;        // (c): each particle moved by up to jitter / 2 of its spacing
+};
+inline constexpr AdviceRule kAdviceRule{};
+
+// (a) on a record: its courant against its courant_spectral (the uniform layout's limit; a
+// jittered confirming run is held to the limit of the layout it perturbs). False where either
+// is not measured.
+bool within_limit(const nlohmann::ordered_json& row, double uniform_limit,
+                  const AdviceRule& rule = kAdviceRule);
+// (b) on a record: stable (not meaningless, not too short) and max_error_over_time at most
+// target / error_margin.
+bool meets_target(const nlohmann::ordered_json& row, double target,
+                  const AdviceRule& rule = kAdviceRule);
+// (a) and (b): a candidate before its confirming runs.
+bool candidate(const nlohmann::ordered_json& row, double target,
+               const AdviceRule& rule = kAdviceRule);
+
+// The confirming runs of (c) for a setting: [0] the finer grid, [1] the jittered layout.
+std::vector<RunParams> confirming_runs(const RunParams& p, const AdviceRule& rule = kAdviceRule);
+
+// A setting judged by the whole rule.
+struct Advice {
+  const nlohmann::ordered_json* row = nullptr;     // the setting
+  std::vector<nlohmann::ordered_json> confirming;  // its confirming runs' records, in order
+  bool limit_ok = false, error_ok = false, confirmed = false;
+  bool recommended() const { return limit_ok && error_ok && confirmed; }
+};
+Advice judge(const nlohmann::ordered_json& row, double target,
+             const std::vector<nlohmann::ordered_json>& confirming,
+             const AdviceRule& rule = kAdviceRule);
+
+// "c dt/h <= limit / 1.25; error over time <= target / 2; confirmed on 2x the cells and on a
+// layout jittered by 0.5": the rule in words, printed with every recommendation.
+std::string describe_rule(const AdviceRule& rule = kAdviceRule);
+// One confirming run in a few words: "200 cells: error over time 3.1e-5, c dt/h 0.4 (limit
+// 0.756)" or its verdict where it did not end stable.
+std::string describe_confirming(const nlohmann::ordered_json& row);
+
+// The claim every advising study makes of its recommendations: each recommended setting meets
+// the rule in its own run and in both confirming runs (a property of the records, so a
+// recommendation whose confirming run misses the target shows as not holding).
+Claim recommendations_claim(const std::vector<Advice>& recommended, double target,
+                            const AdviceRule& rule = kAdviceRule);
+
+}  // namespace mpmstab

@@ -1,0 +1,56 @@
+// Verdicts that are robust or say they are not (docs/design.md, "Ensembles"). Near an edge a
+// run's verdict can flip with the last bits of its layout. A cell near its edge is rerun as an
+// ensemble of kEnsembleMembers layouts perturbed far below the discretisation error (shifted or
+// jittered by a few 1e-9 of the particle spacing); its verdict is robust when every member
+// agrees with it, and *sensitive* otherwise, with the count ("stable in 5 of 8").
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "params.hpp"
+
+namespace mpmstab {
+
+inline constexpr int kEnsembleMembers = 8;
+// The perturbation unit, as a fraction of the particle spacing h / ppc.
+inline constexpr double kEnsemblePerturbation = 1e-9;
+// Which cells need an ensemble, from their distance to the edge:
+// - unstable at c dt/h at or above the scheme's spectral limit: linear growth decides it (far);
+// - unstable below the limit, and meaningless: nonlinear growth near a threshold (near);
+// - stable with an error over time of at least kNearErrorFraction A, or c dt/h above the limit /
+//   kNearLimitMargin: near; other stable runs: far;
+// - too short to judge: no verdict to test.
+// A near cell whose members would cost more than kEnsembleMemberBudget particle-steps each is
+// not run, and says so.
+inline constexpr double kNearErrorFraction = 0.1;
+inline constexpr double kNearLimitMargin = 1.25;
+inline constexpr double kEnsembleMemberBudget = 2.5e8;
+
+enum class EnsembleNeed { far_linear, far_margin, near, too_costly, no_verdict };
+EnsembleNeed ensemble_need(const nlohmann::ordered_json& row);
+// "far: c dt/h >= limit", "near", ...: why a cell was or was not rerun.
+std::string need_text(EnsembleNeed need);
+
+// The members of a cell's ensemble: shifts of -2, -1, 1, 2 and jitters of 1..4 units.
+std::vector<RunParams> ensemble_members(const RunParams& base);
+
+// A cell's verdict against its ensemble.
+struct EnsembleResult {
+  EnsembleNeed need = EnsembleNeed::far_margin;
+  int members = 0;     // run (0 where not run)
+  int agreeing = 0;    // members whose outcome is the cell's
+  std::string counts;  // "unstable 5, stable 3" (outcomes of the members)
+  long long first_failure = -1, last_failure = -1;  // failing members' steps, -1 if none
+  bool sensitive() const { return members > 0 && agreeing < members; }
+};
+// members: the flat rows of the cell's ensemble, in ensemble_members order.
+EnsembleResult ensemble_result(const nlohmann::ordered_json& row, EnsembleNeed need,
+                               const std::vector<nlohmann::ordered_json>& members);
+// "robust: 8 of 8 unstable (steps 3754-3811)", "sensitive: stable in 5 of 8", "not run: far
+// (c dt/h >= limit)": the cell's label in a report.
+std::string ensemble_text(const nlohmann::ordered_json& row, const EnsembleResult& e);
+nlohmann::ordered_json ensemble_json(const nlohmann::ordered_json& row, const EnsembleResult& e);
+
+}  // namespace mpmstab

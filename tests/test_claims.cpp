@@ -1,0 +1,109 @@
+// Claims (experiments/engine/claims.hpp): the conclusions of a report as data. Their templates
+// type no number by hand, their numbers come from values, and the advice rule's claim fails when
+// a recommendation's confirming run misses the target.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+#include <string>
+
+#include "advice.hpp"
+#include "claims.hpp"
+
+namespace mpmstab {
+namespace {
+
+using ojson = nlohmann::ordered_json;
+
+TEST(Claims, RenderSubstitutesEveryValueAndRefusesAMissingOne) {
+  Claim c = claim("x", "{a} of {b} runs fail", "{a} fail");
+  c.count("a", 3).count("b", 4);
+  EXPECT_EQ(render_statement(c), "3 of 4 runs fail");
+  Claim missing = claim("y", "{a} of {b}");
+  missing.count("a", 1);
+  EXPECT_THROW(render_statement(missing), std::logic_error);
+}
+
+TEST(Claims, HandTypedDigitsAreFoundOutsidePlaceholdersAndNames) {
+  EXPECT_EQ(hand_typed_digits("every run above {limit} fails"), "");
+  EXPECT_EQ(hand_typed_digits("eq. (108) lies below Table 1's {x}"), "");
+  EXPECT_EQ(hand_typed_digits("every run above 0.756 fails"), "0756");
+  EXPECT_EQ(hand_typed_digits("in 10 of {n}"), "10");
+}
+
+TEST(Claims, AClaimThatDoesNotHoldIsPrintedAsNotHolding) {
+  Claim c = claim("z", "{n} runs", "");
+  c.count("n", 2);
+  c.holds = false;
+  const std::string md = claims_markdown({c});
+  EXPECT_NE(md.find("does not hold"), std::string::npos);
+  EXPECT_NE(claims_csv({c}, "").find("z,no,"), std::string::npos);
+}
+
+// Every committed report's claims: no template types a number by hand, and the stored text is
+// the template with its values.
+TEST(Claims, CommittedReportsTypeNoNumberByHand) {
+  const std::filesystem::path results = std::filesystem::path(MPMSTAB_SOURCE_DIR) / "results";
+  int claims = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(results)) {
+    if (entry.path().extension() != ".json") continue;
+    std::ifstream in(entry.path());
+    const ojson doc = ojson::parse(in, nullptr, false);
+    if (doc.is_discarded() || !doc.is_object() || !doc.contains("claims")) continue;
+    for (const auto& c : doc["claims"]) {
+      ++claims;
+      const std::string t = c["template"].get<std::string>();
+      EXPECT_EQ(hand_typed_digits(t), "") << entry.path() << ": " << t;
+      EXPECT_EQ(hand_typed_digits(c["evidence_template"].get<std::string>()), "")
+          << entry.path() << ": " << c["evidence_template"];
+      Claim back = claim(c["id"], t);
+      for (const auto& [k, v] : c["values"].items())
+        back.value(k, v.get<std::string>());
+      EXPECT_EQ(render_statement(back), c["statement"].get<std::string>());
+    }
+  }
+  EXPECT_GT(claims, 0);
+}
+
+ojson advice_row(double courant, double limit, double error, const char* outcome = "stable") {
+  return {{"courant", courant},
+          {"courant_spectral", limit},
+          {"max_error_over_time", error},
+          {"outcome", outcome},
+          {"cells", 50},
+          {"jitter", 0.0}};
+}
+
+TEST(Advice, EachPartOfTheRuleDecides) {
+  const double target = 1e-4;
+  const ojson ok = advice_row(0.4, 0.756, 1e-5);
+  EXPECT_TRUE(candidate(ok, target));
+  EXPECT_FALSE(candidate(advice_row(0.7, 0.756, 1e-5), target));  // above limit / 1.25
+  EXPECT_FALSE(candidate(advice_row(0.4, 0.756, 6e-5), target));  // above target / 2
+  EXPECT_FALSE(candidate(advice_row(0.4, 0.756, 1e-5, "too_short"), target));
+  EXPECT_TRUE(judge(ok, target, {ok, ok}).recommended());
+  // A confirming run that misses the target, or fails, withdraws the recommendation, and the
+  // advice claim then does not hold.
+  const Advice missed = judge(ok, target, {ok, advice_row(0.4, 0.756, 2e-4)});
+  EXPECT_FALSE(missed.recommended());
+  EXPECT_FALSE(recommendations_claim({missed}, target).holds);
+  EXPECT_FALSE(judge(ok, target, {advice_row(0.4, 0.756, 1e-5, "unstable"), ok}).recommended());
+  EXPECT_TRUE(recommendations_claim({judge(ok, target, {ok, ok})}, target).holds);
+}
+
+TEST(Advice, ConfirmingRunsRefineAtTheSameCourantNumberAndJitter) {
+  RunParams p;
+  p.cells = 25;
+  p.dt = 1e-3;
+  const auto runs = confirming_runs(p);
+  ASSERT_EQ(runs.size(), 2u);
+  EXPECT_EQ(runs[0].cells, 50);
+  EXPECT_DOUBLE_EQ(runs[0].dt * runs[0].cells, p.dt * p.cells);
+  EXPECT_EQ(runs[1].cells, 25);
+  EXPECT_GT(runs[1].layout.jitter, 0);
+}
+
+}  // namespace
+}  // namespace mpmstab
