@@ -202,7 +202,8 @@ TEST_F(VariantsStudyTest, ReportAndComparisonLineAreGeneratedFromTheNumbers) {
 
   const std::string md = variants_markdown(spec, s, false);
   EXPECT_NE(md.find("<a id=\"gimp-error-larger\"></a>"), std::string::npos);
-  EXPECT_NE(md.find("<a id=\"above-spectral-limit\"></a>"), std::string::npos);  // empty: still there
+  EXPECT_NE(md.find("<a id=\"above-spectral-limit\"></a>"),
+            std::string::npos);  // empty: still there
   EXPECT_NE(md.find("Can account for this class (at least half of its 1 cell reach a max error "
                     "within a factor 3 of the paper's): `ghost` (1 of 1, breaking 1 cell"),
             std::string::npos)

@@ -330,8 +330,8 @@ StudyReport methods_report(const ReportContext& c) {
   std::vector<Claim> claims;
   std::ostringstream md;
   md << "## Results\n\n**Reading.** " << reading(rows) << "\n\n"
-     << recommendations(rows, claims) << "![" << c.spec.title << "]("
-     << c.spec.name << ".png)\n\nThe figure places each method by its survival edge at the tiny "
+     << recommendations(rows, claims) << "![" << c.spec.title << "](" << c.spec.name
+     << ".png)\n\nThe figure places each method by its survival edge at the tiny "
      << "amplitude (x) and its error at Table 1's setting (y), one panel per update order; a "
      << "method unstable at that setting or without an edge is left out. Vector version: ["
      << c.spec.name << ".svg](" << c.spec.name << ".svg); data: [" << c.spec.name << "_data.csv]("
