@@ -1,12 +1,13 @@
 # extremes.gp -- the verdict of every extremes case in the plane (Courant number, amplitude in
 # cells), log-log, one panel per method. Cases at one spot are drawn once: the verdicts of a spot
-# side by side (stable left, meaningless centre, unstable right, a quarter decade apart), the
-# marker growing with the number of cases, and that number printed when it is more than 1.
+# side by side (stable, meaningless, unstable, too short to judge, left to right, a fifth of a
+# decade apart), the marker growing with the number of cases, and that number printed when it is
+# more than 1.
 #
 # Reads : datafile (results/extremes_data.csv): '#' lines, then the header
 #         method,courant,A_over_h,verdict,cases,name
-#         (method: its panel, 0..; verdict 0 stable, 1 meaningless, 2 unstable; name: the
-#         method's name, the panel's title).
+#         (method: its panel, 0..; verdict 0 stable, 1 meaningless, 2 unstable, 3 too short to
+#         judge (fewer than 10 steps); name: the method's name, the panel's title).
 # Writes: outbase.png and outbase.svg.
 # Variables: datafile, outbase (required), subtitle (optional).
 
@@ -22,7 +23,7 @@ set datafile columnheaders
 
 sel(m, v, x) = ($1 == m && $4 == v && $2 > 0 && $3 > 0) ? x : 1/0
 # The verdicts of one spot side by side: x shifted by a quarter decade per verdict.
-shift(v) = 10 ** ((v - 1) * 0.25)
+shift(v) = 10 ** ((v - 1.5) * 0.2)
 size(n) = 0.9 + 0.6 * log10(n)
 many(n) = n > 1 ? sprintf("%d", n) : ""
 
@@ -56,18 +57,37 @@ do for [ext in "png svg"] {
     set yrange [1e-8:1e5]
     do for [m = 0:panels - 1] {
         set title title_of[m + 1]
-        if (m == panels - 1) {
-            set key at screen 0.5, screen 0.02 center bottom horizontal samplen 2
-        } else {
-            unset key
-        }
-        plot datafile using (sel(m, 0, $2 * shift(0))):(sel(m, 0, $3)):(size($5)) with points pt 6 ps variable lc rgb "#2ca02c" title "stable", \
-             datafile using (sel(m, 1, $2 * shift(1))):(sel(m, 1, $3)):(size($5)) with points pt 8 ps variable lc rgb "#ff7f0e" title "meaningless (survived, error reached A)", \
-             datafile using (sel(m, 2, $2 * shift(2))):(sel(m, 2, $3)):(size($5)) with points pt 2 ps variable lc rgb "#d62728" title "unstable", \
+        unset key
+        plot datafile using (sel(m, 0, $2 * shift(0))):(sel(m, 0, $3)):(size($5)) with points pt 6 ps variable lc rgb "#2ca02c" notitle, \
+             datafile using (sel(m, 1, $2 * shift(1))):(sel(m, 1, $3)):(size($5)) with points pt 8 ps variable lc rgb "#ff7f0e" notitle, \
+             datafile using (sel(m, 2, $2 * shift(2))):(sel(m, 2, $3)):(size($5)) with points pt 2 ps variable lc rgb "#d62728" notitle, \
+             datafile using (sel(m, 3, $2 * shift(3))):(sel(m, 3, $3)):(size($5)) with points pt 4 ps variable lc rgb "#7f7f7f" notitle, \
              datafile using (sel(m, 0, $2 * shift(0))):(sel(m, 0, $3)):(many($5)) with labels offset 0,0.9 font "sans,8" tc rgb "#2ca02c" notitle, \
              datafile using (sel(m, 1, $2 * shift(1))):(sel(m, 1, $3)):(many($5)) with labels offset 0,0.9 font "sans,8" tc rgb "#ff7f0e" notitle, \
-             datafile using (sel(m, 2, $2 * shift(2))):(sel(m, 2, $3)):(many($5)) with labels offset 0,0.9 font "sans,8" tc rgb "#d62728" notitle
+             datafile using (sel(m, 2, $2 * shift(2))):(sel(m, 2, $3)):(many($5)) with labels offset 0,0.9 font "sans,8" tc rgb "#d62728" notitle, \
+             datafile using (sel(m, 3, $2 * shift(3))):(sel(m, 3, $3)):(many($5)) with labels offset 0,0.9 font "sans,8" tc rgb "#7f7f7f" notitle
     }
+    # The key, once for every panel: a plot of nothing across the bottom of the page.
+    unset title
+    unset logscale
+    unset border
+    unset tics
+    unset grid
+    unset xlabel
+    unset ylabel
+    set xrange [0:1]
+    set yrange [0:1]
+    set size 1, (rows == 1 ? 0.1 : 0.06)
+    set origin 0, 0
+    set lmargin 0
+    set rmargin 0
+    set tmargin 0
+    set bmargin 0
+    set key center center horizontal maxrows 1 samplen 2 width 2
+    plot NaN with points pt 6 lc rgb "#2ca02c" title "stable", \
+         NaN with points pt 8 lc rgb "#ff7f0e" title "meaningless (survived, error reached A)", \
+         NaN with points pt 2 lc rgb "#d62728" title "unstable", \
+         NaN with points pt 4 lc rgb "#7f7f7f" title "too short to judge (< 10 steps)"
     unset multiplot
     unset output
 }

@@ -8,7 +8,9 @@
 #include <sstream>
 #include <tuple>
 
+#include "claims.hpp"
 #include "csv.hpp"
+#include "params.hpp"
 #include "report.hpp"
 #include "report_util.hpp"
 #include "scenes.hpp"
@@ -20,20 +22,45 @@ namespace {
 
 using ojson = nlohmann::ordered_json;
 
-// 0 stable, 1 stable but meaningless, 2 unstable.
+// 0 stable, 1 stable but meaningless, 2 unstable, 3 too short to judge (reached T in fewer
+// than kMinStepsToJudge steps: no verdict on its stability).
 int verdict_code(const ojson& r) {
   const std::string o = outcome(r);
-  return o == "unstable" ? 2 : o == "meaningless" ? 1 : 0;
+  return o == "unstable" ? 2 : o == "meaningless" ? 1 : o == "too_short" ? 3 : 0;
 }
 
-// A stable run's measured quantities must all be finite numbers (JSON has no NaN: a NaN would
-// have been written as null).
-bool stable_output_is_finite(const ojson& r) {
-  for (const char* key : {"max_error", "max_error_over_time", "dt_stable_min", "dt_min", "dt_max",
-                          "dt_mean", "courant"}) {
-    if (!r[key].is_number() || !std::isfinite(r[key].get<double>())) return false;
+// The quantities a run that reached T reports, and which of them it measures. Eq. (108) is
+// derived for MPM, GIMP and cpGIMP only (has_eq108): for the other bases dt_stable_min is null
+// because it is not measured, not because it is not finite.
+const std::vector<const char*> kSurvivorOutputs = {
+    "max_error", "max_error_over_time", "dt_stable_min", "dt_min", "dt_max", "dt_mean", "courant",
+    "crossings"};
+
+bool measured(const ojson& r, const std::string& key) {
+  if (key != "dt_stable_min") return true;
+  const auto m = parse_method(r["method"].get<std::string>());
+  return m && has_eq108(*m);
+}
+
+// What a run that reached T reports: how many of its measured quantities are null or not finite
+// (JSON has no NaN: a NaN or an infinity is written as null, so a measured quantity that is null
+// is one), and how many are null because they are not measured.
+struct OutputCheck {
+  int non_finite = 0;
+  int not_measured = 0;
+};
+
+OutputCheck check_outputs(const ojson& r) {
+  OutputCheck c;
+  for (const char* key : kSurvivorOutputs) {
+    const bool number = r.contains(key) && r[key].is_number();
+    if (!measured(r, key)) {
+      c.not_measured += !number;
+    } else if (!number || !std::isfinite(r[key].get<double>())) {
+      ++c.non_finite;
+    }
   }
-  return r["crossings"].is_number();
+  return c;
 }
 
 // Failure reasons with their counts: "left_domain 1, nonpositive_F 73".
@@ -67,31 +94,141 @@ Slowest slowest_case(const std::vector<ojson>& rows) {
   return slowest;
 }
 
-// The opening: how many cases reached each verdict and why the unstable ones failed, whether
-// any stable output holds a NaN or an infinity, the slowest case, and the figure.
-std::string extremes_summary(const Spec& spec, const std::vector<ojson>& rows) {
-  int stable = 0, meaningless = 0, bad_output = 0;
-  std::map<std::string, int> reasons;
+// What the opening and the conclusions count, from the rows.
+struct Counts {
+  int total = 0, with_verdict = 0, stable = 0, meaningless = 0, too_short = 0;
+  std::map<std::string, int> reasons;  // of the unstable runs
+  long long too_short_min = 0, too_short_max = 0;
+  int reached = 0;            // runs that reached T (stable, meaningless or too short)
+  int non_finite = 0;         // ... with a measured quantity null or not finite
+  int not_measured = 0;       // ... with a quantity null because it is not measured
+  int few_step_verdicts = 0;  // stable or meaningless verdicts on fewer than kMinStepsToJudge
+  // Runs above their scheme's spectral limit (courant > courant_spectral).
+  int above = 0, above_failed = 0, above_too_short = 0, above_survived = 0;
+  long long above_survivor_steps = 0;  // the most steps an above-limit survivor took
+  double above_survivor_ratio = 0;     // the largest c dt/h over the limit of a survivor
+  int unlimited = 0;                   // runs without a spectral limit
+};
+
+Counts count_rows(const std::vector<ojson>& rows) {
+  Counts c;
+  c.total = static_cast<int>(rows.size());
   for (const auto& r : rows) {
+    const std::string o = outcome(r);
+    c.with_verdict += !o.empty();
     const int v = verdict_code(r);
-    stable += v == 0;
-    meaningless += v == 1;
-    if (v == 2) ++reasons[r["failure_reason"].get<std::string>()];
-    if (v < 2 && !stable_output_is_finite(r)) ++bad_output;
+    const long long steps = r["steps"].get<long long>();
+    if (v == 2) {
+      ++c.reasons[r["failure_reason"].get<std::string>()];
+    } else {
+      c.stable += v == 0;
+      c.meaningless += v == 1;
+      if (v == 3) {
+        c.too_short_min = c.too_short++ ? std::min(c.too_short_min, steps) : steps;
+        c.too_short_max = std::max(c.too_short_max, steps);
+      }
+      if (v < 3 && steps < kMinStepsToJudge) ++c.few_step_verdicts;
+      ++c.reached;
+      const OutputCheck out = check_outputs(r);
+      c.non_finite += out.non_finite > 0;
+      c.not_measured += out.not_measured > 0;
+    }
+    if (!has_number(r, "courant_spectral")) {
+      ++c.unlimited;
+      continue;
+    }
+    const double over = r["courant"].get<double>() / r["courant_spectral"].get<double>();
+    if (over <= 1) continue;
+    ++c.above;
+    if (v == 2) {
+      ++c.above_failed;
+    } else if (v == 3) {
+      ++c.above_too_short;
+    } else {
+      ++c.above_survived;
+      c.above_survivor_steps = std::max(c.above_survivor_steps, steps);
+      c.above_survivor_ratio = std::max(c.above_survivor_ratio, over);
+    }
   }
+  return c;
+}
+
+// The opening: how many cases reached each verdict and why the unstable ones failed, the runs
+// too short to judge, whether any output holds a NaN or an infinity, the slowest case, and the
+// figure.
+std::string extremes_summary(const Spec& spec, const std::vector<ojson>& rows) {
+  const Counts c = count_rows(rows);
+  const int unstable = c.total - c.reached;
   const Slowest slowest = slowest_case(rows);
   std::ostringstream md;
-  md << "## Results\n\n**Summary.** " << rows.size()
-     << " cases, every one with a verdict: " << stable << " stable, " << meaningless
-     << " meaningless (survived, but the error over time reached A), "
-     << rows.size() - stable - meaningless << " unstable (" << reason_counts(reasons)
-     << "). Stable outputs holding a NaN or an infinity: " << bad_output
-     << ". The largest case took " << sci(slowest.work) << " particle-steps (" << slowest.name
+  md << "## Results\n\n**Summary.** " << c.total << " cases, " << c.with_verdict
+     << " with a verdict: " << c.stable << " stable, " << c.meaningless
+     << " meaningless (survived, but the error over time reached A), " << unstable << " unstable ("
+     << reason_counts(c.reasons) << ")";
+  if (c.too_short) {
+    md << ", " << c.too_short << " too short to judge (they reached T in " << c.too_short_min
+       << " to " << c.too_short_max << " steps, fewer than " << kMinStepsToJudge
+       << ": no verdict on their stability)";
+  }
+  md << ". Runs that reached T with a measured quantity that is a NaN or an infinity: "
+     << c.non_finite << " of " << c.reached;
+  if (c.not_measured) {
+    md << " (" << c.not_measured
+       << " report dt_stable_min as not measured: eq. (108) is defined for MPM, GIMP and "
+          "cpGIMP only)";
+  }
+  md << ". The largest case took " << sci(slowest.work) << " particle-steps (" << slowest.name
      << ").\n\n"
      << "![" << spec.title << "](" << spec.name << ".png)\n\nVector version: [" << spec.name
      << ".svg](" << spec.name << ".svg); data: [" << spec.name << "_data.csv](" << spec.name
      << "_data.csv).\n\n";
   return md.str();
+}
+
+// The conclusions, each decided by the counts.
+std::vector<Claim> extremes_claims(const std::vector<ojson>& rows) {
+  const Counts c = count_rows(rows);
+  std::vector<Claim> claims;
+  Claim verdicts = claim("every-case-has-a-verdict", "Every case ends with a verdict",
+                         "{with} of {total} cases have one");
+  verdicts.count("with", c.with_verdict).count("total", c.total);
+  verdicts.holds = c.with_verdict == c.total;
+  claims.push_back(verdicts);
+
+  Claim finite = claim("outputs-finite",
+                       "No run that reached T reports a NaN or an infinity in a quantity it "
+                       "measures",
+                       "{bad} of {reached} do; {unmeasured} report dt_stable_min as not measured "
+                       "(eq. (108) is not defined for their basis), which is not counted");
+  finite.count("bad", c.non_finite).count("reached", c.reached).count("unmeasured", c.not_measured);
+  finite.holds = c.non_finite == 0;
+  claims.push_back(finite);
+
+  Claim enough = claim("verdicts-rest-on-enough-steps",
+                       "No stable or meaningless verdict rests on fewer than {min} steps",
+                       "{few} do; {short} runs that reached T in fewer are reported as too short "
+                       "to judge");
+  enough.count("min", kMinStepsToJudge)
+      .count("few", c.few_step_verdicts)
+      .count("short", c.too_short);
+  enough.holds = c.few_step_verdicts == 0;
+  claims.push_back(enough);
+
+  Claim above = claim("above-limit-fails",
+                      "Every run above its scheme's spectral limit that is long enough to judge "
+                      "fails",
+                      "{failed} of {judged} fail; {survived} survive (the longest ran {steps} "
+                      "steps, at most {ratio} times the limit); {short} more are too short to "
+                      "judge");
+  above.count("failed", c.above_failed)
+      .count("judged", c.above_failed + c.above_survived)
+      .count("survived", c.above_survived)
+      .count("steps", c.above_survivor_steps)
+      .value("ratio", c.above_survived ? fixed(c.above_survivor_ratio, 5) : "–")
+      .count("short", c.above_too_short);
+  above.holds = c.above_survived == 0;
+  claims.push_back(above);
+  return claims;
 }
 
 // A band of Courant numbers c dt/h or of amplitudes in cells A/h: lo <= x < hi.
@@ -114,9 +251,10 @@ std::string band_table(const std::vector<ojson>& rows, const std::string& method
                        const std::vector<Band>& bands, bool by_courant) {
   std::ostringstream md;
   md << "| " << (by_courant ? "Courant number" : "amplitude in cells")
-     << " | runs | stable | meaningless | unstable: reasons |\n|---|---|---|---|---|\n";
+     << " | runs | stable | meaningless | too short to judge | unstable: reasons "
+        "|\n|---|---|---|---|---|---|\n";
   for (const auto& b : bands) {
-    int n = 0, s = 0, m = 0;
+    int n = 0, s = 0, m = 0, t = 0;
     std::map<std::string, int> why;
     for (const auto& r : rows) {
       if (method_label(r) != method) continue;
@@ -127,40 +265,51 @@ std::string band_table(const std::vector<ojson>& rows, const std::string& method
       const int v = verdict_code(r);
       s += v == 0;
       m += v == 1;
+      t += v == 3;
       if (v == 2) ++why[r["failure_reason"].get<std::string>()];
     }
-    md << "| " << b.name << " | " << n << " | " << s << " | " << m << " | " << reason_counts(why)
-       << (why.empty() ? "none" : "") << " |\n";
+    md << "| " << b.name << " | " << n << " | " << s << " | " << m << " | " << t << " | "
+       << reason_counts(why) << (why.empty() ? "none" : "") << " |\n";
   }
   md << "\n";
   return md.str();
 }
 
-// The reading for one method, computed from the rows: how many runs at and above Courant 1
-// fail and how long the survivors ran, and how many of the failures below Courant 1 have
-// particles crossing cells.
+// The reading for one method, computed from the rows: above its spectral limit at each run's
+// layout, how many runs long enough to judge fail, how many survive and how long and how far
+// above the limit they ran, how many are too short to judge; below it, how many fail and how
+// many of those have particles crossing cells.
 std::string method_reading(const std::vector<ojson>& rows, const std::string& method) {
-  int above = 0, above_failed = 0, below_failed = 0, below_failed_crossing = 0;
-  std::int64_t longest_survivor = 0;
+  std::vector<ojson> mine;
+  int below_failed = 0, below_failed_crossing = 0;
+  double limit_lo = 1e300, limit_hi = 0;
   for (const auto& r : rows) {
     if (method_label(r) != method) continue;
-    const bool failed = outcome(r) == "unstable";
-    if (r["courant"].get<double>() >= 1) {
-      ++above;
-      above_failed += failed;
-      if (!failed) longest_survivor = std::max(longest_survivor, r["steps"].get<std::int64_t>());
-    } else if (failed) {
+    mine.push_back(r);
+    if (!has_number(r, "courant_spectral")) continue;
+    const double limit = r["courant_spectral"].get<double>();
+    limit_lo = std::min(limit_lo, limit);
+    limit_hi = std::max(limit_hi, limit);
+    if (r["courant"].get<double>() <= limit && outcome(r) == "unstable") {
       ++below_failed;
       below_failed_crossing += r["A"].get<double>() * r["cells"].get<double>() >= 1;
     }
   }
+  const Counts c = count_rows(mine);
   std::ostringstream md;
-  md << method << ": " << above_failed << " of " << above
-     << " runs at c dt/h >= 1 fail; the longest survivor there ran " << longest_survivor
-     << " steps (a survivor above Courant 1 is stable only if its basis's edge lies above "
-        "it: edge.md). Below Courant 1, "
-     << below_failed << " runs fail, " << below_failed_crossing << " of them with A/h >= 1, "
-     << "where particles cross cells. ";
+  md << method << ": ";
+  if (limit_hi == 0) return md.str() + "no spectral limit recorded. ";
+  md << "above its spectral limit (c dt/h " << fixed(limit_lo, 3);
+  if (limit_hi > limit_lo) md << " to " << fixed(limit_hi, 3);
+  md << " at these layouts) " << c.above_failed << " of " << c.above_failed + c.above_survived
+     << " runs long enough to judge fail";
+  if (c.above_survived) {
+    md << ", " << c.above_survived << " survive (the longest ran " << c.above_survivor_steps
+       << " steps, at most " << fixed(c.above_survivor_ratio, 5) << " times the limit)";
+  }
+  md << " and " << c.above_too_short << " are too short to judge. Below it, " << below_failed
+     << " runs fail, " << below_failed_crossing
+     << " of them with A/h >= 1, where particles cross cells. ";
   return md.str();
 }
 
@@ -236,7 +385,8 @@ std::string extremes_data_csv(const std::vector<ojson>& rows, const std::string&
   std::ostringstream csv;
   csv << header_lines
       << "# one row per spot: method (its panel, 0..), Courant number, amplitude in cells, "
-         "verdict (0 stable, 1 meaningless, 2 unstable), the number of cases there and the "
+         "verdict (0 stable, 1 meaningless, 2 unstable, 3 too short to judge), the number of cases "
+         "there and the "
          "method's name\n"
          "method,courant,A_over_h,verdict,cases,name\n";
   const std::vector<std::string> methods = methods_of(rows);
@@ -279,7 +429,8 @@ const StudyRegistration kExtremes{{
     .report =
         [](const ReportContext& c) {
           return StudyReport{.markdown = extremes_markdown(c.spec, c.rows),
-                             .data_csv = extremes_data_csv(c.rows, c.csv_header)};
+                             .data_csv = extremes_data_csv(c.rows, c.csv_header),
+                             .claims = extremes_claims(c.rows)};
         },
     .index = extremes_index,
     .figure_subtitle = extremes_subtitle,
