@@ -1,15 +1,18 @@
 # edge.gp -- the edges in dt against E, in units of h/c: for each method and amplitude the
 # survival edge (the largest fixed dt that survives to T; filled markers, solid lines) and the
 # accuracy edge (the largest that keeps the error at T within 2 times the smallest dt's; open
-# markers, dashed lines), one panel per scene, with h/c (1) and a cross where the run at the
-# survival edge is meaningless.
+# markers, dashed lines), one panel per scene, with h/c (1), a cross where the run at the
+# survival edge is meaningless, and beside them, in each series' colour, the scheme's spectral
+# limit (dotted) and eq. (108) at the survival edge (dash-dotted); dt on a log scale.
 #
 # Reads : datafile (results/edge_data.csv): '#' lines (the counts and the cases not drawn, with
 #         the reason), then the header
-#         panel,series,E,dt_edge_over_cfl,dt_accurate_over_cfl,meaningless_at_edge
+#         panel,series,E,dt_edge_over_cfl,dt_accurate_over_cfl,meaningless_at_edge,
+#         limit_over_cfl,eq108_over_cfl
 #         (panel 0 the bar, 1 the second scene; series 1 GIMP A = 0.015, 2 GIMP A = 0.05,
 #         3 MPM A = 0.015, 4 MPM A = 0.05, 5 CPDI, 6 quadratic B-spline, 7 cubic B-spline, at
-#         A = 0.015); an empty dt_accurate_over_cfl: no accuracy edge.
+#         A = 0.015); an empty dt_accurate_over_cfl: no accuracy edge; an empty limit_over_cfl
+#         or eq108_over_cfl: not measured.
 #         One row per drawn case.
 # Writes: outbase.png and outbase.svg.
 # Variables: datafile, outbase (required), subtitle (optional).
@@ -29,10 +32,17 @@ sel(p, s, v) = ($1 == p && $2 == s) ? v : 1/0
 cfl(p) = ($1 == p) ? 1 : 1/0
 meaningless(p) = ($1 == p && $6 == 1) ? $4 : 1/0
 
-# One y range for both panels: the survival edges (the accuracy edges lie below them) and h/c.
+# One y range for both panels, log scale: from the smallest eq. (108) (or edge) to the largest
+# spectral limit (or edge), with h/c.
 stats datafile using 4 nooutput
-ylow = floor(STATS_min * 10 - 0.5) / 10.0
-yhigh = ceil((STATS_max > 1 ? STATS_max : 1) * 10 + 0.5) / 10.0
+edge_min = STATS_min
+edge_max = STATS_max
+stats datafile using 7 nooutput
+top = STATS_max > edge_max ? STATS_max : edge_max
+stats datafile using 8 nooutput
+bottom = STATS_min < edge_min ? STATS_min : edge_min
+ylow = 10 ** floor(log10(bottom))
+yhigh = 10 ** (log10(top > 1 ? top : 1) + 0.15)
 
 array colour[7] = ["#1f77b4", "#6baed6", "#d62728", "#ff9896", "#2ca02c", "#9467bd", "#8c564b"]
 array filled[7] = [7, 5, 9, 11, 13, 15, 3]
@@ -48,7 +58,7 @@ do for [ext in "png svg"] {
     }
     set output outbase . "." . ext
     set multiplot title "Survival and accuracy edges against E, in units of h/c" . (strlen(subtitle) > 0 ? "\n" . subtitle : "")
-    set logscale x
+    set logscale xy
     set xrange [2:20000]
     set yrange [ylow:yhigh]
     set xlabel "Young's modulus E (dimensionless model units)"
@@ -64,13 +74,15 @@ do for [ext in "png svg"] {
         plot datafile using 3:(cfl(p)) with linespoints lw 1.5 pt 1 ps 1.2 lc rgb "black", \
              datafile using 3:(meaningless(p)) with points pt 2 ps 2.6 lw 1.5 lc rgb "black", \
              for [s = 1:7] datafile using 3:(sel(p, s, $4)) with linespoints lw 1.5 pt filled[s] ps 1.2 lc rgb colour[s], \
-             for [s = 1:7] datafile using 3:(sel(p, s, $5)) with linespoints lw 1.5 dt 2 pt open[s] ps 1.8 lc rgb colour[s]
+             for [s = 1:7] datafile using 3:(sel(p, s, $5)) with linespoints lw 1.5 dt 2 pt open[s] ps 1.8 lc rgb colour[s], \
+             for [s = 1:7] datafile using 3:(sel(p, s, $7)) with lines lw 1 dt 3 lc rgb colour[s], \
+             for [s = 1:7] datafile using 3:(sel(p, s, $8)) with linespoints lw 1 dt 4 pt open[s] ps 0.8 lc rgb colour[s]
     }
     # The legend of both panels, below them.
     unset title
     unset xlabel
     unset ylabel
-    unset logscale x
+    unset logscale xy
     unset grid
     unset border
     unset tics
@@ -84,7 +96,9 @@ do for [ext in "png svg"] {
     plot NaN with linespoints lw 1.5 pt 1 ps 1.2 lc rgb "black" title "h/c (speed-of-sound limit)", \
          for [s = 1:7] NaN with linespoints lw 1.5 pt filled[s] ps 1.2 lc rgb colour[s] title "survival edge, " . name[s], \
          NaN with points pt 2 ps 2.6 lw 1.5 lc rgb "black" title "run at the survival edge meaningless", \
-         for [s = 1:7] NaN with linespoints lw 1.5 dt 2 pt open[s] ps 1.8 lc rgb colour[s] title "accuracy edge, " . name[s]
+         for [s = 1:7] NaN with linespoints lw 1.5 dt 2 pt open[s] ps 1.8 lc rgb colour[s] title "accuracy edge, " . name[s], \
+         NaN with lines lw 1 dt 3 lc rgb "black" title "spectral limit (dotted, each series' colour)", \
+         NaN with linespoints lw 1 dt 4 pt 6 ps 0.8 lc rgb "black" title "eq. (108) at the survival edge (dash-dotted)"
     unset multiplot
     unset output
     set border

@@ -225,7 +225,7 @@ TEST(EdgeStudy, ReportStatesTheRuleAndReadsBothEdgesFromTheRows) {
   // without wall times.
   EXPECT_NE(
       md.find("| gimp | 0.015 | 4 | 5.00e-3 | 0.756 | 4.10e-3 (0.820) | meaningless | 1.0e-6 | "
-              "3.94e-3 (0.788) | 1.0e-5 → 6.0e-6 | 1.0e-4 (41) | monotone | 20 | 2.4e6 |"),
+              "3.94e-3 (0.788) | 1.0e-5 → 6.0e-6 | 1.0e-4 (41) | monotone | – | 20 | 2.4e6 |"),
       std::string::npos)
       << md;
   EXPECT_NE(md.find("none (reference meaningless)"), std::string::npos);
@@ -234,6 +234,38 @@ TEST(EdgeStudy, ReportStatesTheRuleAndReadsBothEdgesFromTheRows) {
   EXPECT_NE(md.find("| mpm | 0.015 | 4 | 5.00e-3 | – | none in the scan |"), std::string::npos);
   EXPECT_EQ(md.find("seconds"), std::string::npos);
   EXPECT_EQ(md.find(" ms "), std::string::npos);
+}
+
+// Every quoted edge is rerun on perturbed layouts, at dt_edge and at dt_fail: robust when every
+// member survives at the edge and fails above it, sensitive otherwise; the claim counts them.
+TEST(EdgeStudy, EdgesAreRerunOnPerturbedLayoutsAndASensitiveOneIsMarked) {
+  const std::vector<ojson> rows = edge_rows();  // two edges (gimp), one case without
+  ojson survives = study_row("gimp", 4), fails = survives;
+  test_support::fail_row(fails, "nonpositive_F");
+  std::vector<ojson> follow_up;
+  for (int k = 0; k < 8; ++k)
+    follow_up.push_back(survives);  // first edge: all 8 survive at dt_edge
+  for (int k = 0; k < 8; ++k)
+    follow_up.push_back(fails);  // ... and fail above it
+  for (int k = 0; k < 8; ++k)
+    follow_up.push_back(k < 5 ? survives : fails);  // second: 5 of 8 survive at dt_edge
+  for (int k = 0; k < 8; ++k)
+    follow_up.push_back(fails);
+  const auto report = test_support::study_report("edge", rows, follow_up);
+  EXPECT_NE(report.markdown.find("| robust: 8 of 8 survive, 8 of 8 fail above |"),
+            std::string::npos)
+      << report.markdown;
+  EXPECT_NE(report.markdown.find("| **sensitive**: 5 of 8 survive, 8 of 8 fail above |"),
+            std::string::npos)
+      << report.markdown;
+  bool found = false;
+  for (const auto& c : report.claims) {
+    if (c.id != "edges-robust") continue;
+    found = true;
+    EXPECT_FALSE(c.holds);
+    EXPECT_EQ(render(c, c.evidence), "1 of 2 edges rerun are robust; 2 edges found");
+  }
+  EXPECT_TRUE(found);
 }
 
 TEST(EdgeStudy, FigureDataHasARowPerDrawnCaseAndTheTitleCountsThem) {
@@ -249,8 +281,11 @@ TEST(EdgeStudy, FigureDataHasARowPerDrawnCaseAndTheTitleCountsThem) {
   const std::string& csv = *report.data_csv;
   // Drawn: the two gimp cases of the bar and the one of the second scene.
   EXPECT_EQ(test_support::data_lines(csv).size(), 3u) << csv;
-  EXPECT_NE(csv.find("panel,series,E,dt_edge_over_cfl,dt_accurate_over_cfl,meaningless_at_edge\n"
-                     "0,1,4,0.82,0.788,1\n0,2,4,0.7,,0\n1,1,4,0.82,0.788,1\n"),
+  // Beside each edge, the spectral limit (where recorded) and eq. (108) at the edge, in h/c.
+  EXPECT_NE(csv.find("panel,series,E,dt_edge_over_cfl,dt_accurate_over_cfl,meaningless_at_edge,"
+                     "limit_over_cfl,eq108_over_cfl\n"
+                     "0,1,4,0.82,0.788,1,0.7564,0.02\n0,2,4,0.7,,0,,0.02\n"
+                     "1,1,4,0.82,0.788,1,0.7564,0.02\n"),
             std::string::npos)
       << csv;
   // Not drawn, each with its reason, in the data and in the report.

@@ -7,7 +7,9 @@
 #include <sstream>
 #include <tuple>
 
+#include "claims.hpp"
 #include "csv.hpp"
+#include "ensemble.hpp"
 #include "report.hpp"
 #include "report_util.hpp"
 #include "scenes.hpp"
@@ -145,6 +147,146 @@ std::string edge_summary_text(const std::vector<ojson>& rows) {
   return md.str();
 }
 
+// ---------------------------------------------------------------------------------------------
+// The edges under perturbation (ensemble.hpp): every survival edge the report quotes is rerun
+// as an ensemble of kEnsembleMembers layouts perturbed far below the discretisation error, at
+// dt_edge (where the search's run survived) and at dt_fail (the dt just above it, which failed).
+// The edge is robust when every member survives at dt_edge and fails at dt_fail; otherwise it is
+// *sensitive*, with the counts.
+
+struct EdgeEnsemble {
+  int at_edge = 0, survived = 0;  // members at dt_edge, and those that survived
+  int at_fail = 0, failed = 0;    // members at dt_fail, and those that failed
+  bool run() const { return at_edge > 0; }
+  bool robust() const { return run() && survived == at_edge && failed == at_fail; }
+};
+
+RunParams at_dt(const RunParams& base, double dt) {
+  RunParams p = base;
+  p.dt = dt;
+  return p;
+}
+
+// The members of every case with an edge, in row order: at dt_edge, then at dt_fail.
+std::vector<RunParams> edge_follow_up(const FollowUpContext& c) {
+  std::vector<RunParams> runs;
+  for (std::size_t i = 0; i < c.rows.size(); ++i) {
+    const ojson& r = c.rows[i];
+    if (!has_number(r, "dt_edge")) continue;
+    const RunParams& base = c.spec.cases.at(i).params;
+    for (auto& p : ensemble_members(at_dt(base, r["dt_edge"].get<double>())))
+      runs.push_back(std::move(p));
+    if (!has_number(r, "dt_fail")) continue;
+    for (auto& p : ensemble_members(at_dt(base, r["dt_fail"].get<double>())))
+      runs.push_back(std::move(p));
+  }
+  return runs;
+}
+
+// Per row, its ensemble (empty where it has no edge or the follow-up runs are absent), keyed by
+// the row's address.
+std::map<const ojson*, EdgeEnsemble> edge_ensembles(const std::vector<ojson>& rows,
+                                                    const std::vector<ojson>& follow_up) {
+  std::map<const ojson*, EdgeEnsemble> out;
+  std::size_t next = 0;
+  auto take = [&](int& members, int& count, bool want_survived) {
+    for (int k = 0; k < kEnsembleMembers && next < follow_up.size(); ++k) {
+      ++members;
+      count += survived(follow_up[next++]) == want_survived;
+    }
+  };
+  for (const auto& r : rows) {
+    if (!has_number(r, "dt_edge") || next >= follow_up.size()) continue;
+    EdgeEnsemble& e = out[&r];
+    take(e.at_edge, e.survived, true);
+    if (has_number(r, "dt_fail")) take(e.at_fail, e.failed, false);
+  }
+  return out;
+}
+
+// The table's cell: "robust: 8 of 8 survive, 8 of 8 fail above", "**sensitive**: 5 of 8
+// survive, 8 of 8 fail above", "–".
+std::string ensemble_cell(const std::map<const ojson*, EdgeEnsemble>& all, const ojson& r) {
+  const auto it = all.find(&r);
+  if (it == all.end() || !it->second.run()) return "–";
+  const EdgeEnsemble& e = it->second;
+  std::ostringstream s;
+  s << (e.robust() ? "robust: " : "**sensitive**: ") << e.survived << " of " << e.at_edge
+    << " survive";
+  if (e.at_fail) s << ", " << e.failed << " of " << e.at_fail << " fail above";
+  return s.str();
+}
+
+// The conclusions the rows and their ensembles decide.
+std::vector<Claim> edge_claims(const std::vector<ojson>& rows,
+                               const std::map<const ojson*, EdgeEnsemble>& ensembles) {
+  int with_edge = 0, robust = 0, run = 0, monotone = 0, eq108_below = 0, eq108_n = 0;
+  int above_limit = 0, limit_n = 0;
+  double over_lo = 1e300, over_hi = 0, limit_hi = 0;
+  for (const auto& r : rows) {
+    monotone += flips_of(r).empty();
+    if (!has_number(r, "dt_edge")) continue;
+    ++with_edge;
+    const auto it = ensembles.find(&r);
+    if (it != ensembles.end() && it->second.run()) {
+      ++run;
+      robust += it->second.robust();
+    }
+    if (has_number(r, "dt_edge_over_stable")) {
+      const double over = r["dt_edge_over_stable"].get<double>();
+      ++eq108_n;
+      eq108_below += over > 1;
+      over_lo = std::min(over_lo, over);
+      over_hi = std::max(over_hi, over);
+    }
+    if (has_number(r, "courant_spectral")) {
+      const double rel = r["dt_edge_over_cfl"].get<double>() / r["courant_spectral"].get<double>();
+      ++limit_n;
+      above_limit += rel > 1;
+      limit_hi = std::max(limit_hi, rel);
+    }
+  }
+  std::vector<Claim> claims;
+  Claim ens = claim("edges-robust",
+                    "Every survival edge quoted here survives, and the dt above it fails, on "
+                    "{members} layouts perturbed by {unit} of the particle spacing",
+                    "{robust} of {run} edges rerun are robust; {with_edge} edges found");
+  ens.count("members", kEnsembleMembers)
+      .value("unit", sci(kEnsemblePerturbation, 1))
+      .count("robust", robust)
+      .count("run", run)
+      .count("with_edge", with_edge);
+  ens.holds = run == with_edge && robust == run;
+  claims.push_back(ens);
+
+  Claim eq108 = claim("eq108-below-every-edge",
+                      "Eq. (108) at the survival edge lies below the edge in every case where "
+                      "both are measured",
+                      "{below} of {n}; the edge is {lo} to {hi} times eq. (108)");
+  eq108.count("below", eq108_below)
+      .count("n", eq108_n)
+      .value("lo", eq108_n ? ratio(over_lo) : "–")
+      .value("hi", eq108_n ? ratio(over_hi) : "–");
+  eq108.holds = eq108_n > 0 && eq108_below == eq108_n;
+  claims.push_back(eq108);
+
+  Claim limit = claim("edges-at-most-the-limit",
+                      "No survival edge lies above its scheme's spectral limit at the layout",
+                      "{above} of {n} lie above it, at most {hi} times it");
+  limit.count("above", above_limit)
+      .count("n", limit_n)
+      .value("hi", limit_n ? fixed(limit_hi, 3) : "–");
+  limit.holds = above_limit == 0;
+  claims.push_back(limit);
+
+  Claim mono = claim("survival-monotone", "Survival is monotone in dt in every search",
+                     "{monotone} of {n} searches");
+  mono.count("monotone", monotone).count("n", static_cast<long long>(rows.size()));
+  mono.holds = monotone == static_cast<int>(rows.size());
+  claims.push_back(mono);
+  return claims;
+}
+
 // The search and both rules, stated once.
 const char* kRule =
     "**The search.** A scan of dt = (h/c) 2^(k/2) from h/(16c) to 4h/c, then bisection to within "
@@ -161,18 +303,22 @@ const char* kRule =
     "run fails or survives again (between it and the dt tried just below it). The *spectral "
     "limit* is the Courant number at which the scheme, linearised about rest with the particles "
     "of the initial layout frozen, starts to amplify (docs/design.md, \"The spectral limit\"): "
-    "the edge of a tiny amplitude; the edges here, at the paper's amplitudes, fall below it or, "
-    "where a growing mode saturates instead of failing, above it.";
+    "the edge of a tiny amplitude; where the edges at the paper's amplitudes lie against it is "
+    "counted in the conclusions. The *ensemble* column: the case rerun on layouts perturbed far "
+    "below the discretisation error (docs/design.md, \"Ensembles\") at dt_edge and at the dt "
+    "just above it that failed; *robust* when every member survives at dt_edge and fails above, "
+    "*sensitive* otherwise.";
 
 // Per case: both edges against h/c, the run at the survival edge, the errors at T, eq. (108),
 // the flips and what the search cost.
-std::string edge_table(const std::vector<ojson>& rows) {
+std::string edge_table(const std::vector<ojson>& rows,
+                       const std::map<const ojson*, EdgeEnsemble>& ensembles) {
   std::ostringstream md;
   md << "| method | A | E | h/c | spectral limit (h/c) | survival edge dt_edge (h/c) | run at "
         "dt_edge | error at T there | accuracy edge dt_accurate (h/c) | error at T: reference → "
-        "at dt_accurate | eq. (108) at dt_edge (dt_edge / it) | survival in dt | probes | "
-        "particle-steps |\n"
-        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+        "at dt_accurate | eq. (108) at dt_edge (dt_edge / it) | survival in dt | ensemble | probes "
+        "| particle-steps |\n"
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& r : rows) {
     const bool found = has_number(r, "dt_edge");
     md << "| " << r["method"].get<std::string>() << " | " << shortest(r["A"].get<double>()) << " | "
@@ -200,8 +346,8 @@ std::string edge_table(const std::vector<ojson>& rows) {
     }
     const auto flips = flips_of(r);
     md << (flips.empty() ? std::string("monotone") : "**not monotone**: " + flips_text(flips))
-       << " | " << r["probes"].dump() << " | " << sci(r["search_particle_steps"].get<double>())
-       << " |\n";
+       << " | " << ensemble_cell(ensembles, r) << " | " << r["probes"].dump() << " | "
+       << sci(r["search_particle_steps"].get<double>()) << " |\n";
   }
   return md.str();
 }
@@ -306,20 +452,22 @@ std::string edge_subtitle_text(const FigureCount& c) {
 // One scene's section: the first has the figure and states the rules; each has its own reading
 // and table.
 std::string edge_markdown(const Spec& spec, const std::vector<ojson>& all,
-                          const std::vector<ojson>& rows, bool first) {
+                          const std::vector<ojson>& rows, bool first,
+                          const std::map<const ojson*, EdgeEnsemble>& ensembles) {
   std::ostringstream md;
   if (first) {
     md << "## Results\n\n"
        << kRule << "\n\n![" << spec.title << "](" << spec.name
-       << ".png)\n\nThe figure draws both edges in units of h/c for every scene, eq. (108) "
-          "being in the tables. "
+       << ".png)\n\nThe figure draws both edges in units of h/c for every scene, on a log "
+          "scale, beside each series' spectral limit (dotted) and eq. (108) at its survival edge "
+          "(dash-dotted). "
        << not_drawn_text(figure_count(all)) << " Vector version: [" << spec.name << ".svg]("
        << spec.name << ".svg); data: [" << spec.name << "_data.csv](" << spec.name
        << "_data.csv).\n\n## " << scene_title(rows.front()["scene"].get<std::string>()) << "\n\n";
   } else {
     md << "\n## " << scene_title(rows.front()["scene"].get<std::string>()) << "\n\n";
   }
-  md << "**Reading.** " << edge_summary_text(rows) << "\n\n" << edge_table(rows);
+  md << "**Reading.** " << edge_summary_text(rows) << "\n\n" << edge_table(rows, ensembles);
   return md.str();
 }
 
@@ -345,12 +493,21 @@ std::string edge_data_csv(const std::vector<ojson>& rows, const std::string& hea
   csv << "# panel: 0 the bar, 1 the second scene (steffen); series: 1 gimp A = 0.015, 2 gimp "
          "A = 0.05, 3 mpm A = 0.015, 4 mpm A = 0.05, 5 cpdi, 6 bspline2, 7 bspline3 A = 0.015; dt "
          "in units of h/c; meaningless_at_edge: "
-         "1 when the run at the survival edge is meaningless\n"
-         "panel,series,E,dt_edge_over_cfl,dt_accurate_over_cfl,meaningless_at_edge\n";
+         "1 when the run at the survival edge is meaningless; limit_over_cfl: the scheme's "
+         "spectral limit at the layout; eq108_over_cfl: eq. (108) at the survival edge (its "
+         "minimum over the run there), both in units of h/c (empty where not measured)\n"
+         "panel,series,E,dt_edge_over_cfl,dt_accurate_over_cfl,meaningless_at_edge,limit_over_cfl,"
+         "eq108_over_cfl\n";
   for (const ojson* r : drawn) {
     csv << panel_of(*r) << ',' << series_of(*r) << ',' << shortest((*r)["E"].get<double>()) << ','
         << csv_cell((*r)["dt_edge_over_cfl"]) << ',' << csv_cell((*r)["dt_accurate_over_cfl"])
-        << ',' << (outcome(*r) == "meaningless" ? 1 : 0) << '\n';
+        << ',' << (outcome(*r) == "meaningless" ? 1 : 0) << ','
+        << (has_number(*r, "courant_spectral") ? shortest((*r)["courant_spectral"].get<double>())
+                                               : std::string())
+        << ',';
+    if (has_number(*r, "dt_stable_min_at_edge"))
+      csv << shortest((*r)["dt_stable_min_at_edge"].get<double>() / (*r)["dt_cfl"].get<double>());
+    csv << '\n';
   }
   return csv.str();
 }
@@ -362,10 +519,24 @@ std::string edge_subtitle(const Spec& spec, const ojson& doc) {
 
 StudyReport edge_report(const ReportContext& c) {
   StudyReport report;
+  // by_scene copies the rows, in their order within each scene: the ensembles, keyed by the
+  // rows of c.rows, are handed to each scene's copies in that order.
   const auto scenes = by_scene(c.rows);
-  for (std::size_t i = 0; i < scenes.size(); ++i)
-    report.markdown += edge_markdown(c.spec, c.rows, scenes[i].rows, i == 0);
+  const auto all = edge_ensembles(c.rows, c.follow_up);
+  std::vector<Claim> claims = edge_claims(c.rows, all);
+  for (std::size_t i = 0; i < scenes.size(); ++i) {
+    std::map<const ojson*, EdgeEnsemble> mine;
+    std::size_t k = 0;
+    for (const auto& r : c.rows) {
+      if (r["scene"] != scenes[i].scene) continue;
+      const auto it = all.find(&r);
+      if (it != all.end() && k < scenes[i].rows.size()) mine[&scenes[i].rows[k]] = it->second;
+      ++k;
+    }
+    report.markdown += edge_markdown(c.spec, c.rows, scenes[i].rows, i == 0, mine);
+  }
   report.data_csv = edge_data_csv(c.rows, c.csv_header);
+  report.claims = std::move(claims);
   return report;
 }
 
@@ -385,6 +556,7 @@ const StudyRegistration kEdge{{
     .work = CaseWork::edge_search,
     .records = {.error_over_time = true},
     .figure = true,
+    .follow_up = edge_follow_up,
     .report = edge_report,
     .index = edge_index,
     .figure_subtitle = edge_subtitle,
