@@ -1,13 +1,15 @@
 # tradeoff.gp -- speed against accuracy: max error over time against the work of the run
 # (particle-steps, particles x steps), one panel per E, log-log, one series per method,
-# time-step policy and grid, each with its marker and legend entry.
+# time-step policy and grid, each with its marker and legend entry; the Pareto front of each E
+# drawn as a black line through its runs (full colour), every dominated run faint.
 #
 # Reads : datafile (results/tradeoff_data.csv): '#' lines, then the header
-#         E,panel,series,method,policy,cells,grid,particle_steps,steps,error and one row per run
+#         E,panel,series,method,policy,cells,grid,particle_steps,steps,error,pareto and one row per run
 #         drawn (stable, with an error; the runs left out are counted in the subtitle). panel:
 #         0.. per E; series: 0.. per (method, policy, cells); method 0 mpm, 1 gimp, 2 cpgimp,
 #         3 bspline2, 4 bspline3, 5 cpdi, 6 gimp/apic, 7 gimp/xpic(2), 8 gimp/fmpm(2), 9 another;
-#         policy 0 fixed, 1 cfl, 2 adaptive, 3 min, 4 spectral; grid: the rank of cells, 0 the coarsest.
+#         policy 0 fixed, 1 cfl, 2 adaptive, 3 min, 4 spectral; grid: the rank of cells, 0 the coarsest;
+#         pareto: 1 on the Pareto front of its E.
 # Writes: outbase.png and outbase.svg.
 # Variables: datafile, outbase (required), subtitle (optional: the runs drawn and left out).
 
@@ -66,6 +68,11 @@ s_pt(s) = policy_pt[s_policy[s] + 1] - (s_method[s] == 0 ? 1 : 0)
 s_title(s) = sprintf("%s, %s%s", method_name[s_method[s] + 1], policy_name[s_policy[s] + 1], \
                      s_cells[s] != coarsest ? sprintf(", %d cells", s_cells[s]) : "")
 sel(k, s, x) = (column("panel") == k - 1 && column("series") == s - 1) ? x : 1/0
+# On the front (f = 1) or dominated (f = 0).
+self(k, s, f, x) = (column("pareto") == f) ? sel(k, s, x) : 1/0
+front(k, x) = (column("panel") == k - 1 && column("pareto") == 1) ? x : 1/0
+# A dominated run's colour: the series' colour, mostly transparent.
+faint(c) = "#B0" . c[2:7]
 
 height = 120 + 360 * panels
 do for [ext in "png svg"] {
@@ -86,16 +93,19 @@ do for [ext in "png svg"] {
         set ylabel sprintf("E = %g: max error over time", panel_E[k])
         if (k == 1) {
             set key at screen 0.99, screen 0.90 right top vertical maxrows 60 samplen 1 spacing 1.2 \
-                title sprintf("%d cells unless named", coarsest)
-            plot for [s = 1:nseries] keyentry with points pt s_pt(s) ps 1.3 lc rgb s_colour(s) \
-                     title s_title(s), \
-                 for [s = 1:nseries] datafile using (sel(k, s, column("particle_steps"))):(sel(k, s, column("error"))) \
-                     with points pt s_pt(s) ps 1.3 lc rgb s_colour(s) notitle
+                title sprintf("%d cells unless named; faint: dominated", coarsest)
         } else {
             unset key
-            plot for [s = 1:nseries] datafile using (sel(k, s, column("particle_steps"))):(sel(k, s, column("error"))) \
-                     with points pt s_pt(s) ps 1.3 lc rgb s_colour(s) notitle
         }
+        plot keyentry with lines lw 1.5 lc rgb "black" title "Pareto front (no run both cheaper and more accurate)", \
+             for [s = 1:nseries] keyentry with points pt s_pt(s) ps 1.3 lc rgb s_colour(s) \
+                 title s_title(s), \
+             datafile using (front(k, column("particle_steps"))):(front(k, column("error"))) \
+                 smooth unique with lines lw 1.5 lc rgb "black" notitle, \
+             for [s = 1:nseries] datafile using (self(k, s, 0, column("particle_steps"))):(self(k, s, 0, column("error"))) \
+                 with points pt s_pt(s) ps 1.1 lc rgb faint(s_colour(s)) notitle, \
+             for [s = 1:nseries] datafile using (self(k, s, 1, column("particle_steps"))):(self(k, s, 1, column("error"))) \
+                 with points pt s_pt(s) ps 1.6 lw 1.5 lc rgb s_colour(s) notitle
     }
     unset multiplot
     unset output

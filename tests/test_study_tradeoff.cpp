@@ -277,13 +277,16 @@ TEST(TradeoffStudy, DataFileHasOneRowPerDrawnRunAndTheTitleCountsThem) {
   const std::string data = *test_support::study_report("tradeoff", rows).data_csv;
   const auto lines = test_support::data_lines(data);
   ASSERT_EQ(lines.size(), 4u) << data;
-  EXPECT_NE(data.find("E,panel,series,method,policy,cells,grid,particle_steps,steps,error\n"),
-            std::string::npos)
+  EXPECT_NE(
+      data.find("E,panel,series,method,policy,cells,grid,particle_steps,steps,error,pareto\n"),
+      std::string::npos)
       << data;
-  EXPECT_EQ(lines[0], "4,0,0,1,0,100,0,2000000,10000,1e-05");
-  EXPECT_EQ(lines[1], "64,1,1,1,1,100,0,2000000,10000,1e-05");
-  EXPECT_EQ(lines[2], "64,1,2,0,2,100,0,2000000,10000,1e-05");
-  EXPECT_EQ(lines[3], "64,1,3,1,1,400,1,640000,800,1e-05");
+  // The last column marks the Pareto front of each E: at E = 64 the run on 400 cells is cheaper
+  // at the same error, so it alone is on it.
+  EXPECT_EQ(lines[0], "4,0,0,1,0,100,0,2000000,10000,1e-05,1");
+  EXPECT_EQ(lines[1], "64,1,1,1,1,100,0,2000000,10000,1e-05,0");
+  EXPECT_EQ(lines[2], "64,1,2,0,2,100,0,2000000,10000,1e-05,0");
+  EXPECT_EQ(lines[3], "64,1,3,1,1,400,1,640000,800,1e-05,1");
 
   Spec spec;
   spec.name = std::string("tradeoff");

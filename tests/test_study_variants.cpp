@@ -152,7 +152,7 @@ TEST_F(VariantsStudyTest, TheFigureTitleCountsThePointsItDraws) {
   doc["cases"] = rows(2.9e-5);
   doc["study"] = study_to_json(s);
   const std::string title = find_study("variants")->figure_subtitle(spec, doc);
-  EXPECT_NE(title.find(std::to_string(points) + " cell ratios drawn"), std::string::npos)
+  EXPECT_NE(title.find("Drawn: the " + std::to_string(points) + " of "), std::string::npos)
       << title << " (" << points << " points)";
 }
 

@@ -1112,8 +1112,16 @@ std::string tradeoff_data_csv(const std::vector<ojson>& rows, const std::string&
          "cpgimp, 3 bspline2, 4 bspline3, 5 cpdi, 6 gimp/apic, 7 gimp/xpic(2), 8 gimp/fmpm(2), 9 "
          "another; policy: 0 fixed, 1 cfl, 2 adaptive, 3 min, 4 spectral; grid: the rank of cells, "
          "0 the "
-         "coarsest\nE,panel,series,method,policy,cells,grid,particle_steps,steps,error\n";
-  for (const auto& r : rows) {
+         "coarsest; pareto: 1 when the run is on the Pareto front of its E (no other run at that E "
+         "both cheaper and more accurate)\nE,panel,series,method,policy,cells,grid,particle_steps,"
+         "steps,error,pareto\n";
+  std::set<std::size_t> front;
+  for (double E : t.Es) {
+    const auto f = pareto_front(rows, t.at(E));
+    front.insert(f.begin(), f.end());
+  }
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const ojson& r = rows[i];
     if (!drawn(r)) continue;
     const double E = r["E"].get<double>();
     const int cells = r["cells"].get<int>();
@@ -1124,7 +1132,7 @@ std::string tradeoff_data_csv(const std::vector<ojson>& rows, const std::string&
         << policy_code(text(r, "policy")) << ',' << cells << ','
         << std::distance(grids.begin(), grids.find(cells)) << ','
         << static_cast<long long>(particle_steps(r)) << ',' << r["steps"].dump() << ','
-        << shortest(*accuracy(r)) << '\n';
+        << shortest(*accuracy(r)) << ',' << (front.count(i) ? 1 : 0) << '\n';
   }
   return csv.str();
 }

@@ -27,8 +27,10 @@ StudyReport variants_report(const ReportContext& c) {
                      .json = study_to_json(study)};
 }
 
-// The figure draws one point per cell where both the paper and the variant's run are stable
-// (kind 0 rows of the data file, counted in the study JSON), and a median per variant and method.
+// The figure draws one point per cell where both the paper and the variant's run are stable and
+// the paper's error is readable (kind 0 rows of the data file, counted in the study JSON), and a
+// median per variant and method; its subtitle says which cells it selects, why, and where the
+// others are.
 std::string variants_subtitle(const Spec& spec, const ojson& doc) {
   std::size_t drawn = 0, variants = 0;
   if (doc.contains("study") && doc["study"].contains("variants")) {
@@ -38,14 +40,12 @@ std::string variants_subtitle(const Spec& spec, const ojson& doc) {
         drawn += m["errors_compared"].get<std::size_t>();
     }
   }
-  std::string s = std::to_string(drawn);
-  s += " cell ratios drawn (cells where both are stable) of ";
-  s += std::to_string(doc["cases"].size());
-  s += " runs in ";
-  s += std::to_string(variants);
-  s += " variants; every run is in ";
-  s += spec.name;
-  s += ".md";
+  const std::size_t runs = doc["cases"].size();
+  std::string s = "Drawn: the " + std::to_string(drawn) + " of " + std::to_string(runs) +
+                  " runs (" + std::to_string(variants) +
+                  " variants of the Table 1 cells) where the paper and our run are both stable "
+                  "and the paper's error is readable, since a ratio needs two errors; the other " +
+                  std::to_string(runs - drawn) + " are compared by verdict in " + spec.name + ".md";
   return s;
 }
 
