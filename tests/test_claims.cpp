@@ -11,6 +11,9 @@
 
 #include "advice.hpp"
 #include "claims.hpp"
+#include "result_json.hpp"
+#include "run.hpp"
+#include "spec.hpp"
 
 namespace mpmstab {
 namespace {
@@ -103,6 +106,49 @@ TEST(Advice, ConfirmingRunsRefineAtTheSameCourantNumberAndJitter) {
   EXPECT_DOUBLE_EQ(runs[0].dt * runs[0].cells, p.dt * p.cells);
   EXPECT_EQ(runs[1].cells, 25);
   EXPECT_GT(runs[1].layout.jitter, 0);
+}
+
+}  // namespace
+}  // namespace mpmstab
+
+namespace mpmstab {
+namespace {
+
+// Every setting a committed report recommends (results/<name>.json, study.recommended) is rerun
+// here with its confirming runs -- the same setting on a grid twice as fine and on a jittered
+// layout -- and each must meet the rule's limit and error target: a recommendation that a fresh
+// run contradicts fails the suite, whatever the committed report says.
+TEST(Advice, CommittedRecommendationsPassTheirConfirmingRunsWhenRerun) {
+  const std::filesystem::path results = std::filesystem::path(MPMSTAB_SOURCE_DIR) / "results";
+  int rerun = 0;
+  for (const char* name : {"methods", "tradeoff"}) {
+    std::ifstream in(results / (std::string(name) + ".json"));
+    ASSERT_TRUE(in) << name;
+    const ojson doc = ojson::parse(in);
+    ASSERT_TRUE(doc.contains("study") && doc["study"].contains("recommended")) << name;
+    for (const auto& rec : doc["study"]["recommended"]) {
+      const double target = rec["target"].get<double>();
+      const ojson spec = {{"name", "rerun"},
+                          {"title", "rerun"},
+                          {"report", "cases"},
+                          {"cases", ojson::array({rec["case"]})}};
+      const Spec parsed = parse_spec(spec.dump(), "rerun.json");
+      ASSERT_EQ(parsed.cases.size(), 1u);
+      const RunParams& p = parsed.cases[0].params;
+      // The setting itself reproduces its committed numbers.
+      const ojson own = to_json(run(p));
+      EXPECT_EQ(own["max_error_over_time"], rec["max_error_over_time"]) << rec.dump();
+      const double limit = own["courant_spectral"].get<double>();
+      for (const RunParams& c : confirming_runs(p)) {
+        const ojson row = to_json(run(c));
+        EXPECT_TRUE(within_limit(row, limit)) << name << ": " << rec.dump() << " -> " << row.dump();
+        EXPECT_TRUE(meets_target(row, target))
+            << name << ": " << rec.dump() << " -> " << row.dump();
+        ++rerun;
+      }
+    }
+  }
+  EXPECT_GT(rerun, 0);
 }
 
 }  // namespace

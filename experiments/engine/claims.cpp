@@ -128,9 +128,9 @@ void write_claims(const std::filesystem::path& out, const std::string& name,
 
 const std::vector<std::string>& claim_name_tokens() {
   static const std::vector<std::string> tokens = {
-      "eq. (108)", "eqs. (105)-(108)", "Table 1", "Table 2", "Fig. 1",  "Fig. 2",
-      "Fig. 3",    "Figs. 1-3",        "1D",      "l2",      "xpic(2)", "fmpm(2)",
-      "bspline2",  "bspline3",         "XPIC(2)", "FMPM(2)"};
+      "eq. (108)", "Eq. (108)", "eqs. (105)-(108)", "Table 1", "Table 2", "Fig. 1",
+      "Fig. 2",    "Fig. 3",    "Figs. 1-3",        "1D",      "l2",      "xpic(2)",
+      "fmpm(2)",   "bspline2",  "bspline3",         "XPIC(2)", "FMPM(2)"};
   return tokens;
 }
 

@@ -78,6 +78,23 @@ std::string describe_confirming(const ojson& row) {
   return s.str();
 }
 
+ojson setting_case(const ojson& row) {
+  ojson c = ojson::object();
+  for (const auto& name : parameter_names()) {
+    if (row.contains(name) && !row[name].is_null()) c[name] = row[name];
+  }
+  return c;
+}
+
+ojson recommended_json(const Advice& a, double target) {
+  const ojson& r = *a.row;
+  return {{"target", target},
+          {"case", setting_case(r)},
+          {"courant", r["courant"]},
+          {"courant_spectral", r["courant_spectral"]},
+          {"max_error_over_time", r["max_error_over_time"]}};
+}
+
 Claim recommendations_claim(const std::vector<Advice>& recommended, double target,
                             const AdviceRule& rule) {
   int confirmed = 0;

@@ -62,6 +62,13 @@ std::string describe_rule(const AdviceRule& rule = kAdviceRule);
 // 0.756)" or its verdict where it did not end stable.
 std::string describe_confirming(const nlohmann::ordered_json& row);
 
+// The setting of a record as a spec case (experiments/*.json): the parameters of
+// parameter_names() it sets, so that a test or a user can rerun it and its confirming runs.
+nlohmann::ordered_json setting_case(const nlohmann::ordered_json& row);
+// A recommended setting as a study stores it in its JSON ("recommended"): the target, the case
+// and its own numbers (c dt/h, its spectral limit, its error over time).
+nlohmann::ordered_json recommended_json(const Advice& a, double target);
+
 // The claim every advising study makes of its recommendations: each recommended setting meets
 // the rule in its own run and in both confirming runs (a property of the records, so a
 // recommendation whose confirming run misses the target shows as not holding).

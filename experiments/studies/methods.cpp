@@ -364,8 +364,16 @@ StudyReport methods_report(const ReportContext& c) {
     md << "methods_grid has not been run into this folder: the columns it provides are `–`.\n\n";
   }
   md << methods_table(rows);
+  ojson recommended = ojson::array();
+  for (const auto& m : rows) {
+    for (std::size_t t = 0; t < m.recommended.size() && t < kTargets.size(); ++t) {
+      if (m.recommended[t])
+        recommended.push_back(recommended_json(m.recommended[t]->advice, kTargets[t]));
+    }
+  }
   return StudyReport{.markdown = md.str(),
                      .data_csv = methods_data(rows, c.csv_header),
+                     .json = {{"recommended", recommended}},
                      .claims = std::move(claims)};
 }
 

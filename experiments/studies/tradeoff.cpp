@@ -1152,7 +1152,14 @@ ojson tradeoff_json(const std::vector<ojson>& rows, const std::vector<ojson>& fo
   for (const auto& sc : by_scene(rows))
     endings[sc.scene] = endings_json(sc.rows);
   const FigureCount n = figure_count(by_scene(rows).front().rows);
-  return {{"recommendations", recommendations_json(rows, recommend(rows, follow_up))},
+  const Recommendations recs = recommend(rows, follow_up);
+  ojson recommended = ojson::array();
+  for (std::size_t t = 0; t < kTargets.size(); ++t) {
+    for (const auto& a : recs.by_target[t])
+      recommended.push_back(recommended_json(a, kTargets[t]));
+  }
+  return {{"recommendations", recommendations_json(rows, recs)},
+          {"recommended", recommended},
           {"margin", kMargin},
           {"stable_ranges", advice_json(all, stable_ranges(all))},
           {"endings", endings},
