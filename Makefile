@@ -68,20 +68,24 @@ test-cluster: build
 	MPMSTAB=$(MPMSTAB) tests/cluster/test_cluster.sh
 
 # A bounded fuzz run, FUZZ_SECONDS each, of the three readers of outside text (libFuzzer, with
-# address and UB sanitizers): the spec parser, the results reader and the cache reader. New
-# inputs that reach new code are kept in tests/fuzz/corpus* (committed); the specs and
-# tests/fuzz/seeds (a real results file and cache record) seed them.
+# address and UB sanitizers): the spec parser, the results reader and the cache reader. The
+# committed corpora tests/fuzz/corpus*, the specs and tests/fuzz/seeds (a real results file and
+# cache record) seed them, read only; new inputs that reach new code go to $(FUZZ_DIR)/corpus*,
+# never into the source tree (copy one into tests/fuzz/corpus* by hand to keep it).
 fuzz: deps
 	@test -f $(FUZZ_DIR)/CMakeCache.txt || cmake -S . -B $(FUZZ_DIR) -DMPMSTAB_FUZZ=ON \
 	  -DCMAKE_CXX_COMPILER=clang++-14 -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMPMSTAB_ARCH= > /dev/null
 	cmake --build $(FUZZ_DIR) -j $(JOBS) --target fuzz_spec fuzz_results fuzz_cache
-	mkdir -p tests/fuzz/corpus tests/fuzz/corpus_results tests/fuzz/corpus_cache
+	mkdir -p $(FUZZ_DIR)/corpus $(FUZZ_DIR)/corpus_results $(FUZZ_DIR)/corpus_cache
 	$(FUZZ_DIR)/tests/fuzz/fuzz_spec -max_total_time=$(FUZZ_SECONDS) -max_len=4096 \
-	  -dict=tests/fuzz/spec.dict -print_final_stats=1 tests/fuzz/corpus experiments
+	  -dict=tests/fuzz/spec.dict -print_final_stats=1 $(FUZZ_DIR)/corpus tests/fuzz/corpus \
+	  experiments
 	$(FUZZ_DIR)/tests/fuzz/fuzz_results -max_total_time=$(FUZZ_SECONDS) -max_len=8192 \
-	  -dict=tests/fuzz/spec.dict -print_final_stats=1 tests/fuzz/corpus_results tests/fuzz/seeds/results
+	  -dict=tests/fuzz/spec.dict -print_final_stats=1 $(FUZZ_DIR)/corpus_results \
+	  tests/fuzz/corpus_results tests/fuzz/seeds/results
 	$(FUZZ_DIR)/tests/fuzz/fuzz_cache -max_total_time=$(FUZZ_SECONDS) -max_len=8192 \
-	  -dict=tests/fuzz/spec.dict -print_final_stats=1 tests/fuzz/corpus_cache tests/fuzz/seeds/cache
+	  -dict=tests/fuzz/spec.dict -print_final_stats=1 $(FUZZ_DIR)/corpus_cache \
+	  tests/fuzz/corpus_cache tests/fuzz/seeds/cache
 
 check: build
 	specs=$$($(MPMSTAB) list) && $(MPMSTAB) check $$specs --jobs $(JOBS) --results $(RESULTS)
