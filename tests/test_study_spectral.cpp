@@ -43,9 +43,40 @@ TEST(SpectralStudy, ConfirmsALimitOnlyWhenBelowStaysBoundedAndAboveGrows) {
             std::string::npos)
       << md;
   EXPECT_NE(md.find("usl 0.756 to 0.756 (the CFL number is 1)."), std::string::npos) << md;
-  EXPECT_NE(md.find("Eq. (108) at the same state lies at 0.116 to 0.116 times the limit."),
+  EXPECT_NE(md.find("Eq. (108) at the same state lies at 0.116 to 0.116 times the limit at this "
+                    "E and grid only"),
             std::string::npos)
       << md;
+}
+
+bool holds(const StudyReport& r, const std::string& id) {
+  for (const auto& c : r.claims)
+    if (c.id == id) return c.holds;
+  ADD_FAILURE() << "no claim " << id;
+  return false;
+}
+
+// Eq. (108) against the limit at other E: the rows at another E are not schemes of the table,
+// they measure how the ratio moves; the claims read them and flip with them.
+TEST(SpectralStudy, Eq108RatioPerEIsReadFromTheRowsAndItsClaimsFlipWithThem) {
+  std::vector<ojson> rows = {spectral_row("gimp", 0.95, 0.5), spectral_row("gimp", 1.05, 40)};
+  ojson stiff = spectral_row("gimp", 0.95, 0.5);  // E = 64: eq. (108) at 0.3 of the limit
+  stiff["E"] = 64.0;
+  stiff["T"] = 2.5;
+  stiff["dt_cfl"] = 0.02 / 8;
+  stiff["dt_stable_min"] = 0.3 * 0.7564 * stiff["dt_cfl"].get<double>();
+  rows.push_back(stiff);
+  const auto report = test_support::study_report("spectral", rows);
+  EXPECT_NE(report.markdown.find("for 1 of 1 schemes"), std::string::npos) << report.markdown;
+  EXPECT_NE(report.markdown.find("| gimp | 64 | 3.00e-1 |"), std::string::npos) << report.markdown;
+  EXPECT_TRUE(holds(report, "eq108-below-limit-every-E"));
+  EXPECT_TRUE(holds(report, "eq108-not-homogeneous"));  // 0.116 against 0.3
+  stiff["dt_stable_min"] = 1.2 * 0.7564 * stiff["dt_cfl"].get<double>();
+  rows.back() = stiff;
+  EXPECT_FALSE(holds(test_support::study_report("spectral", rows), "eq108-below-limit-every-E"));
+  stiff["dt_stable_min"] = 0.0874 * stiff["dt_cfl"].get<double>();  // the same ratio as E = 1
+  rows.back() = stiff;
+  EXPECT_FALSE(holds(test_support::study_report("spectral", rows), "eq108-not-homogeneous"));
 }
 
 // An edge row: dt_edge and dt_spectral in units of h / c = 0.02.

@@ -12,6 +12,7 @@
 #include <tuple>
 #include <vector>
 
+#include "claims.hpp"
 #include "csv.hpp"
 #include "paper_table1.hpp"
 #include "report_util.hpp"
@@ -47,6 +48,20 @@ std::string run_text(const ojson& r) {
 // A row's layout parameter (0, the uniform layout, where the row has none).
 double layout_of(const ojson& r, const char* key) {
   return has_number(r, key) ? r[key].get<double>() : 0.0;
+}
+
+// The scheme rows: those at the first row's E and grid (each scheme's pair of runs). The others
+// measure eq. (108) against the limit at other E and particle counts (one run each, at 0.95
+// times the limit).
+bool scheme_row(const ojson& r, const ojson& first) {
+  return r["E"] == first["E"] && r["cells"] == first["cells"];
+}
+
+std::vector<ojson> scheme_rows(const std::vector<ojson>& rows) {
+  std::vector<ojson> out;
+  for (const auto& r : rows)
+    if (scheme_row(r, rows.front())) out.push_back(r);
+  return out;
 }
 
 // One scheme: its two runs, by the policy's safety factor.
@@ -161,10 +176,203 @@ std::string reading(const std::vector<Scheme>& schemes,
   }
   if (eq_hi > 0) {
     md << " Eq. (108) at the same state lies at " << fixed(eq_lo, 3) << " to " << fixed(eq_hi, 3)
-       << " times the limit.";
+       << " times the limit at this E and grid only: its ratio changes with E and with the "
+          "particle count (the section on eq. (108) below).";
   }
   md << "\n\n";
   return md.str();
+}
+
+// ---------------------------------------------------------------------------------------------
+// Eq. (108) against the limit, per E and per particle count
+
+// One run at 0.95 times the limit of MPM or GIMP (USL, FLIP, uniform layout): eq. (108)'s
+// minimum over it against the limit, both in c dt / h.
+struct Eq108Point {
+  std::string method;
+  double E = 0;
+  int cells = 0, ppc = 0, particles = 0;
+  double limit = 0, eq108 = 0;
+  double ratio() const { return eq108 / limit; }
+};
+
+std::vector<Eq108Point> eq108_points(const std::vector<ojson>& rows) {
+  std::vector<Eq108Point> out;
+  for (const auto& r : rows) {
+    const std::string m = r["method"].get<std::string>();
+    if ((m != "mpm" && m != "gimp") || method_label(r) != m || layout_of(r, "shift") != 0 ||
+        layout_of(r, "jitter") != 0 || !has_number(r, "safety") || r["safety"].get<double>() >= 1 ||
+        !has_number(r, "courant_spectral") || !has_number(r, "dt_stable_min"))
+      continue;
+    out.push_back({m, r["E"].get<double>(), r["cells"].get<int>(), r["ppc"].get<int>(),
+                   r["particles"].get<int>(), r["courant_spectral"].get<double>(),
+                   r["dt_stable_min"].get<double>() / r["dt_cfl"].get<double>()});
+  }
+  return out;
+}
+
+// Thresholds of the claims: a bound homogeneous in E would give the same ratio at every E of a
+// run at the same c dt / h, A and c T (E alone rescales time); one whose l2 norm sums over the
+// particles per cell falls as ppc^(-1/2) at a fixed grid.
+constexpr double kHomogeneousSpread = 1.1;
+constexpr double kSqrtSlope = -0.5, kSlopeTolerance = 0.1;
+// (A homogeneous bound's ratio would not move with the grid at a fixed particles per cell.)
+
+struct Eq108Findings {
+  std::string markdown;
+  std::vector<Claim> claims;
+};
+
+Eq108Findings eq108_findings(const std::vector<ojson>& rows) {
+  const auto points = eq108_points(rows);
+  const ojson& first = rows.front();
+  const int cells0 = first["cells"].get<int>();
+  Eq108Findings f;
+  std::ostringstream md;
+  md << "## Eq. (108) against the limit, per E and per particle count\n\nEq. (108) is not "
+        "dimensionally homogeneous: it divides by the stress scaled by 1/sqrt(E) and by the l2 "
+        "norm of the nodal velocities (a sum over nodes), so at the same c dt / h, A/h and c T "
+        "its step in units of h/c changes with E, and with the particles per cell and the grid; "
+        "the conclusions fit how. The first table gives its minimum over a run at 0.95 times the "
+        "limit "
+        "(c dt / h), per E at "
+     << cells0 << " cells, T = " << shortest(first["T"].get<double>())
+     << " / sqrt(E) (the same crossings of the bar), A = " << shortest(first["A"].get<double>())
+     << ". Each cell is eq. (108) / the spectral limit (both in c dt / h); the first rows give "
+        "the limit itself.\n\n";
+  std::vector<int> ppcs;
+  std::vector<double> Es;
+  for (const auto& p : points) {
+    if (p.cells != cells0) continue;
+    if (std::find(ppcs.begin(), ppcs.end(), p.ppc) == ppcs.end()) ppcs.push_back(p.ppc);
+    if (std::find(Es.begin(), Es.end(), p.E) == Es.end()) Es.push_back(p.E);
+  }
+  std::sort(ppcs.begin(), ppcs.end());
+  std::sort(Es.begin(), Es.end());
+  auto find = [&](const std::string& m, double E, int ppc) -> const Eq108Point* {
+    for (const auto& p : points)
+      if (p.method == m && p.E == E && p.ppc == ppc && p.cells == cells0) return &p;
+    return nullptr;
+  };
+  md << "| method | E |";
+  for (int ppc : ppcs)
+    md << " ppc " << ppc << " |";
+  md << "\n|---|---|";
+  for (std::size_t k = 0; k < ppcs.size(); ++k)
+    md << "---|";
+  md << "\n";
+  double worst = 0, worst_E = 0;
+  int below = 0, n = 0;
+  std::map<std::pair<std::string, int>, std::pair<double, double>> by_layout;  // ratio lo, hi
+  for (const char* m : {"mpm", "gimp"}) {
+    md << "| " << m << " | spectral limit |";
+    for (int ppc : ppcs) {
+      const Eq108Point* p = find(m, Es.empty() ? 0 : Es.front(), ppc);
+      md << " " << (p ? fixed(p->limit, 3) : std::string("–")) << " |";
+    }
+    md << "\n";
+    for (double E : Es) {
+      md << "| " << m << " | " << shortest(E) << " |";
+      for (int ppc : ppcs) {
+        const Eq108Point* p = find(m, E, ppc);
+        if (!p) {
+          md << " – |";
+          continue;
+        }
+        md << " " << sci(p->ratio(), 3) << " |";
+        ++n;
+        below += p->ratio() < 1;
+        if (p->ratio() > worst) {
+          worst = p->ratio();
+          worst_E = p->E;
+        }
+        auto [it, fresh] =
+            by_layout.emplace(std::pair{p->method, p->ppc}, std::pair{p->ratio(), p->ratio()});
+        if (!fresh) {
+          it->second.first = std::min(it->second.first, p->ratio());
+          it->second.second = std::max(it->second.second, p->ratio());
+        }
+      }
+      md << "\n";
+    }
+  }
+  double spread = 1;
+  for (const auto& [key, r] : by_layout)
+    spread = std::max(spread, r.second / r.first);
+  md << "\nThe ratio to the limit at one method and layout moves with E by up to a factor "
+     << ratio(spread) << ".\n\n";
+
+  // The particle count, at the first row's E and 2 particles per cell.
+  std::vector<std::pair<double, double>> by_count;
+  md << "| method | cells | particles | eq. (108) / limit | x sqrt(particles) "
+        "|\n|---|---|---|---|---|\n";
+  for (const char* m : {"mpm", "gimp"}) {
+    std::vector<const Eq108Point*> mine;
+    for (const auto& p : points)
+      if (p.method == m && p.E == first["E"].get<double>() && p.ppc == 2) mine.push_back(&p);
+    std::sort(mine.begin(), mine.end(),
+              [](const Eq108Point* a, const Eq108Point* b) { return a->particles < b->particles; });
+    for (const Eq108Point* p : mine) {
+      md << "| " << p->method << " | " << p->cells << " | " << p->particles << " | "
+         << sci(p->ratio(), 3) << " | " << fixed(p->ratio() * std::sqrt(double(p->particles)), 3)
+         << " |\n";
+      if (std::string(m) == "gimp") by_count.emplace_back(p->particles, p->ratio());
+    }
+  }
+  md << "\n";
+  const auto slope = loglog_slope(by_count);
+
+  Claim a = claim("eq108-below-limit-every-E",
+                  "Eq. (108) lies below the spectral limit at every E and particles per cell",
+                  "{below} of {n} runs; the largest ratio is {worst}, at E = {E}");
+  a.count("below", below)
+      .count("n", n)
+      .value("worst", n ? sci(worst, 3) : "–")
+      .value("E", n ? shortest(worst_E) : "–");
+  a.holds = n > 0 && below == n;
+  f.claims.push_back(a);
+
+  Claim b = claim("eq108-not-homogeneous",
+                  "Eq. (108)'s ratio to the spectral limit changes with E at the same c dt/h, "
+                  "A/h and c T: it is not dimensionally homogeneous",
+                  "at one method and layout the ratio moves with E by up to a factor {spread} "
+                  "(homogeneous: below {threshold})");
+  b.value("spread", ratio(spread)).value("threshold", shortest(kHomogeneousSpread));
+  b.holds = spread > kHomogeneousSpread;
+  f.claims.push_back(b);
+
+  // At the first E and grid: against the particles per cell (GIMP).
+  std::vector<std::pair<double, double>> by_ppc;
+  for (const auto& p : points)
+    if (p.method == "gimp" && p.E == first["E"].get<double>() && p.cells == cells0)
+      by_ppc.emplace_back(p.ppc, p.ratio());
+  const auto ppc_slope = loglog_slope(by_ppc);
+  Claim c = claim("eq108-falls-as-sqrt-ppc",
+                  "At a fixed grid, eq. (108)'s ratio to the limit falls as the inverse square "
+                  "root of the particles per cell",
+                  "GIMP at E = {E}, {points} values of particles per cell: fitted exponent "
+                  "{slope} (expected {expected} within {tolerance})");
+  c.value("E", shortest(first["E"].get<double>()))
+      .count("points", static_cast<long long>(by_ppc.size()))
+      .value("slope", ppc_slope ? fixed(*ppc_slope, 3) : "–")
+      .value("expected", shortest(kSqrtSlope))
+      .value("tolerance", shortest(kSlopeTolerance));
+  c.holds = ppc_slope && std::abs(*ppc_slope - kSqrtSlope) <= kSlopeTolerance;
+  f.claims.push_back(c);
+
+  Claim d = claim("eq108-independent-of-grid",
+                  "At a fixed number of particles per cell, refining the grid leaves eq. (108)'s "
+                  "ratio to the limit unchanged",
+                  "GIMP at E = {E}, {points} grids: fitted exponent against the particle count "
+                  "{slope} (unchanged: within {tolerance} of zero)");
+  d.value("E", shortest(first["E"].get<double>()))
+      .count("points", static_cast<long long>(by_count.size()))
+      .value("slope", slope ? fixed(*slope, 3) : "–")
+      .value("tolerance", shortest(kSlopeTolerance));
+  d.holds = slope && std::abs(*slope) <= kSlopeTolerance;
+  f.claims.push_back(d);
+  f.markdown = md.str();
+  return f;
 }
 
 // The paper's grid for Table 1 (experiments/table1.json): h = 1 / kPaperCells.
@@ -242,7 +450,7 @@ std::string paper_table(const std::filesystem::path& reference,
 }
 
 std::string spectral_markdown(const ReportContext& c) {
-  const std::vector<ojson>& rows = c.rows;
+  const std::vector<ojson> rows = scheme_rows(c.rows);
   const std::vector<Scheme> schemes = schemes_of(rows);
   const auto edges = measured_edges(c.inputs);
   const ojson& first = rows.front();
@@ -282,35 +490,40 @@ std::string spectral_markdown(const ReportContext& c) {
        << " | " << (s.above ? run_text(*s.above) : "–") << " | "
        << (s.confirmed() ? "yes" : "**no**") << " |\n";
   }
-  md << "\n" << paper_table(c.spec.reference, schemes);
+  md << "\n" << eq108_findings(c.rows).markdown << paper_table(c.spec.reference, schemes);
   return md.str();
 }
 
-// The figure: MPM and GIMP (USL, FLIP, uniform layout) against the particles per cell.
+// The figure: MPM and GIMP (USL, FLIP, uniform layout) against the particles per cell: the
+// limit and the measured edge (first E), eq. (108) at every E.
 std::string spectral_data(const ReportContext& c) {
   const auto edges = measured_edges(c.inputs);
+  const ojson& first = c.rows.front();
   std::ostringstream csv;
-  csv << c.csv_header
-      << "# method: 0 mpm, 1 gimp (USL, FLIP, uniform layout); in c dt / h: limit the spectral "
-         "limit, edge the measured edge (empty: not measured), eq108 our eq. (108) at the same "
-         "state\nmethod,ppc,limit,edge,eq108\n";
-  for (const auto& s : schemes_of(c.rows)) {
-    const ojson& r = s.row();
-    const std::string method = r["method"].get<std::string>();
-    if ((method != "mpm" && method != "gimp") || method_label(r) != method ||
-        layout_of(r, "shift") != 0 || layout_of(r, "jitter") != 0 || !s.limit()) {
-      continue;
-    }
-    const auto edge = edges.find(s.name);
-    const auto eq = s.eq108();
-    csv << (method == "gimp" ? 1 : 0) << ',' << s.ppc() << ',' << shortest(*s.limit()) << ','
-        << (edge != edges.end() ? shortest(edge->second) : std::string()) << ','
-        << (eq ? shortest(*eq) : std::string()) << '\n';
+  csv << c.csv_header << "# method: 0 mpm, 1 gimp (USL, FLIP, uniform layout, "
+      << first["cells"].get<int>()
+      << " cells); in c dt / h: limit the spectral limit, edge the measured edge (empty: not "
+         "measured), eq108 our eq. (108), the minimum over the run at 0.95 times the limit\n"
+         "method,E,ppc,limit,edge,eq108\n";
+  // Sorted by method, E and ppc: each curve one contiguous block.
+  auto points = eq108_points(c.rows);
+  std::stable_sort(points.begin(), points.end(), [](const Eq108Point& a, const Eq108Point& b) {
+    return std::tuple(a.method != "mpm", a.E, a.ppc) < std::tuple(b.method != "mpm", b.E, b.ppc);
+  });
+  for (const auto& p : points) {
+    if (p.cells != first["cells"].get<int>()) continue;
+    std::string name = p.method;
+    if (p.ppc != 2) name += " (ppc " + std::to_string(p.ppc) + ")";
+    const auto edge = p.E == first["E"].get<double>() ? edges.find(name) : edges.end();
+    csv << (p.method == "gimp" ? 1 : 0) << ',' << shortest(p.E) << ',' << p.ppc << ','
+        << shortest(p.limit) << ',' << (edge != edges.end() ? shortest(edge->second) : "") << ','
+        << shortest(p.eq108) << '\n';
   }
   return csv.str();
 }
 
-std::string spectral_index(const Spec& spec, const std::vector<ojson>& rows) {
+std::string spectral_index(const Spec& spec, const std::vector<ojson>& all) {
+  const std::vector<ojson> rows = scheme_rows(all);  // the schemes point into it
   const std::vector<Scheme> schemes = schemes_of(rows);
   const auto confirmed =
       std::count_if(schemes.begin(), schemes.end(), [](const Scheme& s) { return s.confirmed(); });
@@ -334,12 +547,16 @@ const StudyRegistration kSpectral{{
     .figure = true,
     .report =
         [](const ReportContext& c) {
-          return StudyReport{.markdown = spectral_markdown(c), .data_csv = spectral_data(c)};
+          return StudyReport{.markdown = spectral_markdown(c),
+                             .data_csv = spectral_data(c),
+                             .claims = eq108_findings(c.rows).claims};
         },
     .index = spectral_index,
     .figure_subtitle =
         [](const Spec&, const ojson&) {
-          return std::string("USL, FLIP, uniform layout, 50 cells; the CFL number is 1");
+          return std::string(
+              "USL, FLIP, uniform layout, 50 cells; the CFL number is 1; eq. (108) "
+              "at every E, the limit and the edge at E = 1");
         },
 }};
 
