@@ -156,8 +156,7 @@ Counts count_rows(const std::vector<ojson>& rows) {
 // The opening: how many cases reached each verdict and why the unstable ones failed, the runs
 // too short to judge, whether any output holds a NaN or an infinity, the slowest case, and the
 // figure.
-std::string extremes_summary(const Spec& spec, const std::vector<ojson>& rows) {
-  const Counts c = count_rows(rows);
+std::string extremes_summary(const Spec& spec, const std::vector<ojson>& rows, const Counts& c) {
   const int unstable = c.total - c.reached;
   const Slowest slowest = slowest_case(rows);
   std::ostringstream md;
@@ -186,8 +185,7 @@ std::string extremes_summary(const Spec& spec, const std::vector<ojson>& rows) {
 }
 
 // The conclusions, each decided by the counts.
-std::vector<Claim> extremes_claims(const std::vector<ojson>& rows) {
-  const Counts c = count_rows(rows);
+std::vector<Claim> extremes_claims(const Counts& c) {
   std::vector<Claim> claims;
   Claim verdicts = claim("every-case-has-a-verdict", "Every case ends with a verdict",
                          "{with} of {total} cases have one");
@@ -349,9 +347,10 @@ std::vector<std::string> methods_of(const std::vector<ojson>& rows) {
 }
 
 // The report: the summary, per method its band tables, the reading and every case.
-std::string extremes_markdown(const Spec& spec, const std::vector<ojson>& rows) {
+std::string extremes_markdown(const Spec& spec, const std::vector<ojson>& rows,
+                              const Counts& counts) {
   std::ostringstream md;
-  md << extremes_summary(spec, rows);
+  md << extremes_summary(spec, rows, counts);
   const std::vector<std::string> methods = methods_of(rows);
   for (const std::string& method : methods) {
     md << "### " << method << "\n\n"
@@ -428,9 +427,10 @@ const StudyRegistration kExtremes{{
     .figure = true,
     .report =
         [](const ReportContext& c) {
-          return StudyReport{.markdown = extremes_markdown(c.spec, c.rows),
+          const Counts counts = count_rows(c.rows);
+          return StudyReport{.markdown = extremes_markdown(c.spec, c.rows, counts),
                              .data_csv = extremes_data_csv(c.rows, c.csv_header),
-                             .claims = extremes_claims(c.rows)};
+                             .claims = extremes_claims(counts)};
         },
     .index = extremes_index,
     .figure_subtitle = extremes_subtitle,

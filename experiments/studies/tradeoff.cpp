@@ -965,13 +965,13 @@ void grid_and_step_claims(const TradeRows& t, std::vector<Claim>& claims) {
 // What to pick: the recommendations under the one rule and their claims; GIMP against MPM over
 // every scene as a claim; the claims the bar's rows decide; then the stable ranges of each
 // policy's parameter (a description).
-std::string advice_section(const std::vector<ojson>& rows, const std::vector<ojson>& follow_up,
+std::string advice_section(const std::vector<ojson>& rows, const std::vector<SceneRows>& scenes,
+                           const Recommendations& recs, const std::vector<MarginRange>& ranges,
                            std::vector<Claim>& claims) {
-  const Recommendations recs = recommend(rows, follow_up);
   for (std::size_t t = 0; t < kTargets.size(); ++t)
     claims.push_back(recommendations_claim(recs.by_target[t], kTargets[t]));
   MethodComparison methods;
-  for (const auto& sc : by_scene(rows)) {
+  for (const auto& sc : scenes) {
     const MethodComparison c = mpm_against_gimp(TradeRows(sc.rows));
     methods.gimp_better += c.gimp_better;
     methods.compared += c.compared;
@@ -983,10 +983,9 @@ std::string advice_section(const std::vector<ojson>& rows, const std::vector<ojs
   gimp.count("better", methods.gimp_better).count("compared", methods.compared);
   gimp.holds = methods.compared > 0 && methods.gimp_better == methods.compared;
   claims.push_back(gimp);
-  grid_and_step_claims(TradeRows(by_scene(rows).front().rows), claims);
-  const TradeRows all(rows);
+  grid_and_step_claims(TradeRows(scenes.front().rows), claims);
   return "### What to pick\n\n" + recommendations_markdown(rows, recs) +
-         advice_table(all, stable_ranges(all));
+         advice_table(TradeRows(rows), ranges);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -1146,13 +1145,12 @@ std::string tradeoff_subtitle(const Spec& spec, const ojson& doc) {
 
 // The study's JSON: the advice from every scene's rows, per scene how the runs of each policy
 // ended, and what the figure draws.
-ojson tradeoff_json(const std::vector<ojson>& rows, const std::vector<ojson>& follow_up) {
-  const TradeRows all(rows);
+ojson tradeoff_json(const std::vector<ojson>& rows, const std::vector<SceneRows>& scenes,
+                    const Recommendations& recs, const std::vector<MarginRange>& ranges) {
   ojson endings = ojson::object();
-  for (const auto& sc : by_scene(rows))
+  for (const auto& sc : scenes)
     endings[sc.scene] = endings_json(sc.rows);
-  const FigureCount n = figure_count(by_scene(rows).front().rows);
-  const Recommendations recs = recommend(rows, follow_up);
+  const FigureCount n = figure_count(scenes.front().rows);
   ojson recommended = ojson::array();
   for (std::size_t t = 0; t < kTargets.size(); ++t) {
     for (const auto& a : recs.by_target[t])
@@ -1161,7 +1159,7 @@ ojson tradeoff_json(const std::vector<ojson>& rows, const std::vector<ojson>& fo
   return {{"recommendations", recommendations_json(rows, recs)},
           {"recommended", recommended},
           {"margin", kMargin},
-          {"stable_ranges", advice_json(all, stable_ranges(all))},
+          {"stable_ranges", advice_json(TradeRows(rows), ranges)},
           {"endings", endings},
           {"figure",
            {{"scene", n.scene},
@@ -1176,12 +1174,15 @@ ojson tradeoff_json(const std::vector<ojson>& rows, const std::vector<ojson>& fo
 // section per scene; the figure's data from the first scene (the paper's bar).
 StudyReport tradeoff_report(const ReportContext& c) {
   const auto scenes = by_scene(c.rows);
+  const Recommendations recs = recommend(c.rows, c.follow_up);
+  const auto ranges = stable_ranges(TradeRows(c.rows));
   StudyReport report;
-  report.markdown = results_intro(c.spec) + advice_section(c.rows, c.follow_up, report.claims);
+  report.markdown =
+      results_intro(c.spec) + advice_section(c.rows, scenes, recs, ranges, report.claims);
   for (std::size_t i = 0; i < scenes.size(); ++i)
     report.markdown += scene_markdown(scenes[i].rows, i == 0);
   report.data_csv = tradeoff_data_csv(scenes.front().rows, c.csv_header);
-  report.json = tradeoff_json(c.rows, c.follow_up);
+  report.json = tradeoff_json(c.rows, scenes, recs, ranges);
   return report;
 }
 
