@@ -52,7 +52,8 @@ void write_claims(const std::filesystem::path& out, const std::string& name,
                   const std::vector<Claim>& claims, const std::string& header);
 
 // Words that name things and carry digits (an equation's number, a table's, an order written
-// as part of a method's name): the only digits a claim's template may hold.
+// as part of a method's name) and the notation of definitions and formulas ("1/c", "F = 1" at
+// rest): the only digits a claim's template or a report's prose may hold.
 const std::vector<std::string>& claim_name_tokens();
 // The digits in `text` that are not inside a {placeholder} or one of claim_name_tokens():
 // empty for a template that types no number by hand.

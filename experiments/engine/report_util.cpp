@@ -44,6 +44,63 @@ std::string param(double v) {
   return mantissa + rest;
 }
 
+std::string listing(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  v.erase(std::unique(v.begin(), v.end()), v.end());
+  if (v.empty()) return "–";
+  std::string out;
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    out += (i == 0 ? "" : i + 1 == v.size() ? " and " : ", ") + number(v[i]);
+  }
+  return out;
+}
+
+std::string significant(double v, int digits) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*g", digits, v);
+  return buf;
+}
+
+std::string number(double v) {
+  const double a = std::abs(v);
+  return a == 0 || (a >= 1e-2 && a < 1e5) ? shortest(v) : param(v);
+}
+
+std::vector<double> numbers(const std::vector<ojson>& rows, const char* column) {
+  std::vector<double> v;
+  for (const auto& r : rows)
+    if (has_number(r, column)) v.push_back(r[column].get<double>());
+  return v;
+}
+
+std::string listing(const std::vector<ojson>& rows, const char* column) {
+  return listing(numbers(rows, column));
+}
+
+std::string span(const std::vector<double>& v) {
+  if (v.empty()) return "–";
+  const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+  return *lo == *hi ? number(*lo) : number(*lo) + " to " + number(*hi);
+}
+
+std::string edge_search_text(const EdgeOptions& o) {
+  return "a log-spaced scan of dt, " + std::to_string(o.per_octave) + " per octave, from " +
+         shortest(o.scan_low) + " to " + shortest(o.scan_high) +
+         " times h/c, then bisection until the smallest failing dt is within " +
+         percent(o.tolerance) + " of the largest surviving one";
+}
+
+std::string percent(double fraction) {
+  return shortest(100 * fraction) + "%";
+}
+
+std::string codes(const std::vector<std::string>& names, int first) {
+  std::string out;
+  for (std::size_t i = 0; i < names.size(); ++i)
+    out += (i ? ", " : "") + std::to_string(first + int(i)) + " " + names[i];
+  return out;
+}
+
 std::string opt_sci(const ojson& v) {
   return v.is_number() ? sci(v.get<double>()) : "–";
 }

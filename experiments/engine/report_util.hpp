@@ -10,6 +10,7 @@
 #include <tuple>
 #include <vector>
 
+#include "edge.hpp"
 #include "spec.hpp"
 
 namespace mpmstab {
@@ -23,6 +24,29 @@ std::string seconds(double s);
 std::string ratio(double r);
 // A parameter: three significant digits without trailing zeros ("1e-5", "2.5e-3").
 std::string param(double v);
+// v to `digits` significant digits, printf's %g: "0.03162".
+std::string significant(double v, int digits);
+// A value of a parameter as prose prints it: shortest() from 0.01 to 1e5 ("0.05", "10000"),
+// param() outside ("1e-4").
+std::string number(double v);
+// The distinct values of v, ascending, in number(): "4", "4 and 64", "4, 64 and 1000"; "–"
+// when v is empty.
+std::string listing(std::vector<double> v);
+// The numbers in `column` of the rows that hold one there, in row order.
+std::vector<double> numbers(const std::vector<nlohmann::ordered_json>& rows, const char* column);
+// listing(numbers(rows, column)).
+std::string listing(const std::vector<nlohmann::ordered_json>& rows, const char* column);
+// The range of v in number(): "1e-4 to 0.05", or one value when all are equal; "–" when empty.
+std::string span(const std::vector<double>& v);
+// The edge search of `o` in words, every number from `o`: "a log-spaced scan of dt, 2 per octave,
+// from 0.0625 to 4 times h/c, then bisection until the smallest failing dt is within 2% of the
+// largest surviving one".
+std::string edge_search_text(const EdgeOptions& o);
+// A percentage of a fraction: "2%", "0.5%".
+std::string percent(double fraction);
+// The codes of a data file's column, each name after its index: "0 usl, 1 usf, 2 musl" (from
+// `first` on).
+std::string codes(const std::vector<std::string>& names, int first = 0);
 // A JSON number in sci(), or "–" for null.
 std::string opt_sci(const nlohmann::ordered_json& v);
 // The row has a number in `column` (not null, not missing).

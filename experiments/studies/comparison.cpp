@@ -19,7 +19,8 @@ using ojson = nlohmann::ordered_json;
 
 const std::vector<ComparisonClass>& comparison_classes() {
   static const std::vector<ComparisonClass> classes = {
-      {"agree-stable", "Agree: both stable, max errors within a factor 3", ClassKind::agreement},
+      {"agree-stable", "Agree: both stable, max errors within a factor " + agreement_factor(),
+       ClassKind::agreement},
       {"agree-unstable", "Agree: both unstable", ClassKind::agreement},
       {"above-spectral-limit",
        "Paper stable at a Courant number c dt / h above the scheme's spectral limit (the linear "
@@ -30,17 +31,21 @@ const std::vector<ComparisonClass>& comparison_classes() {
        ClassKind::verdict},
       {"gimp-wall-exit", "GIMP: a particle leaves through a wall (paper stable)",
        ClassKind::verdict},
-      {"mpm-crossing-failure", "MPM: F <= 0 well below the Courant limit (paper stable)",
+      {"mpm-crossing-failure",
+       "MPM: fails below the spectral limit and our edge, not through a wall (paper stable)",
        ClassKind::verdict},
       {"other-failure", "Other failures where the paper is stable", ClassKind::verdict},
       {"ours-meaningless",
        "Ours meaningless: survived to T, but the error over time reached A (never agreeing)",
        ClassKind::verdict},
-      {"mpm-error-larger", "MPM: both stable, our max error more than 3 times the paper's",
+      {"mpm-error-larger",
+       "MPM: both stable, our max error more than " + agreement_factor() + " times the paper's",
        ClassKind::error},
-      {"gimp-error-larger", "GIMP: both stable, our max error more than 3 times the paper's",
+      {"gimp-error-larger",
+       "GIMP: both stable, our max error more than " + agreement_factor() + " times the paper's",
        ClassKind::error},
-      {"error-smaller", "Both stable, our max error less than a third of the paper's",
+      {"error-smaller",
+       "Both stable, the paper's max error more than " + agreement_factor() + " times ours",
        ClassKind::error},
       {"paper-unstable-ours-stable", "Paper unstable, ours stable", ClassKind::verdict},
       {"unreadable", "Paper value unreadable in the transcription", ClassKind::unreadable},
@@ -135,7 +140,7 @@ CellVerdict classify(const ojson& r, const PaperCell* paper, const CourantEdges&
   }
   if (paper_stable && ours_stable) {
     cell.error_ratio = *error / paper->max_error.value;
-    if (within_factor_3(*error, paper->max_error.value)) {
+    if (within_agreement_factor(*error, paper->max_error.value)) {
       cell.verdict = "agree";
       cell.cls = "agree-stable";
     } else if (*cell.error_ratio > 1) {

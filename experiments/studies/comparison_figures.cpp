@@ -137,7 +137,8 @@ const std::string kNotStated = "not stated";
 const std::string kNone = "–";
 
 std::string factor_verdict(double ours, double paper) {
-  return within_factor_3(ours, paper) ? "agree" : "differ: ours " + ratio(ours / paper) + "x";
+  return within_agreement_factor(ours, paper) ? "agree"
+                                              : "differ: ours " + ratio(ours / paper) + "x";
 }
 
 std::optional<double> paper_number(const PaperObservable* p) {
@@ -299,7 +300,8 @@ FigureClass figure_class(const PaperFigure& f, const ojson& row, const CourantEd
     return {"paper-unstable-ours-stable",
             "the paper's run fails; ours "
             "reaches T"};
-  if (paper_steps && !within_factor_3(double(steps), *paper_steps) && steps < *paper_steps) {
+  if (paper_steps && !within_agreement_factor(double(steps), *paper_steps) &&
+      steps < *paper_steps) {
     return {failure_class(row, edges),
             "both fail, but " + paper_goes_on + " and ours fails at step " + std::to_string(steps) +
                 " (" + row.at("failure_reason").get<std::string>() +
@@ -379,7 +381,7 @@ std::string reproduces(const PaperFigure& f, const ojson& r) {
     return ours == "stable" ? "yes" : ours == "meaningless" ? "reaches T, meaningless" : "no";
   }
   if (ours != "unstable") return "no: reaches T";
-  if (!paper_steps || within_factor_3(steps, *paper_steps)) return "yes";
+  if (!paper_steps || within_agreement_factor(steps, *paper_steps)) return "yes";
   return "no: " + ratio(steps / *paper_steps) + "x the paper's steps";
 }
 
@@ -646,9 +648,12 @@ FigureSections figure_sections(const std::vector<PaperFigure>& paper,
         "are not in its text, so an observable that only a plot would show is *not stated*. "
         "The transcription, with the passage every value is read from: ["
      << transcription << "](" << transcription
-     << "). Steps, errors, bounds and crossings agree within a factor 3 (the rule of the max "
+     << "). Steps, errors, bounds and crossings agree within a factor " << agreement_factor()
+     << " (the rule of the max "
         "errors). A figure's class is the one Table 1's rules give "
-        "its run; where both runs fail but ours more than a factor 3 sooner, the class of our "
+        "its run; where both runs fail but ours more than a factor "
+     << agreement_factor()
+     << " sooner, the class of our "
         "failure where the paper's run goes on.\n\n";
   std::map<std::string, std::string> shown;  // variant input -> figure whose section shows it
   for (const auto& f : paper)

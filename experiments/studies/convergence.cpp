@@ -112,7 +112,7 @@ std::string convergence_markdown(const std::vector<ojson>& rows) {
      << "\n## Error against dt\n\nThe cfl policy, dt = C h / c for each C of the spec, on one "
         "grid (each E has its own c, so its own dt for a given C). The order is the slope of "
         "log(error) against log(dt). Where the spatial error dominates, "
-        "the error stops falling with dt and the fitted order is near 0: the time error is "
+        "the error stops falling with dt and the fitted order is near zero: the time error is "
         "then below the grid's.\n\n"
      << sweep_table(g, "dt") << "\n";
   return md.str();

@@ -3,6 +3,7 @@
 // eq. (108) bound, with the dts where survival flips; one section per scene, the figure drawing
 // every scene.
 #include <algorithm>
+#include <cctype>
 #include <map>
 #include <sstream>
 #include <tuple>
@@ -287,27 +288,42 @@ std::vector<Claim> edge_claims(const std::vector<ojson>& rows,
   return claims;
 }
 
-// The search and both rules, stated once.
-const char* kRule =
-    "**The search.** A scan of dt = (h/c) 2^(k/2) from h/(16c) to 4h/c, then bisection to within "
-    "2%. The *survival edge* dt_edge is the largest dt tried that survives to T; the run there is "
-    "measured (its outcome, its error at T, the minimum of eq. (108) over it). The *accuracy "
-    "edge* dt_accurate: the reference is the smallest dt tried that survives, and its error at T "
-    "the yardstick; walking up from it, dt_accurate is the last dt tried before the first that "
-    "fails or has an error at T more than 2 times the reference's, bisected against that one to "
-    "within 2%, and its run must be stable (its error over time stays below A), else the search "
-    "goes on below it. A case whose reference run is meaningless has no accuracy edge. The "
-    "probes run without observers (their error at T is measured at the end); the outcome is "
-    "measured for the reference and at both edges. Survival is *not monotone* when a dt below "
-    "the survival edge fails; the flips column lists, in increasing dt, each dt from which the "
-    "run fails or survives again (between it and the dt tried just below it). The *spectral "
-    "limit* is the Courant number at which the scheme, linearised about rest with the particles "
-    "of the initial layout frozen, starts to amplify (docs/design.md, \"The spectral limit\"): "
-    "the edge of a tiny amplitude; where the edges at the paper's amplitudes lie against it is "
-    "counted in the conclusions. The *ensemble* column: the case rerun on layouts perturbed far "
-    "below the discretisation error (docs/design.md, \"Ensembles\") at dt_edge and at the dt "
-    "just above it that failed; *robust* when every member survives at dt_edge and fails above, "
-    "*sensitive* otherwise.";
+// The search and both rules, stated once, with the numbers of the study's search options.
+std::string search_rule(const EdgeOptions& o) {
+  std::string search = edge_search_text(o);
+  search[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(search[0])));
+  return "**The search.** " + search +
+         ". The *survival edge* dt_edge is the largest dt tried that survives to T; the run there "
+         "is "
+         "measured (its outcome, its error at T, the minimum of eq. (108) over it). The *accuracy "
+         "edge* dt_accurate: the reference is the smallest dt tried that survives, and its error "
+         "at T "
+         "the yardstick; walking up from it, dt_accurate is the last dt tried before the first "
+         "that "
+         "fails or has an error at T more than " +
+         shortest(o.accuracy_factor) +
+         " times the reference's, bisected against that one to "
+         "the same tolerance, and its run must be stable (its error over time stays below A), else "
+         "the search "
+         "goes on below it. A case whose reference run is meaningless has no accuracy edge. The "
+         "probes run without observers (their error at T is measured at the end); the outcome is "
+         "measured for the reference and at both edges. Survival is *not monotone* when a dt below "
+         "the survival edge fails; the flips column lists, in increasing dt, each dt from which "
+         "the "
+         "run fails or survives again (between it and the dt tried just below it). The *spectral "
+         "limit* is the Courant number at which the scheme, linearised about rest with the "
+         "particles "
+         "of the initial layout frozen, starts to amplify (docs/design.md, \"The spectral "
+         "limit\"): "
+         "the edge of a tiny amplitude; where the edges at the paper's amplitudes lie against it "
+         "is "
+         "counted in the conclusions. The *ensemble* column: the case rerun on layouts perturbed "
+         "far "
+         "below the discretisation error (docs/design.md, \"Ensembles\") at dt_edge and at the dt "
+         "just above it that failed; *robust* when every member survives at dt_edge and fails "
+         "above, "
+         "*sensitive* otherwise.";
+}
 
 // Per case: both edges against h/c, the run at the survival edge, the errors at T, eq. (108),
 // the flips and what the search cost.
@@ -457,7 +473,7 @@ std::string edge_markdown(const Spec& spec, const std::vector<ojson>& all,
   std::ostringstream md;
   if (first) {
     md << "## Results\n\n"
-       << kRule << "\n\n![" << spec.title << "](" << spec.name
+       << search_rule(spec.study->edge) << "\n\n![" << spec.title << "](" << spec.name
        << ".png)\n\nThe figure draws both edges in units of h/c for every scene, on a log "
           "scale, beside each series' spectral limit (dotted) and eq. (108) at its survival edge "
           "(dash-dotted). "
@@ -490,10 +506,16 @@ std::string edge_data_csv(const std::vector<ojson>& rows, const std::string& hea
     csv << "# drawn without an accuracy edge (reference meaningless): " << listed(count.no_accuracy)
         << "\n";
   }
-  csv << "# panel: 0 the bar, 1 the second scene (steffen); series: 1 gimp A = 0.015, 2 gimp "
-         "A = 0.05, 3 mpm A = 0.015, 4 mpm A = 0.05, 5 cpdi, 6 bspline2, 7 bspline3 A = 0.015; dt "
-         "in units of h/c; meaningless_at_edge: "
-         "1 when the run at the survival edge is meaningless; limit_over_cfl: the scheme's "
+  csv << "# panel:";
+  for (std::size_t i = 0; i < kPanels.size(); ++i)
+    csv << (i ? ", " : " ") << i << ' ' << kPanels[i];
+  csv << "; series:";
+  for (std::size_t i = 0; i < kSeries.size(); ++i)
+    csv << (i ? ", " : " ") << i + 1 << ' ' << kSeries[i].first
+        << " A = " << shortest(kSeries[i].second);
+  csv << "; dt in units of h/c; meaningless_at_edge: "
+         "whether the run at the survival edge is meaningless (a boolean); limit_over_cfl: the "
+         "scheme's "
          "spectral limit at the layout; eq108_over_cfl: eq. (108) at the survival edge (its "
          "minimum over the run there), both in units of h/c (empty where not measured)\n"
          "panel,series,E,dt_edge_over_cfl,dt_accurate_over_cfl,meaningless_at_edge,limit_over_cfl,"

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <tuple>
@@ -24,9 +25,12 @@ using ojson = nlohmann::ordered_json;
 
 // 0 stable, 1 stable but meaningless, 2 unstable, 3 too short to judge (reached T in fewer
 // than kMinStepsToJudge steps: no verdict on its stability).
+// The verdicts in the order of their codes in extremes_data.csv (the figure's colours).
+const std::vector<std::string> kVerdicts = {"stable", "meaningless", "unstable", "too_short"};
+
 int verdict_code(const ojson& r) {
-  const std::string o = outcome(r);
-  return o == "unstable" ? 2 : o == "meaningless" ? 1 : o == "too_short" ? 3 : 0;
+  const auto it = std::find(kVerdicts.begin(), kVerdicts.end(), outcome(r));
+  return it == kVerdicts.end() ? 0 : int(it - kVerdicts.begin());
 }
 
 // The quantities a run that reached T reports, and which of them it measures. Eq. (108) is
@@ -231,17 +235,26 @@ std::vector<Claim> extremes_claims(const Counts& c) {
 
 // A band of Courant numbers c dt/h or of amplitudes in cells A/h: lo <= x < hi.
 struct Band {
-  const char* name;
   double lo, hi;
+  const char* note = "";
 };
-const std::vector<Band> kCourantBands = {{"c dt/h < 0.5", 0, 0.5},
-                                         {"0.5 <= c dt/h < 1", 0.5, 1},
-                                         {"1 <= c dt/h < 10", 1, 10},
-                                         {"c dt/h >= 10", 10, 1e300}};
-const std::vector<Band> kAmplitudeBands = {{"A/h < 1e-3", 0, 1e-3},
-                                           {"1e-3 <= A/h < 0.1", 1e-3, 0.1},
-                                           {"0.1 <= A/h < 1", 0.1, 1},
-                                           {"A/h >= 1 (particles cross cells)", 1, 1e300}};
+constexpr double kUnbounded = std::numeric_limits<double>::infinity();
+const std::vector<Band> kCourantBands = {{0, 0.5}, {0.5, 1}, {1, 10}, {10, kUnbounded}};
+// From one cell of displacement on, particles cross cells.
+constexpr double kCrossingAmplitude = 1;
+const std::vector<Band> kAmplitudeBands = {
+    {0, 1e-3},
+    {1e-3, 0.1},
+    {0.1, kCrossingAmplitude},
+    {kCrossingAmplitude, kUnbounded, " (particles cross cells)"}};
+
+// "c dt/h < 0.5", "1e-3 <= A/h < 0.1", "c dt/h >= 10".
+std::string band_name(const Band& b, const std::string& x) {
+  const std::string name = b.lo == 0            ? x + " < " + number(b.hi)
+                           : b.hi == kUnbounded ? x + " >= " + number(b.lo)
+                                                : number(b.lo) + " <= " + x + " < " + number(b.hi);
+  return name + b.note;
+}
 
 // Where one method fails: per band of the Courant number (`by_courant`) or of the amplitude in
 // cells, how many runs fall in it, their verdicts and the reasons of the failures.
@@ -266,8 +279,8 @@ std::string band_table(const std::vector<ojson>& rows, const std::string& method
       t += v == 3;
       if (v == 2) ++why[r["failure_reason"].get<std::string>()];
     }
-    md << "| " << b.name << " | " << n << " | " << s << " | " << m << " | " << t << " | "
-       << reason_counts(why) << (why.empty() ? "none" : "") << " |\n";
+    md << "| " << band_name(b, by_courant ? "c dt/h" : "A/h") << " | " << n << " | " << s << " | "
+       << m << " | " << t << " | " << reason_counts(why) << (why.empty() ? "none" : "") << " |\n";
   }
   md << "\n";
   return md.str();
@@ -290,7 +303,8 @@ std::string method_reading(const std::vector<ojson>& rows, const std::string& me
     limit_hi = std::max(limit_hi, limit);
     if (r["courant"].get<double>() <= limit && outcome(r) == "unstable") {
       ++below_failed;
-      below_failed_crossing += r["A"].get<double>() * r["cells"].get<double>() >= 1;
+      below_failed_crossing +=
+          r["A"].get<double>() * r["cells"].get<double>() >= kCrossingAmplitude;
     }
   }
   const Counts c = count_rows(mine);
@@ -306,8 +320,8 @@ std::string method_reading(const std::vector<ojson>& rows, const std::string& me
        << " steps, at most " << fixed(c.above_survivor_ratio, 5) << " times the limit)";
   }
   md << " and " << c.above_too_short << " are too short to judge. Below it, " << below_failed
-     << " runs fail, " << below_failed_crossing
-     << " of them with A/h >= 1, where particles cross cells. ";
+     << " runs fail, " << below_failed_crossing << " of them with "
+     << band_name(kAmplitudeBands.back(), "A/h") << ". ";
   return md.str();
 }
 
@@ -383,10 +397,11 @@ std::map<Spot, int> spots(const std::vector<ojson>& rows) {
 std::string extremes_data_csv(const std::vector<ojson>& rows, const std::string& header_lines) {
   std::ostringstream csv;
   csv << header_lines
-      << "# one row per spot: method (its panel, 0..), Courant number, amplitude in cells, "
-         "verdict (0 stable, 1 meaningless, 2 unstable, 3 too short to judge), the number of cases "
-         "there and the "
-         "method's name\n"
+      << "# one row per spot: method (its panel, counted from zero), Courant number, amplitude "
+         "in cells, verdict (";
+  for (std::size_t i = 0; i < kVerdicts.size(); ++i)
+    csv << (i ? ", " : "") << i << ' ' << kVerdicts[i];
+  csv << "), the number of cases there and the method's name\n"
          "method,courant,A_over_h,verdict,cases,name\n";
   const std::vector<std::string> methods = methods_of(rows);
   for (const auto& [spot, count] : spots(rows)) {
@@ -404,7 +419,7 @@ std::string extremes_subtitle(const Spec&, const ojson& doc) {
   s += " cases at ";
   s += std::to_string(spots(rows).size());
   s += " spots; the verdicts of one spot side by side, the marker growing with its number of "
-       "cases (printed when more than 1)";
+       "cases (printed where it holds more than one)";
   return s;
 }
 

@@ -14,6 +14,7 @@
 #include "csv.hpp"
 #include "report_util.hpp"
 #include "simulation.hpp"
+#include "spectral.hpp"
 #include "study.hpp"
 
 namespace mpmstab {
@@ -93,9 +94,16 @@ struct MethodRow {
   std::vector<std::optional<Setting>> recommended;  // per target of kTargets
 };
 
+// Table 1's setting among the rows of methods_grid: the paper's grid at its smallest fixed dt.
+constexpr int kTable1Cells = 100;
+constexpr double kTable1Dt = 1e-4;
+// The order in h is fitted over the CFL runs at this Courant number (the smallest the grid
+// sweeps: the time error least visible); the order in dt over every run on Table 1's grid.
+constexpr double kOrderHCourant = 0.2;
+
 bool is_table1_setting(const ojson& r) {
-  return r["policy"].get<std::string>() == "fixed" && r["cells"].get<int>() == 100 &&
-         has_number(r, "dt") && r["dt"].get<double>() == 1e-4;
+  return r["policy"].get<std::string>() == "fixed" && r["cells"].get<int>() == kTable1Cells &&
+         has_number(r, "dt") && r["dt"].get<double>() == kTable1Dt;
 }
 
 std::optional<double> error_of(const ojson& r) {
@@ -136,9 +144,9 @@ std::vector<MethodRow> method_rows(const std::vector<ojson>& edges, const std::v
     for (const ojson* r : m.grid) {
       const auto e = error_of(*r);
       const bool cfl = (*r)["policy"].get<std::string>() == "cfl";
-      const bool finest_dt = cfl && (*r)["cfl_factor"].get<double>() == 0.2;
+      const bool finest_dt = cfl && (*r)["cfl_factor"].get<double>() == kOrderHCourant;
       if (e && finest_dt) h_points.emplace_back(1.0 / (*r)["cells"].get<double>(), *e);
-      if (e && (*r)["cells"].get<int>() == 100) dt_points.emplace_back(dt_of(*r), *e);
+      if (e && (*r)["cells"].get<int>() == kTable1Cells) dt_points.emplace_back(dt_of(*r), *e);
       const double w = particle_steps(*r) * visits;
       const auto conf = confirming.find(r);
       for (std::size_t t = 0; t < kTargets.size(); ++t) {
@@ -255,9 +263,13 @@ std::string methods_table(const std::vector<MethodRow>& rows) {
   std::ostringstream md;
   md << "| basis | transfer | update | error at Table 1's setting | order in h | order in dt | "
         "spectral limit (h/c) | survival edge (h/c) | accuracy edge (h/c) | node visits per "
-        "particle-step | recommended for 1e-4 (node visits) | recommended for 1e-6 (node visits) "
-        "|\n"
-        "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+        "particle-step";
+  for (double t : kTargets)
+    md << " | recommended for " << param(t) << " (node visits)";
+  md << " |\n|---|---|---|---|---|---|---|---|---|---|";
+  for (std::size_t t = 0; t < kTargets.size(); ++t)
+    md << "---|";
+  md << "\n";
   for (const auto& m : rows) {
     md << "| " << basis_text(m.key) << " | " << transfer_text(m.key) << " | " << std::get<4>(m.key)
        << " | " << table1_text(m) << " | " << order_text(m.order_h) << " | "
@@ -296,10 +308,8 @@ int index_in(const std::vector<std::string>& list, const std::string& s) {
 // <name>_data.csv: one row per method with an error at Table 1's setting and a survival edge.
 std::string methods_data(const std::vector<MethodRow>& rows, const std::string& header) {
   std::ostringstream csv;
-  csv << header
-      << "# panel: update order (0 usl, 1 usf, 2 musl); series: basis (0 mpm, 1 gimp, 2 cpgimp, "
-         "3 cpdi, 4 bspline2, 5 bspline3, 6 bspline2 modified, 7 bspline3 modified); shape: "
-         "transfer (0 flip, 1 pic, 2 apic, 3 xpic(2), 4 fmpm(2))\n"
+  csv << header << "# panel: update order (" << codes(kUpdates) << "); series: basis ("
+      << codes(kBases) << "); shape: transfer (" << codes(kTransfers) << ")\n"
       << "panel,series,shape,edge_over_cfl,error\n";
   for (const auto& m : rows) {
     const auto e = m.table1 ? error_of(*m.table1) : std::nullopt;
@@ -324,6 +334,33 @@ std::vector<RunParams> methods_follow_up(const FollowUpContext& c) {
   return runs;
 }
 
+// How the error at Table 1's setting and the orders are measured, every number from the rows
+// of methods_grid that give them.
+std::string how_to_read_the_setting(const std::vector<ojson>& grid) {
+  std::vector<ojson> table1, h_runs, cfl_runs, fixed_runs;
+  for (const auto& r : grid) {
+    const bool cfl = r["policy"].get<std::string>() == "cfl";
+    if (is_table1_setting(r)) table1.push_back(r);
+    if (cfl && r["cfl_factor"].get<double>() == kOrderHCourant) h_runs.push_back(r);
+    if (r["cells"].get<int>() != kTable1Cells) continue;
+    (cfl ? cfl_runs : fixed_runs).push_back(r);
+  }
+  std::ostringstream md;
+  md << "- *error at Table 1's setting*: max_p |u_p - u(X_p, T)| at T = " << listing(table1, "T")
+     << " on the bar, E = " << listing(table1, "E") << ", A = " << listing(table1, "A") << ", "
+     << kTable1Cells << " cells x " << listing(table1, "ppc")
+     << " particles, dt = " << param(kTable1Dt)
+     << " (the verdict where the run did not end stable);\n"
+     << "- *order in h*: least-squares slope of log(error) against log(h) over "
+     << listing(h_runs, "cells") << " cells at C = c dt / h = " << shortest(kOrderHCourant)
+     << "; *order in dt*: against log(dt) on " << kTable1Cells
+     << " cells over C = " << listing(cfl_runs, "cfl_factor")
+     << " and dt = " << listing(fixed_runs, "dt") << " (C = " << listing(fixed_runs, "courant")
+     << "); at least three stable runs, `–` otherwise. An order in dt near zero means the "
+        "grid's error hides the time error;\n";
+  return md.str();
+}
+
 StudyReport methods_report(const ReportContext& c) {
   const std::vector<ojson> grid = grid_rows(c.inputs);
   const auto rows = method_rows(c.rows, grid, c.follow_up);
@@ -337,20 +374,17 @@ StudyReport methods_report(const ReportContext& c) {
      << c.spec.name << ".svg](" << c.spec.name << ".svg); data: [" << c.spec.name << "_data.csv]("
      << c.spec.name << "_data.csv).\n\n"
      << "How to read a row:\n\n"
-     << "- *error at Table 1's setting*: max_p |u_p - u(X_p, T)| at T = 1 on the bar, E = 64, "
-        "A = 0.015, 100 cells x 2 particles, dt = 1e-4 (the verdict where the run did not end "
-        "stable);\n"
-     << "- *order in h*: least-squares slope of log(error) against log(h) over 25, 50 and 100 "
-        "cells at C = c dt / h = 0.2; *order in dt*: against log(dt) on 100 cells over C = 0.8, "
-        "0.4, 0.2 and dt = 1e-4 (C = 0.08); at least three stable runs, `–` otherwise. An order "
-        "in dt near 0 means the grid's error hides the time error;\n"
+     << how_to_read_the_setting(grid)
      << "- *spectral limit*: the largest c dt / h at which the scheme's map, linearised about "
         "rest at the uniform layout, amplifies nothing: the Bloch limit of the interior "
         "(docs/design.md, \"The spectral limit\"; the walls' treatment does not enter it; "
-        "spectral.md checks each by runs); `none` when nothing amplifies up to 8;\n"
-     << "- *survival edge*: the largest fixed dt with which the bar at A = 1e-4, E = 64 survives "
-        "to T = 1, in units of h/c; *accuracy edge*: the largest dt up to which its error stays "
-        "within 2 times that of the smallest dt that survives (the edge study's rules);\n"
+        "spectral.md checks each by runs); `none` when nothing amplifies up to "
+     << shortest(kMaxSpectralCourant) << ";\n"
+     << "- *survival edge*: the largest fixed dt with which the bar at A = " << listing(c.rows, "A")
+     << ", E = " << listing(c.rows, "E") << " survives to T = " << listing(c.rows, "T")
+     << ", in units of h/c; *accuracy edge*: the largest dt up to which its error stays within "
+     << shortest(c.spec.study->edge.accuracy_factor)
+     << " times that of the smallest dt that survives (the edge study's rules);\n"
      << "- *node visits per particle-step*: the nodes of the stencil times the passes over it "
         "that one step makes (counted from the code: p2g, g2p and the stress update, plus what "
         "the update order and the transfer add), a deterministic measure of the work; the "
@@ -391,7 +425,9 @@ std::string methods_subtitle(const Spec&, const ojson& doc) {
   std::size_t n = 0;
   for (const auto& r : doc["cases"])
     n += has_number(r, "dt_edge_over_cfl") ? 1 : 0;
-  return std::to_string(n) + " methods with a survival edge; E = 64, 100 cells";
+  const std::vector<ojson> rows(doc["cases"].begin(), doc["cases"].end());
+  return std::to_string(n) + " methods with a survival edge; E = " + listing(rows, "E") + ", " +
+         listing(rows, "cells") + " cells";
 }
 
 const StudyRegistration kMethods{{

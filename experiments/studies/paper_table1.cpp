@@ -5,6 +5,7 @@
 
 #include "compare.hpp"
 #include "csv.hpp"
+#include "report_util.hpp"
 
 namespace mpmstab {
 
@@ -62,10 +63,14 @@ Table1Key paper_key(const CaseSpec& c) {
   return {p.A, p.E, p.dt, std::string(to_string(c.paper_method))};
 }
 
-bool within_factor_3(double ours, double paper) {
-  static const ColumnRule factor3{"max_error", 0, 2.0 / 3.0, false};
+bool within_agreement_factor(double ours, double paper) {
+  static const ColumnRule rule{"max_error", 0, (kAgreementFactor - 1) / kAgreementFactor, false};
   return cells_agree(CellValue{CellValue::Kind::number, ours, ""},
-                     CellValue{CellValue::Kind::number, paper, ""}, factor3);
+                     CellValue{CellValue::Kind::number, paper, ""}, rule);
+}
+
+std::string agreement_factor() {
+  return param(kAgreementFactor);
 }
 
 }  // namespace mpmstab

@@ -34,9 +34,13 @@ using Table1Key = std::tuple<double, double, double, std::string>;  // A, E, dt,
 // (CaseSpec::paper_method, the base case's method in a variants experiment).
 Table1Key paper_key(const CaseSpec& c);
 
-// Our value and the paper's agree within a factor 3: the comparator's rule
-// |a - b| <= (2/3) max(|a|, |b|) (engine/compare.hpp).
-bool within_factor_3(double ours, double paper);
+// Our value and the paper's agree when neither is more than this factor times the other: the
+// comparator's rule |a - b| <= ((k - 1) / k) max(|a|, |b|) with k = kAgreementFactor
+// (engine/compare.hpp). Every report that says "within a factor" prints this constant.
+inline constexpr double kAgreementFactor = 3;
+bool within_agreement_factor(double ours, double paper);
+// kAgreementFactor as the reports print it: "3".
+std::string agreement_factor();
 
 // The transcribed Table 1 of a table1 (or variants) spec, keyed by (A, E, dt, method); cells
 // whose dt the paper does not print are keyed by the dt of the spec's case marked dt_inferred.

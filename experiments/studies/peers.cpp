@@ -33,7 +33,7 @@ const std::vector<FailureName> kPeerFailures = {
     {"nonpositive_F", "some F_p <= 0; ours: nonpositive_F"},
     {"partition_of_unity",
      "the peer's check that a particle's shape functions sum to 1 failed (its support left "
-     "[0, 1]); a solver checking F instead fails at the same step with nonpositive_F"},
+     "the domain); a solver checking F instead fails at the same step with nonpositive_F"},
 };
 
 struct PeerValue {
@@ -191,8 +191,8 @@ std::string rules(const Spec& spec, const std::filesystem::path& out) {
   md << "**The peer.** [" << link(out, spec.reference) << "](" << link(out, spec.reference)
      << ") holds the values measured with Uintah's own 1D MPM code, with how they were obtained. "
         "Each case runs here with the options that select the peer's choices (the body force at "
-        "t^{n+1}; GIMP as cpGIMP with its wall nodes on [0, 1] only), up to the peer's T (less "
-        "than 1 where the peer's run was stopped by a wall-time limit).\n\n"
+        "t^{n+1}; GIMP as cpGIMP with its wall nodes inside the domain only), up to the peer's T "
+        "(shorter than the paper's where the peer's run was stopped by a wall-time limit).\n\n"
         "**Tolerances**, what a faithful solver must meet: the same outcome (the peer's "
         "*stable* means it reached T, as our *stable* and *meaningless* do); the failure at the "
         "same step, ±"

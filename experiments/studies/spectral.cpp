@@ -21,6 +21,7 @@
 #include "paper_table1.hpp"
 #include "params.hpp"
 #include "report_util.hpp"
+#include "spectral.hpp"
 #include "stable_dt.hpp"
 #include "study.hpp"
 
@@ -32,6 +33,21 @@ using ojson = nlohmann::ordered_json;
 
 // A bounded run's error, its phase error included, is at most 2 A; a growing mode passes 3 A.
 constexpr double kBound = 3.0;
+// The particles per cell of the paper's bar (the default layout).
+const int kDefaultPpc = RunParams{}.ppc;
+// The methods of the figure's data, in the order of their codes.
+const std::vector<std::string> kFigureMethods = {"mpm", "gimp"};
+
+// The distinct safety factors s of the runs below (s < 1) or above (s > 1) the limit: "0.95".
+std::string safeties(const std::vector<ojson>& rows, bool below) {
+  std::vector<double> v;
+  for (const auto& r : rows) {
+    if (!has_number(r, "safety")) continue;
+    const double s = r["safety"].get<double>();
+    if (below ? s < 1 : s > 1) v.push_back(s);
+  }
+  return listing(std::move(v));
+}
 
 // A run is bounded when it reached T and its error over time stayed within kBound A, as the
 // spectral_edge search counts it; a bounded run may still be meaningless (error >= A), which
@@ -82,8 +98,9 @@ struct Scheme {
                : std::nullopt;
   }
   int ppc() const { return row()["ppc"].get<int>(); }
-  bool uniform_two() const {  // 2 particles per cell, uniform layout
-    return ppc() == 2 && layout_of(row(), "shift") == 0 && layout_of(row(), "jitter") == 0;
+  bool uniform_two() const {  // the default particles per cell, uniform layout
+    return ppc() == kDefaultPpc && layout_of(row(), "shift") == 0 &&
+           layout_of(row(), "jitter") == 0;
   }
   bool confirmed() const { return below && above && bounded(*below) && !bounded(*above); }
   // The eq. (108) bound of the run below the limit (its minimum over the run), in c dt / h.
@@ -590,8 +607,8 @@ Claim confirmed_claim(const std::vector<Scheme>& schemes) {
   return c;
 }
 
-std::string reading(const std::vector<Scheme>& schemes, const std::map<std::string, double>& edges,
-                    const Eq108Findings& eq108) {
+std::string reading(const std::vector<ojson>& rows, const std::vector<Scheme>& schemes,
+                    const std::map<std::string, double>& edges, const Eq108Findings& eq108) {
   std::ostringstream md;
   int confirmed = 0;
   std::vector<std::string> not_confirmed;
@@ -624,9 +641,9 @@ std::string reading(const std::vector<Scheme>& schemes, const std::map<std::stri
       edge_hi = std::max(edge_hi, e->second / *limit);
     }
   }
-  md << "**Reading** (computed from the rows). The limit is confirmed (the run at 0.95 times it "
-        "stays bounded, the run at 1.05 times it grows) for "
-     << confirmed << " of " << schemes.size() << " schemes";
+  md << "**Reading** (computed from the rows). The limit is confirmed (the run at "
+     << safeties(rows, true) << " times it stays bounded, the run at " << safeties(rows, false)
+     << " times it grows) for " << confirmed << " of " << schemes.size() << " schemes";
   if (not_confirmed.empty()) {
     md << ". ";
   } else {
@@ -635,7 +652,8 @@ std::string reading(const std::vector<Scheme>& schemes, const std::map<std::stri
       md << (i ? ", " : "") << "`" << not_confirmed[i] << "`";
     md << " (their rows show which run disagrees). ";
   }
-  md << "Limits at 2 particles per cell and the uniform layout, in c dt / h, by update order:";
+  md << "Limits at " << kDefaultPpc
+     << " particles per cell and the uniform layout, in c dt / h, by update order:";
   std::string sep = " ";
   for (const char* u : {"usl", "usf", "musl"}) {
     const auto it = range.find(u);
@@ -713,7 +731,9 @@ std::string paper_table(const std::filesystem::path& reference,
         "the tiny amplitude do not.\n\n| method | A | ";
   for (double E : Es)
     md << "E = " << shortest(E) << " | ";
-  md << "spectral limit | our eq. (108) at A = 1e-6 |\n|---|---|";
+  md << "spectral limit | our eq. (108) at A = "
+     << (schemes.empty() ? std::string("–") : number(schemes.front().row()["A"].get<double>()))
+     << " |\n|---|---|";
   for (std::size_t i = 0; i < Es.size() + 2; ++i)
     md << "---|";
   md << "\n";
@@ -754,28 +774,36 @@ std::string spectral_markdown(const ReportContext& c, const Eq108Findings& eq108
         "linearised about rest with the particles frozen at the bar's initial layout, amplifies "
         "nothing (docs/design.md, \"The spectral limit\"): the Bloch limit of the interior for a "
         "uniform layout, the dense map of the whole bar for a jittered one. Beside it, two runs "
-        "of the bar under the spectral policy at s = 0.95 and s = 1.05 times the limit, at A = "
-     << shortest(first["A"].get<double>()) << ", E = " << shortest(first["E"].get<double>())
+        "of the bar under the spectral policy at s = "
+     << safeties(rows, true) << " and s = " << safeties(rows, false)
+     << " times the limit, at A = " << shortest(first["A"].get<double>())
+     << ", E = " << shortest(first["E"].get<double>())
      << " and T = " << shortest(first["T"].get<double>())
      << " (c T / L = " << shortest(std::sqrt(first["E"].get<double>()) * first["T"].get<double>())
      << " crossings of the bar), " << first["cells"].get<int>()
-     << " cells. A run is *bounded* when it reaches T with an error over time of at most 3 A "
-        "(a bounded run's error, its phase error included, is at most 2 A; one that reaches A "
-        "is also marked meaningless); a run that grows passes 3 A or fails. Eq. (108) is "
+     << " cells. A run is *bounded* when it reaches T with an error over time of at most "
+     << shortest(kBound)
+     << " A (a bounded run's error, its phase error included, is at most twice A; one that "
+        "reaches A is also marked meaningless); a run that grows passes "
+     << shortest(kBound)
+     << " A or fails. Eq. (108) is "
         "defined for MPM, GIMP and cpGIMP only (`–` for the other bases). The measured edge is the "
         "spectral_edge experiment's "
         "([spectral_edge.md](spectral_edge.md)): the largest fixed dt that stays bounded, found "
-        "by bisection to 0.5% without reading the limit. Eq. (108) is the minimum of our bound "
-        "over the run at 0.95 times the limit. The CFL number is 1 in these units.\n\n"
-     << reading(schemes, edges, eq108)
+        "by its search without reading the limit. Eq. (108) is the minimum of our bound "
+        "over the run at "
+     << safeties(rows, true) << " times the limit. The CFL number is 1 in these units.\n\n"
+     << reading(rows, schemes, edges, eq108)
      << "| scheme | spectral limit (c dt / h) | analysis | measured edge | eq. (108) at the same "
-        "state | run at 0.95 x | run at 1.05 x | confirmed |\n|---|---|---|---|---|---|---|---|\n";
+        "state | run at "
+     << safeties(rows, true) << " x | run at " << safeties(rows, false)
+     << " x | confirmed |\n|---|---|---|---|---|---|---|---|\n";
   for (const auto& s : schemes) {
     const auto limit = s.limit();
     const auto edge = edges.find(s.name);
     const auto eq = s.eq108();
-    md << "| " << s.name << " | " << (limit ? fixed(*limit, 4) : std::string("none up to 8"))
-       << " | "
+    md << "| " << s.name << " | "
+       << (limit ? fixed(*limit, 4) : "none up to " + shortest(kMaxSpectralCourant)) << " | "
        << (s.row()["spectral_analysis"].is_string()
                ? s.row()["spectral_analysis"].get<std::string>()
                : std::string("–"))
@@ -795,10 +823,12 @@ std::string spectral_data(const ReportContext& c) {
   const auto edges = measured_edges(c.inputs);
   const ojson& first = c.rows.front();
   std::ostringstream csv;
-  csv << c.csv_header << "# method: 0 mpm, 1 gimp (USL, FLIP, uniform layout, "
+  csv << c.csv_header << "# method: " << codes(kFigureMethods) << " (USL, FLIP, uniform layout, "
       << first["cells"].get<int>()
       << " cells); in c dt / h: limit the spectral limit, edge the measured edge (empty: not "
-         "measured), eq108 our eq. (108), the minimum over the run at 0.95 times the limit; "
+         "measured), eq108 our eq. (108), the minimum over the run at "
+      << safeties(c.rows, true)
+      << " times the limit; "
          "ratio eq108 / limit\n"
          "method,E,ppc,limit,edge,eq108,ratio\n";
   // Sorted by method, E and ppc: each curve one contiguous block.
@@ -807,11 +837,12 @@ std::string spectral_data(const ReportContext& c) {
     return std::tuple(a.method != "mpm", a.E, a.ppc) < std::tuple(b.method != "mpm", b.E, b.ppc);
   });
   for (const auto& p : points) {
-    if (p.cells != first["cells"].get<int>() || (p.method != "mpm" && p.method != "gimp")) continue;
+    const auto code = std::find(kFigureMethods.begin(), kFigureMethods.end(), p.method);
+    if (p.cells != first["cells"].get<int>() || code == kFigureMethods.end()) continue;
     std::string name = p.method;
-    if (p.ppc != 2) name += " (ppc " + std::to_string(p.ppc) + ")";
+    if (p.ppc != kDefaultPpc) name += " (ppc " + std::to_string(p.ppc) + ")";
     const auto edge = p.E == first["E"].get<double>() ? edges.find(name) : edges.end();
-    csv << (p.method == "gimp" ? 1 : 0) << ',' << shortest(p.E) << ',' << p.ppc << ','
+    csv << code - kFigureMethods.begin() << ',' << shortest(p.E) << ',' << p.ppc << ','
         << shortest(p.limit) << ',' << (edge != edges.end() ? shortest(edge->second) : "") << ','
         << shortest(p.eq108) << ',' << shortest(p.ratio()) << '\n';
   }

@@ -29,6 +29,9 @@ constexpr double kAgreement = 0.05;
 // A probe is bounded when its error over time ends at most kBound A.
 constexpr double kBound = 3.0;
 
+// The search: the default scan, bisected to a finer tolerance, a probe surviving only bounded.
+const EdgeOptions kSearch{.tolerance = 0.005, .bound = kBound};
+
 bool tiny(const ojson& r) {
   return r["A"].get<double>() < kTinyA;
 }
@@ -97,7 +100,9 @@ std::string amplitude_table(const std::vector<const ojson*>& rows) {
   std::ostringstream md;
   md << "## The nonlinear edge as A grows\n\nEach cell: the measured edge over the spectral limit "
         "(the linear edge); `*` marks a case whose run at the edge is meaningless (its error "
-        "reached A although it stayed below 3 A); `–` no edge in the scan.\n\n"
+        "reached A although it stayed below "
+     << shortest(kBound)
+     << " A); `–` no edge in the scan.\n\n"
         "**Reading** (computed from the rows).";
   for (const auto& s : schemes) {
     double worst = 1e300, worst_A = 0;
@@ -161,8 +166,9 @@ std::string spectral_edge_markdown(const std::vector<ojson>& rows) {
         "stays at most "
      << shortest(kBound)
      << " A. A growing mode at a tiny amplitude does not fail within T; this criterion sees it. "
-        "The search scans dt = (h/c) 2^(k/2) from h/(16c) to 4h/c and bisects to 0.5%; "
-        "`dt_fail` is the smallest dt above the edge that grew or failed. The spectral limit is "
+        "The search: "
+     << edge_search_text(kSearch)
+     << "; `dt_fail` is the smallest dt above the edge that grew or failed. The spectral limit is "
         "the one each record carries: the Bloch limit of the interior for a uniform layout, the "
         "dense map of the whole bar for a jittered one (docs/design.md, \"The spectral "
         "limit\").\n\n";
@@ -219,14 +225,17 @@ std::string spectral_edge_data(const std::vector<ojson>& rows, const std::string
 
 std::string spectral_edge_index(const Spec& spec, const std::vector<ojson>& rows) {
   std::size_t linear = 0, agreeing = 0;
+  std::vector<double> amplitudes;
   for (const auto& r : rows) {
     if (!tiny(r)) continue;
+    amplitudes.push_back(r["A"].get<double>());
     ++linear;
     agreeing += agrees(r) ? 1 : 0;
   }
   std::ostringstream md;
-  md << "![" << spec.title << "](" << spec.name << ".png)\n\n**What it shows.** At A = 1e-6 "
-     << agreeing << " of " << linear << " measured edges lie within " << shortest(100 * kAgreement)
+  md << "![" << spec.title << "](" << spec.name
+     << ".png)\n\n**What it shows.** At A = " << listing(amplitudes) << " " << agreeing << " of "
+     << linear << " measured edges lie within " << shortest(100 * kAgreement)
      << "% of the spectral limit; at the paper's amplitudes the edge falls below it: [" << spec.name
      << ".md](" << spec.name << ".md).\n\n";
   return md.str();
@@ -234,10 +243,10 @@ std::string spectral_edge_index(const Spec& spec, const std::vector<ojson>& rows
 
 const StudyRegistration kSpectralEdge{{
     .name = "spectral_edge",
-    .summary = "per case, the largest fixed dt that stays bounded (error within 3 A), against "
-               "the spectral limit (a search over dt)",
+    .summary = "per case, the largest fixed dt that stays bounded (error within " +
+               shortest(kBound) + " A), against the spectral limit (a search over dt)",
     .work = CaseWork::edge_search,
-    .edge = {.tolerance = 0.005, .bound = kBound},
+    .edge = kSearch,
     .records = {.error_over_time = true},
     .figure = true,
     .report =
@@ -248,9 +257,8 @@ const StudyRegistration kSpectralEdge{{
     .index = spectral_edge_index,
     .figure_subtitle =
         [](const Spec&, const ojson&) {
-          return std::string(
-              "edge: the largest fixed dt whose error over time stays within 3 A "
-              "to T; limit: the Bloch limit of the uniform layout");
+          return "edge: the largest fixed dt whose error over time stays within " +
+                 shortest(kBound) + " A to T; limit: the Bloch limit of the uniform layout";
         },
 }};
 

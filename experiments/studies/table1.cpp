@@ -26,7 +26,7 @@ struct Table1Summary {
   int sensitive = 0, sensitive_agree = 0;
   int paper_stable_ours_not = 0, paper_stable_ours_not_above_limit = 0;
   int paper_stable_ours_meaningless = 0, paper_unstable_ours_meaningless = 0;
-  int errors_within_3 = 0, errors_compared = 0;
+  int errors_within_factor = 0, errors_compared = 0;
   std::map<std::string, int> reasons;
 };
 
@@ -84,7 +84,7 @@ Table1Summary summarize_table1(const Spec& spec, const std::vector<ojson>& rows,
     const auto ours = compared_error(r, spec.cases[i].error_at);
     if (paper_stable && ours && ours_outcome == "stable") {
       ++s.errors_compared;
-      if (within_factor_3(*ours, pe.value)) ++s.errors_within_3;
+      if (within_agreement_factor(*ours, pe.value)) ++s.errors_within_factor;
     }
   }
   return s;
@@ -120,8 +120,9 @@ std::string table1_summary_text(const Table1Summary& s) {
      << s.paper_stable_ours_meaningless << " cells the paper lists as stable and "
      << s.paper_unstable_ours_meaningless
      << " it marks `*`. Where both are stable (ours: stable, not meaningless), our max error is "
-        "within a factor 3 of the paper's in "
-     << s.errors_within_3 << " of " << s.errors_compared << " cells.";
+        "within a factor "
+     << agreement_factor() << " of the paper's in " << s.errors_within_factor << " of "
+     << s.errors_compared << " cells.";
   return md.str();
 }
 

@@ -534,8 +534,8 @@ ValueCheck check_value(const TradeRows& t, const AdviceGroup& g, double v) {
   }
   if (c.why_not.empty() && !not_run.empty()) c.why_not = "not run at E = " + list_of_E(not_run);
   if (c.why_not.empty() && !unchecked.empty()) {
-    c.why_not = "no row at 1.5x (" + g.value(kMargin * v) + ") at E = " + list_of_E(unchecked) +
-                "; margin not checked";
+    c.why_not = "no row at " + shortest(kMargin) + "x (" + g.value(kMargin * v) +
+                ") at E = " + list_of_E(unchecked) + "; margin not checked";
   }
   c.advised = c.why_not.empty();
   return c;
@@ -764,40 +764,59 @@ std::string cheapest_overall_sentence(const std::map<std::string, int>& winners)
   return s.str();
 }
 
-// Per E, how far GIMP's error moves with dt on 100 cells (fixed and CFL steps), and how far it
-// moves with the grid (CFL, C = 0.5, on 200 and 400 cells).
+// The settings the sentences and claims compare: the paper's grid (kCoarse) against the finest
+// (kFine), both under the CFL rule at kCflRef; stepping at the eq. (108) bound with safety
+// kBoundSafety; the bound "buys no accuracy" when its error is within kNoGainFactor of the CFL
+// rule's.
+constexpr int kCoarse = 100, kFine = 400;
+constexpr double kCflRef = 0.5, kBoundSafety = 1.0, kNoGainFactor = 2.0;
+
+// Per E, how far GIMP's error moves with dt on the paper's grid (fixed and CFL steps), and how
+// far it moves with the grid (CFL at kCflRef, on every finer grid run).
 std::string gimp_spread_sentences(const TradeRows& t) {
   std::ostringstream s;
   for (double E : t.Es) {
     std::vector<double> errs;
     for (const auto& r : t.rows) {
       const std::string policy = text(r, "policy");
-      if (r["E"].get<double>() == E && method_label(r) == "gimp" && r["cells"].get<int>() == 100 &&
-          (policy == "cfl" || policy == "fixed") && accuracy(r)) {
+      if (r["E"].get<double>() == E && method_label(r) == "gimp" &&
+          r["cells"].get<int>() == kCoarse && (policy == "cfl" || policy == "fixed") &&
+          accuracy(r)) {
         errs.push_back(*accuracy(r));
       }
     }
     if (errs.empty()) continue;
-    const ojson* g200 = t.find(E, "gimp", "cfl", 0.5, 200);
-    const ojson* g400 = t.find(E, "gimp", "cfl", 0.5, 400);
-    const auto [lo, hi] = std::minmax_element(errs.begin(), errs.end());
-    s << "E = " << shortest(E) << ": every stable fixed or CFL step of GIMP on 100 cells "
-      << "gives an error between " << sci(*lo) << " and " << sci(*hi);
-    if (g200 && g400 && accuracy(*g200) && accuracy(*g400)) {
-      s << "; the grid moves it: " << sci(*accuracy(*g200)) << " on 200 cells and "
-        << sci(*accuracy(*g400)) << " on 400 (CFL, C = 0.5)";
+    std::vector<int> finer;  // the finer grids run under the CFL rule at kCflRef, ascending
+    for (const auto& r : t.rows) {
+      const int cells = r["cells"].get<int>();
+      if (cells > kCoarse && t.find(E, "gimp", "cfl", kCflRef, cells) == &r &&
+          std::find(finer.begin(), finer.end(), cells) == finer.end())
+        finer.push_back(cells);
     }
+    std::sort(finer.begin(), finer.end());
+    const auto [lo, hi] = std::minmax_element(errs.begin(), errs.end());
+    s << "E = " << shortest(E) << ": every stable fixed or CFL step of GIMP on " << kCoarse
+      << " cells gives an error between " << sci(*lo) << " and " << sci(*hi);
+    std::string moved;
+    for (std::size_t i = 0; i < finer.size(); ++i) {
+      const ojson* g = t.find(E, "gimp", "cfl", kCflRef, finer[i]);
+      if (!accuracy(*g)) continue;
+      moved += (moved.empty() ? "" : ", ") + sci(*accuracy(*g)) + " on " +
+               std::to_string(finer[i]) + " cells";
+    }
+    if (!moved.empty())
+      s << "; the grid moves it: " << moved << " (CFL, C = " << shortest(kCflRef) << ")";
     s << ". ";
   }
   return s.str();
 }
 
-// At how many values of E refining the grid from 100 to 400 cells lowered GIMP's error.
+// At how many values of E refining the grid from kCoarse to kFine cells lowered GIMP's error.
 std::string refinement_sentence(const TradeRows& t) {
   int refined_better = 0, refined_total = 0;
   for (double E : t.Es) {
-    const ojson* g100 = t.find(E, "gimp", "cfl", 0.5, 100);
-    const ojson* g400 = t.find(E, "gimp", "cfl", 0.5, 400);
+    const ojson* g100 = t.find(E, "gimp", "cfl", kCflRef, kCoarse);
+    const ojson* g400 = t.find(E, "gimp", "cfl", kCflRef, kFine);
     if (g100 && g400 && accuracy(*g100) && accuracy(*g400)) {
       ++refined_total;
       refined_better += *accuracy(*g400) < *accuracy(*g100);
@@ -806,18 +825,18 @@ std::string refinement_sentence(const TradeRows& t) {
   if (refined_total == 0) return "";
   std::ostringstream s;
   s << "A finer grid lowered GIMP's error at " << refined_better << " of " << refined_total
-    << " values of E (400 against 100 cells). ";
+    << " values of E (" << kFine << " against " << kCoarse << " cells). ";
   return s.str();
 }
 
-// Stepping at the eq. (108) bound (adaptive, s = 1) against the CFL rule at C = 0.5: the ranges
-// of the ratios of their step counts and of their errors.
+// Stepping at the eq. (108) bound (adaptive, kBoundSafety) against the CFL rule at kCflRef: the
+// ranges of the ratios of their step counts and of their errors.
 std::string bound_stepping_sentence(const TradeRows& t) {
   std::vector<double> step_ratio, error_ratio;
   for (double E : t.Es) {
     for (const char* m : {"gimp", "mpm"}) {
-      const ojson* a = t.find(E, m, "adaptive", 1.0, 100);
-      const ojson* c = t.find(E, m, "cfl", 0.5, 100);
+      const ojson* a = t.find(E, m, "adaptive", kBoundSafety, kCoarse);
+      const ojson* c = t.find(E, m, "cfl", kCflRef, kCoarse);
       if (a && c && accuracy(*a) && accuracy(*c)) {
         step_ratio.push_back((*a)["steps"].get<double>() / (*c)["steps"].get<double>());
         error_ratio.push_back(*accuracy(*a) / *accuracy(*c));
@@ -828,9 +847,10 @@ std::string bound_stepping_sentence(const TradeRows& t) {
   const auto [slo, shi] = std::minmax_element(step_ratio.begin(), step_ratio.end());
   const auto [elo, ehi] = std::minmax_element(error_ratio.begin(), error_ratio.end());
   std::ostringstream s;
-  s << "Stepping at the eq. (108) bound (adaptive, s = 1) takes " << ratio(*slo) << " to "
-    << ratio(*shi) << " times the steps of the CFL rule at C = 0.5 for " << ratio(*elo) << " to "
-    << ratio(*ehi) << " times its error. ";
+  s << "Stepping at the eq. (108) bound (adaptive, s = " << shortest(kBoundSafety) << ") takes "
+    << ratio(*slo) << " to " << ratio(*shi)
+    << " times the steps of the CFL rule at C = " << shortest(kCflRef) << " for " << ratio(*elo)
+    << " to " << ratio(*ehi) << " times its error. ";
   return s.str();
 }
 
@@ -876,8 +896,6 @@ std::string what_the_rows_show(const TradeRows& t, const std::map<std::string, i
 // The claims the rows of the paper's bar (the first scene) decide for GIMP: the step moves the
 // error less than the grid does; a finer grid lowers it; stepping at the eq. (108) bound buys
 // no accuracy over the CFL rule.
-constexpr int kCoarse = 100, kFine = 400;
-constexpr double kCflRef = 0.5, kBoundSafety = 1.0, kNoGainFactor = 2.0;
 
 void grid_and_step_claims(const TradeRows& t, std::vector<Claim>& claims) {
   double spread_max = 0, grid_min = 1e300;
@@ -1072,7 +1090,7 @@ std::string figure_count_text(const FigureCount& n) {
 }
 
 // The methods the figure names (tradeoff.gp's method_name), in its order; any other is drawn as
-// "other" (code 9).
+// "other" (the code after the last).
 const std::vector<std::string> kFigureMethods = {"mpm",       "gimp",         "cpgimp",
                                                  "bspline2",  "bspline3",     "cpdi",
                                                  "gimp/apic", "gimp/xpic(2)", "gimp/fmpm(2)"};
@@ -1107,13 +1125,13 @@ std::string tradeoff_data_csv(const std::vector<ojson>& rows, const std::string&
   std::ostringstream csv;
   csv << header_lines << "# " << figure_count_text(figure_count(rows)) << "\n"
       << "# one row per run drawn (stable, with an error); panel: the index of E; series: the "
-         "index of (method, policy, cells) in the order of the spec; method: 0 mpm, 1 gimp, 2 "
-         "cpgimp, 3 bspline2, 4 bspline3, 5 cpdi, 6 gimp/apic, 7 gimp/xpic(2), 8 gimp/fmpm(2), 9 "
-         "another; policy: 0 fixed, 1 cfl, 2 adaptive, 3 min, 4 spectral; grid: the rank of cells, "
-         "0 the "
-         "coarsest; pareto: 1 when the run is on the Pareto front of its E (no other run at that E "
-         "both cheaper and more accurate)\nE,panel,series,method,policy,cells,grid,particle_steps,"
-         "steps,error,pareto\n";
+         "index of (method, policy, cells) in the order of the spec; method: "
+      << codes(kFigureMethods) << ", " << kFigureMethods.size()
+      << " another; policy: " << codes(kPolicies)
+      << "; grid: the rank of cells, counting from the coarsest at zero; pareto: whether the run "
+         "is on the Pareto front of its E, a boolean (no other run at that E both cheaper and "
+         "more accurate)\nE,panel,series,method,policy,cells,grid,particle_steps,steps,error,"
+         "pareto\n";
   std::set<std::size_t> front;
   for (double E : t.Es) {
     const auto f = pareto_front(rows, t.at(E));

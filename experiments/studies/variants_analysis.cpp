@@ -108,7 +108,7 @@ ojson variant_json(const VariantOutcome& v) {
     by_method[column] = {{"cells", m.cells},
                          {"verdicts_agree", m.counts.verdicts_agree},
                          {"verdicts_compared", m.counts.verdicts_compared},
-                         {"errors_within_3", m.counts.errors_within},
+                         {"errors_within_factor", m.counts.errors_within},
                          {"errors_compared", m.counts.errors_compared},
                          {"median_error_ratio", err ? ojson(*err) : ojson(nullptr)},
                          {"median_dt_stable_ratio", dts ? ojson(*dts) : ojson(nullptr)},
@@ -206,7 +206,8 @@ ojson study_to_json(const VariantsStudy& s) {
   j["criterion"] =
       "a variant accounts for a class when at least half of the class's cells (its class under "
       "the default run) agree with the paper under it: the stability verdict for the verdict "
-      "classes, max errors within a factor 3 for the error classes";
+      "classes, max errors within a factor " +
+      agreement_factor() + " for the error classes";
   j["default"] = s.variants.at(s.baseline).name;
   j["cells"] = s.cells;
   ojson variants = ojson::array();

@@ -1,6 +1,7 @@
 // The variants study's report: variants.md (a reading computed from the numbers, the tables per
 // variant and per method, and what can account for each class of disagreement), the figure's
 // data, and the line comparison.md prints for each class.
+#include <algorithm>
 #include <ostream>
 #include <sstream>
 
@@ -102,9 +103,10 @@ std::string class_reading(const VariantsStudy& s, const ComparisonClass& k) {
   const int n = class_cell_count(s, k.id);
   if (n == 0) return "No cell of Table 1 is in this class under the default run.";
   const ClassVerdicts c = class_verdicts(s, k, n);
-  const std::string what = k.kind == ClassKind::verdict
-                               ? "the paper's stability verdict"
-                               : "a max error within a factor 3 of the paper's";
+  const std::string what =
+      k.kind == ClassKind::verdict
+          ? "the paper's stability verdict"
+          : "a max error within a factor " + agreement_factor() + " of the paper's";
   std::ostringstream md;
   if (!c.yes.empty()) {
     md << "Can account for this class (at least half of its " << cells_word(n) << " reach " << what
@@ -196,7 +198,8 @@ void write_reading(std::ostream& md, const VariantsStudy& s) {
   const VariantOutcome& def = s.variants.at(s.baseline);
   md << "**Reading** (computed from the rows). Under the default, " << of(def.agreeing, def.cells)
      << " cells agree fully with the paper (the same stability verdict and, where both are "
-        "stable, max errors within a factor 3). ";
+        "stable, max errors within a factor "
+     << agreement_factor() << "). ";
   write_largest_gain(md, s);
   write_unchanged(md, s);
   write_accounted_classes(md, s);
@@ -207,8 +210,11 @@ void write_reading(std::ostream& md, const VariantsStudy& s) {
 void write_method(std::ostream& md, const Spec& spec, bool have_courant) {
   md << "**How the cells are read.** Every row is compared with the paper cell of its base case "
         "by the rules of [comparison.md](comparison.md): the stability verdict (the paper's `*` "
-        "against ours), and where both are stable the max error within a factor 3 (the "
-        "comparator's rule |a − b| <= (2/3) max(|a|, |b|), `experiments/engine/compare.hpp`). "
+        "against ours), and where both are stable the max error within a factor "
+     << agreement_factor()
+     << " (the comparator's rule |a − b| <= ((k − 1) / k) max(|a|, |b|) with k = "
+     << agreement_factor()
+     << ", `experiments/engine/compare.hpp`). "
         "Cells whose "
         "paper value is unreadable are not compared. A variant that changes the method (cpGIMP) "
         "is still compared with the paper's GIMP column. Our error is the max error at T unless "
@@ -244,9 +250,10 @@ void write_every_variant(std::ostream& md, const VariantsStudy& s) {
 // One row per variant and column of the paper: verdicts and errors against the paper's.
 void write_per_method(std::ostream& md, const VariantsStudy& s) {
   md << "\n### Per variant and method\n\nVerdicts: cells whose stability verdict agrees with the "
-        "paper's, of the cells with a readable paper value. Within 3x: of the cells where both "
-        "are stable. Ratios are ours / paper.\n\n"
-        "| variant | method | cells | verdicts agree | max error within 3x | median max error "
+        "paper's, of the cells with a readable paper value. Within "
+     << agreement_factor() << "x: of the cells where both are stable. Ratios are ours / paper.\n\n"
+     << "| variant | method | cells | verdicts agree | max error within " << agreement_factor()
+     << "x | median max error "
         "ratio | median dt_stable ratio | particle-steps |\n|---|---|---|---|---|---|---|---|\n";
   for (const auto& v : s.variants) {
     for (const char* column : {"mpm", "gimp"}) {
@@ -289,7 +296,9 @@ void write_classes(std::ostream& md, const VariantsStudy& s) {
         "For each class of [comparison.md](comparison.md) and each variant: how many of the "
         "class's cells agree with the paper under the variant (for the classes where the "
         "stability verdicts differ: the verdict; for the classes where both are stable: the max "
-        "error within a factor 3), and how many cells that agree fully under the default it "
+        "error within a factor "
+     << agreement_factor()
+     << "), and how many cells that agree fully under the default it "
         "breaks (over all its cells). **Criterion:** a variant *accounts* for a class when at "
         "least half of the class's cells agree under it, and *partly* accounts when it brings "
         "some, but fewer than half, into agreement. As in comparison.md, a run that reaches T is "
@@ -312,28 +321,43 @@ std::string variants_markdown(const Spec& spec, const VariantsStudy& s, bool hav
   return md.str();
 }
 
+namespace {
+
+// The columns of variants_data.csv coded as numbers, in the order of their codes.
+const std::vector<std::string> kMethods = {"mpm", "gimp"};
+const std::vector<std::string> kKinds = {"one cell (both stable)",
+                                         "the median of the variant's cells",
+                                         "the tic of the variant (ratio one, not drawn)"};
+constexpr int kOneCell = 0, kMedian = 1, kTic = 2;
+constexpr double kTicRatio = 1;  // where a tic's label sits on the ratio axis
+
+int method_code(const std::string& column) {
+  return int(std::find(kMethods.begin(), kMethods.end(), column) - kMethods.begin());
+}
+
+}  // namespace
+
 std::string variants_data_csv(const VariantsStudy& s, const std::string& header_lines) {
   std::ostringstream csv;
-  csv << header_lines
-      << "# x: the variant's position; method: 0 mpm, 1 gimp; kind: 0 one cell (both stable), 1 "
-         "the median of the variant's cells, 2 the tic of the variant (ratio 1, not drawn)\n"
-         "x,method,kind,ratio,variant\n";
+  csv << header_lines << "# x: the variant's position; method: " << codes(kMethods)
+      << "; kind: " << codes(kKinds) << "\nx,method,kind,ratio,variant\n";
   for (std::size_t j = 0; j < s.variants.size(); ++j) {
     const auto& v = s.variants[j];
     for (const auto& [column, r] : v.error_ratios) {
-      csv << j + 1 << ',' << (column == "mpm" ? 0 : 1) << ",0," << shortest(r) << ',' << v.name
-          << "\n";
+      csv << j + 1 << ',' << method_code(column) << ',' << kOneCell << ',' << shortest(r) << ','
+          << v.name << "\n";
     }
     for (const auto& [column, m] : v.by_method) {
       if (const auto med = median_ratio(m.counts.error_ratios)) {
-        csv << j + 1 << ',' << (column == "mpm" ? 0 : 1) << ",1," << shortest(*med) << ',' << v.name
-            << "\n";
+        csv << j + 1 << ',' << method_code(column) << ',' << kMedian << ',' << shortest(*med) << ','
+            << v.name << "\n";
       }
     }
   }
   // The tics last: gnuplot keeps the last label given at a position.
   for (std::size_t j = 0; j < s.variants.size(); ++j)
-    csv << j + 1 << ",1,2,1," << s.variants[j].name << "\n";
+    csv << j + 1 << ',' << method_code("gimp") << ',' << kTic << ',' << kTicRatio << ','
+        << s.variants[j].name << "\n";
   return csv.str();
 }
 
