@@ -1,4 +1,4 @@
-// The prose of every study's report types no number by hand. Each number a report prints comes
+// The prose of every report types no number by hand. Each number a report prints comes
 // from its records, its spec or a named constant the computation itself uses (the agreement
 // factor, the edge search's scan and tolerance, the bands of the extremes study ...), so that
 // a changed rule changes its sentence. This test reads the string literals of the study sources
@@ -88,11 +88,15 @@ std::string typed_digits(const std::string& text) {
   return hand_typed_digits(kept);
 }
 
+// Every study's source, and the engine's writers of reports that are not studies (the
+// performance report and the index).
 std::vector<std::filesystem::path> study_sources() {
   std::vector<std::filesystem::path> files;
-  const auto dir = std::filesystem::path(MPMSTAB_SOURCE_DIR) / "experiments" / "studies";
-  for (const auto& e : std::filesystem::directory_iterator(dir))
+  const auto root = std::filesystem::path(MPMSTAB_SOURCE_DIR) / "experiments";
+  for (const auto& e : std::filesystem::directory_iterator(root / "studies"))
     if (e.path().extension() == ".cpp") files.push_back(e.path());
+  files.push_back(root / "engine" / "performance.cpp");
+  files.push_back(root / "engine" / "report.cpp");
   std::sort(files.begin(), files.end());
   return files;
 }
