@@ -50,7 +50,7 @@ std::string listing(std::vector<double> v) {
   if (v.empty()) return "–";
   std::string out;
   for (std::size_t i = 0; i < v.size(); ++i) {
-    out += (i == 0 ? "" : i + 1 == v.size() ? " and " : ", ") + number(v[i]);
+    out += (i == 0 ? "" : i + 1 == v.size() ? " and " : ", ") + value_text(v[i]);
   }
   return out;
 }
@@ -61,7 +61,7 @@ std::string significant(double v, int digits) {
   return buf;
 }
 
-std::string number(double v) {
+std::string value_text(double v) {
   const double a = std::abs(v);
   return a == 0 || (a >= 1e-2 && a < 1e5) ? shortest(v) : param(v);
 }
@@ -80,7 +80,7 @@ std::string listing(const std::vector<ojson>& rows, const char* column) {
 std::string span(const std::vector<double>& v) {
   if (v.empty()) return "–";
   const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
-  return *lo == *hi ? number(*lo) : number(*lo) + " to " + number(*hi);
+  return *lo == *hi ? value_text(*lo) : value_text(*lo) + " to " + value_text(*hi);
 }
 
 std::string edge_search_text(const EdgeOptions& o) {

@@ -28,15 +28,15 @@ std::string param(double v);
 std::string significant(double v, int digits);
 // A value of a parameter as prose prints it: shortest() from 0.01 to 1e5 ("0.05", "10000"),
 // param() outside ("1e-4").
-std::string number(double v);
-// The distinct values of v, ascending, in number(): "4", "4 and 64", "4, 64 and 1000"; "–"
+std::string value_text(double v);
+// The distinct values of v, ascending, in value_text(): "4", "4 and 64", "4, 64 and 1000"; "–"
 // when v is empty.
 std::string listing(std::vector<double> v);
 // The numbers in `column` of the rows that hold one there, in row order.
 std::vector<double> numbers(const std::vector<nlohmann::ordered_json>& rows, const char* column);
 // listing(numbers(rows, column)).
 std::string listing(const std::vector<nlohmann::ordered_json>& rows, const char* column);
-// The range of v in number(): "1e-4 to 0.05", or one value when all are equal; "–" when empty.
+// The range of v in value_text(): "1e-4 to 0.05", or one value when all are equal; "–" when empty.
 std::string span(const std::vector<double>& v);
 // The edge search of `o` in words, every number from `o`: "a log-spaced scan of dt, 2 per octave,
 // from 0.0625 to 4 times h/c, then bisection until the smallest failing dt is within 2% of the

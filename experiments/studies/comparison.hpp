@@ -71,7 +71,7 @@ struct AgreementCounts {
 };
 
 // The verdict and class of our flat result row against the paper's cell (null: not in the
-// paper), with the comparator's factor-3 rule (within_agreement_factor).
+// paper), with the comparator's agreement-factor rule (within_agreement_factor).
 CellVerdict classify(const nlohmann::ordered_json& row, const PaperCell* paper,
                      const CourantEdges& edges, ErrorAt error_at);
 

@@ -250,9 +250,10 @@ const std::vector<Band> kAmplitudeBands = {
 
 // "c dt/h < 0.5", "1e-3 <= A/h < 0.1", "c dt/h >= 10".
 std::string band_name(const Band& b, const std::string& x) {
-  const std::string name = b.lo == 0            ? x + " < " + number(b.hi)
-                           : b.hi == kUnbounded ? x + " >= " + number(b.lo)
-                                                : number(b.lo) + " <= " + x + " < " + number(b.hi);
+  const std::string name = b.lo == 0 ? x + " < " + value_text(b.hi)
+                           : b.hi == kUnbounded
+                               ? x + " >= " + value_text(b.lo)
+                               : value_text(b.lo) + " <= " + x + " < " + value_text(b.hi);
   return name + b.note;
 }
 

@@ -732,7 +732,7 @@ std::string paper_table(const std::filesystem::path& reference,
   for (double E : Es)
     md << "E = " << shortest(E) << " | ";
   md << "spectral limit | our eq. (108) at A = "
-     << (schemes.empty() ? std::string("–") : number(schemes.front().row()["A"].get<double>()))
+     << (schemes.empty() ? std::string("–") : value_text(schemes.front().row()["A"].get<double>()))
      << " |\n|---|---|";
   for (std::size_t i = 0; i < Es.size() + 2; ++i)
     md << "---|";
