@@ -60,12 +60,16 @@ const ComparisonClass* find_class(const std::string& id) {
   return nullptr;
 }
 
+double scan_courant(const ojson& row) {
+  constexpr double kResolution = 1e4;  // steps per unit of c dt / h
+  return std::round(row.at("courant").get<double>() * kResolution) / kResolution;
+}
+
 CourantEdges courant_edges(const std::vector<ojson>& rows) {
   std::map<std::pair<std::string, double>, std::map<double, bool>> all_fail;  // -> C -> all fail
   for (const auto& r : rows) {
     const auto key = std::make_pair(r["method"].get<std::string>(), r["A"].get<double>());
-    const double c = std::round(r["courant"].get<double>() * 100) / 100;
-    auto [it, fresh] = all_fail[key].try_emplace(c, true);
+    auto [it, fresh] = all_fail[key].try_emplace(scan_courant(r), true);
     it->second = it->second && outcome(r) == "unstable";
   }
   CourantEdges edge;

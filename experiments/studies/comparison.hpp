@@ -37,6 +37,10 @@ struct ComparisonClass {
 const std::vector<ComparisonClass>& comparison_classes();
 const ComparisonClass* find_class(const std::string& id);
 
+// A run's Courant number as the courant scan groups its runs: rounded to 1e-4 (the scan's dts
+// are C h / c rounded to six digits, so this recovers C).
+double scan_courant(const nlohmann::ordered_json& row);
+
 // Per method and amplitude: the smallest Courant number of the courant scan from which on every
 // run (every E) fails. Empty without the scan.
 using CourantEdges = std::map<std::pair<std::string, double>, double>;

@@ -310,11 +310,6 @@ FigureClass figure_class(const PaperFigure& f, const ojson& row, const CourantEd
   return {"agree-unstable", "both fail"};
 }
 
-// A run's Courant number as the courant scan groups its runs: to two decimals.
-double scan_courant(const ojson& row) {
-  return std::round(row.at("courant").get<double>() * 100) / 100;
-}
-
 // What the courant scan says at the figure's Courant number (above-spectral-limit and
 // above-our-edge).
 std::string courant_context(const ojson& row, const StudyInputs& inputs) {

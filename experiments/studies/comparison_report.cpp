@@ -132,11 +132,6 @@ std::size_t table1_E_count(const Rows& rows) {
   return Es.size();
 }
 
-// A run's Courant number as the courant scan groups its runs: to two decimals.
-double scan_courant(const ojson& row) {
-  return std::round(row["courant"].get<double>() * 100) / 100;
-}
-
 bool same_cell(const ojson& a, const CaseSpec& c) {
   const auto& p = c.params;
   return a["method"] == std::string(to_string(p.method)) && a["E"].get<double>() == p.E &&
@@ -413,6 +408,8 @@ void courant_scan_table(std::ostream& md, const Comparison& cmp) {
   std::map<double, std::map<std::pair<std::string, double>, std::pair<int, int>>> by_c;
   std::set<std::pair<std::string, double>> groups;
   std::int64_t worst_step = 0;
+  int above_survived = 0;
+  double above_survivor_ratio = 0;  // the largest c dt/h over the limit of a scan run reaching T
   for (const auto& r : cmp.rows("courant")) {
     const double c = scan_courant(r);
     const auto g = std::make_pair(r["method"].get<std::string>(), r["A"].get<double>());
@@ -423,6 +420,12 @@ void courant_scan_table(std::ostream& md, const Comparison& cmp) {
     if (r["courant_spectral"].is_number() && c > r["courant_spectral"].get<double>() &&
         outcome(r) == "unstable") {
       worst_step = std::max(worst_step, r["failure_step"].get<std::int64_t>());
+    }
+    if (r["courant_spectral"].is_number() && c > r["courant_spectral"].get<double>() &&
+        survived(r)) {
+      ++above_survived;
+      above_survivor_ratio = std::max(
+          above_survivor_ratio, r["courant"].get<double>() / r["courant_spectral"].get<double>());
     }
   }
   md << "**Experiment** ([courant.md](courant.md)): every E of Table 1 for each method and A, "
@@ -441,9 +444,15 @@ void courant_scan_table(std::ostream& md, const Comparison& cmp) {
     md << "\n";
   }
   md << "\nRuns above their scheme's spectral limit that fail stop within at most " << worst_step
-     << " steps (the conclusions above count every such run). The paper's stable entries above "
-        "the limit cannot come from this scheme with the stated dt on the paper's grid and "
-        "layout.\n\n";
+     << " steps (the conclusions above count every such run). " << above_survived
+     << " scan runs above the limit reach T";
+  if (above_survived > 0) {
+    md << ", at most " << fixed(above_survivor_ratio, 3)
+       << " times it: just above the limit the growth is slow enough to last a run of this "
+          "length, so the scan's survival edge is not the limit";
+  }
+  md << ". No Table 1 cell the paper lists as stable above the limit survives here (the "
+        "conclusions above).\n\n";
 }
 
 // Paper stable at c dt / h >= 1: beyond the stability limit of any explicit scheme.
