@@ -291,7 +291,7 @@ void stress_update(const Stencil<W>& S, const Grid& G, double dt, const Material
 
 template <int W>
 bool g2p(const Stencil<W>& S, const Grid& G, double dt, const ParticleUpdate& rule, Particles& P,
-         const StateCheck* check) {
+         [[maybe_unused]] const StateCheck* check) {
 #if MPMSTAB_AVX512
   if (check && use_avx512() && rule.transfer == Transfer::flip) {
     particle_pass<W, true, false>(S, G, dt, 0.0, rule.position, P, check);
@@ -304,7 +304,7 @@ bool g2p(const Stencil<W>& S, const Grid& G, double dt, const ParticleUpdate& ru
 
 template <int W>
 bool stress_update(const Stencil<W>& S, const Grid& G, double dt, const MaterialLaw& law,
-                   Particles& P, const StateCheck* check) {
+                   Particles& P, [[maybe_unused]] const StateCheck* check) {
 #if MPMSTAB_AVX512
   if (check && use_avx512() && law.kind == Material::linear) {
     particle_pass<W, false, true, false>(S, G, dt, law.E, P, check);
