@@ -44,15 +44,23 @@ std::string param(double v) {
   return mantissa + rest;
 }
 
+std::string list_of(const std::vector<std::string>& items) {
+  std::string s;
+  for (std::size_t k = 0; k < items.size(); ++k) {
+    if (k > 0) s += k + 1 == items.size() ? " and " : ", ";
+    s += items[k];
+  }
+  return s;
+}
+
 std::string listing(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   v.erase(std::unique(v.begin(), v.end()), v.end());
   if (v.empty()) return "–";
-  std::string out;
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    out += (i == 0 ? "" : i + 1 == v.size() ? " and " : ", ") + value_text(v[i]);
-  }
-  return out;
+  std::vector<std::string> items;
+  for (double x : v)
+    items.push_back(value_text(x));
+  return list_of(items);
 }
 
 std::string significant(double v, int digits) {

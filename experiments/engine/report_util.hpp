@@ -26,6 +26,8 @@ std::string ratio(double r);
 std::string param(double v);
 // v to `digits` significant digits, printf's %g: "0.03162".
 std::string significant(double v, int digits);
+// Items joined as prose: "a", "a and b", "a, b and c" ("" when empty).
+std::string list_of(const std::vector<std::string>& items);
 // A value of a parameter as prose prints it: shortest() from 0.01 to 1e5 ("0.05", "10000"),
 // param() outside ("1e-4").
 std::string value_text(double v);

@@ -105,7 +105,7 @@ std::string failure_class(const ojson& r, const CourantEdges& edges) {
   const double courant = r["courant"].get<double>();
   const auto edge = edges.find({method, r["A"].get<double>()});
   const std::string reason = r["failure_reason"].get<std::string>();
-  if (r["courant_spectral"].is_number() && courant > r["courant_spectral"].get<double>())
+  if (has_number(r, "courant_spectral") && courant > r["courant_spectral"].get<double>())
     return "above-spectral-limit";
   if (edge != edges.end() && courant >= edge->second * (1 - 1e-9)) return "above-our-edge";
   if (method != "mpm" && reason == "left_domain") return "gimp-wall-exit";

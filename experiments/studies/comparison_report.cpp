@@ -132,6 +132,15 @@ std::size_t table1_E_count(const Rows& rows) {
   return Es.size();
 }
 
+// The spectral limit of each method at the paper's layout, from the Table 1 records.
+std::map<std::string, double> spectral_limits(const Comparison& cmp) {
+  std::map<std::string, double> limit;
+  for (const auto& c : cmp.cells)
+    if (has_number(c.row, "courant_spectral"))
+      limit[c.row["method"].get<std::string>()] = c.row["courant_spectral"].get<double>();
+  return limit;
+}
+
 bool same_cell(const ojson& a, const CaseSpec& c) {
   const auto& p = c.params;
   return a["method"] == std::string(to_string(p.method)) && a["E"].get<double>() == p.E &&
@@ -417,12 +426,11 @@ void courant_scan_table(std::ostream& md, const Comparison& cmp) {
     auto& [ok, n] = by_c[c][g];
     ++n;
     if (survived(r)) ++ok;
-    if (r["courant_spectral"].is_number() && c > r["courant_spectral"].get<double>() &&
-        outcome(r) == "unstable") {
+    const bool above = has_number(r, "courant_spectral") && c > r["courant_spectral"].get<double>();
+    if (above && outcome(r) == "unstable") {
       worst_step = std::max(worst_step, r["failure_step"].get<std::int64_t>());
     }
-    if (r["courant_spectral"].is_number() && c > r["courant_spectral"].get<double>() &&
-        survived(r)) {
+    if (above && survived(r)) {
       ++above_survived;
       above_survivor_ratio = std::max(
           above_survivor_ratio, r["courant"].get<double>() / r["courant_spectral"].get<double>());
@@ -478,11 +486,7 @@ void above_our_edge_section(std::ostream& md, const Comparison& cmp) {
     not_run(md, "courant");
     return;
   }
-  // The spectral limit of each method at the paper's layout, from the Table 1 records.
-  std::map<std::string, double> limit;
-  for (const auto& c : cmp.cells)
-    if (has_number(c.row, "courant_spectral"))
-      limit[c.row["method"].get<std::string>()] = c.row["courant_spectral"].get<double>();
+  const std::map<std::string, double> limit = spectral_limits(cmp);
   md << "From these Courant numbers on, every run of the scan fails, for every E (per method "
         "and A, the edge and its ratio to the scheme's spectral limit: ";
   bool first = true;
@@ -840,15 +844,14 @@ std::vector<Claim> comparison_claims(const Comparison& cmp) {
   std::vector<Claim> claims;
   int above = 0, above_fail = 0;
   std::map<std::string, std::vector<double>> paper_dt_stable;  // method -> c dt_stable / h
-  std::map<std::string, double> limit;
+  const std::map<std::string, double> limit = spectral_limits(cmp);
   int sensitive = 0, sensitive_paper_stable = 0;
   for (std::size_t i = 0; i < cmp.cells.size(); ++i) {
     const Cell& c = cmp.cells[i];
     const ojson& r = c.row;
-    if (!r["courant_spectral"].is_number()) continue;
+    if (!has_number(r, "courant_spectral")) continue;
     const double lim = r["courant_spectral"].get<double>();
     const std::string m = r["method"].get<std::string>();
-    limit[m] = lim;
     if (r["courant"].get<double>() > lim) {
       ++above;
       above_fail += outcome(r) == "unstable";
@@ -879,8 +882,8 @@ std::vector<Claim> comparison_claims(const Comparison& cmp) {
         .number("lo", lo, 3)
         .number("hi", hi, 3)
         .count("n", static_cast<long long>(v.size()))
-        .number("limit", limit[m], 3);
-    b.holds = hi <= limit[m];
+        .number("limit", limit.at(m), 3);
+    b.holds = hi <= limit.at(m);
     claims.push_back(b);
   }
   if (cmp.ensemble) {

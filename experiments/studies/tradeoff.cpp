@@ -170,15 +170,6 @@ struct TradeRows {
 };
 
 // "4, 64 and 1000".
-std::string list_of(const std::vector<std::string>& items) {
-  std::string s;
-  for (std::size_t k = 0; k < items.size(); ++k) {
-    if (k > 0) s += k + 1 == items.size() ? " and " : ", ";
-    s += items[k];
-  }
-  return s;
-}
-
 std::string list_of_E(const std::vector<double>& Es) {
   std::vector<std::string> items;
   for (double E : Es)
@@ -771,20 +762,47 @@ std::string cheapest_overall_sentence(const std::map<std::string, int>& winners)
 constexpr int kCoarse = 100, kFine = 400;
 constexpr double kCflRef = 0.5, kBoundSafety = 1.0, kNoGainFactor = 2.0;
 
+// GIMP's errors at E over every stable fixed and CFL step on the paper's grid (kCoarse).
+std::vector<double> gimp_step_errors(const TradeRows& t, double E) {
+  std::vector<double> errs;
+  for (const auto& r : t.rows) {
+    const std::string policy = text(r, "policy");
+    if (r["E"].get<double>() == E && method_label(r) == "gimp" &&
+        r["cells"].get<int>() == kCoarse && (policy == "cfl" || policy == "fixed") && accuracy(r)) {
+      errs.push_back(*accuracy(r));
+    }
+  }
+  return errs;
+}
+
+// Stepping at the eq. (108) bound (adaptive, kBoundSafety) against the CFL rule at kCflRef on
+// the paper's grid, for MPM and GIMP at every E where both have an error: the ratios of their
+// step counts and of their errors, pair by pair.
+struct BoundAgainstCfl {
+  std::vector<double> step_ratio, error_ratio;
+};
+
+BoundAgainstCfl bound_against_cfl(const TradeRows& t) {
+  BoundAgainstCfl out;
+  for (double E : t.Es) {
+    for (const char* m : {"gimp", "mpm"}) {
+      const ojson* b = t.find(E, m, "adaptive", kBoundSafety, kCoarse);
+      const ojson* c = t.find(E, m, "cfl", kCflRef, kCoarse);
+      if (b && c && accuracy(*b) && accuracy(*c)) {
+        out.step_ratio.push_back((*b)["steps"].get<double>() / (*c)["steps"].get<double>());
+        out.error_ratio.push_back(*accuracy(*b) / *accuracy(*c));
+      }
+    }
+  }
+  return out;
+}
+
 // Per E, how far GIMP's error moves with dt on the paper's grid (fixed and CFL steps), and how
 // far it moves with the grid (CFL at kCflRef, on every finer grid run).
 std::string gimp_spread_sentences(const TradeRows& t) {
   std::ostringstream s;
   for (double E : t.Es) {
-    std::vector<double> errs;
-    for (const auto& r : t.rows) {
-      const std::string policy = text(r, "policy");
-      if (r["E"].get<double>() == E && method_label(r) == "gimp" &&
-          r["cells"].get<int>() == kCoarse && (policy == "cfl" || policy == "fixed") &&
-          accuracy(r)) {
-        errs.push_back(*accuracy(r));
-      }
-    }
+    const std::vector<double> errs = gimp_step_errors(t, E);
     if (errs.empty()) continue;
     std::vector<int> finer;  // the finer grids run under the CFL rule at kCflRef, ascending
     for (const auto& r : t.rows) {
@@ -829,20 +847,10 @@ std::string refinement_sentence(const TradeRows& t) {
   return s.str();
 }
 
-// Stepping at the eq. (108) bound (adaptive, kBoundSafety) against the CFL rule at kCflRef: the
-// ranges of the ratios of their step counts and of their errors.
+// Stepping at the eq. (108) bound against the CFL rule: the ranges of the ratios of their step
+// counts and of their errors.
 std::string bound_stepping_sentence(const TradeRows& t) {
-  std::vector<double> step_ratio, error_ratio;
-  for (double E : t.Es) {
-    for (const char* m : {"gimp", "mpm"}) {
-      const ojson* a = t.find(E, m, "adaptive", kBoundSafety, kCoarse);
-      const ojson* c = t.find(E, m, "cfl", kCflRef, kCoarse);
-      if (a && c && accuracy(*a) && accuracy(*c)) {
-        step_ratio.push_back((*a)["steps"].get<double>() / (*c)["steps"].get<double>());
-        error_ratio.push_back(*accuracy(*a) / *accuracy(*c));
-      }
-    }
-  }
+  const auto [step_ratio, error_ratio] = bound_against_cfl(t);
   if (step_ratio.empty()) return "";
   const auto [slo, shi] = std::minmax_element(step_ratio.begin(), step_ratio.end());
   const auto [elo, ehi] = std::minmax_element(error_ratio.begin(), error_ratio.end());
@@ -901,13 +909,7 @@ void grid_and_step_claims(const TradeRows& t, std::vector<Claim>& claims) {
   double spread_max = 0, grid_min = 1e300;
   int better = 0, total = 0;
   for (double E : t.Es) {
-    std::vector<double> errs;
-    for (const auto& r : t.rows) {
-      const std::string policy = text(r, "policy");
-      if (r["E"].get<double>() == E && method_label(r) == "gimp" &&
-          r["cells"].get<int>() == kCoarse && (policy == "cfl" || policy == "fixed") && accuracy(r))
-        errs.push_back(*accuracy(r));
-    }
+    const std::vector<double> errs = gimp_step_errors(t, E);
     const ojson* coarse = t.find(E, "gimp", "cfl", kCflRef, kCoarse);
     const ojson* fine = t.find(E, "gimp", "cfl", kCflRef, kFine);
     if (errs.empty() || !coarse || !fine || !accuracy(*coarse) || !accuracy(*fine)) continue;
@@ -945,17 +947,7 @@ void grid_and_step_claims(const TradeRows& t, std::vector<Claim>& claims) {
   finer.holds = total > 0 && better == total;
   claims.push_back(finer);
 
-  std::vector<double> step_ratio, error_ratio;
-  for (double E : t.Es) {
-    for (const char* m : {"gimp", "mpm"}) {
-      const ojson* b = t.find(E, m, "adaptive", kBoundSafety, kCoarse);
-      const ojson* c = t.find(E, m, "cfl", kCflRef, kCoarse);
-      if (b && c && accuracy(*b) && accuracy(*c)) {
-        step_ratio.push_back((*b)["steps"].get<double>() / (*c)["steps"].get<double>());
-        error_ratio.push_back(*accuracy(*b) / *accuracy(*c));
-      }
-    }
-  }
+  const auto [step_ratio, error_ratio] = bound_against_cfl(t);
   Claim bound = claim("bound-buys-no-accuracy",
                       "Stepping at the eq. (108) bound (adaptive, s = {s}) takes more steps than "
                       "the CFL rule at C = {C} and does not lower the error over time by a factor "
