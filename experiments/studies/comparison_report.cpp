@@ -503,9 +503,10 @@ void above_our_edge_section(std::ostream& md, const Comparison& cmp) {
     first = false;
   }
   md << "). " << above << " of " << edges
-     << " of these edges lie above the spectral limit: the scan's step in c dt/h brackets the "
-        "linear limit there, and a cell failing at or above such an edge is counted in the "
-        "previous class. This class holds the cells the paper lists as stable that fail below "
+     << " of these edges lie above the spectral limit: there runs survive a little above the "
+        "limit for a run of this length (the scan table above), and a cell failing at or above "
+        "such an edge is counted in the previous class. This class holds the cells the paper lists "
+        "as stable that fail below "
         "the spectral limit at or above an edge: "
      << cmp.count("above-our-edge")
      << ". Runs that fail at smaller Courant numbers fail for the reasons of the classes "
@@ -818,8 +819,8 @@ void dt_stable_section(std::ostream& md, const Comparison& cmp) {
   md << "\nThe largest ratio under any reading is " << ratio(largest) << ": "
      << (largest < 1 ? "no reading closes the gap. " : "a reading reaches the paper's bound. ")
      << "Under each reading MPM's ratio varies by at most a factor " << ratio(widest_mpm_spread)
-     << " over E = " << listing(eq108, "E")
-     << " (GIMP's spread is in the table), so the paper's bound differs from the printed "
+     << " over its cells (E = " << listing(eq108, "E")
+     << "; GIMP's spread is in the table), so the paper's bound differs from the printed "
         "eq. (108) by a factor this experiment measures but cannot explain: the paper's text "
         "does not let us pin it down. We keep the printed formula and its documented default "
         "reading.\n\n";
