@@ -244,6 +244,29 @@ std::optional<double> fixed_step(const RunParams& p) {
   }
 }
 
+double wave_speed(const RunParams& p) {
+  return std::sqrt(p.E);
+}  // rho0 = 1 in both scenes
+
+double amplitude_per_cell(const RunParams& p) {
+  return p.A * p.cells;
+}
+
+double wave_passes(const RunParams& p) {
+  return wave_speed(p) * p.T;
+}  // L = 1
+
+std::optional<double> courant_number(const RunParams& p) {
+  switch (p.stepping.policy) {
+    case TimeStepPolicy::fixed:
+      return wave_speed(p) * p.dt * p.cells;
+    case TimeStepPolicy::cfl:
+      return p.stepping.cfl_factor;
+    default:
+      return std::nullopt;
+  }
+}
+
 std::optional<std::int64_t> step_count(double T, double dt) {
   if (!(T > 0) || !(dt > 0) || !std::isfinite(T) || !std::isfinite(dt)) return std::nullopt;
   const double ratio = T / dt;

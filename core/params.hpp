@@ -223,6 +223,16 @@ std::optional<std::int64_t> step_count(double T, double dt);
 // The step of the fixed and cfl policies (dt, or C h / c); nullopt for the state-dependent ones.
 std::optional<double> fixed_step(const RunParams& p);
 
+// The dimensionless coordinates of a run (docs/design.md, "Dimensionless coordinates"). With
+// rho0 = 1 and c = sqrt(E), tau = c t removes E from both scenes: a run is fixed by the Courant
+// number c dt / h, the amplitude in cells A / h, the wave passes c T / L (L = 1), the grid, the
+// particles per cell and the method.
+double wave_speed(const RunParams& p);          // c = sqrt(E / rho0)
+double amplitude_per_cell(const RunParams& p);  // A / h = A N
+double wave_passes(const RunParams& p);         // c T / L
+// c dt / h of the fixed and cfl policies; nullopt for the state-dependent ones.
+std::optional<double> courant_number(const RunParams& p);
+
 // Names used on the command line, in JSON and in reports.
 std::string_view to_string(Method m);
 std::string_view to_string(Boundary b);

@@ -34,6 +34,10 @@ void expect_same_run(const RunParams& stiff, double E) {
   const RunResult a = run(stiff), b = run(soft);
   const std::string what = std::string(to_string(stiff.method)) + " " +
                            std::string(to_string(stiff.scene)) + " E=" + std::to_string(E);
+  // The coordinates every record carries agree (to the rounding of sqrt and the products).
+  EXPECT_LT(rel(*courant_number(stiff), *courant_number(soft)), 1e-14) << what;
+  EXPECT_LT(rel(wave_passes(stiff), wave_passes(soft)), 1e-14) << what;
+  EXPECT_EQ(amplitude_per_cell(stiff), amplitude_per_cell(soft)) << what;
   EXPECT_EQ(a.steps, b.steps) << what;
   EXPECT_EQ(a.stable, b.stable) << what;
   EXPECT_LT(rel(a.courant, b.courant), 1e-14) << what;
