@@ -1,4 +1,4 @@
-# edge.gp -- the edges in dt against E, in units of h/c: for each method and amplitude the
+# edge.gp -- the edges in dt against the run length c T (wave passes), in units of h/c: for each method and amplitude the
 # survival edge (the largest fixed dt that survives to T; filled markers, solid lines) and the
 # accuracy edge (the largest that keeps the error at T within 2 times the smallest dt's; open
 # markers, dashed lines), one panel per scene, with h/c (1), a cross where the run at the
@@ -7,7 +7,7 @@
 #
 # Reads : datafile (results/edge_data.csv): '#' lines (the counts and the cases not drawn, with
 #         the reason), then the header
-#         panel,series,E,dt_edge_over_cfl,dt_accurate_over_cfl,meaningless_at_edge,
+#         panel,series,cT,dt_edge_over_cfl,dt_accurate_over_cfl,meaningless_at_edge,
 #         limit_over_cfl,eq108_over_cfl
 #         (panel 0 the bar, 1 the second scene; series 1 GIMP A = 0.015, 2 GIMP A = 0.05,
 #         3 MPM A = 0.015, 4 MPM A = 0.05, 5 CPDI, 6 quadratic B-spline, 7 cubic B-spline, at
@@ -57,11 +57,11 @@ do for [ext in "png svg"] {
         set terminal svg size 1200,900 dynamic font "sans,11" noenhanced background "white"
     }
     set output outbase . "." . ext
-    set multiplot title "Survival and accuracy edges against E, in units of h/c" . (strlen(subtitle) > 0 ? "\n" . subtitle : "")
+    set multiplot title "Survival and accuracy edges against the run length c T, in units of h/c" . (strlen(subtitle) > 0 ? "\n" . subtitle : "")
     set logscale xy
-    set xrange [2:20000]
+    set xrange [0.7:150]
     set yrange [ylow:yhigh]
-    set xlabel "Young's modulus E (dimensionless model units)"
+    set xlabel "wave passes c T (T = 1: c T = sqrt(E))"
     set ylabel "dt / (h/c)"
     set grid xtics ytics mxtics lc rgb "#e0e0e0"
     unset key

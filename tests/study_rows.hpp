@@ -2,6 +2,7 @@
 // without running the solver.
 #pragma once
 
+#include <cmath>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -46,6 +47,8 @@ inline nlohmann::ordered_json study_row(const std::string& method, double E) {
           {"dt_cfl", 0.005},
           {"dt_sound", 0.5},
           {"courant", 0.02},
+          {"A_over_h", 1.5},     // A / h at A = 0.015 on 100 cells
+          {"cT", std::sqrt(E)},  // c T at T = 1
           {"particles", 200}};
 }
 

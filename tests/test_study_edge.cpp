@@ -216,22 +216,26 @@ TEST(EdgeStudy, ReportStatesTheRuleAndReadsBothEdgesFromTheRows) {
             std::string::npos)
       << md;
   EXPECT_NE(md.find("mpm: no dt of the scan survives (1 case)."), std::string::npos) << md;
-  EXPECT_NE(md.find("1 of 3 searches found survival not monotone in dt (a dt below the survival "
-                    "edge fails): gimp, A = 0.05, E = 4 (fails from 6.25e-4, survives from "
-                    "8.84e-4)."),
-            std::string::npos)
-      << md;
-  // The table: the spectral limit (where recorded), both edges with h/c, the flips, the cost
-  // without wall times.
   EXPECT_NE(
-      md.find("| gimp | 0.015 | 4 | 5.00e-3 | 0.756 | 4.10e-3 (0.820) | meaningless | 1.0e-6 | "
-              "3.94e-3 (0.788) | 1.0e-5 → 6.0e-6 | 1.0e-4 (41) | monotone | – | 20 | 2.4e6 |"),
+      md.find("1 of 3 searches found survival not monotone in dt (a dt below the survival "
+              "edge fails): gimp, A = 0.05, E = 4 (c T = 2) (fails from 6.25e-4, survives from "
+              "8.84e-4)."),
       std::string::npos)
+      << md;
+  // The table: A / h and c T, the spectral limit (where recorded), both edges with h/c, the
+  // bracket, the margins to the limit (no long run given: said so), the flips, the cost without
+  // wall times.
+  EXPECT_NE(md.find("| gimp | 0.015 | 1.5 | 4 | 2 | 5.00e-3 | 0.756 | 4.10e-3 (0.820; fails at "
+                    "0.832) | 1.084 x limit, above it (no long run) | meaningless | 1.0e-6 | "
+                    "3.94e-3 (0.788) | 1.042 x limit, above it (no long run) | 1.0e-5 → 6.0e-6 | "
+                    "1.0e-4 (41) | monotone | – | 20 | 2.4e6 |"),
+            std::string::npos)
       << md;
   EXPECT_NE(md.find("none (reference meaningless)"), std::string::npos);
   EXPECT_NE(md.find("**not monotone**: fails from 6.25e-4, survives from 8.84e-4"),
             std::string::npos);
-  EXPECT_NE(md.find("| mpm | 0.015 | 4 | 5.00e-3 | – | none in the scan |"), std::string::npos);
+  EXPECT_NE(md.find("| mpm | 0.015 | 1.5 | 4 | 2 | 5.00e-3 | – | none in the scan |"),
+            std::string::npos);
   EXPECT_EQ(md.find("seconds"), std::string::npos);
   EXPECT_EQ(md.find(" ms "), std::string::npos);
 }
@@ -268,6 +272,42 @@ TEST(EdgeStudy, EdgesAreRerunOnPerturbedLayoutsAndASensitiveOneIsMarked) {
   EXPECT_TRUE(found);
 }
 
+// An edge above the spectral limit is rerun for the long run length after the ensembles: marked
+// transient with the wave passes at which that run fails, or at which it is meaningless; the
+// claim on the accuracy edges counts them.
+TEST(EdgeStudy, AnEdgeAboveTheLimitIsMarkedTransientWithTheLengthAtWhichItFails) {
+  const std::vector<ojson> rows = edge_rows();  // the first row's edges lie above its limit
+  ojson survives = study_row("gimp", 4), fails = survives;
+  test_support::fail_row(fails, "nonpositive_F");
+  std::vector<ojson> follow_up;
+  for (int k = 0; k < 32; ++k)  // the ensembles of both edges: all robust
+    follow_up.push_back(k % 16 < 8 ? survives : fails);
+  ojson at_edge = fails;  // the long run at dt_edge fails at t = 31.5: c t = 63
+  at_edge["failure_time"] = 31.5;
+  ojson at_accurate = survives;  // the one at dt_accurate survives, meaningless
+  test_support::meaningless_row(at_accurate);
+  at_accurate["cT"] = 1000.0;
+  follow_up.push_back(at_edge);
+  follow_up.push_back(at_accurate);
+  const auto report = test_support::study_report("edge", rows, follow_up);
+  EXPECT_NE(report.markdown.find("| 1.084 x limit, **transient**: fails at c T = 63 |"),
+            std::string::npos)
+      << report.markdown;
+  EXPECT_NE(report.markdown.find("| 1.042 x limit, **transient**: meaningless by c T = 1000 |"),
+            std::string::npos)
+      << report.markdown;
+  bool found = false;
+  for (const auto& c : report.claims) {
+    if (c.id != "accurate-edges-at-most-the-limit") continue;
+    found = true;
+    EXPECT_FALSE(c.holds);
+    EXPECT_EQ(render(c, c.evidence),
+              "1 of 1 lie above it; rerun for 1000 wave passes, 0 of them fail (at c T = –) and "
+              "1 turn meaningless");
+  }
+  EXPECT_TRUE(found);
+}
+
 TEST(EdgeStudy, FigureDataHasARowPerDrawnCaseAndTheTitleCountsThem) {
   std::vector<ojson> rows = edge_rows();
   ojson steffen = rows[0];
@@ -282,24 +322,23 @@ TEST(EdgeStudy, FigureDataHasARowPerDrawnCaseAndTheTitleCountsThem) {
   // Drawn: the two gimp cases of the bar and the one of the second scene.
   EXPECT_EQ(test_support::data_lines(csv).size(), 3u) << csv;
   // Beside each edge, the spectral limit (where recorded) and eq. (108) at the edge, in h/c.
-  EXPECT_NE(csv.find("panel,series,E,dt_edge_over_cfl,dt_accurate_over_cfl,meaningless_at_edge,"
+  EXPECT_NE(csv.find("panel,series,cT,dt_edge_over_cfl,dt_accurate_over_cfl,meaningless_at_edge,"
                      "limit_over_cfl,eq108_over_cfl\n"
-                     "0,1,4,0.82,0.788,1,0.7564,0.02\n0,2,4,0.7,,0,,0.02\n"
-                     "1,1,4,0.82,0.788,1,0.7564,0.02\n"),
+                     "0,1,2,0.82,0.788,1,0.7564,0.02\n0,2,2,0.7,,0,,0.02\n"
+                     "1,1,2,0.82,0.788,1,0.7564,0.02\n"),
             std::string::npos)
       << csv;
   // Not drawn, each with its reason, in the data and in the report.
-  EXPECT_NE(csv.find("# not drawn, no dt of the scan survives: bar: mpm, A = 0.015, E = 4\n"),
+  EXPECT_NE(csv.find("# not drawn, no dt of the scan survives: bar: mpm, A = 0.015, c T = 2\n"),
             std::string::npos)
       << csv;
-  EXPECT_NE(csv.find("# not drawn, a method and amplitude the figure has no series for: bar: "
-                     "cpgimp, A = 0.015, E = 4\n"),
+  EXPECT_NE(csv.find("# not drawn, no series in the figure: bar: cpgimp, A = 0.015, c T = 2\n"),
             std::string::npos)
       << csv;
   EXPECT_NE(report.markdown.find("**Drawn.** 3 of 5 cases, 2 of them with their accuracy edge. "
-                                 "Not drawn, a method and amplitude the figure has no series for "
-                                 "(1): bar: cpgimp, A = 0.015, E = 4. Not drawn, no dt of the "
-                                 "scan survives (1): bar: mpm, A = 0.015, E = 4. Drawn "
+                                 "Not drawn, no dt of the scan survives (1): bar: mpm, A = "
+                                 "0.015, c T = 2. Not drawn, no series in the figure (1): bar: "
+                                 "cpgimp, A = 0.015, c T = 2. Drawn "
                                  "without an accuracy edge"),
             std::string::npos)
       << report.markdown;

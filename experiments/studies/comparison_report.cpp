@@ -359,9 +359,12 @@ void cell_table(std::ostream& md, const Comparison& cmp) {
   md << "## Every cell\n\nRatios are ours / paper. `*`: unstable; meaningless: reached T, but "
         "the error over time reached A (its errors are shown, not compared). Confidence: of the "
         "transcription.\n\n"
-        "| E | A | dt | method | c dt/h | verdict paper | ours | dt_stable paper | ours | ratio "
-        "| max error paper | ours | ratio | verdict | class | confidence |\n"
-        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+        "Each cell is placed in the coordinates that fix a run: c dt/h, A/h and the wave passes "
+        "c T (E and T enter only through c T).\n\n"
+        "| E | A | dt | method | c dt/h | A/h | c T | verdict paper | ours | dt_stable paper | "
+        "ours "
+        "| ratio | max error paper | ours | ratio | verdict | class | confidence |\n"
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& c : cmp.cells) {
     const auto& p = c.spec->params;
     const ojson& r = c.row;
@@ -370,7 +373,8 @@ void cell_table(std::ostream& md, const Comparison& cmp) {
     const std::string pv = paper_verdict(c);
     md << "| " << shortest(p.E) << " | " << shortest(p.A) << " | " << param(p.dt)
        << (c.spec->dt_inferred ? " (inferred)" : "") << " | " << to_string(p.method) << " | "
-       << sci(r["courant"].get<double>()) << " | " << (pv == "*" ? "\\*" : pv) << " | "
+       << sci(r["courant"].get<double>()) << " | " << significant(amplitude_per_cell(p), 3) << " | "
+       << significant(wave_passes(p), 3) << " | " << (pv == "*" ? "\\*" : pv) << " | "
        << our_verdict(r) << " | " << (c.paper ? show(c.paper->dt_stable) : "–") << " | "
        << (stable ? opt_sci(r["dt_stable_min"]) : "\\*") << " | "
        << (c.v.dt_stable_ratio ? ratio(*c.v.dt_stable_ratio) : "–") << " | "

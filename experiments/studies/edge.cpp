@@ -4,6 +4,7 @@
 // every scene.
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <map>
 #include <sstream>
 #include <tuple>
@@ -27,13 +28,19 @@ std::string in_cfl(double v) {
   return fixed(v, 3);
 }
 
-// "mpm, A = 0.05, E = 4".
+// A row's wave passes c T: "8", "31.6".
+std::string passes(const ojson& r) {
+  return significant(r["cT"].get<double>(), 3);
+}
+
+// "mpm, A = 0.05, E = 4 (c T = 2)".
 std::string case_name(const ojson& r) {
   std::string s = r["method"].get<std::string>();
   s += ", A = ";
   s += shortest(r["A"].get<double>());
   s += ", E = ";
   s += shortest(r["E"].get<double>());
+  s += " (c T = " + passes(r) + ")";
   return s;
 }
 
@@ -168,7 +175,47 @@ RunParams at_dt(const RunParams& base, double dt) {
   return p;
 }
 
-// The members of every case with an edge, in row order: at dt_edge, then at dt_fail.
+// ---------------------------------------------------------------------------------------------
+// Transient edges. Above the spectral limit the linearised step amplifies some mode, however
+// slowly: an edge there survives (or stays accurate) for the run length searched only. Each
+// edge above the limit is rerun at its dt for kLongPasses wave passes; the wave passes c t at
+// which that run fails is the length for which the edge holds.
+constexpr double kLongPasses = 1000;
+
+// The edges of a row (dt_edge, then dt_accurate where it differs) that lie above its scheme's
+// spectral limit, in units of h/c.
+std::vector<double> edges_above_limit(const ojson& r) {
+  std::vector<double> dts;
+  if (!has_number(r, "courant_spectral")) return dts;
+  const double limit = r["courant_spectral"].get<double>();
+  for (const char* col : {"dt_edge", "dt_accurate"}) {
+    if (!has_number(r, col)) continue;
+    const double dt = r[col].get<double>();
+    if (dt / r["dt_cfl"].get<double>() > limit &&
+        std::find(dts.begin(), dts.end(), dt) == dts.end())
+      dts.push_back(dt);
+  }
+  return dts;
+}
+
+// The run at dt for kLongPasses wave passes.
+RunParams long_run(const RunParams& base, double dt) {
+  RunParams p = at_dt(base, dt);
+  p.T = kLongPasses / wave_speed(p);
+  return p;
+}
+
+// What the long run at one edge found: the wave passes it reached (kLongPasses when it survived)
+// and its outcome.
+struct LongRun {
+  double dt = 0;
+  double passes = 0;
+  bool survived = false;
+  std::string outcome;
+};
+
+// The members of every case with an edge, in row order: at dt_edge, then at dt_fail; after them,
+// in row order, the long run at each edge above the spectral limit.
 std::vector<RunParams> edge_follow_up(const FollowUpContext& c) {
   std::vector<RunParams> runs;
   for (std::size_t i = 0; i < c.rows.size(); ++i) {
@@ -181,14 +228,22 @@ std::vector<RunParams> edge_follow_up(const FollowUpContext& c) {
     for (auto& p : ensemble_members(at_dt(base, r["dt_fail"].get<double>())))
       runs.push_back(std::move(p));
   }
+  for (std::size_t i = 0; i < c.rows.size(); ++i) {
+    for (const double dt : edges_above_limit(c.rows[i]))
+      runs.push_back(long_run(c.spec.cases.at(i).params, dt));
+  }
   return runs;
 }
 
-// Per row, its ensemble (empty where it has no edge or the follow-up runs are absent), keyed by
-// the row's address.
-std::map<const ojson*, EdgeEnsemble> edge_ensembles(const std::vector<ojson>& rows,
-                                                    const std::vector<ojson>& follow_up) {
-  std::map<const ojson*, EdgeEnsemble> out;
+// What the follow-up runs found per row, keyed by the row's address: its ensemble (empty where
+// it has no edge or the follow-up runs are absent) and its long runs.
+struct EdgeFollowUps {
+  std::map<const ojson*, EdgeEnsemble> ensembles;
+  std::map<const ojson*, std::vector<LongRun>> long_runs;
+};
+
+EdgeFollowUps edge_follow_ups(const std::vector<ojson>& rows, const std::vector<ojson>& follow_up) {
+  EdgeFollowUps out;
   std::size_t next = 0;
   auto take = [&](int& members, int& count, bool want_survived) {
     for (int k = 0; k < kEnsembleMembers && next < follow_up.size(); ++k) {
@@ -198,11 +253,52 @@ std::map<const ojson*, EdgeEnsemble> edge_ensembles(const std::vector<ojson>& ro
   };
   for (const auto& r : rows) {
     if (!has_number(r, "dt_edge") || next >= follow_up.size()) continue;
-    EdgeEnsemble& e = out[&r];
+    EdgeEnsemble& e = out.ensembles[&r];
     take(e.at_edge, e.survived, true);
     if (has_number(r, "dt_fail")) take(e.at_fail, e.failed, false);
   }
+  for (const auto& r : rows) {
+    for (const double dt : edges_above_limit(r)) {
+      if (next >= follow_up.size()) return out;
+      const ojson& run = follow_up[next++];
+      LongRun l;
+      l.dt = dt;
+      l.survived = survived(run);
+      l.outcome = outcome(run);
+      const double c = std::sqrt(run["E"].get<double>());
+      l.passes = l.survived || !has_number(run, "failure_time")
+                     ? run["cT"].get<double>()
+                     : c * run["failure_time"].get<double>();
+      out.long_runs[&r].push_back(l);
+    }
+  }
   return out;
+}
+
+// The long run of a row at dt (nullptr when there is none).
+const LongRun* long_run_at(const EdgeFollowUps& f, const ojson& r, double dt) {
+  const auto it = f.long_runs.find(&r);
+  if (it == f.long_runs.end()) return nullptr;
+  for (const auto& l : it->second)
+    if (l.dt == dt) return &l;
+  return nullptr;
+}
+
+// The margin of an edge to the spectral limit, and whether it is transient: "0.97 x limit",
+// "1.04 x limit, **transient**: fails at c T = 530", "1.01 x limit, holds to c T = 1000".
+std::string margin_text(const EdgeFollowUps& f, const ojson& r, const char* dt_col) {
+  if (!has_number(r, "courant_spectral") || !has_number(r, dt_col)) return "";
+  const double dt = r[dt_col].get<double>();
+  const double over = dt / r["dt_cfl"].get<double>() / r["courant_spectral"].get<double>();
+  std::string s = fixed(over, 3) + " x limit";
+  if (over <= 1) return s;
+  const LongRun* l = long_run_at(f, r, dt);
+  if (!l) return s + ", above it (no long run)";
+  if (l->survived && l->outcome == "meaningless")
+    return s + ", **transient**: meaningless by c T = " + significant(l->passes, 4);
+  if (l->survived)
+    return s + ", above it; " + l->outcome + " to c T = " + significant(l->passes, 4);
+  return s + ", **transient**: fails at c T = " + significant(l->passes, 3);
 }
 
 // The table's cell: "robust: 8 of 8 survive, 8 of 8 fail above", "**sensitive**: 5 of 8
@@ -218,9 +314,16 @@ std::string ensemble_cell(const std::map<const ojson*, EdgeEnsemble>& all, const
   return s.str();
 }
 
+// The values to three significant digits, as the tables print them.
+std::vector<double> rounded(std::vector<double> v) {
+  for (double& x : v)
+    x = std::stod(significant(x, 3));
+  return v;
+}
+
 // The conclusions the rows and their ensembles decide.
-std::vector<Claim> edge_claims(const std::vector<ojson>& rows,
-                               const std::map<const ojson*, EdgeEnsemble>& ensembles) {
+std::vector<Claim> edge_claims(const std::vector<ojson>& rows, const EdgeFollowUps& f) {
+  const auto& ensembles = f.ensembles;
   int with_edge = 0, robust = 0, run = 0, monotone = 0, eq108_below = 0, eq108_n = 0;
   int above_limit = 0, limit_n = 0;
   double over_lo = 1e300, over_hi = 0, limit_hi = 0;
@@ -280,6 +383,36 @@ std::vector<Claim> edge_claims(const std::vector<ojson>& rows,
   limit.holds = above_limit == 0;
   claims.push_back(limit);
 
+  // The accuracy edges above the limit, and what their long runs found.
+  int accurate_n = 0, accurate_above = 0, transient = 0, meaningless = 0;
+  std::vector<double> fail_passes;
+  for (const auto& r : rows) {
+    if (!has_number(r, "dt_accurate") || !has_number(r, "courant_spectral")) continue;
+    ++accurate_n;
+    const double dt = r["dt_accurate"].get<double>();
+    if (dt / r["dt_cfl"].get<double>() <= r["courant_spectral"].get<double>()) continue;
+    ++accurate_above;
+    if (const LongRun* l = long_run_at(f, r, dt); l && !l->survived) {
+      ++transient;
+      fail_passes.push_back(l->passes);
+    } else if (l && l->outcome == "meaningless") {
+      ++meaningless;
+    }
+  }
+  Claim lasting = claim("accurate-edges-at-most-the-limit",
+                        "Every accuracy edge lies at or below its scheme's spectral limit, so that "
+                        "it holds for a run of any length",
+                        "{above} of {n} lie above it; rerun for {passes} wave passes, {transient} "
+                        "of them fail (at c T = {span}) and {meaningless} turn meaningless");
+  lasting.count("above", accurate_above)
+      .count("n", accurate_n)
+      .value("passes", shortest(kLongPasses))
+      .count("transient", transient)
+      .value("span", span(rounded(fail_passes)))
+      .count("meaningless", meaningless);
+  lasting.holds = accurate_above == 0;
+  claims.push_back(lasting);
+
   Claim mono = claim("survival-monotone", "Survival is monotone in dt in every search",
                      "{monotone} of {n} searches");
   mono.count("monotone", monotone).count("n", static_cast<long long>(rows.size()));
@@ -322,37 +455,53 @@ std::string search_rule(const EdgeOptions& o) {
          "below the discretisation error (docs/design.md, \"Ensembles\") at dt_edge and at the dt "
          "just above it that failed; *robust* when every member survives at dt_edge and fails "
          "above, "
-         "*sensitive* otherwise.";
+         "*sensitive* otherwise. The survival edge's *bracket* is the dt just above it that "
+         "failed: the edge lies between the two. The *edge / limit* columns give each edge's "
+         "margin "
+         "to the spectral limit (below one: below the limit). Above the limit some mode of the "
+         "linearised step grows, however slowly, so an edge there holds for the run length "
+         "searched only: it is rerun at its dt for " +
+         shortest(kLongPasses) +
+         " wave passes, and marked **transient** with the wave passes c T at which that run "
+         "fails. E only rescales time: a case at E run to T is the scheme run for c T = sqrt(E) T "
+         "wave passes (column c T), so the edges against E at a fixed T are edges against run "
+         "length.";
 }
 
-// Per case: both edges against h/c, the run at the survival edge, the errors at T, eq. (108),
-// the flips and what the search cost.
-std::string edge_table(const std::vector<ojson>& rows,
-                       const std::map<const ojson*, EdgeEnsemble>& ensembles) {
+// Per case: where it lies (A / h, c T), both edges against h/c with the bracket the bisection
+// left and their margin to the spectral limit, the run at the survival edge, the errors at T,
+// eq. (108), the flips and what the search cost.
+std::string edge_table(const std::vector<ojson>& rows, const EdgeFollowUps& f) {
   std::ostringstream md;
-  md << "| method | A | E | h/c | spectral limit (h/c) | survival edge dt_edge (h/c) | run at "
-        "dt_edge | error at T there | accuracy edge dt_accurate (h/c) | error at T: reference → "
-        "at dt_accurate | eq. (108) at dt_edge (dt_edge / it) | survival in dt | ensemble | probes "
-        "| particle-steps |\n"
-        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  md << "| method | A | A/h | E | c T | h/c | spectral limit (h/c) | survival edge dt_edge (h/c; "
+        "bracket) | survival edge / limit | run at dt_edge | error at T there | accuracy edge "
+        "dt_accurate (h/c) | accuracy edge / limit | error at T: reference → at dt_accurate | "
+        "eq. (108) at dt_edge (dt_edge / it) | survival in dt | ensemble | probes | "
+        "particle-steps |\n"
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& r : rows) {
     const bool found = has_number(r, "dt_edge");
     md << "| " << r["method"].get<std::string>() << " | " << shortest(r["A"].get<double>()) << " | "
-       << shortest(r["E"].get<double>()) << " | " << sci(r["dt_cfl"].get<double>(), 3) << " | "
+       << significant(r["A_over_h"].get<double>(), 3) << " | " << shortest(r["E"].get<double>())
+       << " | " << passes(r) << " | " << sci(r["dt_cfl"].get<double>(), 3) << " | "
        << (has_number(r, "courant_spectral") ? in_cfl(r["courant_spectral"].get<double>())
                                              : std::string("–"))
        << " | ";
     if (!found) {
-      md << "none in the scan | – | – | – | – | – | ";
+      md << "none in the scan | – | – | – | – | – | – | – | ";
     } else {
       md << sci(r["dt_edge"].get<double>(), 3) << " ("
-         << in_cfl(r["dt_edge_over_cfl"].get<double>()) << ") | " << outcome(r) << " | "
+         << in_cfl(r["dt_edge_over_cfl"].get<double>());
+      if (has_number(r, "dt_fail"))
+        md << "; fails at " << in_cfl(r["dt_fail"].get<double>() / r["dt_cfl"].get<double>());
+      md << ") | " << margin_text(f, r, "dt_edge") << " | " << outcome(r) << " | "
          << opt_sci(r["max_error"]) << " | ";
       if (has_number(r, "dt_accurate")) {
         md << sci(r["dt_accurate"].get<double>(), 3) << " ("
-           << in_cfl(r["dt_accurate_over_cfl"].get<double>()) << ") | ";
+           << in_cfl(r["dt_accurate_over_cfl"].get<double>()) << ") | "
+           << margin_text(f, r, "dt_accurate") << " | ";
       } else {
-        md << "none (reference meaningless) | ";
+        md << "none (reference meaningless) | – | ";
       }
       md << opt_sci(r["max_error_reference"]) << " → " << opt_sci(r["max_error_at_accurate"])
          << " | " << opt_sci(r["dt_stable_min_at_edge"]);
@@ -362,7 +511,7 @@ std::string edge_table(const std::vector<ojson>& rows,
     }
     const auto flips = flips_of(r);
     md << (flips.empty() ? std::string("monotone") : "**not monotone**: " + flips_text(flips))
-       << " | " << ensemble_cell(ensembles, r) << " | " << r["probes"].dump() << " | "
+       << " | " << ensemble_cell(f.ensembles, r) << " | " << r["probes"].dump() << " | "
        << sci(r["search_particle_steps"].get<double>()) << " |\n";
   }
   return md.str();
@@ -392,7 +541,7 @@ int series_of(const ojson& r) {
 // Why a case is not drawn ("" when it is).
 std::string not_drawn_reason(const ojson& r) {
   if (panel_of(r) < 0) return "a scene the figure has no panel for";
-  if (series_of(r) == 0) return "a method and amplitude the figure has no series for";
+  if (series_of(r) == 0) return "no series in the figure";
   if (!has_number(r, "dt_edge")) return "no dt of the scan survives";
   return "";
 }
@@ -422,7 +571,7 @@ FigureCount figure_count(const std::vector<ojson>& rows) {
   return c;
 }
 
-// "bar: mpm, A = 0.05, E = 16, 64; steffen: ...".
+// "bar: mpm, A = 0.05, c T = 4, 8; steffen: ...".
 std::string listed(const std::vector<const ojson*>& rows) {
   std::vector<std::pair<std::string, std::vector<std::string>>> groups;
   for (const ojson* r : rows) {
@@ -431,12 +580,12 @@ std::string listed(const std::vector<const ojson*>& rows) {
     auto it =
         std::find_if(groups.begin(), groups.end(), [&](const auto& g) { return g.first == key; });
     if (it == groups.end()) it = groups.insert(groups.end(), {key, {}});
-    it->second.push_back(shortest((*r)["E"].get<double>()));
+    it->second.push_back(passes(*r));
   }
   std::string s;
   for (const auto& [key, Es] : groups) {
     if (!s.empty()) s += "; ";
-    s += key + ", E = ";
+    s += key + ", c T = ";
     for (std::size_t i = 0; i < Es.size(); ++i)
       s += (i ? ", " : "") + Es[i];
   }
@@ -465,11 +614,51 @@ std::string edge_subtitle_text(const FigureCount& c) {
   return s;
 }
 
+// Against amplitude: for each method of the scene run at one c T with at least kAmplitudeSweep
+// amplitudes, its edges in order of A / h, with their margins to the spectral limit ("" when the
+// scene has no such sweep).
+constexpr std::size_t kAmplitudeSweep = 3;
+
+std::string amplitude_table(const std::vector<ojson>& rows, const EdgeFollowUps& f) {
+  std::map<std::pair<std::string, double>, std::vector<const ojson*>> sweeps;
+  for (const auto& r : rows)
+    sweeps[{r["method"].get<std::string>(), r["cT"].get<double>()}].push_back(&r);
+  std::ostringstream md;
+  for (auto& [key, list] : sweeps) {
+    if (list.size() < kAmplitudeSweep) continue;
+    std::sort(list.begin(), list.end(), [](const ojson* a, const ojson* b) {
+      return (*a)["A_over_h"].get<double>() < (*b)["A_over_h"].get<double>();
+    });
+    if (md.tellp() == 0) {
+      md << "\n**Against amplitude.** The same cases ordered by A / h at one run length: each "
+            "edge, its margin to the spectral limit and the run there.\n\n"
+            "| method | c T | A/h | survival edge (h/c) | survival edge / limit | run at it | "
+            "accuracy edge (h/c) | accuracy edge / limit |\n|---|---|---|---|---|---|---|---|\n";
+    }
+    for (const ojson* r : list) {
+      md << "| " << key.first << " | " << passes(*r) << " | "
+         << significant((*r)["A_over_h"].get<double>(), 3) << " | ";
+      if (!has_number(*r, "dt_edge")) {
+        md << "none in the scan | – | – | – | – |\n";
+        continue;
+      }
+      md << in_cfl((*r)["dt_edge_over_cfl"].get<double>()) << " | " << margin_text(f, *r, "dt_edge")
+         << " | " << outcome(*r) << " | ";
+      if (has_number(*r, "dt_accurate")) {
+        md << in_cfl((*r)["dt_accurate_over_cfl"].get<double>()) << " | "
+           << margin_text(f, *r, "dt_accurate") << " |\n";
+      } else {
+        md << "none (reference meaningless) | – |\n";
+      }
+    }
+  }
+  return md.str();
+}
+
 // One scene's section: the first has the figure and states the rules; each has its own reading
 // and table.
 std::string edge_markdown(const Spec& spec, const std::vector<ojson>& all,
-                          const std::vector<ojson>& rows, bool first,
-                          const std::map<const ojson*, EdgeEnsemble>& ensembles) {
+                          const std::vector<ojson>& rows, bool first, const EdgeFollowUps& f) {
   std::ostringstream md;
   if (first) {
     md << "## Results\n\n"
@@ -483,7 +672,8 @@ std::string edge_markdown(const Spec& spec, const std::vector<ojson>& all,
   } else {
     md << "\n## " << scene_title(rows.front()["scene"].get<std::string>()) << "\n\n";
   }
-  md << "**Reading.** " << edge_summary_text(rows) << "\n\n" << edge_table(rows, ensembles);
+  md << "**Reading.** " << edge_summary_text(rows) << "\n\n"
+     << edge_table(rows, f) << amplitude_table(rows, f);
   return md.str();
 }
 
@@ -495,8 +685,8 @@ std::string edge_data_csv(const std::vector<ojson>& rows, const std::string& hea
     if (not_drawn_reason(r).empty()) drawn.push_back(&r);
   }
   std::stable_sort(drawn.begin(), drawn.end(), [](const ojson* a, const ojson* b) {
-    return std::tuple(panel_of(*a), series_of(*a), (*a)["E"].get<double>()) <
-           std::tuple(panel_of(*b), series_of(*b), (*b)["E"].get<double>());
+    return std::tuple(panel_of(*a), series_of(*a), (*a)["cT"].get<double>()) <
+           std::tuple(panel_of(*b), series_of(*b), (*b)["cT"].get<double>());
   });
   std::ostringstream csv;
   csv << header_lines << "# " << edge_subtitle_text(count) << "\n";
@@ -513,15 +703,16 @@ std::string edge_data_csv(const std::vector<ojson>& rows, const std::string& hea
   for (std::size_t i = 0; i < kSeries.size(); ++i)
     csv << (i ? ", " : " ") << i + 1 << ' ' << kSeries[i].first
         << " A = " << shortest(kSeries[i].second);
-  csv << "; dt in units of h/c; meaningless_at_edge: "
+  csv << "; cT: the wave passes c T = sqrt(E) T of the run; dt in units of h/c; "
+         "meaningless_at_edge: "
          "whether the run at the survival edge is meaningless (a boolean); limit_over_cfl: the "
          "scheme's "
          "spectral limit at the layout; eq108_over_cfl: eq. (108) at the survival edge (its "
          "minimum over the run there), both in units of h/c (empty where not measured)\n"
-         "panel,series,E,dt_edge_over_cfl,dt_accurate_over_cfl,meaningless_at_edge,limit_over_cfl,"
+         "panel,series,cT,dt_edge_over_cfl,dt_accurate_over_cfl,meaningless_at_edge,limit_over_cfl,"
          "eq108_over_cfl\n";
   for (const ojson* r : drawn) {
-    csv << panel_of(*r) << ',' << series_of(*r) << ',' << shortest((*r)["E"].get<double>()) << ','
+    csv << panel_of(*r) << ',' << series_of(*r) << ',' << shortest((*r)["cT"].get<double>()) << ','
         << csv_cell((*r)["dt_edge_over_cfl"]) << ',' << csv_cell((*r)["dt_accurate_over_cfl"])
         << ',' << (outcome(*r) == "meaningless" ? 1 : 0) << ','
         << (has_number(*r, "courant_spectral") ? shortest((*r)["courant_spectral"].get<double>())
@@ -541,18 +732,23 @@ std::string edge_subtitle(const Spec& spec, const ojson& doc) {
 
 StudyReport edge_report(const ReportContext& c) {
   StudyReport report;
-  // by_scene copies the rows, in their order within each scene: the ensembles, keyed by the
+  // by_scene copies the rows, in their order within each scene: the follow-ups, keyed by the
   // rows of c.rows, are handed to each scene's copies in that order.
   const auto scenes = by_scene(c.rows);
-  const auto all = edge_ensembles(c.rows, c.follow_up);
+  const EdgeFollowUps all = edge_follow_ups(c.rows, c.follow_up);
   std::vector<Claim> claims = edge_claims(c.rows, all);
   for (std::size_t i = 0; i < scenes.size(); ++i) {
-    std::map<const ojson*, EdgeEnsemble> mine;
+    EdgeFollowUps mine;
     std::size_t k = 0;
     for (const auto& r : c.rows) {
       if (r["scene"] != scenes[i].scene) continue;
-      const auto it = all.find(&r);
-      if (it != all.end() && k < scenes[i].rows.size()) mine[&scenes[i].rows[k]] = it->second;
+      if (k < scenes[i].rows.size()) {
+        const ojson* copy = &scenes[i].rows[k];
+        if (const auto it = all.ensembles.find(&r); it != all.ensembles.end())
+          mine.ensembles[copy] = it->second;
+        if (const auto it = all.long_runs.find(&r); it != all.long_runs.end())
+          mine.long_runs[copy] = it->second;
+      }
       ++k;
     }
     report.markdown += edge_markdown(c.spec, c.rows, scenes[i].rows, i == 0, mine);

@@ -207,11 +207,17 @@ std::string table1_markdown(const Spec& spec, const std::vector<ojson>& rows, co
   }
   double current_E = std::nan("");
   for (const auto& [E, A] : blocks) {
+    // The block in the coordinates that fix a run: c T for E (at the spec's T), A / h for A.
+    const auto in_block =
+        std::find_if(spec.cases.begin(), spec.cases.end(),
+                     [&](const CaseSpec& c) { return c.params.E == E && c.params.A == A; });
     if (E != current_E) {
-      md << "### E = " << shortest(E) << "\n\n";
+      md << "### E = " << shortest(E) << " (c T = " << significant(wave_passes(in_block->params), 3)
+         << " wave passes)\n\n";
       current_E = E;
     }
-    md << "**A = " << shortest(A) << "**\n\n";
+    md << "**A = " << shortest(A)
+       << " (A / h = " << significant(amplitude_per_cell(in_block->params), 3) << ")**\n\n";
     md << "| dt | method | c dt/h | dt_stable paper | dt_stable ours | max error paper | max error "
           "ours | ours / paper | ours: verdict | transcription | particle-steps | ensemble |\n";
     md << "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
