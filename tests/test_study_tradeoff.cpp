@@ -7,6 +7,7 @@
 
 #include <sstream>
 
+#include "advice.hpp"
 #include "study_rows.hpp"
 
 namespace mpmstab {
@@ -212,8 +213,14 @@ TEST(TradeoffStudy, RecommendsTheCheapestSettingThatPassesTheWholeRule) {
   jittered["courant_spectral"] = nullptr;
   ojson missed = jittered;
   missed["max_error_over_time"] = 1e-3;  // misses both targets' error / 2
-  // The follow-up runs: two per candidate, in the order of the rows (C = 0.5, then C = 0.25).
-  const auto report = test_support::study_report("tradeoff", rows, {fine, missed, fine, jittered});
+  ojson small = cfl(0.5, 200), longer = cfl(0.5, 800);
+  small["A"] = 0.015 / kAdviceRule.amplitude_factor;
+  small["max_error_over_time"] = 1e-7;
+  longer["T"] = 4.0;
+  // The follow-up runs: kConfirmingRuns per candidate, in the order of the rows (C = 0.5, then
+  // C = 0.25).
+  const auto report = test_support::study_report(
+      "tradeoff", rows, {fine, missed, small, longer, fine, jittered, small, longer});
   const std::string line = line_with(report.markdown, "| 4 | 1e-4 |");
   EXPECT_NE(line.find("| 2 (2, 1) | gimp cfl C=0.25 |"), std::string::npos) << line;
   for (const auto& c : report.claims) {

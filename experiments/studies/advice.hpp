@@ -6,8 +6,12 @@
 //   (b) its error over time (the largest error after any step, never the error at one instant)
 //       is at most the target divided by error_margin, in a run that ends stable, and
 //   (c) its confirming runs -- the same setting on a grid `refine` times finer at the same c dt/h,
-//       and on a layout jittered by `jitter` -- both meet (a) and (b) as well.
-// The rule, its margins and the confirming runs are printed with every recommendation.
+//       on a layout jittered by `jitter`, at an amplitude `amplitude_factor` times smaller (the
+//       target scaled with A: the same relative accuracy) and on a run `length_factor` times as
+//       long -- all meet (a) and (b) as well.
+// The rule, its margins and the confirming runs are printed with every recommendation, with the
+// setting's margin in its own scan: the distance to the first larger step the scan ran that is
+// unstable or meaningless.
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -21,11 +25,15 @@
 namespace mpmstab {
 
 struct AdviceRule {
-  double limit_margin = 1.25;  // (a): c dt / h <= limit / limit_margin
-  double error_margin = 2;     // (b): error over time <= target / error_margin
-  int refine = 2;              // (c): cells x refine, dt / refine (same c dt / h)
-  double jitter = 0.05;        // (c): each particle moved by up to jitter / 2 of its spacing
+  double limit_margin = 1.25;     // (a): c dt / h <= limit / limit_margin
+  double error_margin = 2;        // (b): error over time <= target / error_margin
+  int refine = 2;                 // (c): cells x refine, dt / refine (same c dt / h)
+  double jitter = 0.05;           // (c): each particle moved by up to jitter / 2 of its spacing
+  double amplitude_factor = 100;  // (c): A / amplitude_factor, the target likewise
+  double length_factor = 4;       // (c): T x length_factor
 };
+// The confirming runs of one setting, in confirming_runs() order.
+inline constexpr std::size_t kConfirmingRuns = 4;
 inline constexpr AdviceRule kAdviceRule{};
 
 // (a) on a record: its courant against its courant_spectral (the uniform layout's limit; a
@@ -41,7 +49,8 @@ bool meets_target(const nlohmann::ordered_json& row, double target,
 bool candidate(const nlohmann::ordered_json& row, double target,
                const AdviceRule& rule = kAdviceRule);
 
-// The confirming runs of (c) for a setting: [0] the finer grid, [1] the jittered layout.
+// The confirming runs of (c) for a setting: [0] the finer grid, [1] the jittered layout, [2] the
+// smaller amplitude, [3] the longer run (kConfirmingRuns).
 std::vector<RunParams> confirming_runs(const RunParams& p, const AdviceRule& rule = kAdviceRule);
 
 // A setting judged by the whole rule.
@@ -58,9 +67,23 @@ Advice judge(const nlohmann::ordered_json& row, double target,
 // "c dt/h <= limit / 1.25; error over time <= target / 2; confirmed on 2x the cells and on a
 // layout jittered by 0.5": the rule in words, printed with every recommendation.
 std::string describe_rule(const AdviceRule& rule = kAdviceRule);
-// One confirming run in a few words: "200 cells: error over time 3.1e-5, c dt/h 0.4 (limit
-// 0.756)" or its verdict where it did not end stable.
-std::string describe_confirming(const nlohmann::ordered_json& row);
+// One confirming run of `setting` in a few words, named by what it changes: "200 cells: error
+// over time 3.1e-5, c dt/h 0.4", "A = 1.5e-4: ...", "T = 4: ...", or its verdict where it did
+// not end stable.
+std::string describe_confirming(const nlohmann::ordered_json& row,
+                                const nlohmann::ordered_json& setting);
+// Every confirming run of an advice, "; "-separated.
+std::string describe_confirming(const struct Advice& a);
+
+// The setting's margin in its own scan: among `scan`, the runs of the same setting but for its
+// step parameter (dt for the fixed policy, C for cfl, s for the others), the first with a larger
+// parameter that is unstable or meaningless. "the first failing step of the scan: C = 0.8 (1.6x),
+// unstable"; "no larger step of the scan fails (run up to C = 1, 2x)"; "no larger step was run".
+std::string margin_text(const nlohmann::ordered_json& setting,
+                        const std::vector<nlohmann::ordered_json>& scan);
+// The ratio of that first failing parameter to the setting's (nullopt where none fails).
+std::optional<double> margin_ratio(const nlohmann::ordered_json& setting,
+                                   const std::vector<nlohmann::ordered_json>& scan);
 
 // The setting of a record as a spec case (experiments/*.json): the parameters of
 // parameter_names() it sets, so that a test or a user can rerun it and its confirming runs.

@@ -67,8 +67,9 @@ int node_visits(const MethodKey& k) {
 
 struct Setting {
   const ojson* row = nullptr;
-  double work = 0;  // particle-steps x node visits
-  Advice advice;    // the advice rule on it (advice.hpp), with its confirming runs
+  double work = 0;               // particle-steps x node visits
+  Advice advice;                 // the advice rule on it (advice.hpp), with its confirming runs
+  std::optional<double> margin;  // margin_ratio in methods_grid (nullopt: no larger step fails)
 };
 
 // The error targets a user chooses a setting for.
@@ -76,7 +77,7 @@ const std::vector<double> kTargets = {1e-4, 1e-6};
 
 // The settings of methods_grid that pass parts (a) and (b) of the advice rule for the loosest
 // target (a candidate for a tighter target is one for the looser too): their confirming runs are
-// the study's follow-up runs, two per candidate in this order.
+// the study's follow-up runs, kConfirmingRuns per candidate in this order.
 std::vector<std::size_t> candidates(const std::vector<ojson>& grid) {
   const double loosest = *std::max_element(kTargets.begin(), kTargets.end());
   std::vector<std::size_t> out;
@@ -121,8 +122,11 @@ std::vector<MethodRow> method_rows(const std::vector<ojson>& edges, const std::v
   // The confirming runs of each candidate, by its row in the grid.
   std::map<const ojson*, std::vector<ojson>> confirming;
   const auto cands = candidates(grid);
-  for (std::size_t k = 0; k < cands.size() && 2 * k + 1 < follow_up.size(); ++k)
-    confirming[&grid[cands[k]]] = {follow_up[2 * k], follow_up[2 * k + 1]};
+  for (std::size_t k = 0; k < cands.size() && (k + 1) * kConfirmingRuns <= follow_up.size(); ++k) {
+    const auto first = follow_up.begin() + std::ptrdiff_t(k * kConfirmingRuns);
+    confirming[&grid[cands[k]]] =
+        std::vector<ojson>(first, first + std::ptrdiff_t(kConfirmingRuns));
+  }
   std::vector<MethodRow> rows;
   std::map<MethodKey, std::size_t> index;
   for (const auto& r : edges) {
@@ -146,14 +150,20 @@ std::vector<MethodRow> method_rows(const std::vector<ojson>& edges, const std::v
       const bool cfl = (*r)["policy"].get<std::string>() == "cfl";
       const bool finest_dt = cfl && (*r)["cfl_factor"].get<double>() == kOrderHCourant;
       if (e && finest_dt) h_points.emplace_back(1.0 / (*r)["cells"].get<double>(), *e);
-      if (e && (*r)["cells"].get<int>() == kTable1Cells) dt_points.emplace_back(dt_of(*r), *e);
+      // The order in dt is that of the convergent scheme: not from a run above its limit.
+      const bool below_limit =
+          !has_number(*r, "courant_spectral") ||
+          (*r)["courant"].get<double>() <= (*r)["courant_spectral"].get<double>();
+      if (e && below_limit && (*r)["cells"].get<int>() == kTable1Cells)
+        dt_points.emplace_back(dt_of(*r), *e);
       const double w = particle_steps(*r) * visits;
       const auto conf = confirming.find(r);
       for (std::size_t t = 0; t < kTargets.size(); ++t) {
         if (conf == confirming.end()) continue;
         Advice a = judge(*r, kTargets[t], conf->second);
         auto& best = m.recommended[t];
-        if (a.recommended() && (!best || w < best->work)) best = Setting{r, w, std::move(a)};
+        if (a.recommended() && (!best || w < best->work))
+          best = Setting{r, w, std::move(a), margin_ratio(*r, grid)};
       }
     }
     m.order_h = loglog_slope(h_points);
@@ -176,7 +186,8 @@ std::string setting_text(const std::optional<Setting>& s) {
   } else {
     t << "dt = " << param(r["dt"].get<double>());
   }
-  t << " (" << sci(s->work) << ")";
+  t << " (" << sci(s->work) << "; margin "
+    << (s->margin ? ratio(*s->margin) + "x" : std::string("not measured")) << ")";
   return t.str();
 }
 
@@ -228,7 +239,8 @@ std::string reading(const std::vector<MethodRow>& rows) {
 
 // The recommendations: per target, the cheapest setting of every method that passes the advice
 // rule, the cheapest of them named, and the claim that each passes its confirming runs.
-std::string recommendations(const std::vector<MethodRow>& rows, std::vector<Claim>& claims) {
+std::string recommendations(const std::vector<MethodRow>& rows, const std::vector<ojson>& grid,
+                            std::vector<Claim>& claims) {
   std::ostringstream md;
   md << "**Recommendations.** A setting is recommended only under the one advice rule of every "
         "study (docs/design.md, \"Advice\"): "
@@ -249,8 +261,8 @@ std::string recommendations(const std::vector<MethodRow>& rows, std::vector<Clai
          << ", c dt/h " << shortest((*s.row)["courant"].get<double>()) << " (limit "
          << fixed((*s.row)["courant_spectral"].get<double>(), 3) << "), error over time "
          << sci((*s.row)["max_error_over_time"].get<double>())
-         << "; confirming runs: " << describe_confirming(s.advice.confirming[0]) << "; "
-         << describe_confirming(s.advice.confirming[1]);
+         << "; margin: " << margin_text(*s.row, grid)
+         << "; confirming runs: " << describe_confirming(s.advice);
     }
     md << ".\n";
     claims.push_back(recommendations_claim(all, kTargets[t]));
@@ -321,7 +333,7 @@ std::string methods_data(const std::vector<MethodRow>& rows, const std::string& 
   return csv.str();
 }
 
-// The confirming runs of every candidate setting (advice.hpp), two per candidate.
+// The confirming runs of every candidate setting (advice.hpp), kConfirmingRuns per candidate.
 std::vector<RunParams> methods_follow_up(const FollowUpContext& c) {
   const StudyInput& in = c.inputs.at("methods_grid");
   if (!in.present() || !in.spec) return {};
@@ -353,8 +365,8 @@ std::string how_to_read_the_setting(const std::vector<ojson>& grid) {
      << " (the verdict where the run did not end stable);\n"
      << "- *order in h*: least-squares slope of log(error) against log(h) over "
      << listing(h_runs, "cells") << " cells at C = c dt / h = " << shortest(kOrderHCourant)
-     << "; *order in dt*: against log(dt) on " << kTable1Cells
-     << " cells over C = " << listing(cfl_runs, "cfl_factor")
+     << "; *order in dt*: against log(dt), over the runs below the scheme's spectral limit, on "
+     << kTable1Cells << " cells over C = " << listing(cfl_runs, "cfl_factor")
      << " and dt = " << listing(fixed_runs, "dt") << " (C = " << listing(fixed_runs, "courant")
      << "); at least three stable runs, `–` otherwise. An order in dt near zero means the "
         "grid's error hides the time error;\n";
@@ -367,7 +379,7 @@ StudyReport methods_report(const ReportContext& c) {
   std::vector<Claim> claims;
   std::ostringstream md;
   md << "## Results\n\n**Reading.** " << reading(rows) << "\n\n"
-     << recommendations(rows, claims) << "![" << c.spec.title << "](" << c.spec.name
+     << recommendations(rows, grid, claims) << "![" << c.spec.title << "](" << c.spec.name
      << ".png)\n\nThe figure places each method by its survival edge at the tiny "
      << "amplitude (x) and its error at Table 1's setting (y), one panel per update order; a "
      << "method unstable at that setting or without an edge is left out. Vector version: ["
@@ -393,7 +405,8 @@ StudyReport methods_report(const ReportContext& c) {
         "the grids and Courant numbers it sweeps), the one with the fewest node visits "
         "(particle-steps x node visits per particle-step, in brackets) that passes the advice "
         "rule above for that target, confirming runs included; a meaningless, unstable or too "
-        "short run never counts.\n\n";
+        "short run never counts. Its *margin*: the first larger step of the same setting in "
+        "methods_grid that is unstable or meaningless, as a multiple of its step.\n\n";
   if (grid.empty()) {
     md << "methods_grid has not been run into this folder: the columns it provides are `–`.\n\n";
   }

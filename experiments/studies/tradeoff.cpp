@@ -320,8 +320,10 @@ Recommendations recommend(const std::vector<ojson>& rows, const std::vector<ojso
   out.by_target.resize(kTargets.size());
   std::map<std::size_t, std::vector<ojson>> confirming;
   const auto list = to_confirm(rows);
-  for (std::size_t k = 0; k < list.size() && 2 * k + 1 < follow_up.size(); ++k)
-    confirming[list[k]] = {follow_up[2 * k], follow_up[2 * k + 1]};
+  for (std::size_t k = 0; k < list.size() && (k + 1) * kConfirmingRuns <= follow_up.size(); ++k) {
+    const auto first = follow_up.begin() + std::ptrdiff_t(k * kConfirmingRuns);
+    confirming[list[k]] = std::vector<ojson>(first, first + std::ptrdiff_t(kConfirmingRuns));
+  }
   std::vector<double> Es;
   for (const auto& r : rows) {
     if (!has_number(r, "courant_spectral")) {
@@ -370,21 +372,23 @@ std::string recommendations_markdown(const std::vector<ojson>& rows, const Recom
        << " record no spectral limit (their layout is not the uniform bar's, and the dense "
           "analysis is not recorded for them), so none of their settings can be recommended.";
   }
+  md << " The *margin* is the distance from the recommended step to the first larger step of "
+        "the same setting that the study ran and found unstable or meaningless.";
   md << "\n\n| E | target | candidates (confirmed, passed) | recommended | c dt/h (limit) | error "
-        "over time | particle-steps | confirming runs |\n|---|---|---|---|---|---|---|---|\n";
+        "over time | particle-steps | margin | confirming runs |\n"
+        "|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& rec : recs.cells) {
     md << "| " << shortest(rec.E) << " | " << sci(rec.target, 1) << " | " << rec.candidates << " ("
        << rec.confirmed << ", " << rec.passed << ") | ";
     if (!rec.row) {
-      md << "none | – | – | – | – |\n";
+      md << "none | – | – | – | – | – |\n";
       continue;
     }
     const ojson& r = rows[*rec.row];
     md << setting(r) << " | " << shortest(r["courant"].get<double>()) << " ("
        << fixed(r["courant_spectral"].get<double>(), 3) << ") | "
        << sci(r["max_error_over_time"].get<double>()) << " | " << work(r) << " | "
-       << describe_confirming(rec.advice.confirming[0]) << "; "
-       << describe_confirming(rec.advice.confirming[1]) << " |\n";
+       << margin_text(r, rows) << " | " << describe_confirming(rec.advice) << " |\n";
   }
   md << "\n";
   return md.str();
@@ -408,7 +412,8 @@ ojson recommendations_json(const std::vector<ojson>& rows, const Recommendations
 // Stable ranges with a margin, a description of the runs (recommendations follow the one advice
 // rule above): a value v of a parameter is stable with a margin for a method and policy if, at
 // every E of the scene, they were run at v and at some p >= 1.5 v, and every one of their runs
-// with the parameter up to p (on every grid) is stable. The largest such v is reported.
+// with the parameter up to p (on every grid) is stable and takes no step above its scheme's
+// spectral limit (where recorded). The largest such v is reported.
 
 constexpr double kMargin = 1.5;
 
@@ -496,6 +501,13 @@ std::string row_verdict(const ojson& r) {
          "): " + verdict(r);
 }
 
+// A run whose largest step lies above its scheme's spectral limit (where both are recorded):
+// its survival holds for this amplitude and run length only.
+bool above_limit(const ojson& r) {
+  return has_number(r, "courant") && has_number(r, "courant_spectral") &&
+         r["courant"].get<double>() > r["courant_spectral"].get<double>();
+}
+
 // Whether v is advised (the rule above), and the rows it rests on or why not. A run that is not
 // stable up to the checking value (or, with none, among all the group's runs at E) tells first,
 // then a value not run at some E, then a margin that no run checks.
@@ -511,6 +523,11 @@ ValueCheck check_value(const TradeRows& t, const AdviceGroup& g, double v) {
       if (parameter(t.rows[i]) > limit) break;
       if (outcome(t.rows[i]) != "stable" && c.why_not.empty()) {
         c.why_not = row_verdict(t.rows[i]);
+      }
+      if (above_limit(t.rows[i]) && c.why_not.empty()) {
+        c.why_not = row_verdict(t.rows[i]) + ", but its steps reach c dt/h " +
+                    fixed(t.rows[i]["courant"].get<double>(), 3) + ", above the spectral limit " +
+                    fixed(t.rows[i]["courant_spectral"].get<double>(), 3);
       }
       c.rests_on.push_back(i);
     }
@@ -625,7 +642,9 @@ std::string advice_table(const TradeRows& t, const std::vector<MarginRange>& all
      << shortest(kMargin) << "x margin for a method and policy if, at every E the study runs ("
      << list_of_E(t.Es) << "), they were run at v and at some p >= " << shortest(kMargin)
      << " v, and every one of their runs with the parameter up to p (on every grid, in every "
-        "scene) is stable: not unstable, not meaningless. The largest such v is shown; p is the "
+        "scene) is stable: not unstable, not meaningless, and none of its steps above the "
+        "scheme's spectral limit (where the run records it: a run that survives above the limit "
+        "survives at this amplitude and run length only). The largest such v is shown; p is the "
         "value checked beyond it. A value with no run at "
      << shortest(kMargin) << " times it or beyond is not shown: its margin is not checked.\n\n"
      << "| method and policy | stable with margin | rests on | checked to | the next value run, "
