@@ -142,6 +142,11 @@ std::string verdict(const ojson& r) {
   return s;
 }
 
+std::string text(const ojson& row, const char* column) {
+  const auto it = row.find(column);
+  return it != row.end() && it->is_string() ? it->get<std::string>() : std::string();
+}
+
 bool has_number(const ojson& r, const char* column) {
   return r.contains(column) && r[column].is_number();
 }

@@ -51,6 +51,8 @@ std::string percent(double fraction);
 std::string codes(const std::vector<std::string>& names, int first = 0);
 // A JSON number in sci(), or "–" for null.
 std::string opt_sci(const nlohmann::ordered_json& v);
+// A string column of a row ("" where it is missing or not a string).
+std::string text(const nlohmann::ordered_json& row, const char* column);
 // The row has a number in `column` (not null, not missing).
 bool has_number(const nlohmann::ordered_json& row, const char* column);
 // The method of a flat record as the trade study names it: the basis, then the transfer (with

@@ -164,7 +164,7 @@ std::string cell_list(const Comparison& cmp, const std::string& cls) {
 // The run of a Table 1 cell in the walls experiment (periodic boundaries), if there is one.
 const ojson* periodic_run(const Comparison& cmp, const Cell& c) {
   for (const auto& r : cmp.rows("walls")) {
-    if (same_cell(r, *c.spec)) return &r;
+    if (text(r, "bc") == "periodic" && same_cell(r, *c.spec)) return &r;
   }
   return nullptr;
 }

@@ -28,11 +28,6 @@ namespace {
 
 using ojson = nlohmann::ordered_json;
 
-// A string column of a row.
-std::string text(const ojson& r, const char* key) {
-  return r[key].get<std::string>();
-}
-
 // ---------------------------------------------------------------------------------------------
 // Settings and their parameters (docs/design.md, "Time-step policies")
 
