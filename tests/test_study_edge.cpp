@@ -289,7 +289,18 @@ TEST(EdgeStudy, AnEdgeAboveTheLimitIsMarkedTransientWithTheLengthAtWhichItFails)
   at_accurate["cT"] = 1000.0;
   follow_up.push_back(at_edge);
   follow_up.push_back(at_accurate);
+  ojson twin = survives;  // the periodic twin at the first row's accuracy edge
+  twin["bc"] = "periodic";
+  twin["max_error"] = 3e-6;
+  follow_up.push_back(twin);
   const auto report = test_support::study_report("edge", rows, follow_up);
+  // The twin's error at T beside the Dirichlet run's, and per method in the walls paragraph.
+  EXPECT_NE(report.markdown.find("| 1.0e-5 → 6.0e-6 (periodic 3.0e-6) |"), std::string::npos)
+      << report.markdown;
+  EXPECT_NE(report.markdown.find("gimp 0.5 to 0.5 times the Dirichlet one (median 0.5, 1 of 1 "
+                                 "twins)"),
+            std::string::npos)
+      << report.markdown;
   EXPECT_NE(report.markdown.find("| 1.084 x limit, **transient**: fails at c T = 63 |"),
             std::string::npos)
       << report.markdown;

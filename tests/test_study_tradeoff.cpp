@@ -308,3 +308,27 @@ TEST(TradeoffStudy, DataFileHasOneRowPerDrawnRunAndTheTitleCountsThem) {
 
 }  // namespace
 }  // namespace mpmstab
+
+namespace mpmstab {
+namespace {
+
+// Every run of the bar under the CFL rule at C = 0.5 has a periodic twin among the follow-up
+// runs (after the confirming runs): the table sets the two errors side by side.
+TEST(TradeoffStudy, ThePeriodicTwinShowsWhatTheWallsCost) {
+  ojson run = test_support::study_row("gimp", 4);
+  run["policy"] = "cfl";
+  run["cfl_factor"] = 0.5;
+  run["dt"] = nullptr;
+  ojson twin = run;
+  twin["bc"] = "periodic";
+  twin["max_error_over_time"] = 5e-6;
+  const auto report = test_support::study_report("tradeoff", {run}, {twin});
+  EXPECT_NE(report.markdown.find("| gimp | 4 | 100 | 1.0e-5 | 5.0e-6 | 0.5 |"), std::string::npos)
+      << report.markdown;
+  // Without the follow-up runs the section is left out.
+  EXPECT_EQ(test_support::study_report("tradeoff", {run}).markdown.find("What the walls cost"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace mpmstab

@@ -214,8 +214,15 @@ struct LongRun {
   std::string outcome;
 };
 
+// What the walls cost at the accuracy edge: a case with Dirichlet walls and an accuracy edge is
+// rerun there with periodic boundaries (both scenes' exact solutions are periodic), whose error
+// at T is the interior's own.
+bool has_twin(const ojson& r) {
+  return text(r, "bc") == "dirichlet" && has_number(r, "dt_accurate");
+}
+
 // The members of every case with an edge, in row order: at dt_edge, then at dt_fail; after them,
-// in row order, the long run at each edge above the spectral limit.
+// in row order, the long run at each edge above the spectral limit; then the periodic twins.
 std::vector<RunParams> edge_follow_up(const FollowUpContext& c) {
   std::vector<RunParams> runs;
   for (std::size_t i = 0; i < c.rows.size(); ++i) {
@@ -232,6 +239,12 @@ std::vector<RunParams> edge_follow_up(const FollowUpContext& c) {
     for (const double dt : edges_above_limit(c.rows[i]))
       runs.push_back(long_run(c.spec.cases.at(i).params, dt));
   }
+  for (std::size_t i = 0; i < c.rows.size(); ++i) {
+    if (!has_twin(c.rows[i])) continue;
+    RunParams p = at_dt(c.spec.cases.at(i).params, c.rows[i]["dt_accurate"].get<double>());
+    p.bc = Boundary::periodic;
+    runs.push_back(p);
+  }
   return runs;
 }
 
@@ -240,6 +253,7 @@ std::vector<RunParams> edge_follow_up(const FollowUpContext& c) {
 struct EdgeFollowUps {
   std::map<const ojson*, EdgeEnsemble> ensembles;
   std::map<const ojson*, std::vector<LongRun>> long_runs;
+  std::map<const ojson*, ojson> twins;  // the periodic twin at dt_accurate
 };
 
 EdgeFollowUps edge_follow_ups(const std::vector<ojson>& rows, const std::vector<ojson>& follow_up) {
@@ -271,6 +285,11 @@ EdgeFollowUps edge_follow_ups(const std::vector<ojson>& rows, const std::vector<
                      : c * run["failure_time"].get<double>();
       out.long_runs[&r].push_back(l);
     }
+  }
+  for (const auto& r : rows) {
+    if (!has_twin(r)) continue;
+    if (next >= follow_up.size()) return out;
+    out.twins[&r] = follow_up[next++];
   }
   return out;
 }
@@ -475,7 +494,9 @@ std::string edge_table(const std::vector<ojson>& rows, const EdgeFollowUps& f) {
   std::ostringstream md;
   md << "| method | A | A/h | E | c T | h/c | spectral limit (h/c) | survival edge dt_edge (h/c; "
         "bracket) | survival edge / limit | run at dt_edge | error at T there | accuracy edge "
-        "dt_accurate (h/c) | accuracy edge / limit | error at T: reference → at dt_accurate | "
+        "dt_accurate (h/c) | accuracy edge / limit | error at T: reference → at dt_accurate "
+        "(periodic "
+        "twin) | "
         "eq. (108) at dt_edge (dt_edge / it) | survival in dt | ensemble | probes | "
         "particle-steps |\n"
         "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
@@ -503,8 +524,12 @@ std::string edge_table(const std::vector<ojson>& rows, const EdgeFollowUps& f) {
       } else {
         md << "none (reference meaningless) | – | ";
       }
-      md << opt_sci(r["max_error_reference"]) << " → " << opt_sci(r["max_error_at_accurate"])
-         << " | " << opt_sci(r["dt_stable_min_at_edge"]);
+      md << opt_sci(r["max_error_reference"]) << " → " << opt_sci(r["max_error_at_accurate"]);
+      if (const auto it = f.twins.find(&r); it != f.twins.end())
+        md << " (periodic "
+           << (survived(it->second) ? opt_sci(it->second["max_error"]) : verdict(it->second))
+           << ")";
+      md << " | " << opt_sci(r["dt_stable_min_at_edge"]);
       if (has_number(r, "dt_edge_over_stable"))
         md << " (" << ratio(r["dt_edge_over_stable"].get<double>()) << ")";
       md << " | ";
@@ -655,6 +680,43 @@ std::string amplitude_table(const std::vector<ojson>& rows, const EdgeFollowUps&
   return md.str();
 }
 
+// What the walls cost at the accuracy edge, per method: the periodic twin's error at T against
+// the Dirichlet run's ("" when no twin was run).
+std::string walls_text(const std::vector<ojson>& rows, const EdgeFollowUps& f) {
+  std::map<std::string, std::vector<double>> ratios;
+  std::map<std::string, int> twins;
+  for (const auto& r : rows) {
+    const auto it = f.twins.find(&r);
+    if (it == f.twins.end()) continue;
+    const std::string m = text(r, "method");
+    ++twins[m];
+    if (survived(it->second) && has_number(it->second, "max_error") &&
+        has_number(r, "max_error_at_accurate"))
+      ratios[m].push_back(it->second["max_error"].get<double>() /
+                          r["max_error_at_accurate"].get<double>());
+  }
+  if (twins.empty()) return "";
+  std::ostringstream md;
+  md << "**Walls.** Each case with Dirichlet walls is rerun at its accuracy edge with periodic "
+        "boundaries (no wall: the interior's own error); the periodic error at T is, per "
+        "method, ";
+  bool first = true;
+  for (const auto& [m, n] : twins) {
+    md << (first ? "" : "; ") << m << " ";
+    first = false;
+    const auto& v = ratios[m];
+    if (v.empty()) {
+      md << "not compared (" << n << " twins, none reached T)";
+      continue;
+    }
+    const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+    md << ratio(*lo) << " to " << ratio(*hi) << " times the Dirichlet one (median "
+       << ratio(quantile(v, 0.5)) << ", " << v.size() << " of " << n << " twins)";
+  }
+  md << ".\n\n";
+  return md.str();
+}
+
 // One scene's section: the first has the figure and states the rules; each has its own reading
 // and table.
 std::string edge_markdown(const Spec& spec, const std::vector<ojson>& all,
@@ -673,7 +735,7 @@ std::string edge_markdown(const Spec& spec, const std::vector<ojson>& all,
     md << "\n## " << scene_title(rows.front()["scene"].get<std::string>()) << "\n\n";
   }
   md << "**Reading.** " << edge_summary_text(rows) << "\n\n"
-     << edge_table(rows, f) << amplitude_table(rows, f);
+     << walls_text(rows, f) << edge_table(rows, f) << amplitude_table(rows, f);
   return md.str();
 }
 
@@ -748,6 +810,8 @@ StudyReport edge_report(const ReportContext& c) {
           mine.ensembles[copy] = it->second;
         if (const auto it = all.long_runs.find(&r); it != all.long_runs.end())
           mine.long_runs[copy] = it->second;
+        if (const auto it = all.twins.find(&r); it != all.twins.end())
+          mine.twins[copy] = it->second;
       }
       ++k;
     }

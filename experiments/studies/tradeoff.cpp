@@ -1196,13 +1196,108 @@ ojson tradeoff_json(const std::vector<ojson>& rows, const std::vector<SceneRows>
 
 // The report: the definitions and the figure, the advice from every scene's rows, then one
 // section per scene; the figure's data from the first scene (the paper's bar).
+// ---------------------------------------------------------------------------------------------
+// What the walls cost: every run of the paper's bar under the CFL rule at kCflRef (every method,
+// and GIMP and MPM on every grid) is rerun with periodic boundaries, which the periodic
+// manufactured solution allows. The twin has no wall: its error is the interior's own, and the
+// ratio of the two is what the Dirichlet walls' treatment adds.
+
+// The rows whose periodic twin is run, in row order.
+std::vector<std::size_t> twin_rows(const std::vector<ojson>& rows) {
+  std::vector<std::size_t> idx;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const ojson& r = rows[i];
+    if (text(r, "scene") == "bar" && text(r, "bc") == "dirichlet" && text(r, "policy") == "cfl" &&
+        parameter(r) == kCflRef)
+      idx.push_back(i);
+  }
+  return idx;
+}
+
+// The follow-up runs: the confirming runs of the advice, then the periodic twins.
+std::vector<RunParams> tradeoff_follow_ups(const FollowUpContext& c) {
+  std::vector<RunParams> runs = tradeoff_follow_up(c);
+  for (const std::size_t i : twin_rows(c.rows)) {
+    RunParams p = c.spec.cases.at(i).params;
+    p.bc = Boundary::periodic;
+    runs.push_back(p);
+  }
+  return runs;
+}
+
+// Each twin by the index of its row (absent where the follow-up runs are).
+std::map<std::size_t, const ojson*> periodic_twins(const std::vector<ojson>& rows,
+                                                   const std::vector<ojson>& follow_up) {
+  std::map<std::size_t, const ojson*> out;
+  std::size_t next = to_confirm(rows).size() * kConfirmingRuns;
+  for (const std::size_t i : twin_rows(rows)) {
+    if (next >= follow_up.size()) break;
+    out[i] = &follow_up[next++];
+  }
+  return out;
+}
+
+std::string walls_cost_section(const std::vector<ojson>& rows,
+                               const std::map<std::size_t, const ojson*>& twins) {
+  if (twins.empty()) return "";
+  std::ostringstream md;
+  md << "### What the walls cost\n\nEvery run of the paper's bar under the CFL rule at C = "
+     << shortest(kCflRef)
+     << " rerun with periodic boundaries (no wall: the interior's own error). A ratio well "
+        "below one is error the Dirichlet walls' treatment adds; walls.md does the same for "
+        "every Table 1 cell.\n\n";
+  // GIMP without walls against the grid: does refining lower the interior's error?
+  int lowered = 0, compared = 0;
+  for (const auto& [i, twin] : twins) {
+    if (method_label(rows[i]) != "gimp" || rows[i]["cells"].get<int>() != kFine) continue;
+    for (const auto& [j, coarse] : twins) {
+      if (method_label(rows[j]) == "gimp" && rows[j]["cells"].get<int>() == kCoarse &&
+          rows[j]["E"] == rows[i]["E"] && accuracy(*twin) && accuracy(*coarse)) {
+        ++compared;
+        lowered += *accuracy(*twin) < *accuracy(*coarse);
+      }
+    }
+  }
+  if (compared > 0) {
+    md << "Without walls a finer grid lowered GIMP's error at " << lowered << " of " << compared
+       << " values of E (" << kFine << " against " << kCoarse << " cells).\n\n";
+  }
+  md << "| method | E | cells | Dirichlet: error over time | periodic twin | periodic / Dirichlet "
+        "|\n|---|---|---|---|---|---|\n";
+  // By method (in the order the rows first name it), then E, then cells.
+  std::vector<std::string> methods;
+  for (const auto& r : rows) {
+    const std::string m = method_label(r);
+    if (std::find(methods.begin(), methods.end(), m) == methods.end()) methods.push_back(m);
+  }
+  auto order = [&](std::size_t i) {
+    const ojson& r = rows[i];
+    return std::tuple(std::find(methods.begin(), methods.end(), method_label(r)) - methods.begin(),
+                      r["E"].get<double>(), r["cells"].get<int>());
+  };
+  std::vector<std::pair<std::size_t, const ojson*>> sorted(twins.begin(), twins.end());
+  std::stable_sort(sorted.begin(), sorted.end(),
+                   [&](const auto& a, const auto& b) { return order(a.first) < order(b.first); });
+  for (const auto& [i, twin] : sorted) {
+    const ojson& r = rows[i];
+    const auto d = accuracy(r), p = accuracy(*twin);
+    md << "| " << method_label(r) << " | " << shortest(r["E"].get<double>()) << " | "
+       << r["cells"].get<int>() << " | " << (d ? sci(*d) : verdict(r)) << " | "
+       << (p ? sci(*p) : verdict(*twin)) << " | " << (d && p ? ratio(*p / *d) : std::string("–"))
+       << " |\n";
+  }
+  md << "\n";
+  return md.str();
+}
+
 StudyReport tradeoff_report(const ReportContext& c) {
   const auto scenes = by_scene(c.rows);
   const Recommendations recs = recommend(c.rows, c.follow_up);
   const auto ranges = stable_ranges(TradeRows(c.rows));
   StudyReport report;
-  report.markdown =
-      results_intro(c.spec) + advice_section(c.rows, scenes, recs, ranges, report.claims);
+  report.markdown = results_intro(c.spec) +
+                    advice_section(c.rows, scenes, recs, ranges, report.claims) +
+                    walls_cost_section(c.rows, periodic_twins(c.rows, c.follow_up));
   for (std::size_t i = 0; i < scenes.size(); ++i)
     report.markdown += scene_markdown(scenes[i].rows, i == 0);
   report.data_csv = tradeoff_data_csv(scenes.front().rows, c.csv_header);
@@ -1215,7 +1310,7 @@ const StudyRegistration kTradeoff{{
     .summary = "error against cost across methods, time-step policies and their parameters",
     .records = {.error_over_time = true},
     .figure = true,
-    .follow_up = tradeoff_follow_up,
+    .follow_up = tradeoff_follow_ups,
     .report = tradeoff_report,
     .index =
         [](const Spec& spec, const std::vector<ojson>&) {
