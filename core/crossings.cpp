@@ -1,7 +1,9 @@
 #include "crossings.hpp"
 
+#include <algorithm>
 #include <cmath>
 
+#include "scene.hpp"
 #include "shape.hpp"
 #include "simd.hpp"
 
@@ -47,6 +49,53 @@ CrossingCounter::CrossingCounter(const Particles& P, double h)
 
 std::int64_t CrossingCounter::update(const Particles& P) {
   return static_cast<std::int64_t>(count_and_store(P.x.data(), cell_.data(), P.size(), inv_h_));
+}
+
+ExactCrossings exact_crossings(const RunParams& p, std::int64_t samples) {
+  const auto scene = make_scene(p);
+  const Particles P = scene->initial_particles(p.cells, p.ppc, p.layout);
+  const double h = 1.0 / p.cells;
+  const Eigen::ArrayXd profile =
+      P.X.unaryExpr([&](double X) { return scene->displacement_profile(X); });
+  const Eigen::Index n = P.X.size();
+  std::vector<double> cell(static_cast<std::size_t>(n));
+  std::vector<char> moved(static_cast<std::size_t>(n), 0);
+  // The boundaries, by floor(x / h) + 1 of the cell to their right, offset so that a particle a
+  // few cells outside the bar still indexes the vector: the step each was last counted at.
+  const int offset = p.cells + 2;
+  std::vector<std::int64_t> counted_at(static_cast<std::size_t>(3 * p.cells + 6), -1);
+  auto cell_at = [&](Eigen::Index i, double factor) {
+    return std::floor((P.X[i] + profile[i] * factor) / h);
+  };
+  const double f0 = scene->displacement_factor(0);
+  for (Eigen::Index i = 0; i < n; ++i)
+    cell[std::size_t(i)] = cell_at(i, f0);
+  ExactCrossings out;
+  for (std::int64_t k = 1; k <= samples; ++k) {
+    const double factor = scene->displacement_factor(p.T * double(k) / double(samples));
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const double c = cell_at(i, factor), old = cell[std::size_t(i)];
+      if (c == old) continue;
+      const auto passed = static_cast<std::int64_t>(std::abs(c - old));
+      out.every += passed;
+      if (c > old) out.rightward += passed;
+      ++out.changes;
+      moved[std::size_t(i)] = 1;
+      // The boundaries between the two cells: those right of min(c, old) up to max(c, old).
+      for (double b = std::min(c, old) + 1; b <= std::max(c, old); ++b) {
+        const auto at = static_cast<std::size_t>(
+            std::clamp<double>(b + offset, 0, double(counted_at.size() - 1)));
+        if (counted_at[at] != k) {
+          counted_at[at] = k;
+          ++out.per_boundary;
+        }
+      }
+      cell[std::size_t(i)] = c;
+    }
+  }
+  for (char m : moved)
+    out.particles_moved += m;
+  return out;
 }
 
 }  // namespace mpmstab

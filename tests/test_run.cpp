@@ -3,6 +3,7 @@
 
 #include <set>
 
+#include "crossings.hpp"
 #include "run.hpp"
 #include "support.hpp"
 
@@ -259,6 +260,31 @@ TEST(Policies, AnAdaptiveRunThatNeedsTooManyStepsStopsWithAVerdict) {
   ASSERT_TRUE(r.failure);
   EXPECT_EQ(r.failure->reason, FailureReason::step_limit);
   EXPECT_EQ(r.steps, 50);
+}
+
+// The exact motion's crossings (Table 2's counting rules): a full period of the bar's motion
+// crosses every boundary as often rightward as leftward, no boundary is crossed by two particles
+// in one small step, and GIMP's count at a small step is the exact motion's to within the
+// solver's error.
+TEST(Run, ExactCrossingsAreWhatASmallStepCountsAndEachRuleIsConsistent) {
+  RunParams p;
+  p.E = 4;  // c = 2: T = 1 is one period of sin(c pi t)
+  p.A = 0.015;
+  p.T = 1;
+  p.dt = 1e-4;
+  const ExactCrossings x = exact_crossings(p, 10000);
+  EXPECT_GT(x.every, 0);
+  EXPECT_EQ(2 * x.rightward, x.every);
+  EXPECT_EQ(x.per_boundary, x.every);
+  EXPECT_EQ(x.changes, x.every);
+  EXPECT_LE(x.particles_moved, p.cells * p.ppc);
+  // Sampled at the quarter periods only, the motion is seen at its extremes: the same count.
+  EXPECT_EQ(exact_crossings(p, 4).every, x.every);
+  // Sampled at the half periods only, every particle is seen at rest: nothing crossed.
+  EXPECT_EQ(exact_crossings(p, 2).every, 0);
+  const RunResult r = run(p);
+  ASSERT_TRUE(r.crossings);
+  EXPECT_NEAR(double(*r.crossings), double(x.every), 0.05 * double(x.every));
 }
 
 }  // namespace

@@ -91,6 +91,13 @@ std::string span(const std::vector<double>& v) {
   return *lo == *hi ? value_text(*lo) : value_text(*lo) + " to " + value_text(*hi);
 }
 
+std::string span(const std::vector<double>& v, int digits) {
+  std::vector<double> r;
+  for (double x : v)
+    r.push_back(std::stod(significant(x, digits)));
+  return span(r);
+}
+
 std::string edge_search_text(const EdgeOptions& o) {
   return "a log-spaced scan of dt, " + std::to_string(o.per_octave) + " per octave, from " +
          shortest(o.scan_low) + " to " + shortest(o.scan_high) +

@@ -40,6 +40,8 @@ std::vector<double> numbers(const std::vector<nlohmann::ordered_json>& rows, con
 std::string listing(const std::vector<nlohmann::ordered_json>& rows, const char* column);
 // The range of v in value_text(): "1e-4 to 0.05", or one value when all are equal; "–" when empty.
 std::string span(const std::vector<double>& v);
+// The range of v, each end to `digits` significant digits: "0.387 to 0.432".
+std::string span(const std::vector<double>& v, int digits);
 // The edge search of `o` in words, every number from `o`: "a log-spaced scan of dt, 2 per octave,
 // from 0.0625 to 4 times h/c, then bisection until the smallest failing dt is within 2% of the
 // largest surviving one".

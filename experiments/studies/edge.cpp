@@ -333,13 +333,6 @@ std::string ensemble_cell(const std::map<const ojson*, EdgeEnsemble>& all, const
   return s.str();
 }
 
-// The values to three significant digits, as the tables print them.
-std::vector<double> rounded(std::vector<double> v) {
-  for (double& x : v)
-    x = std::stod(significant(x, 3));
-  return v;
-}
-
 // The conclusions the rows and their ensembles decide.
 std::vector<Claim> edge_claims(const std::vector<ojson>& rows, const EdgeFollowUps& f) {
   const auto& ensembles = f.ensembles;
@@ -427,7 +420,7 @@ std::vector<Claim> edge_claims(const std::vector<ojson>& rows, const EdgeFollowU
       .count("n", accurate_n)
       .value("passes", shortest(kLongPasses))
       .count("transient", transient)
-      .value("span", span(rounded(fail_passes)))
+      .value("span", span(fail_passes, 3))
       .count("meaningless", meaningless);
   lasting.holds = accurate_above == 0;
   claims.push_back(lasting);
