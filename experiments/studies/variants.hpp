@@ -26,9 +26,14 @@ struct VariantMethodSummary {
 
 // One variant, one class of disagreement (the cells' class under the default run).
 struct VariantClassOutcome {
-  int covered = 0;      // cells of the class that the variant ran
-  int agree = 0;        // of those, in agreement with the paper under the variant (agrees_as())
-  int meaningless = 0;  // of those, stable but meaningless: the error over time reached A
+  int covered = 0;  // cells of the class that the variant ran
+  // Of those, in agreement with the paper under the variant: the verdict and, where both are
+  // stable, the max error within the agreement factor (CellVerdict::agrees). Only these count
+  // towards accounting for the class.
+  int agree = 0;
+  int verdict_agree = 0;  // of the covered, with the paper's stability verdict (whatever the error)
+  int meaningless = 0;    // of the verdict_agree, stable but meaningless: error over time reached A
+  std::vector<double> error_ratios;  // ours / paper where both stable, of the verdict_agree
 };
 
 struct VariantOutcome {

@@ -59,8 +59,10 @@ void tally_case(VariantOutcome& o, const CellReader& read, std::size_t i,
   auto& co = o.by_class[d->second.cls];
   ++co.covered;
   if (k && agrees_as(v, k->kind)) {
-    ++co.agree;
+    ++co.verdict_agree;
     if (outcome(row) == "meaningless") ++co.meaningless;
+    if (v.error_ratio) co.error_ratios.push_back(*v.error_ratio);
+    co.agree += v.agrees();
   }
   if (d->second.agrees()) {
     ++o.agreeing_under_default;
@@ -129,6 +131,7 @@ ojson class_json(const VariantsStudy& s, const ComparisonClass& k) {
                    {"baseline", v.baseline},
                    {"covered", o.covered},
                    {"agree", o.agree},
+                   {"verdict_agree", o.verdict_agree},
                    {"meaningless", o.meaningless},
                    {"breaks", v.breaks},
                    {"accounts", accounts_name(accounts_for(o, n))}});
