@@ -200,6 +200,14 @@ double particle_steps(const ojson& r) {
   return r["particles"].get<double>() * r["steps"].get<double>();
 }
 
+std::string cost_metric_text() {
+  return "**Cost.** Every cost here is in particle-steps (particles x steps, of every run a "
+         "result needs): deterministic, the same on any machine. What one particle-step of each "
+         "method costs in time is measured, with Google Benchmark, in [performance.md]"
+         "(performance.md#the-step-kernel) (ns per particle-step per basis, transfer and update "
+         "order): particle-steps times that is the time on the measured machine.";
+}
+
 std::string work(const ojson& r) {
   return sci(particle_steps(r));
 }

@@ -76,6 +76,10 @@ std::string verdict(const nlohmann::ordered_json& row);
 double particle_steps(const nlohmann::ordered_json& row);
 // particle_steps() in sci(): "2.4e5".
 std::string work(const nlohmann::ordered_json& row);
+// The one cost metric of every report that compares costs (tradeoff, methods, edge), in words,
+// linking performance.md from a report in the same folder: particle-steps, and the measured time
+// of one particle-step per method.
+std::string cost_metric_text();
 // The q-quantile of v (0 <= q <= 1, linear between order statistics); v must not be empty.
 double quantile(std::vector<double> v, double q);
 // Least-squares slope of log(y) against log(x) over the points with x, y > 0: a fitted order.

@@ -717,7 +717,8 @@ std::string edge_markdown(const Spec& spec, const std::vector<ojson>& all,
   std::ostringstream md;
   if (first) {
     md << "## Results\n\n"
-       << search_rule(spec.study->edge) << "\n\n![" << spec.title << "](" << spec.name
+       << search_rule(spec.study->edge) << "\n\n"
+       << cost_metric_text() << "\n\n![" << spec.title << "](" << spec.name
        << ".png)\n\nThe figure draws both edges in units of h/c for every scene, on a log "
           "scale, beside each series' spectral limit (dotted) and eq. (108) at its survival edge "
           "(dash-dotted). "

@@ -67,7 +67,7 @@ int node_visits(const MethodKey& k) {
 
 struct Setting {
   const ojson* row = nullptr;
-  double work = 0;               // particle-steps x node visits
+  double work = 0;               // particle-steps
   Advice advice;                 // the advice rule on it (advice.hpp), with its confirming runs
   std::optional<double> margin;  // margin_ratio in methods_grid (nullopt: no larger step fails)
 };
@@ -144,7 +144,6 @@ std::vector<MethodRow> method_rows(const std::vector<ojson>& edges, const std::v
   for (MethodRow& m : rows) {
     m.recommended.resize(kTargets.size());
     std::vector<std::pair<double, double>> h_points, dt_points;
-    const double visits = node_visits(m.key);
     for (const ojson* r : m.grid) {
       const auto e = error_of(*r);
       const bool cfl = (*r)["policy"].get<std::string>() == "cfl";
@@ -156,7 +155,7 @@ std::vector<MethodRow> method_rows(const std::vector<ojson>& edges, const std::v
           (*r)["courant"].get<double>() <= (*r)["courant_spectral"].get<double>();
       if (e && below_limit && (*r)["cells"].get<int>() == kTable1Cells)
         dt_points.emplace_back(dt_of(*r), *e);
-      const double w = particle_steps(*r) * visits;
+      const double w = particle_steps(*r);
       const auto conf = confirming.find(r);
       for (std::size_t t = 0; t < kTargets.size(); ++t) {
         if (conf == confirming.end()) continue;
@@ -176,7 +175,8 @@ std::string order_text(const std::optional<double>& o) {
   return o ? fixed(*o, 2) : std::string("–");
 }
 
-std::string setting_text(const std::optional<Setting>& s) {
+// "50 cells, C = 0.8 (5.0e4; margin 2x)": the margin left out where the text gives it in full.
+std::string setting_text(const std::optional<Setting>& s, bool with_margin = true) {
   if (!s) return "none passes the rule";
   const ojson& r = *s->row;
   std::ostringstream t;
@@ -186,8 +186,10 @@ std::string setting_text(const std::optional<Setting>& s) {
   } else {
     t << "dt = " << param(r["dt"].get<double>());
   }
-  t << " (" << sci(s->work) << "; margin "
-    << (s->margin ? ratio(*s->margin) + "x" : std::string("not measured")) << ")";
+  t << " (" << sci(s->work);
+  if (with_margin)
+    t << "; margin " << (s->margin ? ratio(*s->margin) + "x" : std::string("not measured"));
+  t << ")";
   return t.str();
 }
 
@@ -257,7 +259,7 @@ std::string recommendations(const std::vector<MethodRow>& rows, const std::vecto
        << " methods have a setting of methods_grid that passes the rule";
     if (cheapest) {
       const Setting& s = *cheapest->recommended[t];
-      md << "; the cheapest is " << method_name(*cheapest) << " at " << setting_text(s)
+      md << "; the cheapest is " << method_name(*cheapest) << " at " << setting_text(s, false)
          << ", c dt/h " << shortest((*s.row)["courant"].get<double>()) << " (limit "
          << fixed((*s.row)["courant_spectral"].get<double>(), 3) << "), error over time "
          << sci((*s.row)["max_error_over_time"].get<double>())
@@ -277,7 +279,7 @@ std::string methods_table(const std::vector<MethodRow>& rows) {
         "spectral limit (h/c) | survival edge (h/c) | accuracy edge (h/c) | node visits per "
         "particle-step";
   for (double t : kTargets)
-    md << " | recommended for " << param(t) << " (node visits)";
+    md << " | recommended for " << param(t) << " (particle-steps)";
   md << " |\n|---|---|---|---|---|---|---|---|---|---|";
   for (std::size_t t = 0; t < kTargets.size(); ++t)
     md << "---|";
@@ -379,7 +381,8 @@ StudyReport methods_report(const ReportContext& c) {
   std::vector<Claim> claims;
   std::ostringstream md;
   md << "## Results\n\n**Reading.** " << reading(rows) << "\n\n"
-     << recommendations(rows, grid, claims) << "![" << c.spec.title << "](" << c.spec.name
+     << recommendations(rows, grid, claims) << cost_metric_text() << "\n\n![" << c.spec.title
+     << "](" << c.spec.name
      << ".png)\n\nThe figure places each method by its survival edge at the tiny "
      << "amplitude (x) and its error at Table 1's setting (y), one panel per update order; a "
      << "method unstable at that setting or without an edge is left out. Vector version: ["
@@ -399,11 +402,11 @@ StudyReport methods_report(const ReportContext& c) {
      << " times that of the smallest dt that survives (the edge study's rules);\n"
      << "- *node visits per particle-step*: the nodes of the stencil times the passes over it "
         "that one step makes (counted from the code: p2g, g2p and the stress update, plus what "
-        "the update order and the transfer add), a deterministic measure of the work; the "
-        "measured time per particle-step is in performance.md;\n"
+        "the update order and the transfer add), what makes one particle-step of a method dearer "
+        "than another's; the measured time per particle-step is in performance.md;\n"
      << "- *recommended for a target*: of the settings of methods_grid (the Table 1 setting and "
-        "the grids and Courant numbers it sweeps), the one with the fewest node visits "
-        "(particle-steps x node visits per particle-step, in brackets) that passes the advice "
+        "the grids and Courant numbers it sweeps), the one with the fewest particle-steps (in "
+        "brackets) that passes the advice "
         "rule above for that target, confirming runs included; a meaningless, unstable or too "
         "short run never counts. Its *margin*: the first larger step of the same setting in "
         "methods_grid that is unstable or meaningless, as a multiple of its step.\n\n";

@@ -717,8 +717,8 @@ std::string results_intro(const Spec& spec) {
         "[performance.md](performance.md) and [timings.json](timings.json). Only a stable run "
         "reaches an accuracy: a run that failed (unstable) or whose error reached A "
         "(meaningless) reaches none. Pareto front: no other setting at the same E is both "
-        "cheaper and more accurate.\n\n!["
-     << spec.title << "](" << spec.name << ".png)\n\n"
+        "cheaper and more accurate.\n\n"
+     << cost_metric_text() << "\n\n![" << spec.title << "](" << spec.name << ".png)\n\n"
      << "Vector version: [" << spec.name << ".svg](" << spec.name << ".svg); data: [" << spec.name
      << "_data.csv](" << spec.name << "_data.csv).\n\n";
   return md.str();
