@@ -55,12 +55,12 @@ std::string cases_header(const std::vector<std::string>& params, const Observe& 
   md << "|";
   for (const auto& p : params)
     md << " " << p << " |";
-  md << " c dt/h | verdict | max error |";
+  md << " c dt/h | A/h | c T | verdict | max error |";
   if (observe.error_over_time) md << " max error over time | over time / A |";
   if (observe.dt_stable) md << " dt_stable min |";
   if (observe.crossings) md << " crossings |";
   md << " particle-steps |\n|";
-  const std::size_t n_cols = params.size() + 4 + (observe.error_over_time ? 2 : 0) +
+  const std::size_t n_cols = params.size() + 6 + (observe.error_over_time ? 2 : 0) +
                              (observe.dt_stable ? 1 : 0) + (observe.crossings ? 1 : 0);
   for (std::size_t k = 0; k < n_cols; ++k)
     md << "---|";
@@ -82,8 +82,11 @@ std::string case_row(const ojson& r, const std::vector<std::string>& params,
                          : shortest(v.get<double>()))
        << " |";
   }
-  md << " " << opt_sci(r["courant"]) << " | " << verdict(r) << " | " << opt_sci(r["max_error"])
-     << " |";
+  auto coordinate = [&](const char* col) {
+    return has_number(r, col) ? significant(r[col].get<double>(), 3) : std::string("–");
+  };
+  md << " " << opt_sci(r["courant"]) << " | " << coordinate("A_over_h") << " | " << coordinate("cT")
+     << " | " << verdict(r) << " | " << opt_sci(r["max_error"]) << " |";
   if (observe.error_over_time) {
     md << " " << opt_sci(r["max_error_over_time"]) << " | "
        << (r["max_error_over_time"].is_number() && r["A"].get<double>() > 0

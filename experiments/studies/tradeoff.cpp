@@ -1021,7 +1021,10 @@ std::string settings_table(const TradeRows& t, double E, const std::string& of_s
   const auto idx = t.at(E);
   const auto front = pareto_front(t.rows, idx);
   std::ostringstream md;
-  md << "### E = " << shortest(E) << of_scene
+  std::vector<double> passes;
+  for (std::size_t i : idx)
+    if (has_number(t.rows[i], "cT")) passes.push_back(t.rows[i]["cT"].get<double>());
+  md << "### E = " << shortest(E) << " (c T = " << span(passes, 3) << " wave passes)" << of_scene
      << "\n\n| setting | steps | particle-steps | dt range | mean dt | verdict | max error over "
         "time | Pareto |\n|---|---|---|---|---|---|---|---|\n";
   for (std::size_t i : idx) {
