@@ -35,11 +35,19 @@ TEST(Cli, ValidRunPrintsJsonWithEveryKey) {
   const Outcome o = run_mpmstab("run " + kValid + " --json");
   ASSERT_EQ(o.status, 0) << o.output;
   const auto j = nlohmann::ordered_json::parse(o.output);
-  // Exactly the record's columns, in order: the same shape as a sweep's rows.
-  std::vector<std::string> keys;
+  // Exactly the record's columns, in order, with A / h and c T after courant: the same shape as
+  // a sweep's rows.
+  std::vector<std::string> keys, expected;
   for (const auto& [k, v] : j.items())
     keys.push_back(k);
-  EXPECT_EQ(keys, mpmstab::record_columns());
+  for (const auto& c : mpmstab::record_columns()) {
+    expected.push_back(c);
+    if (c != "courant") continue;
+    expected.push_back("A_over_h");
+    expected.push_back("cT");
+  }
+  EXPECT_EQ(keys, expected);
+  EXPECT_EQ(j["A_over_h"], 1.5);  // A = 0.015 on 100 cells
   EXPECT_EQ(j["outcome"], "stable");
   EXPECT_TRUE(j["failure_reason"].is_null());
   EXPECT_TRUE(j["failure_step"].is_null());

@@ -146,6 +146,8 @@ std::string text_summary(const RunResult& r) {
   line("dt_cfl = h/c", fmt(r.dt_cfl));
   line("dt_sound = 1/c", fmt(r.dt_sound));
   line("courant = c dt/h", fmt(r.courant) + (r.dt_min != r.dt_max ? "  (largest dt)" : ""));
+  line("A_over_h = A / h", fmt(amplitude_per_cell(p)));
+  line("cT = wave passes", fmt(wave_passes(p)));
   line("particle-steps", std::to_string(r.particles * r.steps));
   line("wall_seconds", fmt(r.wall_seconds));
   line("ns/particle-step", r.steps ? fmt(r.ns_per_particle_step) : std::string("-"));
@@ -195,7 +197,17 @@ int cmd_run(const std::vector<std::string_view>& argv) {
   const RunResult result = run(params, nullptr, sink);
   if (history) history->commit();
   if (args.flag("json")) {
-    std::cout << to_json(result).dump(2) << "\n";
+    // The record with, after courant, the run's other dimensionless coordinates: the columns of
+    // a sweep's rows.
+    const nlohmann::ordered_json record = to_json(result);
+    nlohmann::ordered_json j;
+    for (const auto& [k, v] : record.items()) {
+      j[k] = v;
+      if (k != "courant") continue;
+      j["A_over_h"] = amplitude_per_cell(params);
+      j["cT"] = wave_passes(params);
+    }
+    std::cout << j.dump(2) << "\n";
   } else {
     std::cout << text_summary(result);
   }
