@@ -641,7 +641,13 @@ std::string advice_table(const TradeRows& t, const std::vector<MarginRange>& all
         "scheme's spectral limit (where the run records it: a run that survives above the limit "
         "survives at this amplitude and run length only). The largest such v is shown; p is the "
         "value checked beyond it. A value with no run at "
-     << shortest(kMargin) << " times it or beyond is not shown: its margin is not checked.\n\n"
+     << shortest(kMargin)
+     << " times it or beyond is not shown: its margin is not checked. These runs lie at A / h = "
+     << listing(t.rows, "A_over_h") << " and c T = " << span(numbers(t.rows, "cT"), 3)
+     << " wave passes, and a range is checked there only, while a recommendation above is "
+        "confirmed at an amplitude "
+     << shortest(kAdviceRule.amplitude_factor) << " times smaller and on a run "
+     << shortest(kAdviceRule.length_factor) << " times as long.\n\n"
      << "| method and policy | stable with margin | rests on | checked to | the next value run, "
         "not stable with margin |\n|---|---|---|---|---|\n";
   for (const auto& a : all) {
