@@ -206,7 +206,8 @@ std::string table1_markdown(const Spec& spec, const std::vector<ojson>& rows, co
     if (std::find(blocks.begin(), blocks.end(), b) == blocks.end()) blocks.push_back(b);
   }
   double current_E = std::nan("");
-  for (const auto& [E, A] : blocks) {
+  for (const auto& block : blocks) {
+    const double E = block.first, A = block.second;  // named: a lambda below captures them
     // The block in the coordinates that fix a run: c T for E (at the spec's T), A / h for A.
     const auto in_block =
         std::find_if(spec.cases.begin(), spec.cases.end(),
