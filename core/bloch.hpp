@@ -26,8 +26,8 @@ namespace mpmstab {
 // symbol's radius is taken.
 inline constexpr int kBlochSamples = 256;
 
-// Whether p's scene starts from a uniform layout (the bar at every A; the steffen scene at
-// A = 0).
+// Whether p's scene starts from a uniform layout (the bar at every A; the steffen and mode
+// scenes at A = 0).
 bool uniform_layout(const RunParams& p);
 // The largest symbol the Bloch limit is computed for (values per particle x particles per cell:
 // 12 particles per cell, 8 with APIC); its cost grows with the cube.

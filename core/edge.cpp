@@ -181,19 +181,23 @@ EdgeResult search(const RunParams& base, const EdgeOptions& o, const std::atomic
     return r;
   };
   // The probes: no observer, or only the error over time when their outcome is needed.
+  // Every probe observes its error over time: the accuracy edge compares it (an error at one
+  // instant T could be small where the exact solution vanishes).
   RunParams lean = base;
   lean.observe = Observe{};
-  lean.observe.error_over_time = lean.observe.dt_stable = lean.observe.crossings = false;
-  if (o.bound) lean.observe.error_over_time = true;
+  lean.observe.dt_stable = lean.observe.crossings = false;
+  lean.observe.error_over_time = true;
   RunParams outcome_only = lean;
-  outcome_only.observe.error_over_time = true;
   const EdgeSurvey survey = [&](double dt, bool outcome) {
     const RunResult r = run_at(outcome ? outcome_only : lean, dt);
     const bool bounded =
         !o.bound || (r.max_error_over_time && *r.max_error_over_time <= *o.bound * base.A);
-    return EdgeProbe{
-        dt,      r.stable && bounded, r.failure ? std::optional(r.failure->reason) : std::nullopt,
-        r.steps, r.max_error,         r.stable ? r.outcome : std::optional(Outcome::unstable)};
+    return EdgeProbe{dt,
+                     r.stable && bounded,
+                     r.failure ? std::optional(r.failure->reason) : std::nullopt,
+                     r.steps,
+                     r.stable ? r.max_error_over_time : std::nullopt,
+                     r.stable ? r.outcome : std::optional(Outcome::unstable)};
   };
   // The run at the survival edge, with the params' observers and its outcome.
   RunParams measured = base;

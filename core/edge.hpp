@@ -2,7 +2,7 @@
 // limit h / c followed by bisection (docs/design.md, "The stability edge"):
 // - the survival edge dt_edge: the largest dt probed with which the case survives to T;
 // - the accuracy edge dt_accurate: the largest dt probed up to which every probed dt from the
-//   reference (the smallest dt that survives) survives with an error at T within
+//   reference (the smallest dt that survives) survives with an error over time within
 //   accuracy_factor times the reference's, and whose run is not meaningless (none when the
 //   reference's run is meaningless: its error is no yardstick).
 // Survival that is not monotone in dt (a dt below the edge fails) is reported as the dts where
@@ -26,7 +26,8 @@ struct EdgeOptions {
   double scan_low = 1.0 / 16;
   double scan_high = 4;
   int per_octave = 2;
-  // A dt is accurate when its error at T is at most this many times the reference's.
+  // A dt is accurate when its error over time (max over steps and particles) is at most this many
+  // times the reference's.
   double accuracy_factor = 2;
   // When set, a probe survives only when it also stays bounded: its error over time ends at
   // most bound x A. A mode that grows but has not yet failed by T then counts as failing (the
@@ -43,7 +44,7 @@ struct EdgeProbe {
   bool survived = false;
   std::optional<FailureReason> reason;  // a failed run
   std::int64_t steps = 0;
-  std::optional<double> max_error;  // the error at T of a run that survived
+  std::optional<double> max_error;  // the error over time of a run that survived
   std::optional<Outcome> outcome;   // unstable when failed; a survivor's only when measured
 };
 

@@ -7,6 +7,8 @@
 //                 law; it stiffens without bound in compression (sigma -> -inf as F -> 0).
 #pragma once
 
+#include <cmath>
+
 namespace mpmstab {
 
 enum class Material { linear, neo_hookean };
@@ -17,6 +19,12 @@ struct MaterialLaw {
 
   double stress(double F) const {
     return kind == Material::linear ? E * (F - 1.0) : 0.5 * E * (F - 1.0 / F);
+  }
+  // The strain energy per unit reference volume, W(F) with W(1) = 0 and dW/dF = stress(F):
+  // linear E (F - 1)^2 / 2; neo-Hookean E (F^2 - 1) / 4 - (E / 2) ln F (not finite for F <= 0).
+  double energy(double F) const {
+    return kind == Material::linear ? 0.5 * E * (F - 1.0) * (F - 1.0)
+                                    : 0.25 * E * (F * F - 1.0) - 0.5 * E * std::log(F);
   }
 };
 

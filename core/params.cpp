@@ -43,7 +43,8 @@ constexpr Names<Method, 6> kMethods{{{Method::mpm, "mpm"},
                                      {Method::bspline2, "bspline2"},
                                      {Method::bspline3, "bspline3"},
                                      {Method::cpdi, "cpdi"}}};
-constexpr Names<SceneKind, 2> kScenes{{{SceneKind::bar, "bar"}, {SceneKind::steffen, "steffen"}}};
+constexpr Names<SceneKind, 3> kScenes{
+    {{SceneKind::bar, "bar"}, {SceneKind::steffen, "steffen"}, {SceneKind::mode, "mode"}}};
 constexpr Names<Walls, 3> kWalls{
     {{Walls::clip, "clip"}, {Walls::ghost, "ghost"}, {Walls::modified, "modified"}}};
 constexpr Names<Transfer, 6> kTransfers{{{Transfer::flip, "flip"},
@@ -421,10 +422,13 @@ std::vector<ParamIssue> validate(const RunParams& p) {
   } else if (p.observe.history && p.max_steps >= 1) {
     // The rows a run keeps in memory: every stride-th of its steps (at most max_steps with a
     // state-dependent policy).
+    // The fixed and cfl policies know their step count.
     std::optional<std::int64_t> steps;
-    if (fixed && std::isfinite(p.dt) && p.dt > 0 && std::isfinite(p.T) && p.T > 0) {
-      steps = step_count(p.T, std::min(p.dt, p.T));
-    } else if (!fixed) {
+    const std::optional<double> step =
+        fixed || p.stepping.policy == TimeStepPolicy::cfl ? fixed_step(p) : std::nullopt;
+    if (step && std::isfinite(*step) && *step > 0 && std::isfinite(p.T) && p.T > 0) {
+      steps = step_count(p.T, std::min(*step, p.T));
+    } else if (!fixed && p.stepping.policy != TimeStepPolicy::cfl) {
       steps = p.max_steps;
     }
     if (steps && *steps / p.observe.history_stride > kMaxHistoryRows) {

@@ -39,8 +39,10 @@ constexpr bool has_eq108(Method m) {
 
 // The problem being solved (scene.hpp): the paper's bar ("bar", section 5.1: linear material,
 // u = A sin(2 pi X) sin(c pi t)) or the manufactured solution of Steffen, Wallstedt, Guilkey,
-// Kirby and Berzins (2008) ("steffen": neo-Hookean material, u = A sin(2 pi X) cos(c pi t)).
-enum class SceneKind { bar, steffen };
+// Kirby and Berzins (2008) ("steffen": neo-Hookean material, u = A sin(2 pi X) cos(c pi t)), or
+// one free standing wave of the periodic linear bar ("mode": no body force,
+// u = A sin(2 pi X) cos(2 pi c t), periodic boundaries only; the dispersion study's scene).
+enum class SceneKind { bar, steffen, mode };
 
 // Dirichlet: u = 0 at X = 0 and X = 1, a particle leaving [0, 1] ends the run as unstable.
 // Periodic: node N is node 0; particles wrap around.
@@ -131,6 +133,11 @@ struct Observe {
   bool crossings = true;        // cell-boundary crossings
   bool history = false;         // per-step rows (error, eq. 108, cumulative crossings)
   bool final_state = false;     // the particle state at the end, with the exact solution
+  // The energies (energy.hpp): kinetic, strain, the body force's work and their balance at every
+  // step, with the exact energies; off unless asked (a pass over the particles per step).
+  bool energy = false;
+  // The displacement error in L2 over the body and the run (error_l2.hpp); off unless asked.
+  bool error_l2 = false;
   // The dense spectral limit of an initial layout that is not uniform (spectral.hpp; a uniform
   // layout's Bloch limit is on every record).
   bool spectral = false;

@@ -28,6 +28,9 @@ struct HistoryRow {
   std::optional<double> error;            // max_p |u_p - u(X_p, t)| after this step
   std::optional<double> dt_stable;        // eq. (108) from the state after this step
   std::optional<std::int64_t> crossings;  // cumulative
+  // The energy observer's values (energy.hpp) and the exact ones at this time.
+  std::optional<double> kinetic, strain, work, energy_balance;
+  std::optional<double> kinetic_exact, strain_exact, work_exact;
 };
 
 // The particles at the end of the run (at T, or at the failure) with the exact solution there.
@@ -68,6 +71,17 @@ struct RunResult {
   std::optional<double> max_error;
   // Largest error over all steps completed before a failure (observer error_over_time).
   std::optional<double> max_error_over_time;
+  // The root mean square of the displacement error over the body and the steps completed before
+  // a failure (observer error_l2, error_l2.hpp).
+  std::optional<double> error_l2_time;
+  // The energy observer's summary (observer energy, energy.hpp): the largest balance error and
+  // the largest difference from the exact energy, both per the initial energy, the balance
+  // error's drift per period of the exact solution, and the first step whose balance error
+  // exceeds kEnergyWarning.
+  std::optional<double> energy_error_max;
+  std::optional<double> energy_exact_error_max;
+  std::optional<double> energy_drift;
+  std::optional<std::int64_t> energy_warning_step;
   // The run survived but its error over time reached A: the answer is as large as the solution.
   // Unset when the run failed or error_over_time was not observed.
   std::optional<bool> meaningless;

@@ -9,6 +9,8 @@
 
 #include "bloch.hpp"
 #include "crossings.hpp"
+#include "energy.hpp"
+#include "error_l2.hpp"
 #include "failure.hpp"
 #include "simulation.hpp"
 #include "spectral.hpp"
@@ -69,6 +71,8 @@ class Driver {
   Simulation sim_;
   const std::optional<double> fixed_dt_;  // fixed and cfl policies
   std::optional<CrossingCounter> crossing_counter_;
+  std::optional<EnergyObserver> energy_;   // observe.energy
+  std::optional<ErrorL2InTime> error_l2_;  // observe.error_l2
   const StableDtGeometry geometry_;
   const StableDtConstants eq108_constants_;  // of geometry_
   const double max_F_;
@@ -112,6 +116,8 @@ Driver::Driver(const RunParams& p, const HistorySink& sink)
   if (fixed_dt_) r_.steps_planned = *step_count(p.T, std::min(*fixed_dt_, p.T));
 
   if (obs_.crossings) crossing_counter_.emplace(sim_.particles(), h_);
+  if (obs_.energy) energy_.emplace(sim_.particles(), sim_.scene().law(), sim_.scene());
+  if (obs_.error_l2) error_l2_.emplace(sim_.particles(), sim_.scene());
   if (obs_.history && !sink_ && r_.steps_planned > 0) {
     const auto rows = r_.steps_planned / obs_.history_stride + 1;
     r_.history.reserve(static_cast<std::size_t>(std::min<std::int64_t>(rows, 10'000'000)));
@@ -207,6 +213,7 @@ void Driver::advance(const NextStep& next) {
     dt_min_ = std::min(dt_min_, dt);
     dt_max_ = std::max(dt_max_, dt);
   }
+  if (energy_) energy_->before_step(sim_.particles());
   // The state's extremes come with the step, read by the check, eq. (108) and the error over
   // time (taken in the same pass).
   sim_.advance_to(next.t_next, &extremes_, obs_.error_over_time);
@@ -226,7 +233,9 @@ bool Driver::fails_after_step() {
 
 // The observers of the state after an admissible step, and its history row.
 void Driver::observe_step(bool last) {
-  HistoryRow row{sim_.steps(), sim_.time(), {}, {}, {}};
+  HistoryRow row;
+  row.step = sim_.steps();
+  row.time = sim_.time();
   if (obs_.error_over_time) {
     const double e = extremes_.error_max;  // sim_.max_error(), from the pass after the step
     max_error_over_time_ = std::max(max_error_over_time_, e);
@@ -235,6 +244,23 @@ void Driver::observe_step(bool last) {
   if (obs_.crossings) {
     crossings_ += crossing_counter_->update(sim_.particles());
     row.crossings = crossings_;
+  }
+  if (error_l2_) error_l2_->after_step(sim_.particles(), sim_.time());
+  if (energy_) {
+    const Eigen::ArrayXd none;
+    const EnergySample e = energy_->after_step(
+        sim_.particles(), sim_.scene().has_body_force() ? sim_.body_acceleration() : none,
+        sim_.time(), sim_.steps());
+    if (history_) {
+      const ExactEnergy exact = sim_.scene().exact_energy(sim_.time());
+      row.kinetic = e.kinetic;
+      row.strain = e.strain;
+      row.work = e.work;
+      row.energy_balance = e.balance;
+      row.kinetic_exact = exact.kinetic;
+      row.strain_exact = exact.strain;
+      row.work_exact = exact.work;
+    }
   }
   if (dt_stable_ || uses_bound_) {
     if (every_option_) {
@@ -309,6 +335,14 @@ RunResult Driver::result(std::chrono::steady_clock::duration wall) {
   }
   if (r_.outcome && r_.stable && r_.steps < kMinStepsToJudge) r_.outcome = Outcome::too_short;
   if (obs_.crossings) r_.crossings = crossings_;
+  if (error_l2_ && r_.steps > (r_.failure ? 1 : 0)) r_.error_l2_time = error_l2_->value();
+  if (energy_) {
+    const EnergySummary e = energy_->summary();
+    r_.energy_error_max = e.error_max;
+    r_.energy_exact_error_max = e.exact_error_max;
+    r_.energy_drift = e.drift;
+    r_.energy_warning_step = e.warning_step;
+  }
   // step_limit and dt_collapse stop before a step; the other failures are found after one.
   const bool failed_in_a_step = r_.failure && r_.failure->reason != FailureReason::step_limit &&
                                 r_.failure->reason != FailureReason::dt_collapse;

@@ -94,8 +94,29 @@ Particles Scene::reference_layout(int cells, int ppc, const Layout& layout) cons
   return P;
 }
 
+ExactEnergy BarScene::exact_energy(double t) const {
+  const double w = c * kPi, s = std::sin(w * t), co = std::cos(w * t);
+  return {rho0 * A * A * w * w * co * co / 4, E * kPi * kPi * A * A * s * s,
+          0.75 * rho0 * A * A * w * w * s * s};
+}
+
+namespace {
+// int_0^1 W(F(X, t)) dX of the steffen scene's neo-Hookean law with F = 1 + a cos(2 pi X).
+double steffen_strain_energy(double E, double a) {
+  return E * a * a / 8 - 0.5 * E * std::log(0.5 * (1 + std::sqrt(1 - a * a)));
+}
+}  // namespace
+
+ExactEnergy SteffenScene::exact_energy(double t) const {
+  const double w = c * kPi, s = std::sin(w * t);
+  const double kinetic = rho0 * A * A * w * w * s * s / 4;
+  const double strain = steffen_strain_energy(E, 2 * kPi * A * std::cos(w * t));
+  return {kinetic, strain, kinetic + strain - steffen_strain_energy(E, 2 * kPi * A)};
+}
+
 std::unique_ptr<Scene> make_scene(const RunParams& p) {
   if (p.scene == SceneKind::steffen) return std::make_unique<SteffenScene>(p.E, p.A);
+  if (p.scene == SceneKind::mode) return std::make_unique<ModeScene>(p.E, p.A);
   return std::make_unique<BarScene>(p.E, p.A);
 }
 
@@ -210,6 +231,77 @@ Particles SteffenScene::initial_particles(int cells, int ppc, const Layout& layo
     P.v[p] = 0.0;  // v(X, 0) = 0
     P.F[p] = deformation_gradient(X, 0.0);
     P.sigma[p] = material_law.stress(P.F[p]);
+  }
+  return P;
+}
+
+// ---------------------------------------------------------------------------------------------
+// mode
+
+namespace {
+
+// b = 0 at every particle: zeros once, then nothing (the solver does not call it at all when
+// the scene has no body force).
+class ZeroBodyForce final : public BodyForceAtParticles {
+ public:
+  void evaluate(double, Eigen::ArrayXd& b) const override {
+    if (b.size() != n_ || (b != 0.0).any()) b.setZero(n_);
+  }
+  explicit ZeroBodyForce(Eigen::Index n) : n_(n) {}
+
+ private:
+  Eigen::Index n_;
+};
+
+}  // namespace
+
+ModeScene::ModeScene(double youngs_modulus, double amplitude) : Scene(youngs_modulus, amplitude) {}
+
+double ModeScene::displacement_profile(double X) const {
+  return A * std::sin(2 * kPi * X);
+}
+double ModeScene::displacement_factor(double t) const {
+  return std::cos(2 * kPi * c * t);
+}
+
+double ModeScene::displacement(double X, double t) const {
+  return displacement_profile(X) * displacement_factor(t);
+}
+double ModeScene::velocity(double X, double t) const {
+  return -2 * kPi * c * A * std::sin(2 * kPi * X) * std::sin(2 * kPi * c * t);
+}
+double ModeScene::deformation_gradient(double X, double t) const {
+  return 1.0 + 2 * kPi * A * std::cos(2 * kPi * X) * std::cos(2 * kPi * c * t);
+}
+double ModeScene::stress(double X, double t) const {
+  return E * (deformation_gradient(X, t) - 1.0);
+}
+double ModeScene::body_force(double, double) const {
+  return 0.0;
+}
+
+std::unique_ptr<BodyForceAtParticles> ModeScene::body_force_at(const Eigen::ArrayXd& X) const {
+  return std::make_unique<ZeroBodyForce>(X.size());
+}
+
+ExactEnergy ModeScene::exact_energy(double t) const {
+  const double s = std::sin(2 * kPi * c * t), co = std::cos(2 * kPi * c * t);
+  ExactEnergy e;
+  e.kinetic = rho0 * kPi * kPi * c * c * A * A * s * s;
+  e.strain = kPi * kPi * E * A * A * co * co;
+  e.work = 0;
+  return e;
+}
+
+Particles ModeScene::initial_particles(int cells, int ppc, const Layout& layout) const {
+  Particles P = reference_layout(cells, ppc, layout);
+  const MaterialLaw material_law = law();
+  for (Eigen::Index p = 0; p < P.size(); ++p) {
+    const double X = P.X[p];
+    P.x[p] = X + displacement(X, 0.0);
+    P.v[p] = 0.0;  // v(X, 0) = 0
+    P.F[p] = deformation_gradient(X, 0.0);
+    P.sigma[p] = material_law.stress(P.F[p]);  // E (F - 1)
   }
   return P;
 }

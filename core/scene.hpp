@@ -3,10 +3,12 @@
 // initial particle state, the body force that drives it and its exact solution. The solver
 // evaluates only these declarations.
 //
-// Both scenes are manufactured solutions on [0, 1] with rho0 = 1 and c = sqrt(E / rho0), in the
-// material description, with the balance of momentum rho0 u_tt = dP/dX + rho0 b and F = 1 + u_X.
-// Their displacements are A sin(2 pi X) times a function of t: zero at X = 0 and X = 1 and
-// periodic, so both accept Dirichlet and periodic boundaries. The displacement is separable,
+// The bar and steffen scenes are manufactured solutions on [0, 1] with rho0 = 1 and
+// c = sqrt(E / rho0), in the material description, with the balance of momentum
+// rho0 u_tt = dP/dX + rho0 b and F = 1 + u_X. Their displacements are A sin(2 pi X) times a
+// function of t: zero at X = 0 and X = 1 and periodic, so both accept Dirichlet and periodic
+// boundaries. The mode scene (below) is an exact free wave of the same form, without a body
+// force, posed with periodic boundaries only. The displacement is separable,
 // u(X, t) = displacement_profile(X) * displacement_factor(t), which the error observer uses: it
 // keeps the profile per particle and evaluates the factor once per step.
 //
@@ -55,6 +57,15 @@ class BodyForceAtParticles {
   virtual void evaluate(double t, Eigen::ArrayXd& b) const = 0;
 };
 
+// The exact energies of a scene at a time t, per unit cross-section (energy.hpp): kinetic
+// 1/2 int rho0 v^2 dX, strain int W(F) dX over the body, and the work the body force has done
+// on the body since t = 0.
+struct ExactEnergy {
+  double kinetic = 0;
+  double strain = 0;
+  double work = 0;
+};
+
 class Scene {
  public:
   Scene(double youngs_modulus, double amplitude);
@@ -87,6 +98,14 @@ class Scene {
   // The body force at the reference positions X (one per particle).
   virtual std::unique_ptr<BodyForceAtParticles> body_force_at(const Eigen::ArrayXd& X) const = 0;
 
+  // The exact energies at time t, in closed form (docs/design.md, "Energy").
+  virtual ExactEnergy exact_energy(double t) const = 0;
+  // The period of the exact solution in time.
+  virtual double period() const = 0;
+  // False for a scene without a body force (b = 0 everywhere): the solver then never evaluates
+  // body_force_at's object and its force sums add zero.
+  virtual bool has_body_force() const { return true; }
+
   // The particle state at t = 0 on `cells` cells with `ppc` particles per cell.
   virtual Particles initial_particles(int cells, int ppc, const Layout& layout = {}) const = 0;
 
@@ -117,6 +136,11 @@ class BarScene final : public Scene {
   // The body force is separable too: b(X, t) = body_force_profile(X) * body_force_factor(t).
   double body_force_profile(double X) const;  // 3 (c pi)^2 A sin(2 pi X)
   double body_force_factor(double t) const;   // sin(c pi t)
+
+  // With w = c pi: K = A^2 w^2 cos^2(w t) / 4, U = E pi^2 A^2 sin^2(w t) and the body force's
+  // work 3 A^2 w^2 sin^2(w t) / 4 (rho0 = 1), so that K + U - work = K(0) at every t.
+  ExactEnergy exact_energy(double t) const override;
+  double period() const override { return 2.0 / c; }
 
   // The body force at particles X reads this scene (which must outlive it).
   std::unique_ptr<BodyForceAtParticles> body_force_at(const Eigen::ArrayXd& X) const override;
@@ -155,7 +179,54 @@ class SteffenScene final : public Scene {
 
   std::unique_ptr<BodyForceAtParticles> body_force_at(const Eigen::ArrayXd& X) const override;
 
+  // With w = c pi and a = 2 pi A cos(w t): K = A^2 w^2 sin^2(w t) / 4 and, from
+  // int_0^1 (F^2 - 1) dX = a^2 / 2 and int_0^1 ln F dX = ln((1 + sqrt(1 - a^2)) / 2),
+  // U = E a^2 / 8 - (E / 2) ln((1 + sqrt(1 - a^2)) / 2); the work is K + U - U(0), the balance
+  // of the exact solution (not finite once 2 pi A >= 1, where F reaches 0).
+  ExactEnergy exact_energy(double t) const override;
+  double period() const override { return 2.0 / c; }
+
   // x = X + u(X, 0), v = 0, F = F(X, 0), sigma = sigma(F).
+  Particles initial_particles(int cells, int ppc, const Layout& layout = {}) const override;
+};
+
+// mode: one free standing wave of wavelength 1 on the periodic linear bar (the dispersion
+// study's scene, core/dispersion.hpp). Linear material sigma = E (F - 1), no body force:
+//   u(X, t) = A sin(2 pi X) cos(2 pi c t),  F(X, t) = 1 + 2 pi A cos(2 pi X) cos(2 pi c t).
+//   u_tt = -(2 pi c)^2 u = E u_XX / rho0 with rho0 c^2 = E: the balance of momentum holds with
+//   b = 0, so the scheme's own wave is what moves. Its period is 1 / c. Dirichlet walls at X = 0
+//   and X = 1 would hold u = 0 there, which u does, but the scene is the free wave of a periodic
+//   grid (no wall modes, the Bloch symbol's setting): it is posed with periodic boundaries only.
+//   The particles start at the deformed positions x_p = X_p + u(X_p, 0) at rest, with
+//   F_p = F(X_p, 0) and sigma_p = E (F_p - 1); at A > 0 this layout is not uniform.
+class ModeScene final : public Scene {
+ public:
+  ModeScene(double youngs_modulus, double amplitude);
+
+  Material material() const override { return Material::linear; }
+  static constexpr bool supports(Boundary bc) { return bc == Boundary::periodic; }
+
+  double displacement(double X, double t) const override;
+  double velocity(double X, double t) const override;
+  double deformation_gradient(double X, double t) const;  // F = 1 + u_X
+  double stress(double X, double t) const override;       // E (F - 1)
+  double body_force(double X, double t) const override;   // 0
+
+  double displacement_profile(double X) const override;  // A sin(2 pi X)
+  double displacement_factor(double t) const override;   // cos(2 pi c t)
+
+  // A body force that is zero: never evaluated by the solver (has_body_force).
+  std::unique_ptr<BodyForceAtParticles> body_force_at(const Eigen::ArrayXd& X) const override;
+  bool has_body_force() const override { return false; }
+
+  // With v = -2 pi c A sin(2 pi X) sin(2 pi c t) and u_X = 2 pi A cos(2 pi X) cos(2 pi c t):
+  // K = (1/2) int_0^1 v^2 dX = pi^2 c^2 A^2 sin^2(2 pi c t) and
+  // U = (E/2) int_0^1 u_X^2 dX = pi^2 E A^2 cos^2(2 pi c t) (rho0 = 1, so E = c^2 and K + U is
+  // pi^2 E A^2 at every t); no body force, no work.
+  ExactEnergy exact_energy(double t) const override;
+  double period() const override { return 1.0 / c; }
+
+  // x = X + u(X, 0), v = 0, F = F(X, 0), sigma = E (F - 1).
   Particles initial_particles(int cells, int ppc, const Layout& layout = {}) const override;
 };
 
@@ -169,6 +240,8 @@ constexpr bool scene_supports(SceneKind kind, Boundary bc) {
       return BarScene::supports(bc);
     case SceneKind::steffen:
       return SteffenScene::supports(bc);
+    case SceneKind::mode:
+      return ModeScene::supports(bc);
   }
   return false;
 }

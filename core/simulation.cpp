@@ -63,7 +63,8 @@ Simulation::Simulation(const RunParams& p)
   stencil2_.resize(width == 2 ? n : 0);
   stencil3_.resize(width == 3 ? n : 0);
   stencil4_.resize(width == 4 ? n : 0);
-  body_force_ = scene_->body_force_at(P_.X);
+  // A scene without a body force leaves body_force_ null: its b stays the zeros set below.
+  if (scene_->has_body_force()) body_force_ = scene_->body_force_at(P_.X);
   u_profile_ = scene_->displacement_profiles(P_.X);
   body_accel_.setZero(P_.size());
   if (p.transfer == Transfer::apic) P_.C.setZero(P_.size());  // starts from v_p alone
@@ -84,7 +85,7 @@ void Simulation::full_mass_velocity(const Stencil<W>& S) {
 template <class Basis>
 bool Simulation::step(const Basis& basis, Stencil<Basis::width>& S, double dt, double t_body,
                       const StateCheck* check) {
-  body_force_->evaluate(t_body, body_accel_);  // b(X_p, t^n) or b(X_p, t^{n+1})
+  if (body_force_) body_force_->evaluate(t_body, body_accel_);  // b(X_p, t^n) or b(X_p, t^{n+1})
   const double* b = body_accel_.data();
   const bool apic = params_.transfer == Transfer::apic;
   switch (params_.update) {

@@ -47,6 +47,9 @@ class Simulation {
   const Particles& particles() const { return P_; }
   Particles& particles() { return P_; }  // for tests that plant a state
   const Grid& grid() const { return G_; }
+  // The body force per unit mass the last step applied at each particle (zeros for a scene
+  // without one).
+  const Eigen::ArrayXd& body_acceleration() const { return body_accel_; }
 
  private:
   // True if its last phase took the check (`check` given, where phases.hpp says it can).

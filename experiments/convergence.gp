@@ -1,7 +1,7 @@
-# convergence.gp -- the error at T against h, log-log, one panel per E, one series per basis.
+# convergence.gp -- the error over time against h, log-log, one panel per E, one series per basis.
 #
 # Reads : datafile (results/convergence_data.csv): '#' lines, then the header
-#         E,panel,series,method,h,error and one row per stable run of the h sweep. panel: 0.. per
+#         E,panel,series,method,h,error_over_time and one row per stable run of the h sweep. panel: 0.. per
 #         E; series: 0.. per basis (alphabetical).
 # Writes: outbase.png and outbase.svg.
 # Variables: datafile, outbase (required), subtitle (optional: the runs drawn and left out).
@@ -38,7 +38,7 @@ set logscale xy
 set format x "10^{%L}"
 set format y "10^{%L}"
 set xlabel "h"
-set ylabel "error at T"
+set ylabel "error over time (max over steps and particles)"
 set grid
 set key bottom right font ",9"
 
@@ -49,11 +49,11 @@ do for [format in "png svg"] {
         set terminal svg size 1500,500 font "Arial,10"
     }
     set output outbase . "." . format
-    set multiplot layout 1, panels title "Error at T against h, every method (" . subtitle . ")"
+    set multiplot layout 1, panels title "Error over time against h, every method (" . subtitle . ")"
     do for [k = 1:panels] {
         set title sprintf("E = %g", panel_E[k])
         plot for [s = 1:nseries] datafile \
-            using (column("panel") == k - 1 && column("series") == s - 1 ? column("h") : 1/0):"error" \
+            using (column("panel") == k - 1 && column("series") == s - 1 ? column("h") : 1/0):"error_over_time" \
             with linespoints pt (s + 3) title names[s]
     }
     unset multiplot

@@ -1,5 +1,5 @@
 # methods.gp -- every method placed by its survival edge at a tiny amplitude (x, in units of
-# h/c) and its error at Table 1's setting (y, log scale): one panel per update order (USL, USF,
+# h/c) and its error over time at Table 1's setting (y, log scale): one panel per update order (USL, USF,
 # MUSL), a colour per basis and a point shape per velocity transfer. Up and left is worse.
 #
 # Reads : datafile (results/methods_data.csv): '#' lines, then the header
@@ -42,13 +42,13 @@ do for [ext in "png svg"] {
         set terminal svg size 1500,700 dynamic font "sans,11" noenhanced background "white"
     }
     set output outbase . "." . ext
-    set multiplot title "Each method: survival edge at A = 1e-4 against the error at Table 1's setting (E = 64, A = 0.015, dt = 1e-4)" . (strlen(subtitle) > 0 ? "\n" . subtitle : "")
+    set multiplot title "Each method: survival edge at A = 1e-4 against the error over time at Table 1's setting (E = 64, A = 0.015, dt = 1e-4)" . (strlen(subtitle) > 0 ? "\n" . subtitle : "")
     set logscale y
     set format y "%.0e"
     set xrange [0:xhigh]
     set yrange [ylow:yhigh]
     set xlabel "survival edge dt / (h/c)"
-    set ylabel "error at T"
+    set ylabel "error over time (max over steps and particles)"
     set grid xtics ytics lc rgb "#e0e0e0"
     unset key
     set tmargin at screen 0.86

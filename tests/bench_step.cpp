@@ -5,6 +5,9 @@
 // BM_StepInstrumented: plus every observer (error over time, eq. 108, crossings).
 // BM_StepBaseline: the same step as a first textbook implementation would write it (below), so
 // that one run shows the solver's kernel and a straightforward one side by side.
+// BM_RunObservers: a whole run (run(), GIMP, 1000 steps) with the default observers (0), with
+// the energy observer on as well (1), and with the L2 error over time on as well (2): what an
+// observer costs when it is asked for, and that a run without it pays nothing for it.
 // The counter ns_per_particle_step is the time per step divided by the number of particles.
 #include <benchmark/benchmark.h>
 
@@ -15,6 +18,7 @@
 
 #include "crossings.hpp"
 #include "failure.hpp"
+#include "run.hpp"
 #include "simulation.hpp"
 #include "stable_dt.hpp"
 
@@ -225,6 +229,26 @@ BENCHMARK(BM_Step<Level::stable_dt>)->Name("BM_StepStableDt")->Apply(methods);
 BENCHMARK(BM_Step<Level::crossings>)->Name("BM_StepCrossings")->Apply(methods);
 BENCHMARK(BM_Step<Level::instrumented>)->Name("BM_StepInstrumented")->Apply(methods);
 BENCHMARK(BM_StepBaseline)->Apply(methods);
+
+void BM_RunObservers(benchmark::State& state) {
+  mpmstab::RunParams p = bar(Method::gimp);
+  p.observe.energy = state.range(0) >= 1;
+  p.observe.error_l2 = state.range(0) >= 2;
+  double particles = 0, steps = 0;
+  for (auto _ : state) {
+    const mpmstab::RunResult r = mpmstab::run(p);
+    benchmark::DoNotOptimize(r.max_error);
+    particles = static_cast<double>(r.particles);
+    steps = static_cast<double>(r.steps);
+  }
+  state.counters["ns_per_particle_step"] =
+      benchmark::Counter(particles * steps * 1e-9, benchmark::Counter::kIsIterationInvariantRate |
+                                                       benchmark::Counter::kInvert);
+  state.SetLabel(state.range(0) == 0   ? "default observers"
+                 : state.range(0) == 1 ? "+ energy"
+                                       : "+ energy + error_l2");
+}
+BENCHMARK(BM_RunObservers)->DenseRange(0, 2);
 // The other bases' step, against BM_Step's gimp in the same run (no baseline: that is for the
 // paper's two bases).
 BENCHMARK(BM_Step<Level::step>)

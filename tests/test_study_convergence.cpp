@@ -25,8 +25,11 @@ TEST(ConvergenceStudy, TheFittedOrderIsTheSlopeOfTheTabulatedErrors) {
   const fs::path dir = fs::temp_directory_path() / ("mpmstab_conv_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
+  const std::string baseline =
+      (fs::path(MPMSTAB_SOURCE_DIR) / "reference/peers/uintah_oofa_mms_baseline.csv").string();
   std::ofstream(dir / "conv.json") << R"({"name": "conv", "report": "convergence",
-    "record": ["error_over_time"], "defaults": {"A": 0.001, "T": 0.25, "E": 64, "dt": 2e-5},
+    "reference": ")" + baseline + R"(",
+    "record": ["error_over_time", "error_l2"], "defaults": {"A": 0.001, "T": 0.3, "E": 64, "dt": 2e-5},
     "cases": [{"method": "bspline2", "cells": 25}, {"method": "bspline2", "cells": 50},
               {"method": "bspline2", "cells": 100},
               {"method": "mpm", "cells": 25, "dt": 0.2, "T": 0.5},
@@ -35,20 +38,30 @@ TEST(ConvergenceStudy, TheFittedOrderIsTheSlopeOfTheTabulatedErrors) {
                                                     " --out " + (dir / "out").string());
   ASSERT_EQ(r.status, 0) << r.output;
   const std::string md = read(dir / "out" / "conv.md");
-  // | 64 | bspline2 | e25 | e50 | e100 | order |
+  // | 64 | bspline2 | e25 | e50 (ratio, order) | e100 (ratio, order) | fitted | limit | at T |
+  // in the first table: the error over time.
   const std::regex row(
-      R"(\| 64 \| bspline2 \| ([0-9.e-]+) \| ([0-9.e-]+) \| ([0-9.e-]+) \| ([0-9.]+) \|)");
+      R"(\| 64 \| bspline2 \| ([0-9.e-]+) \| ([0-9.e-]+) \(([0-9.]+), ([0-9.-]+)\) \| )"
+      R"(([0-9.e-]+) \(([0-9.]+), ([0-9.-]+)\) \| ([0-9.-]+) \|)");
   std::smatch m;
   ASSERT_TRUE(std::regex_search(md, m, row)) << md;
-  const double e25 = std::stod(m[1]), e100 = std::stod(m[3]), order = std::stod(m[4]);
+  const double e25 = std::stod(m[1]), e50 = std::stod(m[2]), e100 = std::stod(m[5]);
+  const double ratio50 = std::stod(m[3]), order50 = std::stod(m[4]), order = std::stod(m[8]);
+  // The bracket of a cell is the ratio to the grid before it and its order (h halves).
+  EXPECT_NEAR(ratio50, e25 / e50, 0.01 * e25 / e50) << md;
+  EXPECT_NEAR(order50, std::log2(e25 / e50), 0.01) << md;
   // Three points, equally spaced in log h: the least-squares slope is that of the end points
   // (to the two digits the table prints).
   EXPECT_NEAR(order, std::log(e25 / e100) / std::log(4.0), 0.1) << md;
-  EXPECT_GT(order, 2.0) << md;
+  EXPECT_GT(order, 1.0) << md;
   // MPM's coarsest run steps past T at once (dt = 0.2 > h/c): unstable, so only two points
   // remain and no order is fitted.
-  const std::regex mpm_row(R"(\| 64 \| mpm \| unstable \| [0-9.e-]+ \| [0-9.e-]+ \| – \|)");
+  const std::regex mpm_row(
+      R"(\| 64 \| mpm \| unstable \| [0-9.e-]+ \| [0-9.e-]+ \([^)]*\) \| – \|)");
   EXPECT_TRUE(std::regex_search(md, mpm_row)) << md;
+  // The L2 table is there, and every order is fitted to a norm over time, never to the error
+  // at T alone.
+  EXPECT_NE(md.find("The L2 error over time"), std::string::npos) << md;
   EXPECT_TRUE(fs::exists(dir / "out" / "conv_data.csv"));
   fs::remove_all(dir);
 }

@@ -200,7 +200,7 @@ TEST(EdgeStudy, ReportStatesTheRuleAndReadsBothEdgesFromTheRows) {
   const std::string md = test_support::study_report("edge", edge_rows()).markdown;
   // The rule.
   EXPECT_NE(md.find("dt_accurate is the last dt tried before the first that fails or has an "
-                    "error at T more than 2 times the reference's"),
+                    "error over time more than 2 times the reference's"),
             std::string::npos)
       << md;
   EXPECT_NE(md.find("A case whose reference run is meaningless has no accuracy edge."),
@@ -291,10 +291,10 @@ TEST(EdgeStudy, AnEdgeAboveTheLimitIsMarkedTransientWithTheLengthAtWhichItFails)
   follow_up.push_back(at_accurate);
   ojson twin = survives;  // the periodic twin at the first row's accuracy edge
   twin["bc"] = "periodic";
-  twin["max_error"] = 3e-6;
+  twin["max_error_over_time"] = 3e-6;
   follow_up.push_back(twin);
   const auto report = test_support::study_report("edge", rows, follow_up);
-  // The twin's error at T beside the Dirichlet run's, and per method in the walls paragraph.
+  // The twin's error over time beside the Dirichlet run's, and per method in the walls paragraph.
   EXPECT_NE(report.markdown.find("| 1.0e-5 → 6.0e-6 (periodic 3.0e-6) |"), std::string::npos)
       << report.markdown;
   EXPECT_NE(report.markdown.find("gimp 0.5 to 0.5 times the Dirichlet one (median 0.5, 1 of 1 "

@@ -6,6 +6,7 @@
 
 #include "args.hpp"
 #include "commands.hpp"
+#include "energy.hpp"
 #include "files.hpp"
 #include "params.hpp"
 #include "result_json.hpp"
@@ -43,9 +44,11 @@ Options:
   --position-update grid|particle
                            move particles with the grid velocity (default) or with
                            the updated particle velocity (the paper's eq. 10)
-  --scene bar|steffen      the paper's bar (default: linear material, u = A sin(2 pi X)
-                           sin(c pi t)) or Steffen et al. (2008): neo-Hookean material,
-                           u = A sin(2 pi X) cos(c pi t)
+  --scene bar|steffen|mode the paper's bar (default: linear material, u = A sin(2 pi X)
+                           sin(c pi t)), Steffen et al. (2008): neo-Hookean material,
+                           u = A sin(2 pi X) cos(c pi t), or mode: one free standing wave
+                           of the linear bar, u = A sin(2 pi X) cos(2 pi c t), no body
+                           force, --bc periodic only
   --walls clip|ghost       GIMP supports at a Dirichlet wall: nodes on [0, 1] only
                            (default) or one free ghost node beyond each wall
   --transfer flip|pic|blend|apic|xpic|fmpm
@@ -82,6 +85,11 @@ Options:
                            run that reaches it stops with the verdict step_limit
   --history <file.csv>     also write the per-step history (error, eq. 108, crossings)
   --history-stride <n>     keep every n-th step in the history (default 1)
+  --energy                 also observe the energies at every step: the record's
+                           energy_error_max, energy_exact_error_max, energy_drift and
+                           energy_warning_step, and the history's energy columns
+  --error-l2               also measure error_l2_time, the RMS of the displacement error
+                           over the body and the run
   --json                   print the run's record (one JSON object, the same as a row of
                            a sweep's results) instead of the text summary; the record
                            holds no wall time (the text summary shows it)
@@ -128,7 +136,7 @@ std::string text_summary(const RunResult& r) {
   }
   if (r.outcome == Outcome::meaningless) verdict += " (the error over time reached A)";
   auto line = [&](std::string_view key, const std::string& value) {
-    s << "  " << key << std::string(22 - key.size(), ' ') << value << "\n";
+    s << "  " << key << std::string(key.size() < 22 ? 22 - key.size() : 1, ' ') << value << "\n";
   };
   line("verdict", verdict);
   line("steps", std::to_string(r.steps) +
@@ -139,10 +147,19 @@ std::string text_summary(const RunResult& r) {
                     ")");
   line("max_error", fmt(r.max_error));
   line("max_error_over_time", fmt(r.max_error_over_time));
+  if (p.observe.error_l2) line("error_l2_time", fmt(r.error_l2_time));
   line("dt_stable_min", fmt(r.dt_stable_min) + "  (eq. 108, sigma " +
                             std::string(to_string(p.stable.sigma)) + ", ||v|| " +
                             std::string(to_string(p.stable.vnorm)) + ")");
   line("crossings", fmt(r.crossings));
+  if (p.observe.energy) {
+    line("energy_error_max", fmt(r.energy_error_max) + "  (balance, per the initial energy)");
+    line("energy_exact_error_max", fmt(r.energy_exact_error_max) + "  (against the exact K + U)");
+    line("energy_drift", fmt(r.energy_drift) + "  (per period of the exact solution)");
+    line("energy_warning_step",
+         r.energy_warning_step ? std::to_string(*r.energy_warning_step)
+                               : std::string("-  (balance within ") + fmt(kEnergyWarning) + ")");
+  }
   line("dt_cfl = h/c", fmt(r.dt_cfl));
   line("dt_sound = 1/c", fmt(r.dt_sound));
   line("courant = c dt/h", fmt(r.courant) + (r.dt_min != r.dt_max ? "  (largest dt)" : ""));
@@ -155,16 +172,24 @@ std::string text_summary(const RunResult& r) {
 }
 
 // One line of the history CSV (header: kHistoryHeader).
-constexpr std::string_view kHistoryHeader = "step,time,error,dt_stable,crossings\n";
+// The energy columns are empty unless the run observes its energy (--energy).
+constexpr std::string_view kHistoryHeader =
+    "step,time,error,dt_stable,crossings,kinetic,strain,work,energy_balance,kinetic_exact,"
+    "strain_exact,work_exact\n";
 std::string history_line(const HistoryRow& h) {
   std::ostringstream s;
   s.precision(17);
-  s << h.step << ',' << h.time << ',';
-  if (h.error) s << *h.error;
-  s << ',';
-  if (h.dt_stable) s << *h.dt_stable;
-  s << ',';
-  if (h.crossings) s << *h.crossings;
+  s << h.step << ',' << h.time;
+  auto cell = [&s](const auto& v) {
+    s << ',';
+    if (v) s << *v;
+  };
+  cell(h.error);
+  cell(h.dt_stable);
+  cell(h.crossings);
+  for (const auto* v : {&h.kinetic, &h.strain, &h.work, &h.energy_balance, &h.kinetic_exact,
+                        &h.strain_exact, &h.work_exact})
+    cell(*v);
   s << '\n';
   return s.str();
 }

@@ -63,7 +63,8 @@ void read_choices(const Args& a, RunParams& p) {
     p.position_update =
         parse_choice(*v, "position-update", parse_position_update, "grid or particle");
   }
-  if (auto v = a.value("scene")) p.scene = parse_choice(*v, "scene", parse_scene, "bar or steffen");
+  if (auto v = a.value("scene"))
+    p.scene = parse_choice(*v, "scene", parse_scene, "bar, steffen or mode");
   if (auto v = a.value("walls"))
     p.walls = parse_choice(*v, "walls", parse_walls, "clip, ghost or modified");
   if (auto v = a.value("transfer")) {
@@ -92,6 +93,8 @@ void read_measurements(const Args& a, RunParams& p) {
     p.stable.vnorm = parse_choice(*v, "dt-stable-vnorm", parse_velocity_norm, "l2 or max");
   }
   if (auto v = a.value("max-steps")) p.max_steps = parse_int(*v, "max-steps");
+  p.observe.energy = a.flag("energy");
+  p.observe.error_l2 = a.flag("error-l2");
   if (auto v = a.value("history-stride"))
     p.observe.history_stride = parse_int(*v, "history-stride");
   // --history FILE streams the rows into FILE as the run makes them (run()'s sink): none is
@@ -144,6 +147,8 @@ const std::vector<OptionSpec>& run_options() {
       {"safety"},
       {"history"},
       {"history-stride"},
+      {"energy", false},
+      {"error-l2", false},
       {"json", false},
       {"help", false},
   };

@@ -153,7 +153,8 @@ int cmd_spectral(const std::vector<std::string_view>& argv) {
     }
     if (*a == "bloch" && !bloch) {
       throw UsageError(
-          "--analysis: bloch needs a uniform layout (the bar, or the steffen scene at A = 0)");
+          "--analysis: bloch needs a uniform layout (the bar, or the steffen or mode scene "
+          "at A = 0)");
     }
     bloch = *a == "bloch";
   }

@@ -132,8 +132,8 @@ const std::vector<std::string>& claim_name_tokens() {
       "Fig. 3", "Figs. 1-3", "1D", "l2", "xpic(2)", "fmpm(2)", "bspline2", "bspline3", "XPIC(2)",
       "FMPM(2)", "section 5.2", "Figures 1-3",
       // Notation, not results: the definitions and formulas the prose quotes.
-      "1/c", "h = 1/", "1/sqrt(", "F = 1", "F_max = 1", "(4 m", "sin(2 pi X)", "(2008)", "sum to 1",
-      "(±1)", "(k − 1) / k", "CFL number is 1", "F_p <= 0"};
+      "1/c", "h = 1/", "1/sqrt(", "F = 1", "F_max = 1", "(4 m", "sin(2 pi X)", "(2008)", "(2010)",
+      "sum to 1", "(±1)", "(k − 1) / k", "CFL number is 1", "F_p <= 0"};
   return tokens;
 }
 

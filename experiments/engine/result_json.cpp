@@ -21,8 +21,9 @@ const std::vector<std::string>& record_columns() {
       "body_force_time", "policy", "cfl_factor", "safety", "dt_stable_sigma", "dt_stable_vnorm",
       // What the run did.
       "outcome", "failure_reason", "failure_step", "failure_time", "failure_particle", "steps",
-      "dt_min", "dt_max", "dt_mean", "max_error", "max_error_over_time", "crossings",
-      "dt_stable_min", "dt_cfl", "dt_sound", "courant", "courant_spectral", "dt_spectral",
+      "dt_min", "dt_max", "dt_mean", "max_error", "max_error_over_time", "error_l2_time",
+      "crossings", "dt_stable_min", "energy_error_max", "energy_exact_error_max", "energy_drift",
+      "energy_warning_step", "dt_cfl", "dt_sound", "courant", "courant_spectral", "dt_spectral",
       "spectral_analysis", "particles", "solver_version"};
   return columns;
 }
@@ -73,8 +74,13 @@ nlohmann::ordered_json to_json(const RunResult& r) {
   j["dt_mean"] = ran ? ojson(r.dt_mean) : ojson(nullptr);
   j["max_error"] = or_null(r.max_error);
   j["max_error_over_time"] = or_null(r.max_error_over_time);
+  j["error_l2_time"] = or_null(r.error_l2_time);
   j["crossings"] = or_null(r.crossings);
   j["dt_stable_min"] = or_null(r.dt_stable_min);
+  j["energy_error_max"] = or_null(r.energy_error_max);
+  j["energy_exact_error_max"] = or_null(r.energy_exact_error_max);
+  j["energy_drift"] = or_null(r.energy_drift);
+  j["energy_warning_step"] = or_null(r.energy_warning_step);
   j["dt_cfl"] = r.dt_cfl;
   j["dt_sound"] = r.dt_sound;
   const bool fixed_step = policy == TimeStepPolicy::fixed || policy == TimeStepPolicy::cfl;
@@ -102,6 +108,16 @@ nlohmann::ordered_json history_to_json(const RunResult& r) {
                     {"error", or_null(h.error)},
                     {"dt_stable", or_null(h.dt_stable)},
                     {"crossings", or_null(h.crossings)}});
+    if (r.params.observe.energy) {
+      auto& row = rows.back();
+      row["kinetic"] = or_null(h.kinetic);
+      row["strain"] = or_null(h.strain);
+      row["work"] = or_null(h.work);
+      row["energy_balance"] = or_null(h.energy_balance);
+      row["kinetic_exact"] = or_null(h.kinetic_exact);
+      row["strain_exact"] = or_null(h.strain_exact);
+      row["work_exact"] = or_null(h.work_exact);
+    }
   }
   return rows;
 }
@@ -198,6 +214,8 @@ std::string record_defect(const nlohmann::ordered_json& row) {
     RunResult r;
     r.outcome = Outcome::stable;
     r.steps = 1;
+    r.error_l2_time = r.energy_error_max = r.energy_exact_error_max = r.energy_drift = 0.0;
+    r.energy_warning_step = 0;
     return to_json(r);
   }();
   if (!row.is_object()) return ": must be an object";

@@ -47,7 +47,8 @@ const std::vector<std::string> kTopKeys = {
 // A spec named by cases_from is read whole; larger files are refused rather than read.
 constexpr std::uintmax_t kMaxSpecBytes = 4u << 20;
 const std::vector<std::string> kRecordValues = {"error_over_time", "dt_stable",   "crossings",
-                                                "history",         "final_state", "spectral"};
+                                                "history",         "final_state", "spectral",
+                                                "energy",          "error_l2"};
 
 class Reader {
  public:
@@ -124,7 +125,7 @@ class Reader {
     else if (key == "position_update")
       p.position_update = choice_at(v, path, parse_position_update, "grid or particle");
     else if (key == "scene")
-      p.scene = choice_at(v, path, parse_scene, "bar or steffen");
+      p.scene = choice_at(v, path, parse_scene, "bar, steffen or mode");
     else if (key == "walls")
       p.walls = choice_at(v, path, parse_walls, "clip, ghost or modified");
     else if (key == "transfer")
@@ -502,6 +503,10 @@ Observe read_observe(const Reader& r, const json& doc) {
         observe.final_state = true;
       else if (what == "spectral")
         observe.spectral = true;
+      else if (what == "energy")
+        observe.energy = true;
+      else if (what == "error_l2")
+        observe.error_l2 = true;
       else {
         std::string message = "unknown value '" + what + "'";
         if (auto guess = cli::nearest(what, kRecordValues))

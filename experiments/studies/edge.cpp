@@ -1,6 +1,6 @@
 // The edges in dt: per case, the survival edge (the largest fixed dt that survives to T) and the
-// accuracy edge (the largest that keeps the error at T of the smallest dt), against h/c and the
-// eq. (108) bound, with the dts where survival flips; one section per scene, the figure drawing
+// accuracy edge (the largest that keeps the error over time of the smallest dt), against h/c and
+// the eq. (108) bound, with the dts where survival flips; one section per scene, the figure drawing
 // every scene.
 #include <algorithm>
 #include <cctype>
@@ -442,16 +442,15 @@ std::string search_rule(const EdgeOptions& o) {
          "is "
          "measured (its outcome, its error at T, the minimum of eq. (108) over it). The *accuracy "
          "edge* dt_accurate: the reference is the smallest dt tried that survives, and its error "
-         "at T "
-         "the yardstick; walking up from it, dt_accurate is the last dt tried before the first "
-         "that "
-         "fails or has an error at T more than " +
+         "over time (max over steps and particles) the yardstick; walking up from it, "
+         "dt_accurate is the last dt tried before the first that fails or has an error over time "
+         "more than " +
          shortest(o.accuracy_factor) +
          " times the reference's, bisected against that one to "
          "the same tolerance, and its run must be stable (its error over time stays below A), else "
          "the search "
          "goes on below it. A case whose reference run is meaningless has no accuracy edge. The "
-         "probes run without observers (their error at T is measured at the end); the outcome is "
+         "probes observe only their error over time; the outcome is "
          "measured for the reference and at both edges. Survival is *not monotone* when a dt below "
          "the survival edge fails; the flips column lists, in increasing dt, each dt from which "
          "the "
@@ -487,7 +486,7 @@ std::string edge_table(const std::vector<ojson>& rows, const EdgeFollowUps& f) {
   std::ostringstream md;
   md << "| method | A | A/h | E | c T | h/c | spectral limit (h/c) | survival edge dt_edge (h/c; "
         "bracket) | survival edge / limit | run at dt_edge | error at T there | accuracy edge "
-        "dt_accurate (h/c) | accuracy edge / limit | error at T: reference → at dt_accurate "
+        "dt_accurate (h/c) | accuracy edge / limit | error over time: reference → at dt_accurate "
         "(periodic "
         "twin) | "
         "eq. (108) at dt_edge (dt_edge / it) | survival in dt | ensemble | probes | "
@@ -520,7 +519,8 @@ std::string edge_table(const std::vector<ojson>& rows, const EdgeFollowUps& f) {
       md << opt_sci(r["max_error_reference"]) << " → " << opt_sci(r["max_error_at_accurate"]);
       if (const auto it = f.twins.find(&r); it != f.twins.end())
         md << " (periodic "
-           << (survived(it->second) ? opt_sci(it->second["max_error"]) : verdict(it->second))
+           << (survived(it->second) ? opt_sci(it->second["max_error_over_time"])
+                                    : verdict(it->second))
            << ")";
       md << " | " << opt_sci(r["dt_stable_min_at_edge"]);
       if (has_number(r, "dt_edge_over_stable"))
@@ -673,7 +673,7 @@ std::string amplitude_table(const std::vector<ojson>& rows, const EdgeFollowUps&
   return md.str();
 }
 
-// What the walls cost at the accuracy edge, per method: the periodic twin's error at T against
+// What the walls cost at the accuracy edge, per method: the periodic twin's error over time against
 // the Dirichlet run's ("" when no twin was run).
 std::string walls_text(const std::vector<ojson>& rows, const EdgeFollowUps& f) {
   std::map<std::string, std::vector<double>> ratios;
@@ -683,15 +683,15 @@ std::string walls_text(const std::vector<ojson>& rows, const EdgeFollowUps& f) {
     if (it == f.twins.end()) continue;
     const std::string m = text(r, "method");
     ++twins[m];
-    if (survived(it->second) && has_number(it->second, "max_error") &&
+    if (survived(it->second) && has_number(it->second, "max_error_over_time") &&
         has_number(r, "max_error_at_accurate"))
-      ratios[m].push_back(it->second["max_error"].get<double>() /
+      ratios[m].push_back(it->second["max_error_over_time"].get<double>() /
                           r["max_error_at_accurate"].get<double>());
   }
   if (twins.empty()) return "";
   std::ostringstream md;
   md << "**Walls.** Each case with Dirichlet walls is rerun at its accuracy edge with periodic "
-        "boundaries (no wall: the interior's own error); the periodic error at T is, per "
+        "boundaries (no wall: the interior's own error); the periodic error over time is, per "
         "method, ";
   bool first = true;
   for (const auto& [m, n] : twins) {

@@ -112,6 +112,14 @@ std::optional<double> error_of(const ojson& r) {
   return r["max_error"].get<double>();
 }
 
+// The error over time (max over steps and particles) of a stable run: what the orders are fitted
+// to and the methods are ranked by; the error at T is shown, never fitted (docs/design.md,
+// "Orders of convergence").
+std::optional<double> over_time_of(const ojson& r) {
+  if (outcome(r) != "stable" || !has_number(r, "max_error_over_time")) return std::nullopt;
+  return r["max_error_over_time"].get<double>();
+}
+
 double dt_of(const ojson& r) {
   return has_number(r, "dt") ? r["dt"].get<double>()
                              : r["cfl_factor"].get<double>() * r["dt_cfl"].get<double>();
@@ -145,7 +153,7 @@ std::vector<MethodRow> method_rows(const std::vector<ojson>& edges, const std::v
     m.recommended.resize(kTargets.size());
     std::vector<std::pair<double, double>> h_points, dt_points;
     for (const ojson* r : m.grid) {
-      const auto e = error_of(*r);
+      const auto e = over_time_of(*r);
       const bool cfl = (*r)["policy"].get<std::string>() == "cfl";
       const bool finest_dt = cfl && (*r)["cfl_factor"].get<double>() == kOrderHCourant;
       if (e && finest_dt) h_points.emplace_back(1.0 / (*r)["cells"].get<double>(), *e);
@@ -203,6 +211,18 @@ std::string table1_text(const MethodRow& m) {
   return e ? sci(*e) : verdict(*m.table1);
 }
 
+// The error over time and the energy balance error at Table 1's setting ("–" where the run did
+// not end stable: its verdict is in the column before).
+std::string table1_over_time(const MethodRow& m) {
+  const auto e = m.table1 ? over_time_of(*m.table1) : std::nullopt;
+  return e ? sci(*e) : "–";
+}
+std::string table1_energy(const MethodRow& m) {
+  if (!m.table1 || outcome(*m.table1) != "stable" || !has_number(*m.table1, "energy_error_max"))
+    return "–";
+  return sci((*m.table1)["energy_error_max"].get<double>());
+}
+
 std::string method_name(const MethodRow& m) {
   return basis_text(m.key) + " / " + transfer_text(m.key) + " / " + std::get<4>(m.key);
 }
@@ -213,9 +233,9 @@ std::string reading(const std::vector<MethodRow>& rows) {
   const MethodRow* widest = nullptr;
   std::size_t unstable_table1 = 0;
   for (const auto& m : rows) {
-    const auto e = m.table1 ? error_of(*m.table1) : std::nullopt;
+    const auto e = m.table1 ? over_time_of(*m.table1) : std::nullopt;
     if (!e) ++unstable_table1;
-    if (e && (!best_error || *e < *error_of(*best_error->table1))) best_error = &m;
+    if (e && (!best_error || *e < *over_time_of(*best_error->table1))) best_error = &m;
     if (has_number(*m.edge, "dt_edge_over_cfl") &&
         (!widest || (*m.edge)["dt_edge_over_cfl"].get<double>() >
                         (*widest->edge)["dt_edge_over_cfl"].get<double>())) {
@@ -226,8 +246,8 @@ std::string reading(const std::vector<MethodRow>& rows) {
   md << "Of " << rows.size() << " methods, " << rows.size() - unstable_table1
      << " end stable at Table 1's setting";
   if (best_error) {
-    md << "; the smallest error at T there is " << sci(*error_of(*best_error->table1)) << " ("
-       << method_name(*best_error) << ")";
+    md << "; the smallest error over time there is " << sci(*over_time_of(*best_error->table1))
+       << " (" << method_name(*best_error) << ")";
   }
   md << ". ";
   if (widest) {
@@ -273,20 +293,62 @@ std::string recommendations(const std::vector<MethodRow>& rows, const std::vecto
   return md.str();
 }
 
-std::string methods_table(const std::vector<MethodRow>& rows) {
+// The cells per wavelength each scheme needs for a 1% phase error at kDispersionCourant, from the
+// dispersion study (its Bloch symbol; USL only), by the scheme's label ("gimp/xpic(2)").
+constexpr double kDispersionCourant = 0.5;
+struct CellsPerWavelength {
+  std::map<std::string, double> by_label;
+  double tolerance = 0;  // the phase error, as a fraction (0 when not read)
+};
+CellsPerWavelength cells_per_wavelength(const StudyInputs& inputs) {
+  CellsPerWavelength out;
+  const auto it = inputs.find("dispersion");
+  if (it == inputs.end() || !it->second.present()) return out;
+  const ojson& study = it->second.doc["study"];
+  if (!study.is_object() || !study.contains("cells_per_wavelength") ||
+      !study["phase_tolerance"].is_number())
+    return out;
+  out.tolerance = study["phase_tolerance"].get<double>();
+  for (const auto& e : study["cells_per_wavelength"]) {
+    if (!e["courant"].is_number() || e["courant"].get<double>() != kDispersionCourant ||
+        !e["cells_per_wavelength_1pct"].is_number() || e["update"] != "usl")
+      continue;
+    out.by_label[e["method"].get<std::string>()] = e["cells_per_wavelength_1pct"].get<double>();
+  }
+  return out;
+}
+
+std::string cells_per_wavelength_text(const MethodRow& m, const CellsPerWavelength& cpw) {
+  const auto& [method, walls, transfer, order, update] = m.key;
+  if (update != "usl") return "–";
+  std::string label = method;
+  if (transfer != "flip") {
+    label += '/';
+    label += transfer_text(m.key);
+  }
+  const auto it = cpw.by_label.find(label);
+  return it == cpw.by_label.end() ? "–" : fixed(it->second, 1);
+}
+
+std::string methods_table(const std::vector<MethodRow>& rows, const CellsPerWavelength& cpw) {
   std::ostringstream md;
-  md << "| basis | transfer | update | error at Table 1's setting | order in h | order in dt | "
+  const std::string phase = cpw.tolerance > 0 ? shortest(100 * cpw.tolerance) + "%" : "given";
+  md << "| basis | transfer | update | error at T at Table 1's setting | error over time there | "
+        "energy balance error there | cells per wavelength for a "
+     << phase
+     << " phase error | order in h | order in dt | "
         "spectral limit (h/c) | survival edge (h/c) | accuracy edge (h/c) | node visits per "
         "particle-step";
   for (double t : kTargets)
     md << " | recommended for " << param(t) << " (particle-steps)";
-  md << " |\n|---|---|---|---|---|---|---|---|---|---|";
+  md << " |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|";
   for (std::size_t t = 0; t < kTargets.size(); ++t)
     md << "---|";
   md << "\n";
   for (const auto& m : rows) {
     md << "| " << basis_text(m.key) << " | " << transfer_text(m.key) << " | " << std::get<4>(m.key)
-       << " | " << table1_text(m) << " | " << order_text(m.order_h) << " | "
+       << " | " << table1_text(m) << " | " << table1_over_time(m) << " | " << table1_energy(m)
+       << " | " << cells_per_wavelength_text(m, cpw) << " | " << order_text(m.order_h) << " | "
        << order_text(m.order_dt) << " | " << edge_text(*m.edge, "courant_spectral") << " | "
        << edge_text(*m.edge, "dt_edge_over_cfl");
     if (has_number(*m.edge, "dt_edge") && outcome(*m.edge) == "meaningless") md << " (meaningless)";
@@ -319,14 +381,15 @@ int index_in(const std::vector<std::string>& list, const std::string& s) {
   return it == list.end() ? -1 : int(it - list.begin());
 }
 
-// <name>_data.csv: one row per method with an error at Table 1's setting and a survival edge.
+// <name>_data.csv: one row per method with an error over time at Table 1's setting and a survival
+// edge.
 std::string methods_data(const std::vector<MethodRow>& rows, const std::string& header) {
   std::ostringstream csv;
   csv << header << "# panel: update order (" << codes(kUpdates) << "); series: basis ("
       << codes(kBases) << "); shape: transfer (" << codes(kTransfers) << ")\n"
       << "panel,series,shape,edge_over_cfl,error\n";
   for (const auto& m : rows) {
-    const auto e = m.table1 ? error_of(*m.table1) : std::nullopt;
+    const auto e = m.table1 ? over_time_of(*m.table1) : std::nullopt;
     if (!e || !has_number(*m.edge, "dt_edge_over_cfl")) continue;
     csv << index_in(kUpdates, std::get<4>(m.key)) << ',' << index_in(kBases, basis_text(m.key))
         << ',' << index_in(kTransfers, transfer_text(m.key)) << ','
@@ -360,12 +423,15 @@ std::string how_to_read_the_setting(const std::vector<ojson>& grid) {
     (cfl ? cfl_runs : fixed_runs).push_back(r);
   }
   std::ostringstream md;
-  md << "- *error at Table 1's setting*: max_p |u_p - u(X_p, T)| at T = " << listing(table1, "T")
-     << " on the bar, E = " << listing(table1, "E") << ", A = " << listing(table1, "A") << ", "
-     << kTable1Cells << " cells x " << listing(table1, "ppc")
-     << " particles, dt = " << param(kTable1Dt)
-     << " (the verdict where the run did not end stable);\n"
-     << "- *order in h*: least-squares slope of log(error) against log(h) over "
+  md << "- *error at T at Table 1's setting*: max_p |u_p - u(X_p, T)| at T = "
+     << listing(table1, "T") << " on the bar, E = " << listing(table1, "E")
+     << ", A = " << listing(table1, "A") << ", " << kTable1Cells << " cells x "
+     << listing(table1, "ppc") << " particles, dt = " << param(kTable1Dt)
+     << " (the verdict where the run did not end stable), shown, never fitted; *error over time "
+        "there*: the largest such error after any step; *energy balance error there*: the largest "
+        "balance error of the particles' kinetic and strain energy and the body force's work, per "
+        "the initial energy (docs/design.md, \"Energy\");\n"
+     << "- *order in h*: least-squares slope of log(error over time) against log(h) over "
      << listing(h_runs, "cells") << " cells at C = c dt / h = " << shortest(kOrderHCourant)
      << "; *order in dt*: against log(dt), over the runs below the scheme's spectral limit, on "
      << kTable1Cells << " cells over C = " << listing(cfl_runs, "cfl_factor")
@@ -384,12 +450,19 @@ StudyReport methods_report(const ReportContext& c) {
      << recommendations(rows, grid, claims) << cost_metric_text() << "\n\n![" << c.spec.title
      << "](" << c.spec.name
      << ".png)\n\nThe figure places each method by its survival edge at the tiny "
-     << "amplitude (x) and its error at Table 1's setting (y), one panel per update order; a "
+     << "amplitude (x) and its error over time at Table 1's setting (y), one panel per update "
+        "order; a "
      << "method unstable at that setting or without an edge is left out. Vector version: ["
      << c.spec.name << ".svg](" << c.spec.name << ".svg); data: [" << c.spec.name << "_data.csv]("
      << c.spec.name << "_data.csv).\n\n"
      << "How to read a row:\n\n"
      << how_to_read_the_setting(grid)
+     << "- *cells per wavelength for a phase error*: the smallest number of cells per "
+        "wavelength above which the scheme's phase speed stays within the dispersion study's "
+        "tolerance of c, at c dt / h = "
+     << shortest(kDispersionCourant)
+     << ", from its Bloch symbol ([dispersion.md](dispersion.md); USL only: `–` for USF and MUSL, "
+        "and for every row when the dispersion study was not run);\n"
      << "- *spectral limit*: the largest c dt / h at which the scheme's map, linearised about "
         "rest at the uniform layout, amplifies nothing: the Bloch limit of the interior "
         "(docs/design.md, \"The spectral limit\"; the walls' treatment does not enter it; "
@@ -413,7 +486,7 @@ StudyReport methods_report(const ReportContext& c) {
   if (grid.empty()) {
     md << "methods_grid has not been run into this folder: the columns it provides are `–`.\n\n";
   }
-  md << methods_table(rows);
+  md << methods_table(rows, cells_per_wavelength(c.inputs));
   ojson recommended = ojson::array();
   for (const auto& m : rows) {
     for (std::size_t t = 0; t < m.recommended.size() && t < kTargets.size(); ++t) {
@@ -451,7 +524,8 @@ const StudyRegistration kMethods{{
     .summary = "one row per method: error, orders, tiny-amplitude edges, work, cheapest setting "
                "for a target error",
     .work = CaseWork::edge_search,
-    .inputs = {{.name = "methods_grid", .required = true}},
+    .inputs = {{.name = "methods_grid", .required = true},
+               {.name = "dispersion", .required = false}},
     .figure = true,
     .follow_up = methods_follow_up,
     .report = methods_report,

@@ -1,0 +1,30 @@
+#include "error_l2.hpp"
+
+#include <cmath>
+
+#include "scene.hpp"
+
+namespace mpmstab {
+
+ErrorL2InTime::ErrorL2InTime(const Particles& P, const Scene& scene)
+    : scene_(scene), profile_(scene.displacement_profiles(P.X)) {
+  for (Eigen::Index p = 0; p < P.size(); ++p)
+    volume_ += P.volume0[p];
+}
+
+void ErrorL2InTime::after_step(const Particles& P, double t) {
+  const double f = scene_.displacement_factor(t);
+  double sum = 0;
+  for (Eigen::Index p = 0; p < P.size(); ++p) {
+    const double e = (P.x[p] - P.X[p]) - profile_[p] * f;
+    sum += P.volume0[p] * e * e;
+  }
+  integral_ += (t - t_) * sum / volume_;
+  t_ = t;
+}
+
+double ErrorL2InTime::value() const {
+  return t_ > 0 ? std::sqrt(integral_ / t_) : 0.0;
+}
+
+}  // namespace mpmstab

@@ -1,0 +1,57 @@
+# energy.gp -- the energy balance error over time, one panel per Table 1 cell, one series per
+# transfer and update order.
+#
+# Reads : datafile (results/energy_data.csv): '#' lines, then the header
+#         panel,series,cell,method,t,energy_balance and one row per drawn step. panel: 0.. per
+#         cell; series: 0.. per transfer and update order (alphabetical); energy_balance: the
+#         balance error per the initial energy.
+# Writes: outbase.png and outbase.svg.
+# Variables: datafile, outbase (required), subtitle (optional).
+
+if (!exists("datafile") || !exists("outbase")) {
+    print "energy.gp: datafile and outbase must be set"
+    exit error "missing variables"
+}
+if (!exists("subtitle")) subtitle = ""
+
+set datafile separator comma
+set datafile commentschars '#'
+set datafile columnheaders
+
+stats datafile using "panel" nooutput
+panels = int(STATS_max) + 1
+stats datafile using "series" nooutput
+nseries = int(STATS_max) + 1
+array cells[panels]
+array names[nseries]
+do for [k = 1:panels] {
+    cells[k] = ""
+    stats datafile using (column("panel") == k - 1 ? (cells[k] = strcol("cell"), 0) : 1/0) nooutput
+}
+do for [s = 1:nseries] {
+    names[s] = ""
+    stats datafile using (column("series") == s - 1 ? (names[s] = strcol("method"), 0) : 1/0) nooutput
+}
+
+set xlabel "t"
+set ylabel "energy balance error / initial energy"
+set grid
+set key outside right top font ",9"
+
+do for [format in "png svg"] {
+    if (format eq "png") {
+        set terminal pngcairo size 1500,550 font "Arial,10" noenhanced
+    } else {
+        set terminal svg size 1500,550 font "Arial,10" noenhanced background "white"
+    }
+    set output outbase . "." . format
+    set multiplot layout 1, panels title "Energy balance over time, each transfer and update order (" . subtitle . ")"
+    do for [k = 1:panels] {
+        set title cells[k]
+        plot for [s = 1:nseries] datafile \
+            using (column("panel") == k - 1 && column("series") == s - 1 ? column("t") : 1/0):"energy_balance" \
+            with lines lw 1.5 title names[s]
+    }
+    unset multiplot
+    unset output
+}
