@@ -299,7 +299,22 @@ std::string agreement_reading(const std::map<std::string, MethodOrders>& m,
       each += list_of(qs) + (asymptotic(q) ? ", asymptotic" : ", not yet asymptotic") + ")";
       per_E.push_back(each);
     }
-    differ.push_back(s + list_of(per_E));
+    // The last refinement's order at each E: where these agree, the fitted orders differ only
+    // through the coarse grids.
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (const auto& [E, q] : o.steps)
+      if (!q.empty() && q.back()) {
+        lo = std::min(lo, *q.back());
+        hi = std::max(hi, *q.back());
+      }
+    std::string last = "; the last refinements' orders spread by " +
+                       (hi >= lo ? fixed(hi - lo, 2) : std::string("–"));
+    if (hi >= lo)
+      last += hi - lo <= kOrderAgreement
+                  ? ", within the tolerance: the difference is the coarse grids'"
+                  : ", beyond the tolerance: the difference persists to the finest grid here, "
+                    "where only the run length c T differs between the E";
+    differ.push_back(s + list_of(per_E) + last);
   }
   md << "The fitted orders of " << list_of(agree) << " agree across E within "
      << shortest(kOrderAgreement) << ". ";
@@ -308,8 +323,8 @@ std::string agreement_reading(const std::map<std::string, MethodOrders>& m,
        << " methods; beside each E, the observed order of each refinement (coarsest first) and "
           "whether the last two agree within "
        << shortest(kAsymptoticSpread)
-       << " (asymptotic); where they do not, the grids do not reach the asymptotic range at that "
-          "run length and the fitted order is pre-asymptotic: "
+       << " (asymptotic; where they do not, that fitted order is pre-asymptotic), and how far "
+          "the orders of the last refinement spread across E: "
        << list_of(differ) << ".";
   }
   return md.str();
