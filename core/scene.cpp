@@ -222,16 +222,25 @@ std::unique_ptr<BodyForceAtParticles> SteffenScene::body_force_at(const Eigen::A
   return std::make_unique<SteffenBodyForce>(*this, X);
 }
 
-Particles SteffenScene::initial_particles(int cells, int ppc, const Layout& layout) const {
-  Particles P = reference_layout(cells, ppc, layout);
-  const MaterialLaw material_law = law();
+namespace {
+// The state of the steffen and mode scenes at t = 0: at rest at the deformed positions,
+// x = X + u(X, 0), v = 0, F = F(X, 0), sigma = sigma(F) of the scene's law.
+template <class S>
+void start_deformed_at_rest(const S& scene, Particles& P) {
+  const MaterialLaw material_law = scene.law();
   for (Eigen::Index p = 0; p < P.size(); ++p) {
     const double X = P.X[p];
-    P.x[p] = X + displacement(X, 0.0);
+    P.x[p] = X + scene.displacement(X, 0.0);
     P.v[p] = 0.0;  // v(X, 0) = 0
-    P.F[p] = deformation_gradient(X, 0.0);
+    P.F[p] = scene.deformation_gradient(X, 0.0);
     P.sigma[p] = material_law.stress(P.F[p]);
   }
+}
+}  // namespace
+
+Particles SteffenScene::initial_particles(int cells, int ppc, const Layout& layout) const {
+  Particles P = reference_layout(cells, ppc, layout);
+  start_deformed_at_rest(*this, P);
   return P;
 }
 
@@ -295,14 +304,7 @@ ExactEnergy ModeScene::exact_energy(double t) const {
 
 Particles ModeScene::initial_particles(int cells, int ppc, const Layout& layout) const {
   Particles P = reference_layout(cells, ppc, layout);
-  const MaterialLaw material_law = law();
-  for (Eigen::Index p = 0; p < P.size(); ++p) {
-    const double X = P.X[p];
-    P.x[p] = X + displacement(X, 0.0);
-    P.v[p] = 0.0;  // v(X, 0) = 0
-    P.F[p] = deformation_gradient(X, 0.0);
-    P.sigma[p] = material_law.stress(P.F[p]);  // E (F - 1)
-  }
+  start_deformed_at_rest(*this, P);
   return P;
 }
 
