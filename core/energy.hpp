@@ -22,10 +22,9 @@
 
 #include "material.hpp"
 #include "particles.hpp"
+#include "scene.hpp"
 
 namespace mpmstab {
-
-class Scene;
 
 // The balance error |e_n| / (K_0 + U_0) above which a run's energy is said to have left its
 // balance: the step at which a run first exceeds it is recorded (energy_warning_step).
@@ -43,6 +42,7 @@ struct EnergySample {
   double strain = 0;
   double work = 0;
   double balance = 0;  // e_n / (K_0 + U_0)
+  ExactEnergy exact;   // the scene's exact energies at the step's time
 };
 
 // What the energy observer gives a run's record (RunResult).

@@ -23,8 +23,9 @@ void ErrorL2InTime::after_step(const Particles& P, double t) {
   t_ = t;
 }
 
-double ErrorL2InTime::value() const {
-  return t_ > 0 ? std::sqrt(integral_ / t_) : 0.0;
+std::optional<double> ErrorL2InTime::value() const {
+  if (t_ <= 0) return std::nullopt;
+  return std::sqrt(integral_ / t_);
 }
 
 }  // namespace mpmstab

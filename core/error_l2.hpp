@@ -7,6 +7,8 @@
 // where the exact displacement vanishes cannot make it small.
 #pragma once
 
+#include <optional>
+
 #include <Eigen/Core>
 
 #include "particles.hpp"
@@ -20,8 +22,8 @@ class ErrorL2InTime {
   ErrorL2InTime(const Particles& P, const Scene& scene);
   // The state after a step that reached time t.
   void after_step(const Particles& P, double t);
-  // Zero before any step.
-  double value() const;
+  // nullopt before any step has been observed (a run that failed in its first step).
+  std::optional<double> value() const;
 
  private:
   const Scene& scene_;

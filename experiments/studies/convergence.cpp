@@ -301,16 +301,14 @@ std::string agreement_reading(const std::map<std::string, MethodOrders>& m,
     }
     // The last refinement's order at each E: where these agree, the fitted orders differ only
     // through the coarse grids.
-    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    std::map<double, double> last_orders;  // E -> the last refinement's order
     for (const auto& [E, q] : o.steps)
-      if (!q.empty() && q.back()) {
-        lo = std::min(lo, *q.back());
-        hi = std::max(hi, *q.back());
-      }
+      if (!q.empty() && q.back()) last_orders[E] = *q.back();
+    const double last_spread = spread(last_orders);
     std::string last = "; the last refinements' orders spread by " +
-                       (hi >= lo ? fixed(hi - lo, 2) : std::string("–"));
-    if (hi >= lo)
-      last += hi - lo <= kOrderAgreement
+                       (last_orders.empty() ? std::string("–") : fixed(last_spread, 2));
+    if (!last_orders.empty())
+      last += last_spread <= kOrderAgreement
                   ? ", within the tolerance: the difference is the coarse grids'"
                   : ", beyond the tolerance: the difference persists to the finest grid here, "
                     "where only the run length c T differs between the E";
