@@ -1,4 +1,5 @@
 #include "bloch.hpp"
+#include "scene_registry.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
@@ -156,6 +157,8 @@ Peak peak_radius(const Eigen::MatrixXd& R, const Probe& pr, int& solves,
 }  // namespace
 
 bool uniform_layout(const RunParams& p) {
+  // A body with ends inside the grid is no lattice: its limit is the dense map's.
+  if (!scene_info(p.scene).fills_grid) return false;
   return (p.scene == SceneKind::bar || p.A == 0) && p.layout.jitter == 0;
 }
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "scene.hpp"
+#include "scene_registry.hpp"
 #include "shape.hpp"
 #include "simd.hpp"
 
@@ -55,8 +55,7 @@ ExactCrossings exact_crossings(const RunParams& p, std::int64_t samples) {
   const auto scene = make_scene(p);
   const Particles P = scene->initial_particles(p.cells, p.ppc, p.layout);
   const double h = 1.0 / p.cells;
-  const Eigen::ArrayXd profile =
-      P.X.unaryExpr([&](double X) { return scene->displacement_profile(X); });
+  const ExactDisplacement exact(*scene, P.X);
   const Eigen::Index n = P.X.size();
   std::vector<double> cell(static_cast<std::size_t>(n));
   std::vector<char> moved(static_cast<std::size_t>(n), 0);
@@ -64,17 +63,17 @@ ExactCrossings exact_crossings(const RunParams& p, std::int64_t samples) {
   // few cells outside the bar still indexes the vector: the step each was last counted at.
   const int offset = p.cells + 2;
   std::vector<std::int64_t> counted_at(static_cast<std::size_t>(3 * p.cells + 6), -1);
-  auto cell_at = [&](Eigen::Index i, double factor) {
-    return std::floor((P.X[i] + profile[i] * factor) / h);
+  auto cell_at = [&](Eigen::Index i, const ExactDisplacement::Terms& u) {
+    return std::floor((P.X[i] + u.u[i] * u.factor) / h);
   };
-  const double f0 = scene->displacement_factor(0);
+  const ExactDisplacement::Terms u0 = exact.at(0);
   for (Eigen::Index i = 0; i < n; ++i)
-    cell[std::size_t(i)] = cell_at(i, f0);
+    cell[std::size_t(i)] = cell_at(i, u0);
   ExactCrossings out;
   for (std::int64_t k = 1; k <= samples; ++k) {
-    const double factor = scene->displacement_factor(p.T * double(k) / double(samples));
+    const ExactDisplacement::Terms u = exact.at(p.T * double(k) / double(samples));
     for (Eigen::Index i = 0; i < n; ++i) {
-      const double c = cell_at(i, factor), old = cell[std::size_t(i)];
+      const double c = cell_at(i, u), old = cell[std::size_t(i)];
       if (c == old) continue;
       const auto passed = static_cast<std::int64_t>(std::abs(c - old));
       out.every += passed;

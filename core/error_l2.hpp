@@ -12,6 +12,7 @@
 #include <Eigen/Core>
 
 #include "particles.hpp"
+#include "scene.hpp"
 
 namespace mpmstab {
 
@@ -26,11 +27,10 @@ class ErrorL2InTime {
   std::optional<double> value() const;
 
  private:
-  const Scene& scene_;
-  Eigen::ArrayXd profile_;  // the exact displacement's profile at X_p
-  double volume_ = 0;       // sum_p V_p^0
-  double t_ = 0;            // the time reached
-  double integral_ = 0;     // sum_n dt_n e_n^2
+  ExactDisplacement exact_;  // u(X_p, t)
+  double volume_ = 0;        // sum_p V_p^0
+  double t_ = 0;             // the time reached
+  double integral_ = 0;      // sum_n dt_n e_n^2
 };
 
 }  // namespace mpmstab

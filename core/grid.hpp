@@ -36,6 +36,18 @@ struct Grid {
   // XPIC and FMPM (xpic.hpp): the correction w_i that g2p adds to v_i. Sized only for them.
   Eigen::ArrayXd correction;
 
+  // Small-mass nodes (params.hpp, SmallMass; small_mass.hpp): the treatment and the mass below
+  // which a node is treated (small_mass_fraction * rho0 h). None by default.
+  SmallMass small_mass = SmallMass::none;
+  double mass_cutoff = 0;
+  bool small(double m) const { return m > 0.0 && m < mass_cutoff; }
+  // A body with ends inside the grid (scene.hpp, SceneInfo::fills_grid false): a free node
+  // without mass beside one with mass takes that node's velocity and acceleration (its left
+  // neighbour's where both have mass). No particle weights such a node (S_ip = 0), but a linear
+  // or CPDI particle exactly on the node between them has G_ip = 1 / h there: with v_i = 0 a
+  // block in rigid translation would read a velocity gradient of -v / h.
+  bool extend_to_empty = false;
+
   static constexpr int kOffset = 1;  // storage index of node 0
 
   // Padding slots right of node N for stencils of `width` nodes.

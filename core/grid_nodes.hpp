@@ -96,4 +96,26 @@ void on_free_nodes(Grid& G, Update&& update) {
   });
 }
 
+// Grid::extend_to_empty: each free node without mass beside a node with mass takes that node's
+// values of `arrays` (its left neighbour's first), from the values before any was copied.
+inline void extend_to_empty_nodes(const Grid& G, std::initializer_list<double*> arrays) {
+  const double* m = G.mass.data();
+  on_node_ranges(
+      G,
+      [&](int lo, int hi) {
+        for (int s = lo; s < hi; ++s) {
+          if (m[s] > 0.0) continue;
+          int from = -1;
+          if (s > 0 && m[s - 1] > 0.0)
+            from = s - 1;
+          else if (s + 1 < G.slots() && m[s + 1] > 0.0)
+            from = s + 1;
+          if (from < 0) continue;
+          for (double* arr : arrays)
+            arr[s] = arr[from];
+        }
+      },
+      [](int, int) {});
+}
+
 }  // namespace mpmstab::detail

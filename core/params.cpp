@@ -9,7 +9,7 @@
 #include <tuple>
 #include <utility>
 
-#include "scene.hpp"
+#include "scene_registry.hpp"
 
 namespace mpmstab {
 
@@ -43,8 +43,18 @@ constexpr Names<Method, 6> kMethods{{{Method::mpm, "mpm"},
                                      {Method::bspline2, "bspline2"},
                                      {Method::bspline3, "bspline3"},
                                      {Method::cpdi, "cpdi"}}};
-constexpr Names<SceneKind, 3> kScenes{
-    {{SceneKind::bar, "bar"}, {SceneKind::steffen, "steffen"}, {SceneKind::mode, "mode"}}};
+constexpr Names<SceneKind, 8> kScenes{{{SceneKind::bar, "bar"},
+                                       {SceneKind::steffen, "steffen"},
+                                       {SceneKind::mode, "mode"},
+                                       {SceneKind::vibration, "vibration"},
+                                       {SceneKind::impulsive, "impulsive"},
+                                       {SceneKind::compaction, "compaction"},
+                                       {SceneKind::block, "block"},
+                                       {SceneKind::impact, "impact"}}};
+constexpr Names<SmallMass, 4> kSmallMass{{{SmallMass::none, "none"},
+                                          {SmallMass::cutoff, "cutoff"},
+                                          {SmallMass::drop, "drop"},
+                                          {SmallMass::momentum, "momentum"}}};
 constexpr Names<Walls, 3> kWalls{
     {{Walls::clip, "clip"}, {Walls::ghost, "ghost"}, {Walls::modified, "modified"}}};
 constexpr Names<Transfer, 6> kTransfers{{{Transfer::flip, "flip"},
@@ -155,6 +165,12 @@ std::optional<UpdateOrder> parse_update_order(std::string_view s) {
 std::optional<BodyForceTime> parse_body_force_time(std::string_view s) {
   return parse(kBodyForceTimes, s);
 }
+std::string_view to_string(SmallMass s) {
+  return name_of(kSmallMass, s);
+}
+std::optional<SmallMass> parse_small_mass(std::string_view s) {
+  return parse(kSmallMass, s);
+}
 
 std::string nondefault_choices(const RunParams& p) {
   const RunParams d;
@@ -187,6 +203,12 @@ std::string nondefault_choices(const RunParams& p) {
   if (p.layout.jitter != d.layout.jitter) add("jitter", brief(p.layout.jitter));
   if (p.body_force_time != d.body_force_time)
     add("body_force_time", std::string(to_string(p.body_force_time)));
+  if (!std::isnan(p.body_start)) add("body_start", brief(p.body_start));
+  if (!std::isnan(p.body_length)) add("body_length", brief(p.body_length));
+  if (p.small_mass != d.small_mass) {
+    add("small_mass",
+        std::string(to_string(p.small_mass)) + "(" + brief(p.small_mass_fraction) + ")");
+  }
   return text;
 }
 
@@ -194,7 +216,8 @@ bool default_choices(const RunParams& p) {
   const RunParams d;
   return p.scene == d.scene && p.walls == d.walls && p.transfer == d.transfer &&
          p.update == d.update && p.body_force_time == d.body_force_time &&
-         p.layout.shift == d.layout.shift && p.layout.jitter == d.layout.jitter;
+         p.layout.shift == d.layout.shift && p.layout.jitter == d.layout.jitter &&
+         std::isnan(p.body_start) && std::isnan(p.body_length) && p.small_mass == d.small_mass;
 }
 
 std::optional<ParamIssue> check_given(const RunParams& p, std::string_view key) {
@@ -225,12 +248,28 @@ std::optional<ParamIssue> check_given(const RunParams& p, std::string_view key) 
                             std::string(to_string(p.transfer)) + " does not use it)"};
     }
   }
+  if (key == "small_mass_fraction" && p.small_mass == SmallMass::none) {
+    return ParamIssue{"small_mass_fraction", "only with small_mass other than none"};
+  }
+  const SceneInfo& scene = scene_info(p.scene);
+  const std::string scene_name(scene.name);
+  if ((key == "body_start" || key == "body_length") && scene.fills_grid) {
+    return ParamIssue{std::string(key), "scene " + scene_name +
+                                            " fills the grid [0, 1]; its body cannot be moved "
+                                            "or resized"};
+  }
+  if (key == "body_start" && scene.fixed_start) {
+    return ParamIssue{"body_start", "scene " + scene_name +
+                                        " is fixed at the wall X = 0; only body_length can be "
+                                        "given"};
+  }
   return std::nullopt;
 }
 
 const std::vector<std::string>& conditional_parameters() {
   static const std::vector<std::string> keys = {
-      "dt", "cfl_factor", "safety", "flip_fraction", "xpic_order", "fmpm_order"};
+      "dt",         "cfl_factor", "safety",      "flip_fraction",      "xpic_order",
+      "fmpm_order", "body_start", "body_length", "small_mass_fraction"};
   return keys;
 }
 
@@ -251,6 +290,13 @@ double wave_speed(const RunParams& p) {
 
 double amplitude_per_cell(const RunParams& p) {
   return p.A * p.cells;
+}
+
+double body_start(const RunParams& p) {
+  return std::isnan(p.body_start) ? scene_info(p.scene).body_start : p.body_start;
+}
+double body_length(const RunParams& p) {
+  return std::isnan(p.body_length) ? scene_info(p.scene).body_length : p.body_length;
 }
 
 double wave_passes(const RunParams& p) {
@@ -301,6 +347,10 @@ const std::vector<std::string>& parameter_names() {
                                                  "shift",
                                                  "jitter",
                                                  "body_force_time",
+                                                 "body_start",
+                                                 "body_length",
+                                                 "small_mass",
+                                                 "small_mass_fraction",
                                                  "dt_stable_sigma",
                                                  "dt_stable_vnorm",
                                                  "policy",
@@ -438,10 +488,50 @@ std::vector<ParamIssue> validate(const RunParams& p) {
                                 (fixed ? "" : " or lower max_steps") + ")");
     }
   }
-  // A scene declares the boundaries it is posed with (scene.hpp).
-  if (!scene_supports(p.scene, p.bc)) {
-    bad("bc", "scene " + std::string(to_string(p.scene)) +
-                  " does not support bc = " + std::string(to_string(p.bc)));
+  // A scene declares the boundaries it is posed with and where its body lies (scene.hpp).
+  const SceneInfo& scene = scene_info(p.scene);
+  const std::string scene_name(scene.name);
+  if (!scene.supports(p.bc)) {
+    bad("bc", "scene " + scene_name + " does not support bc = " + std::string(to_string(p.bc)));
+  }
+  const double start = body_start(p), length = body_length(p);
+  if (!std::isfinite(length) || !(length > 0) || !(length <= 1)) {
+    bad("body_length", "must be a number in (0, 1] (the grid is [0, 1]), got " + show(length));
+  } else if (!std::isfinite(start) || !(start >= 0) || !(start + length <= 1)) {
+    bad("body_start", "the body [" + brief(start) + ", " + brief(start + length) +
+                          "] must lie inside the grid [0, 1]");
+  } else if (p.cells >= 1) {
+    // Both ends on cell boundaries, so that the body's cells are whole.
+    for (const auto& [key, end] :
+         {std::pair{"body_start", start}, std::pair{"body_length", length}}) {
+      const double in_cells = end * p.cells;
+      if (std::abs(in_cells - std::round(in_cells)) > 1e-9 * std::max(1.0, in_cells)) {
+        bad(key, "must be a whole number of cells (h = 1 / cells = " + brief(1.0 / p.cells) +
+                     "), got " + brief(end) + " = " + brief(in_cells) + " cells");
+      }
+    }
+  }
+  if (p.small_mass != SmallMass::none) {
+    if (!scene.free_surface) {
+      bad("small_mass", "scene " + scene_name +
+                            " has no free surface (its body fills the grid): no node has a "
+                            "sliver of mass to treat");
+    }
+    if (!std::isfinite(p.small_mass_fraction) || !(p.small_mass_fraction > 0) ||
+        !(p.small_mass_fraction <= 1)) {
+      bad("small_mass_fraction",
+          "must be a number in (0, 1] (of the mass rho0 h of a full "
+          "node), got " +
+              show(p.small_mass_fraction));
+    }
+  }
+  // The block between walls: its exact motion must not reach the wall X = 1 by T.
+  if (p.scene == SceneKind::block && p.bc == Boundary::dirichlet && std::isfinite(p.T) &&
+      std::isfinite(p.E) && p.E > 0 && std::isfinite(p.A) &&
+      start + length + p.A * std::sqrt(p.E) * p.T > 1) {
+    bad("T", "the block [" + brief(start) + ", " + brief(start + length) + "] moving at A c = " +
+                 brief(p.A * std::sqrt(p.E)) + " reaches the wall X = 1 before T = " + brief(p.T) +
+                 " (use bc = periodic or a shorter T)");
   }
   // The step count of the fixed-step policies is known before the run: refuse it if too large.
   // (The state-dependent policies stop with a step_limit failure when they reach the cap.)

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -42,7 +43,27 @@ constexpr bool has_eq108(Method m) {
 // Kirby and Berzins (2008) ("steffen": neo-Hookean material, u = A sin(2 pi X) cos(c pi t)), or
 // one free standing wave of the periodic linear bar ("mode": no body force,
 // u = A sin(2 pi X) cos(2 pi c t), periodic boundaries only; the dispersion study's scene).
-enum class SceneKind { bar, steffen, mode };
+// Five scenes put a body inside a larger grid, with empty cells beside it (core/scenes/, one
+// file each; docs/design.md, "Scenes"): the axial vibration of a bar fixed at X = 0 and free at
+// its other end ("vibration"), the same bar under a step force at its free end ("impulsive"),
+// a column compacted by a ramped body force ("compaction"), a block in rigid translation
+// ("block") and two bars meeting at speeds +v and -v ("impact"). In each, A is the scene's
+// displacement scale (the tip amplitude, the largest tip or end displacement, the static
+// compaction, the block's travel per time L / c with L = 1), so that A / h keeps its meaning.
+enum class SceneKind { bar, steffen, mode, vibration, impulsive, compaction, block, impact };
+
+// What a grid node with a sliver of mass does (docs/design.md, "Small-mass nodes"). A node
+// whose mass m_i is below small_mass_fraction * rho0 h (the mass of a node inside the body) is
+// a small-mass node:
+//  - none:     no treatment: a_i = f_i / m_i wherever m_i > 0;
+//  - cutoff:   the node gets no acceleration, a_i = 0 and v_i = q_i / m_i (Uintah's
+//              "minimum mass for acceleration");
+//  - drop:     the node is dropped from the step: a_i = v_i = 0, as a node without mass;
+//  - momentum: the node's new velocity is the mass-weighted mean of the particles' FLIP-updated
+//              velocities, v_i = sum_p S_ip m_p v_p* / m_i, v_p* = v_p + dt sum_j S_jp a_j (the
+//              velocity of the particles' momentum, as modified USL computes it for every node),
+//              and its acceleration (v_i - q_i / m_i) / dt.
+enum class SmallMass { none, cutoff, drop, momentum };
 
 // Dirichlet: u = 0 at X = 0 and X = 1, a particle leaving [0, 1] ends the run as unstable.
 // Periodic: node N is node 0; particles wrap around.
@@ -182,6 +203,13 @@ struct RunParams {
   UpdateOrder update = UpdateOrder::usl;
   Layout layout;
   BodyForceTime body_force_time = BodyForceTime::start;
+  // Where the body lies in the grid [0, 1], for the scenes whose body does not fill it
+  // (SceneInfo in scene.hpp): its left end and its length. NaN: the scene's own (its
+  // SceneInfo::body_start and body_length). Both must fall on cell boundaries.
+  double body_start = std::numeric_limits<double>::quiet_NaN();
+  double body_length = std::numeric_limits<double>::quiet_NaN();
+  SmallMass small_mass = SmallMass::none;
+  double small_mass_fraction = 1e-2;  // of rho0 h (small_mass other than none only)
   StableDtOptions stable;
   TimeStepping stepping;
   Observe observe;
@@ -236,7 +264,10 @@ std::optional<double> fixed_step(const RunParams& p);
 // particles per cell and the method.
 double wave_speed(const RunParams& p);          // c = sqrt(E / rho0)
 double amplitude_per_cell(const RunParams& p);  // A / h = A N
-double wave_passes(const RunParams& p);         // c T / L
+double wave_passes(const RunParams& p);         // c T / L, L = 1 the grid's length
+// The body's extent in the grid: p.body_start and p.body_length, or the scene's own.
+double body_start(const RunParams& p);
+double body_length(const RunParams& p);
 // c dt / h of the fixed and cfl policies; nullopt for the state-dependent ones.
 std::optional<double> courant_number(const RunParams& p);
 
@@ -252,6 +283,7 @@ std::string_view to_string(Walls w);
 std::string_view to_string(Transfer t);
 std::string_view to_string(UpdateOrder u);
 std::string_view to_string(BodyForceTime b);
+std::string_view to_string(SmallMass s);
 
 std::optional<Method> parse_method(std::string_view s);
 std::optional<Boundary> parse_boundary(std::string_view s);
@@ -264,6 +296,7 @@ std::optional<Walls> parse_walls(std::string_view s);
 std::optional<Transfer> parse_transfer(std::string_view s);
 std::optional<UpdateOrder> parse_update_order(std::string_view s);
 std::optional<BodyForceTime> parse_body_force_time(std::string_view s);
+std::optional<SmallMass> parse_small_mass(std::string_view s);
 
 // The implementation choices that differ from their defaults, for a one-line summary:
 // ", walls modified, transfer xpic(3), update usf" (empty when all are at their defaults).

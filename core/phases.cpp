@@ -76,12 +76,29 @@ void grid_update(Grid& G, double dt) {
   double* a = G.accel.data();
   if (G.bc == Boundary::periodic) fold_images(G, {m, q, f});
   on_free_nodes(G, [&](int lo, int hi) { nodal_update(m, q, f, v, a, lo, hi, dt); });
+  if (G.small_mass == SmallMass::cutoff || G.small_mass == SmallMass::drop) {
+    detail::on_node_ranges(
+        G,
+        [&](int lo, int hi) {
+          for (int s = lo; s < hi; ++s) {
+            if (!G.small(m[s])) continue;
+            a[s] = 0.0;  // cutoff: no acceleration; drop: no node
+            v[s] = G.small_mass == SmallMass::cutoff ? q[s] / m[s] : 0.0;
+          }
+        },
+        [](int, int) {});
+  }
+  if (G.extend_to_empty) detail::extend_to_empty_nodes(G, {v, a});
   if (G.bc == Boundary::periodic) copy_to_images(G, {v, a});
 }
 
 void grid_velocity(Grid& G) {
   if (G.bc == Boundary::periodic) fold_images(G, {G.mass.data(), G.momentum.data()});
   detail::divide_by_mass(G, G.momentum.data(), G.velocity.data());
+  if (G.extend_to_empty) {
+    detail::extend_to_empty_nodes(G, {G.velocity.data()});
+    if (G.bc == Boundary::periodic) copy_to_images(G, {G.velocity.data()});
+  }
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -67,7 +67,9 @@ void p2g_momentum(const Stencil<W>& S, const Particles& P, Grid& G);
 // grid update: a_i = f_i / m_i, v_i = q_i / m_i + dt a_i where m_i > 0 (eqs. 7, 8); zero where
 // m_i = 0. Dirichlet walls (nodes 0 and N) get a_i = v_i = 0. The padding slots beyond the walls
 // (grid.hpp) are dropped (a = v = 0) with walls = clip; with walls = ghost nodes -1 and N + 1
-// are free and updated like interior nodes. Periodic images are folded into their nodes before
+// are free and updated like interior nodes. A node with a sliver of mass (Grid::small) then gets
+// the cutoff or drop treatment of G.small_mass (the momentum treatment is small_mass.hpp's,
+// after this phase). Periodic images are folded into their nodes before
 // (their slots are left at zero) and copied back after, so that g2p can read every slot of a
 // stencil.
 void grid_update(Grid& G, double dt);

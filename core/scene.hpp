@@ -1,43 +1,27 @@
 // The problems the solver runs (params.hpp, SceneKind). A scene declares everything the solver
-// needs to know about a problem: its material law, the boundaries it can be posed with, its
-// initial particle state, the body force that drives it and its exact solution. The solver
-// evaluates only these declarations.
+// needs to know about a problem, and the solver reads a problem only through these declarations:
+//  - SceneInfo: its name, the boundaries it is posed with, where its body lies in the grid
+//    [0, 1] (filling it, or leaving empty cells beside it), whether it has a free surface;
+//  - its material law;
+//  - its loads, as a force per unit mass at each particle (BodyForceAtParticles): a
+//    manufactured body force, a ramped body force, a force on the particle at a free end, or
+//    none (has_body_force() false: the solver never evaluates one);
+//  - its initial particle state;
+//  - its exact solution: displacement, velocity and stress at (X, t), the exact energies, and
+//    whether the displacement is separable (u = profile(X) * factor(t), which the error
+//    observers evaluate as one product per particle) or evaluated per particle (ExactDisplacement).
+// One file per scene in core/scenes/ holds its class, its SceneInfo and its derivation; the
+// registry (scenes/scene_registry.hpp) is the one place that lists them.
 //
-// The bar and steffen scenes are manufactured solutions on [0, 1] with rho0 = 1 and
-// c = sqrt(E / rho0), in the material description, with the balance of momentum
-// rho0 u_tt = dP/dX + rho0 b and F = 1 + u_X. Their displacements are A sin(2 pi X) times a
-// function of t: zero at X = 0 and X = 1 and periodic, so both accept Dirichlet and periodic
-// boundaries. The mode scene (below) is an exact free wave of the same form, without a body
-// force, posed with periodic boundaries only. The displacement is separable,
-// u(X, t) = displacement_profile(X) * displacement_factor(t), which the error observer uses: it
-// keeps the profile per particle and evaluates the factor once per step.
-//
-// bar (the paper's section 5.1, docs/design.md, "The problem"): linear material sigma = E (F - 1),
-//   u(X, t) = A sin(2 pi X) sin(c pi t),  b(X, t) = 3 (c pi)^2 A sin(2 pi X) sin(c pi t).
-//   The paper's eq. (114) prints "3 A (c pi)^2 u", which counts A twice; substituting u into the
-//   balance of momentum gives this form. The particles start undeformed (x_p = X_p, F_p = 1,
-//   sigma_p = 0) with the exact velocity v(X_p, 0).
-//
-// steffen (Steffen, Wallstedt, Guilkey, Kirby and Berzins 2008): neo-Hookean material
-// sigma = (E / 2) (F - 1 / F) (material.hpp),
-//   u(X, t) = A sin(2 pi X) cos(c pi t),  F(X, t) = 1 + 2 pi A cos(2 pi X) cos(c pi t).
-//   Body force. dP/dX = P'(F) F_X with P'(F) = (E / 2) (1 + 1 / F^2) and F_X = u_XX = -(2 pi)^2 u;
-//   u_tt = -(c pi)^2 u. Hence, with rho0 c^2 = E,
-//     rho0 b = rho0 u_tt - dP/dX = -E pi^2 u + (E / 2) (1 + 1 / F^2) 4 pi^2 u
-//            = E pi^2 u (1 + 2 / F^2),
-//   that is b(X, t) = (c pi)^2 u(X, t) (1 + 2 / F(X, t)^2) per unit mass. For the linear law
-//   P' = E and the same steps give b = 3 (c pi)^2 u, the bar's form. The particles start at the
-//   deformed positions x_p = X_p + u(X_p, 0) at rest (v(X, 0) = 0), with F_p = F(X_p, 0), the
-//   stress of the material at F_p, and the reference volume V_p^0 = h / m (the current volume is
-//   F_p V_p^0).
-//
-// In both scenes m particles per cell sit at the reference positions X_p = (i + (k + 1/2) / m) h
-// with mass rho0 h / m.
+// Every scene has rho0 = 1 and c = sqrt(E / rho0) and is posed in the material description:
+// rho0 u_tt = dP/dX + rho0 b, F = 1 + u_X. m particles per cell sit at the reference positions
+// X_p = (i + (k + 1/2) / m) h of the cells the body covers, with mass rho0 h / m.
 #pragma once
 
 #include <cstdint>
-#include <limits>
 #include <memory>
+#include <optional>
+#include <string_view>
 
 #include <Eigen/Core>
 
@@ -47,9 +31,28 @@
 
 namespace mpmstab {
 
-// The body force of a scene at fixed reference positions X_p. The profiles in X are evaluated
-// when it is made; each evaluation then costs one trigonometric value of t and a few operations
-// per particle.
+// What a scene declares about itself, without being made (validate() reads it).
+struct SceneInfo {
+  std::string_view name;
+  bool dirichlet = true;  // posed with Dirichlet walls at X = 0 and X = 1
+  bool periodic = true;   // posed on a periodic grid
+  // The body fills [0, 1]: body_start and body_length are the grid's and may not be given.
+  bool fills_grid = true;
+  // The body's left end is the fixed wall X = 0: body_start may not be given.
+  bool fixed_start = false;
+  double body_start = 0;   // default extent of the body in the grid
+  double body_length = 1;  //
+  // A free surface inside the grid (an end of the body beside empty cells): the nodes beyond it
+  // can hold a sliver of mass, which small_mass treats.
+  bool free_surface = false;
+
+  constexpr bool supports(Boundary bc) const {
+    return bc == Boundary::dirichlet ? dirichlet : periodic;
+  }
+};
+
+// The loads of a scene at fixed reference positions X_p, as a force per unit mass b_p. The
+// profiles in X are evaluated when it is made; each evaluation then costs little per particle.
 class BodyForceAtParticles {
  public:
   virtual ~BodyForceAtParticles() = default;
@@ -57,9 +60,12 @@ class BodyForceAtParticles {
   virtual void evaluate(double t, Eigen::ArrayXd& b) const = 0;
 };
 
+// b = 0 at every particle, for a scene without loads (never evaluated by the solver).
+std::unique_ptr<BodyForceAtParticles> zero_body_force(Eigen::Index n);
+
 // The exact energies of a scene at a time t, per unit cross-section (energy.hpp): kinetic
-// 1/2 int rho0 v^2 dX, strain int W(F) dX over the body, and the work the body force has done
-// on the body since t = 0.
+// 1/2 int rho0 v^2 dX, strain int W(F) dX over the body, and the work the loads have done on the
+// body since t = 0.
 struct ExactEnergy {
   double kinetic = 0;
   double strain = 0;
@@ -68,16 +74,18 @@ struct ExactEnergy {
 
 class Scene {
  public:
-  Scene(double youngs_modulus, double amplitude);
+  // The body lies on [start, start + length] of the grid [0, 1].
+  Scene(double youngs_modulus, double amplitude, double start = 0, double length = 1);
   virtual ~Scene() = default;
 
   double E;           // Young's modulus
-  double A;           // amplitude of the manufactured solution
+  double A;           // amplitude (the scene's displacement scale, params.hpp)
   double rho0 = 1.0;  // reference density
   double c;           // wave speed sqrt(E / rho0)
+  double x0;          // the body's left end
+  double L;           // the body's length
 
-  // The material law. (The boundaries a scene is posed with are a static declaration of each
-  // scene, supports(), read through scene_supports() below.)
+  // The material law.
   virtual Material material() const = 0;
   MaterialLaw law() const { return {material(), E}; }
 
@@ -85,165 +93,91 @@ class Scene {
   virtual double displacement(double X, double t) const = 0;
   virtual double velocity(double X, double t) const = 0;
   virtual double stress(double X, double t) const = 0;
-  virtual double body_force(double X, double t) const = 0;  // per unit mass
+  // The body force per unit mass where the load is a field (0 elsewhere; a force on one
+  // particle is body_force_at's only).
+  virtual double body_force(double, double) const { return 0.0; }
 
-  // u(X, t) = displacement_profile(X) * displacement_factor(t).
-  virtual double displacement_profile(double X) const = 0;
+  // Whether u(X, t) = displacement_profile(X) * displacement_factor(t). Only a separable scene
+  // is asked for its profile and factor; the others are asked for displacements().
+  virtual bool separable() const { return true; }
+  virtual double displacement_profile(double X) const;
   // displacement_profile at every X_p, the same values.
   virtual Eigen::ArrayXd displacement_profiles(const Eigen::ArrayXd& X) const {
     return X.unaryExpr([this](double Xp) { return displacement_profile(Xp); });
   }
-  virtual double displacement_factor(double t) const = 0;
+  virtual double displacement_factor(double t) const;
+  // u(X_p, t) at every X_p into u.
+  virtual void displacements(const Eigen::ArrayXd& X, double t, Eigen::ArrayXd& u) const;
 
-  // The body force at the reference positions X (one per particle).
+  // The loads at the reference positions X (one per particle); null when has_body_force() is
+  // false.
   virtual std::unique_ptr<BodyForceAtParticles> body_force_at(const Eigen::ArrayXd& X) const = 0;
-
-  // The exact energies at time t, in closed form (docs/design.md, "Energy").
-  virtual ExactEnergy exact_energy(double t) const = 0;
-  // The period of the exact solution in time.
-  virtual double period() const = 0;
-  // False for a scene without a body force (b = 0 everywhere): the solver then never evaluates
+  // False for a scene without loads (b = 0 everywhere): the solver then never evaluates
   // body_force_at's object and its force sums add zero.
   virtual bool has_body_force() const { return true; }
+
+  // The exact energies at time t (docs/design.md, "Energy"). By default by quadrature of the
+  // exact velocity and stress over the body (kExactEnergyPoints midpoints; fields with a jump
+  // are then exact to about 1 / kExactEnergyPoints relative), the work by the balance
+  // K + U - (K + U)(0) of the exact solution. Scenes with a closed form override it.
+  virtual ExactEnergy exact_energy(double t) const;
+  static constexpr int kExactEnergyPoints = 1 << 14;
+  // The period of the exact solution in time (its fundamental period where it has one).
+  virtual double period() const = 0;
 
   // The particle state at t = 0 on `cells` cells with `ppc` particles per cell.
   virtual Particles initial_particles(int cells, int ppc, const Layout& layout = {}) const = 0;
 
  protected:
-  // The reference layout: X_p, mass rho0 h / m and reference volume h / m; x, v, F and sigma are
-  // left to the scene.
+  // The quadrature's K + U at t = 0, computed at the first call of the default exact_energy.
+  mutable std::optional<double> initial_energy_;
+  // The reference layout on the cells the body covers: X_p, mass rho0 h / m and reference
+  // volume h / m; x, v, F and sigma are left to the scene.
   Particles reference_layout(int cells, int ppc, const Layout& layout) const;
+  // Undeformed (x = X, F = 1, sigma = 0) with the exact velocity v(X_p, 0).
+  void start_undeformed(Particles& P) const;
 };
+
+// The state at t = 0 of a scene that starts at rest at its deformed positions (steffen, mode):
+// x = X + u(X, 0), v = 0, F = F(X, 0), sigma = sigma(F) of the scene's law.
+template <class S>
+void start_deformed_at_rest(const S& scene, Particles& P) {
+  const MaterialLaw material_law = scene.law();
+  for (Eigen::Index p = 0; p < P.size(); ++p) {
+    const double X = P.X[p];
+    P.x[p] = X + scene.displacement(X, 0.0);
+    P.v[p] = 0.0;  // v(X, 0) = 0
+    P.F[p] = scene.deformation_gradient(X, 0.0);
+    P.sigma[p] = material_law.stress(P.F[p]);
+  }
+}
+
+// The layout's first and one-past-last cell of a body on [start, start + length] of a grid of
+// `cells` cells (both ends on cell boundaries, which validate() checks).
+std::pair<int, int> body_cells(double start, double length, int cells);
 
 // The jitter's pseudo-random value of particle `index`, in [-1/2, 1/2) (Layout).
 double layout_jitter_unit(std::uint64_t index);
 
-class BarScene final : public Scene {
+// The exact displacement at fixed reference positions, as the error observers read it:
+// u(X_p, t) = u[p] * factor. For a separable scene u is the profile at X_p, kept, and factor
+// the scene's factor of t (the error (x_p - X_p) - u_p f is then one product per particle);
+// otherwise u(X_p, t) is evaluated into u at each call and factor is 1 (a product by 1 is
+// exact).
+class ExactDisplacement {
  public:
-  BarScene(double youngs_modulus, double amplitude);
-
-  Material material() const override { return Material::linear; }
-  static constexpr bool supports(Boundary) { return true; }  // Dirichlet and periodic
-
-  double displacement(double X, double t) const override;
-  double velocity(double X, double t) const override;
-  double stress(double X, double t) const override;
-  double body_force(double X, double t) const override;
-
-  double displacement_profile(double X) const override;  // A sin(2 pi X)
-  Eigen::ArrayXd displacement_profiles(const Eigen::ArrayXd& X) const override;
-  double displacement_factor(double t) const override;  // sin(c pi t)
-  // The body force is separable too: b(X, t) = body_force_profile(X) * body_force_factor(t).
-  double body_force_profile(double X) const;  // 3 (c pi)^2 A sin(2 pi X)
-  double body_force_factor(double t) const;   // sin(c pi t)
-
-  // With w = c pi: K = A^2 w^2 cos^2(w t) / 4, U = E pi^2 A^2 sin^2(w t) and the body force's
-  // work 3 A^2 w^2 sin^2(w t) / 4 (rho0 = 1), so that K + U - work = K(0) at every t.
-  ExactEnergy exact_energy(double t) const override;
-  double period() const override { return 2.0 / c; }
-
-  // The body force at particles X reads this scene (which must outlive it).
-  std::unique_ptr<BodyForceAtParticles> body_force_at(const Eigen::ArrayXd& X) const override;
-
-  // At rest positions x = X, F = 1, sigma = 0, velocity v(X_p, 0).
-  Particles initial_particles(int cells, int ppc, const Layout& layout = {}) const override;
+  ExactDisplacement(const Scene& scene, const Eigen::ArrayXd& X);
+  struct Terms {
+    const double* u;
+    double factor;
+  };
+  Terms at(double t) const;
+  const Eigen::ArrayXd& X() const { return X_; }
 
  private:
-  // sin(c pi t), both time factors, for the last t asked: a run asks at t^{n+1} for the error
-  // after a step, then at the same time for the body force of the next step (its t^n).
-  double time_sine(double t) const;
-  mutable double sine_t_ = std::numeric_limits<double>::quiet_NaN();
-  mutable double sine_ = 0;
-  // sin(2 pi X_p) for the last X asked: the initial velocities, the body force's profile and
-  // the error's displacement profile of a run all take it at the same reference positions
-  // (for a large bar, three sines per particle were a tenth of a short run).
-  const Eigen::ArrayXd& space_sines(const Eigen::ArrayXd& X) const;
-  mutable Eigen::ArrayXd sines_X_, sines_;
+  const Scene* scene_;
+  Eigen::ArrayXd X_;
+  mutable Eigen::ArrayXd u_;  // the profile (separable) or the last u(X_p, t)
 };
-
-class SteffenScene final : public Scene {
- public:
-  SteffenScene(double youngs_modulus, double amplitude);
-
-  Material material() const override { return Material::neo_hookean; }
-  static constexpr bool supports(Boundary) { return true; }  // Dirichlet and periodic
-
-  double displacement(double X, double t) const override;
-  double velocity(double X, double t) const override;
-  double deformation_gradient(double X, double t) const;  // F = 1 + u_X
-  double stress(double X, double t) const override;       // sigma(F(X, t))
-  double body_force(double X, double t) const override;
-
-  double displacement_profile(double X) const override;  // A sin(2 pi X)
-  double displacement_factor(double t) const override;   // cos(c pi t)
-
-  std::unique_ptr<BodyForceAtParticles> body_force_at(const Eigen::ArrayXd& X) const override;
-
-  // With w = c pi and a = 2 pi A cos(w t): K = A^2 w^2 sin^2(w t) / 4 and, from
-  // int_0^1 (F^2 - 1) dX = a^2 / 2 and int_0^1 ln F dX = ln((1 + sqrt(1 - a^2)) / 2),
-  // U = E a^2 / 8 - (E / 2) ln((1 + sqrt(1 - a^2)) / 2); the work is K + U - U(0), the balance
-  // of the exact solution (not finite once 2 pi A >= 1, where F reaches 0).
-  ExactEnergy exact_energy(double t) const override;
-  double period() const override { return 2.0 / c; }
-
-  // x = X + u(X, 0), v = 0, F = F(X, 0), sigma = sigma(F).
-  Particles initial_particles(int cells, int ppc, const Layout& layout = {}) const override;
-};
-
-// mode: one free standing wave of wavelength 1 on the periodic linear bar (the dispersion
-// study's scene, core/dispersion.hpp). Linear material sigma = E (F - 1), no body force:
-//   u(X, t) = A sin(2 pi X) cos(2 pi c t),  F(X, t) = 1 + 2 pi A cos(2 pi X) cos(2 pi c t).
-//   u_tt = -(2 pi c)^2 u = E u_XX / rho0 with rho0 c^2 = E: the balance of momentum holds with
-//   b = 0, so the scheme's own wave is what moves. Its period is 1 / c. Dirichlet walls at X = 0
-//   and X = 1 would hold u = 0 there, which u does, but the scene is the free wave of a periodic
-//   grid (no wall modes, the Bloch symbol's setting): it is posed with periodic boundaries only.
-//   The particles start at the deformed positions x_p = X_p + u(X_p, 0) at rest, with
-//   F_p = F(X_p, 0) and sigma_p = E (F_p - 1); at A > 0 this layout is not uniform.
-class ModeScene final : public Scene {
- public:
-  ModeScene(double youngs_modulus, double amplitude);
-
-  Material material() const override { return Material::linear; }
-  static constexpr bool supports(Boundary bc) { return bc == Boundary::periodic; }
-
-  double displacement(double X, double t) const override;
-  double velocity(double X, double t) const override;
-  double deformation_gradient(double X, double t) const;  // F = 1 + u_X
-  double stress(double X, double t) const override;       // E (F - 1)
-  double body_force(double X, double t) const override;   // 0
-
-  double displacement_profile(double X) const override;  // A sin(2 pi X)
-  double displacement_factor(double t) const override;   // cos(2 pi c t)
-
-  // A body force that is zero: never evaluated by the solver (has_body_force).
-  std::unique_ptr<BodyForceAtParticles> body_force_at(const Eigen::ArrayXd& X) const override;
-  bool has_body_force() const override { return false; }
-
-  // With v = -2 pi c A sin(2 pi X) sin(2 pi c t) and u_X = 2 pi A cos(2 pi X) cos(2 pi c t):
-  // K = (1/2) int_0^1 v^2 dX = pi^2 c^2 A^2 sin^2(2 pi c t) and
-  // U = (E/2) int_0^1 u_X^2 dX = pi^2 E A^2 cos^2(2 pi c t) (rho0 = 1, so E = c^2 and K + U is
-  // pi^2 E A^2 at every t); no body force, no work.
-  ExactEnergy exact_energy(double t) const override;
-  double period() const override { return 1.0 / c; }
-
-  // x = X + u(X, 0), v = 0, F = F(X, 0), sigma = E (F - 1).
-  Particles initial_particles(int cells, int ppc, const Layout& layout = {}) const override;
-};
-
-// The scene of a run: p.scene with p.E and p.A.
-std::unique_ptr<Scene> make_scene(const RunParams& p);
-
-// Whether scene `kind` is posed with boundaries `bc`, without making the scene (validate()).
-constexpr bool scene_supports(SceneKind kind, Boundary bc) {
-  switch (kind) {
-    case SceneKind::bar:
-      return BarScene::supports(bc);
-    case SceneKind::steffen:
-      return SteffenScene::supports(bc);
-    case SceneKind::mode:
-      return ModeScene::supports(bc);
-  }
-  return false;
-}
 
 }  // namespace mpmstab

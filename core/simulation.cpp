@@ -2,6 +2,8 @@
 
 #include <type_traits>
 
+#include "small_mass.hpp"
+
 namespace mpmstab {
 
 namespace {
@@ -65,7 +67,12 @@ Simulation::Simulation(const RunParams& p)
   stencil4_.resize(width == 4 ? n : 0);
   // A scene without a body force leaves body_force_ null: its b stays the zeros set below.
   if (scene_->has_body_force()) body_force_ = scene_->body_force_at(P_.X);
-  u_profile_ = scene_->displacement_profiles(P_.X);
+  exact_.emplace(*scene_, P_.X);
+  G_.extend_to_empty = !scene_info(p.scene).fills_grid;
+  if (p.small_mass != SmallMass::none) {
+    G_.small_mass = p.small_mass;
+    G_.mass_cutoff = p.small_mass_fraction * scene_->rho0 * G_.h;
+  }
   body_accel_.setZero(P_.size());
   if (p.transfer == Transfer::apic) P_.C.setZero(P_.size());  // starts from v_p alone
   if (p.transfer == Transfer::xpic) G_.correction.setZero(G_.slots());
@@ -75,6 +82,11 @@ template <int W>
 void Simulation::series_phase(const Stencil<W>& S) {
   if (params_.transfer == Transfer::xpic) xpic_correction(S, P_, params_.xpic_order, G_, series_);
   if (params_.transfer == Transfer::fmpm) fmpm_velocity(S, P_, params_.fmpm_order, G_, series_);
+}
+
+template <int W>
+void Simulation::small_mass_phase(const Stencil<W>& S, double dt) {
+  if (G_.small_mass == SmallMass::momentum) small_mass_momentum(S, P_, dt, G_);
 }
 
 template <int W>
@@ -93,6 +105,7 @@ bool Simulation::step(const Basis& basis, Stencil<Basis::width>& S, double dt, d
       p2g(basis, P_, b, S, G_);         // eqs. (5)-(7)
       if (apic) p2g_affine(S, P_, G_);  // APIC: q_i += sum_p S_ip m_p C_p (X_i - x_p)
       grid_update(G_, dt);              // eqs. (7), (8)
+      small_mass_phase(S, dt);          // small-mass nodes: the momentum treatment
       series_phase(S);                  // XPIC, FMPM: the full-mass correction w_i
       if (g2p_and_stress(S, G_, dt, g2p_rule_, law_, P_, check)) return check != nullptr;
       g2p(S, G_, dt, g2p_rule_, P_);                     // eqs. (9), (10)
@@ -105,12 +118,14 @@ bool Simulation::step(const Basis& basis, Stencil<Basis::width>& S, double dt, d
       stress_update(S, G_, dt, law_, P_);  // with v_i^n
       p2g_force(S, P_, b, G_);             // f_i with the new sigma_p and V_p = F_p V_p^0
       grid_update(G_, dt);
+      small_mass_phase(S, dt);
       series_phase(S);
       return g2p(S, G_, dt, g2p_rule_, P_, check);
     case UpdateOrder::musl:
       p2g(basis, P_, b, S, G_);
       if (apic) p2g_affine(S, P_, G_);
       grid_update(G_, dt);
+      small_mass_phase(S, dt);
       series_phase(S);
       g2p(S, G_, dt, g2p_rule_, P_);
       p2g_momentum(S, P_, G_);          // q_i = sum_p S_ip m_p v_p^{n+1}
@@ -151,7 +166,8 @@ void Simulation::advance_to(double t_next, StateExtremes* extremes, bool with_er
 }
 
 ErrorTerms Simulation::error_terms_at(double t) const {
-  return {P_.X.data(), u_profile_.data(), scene_->displacement_factor(t)};
+  const ExactDisplacement::Terms exact = exact_->at(t);
+  return {P_.X.data(), exact.u, exact.factor};
 }
 
 double Simulation::max_error() const {

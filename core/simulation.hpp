@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <variant>
 
 #include "failure.hpp"
@@ -10,7 +11,7 @@
 #include "params.hpp"
 #include "particles.hpp"
 #include "phases.hpp"
-#include "scene.hpp"
+#include "scene_registry.hpp"
 #include "shape.hpp"
 #include "stencil.hpp"
 #include "xpic.hpp"
@@ -27,6 +28,7 @@ class Simulation {
 
   // One step from time() to t_next, its phases in the order of p.update (phases.hpp):
   //   usl:  p2g -> grid_update -> g2p -> stress_update
+  // (with the momentum treatment of small-mass nodes after each grid_update)
   //   usf:  p2g -> grid_velocity -> stress_update -> p2g_force -> grid_update -> g2p
   //   musl: p2g -> grid_update -> g2p -> p2g_momentum -> grid_velocity -> stress_update
   // APIC adds p2g_affine after each momentum sum; XPIC and FMPM add their series (xpic.hpp)
@@ -61,6 +63,9 @@ class Simulation {
   // XPIC's and FMPM's correction of the grid velocity, after grid_update (xpic.hpp).
   template <int W>
   void series_phase(const Stencil<W>& S);
+  // The momentum treatment of small-mass nodes after grid_update (small_mass.hpp).
+  template <int W>
+  void small_mass_phase(const Stencil<W>& S, double dt);
   // FMPM's series after grid_velocity (USF's v^n, MUSL's re-mapped velocity).
   template <int W>
   void full_mass_velocity(const Stencil<W>& S);
@@ -80,7 +85,7 @@ class Simulation {
   Stencil<W>& stencil();
   std::unique_ptr<BodyForceAtParticles> body_force_;  // b(X_p, t)
   Eigen::ArrayXd body_accel_;                         // b(X_p, t) for the current step
-  Eigen::ArrayXd u_profile_;                          // displacement profile at X_p
+  std::optional<ExactDisplacement> exact_;            // u(X_p, t)
   SeriesWork series_;                                 // XPIC and FMPM only
   double t_ = 0;
   std::int64_t n_ = 0;

@@ -1,4 +1,5 @@
 #include "spectral.hpp"
+#include "scene_registry.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
@@ -79,7 +80,9 @@ void set_limiting_mode(SpectralLimit& out, Eigen::ArrayXd moduli, Eigen::Index p
 }
 
 Eigen::Index spectral_state_size(const RunParams& p) {
-  const Eigen::Index n = static_cast<Eigen::Index>(p.cells) * p.ppc;
+  // The particles of the body: cells * ppc where it fills the grid.
+  const auto [first, last] = body_cells(body_start(p), body_length(p), p.cells);
+  const Eigen::Index n = static_cast<Eigen::Index>(last - first) * p.ppc;
   return (p.transfer == Transfer::apic ? 3 : 2) * n;
 }
 
@@ -216,6 +219,7 @@ std::string spectral_key(const RunParams& p, bool bloch) {
   k.precision(17);
   if (p.transfer == Transfer::blend) k << "/b" << p.flip_fraction;
   if (p.scene != SceneKind::bar) k << "/A" << p.A;
+  if (!scene_info(p.scene).fills_grid) k << "/x" << body_start(p) << "/L" << body_length(p);
   k << "/s" << p.layout.shift << "/j" << p.layout.jitter;
   return k.str();
 }

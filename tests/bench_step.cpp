@@ -16,6 +16,7 @@
 #include <utility>
 #include <vector>
 
+#include "bar.hpp"
 #include "crossings.hpp"
 #include "failure.hpp"
 #include "run.hpp"

@@ -10,10 +10,13 @@
 #include <string>
 #include <vector>
 
+#include "bar.hpp"
 #include "dispersion.hpp"
+#include "mode.hpp"
 #include "params.hpp"
-#include "scene.hpp"
+#include "scene_registry.hpp"
 #include "simulation.hpp"
+#include "steffen.hpp"
 
 namespace mpmstab {
 namespace {

@@ -8,7 +8,7 @@
 
 #include "energy.hpp"
 #include "run.hpp"
-#include "scene.hpp"
+#include "scene_registry.hpp"
 #include "time_error.hpp"
 
 namespace mpmstab {

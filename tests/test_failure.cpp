@@ -4,9 +4,10 @@
 #include <cmath>
 #include <limits>
 
+#include "bar.hpp"
 #include "failure.hpp"
 #include "run.hpp"
-#include "scene.hpp"
+#include "scene_registry.hpp"
 #include "simulation.hpp"
 
 namespace mpmstab {

@@ -6,9 +6,12 @@
 #include <functional>
 #include <numbers>
 
+#include "bar.hpp"
+#include "mode.hpp"
 #include "run.hpp"
-#include "scene.hpp"
+#include "scene_registry.hpp"
 #include "simulation.hpp"
+#include "steffen.hpp"
 
 namespace mpmstab {
 namespace {

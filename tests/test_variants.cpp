@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "bar.hpp"
 #include "failure.hpp"
 #include "phases.hpp"
 #include "run.hpp"

@@ -44,11 +44,17 @@ Options:
   --position-update grid|particle
                            move particles with the grid velocity (default) or with
                            the updated particle velocity (the paper's eq. 10)
-  --scene bar|steffen|mode the paper's bar (default: linear material, u = A sin(2 pi X)
+  --scene bar|steffen|mode|vibration|impulsive|compaction|block|impact
+                           the paper's bar (default: linear material, u = A sin(2 pi X)
                            sin(c pi t)), Steffen et al. (2008): neo-Hookean material,
                            u = A sin(2 pi X) cos(c pi t), or mode: one free standing wave
                            of the linear bar, u = A sin(2 pi X) cos(2 pi c t), no body
-                           force, --bc periodic only
+                           force, --bc periodic only; or a body in a larger grid (A is its
+                           displacement scale; docs/design.md, "Scenes"): vibration (fixed-
+                           free bar, first mode of tip amplitude A), impulsive (tip traction
+                           E A / (2 L) from t = 0), compaction (body force ramped to the
+                           static top compaction A), block (rigid translation at A c),
+                           impact (two bars meeting at +-A c / (L / 2))
   --walls clip|ghost       GIMP supports at a Dirichlet wall: nodes on [0, 1] only
                            (default) or one free ghost node beyond each wall
   --transfer flip|pic|blend|apic|xpic|fmpm
@@ -67,6 +73,15 @@ Options:
                            or last with the grid velocity re-mapped from the particles
   --body-force-time start|end
                            evaluate b at the start t^n (default) or end t^{n+1} of a step
+  --body-start <x0>        left end of the body in the grid [0, 1] (block, impact; default
+                           the scene's own), on a cell boundary
+  --body-length <L>        length of the body (vibration, impulsive, compaction, block,
+                           impact; default the scene's own), a whole number of cells
+  --small-mass none|cutoff|drop|momentum
+                           treatment of nodes with less mass than a fraction of rho0 h
+                           (scenes with a free surface; default none)
+  --small-mass-fraction <f>
+                           that fraction, in (0, 1] (default 0.01; with --small-mass only)
   --dt-stable-sigma scaled|raw
                            stress in eq. (108) scaled by 1/sqrt(E) (default) or not
   --dt-stable-vnorm l2|max norm of the nodal velocity in eq. (108) (default l2)

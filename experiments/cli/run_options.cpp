@@ -64,7 +64,8 @@ void read_choices(const Args& a, RunParams& p) {
         parse_choice(*v, "position-update", parse_position_update, "grid or particle");
   }
   if (auto v = a.value("scene"))
-    p.scene = parse_choice(*v, "scene", parse_scene, "bar, steffen or mode");
+    p.scene = parse_choice(*v, "scene", parse_scene,
+                           "bar, steffen, mode, vibration, impulsive, compaction, block or impact");
   if (auto v = a.value("walls"))
     p.walls = parse_choice(*v, "walls", parse_walls, "clip, ghost or modified");
   if (auto v = a.value("transfer")) {
@@ -82,6 +83,14 @@ void read_choices(const Args& a, RunParams& p) {
   if (auto v = a.value("body-force-time")) {
     p.body_force_time = parse_choice(*v, "body-force-time", parse_body_force_time, "start or end");
   }
+  if (auto v = a.value("body-start")) p.body_start = parse_double(*v, "body-start");
+  if (auto v = a.value("body-length")) p.body_length = parse_double(*v, "body-length");
+  if (auto v = a.value("small-mass")) {
+    p.small_mass =
+        parse_choice(*v, "small-mass", parse_small_mass, "none, cutoff, drop or momentum");
+  }
+  if (auto v = a.value("small-mass-fraction"))
+    p.small_mass_fraction = parse_double(*v, "small-mass-fraction");
 }
 
 // The options of eq. (108), the step cap and the history.
@@ -138,6 +147,10 @@ const std::vector<OptionSpec>& run_options() {
       {"update"},
       {"shift"},
       {"jitter"},
+      {"body-start"},
+      {"body-length"},
+      {"small-mass"},
+      {"small-mass-fraction"},
       {"body-force-time"},
       {"dt-stable-sigma"},
       {"dt-stable-vnorm"},

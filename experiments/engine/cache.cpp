@@ -1,5 +1,9 @@
 #include "cache.hpp"
 
+#include "scene_registry.hpp"
+
+#include <cmath>
+
 #include <cstdint>
 #include <fstream>
 #include <sstream>
@@ -38,6 +42,12 @@ std::string canonical_parameters(const RunParams& p) {
     s << ";update=" << to_string(p.update) << ";body_force_time=" << to_string(p.body_force_time);
     if (p.layout.shift != 0) s << ";shift=" << shortest(p.layout.shift);
     if (p.layout.jitter != 0) s << ";jitter=" << shortest(p.layout.jitter);
+    if (!std::isnan(p.body_start)) s << ";body_start=" << shortest(p.body_start);
+    if (!std::isnan(p.body_length)) s << ";body_length=" << shortest(p.body_length);
+    if (p.small_mass != SmallMass::none) {
+      s << ";small_mass=" << to_string(p.small_mass)
+        << ";small_mass_fraction=" << shortest(p.small_mass_fraction);
+    }
   }
   return s.str();
 }
@@ -72,8 +82,31 @@ std::string checksum(const nlohmann::ordered_json& record, const std::string& ca
   return fnv1a_hex(canonical_text + "\n" + content.dump());
 }
 
+// A record written before the parameters of the scenes with free surfaces (body_start,
+// body_length, small_mass, small_mass_fraction) were columns: every such run was of a scene that
+// fills the grid, without a small-mass treatment (its canonical key names neither), and these
+// are the values its record would now hold. They go where to_json puts them, before "policy".
+void add_scene_columns(nlohmann::ordered_json& result) {
+  if (!result.is_object() || result.contains("small_mass") || !result.contains("policy")) return;
+  const auto scene = result.find("scene");
+  if (scene == result.end() || !scene->is_string()) return;
+  const auto kind = parse_scene(scene->get<std::string>());
+  if (!kind || !scene_info(*kind).fills_grid) return;
+  nlohmann::ordered_json out;
+  for (auto& [key, value] : result.items()) {
+    if (key == "policy") {
+      out["body_start"] = nullptr;
+      out["body_length"] = nullptr;
+      out["small_mass"] = to_string(SmallMass::none);
+      out["small_mass_fraction"] = nullptr;
+    }
+    out[key] = value;
+  }
+  result = std::move(out);
+}
+
 // A stored record's checks, in order; true when it may stand for the case.
-bool intact(const nlohmann::ordered_json& record, const std::string& canonical_text) {
+bool intact(nlohmann::ordered_json& record, const std::string& canonical_text) {
   if (!record.is_object()) return false;
   const auto canon = record.find("canonical");
   const auto sum = record.find("checksum");
@@ -83,6 +116,9 @@ bool intact(const nlohmann::ordered_json& record, const std::string& canonical_t
   }
   const auto result = record.find("result");
   const auto provenance = record.find("provenance");
+  if (result != record.end())
+    add_scene_columns(*result);  // after the checksum: it covers
+                                 // the record as written
   return result != record.end() && record_defect(*result).empty() && provenance != record.end() &&
          provenance->is_object();
 }

@@ -1,5 +1,6 @@
 #include "result_json.hpp"
 
+#include "scene_registry.hpp"
 #include "version.hpp"
 
 namespace mpmstab {
@@ -18,7 +19,8 @@ const std::vector<std::string>& record_columns() {
       // What was asked: the parameters (a parameter the run did not use is null).
       "method", "E", "A", "dt", "T", "cells", "ppc", "bc", "position_update", "scene", "walls",
       "transfer", "flip_fraction", "xpic_order", "fmpm_order", "update", "shift", "jitter",
-      "body_force_time", "policy", "cfl_factor", "safety", "dt_stable_sigma", "dt_stable_vnorm",
+      "body_force_time", "body_start", "body_length", "small_mass", "small_mass_fraction", "policy",
+      "cfl_factor", "safety", "dt_stable_sigma", "dt_stable_vnorm",
       // What the run did.
       "outcome", "failure_reason", "failure_step", "failure_time", "failure_particle", "steps",
       "dt_min", "dt_max", "dt_mean", "max_error", "max_error_over_time", "error_l2_time",
@@ -54,6 +56,13 @@ nlohmann::ordered_json to_json(const RunResult& r) {
   j["shift"] = p.layout.shift;
   j["jitter"] = p.layout.jitter;
   j["body_force_time"] = to_string(p.body_force_time);
+  // The body's extent: null where the scene's body fills the grid (it has none to choose).
+  const bool placed = !scene_info(p.scene).fills_grid;
+  j["body_start"] = placed ? ojson(body_start(p)) : ojson(nullptr);
+  j["body_length"] = placed ? ojson(body_length(p)) : ojson(nullptr);
+  j["small_mass"] = to_string(p.small_mass);
+  j["small_mass_fraction"] =
+      p.small_mass != SmallMass::none ? ojson(p.small_mass_fraction) : ojson(nullptr);
   j["policy"] = to_string(policy);
   const bool uses_cfl = policy == TimeStepPolicy::cfl || policy == TimeStepPolicy::min;
   const bool uses_bound = policy == TimeStepPolicy::adaptive || policy == TimeStepPolicy::min ||

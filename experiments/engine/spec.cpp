@@ -125,7 +125,8 @@ class Reader {
     else if (key == "position_update")
       p.position_update = choice_at(v, path, parse_position_update, "grid or particle");
     else if (key == "scene")
-      p.scene = choice_at(v, path, parse_scene, "bar, steffen or mode");
+      p.scene = choice_at(v, path, parse_scene,
+                          "bar, steffen, mode, vibration, impulsive, compaction, block or impact");
     else if (key == "walls")
       p.walls = choice_at(v, path, parse_walls, "clip, ghost or modified");
     else if (key == "transfer")
@@ -144,6 +145,14 @@ class Reader {
       p.update = choice_at(v, path, parse_update_order, "usl, usf or musl");
     else if (key == "body_force_time")
       p.body_force_time = choice_at(v, path, parse_body_force_time, "start or end");
+    else if (key == "body_start")
+      p.body_start = number_at(v, path);
+    else if (key == "body_length")
+      p.body_length = number_at(v, path);
+    else if (key == "small_mass")
+      p.small_mass = choice_at(v, path, parse_small_mass, "none, cutoff, drop or momentum");
+    else if (key == "small_mass_fraction")
+      p.small_mass_fraction = number_at(v, path);
     else if (key == "dt_stable_sigma")
       p.stable.sigma = choice_at(v, path, parse_stress_scaling, "scaled or raw");
     else if (key == "dt_stable_vnorm")

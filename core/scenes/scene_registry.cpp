@@ -1,0 +1,59 @@
+#include "scene_registry.hpp"
+
+#include "bar.hpp"
+#include "block.hpp"
+#include "compaction.hpp"
+#include "impact.hpp"
+#include "impulsive.hpp"
+#include "mode.hpp"
+#include "steffen.hpp"
+#include "vibration.hpp"
+
+namespace mpmstab {
+
+const SceneInfo& scene_info(SceneKind kind) {
+  switch (kind) {
+    case SceneKind::bar:
+      return BarScene::kInfo;
+    case SceneKind::steffen:
+      return SteffenScene::kInfo;
+    case SceneKind::mode:
+      return ModeScene::kInfo;
+    case SceneKind::vibration:
+      return VibrationScene::kInfo;
+    case SceneKind::impulsive:
+      return ImpulsiveScene::kInfo;
+    case SceneKind::compaction:
+      return CompactionScene::kInfo;
+    case SceneKind::block:
+      return BlockScene::kInfo;
+    case SceneKind::impact:
+      return ImpactScene::kInfo;
+  }
+  return BarScene::kInfo;
+}
+
+std::unique_ptr<Scene> make_scene(const RunParams& p) {
+  const double start = body_start(p), length = body_length(p);
+  switch (p.scene) {
+    case SceneKind::bar:
+      return std::make_unique<BarScene>(p.E, p.A);
+    case SceneKind::steffen:
+      return std::make_unique<SteffenScene>(p.E, p.A);
+    case SceneKind::mode:
+      return std::make_unique<ModeScene>(p.E, p.A);
+    case SceneKind::vibration:
+      return std::make_unique<VibrationScene>(p.E, p.A, length);
+    case SceneKind::impulsive:
+      return std::make_unique<ImpulsiveScene>(p.E, p.A, length);
+    case SceneKind::compaction:
+      return std::make_unique<CompactionScene>(p.E, p.A, length);
+    case SceneKind::block:
+      return std::make_unique<BlockScene>(p.E, p.A, start, length);
+    case SceneKind::impact:
+      return std::make_unique<ImpactScene>(p.E, p.A, start, length);
+  }
+  return std::make_unique<BarScene>(p.E, p.A);
+}
+
+}  // namespace mpmstab

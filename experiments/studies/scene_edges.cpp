@@ -1,0 +1,193 @@
+// Scene edges: the survival and accuracy edges in dt of every scene with a free surface, method
+// and small-mass treatment (docs/design.md, "Scenes", "Small-mass nodes"), each beside the dense
+// spectral limit of its body, with its verdicts at the edge and just above it rerun on perturbed
+// layouts (ensemble.hpp). The scenes study reads these rows for its table.
+#include <cmath>
+#include <sstream>
+
+#include "claims.hpp"
+#include "ensemble.hpp"
+#include "report_util.hpp"
+#include "study.hpp"
+#include "sweep.hpp"
+
+namespace mpmstab {
+
+namespace {
+
+using ojson = nlohmann::ordered_json;
+
+// The margin an edge may exceed its body's dense spectral limit by and still count as at it:
+// the search's own bisection tolerance is 2%.
+constexpr double kLimitMargin = 1.05;
+
+RunParams at_dt(RunParams p, double dt) {
+  p.stepping.policy = TimeStepPolicy::fixed;
+  p.dt = dt;
+  return p;
+}
+
+std::string small_mass_of(const ojson& r) {
+  return r["small_mass"].is_string() ? r["small_mass"].get<std::string>() : "none";
+}
+
+// c dt / h of a dt in a row.
+std::optional<double> courant_of(const ojson& r, const char* column) {
+  if (!has_number(r, column) || !has_number(r, "dt_cfl")) return std::nullopt;
+  return r[column].get<double>() / r["dt_cfl"].get<double>();
+}
+
+std::string opt_fixed(std::optional<double> v, int decimals = 3) {
+  return v ? fixed(*v, decimals) : "–";
+}
+
+std::vector<RunParams> edges_follow_up(const FollowUpContext& c) {
+  std::vector<RunParams> runs;
+  for (std::size_t i = 0; i < c.rows.size(); ++i) {
+    const ojson& r = c.rows[i];
+    if (!has_number(r, "dt_edge") || !has_number(r, "dt_fail")) continue;
+    const RunParams& base = c.spec.cases.at(i).params;
+    for (const char* column : {"dt_edge", "dt_fail"})
+      for (auto& p : ensemble_members(at_dt(base, r[column].get<double>())))
+        runs.push_back(std::move(p));
+  }
+  return runs;
+}
+
+// Per row with both edges: how many of the perturbed layouts survive at dt_edge and fail at
+// dt_fail.
+struct Robustness {
+  int survive_at_edge = 0, fail_above = 0, members = 0;
+};
+std::vector<std::optional<Robustness>> robustness(const std::vector<ojson>& rows,
+                                                  const std::vector<ojson>& follow_up) {
+  std::vector<std::optional<Robustness>> out(rows.size());
+  std::size_t next = 0;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    if (!has_number(rows[i], "dt_edge") || !has_number(rows[i], "dt_fail")) continue;
+    if (next + 2 * kEnsembleMembers > follow_up.size()) break;
+    Robustness r;
+    r.members = kEnsembleMembers;
+    for (int k = 0; k < kEnsembleMembers; ++k)
+      r.survive_at_edge += survived(follow_up[next++]);
+    for (int k = 0; k < kEnsembleMembers; ++k)
+      r.fail_above += !survived(follow_up[next++]);
+    out[i] = r;
+  }
+  return out;
+}
+
+StudyReport edges_report(const ReportContext& ctx) {
+  const auto& rows = ctx.rows;
+  const auto robust = robustness(rows, ctx.follow_up);
+  std::ostringstream md;
+  md << "Each row: a scene, a method and a small-mass treatment (docs/design.md, \"Small-mass "
+        "nodes\"). *Survival edge*: the largest c dt/h probed that survives to T, and the "
+        "smallest above it that fails; *accuracy edge*: the largest up to which the error over "
+        "time stays within the search's factor of the smallest dt's "
+        "("
+     << edge_search_text(ctx.spec.study->edge)
+     << "); *dense limit*: the spectral limit of the whole body with its free surfaces "
+        "(docs/design.md, \"The spectral limit\"); *perturbed*: of "
+     << kEnsembleMembers << " layouts perturbed by " << sci(kEnsemblePerturbation)
+     << " of the particle spacing, how many survive at the edge and how many fail just above "
+        "it.\n\n";
+  md << "| scene | method | small-mass | survival edge c dt/h | fails at | accuracy edge | dense "
+        "limit | edge / limit | perturbed: survive at edge, fail above |\n"
+        "|---|---|---|---:|---:|---:|---:|---:|---|\n";
+  int with_edge = 0, robust_rows = 0, checked = 0, above = 0, compared = 0, all_survived = 0;
+  double worst = 0;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const ojson& r = rows[i];
+    const auto edge = courant_of(r, "dt_edge"), fail = courant_of(r, "dt_fail"),
+               accurate = courant_of(r, "dt_accurate");
+    // Every dt of the scan survives (a step of T itself): no edge to compare with a limit.
+    const bool all_survive = edge && !fail;
+    all_survived += all_survive;
+    const std::optional<double> limit = has_number(r, "courant_spectral")
+                                            ? std::optional(r["courant_spectral"].get<double>())
+                                            : std::nullopt;
+    with_edge += edge.has_value();
+    std::string ratio_text = "–";
+    if (edge && limit && !all_survive) {
+      ++compared;
+      const double q = *edge / *limit;
+      worst = std::max(worst, q);
+      above += q > kLimitMargin;
+      ratio_text = fixed(q, 2);
+    }
+    std::string perturbed = "–";
+    if (robust[i]) {
+      ++checked;
+      const Robustness& b = *robust[i];
+      robust_rows += b.survive_at_edge == b.members && b.fail_above == b.members;
+      perturbed = std::to_string(b.survive_at_edge) + " of " + std::to_string(b.members) + ", " +
+                  std::to_string(b.fail_above) + " of " + std::to_string(b.members);
+    }
+    md << "| " << text(r, "scene") << " | " << text(r, "method") << " | " << small_mass_of(r)
+       << " | " << (all_survive ? std::string("every dt to T survives") : opt_fixed(edge)) << " | "
+       << opt_fixed(fail) << " | " << opt_fixed(accurate) << " | " << opt_fixed(limit) << " | "
+       << ratio_text << " | " << perturbed << " |\n";
+  }
+  md << "\nAn edge above the dense limit is one at which the growth the limit predicts has "
+        "not reached a failure by T (c T is given per scene in the scenes report); every dt up "
+        "to T survives where nothing grows at all (the block: no stress). "
+     << all_survived << " of " << rows.size() << " rows survive every dt.\n";
+  std::vector<Claim> claims;
+  {
+    Claim c = claim("every-case-has-an-edge",
+                    "Every case has a survival edge inside the scan: {with} of {cases}.");
+    c.count("with", with_edge).count("cases", static_cast<long long>(rows.size()));
+    c.holds = with_edge == static_cast<int>(rows.size());
+    claims.push_back(c);
+  }
+  {
+    Claim c = claim("edges-survive-perturbation",
+                    "Every edge holds on every perturbed layout (all survive at the edge, all "
+                    "fail just above it): {robust} of {checked} edges.");
+    c.count("robust", robust_rows).count("checked", checked);
+    c.holds = checked > 0 && robust_rows == checked;
+    claims.push_back(c);
+  }
+  {
+    Claim c = claim("edges-at-or-below-limit",
+                    "No survival edge lies above {margin} times the dense spectral limit of its "
+                    "body: {above} of {compared} with an edge do (the largest ratio is "
+                    "{worst}).");
+    c.number("margin", kLimitMargin, 3).count("above", above).count("compared", compared);
+    c.number("worst", worst, 3);
+    c.holds = compared > 0 && above == 0;
+    claims.push_back(c);
+  }
+  StudyReport report;
+  report.markdown = md.str();
+  report.claims = std::move(claims);
+  return report;
+}
+
+std::string edges_index(const Spec& spec, const std::vector<ojson>& rows) {
+  int with_edge = 0;
+  for (const auto& r : rows)
+    with_edge += has_number(r, "dt_edge");
+  std::ostringstream md;
+  md << "**What it shows.** The survival and accuracy edges in c dt/h of " << rows.size()
+     << " scene, method and small-mass cases (" << with_edge
+     << " with an edge in the scan), each beside the dense spectral limit of its body and "
+        "checked on perturbed layouts. ["
+     << spec.name << ".md](" << spec.name << ".md)\n";
+  return md.str();
+}
+
+const StudyRegistration kSceneEdges{{
+    .name = "scene_edges",
+    .summary = "survival and accuracy edges of every scene, method and small-mass treatment",
+    .work = CaseWork::edge_search,
+    .records = {.error_over_time = true},
+    .follow_up = edges_follow_up,
+    .report = edges_report,
+    .index = edges_index,
+}};
+
+}  // namespace
+
+}  // namespace mpmstab
