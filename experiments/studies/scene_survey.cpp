@@ -394,10 +394,11 @@ StudyReport scenes_report(const ReportContext& ctx) {
 }
 
 std::string scenes_subtitle(const Spec&, const ojson& doc) {
+  const std::vector<ojson> rows(doc["cases"].begin(), doc["cases"].end());
+  const auto ref = references(rows);
   int n = 0;
-  for (const auto& r : doc["cases"])
-    n += r["scene"] != "bar" && r["small_mass"] == "none" && r["policy"] == "cfl" &&
-         r["cfl_factor"] == kReferenceCourant;
+  for (const auto& r : rows)
+    n += part_of(r, ref) == Part::trade && at_reference(r);
   return std::to_string(n) + " runs at c dt/h = " + shortest(kReferenceCourant) +
          "; error over time per A";
 }
