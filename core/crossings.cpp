@@ -66,12 +66,12 @@ ExactCrossings exact_crossings(const RunParams& p, std::int64_t samples) {
   auto cell_at = [&](Eigen::Index i, const ExactDisplacement::Terms& u) {
     return std::floor((P.X[i] + u.u[i] * u.factor) / h);
   };
-  const ExactDisplacement::Terms u0 = exact.at(0);
+  const ExactDisplacement::Terms u0 = exact.at(P.X, 0);
   for (Eigen::Index i = 0; i < n; ++i)
     cell[std::size_t(i)] = cell_at(i, u0);
   ExactCrossings out;
   for (std::int64_t k = 1; k <= samples; ++k) {
-    const ExactDisplacement::Terms u = exact.at(p.T * double(k) / double(samples));
+    const ExactDisplacement::Terms u = exact.at(P.X, p.T * double(k) / double(samples));
     for (Eigen::Index i = 0; i < n; ++i) {
       const double c = cell_at(i, u), old = cell[std::size_t(i)];
       if (c == old) continue;

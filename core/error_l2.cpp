@@ -12,7 +12,7 @@ ErrorL2InTime::ErrorL2InTime(const Particles& P, const Scene& scene) : exact_(sc
 }
 
 void ErrorL2InTime::after_step(const Particles& P, double t) {
-  const ExactDisplacement::Terms exact = exact_.at(t);
+  const ExactDisplacement::Terms exact = exact_.at(P.X, t);
   const double f = exact.factor;
   double sum = 0;
   for (Eigen::Index p = 0; p < P.size(); ++p) {

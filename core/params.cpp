@@ -528,9 +528,9 @@ std::vector<ParamIssue> validate(const RunParams& p) {
   // The block between walls: its exact motion must not reach the wall X = 1 by T.
   if (p.scene == SceneKind::block && p.bc == Boundary::dirichlet && std::isfinite(p.T) &&
       std::isfinite(p.E) && p.E > 0 && std::isfinite(p.A) &&
-      start + length + p.A * std::sqrt(p.E) * p.T > 1) {
+      start + length + p.A * wave_speed(p) * p.T > 1) {
     bad("T", "the block [" + brief(start) + ", " + brief(start + length) + "] moving at A c = " +
-                 brief(p.A * std::sqrt(p.E)) + " reaches the wall X = 1 before T = " + brief(p.T) +
+                 brief(p.A * wave_speed(p)) + " reaches the wall X = 1 before T = " + brief(p.T) +
                  " (use bc = periodic or a shorter T)");
   }
   // The step count of the fixed-step policies is known before the run: refuse it if too large.

@@ -105,14 +105,13 @@ void Scene::start_undeformed(Particles& P) const {
   }
 }
 
-ExactDisplacement::ExactDisplacement(const Scene& scene, const Eigen::ArrayXd& X)
-    : scene_(&scene), X_(X) {
+ExactDisplacement::ExactDisplacement(const Scene& scene, const Eigen::ArrayXd& X) : scene_(&scene) {
   if (scene.separable()) u_ = scene.displacement_profiles(X);
 }
 
-ExactDisplacement::Terms ExactDisplacement::at(double t) const {
+ExactDisplacement::Terms ExactDisplacement::at(const Eigen::ArrayXd& X, double t) const {
   if (scene_->separable()) return {u_.data(), scene_->displacement_factor(t)};
-  scene_->displacements(X_, t, u_);
+  scene_->displacements(X, t, u_);
   return {u_.data(), 1.0};
 }
 

@@ -160,10 +160,10 @@ std::pair<int, int> body_cells(double start, double length, int cells);
 double layout_jitter_unit(std::uint64_t index);
 
 // The exact displacement at fixed reference positions, as the error observers read it:
-// u(X_p, t) = u[p] * factor. For a separable scene u is the profile at X_p, kept, and factor
-// the scene's factor of t (the error (x_p - X_p) - u_p f is then one product per particle);
-// otherwise u(X_p, t) is evaluated into u at each call and factor is 1 (a product by 1 is
-// exact).
+// u(X_p, t) = u[p] * factor. For a separable scene u is the profile at X_p, kept from the
+// construction, and factor the scene's factor of t (the error (x_p - X_p) - u_p f is then one
+// product per particle); otherwise u(X_p, t) is evaluated into u at each call and factor is 1 (a
+// product by 1 is exact). `X` is the same reference positions at every call.
 class ExactDisplacement {
  public:
   ExactDisplacement(const Scene& scene, const Eigen::ArrayXd& X);
@@ -171,12 +171,10 @@ class ExactDisplacement {
     const double* u;
     double factor;
   };
-  Terms at(double t) const;
-  const Eigen::ArrayXd& X() const { return X_; }
+  Terms at(const Eigen::ArrayXd& X, double t) const;
 
  private:
   const Scene* scene_;
-  Eigen::ArrayXd X_;
   mutable Eigen::ArrayXd u_;  // the profile (separable) or the last u(X_p, t)
 };
 

@@ -59,7 +59,8 @@ Simulation::Simulation(const RunParams& p)
       g2p_rule_{p.transfer, p.flip_fraction, p.position_update},
       P_(scene_->initial_particles(p.cells, p.ppc, p.layout)),
       G_(p.cells, p.bc, p.walls, stencil_width(p.method)),
-      basis_(make_basis(p)) {
+      basis_(make_basis(p)),
+      exact_(*scene_, P_.X) {
   const auto n = static_cast<std::size_t>(P_.size());
   const int width = stencil_width(p.method);
   stencil2_.resize(width == 2 ? n : 0);
@@ -67,7 +68,6 @@ Simulation::Simulation(const RunParams& p)
   stencil4_.resize(width == 4 ? n : 0);
   // A scene without a body force leaves body_force_ null: its b stays the zeros set below.
   if (scene_->has_body_force()) body_force_ = scene_->body_force_at(P_.X);
-  exact_.emplace(*scene_, P_.X);
   G_.extend_to_empty = !scene_info(p.scene).fills_grid;
   if (p.small_mass != SmallMass::none) {
     G_.small_mass = p.small_mass;
@@ -166,7 +166,7 @@ void Simulation::advance_to(double t_next, StateExtremes* extremes, bool with_er
 }
 
 ErrorTerms Simulation::error_terms_at(double t) const {
-  const ExactDisplacement::Terms exact = exact_->at(t);
+  const ExactDisplacement::Terms exact = exact_.at(P_.X, t);
   return {P_.X.data(), exact.u, exact.factor};
 }
 

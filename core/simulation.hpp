@@ -3,7 +3,6 @@
 
 #include <cstdint>
 #include <memory>
-#include <optional>
 #include <variant>
 
 #include "failure.hpp"
@@ -85,7 +84,7 @@ class Simulation {
   Stencil<W>& stencil();
   std::unique_ptr<BodyForceAtParticles> body_force_;  // b(X_p, t)
   Eigen::ArrayXd body_accel_;                         // b(X_p, t) for the current step
-  std::optional<ExactDisplacement> exact_;            // u(X_p, t)
+  ExactDisplacement exact_;                           // u(X_p, t)
   SeriesWork series_;                                 // XPIC and FMPM only
   double t_ = 0;
   std::int64_t n_ = 0;

@@ -781,7 +781,7 @@ TEST(ExactDisplacementOfScenes, SeparableScenesGiveProfileAndFactor) {
     const Particles P = s->initial_particles(32, 3);
     const ExactDisplacement exact(*s, P.X);
     for (double t : {0.0, 0.137, 0.61}) {
-      const ExactDisplacement::Terms terms = exact.at(t);
+      const ExactDisplacement::Terms terms = exact.at(P.X, t);
       EXPECT_EQ(terms.factor, s->displacement_factor(t));
       for (Eigen::Index p = 0; p < P.size(); ++p) {
         EXPECT_EQ(terms.u[p], s->displacement_profile(P.X[p]));
@@ -801,14 +801,14 @@ TEST(ExactDisplacementOfScenes, OtherScenesAreEvaluatedPerParticleWithFactorOne)
     const Particles P = s->initial_particles(32, 2);
     const ExactDisplacement exact(*s, P.X);
     for (double t : {0.03, 0.21, 0.4, 0.21}) {
-      const ExactDisplacement::Terms terms = exact.at(t);
+      const ExactDisplacement::Terms terms = exact.at(P.X, t);
       EXPECT_EQ(terms.factor, 1.0);
       for (Eigen::Index p = 0; p < P.size(); ++p)
         EXPECT_EQ(terms.u[p], s->displacement(P.X[p], t)) << "t = " << t << " p = " << p;
     }
     // The displacement moves: the values are those of the time asked, not of the first call.
-    const double first = exact.at(0.03).u[P.size() - 1];
-    EXPECT_NE(exact.at(0.4).u[P.size() - 1], first);
+    const double first = exact.at(P.X, 0.03).u[P.size() - 1];
+    EXPECT_NE(exact.at(P.X, 0.4).u[P.size() - 1], first);
   }
 }
 

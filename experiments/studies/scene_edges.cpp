@@ -8,6 +8,7 @@
 #include "claims.hpp"
 #include "ensemble.hpp"
 #include "report_util.hpp"
+#include "scenes.hpp"
 #include "study.hpp"
 #include "sweep.hpp"
 
@@ -25,20 +26,6 @@ RunParams at_dt(RunParams p, double dt) {
   p.stepping.policy = TimeStepPolicy::fixed;
   p.dt = dt;
   return p;
-}
-
-std::string small_mass_of(const ojson& r) {
-  return r["small_mass"].is_string() ? r["small_mass"].get<std::string>() : "none";
-}
-
-// c dt / h of a dt in a row.
-std::optional<double> courant_of(const ojson& r, const char* column) {
-  if (!has_number(r, column) || !has_number(r, "dt_cfl")) return std::nullopt;
-  return r[column].get<double>() / r["dt_cfl"].get<double>();
-}
-
-std::string opt_fixed(std::optional<double> v, int decimals = 3) {
-  return v ? fixed(*v, decimals) : "–";
 }
 
 std::vector<RunParams> edges_follow_up(const FollowUpContext& c) {
@@ -125,9 +112,8 @@ StudyReport edges_report(const ReportContext& ctx) {
                   std::to_string(b.fail_above) + " of " + std::to_string(b.members);
     }
     md << "| " << text(r, "scene") << " | " << text(r, "method") << " | " << small_mass_of(r)
-       << " | " << (all_survive ? std::string("every dt to T survives") : opt_fixed(edge)) << " | "
-       << opt_fixed(fail) << " | " << opt_fixed(accurate) << " | " << opt_fixed(limit) << " | "
-       << ratio_text << " | " << perturbed << " |\n";
+       << " | " << edge_text(r) << " | " << opt_fixed(fail) << " | " << opt_fixed(accurate) << " | "
+       << opt_fixed(limit) << " | " << ratio_text << " | " << perturbed << " |\n";
   }
   md << "\nAn edge above the dense limit is one at which the growth the limit predicts has "
         "not reached a failure by T (c T is given per scene in the scenes report); every dt up "

@@ -15,6 +15,7 @@
 #include "claims.hpp"
 #include "csv.hpp"
 #include "report_util.hpp"
+#include "scenes.hpp"
 #include "study.hpp"
 #include "sweep.hpp"
 
@@ -32,10 +33,6 @@ constexpr int kFigurePoints = 300;
 std::string str(const ojson& r, const char* column) {
   return r[column].is_string() ? r[column].get<std::string>() : std::string();
 }
-std::string small_mass_of(const ojson& r) {
-  const std::string s = str(r, "small_mass");
-  return s.empty() ? "none" : s;
-}
 double num(const ojson& r, const char* column) {
   return r[column].get<double>();
 }
@@ -44,9 +41,6 @@ std::optional<double> opt(const ojson& r, const char* column) {
 }
 std::string opt_sci_of(std::optional<double> v) {
   return v ? sci(*v) : "–";
-}
-std::string opt_fixed(std::optional<double> v, int decimals = 3) {
-  return v ? fixed(*v, decimals) : "–";
 }
 
 // Which part of the study a row belongs to.
@@ -112,12 +106,10 @@ std::map<EdgeKey, ojson> edges_of(const StudyInputs& inputs) {
     out[{str(r, "scene"), str(r, "method"), small_mass_of(r)}] = r;
   return out;
 }
-// The edge as the table prints it: c dt/h, or that every dt of the scan survived.
+// The survival edge of a (scene, method, treatment) as the tables print it.
 std::string edge_text(const std::map<EdgeKey, ojson>& edges, const EdgeKey& key) {
   const auto it = edges.find(key);
-  if (it == edges.end() || !has_number(it->second, "dt_edge")) return "–";
-  if (!has_number(it->second, "dt_fail")) return "every dt to T";
-  return fixed(num(it->second, "dt_edge") / num(it->second, "dt_cfl"), 3);
+  return it == edges.end() ? "–" : mpmstab::edge_text(it->second);
 }
 
 // The interior (Bloch) limit of each method, from the bar rows.

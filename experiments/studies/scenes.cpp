@@ -1,5 +1,7 @@
 #include "scenes.hpp"
 
+#include "report_util.hpp"
+
 #include <algorithm>
 
 namespace mpmstab {
@@ -46,6 +48,25 @@ StudyReport report_by_scene(const ReportContext& c, SceneSection section, SceneD
     report.markdown += section(c.spec, scenes[i].rows, i == 0);
   report.data_csv = data(scenes.front().rows, c.csv_header);
   return report;
+}
+
+std::string small_mass_of(const ojson& r) {
+  return r["small_mass"].is_string() ? r["small_mass"].get<std::string>() : "none";
+}
+
+std::optional<double> courant_of(const ojson& r, const char* column) {
+  if (!has_number(r, column) || !has_number(r, "dt_cfl")) return std::nullopt;
+  return r[column].get<double>() / r["dt_cfl"].get<double>();
+}
+
+std::string opt_fixed(std::optional<double> v, int decimals) {
+  return v ? fixed(*v, decimals) : "–";
+}
+
+std::string edge_text(const ojson& r) {
+  const auto edge = courant_of(r, "dt_edge");
+  if (edge && !has_number(r, "dt_fail")) return "every dt to T survives";
+  return opt_fixed(edge);
 }
 
 }  // namespace mpmstab

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -33,5 +34,16 @@ using SceneSection = std::string (*)(const Spec& spec,
 using SceneData = std::string (*)(const std::vector<nlohmann::ordered_json>& rows,
                                   const std::string& csv_header);
 StudyReport report_by_scene(const ReportContext& c, SceneSection section, SceneData data);
+
+// The rows of the scenes with free surfaces (the scene_edges and scenes studies).
+// The row's small-mass treatment ("none" where the record has none).
+std::string small_mass_of(const nlohmann::ordered_json& r);
+// c dt / h of the dt in `column` of a row (its dt_cfl is h / c); none where either is null.
+std::optional<double> courant_of(const nlohmann::ordered_json& r, const char* column);
+// A value with `decimals` decimals, or "–".
+std::string opt_fixed(std::optional<double> v, int decimals = 3);
+// The survival edge of an edge-search row as a report prints it: its c dt/h, "every dt to T
+// survives" where no dt of the scan failed, "–" where it has none.
+std::string edge_text(const nlohmann::ordered_json& r);
 
 }  // namespace mpmstab
