@@ -16,12 +16,12 @@
 #include <utility>
 #include <vector>
 
-#include "bar.hpp"
-#include "crossings.hpp"
-#include "failure.hpp"
-#include "run.hpp"
-#include "simulation.hpp"
-#include "stable_dt.hpp"
+#include "analysis/stable_dt.hpp"
+#include "base/failure.hpp"
+#include "observers/crossings.hpp"
+#include "run/run.hpp"
+#include "scenes/bar.hpp"
+#include "step/simulation.hpp"
 
 namespace {
 

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "params.hpp"
+#include "base/params.hpp"
 
 namespace mpmstab::test_support {
 

@@ -4,9 +4,10 @@
 
 #include <random>
 
-#include "phases.hpp"
-#include "run.hpp"
-#include "shape.hpp"
+#include "run/run.hpp"
+#include "scenes/validate.hpp"
+#include "step/phases.hpp"
+#include "step/shape.hpp"
 
 namespace mpmstab {
 namespace {

@@ -6,9 +6,10 @@
 #include <cmath>
 #include <vector>
 
-#include "params.hpp"
-#include "run.hpp"
-#include "shape.hpp"
+#include "base/params.hpp"
+#include "run/run.hpp"
+#include "scenes/validate.hpp"
+#include "step/shape.hpp"
 #include "support.hpp"
 
 namespace mpmstab {

@@ -12,7 +12,7 @@
 #include "advice.hpp"
 #include "claims.hpp"
 #include "result_json.hpp"
-#include "run.hpp"
+#include "run/run.hpp"
 #include "spec.hpp"
 
 namespace mpmstab {

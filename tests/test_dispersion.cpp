@@ -1,7 +1,7 @@
-// The dispersion of the schemes (core/dispersion.hpp) and the mode scene (core/scene.hpp): the
-// phase speed of the physical branch against closed forms, the cells per wavelength for a phase
-// error, the period measured by runs of the mode scene against the predicted one, and the
-// scene's exact solution.
+// The dispersion of the schemes (core/analysis/dispersion.hpp) and the mode scene
+// (core/scenes/scene.hpp): the phase speed of the physical branch against closed forms, the cells
+// per wavelength for a phase error, the period measured by runs of the mode scene against the
+// predicted one, and the scene's exact solution.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,13 +10,14 @@
 #include <string>
 #include <vector>
 
-#include "bar.hpp"
-#include "dispersion.hpp"
-#include "mode.hpp"
-#include "params.hpp"
-#include "scene_registry.hpp"
-#include "simulation.hpp"
-#include "steffen.hpp"
+#include "analysis/dispersion.hpp"
+#include "base/params.hpp"
+#include "scenes/bar.hpp"
+#include "scenes/mode.hpp"
+#include "scenes/scene_registry.hpp"
+#include "scenes/steffen.hpp"
+#include "scenes/validate.hpp"
+#include "step/simulation.hpp"
 
 namespace mpmstab {
 namespace {

@@ -1,15 +1,16 @@
-// The energy observer (core/energy.hpp), the L2 error over time (core/error_l2.hpp) and the time
-// error (core/time_error.hpp): closed-form energies that balance, the observer against them on a
-// fine grid, a balance that converges with dt, observers that change nothing, and a time error
-// of the order the leapfrog form of symplectic Euler has.
+// The energy observer (core/observers/energy.hpp), the L2 error over time
+// (core/observers/error_l2.hpp) and the time error (core/analysis/time_error.hpp): closed-form
+// energies that balance, the observer against them on a fine grid, a balance that converges with
+// dt, observers that change nothing, and a time error of the order the leapfrog form of symplectic
+// Euler has.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "energy.hpp"
-#include "run.hpp"
-#include "scene_registry.hpp"
-#include "time_error.hpp"
+#include "analysis/time_error.hpp"
+#include "observers/energy.hpp"
+#include "run/run.hpp"
+#include "scenes/scene_registry.hpp"
 
 namespace mpmstab {
 namespace {

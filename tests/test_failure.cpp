@@ -4,11 +4,11 @@
 #include <cmath>
 #include <limits>
 
-#include "bar.hpp"
-#include "failure.hpp"
-#include "run.hpp"
-#include "scene_registry.hpp"
-#include "simulation.hpp"
+#include "base/failure.hpp"
+#include "run/run.hpp"
+#include "scenes/bar.hpp"
+#include "scenes/scene_registry.hpp"
+#include "step/simulation.hpp"
 
 namespace mpmstab {
 namespace {

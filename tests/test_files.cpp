@@ -16,7 +16,7 @@
 
 #include "cache.hpp"
 #include "files.hpp"
-#include "run.hpp"
+#include "run/run.hpp"
 #include "strict_json.hpp"
 #include "support.hpp"
 

@@ -4,7 +4,8 @@
 #include <cmath>
 #include <limits>
 
-#include "params.hpp"
+#include "base/params.hpp"
+#include "scenes/validate.hpp"
 
 namespace mpmstab {
 namespace {

@@ -3,8 +3,8 @@
 
 #include <set>
 
-#include "crossings.hpp"
-#include "run.hpp"
+#include "observers/crossings.hpp"
+#include "run/run.hpp"
 #include "support.hpp"
 
 namespace mpmstab {

@@ -8,7 +8,7 @@
 #include <cmath>
 #include <string>
 
-#include "run.hpp"
+#include "run/run.hpp"
 
 namespace mpmstab {
 namespace {

@@ -6,12 +6,12 @@
 #include <functional>
 #include <numbers>
 
-#include "bar.hpp"
-#include "mode.hpp"
-#include "run.hpp"
-#include "scene_registry.hpp"
-#include "simulation.hpp"
-#include "steffen.hpp"
+#include "run/run.hpp"
+#include "scenes/bar.hpp"
+#include "scenes/mode.hpp"
+#include "scenes/scene_registry.hpp"
+#include "scenes/steffen.hpp"
+#include "step/simulation.hpp"
 
 namespace mpmstab {
 namespace {

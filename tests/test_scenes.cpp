@@ -20,16 +20,17 @@
 #include <string>
 #include <vector>
 
-#include "bar.hpp"
-#include "block.hpp"
-#include "compaction.hpp"
-#include "impact.hpp"
-#include "impulsive.hpp"
-#include "phases.hpp"
-#include "run.hpp"
-#include "scene_registry.hpp"
-#include "small_mass.hpp"
-#include "vibration.hpp"
+#include "run/run.hpp"
+#include "scenes/bar.hpp"
+#include "scenes/block.hpp"
+#include "scenes/compaction.hpp"
+#include "scenes/impact.hpp"
+#include "scenes/impulsive.hpp"
+#include "scenes/scene_registry.hpp"
+#include "scenes/validate.hpp"
+#include "scenes/vibration.hpp"
+#include "step/phases.hpp"
+#include "step/small_mass.hpp"
 
 namespace mpmstab {
 namespace {

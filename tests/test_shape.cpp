@@ -12,7 +12,7 @@
 #include <utility>
 #include <vector>
 
-#include "shape.hpp"
+#include "step/shape.hpp"
 
 namespace mpmstab {
 namespace {

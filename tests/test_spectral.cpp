@@ -1,5 +1,5 @@
-// The spectral limit (core/spectral.hpp): the linearised map of a case derived by hand, the
-// limit of that case in closed form, the limit independent of E, and runs just below and just
+// The spectral limit (core/analysis/spectral.hpp): the linearised map of a case derived by hand,
+// the limit of that case in closed form, the limit independent of E, and runs just below and just
 // above the limit of a small bar.
 #include <gtest/gtest.h>
 
@@ -10,11 +10,11 @@
 #include <string>
 #include <vector>
 
-#include "bloch.hpp"
-#include "edge.hpp"
-#include "run.hpp"
-#include "simulation.hpp"
-#include "spectral.hpp"
+#include "analysis/bloch.hpp"
+#include "analysis/spectral.hpp"
+#include "run/edge.hpp"
+#include "run/run.hpp"
+#include "step/simulation.hpp"
 
 namespace mpmstab {
 namespace {

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "stable_dt.hpp"
+#include "analysis/stable_dt.hpp"
 
 namespace mpmstab {
 namespace {

@@ -6,8 +6,8 @@
 #include <cmath>
 #include <sstream>
 
-#include "edge.hpp"
 #include "result_json.hpp"
+#include "run/edge.hpp"
 #include "study_rows.hpp"
 
 namespace mpmstab {

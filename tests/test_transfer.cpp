@@ -10,8 +10,8 @@
 #include <random>
 #include <vector>
 
-#include "phases.hpp"
-#include "shape.hpp"
+#include "step/phases.hpp"
+#include "step/shape.hpp"
 
 namespace mpmstab {
 namespace {

@@ -5,11 +5,11 @@
 #include <cmath>
 #include <numbers>
 
-#include "bar.hpp"
-#include "failure.hpp"
-#include "phases.hpp"
-#include "run.hpp"
-#include "simulation.hpp"
+#include "base/failure.hpp"
+#include "run/run.hpp"
+#include "scenes/bar.hpp"
+#include "step/phases.hpp"
+#include "step/simulation.hpp"
 #include "support.hpp"
 
 namespace mpmstab {

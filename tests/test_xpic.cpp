@@ -6,11 +6,12 @@
 #include <Eigen/Dense>
 #include <random>
 
-#include "phases.hpp"
-#include "run.hpp"
-#include "shape.hpp"
-#include "simulation.hpp"
-#include "xpic.hpp"
+#include "run/run.hpp"
+#include "scenes/validate.hpp"
+#include "step/phases.hpp"
+#include "step/shape.hpp"
+#include "step/simulation.hpp"
+#include "step/xpic.hpp"
 
 namespace mpmstab {
 namespace {

@@ -1,10 +1,10 @@
-#include "bar.hpp"
+#include "scenes/bar.hpp"
 
 #include <cmath>
 #include <numbers>
 #include <utility>
 
-#include "simd.hpp"
+#include "base/simd.hpp"
 
 namespace mpmstab {
 

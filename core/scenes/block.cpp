@@ -1,4 +1,4 @@
-#include "block.hpp"
+#include "scenes/block.hpp"
 
 namespace mpmstab {
 

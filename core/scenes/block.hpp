@@ -9,7 +9,7 @@
 
 #include <memory>
 
-#include "scene.hpp"
+#include "scenes/scene.hpp"
 
 namespace mpmstab {
 

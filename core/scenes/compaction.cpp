@@ -1,4 +1,4 @@
-#include "compaction.hpp"
+#include "scenes/compaction.hpp"
 
 #include <cmath>
 #include <numbers>

@@ -19,7 +19,7 @@
 
 #include <memory>
 
-#include "scene.hpp"
+#include "scenes/scene.hpp"
 
 namespace mpmstab {
 

@@ -1,4 +1,4 @@
-#include "impact.hpp"
+#include "scenes/impact.hpp"
 
 #include <cmath>
 

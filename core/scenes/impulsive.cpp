@@ -1,4 +1,4 @@
-#include "impulsive.hpp"
+#include "scenes/impulsive.hpp"
 
 #include <algorithm>
 #include <cmath>

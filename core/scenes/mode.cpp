@@ -1,4 +1,4 @@
-#include "mode.hpp"
+#include "scenes/mode.hpp"
 
 #include <cmath>
 #include <numbers>

@@ -6,12 +6,12 @@
 
 #include <Eigen/Core>
 
-#include "scene.hpp"
+#include "scenes/scene.hpp"
 
 namespace mpmstab {
 
 // mode: one free standing wave of wavelength 1 on the periodic linear bar (the dispersion
-// study's scene, core/dispersion.hpp). Linear material sigma = E (F - 1), no body force:
+// study's scene, core/analysis/dispersion.hpp). Linear material sigma = E (F - 1), no body force:
 //   u(X, t) = A sin(2 pi X) cos(2 pi c t),  F(X, t) = 1 + 2 pi A cos(2 pi X) cos(2 pi c t).
 //   u_tt = -(2 pi c)^2 u = E u_XX / rho0 with rho0 c^2 = E: the balance of momentum holds with
 //   b = 0, so the scheme's own wave is what moves. Its period is 1 / c. Dirichlet walls at X = 0

@@ -1,13 +1,13 @@
-#include "scene_registry.hpp"
+#include "scenes/scene_registry.hpp"
 
-#include "bar.hpp"
-#include "block.hpp"
-#include "compaction.hpp"
-#include "impact.hpp"
-#include "impulsive.hpp"
-#include "mode.hpp"
-#include "steffen.hpp"
-#include "vibration.hpp"
+#include "scenes/bar.hpp"
+#include "scenes/block.hpp"
+#include "scenes/compaction.hpp"
+#include "scenes/impact.hpp"
+#include "scenes/impulsive.hpp"
+#include "scenes/mode.hpp"
+#include "scenes/steffen.hpp"
+#include "scenes/vibration.hpp"
 
 namespace mpmstab {
 
@@ -54,6 +54,19 @@ std::unique_ptr<Scene> make_scene(const RunParams& p) {
       return std::make_unique<ImpactScene>(p.E, p.A, start, length);
   }
   return std::make_unique<BarScene>(p.E, p.A);
+}
+
+double body_start(const RunParams& p) {
+  return std::isnan(p.body_start) ? scene_info(p.scene).body_start : p.body_start;
+}
+double body_length(const RunParams& p) {
+  return std::isnan(p.body_length) ? scene_info(p.scene).body_length : p.body_length;
+}
+
+std::int64_t spectral_state_size(const RunParams& p) {
+  const auto [first, last] = body_cells(body_start(p), body_length(p), p.cells);
+  const std::int64_t n = std::int64_t{last - first} * p.ppc;
+  return (p.transfer == Transfer::apic ? 3 : 2) * n;
 }
 
 }  // namespace mpmstab

@@ -1,4 +1,4 @@
-#include "steffen.hpp"
+#include "scenes/steffen.hpp"
 
 #include <cmath>
 #include <numbers>

@@ -22,7 +22,7 @@
 
 #include <Eigen/Core>
 
-#include "scene.hpp"
+#include "scenes/scene.hpp"
 
 namespace mpmstab {
 

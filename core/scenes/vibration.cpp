@@ -1,4 +1,4 @@
-#include "vibration.hpp"
+#include "scenes/vibration.hpp"
 
 #include <cmath>
 #include <numbers>

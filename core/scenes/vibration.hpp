@@ -10,7 +10,7 @@
 
 #include <memory>
 
-#include "scene.hpp"
+#include "scenes/scene.hpp"
 
 namespace mpmstab {
 

@@ -1,15 +1,15 @@
 // `mpmstab edge`: the largest fixed dt with which one case survives to T, and the largest that
-// stays accurate (core/edge.hpp).
+// stays accurate (core/run/edge.hpp).
 #include <algorithm>
 #include <iostream>
 #include <ostream>
 #include <string>
 
 #include "args.hpp"
+#include "base/params.hpp"
 #include "commands.hpp"
-#include "edge.hpp"
-#include "params.hpp"
 #include "result_json.hpp"
+#include "run/edge.hpp"
 #include "run_options.hpp"
 
 namespace mpmstab::cli {

@@ -9,12 +9,12 @@
 #include <vector>
 
 #include "args.hpp"
+#include "base/version.hpp"
 #include "commands.hpp"
 #include "files.hpp"
 #include "provenance.hpp"
 #include "report.hpp"
 #include "spec.hpp"
-#include "version.hpp"
 
 namespace {
 

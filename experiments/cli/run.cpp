@@ -5,12 +5,12 @@
 #include <type_traits>
 
 #include "args.hpp"
+#include "base/params.hpp"
 #include "commands.hpp"
-#include "energy.hpp"
 #include "files.hpp"
-#include "params.hpp"
+#include "observers/energy.hpp"
 #include "result_json.hpp"
-#include "run.hpp"
+#include "run/run.hpp"
 #include "run_options.hpp"
 
 namespace mpmstab::cli {

@@ -1,4 +1,5 @@
 #include "run_options.hpp"
+#include "scenes/validate.hpp"
 
 #include <algorithm>
 #include <cstdio>

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "args.hpp"
-#include "params.hpp"
+#include "base/params.hpp"
 
 namespace mpmstab::cli {
 

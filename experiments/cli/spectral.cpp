@@ -1,17 +1,17 @@
-// `mpmstab spectral`: the spectral limit of one scheme (core/spectral.hpp).
+// `mpmstab spectral`: the spectral limit of one scheme (core/analysis/spectral.hpp).
 #include <algorithm>
 #include <chrono>
 #include <iostream>
 #include <ostream>
 #include <string>
 
+#include "analysis/bloch.hpp"
+#include "analysis/spectral.hpp"
 #include "args.hpp"
-#include "bloch.hpp"
+#include "base/params.hpp"
 #include "commands.hpp"
-#include "params.hpp"
 #include "run_options.hpp"
-#include "simulation.hpp"
-#include "spectral.hpp"
+#include "step/simulation.hpp"
 
 namespace mpmstab::cli {
 

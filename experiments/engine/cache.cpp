@@ -1,6 +1,6 @@
 #include "cache.hpp"
 
-#include "scene_registry.hpp"
+#include "scenes/scene_registry.hpp"
 
 #include <cmath>
 
@@ -8,11 +8,11 @@
 #include <fstream>
 #include <sstream>
 
+#include "base/version.hpp"
 #include "csv.hpp"
 #include "files.hpp"
 #include "result_json.hpp"
 #include "strict_json.hpp"
-#include "version.hpp"
 
 namespace mpmstab {
 

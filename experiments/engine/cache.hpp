@@ -9,7 +9,7 @@
 #include <string>
 #include <string_view>
 
-#include "params.hpp"
+#include "base/params.hpp"
 
 namespace mpmstab {
 

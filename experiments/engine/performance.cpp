@@ -20,9 +20,9 @@ using ojson = nlohmann::ordered_json;
 namespace fs = std::filesystem;
 
 // Floating-point operations per particle-step of the step kernel, counted by hand from
-// core/shape.hpp and core/phases.hpp (additions, multiplications and divisions; abs, negation,
-// comparisons and conversions are not counted). The grid update is 5 flops per node (one a
-// division), 99 nodes for 200 particles.
+// core/step/shape.hpp and core/step/phases.hpp (additions, multiplications and divisions; abs,
+// negation, comparisons and conversions are not counted). The grid update is 5 flops per node (one
+// a division), 99 nodes for 200 particles.
 struct FlopCount {
   const char* method;
   double shape, p2g, grid, g2p, stress, body;
@@ -190,7 +190,8 @@ void write_kernel_summary(std::ostream& md, const BenchFigures& b) {
 void write_flops(std::ostream& md, const BenchFigures& b, double mhz) {
   const RunParams bar;
   md << "\n### Floating-point work and the fraction of peak\n\nCounted by hand from "
-        "`core/shape.hpp` and `core/phases.hpp` (additions, multiplications and divisions; "
+        "`core/step/shape.hpp` and `core/step/phases.hpp` (additions, multiplications and "
+        "divisions; "
         "the grid update is per node, counted per particle at "
      << bar.cells - 1 << " interior nodes for " << bar.cells * bar.ppc
      << " particles):\n\n"

@@ -8,14 +8,15 @@
 #include <set>
 #include <sstream>
 
+#include "base/version.hpp"
 #include "cache.hpp"
 #include "csv.hpp"
 #include "files.hpp"
 #include "report_util.hpp"
 #include "result_json.hpp"
+#include "scenes/validate.hpp"
 #include "strict_json.hpp"
 #include "study.hpp"
-#include "version.hpp"
 
 namespace mpmstab {
 

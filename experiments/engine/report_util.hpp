@@ -10,7 +10,7 @@
 #include <tuple>
 #include <vector>
 
-#include "edge.hpp"
+#include "run/edge.hpp"
 #include "spec.hpp"
 
 namespace mpmstab {

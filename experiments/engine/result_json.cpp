@@ -1,7 +1,7 @@
 #include "result_json.hpp"
 
-#include "scene_registry.hpp"
-#include "version.hpp"
+#include "base/version.hpp"
+#include "scenes/scene_registry.hpp"
 
 namespace mpmstab {
 

@@ -6,8 +6,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "edge.hpp"
-#include "result.hpp"
+#include "base/result.hpp"
+#include "run/edge.hpp"
 
 namespace mpmstab {
 

@@ -12,6 +12,7 @@
 #include "args.hpp"
 #include "cache.hpp"
 #include "files.hpp"
+#include "scenes/validate.hpp"
 #include "strict_json.hpp"
 
 namespace mpmstab {

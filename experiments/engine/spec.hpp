@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "params.hpp"
+#include "base/params.hpp"
 #include "study.hpp"
 
 namespace mpmstab {

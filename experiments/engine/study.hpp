@@ -14,10 +14,10 @@
 #include <string_view>
 #include <vector>
 
+#include "base/params.hpp"
 #include "claims.hpp"
-#include "edge.hpp"
 #include "files.hpp"
-#include "params.hpp"
+#include "run/edge.hpp"
 
 namespace mpmstab {
 

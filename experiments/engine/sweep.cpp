@@ -17,10 +17,10 @@
 
 #include "cache.hpp"
 #include "csv.hpp"
-#include "edge.hpp"
 #include "provenance.hpp"
 #include "result_json.hpp"
-#include "run.hpp"
+#include "run/edge.hpp"
+#include "run/run.hpp"
 
 namespace mpmstab {
 

@@ -19,8 +19,8 @@
 #include <string>
 #include <vector>
 
+#include "base/params.hpp"
 #include "claims.hpp"
-#include "params.hpp"
 
 namespace mpmstab {
 

@@ -9,9 +9,9 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "base/params.hpp"
 #include "comparison.hpp"
 #include "csv.hpp"
-#include "params.hpp"
 #include "report_util.hpp"
 
 namespace mpmstab {

@@ -15,11 +15,11 @@
 #include <sstream>
 #include <tuple>
 
+#include "analysis/time_error.hpp"
 #include "claims.hpp"
 #include "csv.hpp"
 #include "report_util.hpp"
 #include "study.hpp"
-#include "time_error.hpp"
 
 namespace mpmstab {
 
@@ -834,7 +834,8 @@ StudyReport convergence_report(const ReportContext& ctx) {
      << kTimeReferenceSubsteps / kTimeSubsteps.back()
      << " times smaller than the smallest, through the same sample instants (every "
      << shortest(kTimeSampleCourant)
-     << " h / c, each cut into equal substeps; core/time_error.hpp): the largest difference of "
+     << " h / c, each cut into equal substeps; core/analysis/time_error.hpp): the largest "
+        "difference of "
         "a particle position at any sample instant. The spatial error is common to both runs "
         "and cancels, so this is the error the time step makes, measured where it dominates by "
         "construction. Symplectic Euler as MPM steps it with USL (the velocity first, then the "

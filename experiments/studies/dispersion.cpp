@@ -1,10 +1,10 @@
-// The dispersion study: how fast and how damped each scheme carries a wave (core/dispersion.hpp).
-// From the Bloch symbol of the uniform layout: the phase speed c_num / c and the damping |lambda|
-// of the physical branch against kh at a few Courant numbers, for every basis and transfer, and
-// the cells per wavelength each needs for a phase error of at most kPhaseTolerance. Checked by
-// its cases, single-mode runs of the mode scene (a free standing wave of the periodic bar whose
-// wavelength is the bar's length): the period each run measures against the one the branch
-// predicts at its kh and Courant number.
+// The dispersion study: how fast and how damped each scheme carries a wave
+// (core/analysis/dispersion.hpp). From the Bloch symbol of the uniform layout: the phase speed
+// c_num / c and the damping |lambda| of the physical branch against kh at a few Courant numbers,
+// for every basis and transfer, and the cells per wavelength each needs for a phase error of at
+// most kPhaseTolerance. Checked by its cases, single-mode runs of the mode scene (a free standing
+// wave of the periodic bar whose wavelength is the bar's length): the period each run measures
+// against the one the branch predicts at its kh and Courant number.
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -13,11 +13,11 @@
 #include <string>
 #include <vector>
 
-#include "bloch.hpp"
+#include "analysis/bloch.hpp"
+#include "analysis/dispersion.hpp"
+#include "base/params.hpp"
 #include "claims.hpp"
 #include "csv.hpp"
-#include "dispersion.hpp"
-#include "params.hpp"
 #include "report_util.hpp"
 #include "spec.hpp"
 #include "study.hpp"

@@ -14,7 +14,7 @@
 
 #include "claims.hpp"
 #include "csv.hpp"
-#include "energy.hpp"
+#include "observers/energy.hpp"
 #include "report_util.hpp"
 #include "study.hpp"
 #include "sweep.hpp"

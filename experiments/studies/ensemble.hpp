@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "params.hpp"
+#include "base/params.hpp"
 
 namespace mpmstab {
 

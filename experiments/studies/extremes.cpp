@@ -9,9 +9,9 @@
 #include <sstream>
 #include <tuple>
 
+#include "base/params.hpp"
 #include "claims.hpp"
 #include "csv.hpp"
-#include "params.hpp"
 #include "report.hpp"
 #include "report_util.hpp"
 #include "scenes.hpp"

@@ -1,8 +1,8 @@
 // A figure: one run whose history or final state a gnuplot script draws.
 #include <sstream>
 
+#include "base/params.hpp"
 #include "csv.hpp"
-#include "params.hpp"
 #include "report.hpp"
 #include "report_util.hpp"
 #include "study.hpp"

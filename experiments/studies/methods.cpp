@@ -11,10 +11,10 @@
 #include <tuple>
 
 #include "advice.hpp"
+#include "analysis/spectral.hpp"
 #include "csv.hpp"
 #include "report_util.hpp"
-#include "simulation.hpp"
-#include "spectral.hpp"
+#include "step/simulation.hpp"
 #include "study.hpp"
 
 namespace mpmstab {

@@ -1,9 +1,9 @@
-// The spectral study: each scheme's spectral limit (core/spectral.hpp) beside two runs of the bar
-// at a tiny amplitude under the spectral policy, at 0.95 and at 1.05 times the limit. The limit
-// is confirmed when the first stays bounded and the second grows. Beside them, eq. (108)'s minimum
-// over runs below the limit at every E the studies use, every particles per cell and several grids:
-// its ratio to the limit, which is not fixed by c dt / h, A/h and c T (eq. (108) is not
-// dimensionally homogeneous), against its value at rest.
+// The spectral study: each scheme's spectral limit (core/analysis/spectral.hpp) beside two runs of
+// the bar at a tiny amplitude under the spectral policy, at 0.95 and at 1.05 times the limit. The
+// limit is confirmed when the first stays bounded and the second grows. Beside them, eq. (108)'s
+// minimum over runs below the limit at every E the studies use, every particles per cell and
+// several grids: its ratio to the limit, which is not fixed by c dt / h, A/h and c T (eq. (108) is
+// not dimensionally homogeneous), against its value at rest.
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -16,13 +16,13 @@
 #include <tuple>
 #include <vector>
 
+#include "analysis/spectral.hpp"
+#include "analysis/stable_dt.hpp"
+#include "base/params.hpp"
 #include "claims.hpp"
 #include "csv.hpp"
 #include "paper_table1.hpp"
-#include "params.hpp"
 #include "report_util.hpp"
-#include "spectral.hpp"
-#include "stable_dt.hpp"
 #include "study.hpp"
 
 namespace mpmstab {

@@ -7,8 +7,8 @@
 #include <sstream>
 
 #include "claims.hpp"
-#include "crossings.hpp"
 #include "csv.hpp"
+#include "observers/crossings.hpp"
 #include "report_util.hpp"
 #include "study.hpp"
 

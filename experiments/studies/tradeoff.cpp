@@ -15,11 +15,12 @@
 #include <tuple>
 
 #include "advice.hpp"
+#include "base/params.hpp"
 #include "claims.hpp"
 #include "csv.hpp"
-#include "params.hpp"
 #include "report_util.hpp"
 #include "scenes.hpp"
+#include "scenes/validate.hpp"
 #include "study.hpp"
 
 namespace mpmstab {

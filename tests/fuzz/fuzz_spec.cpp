@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <string_view>
 
+#include "scenes/validate.hpp"
 #include "spec.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -1,0 +1,129 @@
+#include "base/failure.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "base/extremes_kernel.hpp"
+#include "base/simd.hpp"
+
+namespace mpmstab {
+
+std::string_view to_string(FailureReason r) {
+  switch (r) {
+    case FailureReason::non_finite:
+      return "non_finite";
+    case FailureReason::nonpositive_F:
+      return "nonpositive_F";
+    case FailureReason::support_too_wide:
+      return "support_too_wide";
+    case FailureReason::left_domain:
+      return "left_domain";
+    case FailureReason::step_limit:
+      return "step_limit";
+    case FailureReason::dt_collapse:
+      return "dt_collapse";
+  }
+  return "?";
+}
+
+double max_admissible_F(Method method, int ppc) {
+  return follows_F(method) ? 2.0 * ppc : std::numeric_limits<double>::infinity();
+}
+
+namespace {
+
+// One pass with Eigen's vectorized reductions per quantity: the portable version.
+StateExtremes extremes_by_array(const Particles& P, const ErrorTerms* error) {
+  StateExtremes e;
+  if (error) e.error_max = max_error(P, *error);
+  // v * 0 is NaN exactly when v is NaN or infinite: the sum is zero for a finite state.
+  e.finite = (P.x * 0.0 + P.v * 0.0 + P.F * 0.0 + P.sigma * 0.0).sum() == 0.0;
+  e.F_min = P.F.minCoeff();
+  e.F_max = P.F.maxCoeff();
+  e.F_abs_max = P.F.abs().maxCoeff();
+  e.sigma_abs_max = P.sigma.abs().maxCoeff();
+  e.sigmaF_abs_max = (P.sigma * P.F).abs().maxCoeff();
+  e.x_min = P.x.minCoeff();
+  e.x_max = P.x.maxCoeff();
+  return e;
+}
+
+#if MPMSTAB_AVX512
+// Every quantity in one pass, 8 particles at a time (and the error when `with_error`).
+template <bool with_error>
+MPMSTAB_AVX512_TARGET StateExtremes extremes_avx512(const Particles& P, const ErrorTerms* error) {
+  const auto n = static_cast<std::size_t>(P.size());
+  const double *x = P.x.data(), *v = P.v.data(), *F = P.F.data(), *s = P.sigma.data();
+  Extremes8<with_error> e(error);
+  std::size_t p = 0;
+  for (; p + 8 <= n; p += 8) {
+    e.add(p, _mm512_loadu_pd(x + p), _mm512_loadu_pd(v + p), _mm512_loadu_pd(F + p),
+          _mm512_loadu_pd(s + p));
+  }
+  for (; p < n; ++p)
+    e.add_one(p, x[p], v[p], F[p], s[p]);
+  const StateExtremes result = e.result();
+  _mm256_zeroupper();  // as particle_pass_avx512 (phases.cpp) does
+  return result;
+}
+#endif
+
+}  // namespace
+
+double max_error(const Particles& P, const ErrorTerms& error) {
+  const Eigen::Map<const Eigen::ArrayXd> X(error.X, P.size()), u(error.u, P.size());
+  return ((P.x - X) - u * error.factor).abs().maxCoeff();
+}
+
+StateExtremes state_extremes(const Particles& P, const ErrorTerms* error) {
+#if MPMSTAB_AVX512
+  static const bool avx512 = __builtin_cpu_supports("x86-64-v4");
+  if (avx512 && P.size() > 0) {
+    return error ? extremes_avx512<true>(P, error) : extremes_avx512<false>(P, nullptr);
+  }
+#endif
+  return extremes_by_array(P, error);
+}
+
+std::optional<Failure> detect_failure(const Particles& P, Boundary bc, double max_F) {
+  return detect_failure(P, state_extremes(P), bc, max_F);
+}
+
+std::optional<Failure> detect_failure(const Particles& P, const StateExtremes& e, Boundary bc,
+                                      double max_F) {
+  // Fast path, from the extremes.
+  const bool walls = bc == Boundary::dirichlet;
+  const bool bounded_F = max_F < std::numeric_limits<double>::infinity();
+  const double lo = walls ? 0.0 : -std::numeric_limits<double>::infinity();
+  const double hi = walls ? 1.0 : std::numeric_limits<double>::infinity();
+  const bool ok = e.finite && e.F_min > 0.0 && (!bounded_F || e.F_max <= max_F) &&
+                  (!walls || (e.x_min >= lo && e.x_max <= hi));
+  if (ok) return std::nullopt;
+  const Eigen::Index n = P.size();
+
+  // Slow path, once per failed run: name the reason and the particle.
+  auto first = [&](auto&& is_bad) -> std::optional<Eigen::Index> {
+    for (Eigen::Index p = 0; p < n; ++p)
+      if (is_bad(p)) return p;
+    return std::nullopt;
+  };
+  auto finite = [](double a) { return std::isfinite(a); };
+  if (auto p = first([&](Eigen::Index i) {
+        return !finite(P.x[i]) || !finite(P.v[i]) || !finite(P.F[i]) || !finite(P.sigma[i]);
+      })) {
+    return Failure{FailureReason::non_finite, *p};
+  }
+  if (auto p = first([&](Eigen::Index i) { return !(P.F[i] > 0.0); })) {
+    return Failure{FailureReason::nonpositive_F, *p};
+  }
+  if (auto p = first([&](Eigen::Index i) { return P.F[i] > max_F; })) {
+    return Failure{FailureReason::support_too_wide, *p};
+  }
+  if (auto p = first([&](Eigen::Index i) { return !(P.x[i] >= lo && P.x[i] <= hi); })) {
+    return Failure{FailureReason::left_domain, *p};
+  }
+  return std::nullopt;  // unreachable: the fast path found a bad value
+}
+
+}  // namespace mpmstab

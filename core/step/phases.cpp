@@ -1,0 +1,365 @@
+// The phases (phases.hpp). Every kernel keeps the arithmetic of the plain loop it replaces
+// operation for operation, so that the results are the same bits: vector lanes are independent
+// particles or nodes, and each grid node still sums its contributions in particle order.
+#include "step/phases.hpp"
+#include "base/extremes_kernel.hpp"
+#include "step/g2p_kernel.hpp"
+#include "step/grid_nodes.hpp"
+#include "step/p2g_kernel.hpp"
+
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <initializer_list>
+#include <type_traits>
+#include <utility>
+
+namespace mpmstab {
+
+using detail::copy_to_images;
+using detail::fold_images;
+using detail::on_free_nodes;
+
+void p2g(const LinearBasis& basis, const Particles& P, const double* body_accel,
+         Stencil<LinearBasis::width>& S, Grid& G) {
+  p2g_any(basis, P, body_accel, S, G);
+}
+
+void p2g(const GimpBasis& basis, const Particles& P, const double* body_accel,
+         Stencil<GimpBasis::width>& S, Grid& G) {
+  p2g_any(basis, P, body_accel, S, G);
+}
+
+void p2g(const CpGimpBasis& basis, const Particles& P, const double* body_accel,
+         Stencil<CpGimpBasis::width>& S, Grid& G) {
+  p2g_any(basis, P, body_accel, S, G);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Grid update, eqs. (7), (8).
+namespace {
+
+// a_i = f_i / m_i and v_i = q_i / m_i + dt a_i on slots [lo, hi), 0 where m_i = 0 (the
+// quotients computed there are discarded). Vectorized across nodes.
+MPMSTAB_SIMD_CLONES void nodal_update(const double* __restrict m, const double* __restrict q,
+                                      const double* __restrict f, double* __restrict v,
+                                      double* __restrict a, int lo, int hi, double dt) {
+  for (int s = lo; s < hi; ++s) {
+    const double inv_m = 1.0 / m[s];
+    const double as = f[s] * inv_m;
+    const double vs = q[s] * inv_m + dt * as;
+    const bool has_mass = m[s] > 0.0;
+    a[s] = has_mass ? as : 0.0;
+    v[s] = has_mass ? vs : 0.0;
+  }
+}
+
+}  // namespace
+
+namespace detail {
+
+MPMSTAB_SIMD_CLONES void divide_where_mass(const double* m, const double* num, double* out, int lo,
+                                           int hi) {
+  for (int s = lo; s < hi; ++s) {
+    const double quotient = num[s] / m[s];
+    out[s] = m[s] > 0.0 ? quotient : 0.0;
+  }
+}
+
+}  // namespace detail
+
+void grid_update(Grid& G, double dt) {
+  double* m = G.mass.data();
+  double* q = G.momentum.data();
+  double* f = G.force.data();
+  double* v = G.velocity.data();
+  double* a = G.accel.data();
+  if (G.bc == Boundary::periodic) fold_images(G, {m, q, f});
+  on_free_nodes(G, [&](int lo, int hi) { nodal_update(m, q, f, v, a, lo, hi, dt); });
+  if (G.small_mass == SmallMass::cutoff || G.small_mass == SmallMass::drop) {
+    detail::on_node_ranges(
+        G,
+        [&](int lo, int hi) {
+          for (int s = lo; s < hi; ++s) {
+            if (!G.small(m[s])) continue;
+            a[s] = 0.0;  // cutoff: no acceleration; drop: no node
+            v[s] = G.small_mass == SmallMass::cutoff ? q[s] / m[s] : 0.0;
+          }
+        },
+        [](int, int) {});
+  }
+  if (G.extend_to_empty) detail::extend_to_empty_nodes(G, {v, a});
+  if (G.bc == Boundary::periodic) copy_to_images(G, {v, a});
+}
+
+void grid_velocity(Grid& G) {
+  if (G.bc == Boundary::periodic) fold_images(G, {G.mass.data(), G.momentum.data()});
+  detail::divide_by_mass(G, G.momentum.data(), G.velocity.data());
+  if (G.extend_to_empty) {
+    detail::extend_to_empty_nodes(G, {G.velocity.data()});
+    if (G.bc == Boundary::periodic) copy_to_images(G, {G.velocity.data()});
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// g2p, eqs. (9), (10), and the stress update, eqs. (11), (13), (14).
+namespace {
+
+template <int W, bool kGridPosition>
+inline void g2p_particle(std::size_t p, const int* __restrict base, const Rows<W>& w,
+                         const double* __restrict a_i, const double* __restrict v_i,
+                         double* __restrict x, double* __restrict v, double dt) {
+  const int b = base[p];
+  v[p] += dt * interpolate<W>(w, p, a_i, b);
+  if constexpr (kGridPosition) {
+    x[p] += dt * interpolate<W>(w, p, v_i, b);
+  } else {
+    x[p] += dt * v[p];
+  }
+}
+
+template <int W>
+inline void stress_particle(std::size_t p, const int* __restrict base, const Rows<W>& g,
+                            const double* __restrict v_i, double* __restrict F,
+                            double* __restrict sig, double dt, double E) {
+  const double L = interpolate<W>(g, p, v_i, base[p]);
+  F[p] *= 1.0 + dt * L;
+  sig[p] = E * (F[p] - 1.0);
+}
+
+template <int W, bool kGridPosition>
+MPMSTAB_SIMD_CLONES void g2p_loop(std::size_t n, const int* __restrict base, const Rows<W> w,
+                                  const double* __restrict a_i, const double* __restrict v_i,
+                                  double* __restrict x, double* __restrict v, double dt) {
+  MPMSTAB_IVDEP
+  for (std::size_t p = 0; p < n; ++p)
+    g2p_particle<W, kGridPosition>(p, base, w, a_i, v_i, x, v, dt);
+}
+
+template <int W>
+MPMSTAB_SIMD_CLONES void stress_loop(std::size_t n, const int* __restrict base, const Rows<W> g,
+                                     const double* __restrict v_i, double* __restrict F,
+                                     double* __restrict sig, double dt, double E) {
+  MPMSTAB_IVDEP
+  for (std::size_t p = 0; p < n; ++p)
+    stress_particle<W>(p, base, g, v_i, F, sig, dt, E);
+}
+
+#if MPMSTAB_AVX512
+// The passes over the particles from the grid, 8 particles at a time (g2p_kernel.hpp): FLIP's
+// g2p (kG2p), the stress update with the linear law (kStress), or both in one pass (USL), each
+// lane doing the operations of g2p_particle and stress_particle; with kCheck, the state's
+// extremes (and with kError the error over time) taken from the values as the pass writes them,
+// the others read (extremes_kernel.hpp).
+template <int W, bool kG2p, bool kStress, bool kGridPosition, bool kCheck, bool kError>
+MPMSTAB_AVX512_TARGET void particle_pass_avx512(std::size_t n, const int* __restrict base,
+                                                const Rows<W> w, const Rows<W> g,
+                                                const double* __restrict a_i,
+                                                const double* __restrict v_i, int slots,
+                                                Particles& P, double dt, double E,
+                                                const StateCheck* check) {
+  double* __restrict x = P.x.data();
+  double* __restrict v = P.v.data();
+  double* __restrict F = P.F.data();
+  double* __restrict sig = P.sigma.data();
+  const __m512d dt8 = _mm512_set1_pd(dt), E8 = _mm512_set1_pd(E), one = _mm512_set1_pd(1.0);
+  Extremes8<kError> e(kError ? check->error : nullptr);
+  std::size_t p0 = 0;
+  for (; p0 + 8 <= n; p0 += 8) {
+    __m512i r;
+    if (!relative_bases<W>(base, p0, r)) {
+      for (std::size_t p = p0; p < p0 + 8; ++p) {
+        if constexpr (kG2p) g2p_particle<W, kGridPosition>(p, base, w, a_i, v_i, x, v, dt);
+        if constexpr (kStress) stress_particle<W>(p, base, g, v_i, F, sig, dt, E);
+      }
+      if constexpr (kCheck) {
+        e.add(p0, _mm512_loadu_pd(x + p0), _mm512_loadu_pd(v + p0), _mm512_loadu_pd(F + p0),
+              _mm512_loadu_pd(sig + p0));
+      }
+      continue;
+    }
+    const int b0 = base[p0];
+    Slots16 vel;
+    if constexpr (kStress || kGridPosition) vel = load16(v_i, b0, slots);
+    __m512d xp, vp, Fp, sp;
+    if constexpr (kG2p) {  // g2p_particle
+      const __m512d a = interpolate8<W>(w, p0, load16(a_i, b0, slots), r);
+      vp = _mm512_add_pd(_mm512_loadu_pd(v + p0), _mm512_mul_pd(dt8, a));
+      _mm512_storeu_pd(v + p0, vp);
+      __m512d dx;
+      if constexpr (kGridPosition) {
+        dx = _mm512_mul_pd(dt8, interpolate8<W>(w, p0, vel, r));
+      } else {
+        dx = _mm512_mul_pd(dt8, vp);
+      }
+      xp = _mm512_add_pd(_mm512_loadu_pd(x + p0), dx);
+      _mm512_storeu_pd(x + p0, xp);
+    } else if constexpr (kCheck) {
+      xp = _mm512_loadu_pd(x + p0);
+      vp = _mm512_loadu_pd(v + p0);
+    }
+    if constexpr (kStress) {  // stress_particle
+      const __m512d L = interpolate8<W>(g, p0, vel, r);
+      Fp = _mm512_mul_pd(_mm512_loadu_pd(F + p0), _mm512_add_pd(one, _mm512_mul_pd(dt8, L)));
+      _mm512_storeu_pd(F + p0, Fp);
+      sp = _mm512_mul_pd(E8, _mm512_sub_pd(Fp, one));
+      _mm512_storeu_pd(sig + p0, sp);
+    } else if constexpr (kCheck) {
+      Fp = _mm512_loadu_pd(F + p0);
+      sp = _mm512_loadu_pd(sig + p0);
+    }
+    if constexpr (kCheck) e.add(p0, xp, vp, Fp, sp);
+  }
+  for (; p0 < n; ++p0) {
+    if constexpr (kG2p) g2p_particle<W, kGridPosition>(p0, base, w, a_i, v_i, x, v, dt);
+    if constexpr (kStress) stress_particle<W>(p0, base, g, v_i, F, sig, dt, E);
+    if constexpr (kCheck) e.add_one(p0, x[p0], v[p0], F[p0], sig[p0]);
+  }
+  if constexpr (kCheck) *check->extremes = e.result();
+  // Leave no upper vector state dirty for the SSE code that runs next (GCC 12 omits this
+  // vzeroupper here; without it the next step's body force took 4x its time on this CPU).
+  _mm256_zeroupper();
+}
+
+// One pass of particle_pass_avx512 over the run's arrays, the check's flags chosen at run time.
+template <int W, bool kG2p, bool kStress, bool kGridPosition>
+void particle_pass(const Stencil<W>& S, const Grid& G, double dt, double E, Particles& P,
+                   const StateCheck* check) {
+  const auto pass = [&]<bool kCheck, bool kError>() {
+    particle_pass_avx512<W, kG2p, kStress, kGridPosition, kCheck, kError>(
+        static_cast<std::size_t>(P.size()), S.base.data(), rows<W>(S.w), rows<W>(S.g),
+        G.accel.data(), G.velocity.data(), static_cast<int>(G.velocity.size()), P, dt, E, check);
+  };
+  if (!check) {
+    pass.template operator()<false, false>();
+  } else if (check->error) {
+    pass.template operator()<true, true>();
+  } else {
+    pass.template operator()<true, false>();
+  }
+}
+
+template <int W, bool kG2p, bool kStress>
+void particle_pass(const Stencil<W>& S, const Grid& G, double dt, double E, PositionUpdate position,
+                   Particles& P, const StateCheck* check) {
+  if (position == PositionUpdate::grid) {
+    particle_pass<W, kG2p, kStress, true>(S, G, dt, E, P, check);
+  } else {
+    particle_pass<W, kG2p, kStress, false>(S, G, dt, E, P, check);
+  }
+}
+#endif
+
+template <int W, bool kGridPosition>
+void g2p_any(const Stencil<W>& S, const Grid& G, double dt, Particles& P) {
+#if MPMSTAB_AVX512
+  if (use_avx512()) return particle_pass<W, true, false, kGridPosition>(S, G, dt, 0.0, P, nullptr);
+#endif
+  g2p_loop<W, kGridPosition>(static_cast<std::size_t>(P.size()), S.base.data(), rows<W>(S.w),
+                             G.accel.data(), G.velocity.data(), P.x.data(), P.v.data(), dt);
+}
+
+// Stress update with a material law other than the linear one, one particle after the other.
+template <int W>
+void stress_update_law(const Stencil<W>& S, const Grid& G, double dt, const MaterialLaw& law,
+                       Particles& P) {
+  const Rows<W> g = rows<W>(S.g);
+  const double* v_i = G.velocity.data();
+  for (std::size_t p = 0; p < static_cast<std::size_t>(P.size()); ++p) {
+    const double L = interpolate<W>(g, p, v_i, S.base[p]);
+    P.F[p] *= 1.0 + dt * L;
+    P.sigma[p] = law.stress(P.F[p]);
+  }
+}
+
+}  // namespace
+
+template <int W>
+void g2p(const Stencil<W>& S, const Grid& G, double dt, const ParticleUpdate& rule, Particles& P) {
+  switch (rule.transfer) {
+    case Transfer::flip:
+      if (rule.position == PositionUpdate::grid) {
+        g2p_any<W, true>(S, G, dt, P);
+      } else {
+        g2p_any<W, false>(S, G, dt, P);
+      }
+      return;
+    case Transfer::pic:
+    case Transfer::blend:
+    case Transfer::apic:
+    case Transfer::xpic:
+    case Transfer::fmpm:
+      return detail::g2p_other_transfer(S, G, dt, rule, P);  // transfers.cpp
+  }
+}
+
+template <int W>
+void stress_update(const Stencil<W>& S, const Grid& G, double dt, const MaterialLaw& law,
+                   Particles& P) {
+  if (law.kind != Material::linear) return stress_update_law(S, G, dt, law, P);
+#if MPMSTAB_AVX512
+  if (use_avx512()) {
+    return particle_pass<W, false, true, false>(S, G, dt, law.E, P, nullptr);
+  }
+#endif
+  stress_loop<W>(static_cast<std::size_t>(P.size()), S.base.data(), rows<W>(S.g), G.velocity.data(),
+                 P.F.data(), P.sigma.data(), dt, law.E);
+}
+
+template <int W>
+bool g2p(const Stencil<W>& S, const Grid& G, double dt, const ParticleUpdate& rule, Particles& P,
+         [[maybe_unused]] const StateCheck* check) {
+#if MPMSTAB_AVX512
+  if (check && use_avx512() && rule.transfer == Transfer::flip) {
+    particle_pass<W, true, false>(S, G, dt, 0.0, rule.position, P, check);
+    return true;
+  }
+#endif
+  g2p(S, G, dt, rule, P);
+  return false;
+}
+
+template <int W>
+bool stress_update(const Stencil<W>& S, const Grid& G, double dt, const MaterialLaw& law,
+                   Particles& P, [[maybe_unused]] const StateCheck* check) {
+#if MPMSTAB_AVX512
+  if (check && use_avx512() && law.kind == Material::linear) {
+    particle_pass<W, false, true, false>(S, G, dt, law.E, P, check);
+    return true;
+  }
+#endif
+  stress_update(S, G, dt, law, P);
+  return false;
+}
+
+template <int W>
+bool g2p_and_stress(const Stencil<W>& S, const Grid& G, double dt, const ParticleUpdate& rule,
+                    const MaterialLaw& law, Particles& P, const StateCheck* check) {
+#if MPMSTAB_AVX512
+  if (!use_avx512() || rule.transfer != Transfer::flip || law.kind != Material::linear) {
+    return false;
+  }
+  particle_pass<W, true, true>(S, G, dt, law.E, rule.position, P, check);
+  return true;
+#else
+  (void)S, (void)G, (void)dt, (void)rule, (void)law, (void)P, (void)check;
+  return false;
+#endif
+}
+
+#define MPMSTAB_INSTANTIATE(W)                                                                  \
+  template void g2p(const Stencil<W>&, const Grid&, double, const ParticleUpdate&, Particles&); \
+  template void stress_update(const Stencil<W>&, const Grid&, double, const MaterialLaw&,       \
+                              Particles&);                                                      \
+  template bool g2p_and_stress(const Stencil<W>&, const Grid&, double, const ParticleUpdate&,   \
+                               const MaterialLaw&, Particles&, const StateCheck*);              \
+  template bool g2p(const Stencil<W>&, const Grid&, double, const ParticleUpdate&, Particles&,  \
+                    const StateCheck*);                                                         \
+  template bool stress_update(const Stencil<W>&, const Grid&, double, const MaterialLaw&,       \
+                              Particles&, const StateCheck*);
+MPMSTAB_INSTANTIATE(LinearBasis::width)
+MPMSTAB_INSTANTIATE(GimpBasis::width)
+MPMSTAB_INSTANTIATE(CpGimpBasis::width)
+#undef MPMSTAB_INSTANTIATE
+
+}  // namespace mpmstab
