@@ -16,6 +16,7 @@
 
 #include "cache.hpp"
 #include "files.hpp"
+#include "result_json.hpp"
 #include "run/run.hpp"
 #include "strict_json.hpp"
 #include "support.hpp"
@@ -319,6 +320,34 @@ TEST_F(Files, TheCacheFuzzSeedsPassAndFailAsIntended) {
   const auto other =
       mpmstab::ResultCache::check(read(seeds / "mpm_other_case.json"), "mpm_other_case.json", p);
   EXPECT_TRUE(other.rejected);
+}
+
+// A record stored before a column existed is read with the value every run then had, where the
+// record now puts it: a vibration run cached without "tip_load" reads tip_load 0 just before
+// "policy", as a fresh record of the same case has it; every other value is kept.
+TEST_F(Files, ACachedRecordWithoutTheTipLoadColumnIsReadWithItsValue) {
+  mpmstab::RunParams p = mpmstab::test_support::quick_case();
+  p.scene = mpmstab::SceneKind::vibration;
+  p.T = 0.01;
+  const nlohmann::ordered_json fresh = mpmstab::to_json(mpmstab::run(p));
+  ASSERT_EQ(fresh["tip_load"], 0.0);
+  const mpmstab::ResultCache cache(dir / "cache");
+  cache.store(p, nlohmann::ordered_json{{"result", fresh}, {"provenance", {{"by", "test"}}}});
+  const fs::path file = dir / "cache" / (mpmstab::case_key(p) + ".json");
+  // The record as an earlier version wrote it: no "tip_load", checksummed as it was.
+  auto old = nlohmann::ordered_json::parse(read(file));
+  old["result"].erase("tip_load");
+  old.erase("checksum");
+  old["checksum"] = mpmstab::fnv1a_hex(mpmstab::canonical_parameters(p) + "\n" + old.dump());
+  const auto found = mpmstab::ResultCache::check(old.dump(), file, p);
+  ASSERT_TRUE(found.record.has_value());
+  EXPECT_EQ((*found.record)["result"], fresh);
+  std::vector<std::string> keys, fresh_keys;
+  for (const auto& [key, value] : (*found.record)["result"].items())
+    keys.push_back(key);
+  for (const auto& [key, value] : fresh.items())
+    fresh_keys.push_back(key);
+  EXPECT_EQ(keys, fresh_keys);
 }
 
 // Two plots of one figure at once: each draws in a private staging folder, so neither reads the

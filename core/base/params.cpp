@@ -205,6 +205,7 @@ std::string nondefault_choices(const RunParams& p) {
     add("small_mass",
         std::string(to_string(p.small_mass)) + "(" + brief_text(p.small_mass_fraction) + ")");
   }
+  if (p.tip_load != d.tip_load) add("tip_load", brief_text(p.tip_load));
   return text;
 }
 
@@ -213,7 +214,8 @@ bool default_choices(const RunParams& p) {
   return p.scene == d.scene && p.walls == d.walls && p.transfer == d.transfer &&
          p.update == d.update && p.body_force_time == d.body_force_time &&
          p.layout.shift == d.layout.shift && p.layout.jitter == d.layout.jitter &&
-         std::isnan(p.body_start) && std::isnan(p.body_length) && p.small_mass == d.small_mass;
+         std::isnan(p.body_start) && std::isnan(p.body_length) && p.small_mass == d.small_mass &&
+         p.tip_load == d.tip_load;
 }
 
 std::optional<double> fixed_step(const RunParams& p) {
@@ -287,6 +289,7 @@ const std::vector<std::string>& parameter_names() {
                                                  "body_length",
                                                  "small_mass",
                                                  "small_mass_fraction",
+                                                 "tip_load",
                                                  "dt_stable_sigma",
                                                  "dt_stable_vnorm",
                                                  "policy",

@@ -211,6 +211,11 @@ struct RunParams {
   double body_length = std::numeric_limits<double>::quiet_NaN();
   SmallMass small_mass = SmallMass::none;
   double small_mass_fraction = 1e-2;  // of rho0 h (small_mass other than none only)
+  // A traction held on the free end of a bar fixed at X = 0 from t = 0 on, added to the
+  // scene's own loads (the scenes whose SceneInfo::tip_load is set): tip_load * E A / (2 L),
+  // the impulsive bar's traction, so that tip_load = 1 adds a largest tip displacement of A.
+  // Its exact motion adds to the scene's (the law is linear; scenes/tip_load.hpp).
+  double tip_load = 0;
   StableDtOptions stable;
   TimeStepping stepping;
   Observe observe;

@@ -31,7 +31,8 @@ class CompactionScene final : public Scene {
                                    .fixed_start = true,
                                    .body_start = 0,
                                    .body_length = 0.5,
-                                   .free_surface = true};
+                                   .free_surface = true,
+                                   .tip_load = true};
   static constexpr double kRampPasses = 8;  // t_r = 8 L / c, two periods of the first mode
   static constexpr int kModes = 64;
 

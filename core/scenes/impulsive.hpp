@@ -31,7 +31,8 @@ class ImpulsiveScene final : public Scene {
                                    .fixed_start = true,
                                    .body_start = 0,
                                    .body_length = 0.5,
-                                   .free_surface = true};
+                                   .free_surface = true,
+                                   .tip_load = true};
 
   ImpulsiveScene(double youngs_modulus, double amplitude, double length);
 

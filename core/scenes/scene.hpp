@@ -45,6 +45,9 @@ struct SceneInfo {
   // A free surface inside the grid (an end of the body beside empty cells): the nodes beyond it
   // can hold a sliver of mass, which small_mass treats.
   bool free_surface = false;
+  // A bar of linear material fixed at X = 0 whose other end is free: a traction on that end
+  // (RunParams::tip_load) adds the impulsive bar's exact motion to the scene's.
+  bool tip_load = false;
 
   constexpr bool supports(Boundary bc) const {
     return bc == Boundary::dirichlet ? dirichlet : periodic;

@@ -7,6 +7,7 @@
 #include "scenes/impulsive.hpp"
 #include "scenes/mode.hpp"
 #include "scenes/steffen.hpp"
+#include "scenes/tip_load.hpp"
 #include "scenes/vibration.hpp"
 
 namespace mpmstab {
@@ -33,7 +34,10 @@ const SceneInfo& scene_info(SceneKind kind) {
   return BarScene::kInfo;
 }
 
-std::unique_ptr<Scene> make_scene(const RunParams& p) {
+namespace {
+
+// The scene p.scene declares, before any load p adds to it.
+std::unique_ptr<Scene> make_declared_scene(const RunParams& p) {
   const double start = body_start(p), length = body_length(p);
   switch (p.scene) {
     case SceneKind::bar:
@@ -54,6 +58,14 @@ std::unique_ptr<Scene> make_scene(const RunParams& p) {
       return std::make_unique<ImpactScene>(p.E, p.A, start, length);
   }
   return std::make_unique<BarScene>(p.E, p.A);
+}
+
+}  // namespace
+
+std::unique_ptr<Scene> make_scene(const RunParams& p) {
+  std::unique_ptr<Scene> scene = make_declared_scene(p);
+  if (p.tip_load != 0) return std::make_unique<TipLoadedScene>(std::move(scene), p.tip_load);
+  return scene;
 }
 
 double body_start(const RunParams& p) {

@@ -21,7 +21,8 @@ double body_length(const RunParams& p);
 // body (its cells times ppc), the velocity and the strain, and APIC's affine term.
 std::int64_t spectral_state_size(const RunParams& p);
 
-// The scene of a run: p.scene with p.E, p.A and the body's extent body_start(p), body_length(p).
+// The scene of a run: p.scene with p.E, p.A and the body's extent body_start(p), body_length(p),
+// with the traction p.tip_load on its free end when it is not 0 (scenes/tip_load.hpp).
 std::unique_ptr<Scene> make_scene(const RunParams& p);
 
 // Whether scene `kind` is posed with boundaries `bc`, without making the scene (validate()).

@@ -217,6 +217,10 @@ void check_scene(const RunParams& p, Issues& bad) {
               exact_text(p.small_mass_fraction));
     }
   }
+  if (!std::isfinite(p.tip_load) || !(p.tip_load >= 0)) {
+    bad("tip_load", "must be a finite number >= 0 (of the traction E A / (2 L)), got " +
+                        exact_text(p.tip_load));
+  }
   if (p.scene == SceneKind::block && p.bc == Boundary::dirichlet && std::isfinite(p.T) &&
       positive_finite(p.E) && std::isfinite(p.A) &&
       start + length + p.A * wave_speed(p) * p.T > 1) {
@@ -294,6 +298,11 @@ std::optional<ParamIssue> check_given(const RunParams& p, std::string_view key) 
                                             " fills the grid [0, 1]; its body cannot be moved "
                                             "or resized"};
   }
+  if (key == "tip_load" && !scene.tip_load) {
+    return ParamIssue{"tip_load", "scene " + scene_name +
+                                      " has no free end held against a fixed one (only "
+                                      "vibration, impulsive and compaction take a tip load)"};
+  }
   if (key == "body_start" && scene.fixed_start) {
     return ParamIssue{"body_start", "scene " + scene_name +
                                         " is fixed at the wall X = 0; only body_length can be "
@@ -304,8 +313,8 @@ std::optional<ParamIssue> check_given(const RunParams& p, std::string_view key) 
 
 const std::vector<std::string>& conditional_parameters() {
   static const std::vector<std::string> keys = {
-      "dt",         "cfl_factor", "safety",      "flip_fraction",      "xpic_order",
-      "fmpm_order", "body_start", "body_length", "small_mass_fraction"};
+      "dt",         "cfl_factor", "safety",      "flip_fraction",       "xpic_order",
+      "fmpm_order", "body_start", "body_length", "small_mass_fraction", "tip_load"};
   return keys;
 }
 

@@ -82,6 +82,8 @@ Options:
                            (scenes with a free surface; default none)
   --small-mass-fraction <f>
                            that fraction, in (0, 1] (default 0.01; with --small-mass only)
+  --tip-load <k>           add a traction k E A / (2 L) held on the free end from t = 0
+                           (vibration, impulsive, compaction; default 0), k >= 0
   --dt-stable-sigma scaled|raw
                            stress in eq. (108) scaled by 1/sqrt(E) (default) or not
   --dt-stable-vnorm l2|max norm of the nodal velocity in eq. (108) (default l2)

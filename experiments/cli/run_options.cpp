@@ -92,6 +92,7 @@ void read_choices(const Args& a, RunParams& p) {
   }
   if (auto v = a.value("small-mass-fraction"))
     p.small_mass_fraction = parse_double(*v, "small-mass-fraction");
+  if (auto v = a.value("tip-load")) p.tip_load = parse_double(*v, "tip-load");
 }
 
 // The options of eq. (108), the step cap and the history.
@@ -152,6 +153,7 @@ const std::vector<OptionSpec>& run_options() {
       {"body-length"},
       {"small-mass"},
       {"small-mass-fraction"},
+      {"tip-load"},
       {"body-force-time"},
       {"dt-stable-sigma"},
       {"dt-stable-vnorm"},

@@ -48,6 +48,7 @@ std::string canonical_parameters(const RunParams& p) {
       s << ";small_mass=" << to_string(p.small_mass)
         << ";small_mass_fraction=" << shortest(p.small_mass_fraction);
     }
+    if (p.tip_load != 0) s << ";tip_load=" << shortest(p.tip_load);
   }
   return s.str();
 }
@@ -82,23 +83,32 @@ std::string checksum(const nlohmann::ordered_json& record, const std::string& ca
   return fnv1a_hex(canonical_text + "\n" + content.dump());
 }
 
-// A record written before the parameters of the scenes with free surfaces (body_start,
-// body_length, small_mass, small_mass_fraction) were columns: every such run was of a scene that
-// fills the grid, without a small-mass treatment (its canonical key names neither), and these
-// are the values its record would now hold. They go where to_json puts them, before "policy".
+// The columns added to the record after the first cached runs, each with the value every run
+// before it had (its canonical key names none of them) and the column it follows:
+//  - body_start, body_length, small_mass, small_mass_fraction (before "policy"): every such run
+//    was of a scene that fills the grid, without a small-mass treatment;
+//  - tip_load (after "small_mass_fraction"): no run had a tip load, so 0 where the scene takes
+//    one and null where it does not.
+// A record lacking them gets these values where to_json puts them.
 void add_scene_columns(nlohmann::ordered_json& result) {
-  if (!result.is_object() || result.contains("small_mass") || !result.contains("policy")) return;
+  if (!result.is_object() || !result.contains("policy")) return;
   const auto scene = result.find("scene");
   if (scene == result.end() || !scene->is_string()) return;
   const auto kind = parse_scene(scene->get<std::string>());
-  if (!kind || !scene_info(*kind).fills_grid) return;
+  if (!kind) return;
+  const bool had_extent = result.contains("small_mass");
+  if (!had_extent && !scene_info(*kind).fills_grid) return;
+  if (had_extent && result.contains("tip_load")) return;
   nlohmann::ordered_json out;
   for (auto& [key, value] : result.items()) {
-    if (key == "policy") {
+    if (key == "policy" && !had_extent) {
       out["body_start"] = nullptr;
       out["body_length"] = nullptr;
       out["small_mass"] = to_string(SmallMass::none);
       out["small_mass_fraction"] = nullptr;
+    }
+    if (key == "policy" && !result.contains("tip_load")) {
+      out["tip_load"] = scene_info(*kind).tip_load ? nlohmann::ordered_json(0.0) : nullptr;
     }
     out[key] = value;
   }

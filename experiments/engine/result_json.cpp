@@ -19,8 +19,8 @@ const std::vector<std::string>& record_columns() {
       // What was asked: the parameters (a parameter the run did not use is null).
       "method", "E", "A", "dt", "T", "cells", "ppc", "bc", "position_update", "scene", "walls",
       "transfer", "flip_fraction", "xpic_order", "fmpm_order", "update", "shift", "jitter",
-      "body_force_time", "body_start", "body_length", "small_mass", "small_mass_fraction", "policy",
-      "cfl_factor", "safety", "dt_stable_sigma", "dt_stable_vnorm",
+      "body_force_time", "body_start", "body_length", "small_mass", "small_mass_fraction",
+      "tip_load", "policy", "cfl_factor", "safety", "dt_stable_sigma", "dt_stable_vnorm",
       // What the run did.
       "outcome", "failure_reason", "failure_step", "failure_time", "failure_particle", "steps",
       "dt_min", "dt_max", "dt_mean", "max_error", "max_error_over_time", "error_l2_time",
@@ -63,6 +63,8 @@ nlohmann::ordered_json to_json(const RunResult& r) {
   j["small_mass"] = to_string(p.small_mass);
   j["small_mass_fraction"] =
       p.small_mass != SmallMass::none ? ojson(p.small_mass_fraction) : ojson(nullptr);
+  // The tip load: null where the scene has no free end to take one.
+  j["tip_load"] = scene_info(p.scene).tip_load ? ojson(p.tip_load) : ojson(nullptr);
   j["policy"] = to_string(policy);
   const bool uses_cfl = policy == TimeStepPolicy::cfl || policy == TimeStepPolicy::min;
   const bool uses_bound = policy == TimeStepPolicy::adaptive || policy == TimeStepPolicy::min ||

@@ -154,6 +154,8 @@ class Reader {
       p.small_mass = choice_at(v, path, parse_small_mass, "none, cutoff, drop or momentum");
     else if (key == "small_mass_fraction")
       p.small_mass_fraction = number_at(v, path);
+    else if (key == "tip_load")
+      p.tip_load = number_at(v, path);
     else if (key == "dt_stable_sigma")
       p.stable.sigma = choice_at(v, path, parse_stress_scaling, "scaled or raw");
     else if (key == "dt_stable_vnorm")
