@@ -370,6 +370,34 @@ TEST(TipLoad, LoadedBarsConvergeToTheSumOfTheExactMotions) {
   }
 }
 
+// The tip observer: each history row holds the last particle's displacement and the exact one
+// there. The exact one is the scene's at that particle (the impulsive tip: piecewise linear, A at
+// t = 2 L / c), and the tip's error is one particle's, so it never exceeds the row's error over
+// all particles. Without Observe::tip the rows hold neither.
+TEST(TipObserver, HistoryRowsHoldTheFreeEndBesideItsExactMotion) {
+  RunParams p = convergence_case({SceneKind::impulsive, Method::gimp, 4, 0, 0}, 64);
+  p.observe.history = true;
+  p.observe.tip = true;
+  const RunResult r = run(p);
+  ASSERT_TRUE(r.stable);
+  ASSERT_GT(r.history.size(), 100u);
+  const auto scene = make_scene(p);
+  const Particles start = scene->initial_particles(p.cells, p.ppc);
+  const double X_tip = start.X[start.size() - 1];
+  double largest_exact = 0;
+  for (const HistoryRow& h : r.history) {
+    ASSERT_TRUE(h.tip_u && h.tip_u_exact && h.error);
+    EXPECT_EQ(*h.tip_u_exact, scene->displacement(X_tip, h.time));
+    EXPECT_LE(std::abs(*h.tip_u - *h.tip_u_exact), *h.error);
+    largest_exact = std::max(largest_exact, *h.tip_u_exact);
+  }
+  // The end reaches A at 2 L / c; a point X inside reaches A X / L.
+  EXPECT_NEAR(largest_exact / p.A, X_tip / body_length(p), 1e-6);
+  p.observe.tip = false;
+  for (const HistoryRow& h : run(p).history)
+    EXPECT_FALSE(h.tip_u || h.tip_u_exact);
+}
+
 // ---------------------------------------------------------------------------------------------
 // 3. Rigid translation.
 

@@ -167,6 +167,9 @@ struct Observe {
   // dt_stable_min_of_option). Where the policy does not read eq. (108), the options change only
   // what is observed: one run then gives the records of cases that differ only in them.
   bool dt_stable_every_option = false;
+  // In each history row, the displacement of the body's last particle (the largest X: the free
+  // end of every scene that has one) beside the exact one there; off unless asked.
+  bool tip = false;
   std::int64_t history_stride = 1;  // keep every k-th step in the history (and the last one)
 };
 

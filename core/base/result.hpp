@@ -31,6 +31,8 @@ struct HistoryRow {
   // The energy observer's values (energy.hpp) and the exact ones at this time.
   std::optional<double> kinetic, strain, work, energy_balance;
   std::optional<double> kinetic_exact, strain_exact, work_exact;
+  // Observe::tip: x_p - X_p of the body's last particle and the exact u(X_p, t) there.
+  std::optional<double> tip_u, tip_u_exact;
 };
 
 // The particles at the end of the run (at T, or at the failure) with the exact solution there.

@@ -245,6 +245,12 @@ void Driver::observe_step(bool last) {
     crossings_ += crossing_counter_->update(sim_.particles());
     row.crossings = crossings_;
   }
+  if (obs_.tip && history_) {
+    const Particles& P = sim_.particles();
+    const Eigen::Index last = P.size() - 1;
+    row.tip_u = P.x[last] - P.X[last];
+    row.tip_u_exact = sim_.scene().displacement(P.X[last], sim_.time());
+  }
   if (error_l2_) error_l2_->after_step(sim_.particles(), sim_.time());
   if (energy_) {
     const Eigen::ArrayXd none;

@@ -102,6 +102,8 @@ Options:
                            run that reaches it stops with the verdict step_limit
   --history <file.csv>     also write the per-step history (error, eq. 108, crossings)
   --history-stride <n>     keep every n-th step in the history (default 1)
+  --tip                    in the history, also the displacement of the body's last particle
+                           (the free end) and the exact one there: tip_u, tip_u_exact
   --energy                 also observe the energies at every step: the record's
                            energy_error_max, energy_exact_error_max, energy_drift and
                            energy_warning_step, and the history's energy columns
@@ -189,10 +191,11 @@ std::string text_summary(const RunResult& r) {
 }
 
 // One line of the history CSV (header: kHistoryHeader).
-// The energy columns are empty unless the run observes its energy (--energy).
+// The energy columns are empty unless the run observes its energy (--energy), the tip columns
+// unless it observes its tip (--tip).
 constexpr std::string_view kHistoryHeader =
     "step,time,error,dt_stable,crossings,kinetic,strain,work,energy_balance,kinetic_exact,"
-    "strain_exact,work_exact\n";
+    "strain_exact,work_exact,tip_u,tip_u_exact\n";
 std::string history_line(const HistoryRow& h) {
   std::ostringstream s;
   s.precision(17);
@@ -205,7 +208,7 @@ std::string history_line(const HistoryRow& h) {
   cell(h.dt_stable);
   cell(h.crossings);
   for (const auto* v : {&h.kinetic, &h.strain, &h.work, &h.energy_balance, &h.kinetic_exact,
-                        &h.strain_exact, &h.work_exact})
+                        &h.strain_exact, &h.work_exact, &h.tip_u, &h.tip_u_exact})
     cell(*v);
   s << '\n';
   return s.str();

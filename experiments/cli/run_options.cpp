@@ -105,6 +105,7 @@ void read_measurements(const Args& a, RunParams& p) {
   }
   if (auto v = a.value("max-steps")) p.max_steps = parse_int(*v, "max-steps");
   p.observe.energy = a.flag("energy");
+  p.observe.tip = a.flag("tip");
   p.observe.error_l2 = a.flag("error-l2");
   if (auto v = a.value("history-stride"))
     p.observe.history_stride = parse_int(*v, "history-stride");
@@ -164,6 +165,7 @@ const std::vector<OptionSpec>& run_options() {
       {"history"},
       {"history-stride"},
       {"energy", false},
+      {"tip", false},
       {"error-l2", false},
       {"json", false},
       {"help", false},

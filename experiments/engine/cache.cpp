@@ -29,7 +29,8 @@ std::string canonical_parameters(const RunParams& p) {
     << ";cfl_factor=" << shortest(p.stepping.cfl_factor)
     << ";safety=" << shortest(p.stepping.safety) << ";record=" << (o.error_over_time ? "e" : "")
     << (o.dt_stable ? "s" : "") << (o.crossings ? "c" : "") << (o.final_state ? "f" : "")
-    << (o.spectral ? "p" : "") << (o.energy ? "n" : "") << (o.error_l2 ? "l" : "");
+    << (o.spectral ? "p" : "") << (o.energy ? "n" : "") << (o.error_l2 ? "l" : "")
+    << (o.tip ? "t" : "");
   if (o.history) s << "h" << o.history_stride;
   // The implementation choices came after the first cached runs: they enter the key only when
   // one differs from its default, so that the keys of default runs did not change.

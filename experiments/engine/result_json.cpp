@@ -129,6 +129,11 @@ nlohmann::ordered_json history_to_json(const RunResult& r) {
       row["strain_exact"] = or_null(h.strain_exact);
       row["work_exact"] = or_null(h.work_exact);
     }
+    if (r.params.observe.tip) {
+      auto& row = rows.back();
+      row["tip_u"] = or_null(h.tip_u);
+      row["tip_u_exact"] = or_null(h.tip_u_exact);
+    }
   }
   return rows;
 }

@@ -49,7 +49,7 @@ const std::vector<std::string> kTopKeys = {
 constexpr std::uintmax_t kMaxSpecBytes = 4u << 20;
 const std::vector<std::string> kRecordValues = {"error_over_time", "dt_stable",   "crossings",
                                                 "history",         "final_state", "spectral",
-                                                "energy",          "error_l2"};
+                                                "energy",          "error_l2",    "tip"};
 
 class Reader {
  public:
@@ -519,6 +519,8 @@ Observe read_observe(const Reader& r, const json& doc) {
         observe.energy = true;
       else if (what == "error_l2")
         observe.error_l2 = true;
+      else if (what == "tip")
+        observe.tip = true;
       else {
         std::string message = "unknown value '" + what + "'";
         if (auto guess = cli::nearest(what, kRecordValues))

@@ -131,6 +131,12 @@ std::vector<std::string> scenes_in_order(const std::vector<ojson>& rows) {
   return out;
 }
 
+// A history row's value `key` per A, empty where the row has none.
+std::string over_A(const ojson& row, const char* key, double A) {
+  const auto it = row.find(key);
+  return it != row.end() && it->is_number() ? sci(it->get<double>() / A, 6) : "";
+}
+
 std::string scenes_data(const std::vector<ojson>& rows, const SweepOutcome& out,
                         const std::map<std::string, Reference>& ref, const std::string& header) {
   const auto scenes = scenes_in_order(rows);
@@ -141,7 +147,7 @@ std::string scenes_data(const std::vector<ojson>& rows, const SweepOutcome& out,
   for (auto& [m, s] : series)
     s = k++;
   std::ostringstream csv;
-  csv << header << "panel,series,scene,method,t,error_over_A\n";
+  csv << header << "panel,series,scene,method,t,error_over_A,tip_over_A,tip_exact_over_A\n";
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const ojson& r = rows[i];
     if (part_of(r, ref) != Part::trade || !at_reference(r)) continue;
@@ -155,7 +161,9 @@ std::string scenes_data(const std::vector<ojson>& rows, const SweepOutcome& out,
       if (!h[j]["error"].is_number()) continue;
       csv << panel << "," << series[str(r, "method")] << "," << str(r, "scene") << ","
           << str(r, "method") << "," << shortest(h[j]["time"].get<double>()) << ","
-          << sci(h[j]["error"].get<double>() / num(r, "A"), 4) << "\n";
+          << sci(h[j]["error"].get<double>() / num(r, "A"), 4) << ","
+          << over_A(h[j], "tip_u", num(r, "A")) << "," << over_A(h[j], "tip_u_exact", num(r, "A"))
+          << "\n";
     }
   }
   return csv.str();
@@ -400,7 +408,8 @@ std::string scenes_index(const Spec& spec, const std::vector<ojson>& rows) {
   std::ostringstream md;
   md << "![" << spec.title << "](" << spec.name << ".png)\n\n**What it shows.** " << scenes.size()
      << " scenes (" << list_of(scenes)
-     << ") against their exact solutions, per method: the error over time and its cost at "
+     << ") against their exact solutions, per method: the error over time, the free end's "
+        "motion beside the exact one, and the cost at "
         "three Courant numbers, the dense spectral limit of each body with its free surfaces "
         "against the interior limit, the survival edge, the small-mass treatments and an "
         "extremes battery, in "
