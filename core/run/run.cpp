@@ -247,9 +247,9 @@ void Driver::observe_step(bool last) {
   }
   if (obs_.tip && history_) {
     const Particles& P = sim_.particles();
-    const Eigen::Index last = P.size() - 1;
-    row.tip_u = P.x[last] - P.X[last];
-    row.tip_u_exact = sim_.scene().displacement(P.X[last], sim_.time());
+    const Eigen::Index tip = P.size() - 1;
+    row.tip_u = P.x[tip] - P.X[tip];
+    row.tip_u_exact = sim_.scene().displacement(P.X[tip], sim_.time());
   }
   if (error_l2_) error_l2_->after_step(sim_.particles(), sim_.time());
   if (energy_) {
