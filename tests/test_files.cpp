@@ -248,8 +248,9 @@ TEST_F(Files, ACacheRecordThatLiesIsRecomputedAndCounted) {
   ASSERT_EQ(run_mpmstab("sweep " + spec.string() + " --out " + out.string()).status, 0);
   const std::string report = read(out / "quick.json");
   std::vector<fs::path> records;
-  for (const auto& e : fs::directory_iterator(out / "cache"))
-    records.push_back(e.path());
+  for (const auto& e : fs::directory_iterator(out / "cache"))  // records, not the timings
+    if (e.path().extension() == ".json" && e.path().stem().string().size() == 16)
+      records.push_back(e.path());
   ASSERT_EQ(records.size(), 2u);
   // 1. A hand-edited result: valid JSON, right shape, wrong number.
   ojson edited = ojson::parse(read(records[0]));
@@ -266,7 +267,7 @@ TEST_F(Files, ACacheRecordThatLiesIsRecomputedAndCounted) {
       << r.output;
   EXPECT_EQ(read(out / "quick.json"), report);  // the true values, not the edited one
   EXPECT_EQ(ojson::parse(read(records[1]))["result"], ojson::parse(whole)["result"]);  // whole
-  const ojson timings = ojson::parse(read(out / "timings.json"));
+  const ojson timings = ojson::parse(read(out / "cache" / "timings.json"));
   EXPECT_EQ(timings["quick"]["cache_records_rejected"], 2);
   // 3. Records of the right shape from another case under this key, or without a checksum.
   ojson other = ojson::parse(read(records[0]));

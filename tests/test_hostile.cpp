@@ -409,11 +409,12 @@ TEST_F(Hostile, TrapsAtEveryOutputNameAreRefusedAndLeftAsTheyAre) {
   const fs::path outside = dir / "outside.txt";
   std::ofstream(outside) << "precious\n";
   int n = 0;
-  for (const char* name : {"good.csv", "good.json", "good.md", "timings.json", ".mpmstab.lock"}) {
+  for (const char* name :
+       {"good.csv", "good.json", "good.md", "cache/timings.json", ".mpmstab.lock"}) {
     for (const char* kind : {"symlink", "device", "fifo", "folder"}) {
       const fs::path folder = dir / ("trap_" + std::to_string(n++));
-      fs::create_directories(folder);
       const fs::path trap = folder / name;
+      fs::create_directories(trap.parent_path());
       if (std::string(kind) == "symlink") fs::create_symlink(outside, trap);
       if (std::string(kind) == "device") fs::create_symlink("/dev/null", trap);
       if (std::string(kind) == "fifo") {
@@ -448,10 +449,13 @@ TEST_F(Hostile, LinksAtGuessableTemporaryNamesAreNotFollowed) {
   std::ofstream(outside) << "precious\n";
   // The next pids the program may get, for every file it writes.
   const long pid = static_cast<long>(::getpid());
-  for (const char* name : {"good.csv", "good.json", "good.md", "timings.json"}) {
+  fs::create_directories(folder / "cache");
+  for (const char* name : {"good.csv", "good.json", "good.md", "cache/timings.json"}) {
+    const fs::path target = folder / name;
+    const std::string file = target.filename().string();
     for (long p = pid; p < pid + 64; ++p)
-      fs::create_symlink(outside, folder / (std::string(name) + ".tmp." + std::to_string(p)));
-    fs::create_symlink(outside, folder / (std::string(".") + name + ".tmp"));
+      fs::create_symlink(outside, target.parent_path() / (file + ".tmp." + std::to_string(p)));
+    fs::create_symlink(outside, target.parent_path() / ("." + file + ".tmp"));
   }
   const auto [status, output] = mpmstab::test_support::run_mpmstab(
       "sweep " + (dir / "good.json").string() + " --out " + folder.string());

@@ -6,8 +6,10 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <sstream>
 
+#include "provenance.hpp"
 #include "regression.hpp"
 #include "spec.hpp"
 #include "support.hpp"
@@ -59,6 +61,40 @@ class Regression : public ::testing::Test {
     s << in.rdbuf();
     return s.str();
   }
+  // A blessed table with the last digit of its first max_error_over_time value (column found by
+  // name) changed; "" when it has no such value.
+  static std::string with_one_value_changed(const std::string& csv) {
+    auto split = [](const std::string& l) {
+      std::vector<std::string> f;
+      std::stringstream ss(l);
+      for (std::string x; std::getline(ss, x, ',');)
+        f.push_back(x);
+      if (!l.empty() && l.back() == ',') f.push_back("");
+      return f;
+    };
+    std::istringstream lines(csv);
+    std::string out, line;
+    bool changed = false;
+    std::size_t column = 0;
+    while (std::getline(lines, line)) {
+      if (line.rfind("method,", 0) == 0) {
+        const auto header = split(line);
+        column = std::find(header.begin(), header.end(), "max_error_over_time") - header.begin();
+      } else if (!changed && line.rfind("gimp,4,", 0) == 0) {
+        auto f = split(line);
+        if (column >= f.size() || f[column].empty()) return "";
+        std::string& v = f[column];
+        char& last = v[v.find('e') == std::string::npos ? v.size() - 1 : v.find('e') - 1];
+        last = last == '9' ? '8' : static_cast<char>(last + 1);
+        line.clear();
+        for (std::size_t i = 0; i < f.size(); ++i)
+          line += (i ? "," : "") + f[i];
+        changed = true;
+      }
+      out += line + "\n";
+    }
+    return changed ? out : "";
+  }
   // Runs check and returns (status, what it printed on stderr).
   std::pair<int, std::string> check() {
     testing::internal::CaptureStderr();
@@ -85,39 +121,9 @@ TEST_F(Regression, ALastDigitChangeFailsNamingTheCellAndRestoringPasses) {
   run_bless(specs(), options, "first blessing");
   const fs::path file = options.reference / "small.csv";
   const std::string original = read(file);
-  // Change the last digit of the first max_error_over_time value (column found by name).
-  std::istringstream lines(original);
-  std::string out, line;
-  bool changed = false;
-  std::size_t column = 0;
-  auto split = [](const std::string& l) {
-    std::vector<std::string> f;
-    std::stringstream ss(l);
-    for (std::string x; std::getline(ss, x, ',');)
-      f.push_back(x);
-    if (!l.empty() && l.back() == ',') f.push_back("");
-    return f;
-  };
-  while (std::getline(lines, line)) {
-    if (line.rfind("method,", 0) == 0) {
-      const auto header = split(line);
-      column = std::find(header.begin(), header.end(), "max_error_over_time") - header.begin();
-    } else if (!changed && line.rfind("gimp,4,", 0) == 0) {
-      auto f = split(line);
-      ASSERT_LT(column, f.size());
-      std::string& v = f[column];
-      ASSERT_FALSE(v.empty());
-      char& last = v[v.find('e') == std::string::npos ? v.size() - 1 : v.find('e') - 1];
-      last = last == '9' ? '8' : static_cast<char>(last + 1);
-      line.clear();
-      for (std::size_t i = 0; i < f.size(); ++i)
-        line += (i ? "," : "") + f[i];
-      changed = true;
-    }
-    out += line + "\n";
-  }
-  ASSERT_TRUE(changed);
-  std::ofstream(file) << out;
+  const std::string changed = with_one_value_changed(original);
+  ASSERT_FALSE(changed.empty());
+  std::ofstream(file) << changed;
   const auto [status, message] = check();
   testing::internal::GetCapturedStdout();
   EXPECT_EQ(status, 1);
@@ -167,11 +173,45 @@ TEST_F(Regression, BlessRewritesOnlyWhatChangedAndLogsIt) {
     return at == std::string::npos ? "" : text.substr(at, text.find('\n', at) - at);
   };
   EXPECT_EQ(line_of(after, "mpm,64,0.05,"), line_of(before, "mpm,64,0.05,"));
+  // The log counts the new row and the old one; it does not list them.
   const std::string log = read(options.reference / "BLESSED.md");
-  EXPECT_NE(log.find("Reason: amplitude of the first case raised"), std::string::npos) << log;
-  EXPECT_NE(log.find("A=0.02"), std::string::npos) << log;       // the new row
-  EXPECT_NE(log.find("missing row"), std::string::npos) << log;  // the old one
+  EXPECT_NE(log.find("Reason: amplitude of the first case raised\n\nChanges per blessed table:\n\n"
+                     "- small: 1 row added, 1 row removed\n"),
+            std::string::npos)
+      << log;
+  EXPECT_EQ(log.find("A=0.02"), std::string::npos) << log;
   EXPECT_NE(log.find("commit"), std::string::npos);
+}
+
+// Each blessing is logged with its date, commit and reason and, per blessed table, the count of
+// each kind of change; the changed values themselves are left to the history of the tables.
+TEST_F(Regression, BlessLogsTheCountsOfChangesPerTableAndNoValues) {
+  testing::internal::CaptureStdout();
+  ASSERT_EQ(run_bless(specs(), options, "first blessing"), 0);
+  const fs::path file = options.reference / "small.csv";
+  const std::string changed = with_one_value_changed(read(file));
+  ASSERT_FALSE(changed.empty());
+  std::ofstream(file) << changed;
+  ASSERT_EQ(run_bless(specs(), options, "one value restored"), 0);
+  testing::internal::GetCapturedStdout();
+  const std::string log = read(options.reference / "BLESSED.md");
+  const Provenance prov = current_provenance(1);
+  const std::string heading = ", commit " + prov.commit.substr(0, 12) +
+                              (prov.dirty ? " with uncommitted changes" : "") + "\n\n";
+  const std::regex expected(
+      "# Blessed regression values\n\n[^\n]*not listed[^\n]*\n"
+      "\n## [0-9]{4}-[0-9]{2}-[0-9]{2}T[0-9]{2}:[0-9]{2}:[0-9]{2}Z" +
+      heading +
+      "Reason: first blessing\n\nChanges per blessed table:\n\n"
+      "- small: 3 rows blessed for the first time\n"
+      "- comparison verdicts: 1 row blessed for the first time\n"
+      "\n## [0-9]{4}-[0-9]{2}-[0-9]{2}T[0-9]{2}:[0-9]{2}:[0-9]{2}Z" +
+      heading +
+      "Reason: one value restored\n\nChanges per blessed table:\n\n"
+      "- small: 1 value changed\n");
+  EXPECT_TRUE(std::regex_match(log, expected)) << log;
+  EXPECT_EQ(log.find("max_error_over_time"), std::string::npos) << log;
+  EXPECT_EQ(log.find("method="), std::string::npos) << log;
 }
 
 // In a variants experiment two variants may run the same parameters (one differs only in the

@@ -6,7 +6,21 @@
 // (x86-64-v3) and the build's own target; the loader picks the best one the CPU has (GCC function
 // multiversioning). g2p and the stress update also have hand-written AVX-512 versions, chosen
 // at run time (use_avx512). FMA contraction stays off in every version (-ffp-contract=off).
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+//
+// MPMSTAB_KERNELS_PORTABLE (the build's own target only) and MPMSTAB_KERNELS_AVX2 (AVX2 and the
+// build's own target, no AVX-512) build the same kernels without the versions above them: the
+// reproducibility test (tests/test_kernel_versions.cpp) runs the same cases on every version
+// this machine can run and compares the results byte for byte.
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && \
+    defined(MPMSTAB_KERNELS_PORTABLE)
+#define MPMSTAB_SIMD_CLONES
+#define MPMSTAB_AVX512 0
+#elif defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && \
+    defined(MPMSTAB_KERNELS_AVX2)
+#include <immintrin.h>
+#define MPMSTAB_SIMD_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
+#define MPMSTAB_AVX512 0
+#elif defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
 #include <immintrin.h>
 #define MPMSTAB_SIMD_CLONES \
   __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))

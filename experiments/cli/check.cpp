@@ -24,7 +24,8 @@ the expected and obtained values, the relative difference and the tolerance. Exi
 when anything differs.
 
 bless rewrites the blessed values that changed and appends the date, the commit, the reason
-and the cells changed to --reference/BLESSED.md. It refuses to run without a reason.
+and, per blessed table, how many rows and values changed to --reference/BLESSED.md. It refuses
+to run without a reason.
 
 Options:
   --reference DIR  blessed values (default reference/regression)

@@ -29,7 +29,11 @@ int cmd_list(const std::vector<std::string_view>& args);
 // Shared by the commands that read specs and write reports.
 int default_jobs();                                                        // the machine's cores
 std::vector<Spec> load_specs(const std::vector<std::string_view>& paths);  // UsageError if bad
-std::filesystem::path output_folder(const Args& args);  // --out (default results), created
-bool omit_timing(const Args& args);                     // --timing keep|omit (default keep)
+// --out (default results): checked (a folder, or absent under a writable one), not made: the
+// first file written makes it, so a refused command leaves no folder behind.
+std::filesystem::path output_folder(const Args& args);
+// Makes the --out folder, once every argument and input was checked (UsageError if it cannot).
+void make_output_folder(const std::filesystem::path& out);
+bool omit_timing(const Args& args);  // --timing keep|omit (default keep)
 
 }  // namespace mpmstab::cli

@@ -34,12 +34,34 @@ std::filesystem::path output_folder(const Args& args) {
   if (std::filesystem::exists(out, ec) && !std::filesystem::is_directory(out, ec)) {
     throw UsageError("--out: " + out.string() + " is not a folder");
   }
-  std::filesystem::create_directories(out, ec);
-  if (ec) throw UsageError("--out: cannot create " + out.string() + ": " + ec.message());
-  if (::access(out.c_str(), W_OK) != 0) {
-    throw UsageError("--out: " + out.string() + " is not writable");
+  // Not made here: the first file written makes it, after every argument and input was checked.
+  // What must hold now is that it can be: the folder, or its nearest existing ancestor, is a
+  // writable folder.
+  std::filesystem::path existing = out;
+  while (!existing.empty() && !std::filesystem::exists(existing, ec))
+    existing = existing.has_parent_path() && existing.parent_path() != existing
+                   ? existing.parent_path()
+                   : std::filesystem::path();
+  if (existing.empty()) existing = ".";
+  if (!std::filesystem::is_directory(existing, ec)) {
+    throw UsageError("--out: cannot create " + out.string() + ": " + existing.string() +
+                     " is not a folder");
+  }
+  if (::access(existing.c_str(), W_OK) != 0) {
+    throw UsageError("--out: " + (existing == out ? out.string() + " is not writable"
+                                                  : "cannot create " + out.string() + ": " +
+                                                        existing.string() + " is not writable"));
   }
   return out;
+}
+
+void make_output_folder(const std::filesystem::path& out) {
+  std::error_code ec;
+  std::filesystem::create_directories(out, ec);
+  if (ec || !std::filesystem::is_directory(out, ec)) {
+    throw UsageError("--out: cannot create " + out.string() +
+                     (ec ? ": " + ec.message() : std::string()));
+  }
 }
 
 bool omit_timing(const Args& args) {

@@ -2,6 +2,7 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "files.hpp"
 #include "report.hpp"
 
 namespace mpmstab::cli {
@@ -22,7 +23,9 @@ int cmd_index(const std::vector<std::string_view>& argv) {
     return 0;
   }
   const auto specs = load_specs(args.positional());
-  write_index(specs, output_folder(args));
+  const auto out = output_folder(args);
+  finish_publications_in(out);  // a report set a killed run left half published
+  write_index(specs, out);
   return 0;
 }
 

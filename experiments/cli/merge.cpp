@@ -54,6 +54,7 @@ int cmd_merge(const std::vector<std::string_view>& argv) {
   }
   const fs::path out = output_folder(args);
   check_inputs(spec, out);
+  make_output_folder(out);
   SweepOutcome outcome;
   try {
     outcome = merge_shards(spec, dirs);

@@ -17,6 +17,7 @@ int cmd_performance(const std::vector<std::string_view>& argv) {
   }
   const auto specs = load_specs(args.positional());
   const auto out = output_folder(args);
+  make_output_folder(out);
   write_performance(
       specs, std::string(args.value("bench").value_or(out.string() + "/benchmark_step.json")), out);
   return 0;

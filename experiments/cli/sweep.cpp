@@ -3,6 +3,7 @@
 // cases of several specs in one queue, each spec's reports written as soon as it is complete.
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -63,7 +64,7 @@ Options:
              gathers the shards and writes the reports (see experiments/README.md).
   --timing keep|omit
              The reports never hold machine measurements: wall times, ns per
-             particle-step, date and threads go to DIR/timings.json only. omit writes
+             particle-step, date and threads go to DIR/cache/timings.json only. omit writes
              zeros (and "omitted") there too, so that two whole folders compare byte for
              byte, whatever the machine or the number of shards. The cache keeps the
              measurements. Default keep.
@@ -217,6 +218,129 @@ std::string summary_line(const Spec& spec, const SweepOutcome& outcome, double w
 
 }  // namespace
 
+namespace {
+
+// What make reproduce runs: every spec, checked before any work, with the experiments each one
+// reads that another of them writes.
+struct ReproducePlan {
+  std::vector<Spec> specs;
+  std::vector<std::set<std::string>> waits_for;
+};
+
+// 1. Every spec, and every input none of them produces, read and checked before any work.
+ReproducePlan plan_reproduce(const Args& args, const std::filesystem::path& out) {
+  ReproducePlan plan;
+  plan.specs = load_specs(args.positional());
+  std::set<std::string> produced;
+  for (const auto& spec : plan.specs) {
+    if (!produced.insert(spec.name).second) {
+      throw UsageError(spec.path.string() + ": a second experiment named '" + spec.name + "'");
+    }
+  }
+  plan.waits_for.resize(plan.specs.size());
+  for (std::size_t s = 0; s < plan.specs.size(); ++s) {
+    for (const auto& input : load_inputs(plan.specs[s]))
+      if (produced.count(input.name)) plan.waits_for[s].insert(input.name);
+    try {
+      check_inputs(plan.specs[s], out, produced);
+    } catch (const MissingInput& e) {
+      throw UsageError(e.what());
+    }
+  }
+  return plan;
+}
+
+// 2. Publishes each experiment once its cases are complete and what it reads is written, and
+// counts the work of the whole reproduction (a record shared by several cases once).
+class ReproducePublisher {
+ public:
+  ReproducePublisher(const ReproducePlan& plan, const std::filesystem::path& out,
+                     const SweepOptions& options, bool omit)
+      : plan_(plan), out_(out), options_(options), omit_(omit) {}
+
+  void complete(std::size_t s, SweepOutcome& outcome) {
+    waiting_.emplace(s, std::move(outcome));
+    for (bool again = true; again;) {
+      again = false;
+      for (auto it = waiting_.begin(); it != waiting_.end();) {
+        if (!ready(it->first)) {
+          ++it;
+          continue;
+        }
+        publish(plan_.specs[it->first], it->second);
+        it = waiting_.erase(it);
+        again = true;
+      }
+    }
+  }
+
+  bool all_published() const { return waiting_.empty(); }
+  int computed = 0, cases = 0;
+  double particle_steps = 0, compute_seconds = 0;
+
+ private:
+  bool ready(std::size_t s) const {
+    const auto& needs = plan_.waits_for[s];
+    return std::includes(written_.begin(), written_.end(), needs.begin(), needs.end());
+  }
+
+  void publish(const Spec& spec, SweepOutcome& outcome) {
+    std::string line;
+    if (!spec.study->has_cases) {
+      write_derived_reports(spec, out_);
+      line = "[" + spec.name + "] from " + std::to_string(spec.inputs.size()) + " inputs -> " +
+             out_.string() + "\n";
+    } else {
+      count(spec, outcome);
+      const double wall = outcome.wall_seconds;
+      if (omit_) omit_machine_measurements(outcome);
+      write_reports(spec, outcome, out_, follow_up_runner(options_));
+      line = summary_line(spec, outcome, wall, out_);
+    }
+    if (options_.progress_line) std::cerr << "\r\033[K";
+    std::cerr << line << std::flush;
+    written_.insert(spec.name);
+  }
+
+  void count(const Spec& spec, const SweepOutcome& outcome) {
+    computed += outcome.computed;
+    cases += int(spec.cases.size());
+    const std::string search = case_search(spec);
+    for (std::size_t i = 0; i < spec.cases.size(); ++i) {
+      if (!counted_.insert(case_key(spec.cases[i].params, search)).second) continue;
+      particle_steps += record_particle_steps(outcome.records[i]);
+      compute_seconds += outcome.records[i]["timing"]["wall_seconds"].get<double>();
+    }
+  }
+
+  const ReproducePlan& plan_;
+  const std::filesystem::path& out_;
+  const SweepOptions& options_;
+  bool omit_;
+  std::map<std::size_t, SweepOutcome> waiting_;  // complete, not yet published
+  std::set<std::string> written_;
+  std::set<std::string> counted_;
+};
+
+// 3. The reproduction's own entry in the machine's timings.
+void record_reproduce(const ReproducePublisher& done, std::size_t experiments, double wall,
+                      const std::filesystem::path& out, const SweepOptions& options, bool omit) {
+  const Provenance when = current_provenance(options.jobs);
+  write_reproduce_timing(out,
+                         {{"experiments", experiments},
+                          {"cases", done.cases},
+                          {"computed", done.computed},
+                          {"particle_steps", done.particle_steps},
+                          {"compute_seconds", omit ? 0.0 : done.compute_seconds},
+                          {"commit", when.commit},
+                          {"cpu", when.cpu},
+                          {"threads", options.jobs},
+                          {"wall_seconds", omit ? 0.0 : wall}},
+                         done.computed > 0);
+}
+
+}  // namespace
+
 int cmd_reproduce(const std::vector<std::string_view>& argv) {
   const Args args(argv, {{"jobs"}, {"out"}, {"force", false}, {"timing"}, {"help", false}});
   if (args.flag("help")) {
@@ -226,106 +350,35 @@ int cmd_reproduce(const std::vector<std::string_view>& argv) {
   if (args.positional().empty()) throw UsageError("reproduce takes one or more specs");
   SweepOptions options = sweep_options(args);
   const bool omit = omit_timing(args);
-  // 1. Every spec, and every input none of them produces, is read and checked before any work.
-  const std::vector<Spec> specs = load_specs(args.positional());
   const auto out = output_folder(args);
-  std::set<std::string> produced;
-  for (const auto& spec : specs) {
-    if (!produced.insert(spec.name).second) {
-      throw UsageError(spec.path.string() + ": a second experiment named '" + spec.name + "'");
-    }
-  }
-  std::vector<std::set<std::string>> waits_for(specs.size());
-  for (std::size_t s = 0; s < specs.size(); ++s) {
-    for (const auto& input : load_inputs(specs[s]))
-      if (produced.count(input.name)) waits_for[s].insert(input.name);
-    try {
-      check_inputs(specs[s], out, produced);
-    } catch (const MissingInput& e) {
-      throw UsageError(e.what());
-    }
-  }
+  const ReproducePlan plan = plan_reproduce(args, out);
+  make_output_folder(out);
+  finish_publications_in(out);  // a report set a killed run left half published
   options.cache = out / "cache";
   remove_stale_temporaries(options.cache);
   options.progress_line = ::isatty(STDERR_FILENO) != 0;
   options.cancel = &g_stop;
   install_stop_handlers();
 
-  // 2. One queue; each experiment published once complete and once what it reads is written.
+  // One queue; each experiment published once complete and once what it reads is written.
   std::vector<const Spec*> pointers;
-  for (const auto& spec : specs)
+  for (const auto& spec : plan.specs)
     pointers.push_back(&spec);
-  std::map<std::size_t, SweepOutcome> waiting;  // complete, not yet published
-  std::set<std::string> written;
-  int computed = 0, cases = 0;
-  double particle_steps = 0, compute_seconds = 0;
-  std::set<std::string> counted;  // a record shared by several cases or experiments counts once
+  ReproducePublisher publisher(plan, out, options, omit);
   const auto start = std::chrono::steady_clock::now();
-  auto publish_ready = [&] {
-    for (bool again = true; again;) {
-      again = false;
-      for (auto it = waiting.begin(); it != waiting.end();) {
-        const std::size_t s = it->first;
-        if (!std::includes(written.begin(), written.end(), waits_for[s].begin(),
-                           waits_for[s].end())) {
-          ++it;
-          continue;
-        }
-        const Spec& spec = specs[s];
-        std::string line;
-        if (!spec.study->has_cases) {
-          write_derived_reports(spec, out);
-          line = "[" + spec.name + "] from " + std::to_string(spec.inputs.size()) + " inputs -> " +
-                 out.string() + "\n";
-        } else {
-          SweepOutcome& outcome = it->second;
-          const double wall = outcome.wall_seconds;
-          computed += outcome.computed;
-          cases += int(spec.cases.size());
-          const std::string search = case_search(spec);
-          for (std::size_t i = 0; i < spec.cases.size(); ++i) {
-            if (!counted.insert(case_key(spec.cases[i].params, search)).second) continue;
-            particle_steps += record_particle_steps(outcome.records[i]);
-            compute_seconds += outcome.records[i]["timing"]["wall_seconds"].get<double>();
-          }
-          if (omit) omit_machine_measurements(outcome);
-          write_reports(spec, outcome, out, follow_up_runner(options));
-          line = summary_line(spec, outcome, wall, out);
-        }
-        if (options.progress_line) std::cerr << "\r\033[K";
-        std::cerr << line << std::flush;
-        written.insert(spec.name);
-        it = waiting.erase(it);
-        again = true;
-      }
-    }
-  };
   const std::vector<SweepOutcome> rest =
-      run_sweeps(pointers, options, [&](std::size_t s, SweepOutcome& outcome) {
-        waiting.emplace(s, std::move(outcome));
-        publish_ready();
-      });
-  for (std::size_t s = 0; s < specs.size(); ++s) {
-    if (rest[s].interrupted) return interrupted(specs[s], rest[s], options);
+      run_sweeps(pointers, options,
+                 [&](std::size_t s, SweepOutcome& outcome) { publisher.complete(s, outcome); });
+  for (std::size_t s = 0; s < plan.specs.size(); ++s) {
+    if (rest[s].interrupted) return interrupted(plan.specs[s], rest[s], options);
   }
-  if (!waiting.empty()) {
+  if (!publisher.all_published()) {
     throw std::logic_error("reproduce: an experiment waits for an input that never came");
   }
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const Provenance when = current_provenance(options.jobs);
-  write_reproduce_timing(out,
-                         {{"experiments", specs.size()},
-                          {"cases", cases},
-                          {"computed", computed},
-                          {"particle_steps", particle_steps},
-                          {"compute_seconds", omit ? 0.0 : compute_seconds},
-                          {"commit", when.commit},
-                          {"cpu", when.cpu},
-                          {"threads", options.jobs},
-                          {"wall_seconds", omit ? 0.0 : wall}},
-                         computed > 0);
-  std::cerr << "[reproduce] " << specs.size() << " experiments in "
+  record_reproduce(publisher, plan.specs.size(), wall, out, options, omit);
+  std::cerr << "[reproduce] " << plan.specs.size() << " experiments in "
             << shortest(std::round(wall * 10) / 10) << " s -> " << out.string() << "\n";
   return 0;
 }
@@ -346,6 +399,8 @@ int cmd_sweep(const std::vector<std::string_view>& argv) {
   const auto out = output_folder(args);
   if (!spec.study->has_cases) return derive(spec, options, out);
   check_inputs(spec, out);
+  make_output_folder(out);
+  finish_publications_in(out);  // a report set a killed run left half published
   options.cache = out / "cache";
   remove_stale_temporaries(options.cache);  // of a sweep killed while storing a record
   options.progress_line = ::isatty(STDERR_FILENO) != 0;

@@ -10,10 +10,13 @@
 #include <algorithm>
 #include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <set>
+#include <sstream>
 
 namespace mpmstab {
 
@@ -60,6 +63,18 @@ fs::path temporary_beside(const fs::path& target) {
 }
 
 // A fresh temporary beside `target`, opened for writing; sets `tmp` to its path.
+// The folder a report set is published into is made when it is locked for the publication (the
+// commands make their --out folder once every argument and input was checked); no other write
+// makes a folder (a --history file in a folder that does not exist is refused).
+void make_folder_of(const fs::path& target) {
+  const fs::path parent = target.parent_path();
+  if (parent.empty()) return;
+  std::error_code ec;
+  fs::create_directories(parent, ec);
+  if (ec)
+    throw std::runtime_error("cannot create the folder " + parent.string() + ": " + ec.message());
+}
+
 int open_temporary(const fs::path& target, fs::path& tmp) {
   for (int attempt = 0; attempt < 8; ++attempt) {
     tmp = temporary_beside(target);
@@ -313,6 +328,7 @@ StagingFolder::~StagingFolder() {
 
 FolderLock::FolderLock(const fs::path& folder) {
   const fs::path file = folder / ".mpmstab.lock";
+  make_folder_of(file);
   fd_ = ::open(file.c_str(), O_RDWR | O_CREAT | O_NOFOLLOW | O_CLOEXEC | O_NONBLOCK, 0644);
   if (fd_ < 0) throw InputError(file, "cannot be opened as a lock file: " + errno_text());
   struct stat st {};
@@ -338,6 +354,17 @@ FolderLock::FolderLock(const fs::path& folder) {
 
 FolderLock::~FolderLock() {
   if (fd_ >= 0) ::close(fd_);  // closing releases the lock
+}
+
+// Fault injection for the tests of whole report sets (tests/test_report_sets.cpp): with
+// MPMSTAB_TEST_KILL_AFTER_RENAMES=n in the environment, the process kills itself (SIGKILL, as a
+// user or the kernel would) right after the n-th rename of a publication.
+static void kill_for_test_after_rename(std::size_t renamed) {
+  static const long after = [] {
+    const char* v = std::getenv("MPMSTAB_TEST_KILL_AFTER_RENAMES");
+    return v ? std::atol(v) : 0L;
+  }();
+  if (after > 0 && renamed == static_cast<std::size_t>(after)) ::kill(::getpid(), SIGKILL);
 }
 
 std::size_t remove_stale_temporaries(const fs::path& folder) {
@@ -378,6 +405,73 @@ void ReportBatch::add(const fs::path& path, std::string content) {
   files_.emplace_back(path, std::move(content));
 }
 
+namespace {
+
+constexpr std::string_view kJournalSuffix = ".journal";
+
+// A journal entry's temporary must be one temporary_beside made for its target, in the same
+// folder: a planted journal can move nothing else.
+bool journal_pair_ok(const std::string& temporary, const std::string& target) {
+  const auto plain = [](const std::string& n) {
+    return !n.empty() && n != "." && n != ".." && n.find('/') == std::string::npos;
+  };
+  return plain(temporary) && plain(target) && temporary.rfind("." + target + ".", 0) == 0 &&
+         temporary.ends_with(".tmp") && writer_pid(temporary) > 0;
+}
+
+// The journal of a publication into `folder`: one line "<temporary>\t<target>" per file, written
+// (flushed, renamed into place) before the first rename and removed after the last.
+fs::path write_journal(const fs::path& folder,
+                       const std::vector<std::pair<fs::path, fs::path>>& renames) {
+  std::string text;
+  for (const auto& [temporary, target] : renames)
+    text += temporary.filename().string() + "\t" + target.filename().string() + "\n";
+  std::string name(".publish.");
+  name += std::to_string(static_cast<long>(::getpid()));
+  name += '.';
+  name += random_hex();
+  name += kJournalSuffix;
+  const fs::path journal = folder / name;
+  rename_over(write_temporary(journal, text), journal);
+  return journal;
+}
+
+}  // namespace
+
+std::size_t finish_interrupted_publications(const fs::path& folder) {
+  std::size_t finished = 0;
+  std::error_code ec;
+  std::vector<fs::path> journals;
+  for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.rfind(".publish.", 0) == 0 && name.ends_with(kJournalSuffix) && it->is_regular_file())
+      journals.push_back(it->path());
+  }
+  for (const auto& journal : journals) {
+    std::istringstream lines(read_if_present(journal).value_or(""));
+    for (std::string line; std::getline(lines, line);) {
+      const auto tab = line.find('\t');
+      if (tab == std::string::npos) continue;
+      const std::string temporary = line.substr(0, tab), target = line.substr(tab + 1);
+      if (!journal_pair_ok(temporary, target)) continue;
+      const fs::path from = folder / temporary, to = folder / target;
+      if (!fs::is_regular_file(fs::symlink_status(from, ec))) continue;  // renamed already
+      require_regular_or_absent(to);
+      rename_over(from, to);
+      ++finished;
+    }
+    fs::remove(journal, ec);
+  }
+  return finished;
+}
+
+std::size_t finish_publications_in(const fs::path& folder) {
+  std::error_code ec;
+  if (!fs::is_directory(folder, ec)) return 0;
+  FolderLock lock(folder);
+  return finish_interrupted_publications(folder);
+}
+
 std::size_t ReportBatch::publish() {
   t_active = nullptr;
   std::set<fs::path> folders;
@@ -386,6 +480,7 @@ std::size_t ReportBatch::publish() {
   std::vector<std::unique_ptr<FolderLock>> locks;  // in sorted order: no two publishers deadlock
   for (const auto& folder : folders) {
     locks.push_back(std::make_unique<FolderLock>(folder));
+    finish_interrupted_publications(folder);
     remove_stale_temporaries(folder);
   }
   // 1. Every target must be writable over and is compared before anything is written.
@@ -405,15 +500,32 @@ std::size_t ReportBatch::publish() {
       ::unlink(t.c_str());
     throw;
   }
+  // 3. A journal in each folder names every rename to come, so that a publication killed between
+  // two renames is finished by the next process to lock the folder (never left half old, half
+  // new); then the renames; then the journals go.
+  std::map<fs::path, std::vector<std::pair<fs::path, fs::path>>> by_folder;
+  for (std::size_t k = 0; k < changed.size(); ++k)
+    by_folder[files_[changed[k]].first.parent_path()].emplace_back(temporaries[k],
+                                                                   files_[changed[k]].first);
+  std::vector<fs::path> journals;
+  if (changed.size() > 1) {
+    for (const auto& [folder, renames] : by_folder)
+      journals.push_back(write_journal(folder, renames));
+  }
   for (std::size_t k = 0; k < changed.size(); ++k) {
     try {
       rename_over(temporaries[k], files_[changed[k]].first);
     } catch (...) {
       for (std::size_t j = k + 1; j < temporaries.size(); ++j)
         ::unlink(temporaries[j].c_str());
+      for (const auto& journal : journals)
+        ::unlink(journal.c_str());
       throw;
     }
+    kill_for_test_after_rename(k + 1);
   }
+  for (const auto& journal : journals)
+    ::unlink(journal.c_str());
   files_.clear();
   return changed.size();
 }

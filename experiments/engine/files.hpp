@@ -8,8 +8,10 @@
 // or the new one, never a part, and nothing outside the target's folder is ever written.
 //
 // A report set is whole or absent: while a ReportBatch is open, write_if_changed only collects
-// the files; ReportBatch::publish() then writes every temporary and renames them one after the
-// other under an exclusive lock on the folder, so two sweeps never interleave their files.
+// the files; ReportBatch::publish() then writes every temporary, a journal naming the renames,
+// and renames them one after the other under an exclusive lock on the folder, so two sweeps
+// never interleave their files; a publication killed between two renames is finished from its
+// journal by the next process that locks the folder.
 #pragma once
 
 #include <cstdint>
@@ -116,6 +118,14 @@ class FolderLock {
  private:
   int fd_ = -1;
 };
+
+// Finishes the publications into `folder` that a killed process left between two renames: each
+// journal's remaining renames are done and the journal removed, so that every report set there
+// is whole again (new). Called under the folder's lock by every publication and by the commands
+// that read reports before they read them. Returns how many files it renamed.
+std::size_t finish_interrupted_publications(const std::filesystem::path& folder);
+// The same under the folder's lock, where the folder exists (for a command about to read it).
+std::size_t finish_publications_in(const std::filesystem::path& folder);
 
 // Removes the temporaries and staging folders in `folder` left by a process that no longer runs
 // (killed while writing). Returns how many it removed.

@@ -324,6 +324,10 @@ void write_experiment_times(std::ostream& md, const std::vector<Spec>& specs, co
 }  // namespace
 
 void write_performance(const std::vector<Spec>& specs, const fs::path& bench, const fs::path& out) {
+  // The machine's timings of the runs in `out`, published as <out>/timings.json.
+  if (const auto measured = read_if_present(machine_timings(out))) {
+    write_if_changed(out / "timings.json", *measured);
+  }
   std::ostringstream md;
   md << "# Performance\n\nWhat a result costs: the step kernel measured with Google Benchmark "
         "(`make bench`, `tests/bench_step.cpp`), what each measured quantity adds to it, and the "

@@ -9,8 +9,9 @@
 
 namespace mpmstab {
 
-// `bench` is Google Benchmark's JSON output of tests/bench_step.cpp (may be missing: the
-// report then says so); the experiments' timing is read from <out>/<name>.json.
+// <out>/performance.md, and <out>/timings.json published from the machine's timings
+// (machine_timings(out), report.hpp) when there are any. `bench` is Google Benchmark's JSON
+// output of tests/bench_step.cpp (may be missing: the report then says so).
 void write_performance(const std::vector<Spec>& specs, const std::filesystem::path& bench,
                        const std::filesystem::path& out);
 

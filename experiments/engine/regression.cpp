@@ -4,6 +4,7 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <sstream>
 
 #include "compare.hpp"
@@ -277,12 +278,64 @@ int run_check(const std::vector<Spec>& specs, const RegressionOptions& o) {
 
 namespace {
 
+// What a bless changed in one blessed table: the rows of a table blessed for the first time, or
+// how many differences of each kind it had with the blessed values it replaces.
+struct TableChange {
+  std::string name;                            // the table's name: spec, verdicts or claims
+  std::optional<std::size_t> first_rows;       // set when the table had no blessed values
+  std::map<MismatchKind, std::size_t> counts;  // otherwise: differences per kind
+};
+
+// How the log names each kind of difference, in the order it lists them: a row the blessed table
+// lacked is added, a blessed row the new values lack is removed.
+struct KindLabel {
+  MismatchKind kind;
+  const char* one;
+  const char* many;
+};
+const std::vector<KindLabel> kKindLabels = {
+    {MismatchKind::extra_row, "row added", "rows added"},
+    {MismatchKind::missing_row, "row removed", "rows removed"},
+    {MismatchKind::value, "value changed", "values changed"},
+    {MismatchKind::verdict, "verdict changed", "verdicts changed"},
+    {MismatchKind::missing_value, "value appeared or disappeared",
+     "values appeared or disappeared"},
+    {MismatchKind::duplicate_row, "duplicate row", "duplicate rows"}};
+
+std::string counted(std::size_t n, const char* one, const char* many) {
+  return std::to_string(n) + " " + (n == 1 ? one : many);
+}
+
+// One table's line of the log entry, e.g. "1 row added, 1 row removed, 3 values changed".
+std::string summary(const TableChange& c) {
+  if (c.first_rows) {
+    return counted(*c.first_rows, "row", "rows") + " blessed for the first time";
+  }
+  std::string s;
+  for (const auto& l : kKindLabels) {
+    const auto it = c.counts.find(l.kind);
+    if (it != c.counts.end()) s += (s.empty() ? "" : ", ") + counted(it->second, l.one, l.many);
+  }
+  return s;
+}
+
+// The changes of a bless: one per difference, one per table blessed for the first time.
+std::size_t change_count(const std::vector<TableChange>& changes) {
+  std::size_t n = 0;
+  for (const auto& c : changes) {
+    n += c.first_rows ? 1 : 0;
+    for (const auto& [kind, count] : c.counts)
+      n += count;
+  }
+  return n;
+}
+
 // Rewrites a blessed table where it differs from `obtained`, keeping the old text of every value
-// that still agrees; appends one line per change to `changes`.
+// that still agrees; appends what changed to `changes`.
 void bless_table(const std::string& name, const fs::path& file, Table obtained,
                  const std::vector<std::string>& keys, const std::vector<ColumnRule>& rules,
                  const std::vector<std::string>& columns, const std::string& comment,
-                 std::vector<std::string>& changes) {
+                 std::vector<TableChange>& changes) {
   if (fs::exists(file)) {
     const Table old = keys == kKeyColumns ? blessed_table(file) : table_from_csv(file);
     const auto diffs = compare_tables(old, obtained, keys, rules);
@@ -308,17 +361,18 @@ void bless_table(const std::string& name, const fs::path& file, Table obtained,
         }
       }
     }
+    TableChange change{.name = name, .first_rows = std::nullopt, .counts = {}};
     for (const auto& m : diffs)
-      changes.push_back(name + ": " + describe(m));
+      ++change.counts[m.kind];
+    changes.push_back(std::move(change));
   } else {
-    changes.push_back(name + ": " + std::to_string(obtained.rows.size()) +
-                      " rows blessed for the first time");
+    changes.push_back({.name = name, .first_rows = obtained.rows.size(), .counts = {}});
   }
   write_if_changed(file, to_csv(obtained, columns, comment));
 }
 
 void bless_file(const BlessedOutput& b, const fs::path& current, const fs::path& blessed,
-                std::vector<std::string>& changes) {
+                std::vector<TableChange>& changes) {
   if (!fs::exists(current)) {
     std::cerr << "bless: " << current.string() << " is missing: run make reproduce to bless the "
               << b.what << " too\n";
@@ -333,29 +387,33 @@ void bless_file(const BlessedOutput& b, const fs::path& current, const fs::path&
 }
 
 void bless_output(const Spec& spec, const BlessedOutput& b, const RegressionOptions& o,
-                  std::vector<std::string>& changes) {
+                  std::vector<TableChange>& changes) {
   bless_file(b, o.results / b.file, blessed_output_file(spec, o), changes);
 }
 
-// Appends the blessing to BLESSED.md: when, at which commit, why, and the cells changed.
-void log_blessing(const std::vector<std::string>& changes, const RegressionOptions& o,
+// Appends the blessing to BLESSED.md: when, at which commit, why, and how many rows and values of
+// each blessed table changed. The values themselves are in the history of the committed tables.
+void log_blessing(const std::vector<TableChange>& changes, const RegressionOptions& o,
                   const std::string& reason) {
   const Provenance prov = current_provenance(o.jobs);
   std::ostringstream entry;
   entry << "\n## " << prov.date << ", commit " << prov.commit.substr(0, 12)
         << (prov.dirty ? " with uncommitted changes" : "") << "\n\nReason: " << reason
-        << "\n\nCells changed (" << changes.size() << "):\n\n";
+        << "\n\nChanges per blessed table:\n\n";
   for (const auto& c : changes)
-    entry << "- " << c << "\n";
+    entry << "- " << c.name << ": " << summary(c) << "\n";
   const fs::path log = o.reference / "BLESSED.md";
   std::string text = read_if_present(log).value_or("");
   if (text.empty()) {
     text =
         "# Blessed regression values\n\nEvery change of `reference/regression/` by `make "
-        "bless`: when, at which commit, why, and which cells changed.\n";
+        "bless`: when, at which commit, why, and how many rows and values of each blessed table "
+        "changed. The changed values themselves are not listed here: the blessed tables beside "
+        "this file are committed, so `git log -p reference/regression/` shows them.\n";
   }
   write_if_changed(log, text + entry.str());
-  std::cout << "bless: " << changes.size() << " changes recorded in " << log.string() << "\n";
+  std::cout << "bless: " << change_count(changes) << " changes recorded in " << log.string()
+            << "\n";
 }
 
 }  // namespace
@@ -365,7 +423,7 @@ int run_bless(const std::vector<Spec>& specs, const RegressionOptions& o,
   fs::create_directories(o.reference);
   // The blessed tables and the log entry are published together, or none of them.
   ReportBatch batch;
-  std::vector<std::string> changes;
+  std::vector<TableChange> changes;
   for (const auto& spec : specs) {
     if (spec.study->has_cases) {
       bless_table(spec.name, o.reference / (spec.name + ".csv"),

@@ -32,7 +32,8 @@ double budget_of(const Spec& spec, const RegressionOptions& o);
 int run_check(const std::vector<Spec>& specs, const RegressionOptions& options);
 
 // Rewrites the blessed values that changed (and the verdict expectations) and appends the date,
-// the commit, the reason and the cells changed to BLESSED.md. `reason` must not be empty.
+// the commit, the reason and, per blessed table, how many rows and values changed to BLESSED.md
+// (the values themselves are in the history of the committed tables). `reason` must not be empty.
 int run_bless(const std::vector<Spec>& specs, const RegressionOptions& options,
               const std::string& reason);
 

@@ -229,11 +229,12 @@ void store_timing(const fs::path& path, ojson all, const std::string& name, ojso
   write_if_changed(path, doc.dump(1) + "\n");
 }
 
-// results/timings.json: the one file of machine measurements, an entry per experiment, updated
-// in place for the experiment just swept (experiments in name order).
+// The machine's measurements, an entry per experiment, updated in place for the experiment just
+// swept (experiments in name order), in the ignored cache folder: a clock that moved changes no
+// file people browse (`mpmstab performance` publishes them, report.hpp).
 void write_timings(const Spec& spec, const SweepOutcome& outcome, const ojson& when,
                    const fs::path& out) {
-  const fs::path path = out / "timings.json";
+  const fs::path path = machine_timings(out);
   ojson all = read_timings(path);
   const ojson previous = all.contains(spec.name) ? all[spec.name] : ojson::object();
   ojson entry = sweep_timing(spec, outcome, when, previous);
@@ -242,8 +243,12 @@ void write_timings(const Spec& spec, const SweepOutcome& outcome, const ojson& w
 
 }  // namespace
 
+fs::path machine_timings(const fs::path& out) {
+  return out / "cache" / "timings.json";
+}
+
 void write_reproduce_timing(const fs::path& out, const ojson& entry, bool computed) {
-  const fs::path path = out / "timings.json";
+  const fs::path path = machine_timings(out);
   ojson all = read_timings(path);
   if (!computed && all.contains(kReproduceTiming)) return;  // keep the run that computed
   store_timing(path, std::move(all), kReproduceTiming, entry);

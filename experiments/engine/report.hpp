@@ -38,7 +38,14 @@ nlohmann::ordered_json parse_results(std::string_view text, const std::filesyste
 // folder if it exists). Throws InputError (exit status 2) naming the first defect.
 void check_inputs(const Spec& spec, const std::filesystem::path& out);
 
-// The entry of <out>/timings.json for the last `mpmstab reproduce` (its wall time, threads,
+// The machine's measurements of the sweeps into `out` (wall times, ns per particle-step, commit,
+// CPU, date, threads): <out>/cache/timings.json, in the cache folder, which is not committed.
+// Every other file a sweep writes is the same on any machine; <out>/timings.json, the committed
+// copy that performance.md summarises, changes only when `mpmstab performance` (make timings)
+// publishes this one.
+std::filesystem::path machine_timings(const std::filesystem::path& out);
+
+// The entry of the machine's timings for the last `mpmstab reproduce` (its wall time, threads,
 // cases, particle-steps): replaced by a run that computed cases, kept by one served entirely
 // from the cache.
 inline constexpr const char* kReproduceTiming = "(reproduce)";

@@ -17,6 +17,7 @@
 
 #include "cache.hpp"
 #include "csv.hpp"
+#include "progress.hpp"
 #include "provenance.hpp"
 #include "result_json.hpp"
 #include "run/edge.hpp"
@@ -31,6 +32,10 @@ using Clock = std::chrono::steady_clock;
 // Work of a case, for scheduling and the time estimate: particle-steps.
 // An edge search costs about as much as 40 runs at the speed-of-sound step h / c.
 }  // namespace
+
+bool position_update_is_moot(const RunParams& p) {
+  return p.transfer == Transfer::pic || p.transfer == Transfer::apic;
+}
 
 double case_cost(const RunParams& p, CaseWork work) {
   const double h_over_c = (1.0 / p.cells) / std::sqrt(p.E);
@@ -71,42 +76,28 @@ RunResult run_at_smallest_probe(const RunParams& p, const EdgeResult& e) {
 
 // Progress of one sweep or of several in one queue. On a terminal, one line redrawn as cases
 // finish and every second; off a terminal, a line per case for one sweep, or for several a line
-// every kPeriodicSeconds. The line: cases done of all, particle-steps done of the estimated
-// total (the estimate of each case replaced by its measured work as it finishes), elapsed time
-// and the time to go at the rate measured so far.
+// every kPeriodicSeconds. The line is ProgressCounter's (progress.hpp).
 class Progress {
  public:
   static constexpr double kPeriodicSeconds = 10;
 
   Progress(std::string label, std::size_t runs, double total_cost, bool line, bool per_case)
-      : label_(std::move(label)),
-        total_(runs),
-        line_(line),
-        per_case_(per_case),
-        total_cost_(total_cost) {}
+      : label_(std::move(label)), line_(line), per_case_(per_case), counter_(runs, total_cost) {}
 
   void done(const Spec& spec, const RunParams& p, const nlohmann::ordered_json& rec,
             bool from_cache, double cost) {
     std::lock_guard lock(mutex_);
-    ++done_;
     const auto& result = rec["result"];
-    if (result["outcome"] == "unstable") ++unstable_;
-    if (from_cache) {
-      total_cost_ -= cost;  // cached cases take no time: leave them out of the estimate
-    } else {
-      done_cost_ += cost;
-      const double work = record_particle_steps(rec);
-      done_work_ += work;
-      estimated_work_ += work - cost;
-    }
+    const bool unstable = result["outcome"] == "unstable";
+    counter_.finished(from_cache, cost, from_cache ? 0.0 : record_particle_steps(rec), unstable);
     if (line_) {
       draw('\r');
     } else if (per_case_) {
-      std::string verdict = result["outcome"] == "unstable"
+      std::string verdict = unstable
                                 ? "unstable (" + result["failure_reason"].get<std::string>() + ")"
                                 : result["outcome"].get<std::string>();
-      std::fprintf(stderr, "[%s] %zu/%zu %s: %s%s\n", spec.name.c_str(), done_, total_,
-                   describe_case(p, case_search(spec)).c_str(), verdict.c_str(),
+      std::fprintf(stderr, "[%s] %zu/%zu %s: %s%s\n", spec.name.c_str(), counter_.done(),
+                   counter_.runs(), describe_case(p, case_search(spec)).c_str(), verdict.c_str(),
                    from_cache ? " [cached]" : "");
     }
     std::fflush(stderr);
@@ -116,7 +107,7 @@ class Progress {
   // has passed.
   void tick() {
     std::lock_guard lock(mutex_);
-    if (done_ == total_) return;
+    if (counter_.done() == counter_.runs()) return;
     if (line_) {
       draw('\r');
     } else if (!per_case_ && elapsed() >= last_print_ + kPeriodicSeconds) {
@@ -136,28 +127,14 @@ class Progress {
   double elapsed() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
 
   void draw(char end) const {
-    const double t = elapsed();
-    const double rate = done_cost_ > 0 ? done_cost_ / t : 0;
-    char left[48] = "estimating";
-    if (done_ == total_) {
-      std::snprintf(left, sizeof left, "done");
-    } else if (rate > 0) {
-      std::snprintf(left, sizeof left, "~%.0f s to go", (total_cost_ - done_cost_) / rate);
-    }
-    const double work_total = total_cost_ + estimated_work_;
-    std::fprintf(stderr,
-                 "%s[%s] %zu/%zu cases, %zu unstable, %.2g of ~%.2g particle-steps, %.0f s "
-                 "elapsed, %s   %s",
-                 end == '\r' ? "\r" : "", label_.c_str(), done_, total_, unstable_, done_work_,
-                 work_total, t, left, end == '\n' ? "\n" : "");
+    std::fprintf(stderr, "%s%s   %s", end == '\r' ? "\r" : "",
+                 counter_.text(label_, elapsed()).c_str(), end == '\n' ? "\n" : "");
   }
 
   std::mutex mutex_;
   std::string label_;
-  std::size_t total_, done_ = 0, unstable_ = 0;
   bool line_, per_case_;
-  double total_cost_, done_cost_ = 0;
-  double done_work_ = 0, estimated_work_ = 0;  // measured work, and its excess over the estimate
+  ProgressCounter counter_;
   double last_print_ = 0;
   Clock::time_point start_ = Clock::now();
 };
@@ -305,9 +282,10 @@ nlohmann::ordered_json compute_case(const RunParams& p, const Study& study,
 }
 
 // Cases that differ only in eq. (108)'s options share their trajectory when the policy does not
-// read eq. (108): one run observes the bound under every option and gives each case its record,
-// the same as its own run would (the same state, the same functions; only the timing differs).
-// Edge searches and histories (whose rows carry the bound of one option) run alone.
+// read eq. (108), and so do PIC and APIC cases that differ only in the position update
+// (position_update_is_moot): one run observes the bound under every option and gives each case its
+// record, the same as its own run would (the same state, the same functions; only the timing
+// differs). Edge searches and histories (whose rows carry the bound of one option) run alone.
 bool shares_trajectory(const RunParams& p, const std::string& search) {
   const TimeStepPolicy policy = p.stepping.policy;
   return search.empty() && !p.observe.history && policy != TimeStepPolicy::adaptive &&
@@ -317,6 +295,7 @@ bool shares_trajectory(const RunParams& p, const std::string& search) {
 std::string trajectory_key(const RunParams& p) {
   RunParams q = p;
   q.stable = StableDtOptions{};
+  if (position_update_is_moot(p)) q.position_update = PositionUpdate::grid;
   return case_key(q, "trajectory");
 }
 

@@ -80,6 +80,12 @@ double record_particle_steps(const nlohmann::ordered_json& record);
 // searches), for scheduling, progress and the fast subset of make check.
 double case_cost(const RunParams& p, CaseWork work);
 
+// Whether p's position update cannot change its run: PIC and APIC set the particle's velocity
+// to sum_i S_ip v_i, the very value the grid update adds, so x_p += dt v_p (particle) and
+// x_p += dt sum_i S_ip v_i (grid) are one operation on the same operands (transfers.cpp,
+// transfer_particle; docs/design.md, "Work done once"). Such cases share one run.
+bool position_update_is_moot(const RunParams& p);
+
 // Several specs' cases in one queue (make reproduce): every case not in the cache, over every
 // spec, runs once (a case repeated within or across specs shares one record), longest first on
 // options.jobs threads, so that no thread idles while another finishes a long case. As each

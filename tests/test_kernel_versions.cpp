@@ -1,0 +1,71 @@
+// The reproducibility guarantee across the kernels' instruction-set versions (docs/design.md,
+// "What is reproducible"): the same cases give the same records, byte for byte, on every
+// version of the kernels this machine can run. The suite runs the kernels the build's dispatch
+// picks for this CPU (AVX-512 where the CPU has it, else AVX2, else the portable one);
+// kernels_portable and kernels_avx2 are the same sources built without the versions above them.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <cerrno>
+#include <string>
+
+#include "kernel_versions.hpp"
+
+namespace mpmstab {
+namespace {
+
+// The standard output of `program` (no arguments, no shell).
+std::string output_of(const char* program) {
+  int fd[2];
+  if (pipe(fd) != 0) return "pipe failed";
+  const pid_t pid = fork();
+  if (pid == 0) {
+    close(fd[0]);
+    dup2(fd[1], STDOUT_FILENO);
+    close(fd[1]);
+    execl(program, program, static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  close(fd[1]);
+  std::string out;
+  std::array<char, 65536> buffer;
+  for (ssize_t n; (n = read(fd[0], buffer.data(), buffer.size())) != 0;) {
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      break;
+    }
+    out.append(buffer.data(), static_cast<std::size_t>(n));
+  }
+  close(fd[0]);
+  int raw = 0;
+  while (waitpid(pid, &raw, 0) < 0 && errno == EINTR) {
+  }
+  return out;
+}
+
+std::string dispatched_version() {
+  if (__builtin_cpu_supports("x86-64-v4")) return "AVX-512";
+  if (__builtin_cpu_supports("x86-64-v3")) return "AVX2";
+  return "portable";
+}
+
+TEST(KernelVersions, EveryVersionThisMachineRunsGivesTheSameRecordsBitForBit) {
+  const std::string here = kernel_versions::all_records();
+  ASSERT_GT(here.size(), 10000u);
+  const std::string portable = output_of(MPMSTAB_KERNELS_PORTABLE_BIN);
+  EXPECT_TRUE(here == portable) << "the portable kernels differ from the " << dispatched_version()
+                                << " ones";
+  const std::string avx2_bin = MPMSTAB_KERNELS_AVX2_BIN;
+  if (!avx2_bin.empty() && __builtin_cpu_supports("x86-64-v3")) {
+    EXPECT_TRUE(here == output_of(avx2_bin.c_str()))
+        << "the AVX2 kernels differ from the " << dispatched_version() << " ones";
+  }
+  std::cout << "compared: " << dispatched_version() << " (the build's dispatch) with portable"
+            << (avx2_bin.empty() ? "" : " and AVX2") << "; "
+            << (__builtin_cpu_supports("x86-64-v4") ? "" : "this CPU has no AVX-512\n");
+}
+
+}  // namespace
+}  // namespace mpmstab
