@@ -140,6 +140,23 @@ std::string over_A(const ojson& row, const char* key, double A) {
   return it != row.end() && it->is_number() ? sci(it->get<double>() / A, 6) : "";
 }
 
+// A peer row's error beside ours: our `column` in the peer's length unit (its cell: this grid's
+// h), and the peer's final largest particle error in `problem` with the row's basis (linear for
+// mpm, the peer's GIMP for cpgimp).
+std::pair<std::optional<double>, std::optional<double>> beside_peer(const ojson& r,
+                                                                    const char* column,
+                                                                    const CsvTable& peer,
+                                                                    const std::string& problem) {
+  const std::string basis = str(r, "method") == "mpm" ? "linear" : "GIMP";
+  std::optional<double> theirs;
+  for (const auto& row : peer.rows)
+    if (row.at("problem") == problem && row.at("basis") == basis &&
+        row.at("quantity") == "final_max_abs_displacement_error")
+      theirs = std::stod(row.at("peer_value"));
+  const auto ours = opt(r, column);
+  return {ours ? std::optional(*ours * num(r, "cells")) : std::nullopt, theirs};
+}
+
 std::string scenes_data(const std::vector<ojson>& rows, const SweepOutcome& out,
                         const std::map<std::string, Reference>& ref, const std::string& header) {
   const auto scenes = scenes_in_order(rows);
@@ -283,16 +300,7 @@ StudyReport scenes_report(const ReportContext& ctx) {
   int peer_compared = 0, peer_agree = 0;
   for (const auto& r : rows) {
     if (part_of(r, ref) != Part::peer || str(r, "scene") != "impulsive") continue;
-    const std::string basis = str(r, "method") == "mpm" ? "linear" : "GIMP";
-    std::optional<double> theirs;
-    for (const auto& row : peer.rows)
-      if (row.at("problem") == "impulsiveBar" && row.at("basis") == basis &&
-          row.at("quantity") == "final_max_abs_displacement_error")
-        theirs = std::stod(row.at("peer_value"));
-    // The peer's unit of length is its cell: this grid's h.
-    const auto ours = opt(r, "max_error");
-    const std::optional<double> in_cells =
-        ours ? std::optional(*ours * num(r, "cells")) : std::nullopt;
+    const auto [in_cells, theirs] = beside_peer(r, "max_error", peer, "impulsiveBar");
     const bool agree =
         survived(r) && theirs && in_cells && std::abs(*in_cells / *theirs - 1) <= kPeerTolerance;
     ++peer_compared;
@@ -317,15 +325,7 @@ StudyReport scenes_report(const ReportContext& ctx) {
   int rigid_compared = 0, rigid_agree = 0;
   for (const auto& r : rows) {
     if (part_of(r, ref) != Part::peer || str(r, "scene") != "block") continue;
-    const std::string basis = str(r, "method") == "mpm" ? "linear" : "GIMP";
-    std::optional<double> theirs;
-    for (const auto& row : peer.rows)
-      if (row.at("problem") == "advectBlock" && row.at("basis") == basis &&
-          row.at("quantity") == "final_max_abs_displacement_error")
-        theirs = std::stod(row.at("peer_value"));
-    const auto ours = opt(r, "max_error_over_time");
-    const std::optional<double> in_cells =
-        ours ? std::optional(*ours * num(r, "cells")) : std::nullopt;
+    const auto [in_cells, theirs] = beside_peer(r, "max_error_over_time", peer, "advectBlock");
     const bool agree =
         survived(r) && theirs && in_cells && *in_cells < kRoundOffCells && *theirs < kRoundOffCells;
     ++rigid_compared;
