@@ -275,7 +275,9 @@ cached_keys() {
   local d
   for d in "$@"; do
     if [[ -d $d/cache ]]; then
-      find "$d/cache" -maxdepth 1 -name '*.json' -printf '%f\n'
+      # the records, <16 hex digits of the key>.json (not the machine's timings.json)
+      find "$d/cache" -maxdepth 1 -regextype posix-extended -regex '.*/[0-9a-f]{16}\.json' \
+        -printf '%f\n'
     fi
   done | sed 's/\.json$//' | sort
 }
