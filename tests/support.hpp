@@ -52,11 +52,9 @@ inline std::vector<std::string> words(const std::string& line) {
   return out;
 }
 
-// Runs build/mpmstab with the words of `args` (no shell) and collects all it prints on its
+// Runs `program` with `argv` (argv[0] first; no shell) and collects all it prints on its
 // standard output and error.
-inline CliOutcome run_mpmstab(const std::string& args) {
-  std::vector<std::string> argv = words(args);
-  argv.insert(argv.begin(), MPMSTAB_BIN);
+inline CliOutcome run_program(const char* program, std::vector<std::string> argv) {
   int fd[2];
   if (pipe(fd) != 0) return {-1, "pipe failed"};
   const pid_t pid = fork();
@@ -69,7 +67,7 @@ inline CliOutcome run_mpmstab(const std::string& args) {
     for (auto& a : argv)
       v.push_back(a.data());
     v.push_back(nullptr);
-    execv(MPMSTAB_BIN, v.data());
+    execv(program, v.data());
     _exit(127);
   }
   close(fd[1]);
@@ -87,6 +85,14 @@ inline CliOutcome run_mpmstab(const std::string& args) {
   while (waitpid(pid, &raw, 0) < 0 && errno == EINTR) {
   }
   return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, output};
+}
+
+// Runs build/mpmstab with the words of `args` (no shell) and collects all it prints on its
+// standard output and error.
+inline CliOutcome run_mpmstab(const std::string& args) {
+  std::vector<std::string> argv = words(args);
+  argv.insert(argv.begin(), MPMSTAB_BIN);
+  return run_program(MPMSTAB_BIN, std::move(argv));
 }
 
 // A GIMP case of the bar that runs in milliseconds: E = 4, A = 0.015, dt = 1e-3, T = 0.2 on

@@ -4,45 +4,18 @@
 // picks for this CPU (AVX-512 where the CPU has it, else AVX2, else the portable one);
 // kernels_portable and kernels_avx2 are the same sources built without the versions above them.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
-#include <array>
-#include <cerrno>
 #include <string>
 
 #include "kernel_versions.hpp"
+#include "support.hpp"
 
 namespace mpmstab {
 namespace {
 
-// The standard output of `program` (no arguments, no shell).
+// What `program` prints (no arguments, no shell; it writes nothing on its standard error).
 std::string output_of(const char* program) {
-  int fd[2];
-  if (pipe(fd) != 0) return "pipe failed";
-  const pid_t pid = fork();
-  if (pid == 0) {
-    close(fd[0]);
-    dup2(fd[1], STDOUT_FILENO);
-    close(fd[1]);
-    execl(program, program, static_cast<char*>(nullptr));
-    _exit(127);
-  }
-  close(fd[1]);
-  std::string out;
-  std::array<char, 65536> buffer;
-  for (ssize_t n; (n = read(fd[0], buffer.data(), buffer.size())) != 0;) {
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      break;
-    }
-    out.append(buffer.data(), static_cast<std::size_t>(n));
-  }
-  close(fd[0]);
-  int raw = 0;
-  while (waitpid(pid, &raw, 0) < 0 && errno == EINTR) {
-  }
-  return out;
+  return test_support::run_program(program, {program}).output;
 }
 
 std::string dispatched_version() {
