@@ -94,6 +94,56 @@ TEST(DetectFailure, NanIsReportedBeforeOtherReasons) {
   EXPECT_EQ(detect_failure(P, Boundary::dirichlet)->reason, FailureReason::non_finite);
 }
 
+// The state's extremes, whichever version this CPU runs (AVX-512, AVX2 or the portable pass),
+// equal their definitions bit for bit: for every particle count from 1 to 21 (full vectors and
+// every tail), with and without the error terms, and a value that is not finite is seen in
+// every array and at every position.
+TEST(StateExtremes, EqualTheirDefinitionsForEveryCountAndTail) {
+  for (Eigen::Index n = 1; n <= 21; ++n) {
+    Particles P;
+    P.resize(n);
+    Eigen::ArrayXd X(n), u(n);
+    for (Eigen::Index p = 0; p < n; ++p) {
+      const double t = static_cast<double>(p);
+      P.x[p] = 0.5 + 0.4 * std::sin(1.3 * t + 0.2);
+      P.v[p] = std::cos(0.7 * t);
+      P.F[p] = 1.0 + 0.3 * std::sin(2.1 * t);
+      P.sigma[p] = -3.0 + 5.0 * std::cos(1.9 * t + 0.5);
+      X[p] = P.x[p] + 0.01 * std::sin(3.7 * t);
+      u[p] = 0.02 * std::cos(2.9 * t);
+    }
+    const ErrorTerms terms{X.data(), u.data(), 0.37};
+    for (const bool with_error : {false, true}) {
+      SCOPED_TRACE(testing::Message() << "n " << n << " error " << with_error);
+      const StateExtremes got = state_extremes(P, with_error ? &terms : nullptr);
+      EXPECT_TRUE(got.finite);
+      EXPECT_EQ(got.F_min, P.F.minCoeff());
+      EXPECT_EQ(got.F_max, P.F.maxCoeff());
+      EXPECT_EQ(got.F_abs_max, P.F.abs().maxCoeff());
+      EXPECT_EQ(got.sigma_abs_max, P.sigma.abs().maxCoeff());
+      EXPECT_EQ(got.sigmaF_abs_max, (P.sigma * P.F).abs().maxCoeff());
+      EXPECT_EQ(got.x_min, P.x.minCoeff());
+      EXPECT_EQ(got.x_max, P.x.maxCoeff());
+      double error = 0;
+      for (Eigen::Index p = 0; with_error && p < n; ++p)
+        error = std::max(error, std::abs((P.x[p] - X[p]) - u[p] * terms.factor));
+      EXPECT_EQ(got.error_max, error);
+    }
+    for (Eigen::Index p = 0; p < n; ++p) {
+      for (Eigen::ArrayXd* a : {&P.x, &P.v, &P.F, &P.sigma}) {
+        for (const double bad :
+             {std::numeric_limits<double>::quiet_NaN(), -std::numeric_limits<double>::infinity()}) {
+          const double kept = (*a)[p];
+          (*a)[p] = bad;
+          EXPECT_FALSE(state_extremes(P).finite) << "n " << n << " particle " << p;
+          EXPECT_FALSE(state_extremes(P, &terms).finite) << "n " << n << " particle " << p;
+          (*a)[p] = kept;
+        }
+      }
+    }
+  }
+}
+
 TEST(Run, FarAboveTheCflLimitIsUnstableWithAReason) {
   RunParams p;
   p.method = Method::gimp;

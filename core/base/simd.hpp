@@ -11,24 +11,33 @@
 // build's own target, no AVX-512) build the same kernels without the versions above them: the
 // reproducibility test (tests/test_kernel_versions.cpp) runs the same cases on every version
 // this machine can run and compares the results byte for byte.
+//
+// MPMSTAB_AVX2 marks the hand-written AVX2 versions (the state's extremes, failure.cpp), chosen
+// at run time on a CPU with AVX2 and without AVX-512.
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && \
     defined(MPMSTAB_KERNELS_PORTABLE)
 #define MPMSTAB_SIMD_CLONES
 #define MPMSTAB_AVX512 0
+#define MPMSTAB_AVX2 0
 #elif defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && \
     defined(MPMSTAB_KERNELS_AVX2)
 #include <immintrin.h>
 #define MPMSTAB_SIMD_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
 #define MPMSTAB_AVX512 0
+#define MPMSTAB_AVX2 1
+#define MPMSTAB_AVX2_TARGET __attribute__((target("arch=x86-64-v3")))
 #elif defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
 #include <immintrin.h>
 #define MPMSTAB_SIMD_CLONES \
   __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
 #define MPMSTAB_AVX512 1
 #define MPMSTAB_AVX512_TARGET __attribute__((target("arch=x86-64-v4")))
+#define MPMSTAB_AVX2 1
+#define MPMSTAB_AVX2_TARGET __attribute__((target("arch=x86-64-v3")))
 #else
 #define MPMSTAB_SIMD_CLONES
 #define MPMSTAB_AVX512 0
+#define MPMSTAB_AVX2 0
 #endif
 // A kernel's helper that must be inlined into each instruction set's version of its caller.
 #define MPMSTAB_INLINE __attribute__((always_inline)) inline
