@@ -33,6 +33,12 @@ namespace {
 // progress line belongs to the main queue.
 FollowUpRunner follow_up_runner(const SweepOptions& options) {
   return [options](const Spec& follow) {
+    // The runs a study asks for once its sweep is done are not in the queue's progress line:
+    // say that they run, so that the report's wait is not a silent one.
+    if (!options.quiet)
+      std::cerr << (options.progress_line ? "\r\033[K" : "") << "[" << follow.name << "] "
+                << follow.cases.size() << " follow-up run" << (follow.cases.size() == 1 ? "" : "s")
+                << " before the reports\n";
     SweepOptions o = options;
     o.quiet = true;
     o.progress_line = false;

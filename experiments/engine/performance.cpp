@@ -120,11 +120,9 @@ void write_kernel_table(std::ostream& md, const BenchFigures& b, const ojson& ct
   // The other bases (BM_StepNewBases: the four phases as BM_Step), against GIMP's BM_Step.
   std::ostringstream others;
   const double gimp = b.median("BM_Step", "gimp");
-  for (const auto& base : b.order) {
-    if (base == "BM_StepScheme") continue;  // below
-    for (const auto& [method, f] : b.fig.at(base)) {
-      if (method == "gimp" || method == "mpm") continue;
-      others << "| " << method << " | " << base << " | " << fixed(f.median, 2) << " ("
+  if (b.fig.count("BM_StepNewBases")) {
+    for (const auto& [method, f] : b.fig.at("BM_StepNewBases")) {
+      others << "| " << method << " | BM_StepNewBases | " << fixed(f.median, 2) << " ("
              << fixed(100 * f.cv, 1) << "%) | "
              << (gimp > 0 ? fixed(f.median / gimp, 2) + "x (target " + shortest(kOtherBasisTarget) +
                                 "x: " +
@@ -137,6 +135,20 @@ void write_kernel_table(std::ostream& md, const BenchFigures& b, const ojson& ct
     md << "\nThe other bases, the same four phases:\n\n"
           "| basis | benchmark | ns / particle-step | against GIMP's BM_Step |\n|---|---|---|---|\n"
        << others.str();
+  }
+  // A whole run with its observers (BM_RunObservers: run(), GIMP, 1000 steps), by observers.
+  if (b.fig.count("BM_RunObservers")) {
+    md << "\nA whole run of the bar (`run()`, GIMP, as BM_RunObservers runs it) with the observers "
+          "it is "
+          "asked for:\n\n| observers | ns / particle-step | against GIMP's BM_StepInstrumented |\n"
+          "|---|---|---|\n";
+    const double instrumented = b.median("BM_StepInstrumented", "gimp");
+    for (const auto& [observers, f] : b.fig.at("BM_RunObservers")) {
+      md << "| " << observers << " | " << fixed(f.median, 2) << " (" << fixed(100 * f.cv, 1)
+         << "%) | "
+         << (instrumented > 0 ? fixed(f.median / instrumented, 2) + "x" : std::string("–"))
+         << " |\n";
+    }
   }
   // GIMP under the other update orders and transfers (BM_StepScheme: the whole step of each),
   // by name.

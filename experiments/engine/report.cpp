@@ -470,6 +470,11 @@ std::vector<ojson> follow_up_rows(const Spec& spec, const std::vector<ojson>& ro
   for (const auto& p : params) {
     CaseSpec c;
     c.params = p;
+    // A follow-up is read for its verdict, its errors and how long it ran, never for the
+    // spectral limit of its layout: no dense analysis of it (Bloch's, where the layout is
+    // uniform, costs nothing and stays). The perturbed layouts of an edge's ensemble each took
+    // a dense analysis, one run after another: most of an empty-cache reproduce's wall time.
+    c.params.observe.spectral = false;
     if (const auto issues = validate(c.params); !issues.empty())
       throw std::logic_error(spec.name + ": a follow-up run is not valid: " + issues.front().key +
                              ": " + issues.front().message);
@@ -491,49 +496,92 @@ std::vector<ojson> follow_up_rows(const Spec& spec, const std::vector<ojson>& ro
 
 }  // namespace
 
-void write_reports(const Spec& spec, const SweepOutcome& outcome, const fs::path& out,
-                   const FollowUpRunner& runner) {
-  fs::create_directories(out);
-  ReportBatch batch;  // every file below is published together, or none of them
-  const std::vector<ojson> rows = flat_rows(spec, outcome);
+namespace {
+
+// What an experiment's report set is made from, read before anything is rendered or written.
+struct ReportSources {
+  std::vector<ojson> rows;        // the flat rows of the cases, in spec order
+  ojson prov;                     // what fixes the results: compiler, flags, Eigen
+  ojson when;                     // when, where and on how many threads they ran (the timings')
+  std::string header;             // the comment lines of every CSV of the set
+  std::vector<Spec> input_specs;  // the specs of those experiments: `inputs` points into them
+  StudyInputs inputs;             // the results of the experiments the study reads
+  std::vector<ojson> follow_up;   // the rows of the runs the study asks for after the sweep
+};
+
+// 1. Load: the rows, the provenance, the inputs' results and the follow-up runs.
+ReportSources load_sources(const Spec& spec, const SweepOutcome& outcome, const fs::path& out,
+                           const FollowUpRunner& runner) {
+  ReportSources src;
+  src.rows = flat_rows(spec, outcome);
   // When and with how many threads the cases ran go with the timings: the reports hold only
   // what fixes the results (the build and the machine).
-  ojson prov = aggregate_provenance(outcome.records);
-  ojson when;
+  src.prov = aggregate_provenance(outcome.records);
   for (const char* k : {"commit", "dirty", "cpu", "date", "threads"}) {
-    when[k] = prov[k];
-    prov.erase(k);
+    src.when[k] = src.prov[k];
+    src.prov.erase(k);
   }
-  const fs::path json_path = out / (spec.name + ".json");
-  write_timings(spec, outcome, when, out);
-  const std::string spec_path = spec.path.generic_string();
-  const std::string header = "# experiment: " + spec.name + " (" + spec_path +
-                             ")\n# title: " + spec.title + "\n" + provenance_lines(prov);
-  write_if_changed(out / (spec.name + ".csv"), rows_csv(rows, result_columns(spec), header));
+  src.header = "# experiment: " + spec.name + " (" + spec.path.generic_string() +
+               ")\n# title: " + spec.title + "\n" + provenance_lines(src.prov);
+  src.input_specs = load_inputs(spec);
+  src.inputs = read_inputs(*spec.study, input_roles(spec), src.input_specs, out);
+  src.follow_up = follow_up_rows(spec, src.rows, src.inputs, runner);
+  return src;
+}
 
-  // The study's part, from the rows and the results of its declared inputs.
-  const std::vector<Spec> input_specs = load_inputs(spec);
-  const StudyInputs inputs = read_inputs(*spec.study, input_roles(spec), input_specs, out);
-  const std::vector<ojson> follow_up = follow_up_rows(spec, rows, inputs, runner);
-  const StudyReport study =
-      spec.study->report(ReportContext{spec, rows, outcome, out, header, inputs, follow_up});
+// One file of the set and its whole text.
+struct ReportFile {
+  fs::path path;
+  std::string text;
+};
 
+// 2. Render: every file of the set as text, from the sources alone; nothing is written.
+std::vector<ReportFile> render_set(const Spec& spec, const SweepOutcome& outcome,
+                                   const fs::path& out, const ReportSources& src) {
+  const StudyReport study = spec.study->report(
+      ReportContext{spec, src.rows, outcome, out, src.header, src.inputs, src.follow_up});
   ojson doc;
   doc["experiment"] = spec.name;
   doc["title"] = spec.title;
-  doc["spec"] = spec_path;
+  doc["spec"] = spec.path.generic_string();
   doc["report"] = spec.study->name;
-  doc["provenance"] = prov;
-  doc["cases"] = rows;
+  doc["provenance"] = src.prov;
+  doc["cases"] = src.rows;
   if (!study.json.is_null()) doc["study"] = study.json;
   if (!study.claims.empty()) doc["claims"] = claims_json(study.claims);
-  write_if_changed(json_path, doc.dump(2) + "\n");
-  write_claims(out, spec.name, study.claims, header);
-  if (study.data_csv) write_if_changed(out / (spec.name + "_data.csv"), *study.data_csv);
-  write_if_changed(out / (spec.name + ".md"), report_head(spec, out) + coordinates_markdown(rows) +
+  std::vector<ReportFile> files;
+  files.push_back(
+      {out / (spec.name + ".csv"), rows_csv(src.rows, result_columns(spec), src.header)});
+  files.push_back({out / (spec.name + ".json"), doc.dump(2) + "\n"});
+  if (!study.claims.empty())
+    files.push_back({out / (spec.name + "_claims.csv"), claims_csv(study.claims, src.header)});
+  if (study.data_csv) files.push_back({out / (spec.name + "_data.csv"), *study.data_csv});
+  files.push_back({out / (spec.name + ".md"), report_head(spec, out) +
+                                                  coordinates_markdown(src.rows) +
                                                   claims_markdown(study.claims) + study.markdown +
-                                                  "\n" + provenance_markdown(prov));
+                                                  "\n" + provenance_markdown(src.prov)});
+  return files;
+}
+
+// 3. Commit: the machine's timings (in the ignored cache folder) and every file of the set, as
+// one publication (files.hpp): all of them or none.
+void commit_set(const Spec& spec, const SweepOutcome& outcome, const ojson& when,
+                const fs::path& out, const std::vector<ReportFile>& files) {
+  ReportBatch batch;
+  write_timings(spec, outcome, when, out);
+  for (const ReportFile& f : files)
+    write_if_changed(f.path, f.text);
   batch.publish();
+}
+
+}  // namespace
+
+void write_reports(const Spec& spec, const SweepOutcome& outcome, const fs::path& out,
+                   const FollowUpRunner& runner) {
+  fs::create_directories(out);
+  const ReportSources sources = load_sources(spec, outcome, out, runner);
+  const std::vector<ReportFile> files = render_set(spec, outcome, out, sources);
+  commit_set(spec, outcome, sources.when, out, files);
 }
 
 namespace {
