@@ -17,6 +17,20 @@
 
 namespace mpmstab {
 
+// One particle's values into running extremes, the arithmetic of a lane: the tail of every
+// vector pass (Extremes8 below, the AVX2 pass of failure.cpp). The error is the caller's.
+MPMSTAB_INLINE void add_particle(StateExtremes& e, double x, double v, double F, double s) {
+  if (!std::isfinite(x) || !std::isfinite(v) || !std::isfinite(F) || !std::isfinite(s)) {
+    e.finite = false;
+  }
+  e.F_min = std::min(e.F_min, F);
+  e.F_max = std::max(e.F_max, F);
+  e.sigma_abs_max = std::max(e.sigma_abs_max, std::abs(s));
+  e.sigmaF_abs_max = std::max(e.sigmaF_abs_max, std::abs(s * F));
+  e.x_min = std::min(e.x_min, x);
+  e.x_max = std::max(e.x_max, x);
+}
+
 #if MPMSTAB_AVX512
 namespace {
 
@@ -95,17 +109,10 @@ struct Extremes8 {
 
   // One particle p (the arithmetic of a lane).
   MPMSTAB_INLINE void add_one(std::size_t p, double x, double v, double F, double s) {
-    StateExtremes& e = tail;
-    if constexpr (with_error) e.error_max = std::max(e.error_max, std::abs((x - X[p]) - u[p] * f));
-    if (!std::isfinite(x) || !std::isfinite(v) || !std::isfinite(F) || !std::isfinite(s)) {
-      e.finite = false;
+    if constexpr (with_error) {
+      tail.error_max = std::max(tail.error_max, std::abs((x - X[p]) - u[p] * f));
     }
-    e.F_min = std::min(e.F_min, F);
-    e.F_max = std::max(e.F_max, F);
-    e.sigma_abs_max = std::max(e.sigma_abs_max, std::abs(s));
-    e.sigmaF_abs_max = std::max(e.sigmaF_abs_max, std::abs(s * F));
-    e.x_min = std::min(e.x_min, x);
-    e.x_max = std::max(e.x_max, x);
+    add_particle(tail, x, v, F, s);
   }
 
   MPMSTAB_AVX512_TARGET MPMSTAB_INLINE StateExtremes result() const {

@@ -72,7 +72,7 @@ MPMSTAB_AVX512_TARGET StateExtremes extremes_avx512(const Particles& P, const Er
 #if MPMSTAB_AVX2
 // The same pass, 4 particles at a time with AVX2, for a CPU without AVX-512: the lane-wise
 // operations of Extremes8 in the same operand order, finiteness as in the portable pass (v * 0
-// is NaN exactly when v is NaN or infinite), and the tail one particle at a time as Extremes8's.
+// is NaN exactly when v is NaN or infinite), and the tail one particle at a time (add_particle).
 // The portable pass reads the arrays once per quantity through Eigen's SSE reductions (about
 // 15% of a GIMP run on an AVX2 CPU); this reads them once.
 template <bool with_error>
@@ -125,21 +125,12 @@ MPMSTAB_AVX2_TARGET StateExtremes extremes_avx2(const Particles& P, const ErrorT
   e.error_max = with_error ? *std::max_element(lanes[6], lanes[6] + 4) : 0.0;
   for (int k = 0; k < 4; ++k)
     e.finite = e.finite && lanes[7][k] == 0.0;
-  for (; p < n; ++p) {  // the tail: Extremes8::add_one's arithmetic
+  for (; p < n; ++p) {  // the tail, as Extremes8's
     if constexpr (with_error) {
       e.error_max =
           std::max(e.error_max, std::abs((x[p] - error->X[p]) - error->u[p] * error->factor));
     }
-    if (!std::isfinite(x[p]) || !std::isfinite(v[p]) || !std::isfinite(F[p]) ||
-        !std::isfinite(s[p])) {
-      e.finite = false;
-    }
-    e.F_min = std::min(e.F_min, F[p]);
-    e.F_max = std::max(e.F_max, F[p]);
-    e.sigma_abs_max = std::max(e.sigma_abs_max, std::abs(s[p]));
-    e.sigmaF_abs_max = std::max(e.sigmaF_abs_max, std::abs(s[p] * F[p]));
-    e.x_min = std::min(e.x_min, x[p]);
-    e.x_max = std::max(e.x_max, x[p]);
+    add_particle(e, x[p], v[p], F[p], s[p]);
   }
   e.F_abs_max = std::max(std::abs(e.F_min), std::abs(e.F_max));
   return e;

@@ -120,10 +120,14 @@ std::string claims_csv(const std::vector<Claim>& claims, const std::string& head
   return csv.str();
 }
 
+std::string claims_file_name(const std::string& name) {
+  return name + "_claims.csv";
+}
+
 void write_claims(const std::filesystem::path& out, const std::string& name,
                   const std::vector<Claim>& claims, const std::string& header) {
   if (claims.empty()) return;
-  write_if_changed(out / (name + "_claims.csv"), claims_csv(claims, header));
+  write_if_changed(out / claims_file_name(name), claims_csv(claims, header));
 }
 
 const std::vector<std::string>& claim_name_tokens() {

@@ -46,6 +46,9 @@ std::string claims_markdown(const std::vector<Claim>& claims);
 nlohmann::ordered_json claims_json(const std::vector<Claim>& claims);
 // The claims table make check compares: claim,holds,statement (one row per claim).
 std::string claims_csv(const std::vector<Claim>& claims, const std::string& header);
+// The file of an experiment's claims, "<name>_claims.csv", in its results and, blessed, in the
+// reference folder.
+std::string claims_file_name(const std::string& name);
 // <out>/<name>_claims.csv when its content changed (inside the open report batch, if any);
 // nothing for a report without claims.
 void write_claims(const std::filesystem::path& out, const std::string& name,

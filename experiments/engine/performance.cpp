@@ -138,10 +138,10 @@ void write_kernel_table(std::ostream& md, const BenchFigures& b, const ojson& ct
   }
   // A whole run with its observers (BM_RunObservers: run(), GIMP, 1000 steps), by observers.
   if (b.fig.count("BM_RunObservers")) {
-    md << "\nA whole run of the bar (`run()`, GIMP, as BM_RunObservers runs it) with the observers "
-          "it is "
-          "asked for:\n\n| observers | ns / particle-step | against GIMP's BM_StepInstrumented |\n"
-          "|---|---|---|\n";
+    md << "\nA whole run of the bar (`run()`, GIMP, as BM_RunObservers runs it) with the "
+          "observers it is asked for:\n\n"
+          "| observers | ns / particle-step | against GIMP's BM_StepInstrumented "
+          "|\n|---|---|---|\n";
     const double instrumented = b.median("BM_StepInstrumented", "gimp");
     for (const auto& [observers, f] : b.fig.at("BM_RunObservers")) {
       md << "| " << observers << " | " << fixed(f.median, 2) << " (" << fixed(100 * f.cv, 1)

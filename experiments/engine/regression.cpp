@@ -7,6 +7,7 @@
 #include <optional>
 #include <sstream>
 
+#include "claims.hpp"
 #include "compare.hpp"
 #include "csv.hpp"
 #include "files.hpp"
@@ -215,13 +216,13 @@ int check_output(const Spec& spec, const BlessedOutput& b, const RegressionOptio
 // Every report's conclusions (claims.hpp): <results>/<name>_claims.csv, whose truth values are
 // blessed in <reference>/<name>_claims.csv. A report without claims has neither file.
 BlessedOutput claims_output(const Spec& spec) {
-  return {.file = spec.name + "_claims.csv",
+  return {.file = claims_file_name(spec.name),
           .key_columns = {"claim"},
           .value_columns = {"holds"},
           .what = spec.name + " claims"};
 }
 fs::path blessed_claims_file(const Spec& spec, const RegressionOptions& o) {
-  return o.reference / (spec.name + "_claims.csv");
+  return o.reference / claims_file_name(spec.name);
 }
 bool has_claims(const Spec& spec, const RegressionOptions& o) {
   return fs::exists(o.results / claims_output(spec).file) ||

@@ -10,6 +10,7 @@
 
 #include "base/version.hpp"
 #include "cache.hpp"
+#include "claims.hpp"
 #include "csv.hpp"
 #include "files.hpp"
 #include "report_util.hpp"
@@ -554,7 +555,7 @@ std::vector<ReportFile> render_set(const Spec& spec, const SweepOutcome& outcome
       {out / (spec.name + ".csv"), rows_csv(src.rows, result_columns(spec), src.header)});
   files.push_back({out / (spec.name + ".json"), doc.dump(2) + "\n"});
   if (!study.claims.empty())
-    files.push_back({out / (spec.name + "_claims.csv"), claims_csv(study.claims, src.header)});
+    files.push_back({out / claims_file_name(spec.name), claims_csv(study.claims, src.header)});
   if (study.data_csv) files.push_back({out / (spec.name + "_data.csv"), *study.data_csv});
   files.push_back({out / (spec.name + ".md"), report_head(spec, out) +
                                                   coordinates_markdown(src.rows) +
