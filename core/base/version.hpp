@@ -3,5 +3,5 @@
 #pragma once
 
 namespace mpmstab {
-inline constexpr const char* kSolverVersion = "4";
+inline constexpr const char* kSolverVersion = "5";
 }  // namespace mpmstab

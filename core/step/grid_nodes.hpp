@@ -96,6 +96,17 @@ void on_free_nodes(Grid& G, Update&& update) {
   });
 }
 
+// The storage slot of the node next to the node in slot `s`, on its left (d = -1) or right
+// (d = +1): on a periodic grid nodes N - 1 and 0 are neighbours across the seam (the image slots
+// are zero between fold_images and copy_to_images, so a neighbour is always read at its node);
+// otherwise the next slot, -1 past the storage.
+inline int neighbour_slot(const Grid& G, int s, int d) {
+  constexpr int o = Grid::kOffset;
+  if (G.bc == Boundary::periodic) return o + wrap(s - o + d, G.cells);
+  const int n = s + d;
+  return n >= 0 && n < G.slots() ? n : -1;
+}
+
 // Grid::extend_to_empty: each free node without mass beside a node with mass takes that node's
 // values of `arrays` (its left neighbour's first), from the values before any was copied.
 inline void extend_to_empty_nodes(const Grid& G, std::initializer_list<double*> arrays) {
@@ -106,10 +117,13 @@ inline void extend_to_empty_nodes(const Grid& G, std::initializer_list<double*> 
         for (int s = lo; s < hi; ++s) {
           if (m[s] > 0.0) continue;
           int from = -1;
-          if (s > 0 && m[s - 1] > 0.0)
-            from = s - 1;
-          else if (s + 1 < G.slots() && m[s + 1] > 0.0)
-            from = s + 1;
+          for (const int d : {-1, +1}) {
+            const int n = neighbour_slot(G, s, d);
+            if (n >= 0 && m[n] > 0.0) {
+              from = n;
+              break;
+            }
+          }
           if (from < 0) continue;
           for (double* arr : arrays)
             arr[s] = arr[from];

@@ -98,10 +98,13 @@ template <int W>
 void g2p(const Stencil<W>& S, const Grid& G, double dt, const ParticleUpdate& rule, Particles& P);
 
 // APIC's part of p2g, after p2g (or p2g_momentum): q_i += sum_p S_ip m_p C_p (X_i - x_p), over
-// the stencil p2g kept (x_p taken in [0, 1) with periodic boundaries, as the stencil was).
-// With C_p = dv/dx of an affine velocity field, the nodes then hold that field exactly.
+// the stencil p2g kept, with x_p the positions `x_stencil` that stencil was evaluated at (taken
+// in [0, 1) with periodic boundaries, as the stencil was): P.x before g2p has moved them, the
+// start-of-step positions MUSL keeps after it. With C_p = dv/dx of an affine velocity field, the
+// nodes then hold that field exactly: sum_p S_ip m_p (a + b x_p + b (X_i - x_p)) = m_i (a + b X_i)
+// holds only when S_ip and x_p belong together.
 template <int W>
-void p2g_affine(const Stencil<W>& S, const Particles& P, Grid& G);
+void p2g_affine(const Stencil<W>& S, const double* x_stencil, const Particles& P, Grid& G);
 
 // stress update: L_p = sum_i G_ip v_i with the velocity in G (eq. 11); F_p <- F_p (1 + dt L_p)
 // (eq. 13); sigma_p = sigma(F_p) by the material law. For the linear law of eq. (109) this equals

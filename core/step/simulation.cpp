@@ -102,17 +102,17 @@ bool Simulation::step(const Basis& basis, Stencil<Basis::width>& S, double dt, d
   const bool apic = params_.transfer == Transfer::apic;
   switch (params_.update) {
     case UpdateOrder::usl:
-      p2g(basis, P_, b, S, G_);         // eqs. (5)-(7)
-      if (apic) p2g_affine(S, P_, G_);  // APIC: q_i += sum_p S_ip m_p C_p (X_i - x_p)
-      grid_update(G_, dt);              // eqs. (7), (8)
-      small_mass_phase(S, dt);          // small-mass nodes: the momentum treatment
-      series_phase(S);                  // XPIC, FMPM: the full-mass correction w_i
+      p2g(basis, P_, b, S, G_);                      // eqs. (5)-(7)
+      if (apic) p2g_affine(S, P_.x.data(), P_, G_);  // APIC: q_i += sum_p S_ip m_p C_p (X_i - x_p)
+      grid_update(G_, dt);                           // eqs. (7), (8)
+      small_mass_phase(S, dt);                       // small-mass nodes: the momentum treatment
+      series_phase(S);                               // XPIC, FMPM: the full-mass correction w_i
       if (g2p_and_stress(S, G_, dt, g2p_rule_, law_, P_, check)) return check != nullptr;
       g2p(S, G_, dt, g2p_rule_, P_);                     // eqs. (9), (10)
       return stress_update(S, G_, dt, law_, P_, check);  // eqs. (11), (13), (14) with v_i^{n+1}
     case UpdateOrder::usf:
       p2g(basis, P_, nullptr, S, G_);  // m_i, q_i; f_i with the new stress below
-      if (apic) p2g_affine(S, P_, G_);
+      if (apic) p2g_affine(S, P_.x.data(), P_, G_);
       grid_velocity(G_);                   // v_i^n = q_i / m_i
       full_mass_velocity(S);               // FMPM: v_i^n from the full mass matrix series
       stress_update(S, G_, dt, law_, P_);  // with v_i^n
@@ -123,14 +123,15 @@ bool Simulation::step(const Basis& basis, Stencil<Basis::width>& S, double dt, d
       return g2p(S, G_, dt, g2p_rule_, P_, check);
     case UpdateOrder::musl:
       p2g(basis, P_, b, S, G_);
-      if (apic) p2g_affine(S, P_, G_);
+      if (apic) p2g_affine(S, P_.x.data(), P_, G_);
       grid_update(G_, dt);
       small_mass_phase(S, dt);
       series_phase(S);
+      if (apic) x_stencil_ = P_.x;  // the re-map's S_ip are at x^n, which g2p moves
       g2p(S, G_, dt, g2p_rule_, P_);
-      p2g_momentum(S, P_, G_);          // q_i = sum_p S_ip m_p v_p^{n+1}
-      if (apic) p2g_affine(S, P_, G_);  // with C_p from this g2p
-      grid_velocity(G_);                // v_i = q_i / m_i
+      p2g_momentum(S, P_, G_);                             // q_i = sum_p S_ip m_p v_p^{n+1}
+      if (apic) p2g_affine(S, x_stencil_.data(), P_, G_);  // C_p from this g2p, about x_p^n
+      grid_velocity(G_);                                   // v_i = q_i / m_i
       full_mass_velocity(S);
       return stress_update(S, G_, dt, law_, P_, check);  // with the re-mapped v_i
   }

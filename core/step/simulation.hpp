@@ -30,7 +30,8 @@ class Simulation {
   // (with the momentum treatment of small-mass nodes after each grid_update)
   //   usf:  p2g -> grid_velocity -> stress_update -> p2g_force -> grid_update -> g2p
   //   musl: p2g -> grid_update -> g2p -> p2g_momentum -> grid_velocity -> stress_update
-  // APIC adds p2g_affine after each momentum sum; XPIC and FMPM add their series (xpic.hpp)
+  // APIC adds p2g_affine after each momentum sum, about the positions x^n at which the step's
+  // stencil was evaluated (MUSL's re-map too); XPIC and FMPM add their series (xpic.hpp)
   // between grid_update and g2p.
   // With `extremes`, the state check after the step: state_extremes of the state it leaves (with
   // the error over time at t_next when `with_error`), taken in the step's last pass where it can
@@ -86,6 +87,9 @@ class Simulation {
   Eigen::ArrayXd body_accel_;                         // b(X_p, t) for the current step
   ExactDisplacement exact_;                           // u(X_p, t)
   SeriesWork series_;                                 // XPIC and FMPM only
+  // MUSL with APIC: the positions x^n at which the step's stencil was evaluated, kept across g2p
+  // for the re-map's affine term (p2g_affine).
+  Eigen::ArrayXd x_stencil_;
   double t_ = 0;
   std::int64_t n_ = 0;
 };

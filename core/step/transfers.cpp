@@ -125,10 +125,11 @@ MPMSTAB_SIMD_CLONES void momentum_kernel(const Stencil<W>& S, const Particles& P
 }
 
 template <int W>
-MPMSTAB_SIMD_CLONES void affine_kernel(const Stencil<W>& S, const Particles& P, Grid& G) {
+MPMSTAB_SIMD_CLONES void affine_kernel(const Stencil<W>& S, const double* x_stencil,
+                                       const Particles& P, Grid& G) {
   const bool periodic = G.bc == Boundary::periodic;
   const double h = G.h;
-  const double* __restrict xs = P.x.data();
+  const double* __restrict xs = x_stencil;
   const double* __restrict Cp = P.C.data();
   const double* __restrict m_p = P.mass.data();
   const int* __restrict base = S.base.data();
@@ -162,8 +163,8 @@ void p2g_momentum(const Stencil<W>& S, const Particles& P, Grid& G) {
 }
 
 template <int W>
-void p2g_affine(const Stencil<W>& S, const Particles& P, Grid& G) {
-  affine_kernel<W>(S, P, G);
+void p2g_affine(const Stencil<W>& S, const double* x_stencil, const Particles& P, Grid& G) {
+  affine_kernel<W>(S, x_stencil, P, G);
 }
 
 namespace {
@@ -287,11 +288,11 @@ void g2p_other_transfer(const Stencil<W>& S, const Grid& G, double dt, const Par
 
 }  // namespace detail
 
-#define MPMSTAB_INSTANTIATE(W)                                                        \
-  template void p2g_force(const Stencil<W>&, const Particles&, const double*, Grid&); \
-  template void p2g_momentum(const Stencil<W>&, const Particles&, Grid&);             \
-  template void p2g_affine(const Stencil<W>&, const Particles&, Grid&);               \
-  template void detail::g2p_other_transfer(const Stencil<W>&, const Grid&, double,    \
+#define MPMSTAB_INSTANTIATE(W)                                                         \
+  template void p2g_force(const Stencil<W>&, const Particles&, const double*, Grid&);  \
+  template void p2g_momentum(const Stencil<W>&, const Particles&, Grid&);              \
+  template void p2g_affine(const Stencil<W>&, const double*, const Particles&, Grid&); \
+  template void detail::g2p_other_transfer(const Stencil<W>&, const Grid&, double,     \
                                            const ParticleUpdate&, Particles&);
 MPMSTAB_INSTANTIATE(LinearBasis::width)
 MPMSTAB_INSTANTIATE(GimpBasis::width)
