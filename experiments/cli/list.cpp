@@ -63,6 +63,7 @@ std::vector<const Spec*> run_order(const std::vector<Spec>& specs) {
   std::vector<const Spec*> sorted;
   for (const auto& s : specs)
     sorted.push_back(&s);
+  // index_order is finite (the spec's reader refuses any other): < orders it.
   std::stable_sort(sorted.begin(), sorted.end(),
                    [](const Spec* a, const Spec* b) { return a->index_order < b->index_order; });
   std::map<std::string, const Spec*> by_name;

@@ -13,6 +13,7 @@
 #include "claims.hpp"
 #include "csv.hpp"
 #include "files.hpp"
+#include "key.hpp"
 #include "report_util.hpp"
 #include "result_json.hpp"
 #include "scenes/validate.hpp"
@@ -299,7 +300,7 @@ std::string coordinate_values(const std::vector<ojson>& rows, const char* column
   std::vector<double> v;
   for (double x : numbers(rows, column))
     v.push_back(std::stod(significant(x, 3)));
-  std::sort(v.begin(), v.end());
+  std::sort(v.begin(), v.end(), TotalLess());
   v.erase(std::unique(v.begin(), v.end()), v.end());
   if (v.size() <= kListedCoordinates) return listing(v);
   return span(v) + " (" + std::to_string(v.size()) + " values)";

@@ -8,6 +8,7 @@
 
 #include "compare.hpp"
 #include "csv.hpp"
+#include "key.hpp"
 
 namespace mpmstab {
 
@@ -54,7 +55,7 @@ std::string list_of(const std::vector<std::string>& items) {
 }
 
 std::string listing(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
+  std::sort(v.begin(), v.end(), TotalLess());
   v.erase(std::unique(v.begin(), v.end()), v.end());
   if (v.empty()) return "–";
   std::vector<std::string> items;
@@ -87,7 +88,7 @@ std::string listing(const std::vector<ojson>& rows, const char* column) {
 
 std::string span(const std::vector<double>& v) {
   if (v.empty()) return "–";
-  const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+  const auto [lo, hi] = std::minmax_element(v.begin(), v.end(), TotalLess());
   return *lo == *hi ? value_text(*lo) : value_text(*lo) + " to " + value_text(*hi);
 }
 
@@ -234,7 +235,7 @@ std::optional<double> loglog_slope(const std::vector<std::pair<double, double>>&
 }
 
 double quantile(std::vector<double> v, double q) {
-  std::sort(v.begin(), v.end());
+  std::sort(v.begin(), v.end(), TotalLess());
   const double pos = q * double(v.size() - 1);
   const std::size_t i = static_cast<std::size_t>(pos);
   return i + 1 < v.size() ? v[i] + (pos - double(i)) * (v[i + 1] - v[i]) : v.back();

@@ -17,6 +17,7 @@
 
 #include "cache.hpp"
 #include "csv.hpp"
+#include "key.hpp"
 #include "progress.hpp"
 #include "provenance.hpp"
 #include "result_json.hpp"
@@ -246,8 +247,9 @@ SweepPlan plan_sweep(const Spec& spec, const SweepOptions& options) {
   }
   for (std::size_t i : plan.order)
     plan.total_cost += plan.cost[i] = case_cost(spec.cases[i].params, spec.study->work);
-  std::stable_sort(plan.order.begin(), plan.order.end(),
-                   [&](std::size_t a, std::size_t b) { return plan.cost[a] > plan.cost[b]; });
+  std::stable_sort(plan.order.begin(), plan.order.end(), [&](std::size_t a, std::size_t b) {
+    return TotalLess()(plan.cost[b], plan.cost[a]);
+  });
   return plan;
 }
 
@@ -399,7 +401,7 @@ std::vector<SweepOutcome> run_sweeps(
     }
   }
   std::stable_sort(tasks.begin(), tasks.end(),
-                   [](const Task& a, const Task& b) { return a.cost > b.cost; });
+                   [](const Task& a, const Task& b) { return TotalLess()(b.cost, a.cost); });
   // Tasks that share a trajectory go with the first of them (and cost nothing more).
   std::vector<std::size_t> queue;
   std::map<std::string, std::size_t> lead_of;

@@ -5,6 +5,7 @@
 #include <string_view>
 
 #include "csv.hpp"
+#include "key.hpp"
 #include "report_util.hpp"
 
 namespace mpmstab {
@@ -129,7 +130,7 @@ std::vector<const ojson*> larger_steps(const ojson& setting, const std::vector<o
     if (other == same) out.push_back(&r);
   }
   std::stable_sort(out.begin(), out.end(), [key](const ojson* a, const ojson* b) {
-    return (*a)[key].get<double>() < (*b)[key].get<double>();
+    return TotalLess()((*a)[key].get<double>(), (*b)[key].get<double>());
   });
   return out;
 }

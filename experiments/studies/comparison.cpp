@@ -8,6 +8,7 @@
 #include <map>
 #include <optional>
 
+#include "key.hpp"
 #include "report_util.hpp"
 #include "study.hpp"
 
@@ -66,10 +67,10 @@ double scan_courant(const ojson& row) {
 }
 
 CourantEdges courant_edges(const std::vector<ojson>& rows) {
-  std::map<std::pair<std::string, double>, std::map<double, bool>> all_fail;  // -> C -> all fail
+  std::map<std::pair<std::string, Key>, std::map<Key, bool>> all_fail;  // -> C -> all fail
   for (const auto& r : rows) {
-    const auto key = std::make_pair(r["method"].get<std::string>(), r["A"].get<double>());
-    auto [it, fresh] = all_fail[key].try_emplace(scan_courant(r), true);
+    const auto key = std::make_pair(r["method"].get<std::string>(), Key(r["A"].get<double>(), "A"));
+    auto [it, fresh] = all_fail[key].try_emplace(Key(scan_courant(r), "c dt/h"), true);
     it->second = it->second && outcome(r) == "unstable";
   }
   CourantEdges edge;
@@ -103,7 +104,7 @@ void AgreementCounts::add(const CellVerdict& v) {
 std::string failure_class(const ojson& r, const CourantEdges& edges) {
   const std::string method = r["method"].get<std::string>();
   const double courant = r["courant"].get<double>();
-  const auto edge = edges.find({method, r["A"].get<double>()});
+  const auto edge = edges.find({method, Key(r["A"].get<double>(), "A")});
   const std::string reason = r["failure_reason"].get<std::string>();
   if (has_number(r, "courant_spectral") && courant > r["courant_spectral"].get<double>())
     return "above-spectral-limit";

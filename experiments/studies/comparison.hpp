@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "key.hpp"
 #include "paper_table1.hpp"
 #include "spec.hpp"
 #include "study.hpp"
@@ -43,7 +44,7 @@ double scan_courant(const nlohmann::ordered_json& row);
 
 // Per method and amplitude: the smallest Courant number of the courant scan from which on every
 // run (every E) fails. Empty without the scan.
-using CourantEdges = std::map<std::pair<std::string, double>, double>;
+using CourantEdges = std::map<std::pair<std::string, Key>, double>;
 CourantEdges courant_edges(const std::vector<nlohmann::ordered_json>& courant_rows);
 
 // One cell against the paper. Our outcome is one of three (report_util.hpp's outcome()):

@@ -12,6 +12,7 @@
 #include "base/params.hpp"
 #include "comparison.hpp"
 #include "csv.hpp"
+#include "key.hpp"
 #include "report_util.hpp"
 
 namespace mpmstab {
@@ -320,11 +321,11 @@ std::string courant_context(const ojson& row, const StudyInputs& inputs) {
   const double c = scan_courant(row);
   int n = 0, reached = 0;
   std::int64_t last_failure = 0;
-  std::set<double> amplitudes;
+  std::set<Key> amplitudes;
   for (const auto& r : it->second.doc.at("cases")) {
     if (scan_courant(r) != c || r["method"] != row.at("method")) continue;
     ++n;
-    amplitudes.insert(r["A"].get<double>());
+    amplitudes.insert(Key(r["A"].get<double>(), "A"));
     if (survived(r)) {
       ++reached;
     } else {

@@ -18,6 +18,7 @@
 #include "claims.hpp"
 #include "comparison.hpp"
 #include "csv.hpp"
+#include "key.hpp"
 #include "report.hpp"
 #include "report_util.hpp"
 #include "variants.hpp"
@@ -126,9 +127,9 @@ std::string distribution(const std::vector<double>& v) {
 }
 
 std::size_t table1_E_count(const Rows& rows) {
-  std::set<double> Es;
+  std::set<Key> Es;
   for (const auto& r : rows)
-    Es.insert(r["E"].get<double>());
+    Es.insert(Key(r["E"].get<double>(), "E"));
   return Es.size();
 }
 
@@ -193,9 +194,10 @@ void write_verdicts_csv(const Comparison& cmp) {
 // What the peers experiment covered, counted from its cases: per method and dt, how many runs,
 // how many compared at the table's T and how many only up to an earlier time.
 std::string peer_coverage(const Comparison& cmp) {
-  std::map<std::pair<std::string, double>, std::vector<double>> runs;  // -> each compared T
+  std::map<std::pair<std::string, Key>, std::vector<double>> runs;  // -> each compared T
   for (const auto& r : cmp.peer_rows)
-    runs[{r["method"].get<std::string>(), r["dt"].get<double>()}].push_back(r["T"].get<double>());
+    runs[{r["method"].get<std::string>(), Key(r["dt"].get<double>(), "dt")}].push_back(
+        r["T"].get<double>());
   const double table_T = cmp.table1.cases.front().params.T;
   std::ostringstream s;
   s << "Our solver was run beside independent code (Uintah's 1D MPM code) on "
@@ -418,16 +420,16 @@ void not_run(std::ostream& md, const char* name) {
 // The courant scan: per Courant number, how many values of E reach T, per method and amplitude.
 void courant_scan_table(std::ostream& md, const Comparison& cmp) {
   // Courant -> (method, A) -> survived, runs
-  std::map<double, std::map<std::pair<std::string, double>, std::pair<int, int>>> by_c;
-  std::set<std::pair<std::string, double>> groups;
+  std::map<Key, std::map<std::pair<std::string, Key>, std::pair<int, int>>> by_c;
+  std::set<std::pair<std::string, Key>> groups;
   std::int64_t worst_step = 0;
   int above_survived = 0;
   double above_survivor_ratio = 0;  // the largest c dt/h over the limit of a scan run reaching T
   for (const auto& r : cmp.rows("courant")) {
     const double c = scan_courant(r);
-    const auto g = std::make_pair(r["method"].get<std::string>(), r["A"].get<double>());
+    const auto g = std::make_pair(r["method"].get<std::string>(), Key(r["A"].get<double>(), "A"));
     groups.insert(g);
-    auto& [ok, n] = by_c[c][g];
+    auto& [ok, n] = by_c[Key(c, "c dt/h")][g];
     ++n;
     if (survived(r)) ++ok;
     const bool above = has_number(r, "courant_spectral") && c > r["courant_spectral"].get<double>();
@@ -816,7 +818,7 @@ void dt_stable_section(std::ostream& md, const Comparison& cmp) {
         largest = std::max(largest, x);
     const auto& m = by_method["mpm"];
     if (!m.empty()) {
-      const auto [lo, hi] = std::minmax_element(m.begin(), m.end());
+      const auto [lo, hi] = std::minmax_element(m.begin(), m.end(), TotalLess());
       widest_mpm_spread = std::max(widest_mpm_spread, *hi / *lo);
     }
   }
@@ -877,8 +879,8 @@ std::vector<Claim> comparison_claims(const Comparison& cmp) {
   a.holds = above_fail == above;
   claims.push_back(a);
   for (const auto& [m, v] : paper_dt_stable) {
-    const double lo = *std::min_element(v.begin(), v.end());
-    const double hi = *std::max_element(v.begin(), v.end());
+    const double lo = *std::min_element(v.begin(), v.end(), TotalLess());
+    const double hi = *std::max_element(v.begin(), v.end(), TotalLess());
     Claim b = claim("paper-dt-stable-vs-limit-" + m,
                     "The paper's dt stable column for {method}, in units of h/c, lies below the "
                     "scheme's spectral limit",

@@ -18,6 +18,7 @@
 #include "analysis/time_error.hpp"
 #include "claims.hpp"
 #include "csv.hpp"
+#include "key.hpp"
 #include "report_util.hpp"
 #include "study.hpp"
 
@@ -113,9 +114,9 @@ std::optional<double> fitted_order(const std::vector<Point>& points, Norm n) {
 }
 
 // The rows grouped by (sweep, E, method), each group's points from the coarsest to the finest.
-using Key = std::tuple<std::string, double, std::string>;
-std::map<Key, std::vector<Point>> groups(const std::vector<ojson>& rows) {
-  std::map<Key, std::vector<Point>> g;
+using GroupKey = std::tuple<std::string, Key, std::string>;
+std::map<GroupKey, std::vector<Point>> groups(const std::vector<ojson>& rows) {
+  std::map<GroupKey, std::vector<Point>> g;
   for (const auto& r : rows) {
     Point p;
     p.x = variable(r);
@@ -128,11 +129,11 @@ std::map<Key, std::vector<Point>> groups(const std::vector<ojson>& rows) {
       if (has_number(r, "error_l2_time")) p.l2_time = r["error_l2_time"].get<double>();
       if (has_number(r, "max_error")) p.error_at_T = r["max_error"].get<double>();
     }
-    g[{sweep_of(r), r["E"].get<double>(), method_label(r)}].push_back(p);
+    g[{sweep_of(r), Key(r["E"].get<double>(), "E"), method_label(r)}].push_back(p);
   }
   for (auto& [key, points] : g)
     std::sort(points.begin(), points.end(),
-              [](const Point& a, const Point& b) { return a.x > b.x; });
+              [](const Point& a, const Point& b) { return TotalLess()(b.x, a.x); });
   return g;
 }
 
@@ -187,7 +188,7 @@ std::optional<double> richardson_limit(const std::vector<Point>& points, Norm n)
   return *ec - d2 / (std::pow(ratio_x, q) - 1);
 }
 
-std::string sweep_table(const std::map<Key, std::vector<Point>>& g, const std::string& sweep,
+std::string sweep_table(const std::map<GroupKey, std::vector<Point>>& g, const std::string& sweep,
                         Norm n) {
   std::ostringstream md;
   bool header = false;
@@ -215,10 +216,10 @@ std::string sweep_table(const std::map<Key, std::vector<Point>>& g, const std::s
 }
 
 std::string special_check(const std::vector<ojson>& rows) {
-  std::map<double, double> factor;  // E -> |sin(c pi T)|
+  std::map<Key, double> factor;  // E -> |sin(c pi T)|
   for (const auto& r : rows) {
     if (sweep_of(r) == "peer") continue;
-    factor[r["E"].get<double>()] = std::abs(
+    factor[Key(r["E"].get<double>(), "E")] = std::abs(
         std::sin(std::sqrt(r["E"].get<double>()) * std::acos(-1.0) * r["T"].get<double>()));
   }
   std::vector<std::string> special, fine;
@@ -239,10 +240,11 @@ std::string special_check(const std::vector<ojson>& rows) {
 
 // The orders of each method across E, for the agreement claim and its reading.
 struct MethodOrders {
-  std::map<double, double> order;                              // E -> fitted order (over time)
-  std::map<double, std::vector<std::optional<double>>> steps;  // E -> observed orders
+  std::map<Key, double> order;                              // E -> fitted order (over time)
+  std::map<Key, std::vector<std::optional<double>>> steps;  // E -> observed orders
 };
-std::map<std::string, MethodOrders> orders_by_method(const std::map<Key, std::vector<Point>>& g) {
+std::map<std::string, MethodOrders> orders_by_method(
+    const std::map<GroupKey, std::vector<Point>>& g) {
   std::map<std::string, MethodOrders> m;
   for (const auto& [key, points] : g) {
     const auto& [sweep, E, method] = key;
@@ -253,7 +255,7 @@ std::map<std::string, MethodOrders> orders_by_method(const std::map<Key, std::ve
   return m;
 }
 
-double spread(const std::map<double, double>& orders) {
+double spread(const std::map<Key, double>& orders) {
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
   for (const auto& [E, o] : orders) {
     lo = std::min(lo, o);
@@ -271,9 +273,9 @@ bool asymptotic(const std::vector<std::optional<double>>& q) {
 // Where the orders of a method disagree across E: the evidence per E.
 std::string agreement_reading(const std::map<std::string, MethodOrders>& m,
                               const std::vector<ojson>& rows) {
-  std::map<double, double> wave_passes;
+  std::map<Key, double> wave_passes;
   for (const auto& r : rows)
-    if (sweep_of(r) == "h") wave_passes[r["E"].get<double>()] = r["cT"].get<double>();
+    if (sweep_of(r) == "h") wave_passes[Key(r["E"].get<double>(), "E")] = r["cT"].get<double>();
   std::ostringstream md;
   md << "**Orders across E.** E only rescales time: at the same T a larger E is a longer run in "
         "wave passes c T (";
@@ -301,7 +303,7 @@ std::string agreement_reading(const std::map<std::string, MethodOrders>& m,
     }
     // The last refinement's order at each E: where these agree, the fitted orders differ only
     // through the coarse grids.
-    std::map<double, double> last_orders;  // E -> the last refinement's order
+    std::map<Key, double> last_orders;  // E -> the last refinement's order
     for (const auto& [E, q] : o.steps)
       if (!q.empty() && q.back()) last_orders[E] = *q.back();
     const double last_spread = spread(last_orders);
@@ -359,10 +361,10 @@ constexpr double kLinearAmplitudeFraction = 0.01;
 
 std::vector<TimeErrorRow> time_error_rows(const Spec& spec, const std::vector<ojson>& rows) {
   std::vector<TimeErrorRow> out;
-  std::map<std::pair<double, std::string>, bool> seen;
+  std::map<std::pair<Key, std::string>, bool> seen;
   for (std::size_t i = 0; i < rows.size(); ++i) {
     if (sweep_of(rows[i]) != "dt") continue;
-    const auto key = std::make_pair(rows[i]["E"].get<double>(), method_label(rows[i]));
+    const auto key = std::make_pair(Key(rows[i]["E"].get<double>(), "E"), method_label(rows[i]));
     if (seen[key]) continue;
     seen[key] = true;
     const RunParams& base = spec.cases[i].params;
@@ -532,7 +534,7 @@ Baseline read_baseline(const std::filesystem::path& file) {
   return b;
 }
 
-std::string peer_section(const Spec& spec, const std::map<Key, std::vector<Point>>& g,
+std::string peer_section(const Spec& spec, const std::map<GroupKey, std::vector<Point>>& g,
                          const Baseline& b, const std::vector<ojson>& rows) {
   std::ostringstream md;
   const ojson* first = nullptr;
@@ -601,7 +603,7 @@ std::string peer_section(const Spec& spec, const std::map<Key, std::vector<Point
   return md.str();
 }
 
-std::optional<double> peer_order(const std::map<Key, std::vector<Point>>& g, Norm n) {
+std::optional<double> peer_order(const std::map<GroupKey, std::vector<Point>>& g, Norm n) {
   for (const auto& [key, points] : g)
     if (std::get<0>(key) == "peer") return fitted_order(points, n);
   return std::nullopt;
@@ -665,7 +667,7 @@ std::string published_table(const std::map<std::string, MethodOrders>& m) {
 
 std::vector<Claim> convergence_claims(const std::map<std::string, MethodOrders>& m,
                                       const std::vector<TimeErrorRow>& t,
-                                      const std::map<Key, std::vector<Point>>& g,
+                                      const std::map<GroupKey, std::vector<Point>>& g,
                                       const Baseline& b) {
   std::vector<Claim> claims;
   {
@@ -862,11 +864,11 @@ StudyReport convergence_report(const ReportContext& ctx) {
 // <name>_data.csv: E, panel (per E), series (per method), h and error of each stable run of
 // the h sweep.
 std::string convergence_data(const std::vector<ojson>& rows, const std::string& header) {
-  std::map<double, int> panel;
+  std::map<Key, int> panel;
   std::map<std::string, int> series;
   for (const auto& r : rows) {
     if (sweep_of(r) != "h") continue;
-    panel.emplace(r["E"].get<double>(), 0);
+    panel.emplace(Key(r["E"].get<double>(), "E"), 0);
     series.emplace(method_label(r), 0);
   }
   int k = 0;
@@ -881,7 +883,7 @@ std::string convergence_data(const std::vector<ojson>& rows, const std::string& 
     if (sweep_of(r) != "h" || outcome(r) != "stable" || !has_number(r, "max_error_over_time"))
       continue;
     const std::string method = method_label(r);
-    csv << shortest(r["E"].get<double>()) << "," << panel[r["E"].get<double>()] << ","
+    csv << shortest(r["E"].get<double>()) << "," << panel[Key(r["E"].get<double>(), "E")] << ","
         << series[method] << "," << method << "," << shortest(variable(r)) << ","
         << shortest(r["max_error_over_time"].get<double>()) << "\n";
   }

@@ -122,6 +122,9 @@ std::vector<Scheme> bloch_schemes(int ppc) {
           std::vector<double> khs = figure_khs;
           khs.push_back(first);
           khs.push_back(kh_cells);
+          // Finite by construction, so < orders them: pi j / kFigureSamples, pi /
+          // kDispersionSamples and 2 pi / cells, cells_per_wavelength being 2 pi over a kh in
+          // (0, pi] (or 2).
           std::sort(khs.begin(), khs.end());
           for (const DispersionPoint& d : dispersion_branch(s.params, C, khs)) {
             if (d.kh == first) a.first_phase_speed = d.phase_speed;

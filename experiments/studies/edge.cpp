@@ -12,6 +12,7 @@
 #include "claims.hpp"
 #include "csv.hpp"
 #include "ensemble.hpp"
+#include "key.hpp"
 #include "report.hpp"
 #include "report_util.hpp"
 #include "scenes.hpp"
@@ -76,7 +77,7 @@ std::string flips_text(const std::vector<Flip>& flips) {
 }
 
 std::string min_max(std::vector<double> v) {
-  const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+  const auto [lo, hi] = std::minmax_element(v.begin(), v.end(), TotalLess());
   return *lo == *hi ? in_cfl(*lo) : in_cfl(*lo) + " to " + in_cfl(*hi);
 }
 
@@ -130,7 +131,8 @@ std::string edge_summary_text(const std::vector<ojson>& rows) {
     if (!m.accurate.empty()) {
       md << "; the accuracy edge is " << min_max(m.accurate) << " h/c, below the survival edge "
          << "in " << m.below << " of " << m.accurate.size() << " cases (down to "
-         << ratio(*std::min_element(m.accurate_over_edge.begin(), m.accurate_over_edge.end()))
+         << ratio(*std::min_element(m.accurate_over_edge.begin(), m.accurate_over_edge.end(),
+                                    TotalLess()))
          << " times it)";
     }
     if (m.no_accuracy) {
@@ -138,7 +140,8 @@ std::string edge_summary_text(const std::vector<ojson>& rows) {
          << " no accuracy edge (the run at the smallest surviving dt is meaningless)";
     }
     if (!m.over_bound.empty()) {
-      const auto [lo, hi] = std::minmax_element(m.over_bound.begin(), m.over_bound.end());
+      const auto [lo, hi] =
+          std::minmax_element(m.over_bound.begin(), m.over_bound.end(), TotalLess());
       md << "; eq. (108) at the survival edge is " << ratio(*lo) << " to " << ratio(*hi)
          << " times below it";
     }
@@ -638,14 +641,14 @@ std::string edge_subtitle_text(const FigureCount& c) {
 constexpr std::size_t kAmplitudeSweep = 3;
 
 std::string amplitude_table(const std::vector<ojson>& rows, const EdgeFollowUps& f) {
-  std::map<std::pair<std::string, double>, std::vector<const ojson*>> sweeps;
+  std::map<std::pair<std::string, Key>, std::vector<const ojson*>> sweeps;
   for (const auto& r : rows)
-    sweeps[{r["method"].get<std::string>(), r["cT"].get<double>()}].push_back(&r);
+    sweeps[{r["method"].get<std::string>(), Key(r["cT"].get<double>(), "c T")}].push_back(&r);
   std::ostringstream md;
   for (auto& [key, list] : sweeps) {
     if (list.size() < kAmplitudeSweep) continue;
     std::sort(list.begin(), list.end(), [](const ojson* a, const ojson* b) {
-      return (*a)["A_over_h"].get<double>() < (*b)["A_over_h"].get<double>();
+      return TotalLess()((*a)["A_over_h"].get<double>(), (*b)["A_over_h"].get<double>());
     });
     if (md.tellp() == 0) {
       md << "\n**Against amplitude.** The same cases ordered by A / h at one run length: each "
@@ -702,7 +705,7 @@ std::string walls_text(const std::vector<ojson>& rows, const EdgeFollowUps& f) {
       md << "not compared (" << n << " twins, none reached T)";
       continue;
     }
-    const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+    const auto [lo, hi] = std::minmax_element(v.begin(), v.end(), TotalLess());
     md << ratio(*lo) << " to " << ratio(*hi) << " times the Dirichlet one (median "
        << ratio(quantile(v, 0.5)) << ", " << v.size() << " of " << n << " twins)";
   }
@@ -741,8 +744,8 @@ std::string edge_data_csv(const std::vector<ojson>& rows, const std::string& hea
     if (not_drawn_reason(r).empty()) drawn.push_back(&r);
   }
   std::stable_sort(drawn.begin(), drawn.end(), [](const ojson* a, const ojson* b) {
-    return std::tuple(panel_of(*a), series_of(*a), (*a)["cT"].get<double>()) <
-           std::tuple(panel_of(*b), series_of(*b), (*b)["cT"].get<double>());
+    return std::tuple(panel_of(*a), series_of(*a), Key((*a)["cT"].get<double>(), "c T")) <
+           std::tuple(panel_of(*b), series_of(*b), Key((*b)["cT"].get<double>(), "c T"));
   });
   std::ostringstream csv;
   csv << header_lines << "# " << edge_subtitle_text(count) << "\n";

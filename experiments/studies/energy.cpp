@@ -14,6 +14,7 @@
 
 #include "claims.hpp"
 #include "csv.hpp"
+#include "key.hpp"
 #include "observers/energy.hpp"
 #include "report_util.hpp"
 #include "study.hpp"
@@ -32,10 +33,10 @@ constexpr double kHSweepCourant = 0.1;
 constexpr int kFigurePoints = 400;
 
 // A Table 1 cell: method, E, A, dt.
-using Cell = std::tuple<std::string, double, double, double>;
+using Cell = std::tuple<std::string, Key, Key, Key>;
 Cell cell_of(const ojson& r) {
-  return {r["method"].get<std::string>(), r["E"].get<double>(), r["A"].get<double>(),
-          r["dt"].get<double>()};
+  return {r["method"].get<std::string>(), Key(r["E"].get<double>(), "E"),
+          Key(r["A"].get<double>(), "A"), Key(r["dt"].get<double>(), "dt")};
 }
 std::string cell_text(const Cell& c) {
   return std::get<0>(c) + ", E = " + shortest(std::get<1>(c)) +
@@ -115,7 +116,7 @@ std::vector<Sweep> drift_sweeps(const std::vector<ojson>& rows) {
   std::vector<Sweep> out;
   for (auto& [k, sw] : s) {
     std::sort(sw.points.begin(), sw.points.end(),
-              [](const auto& a, const auto& b) { return a.first > b.first; });
+              [](const auto& a, const auto& b) { return TotalLess()(b.first, a.first); });
     out.push_back(sw);
   }
   return out;

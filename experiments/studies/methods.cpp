@@ -79,6 +79,7 @@ const std::vector<double> kTargets = {1e-4, 1e-6};
 // target (a candidate for a tighter target is one for the looser too): their confirming runs are
 // the study's follow-up runs, kConfirmingRuns per candidate in this order.
 std::vector<std::size_t> candidates(const std::vector<ojson>& grid) {
+  // kTargets are finite constants: < orders them.
   const double loosest = *std::max_element(kTargets.begin(), kTargets.end());
   std::vector<std::size_t> out;
   for (std::size_t i = 0; i < grid.size(); ++i)

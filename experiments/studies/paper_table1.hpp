@@ -3,10 +3,14 @@
 // the studies that read Table 1 against ours (table1, variants, comparison).
 #pragma once
 
+#include <filesystem>
 #include <map>
+#include <optional>
 #include <string>
 #include <tuple>
+#include <vector>
 
+#include "key.hpp"
 #include "report_util.hpp"
 #include "spec.hpp"
 
@@ -28,7 +32,7 @@ struct PaperCell {
   bool dt_printed = true;
 };
 
-using Table1Key = std::tuple<double, double, double, std::string>;  // A, E, dt, method
+using Table1Key = std::tuple<Key, Key, Key, std::string>;  // A, E, dt, method
 
 // The paper cell a case is compared with: its A, E, dt and the method of the paper's column
 // (CaseSpec::paper_method, the base case's method in a variants experiment).
@@ -42,8 +46,25 @@ bool within_agreement_factor(double ours, double paper);
 // kAgreementFactor as the reports print it: "3".
 std::string agreement_factor();
 
-// The transcribed Table 1 of a table1 (or variants) spec, keyed by (A, E, dt, method); cells
-// whose dt the paper does not print are keyed by the dt of the spec's case marked dt_inferred.
+// A row of the transcribed Table 1 (reference/paper/table1.csv): A, E and the method in lower
+// case, its dt where the paper prints one, and its cell.
+struct PaperRow {
+  double A = 0, E = 0;
+  std::optional<double> dt;  // none where the paper prints no dt ("?")
+  std::string method;
+  PaperCell cell;
+};
+
+// Every row of the transcription in file order. Throws InputError naming the file, row and column
+// where A, E or a printed dt is not a finite number.
+std::vector<PaperRow> read_paper_rows(const std::filesystem::path& reference);
+
+// The transcribed Table 1 of a spec that reads it (table1, eq108, variants), keyed by (A, E, dt,
+// method). A row whose dt the paper does not print ("?") is keyed by the dt of the spec's cases
+// at its A, E and method that no printed row has; those cases must be marked dt_inferred. A row
+// that no case of the spec places is left out (the spec does not run that cell). Throws
+// InputError naming the file and row for a number that is not finite, and naming the case for an
+// unprinted dt the spec places without dt_inferred or at two dts.
 std::map<Table1Key, PaperCell> read_paper_table1(const Spec& spec);
 
 }  // namespace mpmstab

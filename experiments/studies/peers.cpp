@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "csv.hpp"
+#include "key.hpp"
 #include "peers.hpp"
 #include "report_util.hpp"
 #include "study.hpp"
@@ -175,7 +176,7 @@ std::string summary(const PeersStudy& s) {
       within += c.agrees;
       if (c.errors_judged && c.error_ratio) ratios.push_back(*c.error_ratio);
     }
-    std::sort(ratios.begin(), ratios.end());
+    std::sort(ratios.begin(), ratios.end(), TotalLess());
     md << "| " << basis << " | " << n << " | " << outcomes << " of " << n << " | " << steps
        << " of " << failing << " | " << ratios.size() << " | "
        << (ratios.empty() ? std::string("–")

@@ -14,6 +14,7 @@
 
 #include "claims.hpp"
 #include "csv.hpp"
+#include "key.hpp"
 #include "report_util.hpp"
 #include "scenes.hpp"
 #include "study.hpp"
@@ -406,11 +407,11 @@ StudyReport scenes_report(const ReportContext& ctx) {
   }
   {
     // The trade: whether a smaller step buys accuracy, per scene and method.
-    std::map<std::pair<std::string, std::string>, std::map<double, double>> err;
+    std::map<std::pair<std::string, std::string>, std::map<Key, double>> err;
     for (const auto& r : rows) {
       if (part_of(r, ref) != Part::trade || !survived(r)) continue;
       if (const auto e = relative(r, "max_error_over_time"))
-        err[{str(r, "scene"), str(r, "method")}][num(r, "cfl_factor")] = *e;
+        err[{str(r, "scene"), str(r, "method")}][Key(num(r, "cfl_factor"), "cfl_factor")] = *e;
     }
     int pairs = 0, flat = 0;
     double worst = 0;

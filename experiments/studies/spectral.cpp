@@ -21,6 +21,7 @@
 #include "base/params.hpp"
 #include "claims.hpp"
 #include "csv.hpp"
+#include "key.hpp"
 #include "paper_table1.hpp"
 #include "report_util.hpp"
 #include "study.hpp"
@@ -252,7 +253,7 @@ Eq108Findings eq108_findings(const std::vector<ojson>& rows) {
     cT_lo = std::min(cT_lo, p.c() * p.T);
     cT_hi = std::max(cT_hi, p.c() * p.T);
   }
-  std::sort(Es.begin(), Es.end());
+  std::sort(Es.begin(), Es.end(), TotalLess());
   std::sort(ppcs.begin(), ppcs.end());
   for (const auto& b : kEq108Bases)
     if (std::any_of(points.begin(), points.end(),
@@ -694,24 +695,20 @@ constexpr int kPaperCells = 100;
 std::string paper_table(const std::filesystem::path& reference,
                         const std::vector<Scheme>& schemes) {
   if (reference.empty() || !std::filesystem::exists(reference)) return "";
-  const CsvTable t = read_csv(reference);
-  std::map<std::tuple<std::string, double, double>, std::vector<double>> values;
+  std::map<std::tuple<std::string, Key, Key>, std::vector<double>> values;
   std::vector<double> Es;
   std::vector<std::pair<std::string, double>> keys;  // method, A, in order
-  for (const auto& r : t.rows) {
-    const double A = std::stod(r.at("A")), E = std::stod(r.at("E"));
-    if (std::find(Es.begin(), Es.end(), E) == Es.end()) Es.push_back(E);
-    std::string method = r.at("method");
-    std::transform(method.begin(), method.end(), method.begin(),
-                   [](unsigned char ch) { return char(std::tolower(ch)); });
-    if (std::find(keys.begin(), keys.end(), std::pair{method, A}) == keys.end())
-      keys.emplace_back(method, A);
+  for (const PaperRow& r : read_paper_rows(reference)) {
+    if (std::find(Es.begin(), Es.end(), r.E) == Es.end()) Es.push_back(r.E);
+    if (std::find(keys.begin(), keys.end(), std::pair{r.method, r.A}) == keys.end())
+      keys.emplace_back(r.method, r.A);
     // Table 1's own reading of a cell: '*' and unreadable text ('4.?e-6') are no number.
-    const PaperValue dt_stable = paper_value(r.at("dt_stable"));
+    const PaperValue& dt_stable = r.cell.dt_stable;
     if (dt_stable.kind != PaperValue::number || !(dt_stable.value > 0)) continue;
-    values[{method, A, E}].push_back(dt_stable.value * std::sqrt(E) * kPaperCells);
+    values[{r.method, Key(r.A), Key(r.E)}].push_back(dt_stable.value * std::sqrt(r.E) *
+                                                     kPaperCells);
   }
-  std::sort(Es.begin(), Es.end());
+  std::sort(Es.begin(), Es.end());  // finite: read_paper_rows refuses any other E
   auto limit_of = [&](const std::string& method) -> std::string {
     for (const auto& s : schemes)
       if (s.name == method && s.limit()) return fixed(*s.limit(), 3);
@@ -741,7 +738,7 @@ std::string paper_table(const std::filesystem::path& reference,
   for (const auto& [method, A] : keys) {
     md << "| " << method << " | " << shortest(A) << " | ";
     for (double E : Es) {
-      const auto it = values.find({method, A, E});
+      const auto it = values.find({method, Key(A), Key(E)});
       if (it == values.end() || it->second.empty()) {
         md << "– | ";
         continue;
@@ -834,7 +831,8 @@ std::string spectral_data(const ReportContext& c) {
   // Sorted by method, E and ppc: each curve one contiguous block.
   auto points = eq108_points(c.rows);
   std::stable_sort(points.begin(), points.end(), [](const Eq108Point& a, const Eq108Point& b) {
-    return std::tuple(a.method != "mpm", a.E, a.ppc) < std::tuple(b.method != "mpm", b.E, b.ppc);
+    return std::tuple(a.method != "mpm", Key(a.E, "E"), a.ppc) <
+           std::tuple(b.method != "mpm", Key(b.E, "E"), b.ppc);
   });
   for (const auto& p : points) {
     const auto code = std::find(kFigureMethods.begin(), kFigureMethods.end(), p.method);

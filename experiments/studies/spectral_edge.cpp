@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "csv.hpp"
+#include "key.hpp"
 #include "report.hpp"
 #include "report_util.hpp"
 #include "study.hpp"
@@ -87,16 +88,16 @@ std::string agreement_table(const std::vector<const ojson*>& rows) {
 std::string amplitude_table(const std::vector<const ojson*>& rows) {
   std::vector<double> amplitudes;
   std::vector<std::string> schemes;
-  std::map<std::pair<std::string, double>, const ojson*> at;
+  std::map<std::pair<std::string, Key>, const ojson*> at;
   for (const ojson* r : rows) {
     const double A = (*r)["A"].get<double>();
     const std::string s = scheme_label(*r);
     if (std::find(amplitudes.begin(), amplitudes.end(), A) == amplitudes.end())
       amplitudes.push_back(A);
     if (std::find(schemes.begin(), schemes.end(), s) == schemes.end()) schemes.push_back(s);
-    at[{s, A}] = r;
+    at[{s, Key(A, "A")}] = r;
   }
-  std::sort(amplitudes.begin(), amplitudes.end());
+  std::sort(amplitudes.begin(), amplitudes.end(), TotalLess());
   std::ostringstream md;
   md << "## The nonlinear edge as A grows\n\nEach cell: the measured edge over the spectral limit "
         "(the linear edge); `*` marks a case whose run at the edge is meaningless (its error "
@@ -107,7 +108,7 @@ std::string amplitude_table(const std::vector<const ojson*>& rows) {
   for (const auto& s : schemes) {
     double worst = 1e300, worst_A = 0;
     for (double A : amplitudes) {
-      const auto it = at.find({s, A});
+      const auto it = at.find({s, Key(A)});
       if (it == at.end()) continue;
       if (const auto q = edge_ratio(*it->second); q && *q < worst) {
         worst = *q;
@@ -129,7 +130,7 @@ std::string amplitude_table(const std::vector<const ojson*>& rows) {
   for (const auto& s : schemes) {
     md << "| " << s << " |";
     for (double A : amplitudes) {
-      const auto it = at.find({s, A});
+      const auto it = at.find({s, Key(A)});
       if (it == at.end()) {
         md << " |";
         continue;
@@ -187,16 +188,16 @@ std::string spectral_edge_markdown(const std::vector<ojson>& rows) {
 std::string spectral_edge_data(const std::vector<ojson>& rows, const std::string& header) {
   std::vector<std::string> schemes;
   std::vector<double> amplitudes;
-  std::map<std::pair<std::string, double>, const ojson*> at;
+  std::map<std::pair<std::string, Key>, const ojson*> at;
   for (const ojson* r : amplitude_rows(rows)) {
     const std::string s = scheme_label(*r);
     const double A = (*r)["A"].get<double>();
     if (std::find(schemes.begin(), schemes.end(), s) == schemes.end()) schemes.push_back(s);
     if (std::find(amplitudes.begin(), amplitudes.end(), A) == amplitudes.end())
       amplitudes.push_back(A);
-    at[{s, A}] = r;
+    at[{s, Key(A, "A")}] = r;
   }
-  std::sort(amplitudes.begin(), amplitudes.end());
+  std::sort(amplitudes.begin(), amplitudes.end(), TotalLess());
   std::ostringstream csv;
   csv << header
       << "# one row per amplitude; per scheme (schemes of them): its measured edge over the "
@@ -212,7 +213,7 @@ std::string spectral_edge_data(const std::vector<ojson>& rows, const std::string
     for (int meaningless = 0; meaningless < 2; ++meaningless) {
       for (const auto& s : schemes) {
         csv << ',';
-        const auto it = at.find({s, A});
+        const auto it = at.find({s, Key(A)});
         if (it == at.end()) continue;
         const auto q = edge_ratio(*it->second);
         if (q && (!meaningless || outcome(*it->second) == "meaningless")) csv << shortest(*q);

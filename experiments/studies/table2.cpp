@@ -8,6 +8,7 @@
 
 #include "claims.hpp"
 #include "csv.hpp"
+#include "key.hpp"
 #include "observers/crossings.hpp"
 #include "report_util.hpp"
 #include "study.hpp"
@@ -82,7 +83,7 @@ struct Table2Data {
   const Spec& spec;
   const std::vector<ojson>& rows;
   CsvTable paper;
-  std::map<double, std::map<std::string, std::string>> paper_by_E;  // E -> the paper's row
+  std::map<Key, std::map<std::string, std::string>> paper_by_E;  // E -> the paper's row
   // The values of E and A and the methods, in the order the spec first lists them.
   std::vector<double> Es, As;
   std::vector<std::string> methods;
@@ -90,7 +91,7 @@ struct Table2Data {
   Table2Data(const Spec& s, const std::vector<ojson>& r)
       : spec(s), rows(r), paper(read_csv(s.reference)) {
     for (const auto& row : paper.rows)
-      paper_by_E[std::stod(row.at("E"))] = row;
+      paper_by_E[Key(std::stod(row.at("E")), "Table 2's E")] = row;
     for (const auto& c : spec.cases) {
       if (std::find(Es.begin(), Es.end(), c.params.E) == Es.end()) Es.push_back(c.params.E);
       if (std::find(As.begin(), As.end(), c.params.A) == As.end()) As.push_back(c.params.A);
@@ -138,7 +139,7 @@ std::string table2_intro(const Spec& spec, const std::vector<ojson>& rows, const
 // One E of the crossings table: per A the paper's count, then per method ours and ours / paper
 // (for a run that reached T); then the paper's dt_sound, 1/c and h/c.
 std::string crossings_row(const Table2Data& d, double E) {
-  const auto pit = d.paper_by_E.find(E);
+  const auto pit = d.paper_by_E.find(Key(E, "E"));
   std::ostringstream md;
   md << "| " << shortest(E) << " |";
   for (double A : d.As) {
@@ -231,7 +232,7 @@ struct RuleCounts {
 std::vector<RuleCounts> rule_counts(const Table2Data& d) {
   std::vector<RuleCounts> out;
   for (double E : d.Es) {
-    const auto pit = d.paper_by_E.find(E);
+    const auto pit = d.paper_by_E.find(Key(E, "E"));
     for (double A : d.As) {
       const std::string col = "crossings_A" + shortest(A);
       if (pit == d.paper_by_E.end() || !pit->second.count(col)) continue;

@@ -18,6 +18,7 @@
 #include "base/params.hpp"
 #include "claims.hpp"
 #include "csv.hpp"
+#include "key.hpp"
 #include "report_util.hpp"
 #include "scenes.hpp"
 #include "scenes/validate.hpp"
@@ -84,11 +85,12 @@ std::optional<double> accuracy(const ojson& r) {
 // Whether run i ranks before run j on cost: fewer particle-steps, then the smaller error, then
 // the earlier row. A total order, so that every ranking is the same on every rerun.
 bool cheaper(const std::vector<ojson>& rows, std::size_t i, std::size_t j) {
+  const TotalLess less;  // total even where a record holds a NaN
   const double ci = particle_steps(rows[i]), cj = particle_steps(rows[j]);
-  if (ci != cj) return ci < cj;
+  if (less(ci, cj) || less(cj, ci)) return less(ci, cj);
   constexpr double kNone = std::numeric_limits<double>::infinity();
   const double ei = accuracy(rows[i]).value_or(kNone), ej = accuracy(rows[j]).value_or(kNone);
-  if (ei != ej) return ei < ej;
+  if (less(ei, ej) || less(ej, ei)) return less(ei, ej);
   return i < j;
 }
 
@@ -270,11 +272,11 @@ constexpr std::size_t kConfirmedPerMethod = 2;
 // Indices (into `rows`, the records of the spec's cases) of the candidates to confirm, in
 // ascending order: the same list for the follow-up runs and for the report that reads them.
 std::vector<std::size_t> to_confirm(const std::vector<ojson>& rows) {
-  std::map<std::tuple<double, std::string, std::size_t>, std::vector<std::size_t>> groups;
+  std::map<std::tuple<Key, std::string, std::size_t>, std::vector<std::size_t>> groups;
   for (std::size_t i = 0; i < rows.size(); ++i) {
     for (std::size_t t = 0; t < kTargets.size(); ++t) {
       if (candidate(rows[i], kTargets[t]))
-        groups[{rows[i]["E"].get<double>(), method_label(rows[i]), t}].push_back(i);
+        groups[{Key(rows[i]["E"].get<double>(), "E"), method_label(rows[i]), t}].push_back(i);
     }
   }
   std::set<std::size_t> chosen;
@@ -443,12 +445,12 @@ std::vector<AdviceGroup> advice_groups(const std::vector<ojson>& rows) {
   std::vector<AdviceGroup> groups;
   for (const auto& m : methods) {
     for (const auto& p : kPolicies) {
-      std::set<double> Cs;
+      std::set<Key> Cs;
       bool any = false;
       for (const auto& r : rows) {
         if (method_label(r) != m || text(r, "policy") != p) continue;
         any = true;
-        if (p == "min") Cs.insert(r["cfl_factor"].get<double>());
+        if (p == "min") Cs.insert(Key(r["cfl_factor"].get<double>(), "cfl_factor"));
       }
       if (!any) continue;
       if (p != "min") groups.push_back({m, p, std::nullopt});
@@ -475,7 +477,7 @@ std::vector<std::size_t> group_rows_at(const TradeRows& t, const AdviceGroup& g,
     if (g.holds(t.rows[i])) idx.push_back(i);
   }
   std::stable_sort(idx.begin(), idx.end(), [&](std::size_t a, std::size_t b) {
-    return parameter(t.rows[a]) < parameter(t.rows[b]);
+    return TotalLess()(parameter(t.rows[a]), parameter(t.rows[b]));
   });
   return idx;
 }
@@ -554,9 +556,9 @@ struct MarginRange {
 };
 
 MarginRange stable_range(const TradeRows& t, const AdviceGroup& g) {
-  std::set<double> values;
+  std::set<Key> values;
   for (const auto& r : t.rows) {
-    if (g.holds(r)) values.insert(parameter(r));
+    if (g.holds(r)) values.insert(Key(parameter(r), "the policy's parameter"));
   }
   MarginRange a{g, std::nullopt, {}};
   std::vector<ValueCheck> checks;
@@ -587,12 +589,12 @@ std::vector<MarginRange> stable_ranges(const TradeRows& t) {
 // scenes bar and steffen".
 std::string describe_rows(const TradeRows& t, const AdviceGroup& g,
                           const std::vector<std::size_t>& idx) {
-  std::set<double> values;
+  std::set<Key> values;
   std::set<int> cells;
   std::vector<double> Es;
   std::vector<std::string> scenes;
   for (std::size_t i : idx) {
-    values.insert(parameter(t.rows[i]));
+    values.insert(Key(parameter(t.rows[i]), "the policy's parameter"));
     cells.insert(t.rows[i]["cells"].get<int>());
     const double E = t.rows[i]["E"].get<double>();
     if (std::find(Es.begin(), Es.end(), E) == Es.end()) Es.push_back(E);
@@ -615,7 +617,7 @@ std::string describe_rows(const TradeRows& t, const AdviceGroup& g,
 // "C = 0.5": the value checked beyond the advised one (a range when it differs between values
 // of E).
 std::string checked_text(const AdviceGroup& g, const ValueCheck& c) {
-  const auto [lo, hi] = std::minmax_element(c.checked.begin(), c.checked.end());
+  const auto [lo, hi] = std::minmax_element(c.checked.begin(), c.checked.end(), TotalLess());
   std::string s = g.value(*lo);
   if (*hi != *lo) s += " to " + parameter_text(g.policy, *hi);
   return s;
@@ -669,6 +671,10 @@ std::string advice_table(const TradeRows& t, const std::vector<MarginRange>& all
 ojson advice_json(const TradeRows& t, const std::vector<MarginRange>& all) {
   ojson j = ojson::array();
   for (const auto& a : all) {
+    const ojson checked_to = a.advised
+                                 ? ojson(*std::max_element(a.advised->checked.begin(),
+                                                           a.advised->checked.end(), TotalLess()))
+                                 : ojson(nullptr);
     ojson g = {{"method", a.group.method},
                {"policy", a.group.policy},
                {"cfl_factor", a.group.cfl_factor ? ojson(*a.group.cfl_factor) : ojson(nullptr)},
@@ -676,9 +682,7 @@ ojson advice_json(const TradeRows& t, const std::vector<MarginRange>& all) {
                {"advised", a.advised ? ojson(a.advised->value) : ojson(nullptr)},
                {"rests_on",
                 a.advised ? ojson(describe_rows(t, a.group, a.advised->rests_on)) : ojson(nullptr)},
-               {"checked_to", a.advised ? ojson(*std::max_element(a.advised->checked.begin(),
-                                                                  a.advised->checked.end()))
-                                        : ojson(nullptr)},
+               {"checked_to", checked_to},
                {"next_value", a.next.value},
                {"next_not_advised", a.next.why_not}};
     j.push_back(g);
@@ -833,7 +837,7 @@ std::string gimp_spread_sentences(const TradeRows& t) {
         finer.push_back(cells);
     }
     std::sort(finer.begin(), finer.end());
-    const auto [lo, hi] = std::minmax_element(errs.begin(), errs.end());
+    const auto [lo, hi] = std::minmax_element(errs.begin(), errs.end(), TotalLess());
     s << "E = " << shortest(E) << ": every stable fixed or CFL step of GIMP on " << kCoarse
       << " cells gives an error between " << sci(*lo) << " and " << sci(*hi);
     std::string moved;
@@ -873,8 +877,8 @@ std::string refinement_sentence(const TradeRows& t) {
 std::string bound_stepping_sentence(const TradeRows& t) {
   const auto [step_ratio, error_ratio] = bound_against_cfl(t);
   if (step_ratio.empty()) return "";
-  const auto [slo, shi] = std::minmax_element(step_ratio.begin(), step_ratio.end());
-  const auto [elo, ehi] = std::minmax_element(error_ratio.begin(), error_ratio.end());
+  const auto [slo, shi] = std::minmax_element(step_ratio.begin(), step_ratio.end(), TotalLess());
+  const auto [elo, ehi] = std::minmax_element(error_ratio.begin(), error_ratio.end(), TotalLess());
   std::ostringstream s;
   s << "Stepping at the eq. (108) bound (adaptive, s = " << shortest(kBoundSafety) << ") takes "
     << ratio(*slo) << " to " << ratio(*shi)
@@ -934,7 +938,7 @@ void grid_and_step_claims(const TradeRows& t, std::vector<Claim>& claims) {
     const ojson* coarse = t.find(E, "gimp", "cfl", kCflRef, kCoarse);
     const ojson* fine = t.find(E, "gimp", "cfl", kCflRef, kFine);
     if (errs.empty() || !coarse || !fine || !accuracy(*coarse) || !accuracy(*fine)) continue;
-    const auto [lo, hi] = std::minmax_element(errs.begin(), errs.end());
+    const auto [lo, hi] = std::minmax_element(errs.begin(), errs.end(), TotalLess());
     spread_max = std::max(spread_max, *hi / *lo);
     const double change = *accuracy(*fine) / *accuracy(*coarse);
     grid_min = std::min(grid_min, std::max(change, 1 / change));
@@ -982,8 +986,9 @@ void grid_and_step_claims(const TradeRows& t, std::vector<Claim>& claims) {
   if (step_ratio.empty()) {
     bound.value("slo", "–").value("shi", "–").value("elo", "–").value("ehi", "–");
   } else {
-    const auto [slo, shi] = std::minmax_element(step_ratio.begin(), step_ratio.end());
-    const auto [elo, ehi] = std::minmax_element(error_ratio.begin(), error_ratio.end());
+    const auto [slo, shi] = std::minmax_element(step_ratio.begin(), step_ratio.end(), TotalLess());
+    const auto [elo, ehi] =
+        std::minmax_element(error_ratio.begin(), error_ratio.end(), TotalLess());
     bound.value("slo", ratio(*slo))
         .value("shi", ratio(*shi))
         .value("elo", ratio(*elo))
@@ -1283,7 +1288,7 @@ std::string walls_cost_section(const std::vector<ojson>& rows,
   auto order = [&](std::size_t i) {
     const ojson& r = rows[i];
     return std::tuple(std::find(methods.begin(), methods.end(), method_label(r)) - methods.begin(),
-                      r["E"].get<double>(), r["cells"].get<int>());
+                      Key(r["E"].get<double>(), "E"), r["cells"].get<int>());
   };
   std::vector<std::pair<std::size_t, const ojson*>> sorted(twins.begin(), twins.end());
   std::stable_sort(sorted.begin(), sorted.end(),

@@ -8,6 +8,7 @@
 
 #include "claims.hpp"
 #include "csv.hpp"
+#include "key.hpp"
 #include "report_util.hpp"
 #include "study.hpp"
 
@@ -112,7 +113,7 @@ std::string reading(const std::map<std::string, MethodWalls>& methods) {
       md << ", nothing to compare. ";
       continue;
     }
-    const auto [lo, hi] = std::minmax_element(m.ratios.begin(), m.ratios.end());
+    const auto [lo, hi] = std::minmax_element(m.ratios.begin(), m.ratios.end(), TotalLess());
     md << ", the periodic error over time is " << ratio(*lo) << " to " << ratio(*hi)
        << " times the Dirichlet one (median " << ratio(quantile(m.ratios, 0.5))
        << "): the walls raise the error by more than " << percent(kSameError) << " in "
@@ -136,7 +137,7 @@ std::vector<Claim> walls_claims(const std::map<std::string, MethodWalls>& method
         .count("same", m.same)
         .count("n", m.both_stable);
     if (!m.ratios.empty()) {
-      const auto [lo, hi] = std::minmax_element(m.ratios.begin(), m.ratios.end());
+      const auto [lo, hi] = std::minmax_element(m.ratios.begin(), m.ratios.end(), TotalLess());
       c.value("lo", significant(*lo, 3)).value("hi", significant(*hi, 3));
     } else {
       c.value("lo", "–").value("hi", "–");
