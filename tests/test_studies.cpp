@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -153,6 +154,67 @@ TEST_F(Studies, ListRunsEachExperimentAfterItsInputs) {
 
 // The recipe: a spec naming the throwaway study is swept and reported through the engine with
 // nothing but the declaration above.
+// The two tiers (docs/design.md, "Two tiers"): make reproduce runs the paper's tier, make
+// studies the rest with the paper experiments it reads; a paper experiment reads only paper
+// experiments, so that no report depends on which tier ran first.
+TEST_F(Studies, EachTierRunsWhatItReadsAndThePaperReadsOnlyThePaper) {
+  const std::string experiments = std::string(MPMSTAB_SOURCE_DIR) + "/experiments";
+  auto listed = [](const std::string& output) {
+    std::vector<std::string> names;
+    std::istringstream in(output);
+    for (std::string line; std::getline(in, line);)
+      names.push_back(fs::path(line).stem().string());
+    return names;
+  };
+  const auto paper = test_support::run_mpmstab("list " + experiments + " --tier paper");
+  const auto studies = test_support::run_mpmstab("list " + experiments + " --tier studies");
+  ASSERT_EQ(paper.status, 0) << paper.output;
+  ASSERT_EQ(studies.status, 0) << studies.output;
+  const auto specs = project_specs();
+  std::map<std::string, const Spec*> by_name;
+  for (const auto& s : specs)
+    by_name[s.name] = &s;
+  const std::vector<std::string> in_paper = listed(paper.output),
+                                 in_studies = listed(studies.output);
+  const auto has = [](const std::vector<std::string>& v, const std::string& n) {
+    return std::find(v.begin(), v.end(), n) != v.end();
+  };
+  for (const auto& s : specs) {
+    // Every experiment is in its tier's list; the paper's list holds only the paper's.
+    EXPECT_TRUE(has(s.tier == Tier::paper ? in_paper : in_studies, s.name)) << s.name;
+    if (s.tier == Tier::studies) EXPECT_FALSE(has(in_paper, s.name)) << s.name;
+    for (const auto& input : s.inputs) {
+      if (s.tier == Tier::paper) EXPECT_EQ(by_name.at(input.name)->tier, Tier::paper) << s.name;
+      // Each list runs what its experiments read.
+      if (has(in_studies, s.name)) EXPECT_TRUE(has(in_studies, input.name)) << input.name;
+    }
+  }
+  // The paper's own experiments: its tables, figures, the peers and the comparison.
+  for (const char* n : {"table1", "table2", "fig1", "fig2", "fig3", "peers", "comparison"})
+    EXPECT_TRUE(has(in_paper, n)) << n;
+  EXPECT_FALSE(has(in_paper, "variants"));
+
+  // A paper experiment that reads a studies experiment is refused, naming it.
+  std::ofstream(dir / "table1.json") << R"({"name": "table1", "report": "table1", "tier":
+      "studies", "reference": "p.csv", "cases": [{"E": 4, "A": 0.01, "method": "gimp", "dt":
+      1e-3}]})";
+  std::ofstream(dir / "comparison.json")
+      << R"({"name": "comparison", "report": "comparison", "tier": "paper"})";
+  const auto refused = test_support::run_mpmstab("list " + dir.string() + " --tier studies");
+  EXPECT_EQ(refused.status, 2);
+  EXPECT_NE(refused.output.find("comparison.json: a paper experiment reads 'table1'"),
+            std::string::npos)
+      << refused.output;
+  const auto bad = test_support::run_mpmstab("list " + dir.string() + " --tier all");
+  EXPECT_EQ(bad.status, 2);
+  std::ofstream(dir / "table1.json") << R"({"name": "table1", "report": "table1", "tier":
+      "both", "reference": "p.csv", "cases": [{"E": 4, "A": 0.01, "method": "gimp", "dt":
+      1e-3}]})";
+  const auto unknown = test_support::run_mpmstab("list " + dir.string());
+  EXPECT_EQ(unknown.status, 2);
+  EXPECT_NE(unknown.output.find("tier: unknown value 'both'"), std::string::npos) << unknown.output;
+}
+
 TEST_F(Studies, ANewStudyNeedsOnlyItsDeclarationAndASpec) {
   std::ofstream(dir / "count.json") << R"({"name": "count", "title": "Count",
       "report": "throwaway", "record": ["error_over_time"],

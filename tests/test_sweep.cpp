@@ -11,6 +11,7 @@
 #include <random>
 #include <sstream>
 
+#include "analysis/spectral.hpp"
 #include "cache.hpp"
 #include "progress.hpp"
 #include "report.hpp"
@@ -314,6 +315,17 @@ TEST_F(Sweeps, OneQueueForSeveralSpecsGivesTheSameResultsAndRunsARepeatedCaseOnc
   EXPECT_NE(output.find("[reproduce] 3 experiments in"), std::string::npos) << output;
   EXPECT_EQ(read(dir / "cli/small.csv").empty(), false);
   EXPECT_NE(read(dir / "cli/cache/timings.json").find("\"(reproduce)\""), std::string::npos);
+  // --label names the run's entry; a label that is not a plain name is refused.
+  auto reproduce_labelled = [&](const std::string& label) {
+    return test_support::run_program(
+               MPMSTAB_BIN, {MPMSTAB_BIN, "reproduce", (dir / "small.json").string(), "--label",
+                             label, "--out", (dir / "cli").string()})
+        .status;
+  };
+  ASSERT_EQ(reproduce_labelled("make studies"), 0);
+  EXPECT_NE(read(dir / "cli/cache/timings.json").find("\"(make studies)\""), std::string::npos);
+  EXPECT_EQ(reproduce_labelled("$(touch x)"), 2);
+  EXPECT_EQ(reproduce_labelled(""), 2);
   EXPECT_FALSE(fs::exists(dir / "cli/timings.json"));  // published only by mpmstab performance
   // Refused before any work: a missing spec, a bad option, no spec, two specs of one name.
   const std::string before = read(dir / "cli/small.csv");
@@ -330,6 +342,82 @@ TEST_F(Sweeps, OneQueueForSeveralSpecsGivesTheSameResultsAndRunsARepeatedCaseOnc
 
 // A study that reads another experiment is written after it, whatever the order given: the
 // spectral study shows the spectral_edge experiment's measured edge even when listed first.
+// Specs added while the queue runs (make reproduce adds each experiment's follow-up runs as its
+// cases finish): their cases join the same queue, a case already computed or waiting gives its
+// record, and every record is the one a sweep of that spec alone gives.
+TEST_F(Sweeps, ASpecAddedWhileTheQueueRunsJoinsItAndGetsTheRecordsOfItsOwnSweep) {
+  std::ofstream(dir / "more.json") << R"({
+      "name": "more", "title": "More", "report": "table2", "reference": "paper2.csv",
+      "record": ["crossings", "error_over_time"],
+      "defaults": {"T": 0.05, "cells": 20, "dt": 1e-4},
+      "cases": [
+        {"E": 4, "A": 0.015, "method": "gimp"}, {"E": 64, "A": 0.05, "method": "mpm"},
+        {"E": 16, "A": 0.05, "method": "gimp"}
+      ]})";
+  const Spec small = load_spec(dir / "small.json"), more = load_spec(dir / "more.json");
+  SweepOptions o;
+  o.jobs = 2;
+  o.cache = dir / "queue/cache";
+  o.quiet = true;
+  SweepQueue queue(o, "test");
+  EXPECT_EQ(queue.add(small), 0u);
+  std::vector<std::size_t> order;
+  std::size_t added = 0;
+  const std::vector<SweepOutcome> outcomes = queue.run([&](std::size_t b, SweepOutcome&) {
+    order.push_back(b);
+    if (b == 0) added = queue.add(more);  // from the caller's thread, while the queue runs
+  });
+  ASSERT_EQ(added, 1u);
+  ASSERT_EQ(order, (std::vector<std::size_t>{0, 1}));
+  ASSERT_EQ(outcomes.size(), 2u);
+  // One run per distinct case over both: small's 5 and more's one new case.
+  std::size_t cache_files = 0;
+  for (const auto& f : fs::directory_iterator(dir / "queue/cache"))
+    cache_files += f.path().extension() == ".json" && f.path().stem().string().size() == 16;
+  EXPECT_EQ(cache_files, 6u);
+  // Every record is its own sweep's.
+  SweepOptions alone;
+  alone.quiet = true;
+  const SweepOutcome reference = run_sweep(more, alone);
+  for (std::size_t i = 0; i < more.cases.size(); ++i)
+    EXPECT_EQ(deterministic_part(outcomes[1].records[i]), deterministic_part(reference.records[i]))
+        << i;
+}
+
+// The dense spectral analyses a run asks for count in the queue's estimate: one for a layout
+// that is not uniform where the spec records `spectral`, none for a uniform layout (Bloch's),
+// and more for the spectral policy as the layout moves.
+TEST(Scheduling, DenseAnalysesAreCountedWhereARunAsksForThem) {
+  RunParams p;
+  p.cells = 50;
+  EXPECT_FALSE(dense_analyses(p).initial_key);  // uniform: Bloch's limit
+  p.observe.spectral = true;
+  EXPECT_FALSE(dense_analyses(p).initial_key);
+  p.layout.jitter = 0.1;
+  const DenseAnalyses jittered = dense_analyses(p);
+  ASSERT_TRUE(jittered.initial_key);
+  EXPECT_EQ(jittered.later, 0);
+  EXPECT_EQ(*jittered.initial_key, spectral_analysis_key(p, SpectralAnalysis::dense));
+  // n = 2 values x 100 particles.
+  EXPECT_DOUBLE_EQ(dense_analysis_cost(p), kDenseAnalysisCost * 200.0 * 200.0 * 200.0);
+  p.observe.spectral = false;
+  EXPECT_FALSE(dense_analyses(p).initial_key);
+  p.stepping.policy = TimeStepPolicy::spectral;
+  p.A = 0.1;  // 5 cells: at most 6 analyses more as the layout moves
+  EXPECT_TRUE(dense_analyses(p).initial_key);
+  EXPECT_DOUBLE_EQ(dense_analyses(p).later, 6);
+}
+
+TEST(ProgressLine, WorkAddedWhileTheQueueRunsJoinsTheTotal) {
+  ProgressCounter c(2, 100);
+  c.finished(false, 50, 50, false);
+  EXPECT_DOUBLE_EQ(c.remaining_cost(), 50);
+  c.add(3, 300);  // a spec's follow-up runs
+  EXPECT_EQ(c.runs(), 5u);
+  EXPECT_DOUBLE_EQ(c.remaining_cost(), 350);
+  EXPECT_NE(c.text("reproduce", 10).find("1/5 cases"), std::string::npos) << c.text("r", 10);
+}
+
 TEST_F(Sweeps, OneQueueWritesAnExperimentAfterTheOnesItReads) {
   std::ofstream(dir / "spectral_edge.json") << R"({"name": "spectral_edge", "title": "E",
       "report": "spectral_edge", "record": ["error_over_time"],

@@ -219,12 +219,28 @@ std::string spectral_key(const RunParams& p, bool bloch) {
 
 }  // namespace
 
+std::string spectral_analysis_key(const RunParams& p, SpectralAnalysis analysis) {
+  const bool bloch = analysis == SpectralAnalysis::bloch;
+  return std::string(to_string(analysis)) + '/' + spectral_key(p, bloch);
+}
+
+DenseAnalyses dense_analyses(const RunParams& p) {
+  DenseAnalyses d;
+  const bool policy = p.stepping.policy == TimeStepPolicy::spectral;
+  // A uniform layout's limit is Bloch's, for the record and the policy's first step alike.
+  if (!bloch_applies(p) && (p.observe.spectral || policy) &&
+      spectral_state_size(p) <= kMaxSpectralState)
+    d.initial_key = spectral_analysis_key(p, SpectralAnalysis::dense);
+  if (policy) d.later = p.A * p.cells + 1;
+  return d;
+}
+
 std::optional<double> spectral_courant(const RunParams& p, SpectralAnalysis analysis) {
   const bool bloch = analysis == SpectralAnalysis::bloch;
   if (bloch ? !bloch_applies(p) : spectral_state_size(p) > kMaxSpectralState) return std::nullopt;
   static std::mutex mutex;
   static std::map<std::string, std::optional<double>> known;
-  const std::string key = std::string(to_string(analysis)) + '/' + spectral_key(p, bloch);
+  const std::string key = spectral_analysis_key(p, analysis);
   {
     const std::lock_guard<std::mutex> lock(mutex);
     if (const auto it = known.find(key); it != known.end()) return it->second;

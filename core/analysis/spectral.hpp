@@ -15,6 +15,7 @@
 #include <Eigen/Core>
 #include <functional>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "base/params.hpp"
@@ -87,6 +88,20 @@ SpectralLimit spectral_limit(const RunParams& p, const Eigen::ArrayXd& x,
 // the spectral policy needs at each new layout.
 std::optional<double> spectral_courant_at(const RunParams& p, const Eigen::ArrayXd& x,
                                           std::optional<double> near = std::nullopt);
+
+// What the limit of p's initial layout by `analysis` depends on (the scheme, the grid for
+// dense, the layout): spectral_courant computes it once per key in a process.
+std::string spectral_analysis_key(const RunParams& p, SpectralAnalysis analysis);
+
+// The dense analyses of its initial layout a run of p asks for, for scheduling: the key of
+// the one its record takes (a layout that is not uniform, recorded with `spectral`) or its
+// spectral policy starts from, if any, and how many more the spectral policy may take as the
+// layout moves (at most max|u| / h + 1, params.hpp; A / h + 1 here).
+struct DenseAnalyses {
+  std::optional<std::string> initial_key;
+  double later = 0;
+};
+DenseAnalyses dense_analyses(const RunParams& p);
 
 // The limit of p's initial layout by `analysis`, computed once per scheme, grid (dense only)
 // and layout in a process, shared by threads. None when the analysis does not apply (dense:

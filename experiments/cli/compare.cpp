@@ -35,12 +35,11 @@ int cmd_compare(const std::vector<std::string_view>& argv) {
            "Writes DIR/comparison.md and DIR/comparison.csv: every Table 1 cell against the "
            "paper,\nwith its verdict, its class of disagreement and the supporting experiments "
            "read from\nDIR/<name>.json. The comparison spec (experiments/comparison.json) "
-           "names them as its\ninputs: table1 (required), courant, walls, crossing, eq108, the "
-           "variants study,\nfig1, fig2, fig3, fig2_variants and fig3_variants, each used when it "
-           "has been run. In the second form the "
-           "inputs are the specs given, the\nfirst being the one compared with the paper; "
-           "the variants study is read only if its\nspec is among them. `mpmstab sweep "
-           "<comparison spec>` writes the same files.\n\n"
+           "names them as its\ninputs, each of which must have been run: table1, peers, "
+           "courant, walls, crossing,\neq108, fig1, fig2, fig3, fig2_variants and "
+           "fig3_variants. In the second form the inputs\nare the specs given, the first "
+           "being the one compared with the paper; a section whose\nexperiment is not among "
+           "them says so. `mpmstab sweep <comparison spec>` writes the same\nfiles.\n\n"
            "Options:\n"
            "  --out DIR       folder of the results and of the comparison (default results)\n"
            "  --error-at X    which of our errors is compared with the paper's \"Max Error\": "
@@ -78,6 +77,7 @@ int cmd_compare(const std::vector<std::string_view>& argv) {
   std::vector<std::string> roles = {first};
   for (std::size_t i = 1; i < specs.size(); ++i)
     roles.push_back(specs[i].name);
+  // Only the inputs given are read: a section whose experiment is not among them says so.
   Spec derived;
   derived.name = study->name;
   derived.study = study;

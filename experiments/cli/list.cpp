@@ -13,12 +13,18 @@ namespace mpmstab::cli {
 
 namespace {
 
-constexpr const char* kListHelp = R"(Usage: mpmstab list [DIR] [--figures] [--studies]
+constexpr const char* kListHelp =
+    R"(Usage: mpmstab list [DIR] [--tier paper|studies] [--figures] [--studies]
 
 Prints the path of every experiment spec in DIR (default experiments), one per line, in the
 order they run: each after the experiments whose results its study reads, then by the spec's
 index_order, then by name. Specs whose name differs from their file name are refused.
 
+  --tier T   only the experiments of tier T (the spec's "tier"): paper, what make reproduce
+             runs (the paper's tables and figures, and the comparison with the experiments it
+             cites), or studies, what make studies runs (everything else), with the experiments
+             of the paper tier they read before them. A paper experiment that reads a studies
+             experiment is refused (exit status 2).
   --figures  only the experiments whose study draws a figure
   --studies  instead, every study the program knows: its name, what it shows, and the specs
              of DIR that use it
@@ -76,6 +82,35 @@ std::vector<const Spec*> run_order(const std::vector<Spec>& specs) {
   return order;
 }
 
+// The experiments a tier runs, in run order: its own and every experiment they read, directly
+// or through another. A paper experiment must read only paper experiments.
+std::vector<const Spec*> tier_order(const std::vector<const Spec*>& order, Tier tier) {
+  std::map<std::string, const Spec*> by_name;
+  for (const Spec* s : order)
+    by_name[s->name] = s;
+  std::set<std::string> wanted;
+  std::vector<const Spec*> stack;
+  for (const Spec* s : order)
+    if (s->tier == tier) stack.push_back(s);
+  while (!stack.empty()) {
+    const Spec* s = stack.back();
+    stack.pop_back();
+    if (!wanted.insert(s->name).second) continue;
+    for (const auto& decl : s->study->inputs) {
+      const auto it = by_name.find(decl.name);
+      if (it == by_name.end()) continue;
+      if (s->tier == Tier::paper && it->second->tier != Tier::paper)
+        throw UsageError(s->path.string() + ": a paper experiment reads '" + decl.name +
+                         "', of the studies tier (make reproduce would depend on make studies)");
+      stack.push_back(it->second);
+    }
+  }
+  std::vector<const Spec*> out;
+  for (const Spec* s : order)
+    if (wanted.count(s->name)) out.push_back(s);
+  return out;
+}
+
 std::string records_text(const Study& study) {
   const auto& r = study.records;
   std::string text;
@@ -104,7 +139,7 @@ void print_studies(const std::vector<Spec>& specs) {
 }  // namespace
 
 int cmd_list(const std::vector<std::string_view>& argv) {
-  const Args args(argv, {{"figures", false}, {"studies", false}, {"help", false}});
+  const Args args(argv, {{"tier"}, {"figures", false}, {"studies", false}, {"help", false}});
   if (args.flag("help")) {
     std::cout << kListHelp;
     return 0;
@@ -117,7 +152,16 @@ int cmd_list(const std::vector<std::string_view>& argv) {
     print_studies(specs);
     return 0;
   }
-  for (const Spec* s : run_order(specs)) {
+  std::vector<const Spec*> order = run_order(specs);
+  // Every paper experiment reads only paper experiments, whichever tier is asked for.
+  tier_order(order, Tier::paper);
+  if (const auto tier = args.value("tier")) {
+    if (*tier != "paper" && *tier != "studies")
+      throw UsageError("--tier: unknown value '" + std::string(*tier) +
+                       "' (expected paper or studies)");
+    order = tier_order(order, *tier == "paper" ? Tier::paper : Tier::studies);
+  }
+  for (const Spec* s : order) {
     if (!args.flag("figures") || s->study->figure) std::cout << s->path.generic_string() << "\n";
   }
   return 0;

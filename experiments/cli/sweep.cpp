@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <csignal>
@@ -82,7 +83,7 @@ option (nothing is run or written), 1 for an internal error.
 
 constexpr const char* kReproduceHelp =
     R"(Usage: mpmstab reproduce <spec.json>... [--jobs N] [--out DIR] [--force]
-                        [--timing keep|omit]
+                        [--timing keep|omit] [--label NAME]
 
 Runs the cases of every spec given in one queue, longest first by their estimated
 particle-steps, on N threads: no thread idles while another finishes a long case of another
@@ -93,9 +94,17 @@ written when its inputs are. One progress line covers the whole run: cases done 
 particle-steps done of the estimated total, elapsed time and the time to go at the rate
 measured so far (on a terminal redrawn in place, otherwise printed every 10 s).
 
+Each experiment's follow-up runs (runs its study chooses from its results: ensembles of
+perturbed layouts near an edge, confirming runs of a recommendation) join the same queue as
+soon as its cases are done and what it reads is written, and its reports are written when they
+are done. The line's total grows as they join, and counts the dense spectral analyses the runs
+ask for (kDenseAnalysisCost, engine/sweep.hpp) as the particle-steps that take as long.
+
 The specs are taken in the order given ('mpmstab list' prints them in the order make reproduce
-uses). An input that none of them produces must already be in DIR. Options as for 'mpmstab
-sweep' (no --shard). Exit status: 0 when every case ran, 2 for an invalid spec or option
+uses). An input that none of them produces must already be in DIR. --label NAME names the run
+in the progress line and in DIR/cache/timings.json, whose key is NAME in parentheses (make
+reproduce: 'make reproduce', make studies: 'make studies'; default 'reproduce'). Options as for
+'mpmstab sweep' (no --shard). Exit status: 0 when every case ran, 2 for an invalid spec or option
 (nothing is run or written), 1 for an internal error, 128 + the signal when interrupted (the
 finished cases stay in the cache; reports of complete experiments stay written).
 )";
@@ -256,24 +265,32 @@ ReproducePlan plan_reproduce(const Args& args, const std::filesystem::path& out)
   return plan;
 }
 
-// 2. Publishes each experiment once its cases are complete and what it reads is written, and
-// counts the work of the whole reproduction (a record shared by several cases once).
+// 2. Publishes each experiment once its cases are complete and what it reads is written: its
+// follow-up runs (Study::follow_up) first join the queue, and it is published when they are
+// done. Counts the work of the whole reproduction (a record shared by several cases once).
 class ReproducePublisher {
  public:
   ReproducePublisher(const ReproducePlan& plan, const std::filesystem::path& out,
-                     const SweepOptions& options, bool omit)
-      : plan_(plan), out_(out), options_(options), omit_(omit) {}
+                     const SweepOptions& options, bool omit, SweepQueue& queue)
+      : plan_(plan), out_(out), options_(options), omit_(omit), queue_(queue) {}
 
-  void complete(std::size_t s, SweepOutcome& outcome) {
-    waiting_.emplace(s, std::move(outcome));
+  // Batch b of the queue is complete: an experiment's cases (b < the number of specs, added in
+  // their order) or an experiment's follow-up runs.
+  void complete(std::size_t b, SweepOutcome& outcome) {
+    if (const auto f = follow_of_.find(b); f != follow_of_.end()) {
+      follow_done_[f->second] = std::move(outcome);
+    } else {
+      waiting_.emplace(b, std::move(outcome));
+    }
     for (bool again = true; again;) {
       again = false;
       for (auto it = waiting_.begin(); it != waiting_.end();) {
-        if (!ready(it->first)) {
+        const std::size_t s = it->first;
+        if (!ready(s) || !follow_ups_done(s, it->second)) {
           ++it;
           continue;
         }
-        publish(plan_.specs[it->first], it->second);
+        publish(plan_.specs[s], it->second);
         it = waiting_.erase(it);
         again = true;
       }
@@ -281,6 +298,8 @@ class ReproducePublisher {
   }
 
   bool all_published() const { return waiting_.empty(); }
+  // The experiment whose follow-up runs are batch b of the queue.
+  std::size_t followed_by(std::size_t b) const { return follow_of_.at(b); }
   int computed = 0, cases = 0;
   double particle_steps = 0, compute_seconds = 0;
 
@@ -290,6 +309,23 @@ class ReproducePublisher {
     return std::includes(written_.begin(), written_.end(), needs.begin(), needs.end());
   }
 
+  // Whether experiment s's follow-up runs are done: asked for (into the queue) the first time it
+  // is ready, then waited for.
+  bool follow_ups_done(std::size_t s, const SweepOutcome& outcome) {
+    if (follow_done_.count(s)) return true;
+    if (asked_.count(s)) return false;
+    asked_.insert(s);
+    std::unique_ptr<FollowUps> f = follow_ups(plan_.specs[s], outcome, out_);
+    if (!f) return true;
+    if (!options_.quiet)
+      std::cerr << (options_.progress_line ? "\r\033[K" : "") << "[" << f->spec.name << "] "
+                << f->spec.cases.size() << " follow-up run"
+                << (f->spec.cases.size() == 1 ? "" : "s") << " join the queue\n";
+    follow_of_[queue_.add(f->spec)] = s;
+    follow_specs_[s] = std::move(f);
+    return false;
+  }
+
   void publish(const Spec& spec, SweepOutcome& outcome) {
     std::string line;
     if (!spec.study->has_cases) {
@@ -297,16 +333,30 @@ class ReproducePublisher {
       line = "[" + spec.name + "] from " + std::to_string(spec.inputs.size()) + " inputs -> " +
              out_.string() + "\n";
     } else {
+      const std::size_t s = index_of(spec);
       count(spec, outcome);
       const double wall = outcome.wall_seconds;
       if (omit_) omit_machine_measurements(outcome);
-      write_reports(spec, outcome, out_, follow_up_runner(options_));
+      // The follow-up runs were computed in the queue: the report takes their outcome.
+      const auto given = follow_done_.find(s);
+      const FollowUpRunner runner = [&](const Spec& follow) {
+        if (given == follow_done_.end() || follow.cases.size() != given->second.records.size())
+          throw std::logic_error(spec.name + ": follow-up runs asked for after the queue ran");
+        if (const auto f = follow_specs_.find(s); f != follow_specs_.end()) {
+          count(f->second->spec, given->second);
+          if (omit_) omit_machine_measurements(given->second);
+        }
+        return given->second;
+      };
+      write_reports(spec, outcome, out_, runner);
       line = summary_line(spec, outcome, wall, out_);
     }
     if (options_.progress_line) std::cerr << "\r\033[K";
     std::cerr << line << std::flush;
     written_.insert(spec.name);
   }
+
+  std::size_t index_of(const Spec& spec) const { return std::size_t(&spec - plan_.specs.data()); }
 
   void count(const Spec& spec, const SweepOutcome& outcome) {
     computed += outcome.computed;
@@ -323,16 +373,22 @@ class ReproducePublisher {
   const std::filesystem::path& out_;
   const SweepOptions& options_;
   bool omit_;
+  SweepQueue& queue_;
   std::map<std::size_t, SweepOutcome> waiting_;  // complete, not yet published
+  std::set<std::size_t> asked_;                  // experiments whose follow-ups were asked for
+  std::map<std::size_t, std::unique_ptr<FollowUps>> follow_specs_;  // by experiment
+  std::map<std::size_t, std::size_t> follow_of_;     // queue batch -> the experiment it follows up
+  std::map<std::size_t, SweepOutcome> follow_done_;  // by experiment
   std::set<std::string> written_;
   std::set<std::string> counted_;
 };
 
 // 3. The reproduction's own entry in the machine's timings.
 void record_reproduce(const ReproducePublisher& done, std::size_t experiments, double wall,
-                      const std::filesystem::path& out, const SweepOptions& options, bool omit) {
+                      const std::filesystem::path& out, const SweepOptions& options, bool omit,
+                      const std::string& label) {
   const Provenance when = current_provenance(options.jobs);
-  write_reproduce_timing(out,
+  write_reproduce_timing(out, label,
                          {{"experiments", experiments},
                           {"cases", done.cases},
                           {"computed", done.computed},
@@ -348,12 +404,20 @@ void record_reproduce(const ReproducePublisher& done, std::size_t experiments, d
 }  // namespace
 
 int cmd_reproduce(const std::vector<std::string_view>& argv) {
-  const Args args(argv, {{"jobs"}, {"out"}, {"force", false}, {"timing"}, {"help", false}});
+  const Args args(argv,
+                  {{"jobs"}, {"out"}, {"force", false}, {"timing"}, {"label"}, {"help", false}});
   if (args.flag("help")) {
     std::cout << kReproduceHelp;
     return 0;
   }
   if (args.positional().empty()) throw UsageError("reproduce takes one or more specs");
+  const std::string label = std::string(args.value("label").value_or("reproduce"));
+  if (label.empty() || label.size() > 64 ||
+      !std::all_of(label.begin(), label.end(), [](unsigned char ch) {
+        return std::isalnum(ch) || ch == ' ' || ch == '-' || ch == '_';
+      }))
+    throw UsageError("--label: letters, digits, spaces, '-' and '_', at most 64, got '" + label +
+                     "'");
   SweepOptions options = sweep_options(args);
   const bool omit = omit_timing(args);
   const auto out = output_folder(args);
@@ -366,24 +430,26 @@ int cmd_reproduce(const std::vector<std::string_view>& argv) {
   options.cancel = &g_stop;
   install_stop_handlers();
 
-  // One queue; each experiment published once complete and once what it reads is written.
-  std::vector<const Spec*> pointers;
+  // One queue; each experiment's follow-up runs join it once its cases are complete and what it
+  // reads is written, and it is published once they are done.
+  SweepQueue queue(options, label);
   for (const auto& spec : plan.specs)
-    pointers.push_back(&spec);
-  ReproducePublisher publisher(plan, out, options, omit);
+    queue.add(spec);
+  ReproducePublisher publisher(plan, out, options, omit, queue);
   const auto start = std::chrono::steady_clock::now();
   const std::vector<SweepOutcome> rest =
-      run_sweeps(pointers, options,
-                 [&](std::size_t s, SweepOutcome& outcome) { publisher.complete(s, outcome); });
-  for (std::size_t s = 0; s < plan.specs.size(); ++s) {
-    if (rest[s].interrupted) return interrupted(plan.specs[s], rest[s], options);
+      queue.run([&](std::size_t b, SweepOutcome& outcome) { publisher.complete(b, outcome); });
+  for (std::size_t b = 0; b < rest.size(); ++b) {
+    if (!rest[b].interrupted) continue;
+    const std::size_t s = b < plan.specs.size() ? b : publisher.followed_by(b);
+    return interrupted(plan.specs[s], rest[s], options);
   }
   if (!publisher.all_published()) {
     throw std::logic_error("reproduce: an experiment waits for an input that never came");
   }
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  record_reproduce(publisher, plan.specs.size(), wall, out, options, omit);
+  record_reproduce(publisher, plan.specs.size(), wall, out, options, omit, label);
   std::cerr << "[reproduce] " << plan.specs.size() << " experiments in "
             << shortest(std::round(wall * 10) / 10) << " s -> " << out.string() << "\n";
   return 0;

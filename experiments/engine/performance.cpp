@@ -302,18 +302,23 @@ void write_experiment_times(std::ostream& md, const std::vector<Spec>& specs, co
   md << "| all | | " << sci(total_work) << " | " << seconds(total_compute) << " | | "
      << (total_work > 0 ? fixed(1e9 * total_compute / total_work, 1) : std::string("-"))
      << " (mean) |\n\n";
-  if (timings.contains(kReproduceTiming)) {
-    const ojson& r = timings[kReproduceTiming];
+  bool any = false;
+  for (const auto& [key, r] : timings.items()) {
+    if (key.size() < 3 || key.front() != '(' || key.back() != ')') continue;
+    any = true;
+    const std::string label = key.substr(1, key.size() - 2);
     const double wall = r["wall_seconds"].get<double>();
     const int threads = r["threads"].get<int>();
     // Each distinct case once (none in an entry written before it was recorded).
     const double cpu = r.contains("compute_seconds") ? r["compute_seconds"].get<double>() : 0.0;
     const double work = r["particle_steps"].get<double>();
     const double kernel = bench.median("BM_StepInstrumented", "gimp");
-    md << "**The whole reproduction.** The last `make reproduce` that computed cases ran "
-       << r["cases"].dump() << " cases (" << r["computed"].dump() << " computed; " << sci(work)
-       << " particle-steps, each run counted once) of " << r["experiments"].dump()
-       << " experiments on " << threads << " threads in **" << seconds(wall) << "** wall.";
+    md << "**`" << label << "`.** The last run that computed cases ran " << r["cases"].dump()
+       << " cases (" << r["computed"].dump() << " computed; " << sci(work)
+       << " particle-steps, each run counted once, follow-up runs included) of "
+       << r["experiments"].dump() << " experiments on " << threads << " threads ("
+       << (r.contains("cpu") ? r["cpu"].get<std::string>() : std::string("CPU not recorded"))
+       << ") in **" << seconds(wall) << "** wall.";
     if (cpu > 0) {
       md << " Their CPU time, " << seconds(cpu) << ", on " << threads
          << " threads kept fully busy would take " << seconds(cpu / threads)
@@ -325,11 +330,14 @@ void write_experiment_times(std::ostream& md, const std::vector<Spec>& specs, co
          << fixed(kernel, 2) << " ns per particle-step) it would take "
          << seconds(work * kernel * 1e-9 / threads);
     }
-    md << ". The table's CPU times and particle-steps count a case shared by two experiments "
-          "in each.\n";
+    md << ".\n\n";
+  }
+  if (any) {
+    md << "The table's CPU times and particle-steps count a case shared by two experiments in "
+          "each.\n";
   } else {
-    md << "`make reproduce` prints its own wall time when it ends and records it in "
-          "timings.json.\n";
+    md << "`make reproduce` and `make studies` print their own wall time when they end and "
+          "record it in timings.json.\n";
   }
 }
 

@@ -9,6 +9,11 @@ namespace mpmstab {
 ProgressCounter::ProgressCounter(std::size_t runs, double estimated_cost)
     : runs_(runs), estimated_cost_(std::max(0.0, estimated_cost)) {}
 
+void ProgressCounter::add(std::size_t runs, double cost) {
+  runs_ += runs;
+  estimated_cost_ += std::max(0.0, cost);
+}
+
 void ProgressCounter::finished(bool from_cache, double cost, double work, bool unstable) {
   ++done_;
   unstable_ += unstable;

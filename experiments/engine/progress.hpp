@@ -14,6 +14,9 @@ class ProgressCounter {
   // `runs` tasks whose estimated work sums to `estimated_cost` particle-steps.
   ProgressCounter(std::size_t runs, double estimated_cost);
 
+  // Tasks added after the start (follow-up runs), `cost` their estimated work.
+  void add(std::size_t runs, double cost);
+
   // A task finished: from the cache (no work done, its estimate leaves the total) or computed
   // (its estimate `cost` replaced by the measured `work`); `unstable`: its verdict.
   void finished(bool from_cache, double cost, double work, bool unstable);

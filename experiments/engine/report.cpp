@@ -249,11 +249,17 @@ fs::path machine_timings(const fs::path& out) {
   return out / "cache" / "timings.json";
 }
 
-void write_reproduce_timing(const fs::path& out, const ojson& entry, bool computed) {
+std::string reproduce_timing_key(const std::string& label) {
+  return "(" + label + ")";
+}
+
+void write_reproduce_timing(const fs::path& out, const std::string& label, const ojson& entry,
+                            bool computed) {
   const fs::path path = machine_timings(out);
   ojson all = read_timings(path);
-  if (!computed && all.contains(kReproduceTiming)) return;  // keep the run that computed
-  store_timing(path, std::move(all), kReproduceTiming, entry);
+  const std::string key = reproduce_timing_key(label);
+  if (!computed && all.contains(key)) return;  // keep the run that computed
+  store_timing(path, std::move(all), key, entry);
 }
 
 namespace {
@@ -391,7 +397,8 @@ StudyInputs read_inputs(const Study& study, const std::vector<std::string>& role
   }
   for (const auto& decl : study.inputs) {
     const StudyInput& in = inputs[decl.name];
-    if (decl.required && !in.present()) {
+    // An input whose spec is given must have been run: no report depends on what has run.
+    if ((decl.required || in.spec) && !in.present()) {
       const std::string name = in.spec ? in.spec->name : decl.name;
       throw MissingInput((out / (name + ".json")).string() + " does not exist: run mpmstab sweep " +
                          (in.spec ? in.spec->path.string() : name + ".json") + " first");
@@ -456,17 +463,19 @@ void write_derived_reports(const Spec& spec, const fs::path& out, const ojson& o
 
 namespace {
 
-// The follow-up runs a study asks for, as flat rows in its order.
-std::vector<ojson> follow_up_rows(const Spec& spec, const std::vector<ojson>& rows,
-                                  const StudyInputs& inputs, const FollowUpRunner& runner) {
-  if (!spec.study->follow_up) return {};
+// The follow-up runs a study asks for, from the rows of its cases and its inputs: null when none.
+std::unique_ptr<FollowUps> make_follow_ups(const Spec& spec, const std::vector<ojson>& rows,
+                                           const StudyInputs& inputs) {
+  if (!spec.study->follow_up) return nullptr;
   const std::vector<RunParams> params = spec.study->follow_up(FollowUpContext{spec, rows, inputs});
-  if (params.empty()) return {};
+  if (params.empty()) return nullptr;
   // The same study, but every follow-up is one run (an edge study's too).
-  Study runs = *spec.study;
-  runs.work = CaseWork::run;
-  Spec follow = spec;
-  follow.study = &runs;
+  auto f = std::make_unique<FollowUps>();
+  f->study = *spec.study;
+  f->study.work = CaseWork::run;
+  Spec& follow = f->spec;
+  follow = spec;
+  follow.study = &f->study;
   follow.variants.clear();
   follow.cases.clear();
   for (const auto& p : params) {
@@ -482,6 +491,15 @@ std::vector<ojson> follow_up_rows(const Spec& spec, const std::vector<ojson>& ro
                              ": " + issues.front().message);
     follow.cases.push_back(c);
   }
+  return f;
+}
+
+// The follow-up runs a study asks for, as flat rows in its order.
+std::vector<ojson> follow_up_rows(const Spec& spec, const std::vector<ojson>& rows,
+                                  const StudyInputs& inputs, const FollowUpRunner& runner) {
+  const std::unique_ptr<FollowUps> f = make_follow_ups(spec, rows, inputs);
+  if (!f) return {};
+  const Spec& follow = f->spec;
   SweepOutcome done;
   if (runner) {
     done = runner(follow);
@@ -490,6 +508,8 @@ std::vector<ojson> follow_up_rows(const Spec& spec, const std::vector<ojson>& ro
     options.quiet = true;
     done = run_sweep(follow, options);
   }
+  if (done.records.size() != follow.cases.size())
+    throw std::logic_error(spec.name + ": the follow-up runs given are not the ones asked for");
   std::vector<ojson> out;
   for (std::size_t i = 0; i < follow.cases.size(); ++i)
     out.push_back(flat_row(follow.cases[i], done.records.at(i)));
@@ -577,6 +597,15 @@ void commit_set(const Spec& spec, const SweepOutcome& outcome, const ojson& when
 }
 
 }  // namespace
+
+std::unique_ptr<FollowUps> follow_ups(const Spec& spec, const SweepOutcome& outcome,
+                                      const fs::path& out) {
+  if (!spec.study->follow_up) return nullptr;
+  const std::vector<ojson> rows = flat_rows(spec, outcome);
+  const std::vector<Spec> input_specs = load_inputs(spec);
+  const StudyInputs inputs = read_inputs(*spec.study, input_roles(spec), input_specs, out);
+  return make_follow_ups(spec, rows, inputs);
+}
 
 void write_reports(const Spec& spec, const SweepOutcome& outcome, const fs::path& out,
                    const FollowUpRunner& runner) {

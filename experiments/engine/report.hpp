@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <string>
@@ -45,12 +46,13 @@ void check_inputs(const Spec& spec, const std::filesystem::path& out);
 // publishes this one.
 std::filesystem::path machine_timings(const std::filesystem::path& out);
 
-// The entry of the machine's timings for the last `mpmstab reproduce` (its wall time, threads,
-// cases, particle-steps): replaced by a run that computed cases, kept by one served entirely
+// The entry of the machine's timings for the last `mpmstab reproduce --label L` (its wall time,
+// threads, cases, particle-steps), under the key "(L)" (make reproduce: "(make reproduce)", make
+// studies: "(make studies)"): replaced by a run that computed cases, kept by one served entirely
 // from the cache.
-inline constexpr const char* kReproduceTiming = "(reproduce)";
-void write_reproduce_timing(const std::filesystem::path& out, const nlohmann::ordered_json& entry,
-                            bool computed);
+std::string reproduce_timing_key(const std::string& label);
+void write_reproduce_timing(const std::filesystem::path& out, const std::string& label,
+                            const nlohmann::ordered_json& entry, bool computed);
 // The same, but an input named in `produced` (experiments a run will write before this one's
 // reports) is not looked for in `out`.
 void check_inputs(const Spec& spec, const std::filesystem::path& out,
@@ -59,6 +61,18 @@ void check_inputs(const Spec& spec, const std::filesystem::path& out,
 // Computes a study's follow-up runs (Study::follow_up): the cases of `follow_up_spec`, a spec
 // whose study does one run per case. The commands pass run_sweep with their cache and threads.
 using FollowUpRunner = std::function<SweepOutcome(const Spec& follow_up_spec)>;
+
+// The follow-up runs a study asks for (Study::follow_up), once its cases are done and the
+// experiments it reads are written in `out`: a spec of one-run cases of the same study, which
+// owns that study (the spec points to it). write_reports asks for the same runs again and takes
+// their outcome from its runner; make reproduce computes them in its queue (SweepQueue::add).
+struct FollowUps {
+  Study study;
+  Spec spec;
+};
+// Null when the study asks for none.
+std::unique_ptr<FollowUps> follow_ups(const Spec& spec, const SweepOutcome& outcome,
+                                      const std::filesystem::path& out);
 
 // Writes <out>/<name>.csv, .json, .md, <name>_claims.csv for a study that draws conclusions and,
 // for studies with a figure, <name>_data.csv; the sweep's wall times go to <out>/timings.json,
@@ -70,7 +84,8 @@ void write_reports(const Spec& spec, const SweepOutcome& outcome, const std::fil
 // The specs of a spec's declared inputs (Study::inputs), in their order.
 std::vector<Spec> load_inputs(const Spec& spec);
 // The results of input specs in `out` (null where not run), each under its role: roles[i] is
-// the InputDecl::name that specs[i] fills. Throws MissingInput for a required input not run.
+// the InputDecl::name that specs[i] fills. Throws MissingInput for a required input, or one whose
+// spec is given, that was not run.
 StudyInputs read_inputs(const Study& study, const std::vector<std::string>& roles,
                         const std::vector<Spec>& specs, const std::filesystem::path& out);
 

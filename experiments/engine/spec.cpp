@@ -44,7 +44,7 @@ const std::vector<std::string> kVariantKeys = {"name",    "description", "set",
                                                "methods", "error_at",    "dt_at_least"};
 const std::vector<std::string> kTopKeys = {
     "name",     "title", "description", "report",   "record",      "history_stride", "reference",
-    "defaults", "cases", "cases_from",  "variants", "index_order", "check_budget"};
+    "defaults", "cases", "cases_from",  "variants", "index_order", "check_budget",   "tier"};
 // A spec named by cases_from is read whole; larger files are refused rather than read.
 constexpr std::uintmax_t kMaxSpecBytes = 4u << 20;
 const std::vector<std::string> kRecordValues = {"error_over_time", "dt_stable",   "crossings",
@@ -195,6 +195,10 @@ json parse_text(std::string_view text, const std::filesystem::path& file) {
 SpecError::SpecError(const std::filesystem::path& file, const std::string& key_path,
                      const std::string& message)
     : std::runtime_error(where(file, key_path) + ": " + message) {}
+
+std::string_view to_string(Tier t) {
+  return t == Tier::paper ? "paper" : "studies";
+}
 
 std::string_view to_string(ErrorAt e) {
   return e == ErrorAt::T ? "T" : "max_over_time";
@@ -463,8 +467,16 @@ void read_header(const Reader& r, const json& doc, bool named_by_cases_from, Spe
   }
 }
 
-// Where the experiment is listed, and the budget of its fast subset in make check.
+// Where the experiment is listed, its tier, and the budget of its fast subset in make check.
 void read_listing(const Reader& r, const json& doc, Spec& spec) {
+  if (doc.contains("tier")) {
+    const std::string tier = r.string_at(doc["tier"], "tier");
+    if (tier == "paper") {
+      spec.tier = Tier::paper;
+    } else if (tier != "studies") {
+      r.fail("tier", "unknown value '" + tier + "' (expected paper or studies)");
+    }
+  }
   if (doc.contains("index_order")) {
     spec.index_order = r.number_at(doc["index_order"], "index_order");
     if (!std::isfinite(spec.index_order)) r.fail("index_order", "must be finite");
@@ -476,8 +488,8 @@ void read_listing(const Reader& r, const json& doc, Spec& spec) {
   }
 }
 
-// The experiments the study reads, as specs beside this one: a required one must exist, an
-// optional one is read when it does.
+// The experiments the study reads, as specs beside this one: a required one must exist, another
+// is read when it does (and then its results must be there when the report is written).
 void resolve_inputs(const Reader& r, const std::filesystem::path& file, Spec& spec) {
   for (const auto& [name, required] : spec.study->inputs) {
     const auto path = file.parent_path() / (name + ".json");

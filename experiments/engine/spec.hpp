@@ -45,6 +45,12 @@ struct VariantSpec {
   std::size_t cases = 0;
 };
 
+// Which `make` target regenerates an experiment (docs/design.md, "Two tiers"): `paper`, the
+// paper's tables and figures and the comparison with the experiments it cites (make reproduce);
+// `studies`, everything else (make studies). A paper experiment reads only paper experiments.
+enum class Tier { paper, studies };
+std::string_view to_string(Tier t);
+
 struct Spec {
   std::filesystem::path path;  // the spec file
   std::string name;            // outputs are <out>/<name>.{csv,json,md}
@@ -58,11 +64,11 @@ struct Spec {
   // Where the experiment stands among the others (mpmstab list, the index of results): after
   // every experiment it reads, then by this number, then by name.
   double index_order = 0;
+  Tier tier = Tier::studies;  // "tier"
   // make check reruns the cases needing at most this many particle-steps (unset: the default
   // budget of mpmstab check).
   std::optional<double> check_budget;
-  // The experiments whose results the study reads (Study::inputs), as specs beside this one:
-  // every required one, and each optional one whose spec exists.
+  // The experiments whose results the study reads (Study::inputs), as specs beside this one.
   struct Input {
     std::string name;  // the InputDecl's
     std::filesystem::path path;

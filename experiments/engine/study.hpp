@@ -31,7 +31,10 @@ enum class CaseWork {
 };
 
 // An experiment whose results a study reads, by the name of its spec (resolved beside the
-// study's spec). A required input must have been run before the study's report is written.
+// study's spec). Where that spec exists, its results must be in the report folder before the
+// study's report is written (read_inputs refuses otherwise): a report never depends on which
+// experiments happen to have been run, or on what the cache holds. A required input's spec must
+// exist too; another's may be absent (a spec copied alone), and the report says so.
 struct InputDecl {
   std::string name;
   bool required = false;

@@ -6,15 +6,19 @@
 #include <condition_variable>
 #include <cstdint>
 #include <cstdio>
+#include <deque>
 #include <exception>
 #include <functional>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <numeric>
 #include <optional>
+#include <set>
 #include <stop_token>
 #include <thread>
 
+#include "analysis/spectral.hpp"
 #include "cache.hpp"
 #include "csv.hpp"
 #include "key.hpp"
@@ -23,6 +27,7 @@
 #include "result_json.hpp"
 #include "run/edge.hpp"
 #include "run/run.hpp"
+#include "scenes/scene_registry.hpp"
 
 namespace mpmstab {
 
@@ -36,6 +41,11 @@ using Clock = std::chrono::steady_clock;
 
 bool position_update_is_moot(const RunParams& p) {
   return p.transfer == Transfer::pic || p.transfer == Transfer::apic;
+}
+
+double dense_analysis_cost(const RunParams& p) {
+  const double n = double(spectral_state_size(p));
+  return kDenseAnalysisCost * n * n * n;
 }
 
 double case_cost(const RunParams& p, CaseWork work) {
@@ -84,6 +94,12 @@ class Progress {
 
   Progress(std::string label, std::size_t runs, double total_cost, bool line, bool per_case)
       : label_(std::move(label)), line_(line), per_case_(per_case), counter_(runs, total_cost) {}
+
+  // Tasks added to the queue while it runs (follow-up runs).
+  void add(std::size_t runs, double cost) {
+    std::lock_guard lock(mutex_);
+    counter_.add(runs, cost);
+  }
 
   void done(const Spec& spec, const RunParams& p, const nlohmann::ordered_json& rec,
             bool from_cache, double cost) {
@@ -356,205 +372,318 @@ struct Task {
   std::size_t index = 0;
   std::string search;
   double cost = 0;  // particle-steps; 0 for a task computed by another's run
-  std::vector<std::pair<std::size_t, std::size_t>> uses;  // (spec, case)
+  std::vector<std::pair<std::size_t, std::size_t>> uses;  // (batch, case)
   // Tasks whose trajectory is this one's (shares_trajectory): computed by the same run.
   std::vector<std::size_t> partners;
+  bool started = false;  // taken by a worker (or computed by its lead's run)
+  std::optional<nlohmann::ordered_json> record;  // once finished
+  bool hit = false;                              // its record came from the cache
 
   const RunParams& params() const { return spec->cases[index].params; }
 };
 
+// One spec added to the queue: its plan and what its cases have given so far.
+struct Batch {
+  const Spec* spec = nullptr;
+  SweepPlan plan;
+  SweepOutcome out;
+  std::vector<char> from_cache;
+  std::size_t remaining = 0;
+  double first_start = -1, last_end = 0;
+  bool delivered = false;
+};
+
 }  // namespace
+
+struct SweepQueue::State {
+  State(const SweepOptions& o, std::string l) : options(o), label(std::move(l)), cache(o.cache) {}
+
+  const SweepOptions options;
+  const std::string label;
+  const ResultCache cache;
+  const Provenance provenance = current_provenance(options.jobs);
+  const Clock::time_point start = Clock::now();
+  double since_start() const { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+  std::mutex mutex;
+  std::condition_variable work_changed;  // a task to take, or stop
+  std::condition_variable done_changed;  // a batch complete, an error, or the workers gone
+  std::deque<Task> tasks;
+  std::deque<Batch> batches;
+  std::map<std::string, std::size_t> task_of;  // case key -> task
+  std::map<std::string, std::size_t> lead_of;  // trajectory key -> a task not yet started
+  std::set<std::string> analysed;              // dense analyses counted in a task's cost
+  // Tasks to take, longest first (ties: the first added first).
+  std::vector<std::size_t> ready;
+  std::vector<std::size_t> finished;  // batches complete, not yet handed over
+  std::unique_ptr<Progress> progress;
+  std::size_t runs = 0;  // tasks in the progress line
+  double total_cost = 0;
+  bool stop = false;
+  std::size_t workers_running = 0;
+  std::atomic<int> rejected{0};
+  std::exception_ptr error;
+
+  bool cancelled() const { return options.cancel && options.cancel->load(); }
+  bool before(std::size_t a, std::size_t b) const {  // heap order: b is taken before a
+    if (tasks[a].cost != tasks[b].cost) return TotalLess()(tasks[a].cost, tasks[b].cost);
+    return a > b;
+  }
+  void push_ready(std::size_t k) {
+    ready.push_back(k);
+    std::push_heap(ready.begin(), ready.end(), [this](auto a, auto b) { return before(a, b); });
+  }
+  std::size_t pop_ready() {
+    std::pop_heap(ready.begin(), ready.end(), [this](auto a, auto b) { return before(a, b); });
+    const std::size_t k = ready.back();
+    ready.pop_back();
+    return k;
+  }
+
+  // Hands a finished task's record to every case that uses it (the lock held).
+  void deliver(Task& task, const nlohmann::ordered_json& record, bool hit, double began) {
+    task.record = record;
+    task.hit = hit;
+    if (!options.quiet && progress)
+      progress->done(*task.spec, task.params(), record, hit, task.cost);
+    const double ended = since_start();
+    for (const auto& [b, i] : task.uses)
+      give(b, i, record, hit, began, ended);
+    done_changed.notify_all();
+  }
+  void give(std::size_t b, std::size_t i, const nlohmann::ordered_json& record, bool hit,
+            double began, double ended) {
+    Batch& batch = batches[b];
+    batch.out.records[i] = record;
+    batch.from_cache[i] = hit;
+    if (batch.first_start < 0 || began < batch.first_start) batch.first_start = began;
+    batch.last_end = std::max(batch.last_end, ended);
+    if (--batch.remaining == 0) finished.push_back(b);
+  }
+
+  void work();
+};
+
+SweepQueue::SweepQueue(const SweepOptions& options, std::string label)
+    : state_(std::make_unique<State>(options, std::move(label))) {}
+
+SweepQueue::~SweepQueue() = default;
+
+std::size_t SweepQueue::add(const Spec& spec) {
+  State& st = *state_;
+  std::lock_guard lock(st.mutex);
+  const std::size_t b = st.batches.size();
+  Batch& batch = st.batches.emplace_back();
+  batch.spec = &spec;
+  batch.plan = spec.study->has_cases ? plan_sweep(spec, st.options) : SweepPlan{};
+  batch.out.records.resize(spec.cases.size());
+  batch.from_cache.assign(spec.cases.size(), 0);
+  batch.remaining = batch.plan.order.size();
+  if (batch.remaining == 0) st.finished.push_back(b);
+  const std::string search = case_search(spec);
+  std::size_t new_runs = 0;
+  double new_cost = 0;
+  for (std::size_t i : batch.plan.order) {
+    const std::string key = case_key(spec.cases[i].params, search);
+    const auto [it, fresh] = st.task_of.emplace(key, st.tasks.size());
+    if (!fresh) {  // the same case in another spec: one record for both
+      Task& same = st.tasks[it->second];
+      same.uses.emplace_back(b, i);
+      if (same.record) st.give(b, i, *same.record, same.hit, st.since_start(), st.since_start());
+      continue;
+    }
+    const std::size_t k = st.tasks.size();
+    Task& task = st.tasks.emplace_back();
+    task.spec = &spec;
+    task.index = i;
+    task.search = search;
+    task.cost = batch.plan.cost[i];
+    // The dense analyses it asks for: the first of each layout is computed once in the process
+    // (spectral_courant), the spectral policy's later ones start near the last (half a search).
+    const DenseAnalyses analyses = dense_analyses(spec.cases[i].params);
+    if (analyses.initial_key && st.analysed.insert(*analyses.initial_key).second)
+      task.cost += dense_analysis_cost(spec.cases[i].params);
+    task.cost += 0.5 * analyses.later * dense_analysis_cost(spec.cases[i].params);
+    task.uses.emplace_back(b, i);
+    ++new_runs;
+    // A task whose trajectory is a waiting task's goes with it (and costs nothing more).
+    const RunParams& p = task.params();
+    if (shares_trajectory(p, search)) {
+      const auto [lead, first] = st.lead_of.emplace(trajectory_key(p), k);
+      if (!first) {
+        st.tasks[lead->second].partners.push_back(k);
+        task.cost = 0;
+        task.started = true;
+        continue;
+      }
+    }
+    new_cost += task.cost;
+    st.push_ready(k);
+  }
+  st.runs += new_runs;
+  st.total_cost += new_cost;
+  if (st.progress) st.progress->add(new_runs, new_cost);
+  st.work_changed.notify_all();
+  st.done_changed.notify_all();
+  return b;
+}
+
+void SweepQueue::State::work() {
+  const bool cached = !options.cache.empty();
+  for (;;) {
+    std::size_t k;
+    std::vector<std::size_t> members_k;
+    {
+      std::unique_lock lock(mutex);
+      while (!work_changed.wait_for(lock, std::chrono::milliseconds(200),
+                                    [&] { return !ready.empty() || stop || cancelled(); })) {
+      }
+      if (ready.empty() || cancelled() || error) break;
+      k = pop_ready();
+      Task& lead = tasks[k];
+      lead.started = true;
+      if (shares_trajectory(lead.params(), lead.search))
+        lead_of.erase(trajectory_key(lead.params()));
+      members_k.push_back(k);
+      for (std::size_t m : lead.partners)
+        members_k.push_back(m);
+    }
+    const double began = since_start();
+    try {
+      // The lead and its partners: each from the cache if there, the rest computed by one run.
+      std::vector<const Task*> members;
+      for (std::size_t m : members_k)
+        members.push_back(&tasks[m]);
+      std::vector<std::optional<nlohmann::ordered_json>> records(members.size());
+      std::vector<std::size_t> missing;
+      for (std::size_t m = 0; m < members.size(); ++m) {
+        const Task& task = *members[m];
+        if (cached && !options.force) {
+          CacheLookup found = cache.lookup(task.params(), task.search);
+          if (found.rejected) ++rejected;
+          records[m] = std::move(found.record);
+        }
+        if (!records[m]) missing.push_back(m);
+      }
+      std::vector<nlohmann::ordered_json> computed;
+      if (missing.size() == 1) {
+        const Task& task = *members[missing.front()];
+        computed.push_back(compute_case(task.params(), *task.spec->study, options.cancel));
+      } else if (missing.size() > 1) {
+        std::vector<const RunParams*> params;
+        for (std::size_t m : missing)
+          params.push_back(&members[m]->params());
+        computed = compute_shared(params, options.cancel);
+      }
+      for (std::size_t c = 0; c < missing.size(); ++c) {
+        nlohmann::ordered_json& rec = computed[c];
+        if (rec.is_null()) continue;  // interrupted
+        const Task& task = *members[missing[c]];
+        rec["provenance"] = to_json(provenance);
+        if (cached) cache.store(task.params(), rec, task.search);
+        records[missing[c]] = std::move(rec);
+      }
+      std::lock_guard lock(mutex);
+      for (std::size_t m = 0; m < members.size(); ++m) {
+        if (!records[m]) continue;
+        const bool hit = std::find(missing.begin(), missing.end(), m) == missing.end();
+        deliver(tasks[members_k[m]], *records[m], hit, began);
+      }
+    } catch (...) {
+      std::lock_guard lock(mutex);
+      if (!error) error = std::current_exception();
+      work_changed.notify_all();
+      done_changed.notify_all();
+      break;
+    }
+  }
+  std::lock_guard lock(mutex);
+  --workers_running;
+  done_changed.notify_all();
+}
+
+std::vector<SweepOutcome> SweepQueue::run(
+    const std::function<void(std::size_t, SweepOutcome&)>& complete) {
+  State& st = *state_;
+  const bool several = st.batches.size() > 1;
+  {
+    std::lock_guard lock(st.mutex);
+    st.progress =
+        std::make_unique<Progress>(several ? st.label : st.batches.front().spec->name, st.runs,
+                                   st.total_cost, st.options.progress_line, !several);
+  }
+  const int jobs = std::max(1, st.options.jobs);
+  std::vector<std::thread> threads;
+  st.workers_running = std::size_t(jobs);
+  for (int t = 0; t < jobs; ++t)
+    threads.emplace_back([&st] { st.work(); });
+  auto stop_workers = [&] {
+    {
+      std::lock_guard lock(st.mutex);
+      st.stop = true;
+    }
+    st.work_changed.notify_all();
+    for (auto& t : threads)
+      if (t.joinable()) t.join();
+  };
+
+  // The caller's thread hands each complete batch over (its records counted and shared) while
+  // the workers go on, and redraws the progress line. `complete` may add batches.
+  try {
+    for (;;) {
+      std::unique_lock lock(st.mutex);
+      const auto all_delivered = [&] {
+        return std::all_of(st.batches.begin(), st.batches.end(),
+                           [](const Batch& b) { return b.delivered; });
+      };
+      if (st.finished.empty() && all_delivered()) break;
+      st.done_changed.wait_for(lock, std::chrono::seconds(1), [&] {
+        return !st.finished.empty() || st.error || st.workers_running == 0;
+      });
+      if (st.error) break;
+      if (st.finished.empty()) {
+        if (st.workers_running == 0) break;  // interrupted: some batches never finish
+        lock.unlock();
+        if (!st.options.quiet) st.progress->tick();
+        continue;
+      }
+      const std::size_t b = st.finished.front();
+      st.finished.erase(st.finished.begin());
+      Batch& batch = st.batches[b];
+      batch.delivered = true;
+      lock.unlock();
+      tally(batch.plan, batch.from_cache, batch.out);
+      batch.out.wall_seconds = batch.first_start < 0 ? 0 : batch.last_end - batch.first_start;
+      batch.out.rejected = st.rejected.load();  // so far, over the whole queue
+      if (complete) complete(b, batch.out);
+    }
+  } catch (...) {
+    stop_workers();
+    throw;
+  }
+  stop_workers();
+  if (st.error) std::rethrow_exception(st.error);
+  if (!st.options.quiet && several) st.progress->finish();
+  std::vector<SweepOutcome> out;
+  for (Batch& batch : st.batches) {
+    batch.out.rejected = st.rejected.load();  // over the whole queue
+    if (!batch.delivered) {
+      tally(batch.plan, batch.from_cache, batch.out);
+      batch.out.interrupted = true;
+    }
+    out.push_back(std::move(batch.out));
+  }
+  if (!several && !out.empty()) out.front().wall_seconds = st.since_start();
+  return out;
+}
 
 std::vector<SweepOutcome> run_sweeps(
     const std::vector<const Spec*>& specs, const SweepOptions& options,
     const std::function<void(std::size_t, SweepOutcome&)>& complete) {
-  const auto start = Clock::now();
-  auto since_start = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
-  const ResultCache cache(options.cache);
-  const Provenance provenance = current_provenance(options.jobs);
-
-  // 1. One plan per spec, then one task per distinct case over every spec, longest first.
-  const std::size_t n = specs.size();
-  std::vector<SweepPlan> plans;
-  std::vector<SweepOutcome> out(n);
-  std::vector<std::vector<char>> from_cache(n);
-  std::vector<std::size_t> remaining(n);
-  std::vector<double> first_start(n, -1), last_end(n, 0);
-  std::vector<Task> tasks;
-  std::map<std::string, std::size_t> task_of;
-  double total_cost = 0;
-  for (std::size_t s = 0; s < n; ++s) {
-    const Spec& spec = *specs[s];
-    plans.push_back(spec.study->has_cases ? plan_sweep(spec, options) : SweepPlan{});
-    out[s].records.resize(spec.cases.size());
-    from_cache[s].assign(spec.cases.size(), 0);
-    remaining[s] = plans[s].order.size();
-    const std::string search = case_search(spec);
-    for (std::size_t i : plans[s].order) {
-      const std::string key = case_key(spec.cases[i].params, search);
-      const auto [it, fresh] = task_of.emplace(key, tasks.size());
-      if (fresh) {
-        tasks.push_back({&spec, i, search, plans[s].cost[i], {}, {}});
-        total_cost += plans[s].cost[i];
-      }
-      tasks[it->second].uses.emplace_back(s, i);
-    }
-  }
-  std::stable_sort(tasks.begin(), tasks.end(),
-                   [](const Task& a, const Task& b) { return TotalLess()(b.cost, a.cost); });
-  // Tasks that share a trajectory go with the first of them (and cost nothing more).
-  std::vector<std::size_t> queue;
-  std::map<std::string, std::size_t> lead_of;
-  for (std::size_t k = 0; k < tasks.size(); ++k) {
-    const RunParams& p = tasks[k].params();
-    if (shares_trajectory(p, tasks[k].search)) {
-      const auto [it, fresh] = lead_of.emplace(trajectory_key(p), k);
-      if (!fresh) {
-        tasks[it->second].partners.push_back(k);
-        total_cost -= tasks[k].cost;
-        tasks[k].cost = 0;
-        continue;
-      }
-    }
-    queue.push_back(k);
-  }
-
-  // 2. The workers take the tasks in that order; a spec whose last case finished is queued for
-  // the caller.
-  const bool several = n > 1;
-  Progress progress(several ? std::string("reproduce") : specs.front()->name, tasks.size(),
-                    total_cost, options.progress_line, !several);
-  std::mutex mutex;
-  std::condition_variable changed;
-  std::vector<std::size_t> finished;
-  for (std::size_t s = 0; s < n; ++s)
-    if (remaining[s] == 0) finished.push_back(s);
-  std::atomic<std::size_t> next{0};
-  std::atomic<int> rejected{0};
-  std::size_t workers_running = 0;
-  std::exception_ptr error;
-  auto cancelled = [&] { return options.cancel && options.cancel->load(); };
-  // Hands a finished task's record to every case that uses it.
-  auto deliver = [&](const Task& task, const nlohmann::ordered_json& record, bool hit,
-                     double began) {
-    if (!options.quiet) progress.done(*task.spec, task.params(), record, hit, task.cost);
-    const double ended = since_start();
-    std::lock_guard lock(mutex);
-    for (const auto& [s, i] : task.uses) {
-      out[s].records[i] = record;
-      from_cache[s][i] = hit;
-      if (first_start[s] < 0 || began < first_start[s]) first_start[s] = began;
-      last_end[s] = std::max(last_end[s], ended);
-      if (--remaining[s] == 0) finished.push_back(s);
-    }
-    changed.notify_all();
-  };
-  const bool cached = !options.cache.empty();
-  auto worker = [&] {
-    for (std::size_t q; !cancelled() && (q = next.fetch_add(1)) < queue.size();) {
-      const Task& lead = tasks[queue[q]];
-      const double began = since_start();
-      try {
-        // The lead and its partners: each from the cache if there, the rest computed by one run.
-        std::vector<const Task*> members{&lead};
-        for (std::size_t k : lead.partners)
-          members.push_back(&tasks[k]);
-        std::vector<std::optional<nlohmann::ordered_json>> records(members.size());
-        std::vector<std::size_t> missing;
-        for (std::size_t m = 0; m < members.size(); ++m) {
-          const Task& task = *members[m];
-          if (cached && !options.force) {
-            CacheLookup found = cache.lookup(task.params(), task.search);
-            if (found.rejected) ++rejected;
-            records[m] = std::move(found.record);
-          }
-          if (!records[m]) missing.push_back(m);
-        }
-        std::vector<nlohmann::ordered_json> computed;
-        if (missing.size() == 1) {
-          const Task& task = *members[missing.front()];
-          computed.push_back(compute_case(task.params(), *task.spec->study, options.cancel));
-        } else if (missing.size() > 1) {
-          std::vector<const RunParams*> params;
-          for (std::size_t m : missing)
-            params.push_back(&members[m]->params());
-          computed = compute_shared(params, options.cancel);
-        }
-        for (std::size_t c = 0; c < missing.size(); ++c) {
-          nlohmann::ordered_json& rec = computed[c];
-          if (rec.is_null()) continue;  // interrupted
-          const Task& task = *members[missing[c]];
-          rec["provenance"] = to_json(provenance);
-          if (cached) cache.store(task.params(), rec, task.search);
-          records[missing[c]] = std::move(rec);
-        }
-        for (std::size_t m = 0; m < members.size(); ++m) {
-          if (!records[m]) continue;
-          const bool hit = std::find(missing.begin(), missing.end(), m) == missing.end();
-          deliver(*members[m], *records[m], hit, began);
-        }
-      } catch (...) {
-        std::lock_guard lock(mutex);
-        if (!error) error = std::current_exception();
-        next = queue.size();  // stop handing out cases
-        changed.notify_all();
-      }
-    }
-    std::lock_guard lock(mutex);
-    --workers_running;
-    changed.notify_all();
-  };
-  const int jobs = std::max(1, std::min<int>(options.jobs, static_cast<int>(queue.size())));
-  std::vector<std::thread> threads;
-  workers_running = queue.empty() ? 0 : std::size_t(jobs);
-  for (std::size_t t = 0; t < workers_running; ++t)
-    threads.emplace_back(worker);
-
-  // 3. The caller's thread hands each finished spec over (its records counted and shared) while
-  // the workers go on, and redraws the progress line.
-  std::size_t delivered = 0;
-  auto join = [&] {
-    for (auto& t : threads)
-      if (t.joinable()) t.join();
-  };
-  try {
-    while (delivered < n) {
-      std::unique_lock lock(mutex);
-      changed.wait_for(lock, std::chrono::seconds(1),
-                       [&] { return !finished.empty() || error || workers_running == 0; });
-      if (error) break;
-      if (finished.empty()) {
-        if (workers_running == 0) break;  // interrupted: some specs never finish
-        lock.unlock();
-        if (!options.quiet) progress.tick();
-        continue;
-      }
-      const std::size_t s = finished.front();
-      finished.erase(finished.begin());
-      lock.unlock();
-      tally(plans[s], from_cache[s], out[s]);
-      out[s].wall_seconds = first_start[s] < 0 ? 0 : last_end[s] - first_start[s];
-      out[s].rejected = rejected.load();  // so far, over the whole queue
-      ++delivered;
-      if (complete) complete(s, out[s]);
-    }
-  } catch (...) {
-    next = queue.size();
-    join();
-    throw;
-  }
-  join();
-  if (error) std::rethrow_exception(error);
-  if (!options.quiet && several) progress.finish();
-  for (std::size_t s = 0; s < n; ++s) {
-    out[s].rejected = rejected.load();  // over the whole queue
-    if (remaining[s] != 0) {
-      tally(plans[s], from_cache[s], out[s]);
-      out[s].interrupted = true;
-    }
-  }
-  if (!several && !out.empty()) out.front().wall_seconds = since_start();
-  return out;
+  SweepQueue queue(options, "reproduce");
+  for (const Spec* spec : specs)
+    queue.add(*spec);
+  return queue.run(complete);
 }
 
 SweepOutcome run_sweep(const Spec& spec, const SweepOptions& options) {

@@ -4,6 +4,7 @@
 #include <atomic>
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -80,11 +81,50 @@ double record_particle_steps(const nlohmann::ordered_json& record);
 // searches), for scheduling, progress and the fast subset of make check.
 double case_cost(const RunParams& p, CaseWork work);
 
+// The time of one dense analysis of p's spectral limit (spectral.hpp: four maps of the step and
+// about twenty eigenvalue solves of its state of n values), in the particle-steps that take as
+// long: kDenseAnalysisCost n^3. Measured on a 2-core Xeon (AVX-512): 2.1 s at n = 400 (the bar
+// on 100 cells, 2 per cell, jittered), 7.7 s at n = 600, against about 8 ns per particle-step
+// of the paper's GIMP on that machine. The queue counts it in a case's cost (once per layout),
+// so that a case that asks for one is scheduled early and the time to go includes it.
+inline constexpr double kDenseAnalysisCost = 4.0;
+double dense_analysis_cost(const RunParams& p);
+
 // Whether p's position update cannot change its run: PIC and APIC set the particle's velocity
 // to sum_i S_ip v_i, the very value the grid update adds, so x_p += dt v_p (particle) and
 // x_p += dt sum_i S_ip v_i (grid) are one operation on the same operands (transfers.cpp,
 // transfer_particle; docs/design.md, "Work done once"). Such cases share one run.
 bool position_update_is_moot(const RunParams& p);
+
+// The cases of several specs in one queue, to which specs can be added while it runs (make
+// reproduce adds each experiment's follow-up runs as soon as its cases are done): every case not
+// in the cache, over every spec, runs once (a case repeated within or across specs shares one
+// record; cases that differ only in what run_sweeps' sharing allows follow one run), longest
+// first among those waiting, on options.jobs threads. One progress line covers all, its total
+// growing as specs are added.
+class SweepQueue {
+ public:
+  // `label` names the progress line of several specs.
+  SweepQueue(const SweepOptions& options, std::string label);
+  ~SweepQueue();
+  SweepQueue(const SweepQueue&) = delete;
+  SweepQueue& operator=(const SweepQueue&) = delete;
+
+  // Adds a spec's cases (the spec must outlive the queue) and returns its index. Before `run`,
+  // or from `complete` on the caller's thread while it runs.
+  std::size_t add(const Spec& spec);
+
+  // Runs until every spec added is complete, calling complete(index, outcome) on the caller's
+  // thread as each one's last case finishes (the caller may take the outcome, and may add
+  // specs). The outcomes, by index; a spec that never completed (interrupted) has `interrupted`
+  // set. An outcome's wall_seconds is the span from its first case's start to its last case's
+  // end.
+  std::vector<SweepOutcome> run(const std::function<void(std::size_t, SweepOutcome&)>& complete);
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
 
 // Several specs' cases in one queue (make reproduce): every case not in the cache, over every
 // spec, runs once (a case repeated within or across specs shares one record), longest first on

@@ -175,7 +175,8 @@ CellVerdict classify(const ojson& r, const PaperCell* paper, const CourantEdges&
 namespace {
 
 // The study: every Table 1 cell of the table1 experiment against the paper, explained by the
-// supporting experiments and the variants study, whichever of them have been run.
+// supporting experiments of the paper tier (the variants study, in the studies tier, is linked,
+// not read).
 void write_derived_comparison(const DerivedContext& c) {
   std::optional<ErrorAt> error_at;
   if (c.options.contains("error_at")) {
@@ -194,7 +195,6 @@ const StudyRegistration kComparison{{
                {.name = "walls"},
                {.name = "crossing"},
                {.name = "eq108"},
-               {.name = "variants"},
                {.name = "fig1"},
                {.name = "fig2"},
                {.name = "fig3"},

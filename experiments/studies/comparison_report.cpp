@@ -3,8 +3,8 @@
 // disagreement with the experiment of ours that explains it, then the paper's Figs. 1-3 beside
 // our runs of them, written in comparison_figures.cpp). Everything is read from the study's
 // inputs: the table1 experiment, the supporting experiments (courant, walls, crossing, eq108),
-// the variants study, the figures and their variant runs; a section whose experiment has not
-// been run says so.
+// the figures and their variant runs, all of the paper tier; a section whose experiment is not
+// among the inputs (mpmstab compare with explicit specs) says so.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -51,7 +51,6 @@ struct Comparison {
   std::optional<ErrorAt> error_at;       // --error-at: replaces every case's own choice
   std::map<Table1Key, PaperCell> paper;  // the transcribed Table 1
   std::map<std::string, Rows> support;   // the supporting experiments run, by input name
-  const ojson* variants = nullptr;       // the variants study's "study" object; null: not run
   const ojson* peers = nullptr;          // the peers study's "study" object; null: not run
   Rows peer_rows;                        // the peers experiment's cases (empty: not run)
   const ojson* ensemble = nullptr;       // table1's ensemble per cell; null: not in its results
@@ -84,13 +83,12 @@ Rows case_rows(const ojson& doc) {
 std::map<std::string, Rows> supporting_rows(const StudyInputs& inputs) {
   std::map<std::string, Rows> rows;
   for (const auto& [name, input] : inputs) {
-    if (name != "table1" && name != "variants" && name != "peers" && input.present())
-      rows[name] = case_rows(input.doc);
+    if (name != "table1" && name != "peers" && input.present()) rows[name] = case_rows(input.doc);
   }
   return rows;
 }
 
-// The "study" object of an input study's results (variants, peers), or null when not run.
+// The "study" object of an input study's results (peers), or null when not run.
 const ojson* study_object(const StudyInputs& inputs, const std::string& name) {
   const auto it = inputs.find(name);
   if (it == inputs.end() || !it->second.present() || !it->second.doc.contains("study")) {
@@ -400,16 +398,15 @@ void class_heading(std::ostream& md, const Comparison& cmp, const std::string& i
   }
 }
 
-// The heading of a class section, its cells, and what the variants study finds for them.
+// The heading of a class section, its cells, and where the variants study (in the studies
+// tier, which this report does not read) runs them under every implementation choice.
 void class_opening(std::ostream& md, const Comparison& cmp, const std::string& id) {
   class_heading(md, cmp, id);
   md << "Cells: " << cell_list(cmp, id) << ".\n\n";
-  if (!cmp.variants) {
-    md << "*Variants study not run: `make reproduce` runs `experiments/variants.json` before "
-          "this comparison.*\n\n";
-    return;
-  }
-  md << variants_line(*cmp.variants, id, "variants.md");
+  const std::string anchor = "variants.md#" + id;
+  md << "**Implementation choices:** these cells under every documented choice, changed alone "
+        "and in pairs, are in the studies tier (`make studies`): ["
+     << anchor << "](" << anchor << ").\n\n";
 }
 
 void not_run(std::ostream& md, const char* name) {
@@ -941,7 +938,6 @@ void write_comparison(const StudyInputs& inputs, const fs::path& out,
   }
   Comparison cmp(*table1->second.spec, out, error_at);
   cmp.support = supporting_rows(inputs);
-  cmp.variants = study_object(inputs, "variants");
   cmp.peers = study_object(inputs, "peers");
   if (const auto p = inputs.find("peers"); p != inputs.end() && p->second.present())
     cmp.peer_rows = case_rows(p->second.doc);

@@ -525,8 +525,7 @@ const StudyRegistration kMethods{{
     .summary = "one row per method: error, orders, tiny-amplitude edges, work, cheapest setting "
                "for a target error",
     .work = CaseWork::edge_search,
-    .inputs = {{.name = "methods_grid", .required = true},
-               {.name = "dispersion", .required = false}},
+    .inputs = {{.name = "methods_grid", .required = true}, {.name = "dispersion"}},
     .figure = true,
     .follow_up = methods_follow_up,
     .report = methods_report,

@@ -81,11 +81,6 @@ nlohmann::ordered_json study_to_json(const VariantsStudy& s);
 std::string variants_markdown(const Spec& spec, const VariantsStudy& s, bool have_courant);
 std::string variants_data_csv(const VariantsStudy& s, const std::string& header_lines);
 
-// The line of comparison.md for one class, from the "study" object of variants.json: the best
-// single change and the best pair with their numbers, and the variants that account for it.
-std::string variants_line(const nlohmann::ordered_json& study, const std::string& class_id,
-                          const std::string& report_link);
-
 // Shared by the study's numbers (variants_analysis.cpp) and its report (variants_report.cpp).
 
 // The classes of disagreement the study reads (the verdict and error classes), in report order.
