@@ -182,11 +182,17 @@ TEST_F(Studies, EachTierRunsWhatItReadsAndThePaperReadsOnlyThePaper) {
   for (const auto& s : specs) {
     // Every experiment is in its tier's list; the paper's list holds only the paper's.
     EXPECT_TRUE(has(s.tier == Tier::paper ? in_paper : in_studies, s.name)) << s.name;
-    if (s.tier == Tier::studies) EXPECT_FALSE(has(in_paper, s.name)) << s.name;
+    if (s.tier == Tier::studies) {
+      EXPECT_FALSE(has(in_paper, s.name)) << s.name;
+    }
     for (const auto& input : s.inputs) {
-      if (s.tier == Tier::paper) EXPECT_EQ(by_name.at(input.name)->tier, Tier::paper) << s.name;
+      if (s.tier == Tier::paper) {
+        EXPECT_EQ(by_name.at(input.name)->tier, Tier::paper) << s.name;
+      }
       // Each list runs what its experiments read.
-      if (has(in_studies, s.name)) EXPECT_TRUE(has(in_studies, input.name)) << input.name;
+      if (has(in_studies, s.name)) {
+        EXPECT_TRUE(has(in_studies, input.name)) << input.name;
+      }
     }
   }
   // The paper's own experiments: its tables, figures, the peers and the comparison.

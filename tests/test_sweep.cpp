@@ -555,7 +555,7 @@ TEST(ProgressLine, TimeToGoFollowsTheMeasuredRateAndIsWithheldWhenAbsurd) {
 // cases (fixed seed) over every basis, both transfers, every update order and four scenes, at
 // Courant numbers from 0.05 to 1.5 (some fail); FLIP, where the two updates differ, is the
 // control.
-TEST(WorkDoneOnce, PicAndApicRecordsDoNotDependOnThePositionUpdate) {
+TEST(WorkDoneOnce, PicApicAndFmpmRecordsDoNotDependOnThePositionUpdate) {
   std::mt19937 random(35);
   const std::array methods = {Method::mpm,      Method::gimp,     Method::cpgimp,
                               Method::bspline2, Method::bspline3, Method::cpdi};
@@ -570,10 +570,12 @@ TEST(WorkDoneOnce, PicAndApicRecordsDoNotDependOnThePositionUpdate) {
     return j;
   };
   int failed = 0;
-  for (int k = 0; k < 24; ++k) {
+  const std::array transfers = {Transfer::pic, Transfer::apic, Transfer::fmpm};
+  for (int k = 0; k < 36; ++k) {
     RunParams p;
     p.method = pick(methods);
-    p.transfer = k % 2 ? Transfer::pic : Transfer::apic;
+    p.transfer = transfers[std::size_t(k) % transfers.size()];
+    p.fmpm_order = 1 + k % 3;
     p.update = pick(updates);
     p.scene = pick(scenes);
     p.bc = p.scene == SceneKind::block ? Boundary::periodic : Boundary::dirichlet;
@@ -600,6 +602,11 @@ TEST(WorkDoneOnce, PicAndApicRecordsDoNotDependOnThePositionUpdate) {
   EXPECT_FALSE(position_update_is_moot(flip));
   RunParams flip_particle = flip;
   flip_particle.position_update = PositionUpdate::particle;
+  EXPECT_NE(without_update(flip), without_update(flip_particle));
+  // XPIC adds its correction to the particle's velocity, not to the grid's sum: not moot.
+  flip.transfer = Transfer::xpic;
+  EXPECT_FALSE(position_update_is_moot(flip));
+  flip_particle.transfer = Transfer::xpic;
   EXPECT_NE(without_update(flip), without_update(flip_particle));
 }
 

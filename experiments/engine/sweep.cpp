@@ -40,7 +40,9 @@ using Clock = std::chrono::steady_clock;
 }  // namespace
 
 bool position_update_is_moot(const RunParams& p) {
-  return p.transfer == Transfer::pic || p.transfer == Transfer::apic;
+  // FMPM's g2p is PIC's with the series velocity in the grid (transfers.cpp).
+  return p.transfer == Transfer::pic || p.transfer == Transfer::apic ||
+         p.transfer == Transfer::fmpm;
 }
 
 double dense_analysis_cost(const RunParams& p) {

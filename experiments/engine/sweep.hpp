@@ -90,8 +90,9 @@ double case_cost(const RunParams& p, CaseWork work);
 inline constexpr double kDenseAnalysisCost = 4.0;
 double dense_analysis_cost(const RunParams& p);
 
-// Whether p's position update cannot change its run: PIC and APIC set the particle's velocity
-// to sum_i S_ip v_i, the very value the grid update adds, so x_p += dt v_p (particle) and
+// Whether p's position update cannot change its run: PIC, APIC and FMPM set the particle's
+// velocity to sum_i S_ip v_i (FMPM's v_i being its series velocity), the very value the grid
+// update adds, so x_p += dt v_p (particle) and
 // x_p += dt sum_i S_ip v_i (grid) are one operation on the same operands (transfers.cpp,
 // transfer_particle; docs/design.md, "Work done once"). Such cases share one run.
 bool position_update_is_moot(const RunParams& p);

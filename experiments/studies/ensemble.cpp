@@ -24,8 +24,9 @@ EnsembleNeed ensemble_need(const ojson& row) {
                       (has_limit && c > limit / kNearLimitMargin);
     need = near ? EnsembleNeed::near : EnsembleNeed::far_margin;
   }
-  if (need == EnsembleNeed::near && particle_steps(row) > kEnsembleMemberBudget)
-    need = EnsembleNeed::too_costly;
+  if (need == EnsembleNeed::near && particle_steps(row) > kPaperEnsembleBudget)
+    need = particle_steps(row) > kEnsembleMemberBudget ? EnsembleNeed::too_costly
+                                                       : EnsembleNeed::in_studies;
   return need;
 }
 
@@ -37,6 +38,8 @@ std::string need_text(EnsembleNeed need) {
       return "far: stable with margin";
     case EnsembleNeed::near:
       return "near its edge";
+    case EnsembleNeed::in_studies:
+      return "near its edge, rerun in ensembles.md (make studies)";
     case EnsembleNeed::too_costly:
       return "near its edge, not run (cost)";
     case EnsembleNeed::no_verdict:
