@@ -8,7 +8,8 @@ JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
 WERROR     ?= $(if $(CI),ON,OFF)
 
 DEB_PACKAGES := cmake g++ make libeigen3-dev nlohmann-json3-dev libgtest-dev libgmock-dev \
-                libbenchmark-dev gnuplot-nox clang-format bc util-linux clang-14 libclang-rt-14-dev
+                libbenchmark-dev gnuplot-nox fonts-dejavu-core clang-format bc util-linux clang-14 \
+                libclang-rt-14-dev
 
 # Every experiment is a spec in experiments/; `mpmstab list` prints them in the order they run
 # (each after the experiments whose results its study reads), `mpmstab list --figures` those
@@ -20,7 +21,7 @@ MPMSTAB     := $(BUILD_DIR)/mpmstab
 FUZZ_SECONDS ?= 60
 FUZZ_DIR     ?= build-fuzz
 
-.PHONY: all build deps test test-cluster check bless fuzz bench timings reproduce figures plots format format-check clean help
+.PHONY: all build deps test test-cluster check bless fuzz bench timings reproduce studies tier figures plots format format-check clean help
 
 all: build
 
@@ -32,7 +33,8 @@ help:
 	@echo "make fuzz         fuzz the spec, results and cache readers, FUZZ_SECONDS (default 60) each"
 	@echo "make check        rerun a fast subset of every experiment against reference/regression"
 	@echo "make bless REASON=\"...\"  accept the current values as blessed, logged in BLESSED.md"
-	@echo "make reproduce    rerun the paper's experiments (cached cases are not rerun), write results/"
+	@echo "make reproduce    regenerate the paper: Tables 1 and 2, Figs. 1-3, the comparison (results/)"
+	@echo "make studies      regenerate every other study (cached cases are not rerun)"
 	@echo "make bench        run the step benchmark, write results/benchmark_step.json"
 	@echo "make timings      publish this machine's timings: results/timings.json, performance.md"
 	@echo "make format       clang-format every source file in place"
@@ -107,17 +109,31 @@ bench: build
 	specs=$$($(MPMSTAB) list) && \
 	  $(MPMSTAB) performance $$specs --bench $(RESULTS)/benchmark_step.json --out $(RESULTS)
 
-# Every experiment's cases in one queue (mpmstab reproduce): only the cases whose key changed are
-# computed, longest first on JOBS threads, and each experiment's reports are written as soon as
-# it is complete; reports are rewritten only when their content changed, so a figure is redrawn
-# only when its data or its script changed.
+# Two tiers, each whole (a spec's "tier"; mpmstab list --tier): `make reproduce` regenerates the
+# paper (Tables 1 and 2, Figs. 1-3 with their variants, the peers study, and the comparison with
+# the experiments it cites); `make studies` everything else, with the paper experiments its
+# studies read. A paper experiment reads only paper experiments, so no report depends on which
+# tier ran first. Each tier's cases go in one queue (mpmstab reproduce): only the cases whose key
+# changed are computed, longest first on JOBS threads, and each experiment's reports are written
+# as soon as it is complete; reports are rewritten only when their content changed, so a figure
+# is redrawn only when its data or its script changed. The index (results/README.md) covers
+# every experiment of both tiers.
 reproduce: build
+	@$(MAKE) --no-print-directory tier TIER=paper
+
+studies: build
+	@$(MAKE) --no-print-directory tier TIER=studies
+
+# The tier named by TIER (paper or studies); reproduce and studies call it.
+tier:
 	@start=$$(date +%s.%N); \
-	specs=$$($(MPMSTAB) list) || exit $$?; \
-	$(MPMSTAB) reproduce $$specs --jobs $(JOBS) --out $(RESULTS) || exit $$?; \
-	$(MAKE) --no-print-directory figures || exit $$?; \
-	$(MPMSTAB) index $$specs --out $(RESULTS) || exit $$?; \
-	echo "make reproduce: $$(echo "$$(date +%s.%N) - $$start" | bc | xargs printf '%.1f') s wall; reports in $(RESULTS)/README.md"
+	specs=$$($(MPMSTAB) list --tier $(TIER)) || exit $$?; \
+	$(MPMSTAB) reproduce $$specs --jobs $(JOBS) --out $(RESULTS) \
+	  --label "make $(if $(filter paper,$(TIER)),reproduce,studies)" || exit $$?; \
+	$(MAKE) --no-print-directory figures TIER=$(TIER) || exit $$?; \
+	all=$$($(MPMSTAB) list) || exit $$?; \
+	$(MPMSTAB) index $$all --out $(RESULTS) || exit $$?; \
+	echo "make $(if $(filter paper,$(TIER)),reproduce,studies): $$(echo "$$(date +%s.%N) - $$start" | bc | xargs printf '%.1f') s wall; reports in $(RESULTS)/README.md"
 
 # The machine's timings (results/cache/timings.json, written by every sweep and reproduce, not
 # committed) published as results/timings.json with results/performance.md: the only way those two
@@ -130,7 +146,7 @@ timings: build
 # script changed. FIGURES (names) comes from mpmstab list --figures.
 figures: build
 	@$(MAKE) --no-print-directory plots \
-	  FIGURES="$$($(MPMSTAB) list --figures | sed 's|.*/||; s|\.json$$||')"
+	  FIGURES="$$($(MPMSTAB) list --figures $(if $(TIER),--tier $(TIER)) | sed 's|.*/||; s|\.json$$||')"
 
 plots: $(FIGURES:%=$(RESULTS)/%.png)
 

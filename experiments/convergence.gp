@@ -40,14 +40,17 @@ set format y "10^{%L}"
 set xlabel "h"
 set ylabel "error over time (max over steps and particles)"
 set grid
-set key bottom right font ",9"
-
+# The PNG's text is in DejaVu Sans (fonts-dejavu-core; mpmstab plot lets gnuplot see no other
+# font); the SVG only names its font, which the viewer resolves.
 do for [format in "png svg"] {
     if (format eq "png") {
-        set terminal pngcairo size 1500,500 font ",10"
+        face = "DejaVu Sans"
+        set terminal pngcairo size 1500,500 font "DejaVu Sans,10"
     } else {
+        face = "Arial"
         set terminal svg size 1500,500 font "Arial,10"
     }
+    set key bottom right font face . ",9"
     set output outbase . "." . format
     set multiplot layout 1, panels title "Error over time against h, every method (" . subtitle . ")"
     do for [k = 1:panels] {

@@ -57,10 +57,14 @@ set xlabel "kh (radians per cell)"
 set x2label "cells per wavelength"
 set ylabel "phase speed c_num / c"
 
+# The PNG's text is in DejaVu Sans (fonts-dejavu-core; mpmstab plot lets gnuplot see no other
+# font); the SVG only names its font, which the viewer resolves.
 do for [format in "png svg"] {
     if (format eq "png") {
-        set terminal pngcairo size 1600,1000 font ",10" noenhanced
+        face = "DejaVu Sans"
+        set terminal pngcairo size 1600,1000 font "DejaVu Sans,10" noenhanced
     } else {
+        face = "Arial"
         set terminal svg size 1600,1000 font "Arial,10" noenhanced background "white"
     }
     set output outbase . "." . format
@@ -68,7 +72,7 @@ do for [format in "png svg"] {
         margins 0.05, 0.79, 0.07, 0.88 spacing 0.07, 0.12
     do for [k = 1:panels] {
         set title sprintf("C = c dt / h = %g", panel_C[k])
-        if (k == 1) { set key at screen 0.995, screen 0.80 right top font ",10" box opaque } else { unset key }
+        if (k == 1) { set key at screen 0.995, screen 0.80 right top font face . ",10" box opaque } else { unset key }
         plot 1 with lines lw 1 lc rgb "#444444" dt 3 title "exact", \
              0.99 with lines lw 1 lc rgb "#999999" dt 2 title "1% phase error", \
              1.01 with lines lw 1 lc rgb "#999999" dt 2 notitle, \

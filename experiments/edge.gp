@@ -50,9 +50,11 @@ array open[7] = [6, 4, 8, 10, 12, 14, 2]
 array name[7] = ["GIMP, A = 0.015", "GIMP, A = 0.05", "MPM, A = 0.015", "MPM, A = 0.05", \
                  "CPDI, A = 0.015", "B-spline 2, A = 0.015", "B-spline 3, A = 0.015"]
 
+# The PNG's text is in DejaVu Sans (fonts-dejavu-core; mpmstab plot lets gnuplot see no other
+# font); the SVG only names its font, which the viewer resolves.
 do for [ext in "png svg"] {
     if (ext eq "png") {
-        set terminal pngcairo size 1200,900 font "sans,11" noenhanced
+        set terminal pngcairo size 1200,900 font "DejaVu Sans,11" noenhanced
     } else {
         set terminal svg size 1200,900 dynamic font "sans,11" noenhanced background "white"
     }

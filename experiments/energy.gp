@@ -36,14 +36,17 @@ do for [s = 1:nseries] {
 set xlabel "t"
 set ylabel "energy balance error / initial energy"
 set grid
-set key outside right top font ",9"
-
+# The PNG's text is in DejaVu Sans (fonts-dejavu-core; mpmstab plot lets gnuplot see no other
+# font); the SVG only names its font, which the viewer resolves.
 do for [format in "png svg"] {
     if (format eq "png") {
-        set terminal pngcairo size 1500,550 font "Arial,10" noenhanced
+        face = "DejaVu Sans"
+        set terminal pngcairo size 1500,550 font "DejaVu Sans,10" noenhanced
     } else {
+        face = "Arial"
         set terminal svg size 1500,550 font "Arial,10" noenhanced background "white"
     }
+    set key outside right top font face . ",9"
     set output outbase . "." . format
     set multiplot layout 1, panels title "Energy balance over time, each transfer and update order (" . subtitle . ")"
     do for [k = 1:panels] {

@@ -38,10 +38,14 @@ do for [m = 1:panels] {
 rows = panels > 2 ? 2 : 1
 cols = int(ceil(panels / real(rows)))
 
+# The PNG's text is in DejaVu Sans (fonts-dejavu-core; mpmstab plot lets gnuplot see no other
+# font); the SVG only names its font, which the viewer resolves.
 do for [ext in "png svg"] {
     if (ext eq "png") {
-        set terminal pngcairo size 550 * cols,(rows == 1 ? 600 : 1000) font "sans,11" noenhanced
+        face = "DejaVu Sans"
+        set terminal pngcairo size 550 * cols,(rows == 1 ? 600 : 1000) font "DejaVu Sans,11" noenhanced
     } else {
+        face = "sans"
         set terminal svg size 550 * cols,(rows == 1 ? 600 : 1000) dynamic font "sans,11" noenhanced background "white"
     }
     set output outbase . "." . ext
@@ -62,10 +66,10 @@ do for [ext in "png svg"] {
              datafile using (sel(m, 1, $2 * shift(1))):(sel(m, 1, $3)):(size($5)) with points pt 8 ps variable lc rgb "#ff7f0e" notitle, \
              datafile using (sel(m, 2, $2 * shift(2))):(sel(m, 2, $3)):(size($5)) with points pt 2 ps variable lc rgb "#d62728" notitle, \
              datafile using (sel(m, 3, $2 * shift(3))):(sel(m, 3, $3)):(size($5)) with points pt 4 ps variable lc rgb "#7f7f7f" notitle, \
-             datafile using (sel(m, 0, $2 * shift(0))):(sel(m, 0, $3)):(many($5)) with labels offset 0,0.9 font "sans,8" tc rgb "#2ca02c" notitle, \
-             datafile using (sel(m, 1, $2 * shift(1))):(sel(m, 1, $3)):(many($5)) with labels offset 0,0.9 font "sans,8" tc rgb "#ff7f0e" notitle, \
-             datafile using (sel(m, 2, $2 * shift(2))):(sel(m, 2, $3)):(many($5)) with labels offset 0,0.9 font "sans,8" tc rgb "#d62728" notitle, \
-             datafile using (sel(m, 3, $2 * shift(3))):(sel(m, 3, $3)):(many($5)) with labels offset 0,0.9 font "sans,8" tc rgb "#7f7f7f" notitle
+             datafile using (sel(m, 0, $2 * shift(0))):(sel(m, 0, $3)):(many($5)) with labels offset 0,0.9 font face . ",8" tc rgb "#2ca02c" notitle, \
+             datafile using (sel(m, 1, $2 * shift(1))):(sel(m, 1, $3)):(many($5)) with labels offset 0,0.9 font face . ",8" tc rgb "#ff7f0e" notitle, \
+             datafile using (sel(m, 2, $2 * shift(2))):(sel(m, 2, $3)):(many($5)) with labels offset 0,0.9 font face . ",8" tc rgb "#d62728" notitle, \
+             datafile using (sel(m, 3, $2 * shift(3))):(sel(m, 3, $3)):(many($5)) with labels offset 0,0.9 font face . ",8" tc rgb "#7f7f7f" notitle
     }
     # The key, once for every panel: a plot of nothing across the bottom of the page.
     unset title

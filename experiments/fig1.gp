@@ -38,15 +38,19 @@ maintitle = "Fig. 1: 1D bar, displacement, velocity and stress at the final time
 ccomp  = "#1f77b4"
 cexact = "#d62728"
 
+# The PNG's text is in DejaVu Sans (fonts-dejavu-core; mpmstab plot lets gnuplot see no other
+# font); the SVG only names its font, which the viewer resolves.
 do for [ext in "png svg"] {
     if (ext eq "png") {
-        set terminal pngcairo size 1000,1100 font "sans,11" noenhanced
+        face = "DejaVu Sans"
+        set terminal pngcairo size 1000,1100 font "DejaVu Sans,11" noenhanced
     } else {
+        face = "sans"
         set terminal svg size 1000,1100 dynamic font "sans,11" noenhanced background "white"
     }
     set output outbase . "." . ext
 
-    set multiplot layout 3,1 title maintitle font ",12" \
+    set multiplot layout 3,1 title maintitle font face . ",12" \
         margins 0.11,0.95,0.06,0.90 spacing 0,0.075
 
     set grid xtics ytics lc rgb "#dddddd"

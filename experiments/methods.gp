@@ -35,9 +35,11 @@ array shape[5] = [7, 5, 9, 11, 13]
 array tname[5] = ["flip", "pic", "apic", "xpic(2)", "fmpm(2)"]
 array uname[3] = ["USL", "USF", "MUSL"]
 
+# The PNG's text is in DejaVu Sans (fonts-dejavu-core; mpmstab plot lets gnuplot see no other
+# font); the SVG only names its font, which the viewer resolves.
 do for [ext in "png svg"] {
     if (ext eq "png") {
-        set terminal pngcairo size 1500,700 font "sans,11" noenhanced
+        set terminal pngcairo size 1500,700 font "DejaVu Sans,11" noenhanced
     } else {
         set terminal svg size 1500,700 dynamic font "sans,11" noenhanced background "white"
     }
@@ -55,6 +57,9 @@ do for [ext in "png svg"] {
     set bmargin at screen 0.30
     do for [p = 0:2] {
         set title uname[p + 1]
+        # The panels share the y axis; its label, in the first panel only, would cross the frame
+        # of the panel on its left in the others.
+        if (p > 0) { unset ylabel }
         set lmargin at screen (0.06 + p * 0.32)
         set rmargin at screen (0.34 + p * 0.32)
         plot for [s = 0:7] for [t = 0:4] datafile using 4:(sel(p, s, t)) with points pt shape[t + 1] ps 1.6 lc rgb colour[s + 1]

@@ -40,10 +40,14 @@ set grid
 # leave room: bottom right above (the errors start small), bottom left below (the free ends
 # start at rest or rise).
 
+# The PNG's text is in DejaVu Sans (fonts-dejavu-core; mpmstab plot lets gnuplot see no other
+# font); the SVG only names its font, which the viewer resolves.
 do for [format in "png svg"] {
     if (format eq "png") {
-        set terminal pngcairo size 1800,900 font "Arial,10" noenhanced
+        face = "DejaVu Sans"
+        set terminal pngcairo size 1800,900 font "DejaVu Sans,10" noenhanced
     } else {
+        face = "Arial"
         set terminal svg size 1800,900 font "Arial,10" noenhanced background "white"
     }
     set output outbase . "." . format
@@ -54,7 +58,7 @@ do for [format in "png svg"] {
     set format y "%.0e"
     do for [k = 1:panels] {
         set title scenes[k]
-        if (k == 1) { set key bottom right font ",9" } else { unset key }
+        if (k == 1) { set key bottom right font face . ",9" } else { unset key }
         plot for [s = 1:nseries] datafile \
             using (column("panel") == k - 1 && column("series") == s - 1 ? column("t") : 1/0):"error_over_A" \
             with lines lw 1.5 title names[s]
@@ -64,7 +68,7 @@ do for [format in "png svg"] {
     set ylabel "last particle's u / A"
     do for [k = 1:panels] {
         set title scenes[k] . ": free end"
-        if (k == 1) { set key bottom left font ",9" } else { unset key }
+        if (k == 1) { set key bottom left font face . ",9" } else { unset key }
         plot for [s = 1:nseries] datafile \
             using (column("panel") == k - 1 && column("series") == s - 1 ? column("t") : 1/0):"tip_over_A" \
             with lines lw 1.5 title names[s], \

@@ -42,9 +42,11 @@ stats datafile using "ppc" nooutput
 ppc_high = STATS_max
 array shade[8] = ["#fdae6b", "#fd8d3c", "#f16913", "#d94801", "#a63603", "#7f2704", "#54278f", "#3f007d"]
 
+# The PNG's text is in DejaVu Sans (fonts-dejavu-core; mpmstab plot lets gnuplot see no other
+# font); the SVG only names its font, which the viewer resolves.
 do for [ext in "png svg"] {
     if (ext eq "png") {
-        set terminal pngcairo size 1300,720 font "sans,11" noenhanced
+        set terminal pngcairo size 1300,720 font "DejaVu Sans,11" noenhanced
     } else {
         set terminal svg size 1300,720 dynamic font "sans,11" noenhanced background "white"
     }

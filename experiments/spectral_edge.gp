@@ -25,9 +25,11 @@ n = int(STATS_max)
 array colour[8] = ["#d62728", "#ff7f0e", "#1f77b4", "#2ca02c", "#9467bd", "#8c564b", "#e377c2", "#7f7f7f"]
 array marker[8] = [7, 9, 5, 11, 13, 15, 3, 1]
 
+# The PNG's text is in DejaVu Sans (fonts-dejavu-core; mpmstab plot lets gnuplot see no other
+# font); the SVG only names its font, which the viewer resolves.
 do for [ext in "png svg"] {
     if (ext eq "png") {
-        set terminal pngcairo size 1000,650 font "sans,11" noenhanced
+        set terminal pngcairo size 1000,650 font "DejaVu Sans,11" noenhanced
     } else {
         set terminal svg size 1000,650 dynamic font "sans,11" noenhanced background "white"
     }

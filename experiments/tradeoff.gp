@@ -75,9 +75,11 @@ front(k, x) = (column("panel") == k - 1 && column("pareto") == 1) ? x : 1/0
 faint(c) = "#B0" . c[2:7]
 
 height = 120 + 360 * panels
+# The PNG's text is in DejaVu Sans (fonts-dejavu-core; mpmstab plot lets gnuplot see no other
+# font); the SVG only names its font, which the viewer resolves.
 do for [ext in "png svg"] {
     if (ext eq "png") {
-        set terminal pngcairo size 1600,height font "sans,10" noenhanced
+        set terminal pngcairo size 1600,height font "DejaVu Sans,10" noenhanced
     } else {
         set terminal svg size 1600,height dynamic font "sans,10" noenhanced background "white"
     }

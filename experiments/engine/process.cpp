@@ -65,7 +65,8 @@ std::optional<std::string> run_program(const std::vector<std::string>& argv,
   return text;
 }
 
-int run_program_visible(const std::vector<std::string>& argv) {
+int run_program_visible(const std::vector<std::string>& argv,
+                        const std::optional<std::vector<std::string>>& environment) {
   if (argv.empty()) return -1;
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
@@ -73,7 +74,10 @@ int run_program_visible(const std::vector<std::string>& argv) {
   posix_spawn_file_actions_adddup2(&actions, STDERR_FILENO, STDOUT_FILENO);
   pid_t pid = 0;
   auto args = c_argv(argv);
-  const int spawned = posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), environ);
+  std::vector<char*> env;
+  if (environment) env = c_argv(*environment);
+  const int spawned = posix_spawnp(&pid, args[0], &actions, nullptr, args.data(),
+                                   environment ? env.data() : environ);
   posix_spawn_file_actions_destroy(&actions);
   if (spawned != 0) return -1;
   return wait_for(pid);

@@ -15,8 +15,10 @@ std::optional<std::string> run_program(const std::vector<std::string>& argv,
                                        std::size_t max_output = 1 << 20);
 
 // As run_program, but the program's standard output and error go to this process's standard
-// error (for a tool whose messages the user should see). Returns its exit status, or -1 when it
-// could not be started.
-int run_program_visible(const std::vector<std::string>& argv);
+// error (for a tool whose messages the user should see), and with `environment` ("NAME=value"
+// entries) instead of this process's when given. Returns its exit status, or -1 when it could
+// not be started or did not exit normally.
+int run_program_visible(const std::vector<std::string>& argv,
+                        const std::optional<std::vector<std::string>>& environment = {});
 
 }  // namespace mpmstab
