@@ -408,6 +408,28 @@ TEST(Scheduling, DenseAnalysesAreCountedWhereARunAsksForThem) {
   EXPECT_DOUBLE_EQ(dense_analyses(p).later, 6);
 }
 
+// The time to go counts what the running tasks have done (their runs count it as they go) and
+// the follow-up work expected from the last published results until the real one replaces it.
+TEST(ProgressLine, RunningAndExpectedWorkCountInTheTimeToGo) {
+  ProgressCounter c(2, 100);
+  EXPECT_FALSE(c.seconds_to_go(10));  // nothing done yet
+  c.running(25);                      // a quarter done, in 10 s
+  ASSERT_TRUE(c.seconds_to_go(10));
+  EXPECT_DOUBLE_EQ(*c.seconds_to_go(10), 30);
+  c.expect(100);  // follow-up runs expected
+  EXPECT_DOUBLE_EQ(*c.seconds_to_go(10), 70);
+  c.running(0);
+  c.finished(false, 50, 50, false);
+  c.finished(false, 50, 50, false);
+  EXPECT_FALSE(c.finished());  // the expected work is still to come
+  EXPECT_DOUBLE_EQ(c.remaining_cost(), 100);
+  c.add(1, 80, 100);  // the real follow-ups replace the expectation
+  EXPECT_DOUBLE_EQ(c.remaining_cost(), 80);
+  c.finished(false, 80, 80, false);
+  EXPECT_TRUE(c.finished());
+  EXPECT_NE(c.text("reproduce", 20).find("done"), std::string::npos);
+}
+
 TEST(ProgressLine, WorkAddedWhileTheQueueRunsJoinsTheTotal) {
   ProgressCounter c(2, 100);
   c.finished(false, 50, 50, false);

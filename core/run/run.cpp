@@ -188,12 +188,21 @@ NextStep Driver::next_step() const {
   return {last ? p_.T : sim_.time() + dt, last};
 }
 
+// The counter of count_work_on_this_thread (run.hpp).
+thread_local std::atomic<double>* t_work_counter = nullptr;
+
 // Cancellation, the step cap and a collapsed adaptive step, before the step is taken.
 bool Driver::stops_before_step(const NextStep& next, const std::atomic<bool>* cancel) {
-  // Cancellation is polled every 1024 steps: cheap, and prompt (well under a second).
-  if (cancel && (sim_.steps() & 1023) == 0 && cancel->load(std::memory_order_relaxed)) {
-    r_.interrupted = true;
-    return true;
+  // Cancellation is polled every 1024 steps: cheap, and prompt (well under a second); the work
+  // done so far is counted then too.
+  if ((sim_.steps() & 1023) == 0) {
+    if (t_work_counter && sim_.steps() > 0)
+      t_work_counter->fetch_add(1024.0 * double(sim_.particles().size()),
+                                std::memory_order_relaxed);
+    if (cancel && cancel->load(std::memory_order_relaxed)) {
+      r_.interrupted = true;
+      return true;
+    }
   }
   if (sim_.steps() >= p_.max_steps) {
     r_.failure = Failure{FailureReason::step_limit, -1, sim_.steps(), sim_.time()};
@@ -380,6 +389,10 @@ std::string_view to_string(Outcome o) {
       return "too_short";
   }
   return "?";
+}
+
+void count_work_on_this_thread(std::atomic<double>* counter) {
+  t_work_counter = counter;
 }
 
 RunResult run(const RunParams& p, const std::atomic<bool>* cancel, const HistorySink& history) {

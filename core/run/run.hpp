@@ -22,4 +22,9 @@ using HistorySink = std::function<void(const HistoryRow&)>;
 RunResult run(const RunParams& p, const std::atomic<bool>* cancel = nullptr,
               const HistorySink& history = {});
 
+// The work of the runs on this thread as they go, for a progress line: while a counter is set,
+// every run on the thread adds its particles x 1024 to it every 1024 steps. Null (the default)
+// counts nothing. No result depends on it.
+void count_work_on_this_thread(std::atomic<double>* counter);
+
 }  // namespace mpmstab

@@ -274,6 +274,18 @@ class ReproducePublisher {
                      const SweepOptions& options, bool omit, SweepQueue& queue)
       : plan_(plan), out_(out), options_(options), omit_(omit), queue_(queue) {}
 
+  // The follow-up runs each experiment's last published results ask for, counted in the
+  // progress line until its own are known (an estimate only).
+  void expect_follow_ups() {
+    for (std::size_t s = 0; s < plan_.specs.size(); ++s) {
+      double cost = 0;
+      for (const RunParams& p : expected_follow_ups(plan_.specs[s], out_))
+        cost += case_cost(p, CaseWork::run);
+      expected_[s] = cost;
+      queue_.expect(cost);
+    }
+  }
+
   // Batch b of the queue is complete: an experiment's cases (b < the number of specs, added in
   // their order) or an experiment's follow-up runs.
   void complete(std::size_t b, SweepOutcome& outcome) {
@@ -316,12 +328,16 @@ class ReproducePublisher {
     if (asked_.count(s)) return false;
     asked_.insert(s);
     std::unique_ptr<FollowUps> f = follow_ups(plan_.specs[s], outcome, out_);
-    if (!f) return true;
+    const double expected = expected_[s];
+    if (!f) {
+      queue_.retire(expected);
+      return true;
+    }
     if (!options_.quiet)
       std::cerr << (options_.progress_line ? "\r\033[K" : "") << "[" << f->spec.name << "] "
                 << f->spec.cases.size() << " follow-up run"
                 << (f->spec.cases.size() == 1 ? "" : "s") << " join the queue\n";
-    follow_of_[queue_.add(f->spec)] = s;
+    follow_of_[queue_.add(f->spec, expected)] = s;
     follow_specs_[s] = std::move(f);
     return false;
   }
@@ -379,6 +395,7 @@ class ReproducePublisher {
   std::map<std::size_t, std::unique_ptr<FollowUps>> follow_specs_;  // by experiment
   std::map<std::size_t, std::size_t> follow_of_;     // queue batch -> the experiment it follows up
   std::map<std::size_t, SweepOutcome> follow_done_;  // by experiment
+  std::map<std::size_t, double> expected_;           // the follow-up work expected, by experiment
   std::set<std::string> written_;
   std::set<std::string> counted_;
 };
@@ -436,6 +453,7 @@ int cmd_reproduce(const std::vector<std::string_view>& argv) {
   for (const auto& spec : plan.specs)
     queue.add(spec);
   ReproducePublisher publisher(plan, out, options, omit, queue);
+  publisher.expect_follow_ups();
   const auto start = std::chrono::steady_clock::now();
   const std::vector<SweepOutcome> rest =
       queue.run([&](std::size_t b, SweepOutcome& outcome) { publisher.complete(b, outcome); });

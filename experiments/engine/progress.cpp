@@ -9,9 +9,14 @@ namespace mpmstab {
 ProgressCounter::ProgressCounter(std::size_t runs, double estimated_cost)
     : runs_(runs), estimated_cost_(std::max(0.0, estimated_cost)) {}
 
-void ProgressCounter::add(std::size_t runs, double cost) {
+void ProgressCounter::add(std::size_t runs, double cost, double retire) {
   runs_ += runs;
   estimated_cost_ += std::max(0.0, cost);
+  expected_ = std::max(0.0, expected_ - retire);
+}
+
+void ProgressCounter::expect(double cost) {
+  expected_ += std::max(0.0, cost);
 }
 
 void ProgressCounter::finished(bool from_cache, double cost, double work, bool unstable) {
@@ -27,33 +32,35 @@ void ProgressCounter::finished(bool from_cache, double cost, double work, bool u
 }
 
 double ProgressCounter::remaining_cost() const {
-  if (done_ >= runs_) return 0;
+  if (finished()) return 0;
   // The subtractions leave a rounding residue where every estimate is gone: below a
   // millionth of the largest sum, the rest is nothing.
-  const double rest = estimated_cost_ - done_cost_;
-  const double scale = std::max(estimated_cost_, done_cost_);
+  const double total = estimated_cost_ + expected_;
+  const double rest = total - done_cost_ - running_;
+  const double scale = std::max(total, done_cost_);
   return rest > 1e-6 * scale ? rest : 0.0;
 }
 
 std::optional<double> ProgressCounter::seconds_to_go(double elapsed) const {
-  if (done_ >= runs_) return 0.0;
-  if (!(done_cost_ > 0) || !(elapsed >= 1)) return std::nullopt;
-  const double to_go = remaining_cost() / (done_cost_ / elapsed);
+  if (finished()) return 0.0;
+  const double done = done_cost_ + running_;
+  if (!(done > 0) || !(elapsed >= 1)) return std::nullopt;
+  const double to_go = remaining_cost() / (done / elapsed);
   if (!std::isfinite(to_go) || to_go > kMaxHorizon * elapsed) return std::nullopt;
   return to_go;
 }
 
 std::string ProgressCounter::text(const std::string& label, double elapsed) const {
   char work[96];
-  if (done_ >= runs_) {
+  if (finished()) {
     std::snprintf(work, sizeof work, "%.2g particle-steps computed, %zu cases from the cache",
                   done_work_, cached_);
   } else {
-    std::snprintf(work, sizeof work, "%.2g of ~%.2g particle-steps", done_work_,
-                  done_work_ + remaining_cost());
+    std::snprintf(work, sizeof work, "%.2g of ~%.2g particle-steps", done_work_ + running_,
+                  done_work_ + running_ + remaining_cost());
   }
   char left[48] = "estimating";
-  if (done_ >= runs_) {
+  if (finished()) {
     std::snprintf(left, sizeof left, "done");
   } else if (const auto to_go = seconds_to_go(elapsed)) {
     std::snprintf(left, sizeof left, "~%.0f s to go", *to_go);

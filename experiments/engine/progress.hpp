@@ -14,20 +14,31 @@ class ProgressCounter {
   // `runs` tasks whose estimated work sums to `estimated_cost` particle-steps.
   ProgressCounter(std::size_t runs, double estimated_cost);
 
-  // Tasks added after the start (follow-up runs), `cost` their estimated work.
-  void add(std::size_t runs, double cost);
+  // Tasks added after the start (follow-up runs), `cost` their estimated work; `retire` of the
+  // expected work (below) they replace leaves it.
+  void add(std::size_t runs, double cost, double retire = 0);
+  // Work expected to be added later (an experiment's follow-up runs, as its last published
+  // results ask for them): in the total until the tasks that replace it are added.
+  void expect(double cost);
+  // The work done so far by the tasks running now (particle-steps; their runs count it as they
+  // go, run.hpp).
+  void running(double work) { running_ = std::max(0.0, work); }
 
   // A task finished: from the cache (no work done, its estimate leaves the total) or computed
   // (its estimate `cost` replaced by the measured `work`); `unstable`: its verdict.
   void finished(bool from_cache, double cost, double work, bool unstable);
 
   std::size_t done() const { return done_; }
+  // Every task done and none expected.
+  bool finished() const { return done_ >= runs_ && !(expected_ > 0); }
   std::size_t runs() const { return runs_; }
-  // The estimated work still to do, never below 0 (the estimates of the tasks left).
+  // The estimated work still to do, never below 0: the estimates of the tasks left and of those
+  // expected, less what the running ones have done.
   double remaining_cost() const;
-  // Seconds to go at the rate measured so far, when it is known: none before any computed
-  // task has finished, when `elapsed` is below a second, or when the answer would be more
-  // than kMaxHorizon times the elapsed time (too little done to say).
+  // Seconds to go at the rate measured so far (the finished tasks' estimates and the running
+  // ones' work, per second), when it is known: none before any work is counted, when `elapsed`
+  // is below a second, or when the answer would be more than kMaxHorizon times the elapsed time
+  // (too little done to say).
   std::optional<double> seconds_to_go(double elapsed) const;
   static constexpr double kMaxHorizon = 100;
 
@@ -39,8 +50,10 @@ class ProgressCounter {
  private:
   std::size_t runs_, done_ = 0, cached_ = 0, unstable_ = 0;
   double estimated_cost_;  // of every task not from the cache
+  double expected_ = 0;    // of tasks not added yet
   double done_cost_ = 0;   // the estimates of the computed tasks done
   double done_work_ = 0;   // their measured work
+  double running_ = 0;     // the work so far of the tasks running
 };
 
 }  // namespace mpmstab

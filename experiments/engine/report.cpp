@@ -609,6 +609,26 @@ std::unique_ptr<FollowUps> follow_ups(const Spec& spec, const SweepOutcome& outc
   return make_follow_ups(spec, rows, inputs);
 }
 
+std::vector<RunParams> expected_follow_ups(const Spec& spec, const fs::path& out) {
+  if (!spec.study->follow_up) return {};
+  try {
+    const ojson doc = load_results(spec, out);
+    if (doc.is_null() || !doc.contains("cases") || doc["cases"].size() != spec.cases.size())
+      return {};
+    const std::vector<ojson> rows(doc["cases"].begin(), doc["cases"].end());
+    const std::vector<Spec> input_specs = load_inputs(spec);
+    const StudyInputs inputs = read_inputs(*spec.study, input_roles(spec), input_specs, out);
+    const std::unique_ptr<FollowUps> f = make_follow_ups(spec, rows, inputs);
+    std::vector<RunParams> params;
+    if (f)
+      for (const CaseSpec& c : f->spec.cases)
+        params.push_back(c.params);
+    return params;
+  } catch (const std::exception&) {
+    return {};  // an estimate only: results that cannot be read give none
+  }
+}
+
 void write_reports(const Spec& spec, const SweepOutcome& outcome, const fs::path& out,
                    const FollowUpRunner& runner) {
   fs::create_directories(out);

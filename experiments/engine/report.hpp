@@ -73,6 +73,11 @@ struct FollowUps {
 // Null when the study asks for none.
 std::unique_ptr<FollowUps> follow_ups(const Spec& spec, const SweepOutcome& outcome,
                                       const std::filesystem::path& out);
+// The follow-up runs the spec's last published results in `out` (<name>.json and its inputs')
+// ask for: what make reproduce expects to add to its queue before its cases are done, for the
+// progress line's estimate only. Empty where those results are absent, or were written for
+// other cases.
+std::vector<RunParams> expected_follow_ups(const Spec& spec, const std::filesystem::path& out);
 
 // Writes <out>/<name>.csv, .json, .md, <name>_claims.csv for a study that draws conclusions and,
 // for studies with a figure, <name>_data.csv; the sweep's wall times go to <out>/timings.json,

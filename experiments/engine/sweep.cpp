@@ -97,10 +97,20 @@ class Progress {
   Progress(std::string label, std::size_t runs, double total_cost, bool line, bool per_case)
       : label_(std::move(label)), line_(line), per_case_(per_case), counter_(runs, total_cost) {}
 
-  // Tasks added to the queue while it runs (follow-up runs).
-  void add(std::size_t runs, double cost) {
+  // Tasks added to the queue while it runs (follow-up runs), replacing `retire` of the work
+  // expected.
+  void add(std::size_t runs, double cost, double retire) {
     std::lock_guard lock(mutex_);
-    counter_.add(runs, cost);
+    counter_.add(runs, cost, retire);
+  }
+  void expect(double cost) {
+    std::lock_guard lock(mutex_);
+    counter_.expect(cost);
+  }
+  // What reads the work done so far by the running tasks.
+  void running_work(std::function<double()> read) {
+    std::lock_guard lock(mutex_);
+    running_ = std::move(read);
   }
 
   void done(const Spec& spec, const RunParams& p, const nlohmann::ordered_json& rec,
@@ -126,7 +136,7 @@ class Progress {
   // has passed.
   void tick() {
     std::lock_guard lock(mutex_);
-    if (counter_.done() == counter_.runs()) return;
+    if (counter_.finished()) return;
     if (line_) {
       draw('\r');
     } else if (!per_case_ && elapsed() >= last_print_ + kPeriodicSeconds) {
@@ -145,7 +155,8 @@ class Progress {
  private:
   double elapsed() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
 
-  void draw(char end) const {
+  void draw(char end) {
+    if (running_) counter_.running(running_());
     std::fprintf(stderr, "%s%s   %s", end == '\r' ? "\r" : "",
                  counter_.text(label_, elapsed()).c_str(), end == '\n' ? "\n" : "");
   }
@@ -154,6 +165,7 @@ class Progress {
   std::string label_;
   bool line_, per_case_;
   ProgressCounter counter_;
+  std::function<double()> running_;
   double last_print_ = 0;
   Clock::time_point start_ = Clock::now();
 };
@@ -421,6 +433,10 @@ struct SweepQueue::State {
   std::unique_ptr<Progress> progress;
   std::size_t runs = 0;  // tasks in the progress line
   double total_cost = 0;
+  double expected = 0;  // work expected to be added (expect), before run
+  // The work each worker's running task has done so far (count_work_on_this_thread).
+  std::unique_ptr<std::atomic<double>[]> running;
+  std::size_t workers = 0;
   bool stop = false;
   std::size_t workers_running = 0;
   std::atomic<int> rejected{0};
@@ -463,7 +479,7 @@ struct SweepQueue::State {
     if (--batch.remaining == 0) finished.push_back(b);
   }
 
-  void work();
+  void work(std::size_t w);
 };
 
 SweepQueue::SweepQueue(const SweepOptions& options, std::string label)
@@ -471,7 +487,27 @@ SweepQueue::SweepQueue(const SweepOptions& options, std::string label)
 
 SweepQueue::~SweepQueue() = default;
 
-std::size_t SweepQueue::add(const Spec& spec) {
+void SweepQueue::expect(double cost) {
+  State& st = *state_;
+  std::lock_guard lock(st.mutex);
+  if (st.progress) {
+    st.progress->expect(cost);
+  } else {
+    st.expected += std::max(0.0, cost);
+  }
+}
+
+void SweepQueue::retire(double cost) {
+  State& st = *state_;
+  std::lock_guard lock(st.mutex);
+  if (st.progress) {
+    st.progress->add(0, 0, cost);
+  } else {
+    st.expected = std::max(0.0, st.expected - cost);
+  }
+}
+
+std::size_t SweepQueue::add(const Spec& spec, double retire) {
   State& st = *state_;
   std::lock_guard lock(st.mutex);
   const std::size_t b = st.batches.size();
@@ -524,14 +560,19 @@ std::size_t SweepQueue::add(const Spec& spec) {
   }
   st.runs += new_runs;
   st.total_cost += new_cost;
-  if (st.progress) st.progress->add(new_runs, new_cost);
+  if (st.progress) {
+    st.progress->add(new_runs, new_cost, retire);
+  } else {
+    st.expected = std::max(0.0, st.expected - retire);
+  }
   st.work_changed.notify_all();
   st.done_changed.notify_all();
   return b;
 }
 
-void SweepQueue::State::work() {
+void SweepQueue::State::work(std::size_t w) {
   const bool cached = !options.cache.empty();
+  count_work_on_this_thread(&running[w]);
   for (;;) {
     std::size_t k;
     std::vector<std::size_t> members_k;
@@ -551,6 +592,7 @@ void SweepQueue::State::work() {
         members_k.push_back(m);
     }
     const double began = since_start();
+    running[w].store(0.0);
     try {
       // The lead and its partners: each from the cache if there, the rest computed by one run.
       std::vector<const Task*> members;
@@ -586,6 +628,7 @@ void SweepQueue::State::work() {
         records[missing[c]] = std::move(rec);
       }
       std::lock_guard lock(mutex);
+      running[w].store(0.0);  // its work is the finished tasks' now
       for (std::size_t m = 0; m < members.size(); ++m) {
         if (!records[m]) continue;
         const bool hit = std::find(missing.begin(), missing.end(), m) == missing.end();
@@ -599,7 +642,9 @@ void SweepQueue::State::work() {
       break;
     }
   }
+  count_work_on_this_thread(nullptr);
   std::lock_guard lock(mutex);
+  running[w].store(0.0);
   --workers_running;
   done_changed.notify_all();
 }
@@ -613,12 +658,23 @@ std::vector<SweepOutcome> SweepQueue::run(
     st.progress =
         std::make_unique<Progress>(several ? st.label : st.batches.front().spec->name, st.runs,
                                    st.total_cost, st.options.progress_line, !several);
+    st.progress->expect(st.expected);
   }
   const int jobs = std::max(1, st.options.jobs);
+  st.workers = std::size_t(jobs);
+  st.running = std::make_unique<std::atomic<double>[]>(st.workers);
+  for (std::size_t w = 0; w < st.workers; ++w)
+    st.running[w].store(0.0);
+  st.progress->running_work([&st] {
+    double sum = 0;
+    for (std::size_t w = 0; w < st.workers; ++w)
+      sum += st.running[w].load(std::memory_order_relaxed);
+    return sum;
+  });
   std::vector<std::thread> threads;
-  st.workers_running = std::size_t(jobs);
-  for (int t = 0; t < jobs; ++t)
-    threads.emplace_back([&st] { st.work(); });
+  st.workers_running = st.workers;
+  for (std::size_t w = 0; w < st.workers; ++w)
+    threads.emplace_back([&st, w] { st.work(w); });
   auto stop_workers = [&] {
     {
       std::lock_guard lock(st.mutex);

@@ -112,8 +112,14 @@ class SweepQueue {
   SweepQueue& operator=(const SweepQueue&) = delete;
 
   // Adds a spec's cases (the spec must outlive the queue) and returns its index. Before `run`,
-  // or from `complete` on the caller's thread while it runs.
-  std::size_t add(const Spec& spec);
+  // or from `complete` on the caller's thread while it runs. `retire`: the work expected (below)
+  // that these cases replace.
+  std::size_t add(const Spec& spec, double retire = 0);
+  // Work expected to be added later, in particle-steps (an experiment's follow-up runs as its
+  // last published results ask for them): counted in the progress line's total until retired.
+  void expect(double cost);
+  // Removes `cost` of the work expected (what was expected and will not come).
+  void retire(double cost);
 
   // Runs until every spec added is complete, calling complete(index, outcome) on the caller's
   // thread as each one's last case finishes (the caller may take the outcome, and may add
