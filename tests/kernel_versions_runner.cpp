@@ -1,6 +1,7 @@
 // kernels_portable / kernels_avx2: the reproducibility test's cases run on the kernels built
 // without the instruction-set versions above them (tests/kernel_versions.hpp); prints their
-// records.
+// records. Only the core sources that use the switch are compiled per version; the rest of the
+// solver is the library's own objects (tests/CMakeLists.txt).
 #include <iostream>
 
 #include "kernel_versions.hpp"
