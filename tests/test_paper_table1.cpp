@@ -11,6 +11,8 @@
 #include <map>
 #include <string>
 
+#include <unistd.h>
+
 #include "files.hpp"
 #include "key.hpp"
 #include "paper_table1.hpp"
@@ -59,10 +61,19 @@ TEST(PaperTable1, ACellWithoutAPrintedDtIsReadWhereItsCaseIsAndOverwritesNoOther
   }
 }
 
-// A spec with one case, in a temporary folder, that reads the transcription `reference`.
-Spec one_case_spec(const std::string& kase, const fs::path& reference) {
-  const fs::path dir = fs::temp_directory_path() / "mpmstab_paper_table1";
+// A temporary folder of the running test's own (tests run in parallel, each in its process).
+fs::path test_dir() {
+  const fs::path dir = fs::temp_directory_path() /
+                       ("mpmstab_paper_table1_" +
+                        std::string(testing::UnitTest::GetInstance()->current_test_info()->name()) +
+                        "_" + std::to_string(::getpid()));
   fs::create_directories(dir);
+  return dir;
+}
+
+// A spec with one case, in the test's temporary folder, that reads the transcription `reference`.
+Spec one_case_spec(const std::string& kase, const fs::path& reference) {
+  const fs::path dir = test_dir();
   std::ofstream(dir / "spec.json") << R"({"name": "eq108", "report": "eq108", "reference": ")"
                                    << reference.string() << R"(", "record": ["dt_stable"],
   "defaults": {"T": 1, "cells": 100, "ppc": 2, "bc": "dirichlet"}, "cases": [)"
@@ -89,11 +100,11 @@ TEST(PaperTable1, ACaseAtAnUnprintedDtMustBeMarkedInferred) {
   const auto printed =
       std::count_if(rows.begin(), rows.end(), [](const PaperRow& r) { return r.dt.has_value(); });
   EXPECT_EQ(read_paper_table1(marked).size(), std::size_t(printed) + 1);
+  fs::remove_all(test_dir());
 }
 
 TEST(PaperTable1, ATranscriptionWhoseKeyIsNotAFiniteNumberIsRefusedNamingTheRow) {
-  const fs::path dir = fs::temp_directory_path() / "mpmstab_paper_table1";
-  fs::create_directories(dir);
+  const fs::path dir = test_dir();
   for (const char* bad : {"nan", "inf", "-nan", "0.05x"}) {
     const fs::path csv = dir / "table1.csv";
     std::ofstream(csv) << "A,E,dt,method,dt_stable,max_error,confidence,evidence\n"
@@ -107,6 +118,7 @@ TEST(PaperTable1, ATranscriptionWhoseKeyIsNotAFiniteNumberIsRefusedNamingTheRow)
       EXPECT_NE(std::string(e.what()).find("row 3, column A"), std::string::npos) << e.what();
     }
   }
+  fs::remove_all(dir);
 }
 
 TEST(Key, HoldsOnlyFiniteNumbersAndOrdersThemTotally) {
