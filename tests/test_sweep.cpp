@@ -577,6 +577,21 @@ TEST(ProgressLine, TimeToGoFollowsTheMeasuredRateAndIsWithheldWhenAbsurd) {
 // cases (fixed seed) over every basis, both transfers, every update order and four scenes, at
 // Courant numbers from 0.05 to 1.5 (some fail); FLIP, where the two updates differ, is the
 // control.
+TEST(ProgressLine, TheTimeToGoIsJudgedAgainstTheTruthAfterTheFirstTenthAndBeforeTheLastTwentieth) {
+  // A queue of 100 s whose line said 2x the truth at 5 s (not judged: the first 10%), 1.5x at
+  // 20 s, 0.8x at 50 s and 10x at 98 s (not judged: the last 5%).
+  const std::vector<std::pair<double, double>> shown = {{5, 190}, {20, 120}, {50, 40}, {98, 20}};
+  const EstimateAccuracy a = estimate_accuracy(shown, 100);
+  EXPECT_EQ(a.samples, 2u);
+  EXPECT_DOUBLE_EQ(a.worst, 1.5);
+  ASSERT_EQ(a.at.size(), 4u);  // the first estimate at or after 10, 25, 50 and 75% of the wall
+  EXPECT_EQ(a.at[0], (std::vector<double>{0.2, 120, 80}));
+  EXPECT_EQ(a.at[1], (std::vector<double>{0.5, 40, 50}));
+  EXPECT_EQ(a.at[3], (std::vector<double>{0.98, 20, 2}));
+  EXPECT_EQ(estimate_accuracy({}, 100).samples, 0u);
+  EXPECT_EQ(estimate_accuracy(shown, 0).samples, 0u);
+}
+
 TEST(WorkDoneOnce, PicApicAndFmpmRecordsDoNotDependOnThePositionUpdate) {
   std::mt19937 random(35);
   const std::array methods = {Method::mpm,      Method::gimp,     Method::cpgimp,

@@ -21,6 +21,7 @@
 #include "csv.hpp"
 #include "files.hpp"
 #include "merge.hpp"
+#include "progress.hpp"
 #include "provenance.hpp"
 #include "report.hpp"
 #include "spec.hpp"
@@ -403,8 +404,12 @@ class ReproducePublisher {
 // 3. The reproduction's own entry in the machine's timings.
 void record_reproduce(const ReproducePublisher& done, std::size_t experiments, double wall,
                       const std::filesystem::path& out, const SweepOptions& options, bool omit,
-                      const std::string& label) {
+                      const std::string& label, const EstimateAccuracy& estimate) {
   const Provenance when = current_provenance(options.jobs);
+  nlohmann::ordered_json judged = nullptr;
+  if (!omit && estimate.samples > 0) {
+    judged = {{"samples", estimate.samples}, {"worst_factor", estimate.worst}, {"at", estimate.at}};
+  }
   write_reproduce_timing(out, label,
                          {{"experiments", experiments},
                           {"cases", done.cases},
@@ -414,7 +419,8 @@ void record_reproduce(const ReproducePublisher& done, std::size_t experiments, d
                           {"commit", when.commit},
                           {"cpu", when.cpu},
                           {"threads", options.jobs},
-                          {"wall_seconds", omit ? 0.0 : wall}},
+                          {"wall_seconds", omit ? 0.0 : wall},
+                          {"time_to_go", judged}},
                          done.computed > 0);
 }
 
@@ -467,7 +473,8 @@ int cmd_reproduce(const std::vector<std::string_view>& argv) {
   }
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  record_reproduce(publisher, plan.specs.size(), wall, out, options, omit, label);
+  record_reproduce(publisher, plan.specs.size(), wall, out, options, omit, label,
+                   estimate_accuracy(queue.estimates(), wall));
   std::cerr << "[reproduce] " << plan.specs.size() << " experiments in "
             << shortest(std::round(wall * 10) / 10) << " s -> " << out.string() << "\n";
   return 0;

@@ -330,7 +330,21 @@ void write_experiment_times(std::ostream& md, const std::vector<Spec>& specs, co
          << fixed(kernel, 2) << " ns per particle-step) it would take "
          << seconds(work * kernel * 1e-9 / threads);
     }
-    md << ".\n\n";
+    md << ".";
+    if (r.contains("time_to_go") && r["time_to_go"].is_object()) {
+      const auto& t = r["time_to_go"];
+      md << " The time to go its progress line showed, from 10% of the wall until the last 5% ("
+         << t["samples"].dump() << " estimates, one a second at most), was within a factor "
+         << fixed(t["worst_factor"].get<double>(), 2) << " of the true time to go";
+      std::string sep = " (";
+      for (const auto& p : t["at"]) {
+        md << sep << fixed(100 * p[0].get<double>(), 0) << "%: " << seconds(p[1].get<double>())
+           << " shown, " << seconds(p[2].get<double>()) << " true";
+        sep = "; ";
+      }
+      md << (sep == "; " ? ")" : "") << ".";
+    }
+    md << "\n\n";
   }
   if (any) {
     md << "The table's CPU times and particle-steps count a case shared by two experiments in "

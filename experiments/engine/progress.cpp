@@ -71,4 +71,29 @@ std::string ProgressCounter::text(const std::string& label, double elapsed) cons
   return line;
 }
 
+EstimateAccuracy estimate_accuracy(const std::vector<std::pair<double, double>>& estimates,
+                                   double wall) {
+  EstimateAccuracy a;
+  if (!(wall > 0)) return a;
+  for (const auto& [elapsed, to_go] : estimates) {
+    const double truth = wall - elapsed;
+    if (elapsed < EstimateAccuracy::kSkip * wall || truth < EstimateAccuracy::kTail * wall ||
+        !(to_go > 0))
+      continue;
+    ++a.samples;
+    a.worst = std::max(a.worst, std::max(to_go / truth, truth / to_go));
+  }
+  for (const double fraction : {0.1, 0.25, 0.5, 0.75}) {
+    const std::pair<double, double>* nearest = nullptr;
+    for (const auto& e : estimates) {
+      if (e.first < fraction * wall) continue;
+      nearest = &e;
+      break;
+    }
+    if (nearest != nullptr)
+      a.at.push_back({nearest->first / wall, nearest->second, wall - nearest->first});
+  }
+  return a;
+}
+
 }  // namespace mpmstab

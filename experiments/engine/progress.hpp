@@ -6,6 +6,8 @@
 #include <cstddef>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace mpmstab {
 
@@ -55,5 +57,20 @@ class ProgressCounter {
   double done_work_ = 0;   // their measured work
   double running_ = 0;     // the work so far of the tasks running
 };
+
+// How the time to go a queue's progress line showed compared with the truth, once the queue ended
+// `wall` seconds after it started. Judged from the first kSkip of the wall (the rate is not known
+// before) until the last kTail (where both times are a few seconds and their ratio says little).
+struct EstimateAccuracy {
+  static constexpr double kSkip = 0.1;
+  static constexpr double kTail = 0.05;
+  std::size_t samples = 0;  // estimates judged
+  double worst = 0;         // the largest factor between an estimate and the truth (>= 1)
+  // At about 10, 25, 50 and 75% of the wall: (fraction of the wall, estimated, true seconds to go).
+  std::vector<std::vector<double>> at;
+};
+// `estimates`: (seconds elapsed, seconds to go) as the line showed them.
+EstimateAccuracy estimate_accuracy(const std::vector<std::pair<double, double>>& estimates,
+                                   double wall);
 
 }  // namespace mpmstab

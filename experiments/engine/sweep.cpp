@@ -119,6 +119,7 @@ class Progress {
     const auto& result = rec["result"];
     const bool unstable = result["outcome"] == "unstable";
     counter_.finished(from_cache, cost, from_cache ? 0.0 : record_particle_steps(rec), unstable);
+    sample();
     if (line_) {
       draw('\r');
     } else if (per_case_) {
@@ -136,6 +137,7 @@ class Progress {
   // has passed.
   void tick() {
     std::lock_guard lock(mutex_);
+    sample();
     if (counter_.finished()) return;
     if (line_) {
       draw('\r');
@@ -152,7 +154,21 @@ class Progress {
     std::fflush(stderr);
   }
 
+  // The time to go the line showed, at most once a second: (seconds elapsed, seconds to go).
+  std::vector<std::pair<double, double>> estimates() const {
+    std::lock_guard lock(mutex_);
+    return estimates_;
+  }
+
  private:
+  void sample() {
+    const double now = elapsed();
+    if (now < last_sample_ + 1 || counter_.finished()) return;
+    last_sample_ = now;
+    if (running_) counter_.running(running_());
+    if (const auto to_go = counter_.seconds_to_go(now)) estimates_.emplace_back(now, *to_go);
+  }
+
   double elapsed() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
 
   void draw(char end) {
@@ -161,12 +177,14 @@ class Progress {
                  counter_.text(label_, elapsed()).c_str(), end == '\n' ? "\n" : "");
   }
 
-  std::mutex mutex_;
+  mutable std::mutex mutex_;
   std::string label_;
   bool line_, per_case_;
   ProgressCounter counter_;
   std::function<double()> running_;
   double last_print_ = 0;
+  double last_sample_ = 0;
+  std::vector<std::pair<double, double>> estimates_;
   Clock::time_point start_ = Clock::now();
 };
 
@@ -486,6 +504,11 @@ SweepQueue::SweepQueue(const SweepOptions& options, std::string label)
     : state_(std::make_unique<State>(options, std::move(label))) {}
 
 SweepQueue::~SweepQueue() = default;
+
+std::vector<std::pair<double, double>> SweepQueue::estimates() const {
+  return state_->progress ? state_->progress->estimates()
+                          : std::vector<std::pair<double, double>>{};
+}
 
 void SweepQueue::expect(double cost) {
   State& st = *state_;

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "spec.hpp"
@@ -127,6 +128,10 @@ class SweepQueue {
   // set. An outcome's wall_seconds is the span from its first case's start to its last case's
   // end.
   std::vector<SweepOutcome> run(const std::function<void(std::size_t, SweepOutcome&)>& complete);
+
+  // The time to go the progress line estimated as the queue ran, at most once a second:
+  // (seconds since the queue started, seconds to go). Empty before `run`.
+  std::vector<std::pair<double, double>> estimates() const;
 
  private:
   struct State;
