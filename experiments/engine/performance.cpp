@@ -8,6 +8,7 @@
 
 #include "csv.hpp"
 #include "files.hpp"
+#include "progress.hpp"
 #include "report.hpp"
 #include "report_util.hpp"
 #include "strict_json.hpp"
@@ -333,8 +334,10 @@ void write_experiment_times(std::ostream& md, const std::vector<Spec>& specs, co
     md << ".";
     if (r.contains("time_to_go") && r["time_to_go"].is_object()) {
       const auto& t = r["time_to_go"];
-      md << " The time to go its progress line showed, from 10% of the wall until the last 5% ("
-         << t["samples"].dump() << " estimates, one a second at most), was within a factor "
+      md << " The time to go its progress line showed, from "
+         << fixed(100 * EstimateAccuracy::kSkip, 0) << "% of the wall until the last "
+         << fixed(100 * EstimateAccuracy::kTail, 0) << "% (" << t["samples"].dump()
+         << " estimates, one a second at most), was within a factor "
          << fixed(t["worst_factor"].get<double>(), 2) << " of the true time to go";
       std::string sep = " (";
       for (const auto& p : t["at"]) {

@@ -565,6 +565,7 @@ std::size_t SweepQueue::add(const Spec& spec, double retire) {
     if (analyses.initial_key && st.analysed.insert(*analyses.initial_key).second)
       task.cost += dense_analysis_cost(spec.cases[i].params);
     task.cost += 0.5 * analyses.later * dense_analysis_cost(spec.cases[i].params);
+    task.cost += kCaseOverhead;
     task.uses.emplace_back(b, i);
     ++new_runs;
     // A task whose trajectory is a waiting task's goes with it (and costs nothing more).
