@@ -45,6 +45,37 @@ TEST(Claims, AClaimThatDoesNotHoldIsPrintedAsNotHolding) {
   EXPECT_NE(claims_csv({c}, "").find("z,no,"), std::string::npos);
 }
 
+TEST(Claims, AClaimOverNoCaseIsVacuousAndOneOverTooFewIsNotCountedAsHolding) {
+  // "Every run of the set passes", decided over 0, 2 and 3 runs that all pass, and over 2 runs
+  // of which one fails (a counterexample refutes at any size).
+  auto every = [](long long runs, long long passing) {
+    Claim c = claim("every", "Every run passes", "{passing} of {runs}");
+    c.count("passing", passing).count("runs", runs).over(runs);
+    c.holds = passing == runs;
+    return c;
+  };
+  EXPECT_EQ(every(0, 0).status(), Claim::Status::vacuous);
+  EXPECT_EQ(every(2, 2).status(), Claim::Status::too_few);
+  EXPECT_EQ(every(3, 3).status(), Claim::Status::holds);
+  EXPECT_EQ(every(2, 1).status(), Claim::Status::fails);
+  EXPECT_EQ(every(0, 0).status(), Claim::Status::vacuous);
+  const std::string md = claims_markdown({every(0, 0), every(2, 2), every(3, 3)});
+  EXPECT_NE(md.find("**vacuous (0 cases)**"), std::string::npos) << md;
+  EXPECT_NE(md.find("**too few cases (2; at least 3 to say every)**"), std::string::npos) << md;
+  EXPECT_NE(md.find(" 1 of 3 hold."), std::string::npos) << md;  // only the one over 3 runs
+  const std::string csv = claims_csv({every(0, 0), every(2, 2), every(3, 3)}, "");
+  EXPECT_NE(csv.find("every,vacuous,"), std::string::npos) << csv;
+  EXPECT_NE(csv.find("every,too-few,"), std::string::npos) << csv;
+  EXPECT_NE(csv.find("every,yes,"), std::string::npos) << csv;
+  const auto json = claims_json({every(0, 0)});
+  EXPECT_FALSE(json[0]["holds"].get<bool>());
+  EXPECT_EQ(json[0]["status"], "vacuous");
+  // A claim of another form (no support given) keeps holds as its predicate says.
+  Claim other = claim("other", "A fitted order is near two", "");
+  other.holds = true;
+  EXPECT_EQ(other.status(), Claim::Status::holds);
+}
+
 // Every committed report's claims: no template types a number by hand, and the stored text is
 // the template with its values.
 TEST(Claims, CommittedReportsTypeNoNumberByHand) {

@@ -17,6 +17,47 @@ Claim& Claim::value(std::string name, std::string text) {
   return *this;
 }
 
+Claim& Claim::over(long long cases) {
+  support = cases;
+  return *this;
+}
+
+Claim::Status Claim::status() const {
+  if (support == 0) return Status::vacuous;
+  if (!holds) return Status::fails;
+  if (support > 0 && support < kMinimumSupport) return Status::too_few;
+  return Status::holds;
+}
+
+std::string status_markdown(const Claim& c) {
+  switch (c.status()) {
+    case Claim::Status::holds:
+      return "**holds**";
+    case Claim::Status::fails:
+      return "**does not hold**";
+    case Claim::Status::vacuous:
+      return "**vacuous (0 cases)**";
+    case Claim::Status::too_few:
+      return "**too few cases (" + std::to_string(c.support) + "; at least " +
+             std::to_string(Claim::kMinimumSupport) + " to say every)**";
+  }
+  return "";
+}
+
+std::string status_csv(const Claim& c) {
+  switch (c.status()) {
+    case Claim::Status::holds:
+      return "yes";
+    case Claim::Status::fails:
+      return "no";
+    case Claim::Status::vacuous:
+      return "vacuous";
+    case Claim::Status::too_few:
+      return "too-few";
+  }
+  return "";
+}
+
 Claim& Claim::count(std::string name, long long n) {
   return value(std::move(name), std::to_string(n));
 }
@@ -75,7 +116,7 @@ std::string claims_markdown(const std::vector<Claim>& claims) {
   if (claims.empty()) return "";
   int holding = 0;
   for (const auto& c : claims)
-    holding += c.holds;
+    holding += c.status() == Claim::Status::holds;
   std::ostringstream md;
   md << "## Conclusions\n\n"
      << "Each conclusion of this report is a claim computed from its records: the sentence's "
@@ -88,7 +129,7 @@ std::string claims_markdown(const std::vector<Claim>& claims) {
   for (const auto& c : claims) {
     md << "| " << render_statement(c) << " | "
        << (c.evidence.empty() ? std::string("–") : render(c, c.evidence)) << " | "
-       << (c.holds ? "**holds**" : "**does not hold**") << " |\n";
+       << status_markdown(c) << " |\n";
   }
   md << "\n";
   return md.str();
@@ -106,7 +147,8 @@ ojson claims_json(const std::vector<Claim>& claims) {
                  {"values", values},
                  {"statement", render_statement(c)},
                  {"evidence", c.evidence.empty() ? std::string() : render(c, c.evidence)},
-                 {"holds", c.holds}});
+                 {"holds", c.status() == Claim::Status::holds},
+                 {"status", status_csv(c)}});
   }
   return a;
 }
@@ -115,8 +157,7 @@ std::string claims_csv(const std::vector<Claim>& claims, const std::string& head
   std::ostringstream csv;
   csv << header << "claim,holds,statement\n";
   for (const auto& c : claims)
-    csv << csv_field(c.id) << ',' << (c.holds ? "yes" : "no") << ','
-        << csv_field(render_statement(c)) << '\n';
+    csv << csv_field(c.id) << ',' << status_csv(c) << ',' << csv_field(render_statement(c)) << '\n';
   return csv.str();
 }
 

@@ -26,6 +26,16 @@ struct Claim {
   // says it): "{failing} of {above} runs above the limit fail".
   std::string evidence;
 
+  // For a claim about every one of a set of cases (cells, runs, settings): how many there are.
+  // -1 (the default) for a claim of another form. A claim over no case is vacuous, and one that
+  // would hold over fewer than kMinimumSupport generalises over too few to say "every": neither
+  // is printed or counted as holding. A counterexample refutes at any size.
+  long long support = -1;
+  static constexpr long long kMinimumSupport = 3;
+  Claim& over(long long cases);
+  enum class Status { holds, fails, vacuous, too_few };
+  Status status() const;
+
   // Fluent helpers for studies: the value's text as the report prints it.
   Claim& value(std::string name, std::string text);
   Claim& count(std::string name, long long n);
@@ -39,6 +49,11 @@ Claim claim(std::string id, std::string statement, std::string evidence = "");
 // placeholder without a value: a claim that cannot print its numbers is a defect of the study.
 std::string render(const Claim& c, std::string_view text);
 std::string render_statement(const Claim& c);
+
+// How a claim's status is printed: in the report ("**holds**", "**vacuous (0 cases)**", ...)
+// and in the claims CSV's holds column ("yes", "no", "vacuous", "too-few").
+std::string status_markdown(const Claim& c);
+std::string status_csv(const Claim& c);
 
 // The "## Conclusions" section: one row per claim, its numbers and whether it holds.
 std::string claims_markdown(const std::vector<Claim>& claims);

@@ -206,6 +206,7 @@ Claim recommendations_claim(const std::vector<Advice>& recommended, double targe
       .value("length", shortest(rule.length_factor))
       .count("confirmed", confirmed)
       .count("recommended", static_cast<long long>(recommended.size()));
+  c.over(static_cast<long long>(recommended.size()));
   c.holds = confirmed == static_cast<int>(recommended.size());
   return c;
 }

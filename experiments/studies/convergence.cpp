@@ -729,7 +729,8 @@ std::vector<Claim> convergence_claims(const std::map<std::string, MethodOrders>&
         .count("met", met)
         .count("total", total)
         .value("lo", total ? fixed(lo, 2) : "–")
-        .value("hi", total ? fixed(hi, 2) : "–");
+        .value("hi", total ? fixed(hi, 2) : "–")
+        .over(total);
     c.holds = total > 0 && met == total;
     claims.push_back(c);
   }
@@ -756,7 +757,8 @@ std::vector<Claim> convergence_claims(const std::map<std::string, MethodOrders>&
         .number("tolerance", kOrderAgreement)
         .count("met", met)
         .count("total", total)
-        .value("orders", list_of(orders));
+        .value("orders", list_of(orders))
+        .over(total);
     c.holds = total > 0 && met == total;
     claims.push_back(c);
   }
@@ -773,7 +775,8 @@ std::vector<Claim> convergence_claims(const std::map<std::string, MethodOrders>&
     c.number("theory", kTheoryMaxOrder)
         .number("tolerance", kOrderAgreement)
         .count("explained", explained)
-        .count("above", static_cast<long long>(a.size()));
+        .count("above", static_cast<long long>(a.size()))
+        .over(static_cast<long long>(a.size()));
     c.holds = explained == static_cast<int>(a.size());
     claims.push_back(c);
   }

@@ -326,6 +326,7 @@ Claim period_claim(const std::vector<ModeRun>& runs) {
       .value("scheme", worst ? worst->label : "–")
       .value("cells", worst ? std::to_string(worst->cells) : "–")
       .value("C", worst ? shortest(worst->courant) : "–");
+  c.over(static_cast<long long>(runs.size()));
   c.holds = !runs.empty() && agree == static_cast<int>(runs.size());
   return c;
 }
@@ -348,6 +349,7 @@ Claim explains_claim(const std::vector<ModeRun>& runs) {
   c.count("nearer", nearer)
       .count("compared", compared)
       .value("tolerance", percent(kPeriodAgreement));
+  c.over(compared);
   c.holds = compared > 0 && nearer == compared;
   return c;
 }
@@ -379,6 +381,7 @@ Claim consistency_claim(const std::vector<Scheme>& schemes) {
       .value("tolerance", sci(kConsistency, 1))
       .value("worst", sci(worst, 2))
       .value("scheme", worst_label);
+  c.over(curves);
   c.holds = curves > 0 && consistent == curves;
   return c;
 }
@@ -419,6 +422,7 @@ Claim flip_spline_claim(const std::vector<Scheme>& schemes) {
       .count("more", more)
       .count("compared", compared)
       .value("pairs", pairs.empty() ? "–" : pairs);
+  c.over(compared);
   c.holds = compared > 0 && more == compared;
   return c;
 }
@@ -452,6 +456,7 @@ Claim full_mass_claim(const std::vector<Scheme>& schemes) {
       .count("fewer", fewer)
       .count("compared", compared)
       .value("pairs", pairs.empty() ? "–" : pairs);
+  c.over(compared);
   c.holds = compared > 0 && fewer == compared;
   return c;
 }

@@ -386,6 +386,7 @@ std::vector<Claim> edge_claims(const std::vector<ojson>& rows, const EdgeFollowU
       .count("n", eq108_n)
       .value("lo", eq108_n ? ratio(over_lo) : "–")
       .value("hi", eq108_n ? ratio(over_hi) : "–");
+  eq108.over(eq108_n);
   eq108.holds = eq108_n > 0 && eq108_below == eq108_n;
   claims.push_back(eq108);
 

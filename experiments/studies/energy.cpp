@@ -241,7 +241,7 @@ std::vector<Claim> energy_claims(const std::vector<ojson>& rows, const std::set<
                     "PIC's energy balance error exceeds FLIP's at every history cell (PIC "
                     "dissipates what FLIP keeps)",
                     "{holds} of {total} cells");
-    c.count("holds", holds).count("total", total);
+    c.count("holds", holds).count("total", total).over(total);
     c.holds = total > 0 && holds == total;
     claims.push_back(c);
   }

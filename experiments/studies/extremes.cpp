@@ -193,7 +193,7 @@ std::vector<Claim> extremes_claims(const Counts& c) {
   std::vector<Claim> claims;
   Claim verdicts = claim("every-case-has-a-verdict", "Every case ends with a verdict",
                          "{with} of {total} cases have one");
-  verdicts.count("with", c.with_verdict).count("total", c.total);
+  verdicts.count("with", c.with_verdict).count("total", c.total).over(c.total);
   verdicts.holds = c.with_verdict == c.total;
   claims.push_back(verdicts);
 
@@ -203,6 +203,7 @@ std::vector<Claim> extremes_claims(const Counts& c) {
                        "{bad} of {reached} do; {unmeasured} report dt_stable_min as not measured "
                        "(eq. (108) is not defined for their basis), which is not counted");
   finite.count("bad", c.non_finite).count("reached", c.reached).count("unmeasured", c.not_measured);
+  finite.over(c.reached);
   finite.holds = c.non_finite == 0;
   claims.push_back(finite);
 

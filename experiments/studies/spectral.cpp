@@ -517,7 +517,8 @@ Eq108Findings eq108_findings(const std::vector<ojson>& rows) {
       .value("worst", worst ? ratio_text(worst->ratio()) : "–")
       .value("basis", worst ? worst->method : "–")
       .value("E", worst ? shortest(worst->E) : "–")
-      .value("ppc", worst ? std::to_string(worst->ppc) : "–");
+      .value("ppc", worst ? std::to_string(worst->ppc) : "–")
+      .over(n);
   a.holds = n > 0 && below == n;
   f.claims.push_back(a);
 
@@ -603,7 +604,8 @@ Claim confirmed_claim(const std::vector<Scheme>& schemes) {
   c.count("confirmed", confirmed)
       .count("schemes", static_cast<long long>(schemes.size()))
       .value("below", s_below > 0 ? shortest(s_below) : "–")
-      .value("above", s_above > 0 ? shortest(s_above) : "–");
+      .value("above", s_above > 0 ? shortest(s_above) : "–")
+      .over(static_cast<long long>(schemes.size()));
   c.holds = !schemes.empty() && confirmed == static_cast<long long>(schemes.size());
   return c;
 }

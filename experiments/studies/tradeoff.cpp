@@ -1016,7 +1016,9 @@ std::string advice_section(const std::vector<ojson>& rows, const std::vector<Sce
                      "GIMP's best error over time is below MPM's at every (scene, E) pair where "
                      "both reach an accuracy",
                      "{better} of {compared} pairs");
-  gimp.count("better", methods.gimp_better).count("compared", methods.compared);
+  gimp.count("better", methods.gimp_better)
+      .count("compared", methods.compared)
+      .over(methods.compared);
   gimp.holds = methods.compared > 0 && methods.gimp_better == methods.compared;
   claims.push_back(gimp);
   grid_and_step_claims(TradeRows(scenes.front().rows), claims);

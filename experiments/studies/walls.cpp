@@ -142,6 +142,7 @@ std::vector<Claim> walls_claims(const std::map<std::string, MethodWalls>& method
     } else {
       c.value("lo", "–").value("hi", "–");
     }
+    c.over(m.both_stable);
     c.holds = m.both_stable > 0 && m.same == m.both_stable;
     claims.push_back(c);
   }
