@@ -6,6 +6,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "base/accuracy.hpp"
+#include "report.hpp"
 #include "result_json.hpp"
 #include "run/edge.hpp"
 #include "study_rows.hpp"
@@ -203,8 +205,10 @@ TEST(EdgeStudy, ReportStatesTheRuleAndReadsBothEdgesFromTheRows) {
                     "error over time more than 2 times the reference's"),
             std::string::npos)
       << md;
-  EXPECT_NE(md.find("A case whose reference run is meaningless has no accuracy edge."),
-            std::string::npos);
+  EXPECT_NE(md.find("An accuracy edge is one only where its reference run and its own run are "
+                    "accurate (their error over time below 0.1 A"),
+            std::string::npos)
+      << md;
   // The reading, computed from the rows.
   EXPECT_NE(md.find("Of 3 searches, 2 found a survival edge and 1 no surviving dt in the scan."),
             std::string::npos)
@@ -366,6 +370,35 @@ TEST(EdgeStudy, FigureDataHasARowPerDrawnCaseAndTheTitleCountsThem) {
             0u)
       << subtitle;
   EXPECT_NE(subtitle.find("each listed in edge.md"), std::string::npos);
+}
+
+// The accuracy classes decide whether a search's dt_accurate is an accuracy edge: both its
+// reference run and its own run must be accurate (error over time below 0.1 A).
+TEST(EdgeStudy, AnAccuracyEdgeIsOneOnlyWhereItsReferenceAndItsRunAreAccurate) {
+  auto row = [](double reference, double at_accurate) {
+    ojson r;
+    r["max_error_over_time"] = 0.5e-3;
+    r["max_error_reference"] = reference;
+    r["max_error_at_accurate"] = at_accurate;
+    r["dt_accurate"] = 1e-4;
+    r["dt_accurate_over_cfl"] = 0.5;
+    add_accuracy_classes(r, 0.01);  // A = 0.01: accurate below 1e-3
+    return r;
+  };
+  const ojson kept = row(0.4e-3, 0.8e-3);
+  EXPECT_EQ(kept["dt_accurate"], 1e-4);
+  EXPECT_FALSE(kept["accuracy_edge_withheld"].get<bool>());
+  EXPECT_DOUBLE_EQ(kept["error_reference_over_A"].get<double>(), 0.04);
+  EXPECT_DOUBLE_EQ(kept["error_at_accurate_over_A"].get<double>(), 0.08);
+  EXPECT_DOUBLE_EQ(kept["error_at_edge_over_A"].get<double>(), 0.05);
+  for (const ojson& withheld : {row(1.5e-3, 2e-3), row(0.6e-3, 1.1e-3), row(0.02, 0.03)}) {
+    EXPECT_TRUE(withheld["dt_accurate"].is_null()) << withheld.dump();
+    EXPECT_TRUE(withheld["dt_accurate_over_cfl"].is_null()) << withheld.dump();
+    EXPECT_TRUE(withheld["accuracy_edge_withheld"].get<bool>()) << withheld.dump();
+  }
+  EXPECT_EQ(accuracy_class(0.99e-3, 0.01), Accuracy::accurate);
+  EXPECT_EQ(accuracy_class(1.01e-3, 0.01), Accuracy::inaccurate);
+  EXPECT_EQ(accuracy_class(0.01, 0.01), Accuracy::meaningless);
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include <set>
 #include <sstream>
 
+#include "base/accuracy.hpp"
 #include "base/version.hpp"
 #include "cache.hpp"
 #include "claims.hpp"
@@ -114,6 +115,27 @@ std::string provenance_markdown(const ojson& prov) {
   return md.str();
 }
 
+void add_accuracy_classes(ojson& row, double A) {
+  auto over_A = [&](const char* col) {
+    return row[col].is_number() ? ojson(row[col].get<double>() / A) : ojson(nullptr);
+  };
+  row["error_at_edge_over_A"] = over_A("max_error_over_time");
+  row["error_reference_over_A"] = over_A("max_error_reference");
+  row["error_at_accurate_over_A"] = over_A("max_error_at_accurate");
+  bool withheld = false;
+  if (row["dt_accurate"].is_number()) {
+    for (const char* col : {"max_error_reference", "max_error_at_accurate"}) {
+      if (row[col].is_number() && accuracy_class(row[col].get<double>(), A) != Accuracy::accurate)
+        withheld = true;
+    }
+  }
+  row["accuracy_edge_withheld"] = withheld;
+  if (withheld) {
+    row["dt_accurate"] = nullptr;
+    row["dt_accurate_over_cfl"] = nullptr;
+  }
+}
+
 ojson flat_row(const CaseSpec& c, const ojson& record) {
   const ojson& r = record["result"];
   ojson row;
@@ -137,6 +159,7 @@ ojson flat_row(const CaseSpec& c, const ojson& record) {
     const ojson extra = edge_columns(record["edge"]);
     for (auto it = extra.begin(); it != extra.end(); ++it)
       row[it.key()] = it.value();
+    add_accuracy_classes(row, c.params.A);
   }
   return row;
 }

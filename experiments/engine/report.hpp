@@ -110,6 +110,14 @@ std::string provenance_markdown(const nlohmann::ordered_json& prov);
 // Writes <out>/README.md, the index a reader browses, from the <name>.json of each spec.
 void write_index(const std::vector<Spec>& specs, const std::filesystem::path& out);
 
+// An edge row's errors per A (error_at_edge_over_A, error_reference_over_A,
+// error_at_accurate_over_A), and its accuracy edge only where it is one: the search's dt_accurate
+// is kept only when neither its reference run nor its own run is known to be inaccurate
+// (core/base/accuracy.hpp); else dt_accurate and dt_accurate_over_cfl are null and
+// accuracy_edge_withheld is true. flat_row applies it to every edge row, so every report, CSV
+// and check reads the one rule.
+void add_accuracy_classes(nlohmann::ordered_json& row, double A);
+
 // The CSV columns of a spec's result rows: in a variants experiment (or where a case compares
 // another error than the one at T) the variant, the paper's column and the error compared, then
 // the run's record columns (result_json.hpp), dt_inferred and the case key.

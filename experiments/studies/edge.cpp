@@ -9,6 +9,7 @@
 #include <sstream>
 #include <tuple>
 
+#include "base/accuracy.hpp"
 #include "claims.hpp"
 #include "csv.hpp"
 #include "ensemble.hpp"
@@ -86,7 +87,7 @@ std::string min_max(std::vector<double> v) {
 // lies below it; the searches without an edge; the non-monotone ones with their flips.
 std::string edge_summary_text(const std::vector<ojson>& rows) {
   struct PerMethod {
-    int cases = 0, with_edge = 0, meaningless = 0, below = 0, no_accuracy = 0;
+    int cases = 0, with_edge = 0, meaningless = 0, below = 0, no_accuracy = 0, withheld = 0;
     std::vector<double> edge, accurate, accurate_over_edge, over_bound;
   };
   std::map<std::string, PerMethod> per;
@@ -109,6 +110,8 @@ std::string edge_summary_text(const std::vector<ojson>& rows) {
       const double below = r["dt_accurate"].get<double>() / r["dt_edge"].get<double>();
       m.accurate_over_edge.push_back(below);
       m.below += below < 1;
+    } else if (r.value("accuracy_edge_withheld", false)) {
+      ++m.withheld;
     } else {
       ++m.no_accuracy;
     }
@@ -138,6 +141,12 @@ std::string edge_summary_text(const std::vector<ojson>& rows) {
     if (m.no_accuracy) {
       md << "; " << m.no_accuracy << " ha" << (m.no_accuracy == 1 ? "s" : "ve")
          << " no accuracy edge (the run at the smallest surviving dt is meaningless)";
+    }
+    if (m.withheld) {
+      md << "; " << m.withheld << " ha" << (m.withheld == 1 ? "s" : "ve")
+         << " none that is accurate (the search's reference run or its run at the edge has an "
+            "error over time of at least "
+         << shortest(kAccurateFraction) << " A)";
     }
     if (!m.over_bound.empty()) {
       const auto [lo, hi] =
@@ -453,7 +462,11 @@ std::string search_rule(const EdgeOptions& o) {
          " times the reference's, bisected against that one to "
          "the same tolerance, and its run must be stable (its error over time stays below A), else "
          "the search "
-         "goes on below it. A case whose reference run is meaningless has no accuracy edge. The "
+         "goes on below it. An accuracy edge is one only where its reference run and its own run "
+         "are accurate (their error over time below " +
+         shortest(kAccurateFraction) +
+         " A, docs/design.md, \"Accuracy classes\"); elsewhere the table says why there is none. "
+         "Every error over time is also given per A. The "
          "probes observe only their error over time; the outcome is "
          "measured for the reference and at both edges. Survival is *not monotone* when a dt below "
          "the survival edge fails; the flips column lists, in increasing dt, each dt from which "
@@ -481,6 +494,14 @@ std::string search_rule(const EdgeOptions& o) {
          "fails. E only rescales time: a case at E run to T is the scheme run for c T = sqrt(E) T "
          "wave passes (column c T), so the edges against E at a fixed T are edges against run "
          "length.";
+}
+
+// An error over time with its size per A: "3.1e-4 (0.021 A)".
+std::string per_A(const ojson& r, const char* error, const char* over_A) {
+  if (!has_number(r, error)) return "–";
+  return sci(r[error].get<double>(), 2) +
+         (has_number(r, over_A) ? " (" + significant(r[over_A].get<double>(), 2) + " A)"
+                                : std::string());
 }
 
 // Per case: where it lies (A / h, c T), both edges against h/c with the bracket the bisection
@@ -517,10 +538,13 @@ std::string edge_table(const std::vector<ojson>& rows, const EdgeFollowUps& f) {
         md << sci(r["dt_accurate"].get<double>(), 3) << " ("
            << in_cfl(r["dt_accurate_over_cfl"].get<double>()) << ") | "
            << margin_text(f, r, "dt_accurate") << " | ";
+      } else if (r.value("accuracy_edge_withheld", false)) {
+        md << "none (not accurate) | – | ";
       } else {
         md << "none (reference meaningless) | – | ";
       }
-      md << opt_sci(r["max_error_reference"]) << " → " << opt_sci(r["max_error_at_accurate"]);
+      md << per_A(r, "max_error_reference", "error_reference_over_A") << " → "
+         << per_A(r, "max_error_at_accurate", "error_at_accurate_over_A");
       if (const auto it = f.twins.find(&r); it != f.twins.end())
         md << " (periodic "
            << (survived(it->second) ? opt_sci(it->second["max_error_over_time"])
@@ -622,7 +646,8 @@ std::string not_drawn_text(const FigureCount& c) {
   for (const auto& [reason, rows] : c.not_drawn)
     md << " Not drawn, " << reason << " (" << rows.size() << "): " << listed(rows) << ".";
   if (!c.no_accuracy.empty()) {
-    md << " Drawn without an accuracy edge, their reference run being meaningless ("
+    md << " Drawn without an accuracy edge, their reference run being meaningless or the edge "
+          "not accurate ("
        << c.no_accuracy.size() << "): " << listed(c.no_accuracy) << ".";
   }
   return md.str();
@@ -669,6 +694,8 @@ std::string amplitude_table(const std::vector<ojson>& rows, const EdgeFollowUps&
       if (has_number(*r, "dt_accurate")) {
         md << in_cfl((*r)["dt_accurate_over_cfl"].get<double>()) << " | "
            << margin_text(f, *r, "dt_accurate") << " |\n";
+      } else if (r->value("accuracy_edge_withheld", false)) {
+        md << "none (not accurate) | – |\n";
       } else {
         md << "none (reference meaningless) | – |\n";
       }
@@ -753,8 +780,8 @@ std::string edge_data_csv(const std::vector<ojson>& rows, const std::string& hea
   for (const auto& [reason, list] : count.not_drawn)
     csv << "# not drawn, " << reason << ": " << listed(list) << "\n";
   if (!count.no_accuracy.empty()) {
-    csv << "# drawn without an accuracy edge (reference meaningless): " << listed(count.no_accuracy)
-        << "\n";
+    csv << "# drawn without an accuracy edge (reference meaningless or not accurate): "
+        << listed(count.no_accuracy) << "\n";
   }
   csv << "# panel:";
   for (std::size_t i = 0; i < kPanels.size(); ++i)
