@@ -425,8 +425,9 @@ std::vector<Claim> edge_claims(const std::vector<ojson>& rows, const EdgeFollowU
     }
   }
   Claim lasting = claim("accurate-edges-at-most-the-limit",
-                        "Every accuracy edge lies at or below its scheme's spectral limit, so that "
-                        "it holds for a run of any length",
+                        "Every accuracy edge lies at or below its scheme's spectral limit (where "
+                        "no mode of the linearised step grows; that alone does not make it hold "
+                        "for a longer run, which only edges above the limit are rerun for)",
                         "{above} of {n} lie above it; rerun for {passes} wave passes, {transient} "
                         "of them fail (at c T = {span}) and {meaningless} turn meaningless");
   lasting.count("above", accurate_above)
