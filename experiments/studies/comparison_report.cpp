@@ -472,9 +472,10 @@ void courant_above_1_section(std::ostream& md, const Comparison& cmp) {
   md << "Linearised about rest, the step of each scheme amplifies some mode above its spectral "
         "limit (spectral.md; USL with FLIP at the paper's two particles per cell: the limit on "
         "each record, in the table above). Above it a run fails from rounding alone, whatever the "
-        "amplitude. For this problem the discrete dynamics depend on E and dt only through c dt "
-        "/ h (the manufactured solution and the scheme are invariant when t is scaled by c), so "
-        "one scan over the Courant number covers every E. ";
+        "amplitude. For this problem E and dt enter the discrete dynamics only through c dt / h "
+        "and the run length c T (the manufactured solution and the scheme are invariant when t "
+        "is scaled by c): at a fixed T a larger E is the same Courant number run for more wave "
+        "passes, so an outcome at one C can change with E, and the scan runs every E. ";
   if (cmp.have("courant")) {
     courant_scan_table(md, cmp);
   } else {
