@@ -63,6 +63,33 @@ std::vector<RunParams> ensemble_members(const RunParams& base) {
   return out;
 }
 
+std::vector<RunParams> ensemble_follow_up(const FollowUpContext& c, EnsembleNeed need) {
+  std::vector<RunParams> runs;
+  for (std::size_t i = 0; i < c.rows.size(); ++i) {
+    if (ensemble_need(c.rows[i]) != need) continue;
+    for (auto& p : ensemble_members(c.spec.cases[i].params))
+      runs.push_back(std::move(p));
+  }
+  return runs;
+}
+
+std::vector<EnsembleResult> ensemble_results(const std::vector<nlohmann::ordered_json>& rows,
+                                             const std::vector<nlohmann::ordered_json>& follow_up,
+                                             EnsembleNeed need) {
+  std::vector<EnsembleResult> out;
+  std::size_t next = 0;
+  for (const auto& r : rows) {
+    const EnsembleNeed n = ensemble_need(r);
+    std::vector<nlohmann::ordered_json> members;
+    if (n == need) {
+      for (int k = 0; k < kEnsembleMembers && next < follow_up.size(); ++k)
+        members.push_back(follow_up[next++]);
+    }
+    out.push_back(ensemble_result(r, n, members));
+  }
+  return out;
+}
+
 EnsembleResult ensemble_result(const ojson& row, EnsembleNeed need,
                                const std::vector<ojson>& members) {
   EnsembleResult e;

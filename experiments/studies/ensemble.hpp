@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "base/params.hpp"
+#include "study.hpp"
 
 namespace mpmstab {
 
@@ -54,6 +55,14 @@ struct EnsembleResult {
 // members: the flat rows of the cell's ensemble, in ensemble_members order.
 EnsembleResult ensemble_result(const nlohmann::ordered_json& row, EnsembleNeed need,
                                const std::vector<nlohmann::ordered_json>& members);
+// The follow-up runs of a study that reruns its cells of need `need` as ensembles: the members
+// of each such cell, in row order.
+std::vector<RunParams> ensemble_follow_up(const FollowUpContext& c, EnsembleNeed need);
+// Every row's ensemble, the members of the rows of need `need` taken in turn from `follow_up`
+// (what ensemble_follow_up asked for), the other rows' without members.
+std::vector<EnsembleResult> ensemble_results(const std::vector<nlohmann::ordered_json>& rows,
+                                             const std::vector<nlohmann::ordered_json>& follow_up,
+                                             EnsembleNeed need);
 // "robust: 8 of 8 unstable (steps 3754-3811)", "sensitive: stable in 5 of 8", "not run: far
 // (c dt/h >= limit)": the cell's label in a report.
 std::string ensemble_text(const nlohmann::ordered_json& row, const EnsembleResult& e);

@@ -25,27 +25,17 @@ struct EnsembleCell {
 
 std::vector<EnsembleCell> rerun_cells(const std::vector<ojson>& rows,
                                       const std::vector<ojson>& follow_up) {
+  const std::vector<EnsembleResult> all =
+      ensemble_results(rows, follow_up, EnsembleNeed::in_studies);
   std::vector<EnsembleCell> cells;
-  std::size_t next = 0;
   for (std::size_t i = 0; i < rows.size(); ++i) {
-    const EnsembleNeed need = ensemble_need(rows[i]);
-    if (need != EnsembleNeed::in_studies) continue;
-    std::vector<ojson> members;
-    for (int k = 0; k < kEnsembleMembers && next < follow_up.size(); ++k)
-      members.push_back(follow_up[next++]);
-    cells.push_back({i, ensemble_result(rows[i], need, members)});
+    if (all[i].need == EnsembleNeed::in_studies) cells.push_back({i, all[i]});
   }
   return cells;
 }
 
 std::vector<RunParams> ensembles_follow_up(const FollowUpContext& c) {
-  std::vector<RunParams> runs;
-  for (std::size_t i = 0; i < c.rows.size(); ++i) {
-    if (ensemble_need(c.rows[i]) != EnsembleNeed::in_studies) continue;
-    for (auto& p : ensemble_members(c.spec.cases[i].params))
-      runs.push_back(std::move(p));
-  }
-  return runs;
+  return ensemble_follow_up(c, EnsembleNeed::in_studies);
 }
 
 // Claims: a sensitive cell is counted, never hidden; none rerun is vacuous, not holding.

@@ -246,29 +246,12 @@ std::string table1_index(const Spec& spec, const std::vector<ojson>& rows) {
 
 // The ensembles of the cells near their edge (ensemble.hpp), in row order.
 std::vector<RunParams> table1_follow_up(const FollowUpContext& c) {
-  std::vector<RunParams> runs;
-  for (std::size_t i = 0; i < c.rows.size(); ++i) {
-    if (ensemble_need(c.rows[i]) != EnsembleNeed::near) continue;
-    for (auto& p : ensemble_members(c.spec.cases[i].params))
-      runs.push_back(std::move(p));
-  }
-  return runs;
+  return ensemble_follow_up(c, EnsembleNeed::near);
 }
 
 std::vector<EnsembleResult> table1_ensembles(const std::vector<ojson>& rows,
                                              const std::vector<ojson>& follow_up) {
-  std::vector<EnsembleResult> out;
-  std::size_t next = 0;
-  for (const auto& r : rows) {
-    const EnsembleNeed need = ensemble_need(r);
-    std::vector<ojson> members;
-    if (need == EnsembleNeed::near) {
-      for (int k = 0; k < kEnsembleMembers && next < follow_up.size(); ++k)
-        members.push_back(follow_up[next++]);
-    }
-    out.push_back(ensemble_result(r, need, members));
-  }
-  return out;
+  return ensemble_results(rows, follow_up, EnsembleNeed::near);
 }
 
 std::vector<Claim> table1_claims(const std::vector<ojson>& rows,
