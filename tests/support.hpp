@@ -7,6 +7,7 @@
 #include <array>
 #include <cerrno>
 #include <cstdio>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -53,8 +54,11 @@ inline std::vector<std::string> words(const std::string& line) {
 }
 
 // Runs `program` with `argv` (argv[0] first; no shell) and collects all it prints on its
-// standard output and error.
-inline CliOutcome run_program(const char* program, std::vector<std::string> argv) {
+// standard output and error. `cwd`: the folder it runs in (empty: this one); `env`: its whole
+// environment (none given: this process's).
+inline CliOutcome run_program(const char* program, std::vector<std::string> argv,
+                              const std::string& cwd = "",
+                              std::optional<std::vector<std::string>> env = std::nullopt) {
   int fd[2];
   if (pipe(fd) != 0) return {-1, "pipe failed"};
   const pid_t pid = fork();
@@ -63,11 +67,20 @@ inline CliOutcome run_program(const char* program, std::vector<std::string> argv
     dup2(fd[1], STDOUT_FILENO);
     dup2(fd[1], STDERR_FILENO);
     close(fd[1]);
+    if (!cwd.empty() && chdir(cwd.c_str()) != 0) _exit(126);
     std::vector<char*> v;
     for (auto& a : argv)
       v.push_back(a.data());
     v.push_back(nullptr);
-    execv(program, v.data());
+    if (env) {
+      std::vector<char*> e;
+      for (auto& entry : *env)
+        e.push_back(entry.data());
+      e.push_back(nullptr);
+      execve(program, v.data(), e.data());
+    } else {
+      execv(program, v.data());
+    }
     _exit(127);
   }
   close(fd[1]);

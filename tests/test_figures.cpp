@@ -2,10 +2,8 @@
 // gnuplot script reads the columns the data file has; and a PNG figure depends only on its data,
 // never on the fonts or the font settings of the machine that draws it.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
-#include <array>
 #include <cerrno>
 #include <filesystem>
 #include <fstream>
@@ -180,41 +178,7 @@ test_support::CliOutcome run_mpmstab_in(const std::filesystem::path& cwd,
                                         std::vector<std::string> args,
                                         std::vector<std::string> env) {
   args.insert(args.begin(), MPMSTAB_BIN);
-  int fd[2];
-  if (pipe(fd) != 0) return {-1, "pipe failed"};
-  const pid_t pid = fork();
-  if (pid == 0) {
-    close(fd[0]);
-    dup2(fd[1], STDOUT_FILENO);
-    dup2(fd[1], STDERR_FILENO);
-    close(fd[1]);
-    if (chdir(cwd.c_str()) != 0) _exit(126);
-    std::vector<char*> argv;
-    std::vector<char*> envp;
-    for (auto& a : args)
-      argv.push_back(a.data());
-    argv.push_back(nullptr);
-    for (auto& e : env)
-      envp.push_back(e.data());
-    envp.push_back(nullptr);
-    execve(MPMSTAB_BIN, argv.data(), envp.data());
-    _exit(127);
-  }
-  close(fd[1]);
-  std::string output;
-  std::array<char, 4096> buffer;
-  for (ssize_t n; (n = read(fd[0], buffer.data(), buffer.size())) != 0;) {
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      break;
-    }
-    output.append(buffer.data(), static_cast<std::size_t>(n));
-  }
-  close(fd[0]);
-  int raw = 0;
-  while (waitpid(pid, &raw, 0) < 0 && errno == EINTR) {
-  }
-  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, output};
+  return test_support::run_program(MPMSTAB_BIN, std::move(args), cwd.string(), std::move(env));
 }
 
 // A fontconfig configuration: the machine's own (/etc/fonts/fonts.conf) followed by `rules`.
