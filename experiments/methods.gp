@@ -1,12 +1,15 @@
 # methods.gp -- every method placed by its survival edge at a tiny amplitude (x, in units of
 # h/c) and its error over time at Table 1's setting (y, log scale): one panel per update order (USL, USF,
-# MUSL), a colour per basis and a point shape per velocity transfer. Up and left is worse.
+# MUSL), a colour per basis and a point shape per velocity transfer; a black cross over a point
+# whose run at the survival edge is meaningless (its error over time reached A). Up and left is
+# worse.
 #
 # Reads : datafile (results/methods_data.csv): '#' lines, then the header
-#         panel,series,shape,edge_over_cfl,error
+#         panel,series,shape,edge_over_cfl,error,meaningless_at_edge
 #         (panel 0 usl, 1 usf, 2 musl; series 0..7 the bases mpm, gimp, cpgimp, cpdi, bspline2,
 #         bspline3, bspline2 modified, bspline3 modified; shape 0..4 the transfers flip, pic,
-#         apic, xpic(2), fmpm(2)). One row per method stable at Table 1's setting with an edge.
+#         apic, xpic(2), fmpm(2); meaningless_at_edge 1 where the run at the edge is
+#         meaningless). One row per method stable at Table 1's setting with an edge.
 # Writes: outbase.png and outbase.svg.
 # Variables: datafile, outbase (required), subtitle (optional).
 
@@ -22,6 +25,7 @@ set datafile columnheaders
 set datafile missing ''
 
 sel(p, s, t) = ($1 == p && $2 == s && $3 == t) ? $5 : 1/0
+meaningless(p) = ($1 == p && $6 == 1) ? $5 : 1/0
 
 stats datafile using 4 nooutput
 xhigh = ceil(STATS_max * 5 + 0.5) / 5.0
@@ -62,7 +66,8 @@ do for [ext in "png svg"] {
         if (p > 0) { unset ylabel }
         set lmargin at screen (0.06 + p * 0.32)
         set rmargin at screen (0.34 + p * 0.32)
-        plot for [s = 0:7] for [t = 0:4] datafile using 4:(sel(p, s, t)) with points pt shape[t + 1] ps 1.6 lc rgb colour[s + 1]
+        plot for [s = 0:7] for [t = 0:4] datafile using 4:(sel(p, s, t)) with points pt shape[t + 1] ps 1.6 lc rgb colour[s + 1], \
+             datafile using 4:(meaningless(p)) with points pt 2 ps 2.4 lw 1.5 lc rgb "black"
     }
     unset title
     unset xlabel
@@ -79,7 +84,8 @@ do for [ext in "png svg"] {
     set bmargin at screen 0.01
     set key center center horizontal maxrows 4 samplen 1 spacing 1.0
     plot for [s = 1:8] NaN with points pt 7 ps 1.6 lc rgb colour[s] title bname[s], \
-         for [t = 1:5] NaN with points pt shape[t] ps 1.6 lc rgb "black" title tname[t]
+         for [t = 1:5] NaN with points pt shape[t] ps 1.6 lc rgb "black" title tname[t], \
+         NaN with points pt 2 ps 2.4 lw 1.5 lc rgb "black" title "run at the edge meaningless"
     unset multiplot
     unset output
 }

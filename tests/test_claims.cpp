@@ -1,6 +1,5 @@
 // Claims (experiments/engine/claims.hpp): the conclusions of a report as data. Their templates
-// type no number by hand, their numbers come from values, and the advice rule's claim fails when
-// a recommendation's confirming run misses the target.
+// type no number by hand and their numbers come from values.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -9,7 +8,6 @@
 #include <stdexcept>
 #include <string>
 
-#include "advice.hpp"
 #include "claims.hpp"
 #include "result_json.hpp"
 #include "run/run.hpp"
@@ -99,111 +97,6 @@ TEST(Claims, CommittedReportsTypeNoNumberByHand) {
     }
   }
   EXPECT_GT(claims, 0);
-}
-
-ojson advice_row(double courant, double limit, double error, const char* outcome = "stable") {
-  return {{"courant", courant},
-          {"courant_spectral", limit},
-          {"max_error_over_time", error},
-          {"outcome", outcome},
-          {"cells", 50},
-          {"jitter", 0.0},
-          {"A", 0.015},
-          {"T", 1.0}};
-}
-
-TEST(Advice, EachPartOfTheRuleDecides) {
-  const double target = 1e-4;
-  const ojson ok = advice_row(0.4, 0.756, 1e-5);
-  EXPECT_TRUE(candidate(ok, target));
-  EXPECT_FALSE(candidate(advice_row(0.7, 0.756, 1e-5), target));  // above limit / 1.25
-  EXPECT_FALSE(candidate(advice_row(0.4, 0.756, 6e-5), target));  // above target / 2
-  EXPECT_FALSE(candidate(advice_row(0.4, 0.756, 1e-5, "too_short"), target));
-  // The confirming runs: finer grid, jitter, an amplitude 100 times smaller (its target scaled
-  // with it), a run 4 times as long.
-  ojson small = advice_row(0.4, 0.756, 1e-7);
-  small["A"] = 0.015 / kAdviceRule.amplitude_factor;
-  const ojson longer = ok;
-  const std::vector<ojson> all_pass = {ok, ok, small, longer};
-  EXPECT_TRUE(judge(ok, target, all_pass).recommended());
-  // Too few confirming runs confirm nothing.
-  EXPECT_FALSE(judge(ok, target, {ok, ok}).recommended());
-  // A confirming run that misses the target, or fails, withdraws the recommendation, and the
-  // advice claim then does not hold.
-  const Advice missed = judge(ok, target, {ok, advice_row(0.4, 0.756, 2e-4), small, longer});
-  EXPECT_FALSE(missed.recommended());
-  EXPECT_FALSE(recommendations_claim({missed}, target).holds);
-  EXPECT_FALSE(judge(ok, target, {advice_row(0.4, 0.756, 1e-5, "unstable"), ok, small, longer})
-                   .recommended());
-  // The small amplitude is held to the target scaled with A: 1e-5 meets target / 2 unscaled,
-  // but not the relative accuracy the setting claims.
-  ojson small_missed = small;
-  small_missed["max_error_over_time"] = 1e-5;
-  EXPECT_FALSE(judge(ok, target, {ok, ok, small_missed, longer}).recommended());
-  // The longer run that turns meaningless withdraws it too.
-  EXPECT_FALSE(judge(ok, target, {ok, ok, small, advice_row(0.4, 0.756, 0.02, "meaningless")})
-                   .recommended());
-  EXPECT_TRUE(recommendations_claim({judge(ok, target, all_pass)}, target).holds);
-}
-
-TEST(Advice, ConfirmingRunsRefineAtTheSameCourantNumberAndJitter) {
-  RunParams p;
-  p.cells = 25;
-  p.dt = 1e-3;
-  const auto runs = confirming_runs(p);
-  ASSERT_EQ(runs.size(), kConfirmingRuns);
-  EXPECT_EQ(runs[0].cells, 50);
-  EXPECT_DOUBLE_EQ(runs[0].dt * runs[0].cells, p.dt * p.cells);
-  EXPECT_EQ(runs[1].cells, 25);
-  EXPECT_GT(runs[1].layout.jitter, 0);
-  EXPECT_EQ(runs[2].A, p.A / kAdviceRule.amplitude_factor);  // the same setting otherwise
-  EXPECT_EQ(runs[2].dt, p.dt);
-  EXPECT_EQ(runs[3].T, p.T * kAdviceRule.length_factor);
-  EXPECT_EQ(runs[3].dt, p.dt);
-}
-
-}  // namespace
-}  // namespace mpmstab
-
-namespace mpmstab {
-namespace {
-
-// Every setting a committed report recommends (results/<name>.json, study.recommended) is rerun
-// here with its confirming runs -- the same setting on a grid twice as fine, on a jittered
-// layout, at a smaller amplitude and on a longer run -- and each must meet the rule's limit and
-// error target (scaled with A): a recommendation that a fresh run contradicts fails the suite,
-// whatever the committed report says.
-TEST(Advice, CommittedRecommendationsPassTheirConfirmingRunsWhenRerun) {
-  const std::filesystem::path results = std::filesystem::path(MPMSTAB_SOURCE_DIR) / "results";
-  int rerun = 0;
-  for (const char* name : {"methods", "tradeoff"}) {
-    std::ifstream in(results / (std::string(name) + ".json"));
-    ASSERT_TRUE(in) << name;
-    const ojson doc = ojson::parse(in);
-    ASSERT_TRUE(doc.contains("study") && doc["study"].contains("recommended")) << name;
-    for (const auto& rec : doc["study"]["recommended"]) {
-      const double target = rec["target"].get<double>();
-      const ojson spec = {{"name", "rerun"},
-                          {"title", "rerun"},
-                          {"report", "cases"},
-                          {"cases", ojson::array({rec["case"]})}};
-      const Spec parsed = parse_spec(spec.dump(), "rerun.json");
-      ASSERT_EQ(parsed.cases.size(), 1u);
-      const RunParams& p = parsed.cases[0].params;
-      // The setting itself reproduces its committed numbers.
-      const ojson own = to_json(run(p));
-      EXPECT_EQ(own["max_error_over_time"], rec["max_error_over_time"]) << rec.dump();
-      const double limit = own["courant_spectral"].get<double>();
-      for (const RunParams& c : confirming_runs(p)) {
-        const ojson row = to_json(run(c));
-        EXPECT_TRUE(within_limit(row, limit)) << name << ": " << rec.dump() << " -> " << row.dump();
-        EXPECT_TRUE(meets_target(row, target * c.A / p.A))
-            << name << ": " << rec.dump() << " -> " << row.dump();
-        ++rerun;
-      }
-    }
-  }
-  EXPECT_GT(rerun, 0);
 }
 
 }  // namespace

@@ -1,13 +1,12 @@
 // The trade study's reading of its rows: cost in particle-steps (the Pareto front and the
 // cheapest setting for each accuracy), only a stable run reaching an accuracy, the runs of each
 // policy by how they ended, each parameter's stable range with a 1.5x margin of stable rows and
-// naming them, a setting recommended only under the one advice rule, its confirming runs
-// included, and a figure whose data and title count the runs it draws.
+// naming them, no recommendation of its own (advice.md's), and a figure whose data and title
+// count the runs it draws.
 #include <gtest/gtest.h>
 
 #include <sstream>
 
-#include "advice.hpp"
 #include "study_rows.hpp"
 
 namespace mpmstab {
@@ -193,44 +192,13 @@ TEST(TradeoffStudy, StableRangeNamesItsRowsAndTheValueCheckedBeyondIt) {
   EXPECT_NE(single.find("margin not checked"), std::string::npos) << single;
 }
 
-// The recommendation follows the one advice rule (advice.hpp): the cheapest candidate whose
-// confirming run misses the target is passed over for the next one that passes; a setting above
-// the spectral limit / 1.25 is never a candidate, however accurate.
-TEST(TradeoffStudy, RecommendsTheCheapestSettingThatPassesTheWholeRule) {
-  auto cfl = [](double C, int steps) {
-    ojson r = policy_run("gimp", 4, "cfl", C);
-    r["courant"] = C;
-    r["courant_spectral"] = 0.756;
-    r["steps"] = steps;
-    r["max_error_over_time"] = 1e-5;
-    return r;
-  };
-  // C = 0.7 is above 0.756 / 1.25; C = 0.5 is the cheapest candidate; C = 0.25 the next.
-  const std::vector<ojson> rows = {cfl(0.7, 100), cfl(0.5, 200), cfl(0.25, 400)};
-  ojson fine = cfl(0.5, 400), jittered = cfl(0.5, 200);
-  fine["cells"] = 200;
-  jittered["jitter"] = 0.05;
-  jittered["courant_spectral"] = nullptr;
-  ojson missed = jittered;
-  missed["max_error_over_time"] = 1e-3;  // misses both targets' error / 2
-  ojson small = cfl(0.5, 200), longer = cfl(0.5, 800);
-  small["A"] = 0.015 / kAdviceRule.amplitude_factor;
-  small["max_error_over_time"] = 1e-7;
-  longer["T"] = 4.0;
-  // The follow-up runs: kConfirmingRuns per candidate, in the order of the rows (C = 0.5, then
-  // C = 0.25).
-  const auto report = test_support::study_report(
-      "tradeoff", rows, {fine, missed, small, longer, fine, jittered, small, longer});
-  const std::string line = line_with(report.markdown, "| 4 | 1e-4 |");
-  EXPECT_NE(line.find("| 2 (2, 1) | gimp cfl C=0.25 |"), std::string::npos) << line;
-  for (const auto& c : report.claims) {
-    if (c.id.rfind("recommended-", 0) == 0) {
-      EXPECT_TRUE(c.holds) << c.id;
-    }
-  }
-  // Without the follow-up runs nothing is confirmed, so nothing is recommended.
-  const std::string none = line_with(markdown(rows), "| 4 | 1e-4 |");
-  EXPECT_NE(none.find("| 2 (0, 0) | none |"), std::string::npos) << none;
+// The study measures and links to advice.md for every recommendation: it makes none of its own.
+TEST(TradeoffStudy, RecommendsNothingAndLinksToTheAdvice) {
+  const auto report = test_support::study_report("tradeoff", {policy_run("gimp", 4, "cfl", 0.5)});
+  EXPECT_NE(report.markdown.find("[advice.md](advice.md)"), std::string::npos);
+  for (const auto& c : report.claims)
+    EXPECT_NE(c.id.rfind("recommended-", 0), 0u) << c.id;
+  EXPECT_FALSE(report.json.contains("recommended"));
 }
 
 TEST(TradeoffStudy, RunsThatStoppedAreCountedPerPolicyAndReason) {

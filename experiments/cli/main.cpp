@@ -23,6 +23,7 @@ constexpr const char* kUsage = R"(Usage: mpmstab <command> [options]
 Commands:
   run     run one case of the paper's 1D bar and report every measured quantity
   edge    find the largest fixed dt with which one case survives to T
+  advise  the cheapest checked setting for a problem (A/L, c T/L, a target error / A)
   spectral  the largest dt at which the linearised step of a scheme amplifies nothing
   sweep   run the cases of an experiment spec in parallel and write its reports
   reproduce  run the cases of several specs in one queue, writing each one's reports when done
@@ -71,6 +72,7 @@ int main(int argc, char** argv) {
   try {
     if (command == "run") return mpmstab::cli::cmd_run(args);
     if (command == "edge") return mpmstab::cli::cmd_edge(args);
+    if (command == "advise") return mpmstab::cli::cmd_advise(args);
     if (command == "spectral") return mpmstab::cli::cmd_spectral(args);
     if (command == "sweep") return mpmstab::cli::cmd_sweep(args);
     if (command == "reproduce") return mpmstab::cli::cmd_reproduce(args);
@@ -85,8 +87,8 @@ int main(int argc, char** argv) {
     if (command == "list") return mpmstab::cli::cmd_list(args);
     std::string message = "unknown command '" + std::string(command) + "'";
     if (auto guess = mpmstab::cli::nearest(
-            command, {"run", "edge", "sweep", "index", "plot", "compare", "check", "bless",
-                      "performance", "merge", "slurm", "list"})) {
+            command, {"run", "edge", "advise", "sweep", "index", "plot", "compare", "check",
+                      "bless", "performance", "merge", "slurm", "list"})) {
       message += " (did you mean '" + *guess + "'?)";
     }
     throw mpmstab::cli::UsageError(message);

@@ -1,214 +1,420 @@
 #include "advice.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 #include <string_view>
 
+#include "base/accuracy.hpp"
 #include "csv.hpp"
+#include "files.hpp"
 #include "key.hpp"
 #include "report_util.hpp"
 
 namespace mpmstab {
 
-using ojson = nlohmann::ordered_json;
+// ---------------------------------------------------------------------------------------------
+// Regions
 
-bool within_limit(const ojson& row, double uniform_limit, const AdviceRule& rule) {
-  if (!has_number(row, "courant")) return false;
-  const double limit =
-      has_number(row, "courant_spectral") ? row["courant_spectral"].get<double>() : uniform_limit;
-  return limit > 0 && row["courant"].get<double>() <= limit / rule.limit_margin;
-}
-
-bool meets_target(const ojson& row, double target, const AdviceRule& rule) {
-  return outcome(row) == "stable" && has_number(row, "max_error_over_time") &&
-         row["max_error_over_time"].get<double>() <= target / rule.error_margin;
-}
-
-bool candidate(const ojson& row, double target, const AdviceRule& rule) {
-  return has_number(row, "courant_spectral") &&
-         within_limit(row, row["courant_spectral"].get<double>(), rule) &&
-         meets_target(row, target, rule);
-}
-
-std::vector<RunParams> confirming_runs(const RunParams& p, const AdviceRule& rule) {
-  RunParams fine = p;
-  fine.cells = p.cells * rule.refine;
-  if (fine.stepping.policy == TimeStepPolicy::fixed) fine.dt = p.dt / rule.refine;
-  fine.observe.error_over_time = true;
-  RunParams jittered = p;
-  jittered.layout.jitter = rule.jitter;
-  jittered.observe.error_over_time = true;
-  RunParams small = p;
-  small.A = p.A / rule.amplitude_factor;
-  small.observe.error_over_time = true;
-  RunParams longer = p;
-  longer.T = p.T * rule.length_factor;
-  longer.observe.error_over_time = true;
-  return {fine, jittered, small, longer};
-}
-
-Advice judge(const ojson& row, double target, const std::vector<ojson>& confirming,
-             const AdviceRule& rule) {
-  Advice a;
-  a.row = &row;
-  a.confirming = confirming;
-  const double limit =
-      has_number(row, "courant_spectral") ? row["courant_spectral"].get<double>() : 0;
-  a.limit_ok = within_limit(row, limit, rule);
-  a.error_ok = meets_target(row, target, rule);
-  a.confirmed = confirming.size() == kConfirmingRuns;
-  const double A = row["A"].get<double>();
-  for (const auto& c : confirming) {
-    const double scaled = target * c["A"].get<double>() / A;  // the same relative accuracy
-    a.confirmed = a.confirmed && within_limit(c, limit, rule) && meets_target(c, scaled, rule);
+std::string_view to_string(CornerKind k) {
+  switch (k) {
+    case CornerKind::base:
+      return "base";
+    case CornerKind::smallest_A:
+      return "smallest_A";
+    case CornerKind::largest_A:
+      return "largest_A";
+    case CornerKind::periodic:
+      return "periodic";
+    case CornerKind::other_scene:
+      return "neo_hookean";
+    case CornerKind::jittered:
+      return "jittered";
+    case CornerKind::finer:
+      return "finer";
   }
-  return a;
-}
-
-std::string describe_rule(const AdviceRule& rule) {
-  std::ostringstream s;
-  s << "c dt/h at most the scheme's spectral limit / " << shortest(rule.limit_margin)
-    << "; error over time (max over steps and particles) at most the target / "
-    << shortest(rule.error_margin) << " in a stable run; the same two on a grid " << rule.refine
-    << " times finer at the same c dt/h, on a layout jittered by " << shortest(rule.jitter)
-    << " of the particle spacing, at an amplitude " << shortest(rule.amplitude_factor)
-    << " times smaller (the target scaled with it) and on a run " << shortest(rule.length_factor)
-    << " times as long";
-  return s.str();
-}
-
-std::string describe_confirming(const ojson& row, const ojson& setting) {
-  std::ostringstream s;
-  auto differs = [&](const char* key) {
-    return row.contains(key) && setting.contains(key) && row[key] != setting[key];
-  };
-  if (differs("cells")) s << row["cells"].get<int>() << " cells";
-  if (differs("jitter")) s << "jitter " << shortest(row["jitter"].get<double>());
-  if (differs("A")) s << "A = " << value_text(row["A"].get<double>());
-  if (differs("T")) s << "T = " << value_text(row["T"].get<double>());
-  s << ": ";
-  if (outcome(row) == "stable" && has_number(row, "max_error_over_time")) {
-    s << "error over time " << sci(row["max_error_over_time"].get<double>());
-  } else {
-    s << verdict(row);
-  }
-  if (has_number(row, "courant")) s << ", c dt/h " << shortest(row["courant"].get<double>());
-  return s.str();
-}
-
-std::string describe_confirming(const Advice& a) {
-  std::string s;
-  for (const auto& c : a.confirming)
-    s += (s.empty() ? "" : "; ") + describe_confirming(c, *a.row);
-  return s;
+  return "base";
 }
 
 namespace {
 
-// The step parameter of a setting's policy: dt (fixed), cfl_factor (cfl) or safety.
-const char* step_key(const ojson& row) {
-  const std::string policy = row["policy"].get<std::string>();
-  return policy == "fixed" ? "dt" : policy == "cfl" ? "cfl_factor" : "safety";
-}
-
-const char* step_symbol(const char* key) {
-  return std::string_view(key) == "dt" ? "dt" : std::string_view(key) == "cfl_factor" ? "C" : "s";
-}
-
-// The runs of `scan` that are the setting but for its step parameter, and larger in it, in
-// increasing order of it.
-std::vector<const ojson*> larger_steps(const ojson& setting, const std::vector<ojson>& scan) {
-  const char* key = step_key(setting);
-  ojson same = setting_case(setting);
-  same.erase(key);
-  const double v = setting[key].get<double>();
-  std::vector<const ojson*> out;
-  for (const auto& r : scan) {
-    if (!has_number(r, key) || r[key].get<double>() <= v) continue;
-    ojson other = setting_case(r);
-    other.erase(key);
-    if (other == same) out.push_back(&r);
+std::optional<CornerKind> corner_kind(std::string_view name) {
+  for (CornerKind k :
+       {CornerKind::base, CornerKind::smallest_A, CornerKind::largest_A, CornerKind::periodic,
+        CornerKind::other_scene, CornerKind::jittered, CornerKind::finer}) {
+    if (to_string(k) == name) return k;
   }
-  std::stable_sort(out.begin(), out.end(), [key](const ojson* a, const ojson* b) {
-    return TotalLess()((*a)[key].get<double>(), (*b)[key].get<double>());
-  });
-  return out;
-}
-
-const ojson* first_failing(const std::vector<const ojson*>& larger) {
-  for (const ojson* r : larger)
-    if (outcome(*r) == "unstable" || outcome(*r) == "meaningless") return r;
-  return nullptr;
+  return std::nullopt;
 }
 
 }  // namespace
 
-std::optional<double> margin_ratio(const ojson& setting, const std::vector<ojson>& scan) {
-  const char* key = step_key(setting);
-  const ojson* bad = first_failing(larger_steps(setting, scan));
-  if (!bad) return std::nullopt;
-  return (*bad)[key].get<double>() / setting[key].get<double>();
+std::vector<Corner> region_corners(const RunParams& base, const RegionRule& rule) {
+  const double c = wave_speed(base);
+  std::vector<Corner> out;
+  auto add = [&](CornerKind kind, double length, double A) {
+    Corner corner{.kind = kind, .length = length, .params = base};
+    RunParams& p = corner.params;
+    p.T = length / c;
+    p.A = A;
+    p.observe.error_over_time = true;
+    if (kind == CornerKind::periodic) p.bc = Boundary::periodic;
+    if (kind == CornerKind::other_scene) p.scene = SceneKind::steffen;
+    if (kind == CornerKind::jittered) p.layout.jitter = rule.jitter;
+    if (kind == CornerKind::finer) {
+      p.cells = base.cells * rule.refine;
+      if (p.stepping.policy == TimeStepPolicy::fixed) p.dt = base.dt / rule.refine;
+    }
+    out.push_back(std::move(corner));
+  };
+  const double small = rule.amplitudes[0], middle = rule.amplitudes[1], large = rule.amplitudes[2];
+  for (const double length : rule.lengths) {
+    if (length != rule.lengths.front()) add(CornerKind::base, length, middle);
+    add(CornerKind::smallest_A, length, small);
+    add(CornerKind::largest_A, length, large);
+    add(CornerKind::periodic, length, large);
+    add(CornerKind::other_scene, length, large);
+    add(CornerKind::jittered, length, large);
+  }
+  add(CornerKind::finer, rule.lengths.front(), middle);
+  return out;
 }
 
-std::string margin_text(const ojson& setting, const std::vector<ojson>& scan) {
-  const char* key = step_key(setting);
-  const double v = setting[key].get<double>();
-  const auto larger = larger_steps(setting, scan);
-  if (larger.empty()) return "no larger step was run";
-  const ojson* bad = first_failing(larger);
-  std::ostringstream s;
-  if (!bad) {
-    const double top = (*larger.back())[key].get<double>();
-    s << "no larger step of the scan fails (run up to " << step_symbol(key) << " = "
-      << value_text(top) << ", " << ratio(top / v) << "x)";
-    return s.str();
+bool CornerRun::passes() const {
+  return outcome == "stable" && error_over_A && *error_over_A < kAccurateFraction;
+}
+
+std::vector<Region> regions_of(const CheckedSetting& s, const RegionRule& rule) {
+  std::vector<Region> out;
+  if (s.corners.empty() || !s.courant_spectral ||
+      !(s.courant <= *s.courant_spectral / rule.limit_margin))
+    return out;
+  auto find = [&](CornerKind kind, double length) -> const CornerRun* {
+    for (const auto& c : s.corners)
+      if (c.kind == kind && c.length == length) return &c;
+    return nullptr;
+  };
+  const CornerRun* finer = find(CornerKind::finer, rule.lengths.front());
+  for (const double length : rule.lengths) {
+    const CornerRun* base = find(CornerKind::base, length);
+    if (!base || !base->passes()) continue;
+    Region r{.length = length, .A_min = rule.amplitudes[1], .A_max = rule.amplitudes[1]};
+    r.cells_max = s.cells;
+    r.error_over_A = *base->error_over_A;
+    auto include = [&](const CornerRun* c) {
+      if (!c) return false;
+      if (!c->passes()) {
+        r.excluded.push_back(*c);
+        return false;
+      }
+      r.error_over_A = std::max(r.error_over_A, *c->error_over_A);
+      return true;
+    };
+    if (include(find(CornerKind::smallest_A, length))) r.A_min = rule.amplitudes[0];
+    const bool large = include(find(CornerKind::largest_A, length));
+    if (large) r.A_max = rule.amplitudes[2];
+    // At the largest amplitude: counted only where that amplitude is in the region.
+    for (const CornerKind kind :
+         {CornerKind::periodic, CornerKind::other_scene, CornerKind::jittered}) {
+      const CornerRun* c = find(kind, length);
+      const bool in = large ? include(c) : false;
+      if (!large && c && !c->passes()) r.excluded.push_back(*c);
+      if (kind == CornerKind::periodic) r.periodic = in;
+      if (kind == CornerKind::other_scene) r.other_scene = in;
+      if (kind == CornerKind::jittered) r.jittered = in;
+    }
+    r.finer = include(finer);
+    if (r.finer) r.cells_max = s.cells * rule.refine;
+    out.push_back(std::move(r));
   }
-  const double b = (*bad)[key].get<double>();
-  s << "the first failing step of the scan: " << step_symbol(key) << " = " << value_text(b) << " ("
-    << ratio(b / v) << "x), " << outcome(*bad);
+  return out;
+}
+
+double problem_particle_steps(const CheckedSetting& s, double cT) {
+  // T = cT / c and dt = C h / c: the steps are c T / (C h), E cancels (L = 1, h = 1 / cells).
+  const double steps = std::ceil(cT * s.cells / s.courant - 1e-9);
+  return double(s.ppc) * s.cells * std::max(steps, 1.0);
+}
+
+namespace {
+
+std::string label_of(const CheckedSetting& s) {
+  std::string l = s.method;
+  if (s.transfer != "flip") l += "/" + s.transfer;
+  if (s.update != "usl") l += "/" + s.update;
+  return l;
+}
+
+// A method filter's entry names a basis ("gimp"), a method ("gimp/apic", "gimp/musl") or a
+// method with every part ("gimp/flip/usl").
+bool selected(const CheckedSetting& s, const std::vector<std::string>& methods) {
+  if (methods.empty()) return true;
+  for (const auto& m : methods) {
+    if (m == s.method || m == label_of(s) || m == s.method + "/" + s.transfer + "/" + s.update ||
+        m == s.method + "/" + s.transfer)
+      return true;
+  }
+  return false;
+}
+
+bool contains(const Region& r, const Problem& p, const RegionRule& rule) {
+  return p.A >= r.A_min && p.A <= r.A_max && rule.length_factor * p.cT <= r.length &&
+         (p.scene == "bar" || (p.scene == "steffen" && r.other_scene)) &&
+         (p.bc == "dirichlet" || (p.bc == "periodic" && r.periodic));
+}
+
+// Why no checked region contains the problem, naming what lies outside.
+std::string outside(const std::vector<CheckedSetting>& settings, const Problem& p,
+                    const RegionRule& rule) {
+  double A_min = 0, A_max = 0, longest = 0;
+  bool any = false, scene = false, bc = false;
+  for (const auto& s : settings) {
+    if (!selected(s, p.methods)) continue;
+    for (const auto& r : s.regions) {
+      A_min = any ? std::min(A_min, r.A_min) : r.A_min;
+      A_max = any ? std::max(A_max, r.A_max) : r.A_max;
+      longest = std::max(longest, r.length);
+      any = true;
+      scene = scene || p.scene == "bar" || r.other_scene;
+      bc = bc || p.bc == "dirichlet" || r.periodic;
+    }
+  }
+  std::ostringstream s;
+  if (!any) {
+    s << "no checked setting of the methods asked for has a region";
+  } else if (p.A < A_min || p.A > A_max) {
+    s << "--A: A/L = " << value_text(p.A) << " is outside every checked region (A/L "
+      << value_text(A_min) << " to " << value_text(A_max) << ")";
+  } else if (rule.length_factor * p.cT > longest) {
+    s << "--cT: c T/L = " << value_text(p.cT) << " needs a region checked to "
+      << shortest(rule.length_factor) << " x c T = " << value_text(rule.length_factor * p.cT)
+      << "; the longest checked is c T/L = " << value_text(longest);
+  } else if (!scene) {
+    s << "--scene: no checked region includes the scene " << p.scene;
+  } else if (!bc) {
+    s << "--bc: no checked region includes " << p.bc << " boundaries";
+  } else {
+    s << "no single checked region contains A/L = " << value_text(p.A)
+      << ", c T/L = " << value_text(p.cT) << ", the scene " << p.scene << " and " << p.bc
+      << " boundaries together";
+  }
   return s.str();
 }
 
-ojson setting_case(const ojson& row) {
-  ojson c = ojson::object();
-  for (const auto& name : parameter_names()) {
-    if (row.contains(name) && !row[name].is_null()) c[name] = row[name];
+}  // namespace
+
+Answer advise(const std::vector<CheckedSetting>& settings, const Problem& p,
+              const RegionRule& rule) {
+  Answer best;
+  const CheckedSetting* closest = nullptr;  // the most accurate region containing the problem
+  const Region* closest_region = nullptr;
+  for (const auto& s : settings) {
+    if (!selected(s, p.methods)) continue;
+    for (const auto& r : s.regions) {
+      if (!contains(r, p, rule)) continue;
+      if (!closest_region || r.error_over_A < closest_region->error_over_A) {
+        closest = &s;
+        closest_region = &r;
+      }
+      if (r.error_over_A > p.target / rule.error_margin) continue;
+      const double work = problem_particle_steps(s, p.cT);
+      if (!best.setting || work < best.particle_steps)
+        best = Answer{.setting = &s, .region = &r, .particle_steps = work};
+      break;  // the shortest region containing the problem is the one that answers for it
+    }
   }
+  if (best.setting) return best;
+  if (!closest) {
+    best.refusal = outside(settings, p, rule);
+  } else {
+    std::ostringstream s;
+    s << "--error: no checked setting reaches an error over time of " << value_text(p.target)
+      << " A with the margin " << shortest(rule.error_margin) << " (its region's error at most "
+      << value_text(p.target / rule.error_margin) << " A); the most accurate containing the "
+      << "problem is " << setting_name(*closest) << " at " << sci(closest_region->error_over_A)
+      << " A";
+    best.refusal = s.str();
+  }
+  return best;
+}
+
+std::string setting_name(const CheckedSetting& s) {
+  std::ostringstream t;
+  t << s.method << "/" << s.transfer << "/" << s.update << ", " << s.cells
+    << " cells, C = " << shortest(s.courant);
+  return t.str();
+}
+
+std::string region_text(const Region& r, const RegionRule& rule) {
+  std::ostringstream s;
+  s << "A/L " << value_text(r.A_min);
+  if (r.A_max != r.A_min) s << " to " << value_text(r.A_max);
+  s << ", c T/L to " << value_text(r.length) << "; walls"
+    << (r.periodic ? " and periodic" : " only") << "; the bar"
+    << (r.other_scene ? " and the neo-Hookean scene" : " only") << "; uniform"
+    << (r.jittered ? " and jittered (" + shortest(rule.jitter) + ")" : std::string(" only")) << "; "
+    << (r.finer ? "cells to " + std::to_string(r.cells_max) +
+                      " (checked to c T/L = " + value_text(rule.lengths.front()) + ")"
+                : std::string("these cells only"));
+  return s.str();
+}
+
+namespace {
+
+using json_t = nlohmann::ordered_json;
+
+json_t corner_json(const CornerRun& c) {
+  return {{"kind", std::string(to_string(c.kind))},
+          {"cT", c.length},
+          {"A", c.A},
+          {"cells", c.cells},
+          {"outcome", c.outcome},
+          {"error_over_A", c.error_over_A ? json_t(*c.error_over_A) : json_t(nullptr)}};
+}
+
+json_t region_json(const Region& r) {
+  json_t excluded = json_t::array();
+  for (const auto& c : r.excluded)
+    excluded.push_back(corner_json(c));
+  return {{"cT_max", r.length},
+          {"A_min", r.A_min},
+          {"A_max", r.A_max},
+          {"periodic", r.periodic},
+          {"neo_hookean", r.other_scene},
+          {"jittered", r.jittered},
+          {"finer", r.finer},
+          {"cells_max", r.cells_max},
+          {"error_over_A", r.error_over_A},
+          {"excluded", excluded}};
+}
+
+// Strict readers of results/advice.json: a missing or mistyped key names itself.
+const json_t& at(const json_t& j, const char* key, const std::string& where) {
+  if (!j.is_object() || !j.contains(key))
+    throw InputError(where + ": missing \"" + std::string(key) + "\"");
+  return j[key];
+}
+double number_at(const json_t& j, const char* key, const std::string& where) {
+  const json_t& v = at(j, key, where);
+  if (!v.is_number() || !std::isfinite(v.get<double>()))
+    throw InputError(where + "." + key + ": must be a finite number");
+  return v.get<double>();
+}
+constexpr long long kLargestCount = 1'000'000;  // cells or particles per cell in a setting
+int int_at(const json_t& j, const char* key, const std::string& where) {
+  const json_t& v = at(j, key, where);
+  if (!v.is_number_integer() || v.get<long long>() < 1 || v.get<long long>() > kLargestCount)
+    throw InputError(where + "." + key + ": must be a whole number from one to " +
+                     std::to_string(kLargestCount));
+  return v.get<int>();
+}
+bool bool_at(const json_t& j, const char* key, const std::string& where) {
+  const json_t& v = at(j, key, where);
+  if (!v.is_boolean()) throw InputError(where + "." + key + ": must be true or false");
+  return v.get<bool>();
+}
+std::string string_at(const json_t& j, const char* key, const std::string& where) {
+  const json_t& v = at(j, key, where);
+  if (!v.is_string() || v.get<std::string>().size() > 64)
+    throw InputError(where + "." + key + ": must be a short string");
+  return v.get<std::string>();
+}
+
+CornerRun corner_from_json(const json_t& j, const std::string& where) {
+  CornerRun c;
+  const auto kind = corner_kind(string_at(j, "kind", where));
+  if (!kind) throw InputError(where + ".kind: not a corner this program knows");
+  c.kind = *kind;
+  c.length = number_at(j, "cT", where);
+  c.A = number_at(j, "A", where);
+  c.cells = int_at(j, "cells", where);
+  c.outcome = string_at(j, "outcome", where);
+  const json_t& e = at(j, "error_over_A", where);
+  if (!e.is_null()) c.error_over_A = number_at(j, "error_over_A", where);
   return c;
 }
 
-ojson recommended_json(const Advice& a, double target) {
-  const ojson& r = *a.row;
-  return {{"target", target},
-          {"case", setting_case(r)},
-          {"courant", r["courant"]},
-          {"courant_spectral", r["courant_spectral"]},
-          {"max_error_over_time", r["max_error_over_time"]}};
+Region region_from_json(const json_t& j, const std::string& where) {
+  Region r;
+  r.length = number_at(j, "cT_max", where);
+  r.A_min = number_at(j, "A_min", where);
+  r.A_max = number_at(j, "A_max", where);
+  r.periodic = bool_at(j, "periodic", where);
+  r.other_scene = bool_at(j, "neo_hookean", where);
+  r.jittered = bool_at(j, "jittered", where);
+  r.finer = bool_at(j, "finer", where);
+  r.cells_max = int_at(j, "cells_max", where);
+  r.error_over_A = number_at(j, "error_over_A", where);
+  const json_t& ex = at(j, "excluded", where);
+  if (!ex.is_array()) throw InputError(where + ".excluded: must be an array");
+  for (std::size_t i = 0; i < ex.size(); ++i)
+    r.excluded.push_back(corner_from_json(ex[i], where + ".excluded[" + std::to_string(i) + "]"));
+  if (!(r.A_min > 0 && r.A_min <= r.A_max && r.length > 0 && r.error_over_A >= 0))
+    throw InputError(where + ": A_min, A_max, cT_max or error_over_A out of range");
+  return r;
 }
 
-Claim recommendations_claim(const std::vector<Advice>& recommended, double target,
-                            const AdviceRule& rule) {
-  int confirmed = 0;
-  for (const auto& a : recommended)
-    confirmed += a.recommended();
-  Claim c = claim("recommended-" + sci(target, 1),
-                  "Every setting recommended for an error of {target} keeps c dt/h at most its "
-                  "spectral limit / {limit_margin} and its error over time at most the target / "
-                  "{error_margin}, in its own run and in its confirming runs ({refine}x the "
-                  "cells; jitter {jitter}; A / {amplitude}, the target likewise; {length}x T)",
-                  "{confirmed} of {recommended} recommended settings pass every part of the rule");
-  c.value("target", sci(target, 1))
-      .value("limit_margin", shortest(rule.limit_margin))
-      .value("error_margin", shortest(rule.error_margin))
-      .count("refine", rule.refine)
-      .value("jitter", shortest(rule.jitter))
-      .value("amplitude", shortest(rule.amplitude_factor))
-      .value("length", shortest(rule.length_factor))
-      .count("confirmed", confirmed)
-      .count("recommended", static_cast<long long>(recommended.size()));
-  c.over(static_cast<long long>(recommended.size()));
-  c.holds = confirmed == static_cast<int>(recommended.size());
-  return c;
+}  // namespace
+
+nlohmann::ordered_json to_json(const CheckedSetting& s) {
+  json_t corners = json_t::array(), regions = json_t::array();
+  for (const auto& c : s.corners)
+    corners.push_back(corner_json(c));
+  for (const auto& r : s.regions)
+    regions.push_back(region_json(r));
+  return {{"method", s.method},
+          {"transfer", s.transfer},
+          {"update", s.update},
+          {"cells", s.cells},
+          {"ppc", s.ppc},
+          {"courant", s.courant},
+          {"courant_spectral", s.courant_spectral ? json_t(*s.courant_spectral) : json_t(nullptr)},
+          {"corners", corners},
+          {"regions", regions}};
+}
+
+CheckedSetting checked_setting_from_json(const nlohmann::ordered_json& j) {
+  const std::string where = "setting";
+  CheckedSetting s;
+  s.method = string_at(j, "method", where);
+  s.transfer = string_at(j, "transfer", where);
+  s.update = string_at(j, "update", where);
+  s.cells = int_at(j, "cells", where);
+  s.ppc = int_at(j, "ppc", where);
+  s.courant = number_at(j, "courant", where);
+  if (!(s.courant > 0)) throw InputError(where + ".courant: must be positive");
+  if (!at(j, "courant_spectral", where).is_null())
+    s.courant_spectral = number_at(j, "courant_spectral", where);
+  const json_t& corners = at(j, "corners", where);
+  const json_t& regions = at(j, "regions", where);
+  if (!corners.is_array() || !regions.is_array())
+    throw InputError(where + ": corners and regions must be arrays");
+  for (std::size_t i = 0; i < corners.size(); ++i)
+    s.corners.push_back(corner_from_json(corners[i], "corners[" + std::to_string(i) + "]"));
+  for (std::size_t i = 0; i < regions.size(); ++i)
+    s.regions.push_back(region_from_json(regions[i], "regions[" + std::to_string(i) + "]"));
+  return s;
+}
+
+nlohmann::ordered_json answer_json(const Answer& a, const Problem& p) {
+  json_t problem = {
+      {"A", p.A}, {"cT", p.cT}, {"error", p.target}, {"scene", p.scene}, {"bc", p.bc}};
+  if (!a.setting) return {{"problem", problem}, {"refused", a.refusal}};
+  const CheckedSetting& s = *a.setting;
+  return {{"problem", problem},
+          {"method", s.method},
+          {"transfer", s.transfer},
+          {"update", s.update},
+          {"cells", s.cells},
+          {"ppc", s.ppc},
+          {"courant", s.courant},
+          {"predicted_error_over_A", a.region->error_over_A},
+          {"particle_steps", a.particle_steps},
+          {"margin_to_target", p.target / a.region->error_over_A},
+          {"courant_spectral", s.courant_spectral ? json_t(*s.courant_spectral) : json_t(nullptr)},
+          {"margin_to_spectral_limit",
+           s.courant_spectral ? json_t(*s.courant_spectral / s.courant) : json_t(nullptr)},
+          {"region", region_json(*a.region)}};
 }
 
 }  // namespace mpmstab

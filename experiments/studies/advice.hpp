@@ -1,101 +1,134 @@
-// The one rule by which a study recommends a setting (a method, a grid and a time step), used by
-// every study that advises (methods, tradeoff, edge): docs/design.md, "Advice". A setting is
-// recommended only if
-//   (a) its Courant number c dt / h is at most the scheme's spectral limit at its layout divided
-//       by limit_margin,
-//   (b) its error over time (the largest error after any step, never the error at one instant)
-//       is at most the target divided by error_margin, in a run that ends stable, and
-//   (c) its confirming runs -- the same setting on a grid `refine` times finer at the same c dt/h,
-//       on a layout jittered by `jitter`, at an amplitude `amplitude_factor` times smaller (the
-//       target scaled with A: the same relative accuracy) and on a run `length_factor` times as
-//       long -- all meet (a) and (b) as well.
-// The rule, its margins and the confirming runs are printed with every recommendation, with the
-// setting's margin in its own scan: the distance to the first larger step the scan ran that is
-// unstable or meaningless.
+// The one rule by which this project recommends a setting (a method, a grid and a Courant
+// number), used by the advice study (advice_report.cpp, results/advice.md) and `mpmstab advise`
+// alike: docs/design.md, "Advice: regions and corners". No other report recommends.
 #pragma once
 
+#include <array>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "base/params.hpp"
-#include "claims.hpp"
 
 namespace mpmstab {
 
-struct AdviceRule {
-  double limit_margin = 1.25;     // (a): c dt / h <= limit / limit_margin
-  double error_margin = 2;        // (b): error over time <= target / error_margin
-  int refine = 2;                 // (c): cells x refine, dt / refine (same c dt / h)
-  double jitter = 0.05;           // (c): each particle moved by up to jitter / 2 of its spacing
-  double amplitude_factor = 100;  // (c): A / amplitude_factor, the target likewise
-  double length_factor = 4;       // (c): T x length_factor
+// ---------------------------------------------------------------------------------------------
+// Regions (docs/design.md, "Advice: regions and corners"). A setting is a method (basis,
+// transfer, update order), a grid of `cells` cells with 2 particles each and a Courant number
+// C = c dt / h. Its base run solves the bar with walls at the middle amplitude to the shorter
+// length. E only rescales time (c T and c dt / h fix a run), so the region of a setting is
+// stated in A / L, c T / L, the scene, the boundary, the layout and the cells alone, and is
+// checked at its corners:
+//   - on the bar with walls, at the smallest, middle and largest amplitude, to each length;
+//   - at the largest amplitude, to each length: with periodic boundaries, on the neo-Hookean
+//     scene (Steffen et al. 2008) and on a layout jittered by `jitter` of the particle spacing;
+//   - on `refine` times the cells at the same C, at the middle amplitude, to the shorter length.
+// A corner passes when its run ends stable and accurate (error over time below
+// kAccurateFraction A, base/accuracy.hpp). A failing corner shrinks the region to exclude it
+// and the region says so: the amplitude range stops at the largest passing amplitude below it;
+// periodic boundaries, the other scene and the jittered layout are in only where their corner
+// and the largest amplitude pass; finer grids only where the refined corner passes. A region
+// exists to a length only where the base run to that length passes and C is within the
+// scheme's spectral limit / limit_margin.
+struct RegionRule {
+  std::array<double, 3> amplitudes{1e-3, 1.5e-2, 5e-2};  // A / L: smallest, middle, largest
+  std::array<double, 2> lengths{10, 100};                // c T / L: the base's, the longest
+  int refine = 8;                                        // the finest grid: cells x refine
+  double jitter = 0.05;        // the jittered corner: particles moved up to jitter / 2
+  double limit_margin = 1.25;  // C at most the spectral limit / limit_margin
+  double error_margin = 2;     // a region answers a target at least error_margin x its error
+  double length_factor = 4;    // a problem of c T is answered by a region checked to 4 c T
 };
-// The confirming runs of one setting, in confirming_runs() order.
-inline constexpr std::size_t kConfirmingRuns = 4;
-inline constexpr AdviceRule kAdviceRule{};
+inline constexpr RegionRule kRegionRule{};
 
-// (a) on a record: its courant against its courant_spectral (the uniform layout's limit; a
-// jittered confirming run is held to the limit of the layout it perturbs). False where either
-// is not measured.
-bool within_limit(const nlohmann::ordered_json& row, double uniform_limit,
-                  const AdviceRule& rule = kAdviceRule);
-// (b) on a record: stable (not meaningless, not too short) and max_error_over_time at most
-// target / error_margin.
-bool meets_target(const nlohmann::ordered_json& row, double target,
-                  const AdviceRule& rule = kAdviceRule);
-// (a) and (b): a candidate before its confirming runs.
-bool candidate(const nlohmann::ordered_json& row, double target,
-               const AdviceRule& rule = kAdviceRule);
+enum class CornerKind { base, smallest_A, largest_A, periodic, other_scene, jittered, finer };
+std::string_view to_string(CornerKind k);
 
-// The confirming runs of (c) for a setting: [0] the finer grid, [1] the jittered layout, [2] the
-// smaller amplitude, [3] the longer run (kConfirmingRuns).
-std::vector<RunParams> confirming_runs(const RunParams& p, const AdviceRule& rule = kAdviceRule);
-
-// A setting judged by the whole rule.
-struct Advice {
-  const nlohmann::ordered_json* row = nullptr;     // the setting
-  std::vector<nlohmann::ordered_json> confirming;  // its confirming runs' records, in order
-  bool limit_ok = false, error_ok = false, confirmed = false;
-  bool recommended() const { return limit_ok && error_ok && confirmed; }
+struct Corner {
+  CornerKind kind = CornerKind::base;
+  double length = 0;  // c T / L
+  RunParams params;
 };
-Advice judge(const nlohmann::ordered_json& row, double target,
-             const std::vector<nlohmann::ordered_json>& confirming,
-             const AdviceRule& rule = kAdviceRule);
 
-// "c dt/h <= limit / 1.25; error over time <= target / 2; confirmed on 2x the cells and on a
-// layout jittered by 0.5": the rule in words, printed with every recommendation.
-std::string describe_rule(const AdviceRule& rule = kAdviceRule);
-// One confirming run of `setting` in a few words, named by what it changes: "200 cells: error
-// over time 3.1e-5, c dt/h 0.4", "A = 1.5e-4: ...", "T = 4: ...", or its verdict where it did
-// not end stable.
-std::string describe_confirming(const nlohmann::ordered_json& row,
-                                const nlohmann::ordered_json& setting);
-// Every confirming run of an advice, "; "-separated.
-std::string describe_confirming(const struct Advice& a);
+// The corner runs of a setting whose base run is `base` (the bar with walls, A = the middle
+// amplitude, T = the shorter length / c), in a fixed order: per length, the base (the longer
+// length only: the base run is the case itself), the smallest and largest amplitude, periodic,
+// the other scene and the jittered layout; then the finer grid.
+std::vector<Corner> region_corners(const RunParams& base, const RegionRule& rule = kRegionRule);
+inline constexpr std::size_t kRegionCorners = 12;
 
-// The setting's margin in its own scan: among `scan`, the runs of the same setting but for its
-// step parameter (dt for the fixed policy, C for cfl, s for the others), the first with a larger
-// parameter that is unstable or meaningless. "the first failing step of the scan: C = 0.8 (1.6x),
-// unstable"; "no larger step of the scan fails (run up to C = 1, 2x)"; "no larger step was run".
-std::string margin_text(const nlohmann::ordered_json& setting,
-                        const std::vector<nlohmann::ordered_json>& scan);
-// The ratio of that first failing parameter to the setting's (nullopt where none fails).
-std::optional<double> margin_ratio(const nlohmann::ordered_json& setting,
-                                   const std::vector<nlohmann::ordered_json>& scan);
+// One corner run as a setting's region reads it.
+struct CornerRun {
+  CornerKind kind = CornerKind::base;
+  double length = 0, A = 0;
+  int cells = 0;
+  std::string outcome;                 // unstable, meaningless, stable, too_short
+  std::optional<double> error_over_A;  // error over time / A, where measured
+  bool passes() const;                 // stable and accurate
+};
 
-// The setting of a record as a spec case (experiments/*.json): the parameters of
-// parameter_names() it sets, so that a test or a user can rerun it and its confirming runs.
-nlohmann::ordered_json setting_case(const nlohmann::ordered_json& row);
-// A recommended setting as a study stores it in its JSON ("recommended"): the target, the case
-// and its own numbers (c dt/h, its spectral limit, its error over time).
-nlohmann::ordered_json recommended_json(const Advice& a, double target);
+// A setting's region to one length.
+struct Region {
+  double length = 0;            // checked to c T / L = length
+  double A_min = 0, A_max = 0;  // A / L
+  bool periodic = false, other_scene = false, jittered = false, finer = false;
+  int cells_max = 0;                // the setting's cells, or cells x refine
+  double error_over_A = 0;          // the largest error over time / A of its corners
+  std::vector<CornerRun> excluded;  // the corners that failed, and what they excluded
+};
 
-// The claim every advising study makes of its recommendations: each recommended setting meets
-// the rule in its own run and in both confirming runs (a property of the records, so a
-// recommendation whose confirming run misses the target shows as not holding).
-Claim recommendations_claim(const std::vector<Advice>& recommended, double target,
-                            const AdviceRule& rule = kAdviceRule);
+// A setting with its corners and regions: what results/advice.json stores and `mpmstab advise`
+// reads.
+struct CheckedSetting {
+  std::string method, transfer, update;  // "gimp", "flip", "usl"; transfer with its order
+  int cells = 0, ppc = 2;
+  double courant = 0;
+  std::optional<double> courant_spectral;  // the spectral limit of its uniform layout
+  std::vector<CornerRun> corners;          // the base run first, then region_corners() order
+  std::vector<Region> regions;             // per length at which a region exists, ascending
+};
+
+// The regions of a setting from its corner runs (the base run first).
+std::vector<Region> regions_of(const CheckedSetting& s, const RegionRule& rule = kRegionRule);
+
+// A problem in the dimensionless form of `mpmstab advise`.
+struct Problem {
+  double A = 0;       // A / L
+  double cT = 0;      // c T / L
+  double target = 0;  // error over time / A
+  std::string scene = "bar";
+  std::string bc = "dirichlet";
+  std::vector<std::string> methods;  // empty: every method
+};
+
+struct Answer {
+  const CheckedSetting* setting = nullptr;  // nullptr: refused
+  const Region* region = nullptr;
+  double particle_steps = 0;  // of the setting run on the problem
+  std::string refusal;        // why, where refused: names what is outside
+};
+
+// The cheapest setting (particle-steps on the problem) whose region contains the problem (A
+// within its amplitudes, length_factor x c T within its length, its scene and boundary) and
+// whose region's error / A is at most the target / error_margin; ties go to the earlier
+// setting. Refused, with what is outside, where no region contains the problem or none reaches
+// the target.
+Answer advise(const std::vector<CheckedSetting>& settings, const Problem& p,
+              const RegionRule& rule = kRegionRule);
+// particles x steps of the setting on a problem of length cT: ppc cells x ceil(cT cells / C).
+double problem_particle_steps(const CheckedSetting& s, double cT);
+
+// The setting's name: "gimp/apic usl, 50 cells, C = 0.25".
+std::string setting_name(const CheckedSetting& s);
+// The region in words: "A/L 1e-3 to 0.05, c T/L to 100; walls and periodic; bar and
+// neo-Hookean; uniform and jittered (0.05); 50 to 400 cells".
+std::string region_text(const Region& r, const RegionRule& rule = kRegionRule);
+
+nlohmann::ordered_json to_json(const CheckedSetting& s);
+// Throws InputError naming the key for a malformed setting (results/advice.json is an input).
+CheckedSetting checked_setting_from_json(const nlohmann::ordered_json& j);
+nlohmann::ordered_json answer_json(const Answer& a, const Problem& p);
 
 }  // namespace mpmstab

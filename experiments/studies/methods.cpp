@@ -1,8 +1,8 @@
 // Choosing a method: one row per method (basis x velocity transfer x update order) with the
 // error at Table 1's setting, the orders in h and dt, the survival and accuracy edges at a tiny
-// amplitude, the counted work per particle-step, and the cheapest setting that reaches an error
-// of 1e-4 and 1e-6 on the bar. The edges are this study's own cases (edge searches); everything
-// else comes from the rows of methods_grid, which it reads.
+// amplitude and the counted work per particle-step. It measures and recommends nothing: every
+// recommendation is advice.md's (advice.hpp). The edges are this study's own cases (edge
+// searches); everything else comes from the rows of methods_grid, which it reads.
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -10,7 +10,6 @@
 #include <sstream>
 #include <tuple>
 
-#include "advice.hpp"
 #include "analysis/spectral.hpp"
 #include "csv.hpp"
 #include "report_util.hpp"
@@ -65,35 +64,12 @@ int node_visits(const MethodKey& k) {
   return method ? stencil_width(*method) * stencil_passes(k) : 0;
 }
 
-struct Setting {
-  const ojson* row = nullptr;
-  double work = 0;               // particle-steps
-  Advice advice;                 // the advice rule on it (advice.hpp), with its confirming runs
-  std::optional<double> margin;  // margin_ratio in methods_grid (nullopt: no larger step fails)
-};
-
-// The error targets a user chooses a setting for.
-const std::vector<double> kTargets = {1e-4, 1e-6};
-
-// The settings of methods_grid that pass parts (a) and (b) of the advice rule for the loosest
-// target (a candidate for a tighter target is one for the looser too): their confirming runs are
-// the study's follow-up runs, kConfirmingRuns per candidate in this order.
-std::vector<std::size_t> candidates(const std::vector<ojson>& grid) {
-  // kTargets are finite constants: < orders them.
-  const double loosest = *std::max_element(kTargets.begin(), kTargets.end());
-  std::vector<std::size_t> out;
-  for (std::size_t i = 0; i < grid.size(); ++i)
-    if (candidate(grid[i], loosest)) out.push_back(i);
-  return out;
-}
-
 struct MethodRow {
   MethodKey key;
   const ojson* edge = nullptr;    // this study's edge search
   const ojson* table1 = nullptr;  // methods_grid: 100 cells, dt = 1e-4
   std::vector<const ojson*> grid;
   std::optional<double> order_h, order_dt;
-  std::vector<std::optional<Setting>> recommended;  // per target of kTargets
 };
 
 // Table 1's setting among the rows of methods_grid: the paper's grid at its smallest fixed dt.
@@ -126,16 +102,8 @@ double dt_of(const ojson& r) {
                              : r["cfl_factor"].get<double>() * r["dt_cfl"].get<double>();
 }
 
-std::vector<MethodRow> method_rows(const std::vector<ojson>& edges, const std::vector<ojson>& grid,
-                                   const std::vector<ojson>& follow_up) {
-  // The confirming runs of each candidate, by its row in the grid.
-  std::map<const ojson*, std::vector<ojson>> confirming;
-  const auto cands = candidates(grid);
-  for (std::size_t k = 0; k < cands.size() && (k + 1) * kConfirmingRuns <= follow_up.size(); ++k) {
-    const auto first = follow_up.begin() + std::ptrdiff_t(k * kConfirmingRuns);
-    confirming[&grid[cands[k]]] =
-        std::vector<ojson>(first, first + std::ptrdiff_t(kConfirmingRuns));
-  }
+std::vector<MethodRow> method_rows(const std::vector<ojson>& edges,
+                                   const std::vector<ojson>& grid) {
   std::vector<MethodRow> rows;
   std::map<MethodKey, std::size_t> index;
   for (const auto& r : edges) {
@@ -146,12 +114,10 @@ std::vector<MethodRow> method_rows(const std::vector<ojson>& edges, const std::v
     const auto it = index.find(key_of(r));
     if (it == index.end()) continue;
     MethodRow& m = rows[it->second];
-    m.recommended.resize(kTargets.size());
     m.grid.push_back(&r);
     if (is_table1_setting(r)) m.table1 = &r;
   }
   for (MethodRow& m : rows) {
-    m.recommended.resize(kTargets.size());
     std::vector<std::pair<double, double>> h_points, dt_points;
     for (const ojson* r : m.grid) {
       const auto e = over_time_of(*r);
@@ -164,15 +130,6 @@ std::vector<MethodRow> method_rows(const std::vector<ojson>& edges, const std::v
           (*r)["courant"].get<double>() <= (*r)["courant_spectral"].get<double>();
       if (e && below_limit && (*r)["cells"].get<int>() == kTable1Cells)
         dt_points.emplace_back(dt_of(*r), *e);
-      const double w = particle_steps(*r);
-      const auto conf = confirming.find(r);
-      for (std::size_t t = 0; t < kTargets.size(); ++t) {
-        if (conf == confirming.end()) continue;
-        Advice a = judge(*r, kTargets[t], conf->second);
-        auto& best = m.recommended[t];
-        if (a.recommended() && (!best || w < best->work))
-          best = Setting{r, w, std::move(a), margin_ratio(*r, grid)};
-      }
     }
     m.order_h = loglog_slope(h_points);
     m.order_dt = loglog_slope(dt_points);
@@ -182,24 +139,6 @@ std::vector<MethodRow> method_rows(const std::vector<ojson>& edges, const std::v
 
 std::string order_text(const std::optional<double>& o) {
   return o ? fixed(*o, 2) : std::string("–");
-}
-
-// "50 cells, C = 0.8 (5.0e4; margin 2x)": the margin left out where the text gives it in full.
-std::string setting_text(const std::optional<Setting>& s, bool with_margin = true) {
-  if (!s) return "none passes the rule";
-  const ojson& r = *s->row;
-  std::ostringstream t;
-  t << r["cells"].get<int>() << " cells, ";
-  if (r["policy"].get<std::string>() == "cfl") {
-    t << "C = " << shortest(r["cfl_factor"].get<double>());
-  } else {
-    t << "dt = " << param(r["dt"].get<double>());
-  }
-  t << " (" << sci(s->work);
-  if (with_margin)
-    t << "; margin " << (s->margin ? ratio(*s->margin) + "x" : std::string("not measured"));
-  t << ")";
-  return t.str();
 }
 
 std::string edge_text(const ojson& r, const char* column) {
@@ -231,14 +170,19 @@ std::string method_name(const MethodRow& m) {
 // The reading: facts of the table, every number from its rows.
 std::string reading(const std::vector<MethodRow>& rows) {
   const MethodRow* best_error = nullptr;
-  const MethodRow* widest = nullptr;
-  std::size_t unstable_table1 = 0;
+  const MethodRow* widest = nullptr;  // among the edges whose run is not meaningless
+  std::size_t unstable_table1 = 0, meaningless_edges = 0, edges = 0;
   for (const auto& m : rows) {
     const auto e = m.table1 ? over_time_of(*m.table1) : std::nullopt;
     if (!e) ++unstable_table1;
     if (e && (!best_error || *e < *over_time_of(*best_error->table1))) best_error = &m;
-    if (has_number(*m.edge, "dt_edge_over_cfl") &&
-        (!widest || (*m.edge)["dt_edge_over_cfl"].get<double>() >
+    if (!has_number(*m.edge, "dt_edge_over_cfl")) continue;
+    ++edges;
+    if (outcome(*m.edge) == "meaningless") {
+      ++meaningless_edges;
+      continue;
+    }
+    if ((!widest || (*m.edge)["dt_edge_over_cfl"].get<double>() >
                         (*widest->edge)["dt_edge_over_cfl"].get<double>())) {
       widest = &m;
     }
@@ -251,46 +195,16 @@ std::string reading(const std::vector<MethodRow>& rows) {
        << " (" << method_name(*best_error) << ")";
   }
   md << ". ";
+  md << "Of " << edges << " survival edges at the tiny amplitude, " << meaningless_edges
+     << " are runs whose error over time reached A (meaningless: marked in the table and the "
+        "figure)";
   if (widest) {
-    md << "The widest survival edge at the tiny amplitude is "
+    md << "; the widest of the others is "
        << fixed((*widest->edge)["dt_edge_over_cfl"].get<double>(), 3) << " h/c ("
-       << method_name(*widest) << "), a run of this length only: the edge is not a recommended "
-       << "step (see the rule below).";
+       << method_name(*widest) << "), a run of this length only: an edge is not a recommended "
+       << "step";
   }
-  return md.str();
-}
-
-// The recommendations: per target, the cheapest setting of every method that passes the advice
-// rule, the cheapest of them named, and the claim that each passes its confirming runs.
-std::string recommendations(const std::vector<MethodRow>& rows, const std::vector<ojson>& grid,
-                            std::vector<Claim>& claims) {
-  std::ostringstream md;
-  md << "**Recommendations.** A setting is recommended only under the one advice rule of every "
-        "study (docs/design.md, \"Advice\"): "
-     << describe_rule() << ".\n\n";
-  for (std::size_t t = 0; t < kTargets.size(); ++t) {
-    std::vector<Advice> all;
-    const MethodRow* cheapest = nullptr;
-    for (const auto& m : rows) {
-      if (m.recommended.size() <= t || !m.recommended[t]) continue;
-      all.push_back(m.recommended[t]->advice);
-      if (!cheapest || m.recommended[t]->work < cheapest->recommended[t]->work) cheapest = &m;
-    }
-    md << "- error " << sci(kTargets[t], 1) << ": " << all.size() << " of " << rows.size()
-       << " methods have a setting of methods_grid that passes the rule";
-    if (cheapest) {
-      const Setting& s = *cheapest->recommended[t];
-      md << "; the cheapest is " << method_name(*cheapest) << " at " << setting_text(s, false)
-         << ", c dt/h " << shortest((*s.row)["courant"].get<double>()) << " (limit "
-         << fixed((*s.row)["courant_spectral"].get<double>(), 3) << "), error over time "
-         << sci((*s.row)["max_error_over_time"].get<double>())
-         << "; margin: " << margin_text(*s.row, grid)
-         << "; confirming runs: " << describe_confirming(s.advice);
-    }
-    md << ".\n";
-    claims.push_back(recommendations_claim(all, kTargets[t]));
-  }
-  md << "\n";
+  md << ".";
   return md.str();
 }
 
@@ -339,13 +253,7 @@ std::string methods_table(const std::vector<MethodRow>& rows, const CellsPerWave
      << phase
      << " phase error | order in h | order in dt | "
         "spectral limit (h/c) | survival edge (h/c) | accuracy edge (h/c) | node visits per "
-        "particle-step";
-  for (double t : kTargets)
-    md << " | recommended for " << param(t) << " (particle-steps)";
-  md << " |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|";
-  for (std::size_t t = 0; t < kTargets.size(); ++t)
-    md << "---|";
-  md << "\n";
+        "particle-step |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& m : rows) {
     md << "| " << basis_text(m.key) << " | " << transfer_text(m.key) << " | " << std::get<4>(m.key)
        << " | " << table1_text(m) << " | " << table1_over_time(m) << " | " << table1_energy(m)
@@ -354,7 +262,6 @@ std::string methods_table(const std::vector<MethodRow>& rows, const CellsPerWave
        << edge_text(*m.edge, "dt_edge_over_cfl");
     if (has_number(*m.edge, "dt_edge") && outcome(*m.edge) == "meaningless") md << " (meaningless)";
     md << " | " << edge_text(*m.edge, "dt_accurate_over_cfl") << " | " << node_visits(m.key)
-       << " | " << setting_text(m.recommended[0]) << " | " << setting_text(m.recommended[1])
        << " |\n";
   }
   return md.str();
@@ -388,28 +295,16 @@ std::string methods_data(const std::vector<MethodRow>& rows, const std::string& 
   std::ostringstream csv;
   csv << header << "# panel: update order (" << codes(kUpdates) << "); series: basis ("
       << codes(kBases) << "); shape: transfer (" << codes(kTransfers) << ")\n"
-      << "panel,series,shape,edge_over_cfl,error\n";
+      << "panel,series,shape,edge_over_cfl,error,meaningless_at_edge\n";
   for (const auto& m : rows) {
     const auto e = m.table1 ? over_time_of(*m.table1) : std::nullopt;
     if (!e || !has_number(*m.edge, "dt_edge_over_cfl")) continue;
     csv << index_in(kUpdates, std::get<4>(m.key)) << ',' << index_in(kBases, basis_text(m.key))
         << ',' << index_in(kTransfers, transfer_text(m.key)) << ','
-        << shortest((*m.edge)["dt_edge_over_cfl"].get<double>()) << ',' << shortest(*e) << '\n';
+        << shortest((*m.edge)["dt_edge_over_cfl"].get<double>()) << ',' << shortest(*e) << ','
+        << (outcome(*m.edge) == "meaningless" ? 1 : 0) << '\n';
   }
   return csv.str();
-}
-
-// The confirming runs of every candidate setting (advice.hpp), kConfirmingRuns per candidate.
-std::vector<RunParams> methods_follow_up(const FollowUpContext& c) {
-  const StudyInput& in = c.inputs.at("methods_grid");
-  if (!in.present() || !in.spec) return {};
-  const std::vector<ojson> grid(in.doc["cases"].begin(), in.doc["cases"].end());
-  std::vector<RunParams> runs;
-  for (const std::size_t i : candidates(grid)) {
-    for (auto& p : confirming_runs(in.spec->cases.at(i).params))
-      runs.push_back(std::move(p));
-  }
-  return runs;
 }
 
 // How the error at Table 1's setting and the orders are measured, every number from the rows
@@ -444,12 +339,13 @@ std::string how_to_read_the_setting(const std::vector<ojson>& grid) {
 
 StudyReport methods_report(const ReportContext& c) {
   const std::vector<ojson> grid = grid_rows(c.inputs);
-  const auto rows = method_rows(c.rows, grid, c.follow_up);
-  std::vector<Claim> claims;
+  const auto rows = method_rows(c.rows, grid);
   std::ostringstream md;
   md << "## Results\n\n**Reading.** " << reading(rows) << "\n\n"
-     << recommendations(rows, grid, claims) << cost_metric_text() << "\n\n![" << c.spec.title
-     << "](" << c.spec.name
+     << "This table measures; it does not recommend: every recommendation of this project is "
+        "made in [advice.md](advice.md), from settings checked at the corners of a stated "
+        "region.\n\n"
+     << cost_metric_text() << "\n\n![" << c.spec.title << "](" << c.spec.name
      << ".png)\n\nThe figure places each method by its survival edge at the tiny "
      << "amplitude (x) and its error over time at Table 1's setting (y), one panel per update "
         "order; a "
@@ -477,36 +373,19 @@ StudyReport methods_report(const ReportContext& c) {
      << "- *node visits per particle-step*: the nodes of the stencil times the passes over it "
         "that one step makes (counted from the code: p2g, g2p and the stress update, plus what "
         "the update order and the transfer add), what makes one particle-step of a method dearer "
-        "than another's; the measured time per particle-step is in performance.md;\n"
-     << "- *recommended for a target*: of the settings of methods_grid (the Table 1 setting and "
-        "the grids and Courant numbers it sweeps), the one with the fewest particle-steps (in "
-        "brackets) that passes the advice "
-        "rule above for that target, confirming runs included; a meaningless, unstable or too "
-        "short run never counts. Its *margin*: the first larger step of the same setting in "
-        "methods_grid that is unstable or meaningless, as a multiple of its step.\n\n";
+        "than another's; the measured time per particle-step is in performance.md.\n\n";
   if (grid.empty()) {
     md << "methods_grid has not been run into this folder: the columns it provides are `–`.\n\n";
   }
   md << methods_table(rows, cells_per_wavelength(c.inputs));
-  ojson recommended = ojson::array();
-  for (const auto& m : rows) {
-    for (std::size_t t = 0; t < m.recommended.size() && t < kTargets.size(); ++t) {
-      if (m.recommended[t])
-        recommended.push_back(recommended_json(m.recommended[t]->advice, kTargets[t]));
-    }
-  }
-  return StudyReport{.markdown = md.str(),
-                     .data_csv = methods_data(rows, c.csv_header),
-                     .json = {{"recommended", recommended}},
-                     .claims = std::move(claims)};
+  return StudyReport{.markdown = md.str(), .data_csv = methods_data(rows, c.csv_header)};
 }
 
 std::string methods_index(const Spec& spec, const std::vector<ojson>& rows) {
   std::ostringstream md;
   md << "![" << spec.title << "](" << spec.name << ".png)\n\n**What it shows.** " << rows.size()
-     << " methods (basis x transfer x update order), each with its error, orders, edges, work "
-        "and the cheapest setting for a target error: the table to choose a method and a time "
-        "step from. Details: ["
+     << " methods (basis x transfer x update order), each with its error, orders, edges and "
+        "work per particle-step; the recommendations are advice.md's. Details: ["
      << spec.name << ".md](" << spec.name << ".md).\n\n";
   return md.str();
 }
@@ -522,12 +401,10 @@ std::string methods_subtitle(const Spec&, const ojson& doc) {
 
 const StudyRegistration kMethods{{
     .name = "methods",
-    .summary = "one row per method: error, orders, tiny-amplitude edges, work, cheapest setting "
-               "for a target error",
+    .summary = "one row per method: error, orders, tiny-amplitude edges, work per particle-step",
     .work = CaseWork::edge_search,
     .inputs = {{.name = "methods_grid", .required = true}, {.name = "dispersion"}},
     .figure = true,
-    .follow_up = methods_follow_up,
     .report = methods_report,
     .index = methods_index,
     .figure_subtitle = methods_subtitle,

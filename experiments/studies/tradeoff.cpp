@@ -1,9 +1,9 @@
 // The speed/accuracy trade: error against cost across methods, time-step policies and their
 // parameters. Cost is the deterministic work of a run, particles x steps (particle-steps); the
 // machine's wall times are kept apart (performance.md, timings.json), so a rerun writes the same
-// report. The settings recommended under the one advice rule (advice.hpp), with their confirming
-// runs; from the rows of every scene, each parameter's stable range with a margin, and the rows
-// it rests on. Per scene: the cheapest setting for each accuracy, how the runs of each policy
+// report. It measures and recommends nothing: every recommendation is advice.md's (advice.hpp).
+// From the rows of every scene, each parameter's stable range with a margin, and the rows it
+// rests on. Per scene: the cheapest setting for each accuracy, how the runs of each policy
 // ended, and per E every setting with the Pareto front marked.
 #include <algorithm>
 #include <iomanip>
@@ -261,154 +261,8 @@ ojson endings_json(const std::vector<ojson>& rows) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Recommendations under the one advice rule (advice.hpp; docs/design.md, "Advice")
-
-// The targets a setting is recommended for: the accuracies of the cheapest-setting table.
-// Per E, target and method, the kConfirmedPerMethod cheapest candidates (settings meeting parts
-// (a) and (b) of the rule in their own run) are rerun as confirming runs; the cheapest of all
-// that pass is recommended. Only a run with a recorded spectral limit can meet part (a).
-constexpr std::size_t kConfirmedPerMethod = 2;
-
-// Indices (into `rows`, the records of the spec's cases) of the candidates to confirm, in
-// ascending order: the same list for the follow-up runs and for the report that reads them.
-std::vector<std::size_t> to_confirm(const std::vector<ojson>& rows) {
-  std::map<std::tuple<Key, std::string, std::size_t>, std::vector<std::size_t>> groups;
-  for (std::size_t i = 0; i < rows.size(); ++i) {
-    for (std::size_t t = 0; t < kTargets.size(); ++t) {
-      if (candidate(rows[i], kTargets[t]))
-        groups[{Key(rows[i]["E"].get<double>(), "E"), method_label(rows[i]), t}].push_back(i);
-    }
-  }
-  std::set<std::size_t> chosen;
-  for (auto& [key, idx] : groups) {
-    std::sort(idx.begin(), idx.end(),
-              [&](std::size_t a, std::size_t b) { return cheaper(rows, a, b); });
-    for (std::size_t k = 0; k < idx.size() && k < kConfirmedPerMethod; ++k)
-      chosen.insert(idx[k]);
-  }
-  return {chosen.begin(), chosen.end()};
-}
-
-std::vector<RunParams> tradeoff_follow_up(const FollowUpContext& c) {
-  std::vector<RunParams> runs;
-  for (const std::size_t i : to_confirm(c.rows)) {
-    for (auto& p : confirming_runs(c.spec.cases.at(i).params))
-      runs.push_back(std::move(p));
-  }
-  return runs;
-}
-
-// Per E and target: how many settings were candidates and confirmed, and the cheapest that
-// passes the whole rule.
-struct Recommendation {
-  double E = 0, target = 0;
-  int candidates = 0, confirmed = 0, passed = 0;
-  std::optional<std::size_t> row;  // into the rows
-  Advice advice;                   // of `row`
-};
-
-struct Recommendations {
-  std::vector<Recommendation> cells;           // per E, then per target
-  std::vector<std::vector<Advice>> by_target;  // every recommended setting, per target
-  std::set<std::string> unlimited_scenes;      // scenes whose runs record no spectral limit
-};
-
-Recommendations recommend(const std::vector<ojson>& rows, const std::vector<ojson>& follow_up) {
-  Recommendations out;
-  out.by_target.resize(kTargets.size());
-  std::map<std::size_t, std::vector<ojson>> confirming;
-  const auto list = to_confirm(rows);
-  for (std::size_t k = 0; k < list.size() && (k + 1) * kConfirmingRuns <= follow_up.size(); ++k) {
-    const auto first = follow_up.begin() + std::ptrdiff_t(k * kConfirmingRuns);
-    confirming[list[k]] = std::vector<ojson>(first, first + std::ptrdiff_t(kConfirmingRuns));
-  }
-  std::vector<double> Es;
-  for (const auto& r : rows) {
-    if (!has_number(r, "courant_spectral")) {
-      out.unlimited_scenes.insert(text(r, "scene"));
-      continue;
-    }
-    const double E = r["E"].get<double>();
-    if (std::find(Es.begin(), Es.end(), E) == Es.end()) Es.push_back(E);
-  }
-  for (double E : Es) {
-    for (std::size_t t = 0; t < kTargets.size(); ++t) {
-      Recommendation rec{.E = E, .target = kTargets[t]};
-      for (std::size_t i = 0; i < rows.size(); ++i) {
-        if (rows[i]["E"].get<double>() != E || !candidate(rows[i], kTargets[t])) continue;
-        ++rec.candidates;
-        const auto conf = confirming.find(i);
-        if (conf == confirming.end()) continue;
-        ++rec.confirmed;
-        Advice a = judge(rows[i], kTargets[t], conf->second);
-        if (!a.recommended()) continue;
-        ++rec.passed;
-        if (!rec.row || cheaper(rows, i, *rec.row)) {
-          rec.row = i;
-          rec.advice = std::move(a);
-        }
-      }
-      if (rec.row) out.by_target[t].push_back(rec.advice);
-      out.cells.push_back(std::move(rec));
-    }
-  }
-  return out;
-}
-
-// The recommendations: the rule, then per E and target the cheapest setting that passes it
-// with its own numbers and its confirming runs.
-std::string recommendations_markdown(const std::vector<ojson>& rows, const Recommendations& recs) {
-  std::ostringstream md;
-  md << "**Recommendations.** A setting is recommended only under the one advice rule of every "
-        "study (docs/design.md, \"Advice\"): "
-     << describe_rule() << ". Per E, target and method, the " << kConfirmedPerMethod
-     << " cheapest candidates (settings meeting the first two parts in their own run) are rerun "
-        "as the confirming runs; the cheapest setting of all that pass is recommended.";
-  if (!recs.unlimited_scenes.empty()) {
-    std::vector<std::string> names(recs.unlimited_scenes.begin(), recs.unlimited_scenes.end());
-    md << " The runs of the scene" << (names.size() > 1 ? "s " : " ") << list_of(names)
-       << " record no spectral limit (their layout is not the uniform bar's, and the dense "
-          "analysis is not recorded for them), so none of their settings can be recommended.";
-  }
-  md << " The *margin* is the distance from the recommended step to the first larger step of "
-        "the same setting that the study ran and found unstable or meaningless.";
-  md << "\n\n| E | target | candidates (confirmed, passed) | recommended | c dt/h (limit) | error "
-        "over time | particle-steps | margin | confirming runs |\n"
-        "|---|---|---|---|---|---|---|---|---|\n";
-  for (const auto& rec : recs.cells) {
-    md << "| " << shortest(rec.E) << " | " << sci(rec.target, 1) << " | " << rec.candidates << " ("
-       << rec.confirmed << ", " << rec.passed << ") | ";
-    if (!rec.row) {
-      md << "none | – | – | – | – | – |\n";
-      continue;
-    }
-    const ojson& r = rows[*rec.row];
-    md << setting(r) << " | " << shortest(r["courant"].get<double>()) << " ("
-       << fixed(r["courant_spectral"].get<double>(), 3) << ") | "
-       << sci(r["max_error_over_time"].get<double>()) << " | " << work(r) << " | "
-       << margin_text(r, rows) << " | " << describe_confirming(rec.advice) << " |\n";
-  }
-  md << "\n";
-  return md.str();
-}
-
-ojson recommendations_json(const std::vector<ojson>& rows, const Recommendations& recs) {
-  ojson j = ojson::array();
-  for (const auto& rec : recs.cells) {
-    j.push_back({{"E", rec.E},
-                 {"target", rec.target},
-                 {"candidates", rec.candidates},
-                 {"confirmed", rec.confirmed},
-                 {"passed", rec.passed},
-                 {"recommended", rec.row ? ojson(setting(rows[*rec.row])) : ojson(nullptr)},
-                 {"key", rec.row ? rows[*rec.row]["key"] : ojson(nullptr)}});
-  }
-  return j;
-}
-
-// ---------------------------------------------------------------------------------------------
-// Stable ranges with a margin, a description of the runs (recommendations follow the one advice
-// rule above): a value v of a parameter is stable with a margin for a method and policy if, at
+// Stable ranges with a margin, a description of the runs (recommendations are advice.md's): a
+// value v of a parameter is stable with a margin for a method and policy if, at
 // every E of the scene, they were run at v and at some p >= 1.5 v, and every one of their runs
 // with the parameter up to p (on every grid) is stable and takes no step above its scheme's
 // spectral limit (where recorded). The largest such v is reported.
@@ -634,8 +488,8 @@ std::string advised_text(const MarginRange& a) {
 std::string advice_table(const TradeRows& t, const std::vector<MarginRange>& all) {
   std::ostringstream md;
   md << "### Stable ranges of each policy's parameter, over every scene\n\nA description of the "
-        "runs, not a recommendation (recommendations follow the one rule above, which also asks "
-        "for accuracy, a margin below the spectral limit and confirming runs). A value v of a "
+        "runs, not a recommendation (advice.md recommends, from settings checked at the corners "
+        "of a stated region). A value v of a "
         "parameter (a fixed dt, the CFL factor C, the safety factor s) is stable with a "
      << shortest(kMargin) << "x margin for a method and policy if, at every E the study runs ("
      << list_of_E(t.Es) << "), they were run at v and at some p >= " << shortest(kMargin)
@@ -647,10 +501,7 @@ std::string advice_table(const TradeRows& t, const std::vector<MarginRange>& all
      << shortest(kMargin)
      << " times it or beyond is not shown: its margin is not checked. These runs lie at A / h = "
      << listing(t.rows, "A_over_h") << " and c T = " << span(numbers(t.rows, "cT"), 3)
-     << " wave passes, and a range is checked there only, while a recommendation above is "
-        "confirmed at an amplitude "
-     << shortest(kAdviceRule.amplitude_factor) << " times smaller and on a run "
-     << shortest(kAdviceRule.length_factor) << " times as long.\n\n"
+     << " wave passes, and a range is checked there only.\n\n"
      << "| method and policy | stable with margin | rests on | checked to | the next value run, "
         "not stable with margin |\n|---|---|---|---|---|\n";
   for (const auto& a : all) {
@@ -741,7 +592,7 @@ std::string cheapest_table(const TradeRows& t, const CheapestByE& best,
   std::ostringstream md;
   md << "### The cheapest setting for each accuracy" << of_scene
      << "\n\nEach reached the accuracy in one run, with no margin and no confirming run: "
-        "what is recommended is in \"What to pick\" above.\n\n| E |";
+        "the cheapest on these runs, not a recommendation (advice.md recommends).\n\n| E |";
   for (double target : kTargets)
     md << " max error <= " << sci(target, 1) << " |";
   md << "\n|---|";
@@ -998,14 +849,11 @@ void grid_and_step_claims(const TradeRows& t, std::vector<Claim>& claims) {
   claims.push_back(bound);
 }
 
-// What to pick: the recommendations under the one rule and their claims; GIMP against MPM over
-// every scene as a claim; the claims the bar's rows decide; then the stable ranges of each
+// What the runs say about picking a setting (advice.md recommends): GIMP against MPM over every
+// scene as a claim; the claims the bar's rows decide; then the stable ranges of each
 // policy's parameter (a description).
 std::string advice_section(const std::vector<ojson>& rows, const std::vector<SceneRows>& scenes,
-                           const Recommendations& recs, const std::vector<MarginRange>& ranges,
-                           std::vector<Claim>& claims) {
-  for (std::size_t t = 0; t < kTargets.size(); ++t)
-    claims.push_back(recommendations_claim(recs.by_target[t], kTargets[t]));
+                           const std::vector<MarginRange>& ranges, std::vector<Claim>& claims) {
   MethodComparison methods;
   for (const auto& sc : scenes) {
     const MethodComparison c = mpm_against_gimp(TradeRows(sc.rows));
@@ -1022,7 +870,11 @@ std::string advice_section(const std::vector<ojson>& rows, const std::vector<Sce
   gimp.holds = methods.compared > 0 && methods.gimp_better == methods.compared;
   claims.push_back(gimp);
   grid_and_step_claims(TradeRows(scenes.front().rows), claims);
-  return "### What to pick\n\n" + recommendations_markdown(rows, recs) +
+  return "### What the runs say about picking a setting\n\nThis study measures; it does not "
+         "recommend. Every recommendation of this project is made in [advice.md](advice.md), "
+         "from settings checked at the corners of a stated region (the finest grid, the longest "
+         "run, both amplitudes, both scenes, both boundaries and a jittered layout): a setting "
+         "that is cheapest here is cheapest on these runs only.\n\n" +
          advice_table(TradeRows(rows), ranges);
 }
 
@@ -1187,19 +1039,12 @@ std::string tradeoff_subtitle(const Spec& spec, const ojson& doc) {
 // The study's JSON: the advice from every scene's rows, per scene how the runs of each policy
 // ended, and what the figure draws.
 ojson tradeoff_json(const std::vector<ojson>& rows, const std::vector<SceneRows>& scenes,
-                    const Recommendations& recs, const std::vector<MarginRange>& ranges) {
+                    const std::vector<MarginRange>& ranges) {
   ojson endings = ojson::object();
   for (const auto& sc : scenes)
     endings[sc.scene] = endings_json(sc.rows);
   const FigureCount n = figure_count(scenes.front().rows);
-  ojson recommended = ojson::array();
-  for (std::size_t t = 0; t < kTargets.size(); ++t) {
-    for (const auto& a : recs.by_target[t])
-      recommended.push_back(recommended_json(a, kTargets[t]));
-  }
-  return {{"recommendations", recommendations_json(rows, recs)},
-          {"recommended", recommended},
-          {"margin", kMargin},
+  return {{"margin", kMargin},
           {"stable_ranges", advice_json(TradeRows(rows), ranges)},
           {"endings", endings},
           {"figure",
@@ -1231,9 +1076,9 @@ std::vector<std::size_t> twin_rows(const std::vector<ojson>& rows) {
   return idx;
 }
 
-// The follow-up runs: the confirming runs of the advice, then the periodic twins.
+// The follow-up runs: the periodic twins.
 std::vector<RunParams> tradeoff_follow_ups(const FollowUpContext& c) {
-  std::vector<RunParams> runs = tradeoff_follow_up(c);
+  std::vector<RunParams> runs;
   for (const std::size_t i : twin_rows(c.rows)) {
     RunParams p = c.spec.cases.at(i).params;
     p.bc = Boundary::periodic;
@@ -1246,7 +1091,7 @@ std::vector<RunParams> tradeoff_follow_ups(const FollowUpContext& c) {
 std::map<std::size_t, const ojson*> periodic_twins(const std::vector<ojson>& rows,
                                                    const std::vector<ojson>& follow_up) {
   std::map<std::size_t, const ojson*> out;
-  std::size_t next = to_confirm(rows).size() * kConfirmingRuns;
+  std::size_t next = 0;
   for (const std::size_t i : twin_rows(rows)) {
     if (next >= follow_up.size()) break;
     out[i] = &follow_up[next++];
@@ -1309,16 +1154,14 @@ std::string walls_cost_section(const std::vector<ojson>& rows,
 
 StudyReport tradeoff_report(const ReportContext& c) {
   const auto scenes = by_scene(c.rows);
-  const Recommendations recs = recommend(c.rows, c.follow_up);
   const auto ranges = stable_ranges(TradeRows(c.rows));
   StudyReport report;
-  report.markdown = results_intro(c.spec) +
-                    advice_section(c.rows, scenes, recs, ranges, report.claims) +
+  report.markdown = results_intro(c.spec) + advice_section(c.rows, scenes, ranges, report.claims) +
                     walls_cost_section(c.rows, periodic_twins(c.rows, c.follow_up));
   for (std::size_t i = 0; i < scenes.size(); ++i)
     report.markdown += scene_markdown(scenes[i].rows, i == 0);
   report.data_csv = tradeoff_data_csv(scenes.front().rows, c.csv_header);
-  report.json = tradeoff_json(c.rows, scenes, recs, ranges);
+  report.json = tradeoff_json(c.rows, scenes, ranges);
   return report;
 }
 
@@ -1333,9 +1176,8 @@ const StudyRegistration kTradeoff{{
         [](const Spec& spec, const std::vector<ojson>&) {
           return "![" + spec.title + "](" + spec.name + ".png)\n\n**What it shows.** The cost of " +
                  "each accuracy in particle-steps across methods, time-step policies and their "
-                 "parameters, the Pareto front, the cheapest setting for each target, the "
-                 "settings recommended under the one advice rule with their confirming runs, and "
-                 "each parameter's stable range: [" +
+                 "parameters, the Pareto front, the cheapest run for each target on these runs and "
+                 "each parameter's stable range; the recommendations are advice.md's: [" +
                  spec.name + ".md](" + spec.name + ".md).\n\n";
         },
     .figure_subtitle = tradeoff_subtitle,

@@ -1,0 +1,291 @@
+// The advice rule (experiments/studies/advice.hpp): the corners of a setting's region, how a
+// failing corner shrinks the region, the answer to a problem (the cheapest setting whose region
+// holds it) and every refusal, the data file `mpmstab advise` reads, and the committed advice
+// itself, rerun on the problem it answers.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "advice.hpp"
+#include "files.hpp"
+#include "run/run.hpp"
+#include "support.hpp"
+
+namespace mpmstab {
+namespace {
+
+using ojson = nlohmann::ordered_json;
+
+RunParams base_run(int cells, double C) {
+  RunParams p;
+  p.method = Method::gimp;
+  p.E = 4;  // c = 2
+  p.A = kRegionRule.amplitudes[1];
+  p.T = kRegionRule.lengths.front() / 2;
+  p.cells = cells;
+  p.stepping.policy = TimeStepPolicy::cfl;
+  p.stepping.cfl_factor = C;
+  return p;
+}
+
+TEST(Advice, CornersCoverEachAxisOfTheRegionAtTheSameCourantNumber) {
+  const RunParams base = base_run(50, 0.25);
+  const auto corners = region_corners(base);
+  ASSERT_EQ(corners.size(), kRegionCorners);
+  int finer = 0, other_scene = 0, periodic = 0, jittered = 0;
+  for (const auto& c : corners) {
+    const RunParams& p = c.params;
+    EXPECT_DOUBLE_EQ(p.T * wave_speed(p), c.length);  // c T / L, whatever E
+    EXPECT_EQ(p.stepping.cfl_factor, 0.25);
+    EXPECT_EQ(p.method, base.method);
+    if (c.kind == CornerKind::finer) {
+      ++finer;
+      EXPECT_EQ(p.cells, 50 * kRegionRule.refine);
+      EXPECT_EQ(c.length, kRegionRule.lengths.front());
+    } else {
+      EXPECT_EQ(p.cells, 50);
+    }
+    if (c.kind == CornerKind::smallest_A) {
+      EXPECT_EQ(p.A, kRegionRule.amplitudes[0]);
+    }
+    if (c.kind == CornerKind::largest_A || c.kind == CornerKind::periodic ||
+        c.kind == CornerKind::other_scene || c.kind == CornerKind::jittered) {
+      EXPECT_EQ(p.A, kRegionRule.amplitudes[2]);
+    }
+    other_scene += p.scene == SceneKind::steffen;
+    periodic += p.bc == Boundary::periodic;
+    jittered += p.layout.jitter > 0;
+  }
+  // Each of the scene, boundary and layout corners once per length; the finer grid once.
+  EXPECT_EQ(finer, 1);
+  EXPECT_EQ(other_scene, 2);
+  EXPECT_EQ(periodic, 2);
+  EXPECT_EQ(jittered, 2);
+}
+
+CornerRun corner(CornerKind kind, double length, double error_over_A,
+                 const char* outcome = "stable") {
+  CornerRun c;
+  c.kind = kind;
+  c.length = length;
+  c.A = 0.015;
+  c.cells = 50;
+  c.outcome = outcome;
+  c.error_over_A = error_over_A;
+  return c;
+}
+
+// A setting whose every corner passes at `error`, to both lengths.
+CheckedSetting passing(double courant, int cells, double error) {
+  CheckedSetting s;
+  s.method = "gimp";
+  s.transfer = "flip";
+  s.update = "usl";
+  s.cells = cells;
+  s.courant = courant;
+  s.courant_spectral = 0.75;
+  s.corners.push_back(corner(CornerKind::base, kRegionRule.lengths.front(), error));
+  for (const auto& c : region_corners(base_run(cells, courant)))
+    s.corners.push_back(corner(c.kind, c.length, error));
+  s.regions = regions_of(s);
+  return s;
+}
+
+Problem problem(double A, double cT, double target, const char* scene = "bar") {
+  Problem p;
+  p.A = A;
+  p.cT = cT;
+  p.target = target;
+  p.scene = scene;
+  return p;
+}
+
+CornerRun* find(CheckedSetting& s, CornerKind kind, double length) {
+  for (auto& c : s.corners)
+    if (c.kind == kind && c.length == length) return &c;
+  return nullptr;
+}
+
+TEST(Advice, AFailingCornerShrinksTheRegionAndIsNamed) {
+  const double short_ = kRegionRule.lengths.front(), long_ = kRegionRule.lengths.back();
+  CheckedSetting s = passing(0.25, 50, 0.01);
+  ASSERT_EQ(s.regions.size(), 2u);
+  EXPECT_EQ(s.regions[1].A_min, kRegionRule.amplitudes[0]);
+  EXPECT_EQ(s.regions[1].A_max, kRegionRule.amplitudes[2]);
+  EXPECT_TRUE(s.regions[1].periodic && s.regions[1].other_scene && s.regions[1].jittered);
+  EXPECT_EQ(s.regions[1].cells_max, 50 * kRegionRule.refine);
+
+  // The largest amplitude fails to the longer length: the region stops at the middle one, and
+  // the scene, boundary and layout corners (run at the largest) leave it though they pass.
+  find(s, CornerKind::largest_A, long_)->outcome = "unstable";
+  // An inaccurate neo-Hookean corner to the shorter length takes that scene out there.
+  find(s, CornerKind::other_scene, short_)->error_over_A = 0.2;
+  // The finer grid fails: the region keeps the setting's cells only.
+  find(s, CornerKind::finer, short_)->outcome = "meaningless";
+  s.regions = regions_of(s);
+  ASSERT_EQ(s.regions.size(), 2u);
+  const Region& shorter = s.regions[0];
+  EXPECT_FALSE(shorter.other_scene);
+  EXPECT_TRUE(shorter.periodic);
+  EXPECT_EQ(shorter.cells_max, 50);
+  const Region& longer = s.regions[1];
+  EXPECT_EQ(longer.A_max, kRegionRule.amplitudes[1]);
+  EXPECT_FALSE(longer.periodic || longer.other_scene || longer.jittered);
+  EXPECT_EQ(longer.excluded.size(), 2u);  // the largest amplitude and the finer grid
+  EXPECT_NE(region_text(longer).find("these cells only"), std::string::npos);
+
+  // A base run that fails to the longer length leaves no region there.
+  find(s, CornerKind::base, long_)->error_over_A = 0.5;
+  s.regions = regions_of(s);
+  ASSERT_EQ(s.regions.size(), 1u);
+  EXPECT_EQ(s.regions[0].length, short_);
+
+  // Beyond the spectral limit / limit_margin there is no region at all, however accurate.
+  CheckedSetting fast = passing(0.7, 50, 0.01);
+  EXPECT_TRUE(fast.regions.empty());
+}
+
+TEST(Advice, AnswersWithTheCheapestSettingWhoseRegionHoldsTheProblem) {
+  // Cheap but inaccurate, dear and accurate, and one between.
+  const std::vector<CheckedSetting> settings = {passing(0.5, 25, 0.05), passing(0.25, 100, 1e-3),
+                                                passing(0.5, 50, 4e-3)};
+  Problem p = problem(0.015, 2, 0.01);
+  Answer a = advise(settings, p);
+  ASSERT_NE(a.setting, nullptr) << a.refusal;
+  EXPECT_EQ(a.setting->cells, 50);  // 0.05 > 0.01 / 2; 4e-3 <= 0.01 / 2
+  EXPECT_EQ(a.particle_steps, problem_particle_steps(settings[2], 2));
+  EXPECT_EQ(a.particle_steps, 2.0 * 50 * 200);  // ppc cells x c T cells / C
+  const ojson j = answer_json(a, p);
+  for (const char* key : {"method", "transfer", "update", "cells", "courant",
+                          "predicted_error_over_A", "particle_steps", "region"})
+    EXPECT_TRUE(j.contains(key)) << key;
+
+  // The shortest region holding length_factor x c T answers: c T = 20 needs the longer one.
+  p.cT = 20;
+  a = advise(settings, p);
+  ASSERT_NE(a.setting, nullptr);
+  EXPECT_EQ(a.region->length, kRegionRule.lengths.back());
+  // A method filter.
+  p.methods = {"mpm"};
+  EXPECT_EQ(advise(settings, p).setting, nullptr);
+}
+
+TEST(Advice, RefusesAProblemOutsideEveryRegionNamingWhatIsOutside) {
+  std::vector<CheckedSetting> settings = {passing(0.5, 50, 4e-3)};
+  auto refusal = [&](const Problem& p) {
+    const Answer a = advise(settings, p);
+    EXPECT_EQ(a.setting, nullptr);
+    return a.refusal;
+  };
+  EXPECT_NE(refusal(problem(0.2, 2, 0.01)).find("--A"), std::string::npos);
+  EXPECT_NE(refusal(problem(0.015, 1000, 0.01)).find("--cT"), std::string::npos);
+  EXPECT_NE(refusal(problem(0.015, 2, 1e-3)).find("--error"), std::string::npos);
+  // The neo-Hookean scene fails its corners: that scene is outside.
+  for (auto& c : settings[0].corners)
+    if (c.kind == CornerKind::other_scene) c.outcome = "unstable";
+  settings[0].regions = regions_of(settings[0]);
+  EXPECT_NE(refusal(problem(0.015, 2, 0.01, "steffen")).find("--scene"), std::string::npos);
+}
+
+TEST(Advice, DataRoundTripsAndAMalformedSettingIsRefusedByKey) {
+  const CheckedSetting s = passing(0.25, 50, 0.01);
+  const CheckedSetting back = checked_setting_from_json(to_json(s));
+  EXPECT_EQ(to_json(back), to_json(s));
+  ojson bad = to_json(s);
+  bad.erase("courant");
+  try {
+    checked_setting_from_json(bad);
+    FAIL() << "a setting without courant was read";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("courant"), std::string::npos) << e.what();
+  }
+  bad = to_json(s);
+  bad["regions"][0]["A_min"] = "small";
+  EXPECT_THROW(checked_setting_from_json(bad), InputError);
+  bad = to_json(s);
+  bad["corners"][0]["kind"] = "sideways";
+  EXPECT_THROW(checked_setting_from_json(bad), InputError);
+}
+
+// The command: an answer as JSON from a data file, status 2 for a problem outside every region,
+// a bad option value or a missing or malformed file, and nothing written.
+TEST(Advice, TheCommandAnswersFromItsDataAndRefusesWithStatusTwo) {
+  const auto dir = std::filesystem::temp_directory_path() / "mpmstab_advise_test";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const auto data = dir / "advice.json";
+  {
+    ojson settings = ojson::array({to_json(passing(0.5, 50, 4e-3))});
+    std::ofstream(data) << ojson{{"study", {{"settings", settings}}}}.dump();
+  }
+  const std::string file = data.string();
+  auto ok = test_support::run_mpmstab("advise --A 0.015 --cT 2 --error 0.01 --json --data " + file);
+  ASSERT_EQ(ok.status, 0) << ok.output;
+  const ojson j = ojson::parse(ok.output);
+  EXPECT_EQ(j["cells"], 50);
+  EXPECT_EQ(j["courant"], 0.5);
+  auto outside = test_support::run_mpmstab("advise --A 0.5 --cT 2 --error 0.01 --data " + file);
+  EXPECT_EQ(outside.status, 2);
+  EXPECT_NE(outside.output.find("--A"), std::string::npos) << outside.output;
+  EXPECT_EQ(test_support::run_mpmstab("advise --A 0.015 --cT 2 --error 0 --data " + file).status,
+            2);
+  EXPECT_EQ(test_support::run_mpmstab("advise --A 0.015 --cT 2 --error 0.01 --scene mode "
+                                      "--data " +
+                                      file)
+                .status,
+            2);
+  EXPECT_EQ(test_support::run_mpmstab("advise --A 0.015 --cT 2 --error 0.01 --data " +
+                                      (dir / "absent.json").string())
+                .status,
+            2);
+  std::ofstream(dir / "bad.json") << "{\"study\": {\"settings\": [{\"method\": 3}]}}";
+  const auto bad = test_support::run_mpmstab("advise --A 0.015 --cT 2 --error 0.01 --data " +
+                                             (dir / "bad.json").string());
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.output.find("method"), std::string::npos) << bad.output;
+  std::filesystem::remove_all(dir);
+}
+
+// The committed advice, rerun: the answer to the problem of docs/design.md's example is run on
+// that problem and on 4 times its c T, and each must meet the target; its base run must
+// reproduce the committed error bit for bit.
+TEST(Advice, TheCommittedAnswerMeetsItsTargetOnTheProblemAndFourTimesItsLength) {
+  const auto file = std::filesystem::path(MPMSTAB_SOURCE_DIR) / "results" / "advice.json";
+  std::ifstream in(file);
+  ASSERT_TRUE(in) << file;
+  const ojson doc = ojson::parse(in);
+  std::vector<CheckedSetting> settings;
+  for (const auto& s : doc["study"]["settings"])
+    settings.push_back(checked_setting_from_json(s));
+  const Problem p = problem(0.015, 8, 0.01);
+  const Answer a = advise(settings, p);
+  ASSERT_NE(a.setting, nullptr) << a.refusal;
+  const CheckedSetting& s = *a.setting;
+  RunParams r;
+  r.method = *parse_method(s.method);
+  ASSERT_EQ(s.transfer.find('('), std::string::npos) << "this test runs plain transfers only";
+  r.transfer = *parse_transfer(s.transfer);
+  r.update = *parse_update_order(s.update);
+  r.cells = s.cells;
+  r.ppc = s.ppc;
+  r.E = 1;
+  r.A = p.A;
+  r.stepping.policy = TimeStepPolicy::cfl;
+  r.stepping.cfl_factor = s.courant;
+  for (const double cT : {p.cT, kRegionRule.length_factor * p.cT}) {
+    r.T = cT;
+    const RunResult res = run(r);
+    ASSERT_TRUE(res.outcome && *res.outcome == Outcome::stable) << cT;
+    EXPECT_LE(*res.max_error_over_time / p.A, p.target) << "c T = " << cT;
+  }
+  r.T = kRegionRule.lengths.front();
+  r.A = kRegionRule.amplitudes[1];
+  const RunResult base = run(r);
+  ASSERT_TRUE(s.corners.front().error_over_A);
+  EXPECT_EQ(*base.max_error_over_time / r.A, *s.corners.front().error_over_A);
+}
+
+}  // namespace
+}  // namespace mpmstab
