@@ -227,11 +227,11 @@ TEST(EdgeStudy, ReportStatesTheRuleAndReadsBothEdgesFromTheRows) {
       std::string::npos)
       << md;
   // The table: A / h and c T, the spectral limit (where recorded), both edges with h/c, the
-  // bracket, the margins to the limit (no long run given: said so), the flips, the cost without
-  // wall times.
+  // bracket, the margins to the limit (no run for length given: said so), the flips, the cost
+  // without wall times.
   EXPECT_NE(md.find("| gimp | 0.015 | 1.5 | 4 | 2 | 5.00e-3 | 0.756 | 4.10e-3 (0.820; fails at "
-                    "0.832) | 1.084 x limit, above it (no long run) | meaningless | 1.0e-6 | "
-                    "3.94e-3 (0.788) | 1.042 x limit, above it (no long run) | 1.0e-5 → 6.0e-6 | "
+                    "0.832) | 1.084 x limit; not tested for length | meaningless | 1.0e-6 | "
+                    "3.94e-3 (0.788) | 1.042 x limit; not tested for length | 1.0e-5 → 6.0e-6 | "
                     "1.0e-4 (41) | monotone | – | 20 | 2.4e6 |"),
             std::string::npos)
       << md;
@@ -276,51 +276,66 @@ TEST(EdgeStudy, EdgesAreRerunOnPerturbedLayoutsAndASensitiveOneIsMarked) {
   EXPECT_TRUE(found);
 }
 
-// An edge above the spectral limit is rerun for the long run length after the ensembles: marked
-// transient with the wave passes at which that run fails, or at which it is meaningless; the
-// claim on the accuracy edges counts them.
-TEST(EdgeStudy, AnEdgeAboveTheLimitIsMarkedTransientWithTheLengthAtWhichItFails) {
-  const std::vector<ojson> rows = edge_rows();  // the first row's edges lie above its limit
+// Every edge, below the spectral limit too, is rerun after the ensembles at 10 and 100 times its
+// wave passes: printed as holding to the longest it passed or as transient with the length at
+// which it failed (a survival edge by failing, an accuracy edge by leaving the accuracy class),
+// and counted by the claims on each kind of edge.
+TEST(EdgeStudy, EveryEdgeIsRerunForLengthAndATransientOneSaysWhereItFails) {
+  const std::vector<ojson> rows = edge_rows();  // c T = 2: rerun to 20 and 200 wave passes
   ojson survives = study_row("gimp", 4), fails = survives;
   test_support::fail_row(fails, "nonpositive_F");
   std::vector<ojson> follow_up;
   for (int k = 0; k < 32; ++k)  // the ensembles of both edges: all robust
     follow_up.push_back(k % 16 < 8 ? survives : fails);
-  ojson at_edge = fails;  // the long run at dt_edge fails at t = 31.5: c t = 63
-  at_edge["failure_time"] = 31.5;
-  ojson at_accurate = survives;  // the one at dt_accurate survives, meaningless
-  test_support::meaningless_row(at_accurate);
-  at_accurate["cT"] = 1000.0;
-  follow_up.push_back(at_edge);
-  follow_up.push_back(at_accurate);
+  auto length = [](ojson r, double cT) {
+    r["cT"] = cT;
+    return r;
+  };
+  ojson fails_late = fails;  // the first row's survival edge fails at t = 31.5: c t = 63
+  fails_late["failure_time"] = 31.5;
+  ojson meaningless = survives;
+  test_support::meaningless_row(meaningless);
+  // The first row: its survival edge, then its accuracy edge, each to 20 and 200 passes; the
+  // second row's survival edge (it has no accuracy edge) holds to both.
+  for (const ojson& r : {length(survives, 20), fails_late, length(survives, 20),
+                         length(meaningless, 200), length(survives, 20), length(survives, 200)})
+    follow_up.push_back(r);
   ojson twin = survives;  // the periodic twin at the first row's accuracy edge
   twin["bc"] = "periodic";
   twin["max_error_over_time"] = 3e-6;
   follow_up.push_back(twin);
   const auto report = test_support::study_report("edge", rows, follow_up);
+  const std::string& md = report.markdown;
   // The twin's error over time beside the Dirichlet run's, and per method in the walls paragraph.
-  EXPECT_NE(report.markdown.find("| 1.0e-5 → 6.0e-6 (periodic 3.0e-6) |"), std::string::npos)
-      << report.markdown;
-  EXPECT_NE(report.markdown.find("gimp 0.5 to 0.5 times the Dirichlet one (median 0.5, 1 of 1 "
-                                 "twins)"),
+  EXPECT_NE(md.find("| 1.0e-5 → 6.0e-6 (periodic 3.0e-6) |"), std::string::npos) << md;
+  EXPECT_NE(md.find("gimp 0.5 to 0.5 times the Dirichlet one (median 0.5, 1 of 1 twins)"),
             std::string::npos)
-      << report.markdown;
-  EXPECT_NE(report.markdown.find("| 1.084 x limit, **transient**: fails at c T = 63 |"),
+      << md;
+  EXPECT_NE(md.find("| 1.084 x limit; **transient**: fails at c T = 63 |"), std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| 1.042 x limit; **transient**: not accurate at c T = 200 (meaningless) |"),
             std::string::npos)
-      << report.markdown;
-  EXPECT_NE(report.markdown.find("| 1.042 x limit, **transient**: meaningless by c T = 1000 |"),
-            std::string::npos)
-      << report.markdown;
-  bool found = false;
+      << md;
+  EXPECT_NE(md.find("| holds to c T = 200 |"), std::string::npos) << md;
+  int found = 0;
   for (const auto& c : report.claims) {
-    if (c.id != "accurate-edges-at-most-the-limit") continue;
-    found = true;
-    EXPECT_FALSE(c.holds);
-    EXPECT_EQ(render(c, c.evidence),
-              "1 of 1 lie above it; rerun for 1000 wave passes, 0 of them fail (at c T = –) and "
-              "1 turn meaningless");
+    if (c.id == "accurate-edges-at-most-the-limit") {
+      ++found;
+      EXPECT_FALSE(c.holds);
+      EXPECT_EQ(render(c, c.evidence), "1 of 1 lie above it");
+    }
+    if (c.id == "survival-edges-hold-for-length") {
+      ++found;
+      EXPECT_FALSE(c.holds);
+      EXPECT_EQ(render(c, c.evidence),
+                "1 of 2 hold; the others fail or leave the accuracy class at c T = 63");
+    }
+    if (c.id == "accuracy-edges-hold-for-length") {
+      ++found;
+      EXPECT_EQ(c.status(), Claim::Status::fails);
+    }
   }
-  EXPECT_TRUE(found);
+  EXPECT_EQ(found, 3);
 }
 
 TEST(EdgeStudy, FigureDataHasARowPerDrawnCaseAndTheTitleCountsThem) {

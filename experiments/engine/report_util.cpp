@@ -6,6 +6,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "base/accuracy.hpp"
 #include "compare.hpp"
 #include "csv.hpp"
 #include "key.hpp"
@@ -211,6 +212,27 @@ std::string cost_metric_text() {
 
 std::string work(const ojson& r) {
   return sci(particle_steps(r));
+}
+
+bool accurate_run(const ojson& r) {
+  return outcome(r) == "stable" && has_number(r, "max_error_over_time") && has_number(r, "A") &&
+         accuracy_class(r["max_error_over_time"].get<double>(), r["A"].get<double>()) ==
+             Accuracy::accurate;
+}
+
+bool crossing_free(const ojson& r) {
+  if (has_number(r, "crossings")) return r["crossings"].get<double>() == 0;
+  if (!has_number(r, "A_over_h") || !has_number(r, "ppc")) return false;
+  return r["A_over_h"].get<double>() < 1.0 / (2 * r["ppc"].get<double>());
+}
+
+std::string order_regime_text() {
+  return "an order is fitted only over points in the regime it describes: runs that end stable "
+         "and accurate (error over time below " +
+         shortest(kAccurateFraction) +
+         " A) and, for an order in h, in which no particle crosses a cell (no crossing recorded; "
+         "where crossings are not recorded, A / h below 1 / (2 ppc)); a point outside it is "
+         "shown and marked, never fitted, and at least three points are needed";
 }
 
 std::optional<double> loglog_slope(const std::vector<std::pair<double, double>>& points) {

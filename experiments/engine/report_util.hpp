@@ -85,6 +85,16 @@ double quantile(std::vector<double> v, double q);
 // Least-squares slope of log(y) against log(x) over the points with x, y > 0: a fitted order.
 // nullopt with fewer than three such points.
 std::optional<double> loglog_slope(const std::vector<std::pair<double, double>>& points);
+// The regime orders are fitted in (docs/design.md, "Orders of convergence"): a run that ended
+// stable with an error over time below kAccurateFraction A (accurate), and, for an order in h, in
+// which no particle crossed a cell: its recorded crossings are zero, or, where they are not
+// recorded, A / h is below 1 / (2 ppc) (the particles nearest a cell boundary start a quarter
+// cell from it at 2 per cell). A point outside it is shown and never fitted.
+bool accurate_run(const nlohmann::ordered_json& row);
+bool crossing_free(const nlohmann::ordered_json& row);
+// "the order is fitted only over grids where no particle crosses a cell and the error over
+// time is below 0.1 A": the regime in words, for the reports that fit orders.
+std::string order_regime_text();
 // Relative link from a report folder to a file.
 std::string link(const std::filesystem::path& from_dir, const std::filesystem::path& target);
 

@@ -96,6 +96,7 @@ struct Point {
   std::optional<double> l2_time;     // RMS over the body and the run (stable runs only)
   std::optional<double> error_at_T;  // the error at T: shown, never fitted
   std::string verdict;
+  bool fit = false;  // in the regime an order is fitted in (report_util.hpp, accurate_run)
 };
 
 enum class Norm { over_time, l2_time, at_T };
@@ -103,12 +104,12 @@ std::optional<double> value_of(const Point& p, Norm n) {
   return n == Norm::over_time ? p.over_time : n == Norm::l2_time ? p.l2_time : p.error_at_T;
 }
 
-// The fitted order: the slope of log(error) against log(x) over the points with an error (at
-// least three).
+// The fitted order: the slope of log(error) against log(x) over the points with an error in the
+// regime orders are fitted in (at least three).
 std::optional<double> fitted_order(const std::vector<Point>& points, Norm n) {
   std::vector<std::pair<double, double>> xy;
   for (const auto& p : points) {
-    if (const auto e = value_of(p, n)) xy.emplace_back(p.x, *e);
+    if (const auto e = value_of(p, n); e && p.fit) xy.emplace_back(p.x, *e);
   }
   return loglog_slope(xy);
 }
@@ -123,6 +124,8 @@ std::map<GroupKey, std::vector<Point>> groups(const std::vector<ojson>& rows) {
     p.label = sweep_of(r) == "dt" ? "C = " + shortest(r["cfl_factor"].get<double>())
                                   : "h = 1/" + std::to_string(r["cells"].get<int>());
     p.verdict = outcome(r);
+    // An order in dt asks the run to be accurate; an order in h also that no particle crossed.
+    p.fit = accurate_run(r) && (sweep_of(r) == "dt" || crossing_free(r));
     if (p.verdict == "stable") {
       if (has_number(r, "max_error_over_time"))
         p.over_time = r["max_error_over_time"].get<double>();
@@ -141,11 +144,20 @@ std::string order_text(const std::optional<double>& order) {
   return order ? fixed(*order, 2) : std::string("–");
 }
 
-// The observed order between two successive points, log(e1 / e2) / log(x1 / x2).
+// The observed order between two successive points, log(e1 / e2) / log(x1 / x2); none where
+// either lies outside the regime orders are fitted in.
 std::optional<double> step_order(const Point& coarse, const Point& fine, Norm n) {
+  if (!coarse.fit || !fine.fit) return std::nullopt;
   const auto a = value_of(coarse, n), b = value_of(fine, n);
   if (!a || !b || *a <= 0 || *b <= 0) return std::nullopt;
   return std::log(*a / *b) / std::log(coarse.x / fine.x);
+}
+
+// The observed order of the last refinement in the regime orders are fitted in.
+std::optional<double> last_order(const std::vector<std::optional<double>>& q) {
+  for (auto it = q.rbegin(); it != q.rend(); ++it)
+    if (*it) return *it;
+  return std::nullopt;
 }
 
 // The observed orders of every refinement, coarsest first.
@@ -157,12 +169,13 @@ std::vector<std::optional<double>> step_orders(const std::vector<Point>& points,
 }
 
 // A point's cell: the error and, from the second point on, the ratio to the point before it and
-// the observed order: "3.2e-5 (3.9, 1.98)".
+// the observed order: "3.2e-5 (3.9, 1.98)"; a point outside the regime orders are fitted in is
+// marked "3.2e-5 †" and has no observed order.
 std::string point_text(const std::vector<Point>& points, std::size_t k, Norm n) {
   const Point& p = points[k];
   const auto e = value_of(p, n);
   if (!e) return p.verdict.empty() || p.verdict == "stable" ? std::string("–") : p.verdict;
-  std::string s = sci(*e, 2);
+  std::string s = sci(*e, 2) + (p.fit ? "" : " †");
   if (k > 0) {
     const auto before = value_of(points[k - 1], n);
     if (const auto o = step_order(points[k - 1], p, n); o && before)
@@ -171,12 +184,15 @@ std::string point_text(const std::vector<Point>& points, std::size_t k, Norm n) 
   return s;
 }
 
-// Richardson's estimate of the error's limit from the three finest points of a geometric
-// refinement: with the observed order q of the last two differences, e_inf = e3 - (e2 - e3) /
-// (r^q - 1), r the refinement factor. Near zero when the error converges to zero; a floor (a
-// time error, the crossings) shows as a limit well above it. nullopt without three stable
-// points or without a monotone trend.
-std::optional<double> richardson_limit(const std::vector<Point>& points, Norm n) {
+// Richardson's estimate of the error's limit from the three finest points in the regime orders
+// are fitted in, of a geometric refinement: with the observed order q of the last two differences,
+// e_inf = e3 - (e2 - e3) / (r^q - 1), r the refinement factor. Near zero when the error converges
+// to zero; a floor (a time error, the crossings) shows as a limit well above it. nullopt without
+// three stable points or without a monotone trend.
+std::optional<double> richardson_limit(const std::vector<Point>& all, Norm n) {
+  std::vector<Point> points;  // the points in the regime orders are fitted in
+  for (const auto& p : all)
+    if (p.fit) points.push_back(p);
   if (points.size() < 3) return std::nullopt;
   const Point &a = points[points.size() - 3], &b = points[points.size() - 2], &c = points.back();
   const auto ea = value_of(a, n), eb = value_of(b, n), ec = value_of(c, n);
@@ -264,10 +280,13 @@ double spread(const std::map<Key, double>& orders) {
   return orders.empty() ? 0 : hi - lo;
 }
 
-// Whether the last two observed orders agree (the asymptotic range is reached).
-bool asymptotic(const std::vector<std::optional<double>>& q) {
-  if (q.size() < 2 || !q[q.size() - 1] || !q[q.size() - 2]) return false;
-  return std::abs(*q[q.size() - 1] - *q[q.size() - 2]) <= kAsymptoticSpread;
+// Whether the last two observed orders in the regime agree (the asymptotic range is reached).
+bool asymptotic(const std::vector<std::optional<double>>& all) {
+  std::vector<double> q;
+  for (const auto& o : all)
+    if (o) q.push_back(*o);
+  if (q.size() < 2) return false;
+  return std::abs(q[q.size() - 1] - q[q.size() - 2]) <= kAsymptoticSpread;
 }
 
 // Where the orders of a method disagree across E: the evidence per E.
@@ -305,7 +324,7 @@ std::string agreement_reading(const std::map<std::string, MethodOrders>& m,
     // through the coarse grids.
     std::map<Key, double> last_orders;  // E -> the last refinement's order
     for (const auto& [E, q] : o.steps)
-      if (!q.empty() && q.back()) last_orders[E] = *q.back();
+      if (const auto last = last_order(q)) last_orders[E] = *last;
     const double last_spread = spread(last_orders);
     std::string last = "; the last refinements' orders spread by " +
                        (last_orders.empty() ? std::string("–") : fixed(last_spread, 2));
@@ -623,7 +642,7 @@ std::vector<AboveTheory> above_theory(const std::map<std::string, MethodOrders>&
     for (const auto& [E, order] : o.order) {
       if (order <= kTheoryMaxOrder + kOrderAgreement) continue;
       const auto& q = o.steps.at(E);
-      out.push_back({method, E, order, q.empty() ? std::nullopt : q.back()});
+      out.push_back({method, E, order, last_order(q)});
     }
   return out;
 }
@@ -821,7 +840,9 @@ StudyReport convergence_report(const ReportContext& ctx) {
   md << "Each cell gives the error and, in brackets, the ratio to the grid before it and the "
         "observed order (the log of the ratio over the log of the h ratio), so that the "
         "asymptotic range shows. The fitted order is the least-squares slope of log(error) "
-        "against log(h) over the stable runs (at least three; `–` otherwise); the Richardson "
+        "against log(h); "
+     << order_regime_text()
+     << " (`†`: outside it; `–`: fewer than three points in it). The Richardson "
         "limit extrapolates the error from the three finest grids (near zero when it converges "
         "to zero, a floor otherwise). The error at T is shown for the finest grid and fitted to "
         "nothing.\n\n### The error over time (max over steps and particles of |u_p - u(X_p, "
@@ -854,7 +875,8 @@ StudyReport convergence_report(const ReportContext& ctx) {
      << usl_reading(t)
      << "\n### The error against the exact solution at each C\n\nThe cfl runs of the spec on the "
         "same grid, against the exact solution (the error over time, so the grid's error shows): "
-        "where it stops falling with dt, the time error is below the grid's.\n\n"
+        "where it stops falling with dt, the time error is below the grid's. A run whose error "
+        "over time is not accurate is marked `†` and left out of the fitted order.\n\n"
      << sweep_table(g, "dt", Norm::over_time) << "\n"
      << peer_section(ctx.spec, g, b, rows);
   StudyReport report;

@@ -3,15 +3,19 @@
 // the eq. (108) bound, with the dts where survival flips; one section per scene, the figure drawing
 // every scene.
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <sstream>
+#include <string_view>
 #include <tuple>
 
 #include "base/accuracy.hpp"
 #include "claims.hpp"
 #include "csv.hpp"
+#include "edge_length.hpp"
 #include "ensemble.hpp"
 #include "key.hpp"
 #include "report.hpp"
@@ -187,45 +191,6 @@ RunParams at_dt(const RunParams& base, double dt) {
   return p;
 }
 
-// ---------------------------------------------------------------------------------------------
-// Transient edges. Above the spectral limit the linearised step amplifies some mode, however
-// slowly: an edge there survives (or stays accurate) for the run length searched only. Each
-// edge above the limit is rerun at its dt for kLongPasses wave passes; the wave passes c t at
-// which that run fails is the length for which the edge holds.
-constexpr double kLongPasses = 1000;
-
-// The edges of a row (dt_edge, then dt_accurate where it differs) that lie above its scheme's
-// spectral limit, in units of h/c.
-std::vector<double> edges_above_limit(const ojson& r) {
-  std::vector<double> dts;
-  if (!has_number(r, "courant_spectral")) return dts;
-  const double limit = r["courant_spectral"].get<double>();
-  for (const char* col : {"dt_edge", "dt_accurate"}) {
-    if (!has_number(r, col)) continue;
-    const double dt = r[col].get<double>();
-    if (dt / r["dt_cfl"].get<double>() > limit &&
-        std::find(dts.begin(), dts.end(), dt) == dts.end())
-      dts.push_back(dt);
-  }
-  return dts;
-}
-
-// The run at dt for kLongPasses wave passes.
-RunParams long_run(const RunParams& base, double dt) {
-  RunParams p = at_dt(base, dt);
-  p.T = kLongPasses / wave_speed(p);
-  return p;
-}
-
-// What the long run at one edge found: the wave passes it reached (kLongPasses when it survived)
-// and its outcome.
-struct LongRun {
-  double dt = 0;
-  double passes = 0;
-  bool survived = false;
-  std::string outcome;
-};
-
 // What the walls cost at the accuracy edge: a case with Dirichlet walls and an accuracy edge is
 // rerun there with periodic boundaries (both scenes' exact solutions are periodic), whose error
 // at T is the interior's own.
@@ -234,7 +199,7 @@ bool has_twin(const ojson& r) {
 }
 
 // The members of every case with an edge, in row order: at dt_edge, then at dt_fail; after them,
-// in row order, the long run at each edge above the spectral limit; then the periodic twins.
+// in row order, the runs of each edge at each test length; then the periodic twins.
 std::vector<RunParams> edge_follow_up(const FollowUpContext& c) {
   std::vector<RunParams> runs;
   for (std::size_t i = 0; i < c.rows.size(); ++i) {
@@ -247,10 +212,11 @@ std::vector<RunParams> edge_follow_up(const FollowUpContext& c) {
     for (auto& p : ensemble_members(at_dt(base, r["dt_fail"].get<double>())))
       runs.push_back(std::move(p));
   }
-  for (std::size_t i = 0; i < c.rows.size(); ++i) {
-    for (const double dt : edges_above_limit(c.rows[i]))
-      runs.push_back(long_run(c.spec.cases.at(i).params, dt));
-  }
+  std::vector<RunParams> cases;
+  for (const auto& k : c.spec.cases)
+    cases.push_back(k.params);
+  for (auto& p : all_length_runs(c.rows, cases))
+    runs.push_back(std::move(p));
   for (std::size_t i = 0; i < c.rows.size(); ++i) {
     if (!has_twin(c.rows[i])) continue;
     RunParams p = at_dt(c.spec.cases.at(i).params, c.rows[i]["dt_accurate"].get<double>());
@@ -261,10 +227,10 @@ std::vector<RunParams> edge_follow_up(const FollowUpContext& c) {
 }
 
 // What the follow-up runs found per row, keyed by the row's address: its ensemble (empty where
-// it has no edge or the follow-up runs are absent) and its long runs.
+// it has no edge or the follow-up runs are absent) and its runs at the test lengths.
 struct EdgeFollowUps {
   std::map<const ojson*, EdgeEnsemble> ensembles;
-  std::map<const ojson*, std::vector<LongRun>> long_runs;
+  LengthRuns long_runs;
   std::map<const ojson*, ojson> twins;  // the periodic twin at dt_accurate
 };
 
@@ -283,21 +249,7 @@ EdgeFollowUps edge_follow_ups(const std::vector<ojson>& rows, const std::vector<
     take(e.at_edge, e.survived, true);
     if (has_number(r, "dt_fail")) take(e.at_fail, e.failed, false);
   }
-  for (const auto& r : rows) {
-    for (const double dt : edges_above_limit(r)) {
-      if (next >= follow_up.size()) return out;
-      const ojson& run = follow_up[next++];
-      LongRun l;
-      l.dt = dt;
-      l.survived = survived(run);
-      l.outcome = outcome(run);
-      const double c = std::sqrt(run["E"].get<double>());
-      l.passes = l.survived || !has_number(run, "failure_time")
-                     ? run["cT"].get<double>()
-                     : c * run["failure_time"].get<double>();
-      out.long_runs[&r].push_back(l);
-    }
-  }
+  out.long_runs = read_length_runs(rows, follow_up, next);
   for (const auto& r : rows) {
     if (!has_twin(r)) continue;
     if (next >= follow_up.size()) return out;
@@ -306,30 +258,17 @@ EdgeFollowUps edge_follow_ups(const std::vector<ojson>& rows, const std::vector<
   return out;
 }
 
-// The long run of a row at dt (nullptr when there is none).
-const LongRun* long_run_at(const EdgeFollowUps& f, const ojson& r, double dt) {
-  const auto it = f.long_runs.find(&r);
-  if (it == f.long_runs.end()) return nullptr;
-  for (const auto& l : it->second)
-    if (l.dt == dt) return &l;
-  return nullptr;
-}
-
-// The margin of an edge to the spectral limit, and whether it is transient: "0.97 x limit",
-// "1.04 x limit, **transient**: fails at c T = 530", "1.01 x limit, holds to c T = 1000".
+// The margin of an edge to the spectral limit and how long it holds: "0.97 x limit; holds to
+// c T = 1000", "1.04 x limit; **transient**: fails at c T = 530".
 std::string margin_text(const EdgeFollowUps& f, const ojson& r, const char* dt_col) {
-  if (!has_number(r, "courant_spectral") || !has_number(r, dt_col)) return "";
-  const double dt = r[dt_col].get<double>();
-  const double over = dt / r["dt_cfl"].get<double>() / r["courant_spectral"].get<double>();
-  std::string s = fixed(over, 3) + " x limit";
-  if (over <= 1) return s;
-  const LongRun* l = long_run_at(f, r, dt);
-  if (!l) return s + ", above it (no long run)";
-  if (l->survived && l->outcome == "meaningless")
-    return s + ", **transient**: meaningless by c T = " + significant(l->passes, 4);
-  if (l->survived)
-    return s + ", above it; " + l->outcome + " to c T = " + significant(l->passes, 4);
-  return s + ", **transient**: fails at c T = " + significant(l->passes, 3);
+  if (!has_number(r, dt_col)) return "";
+  std::string s;
+  if (has_number(r, "courant_spectral")) {
+    const double dt = r[dt_col].get<double>();
+    s = fixed(dt / r["dt_cfl"].get<double>() / r["courant_spectral"].get<double>(), 3) +
+        " x limit; ";
+  }
+  return s + lasting_text(f.long_runs, r, dt_col);
 }
 
 // The table's cell: "robust: 8 of 8 survive, 8 of 8 fail above", "**sensitive**: 5 of 8
@@ -408,36 +347,53 @@ std::vector<Claim> edge_claims(const std::vector<ojson>& rows, const EdgeFollowU
   limit.holds = above_limit == 0;
   claims.push_back(limit);
 
-  // The accuracy edges above the limit, and what their long runs found.
-  int accurate_n = 0, accurate_above = 0, transient = 0, meaningless = 0;
-  std::vector<double> fail_passes;
+  int accurate_n = 0, accurate_above = 0;
   for (const auto& r : rows) {
     if (!has_number(r, "dt_accurate") || !has_number(r, "courant_spectral")) continue;
     ++accurate_n;
     const double dt = r["dt_accurate"].get<double>();
-    if (dt / r["dt_cfl"].get<double>() <= r["courant_spectral"].get<double>()) continue;
-    ++accurate_above;
-    if (const LongRun* l = long_run_at(f, r, dt); l && !l->survived) {
-      ++transient;
-      fail_passes.push_back(l->passes);
-    } else if (l && l->outcome == "meaningless") {
-      ++meaningless;
-    }
+    accurate_above += dt / r["dt_cfl"].get<double>() > r["courant_spectral"].get<double>();
   }
-  Claim lasting = claim("accurate-edges-at-most-the-limit",
-                        "Every accuracy edge lies at or below its scheme's spectral limit (where "
-                        "no mode of the linearised step grows; that alone does not make it hold "
-                        "for a longer run, which only edges above the limit are rerun for)",
-                        "{above} of {n} lie above it; rerun for {passes} wave passes, {transient} "
-                        "of them fail (at c T = {span}) and {meaningless} turn meaningless");
-  lasting.count("above", accurate_above)
-      .count("n", accurate_n)
-      .value("passes", shortest(kLongPasses))
-      .count("transient", transient)
-      .value("span", span(fail_passes, 3))
-      .count("meaningless", meaningless);
-  lasting.holds = accurate_above == 0;
-  claims.push_back(lasting);
+  Claim below = claim("accurate-edges-at-most-the-limit",
+                      "Every accuracy edge lies at or below its scheme's spectral limit (where no "
+                      "mode of the linearised step grows; how long each holds is tested apart)",
+                      "{above} of {n} lie above it");
+  below.count("above", accurate_above).count("n", accurate_n);
+  below.over(accurate_n);
+  below.holds = accurate_above == 0;
+  claims.push_back(below);
+
+  // Every edge rerun for length: which hold to the longest test length.
+  for (const char* col : {"dt_edge", "dt_accurate"}) {
+    int tested = 0, held = 0;
+    std::vector<double> fail_at;
+    for (const auto& r : rows) {
+      const Lasting l = lasting(f.long_runs, r, col);
+      if (!l.tested) continue;
+      ++tested;
+      if (l.holds) {
+        ++held;
+      } else {
+        fail_at.push_back(l.length);
+      }
+    }
+    const bool survival = std::string_view(col) == "dt_edge";
+    Claim c = claim(survival ? "survival-edges-hold-for-length" : "accuracy-edges-hold-for-length",
+                    std::string("Every ") + (survival ? "survival" : "accuracy") +
+                        " edge holds when its run is {first}x and {second}x as long (at most "
+                        "{cap} wave passes)",
+                    "{held} of {tested} hold; the others fail or leave the accuracy class at "
+                    "c T = {span}");
+    c.value("first", shortest(kLengthFactors[0]))
+        .value("second", shortest(kLengthFactors[1]))
+        .value("cap", shortest(kLongPasses))
+        .count("held", held)
+        .count("tested", tested)
+        .value("span", span(fail_at, 3));
+    c.over(tested);
+    c.holds = tested > 0 && held == tested;
+    claims.push_back(c);
+  }
 
   Claim mono = claim("survival-monotone", "Survival is monotone in dt in every search",
                      "{monotone} of {n} searches");
@@ -487,12 +443,14 @@ std::string search_rule(const EdgeOptions& o) {
          "*sensitive* otherwise. The survival edge's *bracket* is the dt just above it that "
          "failed: the edge lies between the two. The *edge / limit* columns give each edge's "
          "margin "
-         "to the spectral limit (below one: below the limit). Above the limit some mode of the "
-         "linearised step grows, however slowly, so an edge there holds for the run length "
-         "searched only: it is rerun at its dt for " +
-         shortest(kLongPasses) +
-         " wave passes, and marked **transient** with the wave passes c T at which that run "
-         "fails. E only rescales time: a case at E run to T is the scheme run for c T = sqrt(E) T "
+         "to the spectral limit (below one: below the limit) and how long it holds: every edge, "
+         "below the limit too, is rerun at its dt for " +
+         shortest(kLengthFactors[0]) + " and " + shortest(kLengthFactors[1]) +
+         " times its wave passes (at most " + shortest(kLongPasses) +
+         "), and printed as holding to the longest it passed (a survival edge by surviving, an "
+         "accuracy edge by staying stable and accurate) or as **transient** with the length at "
+         "which it failed. No edge is claimed beyond the length it was rerun for. E only "
+         "rescales time: a case at E run to T is the scheme run for c T = sqrt(E) T "
          "wave passes (column c T), so the edges against E at a fixed T are edges against run "
          "length.";
 }
@@ -511,8 +469,9 @@ std::string per_A(const ojson& r, const char* error, const char* over_A) {
 std::string edge_table(const std::vector<ojson>& rows, const EdgeFollowUps& f) {
   std::ostringstream md;
   md << "| method | A | A/h | E | c T | h/c | spectral limit (h/c) | survival edge dt_edge (h/c; "
-        "bracket) | survival edge / limit | run at dt_edge | error at T there | accuracy edge "
-        "dt_accurate (h/c) | accuracy edge / limit | error over time: reference → at dt_accurate "
+        "bracket) | survival edge / limit; length | run at dt_edge | error at T there | accuracy "
+        "edge dt_accurate (h/c) | accuracy edge / limit; length | error over time: reference → at "
+        "dt_accurate "
         "(periodic "
         "twin) | "
         "eq. (108) at dt_edge (dt_edge / it) | survival in dt | ensemble | probes | "
@@ -680,8 +639,9 @@ std::string amplitude_table(const std::vector<ojson>& rows, const EdgeFollowUps&
     if (md.tellp() == 0) {
       md << "\n**Against amplitude.** The same cases ordered by A / h at one run length: each "
             "edge, its margin to the spectral limit and the run there.\n\n"
-            "| method | c T | A/h | survival edge (h/c) | survival edge / limit | run at it | "
-            "accuracy edge (h/c) | accuracy edge / limit |\n|---|---|---|---|---|---|---|---|\n";
+            "| method | c T | A/h | survival edge (h/c) | survival edge / limit; length | run at "
+            "it | accuracy edge (h/c) | accuracy edge / limit; length |\n"
+            "|---|---|---|---|---|---|---|---|\n";
     }
     for (const ojson* r : list) {
       md << "| " << key.first << " | " << passes(*r) << " | "

@@ -123,12 +123,14 @@ std::vector<MethodRow> method_rows(const std::vector<ojson>& edges,
       const auto e = over_time_of(*r);
       const bool cfl = (*r)["policy"].get<std::string>() == "cfl";
       const bool finest_dt = cfl && (*r)["cfl_factor"].get<double>() == kOrderHCourant;
-      if (e && finest_dt) h_points.emplace_back(1.0 / (*r)["cells"].get<double>(), *e);
+      // Orders only in their regime (report_util.hpp): accurate runs, and for h no crossing.
+      if (e && finest_dt && accurate_run(*r) && crossing_free(*r))
+        h_points.emplace_back(1.0 / (*r)["cells"].get<double>(), *e);
       // The order in dt is that of the convergent scheme: not from a run above its limit.
       const bool below_limit =
           !has_number(*r, "courant_spectral") ||
           (*r)["courant"].get<double>() <= (*r)["courant_spectral"].get<double>();
-      if (e && below_limit && (*r)["cells"].get<int>() == kTable1Cells)
+      if (e && below_limit && accurate_run(*r) && (*r)["cells"].get<int>() == kTable1Cells)
         dt_points.emplace_back(dt_of(*r), *e);
     }
     m.order_h = loglog_slope(h_points);
@@ -332,8 +334,10 @@ std::string how_to_read_the_setting(const std::vector<ojson>& grid) {
      << "; *order in dt*: against log(dt), over the runs below the scheme's spectral limit, on "
      << kTable1Cells << " cells over C = " << listing(cfl_runs, "cfl_factor")
      << " and dt = " << listing(fixed_runs, "dt") << " (C = " << listing(fixed_runs, "courant")
-     << "); at least three stable runs, `–` otherwise. An order in dt near zero means the "
-        "grid's error hides the time error;\n";
+     << "); " << order_regime_text()
+     << " (`–` otherwise; convergence.md fits orders in h at an amplitude at which no particle "
+        "crosses a cell). An order in dt near zero means the grid's error hides the time "
+        "error;\n";
   return md.str();
 }
 

@@ -1,11 +1,13 @@
 // Scene edges: the survival and accuracy edges in dt of every scene with a free surface, method
 // and small-mass treatment (docs/design.md, "Scenes", "Small-mass nodes"), each beside the dense
 // spectral limit of its body, with its verdicts at the edge and just above it rerun on perturbed
-// layouts (ensemble.hpp). The scenes study reads these rows for its table.
+// layouts (ensemble.hpp) and every edge rerun for length (edge_length.hpp). The scenes study
+// reads these rows for its table.
 #include <cmath>
 #include <sstream>
 
 #include "claims.hpp"
+#include "edge_length.hpp"
 #include "ensemble.hpp"
 #include "report_util.hpp"
 #include "scenes.hpp"
@@ -28,6 +30,8 @@ RunParams at_dt(RunParams p, double dt) {
   return p;
 }
 
+// The ensembles of every row with both edges, in row order; then the runs of every edge for
+// length.
 std::vector<RunParams> edges_follow_up(const FollowUpContext& c) {
   std::vector<RunParams> runs;
   for (std::size_t i = 0; i < c.rows.size(); ++i) {
@@ -38,6 +42,11 @@ std::vector<RunParams> edges_follow_up(const FollowUpContext& c) {
       for (auto& p : ensemble_members(at_dt(base, r[column].get<double>())))
         runs.push_back(std::move(p));
   }
+  std::vector<RunParams> cases;
+  for (const auto& k : c.spec.cases)
+    cases.push_back(k.params);
+  for (auto& p : all_length_runs(c.rows, cases))
+    runs.push_back(std::move(p));
   return runs;
 }
 
@@ -47,9 +56,9 @@ struct Robustness {
   int survive_at_edge = 0, fail_above = 0, members = 0;
 };
 std::vector<std::optional<Robustness>> robustness(const std::vector<ojson>& rows,
-                                                  const std::vector<ojson>& follow_up) {
+                                                  const std::vector<ojson>& follow_up,
+                                                  std::size_t& next) {
   std::vector<std::optional<Robustness>> out(rows.size());
-  std::size_t next = 0;
   for (std::size_t i = 0; i < rows.size(); ++i) {
     if (!has_number(rows[i], "dt_edge") || !has_number(rows[i], "dt_fail")) continue;
     if (next + 2 * kEnsembleMembers > follow_up.size()) break;
@@ -66,7 +75,14 @@ std::vector<std::optional<Robustness>> robustness(const std::vector<ojson>& rows
 
 StudyReport edges_report(const ReportContext& ctx) {
   const auto& rows = ctx.rows;
-  const auto robust = robustness(rows, ctx.follow_up);
+  std::size_t next = 0;
+  const auto robust = robustness(rows, ctx.follow_up, next);
+  // The length runs follow every ensemble (none read when the ensembles are incomplete).
+  std::size_t after = 0;
+  for (const auto& r : rows)
+    after += has_number(r, "dt_edge") && has_number(r, "dt_fail") ? 2 * kEnsembleMembers : 0;
+  LengthRuns lengths;
+  if (next == after) lengths = read_length_runs(rows, ctx.follow_up, next);
   std::ostringstream md;
   md << "Each row: a scene, a method and a small-mass treatment (docs/design.md, \"Small-mass "
         "nodes\"). *Survival edge*: the largest c dt/h probed that survives to T, and the "
@@ -78,11 +94,18 @@ StudyReport edges_report(const ReportContext& ctx) {
         "(docs/design.md, \"The spectral limit\"); *perturbed*: of "
      << kEnsembleMembers << " layouts perturbed by " << sci(kEnsemblePerturbation)
      << " of the particle spacing, how many survive at the edge and how many fail just above "
-        "it.\n\n";
-  md << "| scene | method | small-mass | survival edge c dt/h | fails at | accuracy edge | dense "
-        "limit | edge / limit | perturbed: survive at edge, fail above |\n"
-        "|---|---|---|---:|---:|---:|---:|---:|---|\n";
+        "it; *run at the edge*: its outcome and error over time per A (a meaningless edge is a "
+        "run whose error reached A: it survives and answers nothing); *length*: each edge rerun "
+        "at "
+     << shortest(kLengthFactors[0]) << " and " << shortest(kLengthFactors[1])
+     << " times its wave passes (at most " << shortest(kLongPasses)
+     << "), holding to the longest it passed or **transient** where it failed.\n\n";
+  md << "| scene | method | small-mass | survival edge c dt/h | fails at | run at the edge | "
+        "survival edge: length | accuracy edge | accuracy edge: length | dense limit | edge / "
+        "limit | perturbed: survive at edge, fail above |\n"
+        "|---|---|---|---:|---:|---|---|---:|---|---:|---:|---|\n";
   int with_edge = 0, robust_rows = 0, checked = 0, above = 0, compared = 0, all_survived = 0;
+  int meaningless_edges = 0, tested = 0, held = 0;
   double worst = 0;
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const ojson& r = rows[i];
@@ -111,8 +134,23 @@ StudyReport edges_report(const ReportContext& ctx) {
       perturbed = std::to_string(b.survive_at_edge) + " of " + std::to_string(b.members) + ", " +
                   std::to_string(b.fail_above) + " of " + std::to_string(b.members);
     }
+    std::string at_edge = "–";
+    if (edge) {
+      const bool meaningless = outcome(r) == "meaningless";
+      meaningless_edges += meaningless;
+      at_edge = (meaningless ? "**meaningless**" : outcome(r)) +
+                (has_number(r, "error_at_edge_over_A")
+                     ? " (" + significant(r["error_at_edge_over_A"].get<double>(), 2) + " A)"
+                     : std::string());
+      const Lasting l = lasting(lengths, r, "dt_edge");
+      tested += l.tested;
+      held += l.tested && l.holds;
+    }
     md << "| " << text(r, "scene") << " | " << text(r, "method") << " | " << small_mass_of(r)
-       << " | " << edge_text(r) << " | " << opt_fixed(fail) << " | " << opt_fixed(accurate) << " | "
+       << " | " << edge_text(r) << " | " << opt_fixed(fail) << " | " << at_edge << " | "
+       << (edge ? lasting_text(lengths, r, "dt_edge") : std::string("–")) << " | "
+       << opt_fixed(accurate) << " | "
+       << (accurate ? lasting_text(lengths, r, "dt_accurate") : std::string("–")) << " | "
        << opt_fixed(limit) << " | " << ratio_text << " | " << perturbed << " |\n";
   }
   md << "\nAn edge above the dense limit is one at which the growth the limit predicts has "
@@ -133,6 +171,27 @@ StudyReport edges_report(const ReportContext& ctx) {
                     "fail just above it): {robust} of {checked} edges.");
     c.count("robust", robust_rows).count("checked", checked);
     c.holds = checked > 0 && robust_rows == checked;
+    claims.push_back(c);
+  }
+  {
+    Claim c = claim("edges-meaningful",
+                    "No survival edge is a meaningless run: {meaningless} of {with} are.");
+    c.count("meaningless", meaningless_edges).count("with", with_edge);
+    c.over(with_edge);
+    c.holds = meaningless_edges == 0;
+    claims.push_back(c);
+  }
+  {
+    Claim c = claim("edges-hold-for-length",
+                    "Every survival edge survives {first}x and {second}x its run length (at most "
+                    "{cap} wave passes): {held} of {tested} do.");
+    c.value("first", shortest(kLengthFactors[0]))
+        .value("second", shortest(kLengthFactors[1]))
+        .value("cap", shortest(kLongPasses))
+        .count("held", held)
+        .count("tested", tested);
+    c.over(tested);
+    c.holds = tested > 0 && held == tested;
     claims.push_back(c);
   }
   {

@@ -66,6 +66,7 @@ std::string opt_fixed(std::optional<double> v, int decimals) {
 std::string edge_text(const ojson& r) {
   const auto edge = courant_of(r, "dt_edge");
   if (edge && !has_number(r, "dt_fail")) return "every dt to T survives";
+  if (edge && outcome(r) == "meaningless") return opt_fixed(edge) + " (meaningless)";
   return opt_fixed(edge);
 }
 

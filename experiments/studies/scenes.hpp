@@ -43,7 +43,8 @@ std::optional<double> courant_of(const nlohmann::ordered_json& r, const char* co
 // A value with `decimals` decimals, or "–".
 std::string opt_fixed(std::optional<double> v, int decimals = 3);
 // The survival edge of an edge-search row as a report prints it: its c dt/h, "every dt to T
-// survives" where no dt of the scan failed, "–" where it has none.
+// survives" where no dt of the scan failed, "0.812 (meaningless)" where the run at the edge is
+// meaningless, "–" where it has none.
 std::string edge_text(const nlohmann::ordered_json& r);
 
 }  // namespace mpmstab

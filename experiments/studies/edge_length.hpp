@@ -1,0 +1,74 @@
+// Edges tested for length (docs/design.md, "The stability edges"). An edge in dt is found for
+// the run length searched. Every edge a report prints (below the spectral limit too: a mode that
+// does not grow in the linearised step can grow through the nonlinear terms) is rerun at its dt
+// for kLengthFactors times its wave passes c T, at most kLongPasses, and printed as holding to
+// the longest length it passed or as transient, with the length at which it failed. A survival
+// edge passes a length when its run survives it; an accuracy edge when its run ends stable and
+// accurate (docs/design.md, "Accuracy classes").
+#pragma once
+
+#include <array>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "base/params.hpp"
+
+namespace mpmstab {
+
+inline constexpr double kLongPasses = 1000;
+inline constexpr std::array<double, 2> kLengthFactors = {10, 100};
+
+// The edges of a row (dt_edge, then dt_accurate where it differs).
+std::vector<double> edges_of(const nlohmann::ordered_json& row);
+
+// The wave passes an edge of a case run to c T is rerun for, ascending: kLengthFactors x c T, at
+// most kLongPasses, each longer than c T.
+std::vector<double> test_lengths(double cT);
+
+// The runs at the fixed step dt for each test length of `base`.
+std::vector<RunParams> length_runs(const RunParams& base, double dt);
+
+// What one run at an edge's dt for a test length found: the length asked, the wave passes it
+// reached (the length when it survived), its outcome and its error over time per A.
+struct LongRun {
+  double dt = 0;
+  double length = 0;
+  double passes = 0;
+  bool survived = false;
+  std::string outcome;
+  std::optional<double> error_over_A;
+  bool accurate() const;  // stable with an error over time below kAccurateFraction A
+};
+
+// The runs of every edge of every row, read from `follow_up` from `next` on in the order
+// length_runs asked for them (row order, then edges_of, then test_lengths), by row address.
+// `next` ends after the last one read; rows whose runs are missing get none.
+using LengthRuns = std::map<const nlohmann::ordered_json*, std::vector<LongRun>>;
+LengthRuns read_length_runs(const std::vector<nlohmann::ordered_json>& rows,
+                            const std::vector<nlohmann::ordered_json>& follow_up,
+                            std::size_t& next);
+// The follow-up runs read_length_runs reads, for rows[i] and its case `cases[i]`.
+std::vector<RunParams> all_length_runs(const std::vector<nlohmann::ordered_json>& rows,
+                                       const std::vector<RunParams>& cases);
+
+// How far an edge (dt_col: "dt_edge" or "dt_accurate") holds: the first test length it does not
+// pass, or the longest it passed. With `bound`, a survival edge passes a length only where its
+// run also keeps its error over time at most bound A (the bounded edge of spectral_edge).
+struct Lasting {
+  bool tested = false, holds = false;
+  double length = 0;  // the longest passed (holds), or where the failing run failed
+  const LongRun* failing = nullptr;
+  const LongRun* longest = nullptr;  // the longest run (holds)
+};
+Lasting lasting(const LengthRuns& runs, const nlohmann::ordered_json& row, const char* dt_col,
+                std::optional<double> bound = std::nullopt);
+
+// "holds to c T = 1000", "holds to c T = 200 (meaningless there)", "**transient**: fails at
+// c T = 530", "**transient**: not accurate at c T = 80 (0.31 A)", "not tested for length".
+std::string lasting_text(const LengthRuns& runs, const nlohmann::ordered_json& row,
+                         const char* dt_col, std::optional<double> bound = std::nullopt);
+
+}  // namespace mpmstab
