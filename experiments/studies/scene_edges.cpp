@@ -162,6 +162,7 @@ StudyReport edges_report(const ReportContext& ctx) {
     Claim c = claim("every-case-has-an-edge",
                     "Every case has a survival edge inside the scan: {with} of {cases}.");
     c.count("with", with_edge).count("cases", static_cast<long long>(rows.size()));
+    c.over(static_cast<long long>(rows.size()));
     c.holds = with_edge == static_cast<int>(rows.size());
     claims.push_back(c);
   }
@@ -170,6 +171,7 @@ StudyReport edges_report(const ReportContext& ctx) {
                     "Every edge holds on every perturbed layout (all survive at the edge, all "
                     "fail just above it): {robust} of {checked} edges.");
     c.count("robust", robust_rows).count("checked", checked);
+    c.over(checked);
     c.holds = checked > 0 && robust_rows == checked;
     claims.push_back(c);
   }
@@ -201,6 +203,7 @@ StudyReport edges_report(const ReportContext& ctx) {
                     "{worst}).");
     c.number("margin", kLimitMargin, 3).count("above", above).count("compared", compared);
     c.number("worst", worst, 3);
+    c.over(compared);
     c.holds = compared > 0 && above == 0;
     claims.push_back(c);
   }

@@ -402,6 +402,7 @@ StudyReport scenes_report(const ReportContext& ctx) {
                     "stable, {broken} of {good} made unstable or meaningless.");
     c.value("treatment", treatment).count("rescued", rescued).count("failing", failing);
     c.count("broken", broken).count("good", good);
+    c.over(failing);  // a rescue of one run is not "every run"
     c.holds = failing > 0 && rescued == failing && broken == 0;
     claims.push_back(c);
   }
