@@ -137,8 +137,8 @@ std::string cases_index(const Spec& spec, const std::vector<ojson>& rows) {
   const VerdictCounts n = count_verdicts(rows);
   std::ostringstream md;
   md << "**What it shows.** " << rows.size() << " cases, " << n.unstable << " unstable, "
-     << n.meaningless << " meaningless; it supports the explanations in [comparison.md]"
-     << "(comparison.md). Full table: [" << spec.name << ".md](" << spec.name << ".md).\n\n";
+     << n.meaningless << " meaningless. Full table: [" << spec.name << ".md](" << spec.name
+     << ".md).\n\n";
   return md.str();
 }
 

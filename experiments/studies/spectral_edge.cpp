@@ -2,7 +2,7 @@
 // bar stays bounded to T (an edge search whose probes count as failing when their error over time
 // passes 3 A, core/run/edge.hpp), against the spectral limit its record carries. At a tiny
 // amplitude the two must agree (the agreement table, with its tolerance); at the paper's amplitudes
-// the table shows how far the nonlinear edge falls below the linear limit.
+// the table shows where the nonlinear edge lies against the linear limit.
 #include <algorithm>
 #include <cmath>
 #include <map>

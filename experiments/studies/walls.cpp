@@ -73,6 +73,10 @@ struct MethodWalls {
   int cells = 0, both_stable = 0;
   int walls_raise = 0, walls_lower = 0, same = 0;  // the Dirichlet error against the periodic one
   int only_periodic_survives = 0, only_dirichlet_survives = 0, same_verdict = 0;
+  // Of those, the runs that survive only one way and are meaningless there (they survive and
+  // answer nothing); and the cells stable (meaningful) only one way.
+  int only_periodic_meaningless = 0, only_dirichlet_meaningless = 0;
+  int only_periodic_stable = 0, only_dirichlet_stable = 0;
   std::vector<double> ratios;  // periodic / Dirichlet
 };
 
@@ -86,6 +90,11 @@ std::map<std::string, MethodWalls> per_method(const std::vector<Twin>& cells) {
     m.same_verdict += outcome(*t.dirichlet) == outcome(*t.periodic);
     m.only_periodic_survives += p && !d;
     m.only_dirichlet_survives += d && !p;
+    m.only_periodic_meaningless += p && !d && outcome(*t.periodic) == "meaningless";
+    m.only_dirichlet_meaningless += d && !p && outcome(*t.dirichlet) == "meaningless";
+    const bool ds = outcome(*t.dirichlet) == "stable", ps = outcome(*t.periodic) == "stable";
+    m.only_periodic_stable += ps && !ds;
+    m.only_dirichlet_stable += ds && !ps;
     const auto ed = stable_error(t.dirichlet), ep = stable_error(t.periodic);
     if (ed && ep) {
       ++m.both_stable;
@@ -107,7 +116,10 @@ std::string reading(const std::map<std::string, MethodWalls>& methods) {
   for (const auto& [name, m] : methods) {
     md << name << ": of " << m.cells << " cells, " << m.same_verdict
        << " end with the same outcome under both boundaries; " << m.only_periodic_survives
-       << " survive only without walls and " << m.only_dirichlet_survives
+       << " survive only without walls (" << m.only_periodic_meaningless
+       << " of them meaningless there) and " << m.only_dirichlet_survives << " only with them ("
+       << m.only_dirichlet_meaningless << " meaningless); " << m.only_periodic_stable
+       << " are stable only without walls and " << m.only_dirichlet_stable
        << " only with them. Where both runs end stable (" << m.both_stable << " cells)";
     if (m.ratios.empty()) {
       md << ", nothing to compare. ";
