@@ -17,6 +17,8 @@ DEB_PACKAGES := cmake g++ make libeigen3-dev nlohmann-json3-dev libgtest-dev lib
 # particle-steps of the cases make check reruns (default 2e7).
 RESULTS     ?= results
 MPMSTAB     := $(BUILD_DIR)/mpmstab
+# The documents whose generated blocks the results write (mpmstab documents).
+DOCUMENTS   := README.md docs/design.md
 
 FUZZ_SECONDS ?= 60
 FUZZ_DIR     ?= build-fuzz
@@ -100,6 +102,7 @@ fuzz: deps
 	  tests/fuzz/corpus_cache tests/fuzz/seeds/cache
 
 check: build
+	$(MPMSTAB) documents --check $(DOCUMENTS) --results $(RESULTS)
 	specs=$$($(MPMSTAB) list) && $(MPMSTAB) check $$specs --jobs $(JOBS) --results $(RESULTS)
 
 # The reason reaches the program through the environment, never pasted into the shell line: no
@@ -143,6 +146,7 @@ tier:
 	$(MAKE) --no-print-directory figures TIER=$(TIER) || exit $$?; \
 	all=$$($(MPMSTAB) list) || exit $$?; \
 	$(MPMSTAB) index $$all --out $(RESULTS) || exit $$?; \
+	$(MPMSTAB) documents $(DOCUMENTS) --results $(RESULTS) || exit $$?; \
 	echo "make $(if $(filter paper,$(TIER)),reproduce,studies): $$(echo "$$(date +%s.%N) - $$start" | bc | xargs printf '%.1f') s wall; reports in $(RESULTS)/README.md"
 
 # The machine's timings (results/cache/timings.json, written by every sweep and reproduce, not

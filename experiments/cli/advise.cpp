@@ -178,27 +178,6 @@ std::vector<std::pair<std::string, RunParams>> confirming(const CheckedSetting& 
   return out;
 }
 
-void print_answer(std::ostream& out, const Answer& a, const Problem& p) {
-  const CheckedSetting& s = *a.setting;
-  const Region& r = *a.region;
-  out << "mpmstab advise: A/L = " << value_text(p.A) << ", c T/L = " << value_text(p.cT)
-      << ", target error over time " << value_text(p.target) << " A, " << p.scene << ", " << p.bc
-      << "\n  setting                 " << setting_name(s) << " (" << s.ppc
-      << " particles per cell)\n  predicted error / A     " << sci(r.error_over_A)
-      << " (the largest of its region's corners)\n  margin to the target    "
-      << ratio(p.target / r.error_over_A) << "x\n  particle-steps          "
-      << sci(a.particle_steps) << "\n  spectral limit          "
-      << (s.courant_spectral ? "C = " + significant(*s.courant_spectral, 3) + " (" +
-                                   ratio(*s.courant_spectral / s.courant) + "x the setting's C)"
-                             : std::string("not measured"))
-      << "\n  region                  " << region_text(r) << "\n  run it with             "
-      << "mpmstab run --method " << s.method << " --transfer " << s.transfer << " --update "
-      << s.update << " --cells " << s.cells << " --policy cfl --cfl-factor " << shortest(s.courant)
-      << " --E 1 --A " << value_text(p.A) << " --T " << value_text(p.cT)
-      << (p.scene != "bar" ? " --scene " + p.scene : std::string())
-      << (p.bc != "dirichlet" ? " --bc " + p.bc : std::string()) << "\n";
-}
-
 // Runs the confirming runs; true when every one meets the target.
 bool confirm(std::ostream& out, const Answer& a, const Problem& p) {
   bool all = true;
@@ -239,7 +218,7 @@ int cmd_advise(const std::vector<std::string_view>& argv) {
   if (args.flag("json")) {
     std::cout << answer_json(a, p).dump(2) << "\n";
   } else {
-    print_answer(std::cout, a, p);
+    std::cout << answer_text(a, p);
   }
   if (args.flag("confirm") && !confirm(args.flag("json") ? std::cerr : std::cout, a, p)) return 1;
   return 0;

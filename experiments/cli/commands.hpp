@@ -14,6 +14,7 @@ namespace mpmstab::cli {
 int cmd_run(const std::vector<std::string_view>& args);
 int cmd_edge(const std::vector<std::string_view>& args);
 int cmd_advise(const std::vector<std::string_view>& args);
+int cmd_documents(const std::vector<std::string_view>& args);
 int cmd_spectral(const std::vector<std::string_view>& args);
 int cmd_sweep(const std::vector<std::string_view>& args);
 int cmd_reproduce(const std::vector<std::string_view>& args);

@@ -28,6 +28,7 @@ Commands:
   sweep   run the cases of an experiment spec in parallel and write its reports
   reproduce  run the cases of several specs in one queue, writing each one's reports when done
   index   write results/README.md, the index of the reports
+  documents  write (or --check) the generated blocks of README.md and docs/design.md
   plot    draw a figure experiment with gnuplot
   compare write results/comparison.md: every Table 1 cell against the paper
   performance  write results/performance.md (benchmark and experiment wall times)
@@ -77,6 +78,7 @@ int main(int argc, char** argv) {
     if (command == "sweep") return mpmstab::cli::cmd_sweep(args);
     if (command == "reproduce") return mpmstab::cli::cmd_reproduce(args);
     if (command == "index") return mpmstab::cli::cmd_index(args);
+    if (command == "documents") return mpmstab::cli::cmd_documents(args);
     if (command == "plot") return mpmstab::cli::cmd_plot(args);
     if (command == "performance") return mpmstab::cli::cmd_performance(args);
     if (command == "compare") return mpmstab::cli::cmd_compare(args);
@@ -87,7 +89,7 @@ int main(int argc, char** argv) {
     if (command == "list") return mpmstab::cli::cmd_list(args);
     std::string message = "unknown command '" + std::string(command) + "'";
     if (auto guess = mpmstab::cli::nearest(
-            command, {"run", "edge", "advise", "sweep", "index", "plot", "compare", "check",
+            command, {"run", "edge", "advise", "sweep", "index", "documents", "plot", "compare", "check",
                       "bless", "performance", "merge", "slurm", "list"})) {
       message += " (did you mean '" + *guess + "'?)";
     }

@@ -417,4 +417,27 @@ nlohmann::ordered_json answer_json(const Answer& a, const Problem& p) {
           {"region", region_json(*a.region)}};
 }
 
+std::string answer_text(const Answer& a, const Problem& p) {
+  std::ostringstream out;
+  const CheckedSetting& s = *a.setting;
+  const Region& r = *a.region;
+  out << "mpmstab advise: A/L = " << value_text(p.A) << ", c T/L = " << value_text(p.cT)
+      << ", target error over time " << value_text(p.target) << " A, " << p.scene << ", " << p.bc
+      << "\n  setting                 " << setting_name(s) << " (" << s.ppc
+      << " particles per cell)\n  predicted error / A     " << sci(r.error_over_A)
+      << " (the largest of its region's corners)\n  margin to the target    "
+      << ratio(p.target / r.error_over_A) << "x\n  particle-steps          "
+      << sci(a.particle_steps) << "\n  spectral limit          "
+      << (s.courant_spectral ? "C = " + significant(*s.courant_spectral, 3) + " (" +
+                                   ratio(*s.courant_spectral / s.courant) + "x the setting's C)"
+                             : std::string("not measured"))
+      << "\n  region                  " << region_text(r) << "\n  run it with             "
+      << "mpmstab run --method " << s.method << " --transfer " << s.transfer << " --update "
+      << s.update << " --cells " << s.cells << " --policy cfl --cfl-factor " << shortest(s.courant)
+      << " --E 1 --A " << value_text(p.A) << " --T " << value_text(p.cT)
+      << (p.scene != "bar" ? " --scene " + p.scene : std::string())
+      << (p.bc != "dirichlet" ? " --bc " + p.bc : std::string()) << "\n";
+  return out.str();
+}
+
 }  // namespace mpmstab

@@ -130,5 +130,8 @@ nlohmann::ordered_json to_json(const CheckedSetting& s);
 // Throws InputError naming the key for a malformed setting (results/advice.json is an input).
 CheckedSetting checked_setting_from_json(const nlohmann::ordered_json& j);
 nlohmann::ordered_json answer_json(const Answer& a, const Problem& p);
+// The answer as `mpmstab advise` prints it (and README.md's generated example): the setting, its
+// predicted error / A, its margins, its cost, its region and the command that runs it.
+std::string answer_text(const Answer& a, const Problem& p);
 
 }  // namespace mpmstab

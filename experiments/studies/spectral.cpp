@@ -726,12 +726,16 @@ std::string paper_table(const std::filesystem::path& reference,
         "runs, at its amplitudes and E, on "
      << kPaperCells
      << " cells), converted to c dt / h: the median over the dts of each cell's block. The "
-        "paper's bound changes with the state (A and E); the spectral limit and our eq. (108) at "
-        "the tiny amplitude do not.\n\n| method | A | ";
+        "paper's bound changes with the state (A and E); the spectral limit, a property of the "
+        "scheme in c dt / h, does not. Our eq. (108) at the tiny amplitude is given at one E "
+        "(named in its column); it changes with E too (per E in the table above).\n\n"
+        "| method | A | ";
   for (double E : Es)
     md << "E = " << shortest(E) << " | ";
   md << "spectral limit | our eq. (108) at A = "
      << (schemes.empty() ? std::string("–") : value_text(schemes.front().row()["A"].get<double>()))
+     << ", E = "
+     << (schemes.empty() ? std::string("–") : value_text(schemes.front().row()["E"].get<double>()))
      << " |\n|---|---|";
   for (std::size_t i = 0; i < Es.size() + 2; ++i)
     md << "---|";

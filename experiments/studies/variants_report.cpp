@@ -310,9 +310,10 @@ void write_classes(std::ostream& md, const VariantsStudy& s) {
         "and does not count), and how many cells that agree fully under the default it "
         "breaks (over all its cells). **Criterion:** a variant *accounts* for a class when at "
         "least half of the class's cells agree under it, and *partly* accounts when it brings "
-        "some, but fewer than half, into agreement. As in comparison.md, a run that reaches T is "
-        "stable even when its error over time reached A; such runs are counted as *meaningless* "
-        "beside the agreeing cells. The sentences below are generated from the tables.\n\n";
+        "some, but fewer than half, into agreement. As in comparison.md, a run that reaches T "
+        "with an error over time of A or more is *meaningless*, never stable: such runs are "
+        "counted apart, beside the agreeing cells. The sentences below are generated from the "
+        "tables.\n\n";
   for (const ComparisonClass* k : variants_disagreement_classes())
     write_class(md, s, *k);
 }

@@ -1,0 +1,174 @@
+#include "documents.hpp"
+
+#include <sstream>
+
+#include "advice.hpp"
+#include "csv.hpp"
+#include "files.hpp"
+#include "report_util.hpp"
+#include "strict_json.hpp"
+
+namespace mpmstab {
+
+namespace {
+
+using ojson = nlohmann::ordered_json;
+
+// The results file `name` of `results`, or null where it is absent.
+ojson results_file(const std::filesystem::path& results, const std::string& name) {
+  const auto path = results / name;
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) return nullptr;
+  return read_json_file(path);
+}
+
+// ---------------------------------------------------------------------------------------------
+// The blocks
+
+// README.md: each tier's last published wall time and work, from results/timings.json.
+std::string tier_times(const std::filesystem::path& results) {
+  const ojson t = results_file(results, "timings.json");
+  if (t.is_null())
+    return "results/timings.json is not published yet: `make timings` publishes the timings of "
+           "the last runs.\n";
+  std::ostringstream md;
+  md << "| command | wall time | work | CPU time | cores | CPU | commit |\n"
+        "|---|---|---|---|---|---|---|\n";
+  for (const auto& [label, name] : {std::pair{"(make reproduce)", "`make reproduce`"},
+                                    std::pair{"(make studies)", "`make studies`"}}) {
+    if (!t.contains(label) || !t[label].is_object()) continue;
+    const ojson& e = t[label];
+    auto number = [&](const char* key) {
+      return e.contains(key) && e[key].is_number() ? e[key].get<double>() : 0.0;
+    };
+    md << "| " << name << " | " << seconds(number("wall_seconds")) << " | "
+       << sci(number("particle_steps")) << " particle-steps; "
+       << static_cast<long long>(number("computed")) << " of "
+       << static_cast<long long>(number("cases")) << " cases computed | "
+       << seconds(number("compute_seconds")) << " | " << static_cast<long long>(number("threads"))
+       << " | " << (e.contains("cpu") && e["cpu"].is_string() ? e["cpu"].get<std::string>() : "–")
+       << " | "
+       << (e.contains("commit") && e["commit"].is_string()
+               ? e["commit"].get<std::string>().substr(0, 7)
+               : "–")
+       << " |\n";
+  }
+  // The studies tier's largest experiments by CPU time: where its time goes.
+  std::vector<std::pair<double, std::string>> cpu;
+  double total = 0;
+  for (const auto& [name, e] : t.items()) {
+    if (name.empty() || name.front() == '(' || !e.is_object() || !e.contains("compute_seconds") ||
+        !e["compute_seconds"].is_number())
+      continue;
+    cpu.emplace_back(e["compute_seconds"].get<double>(), name);
+    total += e["compute_seconds"].get<double>();
+  }
+  std::sort(cpu.rbegin(), cpu.rend());
+  if (total > 0 && !cpu.empty()) {
+    md << "\nThe experiments with the most CPU time in those runs: ";
+    for (std::size_t k = 0; k < cpu.size() && k < 3; ++k)
+      md << (k ? ", " : "") << cpu[k].second << " " << fixed(100 * cpu[k].first / total, 0) << "%";
+    md << " of the " << seconds(total) << " that every experiment's last published run took.\n";
+  }
+  return md.str();
+}
+
+// The problem of README.md's advice example.
+Problem readme_problem() {
+  Problem p;
+  p.A = 0.015;
+  p.cT = 8;
+  p.target = 0.01;
+  return p;
+}
+
+// README.md: `mpmstab advise` on the example problem, answered from results/advice.json.
+std::string advise_example(const std::filesystem::path& results) {
+  const ojson doc = results_file(results, "advice.json");
+  const Problem p = readme_problem();
+  std::ostringstream md;
+  md << "```\n$ build/mpmstab advise --A " << value_text(p.A) << " --cT " << value_text(p.cT)
+     << " --error " << value_text(p.target) << "\n";
+  if (doc.is_null() || !doc.contains("study") || !doc["study"].contains("settings")) {
+    md << "(results/advice.json is not there yet: make studies writes it)\n```\n";
+    return md.str();
+  }
+  std::vector<CheckedSetting> settings;
+  for (const auto& s : doc["study"]["settings"])
+    settings.push_back(checked_setting_from_json(s));
+  const Answer a = advise(settings, p);
+  md << (a.setting ? answer_text(a, p) : "mpmstab advise: error: " + a.refusal + "\n") << "```\n";
+  return md.str();
+}
+
+// docs/design.md: what the advice study found, in counts.
+std::string advice_counts(const std::filesystem::path& results) {
+  const ojson doc = results_file(results, "advice.json");
+  if (doc.is_null() || !doc.contains("study") || !doc["study"].contains("settings"))
+    return "(results/advice.json is not there yet: make studies writes it.)\n";
+  int settings = 0, checked = 0, longest = 0;
+  for (const auto& j : doc["study"]["settings"]) {
+    const CheckedSetting s = checked_setting_from_json(j);
+    ++settings;
+    checked += s.corners.size() > 1;
+    longest += !s.regions.empty() && s.regions.back().length == kRegionRule.lengths.back();
+  }
+  std::ostringstream md;
+  md << "In the last run of the advice study, " << checked << " of its " << settings
+     << " settings had an accurate base run within the margin and were run at their corners, "
+        "and "
+     << longest << " have a region to c T/L = " << value_text(kRegionRule.lengths.back())
+     << " (results/advice.md).\n";
+  return md.str();
+}
+
+// ---------------------------------------------------------------------------------------------
+// Markers
+
+const std::string kBegin = "<!-- generated: ";
+const std::string kBeginTail =
+    " (mpmstab documents writes this block from results/; do not edit) -->";
+const std::string kEnd = "<!-- end generated: ";
+const std::string kEndTail = " -->";
+
+}  // namespace
+
+std::map<std::string, std::string> document_blocks(const std::filesystem::path& results) {
+  return {{"readme-tier-times", tier_times(results)},
+          {"readme-advise-example", advise_example(results)},
+          {"design-advice-counts", advice_counts(results)}};
+}
+
+std::string fill_document(const std::string& text, const std::map<std::string, std::string>& blocks,
+                          const std::string& file, std::vector<std::string>* found) {
+  std::string out;
+  std::size_t at = 0;
+  while (true) {
+    const std::size_t begin = text.find(kBegin, at);
+    if (begin == std::string::npos) {
+      if (text.find(kEnd, at) != std::string::npos)
+        throw InputError(file + ": an end marker of a generated block without its start");
+      out += text.substr(at);
+      return out;
+    }
+    const std::size_t name_end = text.find(kBeginTail, begin + kBegin.size());
+    const std::size_t line_end = text.find('\n', begin);
+    if (name_end == std::string::npos || line_end == std::string::npos || name_end > line_end)
+      throw InputError(file + ": a generated block's start marker is malformed");
+    const std::string name = text.substr(begin + kBegin.size(), name_end - begin - kBegin.size());
+    const auto it = blocks.find(name);
+    if (it == blocks.end()) throw InputError(file + ": no generated block is named '" + name + "'");
+    const std::string end_marker = kEnd + name + kEndTail;
+    const std::size_t end = text.find(end_marker, line_end);
+    const std::size_t next_begin = text.find(kBegin, line_end);
+    if (end == std::string::npos || (next_begin != std::string::npos && next_begin < end))
+      throw InputError(file + ": the generated block '" + name + "' has no end marker");
+    out += text.substr(at, line_end + 1 - at);
+    out += it->second;
+    out += end_marker;
+    at = end + end_marker.size();
+    if (found) found->push_back(name);
+  }
+}
+
+}  // namespace mpmstab

@@ -1,0 +1,86 @@
+// Generated blocks of the documents (experiments/studies/documents.hpp): written from the
+// results, and `mpmstab documents --check` (make check) fails where a block was edited by hand
+// or its result changed; a malformed marker is refused and leaves the file untouched.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "documents.hpp"
+#include "files.hpp"
+#include "support.hpp"
+
+namespace mpmstab {
+namespace {
+
+std::string slurp(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+const std::string kStart =
+    "<!-- generated: readme-tier-times (mpmstab documents writes this block from results/; do "
+    "not edit) -->\n";
+const std::string kEnd = "<!-- end generated: readme-tier-times -->";
+
+TEST(Documents, FillReplacesOnlyTheBlockAndRefusesUnknownOrUnclosedMarkers) {
+  const std::map<std::string, std::string> blocks = {{"readme-tier-times", "rendered\n"}};
+  std::vector<std::string> found;
+  const std::string text = "before\n" + kStart + "old\n" + kEnd + "\nafter\n";
+  EXPECT_EQ(fill_document(text, blocks, "README.md", &found),
+            "before\n" + kStart + "rendered\n" + kEnd + "\nafter\n");
+  EXPECT_EQ(found, std::vector<std::string>{"readme-tier-times"});
+  EXPECT_THROW(fill_document("<!-- generated: nope (mpmstab documents writes this block from "
+                             "results/; do not edit) -->\nx\n<!-- end generated: nope -->",
+                             blocks, "README.md"),
+               InputError);
+  EXPECT_THROW(fill_document("a\n" + kStart + "no end\n", blocks, "README.md"), InputError);
+  EXPECT_THROW(fill_document("a\n" + kEnd + "\n", blocks, "README.md"), InputError);
+}
+
+TEST(Documents, CheckFailsWhenABlockIsEditedByHandOrItsResultChanges) {
+  const auto dir = std::filesystem::temp_directory_path() / "mpmstab_documents_test";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir / "results");
+  auto timings = [&](double wall) {
+    std::ofstream(dir / "results" / "timings.json")
+        << "{\"(make reproduce)\": {\"cases\": 10, \"computed\": 10, \"particle_steps\": 1e6, "
+           "\"compute_seconds\": 2, \"threads\": 2, \"cpu\": \"x\", \"commit\": \"abcdef012\", "
+           "\"wall_seconds\": "
+        << wall << "}}";
+  };
+  timings(15);
+  const auto doc = dir / "README.md";
+  std::ofstream(doc) << "# t\n" << kStart << kEnd << "\n";
+  const std::string results = (dir / "results").string();
+  auto run = [&](const std::string& words) {
+    return test_support::run_mpmstab("documents " + words + " --results " + results);
+  };
+  EXPECT_EQ(run("--check " + doc.string()).status, 1);  // empty block: not what results give
+  ASSERT_EQ(run(doc.string()).status, 0);
+  EXPECT_NE(slurp(doc).find("15 s"), std::string::npos) << slurp(doc);
+  EXPECT_EQ(run("--check " + doc.string()).status, 0);
+  // Edited by hand.
+  std::string text = slurp(doc);
+  text.replace(text.find("15 s"), 5, "0.9 s");
+  std::ofstream(doc) << text;
+  const auto edited = run("--check " + doc.string());
+  EXPECT_EQ(edited.status, 1);
+  EXPECT_NE(edited.output.find("README.md"), std::string::npos) << edited.output;
+  ASSERT_EQ(run(doc.string()).status, 0);
+  // The result changed and the document was not rewritten.
+  timings(25);
+  EXPECT_EQ(run("--check " + doc.string()).status, 1);
+  // A malformed document is refused and left as it was.
+  std::ofstream(doc) << "# t\n" << kStart << "no end\n";
+  const std::string before = slurp(doc);
+  EXPECT_EQ(run(doc.string()).status, 2);
+  EXPECT_EQ(slurp(doc), before);
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace mpmstab
