@@ -63,6 +63,8 @@ constexpr Names<UpdateOrder, 3> kUpdateOrders{
     {{UpdateOrder::usl, "usl"}, {UpdateOrder::usf, "usf"}, {UpdateOrder::musl, "musl"}}};
 constexpr Names<BodyForceTime, 2> kBodyForceTimes{
     {{BodyForceTime::start, "start"}, {BodyForceTime::end, "end"}}};
+constexpr Names<VelocityStart, 2> kVelocityStarts{
+    {{VelocityStart::exact, "exact"}, {VelocityStart::half_step, "half_step"}}};
 constexpr Names<Boundary, 2> kBoundaries{
     {{Boundary::dirichlet, "dirichlet"}, {Boundary::periodic, "periodic"}}};
 constexpr Names<PositionUpdate, 2> kPositionUpdates{
@@ -146,6 +148,9 @@ std::string_view to_string(UpdateOrder u) {
 std::string_view to_string(BodyForceTime b) {
   return name_of(kBodyForceTimes, b);
 }
+std::string_view to_string(VelocityStart s) {
+  return name_of(kVelocityStarts, s);
+}
 std::optional<SceneKind> parse_scene(std::string_view s) {
   return parse(kScenes, s);
 }
@@ -160,6 +165,9 @@ std::optional<UpdateOrder> parse_update_order(std::string_view s) {
 }
 std::optional<BodyForceTime> parse_body_force_time(std::string_view s) {
   return parse(kBodyForceTimes, s);
+}
+std::optional<VelocityStart> parse_velocity_start(std::string_view s) {
+  return parse(kVelocityStarts, s);
 }
 std::string_view to_string(SmallMass s) {
   return name_of(kSmallMass, s);
@@ -199,6 +207,7 @@ std::string nondefault_choices(const RunParams& p) {
   if (p.layout.jitter != d.layout.jitter) add("jitter", brief_text(p.layout.jitter));
   if (p.body_force_time != d.body_force_time)
     add("body_force_time", std::string(to_string(p.body_force_time)));
+  if (p.start != d.start) add("start", std::string(to_string(p.start)));
   if (!std::isnan(p.body_start)) add("body_start", brief_text(p.body_start));
   if (!std::isnan(p.body_length)) add("body_length", brief_text(p.body_length));
   if (p.small_mass != d.small_mass) {
@@ -212,7 +221,7 @@ std::string nondefault_choices(const RunParams& p) {
 bool default_choices(const RunParams& p) {
   const RunParams d;
   return p.scene == d.scene && p.walls == d.walls && p.transfer == d.transfer &&
-         p.update == d.update && p.body_force_time == d.body_force_time &&
+         p.update == d.update && p.body_force_time == d.body_force_time && p.start == d.start &&
          p.layout.shift == d.layout.shift && p.layout.jitter == d.layout.jitter &&
          std::isnan(p.body_start) && std::isnan(p.body_length) && p.small_mass == d.small_mass &&
          p.tip_load == d.tip_load;
@@ -285,6 +294,7 @@ const std::vector<std::string>& parameter_names() {
                                                  "shift",
                                                  "jitter",
                                                  "body_force_time",
+                                                 "start",
                                                  "body_start",
                                                  "body_length",
                                                  "small_mass",

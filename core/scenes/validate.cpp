@@ -132,6 +132,12 @@ void check_walls(const RunParams& p, Issues& bad) {
 // 6. The time-step policy against the method and the size of the spectral problem.
 void check_policy(const RunParams& p, Issues& bad) {
   const TimeStepPolicy policy = p.stepping.policy;
+  if (p.start == VelocityStart::half_step) {
+    if (policy != TimeStepPolicy::fixed && policy != TimeStepPolicy::cfl)
+      bad("start", "half_step needs the first dt before the first step: the fixed or cfl policy");
+    if (p.scene != SceneKind::bar && p.scene != SceneKind::steffen)
+      bad("start", "half_step is defined for the bar and the steffen scene");
+  }
   if (!has_eq108(p.method) &&
       (policy == TimeStepPolicy::adaptive || policy == TimeStepPolicy::min)) {
     bad("policy", "the " + std::string(to_string(policy)) +

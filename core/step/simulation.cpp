@@ -1,5 +1,6 @@
 #include "step/simulation.hpp"
 
+#include <algorithm>
 #include <type_traits>
 
 #include "step/small_mass.hpp"
@@ -75,6 +76,13 @@ Simulation::Simulation(const RunParams& p)
   }
   body_accel_.setZero(P_.size());
   if (p.transfer == Transfer::apic) P_.C.setZero(P_.size());  // starts from v_p alone
+  if (p.start == VelocityStart::half_step) {
+    // The leapfrog's staggered start: v_p = v(X_p, -dt / 2), dt the first step (validate()
+    // admits the fixed and cfl policies only, whose step is known before it is taken).
+    const double dt0 = std::min(*fixed_step(p), p.T);
+    for (Eigen::Index q = 0; q < P_.size(); ++q)
+      P_.v[q] = scene_->velocity(P_.X[q], -dt0 / 2);
+  }
   if (p.transfer == Transfer::xpic) G_.correction.setZero(G_.slots());
 }
 

@@ -132,7 +132,7 @@ RunParams run_of(const CheckedSetting& s, const Problem& p) {
   if (order && r.transfer == Transfer::xpic) r.xpic_order = int(*order);
   if (order && r.transfer == Transfer::blend) r.flip_fraction = *order;
   r.update = *parse_update_order(s.update);
-  r.E = 1;
+  r.E = kAdviceE;
   r.A = p.A;
   r.T = p.cT;
   r.cells = s.cells;

@@ -89,8 +89,8 @@ int main(int argc, char** argv) {
     if (command == "list") return mpmstab::cli::cmd_list(args);
     std::string message = "unknown command '" + std::string(command) + "'";
     if (auto guess = mpmstab::cli::nearest(
-            command, {"run", "edge", "advise", "sweep", "index", "documents", "plot", "compare", "check",
-                      "bless", "performance", "merge", "slurm", "list"})) {
+            command, {"run", "edge", "advise", "sweep", "index", "documents", "plot", "compare",
+                      "check", "bless", "performance", "merge", "slurm", "list"})) {
       message += " (did you mean '" + *guess + "'?)";
     }
     throw mpmstab::cli::UsageError(message);

@@ -73,6 +73,9 @@ Options:
                            or last with the grid velocity re-mapped from the particles
   --body-force-time start|end
                            evaluate b at the start t^n (default) or end t^{n+1} of a step
+  --start exact|half_step  the particles' velocity starts as the exact v(X, 0) (default) or
+                           v(X, -dt/2), the leapfrog's staggered start (fixed or cfl policy,
+                           bar or steffen scene)
   --body-start <x0>        left end of the body in the grid [0, 1] (block, impact; default
                            the scene's own), on a cell boundary
   --body-length <L>        length of the body (vibration, impulsive, compaction, block,

@@ -84,6 +84,9 @@ void read_choices(const Args& a, RunParams& p) {
   if (auto v = a.value("body-force-time")) {
     p.body_force_time = parse_choice(*v, "body-force-time", parse_body_force_time, "start or end");
   }
+  if (auto v = a.value("start")) {
+    p.start = parse_choice(*v, "start", parse_velocity_start, "exact or half_step");
+  }
   if (auto v = a.value("body-start")) p.body_start = parse_double(*v, "body-start");
   if (auto v = a.value("body-length")) p.body_length = parse_double(*v, "body-length");
   if (auto v = a.value("small-mass")) {
@@ -156,6 +159,7 @@ const std::vector<OptionSpec>& run_options() {
       {"small-mass-fraction"},
       {"tip-load"},
       {"body-force-time"},
+      {"start"},
       {"dt-stable-sigma"},
       {"dt-stable-vnorm"},
       {"max-steps"},

@@ -50,6 +50,9 @@ std::string canonical_parameters(const RunParams& p) {
         << ";small_mass_fraction=" << shortest(p.small_mass_fraction);
     }
     if (p.tip_load != 0) s << ";tip_load=" << shortest(p.tip_load);
+    // After the choices that came before it, and only where not the default: every other key
+    // stays as it was.
+    if (p.start != VelocityStart::exact) s << ";start=" << to_string(p.start);
   }
   return s.str();
 }

@@ -35,6 +35,7 @@ namespace fs = std::filesystem;
 constexpr std::size_t kListedCoordinates = 6;
 
 // The record's columns (result_json.hpp) with, after dt, whether the paper's dt was inferred,
+// after body_force_time how the velocity starts,
 // after courant (c dt / h) the amplitude in cells A / h and the wave passes c T, and, last, the
 // case's cache key.
 const std::vector<std::string> kColumns = [] {
@@ -42,6 +43,8 @@ const std::vector<std::string> kColumns = [] {
   for (const auto& c : record_columns()) {
     cols.push_back(c);
     if (c == "dt") cols.push_back("dt_inferred");
+    // How the velocity starts: from the case (the record, cached before it existed, lacks it).
+    if (c == "body_force_time") cols.push_back("start");
     if (c == "courant") {  // the run's dimensionless coordinates beside its Courant number
       cols.push_back("A_over_h");
       cols.push_back("cT");
@@ -151,6 +154,8 @@ ojson flat_row(const CaseSpec& c, const ojson& record) {
       row[col] = amplitude_per_cell(c.params);
     } else if (col == "cT") {
       row[col] = wave_passes(c.params);
+    } else if (col == "start") {  // from the case: records cached before it existed lack it
+      row[col] = to_string(c.params.start);
     } else {
       row[col] = r.at(col);
     }

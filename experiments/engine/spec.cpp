@@ -146,6 +146,8 @@ class Reader {
       p.update = choice_at(v, path, parse_update_order, "usl, usf or musl");
     else if (key == "body_force_time")
       p.body_force_time = choice_at(v, path, parse_body_force_time, "start or end");
+    else if (key == "start")
+      p.start = choice_at(v, path, parse_velocity_start, "exact or half_step");
     else if (key == "body_start")
       p.body_start = number_at(v, path);
     else if (key == "body_length")

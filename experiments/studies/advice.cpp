@@ -434,8 +434,8 @@ std::string answer_text(const Answer& a, const Problem& p) {
       << "\n  region                  " << region_text(r) << "\n  run it with             "
       << "mpmstab run --method " << s.method << " --transfer " << s.transfer << " --update "
       << s.update << " --cells " << s.cells << " --policy cfl --cfl-factor " << shortest(s.courant)
-      << " --E 1 --A " << value_text(p.A) << " --T " << value_text(p.cT)
-      << (p.scene != "bar" ? " --scene " + p.scene : std::string())
+      << " --E " << value_text(kAdviceE) << " --A " << value_text(p.A) << " --T "
+      << value_text(p.cT) << (p.scene != "bar" ? " --scene " + p.scene : std::string())
       << (p.bc != "dirichlet" ? " --bc " + p.bc : std::string()) << "\n";
   return out.str();
 }

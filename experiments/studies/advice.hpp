@@ -42,6 +42,8 @@ struct RegionRule {
   double length_factor = 4;    // a problem of c T is answered by a region checked to 4 c T
 };
 inline constexpr RegionRule kRegionRule{};
+// Every run of the advice study is at this E: c = 1, so that T is c T (E only rescales time).
+inline constexpr double kAdviceE = 1;
 
 enum class CornerKind { base, smallest_A, largest_A, periodic, other_scene, jittered, finer };
 std::string_view to_string(CornerKind k);
