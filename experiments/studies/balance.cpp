@@ -312,8 +312,9 @@ StudyReport balance_report(const ReportContext& ctx) {
         "re-projection, by the rows of FMPM of order eight (the consistent mass nearly "
         "restored), and a start from rest with a non-zero acceleration (the neo-Hookean scene "
         "starts at rest, the bar with its acceleration zero), by the rows with a half-step "
-        "start (the particles' velocity starts at t = -dt/2, so that the velocity of the first "
-        "position update lies at dt/2, as the leapfrog's staggered start has it). The claims "
+        "start (the particles' velocity starts half a step before t = 0, so that the velocity of "
+        "the first position update lies half a step after it, as the leapfrog's staggered start "
+        "has it). The claims "
         "above say which one moves the balance.\n"
      << "\n### Each curve\n\n"
      << curves_table(all);
