@@ -312,7 +312,7 @@ StudyReport balance_report(const ReportContext& ctx) {
         "re-projection, by the rows of FMPM of order eight (the consistent mass nearly "
         "restored), and a start from rest with a non-zero acceleration (the neo-Hookean scene "
         "starts at rest, the bar with its acceleration zero), by the rows with a half-step "
-        "start (the particles' velocity starts half a step before t = 0, so that the velocity of "
+        "start (the particles' velocity starts half a step before the start, so that the velocity of "
         "the first position update lies half a step after it, as the leapfrog's staggered start "
         "has it). The claims "
         "above say which one moves the balance.\n"
