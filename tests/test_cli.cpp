@@ -8,6 +8,7 @@
 #include <fstream>
 #include <iterator>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
 
 #include "result_json.hpp"
@@ -53,6 +54,38 @@ TEST(Cli, ValidRunPrintsJsonWithEveryKey) {
   EXPECT_TRUE(j["failure_step"].is_null());
   EXPECT_EQ(j["steps"], 10);
   EXPECT_FALSE(j.contains("wall_seconds"));  // a machine measurement, not a result
+}
+
+// One name per quantity: every label the run's summary prints is the key of the record that
+// holds the value (docs/design.md, "Measured quantities"), or one of the few lines about the run
+// itself; and no command calls the error over time the error at T (the edge search's probes
+// measure the error over time only).
+TEST(Cli, TheSummarysLabelsAreTheRecordsKeysAndNoErrorOverTimeIsCalledTheErrorAtT) {
+  const auto out = run_mpmstab("run --method gimp --E 4 --A 0.015 --dt 1e-3");
+  ASSERT_EQ(out.status, 0) << out.output;
+  const auto& keys = mpmstab::record_columns();
+  const std::vector<std::string> about_the_run = {
+      "verdict", "steps", "particle-steps", "wall_seconds", "ns/particle-step", "A_over_h", "cT"};
+  std::istringstream lines(out.output);
+  int labels = 0;
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("  ", 0) != 0) continue;
+    std::istringstream words(line);
+    std::string label;
+    words >> label;
+    ++labels;
+    const bool known =
+        std::find(keys.begin(), keys.end(), label) != keys.end() ||
+        std::find(about_the_run.begin(), about_the_run.end(), label) != about_the_run.end();
+    EXPECT_TRUE(known) << "'" << label << "' in: " << line;
+  }
+  EXPECT_GT(labels, 8);
+  for (const char* command : {"edge --method gimp --E 4 --A 0.015 --T 0.2", "edge --help",
+                              "advise --help", "run --help"}) {
+    const auto o = run_mpmstab(command);
+    EXPECT_EQ(o.output.find("error at T there"), std::string::npos) << command;
+    EXPECT_EQ(o.output.find("error at T stays"), std::string::npos) << command;
+  }
 }
 
 TEST(Cli, UnstableRunIsAResultNotAnError) {

@@ -251,6 +251,24 @@ TEST(Bloch, AgreesWithTheDenseLimitOfABar) {
   }
 }
 
+// At the uniform layout cpGIMP's and CPDI's weights are GIMP's (each particle's domain lies in one
+// cell at F = 1), so their limits must be GIMP's, by the dense map and by the Bloch symbol; the
+// kink of their weights at F = 1 once gave a limit far below it.
+TEST(Bloch, CpGimpAndCpdiHaveGimpsLimitAtTheUniformLayout) {
+  RunParams p;
+  p.cells = 20;
+  p.method = Method::gimp;
+  const auto gimp_dense = spectral_limit(p).courant, gimp_bloch = bloch_limit(p).courant;
+  ASSERT_TRUE(gimp_dense && gimp_bloch);
+  for (const Method m : {Method::cpgimp, Method::cpdi}) {
+    p.method = m;
+    const auto dense = spectral_limit(p).courant, bloch = bloch_limit(p).courant;
+    ASSERT_TRUE(dense && bloch) << to_string(m);
+    EXPECT_NEAR(*dense / *gimp_dense, 1.0, 1e-6) << to_string(m);
+    EXPECT_NEAR(*bloch / *gimp_bloch, 1.0, 1e-6) << to_string(m);
+  }
+}
+
 // A run records the Bloch limit of a uniform layout, the dense limit of a jittered one only
 // when asked, and the spectral policy's first step is s times the recorded limit.
 TEST(Bloch, EveryRunRecordsTheLimitOfItsInitialLayout) {

@@ -380,4 +380,28 @@ void write_performance(const std::vector<Spec>& specs, const fs::path& bench, co
   write_if_changed(out / "performance.md", md.str());
 }
 
+std::string kernel_brief(const fs::path& bench) {
+  const std::string text = read_if_present(bench).value_or("");
+  if (text.empty())
+    return "No benchmark figures: " + bench.generic_string() + " is missing (`make bench`).\n";
+  const ojson doc = parse_json_strict<ojson>(text, bench);
+  const BenchFigures b = read_figures(doc);
+  const ojson& ctx = doc["context"];
+  std::ostringstream md;
+  md << "Measured " << ctx.value("date", "") << " on " << ctx.value("host_name", "") << " ("
+     << ctx.value("num_cpus", 0) << " CPUs at " << ctx.value("mhz_per_cpu", 0.0)
+     << " MHz); ns per particle-step, median (coefficient of variation):\n\n"
+     << "| benchmark | GIMP | MPM |\n|---|---|---|\n";
+  for (const char* name : {"BM_StepBaseline", "BM_Step", "BM_StepChecked", "BM_StepInstrumented"}) {
+    md << "| `" << name << "` |";
+    for (const char* m : {"gimp", "mpm"}) {
+      const Figure* f = b.find(name, m);
+      md << " " << (f ? fixed(f->median, 2) + " (" + fixed(100 * f->cv, 1) + "%)" : "–") << " |";
+    }
+    md << "\n";
+  }
+  write_kernel_summary(md, b);
+  return md.str();
+}
+
 }  // namespace mpmstab

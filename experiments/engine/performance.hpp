@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include "spec.hpp"
@@ -14,5 +15,10 @@ namespace mpmstab {
 // output of tests/bench_step.cpp (may be missing: the report then says so).
 void write_performance(const std::vector<Spec>& specs, const std::filesystem::path& bench,
                        const std::filesystem::path& out);
+
+// The step kernel in brief, for README.md's generated block: where and when it was measured,
+// the bare, checked and instrumented step and the straightforward baseline per method, and per
+// method what each adds. A sentence saying so where `bench` is missing.
+std::string kernel_brief(const std::filesystem::path& bench);
 
 }  // namespace mpmstab

@@ -1,10 +1,12 @@
 #include "documents.hpp"
 
+#include <algorithm>
 #include <sstream>
 
 #include "advice.hpp"
 #include "csv.hpp"
 #include "files.hpp"
+#include "performance.hpp"
 #include "report_util.hpp"
 #include "strict_json.hpp"
 
@@ -122,6 +124,49 @@ std::string advice_counts(const std::filesystem::path& results) {
   return md.str();
 }
 
+// docs/design.md: cells per wavelength for a 1% phase error, per scheme and C, from
+// results/dispersion.json.
+std::string cells_per_wavelength(const std::filesystem::path& results) {
+  const ojson doc = results_file(results, "dispersion.json");
+  if (doc.is_null() || !doc.contains("study") || !doc["study"].contains("cells_per_wavelength"))
+    return "(results/dispersion.json is not there yet: make studies writes it.)\n";
+  std::vector<std::string> schemes;
+  std::vector<double> courants;
+  std::map<std::pair<std::string, double>, std::string> cell;
+  for (const auto& e : doc["study"]["cells_per_wavelength"]) {
+    if (!e.is_object() || !e.contains("method") || !e["method"].is_string() ||
+        !e.contains("courant") || !e["courant"].is_number())
+      continue;
+    const std::string m = e["method"].get<std::string>();
+    const double C = e["courant"].get<double>();
+    if (std::find(schemes.begin(), schemes.end(), m) == schemes.end()) schemes.push_back(m);
+    if (std::find(courants.begin(), courants.end(), C) == courants.end()) courants.push_back(C);
+    const bool below = e.value("below_limit", false);
+    cell[{m, C}] = !below ? "above the limit"
+                   : e["cells_per_wavelength_1pct"].is_number()
+                       ? fixed(e["cells_per_wavelength_1pct"].get<double>(), 1)
+                       : "none";
+  }
+  std::sort(courants.begin(), courants.end());
+  std::ostringstream md;
+  md << "| scheme |";
+  for (const double C : courants)
+    md << " C = " << shortest(C) << " |";
+  md << "\n|---|";
+  for (std::size_t k = 0; k < courants.size(); ++k)
+    md << "---|";
+  md << "\n";
+  for (const auto& m : schemes) {
+    md << "| " << m << " |";
+    for (const double C : courants) {
+      const auto it = cell.find({m, C});
+      md << " " << (it == cell.end() ? std::string("–") : it->second) << " |";
+    }
+    md << "\n";
+  }
+  return md.str();
+}
+
 // ---------------------------------------------------------------------------------------------
 // Markers
 
@@ -135,8 +180,10 @@ const std::string kEndTail = " -->";
 
 std::map<std::string, std::string> document_blocks(const std::filesystem::path& results) {
   return {{"readme-tier-times", tier_times(results)},
+          {"readme-speed", kernel_brief(results / "benchmark_step.json")},
           {"readme-advise-example", advise_example(results)},
-          {"design-advice-counts", advice_counts(results)}};
+          {"design-advice-counts", advice_counts(results)},
+          {"design-cells-per-wavelength", cells_per_wavelength(results)}};
 }
 
 std::string fill_document(const std::string& text, const std::map<std::string, std::string>& blocks,

@@ -284,6 +284,62 @@ std::string ensemble_cell(const std::map<const ojson*, EdgeEnsemble>& all, const
   return s.str();
 }
 
+// The claim on the accuracy edges against the spectral limit.
+Claim accuracy_limit_claim(const std::vector<ojson>& rows) {
+  int accurate_n = 0, accurate_above = 0;
+  for (const auto& r : rows) {
+    if (!has_number(r, "dt_accurate") || !has_number(r, "courant_spectral")) continue;
+    ++accurate_n;
+    const double dt = r["dt_accurate"].get<double>();
+    accurate_above += dt / r["dt_cfl"].get<double>() > r["courant_spectral"].get<double>();
+  }
+  Claim below = claim("accurate-edges-at-most-the-limit",
+                      "Every accuracy edge lies at or below its scheme's spectral limit (where no "
+                      "mode of the linearised step grows; how long each holds is tested apart)",
+                      "{above} of {n} lie above it");
+  below.count("above", accurate_above).count("n", accurate_n);
+  below.over(accurate_n);
+  below.holds = accurate_above == 0;
+  return below;
+}
+
+// The claims on each kind of edge rerun for length: which hold to the longest test length.
+std::vector<Claim> length_claims(const std::vector<ojson>& rows, const EdgeFollowUps& f) {
+  std::vector<Claim> claims;
+  for (const char* col : {"dt_edge", "dt_accurate"}) {
+    int tested = 0, held = 0;
+    std::vector<double> fail_at;
+    for (const auto& r : rows) {
+      const Lasting l = lasting(f.long_runs, r, col);
+      if (!l.tested) continue;
+      ++tested;
+      if (l.holds) {
+        ++held;
+      } else {
+        fail_at.push_back(l.length);
+      }
+    }
+    const bool survival = std::string_view(col) == "dt_edge";
+    Claim c = claim(survival ? "survival-edges-hold-for-length" : "accuracy-edges-hold-for-length",
+                    std::string("Every ") + (survival ? "survival" : "accuracy") +
+                        " edge holds when its run is {first}x and {second}x as long (at most "
+                        "{cap} wave passes)",
+                    "{held} of {tested} hold; the others fail or leave the accuracy class at "
+                    "c T = {span}");
+    c.value("first", shortest(kLengthFactors[0]))
+        .value("second", shortest(kLengthFactors[1]))
+        .value("cap", shortest(kLongPasses))
+        .count("held", held)
+        .count("tested", tested)
+        .value("span", span(fail_at, 3));
+    c.over(tested);
+    c.holds = tested > 0 && held == tested;
+    claims.push_back(c);
+  }
+
+  return claims;
+}
+
 // The conclusions the rows and their ensembles decide.
 std::vector<Claim> edge_claims(const std::vector<ojson>& rows, const EdgeFollowUps& f) {
   const auto& ensembles = f.ensembles;
@@ -347,54 +403,9 @@ std::vector<Claim> edge_claims(const std::vector<ojson>& rows, const EdgeFollowU
   limit.holds = above_limit == 0;
   claims.push_back(limit);
 
-  int accurate_n = 0, accurate_above = 0;
-  for (const auto& r : rows) {
-    if (!has_number(r, "dt_accurate") || !has_number(r, "courant_spectral")) continue;
-    ++accurate_n;
-    const double dt = r["dt_accurate"].get<double>();
-    accurate_above += dt / r["dt_cfl"].get<double>() > r["courant_spectral"].get<double>();
-  }
-  Claim below = claim("accurate-edges-at-most-the-limit",
-                      "Every accuracy edge lies at or below its scheme's spectral limit (where no "
-                      "mode of the linearised step grows; how long each holds is tested apart)",
-                      "{above} of {n} lie above it");
-  below.count("above", accurate_above).count("n", accurate_n);
-  below.over(accurate_n);
-  below.holds = accurate_above == 0;
-  claims.push_back(below);
-
-  // Every edge rerun for length: which hold to the longest test length.
-  for (const char* col : {"dt_edge", "dt_accurate"}) {
-    int tested = 0, held = 0;
-    std::vector<double> fail_at;
-    for (const auto& r : rows) {
-      const Lasting l = lasting(f.long_runs, r, col);
-      if (!l.tested) continue;
-      ++tested;
-      if (l.holds) {
-        ++held;
-      } else {
-        fail_at.push_back(l.length);
-      }
-    }
-    const bool survival = std::string_view(col) == "dt_edge";
-    Claim c = claim(survival ? "survival-edges-hold-for-length" : "accuracy-edges-hold-for-length",
-                    std::string("Every ") + (survival ? "survival" : "accuracy") +
-                        " edge holds when its run is {first}x and {second}x as long (at most "
-                        "{cap} wave passes)",
-                    "{held} of {tested} hold; the others fail or leave the accuracy class at "
-                    "c T = {span}");
-    c.value("first", shortest(kLengthFactors[0]))
-        .value("second", shortest(kLengthFactors[1]))
-        .value("cap", shortest(kLongPasses))
-        .count("held", held)
-        .count("tested", tested)
-        .value("span", span(fail_at, 3));
-    c.over(tested);
-    c.holds = tested > 0 && held == tested;
-    claims.push_back(c);
-  }
-
+  claims.push_back(accuracy_limit_claim(rows));
+  for (auto& c : length_claims(rows, f))
+    claims.push_back(std::move(c));
   Claim mono = claim("survival-monotone", "Survival is monotone in dt in every search",
                      "{monotone} of {n} searches");
   mono.count("monotone", monotone).count("n", static_cast<long long>(rows.size()));

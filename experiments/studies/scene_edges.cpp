@@ -73,22 +73,115 @@ std::vector<std::optional<Robustness>> robustness(const std::vector<ojson>& rows
   return out;
 }
 
-StudyReport edges_report(const ReportContext& ctx) {
-  const auto& rows = ctx.rows;
-  std::size_t next = 0;
-  const auto robust = robustness(rows, ctx.follow_up, next);
-  // The length runs follow every ensemble (none read when the ensembles are incomplete).
+// What the rows and their follow-ups found, over every row.
+struct EdgeCounts {
+  int rows = 0, with_edge = 0, robust_rows = 0, checked = 0, above = 0, compared = 0;
+  int all_survived = 0, meaningless_edges = 0, tested = 0, held = 0;
+  double worst = 0;
+};
+
+// The length runs follow every ensemble; none are read when the ensembles are incomplete.
+LengthRuns length_runs_of(const std::vector<ojson>& rows, const std::vector<ojson>& follow_up,
+                          std::size_t next) {
   std::size_t after = 0;
   for (const auto& r : rows)
     after += has_number(r, "dt_edge") && has_number(r, "dt_fail") ? 2 * kEnsembleMembers : 0;
-  LengthRuns lengths;
-  if (next == after) lengths = read_length_runs(rows, ctx.follow_up, next);
+  return next == after ? read_length_runs(rows, follow_up, next) : LengthRuns{};
+}
+
+// One row of the table, counted into `n`.
+std::string edge_row(const ojson& r, const std::optional<Robustness>& robust,
+                     const LengthRuns& lengths, EdgeCounts& n) {
+  ++n.rows;
+  const auto edge = courant_of(r, "dt_edge"), fail = courant_of(r, "dt_fail"),
+             accurate = courant_of(r, "dt_accurate");
+  // Every dt of the scan survives (a step of T itself): no edge to compare with a limit.
+  const bool all_survive = edge && !fail;
+  n.all_survived += all_survive;
+  const std::optional<double> limit = has_number(r, "courant_spectral")
+                                          ? std::optional(r["courant_spectral"].get<double>())
+                                          : std::nullopt;
+  n.with_edge += edge.has_value();
+  std::string ratio_text = "–";
+  if (edge && limit && !all_survive) {
+    ++n.compared;
+    const double q = *edge / *limit;
+    n.worst = std::max(n.worst, q);
+    n.above += q > kLimitMargin;
+    ratio_text = fixed(q, 2);
+  }
+  std::string perturbed = "–";
+  if (robust) {
+    ++n.checked;
+    n.robust_rows +=
+        robust->survive_at_edge == robust->members && robust->fail_above == robust->members;
+    perturbed = std::to_string(robust->survive_at_edge) + " of " + std::to_string(robust->members) +
+                ", " + std::to_string(robust->fail_above) + " of " +
+                std::to_string(robust->members);
+  }
+  std::string at_edge = "–";
+  if (edge) {
+    const bool meaningless = outcome(r) == "meaningless";
+    n.meaningless_edges += meaningless;
+    at_edge = (meaningless ? "**meaningless**" : outcome(r)) +
+              (has_number(r, "error_at_edge_over_A")
+                   ? " (" + significant(r["error_at_edge_over_A"].get<double>(), 2) + " A)"
+                   : std::string());
+    const Lasting l = lasting(lengths, r, "dt_edge");
+    n.tested += l.tested;
+    n.held += l.tested && l.holds;
+  }
+  std::ostringstream md;
+  md << "| " << text(r, "scene") << " | " << text(r, "method") << " | " << small_mass_of(r) << " | "
+     << edge_text(r) << " | " << opt_fixed(fail) << " | " << at_edge << " | "
+     << (edge ? lasting_text(lengths, r, "dt_edge") : std::string("–")) << " | "
+     << opt_fixed(accurate) << " | "
+     << (accurate ? lasting_text(lengths, r, "dt_accurate") : std::string("–")) << " | "
+     << opt_fixed(limit) << " | " << ratio_text << " | " << perturbed << " |\n";
+  return md.str();
+}
+
+std::vector<Claim> edges_claims(const EdgeCounts& n) {
+  Claim edge = claim("every-case-has-an-edge",
+                     "Every case has a survival edge inside the scan: {with} of {cases}.");
+  edge.count("with", n.with_edge).count("cases", n.rows).over(n.rows);
+  edge.holds = n.with_edge == n.rows;
+  Claim robust = claim("edges-survive-perturbation",
+                       "Every edge holds on every perturbed layout (all survive at the edge, all "
+                       "fail just above it): {robust} of {checked} edges.");
+  robust.count("robust", n.robust_rows).count("checked", n.checked).over(n.checked);
+  robust.holds = n.checked > 0 && n.robust_rows == n.checked;
+  Claim meaningful = claim("edges-meaningful",
+                           "No survival edge is a meaningless run: {meaningless} of {with} are.");
+  meaningful.count("meaningless", n.meaningless_edges).count("with", n.with_edge).over(n.with_edge);
+  meaningful.holds = n.meaningless_edges == 0;
+  Claim length = claim("edges-hold-for-length",
+                       "Every survival edge survives {first}x and {second}x its run length (at "
+                       "most {cap} wave passes): {held} of {tested} do.");
+  length.value("first", shortest(kLengthFactors[0]))
+      .value("second", shortest(kLengthFactors[1]))
+      .value("cap", shortest(kLongPasses))
+      .count("held", n.held)
+      .count("tested", n.tested)
+      .over(n.tested);
+  length.holds = n.tested > 0 && n.held == n.tested;
+  Claim limit = claim("edges-at-or-below-limit",
+                      "No survival edge lies above {margin} times the dense spectral limit of "
+                      "its body: {above} of {compared} with an edge do (the largest ratio is "
+                      "{worst}).");
+  limit.number("margin", kLimitMargin, 3).count("above", n.above).count("compared", n.compared);
+  limit.number("worst", n.worst, 3).over(n.compared);
+  limit.holds = n.compared > 0 && n.above == 0;
+  return {edge, robust, meaningful, length, limit};
+}
+
+// What each column means, every number from the study's own rules.
+std::string edges_intro(const ReportContext& ctx) {
   std::ostringstream md;
   md << "Each row: a scene, a method and a small-mass treatment (docs/design.md, \"Small-mass "
         "nodes\"). *Survival edge*: the largest c dt/h probed that survives to T, and the "
         "smallest above it that fails; *accuracy edge*: the largest up to which the error over "
-        "time stays within the search's factor of the smallest dt's "
-        "("
+        "time stays within the search's factor of the smallest dt's ("
      << edge_search_text(ctx.spec.study->edge)
      << "); *dense limit*: the spectral limit of the whole body with its free surfaces "
         "(docs/design.md, \"The spectral limit\"); *perturbed*: of "
@@ -99,118 +192,29 @@ StudyReport edges_report(const ReportContext& ctx) {
         "at "
      << shortest(kLengthFactors[0]) << " and " << shortest(kLengthFactors[1])
      << " times its wave passes (at most " << shortest(kLongPasses)
-     << "), holding to the longest it passed or **transient** where it failed.\n\n";
-  md << "| scene | method | small-mass | survival edge c dt/h | fails at | run at the edge | "
+     << "), holding to the longest it passed or **transient** where it failed.\n\n"
+     << "| scene | method | small-mass | survival edge c dt/h | fails at | run at the edge | "
         "survival edge: length | accuracy edge | accuracy edge: length | dense limit | edge / "
         "limit | perturbed: survive at edge, fail above |\n"
         "|---|---|---|---:|---:|---|---|---:|---|---:|---:|---|\n";
-  int with_edge = 0, robust_rows = 0, checked = 0, above = 0, compared = 0, all_survived = 0;
-  int meaningless_edges = 0, tested = 0, held = 0;
-  double worst = 0;
-  for (std::size_t i = 0; i < rows.size(); ++i) {
-    const ojson& r = rows[i];
-    const auto edge = courant_of(r, "dt_edge"), fail = courant_of(r, "dt_fail"),
-               accurate = courant_of(r, "dt_accurate");
-    // Every dt of the scan survives (a step of T itself): no edge to compare with a limit.
-    const bool all_survive = edge && !fail;
-    all_survived += all_survive;
-    const std::optional<double> limit = has_number(r, "courant_spectral")
-                                            ? std::optional(r["courant_spectral"].get<double>())
-                                            : std::nullopt;
-    with_edge += edge.has_value();
-    std::string ratio_text = "–";
-    if (edge && limit && !all_survive) {
-      ++compared;
-      const double q = *edge / *limit;
-      worst = std::max(worst, q);
-      above += q > kLimitMargin;
-      ratio_text = fixed(q, 2);
-    }
-    std::string perturbed = "–";
-    if (robust[i]) {
-      ++checked;
-      const Robustness& b = *robust[i];
-      robust_rows += b.survive_at_edge == b.members && b.fail_above == b.members;
-      perturbed = std::to_string(b.survive_at_edge) + " of " + std::to_string(b.members) + ", " +
-                  std::to_string(b.fail_above) + " of " + std::to_string(b.members);
-    }
-    std::string at_edge = "–";
-    if (edge) {
-      const bool meaningless = outcome(r) == "meaningless";
-      meaningless_edges += meaningless;
-      at_edge = (meaningless ? "**meaningless**" : outcome(r)) +
-                (has_number(r, "error_at_edge_over_A")
-                     ? " (" + significant(r["error_at_edge_over_A"].get<double>(), 2) + " A)"
-                     : std::string());
-      const Lasting l = lasting(lengths, r, "dt_edge");
-      tested += l.tested;
-      held += l.tested && l.holds;
-    }
-    md << "| " << text(r, "scene") << " | " << text(r, "method") << " | " << small_mass_of(r)
-       << " | " << edge_text(r) << " | " << opt_fixed(fail) << " | " << at_edge << " | "
-       << (edge ? lasting_text(lengths, r, "dt_edge") : std::string("–")) << " | "
-       << opt_fixed(accurate) << " | "
-       << (accurate ? lasting_text(lengths, r, "dt_accurate") : std::string("–")) << " | "
-       << opt_fixed(limit) << " | " << ratio_text << " | " << perturbed << " |\n";
-  }
+  return md.str();
+}
+
+StudyReport edges_report(const ReportContext& ctx) {
+  const auto& rows = ctx.rows;
+  std::size_t next = 0;
+  const auto robust = robustness(rows, ctx.follow_up, next);
+  const LengthRuns lengths = length_runs_of(rows, ctx.follow_up, next);
+  EdgeCounts n;
+  std::ostringstream md;
+  md << edges_intro(ctx);
+  for (std::size_t i = 0; i < rows.size(); ++i)
+    md << edge_row(rows[i], robust[i], lengths, n);
   md << "\nAn edge above the dense limit is one at which the growth the limit predicts has "
         "not reached a failure by T (c T is given per scene in the scenes report); every dt up "
         "to T survives where nothing grows at all (the block: no stress). "
-     << all_survived << " of " << rows.size() << " rows survive every dt.\n";
-  std::vector<Claim> claims;
-  {
-    Claim c = claim("every-case-has-an-edge",
-                    "Every case has a survival edge inside the scan: {with} of {cases}.");
-    c.count("with", with_edge).count("cases", static_cast<long long>(rows.size()));
-    c.over(static_cast<long long>(rows.size()));
-    c.holds = with_edge == static_cast<int>(rows.size());
-    claims.push_back(c);
-  }
-  {
-    Claim c = claim("edges-survive-perturbation",
-                    "Every edge holds on every perturbed layout (all survive at the edge, all "
-                    "fail just above it): {robust} of {checked} edges.");
-    c.count("robust", robust_rows).count("checked", checked);
-    c.over(checked);
-    c.holds = checked > 0 && robust_rows == checked;
-    claims.push_back(c);
-  }
-  {
-    Claim c = claim("edges-meaningful",
-                    "No survival edge is a meaningless run: {meaningless} of {with} are.");
-    c.count("meaningless", meaningless_edges).count("with", with_edge);
-    c.over(with_edge);
-    c.holds = meaningless_edges == 0;
-    claims.push_back(c);
-  }
-  {
-    Claim c = claim("edges-hold-for-length",
-                    "Every survival edge survives {first}x and {second}x its run length (at most "
-                    "{cap} wave passes): {held} of {tested} do.");
-    c.value("first", shortest(kLengthFactors[0]))
-        .value("second", shortest(kLengthFactors[1]))
-        .value("cap", shortest(kLongPasses))
-        .count("held", held)
-        .count("tested", tested);
-    c.over(tested);
-    c.holds = tested > 0 && held == tested;
-    claims.push_back(c);
-  }
-  {
-    Claim c = claim("edges-at-or-below-limit",
-                    "No survival edge lies above {margin} times the dense spectral limit of its "
-                    "body: {above} of {compared} with an edge do (the largest ratio is "
-                    "{worst}).");
-    c.number("margin", kLimitMargin, 3).count("above", above).count("compared", compared);
-    c.number("worst", worst, 3);
-    c.over(compared);
-    c.holds = compared > 0 && above == 0;
-    claims.push_back(c);
-  }
-  StudyReport report;
-  report.markdown = md.str();
-  report.claims = std::move(claims);
-  return report;
+     << n.all_survived << " of " << n.rows << " rows survive every dt.\n";
+  return StudyReport{.markdown = md.str(), .claims = edges_claims(n)};
 }
 
 std::string edges_index(const Spec& spec, const std::vector<ojson>& rows) {
