@@ -234,48 +234,130 @@ struct Eq108Findings {
   double lo = 1e300, hi = 0, E_lo = 0, E_hi = 0;
 };
 
-Eq108Findings eq108_findings(const std::vector<ojson>& rows) {
-  Eq108Findings f;
-  const auto points = eq108_points(rows);
-  const ojson& first = rows.front();
-  const int cells0 = first["cells"].get<int>(), ppc0 = first["ppc"].get<int>();
-  const double E0 = first["E"].get<double>();
-
-  // The runs on the first row's grid: every E and particles per cell.
+// The runs the eq. (108) section reads: every run's point, and those on the first row's grid by
+// E, particles per cell and basis.
+struct Eq108Grid {
+  std::vector<Eq108Point> points;
+  int cells0 = 0, ppc0 = 0;
+  double E0 = 0, cT_lo = 1e300, cT_hi = 0;
   std::vector<double> Es;
   std::vector<int> ppcs;
   std::vector<std::string> bases;
-  double cT_lo = 1e300, cT_hi = 0;
-  for (const auto& p : points) {
-    if (p.cells != cells0) continue;
-    add_unique(Es, p.E);
-    add_unique(ppcs, p.ppc);
-    cT_lo = std::min(cT_lo, p.c() * p.T);
-    cT_hi = std::max(cT_hi, p.c() * p.T);
-  }
-  std::sort(Es.begin(), Es.end(), TotalLess());
-  std::sort(ppcs.begin(), ppcs.end());
-  for (const auto& b : kEq108Bases)
-    if (std::any_of(points.begin(), points.end(),
-                    [&](const Eq108Point& p) { return p.method == b && p.cells == cells0; }))
-      bases.push_back(b);
-  auto find = [&](const std::string& m, double E, int ppc) -> const Eq108Point* {
+  const Eq108Point* find(const std::string& m, double E, int ppc) const {
     for (const auto& p : points)
       if (p.method == m && p.E == E && p.ppc == ppc && p.cells == cells0) return &p;
     return nullptr;
-  };
-  auto ppcs_of = [&](const std::string& m) {
+  }
+  std::vector<int> ppcs_of(const std::string& m) const {
     std::vector<int> out;
     for (int ppc : ppcs)
       if (std::any_of(Es.begin(), Es.end(), [&](double E) { return find(m, E, ppc); }))
         out.push_back(ppc);
     return out;
-  };
+  }
+};
 
+Eq108Grid eq108_grid(const std::vector<ojson>& rows) {
+  Eq108Grid g;
+  g.points = eq108_points(rows);
+  const ojson& first = rows.front();
+  g.cells0 = first["cells"].get<int>();
+  g.ppc0 = first["ppc"].get<int>();
+  g.E0 = first["E"].get<double>();
+  for (const auto& p : g.points) {
+    if (p.cells != g.cells0) continue;
+    add_unique(g.Es, p.E);
+    add_unique(g.ppcs, p.ppc);
+    g.cT_lo = std::min(g.cT_lo, p.c() * p.T);
+    g.cT_hi = std::max(g.cT_hi, p.c() * p.T);
+  }
+  std::sort(g.Es.begin(), g.Es.end(), TotalLess());
+  std::sort(g.ppcs.begin(), g.ppcs.end());
+  for (const auto& b : kEq108Bases)
+    if (std::any_of(g.points.begin(), g.points.end(),
+                    [&](const Eq108Point& p) { return p.method == b && p.cells == g.cells0; }))
+      g.bases.push_back(b);
+  return g;
+}
+
+// Findings: how far one basis and layout moves with E, the ratio against the particles per cell
+// and against the particle count (GIMP), and how far the state moved the bound from rest.
+struct Eq108Spread {
+  double spread = 1, lo = 0, hi = 0, E_lo = 0, E_hi = 0;
+  std::string basis;
+  int ppc = 0;
+};
+Eq108Spread eq108_spread(const Eq108Grid& g) {
+  Eq108Spread s;
+  for (const auto& b : g.bases) {
+    for (int ppc : g.ppcs) {
+      const Eq108Point *lo = nullptr, *hi = nullptr;
+      for (double E : g.Es) {
+        const Eq108Point* p = g.find(b, E, ppc);
+        if (!p) continue;
+        if (!lo || p->ratio() < lo->ratio()) lo = p;
+        if (!hi || p->ratio() > hi->ratio()) hi = p;
+      }
+      if (lo && hi->ratio() / lo->ratio() > s.spread) {
+        s.spread = hi->ratio() / lo->ratio();
+        s.basis = b;
+        s.ppc = ppc;
+        s.lo = lo->ratio();
+        s.hi = hi->ratio();
+        s.E_lo = lo->E;
+        s.E_hi = hi->E;
+      }
+    }
+  }
+  return s;
+}
+
+struct Eq108Trends {
+  std::vector<std::pair<double, double>> by_ppc;  // GIMP at the first E: ppc, ratio
+  std::optional<double> ppc_slope;
+  std::vector<std::pair<double, double>> by_count;  // GIMP: particles, ratio
+  std::vector<const Eq108Point*> gimp_count;
+  std::optional<double> count_slope;
+  double shift = 0;
+  const Eq108Point* shifted = nullptr;  // the run whose state moved the bound most
+};
+Eq108Trends eq108_trends(const Eq108Grid& g) {
+  Eq108Trends t;
+  for (const auto& p : g.points)
+    if (p.method == "gimp" && p.E == g.E0 && p.cells == g.cells0)
+      t.by_ppc.emplace_back(p.ppc, p.ratio());
+  t.ppc_slope = loglog_slope(t.by_ppc);
+  for (const auto& b : g.bases) {
+    if (b != "gimp") continue;
+    std::vector<const Eq108Point*> mine;
+    for (const auto& p : g.points)
+      if (p.method == b && p.E == g.E0 && p.ppc == g.ppc0) mine.push_back(&p);
+    if (mine.size() < 2) continue;
+    std::sort(mine.begin(), mine.end(),
+              [](const Eq108Point* x, const Eq108Point* y) { return x->particles < y->particles; });
+    for (const Eq108Point* p : mine) {
+      t.by_count.emplace_back(p->particles, p->ratio());
+      t.gimp_count.push_back(p);
+    }
+  }
+  t.count_slope = loglog_slope(t.by_count);
+  for (const auto& p : g.points) {
+    if (!t.shifted || p.state_shift() > t.shift) {
+      t.shift = p.state_shift();
+      t.shifted = &p;
+    }
+  }
+  return t;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Rendering of the eq. (108) section
+
+std::string eq108_intro(const Eq108Grid& g) {
   std::ostringstream md;
   md << "## Eq. (108) against the limit, per E and per particle count\n\n";
-  if (!points.empty()) {
-    const Eq108Point& p0 = points.front();
+  if (!g.points.empty()) {
+    const Eq108Point& p0 = g.points.front();
     md << "Eq. (108) is not dimensionally homogeneous: it adds sqrt(E), a speed in these units, to "
           "F_max, a pure number, divides the stress by sqrt(E), and adds the l2 norm of the "
           "nodal velocities, a sum over the nodes. So its step in units of h/c is not fixed by "
@@ -283,39 +365,45 @@ Eq108Findings eq108_findings(const std::vector<ojson>& rows) {
           "first table shows, and with the particles per cell. Each run is the bar at A = "
        << shortest(p0.A) << " with USL, FLIP and the uniform layout, under the spectral policy at "
        << shortest(p0.safety) << " times the limit, ";
-    if (cT_hi <= cT_lo * (1 + 1e-9)) {
-      md << "for T = " << shortest(cT_lo) << " / sqrt(E) (c T / L = " << shortest(cT_lo)
+    if (g.cT_hi <= g.cT_lo * (1 + 1e-9)) {
+      md << "for T = " << shortest(g.cT_lo) << " / sqrt(E) (c T / L = " << shortest(g.cT_lo)
          << " crossings of the bar and the same steps at every E)";
     } else {
-      md << "for c T / L = " << shortest(cT_lo) << " to " << shortest(cT_hi)
+      md << "for c T / L = " << shortest(g.cT_lo) << " to " << shortest(g.cT_hi)
          << " crossings of the bar";
     }
-    int cells_lo = cells0, cells_hi = cells0;
-    for (const auto& p : points) {
+    int cells_lo = g.cells0, cells_hi = g.cells0;
+    for (const auto& p : g.points) {
       cells_lo = std::min(cells_lo, p.cells);
       cells_hi = std::max(cells_hi, p.cells);
     }
-    md << ", on " << cells0 << " cells";
+    md << ", on " << g.cells0 << " cells";
     if (cells_hi > cells_lo)
       md << " (the last table: " << cells_lo << " to " << cells_hi << " cells)";
     md << ". Eq. (108) is the minimum of the bound over the run, in units of h/c; the spectral "
           "limit, in c dt / h, is the same at every E.\n\n";
   }
 
-  // Per E at the first row's particles per cell.
-  md << "**Per E**, at " << ppc0
+  return md.str();
+}
+
+// The per-E table at the first row's particles per cell; `per_E` gets each E's range of the
+// ratio, and `f` the reading's range at the first row's particles per cell.
+std::string eq108_per_E(const Eq108Grid& g, Eq108Findings& f,
+                        std::vector<std::pair<double, std::pair<double, double>>>& per_E) {
+  std::ostringstream md;
+  md << "**Per E**, at " << g.ppc0
      << " particles per cell (the last column: the ratio over every particles per cell run at "
         "that E)\n\n| E | c | basis | spectral limit (c dt / h) | eq. (108) minimum (h / c) | "
         "eq. (108) / limit | eq. (108) / limit over the particles per cell |\n"
         "|---|---|---|---|---|---|---|\n";
-  std::vector<std::pair<double, std::pair<double, double>>> per_E;  // E -> ratio lo, hi
-  for (double E : Es) {
+  for (double E : g.Es) {
     double lo = 1e300, hi = 0;
-    for (const auto& b : bases) {
+    for (const auto& b : g.bases) {
       double blo = 1e300, bhi = 0;
       int n = 0;
-      for (int ppc : ppcs) {
-        if (const Eq108Point* p = find(b, E, ppc)) {
+      for (int ppc : g.ppcs) {
+        if (const Eq108Point* p = g.find(b, E, ppc)) {
           blo = std::min(blo, p->ratio());
           bhi = std::max(bhi, p->ratio());
           ++n;
@@ -323,7 +411,7 @@ Eq108Findings eq108_findings(const std::vector<ojson>& rows) {
       }
       lo = std::min(lo, blo);
       hi = std::max(hi, bhi);
-      const Eq108Point* p = find(b, E, ppc0);
+      const Eq108Point* p = g.find(b, E, g.ppc0);
       if (!p) continue;
       f.lo = std::min(f.lo, p->ratio());
       f.hi = std::max(f.hi, p->ratio());
@@ -331,42 +419,24 @@ Eq108Findings eq108_findings(const std::vector<ojson>& rows) {
          << fixed(p->limit, 4) << " | " << fixed(p->eq108, 4) << " | " << ratio_text(p->ratio())
          << " | "
          << (n > 1 ? ratio_text(blo) + " to " + ratio_text(bhi) + " (ppc " +
-                         std::to_string(ppcs_of(b).front()) + " to " +
-                         std::to_string(ppcs_of(b).back()) + ")"
+                         std::to_string(g.ppcs_of(b).front()) + " to " +
+                         std::to_string(g.ppcs_of(b).back()) + ")"
                    : std::string("–"))
          << " |\n";
     }
     if (hi > 0) per_E.push_back({E, {lo, hi}});
   }
-  if (!Es.empty()) {
-    f.E_lo = Es.front();
-    f.E_hi = Es.back();
+  if (!g.Es.empty()) {
+    f.E_lo = g.Es.front();
+    f.E_hi = g.Es.back();
   }
 
-  // How far one basis and layout moves with E.
-  double spread = 1, spread_lo = 0, spread_hi = 0, spread_E_lo = 0, spread_E_hi = 0;
-  std::string spread_basis;
-  int spread_ppc = 0;
-  for (const auto& b : bases) {
-    for (int ppc : ppcs) {
-      const Eq108Point *lo = nullptr, *hi = nullptr;
-      for (double E : Es) {
-        const Eq108Point* p = find(b, E, ppc);
-        if (!p) continue;
-        if (!lo || p->ratio() < lo->ratio()) lo = p;
-        if (!hi || p->ratio() > hi->ratio()) hi = p;
-      }
-      if (lo && hi->ratio() / lo->ratio() > spread) {
-        spread = hi->ratio() / lo->ratio();
-        spread_basis = b;
-        spread_ppc = ppc;
-        spread_lo = lo->ratio();
-        spread_hi = hi->ratio();
-        spread_E_lo = lo->E;
-        spread_E_hi = hi->E;
-      }
-    }
-  }
+  return md.str();
+}
+
+std::string eq108_per_E_reading(
+    const std::vector<std::pair<double, std::pair<double, double>>>& per_E, const Eq108Spread& s) {
+  std::ostringstream md;
   if (!per_E.empty()) {
     md << "\nThe ratio per E, over the bases and particles per cell:";
     std::string sep = " ";
@@ -376,63 +446,68 @@ Eq108Findings eq108_findings(const std::vector<ojson>& rows) {
       sep = "; ";
     }
     md << ".";
-    if (!spread_basis.empty()) {
-      md << " At one basis and layout it changes with E by up to a factor " << fixed(spread, 2)
-         << " (" << spread_basis << " at " << spread_ppc
-         << " particles per cell: " << ratio_text(spread_lo) << " at E = " << shortest(spread_E_lo)
-         << ", " << ratio_text(spread_hi) << " at E = " << shortest(spread_E_hi)
+    if (!s.basis.empty()) {
+      md << " At one basis and layout it changes with E by up to a factor " << fixed(s.spread, 2)
+         << " (" << s.basis << " at " << s.ppc << " particles per cell: " << ratio_text(s.lo)
+         << " at E = " << shortest(s.E_lo) << ", " << ratio_text(s.hi)
+         << " at E = " << shortest(s.E_hi)
          << "); a bound homogeneous in E would give one ratio at every E.";
     }
     md << "\n\n";
   }
 
-  // By particles per cell at every E, for the bases run at more than one.
-  std::vector<std::pair<double, double>> by_ppc;  // GIMP at the first E: ppc, ratio
-  for (const auto& p : points)
-    if (p.method == "gimp" && p.E == E0 && p.cells == cells0) by_ppc.emplace_back(p.ppc, p.ratio());
-  const auto ppc_slope = loglog_slope(by_ppc);
-  if (ppcs.size() > 1) {
-    md << "**Per particles per cell** on " << cells0
+  return md.str();
+}
+
+// By particles per cell at every E, for the bases run at more than one.
+std::string eq108_per_ppc(const Eq108Grid& g, const Eq108Trends& t) {
+  std::ostringstream md;
+  if (g.ppcs.size() > 1) {
+    md << "**Per particles per cell** on " << g.cells0
        << " cells: the spectral limit, then eq. (108) / limit at each E\n\n| basis | E |";
-    for (int ppc : ppcs)
+    for (int ppc : g.ppcs)
       md << " ppc " << ppc << " |";
     md << "\n|---|---|";
-    for (std::size_t k = 0; k < ppcs.size(); ++k)
+    for (std::size_t k = 0; k < g.ppcs.size(); ++k)
       md << "---|";
     md << "\n";
-    for (const auto& b : bases) {
-      if (ppcs_of(b).size() < 2) continue;
+    for (const auto& b : g.bases) {
+      if (g.ppcs_of(b).size() < 2) continue;
       md << "| " << b << " | spectral limit |";
-      for (int ppc : ppcs) {
+      for (int ppc : g.ppcs) {
         const Eq108Point* p = nullptr;
-        for (double E : Es)
-          if (!p) p = find(b, E, ppc);
+        for (double E : g.Es)
+          if (!p) p = g.find(b, E, ppc);
         md << " " << (p ? fixed(p->limit, 3) : std::string("–")) << " |";
       }
       md << "\n";
-      for (double E : Es) {
+      for (double E : g.Es) {
         md << "| " << b << " | " << shortest(E) << " |";
-        for (int ppc : ppcs) {
-          const Eq108Point* p = find(b, E, ppc);
+        for (int ppc : g.ppcs) {
+          const Eq108Point* p = g.find(b, E, ppc);
           md << " " << (p ? ratio_text(p->ratio()) : std::string("–")) << " |";
         }
         md << "\n";
       }
     }
     md << "\nAt a fixed grid the ratio falls with the particles per cell";
-    if (ppc_slope)
-      md << ": fitted exponent " << fixed(*ppc_slope, 3) << " (GIMP at E = " << shortest(E0) << ")";
+    if (t.ppc_slope)
+      md << ": fitted exponent " << fixed(*t.ppc_slope, 3) << " (GIMP at E = " << shortest(g.E0)
+         << ")";
     md << ".\n\n";
   }
 
-  // Against the particle count: the first E and particles per cell on every grid.
-  std::vector<std::pair<double, double>> by_count;  // GIMP: particles, ratio
-  std::vector<const Eq108Point*> gimp_count;
+  return md.str();
+}
+
+// Against the particle count: the first E and particles per cell on every grid.
+std::string eq108_per_count(const Eq108Grid& g, const Eq108Trends& t) {
+  std::ostringstream md;
   std::ostringstream count_table;
-  for (const auto& b : bases) {
+  for (const auto& b : g.bases) {
     std::vector<const Eq108Point*> mine;
-    for (const auto& p : points)
-      if (p.method == b && p.E == E0 && p.ppc == ppc0) mine.push_back(&p);
+    for (const auto& p : g.points)
+      if (p.method == b && p.E == g.E0 && p.ppc == g.ppc0) mine.push_back(&p);
     if (mine.size() < 2) continue;
     std::sort(mine.begin(), mine.end(),
               [](const Eq108Point* x, const Eq108Point* y) { return x->particles < y->particles; });
@@ -440,70 +515,87 @@ Eq108Findings eq108_findings(const std::vector<ojson>& rows) {
       count_table << "| " << p->method << " | " << p->cells << " | " << p->particles << " | "
                   << ratio_text(p->ratio()) << " | "
                   << fixed(p->ratio() * std::sqrt(double(p->particles)), 3) << " |\n";
-      if (b == "gimp") {
-        by_count.emplace_back(p->particles, p->ratio());
-        gimp_count.push_back(p);
-      }
     }
   }
-  const auto slope = loglog_slope(by_count);
   if (!count_table.str().empty()) {
-    md << "**Against the particle count**, at E = " << shortest(E0) << " and " << ppc0
+    md << "**Against the particle count**, at E = " << shortest(g.E0) << " and " << g.ppc0
        << " particles per cell on every grid\n\n| basis | cells | particles | eq. (108) / "
           "limit | eq. (108) / limit x sqrt(particles) |\n|---|---|---|---|---|\n"
        << count_table.str() << "\n";
-    if (gimp_count.size() >= 2) {
-      const Eq108Point *a = gimp_count.front(), *z = gimp_count.back();
+    if (t.gimp_count.size() >= 2) {
+      const Eq108Point *a = t.gimp_count.front(), *z = t.gimp_count.back();
       md << "Refining the grid from " << a->particles << " to " << z->particles
          << " particles moves GIMP's ratio from " << ratio_text(a->ratio()) << " to "
          << ratio_text(z->ratio());
-      if (slope) md << " (fitted exponent against the particle count " << fixed(*slope, 3) << ")";
+      if (t.count_slope)
+        md << " (fitted exponent against the particle count " << fixed(*t.count_slope, 3) << ")";
       md << ", and the ratio times sqrt(particles) from "
          << fixed(a->ratio() * std::sqrt(double(a->particles)), 3) << " to "
          << fixed(z->ratio() * std::sqrt(double(z->particles)), 3) << ". ";
-      if (slope && std::abs(*slope) <= kSlopeTolerance) {
+      if (t.count_slope && std::abs(*t.count_slope) <= kSlopeTolerance) {
         md << "So eq. (108) does not shrink as 1/sqrt(particles) when the grid is refined at a "
               "fixed number of particles per cell; at a fixed grid, where the particles per cell "
               "set the count, it falls with them as the previous table shows.";
-      } else if (slope) {
+      } else if (t.count_slope) {
         md << "So eq. (108)'s ratio changes with the particle count on a refined grid as its "
               "power "
-           << fixed(*slope, 3) << ".";
+           << fixed(*t.count_slope, 3) << ".";
       }
       md << "\n\n";
     }
   }
 
-  // The state against the bound at rest.
-  double shift = 0;
-  const Eq108Point* shifted = nullptr;  // the run whose state moved the bound most
-  for (const auto& p : points) {
-    if (!shifted || p.state_shift() > shift) {
-      shift = p.state_shift();
-      shifted = &p;
-    }
-  }
-  if (!points.empty()) {
+  return md.str();
+}
+
+// The state against the bound at rest.
+std::string eq108_state(const Eq108Grid& g, const Eq108Trends& t) {
+  std::ostringstream md;
+  if (!g.points.empty()) {
     md << "The l2 norm of the nodal velocities grows as the square root of the node count for "
           "nodal velocities of a given size, and the bound falls as it grows. ";
-    if (shift < kStateNegligible) {
-      md << "At A = " << shortest(points.front().A) << " that term does not show: over the "
-         << points.size() << " runs, eq. (108)'s minimum lies within " << sci(shift, 2)
+    if (t.shift < kStateNegligible) {
+      md << "At A = " << shortest(g.points.front().A) << " that term does not show: over the "
+         << g.points.size() << " runs, eq. (108)'s minimum lies within " << sci(t.shift, 2)
          << " (relative) of its value at rest (F = 1, no stress, no velocity, at the run's E, "
             "grid and particles per cell), so what the tables show is the formula's constants "
             "(sqrt(E) beside F_max = 1, and the particles per cell m in h sqrt(m) / (4 m "
             "(sqrt(E) + F_max + ||v||) + ...)), not the state of the runs.\n\n";
     } else {
-      md << "Over the " << points.size() << " runs the state moves eq. (108)'s minimum by up to "
-         << sci(shift, 2)
+      md << "Over the " << g.points.size() << " runs the state moves eq. (108)'s minimum by up to "
+         << sci(t.shift, 2)
          << " (relative) from its value at rest (F = 1, no stress, no velocity).\n\n";
     }
   }
 
-  // Claims.
+  return md.str();
+}
+
+// The claim that the runs' state does not move eq. (108) at the tiny amplitude.
+Claim eq108_rest_claim(const Eq108Grid& g, const Eq108Trends& t) {
+  const auto n = static_cast<long long>(g.points.size());
+  Claim e = claim("eq108-at-rest",
+                  "At the tiny amplitude the state of the runs does not move eq. (108): its "
+                  "minimum is its value at rest, so what changes it with E, the particles per "
+                  "cell and the grid is the formula's constants",
+                  "{n} runs at A = {A}: the largest relative gap to eq. (108) at rest is {gap}, "
+                  "{basis} at E = {E}, ppc {ppc} (negligible: below {tolerance})");
+  e.count("n", n)
+      .value("A", g.points.empty() ? "–" : shortest(g.points.front().A))
+      .value("gap", n ? sci(t.shift, 2) : "–")
+      .value("basis", t.shifted ? t.shifted->method : "–")
+      .value("E", t.shifted ? shortest(t.shifted->E) : "–")
+      .value("ppc", t.shifted ? std::to_string(t.shifted->ppc) : "–")
+      .value("tolerance", shortest(kStateNegligible));
+  e.holds = n > 0 && t.shift < kStateNegligible;
+  return e;
+}
+
+std::vector<Claim> eq108_claims(const Eq108Grid& g, const Eq108Spread& s, const Eq108Trends& t) {
+  std::vector<Claim> claims;
   int below = 0, n = 0;
   const Eq108Point* worst = nullptr;
-  for (const auto& p : points) {
+  for (const auto& p : g.points) {
     ++n;
     below += p.ratio() < 1;
     if (!worst || p.ratio() > worst->ratio()) worst = &p;
@@ -520,7 +612,7 @@ Eq108Findings eq108_findings(const std::vector<ojson>& rows) {
       .value("ppc", worst ? std::to_string(worst->ppc) : "–")
       .over(n);
   a.holds = n > 0 && below == n;
-  f.claims.push_back(a);
+  claims.push_back(a);
 
   Claim b = claim("eq108-not-homogeneous",
                   "Eq. (108)'s ratio to the spectral limit changes with E at the same c dt/h, "
@@ -528,59 +620,59 @@ Eq108Findings eq108_findings(const std::vector<ojson>& rows) {
                   "at one basis and layout the ratio changes with E by up to a factor {spread}: "
                   "{basis} at ppc {ppc}, {lo} at E = {E_lo} and {hi} at E = {E_hi} "
                   "(homogeneous: below {threshold})");
-  const bool spread_found = !spread_basis.empty();
-  b.value("spread", fixed(spread, 2))
-      .value("basis", spread_found ? spread_basis : "–")
-      .value("ppc", spread_found ? std::to_string(spread_ppc) : "–")
-      .value("lo", spread_found ? ratio_text(spread_lo) : "–")
-      .value("E_lo", spread_found ? shortest(spread_E_lo) : "–")
-      .value("hi", spread_found ? ratio_text(spread_hi) : "–")
-      .value("E_hi", spread_found ? shortest(spread_E_hi) : "–")
+  const bool spread_found = !s.basis.empty();
+  b.value("spread", fixed(s.spread, 2))
+      .value("basis", spread_found ? s.basis : "–")
+      .value("ppc", spread_found ? std::to_string(s.ppc) : "–")
+      .value("lo", spread_found ? ratio_text(s.lo) : "–")
+      .value("E_lo", spread_found ? shortest(s.E_lo) : "–")
+      .value("hi", spread_found ? ratio_text(s.hi) : "–")
+      .value("E_hi", spread_found ? shortest(s.E_hi) : "–")
       .value("threshold", shortest(kHomogeneousSpread));
-  b.holds = spread > kHomogeneousSpread;
-  f.claims.push_back(b);
+  b.holds = s.spread > kHomogeneousSpread;
+  claims.push_back(b);
 
   Claim c = claim("eq108-falls-as-sqrt-ppc",
                   "At a fixed grid, eq. (108)'s ratio to the limit falls as the inverse square "
                   "root of the particles per cell",
                   "GIMP at E = {E}, {points} values of particles per cell: fitted exponent "
                   "{slope} (expected {expected} within {tolerance})");
-  c.value("E", shortest(E0))
-      .count("points", static_cast<long long>(by_ppc.size()))
-      .value("slope", ppc_slope ? fixed(*ppc_slope, 3) : "–")
+  c.value("E", shortest(g.E0))
+      .count("points", static_cast<long long>(t.by_ppc.size()))
+      .value("slope", t.ppc_slope ? fixed(*t.ppc_slope, 3) : "–")
       .value("expected", shortest(kSqrtSlope))
       .value("tolerance", shortest(kSlopeTolerance));
-  c.holds = ppc_slope && std::abs(*ppc_slope - kSqrtSlope) <= kSlopeTolerance;
-  f.claims.push_back(c);
+  c.holds = t.ppc_slope && std::abs(*t.ppc_slope - kSqrtSlope) <= kSlopeTolerance;
+  claims.push_back(c);
 
   Claim d = claim("eq108-independent-of-grid",
                   "At a fixed number of particles per cell, refining the grid leaves eq. (108)'s "
                   "ratio to the limit unchanged",
                   "GIMP at E = {E}, {points} grids: fitted exponent against the particle count "
                   "{slope} (unchanged: within {tolerance} of zero)");
-  d.value("E", shortest(E0))
-      .count("points", static_cast<long long>(by_count.size()))
-      .value("slope", slope ? fixed(*slope, 3) : "–")
+  d.value("E", shortest(g.E0))
+      .count("points", static_cast<long long>(t.by_count.size()))
+      .value("slope", t.count_slope ? fixed(*t.count_slope, 3) : "–")
       .value("tolerance", shortest(kSlopeTolerance));
-  d.holds = slope && std::abs(*slope) <= kSlopeTolerance;
-  f.claims.push_back(d);
+  d.holds = t.count_slope && std::abs(*t.count_slope) <= kSlopeTolerance;
+  claims.push_back(d);
 
-  Claim e = claim("eq108-at-rest",
-                  "At the tiny amplitude the state of the runs does not move eq. (108): its "
-                  "minimum is its value at rest, so what changes it with E, the particles per "
-                  "cell and the grid is the formula's constants",
-                  "{n} runs at A = {A}: the largest relative gap to eq. (108) at rest is {gap}, "
-                  "{basis} at E = {E}, ppc {ppc} (negligible: below {tolerance})");
-  e.count("n", n)
-      .value("A", points.empty() ? "–" : shortest(points.front().A))
-      .value("gap", n ? sci(shift, 2) : "–")
-      .value("basis", shifted ? shifted->method : "–")
-      .value("E", shifted ? shortest(shifted->E) : "–")
-      .value("ppc", shifted ? std::to_string(shifted->ppc) : "–")
-      .value("tolerance", shortest(kStateNegligible));
-  e.holds = n > 0 && shift < kStateNegligible;
-  f.claims.push_back(e);
+  claims.push_back(eq108_rest_claim(g, t));
+  return claims;
+}
 
+Eq108Findings eq108_findings(const std::vector<ojson>& rows) {
+  Eq108Findings f;
+  const Eq108Grid g = eq108_grid(rows);
+  const Eq108Spread s = eq108_spread(g);
+  const Eq108Trends t = eq108_trends(g);
+  std::vector<std::pair<double, std::pair<double, double>>> per_E;  // E -> ratio lo, hi
+  std::ostringstream md;
+  md << eq108_intro(g);
+  md << eq108_per_E(g, f, per_E);
+  md << eq108_per_E_reading(per_E, s) << eq108_per_ppc(g, t) << eq108_per_count(g, t)
+     << eq108_state(g, t);
+  f.claims = eq108_claims(g, s, t);
   f.markdown = md.str();
   return f;
 }
