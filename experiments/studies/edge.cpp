@@ -89,16 +89,55 @@ std::string min_max(std::vector<double> v) {
 // The reading of one scene's searches, computed from its rows: per method, the range of both
 // edges over h/c, how often the run at the survival edge is meaningless and the accuracy edge
 // lies below it; the searches without an edge; the non-monotone ones with their flips.
+// What one method's searches found.
+struct MethodEdges {
+  int cases = 0, with_edge = 0, meaningless = 0, below = 0, no_accuracy = 0, withheld = 0;
+  std::vector<double> edge, accurate, accurate_over_edge, over_bound;
+};
+
+// One method's sentence of the summary.
+std::string method_summary(const std::string& name, const MethodEdges& m) {
+  std::ostringstream md;
+  if (m.edge.empty()) {
+    md << name << ": no dt of the scan survives (" << m.cases << (m.cases == 1 ? " case" : " cases")
+       << "). ";
+    return md.str();
+  }
+  md << name << ": the survival edge is " << min_max(m.edge) << " h/c, and the run there is "
+     << "meaningless in " << m.meaningless << " of " << m.with_edge << " cases";
+  if (!m.accurate.empty()) {
+    md << "; the accuracy edge is " << min_max(m.accurate) << " h/c, below the survival edge "
+       << "in " << m.below << " of " << m.accurate.size() << " cases (down to "
+       << ratio(*std::min_element(m.accurate_over_edge.begin(), m.accurate_over_edge.end(),
+                                  TotalLess()))
+       << " times it)";
+  }
+  if (m.no_accuracy) {
+    md << "; " << m.no_accuracy << " ha" << (m.no_accuracy == 1 ? "s" : "ve")
+       << " no accuracy edge (the run at the smallest surviving dt is meaningless)";
+  }
+  if (m.withheld) {
+    md << "; " << m.withheld << " ha" << (m.withheld == 1 ? "s" : "ve")
+       << " none that is accurate (the search's reference run or its run at the edge has an "
+          "error over time of at least "
+       << shortest(kAccurateFraction) << " A)";
+  }
+  if (!m.over_bound.empty()) {
+    const auto [lo, hi] =
+        std::minmax_element(m.over_bound.begin(), m.over_bound.end(), TotalLess());
+    md << "; eq. (108) at the survival edge is " << ratio(*lo) << " to " << ratio(*hi)
+       << " times below it";
+  }
+  md << ". ";
+  return md.str();
+}
+
 std::string edge_summary_text(const std::vector<ojson>& rows) {
-  struct PerMethod {
-    int cases = 0, with_edge = 0, meaningless = 0, below = 0, no_accuracy = 0, withheld = 0;
-    std::vector<double> edge, accurate, accurate_over_edge, over_bound;
-  };
-  std::map<std::string, PerMethod> per;
+  std::map<std::string, MethodEdges> per;
   std::vector<std::string> non_monotone;
   int none = 0;
   for (const auto& r : rows) {
-    PerMethod& m = per[r["method"].get<std::string>()];
+    MethodEdges& m = per[r["method"].get<std::string>()];
     ++m.cases;
     if (!has_number(r, "dt_edge")) {
       ++none;
@@ -127,39 +166,8 @@ std::string edge_summary_text(const std::vector<ojson>& rows) {
      << " found a survival edge";
   if (none) md << " and " << none << " no surviving dt in the scan";
   md << ". ";
-  for (const auto& [name, m] : per) {
-    if (m.edge.empty()) {
-      md << name << ": no dt of the scan survives (" << m.cases
-         << (m.cases == 1 ? " case" : " cases") << "). ";
-      continue;
-    }
-    md << name << ": the survival edge is " << min_max(m.edge) << " h/c, and the run there is "
-       << "meaningless in " << m.meaningless << " of " << m.with_edge << " cases";
-    if (!m.accurate.empty()) {
-      md << "; the accuracy edge is " << min_max(m.accurate) << " h/c, below the survival edge "
-         << "in " << m.below << " of " << m.accurate.size() << " cases (down to "
-         << ratio(*std::min_element(m.accurate_over_edge.begin(), m.accurate_over_edge.end(),
-                                    TotalLess()))
-         << " times it)";
-    }
-    if (m.no_accuracy) {
-      md << "; " << m.no_accuracy << " ha" << (m.no_accuracy == 1 ? "s" : "ve")
-         << " no accuracy edge (the run at the smallest surviving dt is meaningless)";
-    }
-    if (m.withheld) {
-      md << "; " << m.withheld << " ha" << (m.withheld == 1 ? "s" : "ve")
-         << " none that is accurate (the search's reference run or its run at the edge has an "
-            "error over time of at least "
-         << shortest(kAccurateFraction) << " A)";
-    }
-    if (!m.over_bound.empty()) {
-      const auto [lo, hi] =
-          std::minmax_element(m.over_bound.begin(), m.over_bound.end(), TotalLess());
-      md << "; eq. (108) at the survival edge is " << ratio(*lo) << " to " << ratio(*hi)
-         << " times below it";
-    }
-    md << ". ";
-  }
+  for (const auto& [name, m] : per)
+    md << method_summary(name, m);
   md << non_monotone.size() << " of " << rows.size()
      << " searches found survival not monotone in dt (a dt below the survival edge fails)";
   if (!non_monotone.empty()) {

@@ -190,30 +190,37 @@ std::string scenes_data(const std::vector<ojson>& rows, const SweepOutcome& out,
   return csv.str();
 }
 
-StudyReport scenes_report(const ReportContext& ctx) {
-  const auto& rows = ctx.rows;
-  const auto ref = references(rows);
-  const auto interior = interior_limits(rows, ref);
-  const auto edges = edges_of(ctx.inputs);
-  const auto scenes = scenes_in_order(rows);
-  std::ostringstream md;
-  md << "**The measures** (docs/design.md, \"Scenes\"): *error over time / A*, the largest "
-        "|u_p - u(X_p, t)| over the particles and the steps, per the scene's displacement scale "
-        "A; *L2 / A*, the RMS over the body and the run; *cost*, particle-steps. *Dense limit*: "
-        "the spectral limit, in c dt/h, of the whole body with its free surfaces; *interior*: "
-        "the Bloch limit of the same scheme on a periodic lattice; *edge*: the survival edge "
-        "in c dt/h from [scene_edges.md](scene_edges.md) (none where that experiment has not "
-        "been run).\n\n"
-     << cost_metric_text() << "\n\n";
+// What the sections count, for the claims.
+struct SurveyCounts {
+  int spline_lowered = 0, splines = 0, other_lowered = 0, others = 0, limits_compared = 0;
+  double ratio_lo = 1e300, ratio_hi = 0;
+  int verdicts = 0, peer_compared = 0, peer_agree = 0, rigid_compared = 0, rigid_agree = 0;
+};
+using Treated = std::map<std::pair<std::string, std::string>, std::map<std::string, ojson>>;
 
-  // 1. Per scene and method, at the reference Courant number.
+// The runs at the reference Courant number with and without each small-mass treatment, by scene
+// and method.
+Treated treated_runs(const std::vector<ojson>& rows, const std::map<std::string, Reference>& ref) {
+  Treated treated;
+  for (const auto& r : rows) {
+    const Part p = part_of(r, ref);
+    if (p == Part::treatment || (p == Part::trade && at_reference(r)))
+      treated[{str(r, "scene"), str(r, "method")}][small_mass_of(r)] = r;
+  }
+  return treated;
+}
+
+// 1. Per scene and method, at the reference Courant number.
+std::string per_scene_section(const std::vector<ojson>& rows,
+                              const std::map<std::string, Reference>& ref,
+                              const std::map<std::string, double>& interior,
+                              const std::map<EdgeKey, ojson>& edges, SurveyCounts& n) {
+  std::ostringstream md;
   md << "## Per scene and method\n\nAt c dt/h = " << shortest(kReferenceCourant)
      << ", no small-mass treatment.\n\n"
         "| scene | method | verdict | error over time / A | L2 / A | cost | edge c dt/h | "
         "dense limit | interior limit | dense / interior |\n"
         "|---|---|---|---:|---:|---:|---:|---:|---:|---:|\n";
-  int spline_lowered = 0, splines = 0, other_lowered = 0, others = 0, limits_compared = 0;
-  double ratio_lo = 1e300, ratio_hi = 0;
   for (const auto& r : rows) {
     if (part_of(r, ref) != Part::trade || !at_reference(r)) continue;
     const std::string method = str(r, "method");
@@ -222,12 +229,12 @@ StudyReport scenes_report(const ReportContext& ctx) {
     std::string q = "–";
     if (dense && it != interior.end()) {
       const double x = *dense / it->second;
-      ++limits_compared;
+      ++n.limits_compared;
       const bool spline = method.rfind("bspline", 0) == 0;
-      (spline ? splines : others) += 1;
-      (spline ? spline_lowered : other_lowered) += x < 1 - kLimitDrop;
-      ratio_lo = std::min(ratio_lo, x);
-      ratio_hi = std::max(ratio_hi, x);
+      (spline ? n.splines : n.others) += 1;
+      (spline ? n.spline_lowered : n.other_lowered) += x < 1 - kLimitDrop;
+      n.ratio_lo = std::min(n.ratio_lo, x);
+      n.ratio_hi = std::max(n.ratio_hi, x);
       q = fixed(x, 3);
     }
     md << "| " << str(r, "scene") << " | " << method << " | " << verdict(r) << " | "
@@ -237,7 +244,13 @@ StudyReport scenes_report(const ReportContext& ctx) {
        << (it == interior.end() ? "–" : fixed(it->second, 3)) << " | " << q << " |\n";
   }
 
-  // 2. The trade.
+  return md.str();
+}
+
+// 2. The trade: every run of it.
+std::string trade_section(const std::vector<ojson>& rows,
+                          const std::map<std::string, Reference>& ref) {
+  std::ostringstream md;
   md << "\n## The speed/accuracy trade\n\nError over time / A and cost at each c dt/h, no "
         "small-mass treatment.\n\n| scene | method | c dt/h | verdict | error over time / A | "
         "cost |\n|---|---|---:|---|---:|---:|\n";
@@ -248,17 +261,36 @@ StudyReport scenes_report(const ReportContext& ctx) {
        << opt_sci_of(relative(r, "max_error_over_time")) << " | " << work(r) << " |\n";
   }
 
-  // 3. Small-mass treatments.
+  return md.str();
+}
+
+// 4. The extremes: every run of them, and how many runs of the study have a verdict.
+std::string extremes_section(const std::vector<ojson>& rows,
+                             const std::map<std::string, Reference>& ref, SurveyCounts& n) {
+  std::ostringstream md;
+  md << "\n## Extremes\n\nEvery scene far beyond its reference: above the limit in c dt/h, a "
+        "large amplitude, a long run. Each run ends with a verdict.\n\n| scene | method | c dt/h "
+        "| A/h | c T | verdict | error over time / A |\n|---|---|---:|---:|---:|---|---:|\n";
+  for (const auto& r : rows)
+    n.verdicts += !outcome(r).empty();
+  for (const auto& r : rows) {
+    if (part_of(r, ref) != Part::extreme) continue;
+    md << "| " << str(r, "scene") << " | " << str(r, "method") << " | "
+       << shortest(num(r, "cfl_factor")) << " | " << significant(num(r, "A_over_h"), 3) << " | "
+       << significant(num(r, "cT"), 3) << " | " << verdict(r) << " | "
+       << opt_sci_of(relative(r, "max_error_over_time")) << " |\n";
+  }
+
+  return md.str();
+}
+
+// 3. Small-mass treatments.
+std::string small_mass_section(const Treated& treated, const std::map<EdgeKey, ojson>& edges) {
+  std::ostringstream md;
   md << "\n## Small-mass nodes\n\nAt c dt/h = " << shortest(kReferenceCourant)
      << " (docs/design.md, \"Small-mass nodes\"): the verdict and error of each treatment, "
         "and its survival edge.\n\n| scene | method | treatment | verdict | error over time / A "
         "| edge c dt/h |\n|---|---|---|---|---:|---:|\n";
-  std::map<std::pair<std::string, std::string>, std::map<std::string, ojson>> treated;
-  for (const auto& r : rows) {
-    const Part p = part_of(r, ref);
-    if (p == Part::treatment || (p == Part::trade && at_reference(r)))
-      treated[{str(r, "scene"), str(r, "method")}][small_mass_of(r)] = r;
-  }
   for (const auto& [key, by] : treated) {
     if (by.size() < 2) continue;  // a method run without treatments
     for (const char* t : {"none", "cutoff", "drop", "momentum"}) {
@@ -270,23 +302,15 @@ StudyReport scenes_report(const ReportContext& ctx) {
     }
   }
 
-  // 4. Extremes.
-  md << "\n## Extremes\n\nEvery scene far beyond its reference: above the limit in c dt/h, a "
-        "large amplitude, a long run. Each run ends with a verdict.\n\n| scene | method | c dt/h "
-        "| A/h | c T | verdict | error over time / A |\n|---|---|---:|---:|---:|---|---:|\n";
-  int verdicts = 0;
-  for (const auto& r : rows)
-    verdicts += !outcome(r).empty();
-  for (const auto& r : rows) {
-    if (part_of(r, ref) != Part::extreme) continue;
-    md << "| " << str(r, "scene") << " | " << str(r, "method") << " | "
-       << shortest(num(r, "cfl_factor")) << " | " << significant(num(r, "A_over_h"), 3) << " | "
-       << significant(num(r, "cT"), 3) << " | " << verdict(r) << " | "
-       << opt_sci_of(relative(r, "max_error_over_time")) << " |\n";
-  }
+  return md.str();
+}
 
-  // 5. Uintah's impulsiveBar.
+// 5. and 6. Beside Uintah's impulsiveBar and advectBlock.
+std::string peer_sections(const ReportContext& ctx, const std::map<std::string, Reference>& ref,
+                          SurveyCounts& n) {
+  const auto& rows = ctx.rows;
   const CsvTable peer = read_csv(ctx.spec.reference);
+  std::ostringstream md;
   md << "\n## Beside Uintah's impulsiveBar\n\nUintah's 1D MPM code, AMRMPM.m, run on its "
         "impulsively loaded bar (["
      << ctx.spec.reference.filename().string() << "](../reference/peers/"
@@ -298,20 +322,18 @@ StudyReport scenes_report(const ReportContext& ctx) {
      << percent(kPeerTolerance)
      << ".\n\n| method | outcome | peer outcome | error | peer error | "
         "ratio |\n|---|---|---|---:|---:|---:|\n";
-  int peer_compared = 0, peer_agree = 0;
   for (const auto& r : rows) {
     if (part_of(r, ref) != Part::peer || str(r, "scene") != "impulsive") continue;
     const auto [in_cells, theirs] = beside_peer(r, "max_error", peer, "impulsiveBar");
     const bool agree =
         survived(r) && theirs && in_cells && std::abs(*in_cells / *theirs - 1) <= kPeerTolerance;
-    ++peer_compared;
-    peer_agree += agree;
+    ++n.peer_compared;
+    n.peer_agree += agree;
     md << "| " << str(r, "method") << " | " << outcome(r) << " | stable | " << opt_sci_of(in_cells)
        << " | " << opt_sci_of(theirs) << " | "
        << (in_cells && theirs ? fixed(*in_cells / *theirs, 5) : "–") << " |\n";
   }
 
-  // 6. Uintah's advectBlock.
   md << "\n## Beside Uintah's advectBlock\n\nThe same code's block at its own setting: a "
         "bar two cells shorter than its domain, moving at a constant speed (A c in this grid's "
         "units, the block's length and speed over the peer's domain) until the code stops it, "
@@ -323,28 +345,31 @@ StudyReport scenes_report(const ReportContext& ctx) {
      << sci(kRoundOffCells, 1)
      << " cells.\n\n| method | steps | outcome | peer outcome | error over time | peer error "
         "|\n|---|---:|---|---|---:|---:|\n";
-  int rigid_compared = 0, rigid_agree = 0;
   for (const auto& r : rows) {
     if (part_of(r, ref) != Part::peer || str(r, "scene") != "block") continue;
     const auto [in_cells, theirs] = beside_peer(r, "max_error_over_time", peer, "advectBlock");
     const bool agree =
         survived(r) && theirs && in_cells && *in_cells < kRoundOffCells && *theirs < kRoundOffCells;
-    ++rigid_compared;
-    rigid_agree += agree;
+    ++n.rigid_compared;
+    n.rigid_agree += agree;
     md << "| " << str(r, "method") << " | " << shortest(num(r, "steps")) << " | " << outcome(r)
        << " | stable | " << opt_sci_of(in_cells) << " | " << opt_sci_of(theirs) << " |\n";
   }
 
-  // Claims.
+  return md.str();
+}
+
+// The claims on the peers, the verdicts and the limits.
+std::vector<Claim> survey_claims(const std::vector<ojson>& rows, const SurveyCounts& n) {
   std::vector<Claim> claims;
   {
     Claim c = claim("rigid-like-uintah-advect-block",
                     "On Uintah's advectBlock at its own setting, every basis compared survives "
                     "and keeps the block rigid to round-off in both codes (position error over "
                     "the run below {tolerance} cells): {agree} of {compared}.");
-    c.value("tolerance", sci(kRoundOffCells, 1)).count("agree", rigid_agree);
-    c.count("compared", rigid_compared);
-    c.holds = rigid_compared > 0 && rigid_agree == rigid_compared;
+    c.value("tolerance", sci(kRoundOffCells, 1)).count("agree", n.rigid_agree);
+    c.count("compared", n.rigid_compared);
+    c.holds = n.rigid_compared > 0 && n.rigid_agree == n.rigid_compared;
     claims.push_back(c);
   }
   {
@@ -352,17 +377,17 @@ StudyReport scenes_report(const ReportContext& ctx) {
                     "On Uintah's impulsiveBar at its own setting, every basis compared has the "
                     "peer's outcome and its final error within {tolerance}: {agree} of "
                     "{compared}.");
-    c.value("tolerance", percent(kPeerTolerance)).count("agree", peer_agree);
-    c.count("compared", peer_compared);
-    c.holds = peer_compared > 0 && peer_agree == peer_compared;
+    c.value("tolerance", percent(kPeerTolerance)).count("agree", n.peer_agree);
+    c.count("compared", n.peer_compared);
+    c.holds = n.peer_compared > 0 && n.peer_agree == n.peer_compared;
     claims.push_back(c);
   }
   {
     Claim c = claim("every-run-has-a-verdict",
                     "Every run ends with a verdict (unstable, meaningless or stable): {with} of "
                     "{runs}.");
-    c.count("with", verdicts).count("runs", static_cast<long long>(rows.size()));
-    c.holds = verdicts == static_cast<int>(rows.size());
+    c.count("with", n.verdicts).count("runs", static_cast<long long>(rows.size()));
+    c.holds = n.verdicts == static_cast<int>(rows.size());
     claims.push_back(c);
   }
   {
@@ -373,12 +398,19 @@ StudyReport scenes_report(const ReportContext& ctx) {
                     "{other_lowered} of {others} others (dense over interior from {lo} to "
                     "{hi}).");
     c.value("tolerance", percent(kLimitDrop));
-    c.count("spline_lowered", spline_lowered).count("splines", splines);
-    c.count("other_lowered", other_lowered).count("others", others);
-    c.number("lo", limits_compared ? ratio_lo : 0, 3).number("hi", ratio_hi, 3);
-    c.holds = splines > 0 && others > 0 && spline_lowered == splines && other_lowered == 0;
+    c.count("spline_lowered", n.spline_lowered).count("splines", n.splines);
+    c.count("other_lowered", n.other_lowered).count("others", n.others);
+    c.number("lo", n.limits_compared ? n.ratio_lo : 0, 3).number("hi", n.ratio_hi, 3);
+    c.holds =
+        n.splines > 0 && n.others > 0 && n.spline_lowered == n.splines && n.other_lowered == 0;
     claims.push_back(c);
   }
+  return claims;
+}
+
+// Each treatment against no treatment.
+std::vector<Claim> treatment_claims(const Treated& treated) {
+  std::vector<Claim> claims;
   // Each treatment against no treatment, over the (scene, method) pairs that ran both: a run
   // is good when it is stable (not unstable, not meaningless).
   for (const char* treatment : {"cutoff", "drop", "momentum"}) {
@@ -406,6 +438,11 @@ StudyReport scenes_report(const ReportContext& ctx) {
     c.holds = failing > 0 && rescued == failing && broken == 0;
     claims.push_back(c);
   }
+  return claims;
+}
+
+// Whether a smaller step buys accuracy, per scene and method.
+Claim trade_claim(const std::vector<ojson>& rows, const std::map<std::string, Reference>& ref) {
   {
     // The trade: whether a smaller step buys accuracy, per scene and method.
     std::map<std::pair<std::string, std::string>, std::map<Key, double>> err;
@@ -431,8 +468,34 @@ StudyReport scenes_report(const ReportContext& ctx) {
                     "{worst}).");
     c.number("factor", 2).count("flat", flat).count("pairs", pairs).number("worst", worst, 3);
     c.holds = pairs > 0 && flat == pairs;
-    claims.push_back(c);
+    return c;
   }
+}
+
+StudyReport scenes_report(const ReportContext& ctx) {
+  const auto& rows = ctx.rows;
+  const auto ref = references(rows);
+  const auto interior = interior_limits(rows, ref);
+  const auto edges = edges_of(ctx.inputs);
+  const Treated treated = treated_runs(rows, ref);
+  SurveyCounts n;
+  std::ostringstream md;
+  md << "**The measures** (docs/design.md, \"Scenes\"): *error over time / A*, the largest "
+        "|u_p - u(X_p, t)| over the particles and the steps, per the scene's displacement scale "
+        "A; *L2 / A*, the RMS over the body and the run; *cost*, particle-steps. *Dense limit*: "
+        "the spectral limit, in c dt/h, of the whole body with its free surfaces; *interior*: "
+        "the Bloch limit of the same scheme on a periodic lattice; *edge*: the survival edge "
+        "in c dt/h from [scene_edges.md](scene_edges.md) (none where that experiment has not "
+        "been run).\n\n"
+     << cost_metric_text() << "\n\n";
+
+  md << per_scene_section(rows, ref, interior, edges, n) << trade_section(rows, ref)
+     << small_mass_section(treated, edges) << extremes_section(rows, ref, n)
+     << peer_sections(ctx, ref, n);
+  std::vector<Claim> claims = survey_claims(rows, n);
+  for (auto& c : treatment_claims(treated))
+    claims.push_back(std::move(c));
+  claims.push_back(trade_claim(rows, ref));
   StudyReport report;
   report.markdown = md.str();
   report.claims = std::move(claims);
