@@ -498,6 +498,7 @@ struct SweepQueue::State {
   }
 
   void work(std::size_t w);
+  void start_progress(bool several);
 };
 
 SweepQueue::SweepQueue(const SweepOptions& options, std::string label)
@@ -673,28 +674,31 @@ void SweepQueue::State::work(std::size_t w) {
   done_changed.notify_all();
 }
 
+// The progress line and the workers' running counters, before the workers start.
+void SweepQueue::State::start_progress(bool several) {
+  {
+    std::lock_guard lock(mutex);
+    progress = std::make_unique<Progress>(several ? label : batches.front().spec->name, runs,
+                                          total_cost, options.progress_line, !several);
+    progress->expect(expected);
+  }
+  workers = std::size_t(std::max(1, options.jobs));
+  running = std::make_unique<std::atomic<double>[]>(workers);
+  for (std::size_t w = 0; w < workers; ++w)
+    running[w].store(0.0);
+  progress->running_work([this] {
+    double sum = 0;
+    for (std::size_t w = 0; w < workers; ++w)
+      sum += running[w].load(std::memory_order_relaxed);
+    return sum;
+  });
+}
+
 std::vector<SweepOutcome> SweepQueue::run(
     const std::function<void(std::size_t, SweepOutcome&)>& complete) {
   State& st = *state_;
   const bool several = st.batches.size() > 1;
-  {
-    std::lock_guard lock(st.mutex);
-    st.progress =
-        std::make_unique<Progress>(several ? st.label : st.batches.front().spec->name, st.runs,
-                                   st.total_cost, st.options.progress_line, !several);
-    st.progress->expect(st.expected);
-  }
-  const int jobs = std::max(1, st.options.jobs);
-  st.workers = std::size_t(jobs);
-  st.running = std::make_unique<std::atomic<double>[]>(st.workers);
-  for (std::size_t w = 0; w < st.workers; ++w)
-    st.running[w].store(0.0);
-  st.progress->running_work([&st] {
-    double sum = 0;
-    for (std::size_t w = 0; w < st.workers; ++w)
-      sum += st.running[w].load(std::memory_order_relaxed);
-    return sum;
-  });
+  st.start_progress(several);
   std::vector<std::thread> threads;
   st.workers_running = st.workers;
   for (std::size_t w = 0; w < st.workers; ++w)
