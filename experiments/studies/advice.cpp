@@ -84,19 +84,20 @@ bool CornerRun::passes() const {
   return outcome == "stable" && error_over_A && *error_over_A < kAccurateFraction;
 }
 
+const CornerRun* CheckedSetting::corner(CornerKind kind, double length) const {
+  for (const auto& c : corners)
+    if (c.kind == kind && c.length == length) return &c;
+  return nullptr;
+}
+
 std::vector<Region> regions_of(const CheckedSetting& s, const RegionRule& rule) {
   std::vector<Region> out;
   if (s.corners.empty() || !s.courant_spectral ||
       !(s.courant <= *s.courant_spectral / rule.limit_margin))
     return out;
-  auto find = [&](CornerKind kind, double length) -> const CornerRun* {
-    for (const auto& c : s.corners)
-      if (c.kind == kind && c.length == length) return &c;
-    return nullptr;
-  };
-  const CornerRun* finer = find(CornerKind::finer, rule.lengths.front());
+  const CornerRun* finer = s.corner(CornerKind::finer, rule.lengths.front());
   for (const double length : rule.lengths) {
-    const CornerRun* base = find(CornerKind::base, length);
+    const CornerRun* base = s.corner(CornerKind::base, length);
     if (!base || !base->passes()) continue;
     Region r{.length = length, .A_min = rule.amplitudes[1], .A_max = rule.amplitudes[1]};
     r.cells_max = s.cells;
@@ -110,13 +111,13 @@ std::vector<Region> regions_of(const CheckedSetting& s, const RegionRule& rule) 
       r.error_over_A = std::max(r.error_over_A, *c->error_over_A);
       return true;
     };
-    if (include(find(CornerKind::smallest_A, length))) r.A_min = rule.amplitudes[0];
-    const bool large = include(find(CornerKind::largest_A, length));
+    if (include(s.corner(CornerKind::smallest_A, length))) r.A_min = rule.amplitudes[0];
+    const bool large = include(s.corner(CornerKind::largest_A, length));
     if (large) r.A_max = rule.amplitudes[2];
     // At the largest amplitude: counted only where that amplitude is in the region.
     for (const CornerKind kind :
          {CornerKind::periodic, CornerKind::other_scene, CornerKind::jittered}) {
-      const CornerRun* c = find(kind, length);
+      const CornerRun* c = s.corner(kind, length);
       const bool in = large ? include(c) : false;
       if (!large && c && !c->passes()) r.excluded.push_back(*c);
       if (kind == CornerKind::periodic) r.periodic = in;
@@ -240,8 +241,7 @@ Answer advise(const std::vector<CheckedSetting>& settings, const Problem& p,
 
 std::string setting_name(const CheckedSetting& s) {
   std::ostringstream t;
-  t << s.method << "/" << s.transfer << "/" << s.update << ", " << s.cells
-    << " cells, C = " << shortest(s.courant);
+  t << s.method_text() << ", " << s.cells << " cells, C = " << shortest(s.courant);
   return t.str();
 }
 

@@ -90,6 +90,10 @@ struct CheckedSetting {
   std::optional<double> courant_spectral;  // the spectral limit of its uniform layout
   std::vector<CornerRun> corners;          // the base run first, then region_corners() order
   std::vector<Region> regions;             // per length at which a region exists, ascending
+  // The corner run of a kind to a length (nullptr where it was not run).
+  const CornerRun* corner(CornerKind kind, double length) const;
+  // "gimp/apic/usl": basis, transfer and update order.
+  std::string method_text() const { return method + "/" + transfer + "/" + update; }
 };
 
 // The regions of a setting from its corner runs (the base run first).

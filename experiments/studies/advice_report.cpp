@@ -108,12 +108,6 @@ struct Counts {
   int scene_fails = 0, scene_tested = 0;    // largest A passes on the bar, neo-Hookean fails
 };
 
-const CornerRun* find_corner(const CheckedSetting& s, CornerKind kind, double length) {
-  for (const auto& c : s.corners)
-    if (c.kind == kind && c.length == length) return &c;
-  return nullptr;
-}
-
 Counts count(const std::vector<CheckedSetting>& settings) {
   Counts n;
   const double shorter = kRegionRule.lengths.front(), longer = kRegionRule.lengths.back();
@@ -122,17 +116,17 @@ Counts count(const std::vector<CheckedSetting>& settings) {
     if (s.corners.size() <= 1) continue;
     ++n.checked;
     n.with_region += !s.regions.empty();
-    if (const CornerRun* f = find_corner(s, CornerKind::finer, shorter)) {
+    if (const CornerRun* f = s.corner(CornerKind::finer, shorter)) {
       ++n.finer_tested;
       n.finer_fails += !f->passes();
     }
-    if (const CornerRun* b = find_corner(s, CornerKind::base, longer)) {
+    if (const CornerRun* b = s.corner(CornerKind::base, longer)) {
       ++n.longer_tested;
       n.longer_fails += !b->passes();
     }
     for (const double length : kRegionRule.lengths) {
-      const CornerRun* large = find_corner(s, CornerKind::largest_A, length);
-      const CornerRun* scene = find_corner(s, CornerKind::other_scene, length);
+      const CornerRun* large = s.corner(CornerKind::largest_A, length);
+      const CornerRun* scene = s.corner(CornerKind::other_scene, length);
       if (!large || !scene || !large->passes()) continue;
       ++n.scene_tested;
       n.scene_fails += !scene->passes();
@@ -263,8 +257,7 @@ std::string settings_table(const std::vector<CheckedSetting>& settings) {
      << "| method | cells | C | spectral limit / C | base error / A | region (error / A) | "
         "excluded by |\n|---|---|---|---|---|---|---|\n";
   for (const auto& s : settings) {
-    md << "| " << s.method << "/" << s.transfer << "/" << s.update << " | " << s.cells << " | "
-       << shortest(s.courant) << " | "
+    md << "| " << s.method_text() << " | " << s.cells << " | " << shortest(s.courant) << " | "
        << (s.courant_spectral ? ratio(*s.courant_spectral / s.courant) : std::string("–")) << " | "
        << (s.corners.front().outcome == "stable" ? error_text(s.corners.front().error_over_A)
                                                  : s.corners.front().outcome)
@@ -314,7 +307,7 @@ std::string figure_csv(const std::vector<CheckedSetting>& settings) {
   csv << "panel,method,cells,courant,region_cT,error_over_A\n";
   std::map<std::string, int> panel;
   for (const auto& s : settings) {
-    const std::string name = s.method + "/" + s.transfer + "/" + s.update;
+    const std::string name = s.method_text();
     const auto [it, added] = panel.emplace(name, int(panel.size()));
     (void)added;
     const Region* longest = s.regions.empty() ? nullptr : &s.regions.back();

@@ -87,10 +87,10 @@ ojson as_edge(const ojson& r) {
 
 std::vector<RunParams> courant_follow_up(const FollowUpContext& c) {
   std::vector<ojson> edges;
-  std::vector<RunParams> cases;
+  std::vector<CaseSpec> cases;
   for (const std::size_t i : edge_rows(c.rows)) {
     edges.push_back(as_edge(c.rows[i]));
-    cases.push_back(c.spec.cases.at(i).params);
+    cases.push_back(c.spec.cases.at(i));
   }
   return all_length_runs(edges, cases);
 }
@@ -105,7 +105,7 @@ std::string c_text(double C) {
 
 struct Counts {
   int cases = 0, no_survivor = 0, not_monotone = 0, edges = 0, edges_meaningless = 0;
-  int tested = 0, held = 0;
+  LengthTally length_tally;
 };
 
 std::vector<Claim> courant_claims(const Counts& n) {
@@ -122,17 +122,10 @@ std::vector<Claim> courant_claims(const Counts& n) {
   mono.count("not_monotone", n.not_monotone).count("cases", n.cases);
   mono.over(n.cases);
   mono.holds = n.not_monotone == 0;
-  Claim length = claim("courant-edges-hold-for-length",
-                       "Every survival edge of the scan survives {first}x and {second}x its run "
-                       "length (at most {cap} wave passes)",
-                       "{held} of {tested} do");
-  length.value("first", shortest(kLengthFactors[0]))
-      .value("second", shortest(kLengthFactors[1]))
-      .value("cap", shortest(kLongPasses))
-      .count("held", n.held)
-      .count("tested", n.tested);
-  length.over(n.tested);
-  length.holds = n.tested > 0 && n.held == n.tested;
+  const Claim length = length_claim("courant-edges-hold-for-length",
+                                    "Every survival edge of the scan survives {first}x and "
+                                    "{second}x its run length (at most {cap} wave passes)",
+                                    "{held} of {tested} do", n.length_tally);
   return {some, mono, length};
 }
 
@@ -178,9 +171,7 @@ StudyReport courant_report(const ReportContext& c) {
       if (const auto e = edge_of.find(*s.survives); e != edge_of.end()) {
         ++n.edges;
         n.edges_meaningless += outcome(at) == "meaningless";
-        const Lasting l = lasting(lengths, edges[e->second], "dt_edge");
-        n.tested += l.tested;
-        n.held += l.tested && l.holds;
+        n.length_tally.add(lasting(lengths, edges[e->second], "dt_edge"));
         table << lasting_text(lengths, edges[e->second], "dt_edge") << " | ";
       } else {
         table << "– | ";
@@ -206,7 +197,7 @@ StudyReport courant_report(const ReportContext& c) {
      << n.cases << " cases, " << n.no_survivor << " fail at every C of the scan and "
      << n.not_monotone << " survive again above a failure; of " << n.edges
      << " survival edges (a failure above them), " << n.edges_meaningless
-     << " are meaningless runs and " << n.held << " of " << n.tested
+     << " are meaningless runs and " << n.length_tally.held << " of " << n.length_tally.tested
      << " rerun for length hold.\n\n"
      << table.str();
   return StudyReport{.markdown = md.str(), .claims = courant_claims(n)};

@@ -220,10 +220,7 @@ std::vector<RunParams> edge_follow_up(const FollowUpContext& c) {
     for (auto& p : ensemble_members(at_dt(base, r["dt_fail"].get<double>())))
       runs.push_back(std::move(p));
   }
-  std::vector<RunParams> cases;
-  for (const auto& k : c.spec.cases)
-    cases.push_back(k.params);
-  for (auto& p : all_length_runs(c.rows, cases))
+  for (auto& p : all_length_runs(c.rows, c.spec.cases))
     runs.push_back(std::move(p));
   for (std::size_t i = 0; i < c.rows.size(); ++i) {
     if (!has_twin(c.rows[i])) continue;
@@ -315,33 +312,17 @@ Claim accuracy_limit_claim(const std::vector<ojson>& rows) {
 std::vector<Claim> length_claims(const std::vector<ojson>& rows, const EdgeFollowUps& f) {
   std::vector<Claim> claims;
   for (const char* col : {"dt_edge", "dt_accurate"}) {
-    int tested = 0, held = 0;
-    std::vector<double> fail_at;
-    for (const auto& r : rows) {
-      const Lasting l = lasting(f.long_runs, r, col);
-      if (!l.tested) continue;
-      ++tested;
-      if (l.holds) {
-        ++held;
-      } else {
-        fail_at.push_back(l.length);
-      }
-    }
+    LengthTally t;
+    for (const auto& r : rows)
+      t.add(lasting(f.long_runs, r, col));
     const bool survival = std::string_view(col) == "dt_edge";
-    Claim c = claim(survival ? "survival-edges-hold-for-length" : "accuracy-edges-hold-for-length",
-                    std::string("Every ") + (survival ? "survival" : "accuracy") +
-                        " edge holds when its run is {first}x and {second}x as long (at most "
-                        "{cap} wave passes)",
-                    "{held} of {tested} hold; the others fail or leave the accuracy class at "
-                    "c T = {span}");
-    c.value("first", shortest(kLengthFactors[0]))
-        .value("second", shortest(kLengthFactors[1]))
-        .value("cap", shortest(kLongPasses))
-        .count("held", held)
-        .count("tested", tested)
-        .value("span", span(fail_at, 3));
-    c.over(tested);
-    c.holds = tested > 0 && held == tested;
+    Claim c = length_claim(
+        survival ? "survival-edges-hold-for-length" : "accuracy-edges-hold-for-length",
+        std::string("Every ") + (survival ? "survival" : "accuracy") +
+            " edge holds when its run is {first}x and {second}x as long (at most {cap} wave "
+            "passes)",
+        "{held} of {tested} hold; the others fail or leave the accuracy class at c T = {span}", t);
+    c.value("span", span(t.failed_at, 3));
     claims.push_back(c);
   }
 

@@ -5,6 +5,7 @@
 #include <string_view>
 
 #include "base/accuracy.hpp"
+#include "csv.hpp"
 #include "report_util.hpp"
 
 namespace mpmstab {
@@ -48,11 +49,11 @@ bool LongRun::accurate() const {
 }
 
 std::vector<RunParams> all_length_runs(const std::vector<ojson>& rows,
-                                       const std::vector<RunParams>& cases) {
+                                       const std::vector<CaseSpec>& cases) {
   std::vector<RunParams> runs;
   for (std::size_t i = 0; i < rows.size() && i < cases.size(); ++i) {
     for (const double dt : edges_of(rows[i]))
-      for (auto& p : length_runs(cases[i], dt))
+      for (auto& p : length_runs(cases[i].params, dt))
         runs.push_back(std::move(p));
   }
   return runs;
@@ -127,6 +128,29 @@ std::string lasting_text(const LengthRuns& runs, const ojson& r, const char* dt_
          (run.outcome == "stable" && run.error_over_A ? significant(*run.error_over_A, 2) + " A"
                                                       : run.outcome) +
          ")";
+}
+
+void LengthTally::add(const Lasting& l) {
+  if (!l.tested) return;
+  ++tested;
+  if (l.holds) {
+    ++held;
+  } else {
+    failed_at.push_back(l.length);
+  }
+}
+
+Claim length_claim(std::string id, std::string statement, std::string evidence,
+                   const LengthTally& t) {
+  Claim c = claim(std::move(id), std::move(statement), std::move(evidence));
+  c.value("first", shortest(kLengthFactors[0]))
+      .value("second", shortest(kLengthFactors[1]))
+      .value("cap", shortest(kLongPasses))
+      .count("held", t.held)
+      .count("tested", t.tested)
+      .over(t.tested);
+  c.holds = t.tested > 0 && t.held == t.tested;
+  return c;
 }
 
 }  // namespace mpmstab

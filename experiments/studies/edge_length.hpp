@@ -15,6 +15,8 @@
 #include <vector>
 
 #include "base/params.hpp"
+#include "claims.hpp"
+#include "spec.hpp"
 
 namespace mpmstab {
 
@@ -52,7 +54,7 @@ LengthRuns read_length_runs(const std::vector<nlohmann::ordered_json>& rows,
                             std::size_t& next);
 // The follow-up runs read_length_runs reads, for rows[i] and its case `cases[i]`.
 std::vector<RunParams> all_length_runs(const std::vector<nlohmann::ordered_json>& rows,
-                                       const std::vector<RunParams>& cases);
+                                       const std::vector<CaseSpec>& cases);
 
 // How far an edge (dt_col: "dt_edge" or "dt_accurate") holds: the first test length it does not
 // pass, or the longest it passed. With `bound`, a survival edge passes a length only where its
@@ -70,5 +72,18 @@ Lasting lasting(const LengthRuns& runs, const nlohmann::ordered_json& row, const
 // c T = 530", "**transient**: not accurate at c T = 80 (0.31 A)", "not tested for length".
 std::string lasting_text(const LengthRuns& runs, const nlohmann::ordered_json& row,
                          const char* dt_col, std::optional<double> bound = std::nullopt);
+
+// How many edges were rerun for length, how many held, and where the others failed.
+struct LengthTally {
+  int tested = 0, held = 0;
+  std::vector<double> failed_at;
+  void add(const Lasting& l);
+};
+
+// The claim that every edge of `t` holds for length: `statement` may name {first}, {second}
+// (kLengthFactors) and {cap} (kLongPasses), `evidence` {held} and {tested}; it is over the
+// edges tested.
+Claim length_claim(std::string id, std::string statement, std::string evidence,
+                   const LengthTally& t);
 
 }  // namespace mpmstab

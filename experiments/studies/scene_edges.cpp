@@ -42,10 +42,7 @@ std::vector<RunParams> edges_follow_up(const FollowUpContext& c) {
       for (auto& p : ensemble_members(at_dt(base, r[column].get<double>())))
         runs.push_back(std::move(p));
   }
-  std::vector<RunParams> cases;
-  for (const auto& k : c.spec.cases)
-    cases.push_back(k.params);
-  for (auto& p : all_length_runs(c.rows, cases))
+  for (auto& p : all_length_runs(c.rows, c.spec.cases))
     runs.push_back(std::move(p));
   return runs;
 }
@@ -76,7 +73,8 @@ std::vector<std::optional<Robustness>> robustness(const std::vector<ojson>& rows
 // What the rows and their follow-ups found, over every row.
 struct EdgeCounts {
   int rows = 0, with_edge = 0, robust_rows = 0, checked = 0, above = 0, compared = 0;
-  int all_survived = 0, meaningless_edges = 0, tested = 0, held = 0;
+  int all_survived = 0, meaningless_edges = 0;
+  LengthTally length_tally;
   double worst = 0;
 };
 
@@ -127,9 +125,7 @@ std::string edge_row(const ojson& r, const std::optional<Robustness>& robust,
               (has_number(r, "error_at_edge_over_A")
                    ? " (" + significant(r["error_at_edge_over_A"].get<double>(), 2) + " A)"
                    : std::string());
-    const Lasting l = lasting(lengths, r, "dt_edge");
-    n.tested += l.tested;
-    n.held += l.tested && l.holds;
+    n.length_tally.add(lasting(lengths, r, "dt_edge"));
   }
   std::ostringstream md;
   md << "| " << text(r, "scene") << " | " << text(r, "method") << " | " << small_mass_of(r) << " | "
@@ -155,16 +151,10 @@ std::vector<Claim> edges_claims(const EdgeCounts& n) {
                            "No survival edge is a meaningless run: {meaningless} of {with} are.");
   meaningful.count("meaningless", n.meaningless_edges).count("with", n.with_edge).over(n.with_edge);
   meaningful.holds = n.meaningless_edges == 0;
-  Claim length = claim("edges-hold-for-length",
-                       "Every survival edge survives {first}x and {second}x its run length (at "
-                       "most {cap} wave passes): {held} of {tested} do.");
-  length.value("first", shortest(kLengthFactors[0]))
-      .value("second", shortest(kLengthFactors[1]))
-      .value("cap", shortest(kLongPasses))
-      .count("held", n.held)
-      .count("tested", n.tested)
-      .over(n.tested);
-  length.holds = n.tested > 0 && n.held == n.tested;
+  const Claim length = length_claim("edges-hold-for-length",
+                                    "Every survival edge survives {first}x and {second}x its run "
+                                    "length (at most {cap} wave passes): {held} of {tested} do.",
+                                    "", n.length_tally);
   Claim limit = claim("edges-at-or-below-limit",
                       "No survival edge lies above {margin} times the dense spectral limit of "
                       "its body: {above} of {compared} with an edge do (the largest ratio is "

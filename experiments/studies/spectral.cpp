@@ -248,6 +248,17 @@ struct Eq108Grid {
       if (p.method == m && p.E == E && p.ppc == ppc && p.cells == cells0) return &p;
     return nullptr;
   }
+  // The runs of basis `m` at the first row's E and particles per cell, by particle count (grids
+  // refined at a fixed particles per cell); empty where fewer than two.
+  std::vector<const Eq108Point*> by_count(const std::string& m) const {
+    std::vector<const Eq108Point*> out;
+    for (const auto& p : points)
+      if (p.method == m && p.E == E0 && p.ppc == ppc0) out.push_back(&p);
+    if (out.size() < 2) return {};
+    std::sort(out.begin(), out.end(),
+              [](const Eq108Point* x, const Eq108Point* y) { return x->particles < y->particles; });
+    return out;
+  }
   std::vector<int> ppcs_of(const std::string& m) const {
     std::vector<int> out;
     for (int ppc : ppcs)
@@ -327,18 +338,10 @@ Eq108Trends eq108_trends(const Eq108Grid& g) {
     if (p.method == "gimp" && p.E == g.E0 && p.cells == g.cells0)
       t.by_ppc.emplace_back(p.ppc, p.ratio());
   t.ppc_slope = loglog_slope(t.by_ppc);
-  for (const auto& b : g.bases) {
-    if (b != "gimp") continue;
-    std::vector<const Eq108Point*> mine;
-    for (const auto& p : g.points)
-      if (p.method == b && p.E == g.E0 && p.ppc == g.ppc0) mine.push_back(&p);
-    if (mine.size() < 2) continue;
-    std::sort(mine.begin(), mine.end(),
-              [](const Eq108Point* x, const Eq108Point* y) { return x->particles < y->particles; });
-    for (const Eq108Point* p : mine) {
+  if (std::find(g.bases.begin(), g.bases.end(), "gimp") != g.bases.end()) {
+    t.gimp_count = g.by_count("gimp");
+    for (const Eq108Point* p : t.gimp_count)
       t.by_count.emplace_back(p->particles, p->ratio());
-      t.gimp_count.push_back(p);
-    }
   }
   t.count_slope = loglog_slope(t.by_count);
   for (const auto& p : g.points) {
@@ -505,13 +508,7 @@ std::string eq108_per_count(const Eq108Grid& g, const Eq108Trends& t) {
   std::ostringstream md;
   std::ostringstream count_table;
   for (const auto& b : g.bases) {
-    std::vector<const Eq108Point*> mine;
-    for (const auto& p : g.points)
-      if (p.method == b && p.E == g.E0 && p.ppc == g.ppc0) mine.push_back(&p);
-    if (mine.size() < 2) continue;
-    std::sort(mine.begin(), mine.end(),
-              [](const Eq108Point* x, const Eq108Point* y) { return x->particles < y->particles; });
-    for (const Eq108Point* p : mine) {
+    for (const Eq108Point* p : g.by_count(b)) {
       count_table << "| " << p->method << " | " << p->cells << " | " << p->particles << " | "
                   << ratio_text(p->ratio()) << " | "
                   << fixed(p->ratio() * std::sqrt(double(p->particles)), 3) << " |\n";

@@ -184,28 +184,20 @@ std::string length_table(const std::vector<ojson>& rows, const LengthRuns& lengt
 }
 
 std::vector<Claim> spectral_edge_claims(const std::vector<ojson>& rows, const LengthRuns& lengths) {
-  int tested = 0, held = 0, below = 0, nonlinear = 0;
+  LengthTally t;
+  int below = 0, nonlinear = 0;
   for (const auto& r : rows) {
-    const Lasting l = lasting(lengths, r, "dt_edge", kBound);
-    tested += l.tested;
-    held += l.tested && l.holds;
+    t.add(lasting(lengths, r, "dt_edge", kBound));
     if (tiny(r)) continue;
     if (const auto q = edge_ratio(r)) {
       ++nonlinear;
       below += *q < 1;
     }
   }
-  Claim length = claim("edges-hold-for-length",
-                       "Every measured edge stays bounded for {first}x and {second}x its run "
-                       "length (at most {cap} wave passes)",
-                       "{held} of {tested} do");
-  length.value("first", shortest(kLengthFactors[0]))
-      .value("second", shortest(kLengthFactors[1]))
-      .value("cap", shortest(kLongPasses))
-      .count("held", held)
-      .count("tested", tested);
-  length.over(tested);
-  length.holds = tested > 0 && held == tested;
+  const Claim length = length_claim("edges-hold-for-length",
+                                    "Every measured edge stays bounded for {first}x and {second}x "
+                                    "its run length (at most {cap} wave passes)",
+                                    "{held} of {tested} do", t);
   Claim under = claim("nonlinear-edges-below-limit",
                       "Every edge measured above the tiny amplitude lies below the spectral limit",
                       "{below} of {n} do");
@@ -318,13 +310,7 @@ const StudyRegistration kSpectralEdge{{
     .edge = kSearch,
     .records = {.error_over_time = true},
     .figure = true,
-    .follow_up =
-        [](const FollowUpContext& c) {
-          std::vector<RunParams> cases;
-          for (const auto& k : c.spec.cases)
-            cases.push_back(k.params);
-          return all_length_runs(c.rows, cases);
-        },
+    .follow_up = [](const FollowUpContext& c) { return all_length_runs(c.rows, c.spec.cases); },
     .report =
         [](const ReportContext& c) {
           std::size_t next = 0;
