@@ -8,6 +8,7 @@
 #include "run/run.hpp"
 #include "scenes/bar.hpp"
 #include "scenes/scene_registry.hpp"
+#include "scenes/validate.hpp"
 #include "step/simulation.hpp"
 
 namespace mpmstab {
@@ -62,6 +63,29 @@ TEST(DetectFailure, NonPositiveDeformationGradient) {
     EXPECT_EQ(f->reason, FailureReason::nonpositive_F);
     EXPECT_EQ(f->particle, 11);
   }
+}
+
+// A subnormal F_p (below the smallest normal double) is a collapsed particle: the run stops, and
+// the smallest normal value itself, or a non-positive F elsewhere, decides as before.
+TEST(DetectFailure, SubnormalDeformationGradientIsACollapse) {
+  const double smallest = std::numeric_limits<double>::min();
+  for (double F :
+       {smallest / 2, std::numeric_limits<double>::denorm_min(), std::nextafter(smallest, 0.0)}) {
+    Particles P = healthy();
+    P.F[7] = F;
+    for (Boundary bc : {Boundary::dirichlet, Boundary::periodic}) {
+      const auto f = detect_failure(P, bc);
+      ASSERT_TRUE(f) << F;
+      EXPECT_EQ(f->reason, FailureReason::collapsed_F);
+      EXPECT_EQ(f->particle, 7);
+      EXPECT_EQ(to_string(f->reason), "collapsed_F");
+    }
+    P.F[12] = 0.0;  // a non-positive F is named first
+    EXPECT_EQ(detect_failure(P, Boundary::dirichlet)->reason, FailureReason::nonpositive_F);
+  }
+  Particles P = healthy();
+  P.F[7] = smallest;  // normal: admissible
+  EXPECT_FALSE(detect_failure(P, Boundary::dirichlet));
 }
 
 TEST(DetectFailure, SupportWiderThanTwoCellsForCpGimp) {
@@ -163,6 +187,35 @@ TEST(Run, FarAboveTheCflLimitIsUnstableWithAReason) {
     p.method = m;
     EXPECT_FALSE(run(p).stable) << to_string(m);
   }
+}
+
+// A run whose particle is crushed slowly (APIC on 1000 cells, one particle per cell, A = 30 cells)
+// stops at the first step that leaves some F_p subnormal, and not before: the step before it is
+// admissible. Without the rule it ran on to T with the collapsed particle (meaningless).
+TEST(Run, ACrushedParticleStopsTheRunAsCollapsed) {
+  RunParams p;
+  p.method = Method::gimp;
+  p.transfer = Transfer::apic;
+  p.E = 100;
+  p.A = 0.3;
+  p.dt = 2e-5;
+  p.T = 0.1;
+  p.cells = 1000;
+  p.ppc = 1;
+  ASSERT_TRUE(validate(p).empty());
+  const RunResult r = run(p);
+  ASSERT_TRUE(r.failure);
+  EXPECT_EQ(r.failure->reason, FailureReason::collapsed_F);
+  const std::int64_t step = r.failure->step;
+  EXPECT_GT(step, 1000);  // a slow crush, not a blow-up
+  Simulation sim(p);
+  for (std::int64_t n = 1; n < step; ++n)
+    sim.advance_to(double(n) * p.dt);
+  EXPECT_GE(sim.particles().F.minCoeff(), std::numeric_limits<double>::min());
+  sim.advance_to(double(step) * p.dt);
+  const double F = sim.particles().F[r.failure->particle];
+  EXPECT_GT(F, 0.0);
+  EXPECT_LT(F, std::numeric_limits<double>::min());
 }
 
 TEST(Simulation, PlantedBadStatesAreCaughtAfterTheNextStep) {

@@ -15,6 +15,8 @@ std::string_view to_string(FailureReason r) {
       return "non_finite";
     case FailureReason::nonpositive_F:
       return "nonpositive_F";
+    case FailureReason::collapsed_F:
+      return "collapsed_F";
     case FailureReason::support_too_wide:
       return "support_too_wide";
     case FailureReason::left_domain:
@@ -171,7 +173,7 @@ std::optional<Failure> detect_failure(const Particles& P, const StateExtremes& e
   const bool bounded_F = max_F < std::numeric_limits<double>::infinity();
   const double lo = walls ? 0.0 : -std::numeric_limits<double>::infinity();
   const double hi = walls ? 1.0 : std::numeric_limits<double>::infinity();
-  const bool ok = e.finite && e.F_min > 0.0 && (!bounded_F || e.F_max <= max_F) &&
+  const bool ok = e.finite && e.F_min >= kSmallestNormalF && (!bounded_F || e.F_max <= max_F) &&
                   (!walls || (e.x_min >= lo && e.x_max <= hi));
   if (ok) return std::nullopt;
   const Eigen::Index n = P.size();
@@ -190,6 +192,9 @@ std::optional<Failure> detect_failure(const Particles& P, const StateExtremes& e
   }
   if (auto p = first([&](Eigen::Index i) { return !(P.F[i] > 0.0); })) {
     return Failure{FailureReason::nonpositive_F, *p};
+  }
+  if (auto p = first([&](Eigen::Index i) { return P.F[i] < kSmallestNormalF; })) {
+    return Failure{FailureReason::collapsed_F, *p};
   }
   if (auto p = first([&](Eigen::Index i) { return P.F[i] > max_F; })) {
     return Failure{FailureReason::support_too_wide, *p};

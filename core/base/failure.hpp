@@ -1,6 +1,9 @@
 // Failure detection: the run stops as unstable ("*" in Table 1) when a particle leaves the
-// domain (Dirichlet), any state value is not finite, or some F_p <= 0. With cpGIMP it also stops
-// when a particle's half-width lp_p = F_p h / (2 m) exceeds h (F_p > 2 m): its support would
+// domain (Dirichlet), any state value is not finite, some F_p <= 0, or some F_p is below the
+// smallest normal double (collapsed_F: the particle's volume has collapsed, and F_p has lost
+// significant bits; a machine that flushes subnormal numbers to zero holds F_p = 0 there and
+// stops with nonpositive_F, so the verdict does not depend on the machine). With cpGIMP it also
+// stops when a particle's half-width lp_p = F_p h / (2 m) exceeds h (F_p > 2 m): its support would
 // then cover more nodes than the basis has (shape.hpp, CpGimpBasis). The run driver sets two
 // more: step_limit when a run needs more steps than its cap, and dt_collapse when an adaptive or
 // min policy asks for a step below kDtCollapseFraction of the CFL step h / c (params.hpp): the
@@ -20,6 +23,7 @@ namespace mpmstab {
 enum class FailureReason {
   non_finite,
   nonpositive_F,
+  collapsed_F,
   support_too_wide,
   left_domain,
   step_limit,
@@ -34,6 +38,11 @@ struct Failure {
   std::int64_t step = 0;       // the step after which the state was found
   double time = 0;             // the time reached by that step
 };
+
+// The smallest admissible F_p: the smallest normal double, 2.2e-308. Below it F_p is subnormal:
+// it has fewer than 53 significant bits, so V_p = F_p V_p^0 and the stress are no longer computed
+// to double precision, and every operation on it runs in the processor's slow microcode path.
+inline constexpr double kSmallestNormalF = std::numeric_limits<double>::min();
 
 // The largest admissible F_p of a method: 2 m for cpGIMP (lp_p <= h), unbounded otherwise.
 double max_admissible_F(Method method, int ppc);
@@ -60,7 +69,8 @@ StateExtremes state_extremes(const Particles& P, const ErrorTerms* error = nullp
 double max_error(const Particles& P, const ErrorTerms& error);
 
 // Checks every particle; nullopt if the state is admissible. When several particles fail, the
-// reason reported is the first in the order non_finite, nonpositive_F, support_too_wide (some
+// reason reported is the first in the order non_finite, nonpositive_F, collapsed_F (some
+// 0 < F_p < kSmallestNormalF), support_too_wide (some
 // F_p > max_F), left_domain.
 std::optional<Failure> detect_failure(const Particles& P, Boundary bc,
                                       double max_F = std::numeric_limits<double>::infinity());

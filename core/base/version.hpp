@@ -3,5 +3,5 @@
 #pragma once
 
 namespace mpmstab {
-inline constexpr const char* kSolverVersion = "5";
+inline constexpr const char* kSolverVersion = "6";
 }  // namespace mpmstab
