@@ -557,15 +557,21 @@ TEST(ProgressLine, AQueueOfOneCaseEstimatesThenIsDone) {
   EXPECT_NE(line.find("done"), std::string::npos) << line;
 }
 
-// The time to go is the rate of the work done so far applied to the estimate left, and it is
-// withheld where too little is done to say (a tiny first case would predict years).
+// The time to go is the estimate left at the rate measured so far, and it is withheld where too
+// little is done to say (a tiny first case would predict years). Where the finished runs did
+// other work than estimated (a run that stopped before T), it is the geometric mean of the
+// estimate left at their estimates' rate and at their work's rate.
 TEST(ProgressLine, TimeToGoFollowsTheMeasuredRateAndIsWithheldWhenAbsurd) {
   ProgressCounter counter(3, 3e6);
-  counter.finished(false, 1e6, 1.1e6, false);
+  counter.finished(false, 1e6, 1e6, false);
   ASSERT_TRUE(counter.seconds_to_go(10).has_value());
   EXPECT_NEAR(*counter.seconds_to_go(10), 20, 1e-9);  // 2e6 left at 1e5 per second
-  EXPECT_NE(counter.text("q", 10).find("1.1e+06 of ~3.1e+06 particle-steps"), std::string::npos);
+  EXPECT_NE(counter.text("q", 10).find("1e+06 of ~3e+06 particle-steps"), std::string::npos);
   EXPECT_NE(counter.text("q", 10).find("~20 s to go"), std::string::npos);
+  ProgressCounter early(3, 3e6);
+  early.finished(false, 1e6, 0.25e6, true);  // stopped a quarter of the way in
+  // 2e6 left: 20 s at 1e5 estimated per second, 80 s at 2.5e4 done per second.
+  EXPECT_NEAR(*early.seconds_to_go(10), 40, 1e-9);
   ProgressCounter tiny(2, 1e9);
   tiny.finished(false, 1, 1, false);  // one particle-step in a second: 1e9 s to go
   EXPECT_FALSE(tiny.seconds_to_go(1).has_value());

@@ -43,9 +43,17 @@ double ProgressCounter::remaining_cost() const {
 
 std::optional<double> ProgressCounter::seconds_to_go(double elapsed) const {
   if (finished()) return 0.0;
-  const double done = done_cost_ + running_;
-  if (!(done > 0) || !(elapsed >= 1)) return std::nullopt;
-  const double to_go = remaining_cost() / (done / elapsed);
+  const double done_estimate = done_cost_ + running_;
+  const double done_work = done_work_ + running_;
+  if (!(done_estimate > 0) || !(done_work > 0) || !(elapsed >= 1)) return std::nullopt;
+  // Two rates bracket the truth when runs stop before T (unstable runs, most of them among the
+  // longest, which go first): the estimates of the tasks done per second run ahead of the queue
+  // (a run estimated to T that stopped half-way counts in full), the work done per second lags
+  // it (the tasks left will stop early too). The line shows the geometric mean of the two.
+  const double left = remaining_cost();
+  const double by_estimate = left / (done_estimate / elapsed);
+  const double by_work = left / (done_work / elapsed);
+  const double to_go = std::sqrt(by_estimate * by_work);
   if (!std::isfinite(to_go) || to_go > kMaxHorizon * elapsed) return std::nullopt;
   return to_go;
 }

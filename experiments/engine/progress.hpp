@@ -37,8 +37,9 @@ class ProgressCounter {
   // The estimated work still to do, never below 0: the estimates of the tasks left and of those
   // expected, less what the running ones have done.
   double remaining_cost() const;
-  // Seconds to go at the rate measured so far (the finished tasks' estimates and the running
-  // ones' work, per second), when it is known: none before any work is counted, when `elapsed`
+  // Seconds to go for the estimated work left, when it is known: the geometric mean of that work
+  // at two rates, the finished tasks' estimates per second and their measured work per second
+  // (each with the running tasks' work so far). None before any work is counted, when `elapsed`
   // is below a second, or when the answer would be more than kMaxHorizon times the elapsed time
   // (too little done to say).
   std::optional<double> seconds_to_go(double elapsed) const;
