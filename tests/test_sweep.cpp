@@ -261,6 +261,32 @@ TEST_F(Sweeps, UnstableCasesAreReportedNotFatal) {
   EXPECT_NE(read(dir / "out/small.md").find("\\* "), std::string::npos);
 }
 
+// The work of each case as last published (steps times particles of its record, by key), which
+// estimates it in the next queue; none where the results are absent or unreadable. Results do not
+// depend on it: a queue that reads it writes the same rows.
+TEST_F(Sweeps, PublishedRecordsGiveEachCaseItsWork) {
+  const Spec spec = load_spec(dir / "small.json");
+  EXPECT_TRUE(published_work(spec, dir / "out").empty());  // nothing published yet
+  const SweepOutcome r = sweep(spec, 2, dir / "out");
+  const std::map<std::string, double> work = published_work(spec, dir / "out");
+  ASSERT_EQ(work.size(), spec.cases.size());
+  for (std::size_t i = 0; i < spec.cases.size(); ++i) {
+    const auto& result = r.records[i]["result"];
+    EXPECT_EQ(work.at(case_key(spec.cases[i].params)),
+              result["steps"].get<double>() * result["particles"].get<double>());
+  }
+  // The unstable case's work is what it ran, not a run to T.
+  EXPECT_LT(work.at(case_key(spec.cases[4].params)),
+            case_cost(spec.cases[4].params, CaseWork::run));
+  SweepOptions o;
+  o.jobs = 2;
+  o.published = dir / "out";
+  write_reports(spec, run_sweep(spec, o), dir / "again");
+  EXPECT_EQ(deterministic_rows(dir / "out/small.csv"), deterministic_rows(dir / "again/small.csv"));
+  std::ofstream(dir / "out/small.json") << "{ not json";
+  EXPECT_TRUE(published_work(spec, dir / "out").empty());
+}
+
 int run_cli(const std::string& args) {
   return test_support::run_mpmstab(args).status;
 }

@@ -448,6 +448,7 @@ int cmd_reproduce(const std::vector<std::string_view>& argv) {
   make_output_folder(out);
   finish_publications_in(out);  // a report set a killed run left half published
   options.cache = out / "cache";
+  options.published = out;
   remove_stale_temporaries(options.cache);
   options.progress_line = ::isatty(STDERR_FILENO) != 0;
   options.cancel = &g_stop;
@@ -499,6 +500,7 @@ int cmd_sweep(const std::vector<std::string_view>& argv) {
   make_output_folder(out);
   finish_publications_in(out);  // a report set a killed run left half published
   options.cache = out / "cache";
+  options.published = out;
   remove_stale_temporaries(options.cache);  // of a sweep killed while storing a record
   options.progress_line = ::isatty(STDERR_FILENO) != 0;
   options.cancel = &g_stop;

@@ -657,6 +657,32 @@ std::vector<RunParams> expected_follow_ups(const Spec& spec, const fs::path& out
   }
 }
 
+std::map<std::string, double> published_work(const Spec& spec, const fs::path& out) {
+  std::map<std::string, double> work;
+  try {
+    const ojson doc = load_results(spec, out);
+    if (doc.is_null() || !doc.contains("cases") || !doc["cases"].is_array()) return {};
+    auto number = [](const ojson& row, const char* k) {
+      const auto it = row.find(k);
+      return it != row.end() && it->is_number() ? std::optional<double>(it->get<double>())
+                                                : std::nullopt;
+    };
+    for (const ojson& row : doc["cases"]) {
+      const auto key = row.find("key");
+      if (key == row.end() || !key->is_string()) continue;
+      if (const auto search = number(row, "search_particle_steps")) {
+        work[key->get<std::string>()] = *search;
+      } else if (const auto steps = number(row, "steps"), n = number(row, "particles");
+                 steps && n) {
+        work[key->get<std::string>()] = *steps * *n;
+      }
+    }
+  } catch (const std::exception&) {
+    return {};  // an estimate only: results that cannot be read give none
+  }
+  return work;
+}
+
 void write_reports(const Spec& spec, const SweepOutcome& outcome, const fs::path& out,
                    const FollowUpRunner& runner) {
   fs::create_directories(out);

@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -78,6 +79,10 @@ std::unique_ptr<FollowUps> follow_ups(const Spec& spec, const SweepOutcome& outc
 // progress line's estimate only. Empty where those results are absent, or were written for
 // other cases.
 std::vector<RunParams> expected_follow_ups(const Spec& spec, const std::filesystem::path& out);
+// The work of each case of `spec` as its last published results in `out` record it (key ->
+// particle-steps: a run's steps times its particles, an edge case's whole search); empty when
+// there are none or they cannot be read (an estimate only).
+std::map<std::string, double> published_work(const Spec& spec, const std::filesystem::path& out);
 
 // Writes <out>/<name>.csv, .json, .md, <name>_claims.csv for a study that draws conclusions and,
 // for studies with a figure, <name>_data.csv; the sweep's wall times go to <out>/timings.json,

@@ -24,6 +24,7 @@
 #include "key.hpp"
 #include "progress.hpp"
 #include "provenance.hpp"
+#include "report.hpp"
 #include "result_json.hpp"
 #include "run/edge.hpp"
 #include "run/run.hpp"
@@ -293,8 +294,17 @@ SweepPlan plan_sweep(const Spec& spec, const SweepOptions& options) {
         options.shard && shard_of(key, options.shard->count) != options.shard->index;
     if (fresh && !plan.elsewhere[i]) plan.order.push_back(i);
   }
-  for (std::size_t i : plan.order)
-    plan.total_cost += plan.cost[i] = case_cost(spec.cases[i].params, spec.study->work);
+  // A case's work as last published where it was, else the estimate from its parameters (a run
+  // to T, which an unstable run falls short of).
+  const std::map<std::string, double> published = options.published.empty()
+                                                      ? std::map<std::string, double>{}
+                                                      : published_work(spec, options.published);
+  for (std::size_t i : plan.order) {
+    const auto known = published.find(case_key(spec.cases[i].params, search));
+    plan.cost[i] = known != published.end() ? known->second
+                                            : case_cost(spec.cases[i].params, spec.study->work);
+    plan.total_cost += plan.cost[i];
+  }
   std::stable_sort(plan.order.begin(), plan.order.end(), [&](std::size_t a, std::size_t b) {
     return TotalLess()(plan.cost[b], plan.cost[a]);
   });

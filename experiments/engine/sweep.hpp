@@ -41,6 +41,10 @@ struct SweepOptions {
   // Set (by a signal handler) to stop: no new case starts, running cases stop within a few
   // thousand steps, finished cases stay in the cache.
   const std::atomic<bool>* cancel = nullptr;
+  // The results folder whose last published records estimate each case's work (its
+  // particle-steps there, for the progress line and the longest-first order; results never
+  // depend on it); empty, or a case not published there: the estimate from its parameters.
+  std::filesystem::path published;
 };
 
 struct SweepOutcome {
