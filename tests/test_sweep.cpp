@@ -283,6 +283,13 @@ TEST_F(Sweeps, PublishedRecordsGiveEachCaseItsWork) {
   o.published = dir / "out";
   write_reports(spec, run_sweep(spec, o), dir / "again");
   EXPECT_EQ(deterministic_rows(dir / "out/small.csv"), deterministic_rows(dir / "again/small.csv"));
+  // An ensemble's member (a perturbed layout) is estimated by the case it perturbs.
+  RunParams member = spec.cases[4].params;
+  member.layout.shift = 1e-9;
+  EXPECT_EQ(estimated_work(member, "", CaseWork::run, work),
+            work.at(case_key(spec.cases[4].params)));
+  member.dt /= 2;  // another run: the estimate from its parameters
+  EXPECT_EQ(estimated_work(member, "", CaseWork::run, work), case_cost(member, CaseWork::run));
   std::ofstream(dir / "out/small.json") << "{ not json";
   EXPECT_TRUE(published_work(spec, dir / "out").empty());
 }

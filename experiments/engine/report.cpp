@@ -660,8 +660,13 @@ std::vector<RunParams> expected_follow_ups(const Spec& spec, const fs::path& out
 std::map<std::string, double> published_work(const Spec& spec, const fs::path& out) {
   std::map<std::string, double> work;
   try {
-    const ojson doc = load_results(spec, out);
-    if (doc.is_null() || !doc.contains("cases") || !doc["cases"].is_array()) return {};
+    // Every row of the file, whatever its cases (a follow-up's spec shares its experiment's
+    // name): only rows whose key a case has are used.
+    const fs::path file = out / (spec.name + ".json");
+    const std::optional<std::string> text = read_if_present(file);
+    if (!text) return {};
+    const ojson doc = parse_json_strict<ojson>(*text, file);
+    if (!doc.is_object() || !doc.contains("cases") || !doc["cases"].is_array()) return {};
     auto number = [](const ojson& row, const char* k) {
       const auto it = row.find(k);
       return it != row.end() && it->is_number() ? std::optional<double>(it->get<double>())

@@ -51,6 +51,23 @@ double dense_analysis_cost(const RunParams& p) {
   return kDenseAnalysisCost * n * n * n;
 }
 
+double estimated_work(const RunParams& p, const std::string& search, CaseWork work,
+                      const std::map<std::string, double>& published) {
+  if (const auto it = published.find(case_key(p, search)); it != published.end()) return it->second;
+  // A perturbed layout (an ensemble's member, a follow-up of the same name) does about the work
+  // of the published case it perturbs.
+  if (p.layout.shift != 0 || p.layout.jitter != 0) {
+    RunParams unperturbed = p;
+    unperturbed.layout = Layout{};
+    for (const bool spectral : {false, true}) {
+      unperturbed.observe.spectral = spectral;
+      if (const auto it = published.find(case_key(unperturbed, search)); it != published.end())
+        return it->second;
+    }
+  }
+  return case_cost(p, work);
+}
+
 double case_cost(const RunParams& p, CaseWork work) {
   const double h_over_c = (1.0 / p.cells) / std::sqrt(p.E);
   // The adaptive policies step at about s / 20 of h / c (eq. 108 sits 5 to 200 times below it).
@@ -300,9 +317,7 @@ SweepPlan plan_sweep(const Spec& spec, const SweepOptions& options) {
                                                       ? std::map<std::string, double>{}
                                                       : published_work(spec, options.published);
   for (std::size_t i : plan.order) {
-    const auto known = published.find(case_key(spec.cases[i].params, search));
-    plan.cost[i] = known != published.end() ? known->second
-                                            : case_cost(spec.cases[i].params, spec.study->work);
+    plan.cost[i] = estimated_work(spec.cases[i].params, search, spec.study->work, published);
     plan.total_cost += plan.cost[i];
   }
   std::stable_sort(plan.order.begin(), plan.order.end(), [&](std::size_t a, std::size_t b) {

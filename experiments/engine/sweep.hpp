@@ -4,6 +4,7 @@
 #include <atomic>
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -85,6 +86,11 @@ double record_particle_steps(const nlohmann::ordered_json& record);
 // The work of a case in particle-steps (an estimate for the adaptive policies and for edge
 // searches), for scheduling, progress and the fast subset of make check.
 double case_cost(const RunParams& p, CaseWork work);
+// The work of a case for scheduling and progress: its record's particle-steps in `published`
+// (key -> work, published_work in report.hpp), or those of the published case whose layout it
+// perturbs (an ensemble's member), else case_cost.
+double estimated_work(const RunParams& p, const std::string& search, CaseWork work,
+                      const std::map<std::string, double>& published);
 
 // The time of one dense analysis of p's spectral limit (spectral.hpp: four maps of the step and
 // about twenty eigenvalue solves of its state of n values), in the particle-steps that take as
