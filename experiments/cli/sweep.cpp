@@ -280,8 +280,10 @@ class ReproducePublisher {
   void expect_follow_ups() {
     for (std::size_t s = 0; s < plan_.specs.size(); ++s) {
       double cost = 0;
-      const std::map<std::string, double> published = published_work(plan_.specs[s], out_);
-      for (const RunParams& p : expected_follow_ups(plan_.specs[s], out_))
+      const std::vector<RunParams> follow = expected_follow_ups(plan_.specs[s], out_);
+      const std::map<std::string, double> published =
+          follow.empty() ? std::map<std::string, double>{} : published_work(plan_.specs[s], out_);
+      for (const RunParams& p : follow)
         cost += estimated_work(p, "", CaseWork::run, published);
       expected_[s] = cost;
       queue_.expect(cost);

@@ -667,19 +667,13 @@ std::map<std::string, double> published_work(const Spec& spec, const fs::path& o
     if (!text) return {};
     const ojson doc = parse_json_strict<ojson>(*text, file);
     if (!doc.is_object() || !doc.contains("cases") || !doc["cases"].is_array()) return {};
-    auto number = [](const ojson& row, const char* k) {
-      const auto it = row.find(k);
-      return it != row.end() && it->is_number() ? std::optional<double>(it->get<double>())
-                                                : std::nullopt;
-    };
     for (const ojson& row : doc["cases"]) {
       const auto key = row.find("key");
-      if (key == row.end() || !key->is_string()) continue;
-      if (const auto search = number(row, "search_particle_steps")) {
-        work[key->get<std::string>()] = *search;
-      } else if (const auto steps = number(row, "steps"), n = number(row, "particles");
-                 steps && n) {
-        work[key->get<std::string>()] = *steps * *n;
+      if (!row.is_object() || key == row.end() || !key->is_string()) continue;
+      if (has_number(row, "search_particle_steps")) {
+        work[key->get<std::string>()] = row["search_particle_steps"].get<double>();
+      } else if (has_number(row, "steps") && has_number(row, "particles")) {
+        work[key->get<std::string>()] = particle_steps(row);
       }
     }
   } catch (const std::exception&) {

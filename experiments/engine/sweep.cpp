@@ -295,7 +295,9 @@ struct SweepPlan {
   double total_cost = 0;
 };
 
-SweepPlan plan_sweep(const Spec& spec, const SweepOptions& options) {
+// `published`: the cases' work as last published (published_work), which estimates it.
+SweepPlan plan_sweep(const Spec& spec, const SweepOptions& options,
+                     const std::map<std::string, double>& published) {
   const std::size_t n = spec.cases.size();
   const std::string search = case_search(spec);
   SweepPlan plan;
@@ -313,9 +315,6 @@ SweepPlan plan_sweep(const Spec& spec, const SweepOptions& options) {
   }
   // A case's work as last published where it was, else the estimate from its parameters (a run
   // to T, which an unstable run falls short of).
-  const std::map<std::string, double> published = options.published.empty()
-                                                      ? std::map<std::string, double>{}
-                                                      : published_work(spec, options.published);
   for (std::size_t i : plan.order) {
     plan.cost[i] = estimated_work(spec.cases[i].params, search, spec.study->work, published);
     plan.total_cost += plan.cost[i];
@@ -558,11 +557,16 @@ void SweepQueue::retire(double cost) {
 
 std::size_t SweepQueue::add(const Spec& spec, double retire) {
   State& st = *state_;
+  // Read before taking the lock, which the workers wait on: a results file of a few MB.
+  const bool plan = spec.study->has_cases;
+  const std::map<std::string, double> published = plan && !st.options.published.empty()
+                                                      ? published_work(spec, st.options.published)
+                                                      : std::map<std::string, double>{};
   std::lock_guard lock(st.mutex);
   const std::size_t b = st.batches.size();
   Batch& batch = st.batches.emplace_back();
   batch.spec = &spec;
-  batch.plan = spec.study->has_cases ? plan_sweep(spec, st.options) : SweepPlan{};
+  batch.plan = plan ? plan_sweep(spec, st.options, published) : SweepPlan{};
   batch.out.records.resize(spec.cases.size());
   batch.from_cache.assign(spec.cases.size(), 0);
   batch.remaining = batch.plan.order.size();
