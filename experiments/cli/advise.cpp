@@ -33,6 +33,8 @@ largest over its corners) must be at most the target / 2. It prints the setting'
 error / A, its cost in particle-steps on the problem, the region and the margins to the
 spectral limit and to the target. A problem outside every checked region, or a target no
 region reaches, is refused with exit status 2 and a message naming what is outside.
+The settings' Courant numbers are a fixed grid and, for each method and grid the balance study
+measures, the C at which its time and space errors balance (results/advice.md).
 
 Required:
   --A <x>            amplitude over the bar's length, > 0

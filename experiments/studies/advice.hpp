@@ -87,6 +87,9 @@ struct CheckedSetting {
   std::string method, transfer, update;  // "gimp", "flip", "usl"; transfer with its order
   int cells = 0, ppc = 2;
   double courant = 0;
+  // Where C comes from: "grid" (the spec's fixed values), "balance" (balanced_courants) or
+  // "grid and balance" (a balanced C that is also a grid value).
+  std::string courant_from = "grid";
   std::optional<double> courant_spectral;  // the spectral limit of its uniform layout
   std::vector<CornerRun> corners;          // the base run first, then region_corners() order
   std::vector<Region> regions;             // per length at which a region exists, ascending
@@ -98,6 +101,25 @@ struct CheckedSetting {
 
 // The regions of a setting from its corner runs (the base run first).
 std::vector<Region> regions_of(const CheckedSetting& s, const RegionRule& rule = kRegionRule);
+
+// C from the balance of time and space errors (the balance study, results/balance.json): for a
+// method with FLIP and USL on a grid of `cells` cells, the smallest balancing C the study
+// measured over its scenes (the C at which the error over time less its small-step plateau
+// equals the plateau), rounded down to two significant digits. A setting at that C is checked
+// at its corners like any other; where the study found no balancing C on any scene (the time
+// part stays below the plateau at every C it ran), there is none.
+struct BalancedCourant {
+  std::string method;
+  int cells = 0;
+  double measured = 0;  // the smallest balancing C over the scenes
+  double courant = 0;   // measured, rounded down to two significant digits
+  std::string scene;    // the scene it was measured on
+};
+// From balance.json's "study" object; the order is by method, then cells. Throws InputError
+// naming the key where the document is malformed.
+std::vector<BalancedCourant> balanced_courants(const nlohmann::ordered_json& balance_doc);
+// x rounded down to two significant digits (x > 0).
+double round_down_2(double x);
 
 // A problem in the dimensionless form of `mpmstab advise`.
 struct Problem {

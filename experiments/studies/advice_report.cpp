@@ -48,6 +48,40 @@ bool worth_checking(const ojson& base) {
              base["courant_spectral"].get<double>() / kRegionRule.limit_margin;
 }
 
+// The settings at C from the balance (balanced_courants): per method and grid the balance study
+// measured, the spec's first case of that method with FLIP and USL on that grid, at the balanced
+// C. A balanced C that is already a grid value of the spec adds no setting: `grid_index` names
+// that case instead.
+struct BalancedSetting {
+  BalancedCourant balance;
+  std::size_t case_index = 0;             // the spec case it is made from
+  std::optional<std::size_t> grid_index;  // the spec case at the same C, if any
+  RunParams base;                         // its base run
+};
+
+std::vector<BalancedSetting> balanced_settings(const Spec& spec, const StudyInputs& inputs) {
+  std::vector<BalancedSetting> out;
+  const auto in = inputs.find("balance");
+  if (in == inputs.end() || !in->second.present()) return out;
+  for (const BalancedCourant& b : balanced_courants(in->second.doc)) {
+    std::optional<std::size_t> made_from, same;
+    for (std::size_t i = 0; i < spec.cases.size(); ++i) {
+      const RunParams& p = spec.cases[i].params;
+      if (std::string(to_string(p.method)) != b.method || p.cells != b.cells ||
+          p.transfer != Transfer::flip || p.update != UpdateOrder::usl)
+        continue;
+      if (!made_from) made_from = i;
+      if (p.stepping.cfl_factor == b.courant) same = i;
+    }
+    if (!made_from) continue;  // a method or grid the advice study does not offer
+    BalancedSetting s{.balance = b, .case_index = *made_from, .grid_index = same};
+    s.base = spec.cases[*made_from].params;
+    s.base.stepping.cfl_factor = b.courant;
+    out.push_back(std::move(s));
+  }
+  return out;
+}
+
 std::vector<RunParams> advice_follow_up(const FollowUpContext& c) {
   std::vector<RunParams> runs;
   for (std::size_t i = 0; i < c.rows.size(); ++i) {
@@ -55,32 +89,64 @@ std::vector<RunParams> advice_follow_up(const FollowUpContext& c) {
     for (auto& corner : region_corners(c.spec.cases.at(i).params))
       runs.push_back(std::move(corner.params));
   }
+  // The settings at a balanced C: the base run and every corner, asked for together (a
+  // follow-up cannot wait for another), so that a base run that is not accurate leaves its
+  // corners unread.
+  for (const BalancedSetting& b : balanced_settings(c.spec, c.inputs)) {
+    if (b.grid_index) continue;
+    runs.push_back(b.base);
+    for (auto& corner : region_corners(b.base))
+      runs.push_back(std::move(corner.params));
+  }
   return runs;
 }
 
+CheckedSetting setting_of(const ojson& r) {
+  CheckedSetting s{.method = text(r, "method"),
+                   .transfer = transfer_of(r),
+                   .update = text(r, "update"),
+                   .cells = r["cells"].get<int>(),
+                   .ppc = r["ppc"].get<int>(),
+                   .courant = r["cfl_factor"].get<double>()};
+  if (has_number(r, "courant_spectral")) s.courant_spectral = r["courant_spectral"].get<double>();
+  s.corners.push_back(corner_of(r, CornerKind::base, kRegionRule.lengths.front()));
+  return s;
+}
+
 // Every setting of the spec with its corner runs (the follow-ups, kRegionCorners per checked
-// setting in the order advice_follow_up asked for them) and its regions.
+// setting in the order advice_follow_up asked for them) and its regions; then the settings at a
+// balanced C that is not a grid value.
 std::vector<CheckedSetting> checked_settings(const ReportContext& c) {
   std::vector<CheckedSetting> out;
   std::size_t next = 0;
   for (std::size_t i = 0; i < c.rows.size(); ++i) {
-    const ojson& r = c.rows[i];
-    CheckedSetting s{.method = text(r, "method"),
-                     .transfer = transfer_of(r),
-                     .update = text(r, "update"),
-                     .cells = r["cells"].get<int>(),
-                     .ppc = r["ppc"].get<int>(),
-                     .courant = r["cfl_factor"].get<double>()};
-    if (has_number(r, "courant_spectral")) s.courant_spectral = r["courant_spectral"].get<double>();
-    s.corners.push_back(corner_of(r, CornerKind::base, kRegionRule.lengths.front()));
-    if (worth_checking(r) && next + kRegionCorners <= c.follow_up.size()) {
-      const auto corners = region_corners(c.spec.cases.at(i).params);
-      for (const auto& k : corners)
+    CheckedSetting s = setting_of(c.rows[i]);
+    if (worth_checking(c.rows[i]) && next + kRegionCorners <= c.follow_up.size()) {
+      for (const auto& k : region_corners(c.spec.cases.at(i).params))
         s.corners.push_back(corner_of(c.follow_up[next++], k.kind, k.length));
     }
-    s.regions = regions_of(s);
     out.push_back(std::move(s));
   }
+  for (const BalancedSetting& b : balanced_settings(c.spec, c.inputs)) {
+    if (b.grid_index) {
+      out.at(*b.grid_index).courant_from = "grid and balance";
+      continue;
+    }
+    if (next + 1 + kRegionCorners > c.follow_up.size()) break;
+    CheckedSetting s = setting_of(c.follow_up[next++]);
+    s.courant_from = "balance";
+    const auto corners = region_corners(b.base);
+    // A base run that is not accurate or beyond the spectral limit's margin has no region: its
+    // corners were run but are not read, as for a grid setting.
+    const bool checked = worth_checking(c.follow_up[next - 1]);
+    for (const auto& k : corners) {
+      if (checked) s.corners.push_back(corner_of(c.follow_up[next], k.kind, k.length));
+      ++next;
+    }
+    out.push_back(std::move(s));
+  }
+  for (auto& s : out)
+    s.regions = regions_of(s);
   return out;
 }
 
@@ -257,7 +323,8 @@ std::string settings_table(const std::vector<CheckedSetting>& settings) {
      << "| method | cells | C | spectral limit / C | base error / A | region (error / A) | "
         "excluded by |\n|---|---|---|---|---|---|---|\n";
   for (const auto& s : settings) {
-    md << "| " << s.method_text() << " | " << s.cells << " | " << shortest(s.courant) << " | "
+    md << "| " << s.method_text() << " | " << s.cells << " | " << shortest(s.courant)
+       << (s.courant_from == "grid" ? "" : " (balance)") << " | "
        << (s.courant_spectral ? ratio(*s.courant_spectral / s.courant) : std::string("–")) << " | "
        << (s.corners.front().outcome == "stable" ? error_text(s.corners.front().error_over_A)
                                                  : s.corners.front().outcome)
@@ -283,6 +350,29 @@ std::string settings_table(const std::vector<CheckedSetting>& settings) {
     }
     md << regions << " | " << (excluded.empty() ? "–" : excluded) << " |\n";
   }
+  return md.str() + "\n";
+}
+
+// The Courant numbers taken from the balance study, with what was measured and where.
+std::string balance_table(const std::vector<BalancedSetting>& balanced) {
+  std::ostringstream md;
+  md << "## Courant numbers from the balance of time and space errors\n\n"
+     << "Besides the grid of C above, each method with FLIP and USL that [balance.md](balance.md) "
+        "measures on a grid this study offers is also checked at the balancing C: the smallest "
+        "C over the balance study's scenes at which the error over time less its small-step "
+        "plateau equals the plateau, rounded down to two significant digits. The balance is "
+        "measured at its own amplitude and length (balance.md); here that C is checked at the "
+        "corners of this study's regions like any other.\n\n";
+  if (balanced.empty()) {
+    md << "No method and grid of this study has a balancing C in balance.json.\n\n";
+    return md.str();
+  }
+  md << "| method | cells | balancing C (scene) | C checked | a grid value "
+        "|\n|---|---|---|---|---|\n";
+  for (const auto& b : balanced)
+    md << "| " << b.balance.method << "/flip/usl | " << b.balance.cells << " | "
+       << significant(b.balance.measured, 3) << " (" << b.balance.scene << ") | "
+       << shortest(b.balance.courant) << " | " << (b.grid_index ? "yes" : "no") << " |\n";
   return md.str() + "\n";
 }
 
@@ -323,7 +413,8 @@ StudyReport advice_report(const ReportContext& c) {
   const Counts n = count(settings);
   std::ostringstream md;
   md << "## Results\n\n"
-     << rule_text() << reading(n) << answers_table(settings) << settings_table(settings)
+     << rule_text() << reading(n) << answers_table(settings)
+     << balance_table(balanced_settings(c.spec, c.inputs)) << settings_table(settings)
      << "The figure marks each setting by the longest length its region is checked to (none: no "
         "region).\n";
   ojson list = ojson::array();
@@ -349,9 +440,12 @@ std::string advice_index(const Spec& spec, const std::vector<ojson>& rows) {
   for (const auto& r : rows)
     accurate += worth_checking(r);
   std::ostringstream md;
-  md << "**What it shows.** Of " << rows.size() << " settings, " << accurate
+  md << "**What it shows.** Of the " << rows.size() << " settings of its fixed grid of C, "
+     << accurate
      << " have an accurate base run within the spectral limit's margin and were run at the "
-        "corners of their region; every recommendation of this project is made here, from "
+        "corners of their region (the settings at C from the balance of time and space errors "
+        "are checked the same way and listed in advice.md); every recommendation of this project "
+        "is made here, from "
         "those regions, and `mpmstab advise` answers a problem from the same data. Details: ["
      << spec.name << ".md](" << spec.name << ".md).\n\n";
   return md.str();
@@ -375,6 +469,7 @@ const StudyRegistration kAdvice{{
     .name = "advice",
     .summary = "the cheapest checked setting for a problem, and each setting's checked region",
     .records = {.error_over_time = true},
+    .inputs = {{.name = "balance", .required = true}},
     .figure = true,
     .follow_up = advice_follow_up,
     .report = advice_report,
