@@ -1,5 +1,8 @@
 #include "claims.hpp"
 
+#include <fmt/args.h>
+#include <fmt/format.h>
+
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -84,28 +87,16 @@ Claim claim(std::string id, std::string statement, std::string evidence) {
   return c;
 }
 
+// fmt's named arguments: "{failing} of {above}" with the claim's values.
 std::string render(const Claim& c, std::string_view text) {
-  std::string out;
-  for (std::size_t i = 0; i < text.size();) {
-    if (text[i] != '{') {
-      out += text[i++];
-      continue;
-    }
-    const std::size_t close = text.find('}', i);
-    if (close == std::string_view::npos)
-      throw std::logic_error("claim " + c.id + ": unclosed '{' in \"" + std::string(text) + "\"");
-    const std::string name(text.substr(i + 1, close - i - 1));
-    bool found = false;
-    for (const auto& [n, v] : c.values) {
-      if (n != name) continue;
-      out += v;
-      found = true;
-      break;
-    }
-    if (!found) throw std::logic_error("claim " + c.id + ": no value for {" + name + "}");
-    i = close + 1;
+  fmt::dynamic_format_arg_store<fmt::format_context> args;
+  for (const auto& [name, value] : c.values)
+    args.push_back(fmt::arg(name.c_str(), value));  // names by reference: c outlives args
+  try {
+    return fmt::vformat(text, args);
+  } catch (const fmt::format_error& e) {
+    throw std::logic_error("claim " + c.id + ": " + e.what() + " in \"" + std::string(text) + "\"");
   }
-  return out;
 }
 
 std::string render_statement(const Claim& c) {

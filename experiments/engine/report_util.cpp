@@ -2,9 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <fstream>
 #include <sstream>
+
+#include <fmt/format.h>
 
 #include "base/accuracy.hpp"
 #include "compare.hpp"
@@ -16,10 +17,9 @@ namespace mpmstab {
 namespace fs = std::filesystem;
 using ojson = nlohmann::ordered_json;
 
+// The number formats are fmt's, which follow printf's ("%.*f", "%.*g", "%.*e") digit for digit.
 std::string fixed(double v, int decimals) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
-  return buf;
+  return fmt::format("{:.{}f}", v, decimals);
 }
 
 std::string seconds(double s) {
@@ -29,9 +29,7 @@ std::string seconds(double s) {
 
 // A ratio to two significant digits: "11", "7.6", "0.13", "1.2e+02".
 std::string ratio(double r) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.2g", r);
-  return buf;
+  return fmt::format("{:.2g}", r);
 }
 
 // A parameter: its value to 3 significant digits without trailing zeros ("1e-5", "2.5e-3").
@@ -66,9 +64,7 @@ std::string listing(std::vector<double> v) {
 }
 
 std::string significant(double v, int digits) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*g", digits, v);
-  return buf;
+  return fmt::format("{:.{}g}", v, digits);
 }
 
 std::string value_text(double v) {
@@ -276,10 +272,8 @@ std::optional<double> compared_error(const ojson& row, ErrorAt error_at) {
 std::string sci(double v, int digits) {
   if (v == 0) return "0";
   if (!std::isfinite(v)) return std::isnan(v) ? "nan" : (v > 0 ? "inf" : "-inf");
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*e", digits - 1, v);
   // 5.1e-05 -> 5.1e-5, 1.0e+04 -> 1.0e4
-  std::string s = buf;
+  const std::string s = fmt::format("{:.{}e}", v, digits - 1);
   const auto e = s.find('e');
   std::string mantissa = s.substr(0, e);
   std::string exponent = s.substr(e + 1);
