@@ -88,6 +88,54 @@ TEST(Cli, TheSummarysLabelsAreTheRecordsKeysAndNoErrorOverTimeIsCalledTheErrorAt
   }
 }
 
+// README's example of a run is a doc test: the command of its "## Running one case" block is
+// run and every line it prints is the README's, but the machine's wall time and ns per
+// particle-step; and README's list of the record's keys is the --json record's, in order.
+TEST(Cli, TheReadmesRunExampleIsWhatTheRunPrints) {
+  std::ifstream in(std::filesystem::path(MPMSTAB_SOURCE_DIR) / "README.md");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  const std::string readme = ss.str();
+  const auto section = readme.find("## Running one case");
+  ASSERT_NE(section, std::string::npos);
+  const auto open = readme.find("```\n$ build/mpmstab ", section);
+  ASSERT_NE(open, std::string::npos);
+  const auto close = readme.find("```", open + 3);
+  std::istringstream block(readme.substr(open + 4, close - open - 4));
+  std::string command;
+  std::getline(block, command);
+  const std::string prefix = "$ build/mpmstab ";
+  const Outcome o = run_mpmstab(command.substr(prefix.size()));
+  ASSERT_EQ(o.status, 0) << o.output;
+  const auto machine = [](const std::string& line) {
+    return line.rfind("  wall_seconds", 0) == 0 || line.rfind("  ns/particle-step", 0) == 0;
+  };
+  std::vector<std::string> shown, printed;
+  for (std::string line; std::getline(block, line);)
+    if (!machine(line)) shown.push_back(line);
+  std::istringstream out(o.output);
+  for (std::string line; std::getline(out, line);)
+    if (!machine(line)) printed.push_back(line);
+  EXPECT_EQ(shown, printed);
+
+  const auto keys_at = readme.find("(keys, in order: `", close);
+  ASSERT_NE(keys_at, std::string::npos);
+  const auto keys_end = readme.find('`', keys_at + 18);
+  std::string list = readme.substr(keys_at + 18, keys_end - keys_at - 18);
+  std::replace(list.begin(), list.end(), '\n', ' ');
+  std::vector<std::string> listed;
+  std::istringstream words(list);
+  for (std::string w; words >> w;)
+    listed.push_back(w.back() == ',' ? w.substr(0, w.size() - 1) : w);
+  const Outcome j = run_mpmstab(command.substr(prefix.size()) + " --json");
+  ASSERT_EQ(j.status, 0) << j.output;
+  const auto record = nlohmann::ordered_json::parse(j.output);
+  std::vector<std::string> keys;
+  for (const auto& [k, v] : record.items())
+    keys.push_back(k);
+  EXPECT_EQ(listed, keys);
+}
+
 TEST(Cli, UnstableRunIsAResultNotAnError) {
   const Outcome o = run_mpmstab("run --method gimp --E 1000 --A 0.015 --dt 1e-3 --json");
   ASSERT_EQ(o.status, 0) << o.output;
