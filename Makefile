@@ -7,7 +7,7 @@ JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
 # CI builds treat compiler warnings as errors.
 WERROR     ?= $(if $(CI),ON,OFF)
 
-DEB_PACKAGES := cmake g++ make libeigen3-dev nlohmann-json3-dev libfmt-dev libgtest-dev libgmock-dev \
+DEB_PACKAGES := cmake g++ make libeigen3-dev nlohmann-json3-dev libfmt-dev libcli11-dev libgtest-dev libgmock-dev \
                 libbenchmark-dev gnuplot-nox fonts-dejavu-core clang-format bc util-linux clang-14 \
                 libclang-rt-14-dev
 

@@ -11,6 +11,7 @@
 #include <sstream>
 #include <string>
 
+#include "args.hpp"
 #include "result_json.hpp"
 #include "support.hpp"
 
@@ -134,6 +135,37 @@ TEST(Cli, TheReadmesRunExampleIsWhatTheRunPrints) {
   for (const auto& [k, v] : record.items())
     keys.push_back(k);
   EXPECT_EQ(listed, keys);
+}
+
+// The tokenizer (CLI11 under the program's refusals): both forms of a value, a value that
+// starts with a dash, "--" before positional arguments that start with one; and each refusal
+// in the program's words, naming the option.
+TEST(Args, TokenizesBothFormsAndRefusesInTheProgramsWords) {
+  using mpmstab::cli::Args;
+  using mpmstab::cli::UsageError;
+  const std::vector<mpmstab::cli::OptionSpec> known = {{"E"}, {"out"}, {"json", false}};
+  const auto message = [&](std::vector<std::string_view> argv) {
+    try {
+      Args a(argv, known);
+    } catch (const UsageError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  const Args a({"spec.json", "--E", "-5", "--out=res", "--json", "--", "-x.json"}, known);
+  EXPECT_EQ(a.value("E"), "-5");
+  EXPECT_EQ(a.value("out"), "res");
+  EXPECT_TRUE(a.flag("json"));
+  EXPECT_EQ(a.positional(), (std::vector<std::string_view>{"spec.json", "-x.json"}));
+  const Args none({}, known);
+  EXPECT_FALSE(none.value("E").has_value());
+  EXPECT_FALSE(none.flag("json"));
+  EXPECT_EQ(message({"--jsn"}), "unknown option --jsn (did you mean --json?)");
+  EXPECT_EQ(message({"--E", "1", "--E", "2"}), "option --E given twice");
+  EXPECT_EQ(message({"--json", "--json"}), "option --json given twice");
+  EXPECT_EQ(message({"--E"}), "option --E needs a value");
+  EXPECT_EQ(message({"--json=yes"}), "option --json takes no value");
+  EXPECT_EQ(message({"--json="}), "option --json takes no value");
 }
 
 TEST(Cli, UnstableRunIsAResultNotAnError) {

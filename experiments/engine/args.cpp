@@ -1,8 +1,11 @@
 #include "args.hpp"
 
+#include <CLI/CLI.hpp>
+
 #include <algorithm>
 #include <charconv>
 #include <system_error>
+#include <utility>
 
 namespace mpmstab::cli {
 
@@ -40,44 +43,79 @@ std::optional<std::string> nearest(std::string_view name, const std::vector<std:
   return best;
 }
 
+namespace {
+
+// The option a CLI11 parse error is about: its message starts with "--name:" or "name was".
+std::string option_of(const CLI::ParseError& e) {
+  std::string_view m = e.what();
+  if (m.starts_with("--")) m.remove_prefix(2);
+  return std::string(m.substr(0, m.find_first_of(": ")));
+}
+
+// CLI11's refusals in this program's words, each naming the option.
+UsageError usage_error(const CLI::ParseError& e) {
+  const std::string what = e.what(), name = "--" + option_of(e);
+  if (what.find("At Most") != std::string::npos)
+    return UsageError("option " + name + " given twice");
+  if (what.find("required") != std::string::npos)
+    return UsageError("option " + name + " needs a value");
+  if (what.find("flag override") != std::string::npos)
+    return UsageError("option " + name + " takes no value");
+  return UsageError(what);
+}
+
+}  // namespace
+
+// CLI11 does the tokenizing ("--name value", "--name=value", a value that starts with '-', "--"
+// before positional arguments that start with it); the refusals are this program's: an unknown
+// option with the nearest known one, an option given twice, a missing value, a value given to a
+// flag.
 Args::Args(const std::vector<std::string_view>& argv, const std::vector<OptionSpec>& known) {
+  CLI::App app;
+  app.set_help_flag();     // every command declares and prints its own --help
+  app.allow_extras(true);  // unknown options are refused below, with a suggestion
   std::vector<std::string> names;
-  for (const auto& o : known)
+  std::vector<std::pair<std::string, CLI::Option*>> options;
+  std::map<std::string, std::string, std::less<>> given;
+  std::map<std::string, bool, std::less<>> flags;
+  for (const auto& o : known) {
     names.push_back(o.name);
-  for (std::size_t i = 0; i < argv.size(); ++i) {
-    const std::string_view arg = argv[i];
-    if (!arg.starts_with("--")) {
-      positional_.push_back(arg);
-      continue;
-    }
-    std::string_view name = arg.substr(2);
-    std::optional<std::string_view> inline_value;
-    if (const auto eq = name.find('='); eq != std::string_view::npos) {
-      inline_value = name.substr(eq + 1);
-      name = name.substr(0, eq);
-    }
-    const auto spec = std::find_if(known.begin(), known.end(),
-                                   [&](const OptionSpec& o) { return o.name == name; });
-    if (spec == known.end()) {
-      std::string message = "unknown option --" + std::string(name);
-      if (auto guess = nearest(name, names)) message += " (did you mean --" + *guess + "?)";
-      throw UsageError(message);
-    }
-    if (values_.count(name)) throw UsageError("option --" + std::string(name) + " given twice");
-    std::string_view value = "";
-    if (spec->takes_value) {
-      if (inline_value) {
-        value = *inline_value;
-      } else if (i + 1 < argv.size()) {
-        value = argv[++i];
-      } else {
-        throw UsageError("option --" + std::string(name) + " needs a value");
-      }
-    } else if (inline_value) {
-      throw UsageError("option --" + std::string(name) + " takes no value");
-    }
-    values_.emplace(std::string(name), value);
+    CLI::Option* opt = o.takes_value
+                           ? app.add_option("--" + o.name, given[o.name])->expected(1)
+                           : app.add_flag("--" + o.name, flags[o.name])->disable_flag_override();
+    opt->multi_option_policy(CLI::MultiOptionPolicy::Throw);
+    options.emplace_back(o.name, opt);
   }
+  std::vector<std::string> positional;
+  app.add_option("positional", positional);
+  // CLI11 reads "--flag=" as the flag; this program refuses a value given to a flag, even empty.
+  for (const std::string_view arg : argv) {
+    if (arg == "--") break;
+    if (!arg.starts_with("--") || !arg.ends_with("=")) continue;
+    const std::string_view name = arg.substr(2, arg.size() - 3);
+    if (flags.count(name)) throw UsageError("option --" + std::string(name) + " takes no value");
+  }
+  std::vector<std::string> reversed(argv.rbegin(), argv.rend());  // CLI11 pops from the back
+  try {
+    app.parse(reversed);
+  } catch (const CLI::ParseError& e) {
+    throw usage_error(e);
+  }
+  for (const std::string& extra : app.remaining()) {
+    if (extra == "--") continue;
+    std::string_view name = extra;
+    name.remove_prefix(name.find_first_not_of('-') == std::string_view::npos
+                           ? name.size()
+                           : name.find_first_not_of('-'));
+    std::string message = "unknown option " + extra;
+    if (auto guess = nearest(name, names)) message += " (did you mean --" + *guess + "?)";
+    throw UsageError(message);
+  }
+  for (const auto& [name, opt] : options)
+    if (opt->count() > 0) values_.emplace(name, given.count(name) ? given[name] : std::string());
+  positional_storage_ = std::move(positional);
+  for (const auto& p : positional_storage_)
+    positional_.push_back(p);
 }
 
 std::optional<std::string_view> Args::value(std::string_view name) const {

@@ -1,4 +1,5 @@
-// Command-line parsing shared by the subcommands: "--name value" or "--name=value".
+// Command-line parsing shared by the subcommands: "--name value" or "--name=value", tokenized
+// by CLI11 (Debian's libcli11-dev); the strict conversions and every refusal's wording are ours.
 #pragma once
 
 #include <cstdint>
@@ -27,14 +28,19 @@ class Args {
   // Throws UsageError for an unknown option (suggesting the nearest known one), a missing value
   // or an option given twice.
   Args(const std::vector<std::string_view>& argv, const std::vector<OptionSpec>& known);
+  Args(const Args&) = delete;  // positional() views its own storage
+  Args& operator=(const Args&) = delete;
+  Args(Args&&) = default;
+  Args& operator=(Args&&) = default;
 
   std::optional<std::string_view> value(std::string_view name) const;
   bool flag(std::string_view name) const { return value(name).has_value(); }
   const std::vector<std::string_view>& positional() const { return positional_; }
 
  private:
-  std::map<std::string, std::string_view, std::less<>> values_;
-  std::vector<std::string_view> positional_;
+  std::map<std::string, std::string, std::less<>> values_;
+  std::vector<std::string> positional_storage_;
+  std::vector<std::string_view> positional_;  // views of positional_storage_
 };
 
 // Strict conversions: the whole text must be a number. Errors name the option.
