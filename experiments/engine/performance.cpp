@@ -263,20 +263,8 @@ void write_benchmark(std::ostream& md, const fs::path& bench) {
 
 // The work, CPU time and wall time of every experiment that runs cases, and of the whole
 // reproduction, from <out>/timings.json, against what the kernel's speed allows.
-void write_experiment_times(std::ostream& md, const std::vector<Spec>& specs, const fs::path& out,
-                            const BenchFigures& bench) {
-  md << "## The cost of every experiment\n\nFrom [timings.json](timings.json), the one file "
-        "of the machine's measurements (every other result file is the same on any machine). "
-        "Particle-steps (particles x steps, of every run of an edge search) are the "
-        "deterministic work; CPU time is the sum of the cases' own run times. Cases that differ "
-        "only in eq. (108)'s options, at a policy that does not step by eq. (108), share one run "
-        "(its trajectory is theirs): each counts its share of that run's particle-steps and "
-        "time. Wall time is the "
-        "span from the experiment's first case's start to its last case's end in the run that "
-        "computed them (`make reproduce` runs every experiment's cases in one queue, so the "
-        "spans overlap).\n\n"
-        "| experiment | cases | particle-steps | CPU time | wall time | median ns per "
-        "particle-step |\n|---|---|---|---|---|---|\n";
+// results/timings.json as an object (an empty object when it is absent or unreadable).
+ojson read_timings(const fs::path& out) {
   ojson timings = ojson::object();
   if (const auto t = read_if_present(out / "timings.json"); t && !t->empty()) {
     try {
@@ -285,6 +273,12 @@ void write_experiment_times(std::ostream& md, const std::vector<Spec>& specs, co
     }
     if (!timings.is_object()) timings = ojson::object();
   }
+  return timings;
+}
+
+// One row per experiment with cases: its work, CPU time, wall time and median ns per
+// particle-step; then the total.
+void experiment_rows(std::ostream& md, const std::vector<Spec>& specs, const ojson& timings) {
   double total_compute = 0, total_work = 0;
   for (const auto& spec : specs) {
     if (!spec.study->has_cases) continue;  // computed from other experiments' results
@@ -309,51 +303,75 @@ void write_experiment_times(std::ostream& md, const std::vector<Spec>& specs, co
   md << "| all | | " << sci(total_work) << " | " << seconds(total_compute) << " | | "
      << (total_work > 0 ? fixed(1e9 * total_compute / total_work, 1) : std::string("-"))
      << " (mean) |\n\n";
+}
+
+// How the progress line's time to go compared with the truth in a tier's run.
+void time_to_go_text(std::ostream& md, const ojson& t) {
+  md << " The time to go its progress line showed, from " << fixed(100 * EstimateAccuracy::kSkip, 0)
+     << "% of the wall until the last " << fixed(100 * EstimateAccuracy::kTail, 0) << "% ("
+     << t["samples"].dump() << " estimates, one a second at most), was within a factor "
+     << fixed(t["worst_factor"].get<double>(), 2) << " of the true time to go";
+  std::string sep = " (";
+  for (const auto& p : t["at"]) {
+    md << sep << fixed(100 * p[0].get<double>(), 0) << "%: " << seconds(p[1].get<double>())
+       << " shown, " << seconds(p[2].get<double>()) << " true";
+    sep = "; ";
+  }
+  md << (sep == "; " ? ")" : "") << ".";
+}
+
+// The paragraph of one tier's last run ("(make reproduce)" in timings.json).
+void tier_paragraph(std::ostream& md, const std::string& label, const ojson& r,
+                    const BenchFigures& bench) {
+  const double wall = r["wall_seconds"].get<double>();
+  const int threads = r["threads"].get<int>();
+  // Each distinct case once (none in an entry written before it was recorded).
+  const double cpu = r.contains("compute_seconds") ? r["compute_seconds"].get<double>() : 0.0;
+  const double work = r["particle_steps"].get<double>();
+  const double kernel = bench.median("BM_StepInstrumented", "gimp");
+  md << "**`" << label << "`.** The last run that computed cases ran " << r["cases"].dump()
+     << " cases (" << r["computed"].dump() << " computed; " << sci(work)
+     << " particle-steps, each run counted once, follow-up runs included) of "
+     << r["experiments"].dump() << " experiments on " << threads << " threads ("
+     << (r.contains("cpu") ? r["cpu"].get<std::string>() : std::string("CPU not recorded"))
+     << ") in **" << seconds(wall) << "** wall.";
+  if (cpu > 0) {
+    md << " Their CPU time, " << seconds(cpu) << ", on " << threads
+       << " threads kept fully busy would take " << seconds(cpu / threads)
+       << (wall > 0 ? " (" + fixed(100 * cpu / threads / wall, 0) + "% of the wall)"
+                    : std::string(""));
+  }
+  if (kernel > 0) {
+    md << "; at the step kernel's speed with every observer (BM_StepInstrumented, GIMP, "
+       << fixed(kernel, 2) << " ns per particle-step) it would take "
+       << seconds(work * kernel * 1e-9 / threads);
+  }
+  md << ".";
+  if (r.contains("time_to_go") && r["time_to_go"].is_object()) time_to_go_text(md, r["time_to_go"]);
+  md << "\n\n";
+}
+
+void write_experiment_times(std::ostream& md, const std::vector<Spec>& specs, const fs::path& out,
+                            const BenchFigures& bench) {
+  md << "## The cost of every experiment\n\nFrom [timings.json](timings.json), the one file "
+        "of the machine's measurements (every other result file is the same on any machine). "
+        "Particle-steps (particles x steps, of every run of an edge search) are the "
+        "deterministic work; CPU time is the sum of the cases' own run times. Cases that differ "
+        "only in eq. (108)'s options, at a policy that does not step by eq. (108), share one run "
+        "(its trajectory is theirs): each counts its share of that run's particle-steps and "
+        "time. Wall time is the "
+        "span from the experiment's first case's start to its last case's end in the run that "
+        "computed them (`make reproduce` runs every experiment's cases in one queue, so the "
+        "spans overlap).\n\n"
+        "| experiment | cases | particle-steps | CPU time | wall time | median ns per "
+        "particle-step |\n|---|---|---|---|---|---|\n";
+  const ojson timings = read_timings(out);
+  experiment_rows(md, specs, timings);
   bool any = false;
   for (const auto& [key, r] : timings.items()) {
     if (key.size() < 3 || key.front() != '(' || key.back() != ')') continue;
     any = true;
-    const std::string label = key.substr(1, key.size() - 2);
-    const double wall = r["wall_seconds"].get<double>();
-    const int threads = r["threads"].get<int>();
-    // Each distinct case once (none in an entry written before it was recorded).
-    const double cpu = r.contains("compute_seconds") ? r["compute_seconds"].get<double>() : 0.0;
-    const double work = r["particle_steps"].get<double>();
-    const double kernel = bench.median("BM_StepInstrumented", "gimp");
-    md << "**`" << label << "`.** The last run that computed cases ran " << r["cases"].dump()
-       << " cases (" << r["computed"].dump() << " computed; " << sci(work)
-       << " particle-steps, each run counted once, follow-up runs included) of "
-       << r["experiments"].dump() << " experiments on " << threads << " threads ("
-       << (r.contains("cpu") ? r["cpu"].get<std::string>() : std::string("CPU not recorded"))
-       << ") in **" << seconds(wall) << "** wall.";
-    if (cpu > 0) {
-      md << " Their CPU time, " << seconds(cpu) << ", on " << threads
-         << " threads kept fully busy would take " << seconds(cpu / threads)
-         << (wall > 0 ? " (" + fixed(100 * cpu / threads / wall, 0) + "% of the wall)"
-                      : std::string(""));
-    }
-    if (kernel > 0) {
-      md << "; at the step kernel's speed with every observer (BM_StepInstrumented, GIMP, "
-         << fixed(kernel, 2) << " ns per particle-step) it would take "
-         << seconds(work * kernel * 1e-9 / threads);
-    }
-    md << ".";
-    if (r.contains("time_to_go") && r["time_to_go"].is_object()) {
-      const auto& t = r["time_to_go"];
-      md << " The time to go its progress line showed, from "
-         << fixed(100 * EstimateAccuracy::kSkip, 0) << "% of the wall until the last "
-         << fixed(100 * EstimateAccuracy::kTail, 0) << "% (" << t["samples"].dump()
-         << " estimates, one a second at most), was within a factor "
-         << fixed(t["worst_factor"].get<double>(), 2) << " of the true time to go";
-      std::string sep = " (";
-      for (const auto& p : t["at"]) {
-        md << sep << fixed(100 * p[0].get<double>(), 0) << "%: " << seconds(p[1].get<double>())
-           << " shown, " << seconds(p[2].get<double>()) << " true";
-        sep = "; ";
-      }
-      md << (sep == "; " ? ")" : "") << ".";
-    }
-    md << "\n\n";
+    tier_paragraph(md, key.substr(1, key.size() - 2), r, bench);
   }
   if (any) {
     md << "The table's CPU times and particle-steps count a case shared by two experiments in "

@@ -684,135 +684,143 @@ std::string published_table(const std::map<std::string, MethodOrders>& m) {
   return md.str();
 }
 
+Claim orders_agree_claim(const std::map<std::string, MethodOrders>& m) {
+  int agree = 0, total = 0;
+  for (const auto& [method, o] : m) {
+    if (o.order.size() < 2) continue;
+    ++total;
+    agree += spread(o.order) <= kOrderAgreement;
+  }
+  Claim c = claim("orders-agree-across-E",
+                  "The fitted orders in h of each method agree across E within {tolerance}",
+                  "{agree} of {total} methods");
+  c.number("tolerance", kOrderAgreement).count("agree", agree).count("total", total);
+  c.holds = total > 0 && agree == total;
+  return c;
+}
+
+Claim published_orders_claim(const std::map<std::string, MethodOrders>& m) {
+  int met = 0, total = 0;
+  for (const auto& [method, o] : m) {
+    const auto pub = published_order(method).order;
+    if (!pub) continue;
+    for (const auto& [E, order] : o.order) {
+      ++total;
+      met += std::abs(order - *pub) <= kOrderAgreement;
+    }
+  }
+  Claim c = claim("published-spatial-orders",
+                  "Where an order in h is published for the basis, ours lies within "
+                  "{tolerance} of it at every E",
+                  "{met} of {total} (method, E) pairs");
+  c.number("tolerance", kOrderAgreement).count("met", met).count("total", total);
+  c.holds = total > 0 && met == total;
+  return c;
+}
+
+// USL (leapfrog) or USF and MUSL: the time order of every method and E against the published one.
+Claim time_order_claim(const std::vector<TimeErrorRow>& t, bool leapfrog) {
+  int met = 0, total = 0;
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (const auto& row : t) {
+    if ((row.update == "usl") != leapfrog || row.consistent_mass || row.linear) continue;
+    const auto o = time_order(row.study);
+    if (!o) continue;
+    ++total;
+    met += std::abs(*o - expected_time_order(row.update)) <= kOrderAgreement;
+    lo = std::min(lo, *o);
+    hi = std::max(hi, *o);
+  }
+  Claim c = leapfrog
+                ? claim("time-order-usl",
+                        "With USL the time error (the difference from a run at a much smaller "
+                        "step on the same grid) falls at the published order {expected} for "
+                        "every method and E",
+                        "{met} of {total} within {tolerance}; fitted orders {lo} to {hi}")
+                : claim("time-order-usf-musl",
+                        "With USF and MUSL the time error falls at first order ({expected}) for "
+                        "MPM and GIMP at every E",
+                        "{met} of {total} within {tolerance}; fitted orders {lo} to {hi}");
+  c.number("expected", leapfrog ? kPublishedTimeOrder : 1.0)
+      .number("tolerance", kOrderAgreement)
+      .count("met", met)
+      .count("total", total)
+      .value("lo", total ? fixed(lo, 2) : "–")
+      .value("hi", total ? fixed(hi, 2) : "–")
+      .over(total);
+  c.holds = total > 0 && met == total;
+  return c;
+}
+
+Claim consistent_mass_claim(const std::vector<TimeErrorRow>& t) {
+  int met = 0, total = 0;
+  std::vector<std::string> orders;
+  for (const auto& row : t) {
+    if (!row.consistent_mass || !row.linear) continue;
+    const auto o = time_order(row.study);
+    if (!o) continue;
+    ++total;
+    met += std::abs(*o - kPublishedTimeOrder) <= kOrderAgreement;
+    orders.push_back(row.method + " " + fixed(*o, 2));
+  }
+  Claim c = claim("time-order-consistent-mass",
+                  "With the consistent mass restored (FMPM of order {order}) and at an "
+                  "amplitude {fraction} of the study's, USL's time error falls at the leapfrog "
+                  "order {expected}: the first-order term of FLIP in the linear limit is its "
+                  "lumped-mass re-projection",
+                  "{met} of {total} within {tolerance} ({orders})");
+  c.count("order", kConsistentOrder)
+      .number("fraction", kLinearAmplitudeFraction)
+      .number("expected", kPublishedTimeOrder)
+      .number("tolerance", kOrderAgreement)
+      .count("met", met)
+      .count("total", total)
+      .value("orders", list_of(orders))
+      .over(total);
+  c.holds = total > 0 && met == total;
+  return c;
+}
+
+Claim within_theory_claim(const std::map<std::string, MethodOrders>& m) {
+  const auto a = above_theory(m);
+  int explained = 0;
+  for (const auto& x : a)
+    explained += x.last && *x.last <= kTheoryMaxOrder + kOrderAgreement;
+  Claim c = claim("orders-within-theory",
+                  "Every fitted order in h above the theory's {theory} (by more than "
+                  "{tolerance}) is pre-asymptotic: its last refinement falls at most at "
+                  "{theory} + {tolerance}",
+                  "{explained} of {above} fitted orders above it");
+  c.number("theory", kTheoryMaxOrder)
+      .number("tolerance", kOrderAgreement)
+      .count("explained", explained)
+      .count("above", static_cast<long long>(a.size()))
+      .over(static_cast<long long>(a.size()));
+  c.holds = explained == static_cast<int>(a.size());
+  return c;
+}
+
+Claim uintah_baseline_claim(const std::map<GroupKey, std::vector<Point>>& g, const Baseline& b) {
+  const auto ours = peer_order(g, Norm::at_T);
+  Claim c = claim("uintah-baseline-order",
+                  "Linear MPM's order in h on the manufactured solution agrees with Uintah's own "
+                  "baseline within {tolerance} (the error at the final time, as the baseline "
+                  "measures it)",
+                  "ours {ours}, the baseline's {theirs}");
+  c.number("tolerance", kOrderAgreement)
+      .value("ours", order_text(ours))
+      .value("theirs", order_text(b.order_max));
+  c.holds = ours && b.order_max && std::abs(*ours - *b.order_max) <= kOrderAgreement;
+  return c;
+}
+
 std::vector<Claim> convergence_claims(const std::map<std::string, MethodOrders>& m,
                                       const std::vector<TimeErrorRow>& t,
                                       const std::map<GroupKey, std::vector<Point>>& g,
                                       const Baseline& b) {
-  std::vector<Claim> claims;
-  {
-    int agree = 0, total = 0;
-    for (const auto& [method, o] : m) {
-      if (o.order.size() < 2) continue;
-      ++total;
-      agree += spread(o.order) <= kOrderAgreement;
-    }
-    Claim c = claim("orders-agree-across-E",
-                    "The fitted orders in h of each method agree across E within {tolerance}",
-                    "{agree} of {total} methods");
-    c.number("tolerance", kOrderAgreement).count("agree", agree).count("total", total);
-    c.holds = total > 0 && agree == total;
-    claims.push_back(c);
-  }
-  {
-    int met = 0, total = 0;
-    for (const auto& [method, o] : m) {
-      const auto pub = published_order(method).order;
-      if (!pub) continue;
-      for (const auto& [E, order] : o.order) {
-        ++total;
-        met += std::abs(order - *pub) <= kOrderAgreement;
-      }
-    }
-    Claim c = claim("published-spatial-orders",
-                    "Where an order in h is published for the basis, ours lies within "
-                    "{tolerance} of it at every E",
-                    "{met} of {total} (method, E) pairs");
-    c.number("tolerance", kOrderAgreement).count("met", met).count("total", total);
-    c.holds = total > 0 && met == total;
-    claims.push_back(c);
-  }
-  for (const bool leapfrog : {true, false}) {
-    int met = 0, total = 0;
-    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-    for (const auto& row : t) {
-      if ((row.update == "usl") != leapfrog || row.consistent_mass || row.linear) continue;
-      const auto o = time_order(row.study);
-      if (!o) continue;
-      ++total;
-      met += std::abs(*o - expected_time_order(row.update)) <= kOrderAgreement;
-      lo = std::min(lo, *o);
-      hi = std::max(hi, *o);
-    }
-    Claim c = leapfrog
-                  ? claim("time-order-usl",
-                          "With USL the time error (the difference from a run at a much smaller "
-                          "step on the same grid) falls at the published order {expected} for "
-                          "every method and E",
-                          "{met} of {total} within {tolerance}; fitted orders {lo} to {hi}")
-                  : claim("time-order-usf-musl",
-                          "With USF and MUSL the time error falls at first order ({expected}) for "
-                          "MPM and GIMP at every E",
-                          "{met} of {total} within {tolerance}; fitted orders {lo} to {hi}");
-    c.number("expected", leapfrog ? kPublishedTimeOrder : 1.0)
-        .number("tolerance", kOrderAgreement)
-        .count("met", met)
-        .count("total", total)
-        .value("lo", total ? fixed(lo, 2) : "–")
-        .value("hi", total ? fixed(hi, 2) : "–")
-        .over(total);
-    c.holds = total > 0 && met == total;
-    claims.push_back(c);
-  }
-  {
-    int met = 0, total = 0;
-    std::vector<std::string> orders;
-    for (const auto& row : t) {
-      if (!row.consistent_mass || !row.linear) continue;
-      const auto o = time_order(row.study);
-      if (!o) continue;
-      ++total;
-      met += std::abs(*o - kPublishedTimeOrder) <= kOrderAgreement;
-      orders.push_back(row.method + " " + fixed(*o, 2));
-    }
-    Claim c = claim("time-order-consistent-mass",
-                    "With the consistent mass restored (FMPM of order {order}) and at an "
-                    "amplitude {fraction} of the study's, USL's time error falls at the leapfrog "
-                    "order {expected}: the first-order term of FLIP in the linear limit is its "
-                    "lumped-mass re-projection",
-                    "{met} of {total} within {tolerance} ({orders})");
-    c.count("order", kConsistentOrder)
-        .number("fraction", kLinearAmplitudeFraction)
-        .number("expected", kPublishedTimeOrder)
-        .number("tolerance", kOrderAgreement)
-        .count("met", met)
-        .count("total", total)
-        .value("orders", list_of(orders))
-        .over(total);
-    c.holds = total > 0 && met == total;
-    claims.push_back(c);
-  }
-  {
-    const auto a = above_theory(m);
-    int explained = 0;
-    for (const auto& x : a)
-      explained += x.last && *x.last <= kTheoryMaxOrder + kOrderAgreement;
-    Claim c = claim("orders-within-theory",
-                    "Every fitted order in h above the theory's {theory} (by more than "
-                    "{tolerance}) is pre-asymptotic: its last refinement falls at most at "
-                    "{theory} + {tolerance}",
-                    "{explained} of {above} fitted orders above it");
-    c.number("theory", kTheoryMaxOrder)
-        .number("tolerance", kOrderAgreement)
-        .count("explained", explained)
-        .count("above", static_cast<long long>(a.size()))
-        .over(static_cast<long long>(a.size()));
-    c.holds = explained == static_cast<int>(a.size());
-    claims.push_back(c);
-  }
-  {
-    const auto ours = peer_order(g, Norm::at_T);
-    Claim c = claim("uintah-baseline-order",
-                    "Linear MPM's order in h on the manufactured solution agrees with Uintah's own "
-                    "baseline within {tolerance} (the error at the final time, as the baseline "
-                    "measures it)",
-                    "ours {ours}, the baseline's {theirs}");
-    c.number("tolerance", kOrderAgreement)
-        .value("ours", order_text(ours))
-        .value("theirs", order_text(b.order_max));
-    c.holds = ours && b.order_max && std::abs(*ours - *b.order_max) <= kOrderAgreement;
-    claims.push_back(c);
-  }
-  return claims;
+  return {orders_agree_claim(m),      published_orders_claim(m), time_order_claim(t, true),
+          time_order_claim(t, false), consistent_mass_claim(t),  within_theory_claim(m),
+          uintah_baseline_claim(g, b)};
 }
 
 std::string convergence_data(const std::vector<ojson>& rows, const std::string& header);

@@ -235,98 +235,115 @@ std::string warning_table(const std::vector<Warning>& w) {
   return md.str();
 }
 
+// FLIP against PIC at each history cell.
+Claim pic_dissipates_claim(const std::vector<ojson>& rows, const std::set<Cell>& cells) {
+  int holds = 0, total = 0;
+  for (const Cell& c : cells) {
+    std::optional<double> flip, pic;
+    for (const auto& r : rows) {
+      if (!fixed_step(r) || cell_of(r) != c || !has_number(r, "energy_error_max")) continue;
+      if (method_label(r) == std::get<0>(c)) flip = r["energy_error_max"].get<double>();
+      if (method_label(r) == std::get<0>(c) + "/pic") pic = r["energy_error_max"].get<double>();
+    }
+    if (!flip || !pic) continue;
+    ++total;
+    holds += *pic > *flip;
+  }
+  Claim c = claim("pic-dissipates",
+                  "PIC's energy balance error exceeds FLIP's at every history cell (PIC "
+                  "dissipates what FLIP keeps)",
+                  "{holds} of {total} cells");
+  c.count("holds", holds).count("total", total).over(total);
+  c.holds = total > 0 && holds == total;
+  return c;
+}
+
+// The balance error converges with dt and h.
+Claim balance_converges_claim(const std::vector<Sweep>& sweeps) {
+  int converge = 0, total = 0;
+  for (const auto& sw : sweeps) {
+    const auto o = sweep_order(sw, "energy_error_max");
+    if (!o) continue;
+    ++total;
+    converge += *o > 0;
+  }
+  Claim c = claim("balance-converges",
+                  "The energy balance error falls as dt and h fall, for MPM and GIMP on the "
+                  "bar at the drift sweeps' amplitude, over the runs in the regime orders are "
+                  "fitted in",
+                  "{converge} of {total} sweeps have a positive fitted order");
+  c.count("converge", converge).count("total", total);
+  c.over(total);
+  c.holds = total > 0 && converge == total;
+  return c;
+}
+
+// The failed runs and the fixed-step runs that reach T, which the warning claims count.
+struct WarningCounts {
+  long long failed = 0, survived = 0;
+};
+
+WarningCounts warning_counts(const std::vector<Warning>& w) {
+  WarningCounts n;
+  for (const auto& x : w)
+    (x.failed ? n.failed : n.survived) += 1;
+  return n;
+}
+
+// An early warning (the step at which `member` first fired) before every failure, and the same
+// signal in the runs that reach T (false warnings).
+Claim lead_claim(const std::vector<Warning>& w, std::optional<long long> Warning::*member,
+                 const char* id, const char* what) {
+  const WarningCounts n = warning_counts(w);
+  int warned = 0, false_warnings = 0;
+  for (const auto& x : w) {
+    const auto& s = x.*member;
+    if (x.failed) {
+      warned += s && *s < x.failure_step;
+    } else {
+      false_warnings += s.has_value();
+    }
+  }
+  Claim c = claim(
+      id,
+      std::string(what) + " warns before every failure of this study and in no run that reaches T",
+      "before {warned} of {failed} failures; in {false_warnings} of {survived} "
+      "fixed-step runs that reach T");
+  c.count("warned", warned)
+      .count("failed", n.failed)
+      .count("false_warnings", false_warnings)
+      .count("survived", n.survived);
+  c.holds = n.failed > 0 && warned == n.failed && false_warnings == 0;
+  return c;
+}
+
+Claim spectral_warns_claim(const std::vector<Warning>& w) {
+  const WarningCounts n = warning_counts(w);
+  int above = 0, false_warnings = 0;
+  for (const auto& x : w) {
+    const bool a = x.above_spectral && *x.above_spectral;
+    (x.failed ? above : false_warnings) += a;
+  }
+  Claim c = claim("spectral-warns",
+                  "A c dt/h above the spectral limit warns before every failure of this study "
+                  "and in no run that reaches T",
+                  "{above} of {failed} failed runs step above the limit; {false_warnings} of "
+                  "{survived} fixed-step runs that reach T");
+  c.count("above", above)
+      .count("failed", n.failed)
+      .count("false_warnings", false_warnings)
+      .count("survived", n.survived);
+  c.holds = n.failed > 0 && above == n.failed && false_warnings == 0;
+  return c;
+}
+
 std::vector<Claim> energy_claims(const std::vector<ojson>& rows, const std::set<Cell>& cells,
                                  const std::vector<Sweep>& sweeps, const std::vector<Warning>& w) {
-  std::vector<Claim> claims;
-  // FLIP against PIC at each history cell.
-  {
-    int holds = 0, total = 0;
-    for (const Cell& c : cells) {
-      std::optional<double> flip, pic;
-      for (const auto& r : rows) {
-        if (!fixed_step(r) || cell_of(r) != c || !has_number(r, "energy_error_max")) continue;
-        if (method_label(r) == std::get<0>(c)) flip = r["energy_error_max"].get<double>();
-        if (method_label(r) == std::get<0>(c) + "/pic") pic = r["energy_error_max"].get<double>();
-      }
-      if (!flip || !pic) continue;
-      ++total;
-      holds += *pic > *flip;
-    }
-    Claim c = claim("pic-dissipates",
-                    "PIC's energy balance error exceeds FLIP's at every history cell (PIC "
-                    "dissipates what FLIP keeps)",
-                    "{holds} of {total} cells");
-    c.count("holds", holds).count("total", total).over(total);
-    c.holds = total > 0 && holds == total;
-    claims.push_back(c);
-  }
-  // The balance error converges with dt and h.
-  {
-    int converge = 0, total = 0;
-    for (const auto& sw : sweeps) {
-      const auto o = sweep_order(sw, "energy_error_max");
-      if (!o) continue;
-      ++total;
-      converge += *o > 0;
-    }
-    Claim c = claim("balance-converges",
-                    "The energy balance error falls as dt and h fall, for MPM and GIMP on the "
-                    "bar at the drift sweeps' amplitude, over the runs in the regime orders are "
-                    "fitted in",
-                    "{converge} of {total} sweeps have a positive fitted order");
-    c.count("converge", converge).count("total", total);
-    c.over(total);
-    c.holds = total > 0 && converge == total;
-    claims.push_back(c);
-  }
-  // Early warnings, and the same signals in the runs that reach T (false warnings).
-  long long failed = 0, survived = 0;
-  for (const auto& x : w)
-    (x.failed ? failed : survived) += 1;
-  auto lead = [&](auto member, const char* id, const char* what) {
-    int warned = 0, false_warnings = 0;
-    for (const auto& x : w) {
-      const auto& s = x.*member;
-      if (x.failed) {
-        warned += s && *s < x.failure_step;
-      } else {
-        false_warnings += s.has_value();
-      }
-    }
-    Claim c = claim(id,
-                    std::string(what) +
-                        " warns before every failure of this study and in no run that reaches T",
-                    "before {warned} of {failed} failures; in {false_warnings} of {survived} "
-                    "fixed-step runs that reach T");
-    c.count("warned", warned)
-        .count("failed", failed)
-        .count("false_warnings", false_warnings)
-        .count("survived", survived);
-    c.holds = failed > 0 && warned == failed && false_warnings == 0;
-    return c;
-  };
-  claims.push_back(
-      lead(&Warning::energy_step, "energy-warns", "The energy balance leaving its band"));
-  claims.push_back(lead(&Warning::eq108_step, "eq108-warns", "A dt above eq. (108)"));
-  {
-    int above = 0, false_warnings = 0;
-    for (const auto& x : w) {
-      const bool a = x.above_spectral && *x.above_spectral;
-      (x.failed ? above : false_warnings) += a;
-    }
-    Claim c = claim("spectral-warns",
-                    "A c dt/h above the spectral limit warns before every failure of this study "
-                    "and in no run that reaches T",
-                    "{above} of {failed} failed runs step above the limit; {false_warnings} of "
-                    "{survived} fixed-step runs that reach T");
-    c.count("above", above)
-        .count("failed", failed)
-        .count("false_warnings", false_warnings)
-        .count("survived", survived);
-    c.holds = failed > 0 && above == failed && false_warnings == 0;
-    claims.push_back(c);
-  }
-  return claims;
+  return {
+      pic_dissipates_claim(rows, cells), balance_converges_claim(sweeps),
+      lead_claim(w, &Warning::energy_step, "energy-warns", "The energy balance leaving its band"),
+      lead_claim(w, &Warning::eq108_step, "eq108-warns", "A dt above eq. (108)"),
+      spectral_warns_claim(w)};
 }
 
 // <name>_data.csv: panel (history cell), series (transfer and update order), t and the balance.
