@@ -290,6 +290,19 @@ WarningCounts warning_counts(const std::vector<Warning>& w) {
   return n;
 }
 
+// A warning claim: it holds when the signal came before every failure (`hits`, the value named
+// `hits_name`) and in no run that reached T.
+Claim warning_claim(const char* id, const std::string& statement, const char* evidence,
+                    const char* hits_name, int hits, int false_warnings, const WarningCounts& n) {
+  Claim c = claim(id, statement, evidence);
+  c.count(hits_name, hits)
+      .count("failed", n.failed)
+      .count("false_warnings", false_warnings)
+      .count("survived", n.survived);
+  c.holds = n.failed > 0 && hits == n.failed && false_warnings == 0;
+  return c;
+}
+
 // An early warning (the step at which `member` first fired) before every failure, and the same
 // signal in the runs that reach T (false warnings).
 Claim lead_claim(const std::vector<Warning>& w, std::optional<long long> Warning::*member,
@@ -304,17 +317,12 @@ Claim lead_claim(const std::vector<Warning>& w, std::optional<long long> Warning
       false_warnings += s.has_value();
     }
   }
-  Claim c = claim(
+  return warning_claim(
       id,
       std::string(what) + " warns before every failure of this study and in no run that reaches T",
-      "before {warned} of {failed} failures; in {false_warnings} of {survived} "
-      "fixed-step runs that reach T");
-  c.count("warned", warned)
-      .count("failed", n.failed)
-      .count("false_warnings", false_warnings)
-      .count("survived", n.survived);
-  c.holds = n.failed > 0 && warned == n.failed && false_warnings == 0;
-  return c;
+      "before {warned} of {failed} failures; in {false_warnings} of {survived} fixed-step runs "
+      "that reach T",
+      "warned", warned, false_warnings, n);
 }
 
 Claim spectral_warns_claim(const std::vector<Warning>& w) {
@@ -324,17 +332,12 @@ Claim spectral_warns_claim(const std::vector<Warning>& w) {
     const bool a = x.above_spectral && *x.above_spectral;
     (x.failed ? above : false_warnings) += a;
   }
-  Claim c = claim("spectral-warns",
-                  "A c dt/h above the spectral limit warns before every failure of this study "
-                  "and in no run that reaches T",
-                  "{above} of {failed} failed runs step above the limit; {false_warnings} of "
-                  "{survived} fixed-step runs that reach T");
-  c.count("above", above)
-      .count("failed", n.failed)
-      .count("false_warnings", false_warnings)
-      .count("survived", n.survived);
-  c.holds = n.failed > 0 && above == n.failed && false_warnings == 0;
-  return c;
+  return warning_claim("spectral-warns",
+                       "A c dt/h above the spectral limit warns before every failure of this "
+                       "study and in no run that reaches T",
+                       "{above} of {failed} failed runs step above the limit; {false_warnings} of "
+                       "{survived} fixed-step runs that reach T",
+                       "above", above, false_warnings, n);
 }
 
 std::vector<Claim> energy_claims(const std::vector<ojson>& rows, const std::set<Cell>& cells,
