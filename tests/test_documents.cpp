@@ -5,10 +5,12 @@
 
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "documents.hpp"
 #include "files.hpp"
+#include "performance.hpp"
 #include "support.hpp"
 
 namespace mpmstab {
@@ -79,6 +81,40 @@ TEST(Documents, CheckFailsWhenABlockIsEditedByHandOrItsResultChanges) {
   const std::string before = slurp(doc);
   EXPECT_EQ(run(doc.string()).status, 2);
   EXPECT_EQ(slurp(doc), before);
+  std::filesystem::remove_all(dir);
+}
+
+// make timings publishes this machine's timings and keeps the last tier run of every other
+// machine the published file held, under "(<label> on <cpu>)"; README's table shows each.
+TEST(Documents, PublishedTimingsKeepEachMachinesLastTierRun) {
+  const auto dir = std::filesystem::temp_directory_path() / "mpmstab_timings_test";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir / "cache");
+  const auto entry = [](const char* cpu, double wall) {
+    return nlohmann::ordered_json{
+        {"cases", 10},  {"computed", 10}, {"particle_steps", 1e6}, {"compute_seconds", 2},
+        {"threads", 2}, {"cpu", cpu},     {"commit", "abcdef012"}, {"wall_seconds", wall}};
+  };
+  std::ofstream(dir / "timings.json") << nlohmann::ordered_json{
+      {"(make reproduce)", entry("Old CPU", 30)},
+      {"(make studies)", entry("Old CPU", 480)},
+      {"(make studies on Older CPU)",
+       entry("Older CPU", 900)}}.dump(1);
+  std::ofstream(dir / "cache" / "timings.json")
+      << nlohmann::ordered_json{{"(make reproduce)", entry("New CPU", 95)}}.dump(1);
+  write_performance({}, dir / "no_benchmark.json", dir);
+  const auto published = nlohmann::ordered_json::parse(slurp(dir / "timings.json"));
+  EXPECT_EQ(published["(make reproduce)"]["cpu"], "New CPU");
+  EXPECT_EQ(published["(make reproduce on Old CPU)"]["wall_seconds"], 30);
+  EXPECT_EQ(published["(make studies)"]["cpu"], "Old CPU");  // no new studies run: kept as it was
+  EXPECT_EQ(published["(make studies on Older CPU)"]["wall_seconds"], 900);
+  const std::string table = document_blocks(dir).at("readme-tier-times");
+  for (const char* shown : {"New CPU", "Old CPU", "Older CPU", "95 s", "30 s", "480 s", "900 s"})
+    EXPECT_NE(table.find(shown), std::string::npos) << shown << " in\n" << table;
+  // Published again from the same measurements: the same file.
+  const std::string before = slurp(dir / "timings.json");
+  write_performance({}, dir / "no_benchmark.json", dir);
+  EXPECT_EQ(slurp(dir / "timings.json"), before);
   std::filesystem::remove_all(dir);
 }
 

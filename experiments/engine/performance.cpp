@@ -382,12 +382,37 @@ void write_experiment_times(std::ostream& md, const std::vector<Spec>& specs, co
   }
 }
 
+// This machine's timings (the cache's) with the tier runs of other machines that the published
+// file holds: a tier run of this machine replaces the published one of the same CPU; one of
+// another CPU is kept as "(<label> on <cpu>)", so that the published file keeps the last tier run
+// of each machine (README's table shows them all).
+ojson merged_timings(const ojson& measured, const ojson& published) {
+  ojson out = measured;
+  for (const auto& [key, e] : published.items()) {
+    if (key.size() < 3 || key.front() != '(' || key.back() != ')' || !e.is_object()) continue;
+    if (!e.contains("cpu") || !e["cpu"].is_string()) continue;
+    const std::string cpu = e["cpu"].get<std::string>();
+    std::string label = key.substr(1, key.size() - 2);
+    if (const auto on = label.find(" on "); on != std::string::npos) label.resize(on);
+    const std::string current = reproduce_timing_key(label);
+    const bool same_machine = measured.contains(current) && measured[current].contains("cpu") &&
+                              measured[current]["cpu"] == cpu;
+    if (same_machine) continue;  // superseded by this machine's run
+    // Kept as it was where this machine has no run of the tier; else renamed after its CPU.
+    out[measured.contains(current) ? reproduce_timing_key(label + " on " + cpu) : key] = e;
+  }
+  return out;
+}
+
 }  // namespace
 
 void write_performance(const std::vector<Spec>& specs, const fs::path& bench, const fs::path& out) {
-  // The machine's timings of the runs in `out`, published as <out>/timings.json.
+  // The machine's timings of the runs in `out`, published as <out>/timings.json with the other
+  // machines' tier runs it already held.
   if (const auto measured = read_if_present(machine_timings(out))) {
-    write_if_changed(out / "timings.json", *measured);
+    const ojson merged = merged_timings(parse_json_strict<ojson>(*measured, machine_timings(out)),
+                                        read_timings(out));
+    write_if_changed(out / "timings.json", merged.dump(1) + "\n");
   }
   std::ostringstream md;
   md << "# Performance\n\nWhat a result costs: the step kernel measured with Google Benchmark "

@@ -36,10 +36,20 @@ std::string tier_times(const std::filesystem::path& results) {
   std::ostringstream md;
   md << "| command | wall time | work | CPU time | cores | CPU | commit |\n"
         "|---|---|---|---|---|---|---|\n";
-  for (const auto& [label, name] : {std::pair{"(make reproduce)", "`make reproduce`"},
-                                    std::pair{"(make studies)", "`make studies`"}}) {
-    if (!t.contains(label) || !t[label].is_object()) continue;
-    const ojson& e = t[label];
+  // Each tier's last run on this machine, then its last run on each other machine that
+  // published ("(make reproduce on <cpu>)", performance.cpp).
+  std::vector<std::pair<std::string, const ojson*>> runs;
+  for (const std::string tier : {"make reproduce", "make studies"}) {
+    const std::string key = "(" + tier + ")";
+    if (t.contains(key) && t[key].is_object()) runs.emplace_back("`" + tier + "`", &t[key]);
+  }
+  for (const std::string tier : {"make reproduce", "make studies"}) {
+    for (const auto& [key, e] : t.items())
+      if (key.starts_with("(" + tier + " on ") && e.is_object())
+        runs.emplace_back("`" + tier + "`", &e);
+  }
+  for (const auto& [name, entry] : runs) {
+    const ojson& e = *entry;
     auto number = [&](const char* key) {
       return e.contains(key) && e[key].is_number() ? e[key].get<double>() : 0.0;
     };
