@@ -103,10 +103,9 @@ Args::Args(const std::vector<std::string_view>& argv, const std::vector<OptionSp
   }
   for (const std::string& extra : app.remaining()) {
     if (extra == "--") continue;
-    std::string_view name = extra;
-    name.remove_prefix(name.find_first_not_of('-') == std::string_view::npos
-                           ? name.size()
-                           : name.find_first_not_of('-'));
+    const std::size_t start = extra.find_first_not_of('-');
+    const std::string_view name =
+        start == std::string::npos ? std::string_view() : std::string_view(extra).substr(start);
     std::string message = "unknown option " + extra;
     if (auto guess = nearest(name, names)) message += " (did you mean --" + *guess + "?)";
     throw UsageError(message);

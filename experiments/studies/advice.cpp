@@ -430,9 +430,9 @@ std::vector<BalancedCourant> balanced_courants(const nlohmann::ordered_json& bal
     if (!(c > 0)) throw InputError(at_i + ".balancing_courant: must be positive");
     const int cells = int_at(curves[i], "cells", at_i);
     const std::string scene = string_at(curves[i], "scene", at_i);
-    const auto [it, added] =
-        least.try_emplace({method, cells}, BalancedCourant{method, cells, c, 0, scene});
-    if (!added && c < it->second.measured) it->second = BalancedCourant{method, cells, c, 0, scene};
+    const BalancedCourant candidate{method, cells, c, 0, scene};
+    const auto [it, added] = least.try_emplace({method, cells}, candidate);
+    if (!added && c < it->second.measured) it->second = candidate;
   }
   std::vector<BalancedCourant> out;
   for (auto& [key, b] : least) {

@@ -54,9 +54,8 @@ bool worth_checking(const ojson& base) {
 // that case instead.
 struct BalancedSetting {
   BalancedCourant balance;
-  std::size_t case_index = 0;             // the spec case it is made from
   std::optional<std::size_t> grid_index;  // the spec case at the same C, if any
-  RunParams base;                         // its base run
+  RunParams base;                         // its base run: the first such case, at the balanced C
 };
 
 std::vector<BalancedSetting> balanced_settings(const Spec& spec, const StudyInputs& inputs) {
@@ -74,8 +73,7 @@ std::vector<BalancedSetting> balanced_settings(const Spec& spec, const StudyInpu
       if (p.stepping.cfl_factor == b.courant) same = i;
     }
     if (!made_from) continue;  // a method or grid the advice study does not offer
-    BalancedSetting s{.balance = b, .case_index = *made_from, .grid_index = same};
-    s.base = spec.cases[*made_from].params;
+    BalancedSetting s{.balance = b, .grid_index = same, .base = spec.cases[*made_from].params};
     s.base.stepping.cfl_factor = b.courant;
     out.push_back(std::move(s));
   }
@@ -115,8 +113,9 @@ CheckedSetting setting_of(const ojson& r) {
 
 // Every setting of the spec with its corner runs (the follow-ups, kRegionCorners per checked
 // setting in the order advice_follow_up asked for them) and its regions; then the settings at a
-// balanced C that is not a grid value.
-std::vector<CheckedSetting> checked_settings(const ReportContext& c) {
+// balanced C that is not a grid value (`balanced`, balanced_settings of the same spec and inputs).
+std::vector<CheckedSetting> checked_settings(const ReportContext& c,
+                                             const std::vector<BalancedSetting>& balanced) {
   std::vector<CheckedSetting> out;
   std::size_t next = 0;
   for (std::size_t i = 0; i < c.rows.size(); ++i) {
@@ -127,7 +126,7 @@ std::vector<CheckedSetting> checked_settings(const ReportContext& c) {
     }
     out.push_back(std::move(s));
   }
-  for (const BalancedSetting& b : balanced_settings(c.spec, c.inputs)) {
+  for (const BalancedSetting& b : balanced) {
     if (b.grid_index) {
       out.at(*b.grid_index).courant_from = "grid and balance";
       continue;
@@ -409,12 +408,13 @@ std::string figure_csv(const std::vector<CheckedSetting>& settings) {
 }
 
 StudyReport advice_report(const ReportContext& c) {
-  const auto settings = checked_settings(c);
+  const auto balanced = balanced_settings(c.spec, c.inputs);
+  const auto settings = checked_settings(c, balanced);
   const Counts n = count(settings);
   std::ostringstream md;
   md << "## Results\n\n"
-     << rule_text() << reading(n) << answers_table(settings)
-     << balance_table(balanced_settings(c.spec, c.inputs)) << settings_table(settings)
+     << rule_text() << reading(n) << answers_table(settings) << balance_table(balanced)
+     << settings_table(settings)
      << "The figure marks each setting by the longest length its region is checked to (none: no "
         "region).\n";
   ojson list = ojson::array();
