@@ -8,9 +8,12 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "cache.hpp"
 #include "documents.hpp"
 #include "files.hpp"
 #include "performance.hpp"
+#include "report_util.hpp"
+#include "spec.hpp"
 #include "support.hpp"
 
 namespace mpmstab {
@@ -100,8 +103,10 @@ TEST(Documents, PublishedTimingsKeepEachMachinesLastTierRun) {
       {"(make studies)", entry("Old CPU", 480)},
       {"(make studies on Older CPU)",
        entry("Older CPU", 900)}}.dump(1);
+  nlohmann::ordered_json fresh = entry("New CPU", 95);
+  fresh["kernels"] = "AVX2";
   std::ofstream(dir / "cache" / "timings.json")
-      << nlohmann::ordered_json{{"(make reproduce)", entry("New CPU", 95)}}.dump(1);
+      << nlohmann::ordered_json{{"(make reproduce)", fresh}}.dump(1);
   write_performance({}, dir / "no_benchmark.json", dir);
   const auto published = nlohmann::ordered_json::parse(slurp(dir / "timings.json"));
   EXPECT_EQ(published["(make reproduce)"]["cpu"], "New CPU");
@@ -109,12 +114,62 @@ TEST(Documents, PublishedTimingsKeepEachMachinesLastTierRun) {
   EXPECT_EQ(published["(make studies)"]["cpu"], "Old CPU");  // no new studies run: kept as it was
   EXPECT_EQ(published["(make studies on Older CPU)"]["wall_seconds"], 900);
   const std::string table = document_blocks(dir).at("readme-tier-times");
-  for (const char* shown : {"New CPU", "Old CPU", "Older CPU", "95 s", "30 s", "480 s", "900 s"})
+  for (const char* shown : {"| New CPU, AVX2 kernels |", "| Old CPU |", "| Older CPU |", "95 s",
+                            "30 s", "480 s", "900 s"})
     EXPECT_NE(table.find(shown), std::string::npos) << shown << " in\n" << table;
+  // performance.md names the kernels' instruction set where the run recorded it.
+  const std::string performance = slurp(dir / "performance.md");
+  EXPECT_NE(performance.find("on 2 threads (New CPU, AVX2 kernels)"), std::string::npos);
+  EXPECT_NE(performance.find("on 2 threads (Older CPU)"), std::string::npos);
   // Published again from the same measurements: the same file.
   const std::string before = slurp(dir / "timings.json");
   write_performance({}, dir / "no_benchmark.json", dir);
   EXPECT_EQ(slurp(dir / "timings.json"), before);
+  std::filesystem::remove_all(dir);
+}
+
+// performance.md's groups of cases by experiment and time step: each group's CPU time is the sum
+// of its cases' own, the groups come costliest first, and an experiment whose timings were
+// measured on other cases than its spec now holds is left out and named.
+TEST(Documents, PerformanceGroupsTheCpuTimeByExperimentAndTimeStep) {
+  const auto dir = std::filesystem::temp_directory_path() / "mpmstab_groups_test";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::filesystem::path experiments =
+      std::filesystem::path(MPMSTAB_SOURCE_DIR) / "experiments";
+  const std::vector<Spec> specs = {load_spec(experiments / "table1.json"),
+                                   load_spec(experiments / "table2.json")};
+  // table1: 1 s per case at dt = 1e-7, 0.01 s at every other step; table2 measured on other cases.
+  nlohmann::ordered_json timings;
+  double expected_small = 0;
+  std::size_t at_1e7 = 0;
+  for (const auto& c : specs[0].cases) {
+    const bool big = c.params.dt == 1e-7;
+    at_1e7 += big;
+    if (!big && c.params.dt == 1e-6) expected_small += 0.01;
+    timings["table1"]["per_case"].push_back(
+        {{"key", case_key(c.params)}, {"wall_seconds", big ? 1.0 : 0.01}});
+  }
+  for (const auto& c : specs[1].cases)
+    timings["table2"]["per_case"].push_back(
+        {{"key", case_key(c.params) + "x"}, {"wall_seconds", 5.0}});
+  for (const char* name : {"table1", "table2"}) {
+    timings[name]["cases"] = timings[name]["per_case"].size();
+    for (const char* k : {"sweep_wall_seconds", "compute_seconds", "particle_steps"})
+      timings[name][k] = 1.0;
+  }
+  std::ofstream(dir / "timings.json") << timings.dump(1);
+  write_performance(specs, dir / "no_benchmark.json", dir);
+  const std::string md = slurp(dir / "performance.md");
+  ASSERT_EQ(at_1e7, 2u);
+  const auto first = md.find("| table1 | dt = 1e-7 | 2 | " + seconds(2.0) + " |");
+  const auto second = md.find("| table1 | dt = 1e-6 | 16 | " + seconds(expected_small) + " |");
+  EXPECT_NE(first, std::string::npos) << md;
+  EXPECT_NE(second, std::string::npos) << md;
+  EXPECT_LT(first, second);
+  EXPECT_NE(md.find("left out, their timings measured on other cases than their spec's: table2"),
+            std::string::npos);
+  EXPECT_EQ(md.find("| table2 |"), std::string::npos);  // in no group
   std::filesystem::remove_all(dir);
 }
 

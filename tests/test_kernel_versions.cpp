@@ -6,22 +6,37 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <vector>
 
+#include "base/instruction_set.hpp"
 #include "kernel_versions.hpp"
 #include "support.hpp"
 
 namespace mpmstab {
 namespace {
 
-// What `program` prints (no arguments, no shell; it writes nothing on its standard error).
-std::string output_of(const char* program) {
-  return test_support::run_program(program, {program}).output;
+// What `program` prints (no shell; it writes nothing on its standard error).
+std::string output_of(const char* program, std::vector<std::string> args = {}) {
+  args.insert(args.begin(), program);
+  return test_support::run_program(program, args).output;
 }
 
 std::string dispatched_version() {
   if (__builtin_cpu_supports("x86-64-v4")) return "AVX-512";
   if (__builtin_cpu_supports("x86-64-v3")) return "AVX2";
-  return "portable";
+  return "baseline";
+}
+
+// What the timings record beside every measurement (provenance.hpp's kernels): the version the
+// build's dispatch picks on this CPU, and in the builds without the versions above them, theirs.
+TEST(KernelVersions, TheRecordedInstructionSetIsTheVersionThatRuns) {
+  EXPECT_EQ(kernel_instruction_set(), dispatched_version());
+  EXPECT_EQ(output_of(MPMSTAB_KERNELS_PORTABLE_BIN, {"instruction-set"}), "baseline\n");
+  const std::string avx2_bin = MPMSTAB_KERNELS_AVX2_BIN;
+  if (!avx2_bin.empty()) {
+    EXPECT_EQ(output_of(avx2_bin.c_str(), {"instruction-set"}),
+              __builtin_cpu_supports("x86-64-v3") ? "AVX2\n" : "baseline\n");
+  }
 }
 
 TEST(KernelVersions, EveryVersionThisMachineRunsGivesTheSameRecordsBitForBit) {

@@ -421,6 +421,7 @@ void record_reproduce(const ReproducePublisher& done, std::size_t experiments, d
                           {"compute_seconds", omit ? 0.0 : done.compute_seconds},
                           {"commit", when.commit},
                           {"cpu", when.cpu},
+                          {"kernels", when.kernels},
                           {"threads", options.jobs},
                           {"wall_seconds", omit ? 0.0 : wall},
                           {"time_to_go", judged}},

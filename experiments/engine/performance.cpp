@@ -1,11 +1,13 @@
 #include "performance.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <ostream>
 #include <sstream>
 
+#include "cache.hpp"
 #include "csv.hpp"
 #include "files.hpp"
 #include "progress.hpp"
@@ -305,6 +307,72 @@ void experiment_rows(std::ostream& md, const std::vector<Spec>& specs, const ojs
      << " (mean) |\n\n";
 }
 
+// The groups of cases of one experiment and one time step with the most CPU time: where the
+// time goes, finer than by experiment. A case's CPU time is its run's, or its share of a run it
+// shares; an experiment whose timings do not match its spec case for case (the spec changed since
+// they were measured) is left out, and said so.
+void costliest_groups(std::ostream& md, const std::vector<Spec>& specs, const ojson& timings) {
+  struct Group {
+    std::string experiment, step;
+    std::size_t cases = 0;
+    double seconds = 0;
+  };
+  std::vector<Group> groups;
+  std::vector<std::string> stale;
+  double total = 0;
+  for (const auto& spec : specs) {
+    if (!spec.study->has_cases || !timings.contains(spec.name)) continue;
+    const ojson& per_case = timings[spec.name]["per_case"];
+    bool matches = per_case.is_array() && per_case.size() == spec.cases.size();
+    std::map<std::string, Group> by_step;
+    for (std::size_t i = 0; matches && i < spec.cases.size(); ++i) {
+      const RunParams& p = spec.cases[i].params;
+      const ojson& c = per_case[i];
+      matches = c.is_object() && c.contains("key") && c["key"] == case_key(p) &&
+                c.contains("wall_seconds") && c["wall_seconds"].is_number();
+      if (!matches) break;
+      const std::string step = spec.study->work == CaseWork::edge_search ? "edge searches"
+                               : p.stepping.policy == TimeStepPolicy::fixed
+                                   ? "dt = " + param(p.dt)
+                                   : std::string(to_string(p.stepping.policy)) + " steps";
+      Group& g = by_step[step];
+      g.experiment = spec.name;
+      g.step = step;
+      ++g.cases;
+      g.seconds += c["wall_seconds"].get<double>();
+    }
+    if (!matches) {
+      stale.push_back(spec.name);
+      continue;
+    }
+    for (auto& [step, g] : by_step) {
+      total += g.seconds;
+      groups.push_back(std::move(g));
+    }
+  }
+  if (groups.empty() || total <= 0) return;
+  std::stable_sort(groups.begin(), groups.end(),
+                   [](const Group& a, const Group& b) { return a.seconds > b.seconds; });
+  constexpr std::size_t kShown = 8;
+  groups.resize(std::min(groups.size(), kShown));
+  md << "Where the CPU time goes, by experiment and time step: the " << groups.size()
+     << " groups of cases with the most (of " << seconds(total) << " in all";
+  if (!stale.empty()) {
+    md << "; left out, their timings measured on other cases than their spec's:";
+    for (const auto& name : stale)
+      md << " " << name;
+  }
+  md << ").\n\n| experiment | time step | cases | CPU time | of all |\n|---|---|---|---|---|\n";
+  double shown = 0;
+  for (const auto& g : groups) {
+    shown += g.seconds;
+    md << "| " << g.experiment << " | " << g.step << " | " << g.cases << " | " << seconds(g.seconds)
+       << " | " << fixed(100 * g.seconds / total, 0) << "% |\n";
+  }
+  md << "| these " << groups.size() << " | | | " << seconds(shown) << " | "
+     << fixed(100 * shown / total, 0) << "% |\n\n";
+}
+
 // How the progress line's time to go compared with the truth in a tier's run.
 void time_to_go_text(std::ostream& md, const ojson& t) {
   md << " The time to go its progress line showed, from " << fixed(100 * EstimateAccuracy::kSkip, 0)
@@ -323,17 +391,21 @@ void time_to_go_text(std::ostream& md, const ojson& t) {
 // The paragraph of one tier's last run ("(make reproduce)" in timings.json).
 void tier_paragraph(std::ostream& md, const std::string& label, const ojson& r,
                     const BenchFigures& bench) {
-  const double wall = r["wall_seconds"].get<double>();
-  const int threads = r["threads"].get<int>();
-  // Each distinct case once (none in an entry written before it was recorded).
-  const double cpu = r.contains("compute_seconds") ? r["compute_seconds"].get<double>() : 0.0;
-  const double work = r["particle_steps"].get<double>();
+  // A field the entry lacks (written before it was recorded, or edited) reads as 0.
+  auto number = [&](const char* key) {
+    const auto it = r.find(key);
+    return it != r.end() && it->is_number() ? it->get<double>() : 0.0;
+  };
+  auto count = [&](const char* key) { return std::to_string(std::llround(number(key))); };
+  const double wall = number("wall_seconds");
+  const int threads = std::max(1, static_cast<int>(number("threads")));
+  const double cpu = number("compute_seconds");  // each distinct case once
+  const double work = number("particle_steps");
   const double kernel = bench.median("BM_StepInstrumented", "gimp");
-  md << "**`" << label << "`.** The last run that computed cases ran " << r["cases"].dump()
-     << " cases (" << r["computed"].dump() << " computed; " << sci(work)
+  md << "**`" << label << "`.** The last run that computed cases ran " << count("cases")
+     << " cases (" << count("computed") << " computed; " << sci(work)
      << " particle-steps, each run counted once, follow-up runs included) of "
-     << r["experiments"].dump() << " experiments on " << threads << " threads ("
-     << (r.contains("cpu") ? r["cpu"].get<std::string>() : std::string("CPU not recorded"))
+     << count("experiments") << " experiments on " << threads << " threads (" << machine_of(r)
      << ") in **" << seconds(wall) << "** wall.";
   if (cpu > 0) {
     md << " Their CPU time, " << seconds(cpu) << ", on " << threads
@@ -367,6 +439,7 @@ void write_experiment_times(std::ostream& md, const std::vector<Spec>& specs, co
         "particle-step |\n|---|---|---|---|---|---|\n";
   const ojson timings = read_timings(out);
   experiment_rows(md, specs, timings);
+  costliest_groups(md, specs, timings);
   bool any = false;
   for (const auto& [key, r] : timings.items()) {
     if (key.size() < 3 || key.front() != '(' || key.back() != ')') continue;
@@ -405,6 +478,16 @@ ojson merged_timings(const ojson& measured, const ojson& published) {
 }
 
 }  // namespace
+
+std::string machine_of(const ojson& timing) {
+  auto text = [&](const char* key) {
+    const auto it = timing.find(key);
+    return it != timing.end() && it->is_string() ? it->get<std::string>() : std::string();
+  };
+  const std::string cpu = text("cpu"), kernels = text("kernels");
+  if (cpu.empty()) return "CPU not recorded";
+  return kernels.empty() || kernels == "not recorded" ? cpu : cpu + ", " + kernels + " kernels";
+}
 
 void write_performance(const std::vector<Spec>& specs, const fs::path& bench, const fs::path& out) {
   // The machine's timings of the runs in `out`, published as <out>/timings.json with the other

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "spec.hpp"
 
 namespace mpmstab {
@@ -15,6 +17,11 @@ namespace mpmstab {
 // output of tests/bench_step.cpp (may be missing: the report then says so).
 void write_performance(const std::vector<Spec>& specs, const std::filesystem::path& bench,
                        const std::filesystem::path& out);
+
+// The machine of an entry of timings.json: its CPU and the kernels' instruction set it ran
+// ("AMD EPYC, AVX2 kernels"); "CPU not recorded" without a CPU, the CPU alone without a version
+// (entries written before it was recorded).
+std::string machine_of(const nlohmann::ordered_json& timing);
 
 // The step kernel in brief, for README.md's generated block: where and when it was measured,
 // the bare, checked and instrumented step and the straightforward baseline per method, and per

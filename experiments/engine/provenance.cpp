@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "base/instruction_set.hpp"
 #include "process.hpp"
 
 namespace mpmstab {
@@ -63,14 +64,15 @@ Provenance current_provenance(int threads) {
             std::to_string(EIGEN_MINOR_VERSION);
   p.date = utc_now();
   p.cpu = cpu_model();
+  p.kernels = kernel_instruction_set();
   p.threads = threads;
   return p;
 }
 
 nlohmann::ordered_json to_json(const Provenance& p) {
-  return {{"commit", p.commit}, {"dirty", p.dirty},    {"compiler", p.compiler},
-          {"flags", p.flags},   {"eigen", p.eigen},    {"date", p.date},
-          {"cpu", p.cpu},       {"threads", p.threads}};
+  return {{"commit", p.commit}, {"dirty", p.dirty},     {"compiler", p.compiler},
+          {"flags", p.flags},   {"eigen", p.eigen},     {"date", p.date},
+          {"cpu", p.cpu},       {"kernels", p.kernels}, {"threads", p.threads}};
 }
 
 }  // namespace mpmstab

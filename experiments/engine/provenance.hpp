@@ -14,7 +14,8 @@ struct Provenance {
   std::string eigen;
   std::string date;  // UTC, ISO 8601
   std::string cpu;
-  int threads = 1;  // parallel cases in the sweep that computed the result
+  std::string kernels;  // the kernels' instruction set on this CPU (core/base/instruction_set.hpp)
+  int threads = 1;      // parallel cases in the sweep that computed the result
 };
 
 // The provenance of a computation starting now with `threads` parallel cases.

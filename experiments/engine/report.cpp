@@ -62,20 +62,28 @@ const std::vector<std::string> kStudyColumns = {"variant", "paper_method", "erro
 
 ojson aggregate_provenance(const std::vector<ojson>& records) {
   std::vector<std::string> fields = {"commit", "dirty", "compiler", "flags",
-                                     "eigen",  "cpu",   "threads"};
+                                     "eigen",  "cpu",   "kernels",  "threads"};
   ojson out;
   for (const auto& f : fields) {
     std::vector<std::pair<std::string, int>> values;
-    for (const auto& rec : records) {
-      const ojson& v = rec["provenance"][f];
-      const std::string s = v.is_string() ? v.get<std::string>() : v.dump();
-      auto it =
-          std::find_if(values.begin(), values.end(), [&](const auto& e) { return e.first == s; });
+    auto note = [&](const std::string& value) {
+      auto it = std::find_if(values.begin(), values.end(),
+                             [&](const auto& e) { return e.first == value; });
       if (it == values.end()) {
-        values.emplace_back(s, 1);
+        values.emplace_back(value, 1);
       } else {
         ++it->second;
       }
+    };
+    for (const auto& rec : records) {
+      // A field added after a record was cached ("kernels") is absent from it.
+      const ojson& prov = rec["provenance"];
+      if (!prov.contains(f)) {
+        note("not recorded");
+        continue;
+      }
+      const ojson& v = prov[f];
+      note(v.is_string() ? v.get<std::string>() : v.dump());
     }
     std::string text;
     for (const auto& [value, count] : values) {
@@ -226,6 +234,7 @@ ojson sweep_timing(const Spec& spec, const SweepOutcome& outcome, const ojson& w
           {"commit", when["commit"]},
           {"dirty", when["dirty"]},
           {"cpu", when["cpu"]},
+          {"kernels", when["kernels"]},
           {"date", when["date"]},
           {"threads", when["threads"]},
           {"particle_steps", particle_steps},
@@ -569,7 +578,7 @@ ReportSources load_sources(const Spec& spec, const SweepOutcome& outcome, const 
   // When and with how many threads the cases ran go with the timings: the reports hold only
   // what fixes the results (the build and the machine).
   src.prov = aggregate_provenance(outcome.records);
-  for (const char* k : {"commit", "dirty", "cpu", "date", "threads"}) {
+  for (const char* k : {"commit", "dirty", "cpu", "kernels", "date", "threads"}) {
     src.when[k] = src.prov[k];
     src.prov.erase(k);
   }

@@ -58,8 +58,7 @@ std::string tier_times(const std::filesystem::path& results) {
        << static_cast<long long>(number("computed")) << " of "
        << static_cast<long long>(number("cases")) << " cases computed | "
        << seconds(number("compute_seconds")) << " | " << static_cast<long long>(number("threads"))
-       << " | " << (e.contains("cpu") && e["cpu"].is_string() ? e["cpu"].get<std::string>() : "–")
-       << " | "
+       << " | " << (e.contains("cpu") ? machine_of(e) : "–") << " | "
        << (e.contains("commit") && e["commit"].is_string()
                ? e["commit"].get<std::string>().substr(0, 7)
                : "–")
