@@ -390,10 +390,11 @@ std::string reading(const Counts& n) {
   return md.str();
 }
 
-// The figure's data: per setting, its method's panel, cells, C and the longest region (0: none).
+// The figure's data: per setting, its method's panel, cells, C, the longest region (0: none) and
+// whether its C is one the balance gives (1) or from the fixed grid only (0).
 std::string figure_csv(const std::vector<CheckedSetting>& settings) {
   std::ostringstream csv;
-  csv << "panel,method,cells,courant,region_cT,error_over_A\n";
+  csv << "panel,method,cells,courant,region_cT,error_over_A,from_balance\n";
   std::map<std::string, int> panel;
   for (const auto& s : settings) {
     const std::string name = s.method_text();
@@ -402,7 +403,8 @@ std::string figure_csv(const std::vector<CheckedSetting>& settings) {
     const Region* longest = s.regions.empty() ? nullptr : &s.regions.back();
     csv << it->second << ',' << name << ',' << s.cells << ',' << shortest(s.courant) << ','
         << (longest ? longest->length : 0.0) << ','
-        << (longest ? sci(longest->error_over_A, 3) : std::string("nan")) << '\n';
+        << (longest ? sci(longest->error_over_A, 3) : std::string("nan")) << ','
+        << (s.courant_from == "grid" ? 0 : 1) << '\n';
   }
   return csv.str();
 }
