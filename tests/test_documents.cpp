@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "base/instruction_set.hpp"
 #include "cache.hpp"
 #include "documents.hpp"
 #include "files.hpp"
@@ -107,20 +108,29 @@ TEST(Documents, PublishedTimingsKeepEachMachinesLastTierRun) {
   fresh["kernels"] = "AVX2";
   std::ofstream(dir / "cache" / "timings.json")
       << nlohmann::ordered_json{{"(make reproduce)", fresh}}.dump(1);
+  // This machine's fresh build, recorded as `make` records it.
+  const auto built =
+      test_support::run_mpmstab("build-time --seconds 187.5 --jobs 2 --out " + dir.string());
+  ASSERT_EQ(built.status, 0) << built.output;
   write_performance({}, dir / "no_benchmark.json", dir);
   const auto published = nlohmann::ordered_json::parse(slurp(dir / "timings.json"));
   EXPECT_EQ(published["(make reproduce)"]["cpu"], "New CPU");
   EXPECT_EQ(published["(make reproduce on Old CPU)"]["wall_seconds"], 30);
   EXPECT_EQ(published["(make studies)"]["cpu"], "Old CPU");  // no new studies run: kept as it was
   EXPECT_EQ(published["(make studies on Older CPU)"]["wall_seconds"], 900);
+  EXPECT_EQ(published["(make)"]["wall_seconds"], 187.5);
+  EXPECT_EQ(published["(make)"]["kernels"], kernel_instruction_set());
   const std::string table = document_blocks(dir).at("readme-tier-times");
-  for (const char* shown : {"| New CPU, AVX2 kernels |", "| Old CPU |", "| Older CPU |", "95 s",
-                            "30 s", "480 s", "900 s"})
+  for (const char* shown :
+       {"| New CPU, AVX2 kernels |", "| Old CPU |", "| Older CPU |", "95 s", "30 s", "480 s",
+        "900 s", "| `make` | 188 s | a fresh build of the tool | – | 2 |"})
     EXPECT_NE(table.find(shown), std::string::npos) << shown << " in\n" << table;
   // performance.md names the kernels' instruction set where the run recorded it.
   const std::string performance = slurp(dir / "performance.md");
   EXPECT_NE(performance.find("on 2 threads (New CPU, AVX2 kernels)"), std::string::npos);
   EXPECT_NE(performance.find("on 2 threads (Older CPU)"), std::string::npos);
+  EXPECT_NE(performance.find("**`make`.** The last fresh build of the tool"), std::string::npos);
+  EXPECT_NE(performance.find("took **188 s** wall with 2 compile jobs"), std::string::npos);
   // Published again from the same measurements: the same file.
   const std::string before = slurp(dir / "timings.json");
   write_performance({}, dir / "no_benchmark.json", dir);

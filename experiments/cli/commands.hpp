@@ -27,6 +27,7 @@ int cmd_bless(const std::vector<std::string_view>& args);
 int cmd_merge(const std::vector<std::string_view>& args);
 int cmd_slurm(const std::vector<std::string_view>& args);
 int cmd_list(const std::vector<std::string_view>& args);
+int cmd_build_time(const std::vector<std::string_view>& args);
 
 // Shared by the commands that read specs and write reports.
 int default_jobs();                                                        // the machine's cores

@@ -423,6 +423,20 @@ void tier_paragraph(std::ostream& md, const std::string& label, const ojson& r,
   md << "\n\n";
 }
 
+// The paragraph of the last fresh build of the tool ("(make)" in timings.json, mpmstab
+// build-time).
+void build_paragraph(std::ostream& md, const std::string& label, const ojson& r) {
+  const auto it = r.find("wall_seconds");
+  const double wall = it != r.end() && it->is_number() ? it->get<double>() : 0.0;
+  const auto jobs = r.find("threads");
+  md << "**`" << label << "`.** The last fresh build of the tool (from configuring a new build "
+     << "folder to the linked tool, the installation of Debian packages excluded) took **"
+     << seconds(wall) << "** wall with "
+     << (jobs != r.end() && jobs->is_number() ? jobs->dump()
+                                              : std::string("an unrecorded number of"))
+     << " compile jobs (" << machine_of(r) << ").\n\n";
+}
+
 void write_experiment_times(std::ostream& md, const std::vector<Spec>& specs, const fs::path& out,
                             const BenchFigures& bench) {
   md << "## The cost of every experiment\n\nFrom [timings.json](timings.json), the one file "
@@ -444,7 +458,12 @@ void write_experiment_times(std::ostream& md, const std::vector<Spec>& specs, co
   for (const auto& [key, r] : timings.items()) {
     if (key.size() < 3 || key.front() != '(' || key.back() != ')') continue;
     any = true;
-    tier_paragraph(md, key.substr(1, key.size() - 2), r, bench);
+    const std::string label = key.substr(1, key.size() - 2);
+    if (label == "make" || label.starts_with("make on ")) {
+      build_paragraph(md, label, r);
+    } else {
+      tier_paragraph(md, label, r, bench);
+    }
   }
   if (any) {
     md << "The table's CPU times and particle-steps count a case shared by two experiments in "

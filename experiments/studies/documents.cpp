@@ -27,7 +27,8 @@ ojson results_file(const std::filesystem::path& results, const std::string& name
 // ---------------------------------------------------------------------------------------------
 // The blocks
 
-// README.md: each tier's last published wall time and work, from results/timings.json.
+// README.md: the last published fresh build (`make`) and each tier's last published wall time and
+// work, from results/timings.json.
 std::string tier_times(const std::filesystem::path& results) {
   const ojson t = results_file(results, "timings.json");
   if (t.is_null())
@@ -36,14 +37,15 @@ std::string tier_times(const std::filesystem::path& results) {
   std::ostringstream md;
   md << "| command | wall time | work | CPU time | cores | CPU | commit |\n"
         "|---|---|---|---|---|---|---|\n";
-  // Each tier's last run on this machine, then its last run on each other machine that
+  // Each command's last run on this machine, then its last run on each other machine that
   // published ("(make reproduce on <cpu>)", performance.cpp).
+  const std::vector<std::string> commands = {"make", "make reproduce", "make studies"};
   std::vector<std::pair<std::string, const ojson*>> runs;
-  for (const std::string tier : {"make reproduce", "make studies"}) {
+  for (const std::string& tier : commands) {
     const std::string key = "(" + tier + ")";
     if (t.contains(key) && t[key].is_object()) runs.emplace_back("`" + tier + "`", &t[key]);
   }
-  for (const std::string tier : {"make reproduce", "make studies"}) {
+  for (const std::string& tier : commands) {
     for (const auto& [key, e] : t.items())
       if (key.starts_with("(" + tier + " on ") && e.is_object())
         runs.emplace_back("`" + tier + "`", &e);
@@ -53,17 +55,26 @@ std::string tier_times(const std::filesystem::path& results) {
     auto number = [&](const char* key) {
       return e.contains(key) && e[key].is_number() ? e[key].get<double>() : 0.0;
     };
-    md << "| " << name << " | " << seconds(number("wall_seconds")) << " | "
-       << sci(number("particle_steps")) << " particle-steps; "
-       << static_cast<long long>(number("computed")) << " of "
-       << static_cast<long long>(number("cases")) << " cases computed | "
-       << seconds(number("compute_seconds")) << " | " << static_cast<long long>(number("threads"))
-       << " | " << (e.contains("cpu") ? machine_of(e) : "–") << " | "
+    md << "| " << name << " | " << seconds(number("wall_seconds")) << " | ";
+    if (name == "`make`") {
+      md << "a fresh build of the tool | – | ";
+    } else {
+      md << sci(number("particle_steps")) << " particle-steps; "
+         << static_cast<long long>(number("computed")) << " of "
+         << static_cast<long long>(number("cases")) << " cases computed | "
+         << seconds(number("compute_seconds")) << " | ";
+    }
+    md << static_cast<long long>(number("threads")) << " | "
+       << (e.contains("cpu") ? machine_of(e) : "–") << " | "
        << (e.contains("commit") && e["commit"].is_string()
                ? e["commit"].get<std::string>().substr(0, 7)
                : "–")
        << " |\n";
   }
+  md << "\nA tier's wall time runs from the start of its queue of runs to its last report; the "
+        "figures, the index and the documents that `make` writes after it are not counted. "
+        "`make`'s runs from configuring a new build folder to the linked tool, the installation "
+        "of Debian packages excluded.\n";
   // The studies tier's largest experiments by CPU time: where its time goes.
   std::vector<std::pair<double, std::string>> cpu;
   double total = 0;
