@@ -694,7 +694,7 @@ Claim orders_agree_claim(const std::map<std::string, MethodOrders>& m) {
   Claim c = claim("orders-agree-across-E",
                   "The fitted orders in h of each method agree across E within {tolerance}",
                   "{agree} of {total} methods");
-  c.number("tolerance", kOrderAgreement).count("agree", agree).count("total", total);
+  c.number("tolerance", kOrderAgreement).count("agree", agree).count("total", total).over(total);
   c.holds = total > 0 && agree == total;
   return c;
 }
@@ -713,7 +713,7 @@ Claim published_orders_claim(const std::map<std::string, MethodOrders>& m) {
                   "Where an order in h is published for the basis, ours lies within "
                   "{tolerance} of it at every E",
                   "{met} of {total} (method, E) pairs");
-  c.number("tolerance", kOrderAgreement).count("met", met).count("total", total);
+  c.number("tolerance", kOrderAgreement).count("met", met).count("total", total).over(total);
   c.holds = total > 0 && met == total;
   return c;
 }

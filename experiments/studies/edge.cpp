@@ -368,6 +368,7 @@ std::vector<Claim> edge_claims(const std::vector<ojson>& rows, const EdgeFollowU
       .count("robust", robust)
       .count("run", run)
       .count("with_edge", with_edge);
+  ens.over(run);
   ens.holds = run == with_edge && robust == run;
   claims.push_back(ens);
 
@@ -389,6 +390,7 @@ std::vector<Claim> edge_claims(const std::vector<ojson>& rows, const EdgeFollowU
   limit.count("above", above_limit)
       .count("n", limit_n)
       .value("hi", limit_n ? fixed(limit_hi, 3) : "–");
+  limit.over(limit_n);
   limit.holds = above_limit == 0;
   claims.push_back(limit);
 
@@ -398,6 +400,7 @@ std::vector<Claim> edge_claims(const std::vector<ojson>& rows, const EdgeFollowU
   Claim mono = claim("survival-monotone", "Survival is monotone in dt in every search",
                      "{monotone} of {n} searches");
   mono.count("monotone", monotone).count("n", static_cast<long long>(rows.size()));
+  mono.over(static_cast<long long>(rows.size()));
   mono.holds = monotone == static_cast<int>(rows.size());
   claims.push_back(mono);
   return claims;

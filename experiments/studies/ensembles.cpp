@@ -51,7 +51,8 @@ std::vector<Claim> ensembles_claims(const std::vector<EnsembleCell>& cells) {
   a.value("unit", sci(kEnsemblePerturbation, 1))
       .count("sensitive", sensitive)
       .count("tested", static_cast<long long>(cells.size()))
-      .count("members", kEnsembleMembers);
+      .count("members", kEnsembleMembers)
+      .over(static_cast<long long>(cells.size()));
   a.holds = !cells.empty() && sensitive == 0;
   return {a};
 }

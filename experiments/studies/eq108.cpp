@@ -172,7 +172,8 @@ StudyReport eq108_report(const ReportContext& c) {
       .value("best", best.name)
       .count("within", std::max(best.within, 0))
       .count("n", best.n)
-      .value("span", span(best.ratios, 2));
+      .value("span", span(best.ratios, 2))
+      .over(best.n);
   claim_.holds = best.n > 0 && best.within == best.n;
   return StudyReport{.markdown = md.str(), .claims = {claim_}};
 }

@@ -228,7 +228,8 @@ std::vector<Claim> extremes_claims(const Counts& c) {
       .count("survived", c.above_survived)
       .count("steps", c.above_survivor_steps)
       .value("ratio", c.above_survived ? fixed(c.above_survivor_ratio, 5) : "–")
-      .count("short", c.above_too_short);
+      .count("short", c.above_too_short)
+      .over(c.above_failed + c.above_survived);
   above.holds = c.above_survived == 0;
   claims.push_back(above);
   return claims;

@@ -287,6 +287,7 @@ std::vector<Claim> table1_claims(const std::vector<ojson>& rows,
       .count("members", kEnsembleMembers)
       .count("in_studies", in_studies)
       .count("costly", costly);
+  b.over(tested);
   b.holds = sensitive == 0;
   claims.push_back(b);
   return claims;

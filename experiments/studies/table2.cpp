@@ -330,7 +330,8 @@ std::string counting_rules_section(const Table2Data& d, std::vector<Claim>& clai
                   "the best rule is within it in {best} of {n} cells");
   c.value("tol", percent(kApproximate))
       .count("best", best)
-      .count("n", static_cast<long long>(counts.size()));
+      .count("n", static_cast<long long>(counts.size()))
+      .over(static_cast<long long>(counts.size()));
   c.holds = best == static_cast<int>(counts.size());
   claims.push_back(c);
   return md.str();

@@ -819,7 +819,8 @@ void grid_and_step_claims(const TradeRows& t, std::vector<Claim>& claims) {
       .count("total", total)
       .count("fine", kFine)
       .count("coarse", kCoarse)
-      .value("C", shortest(kCflRef));
+      .value("C", shortest(kCflRef))
+      .over(total);
   finer.holds = total > 0 && better == total;
   claims.push_back(finer);
 
