@@ -45,13 +45,18 @@ TEST(Claims, AClaimThatDoesNotHoldIsPrintedAsNotHolding) {
 
 TEST(Claims, AClaimOverNoCaseIsVacuousAndOneOverTooFewIsNotCountedAsHolding) {
   // "Every run of the set passes", decided over 0, 2 and 3 runs that all pass, and over 2 runs
-  // of which one fails (a counterexample refutes at any size).
+  // of which one fails (a counterexample refutes at any size), as the studies declare such a
+  // claim (Claim::every).
   auto every = [](long long runs, long long passing) {
     Claim c = claim("every", "Every run passes", "{passing} of {runs}");
-    c.count("passing", passing).count("runs", runs).over(runs);
-    c.holds = passing == runs;
+    c.every("passing", passing, "runs", runs);
     return c;
   };
+  const Claim three = every(3, 3);
+  ASSERT_EQ(three.values.size(), 2u);
+  EXPECT_EQ(three.values[0], (std::pair<std::string, std::string>("passing", "3")));
+  EXPECT_EQ(three.values[1], (std::pair<std::string, std::string>("runs", "3")));
+  EXPECT_EQ(three.support, 3);
   EXPECT_EQ(every(0, 0).status(), Claim::Status::vacuous);
   EXPECT_EQ(every(2, 2).status(), Claim::Status::too_few);
   EXPECT_EQ(every(3, 3).status(), Claim::Status::holds);

@@ -25,6 +25,12 @@ Claim& Claim::over(long long cases) {
   return *this;
 }
 
+Claim& Claim::every(std::string n_name, long long n, std::string total_name, long long total) {
+  count(std::move(n_name), n).count(std::move(total_name), total).over(total);
+  holds = total > 0 && n == total;
+  return *this;
+}
+
 Claim::Status Claim::status() const {
   if (support == 0) return Status::vacuous;
   if (!holds) return Status::fails;

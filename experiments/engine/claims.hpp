@@ -40,6 +40,10 @@ struct Claim {
   Claim& value(std::string name, std::string text);
   Claim& count(std::string name, long long n);
   Claim& number(std::string name, double v, int digits = 2);  // sci() or plain for 0.01..1e4
+  // A claim about each of `total` cases, `n` of which satisfy it: counts both (in that order,
+  // as the evidence "{n} of {total}" reads them), declares the support and decides the claim:
+  // it holds when every case does (over no case it is vacuous, status()).
+  Claim& every(std::string n_name, long long n, std::string total_name, long long total);
 };
 
 // Starts a claim: `holds` is set last, once the predicate is computed.

@@ -182,40 +182,29 @@ std::vector<Claim> balance_claims(const std::map<CurveKey, Curve>& all,
                       "first order in C (within {tol}) on every method, scene and grid where it "
                       "is measured",
                       "{first} of {n} curves");
-  first.value("tol", shortest(kOrderTolerance)).count("first", flip_first).count("n", flip_n);
-  first.over(flip_n);
-  first.holds = flip_n > 0 && flip_first == flip_n;
+  first.value("tol", shortest(kOrderTolerance)).every("first", flip_first, "n", flip_n);
   Claim second = claim("consistent-mass-restores-second-order",
                        "With the consistent mass nearly restored (FMPM of order eight) the time "
                        "part is second order in C (within {tol}) on every scene and grid where it "
                        "is measured",
                        "{second} of {n} curves");
-  second.value("tol", shortest(kOrderTolerance)).count("second", fmpm_second).count("n", fmpm_n);
-  second.over(fmpm_n);
-  second.holds = fmpm_n > 0 && fmpm_second == fmpm_n;
+  second.value("tol", shortest(kOrderTolerance)).every("second", fmpm_second, "n", fmpm_n);
   Claim falls = claim("balance-falls-with-h",
                       "With FLIP and USL the balancing C falls with every refinement of the grid, "
                       "for every method and scene where it is bracketed on two grids or more",
                       "{falls} of {n} methods and scenes");
-  falls.count("falls", trend_falls).count("n", trend_n);
-  falls.over(trend_n);
-  falls.holds = trend_n > 0 && trend_falls == trend_n;
+  falls.every("falls", trend_falls, "n", trend_n);
   Claim raised = claim("half-step-start-raises-balance",
                        "A half-step start raises the balancing C (or takes it above the scan) on "
                        "every method, scene and grid where the exact start balances inside it",
                        "{raised} of {n} curves");
-  raised.count("raised", half_raised).count("n", half_n);
-  raised.over(half_n);
-  raised.holds = half_n > 0 && half_raised == half_n;
+  raised.every("raised", half_raised, "n", half_n);
   Claim half_order = claim("half-step-start-second-order",
                            "With a half-step start the time part is second order in C (within "
                            "{tol}) wherever it is measured",
                            "{second} of {n} curves");
   half_order.value("tol", shortest(kOrderTolerance))
-      .count("second", half_second)
-      .count("n", half_order_n);
-  half_order.over(half_order_n);
-  half_order.holds = half_order_n > 0 && half_second == half_order_n;
+      .every("second", half_second, "n", half_order_n);
   return {first, second, falls, raised, half_order};
 }
 

@@ -694,8 +694,7 @@ Claim orders_agree_claim(const std::map<std::string, MethodOrders>& m) {
   Claim c = claim("orders-agree-across-E",
                   "The fitted orders in h of each method agree across E within {tolerance}",
                   "{agree} of {total} methods");
-  c.number("tolerance", kOrderAgreement).count("agree", agree).count("total", total).over(total);
-  c.holds = total > 0 && agree == total;
+  c.number("tolerance", kOrderAgreement).every("agree", agree, "total", total);
   return c;
 }
 
@@ -713,8 +712,7 @@ Claim published_orders_claim(const std::map<std::string, MethodOrders>& m) {
                   "Where an order in h is published for the basis, ours lies within "
                   "{tolerance} of it at every E",
                   "{met} of {total} (method, E) pairs");
-  c.number("tolerance", kOrderAgreement).count("met", met).count("total", total).over(total);
-  c.holds = total > 0 && met == total;
+  c.number("tolerance", kOrderAgreement).every("met", met, "total", total);
   return c;
 }
 
@@ -743,12 +741,9 @@ Claim time_order_claim(const std::vector<TimeErrorRow>& t, bool leapfrog) {
                         "{met} of {total} within {tolerance}; fitted orders {lo} to {hi}");
   c.number("expected", leapfrog ? kPublishedTimeOrder : 1.0)
       .number("tolerance", kOrderAgreement)
-      .count("met", met)
-      .count("total", total)
+      .every("met", met, "total", total)
       .value("lo", total ? fixed(lo, 2) : "–")
-      .value("hi", total ? fixed(hi, 2) : "–")
-      .over(total);
-  c.holds = total > 0 && met == total;
+      .value("hi", total ? fixed(hi, 2) : "–");
   return c;
 }
 
@@ -773,11 +768,8 @@ Claim consistent_mass_claim(const std::vector<TimeErrorRow>& t) {
       .number("fraction", kLinearAmplitudeFraction)
       .number("expected", kPublishedTimeOrder)
       .number("tolerance", kOrderAgreement)
-      .count("met", met)
-      .count("total", total)
-      .value("orders", list_of(orders))
-      .over(total);
-  c.holds = total > 0 && met == total;
+      .every("met", met, "total", total)
+      .value("orders", list_of(orders));
   return c;
 }
 
@@ -793,10 +785,7 @@ Claim within_theory_claim(const std::map<std::string, MethodOrders>& m) {
                   "{explained} of {above} fitted orders above it");
   c.number("theory", kTheoryMaxOrder)
       .number("tolerance", kOrderAgreement)
-      .count("explained", explained)
-      .count("above", static_cast<long long>(a.size()))
-      .over(static_cast<long long>(a.size()));
-  c.holds = explained == static_cast<int>(a.size());
+      .every("explained", explained, "above", static_cast<long long>(a.size()));
   return c;
 }
 

@@ -319,15 +319,12 @@ Claim period_claim(const std::vector<ModeRun>& runs) {
                   "relative difference is {worst}, {scheme} at {cells} cells per wavelength and "
                   "C = {C}");
   c.value("tolerance", percent(kPeriodAgreement))
-      .count("agree", agree)
-      .count("runs", static_cast<long long>(runs.size()))
+      .every("agree", agree, "runs", static_cast<long long>(runs.size()))
       .count("measured", measured)
       .value("worst", worst ? sci(worst->relative(), 2) : "–")
       .value("scheme", worst ? worst->label : "–")
       .value("cells", worst ? std::to_string(worst->cells) : "–")
       .value("C", worst ? shortest(worst->courant) : "–");
-  c.over(static_cast<long long>(runs.size()));
-  c.holds = !runs.empty() && agree == static_cast<int>(runs.size());
   return c;
 }
 
@@ -346,11 +343,7 @@ Claim explains_claim(const std::vector<ModeRun>& runs) {
                   "is the one the Bloch symbol predicts, not the exact one",
                   "{nearer} of {compared} runs whose predicted period differs from the exact "
                   "one by more than {tolerance} measure a period nearer the prediction");
-  c.count("nearer", nearer)
-      .count("compared", compared)
-      .value("tolerance", percent(kPeriodAgreement));
-  c.over(compared);
-  c.holds = compared > 0 && nearer == compared;
+  c.every("nearer", nearer, "compared", compared).value("tolerance", percent(kPeriodAgreement));
   return c;
 }
 
@@ -376,13 +369,10 @@ Claim consistency_claim(const std::vector<Scheme>& schemes) {
                   "Courant number) within {tolerance} of c; the largest deviation is {worst}, "
                   "{scheme}");
   c.count("samples", kDispersionSamples)
-      .count("consistent", consistent)
-      .count("curves", curves)
+      .every("consistent", consistent, "curves", curves)
       .value("tolerance", sci(kConsistency, 1))
       .value("worst", sci(worst, 2))
       .value("scheme", worst_label);
-  c.over(curves);
-  c.holds = curves > 0 && consistent == curves;
   return c;
 }
 
@@ -419,11 +409,8 @@ Claim flip_spline_claim(const std::vector<Scheme>& schemes) {
                   "than linear MPM for a phase error of {tolerance}, at every Courant number",
                   "{more} of {compared} pairs of a B-spline and a Courant number ({pairs})");
   c.value("tolerance", percent(kPhaseTolerance))
-      .count("more", more)
-      .count("compared", compared)
+      .every("more", more, "compared", compared)
       .value("pairs", pairs.empty() ? "–" : pairs);
-  c.over(compared);
-  c.holds = compared > 0 && more == compared;
   return c;
 }
 
@@ -453,11 +440,8 @@ Claim full_mass_claim(const std::vector<Scheme>& schemes) {
                   "{fewer} of {compared} pairs of a B-spline and a Courant number ({pairs})");
   c.count("order", kSeriesOrder)
       .value("tolerance", percent(kPhaseTolerance))
-      .count("fewer", fewer)
-      .count("compared", compared)
+      .every("fewer", fewer, "compared", compared)
       .value("pairs", pairs.empty() ? "–" : pairs);
-  c.over(compared);
-  c.holds = compared > 0 && fewer == compared;
   return c;
 }
 

@@ -376,12 +376,9 @@ std::vector<Claim> edge_claims(const std::vector<ojson>& rows, const EdgeFollowU
                       "Eq. (108) at the survival edge lies below the edge in every case where "
                       "both are measured",
                       "{below} of {n}; the edge is {lo} to {hi} times eq. (108)");
-  eq108.count("below", eq108_below)
-      .count("n", eq108_n)
+  eq108.every("below", eq108_below, "n", eq108_n)
       .value("lo", eq108_n ? ratio(over_lo) : "–")
       .value("hi", eq108_n ? ratio(over_hi) : "–");
-  eq108.over(eq108_n);
-  eq108.holds = eq108_n > 0 && eq108_below == eq108_n;
   claims.push_back(eq108);
 
   Claim limit = claim("edges-at-most-the-limit",
@@ -399,9 +396,7 @@ std::vector<Claim> edge_claims(const std::vector<ojson>& rows, const EdgeFollowU
     claims.push_back(std::move(c));
   Claim mono = claim("survival-monotone", "Survival is monotone in dt in every search",
                      "{monotone} of {n} searches");
-  mono.count("monotone", monotone).count("n", static_cast<long long>(rows.size()));
-  mono.over(static_cast<long long>(rows.size()));
-  mono.holds = monotone == static_cast<int>(rows.size());
+  mono.every("monotone", monotone, "n", static_cast<long long>(rows.size()));
   claims.push_back(mono);
   return claims;
 }

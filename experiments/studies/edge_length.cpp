@@ -146,10 +146,7 @@ Claim length_claim(std::string id, std::string statement, std::string evidence,
   c.value("first", shortest(kLengthFactors[0]))
       .value("second", shortest(kLengthFactors[1]))
       .value("cap", shortest(kLongPasses))
-      .count("held", t.held)
-      .count("tested", t.tested)
-      .over(t.tested);
-  c.holds = t.tested > 0 && t.held == t.tested;
+      .every("held", t.held, "tested", t.tested);
   return c;
 }
 

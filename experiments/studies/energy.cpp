@@ -253,8 +253,7 @@ Claim pic_dissipates_claim(const std::vector<ojson>& rows, const std::set<Cell>&
                   "PIC's energy balance error exceeds FLIP's at every history cell (PIC "
                   "dissipates what FLIP keeps)",
                   "{holds} of {total} cells");
-  c.count("holds", holds).count("total", total).over(total);
-  c.holds = total > 0 && holds == total;
+  c.every("holds", holds, "total", total);
   return c;
 }
 
@@ -272,9 +271,7 @@ Claim balance_converges_claim(const std::vector<Sweep>& sweeps) {
                   "bar at the drift sweeps' amplitude, over the runs in the regime orders are "
                   "fitted in",
                   "{converge} of {total} sweeps have a positive fitted order");
-  c.count("converge", converge).count("total", total);
-  c.over(total);
-  c.holds = total > 0 && converge == total;
+  c.every("converge", converge, "total", total);
   return c;
 }
 

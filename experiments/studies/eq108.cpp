@@ -170,11 +170,8 @@ StudyReport eq108_report(const ReportContext& c) {
                        "ratios {span}");
   claim_.value("k", agreement_factor())
       .value("best", best.name)
-      .count("within", std::max(best.within, 0))
-      .count("n", best.n)
-      .value("span", span(best.ratios, 2))
-      .over(best.n);
-  claim_.holds = best.n > 0 && best.within == best.n;
+      .every("within", std::max(best.within, 0), "n", best.n)
+      .value("span", span(best.ratios, 2));
   return StudyReport{.markdown = md.str(), .claims = {claim_}};
 }
 

@@ -193,8 +193,7 @@ std::vector<Claim> extremes_claims(const Counts& c) {
   std::vector<Claim> claims;
   Claim verdicts = claim("every-case-has-a-verdict", "Every case ends with a verdict",
                          "{with} of {total} cases have one");
-  verdicts.count("with", c.with_verdict).count("total", c.total).over(c.total);
-  verdicts.holds = c.with_verdict == c.total;
+  verdicts.every("with", c.with_verdict, "total", c.total);
   claims.push_back(verdicts);
 
   Claim finite = claim("outputs-finite",

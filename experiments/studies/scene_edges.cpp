@@ -140,13 +140,11 @@ std::string edge_row(const ojson& r, const std::optional<Robustness>& robust,
 std::vector<Claim> edges_claims(const EdgeCounts& n) {
   Claim edge = claim("every-case-has-an-edge",
                      "Every case has a survival edge inside the scan: {with} of {cases}.");
-  edge.count("with", n.with_edge).count("cases", n.rows).over(n.rows);
-  edge.holds = n.with_edge == n.rows;
+  edge.every("with", n.with_edge, "cases", n.rows);
   Claim robust = claim("edges-survive-perturbation",
                        "Every edge holds on every perturbed layout (all survive at the edge, all "
                        "fail just above it): {robust} of {checked} edges.");
-  robust.count("robust", n.robust_rows).count("checked", n.checked).over(n.checked);
-  robust.holds = n.checked > 0 && n.robust_rows == n.checked;
+  robust.every("robust", n.robust_rows, "checked", n.checked);
   Claim meaningful = claim("edges-meaningful",
                            "No survival edge is a meaningless run: {meaningless} of {with} are.");
   meaningful.count("meaningless", n.meaningless_edges).count("with", n.with_edge).over(n.with_edge);

@@ -367,9 +367,8 @@ std::vector<Claim> survey_claims(const std::vector<ojson>& rows, const SurveyCou
                     "On Uintah's advectBlock at its own setting, every basis compared survives "
                     "and keeps the block rigid to round-off in both codes (position error over "
                     "the run below {tolerance} cells): {agree} of {compared}.");
-    c.value("tolerance", sci(kRoundOffCells, 1)).count("agree", n.rigid_agree);
-    c.count("compared", n.rigid_compared).over(n.rigid_compared);
-    c.holds = n.rigid_compared > 0 && n.rigid_agree == n.rigid_compared;
+    c.value("tolerance", sci(kRoundOffCells, 1))
+        .every("agree", n.rigid_agree, "compared", n.rigid_compared);
     claims.push_back(c);
   }
   {
@@ -377,18 +376,15 @@ std::vector<Claim> survey_claims(const std::vector<ojson>& rows, const SurveyCou
                     "On Uintah's impulsiveBar at its own setting, every basis compared has the "
                     "peer's outcome and its final error within {tolerance}: {agree} of "
                     "{compared}.");
-    c.value("tolerance", percent(kPeerTolerance)).count("agree", n.peer_agree);
-    c.count("compared", n.peer_compared).over(n.peer_compared);
-    c.holds = n.peer_compared > 0 && n.peer_agree == n.peer_compared;
+    c.value("tolerance", percent(kPeerTolerance))
+        .every("agree", n.peer_agree, "compared", n.peer_compared);
     claims.push_back(c);
   }
   {
     Claim c = claim("every-run-has-a-verdict",
                     "Every run ends with a verdict (unstable, meaningless or stable): {with} of "
                     "{runs}.");
-    c.count("with", n.verdicts).count("runs", static_cast<long long>(rows.size()));
-    c.over(static_cast<long long>(rows.size()));
-    c.holds = n.verdicts == static_cast<int>(rows.size());
+    c.every("with", n.verdicts, "runs", static_cast<long long>(rows.size()));
     claims.push_back(c);
   }
   {
@@ -467,9 +463,7 @@ Claim trade_claim(const std::vector<ojson>& rows, const std::map<std::string, Re
                     "to the smallest c dt/h of the trade the error falls by less than a factor "
                     "{factor} in {flat} of {pairs} scene and method pairs (the largest fall is "
                     "{worst}).");
-    c.number("factor", 2).count("flat", flat).count("pairs", pairs).number("worst", worst, 3);
-    c.over(pairs);
-    c.holds = pairs > 0 && flat == pairs;
+    c.number("factor", 2).every("flat", flat, "pairs", pairs).number("worst", worst, 3);
     return c;
   }
 }

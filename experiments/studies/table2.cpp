@@ -329,10 +329,7 @@ std::string counting_rules_section(const Table2Data& d, std::vector<Claim>& clai
                   "crossing counts within {tol} in every cell",
                   "the best rule is within it in {best} of {n} cells");
   c.value("tol", percent(kApproximate))
-      .count("best", best)
-      .count("n", static_cast<long long>(counts.size()))
-      .over(static_cast<long long>(counts.size()));
-  c.holds = best == static_cast<int>(counts.size());
+      .every("best", best, "n", static_cast<long long>(counts.size()));
   claims.push_back(c);
   return md.str();
 }

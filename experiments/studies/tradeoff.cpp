@@ -815,13 +815,10 @@ void grid_and_step_claims(const TradeRows& t, std::vector<Claim>& claims) {
                       "A finer grid lowers GIMP's error over time on the paper's bar at every E",
                       "{better} of {total} values of E ({fine} against {coarse} cells, CFL C = "
                       "{C})");
-  finer.count("better", better)
-      .count("total", total)
+  finer.every("better", better, "total", total)
       .count("fine", kFine)
       .count("coarse", kCoarse)
-      .value("C", shortest(kCflRef))
-      .over(total);
-  finer.holds = total > 0 && better == total;
+      .value("C", shortest(kCflRef));
   claims.push_back(finer);
 
   const auto [step_ratio, error_ratio] = bound_against_cfl(t);
@@ -865,10 +862,7 @@ std::string advice_section(const std::vector<ojson>& rows, const std::vector<Sce
                      "GIMP's best error over time is below MPM's at every (scene, E) pair where "
                      "both reach an accuracy",
                      "{better} of {compared} pairs");
-  gimp.count("better", methods.gimp_better)
-      .count("compared", methods.compared)
-      .over(methods.compared);
-  gimp.holds = methods.compared > 0 && methods.gimp_better == methods.compared;
+  gimp.every("better", methods.gimp_better, "compared", methods.compared);
   claims.push_back(gimp);
   grid_and_step_claims(TradeRows(scenes.front().rows), claims);
   return "### What the runs say about picking a setting\n\nThis study measures; it does not "

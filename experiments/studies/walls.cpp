@@ -146,16 +146,13 @@ std::vector<Claim> walls_claims(const std::map<std::string, MethodWalls>& method
                     "{same} of {n} within; periodic / Dirichlet {lo} to {hi}");
     c.value("method", name)
         .value("tol", percent(kSameError))
-        .count("same", m.same)
-        .count("n", m.both_stable);
+        .every("same", m.same, "n", m.both_stable);
     if (!m.ratios.empty()) {
       const auto [lo, hi] = std::minmax_element(m.ratios.begin(), m.ratios.end(), TotalLess());
       c.value("lo", significant(*lo, 3)).value("hi", significant(*hi, 3));
     } else {
       c.value("lo", "–").value("hi", "–");
     }
-    c.over(m.both_stable);
-    c.holds = m.both_stable > 0 && m.same == m.both_stable;
     claims.push_back(c);
   }
   return claims;
