@@ -388,14 +388,17 @@ void time_to_go_text(std::ostream& md, const ojson& t) {
   md << (sep == "; " ? ")" : "") << ".";
 }
 
+// The command of a timing label, without the machine another machine's run is kept under
+// ("make studies on X" -> "make studies").
+std::string command_of(const std::string& label) {
+  return label.substr(0, label.find(" on "));
+}
+
 // The paragraph of one tier's last run ("(make reproduce)" in timings.json).
 void tier_paragraph(std::ostream& md, const std::string& label, const ojson& r,
                     const BenchFigures& bench) {
   // A field the entry lacks (written before it was recorded, or edited) reads as 0.
-  auto number = [&](const char* key) {
-    const auto it = r.find(key);
-    return it != r.end() && it->is_number() ? it->get<double>() : 0.0;
-  };
+  auto number = [&](const char* key) { return number_or_zero(r, key); };
   auto count = [&](const char* key) { return std::to_string(std::llround(number(key))); };
   const double wall = number("wall_seconds");
   const int threads = std::max(1, static_cast<int>(number("threads")));
@@ -426,14 +429,10 @@ void tier_paragraph(std::ostream& md, const std::string& label, const ojson& r,
 // The paragraph of the last fresh build of the tool ("(make)" in timings.json, mpmstab
 // build-time).
 void build_paragraph(std::ostream& md, const std::string& label, const ojson& r) {
-  const auto it = r.find("wall_seconds");
-  const double wall = it != r.end() && it->is_number() ? it->get<double>() : 0.0;
-  const auto jobs = r.find("threads");
   md << "**`" << label << "`.** The last fresh build of the tool (from configuring a new build "
      << "folder to the linked tool, the installation of Debian packages excluded) took **"
-     << seconds(wall) << "** wall with "
-     << (jobs != r.end() && jobs->is_number() ? jobs->dump()
-                                              : std::string("an unrecorded number of"))
+     << seconds(number_or_zero(r, "wall_seconds")) << "** wall with "
+     << (has_number(r, "threads") ? r["threads"].dump() : std::string("an unrecorded number of"))
      << " compile jobs (" << machine_of(r) << ").\n\n";
 }
 
@@ -456,13 +455,13 @@ void write_experiment_times(std::ostream& md, const std::vector<Spec>& specs, co
   costliest_groups(md, specs, timings);
   bool any = false;
   for (const auto& [key, r] : timings.items()) {
-    if (key.size() < 3 || key.front() != '(' || key.back() != ')') continue;
+    const auto label = timing_label(key);
+    if (!label) continue;
     any = true;
-    const std::string label = key.substr(1, key.size() - 2);
-    if (label == "make" || label.starts_with("make on ")) {
-      build_paragraph(md, label, r);
+    if (command_of(*label) == "make") {
+      build_paragraph(md, *label, r);
     } else {
-      tier_paragraph(md, label, r, bench);
+      tier_paragraph(md, *label, r, bench);
     }
   }
   if (any) {
@@ -481,11 +480,11 @@ void write_experiment_times(std::ostream& md, const std::vector<Spec>& specs, co
 ojson merged_timings(const ojson& measured, const ojson& published) {
   ojson out = measured;
   for (const auto& [key, e] : published.items()) {
-    if (key.size() < 3 || key.front() != '(' || key.back() != ')' || !e.is_object()) continue;
+    const auto published_label = timing_label(key);
+    if (!published_label || !e.is_object()) continue;
     if (!e.contains("cpu") || !e["cpu"].is_string()) continue;
     const std::string cpu = e["cpu"].get<std::string>();
-    std::string label = key.substr(1, key.size() - 2);
-    if (const auto on = label.find(" on "); on != std::string::npos) label.resize(on);
+    const std::string label = command_of(*published_label);
     const std::string current = reproduce_timing_key(label);
     const bool same_machine = measured.contains(current) && measured[current].contains("cpu") &&
                               measured[current]["cpu"] == cpu;
@@ -499,11 +498,7 @@ ojson merged_timings(const ojson& measured, const ojson& published) {
 }  // namespace
 
 std::string machine_of(const ojson& timing) {
-  auto text = [&](const char* key) {
-    const auto it = timing.find(key);
-    return it != timing.end() && it->is_string() ? it->get<std::string>() : std::string();
-  };
-  const std::string cpu = text("cpu"), kernels = text("kernels");
+  const std::string cpu = text(timing, "cpu"), kernels = text(timing, "kernels");
   if (cpu.empty()) return "CPU not recorded";
   return kernels.empty() || kernels == "not recorded" ? cpu : cpu + ", " + kernels + " kernels";
 }

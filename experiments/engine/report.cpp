@@ -290,6 +290,11 @@ std::string reproduce_timing_key(const std::string& label) {
   return "(" + label + ")";
 }
 
+std::optional<std::string> timing_label(const std::string& key) {
+  if (key.size() < 3 || key.front() != '(' || key.back() != ')') return std::nullopt;
+  return key.substr(1, key.size() - 2);
+}
+
 void write_reproduce_timing(const fs::path& out, const std::string& label, const ojson& entry,
                             bool computed) {
   const fs::path path = machine_timings(out);

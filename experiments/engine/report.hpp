@@ -8,6 +8,7 @@
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -52,6 +53,9 @@ std::filesystem::path machine_timings(const std::filesystem::path& out);
 // studies: "(make studies)"): replaced by a run that computed cases, kept by one served entirely
 // from the cache.
 std::string reproduce_timing_key(const std::string& label);
+// The label of such a key ("(make studies on X)" -> "make studies on X"); nothing for an
+// experiment's entry.
+std::optional<std::string> timing_label(const std::string& key);
 void write_reproduce_timing(const std::filesystem::path& out, const std::string& label,
                             const nlohmann::ordered_json& entry, bool computed);
 // The same, but an input named in `produced` (experiments a run will write before this one's

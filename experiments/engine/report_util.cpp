@@ -156,11 +156,14 @@ bool has_number(const ojson& r, const char* column) {
   return r.contains(column) && r[column].is_number();
 }
 
+double number_or_zero(const ojson& row, const char* column) {
+  const auto it = row.find(column);
+  return it != row.end() && it->is_number() ? it->get<double>() : 0.0;
+}
+
 std::string method_label(const ojson& r) {
   std::string s = r["method"].get<std::string>();
-  auto column = [&](const char* key) {
-    return r.contains(key) && r[key].is_string() ? r[key].get<std::string>() : std::string();
-  };
+  auto column = [&](const char* key) { return text(r, key); };
   const std::string transfer = column("transfer"), update = column("update");
   if (!transfer.empty() && transfer != "flip") {
     s += '/';

@@ -57,6 +57,8 @@ std::string opt_sci(const nlohmann::ordered_json& v);
 std::string text(const nlohmann::ordered_json& row, const char* column);
 // The row has a number in `column` (not null, not missing).
 bool has_number(const nlohmann::ordered_json& row, const char* column);
+// The number in `column`, 0 where it is missing or not a number.
+double number_or_zero(const nlohmann::ordered_json& row, const char* column);
 // The method of a flat record as the trade study names it: the basis, then the transfer (with
 // its order or FLIP share) where it is not FLIP and the update order where it is not USL: "gimp",
 // "gimp/xpic(2)", "bspline3/usf". Rows without those columns are named by their basis.

@@ -52,9 +52,7 @@ std::string tier_times(const std::filesystem::path& results) {
   }
   for (const auto& [name, entry] : runs) {
     const ojson& e = *entry;
-    auto number = [&](const char* key) {
-      return e.contains(key) && e[key].is_number() ? e[key].get<double>() : 0.0;
-    };
+    auto number = [&](const char* key) { return number_or_zero(e, key); };
     md << "| " << name << " | " << seconds(number("wall_seconds")) << " | ";
     if (name == "`make`") {
       md << "a fresh build of the tool | – | ";
