@@ -2,6 +2,7 @@
 // file, exit status 2, and leaves every existing result file byte for byte unchanged.
 #include <gtest/gtest.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -9,6 +10,7 @@
 #include <map>
 #include <sstream>
 
+#include "base/params.hpp"
 #include "support.hpp"
 
 namespace {
@@ -475,3 +477,132 @@ TEST_F(Hostile, LinksAtGuessableTemporaryNamesAreNotFollowed) {
 }
 
 }  // namespace
+
+// Every number an option takes is finite, and every name an option takes is one the code knows:
+// "inf" and "nan" are refused as not finite (not as out of a range), and an unknown name is
+// named with every name the option accepts, from the table that parses it.
+TEST(HostileOptions, NonFiniteNumbersAndUnknownNamesAreRefusedByName) {
+  using namespace mpmstab;
+  using test_support::run_mpmstab;
+  const std::string table2 = std::string(MPMSTAB_SOURCE_DIR) + "/experiments/table2.json";
+  const auto refused = [](const std::string& args, const std::vector<std::string>& named) {
+    const auto [status, output] = run_mpmstab(args);
+    EXPECT_EQ(status, 2) << args << "\n" << output;
+    for (const auto& n : named)
+      EXPECT_NE(output.find(n), std::string::npos) << args << ": no '" << n << "' in\n" << output;
+    EXPECT_EQ(output.find("internal error"), std::string::npos) << args << "\n" << output;
+  };
+  // Each command with its required options; the option under test replaces its own entry.
+  using Options = std::vector<std::pair<std::string, std::string>>;
+  const std::vector<std::pair<std::string, Options>> commands = {
+      {"run", {{"method", "gimp"}, {"E", "4"}, {"A", "0.01"}, {"dt", "1e-3"}, {"T", "1e-3"}}},
+      {"edge", {{"method", "gimp"}, {"E", "4"}, {"A", "0.01"}, {"T", "1e-3"}}},
+      {"spectral", {{"method", "gimp"}, {"E", "4"}, {"cells", "10"}}}};
+  const auto with = [](std::string command, Options options, const std::string& option,
+                       const std::string& value) {
+    bool replaced = false;
+    for (auto& [o, v] : options)
+      if (o == option) v = value, replaced = true;
+    if (!replaced) options.emplace_back(option, value);
+    for (const auto& [o, v] : options)
+      command += " --" + o + " " + v;
+    return command;
+  };
+  const std::vector<std::string> real_options = {
+      "E",          "A",           "flip-fraction",       "shift",   "jitter",
+      "body-start", "body-length", "small-mass-fraction", "tip-load"};
+  const std::vector<std::string> integer_options = {"cells", "ppc", "xpic-order", "fmpm-order"};
+  for (const auto& [command, base] : commands) {
+    for (const auto& o : real_options)
+      for (const char* v : {"inf", "-inf", "nan"})
+        refused(with(command, base, o, v),
+                {"--" + o + ": '" + std::string(v) + "' is not a finite number"});
+    for (const auto& o : integer_options)
+      refused(with(command, base, o, "inf"), {"--" + o + ": 'inf' is not an integer"});
+  }
+  for (const char* o : {"dt", "T", "safety"})
+    refused(with("run", commands[0].second, o, "nan"),
+            {std::string("--") + o + ": 'nan' is not a finite number"});
+  refused("run --method gimp --E 4 --A 0.01 --T 1e-3 --policy cfl --cfl-factor inf",
+          {"--cfl-factor: 'inf' is not a finite number"});
+  refused("edge --method gimp --E 4 --A 0.01 --T 1e-3 --tolerance inf",
+          {"--tolerance: 'inf' is not a finite number"});
+  for (const char* o : {"A", "cT", "error"})
+    for (const char* v : {"inf", "nan"})
+      refused(with("advise", {{"A", "0.01"}, {"cT", "1"}, {"error", "0.1"}}, o, v),
+              {std::string("--") + o + ": '" + v + "' is not a finite number"});
+  refused("check " + table2 + " --rtol inf", {"--rtol: 'inf' is not a finite number"});
+  refused("check " + table2 + " --budget nan", {"--budget: 'nan' is not a finite number"});
+
+  // Names: each choice of the run options, with every name its table knows.
+  const auto listed = [](std::string option, std::vector<std::string_view> names) {
+    std::vector<std::string> out = {"--" + option + ": unknown value 'foo'"};
+    for (const auto n : names)
+      out.emplace_back(n);
+    return out;
+  };
+  const std::string run = "run --method gimp --E 4 --A 0.01 --dt 1e-3 --T 0.1 --";
+  refused("run --method foo --E 4 --A 0.01 --dt 1e-3", listed("method", names_of<Method>()));
+  refused(run + "bc foo", listed("bc", names_of<Boundary>()));
+  refused(run + "position-update foo", listed("position-update", names_of<PositionUpdate>()));
+  refused(run + "scene foo", listed("scene", names_of<SceneKind>()));
+  refused(run + "walls foo", listed("walls", names_of<Walls>()));
+  refused(run + "transfer foo", listed("transfer", names_of<Transfer>()));
+  refused(run + "update foo", listed("update", names_of<UpdateOrder>()));
+  refused(run + "small-mass foo", listed("small-mass", names_of<SmallMass>()));
+  refused(run + "body-force-time foo", listed("body-force-time", names_of<BodyForceTime>()));
+  refused(run + "start foo", listed("start", names_of<VelocityStart>()));
+  refused(run + "dt-stable-sigma foo", listed("dt-stable-sigma", names_of<StressScaling>()));
+  refused(run + "dt-stable-vnorm foo", listed("dt-stable-vnorm", names_of<VelocityNorm>()));
+  refused(run + "policy foo", listed("policy", names_of<TimeStepPolicy>()));
+  refused("edge --method foo --E 4 --A 0.01", listed("method", names_of<Method>()));
+  refused("spectral --method foo --E 4", listed("method", names_of<Method>()));
+  // advise: an unknown method, transfer or update is named, with the names it could have been.
+  const std::string advise = "advise --A 0.01 --cT 1 --error 0.1 --methods ";
+  std::vector<std::string> bases = {"unknown method 'foo'"};
+  for (const auto n : names_of<Method>())
+    bases.emplace_back(n);
+  refused(advise + "foo", bases);
+  refused(advise + "gimp,foo/flip", bases);
+  std::vector<std::string> transfers = {"unknown transfer or update 'foo'"};
+  for (const auto n : names_of<Transfer>())
+    transfers.emplace_back(n);
+  for (const auto n : names_of<UpdateOrder>())
+    transfers.emplace_back(n);
+  refused(advise + "gimp/foo", transfers);
+  refused(advise + "gimp/flip/foo", {"unknown update 'foo'", "usl", "musl"});
+  refused(advise + "gimp/foo/usl", {"unknown transfer 'foo'", "apic"});
+  refused(advise + "gimp/flip/usl/x", {"too many parts"});
+  refused(advise + "gimp/", {"unknown transfer or update ''"});
+  refused("advise --A 0.01 --cT 1 --error 0.1 --scene foo", {"--scene", "bar", "steffen"});
+  refused("advise --A 0.01 --cT 1 --error 0.1 --bc foo", {"--bc", "dirichlet", "periodic"});
+  refused("list --tier foo", {"--tier", "'foo'", "paper", "studies"});
+}
+
+// `make` records its build time in a fresh clone, whose results/ has no cache folder yet; where
+// the record cannot be written, build-time says so in one plain line, exit status 1 (the
+// Makefile goes on), and changes nothing.
+TEST(BuildTime, RecordsInAFreshResultsFolderAndSaysPlainlyWhenItCannot) {
+  using mpmstab::test_support::run_mpmstab;
+  const fs::path dir =
+      fs::temp_directory_path() / ("mpmstab_build_time_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir / "results");
+  const auto fresh =
+      run_mpmstab("build-time --seconds 90 --jobs 2 --out " + (dir / "results").string());
+  EXPECT_EQ(fresh.status, 0) << fresh.output;
+  EXPECT_TRUE(fs::is_regular_file(dir / "results" / "cache" / "timings.json"));
+  // A cache that is a file: the record cannot be written.
+  fs::create_directories(dir / "blocked");
+  std::ofstream(dir / "blocked" / "cache") << "not a folder\n";
+  const auto blocked = run_mpmstab("build-time --seconds 90 --out " + (dir / "blocked").string());
+  EXPECT_EQ(blocked.status, 1) << blocked.output;
+  EXPECT_NE(blocked.output.find("the build time was not recorded"), std::string::npos)
+      << blocked.output;
+  EXPECT_EQ(blocked.output.find("internal error"), std::string::npos) << blocked.output;
+  std::ifstream in(dir / "blocked" / "cache");
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "not a folder");
+  fs::remove_all(dir);
+}

@@ -92,7 +92,77 @@ std::optional<Enum> parse(const Names<Enum, N>& table, std::string_view s) {
   return std::nullopt;
 }
 
+template <class Enum, std::size_t N>
+std::vector<std::string_view> names(const Names<Enum, N>& table) {
+  std::vector<std::string_view> out;
+  for (const auto& entry : table)
+    out.push_back(entry.second);
+  return out;
+}
+
 }  // namespace
+
+template <>
+std::vector<std::string_view> names_of<Method>() {
+  return names(kMethods);
+}
+template <>
+std::vector<std::string_view> names_of<Boundary>() {
+  return names(kBoundaries);
+}
+template <>
+std::vector<std::string_view> names_of<PositionUpdate>() {
+  return names(kPositionUpdates);
+}
+template <>
+std::vector<std::string_view> names_of<StressScaling>() {
+  return names(kScalings);
+}
+template <>
+std::vector<std::string_view> names_of<VelocityNorm>() {
+  return names(kNorms);
+}
+template <>
+std::vector<std::string_view> names_of<TimeStepPolicy>() {
+  return names(kPolicies);
+}
+template <>
+std::vector<std::string_view> names_of<SceneKind>() {
+  return names(kScenes);
+}
+template <>
+std::vector<std::string_view> names_of<Walls>() {
+  return names(kWalls);
+}
+template <>
+std::vector<std::string_view> names_of<Transfer>() {
+  return names(kTransfers);
+}
+template <>
+std::vector<std::string_view> names_of<UpdateOrder>() {
+  return names(kUpdateOrders);
+}
+template <>
+std::vector<std::string_view> names_of<BodyForceTime>() {
+  return names(kBodyForceTimes);
+}
+template <>
+std::vector<std::string_view> names_of<VelocityStart>() {
+  return names(kVelocityStarts);
+}
+template <>
+std::vector<std::string_view> names_of<SmallMass>() {
+  return names(kSmallMass);
+}
+
+std::string choices_text(const std::vector<std::string_view>& names) {
+  std::string text;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    if (i) text += i + 1 == names.size() ? " or " : ", ";
+    text += names[i];
+  }
+  return text;
+}
 
 std::string_view to_string(Method m) {
   return name_of(kMethods, m);

@@ -65,8 +65,49 @@ double positive(const Args& args, const char* name) {
   const auto v = args.value(name);
   if (!v) throw UsageError(std::string("--") + name + " is required");
   const double x = parse_double(*v, name);
-  if (!(x > 0) || !std::isfinite(x)) throw UsageError(std::string("--") + name + ": must be > 0");
+  if (!(x > 0))
+    throw UsageError(std::string("--") + name + ": must be > 0, got " + std::string(*v));
   return x;
+}
+
+// A --methods entry: basis[/transfer][/update] or basis/update, each part a name the solver
+// knows (a transfer may carry its parameter, "blend(0.99)"); an unknown part is named, with
+// every name it could have been.
+void check_method_filter(const std::string& item) {
+  std::vector<std::string> parts;
+  std::string part;
+  std::istringstream in(item);
+  while (std::getline(in, part, '/'))
+    parts.push_back(part);
+  if (item.back() == '/') parts.emplace_back();
+  const std::string bases = choices_text(names_of<Method>());
+  const std::string transfers = choices_text(names_of<Transfer>());
+  const std::string updates = choices_text(names_of<UpdateOrder>());
+  const std::string form = " in '" + item +
+                           "' (an entry is basis, basis/transfer, basis/update or "
+                           "basis/transfer/update)";
+  if (parts.size() > 3) throw UsageError("--methods: too many parts" + form);
+  if (!parse_method(parts[0]))
+    throw UsageError("--methods: unknown method '" + parts[0] + "'" + form + "; the bases are " +
+                     bases);
+  const auto transfer_name = [](const std::string& t) {
+    const auto open = t.find('(');
+    if (open == std::string::npos) return t;
+    if (t.back() != ')') return std::string();
+    return t.substr(0, open);
+  };
+  if (parts.size() == 2 && !parse_transfer(transfer_name(parts[1])) &&
+      !parse_update_order(parts[1]))
+    throw UsageError("--methods: unknown transfer or update '" + parts[1] + "'" + form +
+                     "; the transfers are " + transfers + ", the updates " + updates);
+  if (parts.size() == 3) {
+    if (!parse_transfer(transfer_name(parts[1])))
+      throw UsageError("--methods: unknown transfer '" + parts[1] + "'" + form +
+                       "; the transfers are " + transfers);
+    if (!parse_update_order(parts[2]))
+      throw UsageError("--methods: unknown update '" + parts[2] + "'" + form +
+                       "; the updates are " + updates);
+  }
 }
 
 Problem problem_from(const Args& args) {
@@ -92,10 +133,7 @@ Problem problem_from(const Args& args) {
     while (std::getline(in, item, ',')) {
       if (item.empty() || item.size() > 40)
         throw UsageError("--methods: an empty or overlong entry in '" + list + "'");
-      for (const char ch : item)
-        if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '/' && ch != '(' && ch != ')' &&
-            ch != '.')
-          throw UsageError("--methods: '" + item + "' is not a method name");
+      check_method_filter(item);
       p.methods.push_back(item);
     }
   }

@@ -145,6 +145,11 @@ int cmd_list(const std::vector<std::string_view>& argv) {
     return 0;
   }
   if (args.positional().size() > 1) throw UsageError("list takes one folder");
+  // The options are checked before any spec is read.
+  const auto tier = args.value("tier");
+  if (tier && *tier != "paper" && *tier != "studies")
+    throw UsageError("--tier: unknown value '" + std::string(*tier) +
+                     "' (expected paper or studies)");
   const std::filesystem::path dir =
       args.positional().empty() ? "experiments" : std::string(args.positional().front());
   const std::vector<Spec> specs = specs_in(dir);
@@ -155,12 +160,7 @@ int cmd_list(const std::vector<std::string_view>& argv) {
   std::vector<const Spec*> order = run_order(specs);
   // Every paper experiment reads only paper experiments, whichever tier is asked for.
   tier_order(order, Tier::paper);
-  if (const auto tier = args.value("tier")) {
-    if (*tier != "paper" && *tier != "studies")
-      throw UsageError("--tier: unknown value '" + std::string(*tier) +
-                       "' (expected paper or studies)");
-    order = tier_order(order, *tier == "paper" ? Tier::paper : Tier::studies);
-  }
+  if (tier) order = tier_order(order, *tier == "paper" ? Tier::paper : Tier::studies);
   for (const Spec* s : order) {
     if (!args.flag("figures") || s->study->figure) std::cout << s->path.generic_string() << "\n";
   }

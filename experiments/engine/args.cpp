@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <system_error>
 #include <utility>
 
@@ -135,6 +136,12 @@ double parse_double(std::string_view text, std::string_view option) {
   if (ec == std::errc::result_out_of_range) {
     throw UsageError("--" + std::string(option) + ": '" + std::string(text) +
                      "' is out of the range of a double");
+  }
+  // No option takes an infinite or undefined value: "inf" and "nan" are refused here, by name,
+  // before any command reads a range ("must be > 0" would misname what is wrong).
+  if (!std::isfinite(v)) {
+    throw UsageError("--" + std::string(option) + ": '" + std::string(text) +
+                     "' is not a finite number");
   }
   return v;
 }

@@ -257,7 +257,14 @@ ojson read_timings(const fs::path& path) {
 }
 
 // The entries in name order, `name` replaced by `entry`.
+// The cache folder is made here when it is missing: a fresh clone has no results/cache, and the
+// first writer of the machine's timings may be `make` (mpmstab build-time) before any sweep.
 void store_timing(const fs::path& path, ojson all, const std::string& name, ojson entry) {
+  std::error_code ec;
+  fs::create_directories(path.parent_path(), ec);
+  if (ec)
+    throw std::runtime_error("cannot create the folder " + path.parent_path().string() + ": " +
+                             ec.message());
   std::map<std::string, ojson> sorted;
   for (auto& [k, v] : all.items())
     sorted[k] = v;

@@ -98,17 +98,23 @@ class Reader {
   }
   template <class Enum>
   Enum choice_at(const json& v, const std::string& path,
-                 std::optional<Enum> (*parse)(std::string_view), const char* choices) const {
+                 std::optional<Enum> (*parse)(std::string_view), const std::string& choices) const {
     const std::string s = string_at(v, path);
     if (auto e = parse(s)) return *e;
     fail(path, "unknown value '" + s + "' (expected " + choices + ")");
+  }
+  // A value of one of params.hpp's enums, refused with every name its table knows.
+  template <class Enum>
+  Enum choice_at(const json& v, const std::string& path,
+                 std::optional<Enum> (*parse)(std::string_view)) const {
+    return choice_at(v, path, parse, choices_text(names_of<Enum>()));
   }
 
   // Sets one parameter from a case or defaults entry.
   void set(RunParams& p, CaseSpec& c, const std::string& key, const json& v,
            const std::string& path) const {
     if (key == "method")
-      p.method = choice_at(v, path, parse_method, "gimp, cpgimp, mpm, bspline2, bspline3 or cpdi");
+      p.method = choice_at(v, path, parse_method);
     else if (key == "E")
       p.E = number_at(v, path);
     else if (key == "A")
@@ -122,16 +128,15 @@ class Reader {
     else if (key == "ppc")
       p.ppc = int_at(v, path);
     else if (key == "bc")
-      p.bc = choice_at(v, path, parse_boundary, "dirichlet or periodic");
+      p.bc = choice_at(v, path, parse_boundary);
     else if (key == "position_update")
-      p.position_update = choice_at(v, path, parse_position_update, "grid or particle");
+      p.position_update = choice_at(v, path, parse_position_update);
     else if (key == "scene")
-      p.scene = choice_at(v, path, parse_scene,
-                          "bar, steffen, mode, vibration, impulsive, compaction, block or impact");
+      p.scene = choice_at(v, path, parse_scene);
     else if (key == "walls")
-      p.walls = choice_at(v, path, parse_walls, "clip, ghost or modified");
+      p.walls = choice_at(v, path, parse_walls);
     else if (key == "transfer")
-      p.transfer = choice_at(v, path, parse_transfer, "flip, pic, blend, apic, xpic or fmpm");
+      p.transfer = choice_at(v, path, parse_transfer);
     else if (key == "flip_fraction")
       p.flip_fraction = number_at(v, path);
     else if (key == "xpic_order")
@@ -143,30 +148,29 @@ class Reader {
     else if (key == "jitter")
       p.layout.jitter = number_at(v, path);
     else if (key == "update")
-      p.update = choice_at(v, path, parse_update_order, "usl, usf or musl");
+      p.update = choice_at(v, path, parse_update_order);
     else if (key == "body_force_time")
-      p.body_force_time = choice_at(v, path, parse_body_force_time, "start or end");
+      p.body_force_time = choice_at(v, path, parse_body_force_time);
     else if (key == "start")
-      p.start = choice_at(v, path, parse_velocity_start, "exact or half_step");
+      p.start = choice_at(v, path, parse_velocity_start);
     else if (key == "body_start")
       p.body_start = number_at(v, path);
     else if (key == "body_length")
       p.body_length = number_at(v, path);
     else if (key == "small_mass")
-      p.small_mass = choice_at(v, path, parse_small_mass, "none, cutoff, drop or momentum");
+      p.small_mass = choice_at(v, path, parse_small_mass);
     else if (key == "small_mass_fraction")
       p.small_mass_fraction = number_at(v, path);
     else if (key == "tip_load")
       p.tip_load = number_at(v, path);
     else if (key == "dt_stable_sigma")
-      p.stable.sigma = choice_at(v, path, parse_stress_scaling, "scaled or raw");
+      p.stable.sigma = choice_at(v, path, parse_stress_scaling);
     else if (key == "dt_stable_vnorm")
-      p.stable.vnorm = choice_at(v, path, parse_velocity_norm, "l2 or max");
+      p.stable.vnorm = choice_at(v, path, parse_velocity_norm);
     else if (key == "max_steps")
       p.max_steps = integer_at(v, path);
     else if (key == "policy")
-      p.stepping.policy =
-          choice_at(v, path, parse_time_step_policy, "fixed, cfl, adaptive, min or spectral");
+      p.stepping.policy = choice_at(v, path, parse_time_step_policy);
     else if (key == "cfl_factor")
       p.stepping.cfl_factor = number_at(v, path);
     else if (key == "safety")
@@ -278,8 +282,7 @@ std::vector<Method> variant_methods(const Reader& r, const json& v, const std::s
   if (!m.is_array() || m.empty()) r.fail(at + ".methods", "must be a non-empty array");
   for (std::size_t k = 0; k < m.size(); ++k) {
     const std::string mp = at + ".methods[" + std::to_string(k) + "]";
-    const Method method =
-        r.choice_at(m[k], mp, parse_method, "gimp, cpgimp, mpm, bspline2, bspline3 or cpdi");
+    const Method method = r.choice_at(m[k], mp, parse_method);
     if (std::find(methods.begin(), methods.end(), method) != methods.end()) {
       r.fail(mp, "repeats '" + std::string(to_string(method)) + "'");
     }
