@@ -1,7 +1,6 @@
 #include "analysis/bloch.hpp"
 #include "scenes/scene_registry.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <cmath>
 #include <complex>
 #include <functional>
@@ -12,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "analysis/eigen_solve.hpp"
 #include "step/simulation.hpp"
 
 namespace mpmstab {
@@ -139,11 +139,9 @@ Peak peak_radius(const Eigen::MatrixXd& R, const Probe& pr, int& solves,
                  double stop_above = std::numeric_limits<double>::infinity(), int first = -1) {
   Peak peak;
   const SymbolTerms terms = symbol_terms(R, pr);
-  Eigen::ComplexEigenSolver<Eigen::MatrixXcd> es;
   const auto solve_at = [&](int j) {
     const double theta = kPi * j / kBlochSamples;
-    es.compute(symbol(terms, theta), false);
-    const double r = es.eigenvalues().cwiseAbs().maxCoeff();
+    const double r = eigen_pairs(symbol(terms, theta), false).values.cwiseAbs().maxCoeff();
     ++solves;
     if (r > peak.radius) peak = {r, theta, j};
     return r > stop_above;
@@ -217,10 +215,10 @@ SpectralLimit bloch_limit(const RunParams& p) {
   const Peak peak = peak_radius(R, pr, out.solves);
   out.radius_above = peak.radius;
   out.wavenumber = peak.theta / kPi;
-  Eigen::ComplexEigenSolver<Eigen::MatrixXcd> es(symbol(R, pr, peak.theta), true);
+  const EigenPairs es = eigen_pairs(symbol(R, pr, peak.theta), true);
   Eigen::Index top = 0;
-  es.eigenvalues().cwiseAbs().maxCoeff(&top);
-  set_limiting_mode(out, es.eigenvectors().col(top).cwiseAbs().array(), p.ppc);
+  es.values.cwiseAbs().maxCoeff(&top);
+  set_limiting_mode(out, es.vectors.col(top).cwiseAbs().array(), p.ppc);
   return out;
 }
 

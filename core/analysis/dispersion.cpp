@@ -1,6 +1,5 @@
 #include "analysis/dispersion.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -11,6 +10,7 @@
 #include <utility>
 
 #include "analysis/bloch.hpp"
+#include "analysis/eigen_solve.hpp"
 #include "scenes/validate.hpp"
 #include "step/simulation.hpp"
 
@@ -102,13 +102,13 @@ class Branch {
   // The branch at kh from the last point committed (or the start rule at the first); with
   // `commit`, it becomes the last point.
   DispersionPoint at(double kh, bool commit) {
-    es_.compute(symbol_.at(kh), true);
-    const auto& values = es_.eigenvalues();
+    const EigenPairs es = eigen_pairs(symbol_.at(kh), true);
+    const auto& values = es.values;
     const Eigen::Index n = values.size();
     Eigen::Index pick = -1;
     double best = 0;
     for (Eigen::Index j = 0; j < n; ++j) {
-      const Eigen::VectorXcd w = es_.eigenvectors().col(j).normalized();
+      const Eigen::VectorXcd w = es.vectors.col(j).normalized();
       double score;
       if (!started_) {
         // Nearest e^{i C kh} among the acoustic eigenvectors of positive phase.
@@ -136,7 +136,7 @@ class Branch {
     }
     if (commit) {
       ended_ = !point.propagates;
-      w_ = es_.eigenvectors().col(pick).normalized();
+      w_ = es.vectors.col(pick).normalized();
       last_ = point;
       started_ = true;
     }
@@ -149,7 +149,6 @@ class Branch {
   SymbolSeries symbol_;
   double courant_;
   int ppc_;
-  Eigen::ComplexEigenSolver<Eigen::MatrixXcd> es_;
   bool started_ = false;
   bool ended_ = false;  // the branch has turned real
   DispersionPoint last_;

@@ -1,7 +1,6 @@
 #include "analysis/spectral.hpp"
 #include "scenes/scene_registry.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <cmath>
 #include <map>
 #include <mutex>
@@ -9,6 +8,7 @@
 #include <string>
 
 #include "analysis/bloch.hpp"
+#include "analysis/eigen_solve.hpp"
 #include "step/simulation.hpp"
 
 namespace mpmstab {
@@ -62,11 +62,10 @@ Eigen::VectorXd step_from(const RunParams& q, const Eigen::ArrayXd& x, const Eig
 
 // The largest eigenvalue's modulus and, when asked, its eigenvector's moduli.
 double radius_and_mode(const Eigen::MatrixXd& M, Eigen::ArrayXd* mode) {
-  Eigen::EigenSolver<Eigen::MatrixXd> es(M, mode != nullptr);
-  const Eigen::VectorXcd lambda = es.eigenvalues();
+  const EigenPairs es = eigen_pairs(M, mode != nullptr);
   Eigen::Index k = 0;
-  const double r = lambda.cwiseAbs().maxCoeff(&k);
-  if (mode) *mode = es.eigenvectors().col(k).cwiseAbs().array();
+  const double r = es.values.cwiseAbs().maxCoeff(&k);
+  if (mode) *mode = es.vectors.col(k).cwiseAbs().array();
   return r;
 }
 

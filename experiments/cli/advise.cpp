@@ -20,7 +20,7 @@ namespace mpmstab::cli {
 
 namespace {
 
-constexpr const char* kHelp =
+constexpr const char* kAdviseHelp =
     R"(Usage: mpmstab advise --A <A/L> --cT <c T/L> --error <target> [options]
 
 Prints the cheapest checked setting (method, transfer, update order, cells, C = c dt/h) for a
@@ -243,7 +243,7 @@ bool confirm(std::ostream& out, const Answer& a, const Problem& p) {
 int cmd_advise(const std::vector<std::string_view>& argv) {
   const Args args(argv, options());
   if (args.flag("help")) {
-    std::cout << kHelp;
+    std::cout << kAdviseHelp;
     return 0;
   }
   if (!args.positional().empty())

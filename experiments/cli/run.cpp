@@ -17,7 +17,7 @@ namespace mpmstab::cli {
 
 namespace {
 
-constexpr const char* kHelp =
+constexpr const char* kRunHelp =
     R"(Usage: mpmstab run --method <basis> --E <x> --A <x> --dt <x> [options]
 
 Runs one case of a 1D scene to time T (default: the paper's bar, manufactured solution
@@ -222,7 +222,7 @@ std::string history_line(const HistoryRow& h) {
 int cmd_run(const std::vector<std::string_view>& argv) {
   const Args args(argv, run_options());
   if (args.flag("help")) {
-    std::cout << kHelp;
+    std::cout << kRunHelp;
     return 0;
   }
   if (!args.positional().empty()) {

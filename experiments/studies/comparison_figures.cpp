@@ -135,7 +135,7 @@ struct Line {
 };
 
 const std::string kNotStated = "not stated";
-const std::string kNone = "–";
+const std::string kNoValue = "–";
 
 std::string factor_verdict(double ours, double paper) {
   return within_agreement_factor(ours, paper) ? "agree"
@@ -161,13 +161,13 @@ std::string paper_text(const PaperObservable* p) {
 // A numeric observable: the paper's number (if stated) against ours (if recorded).
 Line numeric_line(const std::string& label, const PaperObservable* p, std::optional<double> ours,
                   const std::string& ours_text) {
-  Line l{label, paper_text(p), ours_text, kNone};
+  Line l{label, paper_text(p), ours_text, kNoValue};
   if (const auto pv = paper_number(p); pv && ours) l.verdict = factor_verdict(*ours, *pv);
   return l;
 }
 
 Line outcome_line(const PaperObservable* p, const ojson& row) {
-  Line l{"run", kNotStated, verdict(row), kNone};
+  Line l{"run", kNotStated, verdict(row), kNoValue};
   if (!p || !p->stated()) return l;
   const std::string ours = outcome(row);
   if (p->value == "survived") {
@@ -216,7 +216,7 @@ Line bound_min_line(const PaperObservable* p, const OurRun& run) {
 Line bound_min_step_line(const PaperObservable* p, const OurRun& run) {
   const Trace& t = run.trace;
   const ojson& row = *run.row;
-  Line l{"eq. (108) bound, smallest at", paper_text(p), "history not recorded", kNone};
+  Line l{"eq. (108) bound, smallest at", paper_text(p), "history not recorded", kNoValue};
   if (paper_number(p)) l.paper = "step " + l.paper;
   if (!run.history || !t.bound_min) return l;
   l.ours = "step " + steps_text(t.bound_min_step) + " (" +
@@ -245,7 +245,7 @@ std::optional<double> crossings_per_step(const ojson* row) {
 
 // "more than fig2": our crossings per step against those of the other figure's run.
 Line crossings_vs_line(const PaperObservable* p, const OurRun& run, const StudyInputs& inputs) {
-  Line l{"grid crossings per step", kNotStated, kNone, kNone};
+  Line l{"grid crossings per step", kNotStated, kNoValue, kNoValue};
   if (!p || !p->stated()) return l;
   std::istringstream words(p->value);
   std::string direction, than, other;
@@ -372,7 +372,7 @@ std::string reproduces(const PaperFigure& f, const ojson& r) {
   const auto paper_steps = paper_number(f.find("steps"));
   const std::string ours = outcome(r);
   const double steps = r.at("steps").get<double>();
-  if (!o || !o->stated()) return kNone;
+  if (!o || !o->stated()) return kNoValue;
   if (o->value == "survived") {
     return ours == "stable" ? "yes" : ours == "meaningless" ? "reaches T, meaningless" : "no";
   }
@@ -432,13 +432,13 @@ void variant_runs(std::ostream& md, const PaperFigure& f, const ojson& row,
     const auto e = number(r, "max_error_over_time");
     const auto A = number(r, "A");
     md << "| " << label << " | " << verdict(r) << " | " << r.at("steps").dump() << " | "
-       << (e && A && *A > 0 ? ratio(*e / *A) : kNone) << " | "
-       << (number(r, "crossings") ? r.at("crossings").dump() : kNone) << " | "
+       << (e && A && *A > 0 ? ratio(*e / *A) : kNoValue) << " | "
+       << (number(r, "crossings") ? r.at("crossings").dump() : kNoValue) << " | "
        << opt_sci(r.contains("dt_stable_min") ? r.at("dt_stable_min") : ojson()) << " | " << rep
        << " |\n";
     if (rep == "yes") yes.push_back(label);
     if (rep == "reaches T, meaningless") {
-      meaningless.push_back(label + " (" + (e && A ? ratio(*e / *A) : kNone) + " A)");
+      meaningless.push_back(label + " (" + (e && A ? ratio(*e / *A) : kNoValue) + " A)");
     }
     if (paper_steps && (!closest || distance(r) < distance(*closest))) closest = &r;
   }

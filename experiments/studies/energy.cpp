@@ -147,7 +147,7 @@ std::vector<ojson> drift_rows(const std::vector<ojson>& rows) {
   return out;
 }
 
-std::string order_text(const std::optional<double>& o) {
+std::string energy_order_text(const std::optional<double>& o) {
   return o ? fixed(*o, 2) : "–";
 }
 
@@ -164,8 +164,8 @@ std::string drift_table(const std::vector<Sweep>& sweeps) {
                     (in_regime(sw, *r) ? "" : " †"));
     }
     md << "| " << sw.method << " | " << (sw.variable == "C" ? "c dt/h" : "h") << " | "
-       << list_of(pts) << " | " << order_text(sweep_order(sw, "energy_error_max")) << " | "
-       << order_text(sweep_order(sw, "energy_drift")) << " |\n";
+       << list_of(pts) << " | " << energy_order_text(sweep_order(sw, "energy_error_max")) << " | "
+       << energy_order_text(sweep_order(sw, "energy_drift")) << " |\n";
   }
   return md.str();
 }

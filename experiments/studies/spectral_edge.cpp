@@ -29,11 +29,11 @@ using ojson = nlohmann::ordered_json;
 constexpr double kTinyA = 1e-5;
 // The agreement asked of the measured tiny-amplitude edge and the spectral limit.
 constexpr double kAgreement = 0.05;
-// A probe is bounded when its error over time ends at most kBound A.
-constexpr double kBound = 3.0;
+// A probe is bounded when its error over time ends at most kProbeBound A.
+constexpr double kProbeBound = 3.0;
 
 // The search: the default scan, bisected to a finer tolerance, a probe surviving only bounded.
-const EdgeOptions kSearch{.tolerance = 0.005, .bound = kBound};
+const EdgeOptions kSearch{.tolerance = 0.005, .bound = kProbeBound};
 
 bool tiny(const ojson& r) {
   return r["A"].get<double>() < kTinyA;
@@ -104,7 +104,7 @@ std::string amplitude_table(const std::vector<const ojson*>& rows) {
   md << "## The nonlinear edge as A grows\n\nEach cell: the measured edge over the spectral limit "
         "(the linear edge); `*` marks a case whose run at the edge is meaningless (its error "
         "reached A although it stayed below "
-     << shortest(kBound)
+     << shortest(kProbeBound)
      << " A); `–` no edge in the scan.\n\n"
         "**Reading** (computed from the rows).";
   for (const auto& s : schemes) {
@@ -166,7 +166,7 @@ std::string length_table(const std::vector<ojson>& rows, const LengthRuns& lengt
      << " times its wave passes (at most " << shortest(kLongPasses)
      << "): it holds to a length where that run stays bounded (reaches it with an error over time "
         "at most "
-     << shortest(kBound)
+     << shortest(kProbeBound)
      << " A), and is **transient** where it does not. The error over time at the edge is the "
         "search's own run.\n\n| scheme | A | edge (c dt / h) | run at the edge | error over "
         "time / A there | length |\n|---|---|---|---|---|---|\n";
@@ -178,7 +178,7 @@ std::string length_table(const std::vector<ojson>& rows, const LengthRuns& lengt
        << (has_number(r, "error_at_edge_over_A")
                ? significant(r["error_at_edge_over_A"].get<double>(), 2)
                : std::string("–"))
-       << " | " << lasting_text(lengths, r, "dt_edge", kBound) << " |\n";
+       << " | " << lasting_text(lengths, r, "dt_edge", kProbeBound) << " |\n";
   }
   return md.str();
 }
@@ -187,7 +187,7 @@ std::vector<Claim> spectral_edge_claims(const std::vector<ojson>& rows, const Le
   LengthTally t;
   int below = 0, nonlinear = 0;
   for (const auto& r : rows) {
-    t.add(lasting(lengths, r, "dt_edge", kBound));
+    t.add(lasting(lengths, r, "dt_edge", kProbeBound));
     if (tiny(r)) continue;
     if (const auto q = edge_ratio(r)) {
       ++nonlinear;
@@ -215,7 +215,7 @@ std::string spectral_edge_markdown(const std::vector<ojson>& rows, const LengthR
      << ": c T / L = " << shortest(std::sqrt(first["E"].get<double>()) * first["T"].get<double>())
      << " crossings) stays **bounded**: it reaches T without failing and its error over time "
         "stays at most "
-     << shortest(kBound)
+     << shortest(kProbeBound)
      << " A. A growing mode at a tiny amplitude does not fail within T; this criterion sees it. "
         "The search: "
      << edge_search_text(kSearch)
@@ -303,7 +303,7 @@ std::string spectral_edge_index(const Spec& spec, const std::vector<ojson>& rows
 const StudyRegistration kSpectralEdge{{
     .name = "spectral_edge",
     .summary = "per case, the largest fixed dt that stays bounded (error within " +
-               shortest(kBound) + " A), against the spectral limit (a search over dt)",
+               shortest(kProbeBound) + " A), against the spectral limit (a search over dt)",
     .work = CaseWork::edge_search,
     .edge = kSearch,
     .records = {.error_over_time = true},
@@ -321,7 +321,7 @@ const StudyRegistration kSpectralEdge{{
     .figure_subtitle =
         [](const Spec&, const ojson&) {
           return "edge: the largest fixed dt whose error over time stays within " +
-                 shortest(kBound) + " A to T; limit: the Bloch limit of the uniform layout";
+                 shortest(kProbeBound) + " A to T; limit: the Bloch limit of the uniform layout";
         },
 }};
 
