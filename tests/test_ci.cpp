@@ -60,7 +60,7 @@ std::vector<std::string> sh_block_after(const std::string& markdown, const std::
 }
 
 // The commands .ci/run runs, in order: each line without its comment; a line `step <command>`
-// (the script's timer) counts as <command>.
+// (the script's timer) counts as <command>, without what follows it to catch its output.
 std::vector<std::string> ci_commands(const std::string& script) {
   std::vector<std::string> out;
   std::istringstream in(script);
@@ -68,7 +68,14 @@ std::vector<std::string> ci_commands(const std::string& script) {
   while (std::getline(in, line)) {
     line = trim(line);
     if (line.empty() || line.front() == '#') continue;
-    if (line.rfind("step ", 0) == 0) line = trim(line.substr(5));
+    if (line.rfind("step ", 0) == 0) {
+      line = trim(line.substr(5));
+      // What the script does with the output (a redirection, a pipe into tee) is not the
+      // command.
+      for (const char* tail : {" 2>", " >", " |"})
+        if (const auto at = line.find(tail); at != std::string::npos)
+          line = trim(line.substr(0, at));
+    }
     out.push_back(line);
   }
   return out;
