@@ -17,7 +17,9 @@ DEB_PACKAGES := cmake g++ make libeigen3-dev nlohmann-json3-dev libfmt-dev libcl
 # particle-steps of the cases make check reruns (default 2e7).
 RESULTS     ?= results
 MPMSTAB     := $(BUILD_DIR)/mpmstab
-# The documents whose generated blocks the results write (mpmstab documents).
+# The documents whose generated blocks the results write (mpmstab documents): only from results/,
+# the committed results they describe; a tier run into another RESULTS folder leaves them as they
+# are, so that no run elsewhere writes into the source tree.
 DOCUMENTS   := README.md docs/design.md
 
 FUZZ_SECONDS ?= 15
@@ -115,8 +117,9 @@ fuzz: deps
 	  -dict=tests/fuzz/spec.dict -print_final_stats=1 $(FUZZ_DIR)/corpus_cache \
 	  tests/fuzz/corpus_cache tests/fuzz/seeds/cache
 
+# The documents describe the committed results/, whatever RESULTS names.
 check: build
-	$(MPMSTAB) documents --check $(DOCUMENTS) --results $(RESULTS)
+	$(MPMSTAB) documents --check $(DOCUMENTS) --results results
 	specs=$$($(MPMSTAB) list) && $(MPMSTAB) check $$specs --jobs $(JOBS) --results $(RESULTS)
 
 # The reason reaches the program through the environment, never pasted into the shell line: no
@@ -129,6 +132,7 @@ bless: build
 # The step benchmark (Google Benchmark, 5 repetitions, medians used), pinned to one core.
 bench: build
 	cmake --build $(BUILD_DIR) -j $(JOBS) --target mpmstab_bench
+	mkdir -p $(RESULTS)
 	taskset -c 0 $(BUILD_DIR)/tests/mpmstab_bench --benchmark_repetitions=5 \
 	  --benchmark_min_time=0.2 --benchmark_report_aggregates_only=true \
 	  --benchmark_out=$(RESULTS)/benchmark_step.json.tmp --benchmark_out_format=json
@@ -160,7 +164,11 @@ tier:
 	$(MAKE) --no-print-directory figures TIER=$(TIER) || exit $$?; \
 	all=$$($(MPMSTAB) list) || exit $$?; \
 	$(MPMSTAB) index $$all --out $(RESULTS) || exit $$?; \
-	$(MPMSTAB) documents $(DOCUMENTS) --results $(RESULTS) || exit $$?; \
+	if [ "$(RESULTS)" = results ]; then \
+	  $(MPMSTAB) documents $(DOCUMENTS) --results $(RESULTS) || exit $$?; \
+	else \
+	  echo "make: $(DOCUMENTS) describe results/ and are left as they are (RESULTS=$(RESULTS))"; \
+	fi; \
 	echo "make $(if $(filter paper,$(TIER)),reproduce,studies): $$(echo "$$(date +%s.%N) - $$start" | bc | xargs printf '%.1f') s wall; reports in $(RESULTS)/README.md"
 
 # The machine's timings (results/cache/timings.json, written by every sweep and reproduce, not
