@@ -543,18 +543,21 @@ TEST(HostileOptions, NonFiniteNumbersAndUnknownNamesAreRefusedByName) {
   };
   const std::string run = "run --method gimp --E 4 --A 0.01 --dt 1e-3 --T 0.1 --";
   refused("run --method foo --E 4 --A 0.01 --dt 1e-3", listed("method", names_of<Method>()));
-  refused(run + "bc foo", listed("bc", names_of<Boundary>()));
-  refused(run + "position-update foo", listed("position-update", names_of<PositionUpdate>()));
-  refused(run + "scene foo", listed("scene", names_of<SceneKind>()));
-  refused(run + "walls foo", listed("walls", names_of<Walls>()));
-  refused(run + "transfer foo", listed("transfer", names_of<Transfer>()));
-  refused(run + "update foo", listed("update", names_of<UpdateOrder>()));
-  refused(run + "small-mass foo", listed("small-mass", names_of<SmallMass>()));
-  refused(run + "body-force-time foo", listed("body-force-time", names_of<BodyForceTime>()));
-  refused(run + "start foo", listed("start", names_of<VelocityStart>()));
-  refused(run + "dt-stable-sigma foo", listed("dt-stable-sigma", names_of<StressScaling>()));
-  refused(run + "dt-stable-vnorm foo", listed("dt-stable-vnorm", names_of<VelocityNorm>()));
-  refused(run + "policy foo", listed("policy", names_of<TimeStepPolicy>()));
+  const std::vector<std::pair<std::string, std::vector<std::string_view>>> choices = {
+      {"bc", names_of<Boundary>()},
+      {"position-update", names_of<PositionUpdate>()},
+      {"scene", names_of<SceneKind>()},
+      {"walls", names_of<Walls>()},
+      {"transfer", names_of<Transfer>()},
+      {"update", names_of<UpdateOrder>()},
+      {"small-mass", names_of<SmallMass>()},
+      {"body-force-time", names_of<BodyForceTime>()},
+      {"start", names_of<VelocityStart>()},
+      {"dt-stable-sigma", names_of<StressScaling>()},
+      {"dt-stable-vnorm", names_of<VelocityNorm>()},
+      {"policy", names_of<TimeStepPolicy>()}};
+  for (const auto& [option, names] : choices)
+    refused(run + option + " foo", listed(option, names));
   refused("edge --method foo --E 4 --A 0.01", listed("method", names_of<Method>()));
   refused("spectral --method foo --E 4", listed("method", names_of<Method>()));
   // advise: an unknown method, transfer or update is named, with the names it could have been.
