@@ -100,60 +100,66 @@ std::vector<std::string_view> names(const Names<Enum, N>& table) {
   return out;
 }
 
+// Each enum's table, for names_of.
+constexpr const auto& table_of(Method) {
+  return kMethods;
+}
+constexpr const auto& table_of(Boundary) {
+  return kBoundaries;
+}
+constexpr const auto& table_of(PositionUpdate) {
+  return kPositionUpdates;
+}
+constexpr const auto& table_of(StressScaling) {
+  return kScalings;
+}
+constexpr const auto& table_of(VelocityNorm) {
+  return kNorms;
+}
+constexpr const auto& table_of(TimeStepPolicy) {
+  return kPolicies;
+}
+constexpr const auto& table_of(SceneKind) {
+  return kScenes;
+}
+constexpr const auto& table_of(Walls) {
+  return kWalls;
+}
+constexpr const auto& table_of(Transfer) {
+  return kTransfers;
+}
+constexpr const auto& table_of(UpdateOrder) {
+  return kUpdateOrders;
+}
+constexpr const auto& table_of(BodyForceTime) {
+  return kBodyForceTimes;
+}
+constexpr const auto& table_of(VelocityStart) {
+  return kVelocityStarts;
+}
+constexpr const auto& table_of(SmallMass) {
+  return kSmallMass;
+}
+
 }  // namespace
 
-template <>
-std::vector<std::string_view> names_of<Method>() {
-  return names(kMethods);
+template <class Enum>
+std::vector<std::string_view> names_of() {
+  return names(table_of(Enum{}));
 }
-template <>
-std::vector<std::string_view> names_of<Boundary>() {
-  return names(kBoundaries);
-}
-template <>
-std::vector<std::string_view> names_of<PositionUpdate>() {
-  return names(kPositionUpdates);
-}
-template <>
-std::vector<std::string_view> names_of<StressScaling>() {
-  return names(kScalings);
-}
-template <>
-std::vector<std::string_view> names_of<VelocityNorm>() {
-  return names(kNorms);
-}
-template <>
-std::vector<std::string_view> names_of<TimeStepPolicy>() {
-  return names(kPolicies);
-}
-template <>
-std::vector<std::string_view> names_of<SceneKind>() {
-  return names(kScenes);
-}
-template <>
-std::vector<std::string_view> names_of<Walls>() {
-  return names(kWalls);
-}
-template <>
-std::vector<std::string_view> names_of<Transfer>() {
-  return names(kTransfers);
-}
-template <>
-std::vector<std::string_view> names_of<UpdateOrder>() {
-  return names(kUpdateOrders);
-}
-template <>
-std::vector<std::string_view> names_of<BodyForceTime>() {
-  return names(kBodyForceTimes);
-}
-template <>
-std::vector<std::string_view> names_of<VelocityStart>() {
-  return names(kVelocityStarts);
-}
-template <>
-std::vector<std::string_view> names_of<SmallMass>() {
-  return names(kSmallMass);
-}
+template std::vector<std::string_view> names_of<Method>();
+template std::vector<std::string_view> names_of<Boundary>();
+template std::vector<std::string_view> names_of<PositionUpdate>();
+template std::vector<std::string_view> names_of<StressScaling>();
+template std::vector<std::string_view> names_of<VelocityNorm>();
+template std::vector<std::string_view> names_of<TimeStepPolicy>();
+template std::vector<std::string_view> names_of<SceneKind>();
+template std::vector<std::string_view> names_of<Walls>();
+template std::vector<std::string_view> names_of<Transfer>();
+template std::vector<std::string_view> names_of<UpdateOrder>();
+template std::vector<std::string_view> names_of<BodyForceTime>();
+template std::vector<std::string_view> names_of<VelocityStart>();
+template std::vector<std::string_view> names_of<SmallMass>();
 
 std::string choices_text(const std::vector<std::string_view>& names) {
   std::string text;

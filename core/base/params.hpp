@@ -293,34 +293,9 @@ std::string_view to_string(VelocityStart s);
 std::string_view to_string(SmallMass s);
 
 // Every name an enum's parse_* accepts, in the order of its table (messages list them).
+// Defined for each enum of this header (explicit instantiations in params.cpp).
 template <class Enum>
 std::vector<std::string_view> names_of();
-template <>
-std::vector<std::string_view> names_of<Method>();
-template <>
-std::vector<std::string_view> names_of<Boundary>();
-template <>
-std::vector<std::string_view> names_of<PositionUpdate>();
-template <>
-std::vector<std::string_view> names_of<StressScaling>();
-template <>
-std::vector<std::string_view> names_of<VelocityNorm>();
-template <>
-std::vector<std::string_view> names_of<TimeStepPolicy>();
-template <>
-std::vector<std::string_view> names_of<SceneKind>();
-template <>
-std::vector<std::string_view> names_of<Walls>();
-template <>
-std::vector<std::string_view> names_of<Transfer>();
-template <>
-std::vector<std::string_view> names_of<UpdateOrder>();
-template <>
-std::vector<std::string_view> names_of<BodyForceTime>();
-template <>
-std::vector<std::string_view> names_of<VelocityStart>();
-template <>
-std::vector<std::string_view> names_of<SmallMass>();
 // "a, b or c": names as a message lists the accepted values.
 std::string choices_text(const std::vector<std::string_view>& names);
 

@@ -65,7 +65,9 @@ fs::path temporary_beside(const fs::path& target) {
 // A fresh temporary beside `target`, opened for writing; sets `tmp` to its path.
 // The folder a report set is published into is made when it is locked for the publication (the
 // commands make their --out folder once every argument and input was checked); no other write
-// makes a folder (a --history file in a folder that does not exist is refused).
+// makes a folder (a --history file in a folder that does not exist is refused), but for the
+// machine's timings, whose writer (store_timing, report.cpp) makes <out>/cache when a fresh
+// clone's `make` records its build time before any sweep made it.
 void make_folder_of(const fs::path& target) {
   const fs::path parent = target.parent_path();
   if (parent.empty()) return;
