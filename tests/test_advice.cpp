@@ -339,3 +339,22 @@ TEST(Advice, TheCommittedAnswerMeetsItsTargetOnTheProblemAndFourTimesItsLength) 
 
 }  // namespace
 }  // namespace mpmstab
+
+// The "run it with" line is a command that runs the setting: a transfer with a parameter
+// ("fmpm(2)" in the data) is given as the transfer and its own option (--fmpm-order 2), and the
+// line, typed as printed, is accepted by `mpmstab run`.
+TEST(Advice, TheRunItWithLineOfATransferWithAParameterRuns) {
+  const std::string data = std::string(MPMSTAB_SOURCE_DIR) + "/results/advice.json";
+  const auto answer = mpmstab::test_support::run_mpmstab(
+      "advise --A 0.01 --cT 2 --error 0.1 --methods gimp/fmpm(2) --data " + data);
+  ASSERT_EQ(answer.status, 0) << answer.output;
+  const std::string marker = "run it with             mpmstab ";
+  const auto at = answer.output.find(marker);
+  ASSERT_NE(at, std::string::npos) << answer.output;
+  const auto start = at + marker.size();
+  const std::string command = answer.output.substr(start, answer.output.find('\n', start) - start);
+  EXPECT_NE(command.find("--transfer fmpm --fmpm-order 2"), std::string::npos) << command;
+  EXPECT_EQ(command.find('('), std::string::npos) << command;
+  const auto run = mpmstab::test_support::run_mpmstab(command);
+  EXPECT_EQ(run.status, 0) << command << "\n" << run.output;
+}

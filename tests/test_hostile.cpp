@@ -9,6 +9,9 @@
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <tuple>
+
+#include <nlohmann/json.hpp>
 
 #include "base/params.hpp"
 #include "support.hpp"
@@ -607,5 +610,36 @@ TEST(BuildTime, RecordsInAFreshResultsFolderAndSaysPlainlyWhenItCannot) {
   std::string line;
   std::getline(in, line);
   EXPECT_EQ(line, "not a folder");
+  fs::remove_all(dir);
+}
+
+// advise --data: a setting whose method, transfer or update the solver does not know is refused
+// when the file is read (exit 2, the key named), never run.
+TEST(HostileOptions, AdviceDataWithUnknownNamesIsRefused) {
+  using mpmstab::test_support::run_mpmstab;
+  const fs::path dir =
+      fs::temp_directory_path() / ("mpmstab_advice_data_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ifstream in(fs::path(MPMSTAB_SOURCE_DIR) / "results" / "advice.json");
+  const auto good = nlohmann::ordered_json::parse(in);
+  ASSERT_FALSE(good["study"]["settings"].empty());
+  const std::vector<std::tuple<std::string, std::string, std::string>> bad = {
+      {"method", "foo", "setting.method: unknown method 'foo'"},
+      {"transfer", "foo", "setting.transfer: unknown transfer 'foo'"},
+      {"transfer", "fmpm(2", "setting.transfer: unknown transfer 'fmpm(2'"},
+      {"transfer", "fmpm(two)", "has no number in parentheses"},
+      {"transfer", "fmpm()", "has no number in parentheses"},
+      {"update", "foo", "setting.update: unknown update 'foo'"}};
+  for (const auto& [key, value, named] : bad) {
+    auto doc = good;
+    doc["study"]["settings"][0][key] = value;
+    const fs::path file = dir / "advice.json";
+    std::ofstream(file) << doc.dump(1);
+    const auto out = run_mpmstab("advise --A 0.015 --cT 8 --error 0.01 --data " + file.string());
+    EXPECT_EQ(out.status, 2) << key << " = " << value << "\n" << out.output;
+    EXPECT_NE(out.output.find(named), std::string::npos) << out.output;
+    EXPECT_EQ(out.output.find("internal error"), std::string::npos) << out.output;
+  }
   fs::remove_all(dir);
 }

@@ -90,12 +90,6 @@ void check_method_filter(const std::string& item) {
   if (!parse_method(parts[0]))
     throw UsageError("--methods: unknown method '" + parts[0] + "'" + form + "; the bases are " +
                      bases);
-  const auto transfer_name = [](const std::string& t) {
-    const auto open = t.find('(');
-    if (open == std::string::npos) return t;
-    if (t.back() != ')') return std::string();
-    return t.substr(0, open);
-  };
   if (parts.size() == 2 && !parse_transfer(transfer_name(parts[1])) &&
       !parse_update_order(parts[1]))
     throw UsageError("--methods: unknown transfer or update '" + parts[1] + "'" + form +
@@ -161,12 +155,9 @@ std::vector<CheckedSetting> load(const std::filesystem::path& file) {
 RunParams run_of(const CheckedSetting& s, const Problem& p) {
   RunParams r;
   r.method = *parse_method(s.method);
-  std::string transfer = s.transfer;
+  const std::string transfer = transfer_name(s.transfer);
   std::optional<double> order;
-  if (const auto open = transfer.find('('); open != std::string::npos) {
-    order = std::stod(transfer.substr(open + 1));
-    transfer = transfer.substr(0, open);
-  }
+  if (transfer != s.transfer) order = std::stod(s.transfer.substr(transfer.size() + 1));
   r.transfer = *parse_transfer(transfer);
   if (order && r.transfer == Transfer::fmpm) r.fmpm_order = int(*order);
   if (order && r.transfer == Transfer::xpic) r.xpic_order = int(*order);

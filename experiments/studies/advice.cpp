@@ -1,6 +1,7 @@
 #include "advice.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <map>
 #include <sstream>
@@ -376,12 +377,39 @@ nlohmann::ordered_json to_json(const CheckedSetting& s) {
           {"regions", regions}};
 }
 
+std::string transfer_name(const std::string& transfer) {
+  const auto open = transfer.find('(');
+  if (open == std::string::npos) return transfer;
+  if (transfer.back() != ')') return std::string();
+  return transfer.substr(0, open);
+}
+
 CheckedSetting checked_setting_from_json(const nlohmann::ordered_json& j) {
   const std::string where = "setting";
   CheckedSetting s;
   s.method = string_at(j, "method", where);
   s.transfer = string_at(j, "transfer", where);
   s.update = string_at(j, "update", where);
+  if (!parse_method(s.method))
+    throw InputError(where + ".method: unknown method '" + s.method + "' (expected " +
+                     choices_text(names_of<Method>()) + ")");
+  const std::string transfer = transfer_name(s.transfer);
+  if (!parse_transfer(transfer))
+    throw InputError(where + ".transfer: unknown transfer '" + s.transfer + "' (expected " +
+                     choices_text(names_of<Transfer>()) + ", with its parameter in parentheses)");
+  if (transfer != s.transfer) {
+    const std::string parameter =
+        s.transfer.substr(transfer.size() + 1, s.transfer.size() - transfer.size() - 2);
+    double value = 0;
+    const auto [end, ec] =
+        std::from_chars(parameter.data(), parameter.data() + parameter.size(), value);
+    if (parameter.empty() || ec != std::errc() || end != parameter.data() + parameter.size() ||
+        !std::isfinite(value))
+      throw InputError(where + ".transfer: '" + s.transfer + "' has no number in parentheses");
+  }
+  if (!parse_update_order(s.update))
+    throw InputError(where + ".update: unknown update '" + s.update + "' (expected " +
+                     choices_text(names_of<UpdateOrder>()) + ")");
   s.cells = int_at(j, "cells", where);
   s.ppc = int_at(j, "ppc", where);
   s.courant = number_at(j, "courant", where);
@@ -464,6 +492,24 @@ nlohmann::ordered_json answer_json(const Answer& a, const Problem& p) {
           {"region", region_json(*a.region)}};
 }
 
+namespace {
+
+// The options of `mpmstab run` that give a setting's transfer: its parameter, where it has one
+// ("fmpm(2)"), is the transfer's own option (--fmpm-order 2), as a run of the setting takes it.
+std::string transfer_options(const std::string& transfer) {
+  const std::string name = transfer_name(transfer);
+  std::string text = "--transfer " + name;
+  if (name == transfer) return text;
+  const std::string parameter = transfer.substr(name.size() + 1, transfer.size() - name.size() - 2);
+  const Transfer t = *parse_transfer(name);
+  if (t == Transfer::fmpm) text += " --fmpm-order " + parameter;
+  if (t == Transfer::xpic) text += " --xpic-order " + parameter;
+  if (t == Transfer::blend) text += " --flip-fraction " + parameter;
+  return text;
+}
+
+}  // namespace
+
 std::string answer_text(const Answer& a, const Problem& p) {
   std::ostringstream out;
   const CheckedSetting& s = *a.setting;
@@ -479,7 +525,7 @@ std::string answer_text(const Answer& a, const Problem& p) {
                                    ratio(*s.courant_spectral / s.courant) + "x the setting's C)"
                              : std::string("not measured"))
       << "\n  region                  " << region_text(r) << "\n  run it with             "
-      << "mpmstab run --method " << s.method << " --transfer " << s.transfer << " --update "
+      << "mpmstab run --method " << s.method << " " << transfer_options(s.transfer) << " --update "
       << s.update << " --cells " << s.cells << " --policy cfl --cfl-factor " << shortest(s.courant)
       << " --E " << value_text(kAdviceE) << " --A " << value_text(p.A) << " --T "
       << value_text(p.cT) << (p.scene != "bar" ? " --scene " + p.scene : std::string())

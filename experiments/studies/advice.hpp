@@ -156,6 +156,11 @@ std::string region_text(const Region& r, const RegionRule& rule = kRegionRule);
 
 nlohmann::ordered_json to_json(const CheckedSetting& s);
 // Throws InputError naming the key for a malformed setting (results/advice.json is an input).
+// A transfer as a setting names it, with its parameter where it has one ("fmpm(2)",
+// "blend(0.99)"): the name before the parenthesis, or "" when the parenthesis is not closed at
+// the end.
+std::string transfer_name(const std::string& transfer);
+// Refuses (InputError) a method, transfer or update the solver does not know.
 CheckedSetting checked_setting_from_json(const nlohmann::ordered_json& j);
 nlohmann::ordered_json answer_json(const Answer& a, const Problem& p);
 // The answer as `mpmstab advise` prints it (and README.md's generated example): the setting, its
