@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "advice.hpp"
+#include "advice_verify.hpp"
 #include "args.hpp"
 #include "base/params.hpp"
 #include "commands.hpp"
@@ -23,42 +24,55 @@ namespace {
 constexpr const char* kAdviseHelp =
     R"(Usage: mpmstab advise --A <A/L> --cT <c T/L> --error <target> [options]
 
-Prints the cheapest checked setting (method, transfer, update order, cells, C = c dt/h) for a
-problem of the bar in dimensionless form: amplitude A/L, run length c T/L (wave passes), and a
-target error over time (the largest displacement error over steps and particles) as a fraction
-of A. It answers from the settings of the advice study (results/advice.json; no runs) by the
-rule of results/advice.md and docs/design.md, "Advice: regions and corners": the setting's
-checked region must hold A/L and 4 x c T/L, the scene and the boundary, and its error (the
-largest over its corners) must be at most the target / 2. It prints the setting's predicted
-error / A, its cost in particle-steps on the problem, the region and the margins to the
-spectral limit and to the target. A problem outside every checked region, or a target no
-region reaches, is refused with exit status 2 and a message naming what is outside.
-The settings' Courant numbers are a fixed grid and, for each method and grid the balance study
-measures, the C at which its time and space errors balance (results/advice.md).
+Answers a problem of the bar (or the neo-Hookean scene) in dimensionless form, amplitude A/L,
+run length c T/L (wave passes) and a target error over time (the largest displacement error over
+steps and particles) as a fraction of A, with a setting (method, transfer, update order, cells,
+C = c dt/h, start) verified on that problem (docs/design.md, "Advice: verified on the problem").
+The candidates are the advice study's settings (results/advice.json) and their methods and
+Courant numbers on finer grids, to 800 cells, each with the exact or the half-step start. Those
+whose prediction (the study's runs that match the problem's scene, boundary and layout) meets
+the target are tried cheapest first; each is run on the problem, to 4 x c T and on twice the
+cells at the same C. The answer is the first whose every verifying run ends stable within the
+target; it prints each verifying run, each candidate rejected and why, and the answer's
+survival and accuracy edges in C measured on the problem beside its small-amplitude (Bloch)
+limit. A problem outside the domain, too short for a verdict, that no candidate meets, or whose
+next candidate would pass the budget is refused with exit status 2, naming the bound.
 
 Required:
-  --A <x>            amplitude over the bar's length, > 0
-  --cT <x>           run length c T / L, > 0
-  --error <x>        target error over time / A, in (0, 1]
+  --A <x>            amplitude over the bar's length, 1e-4 to 0.05
+  --cT <x>           run length c T / L, > 0 and at most 1000
+  --error <x>        target error over time / A, 1e-3 to 1
 
 Options:
   --scene bar|steffen        the paper's bar (default) or the neo-Hookean scene
   --bc dirichlet|periodic    boundaries (default dirichlet)
+  --jitter <j>               particles moved by up to j / 2 of their spacing, 0 to 0.5
+                             (default 0: the uniform layout)
   --methods <list>           comma-separated: a basis (gimp), a method (gimp/apic,
                              gimp/musl) or basis/transfer/update; default every method
+  --budget <seconds>         bound on the verifying runs and the margins' probes
+                             (default 60); a candidate whose runs would pass it is not run
+  --no-margins               do not measure the survival and accuracy edges
+  --no-verify                the prediction's cheapest candidate, run on nothing: said
+                             plainly to be unverified
   --data <file>              the advice data (default results/advice.json)
-  --json                     one JSON object: method, transfer, update, cells, courant,
-                             predicted_error_over_A, particle_steps, region, margins
-  --confirm                  run the setting on the problem, at 4 x its c T, on 8 x its
-                             cells and, where its region holds them, with periodic
-                             boundaries, on the neo-Hookean scene and on a jittered layout
-                             (each at 4 x c T), and say whether each meets the target;
-                             exit status 1 if one does not
+  --json                     one JSON object with the same content
 )";
 
 std::vector<OptionSpec> options() {
-  return {{"A"},       {"cT"},   {"error"},       {"scene"},          {"bc"},
-          {"methods"}, {"data"}, {"json", false}, {"confirm", false}, {"help", false}};
+  return {{"A"},
+          {"cT"},
+          {"error"},
+          {"scene"},
+          {"bc"},
+          {"jitter"},
+          {"methods"},
+          {"budget"},
+          {"data"},
+          {"json", false},
+          {"no-verify", false},
+          {"no-margins", false},
+          {"help", false}};
 }
 
 double positive(const Args& args, const char* name) {
@@ -104,8 +118,9 @@ void check_method_filter(const std::string& item) {
   }
 }
 
-Problem problem_from(const Args& args) {
-  Problem p;
+VerifyProblem problem_from(const Args& args) {
+  VerifyProblem vp;
+  Problem& p = vp.problem;
   p.A = positive(args, "A");
   p.cT = positive(args, "cT");
   p.target = positive(args, "error");
@@ -131,7 +146,12 @@ Problem problem_from(const Args& args) {
       p.methods.push_back(item);
     }
   }
-  return p;
+  if (auto j = args.value("jitter")) {
+    vp.jitter = parse_double(*j, "jitter");
+    if (!(vp.jitter >= 0)) throw UsageError("--jitter: must be >= 0, got " + std::string(*j));
+  }
+  if (const std::string outside = outside_domain(vp); !outside.empty()) throw UsageError(outside);
+  return vp;
 }
 
 std::vector<CheckedSetting> load(const std::filesystem::path& file) {
@@ -151,84 +171,6 @@ std::vector<CheckedSetting> load(const std::filesystem::path& file) {
   return out;
 }
 
-// The setting as the parameters of a run of the problem (E = 1: c = 1, T = c T).
-RunParams run_of(const CheckedSetting& s, const Problem& p) {
-  RunParams r;
-  r.method = *parse_method(s.method);
-  const std::string transfer = transfer_name(s.transfer);
-  std::optional<double> order;
-  if (transfer != s.transfer) order = std::stod(s.transfer.substr(transfer.size() + 1));
-  r.transfer = *parse_transfer(transfer);
-  if (order && r.transfer == Transfer::fmpm) r.fmpm_order = int(*order);
-  if (order && r.transfer == Transfer::xpic) r.xpic_order = int(*order);
-  if (order && r.transfer == Transfer::blend) r.flip_fraction = *order;
-  r.update = *parse_update_order(s.update);
-  r.E = kAdviceE;
-  r.A = p.A;
-  r.T = p.cT;
-  r.cells = s.cells;
-  r.ppc = s.ppc;
-  r.scene = *parse_scene(p.scene);
-  r.bc = *parse_boundary(p.bc);
-  r.stepping.policy = TimeStepPolicy::cfl;
-  r.stepping.cfl_factor = s.courant;
-  r.observe = Observe{};
-  r.observe.dt_stable = false;
-  r.observe.crossings = false;
-  return r;
-}
-
-// The runs --confirm makes, each named.
-std::vector<std::pair<std::string, RunParams>> confirming(const CheckedSetting& s,
-                                                          const Region& region, const Problem& p) {
-  const RegionRule& rule = kRegionRule;
-  const RunParams base = run_of(s, p);
-  std::vector<std::pair<std::string, RunParams>> out{{"the problem", base}};
-  RunParams longer = base;
-  longer.T = base.T * rule.length_factor;
-  out.emplace_back(shortest(rule.length_factor) + " x c T", longer);
-  RunParams finer = base;
-  finer.cells = base.cells * rule.refine;
-  out.emplace_back(std::to_string(rule.refine) + " x the cells", finer);
-  if (region.periodic && base.bc != Boundary::periodic) {
-    RunParams q = longer;
-    q.bc = Boundary::periodic;
-    out.emplace_back("periodic, " + shortest(rule.length_factor) + " x c T", q);
-  }
-  if (region.other_scene && base.scene != SceneKind::steffen) {
-    RunParams q = longer;
-    q.scene = SceneKind::steffen;
-    out.emplace_back("neo-Hookean, " + shortest(rule.length_factor) + " x c T", q);
-  }
-  if (region.jittered) {
-    RunParams q = longer;
-    q.layout.jitter = rule.jitter;
-    out.emplace_back(
-        "jittered " + shortest(rule.jitter) + ", " + shortest(rule.length_factor) + " x c T", q);
-  }
-  return out;
-}
-
-// Runs the confirming runs; true when every one meets the target.
-bool confirm(std::ostream& out, const Answer& a, const Problem& p) {
-  bool all = true;
-  out << "confirming runs (each must end stable with an error over time at most "
-      << value_text(p.target) << " A):\n";
-  for (const auto& [name, params] : confirming(*a.setting, *a.region, p)) {
-    if (const auto issues = validate(params); !issues.empty())
-      throw UsageError("--confirm: the run '" + name + "' is not valid: " + issues.front().key +
-                       ": " + issues.front().message);
-    const RunResult r = run(params);
-    const bool stable = r.outcome && *r.outcome == Outcome::stable;
-    const double e = r.max_error_over_time.value_or(NAN) / params.A;
-    const bool pass = stable && e <= p.target;
-    all = all && pass;
-    out << "  " << name << ": " << (r.outcome ? to_string(*r.outcome) : "no verdict")
-        << ", error over time " << sci(e) << " A: " << (pass ? "passes" : "FAILS") << "\n";
-  }
-  return all;
-}
-
 }  // namespace
 
 int cmd_advise(const std::vector<std::string_view>& argv) {
@@ -239,19 +181,43 @@ int cmd_advise(const std::vector<std::string_view>& argv) {
   }
   if (!args.positional().empty())
     throw UsageError("unexpected argument '" + std::string(args.positional().front()) + "'");
-  const Problem p = problem_from(args);
+  // 1. The problem, checked against the domain.
+  const VerifyProblem vp = problem_from(args);
+  double budget = kAdviceDomain.budget_seconds;
+  if (args.value("budget")) budget = positive(args, "budget");
+  if (args.flag("no-verify") && (args.value("budget") || args.flag("no-margins")))
+    throw UsageError("--no-verify runs nothing: --budget and --no-margins do not apply");
+  // 2. The settings of the advice study.
   const std::filesystem::path data = args.value("data")
                                          ? std::filesystem::path(std::string(*args.value("data")))
                                          : std::filesystem::path("results") / "advice.json";
   const std::vector<CheckedSetting> settings = load(data);
-  const Answer a = advise(settings, p);
-  if (!a.setting) throw UsageError(a.refusal);
-  if (args.flag("json")) {
-    std::cout << answer_json(a, p).dump(2) << "\n";
-  } else {
-    std::cout << answer_text(a, p);
+  const bool json = args.flag("json");
+  // 3. The lookup alone, where asked for.
+  if (args.flag("no-verify")) {
+    const std::vector<Candidate> list = candidates(settings, vp);
+    if (list.empty() || !list.front().predicted_error_over_A ||
+        *list.front().predicted_error_over_A > vp.problem.target)
+      throw UsageError("--error: no candidate is predicted to meet " +
+                       value_text(vp.problem.target) + " A (or none gets a verdict)");
+    if (json)
+      std::cout << unverified_json(list.front(), vp).dump(2) << "\n";
+    else
+      std::cout << unverified_text(list.front(), vp);
+    return 0;
   }
-  if (args.flag("confirm") && !confirm(args.flag("json") ? std::cerr : std::cout, a, p)) return 1;
+  // 4. The search: candidates verified on the problem, cheapest first.
+  const Verified v = verified_advice(settings, vp, budget, !args.flag("no-margins"),
+                                     [](const RunParams& params) { return run(params); });
+  if (json) {
+    std::cout << verified_json(v, vp).dump(2) << "\n";
+  } else {
+    std::cout << verified_text(v, vp);
+  }
+  if (!v.answer) {
+    std::cerr << "mpmstab advise: " << v.refusal << "\n";
+    return 2;
+  }
   return 0;
 }
 

@@ -148,18 +148,6 @@ std::string label_of(const CheckedSetting& s) {
   return l;
 }
 
-// A method filter's entry names a basis ("gimp"), a method ("gimp/apic", "gimp/musl") or a
-// method with every part ("gimp/flip/usl").
-bool selected(const CheckedSetting& s, const std::vector<std::string>& methods) {
-  if (methods.empty()) return true;
-  for (const auto& m : methods) {
-    if (m == s.method || m == label_of(s) || m == s.method + "/" + s.transfer + "/" + s.update ||
-        m == s.method + "/" + s.transfer)
-      return true;
-  }
-  return false;
-}
-
 bool contains(const Region& r, const Problem& p, const RegionRule& rule) {
   return p.A >= r.A_min && p.A <= r.A_max && rule.length_factor * p.cT <= r.length &&
          (p.scene == "bar" || (p.scene == "steffen" && r.other_scene)) &&
@@ -172,7 +160,7 @@ std::string outside(const std::vector<CheckedSetting>& settings, const Problem& 
   double A_min = 0, A_max = 0, longest = 0;
   bool any = false, scene = false, bc = false;
   for (const auto& s : settings) {
-    if (!selected(s, p.methods)) continue;
+    if (!advice_selected(s, p.methods)) continue;
     for (const auto& r : s.regions) {
       A_min = any ? std::min(A_min, r.A_min) : r.A_min;
       A_max = any ? std::max(A_max, r.A_max) : r.A_max;
@@ -206,13 +194,23 @@ std::string outside(const std::vector<CheckedSetting>& settings, const Problem& 
 
 }  // namespace
 
+bool advice_selected(const CheckedSetting& s, const std::vector<std::string>& methods) {
+  if (methods.empty()) return true;
+  for (const auto& m : methods) {
+    if (m == s.method || m == label_of(s) || m == s.method + "/" + s.transfer + "/" + s.update ||
+        m == s.method + "/" + s.transfer)
+      return true;
+  }
+  return false;
+}
+
 Answer advise(const std::vector<CheckedSetting>& settings, const Problem& p,
               const RegionRule& rule) {
   Answer best;
   const CheckedSetting* closest = nullptr;  // the most accurate region containing the problem
   const Region* closest_region = nullptr;
   for (const auto& s : settings) {
-    if (!selected(s, p.methods)) continue;
+    if (!advice_selected(s, p.methods)) continue;
     for (const auto& r : s.regions) {
       if (!contains(r, p, rule)) continue;
       if (!closest_region || r.error_over_A < closest_region->error_over_A) {
@@ -492,8 +490,6 @@ nlohmann::ordered_json answer_json(const Answer& a, const Problem& p) {
           {"region", region_json(*a.region)}};
 }
 
-namespace {
-
 // The options of `mpmstab run` that give a setting's transfer: its parameter, where it has one
 // ("fmpm(2)"), is the transfer's own option (--fmpm-order 2), as a run of the setting takes it.
 std::string transfer_options(const std::string& transfer) {
@@ -507,8 +503,6 @@ std::string transfer_options(const std::string& transfer) {
   if (t == Transfer::blend) text += " --flip-fraction " + parameter;
   return text;
 }
-
-}  // namespace
 
 std::string answer_text(const Answer& a, const Problem& p) {
   std::ostringstream out;

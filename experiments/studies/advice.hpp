@@ -148,6 +148,13 @@ Answer advise(const std::vector<CheckedSetting>& settings, const Problem& p,
 // particles x steps of the setting on a problem of length cT: ppc cells x ceil(cT cells / C).
 double problem_particle_steps(const CheckedSetting& s, double cT);
 
+// A method filter's entry names a basis ("gimp"), a method ("gimp/apic", "gimp/musl") or a
+// method with every part ("gimp/flip/usl"); an empty filter selects every setting.
+bool advice_selected(const CheckedSetting& s, const std::vector<std::string>& methods);
+// The options of `mpmstab run` that give a setting's transfer: its parameter, where it has one
+// ("fmpm(2)"), is the transfer's own option (--fmpm-order 2), as a run of the setting takes it.
+std::string transfer_options(const std::string& transfer);
+
 // The setting's name: "gimp/apic usl, 50 cells, C = 0.25".
 std::string setting_name(const CheckedSetting& s);
 // The region in words: "A/L 1e-3 to 0.05, c T/L to 100; walls and periodic; bar and
