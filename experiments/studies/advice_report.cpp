@@ -1,13 +1,14 @@
 // The advice study: settings a user can choose (a method, a grid, a Courant number), each run on
-// a base problem and, where that run is accurate, at the corners of its region (advice.hpp).
-// advice.md is the home of every recommendation: the cheapest checked setting for a set of
-// problems, answered by the same advise() as `mpmstab advise`, and every setting with its
-// regions and the corners that shrank them. advice.json stores the settings for the command.
+// a base problem and, where that run is accurate, at other amplitudes, lengths, boundaries,
+// scenes, layouts and a finer grid (advice.hpp). advice.json stores the settings and their runs,
+// from which `mpmstab advise` predicts before it verifies on the problem (advice_verify.hpp);
+// advice.md lists every setting with its runs and where they passed, and answers no problem.
 #include <algorithm>
 #include <map>
 #include <sstream>
 
 #include "advice.hpp"
+#include "advice_verify.hpp"
 #include "base/accuracy.hpp"
 #include "claims.hpp"
 #include "csv.hpp"
@@ -149,20 +150,6 @@ std::vector<CheckedSetting> checked_settings(const ReportContext& c,
   return out;
 }
 
-// The problems advice.md answers: every amplitude of the rule, each length the rule's regions
-// answer (a region checked to c T answers problems to c T / length_factor), both scenes, and
-// targets of a tenth, a hundredth and a thousandth of A.
-std::vector<Problem> showcase_problems() {
-  std::vector<Problem> out;
-  for (const std::string scene : {"bar", "steffen"})
-    for (const double A : kRegionRule.amplitudes)
-      for (const double length : kRegionRule.lengths)
-        for (const double target : {1e-1, 1e-2, 1e-3})
-          out.push_back(Problem{
-              .A = A, .cT = length / kRegionRule.length_factor, .target = target, .scene = scene});
-  return out;
-}
-
 // ---------------------------------------------------------------------------------------------
 // Claims
 
@@ -268,59 +255,40 @@ std::string corner_text(const CornerRun& c) {
 std::string rule_text() {
   const RegionRule& r = kRegionRule;
   std::ostringstream md;
-  md << "**The rule** (docs/design.md, \"Advice: regions and corners\"). A setting is a method, a "
-        "grid and a Courant number C = c dt/h. Its base run is the bar with walls at A/L = "
+  md << "**What is run** (docs/design.md, \"Advice: verified on the problem\"). A setting is a "
+        "method, a grid and a Courant number C = c dt/h. Its base run is the bar with walls at "
+        "A/L = "
      << value_text(r.amplitudes[1]) << " to c T/L = " << value_text(r.lengths.front())
      << " (E only rescales time). Where the base run is accurate (error over time below "
      << shortest(kAccurateFraction) << " A) and C is at most the spectral limit / "
      << shortest(r.limit_margin)
-     << ", the setting is run at the corners of its region: on the bar with walls at A/L = "
-     << value_text(r.amplitudes[0]) << ", " << value_text(r.amplitudes[1]) << " and "
-     << value_text(r.amplitudes[2]) << "; at A/L = " << value_text(r.amplitudes[2])
+     << ", the setting is run again: on the bar with walls at A/L = " << value_text(r.amplitudes[0])
+     << ", " << value_text(r.amplitudes[1]) << " and " << value_text(r.amplitudes[2])
+     << "; at A/L = " << value_text(r.amplitudes[2])
      << " with periodic boundaries, on the neo-Hookean scene and on a layout jittered by "
      << shortest(r.jitter)
      << " of the particle spacing; each to c T/L = " << value_text(r.lengths.front()) << " and "
      << value_text(r.lengths.back()) << "; and on " << r.refine
      << " times the cells at the same C, A/L = " << value_text(r.amplitudes[1])
      << ", to c T/L = " << value_text(r.lengths.front())
-     << ". A corner passes when its run ends stable and accurate; a failing corner shrinks the "
-        "region to exclude it (the amplitude range stops below it; periodic boundaries, the other "
-        "scene and the jittered layout are in only where their corner and the largest amplitude "
-        "pass; finer grids only where the refined corner passes). A region's error is the "
-        "largest error over time / A of its corners. A problem (A/L, c T/L, a target error / A) is "
-        "answered by the cheapest setting, in particle-steps on the problem, with a region that "
-        "holds A/L, holds "
-     << shortest(r.length_factor) << " x its c T/L, and has an error at most the target / "
-     << shortest(r.error_margin) << ".\n\n";
+     << ".\n\n**What these runs are for.** `mpmstab advise` predicts a candidate's error on a "
+        "problem from the runs below that match the problem's scene, boundary and layout, tries "
+        "the candidates predicted to meet its target cheapest first, and answers only with one "
+        "it has run on that problem (to c T, to "
+     << shortest(kAdviceDomain.length_factor) << " x c T and on " << kAdviceDomain.grid_factor
+     << " times the cells). This report "
+        "answers no problem. The box beside each setting (the amplitudes, lengths, boundaries, "
+        "scene, layout and grids whose runs ended stable and accurate, its error the largest of "
+        "theirs) describes where its runs passed; the error between those runs was not measured "
+        "here, and no answer is given from the box.\n\n";
   return md.str();
-}
-
-std::string answers_table(const std::vector<CheckedSetting>& settings) {
-  std::ostringstream md;
-  md << "## The cheapest checked setting for a problem\n\n"
-     << "Each row is `mpmstab advise --A <A/L> --cT <c T/L> --error <target> --scene <scene>`, "
-        "answered from these settings by the rule above.\n\n"
-     << "| scene | A/L | c T/L | target error / A | setting | region's error / A | "
-        "particle-steps | region |\n|---|---|---|---|---|---|---|---|\n";
-  for (const Problem& p : showcase_problems()) {
-    const Answer a = advise(settings, p);
-    md << "| " << (p.scene == "bar" ? "bar" : "neo-Hookean") << " | " << value_text(p.A) << " | "
-       << value_text(p.cT) << " | " << value_text(p.target) << " | ";
-    if (!a.setting) {
-      md << "none: " << a.refusal << " | – | – | – |\n";
-      continue;
-    }
-    md << setting_name(*a.setting) << " | " << sci(a.region->error_over_A) << " | "
-       << sci(a.particle_steps) << " | " << region_text(*a.region) << " |\n";
-  }
-  return md.str() + "\n";
 }
 
 std::string settings_table(const std::vector<CheckedSetting>& settings) {
   std::ostringstream md;
-  md << "## Every setting, its corners and its regions\n\n"
-     << "| method | cells | C | spectral limit / C | base error / A | region (error / A) | "
-        "excluded by |\n|---|---|---|---|---|---|---|\n";
+  md << "## Every setting, its runs and where they passed\n\n"
+     << "| method | cells | C | spectral limit / C | base error / A | runs passed in (largest "
+        "error / A) | failed runs |\n|---|---|---|---|---|---|---|\n";
   for (const auto& s : settings) {
     md << "| " << s.method_text() << " | " << s.cells << " | " << shortest(s.courant)
        << (s.courant_from == "grid" ? "" : " (balance)") << " | "
@@ -360,8 +328,9 @@ std::string balance_table(const std::vector<BalancedSetting>& balanced) {
         "measures on a grid this study offers is also checked at the balancing C: the smallest "
         "C over the balance study's scenes at which the error over time less its small-step "
         "plateau equals the plateau, rounded down to two significant digits. The balance is "
-        "measured at its own amplitude and length (balance.md); here that C is checked at the "
-        "corners of this study's regions like any other.\n\n";
+        "measured at its own amplitude and length (balance.md); here that C is run like any other "
+        "and listed. `mpmstab advise` does not offer it: no C from a scene's balance is applied "
+        "to another scene or problem.\n\n";
   if (balanced.empty()) {
     md << "No method and grid of this study has a balancing C in balance.json.\n\n";
     return md.str();
@@ -380,8 +349,8 @@ std::string reading(const Counts& n) {
   md << "**Reading.** Of " << n.settings << " settings, " << n.checked
      << " have an accurate base run within the spectral limit's margin and were run at their "
         "corners; "
-     << n.with_region << " have a region. " << n.finer_fails << " of " << n.finer_tested
-     << " checked settings are not accurate on " << kRegionRule.refine
+     << n.with_region << " passed to at least one length. " << n.finer_fails << " of "
+     << n.finer_tested << " checked settings are not accurate on " << kRegionRule.refine
      << " times their cells at the same C; " << n.longer_fails << " of " << n.longer_tested
      << " are not accurate to c T/L = " << value_text(kRegionRule.lengths.back()) << "; "
      << n.scene_fails << " of " << n.scene_tested
@@ -415,10 +384,9 @@ StudyReport advice_report(const ReportContext& c) {
   const Counts n = count(settings);
   std::ostringstream md;
   md << "## Results\n\n"
-     << rule_text() << reading(n) << answers_table(settings) << balance_table(balanced)
-     << settings_table(settings)
-     << "The figure marks each setting by the longest length its region is checked to (none: no "
-        "region).\n";
+     << rule_text() << reading(n) << balance_table(balanced) << settings_table(settings)
+     << "The figure marks each setting by the longest length to which its runs passed (none: "
+        "its base run did not pass to either length).\n";
   ojson list = ojson::array();
   for (const auto& s : settings)
     list.push_back(to_json(s));
@@ -444,11 +412,12 @@ std::string advice_index(const Spec& spec, const std::vector<ojson>& rows) {
   std::ostringstream md;
   md << "**What it shows.** Of the " << rows.size() << " settings of its fixed grid of C, "
      << accurate
-     << " have an accurate base run within the spectral limit's margin and were run at the "
-        "corners of their region (the settings at C from the balance of time and space errors "
-        "are checked the same way and listed in advice.md); every recommendation of this project "
-        "is made here, from "
-        "those regions, and `mpmstab advise` answers a problem from the same data. Details: ["
+     << " have an accurate base run within the spectral limit's margin and were run again at "
+        "other amplitudes, lengths, boundaries, on the neo-Hookean scene, jittered and on a finer "
+        "grid (the settings at C from the balance of time and space errors are run the same way "
+        "and listed in advice.md, and are not offered by `mpmstab advise`). `mpmstab advise` "
+        "predicts from these runs and answers a problem only with a setting it has run on that "
+        "problem. Details: ["
      << spec.name << ".md](" << spec.name << ".md).\n\n";
   return md.str();
 }
@@ -463,13 +432,14 @@ std::string advice_subtitle(const Spec&, const ojson& doc) {
       longest += r["cT_max"].get<double>() == kRegionRule.lengths.back();
   }
   return std::to_string(settings.size()) + " settings; " + std::to_string(checked) +
-         " checked at their corners; " + std::to_string(longest) +
-         " with a region to c T/L = " + value_text(kRegionRule.lengths.back());
+         " run again beyond their base run; " + std::to_string(longest) +
+         " whose runs passed to c T/L = " + value_text(kRegionRule.lengths.back());
 }
 
 const StudyRegistration kAdvice{{
     .name = "advice",
-    .summary = "the cheapest checked setting for a problem, and each setting's checked region",
+    .summary = "the runs `mpmstab advise` predicts from: each setting at other amplitudes, "
+               "lengths, boundaries, scenes, layouts and grids",
     .records = {.error_over_time = true},
     .inputs = {{.name = "balance", .required = true}},
     .figure = true,

@@ -330,15 +330,14 @@ Trial verify(const Candidate& c, const VerifyProblem& vp, const RunFn& run_fn,
 
 namespace {
 
-// The margins on the problem: C stepped up by sqrt(2) from the answer's (which passed) until a
-// run fails to survive or C reaches kEdgeScanTop, then each bracket bisected (geometric mean)
-// until its ends are within kEdgeTolerance. Stops, unmeasured, where a probe would pass the
-// budget left.
-constexpr double kEdgeScanTop = 8;
-constexpr double kEdgeTolerance = 1.025;
+// The margins on the problem: C stepped up by edge_step from the answer's (which passed) until a
+// run fails to survive or C reaches edge_top, then each bracket bisected (geometric mean) until
+// its ends are within edge_tolerance. Stops, unmeasured, where a probe would pass the budget
+// left.
 
 ProblemEdges problem_edges(const Candidate& c, const VerifyProblem& vp, double budget_left,
-                           double seconds_per_particle_step, const RunFn& run_fn) {
+                           double seconds_per_particle_step, const RunFn& run_fn,
+                           const AdviceDomain& d) {
   ProblemEdges e;
   const double target = vp.problem.target;
   RunParams params = run_params(c, vp);
@@ -362,8 +361,8 @@ ProblemEdges problem_edges(const Candidate& c, const VerifyProblem& vp, double b
   double survive = C0, accurate = C0;
   std::optional<double> fail, inaccurate;
   double C = C0;
-  while (!fail && C * std::sqrt(2.0) <= kEdgeScanTop) {
-    C *= std::sqrt(2.0);
+  while (!fail && C * d.edge_step <= d.edge_top) {
+    C *= d.edge_step;
     const auto r = probe(C);
     if (!r) break;
     if (r->survives)
@@ -379,7 +378,7 @@ ProblemEdges problem_edges(const Candidate& c, const VerifyProblem& vp, double b
   }
   e.scan_top = C;
   auto bisect = [&](double& low, std::optional<double>& high, bool accuracy) {
-    while (!over_budget && high && *high / low > kEdgeTolerance) {
+    while (!over_budget && high && *high / low > d.edge_tolerance) {
       const double mid = std::sqrt(low * *high);
       const auto r = probe(mid);
       if (!r) return;
@@ -485,7 +484,7 @@ Verified verified_advice(const std::vector<CheckedSetting>& settings, const Veri
   if (edges) {
     const double left = std::max(0.0, budget_seconds - v.seconds);
     v.edges = problem_edges(v.answer->candidate, vp, left,
-                            v.particle_steps > 0 ? v.seconds / v.particle_steps : rate, run_fn);
+                            v.particle_steps > 0 ? v.seconds / v.particle_steps : rate, run_fn, d);
   } else {
     v.edges.not_measured = "not measured (--no-margins)";
   }
@@ -509,13 +508,14 @@ std::string problem_line(const VerifyProblem& vp) {
   return s.str();
 }
 
-std::string run_line(const VerifyingRun& r) {
+std::string run_line(const VerifyingRun& r, bool with_seconds) {
   std::ostringstream s;
   s << "    " << r.what << " (" << r.params.cells << " cells, c T/L = " << value_text(r.params.T)
     << "): " << r.outcome;
   if (r.error_over_A) s << ", error over time " << sci(*r.error_over_A) << " A";
-  s << ", " << sci(r.particle_steps) << " particle-steps, " << significant(r.seconds, 2)
-    << " s: " << (r.passes ? "passes" : "FAILS") << "\n";
+  s << ", " << sci(r.particle_steps) << " particle-steps";
+  if (with_seconds) s << ", " << significant(r.seconds, 2) << " s";
+  s << ": " << (r.passes ? "passes" : "FAILS") << "\n";
   return s.str();
 }
 
@@ -575,7 +575,7 @@ ojson opt(const std::optional<double>& x) {
 
 }  // namespace
 
-std::string verified_text(const Verified& v, const VerifyProblem& vp) {
+std::string verified_text(const Verified& v, const VerifyProblem& vp, bool with_seconds) {
   std::ostringstream out;
   out << problem_line(vp);
   out << "  candidates predicted to meet the target: " << v.eligible << "; tried "
@@ -583,7 +583,7 @@ std::string verified_text(const Verified& v, const VerifyProblem& vp) {
   for (const Trial& t : v.rejected) {
     out << "  rejected " << candidate_name(t.candidate) << ": " << t.why << "\n";
     for (const auto& r : t.runs)
-      out << run_line(r);
+      out << run_line(r, with_seconds);
   }
   if (!v.answer) {
     out << "  refused (" << v.bound << "): " << v.refusal << "\n";
@@ -596,11 +596,11 @@ std::string verified_text(const Verified& v, const VerifyProblem& vp) {
       << "  verifying runs          each stable with an error over time at most "
       << value_text(vp.problem.target) << " A\n";
   for (const auto& r : v.answer->runs)
-    out << run_line(r);
+    out << run_line(r, with_seconds);
   out << "  predicted error / A     " << prediction_words(c) << "\n"
       << "  particle-steps          " << sci(c.particle_steps) << " (the run of the problem)\n"
-      << "  verification cost       " << sci(v.particle_steps) << " particle-steps, "
-      << significant(v.seconds, 2) << " s\n";
+      << "  verification cost       " << sci(v.particle_steps) << " particle-steps"
+      << (with_seconds ? ", " + significant(v.seconds, 2) + " s" : std::string()) << "\n";
   if (v.edges.measured) {
     out << "  survival edge           "
         << edge_words(v.edges.survival, v.edges.survival_fail, s.courant, v.edges.scan_top)

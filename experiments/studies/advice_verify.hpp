@@ -31,6 +31,11 @@ struct AdviceDomain {
   // Before any run has measured this machine, a verifying run is estimated at this many seconds
   // per particle-step (later estimates use the runs made so far).
   double nominal_seconds_per_particle_step = 4e-8;
+  // The margins: C stepped up by edge_step from the answer's until a run fails or C passes
+  // edge_top, then each bracket bisected until its ends are within a factor edge_tolerance.
+  double edge_step = 1.4142135623730951;  // sqrt(2)
+  double edge_top = 8;
+  double edge_tolerance = 1.025;
 };
 inline const AdviceDomain kAdviceDomain{};
 
@@ -130,8 +135,9 @@ Verified verified_advice(const std::vector<CheckedSetting>& settings, const Veri
                          double budget_seconds, bool edges, const RunFn& run_fn,
                          const AdviceDomain& d = kAdviceDomain);
 
-// The search's result as `mpmstab advise` prints it, and as JSON.
-std::string verified_text(const Verified& v, const VerifyProblem& p);
+// The search's result as `mpmstab advise` prints it (without the seconds, which vary from run to
+// run: what a generated document shows), and as JSON.
+std::string verified_text(const Verified& v, const VerifyProblem& p, bool with_seconds = true);
 nlohmann::ordered_json verified_json(const Verified& v, const VerifyProblem& p);
 // The lookup alone (--no-verify): the first candidate, said plainly to be unverified.
 std::string unverified_text(const Candidate& c, const VerifyProblem& p);

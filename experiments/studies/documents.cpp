@@ -4,10 +4,12 @@
 #include <sstream>
 
 #include "advice.hpp"
+#include "advice_verify.hpp"
 #include "csv.hpp"
 #include "files.hpp"
 #include "performance.hpp"
 #include "report_util.hpp"
+#include "run/run.hpp"
 #include "strict_json.hpp"
 
 namespace mpmstab {
@@ -116,8 +118,38 @@ std::string advise_example(const std::filesystem::path& results) {
   std::vector<CheckedSetting> settings;
   for (const auto& s : doc["study"]["settings"])
     settings.push_back(checked_setting_from_json(s));
-  const Answer a = advise(settings, p);
-  md << (a.setting ? answer_text(a, p) : "mpmstab advise: error: " + a.refusal + "\n") << "```\n";
+  // The search without a budget: the answer does not depend on this machine's speed. The
+  // seconds, which do, are left out.
+  const VerifyProblem vp{.problem = p};
+  const Verified v = verified_advice(settings, vp, INFINITY, true,
+                                     [](const RunParams& params) { return run(params); });
+  md << verified_text(v, vp, false) << "```\n";
+  return md.str();
+}
+
+// docs/design.md: the domain and the constants of the verified advice, from AdviceDomain.
+std::string advice_domain_table() {
+  const AdviceDomain& d = kAdviceDomain;
+  std::ostringstream md;
+  std::string grids;
+  for (const int n : d.cells)
+    grids += (grids.empty() ? "" : ", ") + std::to_string(n);
+  md << "| what | value |\n|---|---|\n"
+     << "| A / L | " << value_text(d.A_min) << " to " << value_text(d.A_max) << " |\n"
+     << "| c T / L | at most " << value_text(d.cT_max) << ", and a verdict: at least "
+     << kMinStepsToJudge << " steps |\n"
+     << "| target error over time / A | " << value_text(d.target_min) << " to "
+     << value_text(d.target_max) << " |\n"
+     << "| jitter, of the particle spacing | at most " << value_text(d.jitter_max) << " |\n"
+     << "| grids, cells | " << grids << " |\n"
+     << "| a verifying run's length: `length_factor` x c T | " << shortest(d.length_factor)
+     << " |\n"
+     << "| the grid check: `grid_factor` x the cells | " << d.grid_factor << " |\n"
+     << "| the default budget, seconds | " << shortest(d.budget_seconds) << " |\n"
+     << "| seconds per particle-step before any run | " << sci(d.nominal_seconds_per_particle_step)
+     << " |\n"
+     << "| the margins: C stepped by, up to; bisected to a factor | " << significant(d.edge_step, 4)
+     << ", " << shortest(d.edge_top) << "; " << shortest(d.edge_tolerance) << " |\n";
   return md.str();
 }
 
@@ -201,6 +233,7 @@ std::map<std::string, std::string> document_blocks(const std::filesystem::path& 
           {"readme-speed", kernel_brief(results / "benchmark_step.json")},
           {"readme-advise-example", advise_example(results)},
           {"design-advice-counts", advice_counts(results)},
+          {"design-advice-domain", advice_domain_table()},
           {"design-cells-per-wavelength", cells_per_wavelength(results)}};
 }
 
