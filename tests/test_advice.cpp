@@ -1,7 +1,6 @@
-// The advice rule (experiments/studies/advice.hpp): the corners of a setting's region, how a
-// failing corner shrinks the region, the answer to a problem (the cheapest setting whose region
-// holds it) and every refusal, the data file `mpmstab advise` reads, and the committed advice
-// itself, rerun on the problem it answers.
+// The advice study's settings (experiments/studies/advice.hpp): the corners of a setting's
+// region, how a failing corner shrinks the region, the data file `mpmstab advise` reads, and the
+// command on a data file of its own (the verified search itself: test_advice_verify.cpp).
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -93,15 +92,6 @@ CheckedSetting passing(double courant, int cells, double error) {
   return s;
 }
 
-Problem problem(double A, double cT, double target, const char* scene = "bar") {
-  Problem p;
-  p.A = A;
-  p.cT = cT;
-  p.target = target;
-  p.scene = scene;
-  return p;
-}
-
 CornerRun* find(CheckedSetting& s, CornerKind kind, double length) {
   for (auto& c : s.corners)
     if (c.kind == kind && c.length == length) return &c;
@@ -145,48 +135,6 @@ TEST(Advice, AFailingCornerShrinksTheRegionAndIsNamed) {
   // Beyond the spectral limit / limit_margin there is no region at all, however accurate.
   CheckedSetting fast = passing(0.7, 50, 0.01);
   EXPECT_TRUE(fast.regions.empty());
-}
-
-TEST(Advice, AnswersWithTheCheapestSettingWhoseRegionHoldsTheProblem) {
-  // Cheap but inaccurate, dear and accurate, and one between.
-  const std::vector<CheckedSetting> settings = {passing(0.5, 25, 0.05), passing(0.25, 100, 1e-3),
-                                                passing(0.5, 50, 4e-3)};
-  Problem p = problem(0.015, 2, 0.01);
-  Answer a = advise(settings, p);
-  ASSERT_NE(a.setting, nullptr) << a.refusal;
-  EXPECT_EQ(a.setting->cells, 50);  // 0.05 > 0.01 / 2; 4e-3 <= 0.01 / 2
-  EXPECT_EQ(a.particle_steps, problem_particle_steps(settings[2], 2));
-  EXPECT_EQ(a.particle_steps, 2.0 * 50 * 200);  // ppc cells x c T cells / C
-  const ojson j = answer_json(a, p);
-  for (const char* key : {"method", "transfer", "update", "cells", "courant",
-                          "predicted_error_over_A", "particle_steps", "region"})
-    EXPECT_TRUE(j.contains(key)) << key;
-
-  // The shortest region holding length_factor x c T answers: c T = 20 needs the longer one.
-  p.cT = 20;
-  a = advise(settings, p);
-  ASSERT_NE(a.setting, nullptr);
-  EXPECT_EQ(a.region->length, kRegionRule.lengths.back());
-  // A method filter.
-  p.methods = {"mpm"};
-  EXPECT_EQ(advise(settings, p).setting, nullptr);
-}
-
-TEST(Advice, RefusesAProblemOutsideEveryRegionNamingWhatIsOutside) {
-  std::vector<CheckedSetting> settings = {passing(0.5, 50, 4e-3)};
-  auto refusal = [&](const Problem& p) {
-    const Answer a = advise(settings, p);
-    EXPECT_EQ(a.setting, nullptr);
-    return a.refusal;
-  };
-  EXPECT_NE(refusal(problem(0.2, 2, 0.01)).find("--A"), std::string::npos);
-  EXPECT_NE(refusal(problem(0.015, 1000, 0.01)).find("--cT"), std::string::npos);
-  EXPECT_NE(refusal(problem(0.015, 2, 1e-3)).find("--error"), std::string::npos);
-  // The neo-Hookean scene fails its corners: that scene is outside.
-  for (auto& c : settings[0].corners)
-    if (c.kind == CornerKind::other_scene) c.outcome = "unstable";
-  settings[0].regions = regions_of(settings[0]);
-  EXPECT_NE(refusal(problem(0.015, 2, 0.01, "steffen")).find("--scene"), std::string::npos);
 }
 
 TEST(Advice, DataRoundTripsAndAMalformedSettingIsRefusedByKey) {
@@ -298,45 +246,6 @@ TEST(Advice, TheCommandAnswersFromItsDataAndRefusesWithStatusTwo) {
   EXPECT_EQ(bad.status, 2);
   EXPECT_NE(bad.output.find("method"), std::string::npos) << bad.output;
   std::filesystem::remove_all(dir);
-}
-
-// The committed advice, rerun: the answer to the problem of docs/design.md's example is run on
-// that problem and on 4 times its c T, and each must meet the target; its base run must
-// reproduce the committed error bit for bit.
-TEST(Advice, TheCommittedAnswerMeetsItsTargetOnTheProblemAndFourTimesItsLength) {
-  const auto file = std::filesystem::path(MPMSTAB_SOURCE_DIR) / "results" / "advice.json";
-  std::ifstream in(file);
-  ASSERT_TRUE(in) << file;
-  const ojson doc = ojson::parse(in);
-  std::vector<CheckedSetting> settings;
-  for (const auto& s : doc["study"]["settings"])
-    settings.push_back(checked_setting_from_json(s));
-  const Problem p = problem(0.015, 8, 0.01);
-  const Answer a = advise(settings, p);
-  ASSERT_NE(a.setting, nullptr) << a.refusal;
-  const CheckedSetting& s = *a.setting;
-  RunParams r;
-  r.method = *parse_method(s.method);
-  ASSERT_EQ(s.transfer.find('('), std::string::npos) << "this test runs plain transfers only";
-  r.transfer = *parse_transfer(s.transfer);
-  r.update = *parse_update_order(s.update);
-  r.cells = s.cells;
-  r.ppc = s.ppc;
-  r.E = 1;
-  r.A = p.A;
-  r.stepping.policy = TimeStepPolicy::cfl;
-  r.stepping.cfl_factor = s.courant;
-  for (const double cT : {p.cT, kRegionRule.length_factor * p.cT}) {
-    r.T = cT;
-    const RunResult res = run(r);
-    ASSERT_TRUE(res.outcome && *res.outcome == Outcome::stable) << cT;
-    EXPECT_LE(*res.max_error_over_time / p.A, p.target) << "c T = " << cT;
-  }
-  r.T = kRegionRule.lengths.front();
-  r.A = kRegionRule.amplitudes[1];
-  const RunResult base = run(r);
-  ASSERT_TRUE(s.corners.front().error_over_A);
-  EXPECT_EQ(*base.max_error_over_time / r.A, *s.corners.front().error_over_A);
 }
 
 }  // namespace

@@ -133,12 +133,6 @@ std::vector<Region> regions_of(const CheckedSetting& s, const RegionRule& rule) 
   return out;
 }
 
-double problem_particle_steps(const CheckedSetting& s, double cT) {
-  // T = cT / c and dt = C h / c: the steps are c T / (C h), E cancels (L = 1, h = 1 / cells).
-  const double steps = std::ceil(cT * s.cells / s.courant - 1e-9);
-  return double(s.ppc) * s.cells * std::max(steps, 1.0);
-}
-
 namespace {
 
 std::string label_of(const CheckedSetting& s) {
@@ -146,50 +140,6 @@ std::string label_of(const CheckedSetting& s) {
   if (s.transfer != "flip") l += "/" + s.transfer;
   if (s.update != "usl") l += "/" + s.update;
   return l;
-}
-
-bool contains(const Region& r, const Problem& p, const RegionRule& rule) {
-  return p.A >= r.A_min && p.A <= r.A_max && rule.length_factor * p.cT <= r.length &&
-         (p.scene == "bar" || (p.scene == "steffen" && r.other_scene)) &&
-         (p.bc == "dirichlet" || (p.bc == "periodic" && r.periodic));
-}
-
-// Why no checked region contains the problem, naming what lies outside.
-std::string outside(const std::vector<CheckedSetting>& settings, const Problem& p,
-                    const RegionRule& rule) {
-  double A_min = 0, A_max = 0, longest = 0;
-  bool any = false, scene = false, bc = false;
-  for (const auto& s : settings) {
-    if (!advice_selected(s, p.methods)) continue;
-    for (const auto& r : s.regions) {
-      A_min = any ? std::min(A_min, r.A_min) : r.A_min;
-      A_max = any ? std::max(A_max, r.A_max) : r.A_max;
-      longest = std::max(longest, r.length);
-      any = true;
-      scene = scene || p.scene == "bar" || r.other_scene;
-      bc = bc || p.bc == "dirichlet" || r.periodic;
-    }
-  }
-  std::ostringstream s;
-  if (!any) {
-    s << "no checked setting of the methods asked for has a region";
-  } else if (p.A < A_min || p.A > A_max) {
-    s << "--A: A/L = " << value_text(p.A) << " is outside every checked region (A/L "
-      << value_text(A_min) << " to " << value_text(A_max) << ")";
-  } else if (rule.length_factor * p.cT > longest) {
-    s << "--cT: c T/L = " << value_text(p.cT) << " needs a region checked to "
-      << shortest(rule.length_factor) << " x c T = " << value_text(rule.length_factor * p.cT)
-      << "; the longest checked is c T/L = " << value_text(longest);
-  } else if (!scene) {
-    s << "--scene: no checked region includes the scene " << p.scene;
-  } else if (!bc) {
-    s << "--bc: no checked region includes " << p.bc << " boundaries";
-  } else {
-    s << "no single checked region contains A/L = " << value_text(p.A)
-      << ", c T/L = " << value_text(p.cT) << ", the scene " << p.scene << " and " << p.bc
-      << " boundaries together";
-  }
-  return s.str();
 }
 
 }  // namespace
@@ -202,41 +152,6 @@ bool advice_selected(const CheckedSetting& s, const std::vector<std::string>& me
       return true;
   }
   return false;
-}
-
-Answer advise(const std::vector<CheckedSetting>& settings, const Problem& p,
-              const RegionRule& rule) {
-  Answer best;
-  const CheckedSetting* closest = nullptr;  // the most accurate region containing the problem
-  const Region* closest_region = nullptr;
-  for (const auto& s : settings) {
-    if (!advice_selected(s, p.methods)) continue;
-    for (const auto& r : s.regions) {
-      if (!contains(r, p, rule)) continue;
-      if (!closest_region || r.error_over_A < closest_region->error_over_A) {
-        closest = &s;
-        closest_region = &r;
-      }
-      if (r.error_over_A > p.target / rule.error_margin) continue;
-      const double work = problem_particle_steps(s, p.cT);
-      if (!best.setting || work < best.particle_steps)
-        best = Answer{.setting = &s, .region = &r, .particle_steps = work};
-      break;  // the shortest region containing the problem is the one that answers for it
-    }
-  }
-  if (best.setting) return best;
-  if (!closest) {
-    best.refusal = outside(settings, p, rule);
-  } else {
-    std::ostringstream s;
-    s << "--error: no checked setting reaches an error over time of " << value_text(p.target)
-      << " A with the margin " << shortest(rule.error_margin) << " (its region's error at most "
-      << value_text(p.target / rule.error_margin) << " A); the most accurate containing the "
-      << "problem is " << setting_name(*closest) << " at " << sci(closest_region->error_over_A)
-      << " A";
-    best.refusal = s.str();
-  }
-  return best;
 }
 
 std::string setting_name(const CheckedSetting& s) {
@@ -468,28 +383,6 @@ std::vector<BalancedCourant> balanced_courants(const nlohmann::ordered_json& bal
   return out;
 }
 
-nlohmann::ordered_json answer_json(const Answer& a, const Problem& p) {
-  json_t problem = {
-      {"A", p.A}, {"cT", p.cT}, {"error", p.target}, {"scene", p.scene}, {"bc", p.bc}};
-  if (!a.setting) return {{"problem", problem}, {"refused", a.refusal}};
-  const CheckedSetting& s = *a.setting;
-  return {{"problem", problem},
-          {"method", s.method},
-          {"transfer", s.transfer},
-          {"update", s.update},
-          {"cells", s.cells},
-          {"ppc", s.ppc},
-          {"courant", s.courant},
-          {"courant_from", s.courant_from},
-          {"predicted_error_over_A", a.region->error_over_A},
-          {"particle_steps", a.particle_steps},
-          {"margin_to_target", p.target / a.region->error_over_A},
-          {"courant_spectral", s.courant_spectral ? json_t(*s.courant_spectral) : json_t(nullptr)},
-          {"margin_to_spectral_limit",
-           s.courant_spectral ? json_t(*s.courant_spectral / s.courant) : json_t(nullptr)},
-          {"region", region_json(*a.region)}};
-}
-
 // The options of `mpmstab run` that give a setting's transfer: its parameter, where it has one
 // ("fmpm(2)"), is the transfer's own option (--fmpm-order 2), as a run of the setting takes it.
 std::string transfer_options(const std::string& transfer) {
@@ -502,29 +395,6 @@ std::string transfer_options(const std::string& transfer) {
   if (t == Transfer::xpic) text += " --xpic-order " + parameter;
   if (t == Transfer::blend) text += " --flip-fraction " + parameter;
   return text;
-}
-
-std::string answer_text(const Answer& a, const Problem& p) {
-  std::ostringstream out;
-  const CheckedSetting& s = *a.setting;
-  const Region& r = *a.region;
-  out << "mpmstab advise: A/L = " << value_text(p.A) << ", c T/L = " << value_text(p.cT)
-      << ", target error over time " << value_text(p.target) << " A, " << p.scene << ", " << p.bc
-      << "\n  setting                 " << setting_name(s) << " (" << s.ppc
-      << " particles per cell)\n  predicted error / A     " << sci(r.error_over_A)
-      << " (the largest of its region's corners)\n  margin to the target    "
-      << ratio(p.target / r.error_over_A) << "x\n  particle-steps          "
-      << sci(a.particle_steps) << "\n  spectral limit          "
-      << (s.courant_spectral ? "C = " + significant(*s.courant_spectral, 3) + " (" +
-                                   ratio(*s.courant_spectral / s.courant) + "x the setting's C)"
-                             : std::string("not measured"))
-      << "\n  region                  " << region_text(r) << "\n  run it with             "
-      << "mpmstab run --method " << s.method << " " << transfer_options(s.transfer) << " --update "
-      << s.update << " --cells " << s.cells << " --policy cfl --cfl-factor " << shortest(s.courant)
-      << " --E " << value_text(kAdviceE) << " --A " << value_text(p.A) << " --T "
-      << value_text(p.cT) << (p.scene != "bar" ? " --scene " + p.scene : std::string())
-      << (p.bc != "dirichlet" ? " --bc " + p.bc : std::string()) << "\n";
-  return out.str();
 }
 
 }  // namespace mpmstab

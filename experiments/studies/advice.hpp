@@ -1,6 +1,7 @@
-// The one rule by which this project recommends a setting (a method, a grid and a Courant
-// number), used by the advice study (advice_report.cpp, results/advice.md) and `mpmstab advise`
-// alike: docs/design.md, "Advice: regions and corners". No other report recommends.
+// The advice study's settings (a method, a grid and a Courant number) and the runs each is
+// checked by, as results/advice.json stores them: what `mpmstab advise` predicts from before it
+// verifies a candidate on the user's problem (advice_verify.hpp; docs/design.md, "Advice:
+// verified on the problem").
 #pragma once
 
 #include <array>
@@ -15,7 +16,7 @@
 namespace mpmstab {
 
 // ---------------------------------------------------------------------------------------------
-// Regions (docs/design.md, "Advice: regions and corners"). A setting is a method (basis,
+// Regions (docs/design.md, "Advice: verified on the problem"). A setting is a method (basis,
 // transfer, update order), a grid of `cells` cells with 2 particles each and a Courant number
 // C = c dt / h. Its base run solves the bar with walls at the middle amplitude to the shorter
 // length. E only rescales time (c T and c dt / h fix a run), so the region of a setting is
@@ -31,15 +32,14 @@ namespace mpmstab {
 // periodic boundaries, the other scene and the jittered layout are in only where their corner
 // and the largest amplitude pass; finer grids only where the refined corner passes. A region
 // exists to a length only where the base run to that length passes and C is within the
-// scheme's spectral limit / limit_margin.
+// scheme's spectral limit / limit_margin. A region describes where a setting's runs passed; no
+// answer is given from it (the error between its runs is not measured).
 struct RegionRule {
   std::array<double, 3> amplitudes{1e-3, 1.5e-2, 5e-2};  // A / L: smallest, middle, largest
   std::array<double, 2> lengths{10, 100};                // c T / L: the base's, the longest
   int refine = 8;                                        // the finest grid: cells x refine
   double jitter = 0.05;        // the jittered corner: particles moved up to jitter / 2
   double limit_margin = 1.25;  // C at most the spectral limit / limit_margin
-  double error_margin = 2;     // a region answers a target at least error_margin x its error
-  double length_factor = 4;    // a problem of c T is answered by a region checked to 4 c T
 };
 inline constexpr RegionRule kRegionRule{};
 // Every run of the advice study is at this E: c = 1, so that T is c T (E only rescales time).
@@ -131,23 +131,6 @@ struct Problem {
   std::vector<std::string> methods;  // empty: every method
 };
 
-struct Answer {
-  const CheckedSetting* setting = nullptr;  // nullptr: refused
-  const Region* region = nullptr;
-  double particle_steps = 0;  // of the setting run on the problem
-  std::string refusal;        // why, where refused: names what is outside
-};
-
-// The cheapest setting (particle-steps on the problem) whose region contains the problem (A
-// within its amplitudes, length_factor x c T within its length, its scene and boundary) and
-// whose region's error / A is at most the target / error_margin; ties go to the earlier
-// setting. Refused, with what is outside, where no region contains the problem or none reaches
-// the target.
-Answer advise(const std::vector<CheckedSetting>& settings, const Problem& p,
-              const RegionRule& rule = kRegionRule);
-// particles x steps of the setting on a problem of length cT: ppc cells x ceil(cT cells / C).
-double problem_particle_steps(const CheckedSetting& s, double cT);
-
 // A method filter's entry names a basis ("gimp"), a method ("gimp/apic", "gimp/musl") or a
 // method with every part ("gimp/flip/usl"); an empty filter selects every setting.
 bool advice_selected(const CheckedSetting& s, const std::vector<std::string>& methods);
@@ -169,9 +152,5 @@ nlohmann::ordered_json to_json(const CheckedSetting& s);
 std::string transfer_name(const std::string& transfer);
 // Refuses (InputError) a method, transfer or update the solver does not know.
 CheckedSetting checked_setting_from_json(const nlohmann::ordered_json& j);
-nlohmann::ordered_json answer_json(const Answer& a, const Problem& p);
-// The answer as `mpmstab advise` prints it (and README.md's generated example): the setting, its
-// predicted error / A, its margins, its cost, its region and the command that runs it.
-std::string answer_text(const Answer& a, const Problem& p);
 
 }  // namespace mpmstab

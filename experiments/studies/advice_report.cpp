@@ -396,8 +396,6 @@ StudyReport advice_report(const ReportContext& c) {
                 {"refine", r.refine},
                 {"jitter", r.jitter},
                 {"limit_margin", r.limit_margin},
-                {"error_margin", r.error_margin},
-                {"length_factor", r.length_factor},
                 {"accurate_fraction", kAccurateFraction}};
   return StudyReport{.markdown = md.str(),
                      .data_csv = figure_csv(settings),
