@@ -1,14 +1,13 @@
-# advice.gp -- the region of every setting of the advice study: one panel per method, each
-# setting a point at its Courant number C = c dt/h (x) and its cells (y), marked by the longest
-# run length c T/L its region is checked to (none: no region: the base run is not accurate, C is
-# beyond the spectral limit's margin, or its base run fails its corners); a ring marks a C that
-# the balance study gives (the smallest balancing C over its scenes, rounded down).
+# advice.gp -- where the runs of every setting of the advice study passed: one panel per method,
+# each setting a point at its Courant number C = c dt/h (x) and its cells (y), marked by the
+# longest run length c T/L to which its runs passed (none: the base run is not accurate, C is
+# beyond the spectral limit's margin, or its base run fails to both lengths).
 #
 # Reads : datafile (results/advice_data.csv): the header
-#         panel,method,cells,courant,region_cT,error_over_A,from_balance
-#         (panel 0.. one per method, named in column method; region_cT 0 where the setting has
-#         no region; error_over_A the region's error over time / A, nan where none;
-#         from_balance 1 where C is one the balance gives, 0 where it is from the fixed grid).
+#         panel,method,cells,courant,region_cT,error_over_A
+#         (panel 0.. one per method, named in column method; region_cT 0 where the setting's
+#         runs passed to no length; error_over_A their largest error over time / A, nan where
+#         none).
 # Writes: outbase.png and outbase.svg.
 # Variables: datafile, outbase (required), subtitle (optional).
 
@@ -28,7 +27,6 @@ stats datafile using 5 nooutput
 longest = STATS_max
 
 sel(p, level) = ($1 == p && (level == 0 ? $5 == 0 : (level == 1 ? ($5 > 0 && $5 < longest) : $5 == longest))) ? $3 : 1/0
-balanced(p) = ($1 == p && $7 == 1) ? $3 : 1/0
 # The method's name once per panel, on its first row.
 name(p) = ($1 == p && $0 == first[p + 1]) ? strcol(2) : ""
 array first[panels]
@@ -46,7 +44,7 @@ do for [ext in "png svg"] {
         set terminal svg size 1400,760 dynamic font "sans,10" noenhanced background "white"
     }
     set output outbase . "." . ext
-    set multiplot title "The region each setting is checked in, by method" . (strlen(subtitle) > 0 ? "\n" . subtitle : "")
+    set multiplot title "How far each setting's runs passed, by method" . (strlen(subtitle) > 0 ? "\n" . subtitle : "")
     set logscale xy
     set xrange [0.07:1.5]
     set yrange [18:220]
@@ -63,7 +61,6 @@ do for [ext in "png svg"] {
         plot datafile using 4:(sel(p, 0)) with points pt 2 ps 1.6 lc rgb "#999999", \
              datafile using 4:(sel(p, 1)) with points pt 9 ps 1.8 lc rgb "#ff7f0e", \
              datafile using 4:(sel(p, 2)) with points pt 7 ps 1.8 lc rgb "#2ca02c", \
-             datafile using 4:(balanced(p)) with points pt 6 ps 3.0 lc rgb "#1f77b4", \
              datafile using (0.32):(160):(name(p)) with labels
     }
     # The legend, in the last row.
@@ -78,10 +75,9 @@ do for [ext in "png svg"] {
     set origin 0, 0
     set size 1, 0.14
     set key center center horizontal
-    plot NaN with points pt 7 ps 1.8 lc rgb "#2ca02c" title sprintf("region checked to c T/L = %g", longest), \
-         NaN with points pt 9 ps 1.8 lc rgb "#ff7f0e" title "region checked to a shorter c T/L only", \
-         NaN with points pt 2 ps 1.6 lc rgb "#999999" title "no region", \
-         NaN with points pt 6 ps 3.0 lc rgb "#1f77b4" title "C from the balance study"
+    plot NaN with points pt 7 ps 1.8 lc rgb "#2ca02c" title sprintf("runs passed to c T/L = %g", longest), \
+         NaN with points pt 9 ps 1.8 lc rgb "#ff7f0e" title "runs passed to a shorter c T/L only", \
+         NaN with points pt 2 ps 1.6 lc rgb "#999999" title "base run did not pass"
     unset multiplot
     unset output
     set border

@@ -254,6 +254,35 @@ TEST(AdviceVerify, TheJsonCarriesEveryVerifyingRunAndEveryRejection) {
   EXPECT_NE(text.find("UNVERIFIED"), std::string::npos);
 }
 
+TEST(AdviceVerify, TheSampleDrawIsSeededAndCoversTheDomain) {
+  const auto a = draw_problems();
+  const auto b = draw_problems();
+  ASSERT_EQ(a.size(), std::size_t(kSampleRule.problems));
+  const AdviceDomain& d = kAdviceDomain;
+  int steffen = 0, periodic = 0, jittered = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const Problem& p = a[i].problem;
+    EXPECT_EQ(p.A, b[i].problem.A);
+    EXPECT_EQ(p.cT, b[i].problem.cT);
+    EXPECT_EQ(a[i].jitter, b[i].jitter);
+    EXPECT_TRUE(outside_domain(a[i]).empty()) << outside_domain(a[i]);
+    EXPECT_GE(p.cT, kSampleRule.cT_low);
+    steffen += p.scene == "steffen";
+    periodic += p.bc == "periodic";
+    jittered += a[i].jitter > 0;
+  }
+  // Each attribute one of two with even odds: far from none and from all.
+  for (const int n : {steffen, periodic, jittered}) {
+    EXPECT_GT(n, kSampleRule.problems / 4);
+    EXPECT_LT(n, 3 * kSampleRule.problems / 4);
+  }
+  // Another seed, another draw.
+  SampleRule other = kSampleRule;
+  other.seed += 1;
+  EXPECT_NE(draw_problems(other).front().problem.A, a.front().problem.A);
+  (void)d;
+}
+
 // The command on the committed data: the answer's "run it with" line, run again on its own at
 // c T and at 4 x c T, meets the target; a problem outside the domain exits 2.
 TEST(AdviceVerify, TheCommandsAnswerRunAgainIndependentlyMeetsTheTarget) {

@@ -156,19 +156,11 @@ VerifyProblem problem_from(const Args& args) {
 
 std::vector<CheckedSetting> load(const std::filesystem::path& file) {
   const nlohmann::ordered_json doc = read_json_file(file);
-  if (!doc.is_object() || !doc.contains("study") || !doc["study"].is_object() ||
-      !doc["study"].contains("settings") || !doc["study"]["settings"].is_array())
-    throw InputError(file, "study.settings: missing (not the advice study's results)");
-  std::vector<CheckedSetting> out;
-  const auto& list = doc["study"]["settings"];
-  for (std::size_t i = 0; i < list.size(); ++i) {
-    try {
-      out.push_back(checked_setting_from_json(list[i]));
-    } catch (const InputError& e) {
-      throw InputError(file, "study.settings[" + std::to_string(i) + "]: " + e.what());
-    }
+  try {
+    return checked_settings_of(doc);
+  } catch (const InputError& e) {
+    throw InputError(file, e.what());
   }
-  return out;
 }
 
 }  // namespace

@@ -157,7 +157,6 @@ bool advice_selected(const CheckedSetting& s, const std::vector<std::string>& me
 std::string setting_name(const CheckedSetting& s) {
   std::ostringstream t;
   t << s.method_text() << ", " << s.cells << " cells, C = " << shortest(s.courant);
-  if (s.courant_from != "grid") t << " (from the balance)";
   return t.str();
 }
 
@@ -169,9 +168,10 @@ std::string region_text(const Region& r, const RegionRule& rule) {
     << (r.periodic ? " and periodic" : " only") << "; the bar"
     << (r.other_scene ? " and the neo-Hookean scene" : " only") << "; uniform"
     << (r.jittered ? " and jittered (" + shortest(rule.jitter) + ")" : std::string(" only")) << "; "
-    << (r.finer ? "cells to " + std::to_string(r.cells_max) +
-                      " (checked to c T/L = " + value_text(rule.lengths.front()) + ")"
-                : std::string("these cells only"));
+    << (r.finer ? "and one run on " + std::to_string(r.cells_max) + " cells (A/L " +
+                      value_text(rule.amplitudes[1]) + ", walls, the bar, uniform, to c T/L " +
+                      value_text(rule.lengths.front()) + ")"
+                : std::string("no finer grid"));
   return s.str();
 }
 
@@ -284,7 +284,6 @@ nlohmann::ordered_json to_json(const CheckedSetting& s) {
           {"cells", s.cells},
           {"ppc", s.ppc},
           {"courant", s.courant},
-          {"courant_from", s.courant_from},
           {"courant_spectral", s.courant_spectral ? json_t(*s.courant_spectral) : json_t(nullptr)},
           {"corners", corners},
           {"regions", regions}};
@@ -327,10 +326,6 @@ CheckedSetting checked_setting_from_json(const nlohmann::ordered_json& j) {
   s.ppc = int_at(j, "ppc", where);
   s.courant = number_at(j, "courant", where);
   if (!(s.courant > 0)) throw InputError(where + ".courant: must be positive");
-  s.courant_from = string_at(j, "courant_from", where);
-  if (s.courant_from != "grid" && s.courant_from != "balance" &&
-      s.courant_from != "grid and balance")
-    throw InputError(where + ".courant_from: must be grid, balance or grid and balance");
   if (!at(j, "courant_spectral", where).is_null())
     s.courant_spectral = number_at(j, "courant_spectral", where);
   const json_t& corners = at(j, "corners", where);
@@ -344,41 +339,18 @@ CheckedSetting checked_setting_from_json(const nlohmann::ordered_json& j) {
   return s;
 }
 
-double round_down_2(double x) {
-  // Through an exact power of ten, so that 0.59468 gives the double nearest 0.59.
-  const int shift = 1 - static_cast<int>(std::floor(std::log10(x)));  // 0.59468: 2
-  if (shift >= 0) {
-    const double scale = std::pow(10.0, shift);
-    return std::floor(x * scale) / scale;
-  }
-  const double scale = std::pow(10.0, -shift);
-  return std::floor(x / scale) * scale;
-}
-
-std::vector<BalancedCourant> balanced_courants(const nlohmann::ordered_json& balance_doc) {
-  const std::string where = "balance.json: study";
-  const json_t& curves = at(at(balance_doc, "study", "balance.json"), "curves", where);
-  if (!curves.is_array()) throw InputError(where + ".curves: must be an array");
-  std::map<std::pair<std::string, int>, BalancedCourant> least;
-  for (std::size_t i = 0; i < curves.size(); ++i) {
-    const std::string at_i = where + ".curves[" + std::to_string(i) + "]";
-    const std::string method = string_at(curves[i], "method", at_i);
-    // FLIP with USL from the exact start only: "gimp", not "gimp/fmpm(8)" or "gimp, half-step
-    // start".
-    if (method.find_first_of(",/") != std::string::npos) continue;
-    if (at(curves[i], "balancing_courant", at_i).is_null()) continue;
-    const double c = number_at(curves[i], "balancing_courant", at_i);
-    if (!(c > 0)) throw InputError(at_i + ".balancing_courant: must be positive");
-    const int cells = int_at(curves[i], "cells", at_i);
-    const std::string scene = string_at(curves[i], "scene", at_i);
-    const BalancedCourant candidate{method, cells, c, 0, scene};
-    const auto [it, added] = least.try_emplace({method, cells}, candidate);
-    if (!added && c < it->second.measured) it->second = candidate;
-  }
-  std::vector<BalancedCourant> out;
-  for (auto& [key, b] : least) {
-    b.courant = round_down_2(b.measured);
-    out.push_back(b);
+std::vector<CheckedSetting> checked_settings_of(const nlohmann::ordered_json& doc) {
+  if (!doc.is_object() || !doc.contains("study") || !doc["study"].is_object() ||
+      !doc["study"].contains("settings") || !doc["study"]["settings"].is_array())
+    throw InputError("study.settings: missing (not the advice study's results)");
+  std::vector<CheckedSetting> out;
+  const auto& list = doc["study"]["settings"];
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    try {
+      out.push_back(checked_setting_from_json(list[i]));
+    } catch (const InputError& e) {
+      throw InputError("study.settings[" + std::to_string(i) + "]: " + e.what());
+    }
   }
   return out;
 }

@@ -87,9 +87,6 @@ struct CheckedSetting {
   std::string method, transfer, update;  // "gimp", "flip", "usl"; transfer with its order
   int cells = 0, ppc = 2;
   double courant = 0;
-  // Where C comes from: "grid" (the spec's fixed values), "balance" (balanced_courants) or
-  // "grid and balance" (a balanced C that is also a grid value).
-  std::string courant_from = "grid";
   std::optional<double> courant_spectral;  // the spectral limit of its uniform layout
   std::vector<CornerRun> corners;          // the base run first, then region_corners() order
   std::vector<Region> regions;             // per length at which a region exists, ascending
@@ -101,25 +98,6 @@ struct CheckedSetting {
 
 // The regions of a setting from its corner runs (the base run first).
 std::vector<Region> regions_of(const CheckedSetting& s, const RegionRule& rule = kRegionRule);
-
-// C from the balance of time and space errors (the balance study, results/balance.json): for a
-// method with FLIP and USL on a grid of `cells` cells, the smallest balancing C the study
-// measured over its scenes (the C at which the error over time less its small-step plateau
-// equals the plateau), rounded down to two significant digits. A setting at that C is checked
-// at its corners like any other; where the study found no balancing C on any scene (the time
-// part stays below the plateau at every C it ran), there is none.
-struct BalancedCourant {
-  std::string method;
-  int cells = 0;
-  double measured = 0;  // the smallest balancing C over the scenes
-  double courant = 0;   // measured, rounded down to two significant digits
-  std::string scene;    // the scene it was measured on
-};
-// From balance.json's "study" object; the order is by method, then cells. Throws InputError
-// naming the key where the document is malformed.
-std::vector<BalancedCourant> balanced_courants(const nlohmann::ordered_json& balance_doc);
-// x rounded down to two significant digits (x > 0).
-double round_down_2(double x);
 
 // A problem in the dimensionless form of `mpmstab advise`.
 struct Problem {
@@ -140,8 +118,9 @@ std::string transfer_options(const std::string& transfer);
 
 // The setting's name: "gimp/apic usl, 50 cells, C = 0.25".
 std::string setting_name(const CheckedSetting& s);
-// The region in words: "A/L 1e-3 to 0.05, c T/L to 100; walls and periodic; bar and
-// neo-Hookean; uniform and jittered (0.05); 50 to 400 cells".
+// Where a setting's runs passed, in words: "A/L 1e-3 to 0.05, c T/L to 100; walls and periodic;
+// the bar and the neo-Hookean scene; uniform and jittered (0.05); and one run on 400 cells (A/L
+// 0.015, walls, the bar, uniform, to c T/L 10)".
 std::string region_text(const Region& r, const RegionRule& rule = kRegionRule);
 
 nlohmann::ordered_json to_json(const CheckedSetting& s);
@@ -152,5 +131,8 @@ nlohmann::ordered_json to_json(const CheckedSetting& s);
 std::string transfer_name(const std::string& transfer);
 // Refuses (InputError) a method, transfer or update the solver does not know.
 CheckedSetting checked_setting_from_json(const nlohmann::ordered_json& j);
+// Every setting of an advice results document (its study.settings); throws InputError naming
+// the setting and key where one is malformed.
+std::vector<CheckedSetting> checked_settings_of(const nlohmann::ordered_json& doc);
 
 }  // namespace mpmstab

@@ -49,52 +49,11 @@ bool worth_checking(const ojson& base) {
              base["courant_spectral"].get<double>() / kRegionRule.limit_margin;
 }
 
-// The settings at C from the balance (balanced_courants): per method and grid the balance study
-// measured, the spec's first case of that method with FLIP and USL on that grid, at the balanced
-// C. A balanced C that is already a grid value of the spec adds no setting: `grid_index` names
-// that case instead.
-struct BalancedSetting {
-  BalancedCourant balance;
-  std::optional<std::size_t> grid_index;  // the spec case at the same C, if any
-  RunParams base;                         // its base run: the first such case, at the balanced C
-};
-
-std::vector<BalancedSetting> balanced_settings(const Spec& spec, const StudyInputs& inputs) {
-  std::vector<BalancedSetting> out;
-  const auto in = inputs.find("balance");
-  if (in == inputs.end() || !in->second.present()) return out;
-  for (const BalancedCourant& b : balanced_courants(in->second.doc)) {
-    std::optional<std::size_t> made_from, same;
-    for (std::size_t i = 0; i < spec.cases.size(); ++i) {
-      const RunParams& p = spec.cases[i].params;
-      if (std::string(to_string(p.method)) != b.method || p.cells != b.cells ||
-          p.transfer != Transfer::flip || p.update != UpdateOrder::usl)
-        continue;
-      if (!made_from) made_from = i;
-      if (p.stepping.cfl_factor == b.courant) same = i;
-    }
-    if (!made_from) continue;  // a method or grid the advice study does not offer
-    BalancedSetting s{.balance = b, .grid_index = same, .base = spec.cases[*made_from].params};
-    s.base.stepping.cfl_factor = b.courant;
-    out.push_back(std::move(s));
-  }
-  return out;
-}
-
 std::vector<RunParams> advice_follow_up(const FollowUpContext& c) {
   std::vector<RunParams> runs;
   for (std::size_t i = 0; i < c.rows.size(); ++i) {
     if (!worth_checking(c.rows[i])) continue;
     for (auto& corner : region_corners(c.spec.cases.at(i).params))
-      runs.push_back(std::move(corner.params));
-  }
-  // The settings at a balanced C: the base run and every corner, asked for together (a
-  // follow-up cannot wait for another), so that a base run that is not accurate leaves its
-  // corners unread.
-  for (const BalancedSetting& b : balanced_settings(c.spec, c.inputs)) {
-    if (b.grid_index) continue;
-    runs.push_back(b.base);
-    for (auto& corner : region_corners(b.base))
       runs.push_back(std::move(corner.params));
   }
   return runs;
@@ -113,10 +72,8 @@ CheckedSetting setting_of(const ojson& r) {
 }
 
 // Every setting of the spec with its corner runs (the follow-ups, kRegionCorners per checked
-// setting in the order advice_follow_up asked for them) and its regions; then the settings at a
-// balanced C that is not a grid value (`balanced`, balanced_settings of the same spec and inputs).
-std::vector<CheckedSetting> checked_settings(const ReportContext& c,
-                                             const std::vector<BalancedSetting>& balanced) {
+// setting in the order advice_follow_up asked for them) and its regions.
+std::vector<CheckedSetting> checked_settings(const ReportContext& c) {
   std::vector<CheckedSetting> out;
   std::size_t next = 0;
   for (std::size_t i = 0; i < c.rows.size(); ++i) {
@@ -124,24 +81,6 @@ std::vector<CheckedSetting> checked_settings(const ReportContext& c,
     if (worth_checking(c.rows[i]) && next + kRegionCorners <= c.follow_up.size()) {
       for (const auto& k : region_corners(c.spec.cases.at(i).params))
         s.corners.push_back(corner_of(c.follow_up[next++], k.kind, k.length));
-    }
-    out.push_back(std::move(s));
-  }
-  for (const BalancedSetting& b : balanced) {
-    if (b.grid_index) {
-      out.at(*b.grid_index).courant_from = "grid and balance";
-      continue;
-    }
-    if (next + 1 + kRegionCorners > c.follow_up.size()) break;
-    CheckedSetting s = setting_of(c.follow_up[next++]);
-    s.courant_from = "balance";
-    const auto corners = region_corners(b.base);
-    // A base run that is not accurate or beyond the spectral limit's margin has no region: its
-    // corners were run but are not read, as for a grid setting.
-    const bool checked = worth_checking(c.follow_up[next - 1]);
-    for (const auto& k : corners) {
-      if (checked) s.corners.push_back(corner_of(c.follow_up[next], k.kind, k.length));
-      ++next;
     }
     out.push_back(std::move(s));
   }
@@ -280,7 +219,9 @@ std::string rule_text() {
         "answers no problem. The box beside each setting (the amplitudes, lengths, boundaries, "
         "scene, layout and grids whose runs ended stable and accurate, its error the largest of "
         "theirs) describes where its runs passed; the error between those runs was not measured "
-        "here, and no answer is given from the box.\n\n";
+        "here, and no answer is given from the box. How often the prediction alone misses on "
+        "problems drawn at random over the domain, per setting beside its box: "
+        "[advice_sample.md](advice_sample.md).\n\n";
   return md.str();
 }
 
@@ -290,8 +231,7 @@ std::string settings_table(const std::vector<CheckedSetting>& settings) {
      << "| method | cells | C | spectral limit / C | base error / A | runs passed in (largest "
         "error / A) | failed runs |\n|---|---|---|---|---|---|---|\n";
   for (const auto& s : settings) {
-    md << "| " << s.method_text() << " | " << s.cells << " | " << shortest(s.courant)
-       << (s.courant_from == "grid" ? "" : " (balance)") << " | "
+    md << "| " << s.method_text() << " | " << s.cells << " | " << shortest(s.courant) << " | "
        << (s.courant_spectral ? ratio(*s.courant_spectral / s.courant) : std::string("–")) << " | "
        << (s.corners.front().outcome == "stable" ? error_text(s.corners.front().error_over_A)
                                                  : s.corners.front().outcome)
@@ -320,30 +260,6 @@ std::string settings_table(const std::vector<CheckedSetting>& settings) {
   return md.str() + "\n";
 }
 
-// The Courant numbers taken from the balance study, with what was measured and where.
-std::string balance_table(const std::vector<BalancedSetting>& balanced) {
-  std::ostringstream md;
-  md << "## Courant numbers from the balance of time and space errors\n\n"
-     << "Besides the grid of C above, each method with FLIP and USL that [balance.md](balance.md) "
-        "measures on a grid this study offers is also checked at the balancing C: the smallest "
-        "C over the balance study's scenes at which the error over time less its small-step "
-        "plateau equals the plateau, rounded down to two significant digits. The balance is "
-        "measured at its own amplitude and length (balance.md); here that C is run like any other "
-        "and listed. `mpmstab advise` does not offer it: no C from a scene's balance is applied "
-        "to another scene or problem.\n\n";
-  if (balanced.empty()) {
-    md << "No method and grid of this study has a balancing C in balance.json.\n\n";
-    return md.str();
-  }
-  md << "| method | cells | balancing C (scene) | C checked | a grid value "
-        "|\n|---|---|---|---|---|\n";
-  for (const auto& b : balanced)
-    md << "| " << b.balance.method << "/flip/usl | " << b.balance.cells << " | "
-       << significant(b.balance.measured, 3) << " (" << b.balance.scene << ") | "
-       << shortest(b.balance.courant) << " | " << (b.grid_index ? "yes" : "no") << " |\n";
-  return md.str() + "\n";
-}
-
 std::string reading(const Counts& n) {
   std::ostringstream md;
   md << "**Reading.** Of " << n.settings << " settings, " << n.checked
@@ -360,10 +276,10 @@ std::string reading(const Counts& n) {
 }
 
 // The figure's data: per setting, its method's panel, cells, C, the longest region (0: none) and
-// whether its C is one the balance gives (1) or from the fixed grid only (0).
+// error over time / A of its runs there.
 std::string figure_csv(const std::vector<CheckedSetting>& settings) {
   std::ostringstream csv;
-  csv << "panel,method,cells,courant,region_cT,error_over_A,from_balance\n";
+  csv << "panel,method,cells,courant,region_cT,error_over_A\n";
   std::map<std::string, int> panel;
   for (const auto& s : settings) {
     const std::string name = s.method_text();
@@ -372,19 +288,17 @@ std::string figure_csv(const std::vector<CheckedSetting>& settings) {
     const Region* longest = s.regions.empty() ? nullptr : &s.regions.back();
     csv << it->second << ',' << name << ',' << s.cells << ',' << shortest(s.courant) << ','
         << (longest ? longest->length : 0.0) << ','
-        << (longest ? sci(longest->error_over_A, 3) : std::string("nan")) << ','
-        << (s.courant_from == "grid" ? 0 : 1) << '\n';
+        << (longest ? sci(longest->error_over_A, 3) : std::string("nan")) << '\n';
   }
   return csv.str();
 }
 
 StudyReport advice_report(const ReportContext& c) {
-  const auto balanced = balanced_settings(c.spec, c.inputs);
-  const auto settings = checked_settings(c, balanced);
+  const auto settings = checked_settings(c);
   const Counts n = count(settings);
   std::ostringstream md;
   md << "## Results\n\n"
-     << rule_text() << reading(n) << balance_table(balanced) << settings_table(settings)
+     << rule_text() << reading(n) << settings_table(settings)
      << "The figure marks each setting by the longest length to which its runs passed (none: "
         "its base run did not pass to either length).\n";
   ojson list = ojson::array();
@@ -412,8 +326,7 @@ std::string advice_index(const Spec& spec, const std::vector<ojson>& rows) {
      << accurate
      << " have an accurate base run within the spectral limit's margin and were run again at "
         "other amplitudes, lengths, boundaries, on the neo-Hookean scene, jittered and on a finer "
-        "grid (the settings at C from the balance of time and space errors are run the same way "
-        "and listed in advice.md, and are not offered by `mpmstab advise`). `mpmstab advise` "
+        "grid. `mpmstab advise` "
         "predicts from these runs and answers a problem only with a setting it has run on that "
         "problem. Details: ["
      << spec.name << ".md](" << spec.name << ".md).\n\n";
@@ -439,7 +352,6 @@ const StudyRegistration kAdvice{{
     .summary = "the runs `mpmstab advise` predicts from: each setting at other amplitudes, "
                "lengths, boundaries, scenes, layouts and grids",
     .records = {.error_over_time = true},
-    .inputs = {{.name = "balance", .required = true}},
     .figure = true,
     .follow_up = advice_follow_up,
     .report = advice_report,

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <future>
+#include <random>
 #include <sstream>
 
 #include "csv.hpp"
@@ -224,7 +225,7 @@ std::vector<Candidate> candidates(const std::vector<CheckedSetting>& settings,
   std::vector<Candidate> out;
   for (std::size_t i = 0; i < settings.size(); ++i) {
     const CheckedSetting& s = settings[i];
-    if (!advice_selected(s, p.methods) || s.courant_from == "balance") continue;
+    if (!advice_selected(s, p.methods)) continue;
     for (const int cells : d.cells) {
       // A finer grid rests on the setting of the same method and C with the most cells not
       // above it; the study's own grids on themselves.
@@ -232,7 +233,7 @@ std::vector<Candidate> candidates(const std::vector<CheckedSetting>& settings,
       bool coarser_than_another = false;
       for (const auto& t : settings)
         if (&t != &s && t.method_text() == s.method_text() && t.courant == s.courant &&
-            t.cells > s.cells && t.cells <= cells && t.courant_from != "balance")
+            t.cells > s.cells && t.cells <= cells)
           coarser_than_another = true;
       if (coarser_than_another) continue;
       const Prediction pr = predict(s, cells, vp, kRegionRule);
@@ -296,26 +297,34 @@ std::string failure_words(const VerifyingRun& r, double target) {
 
 }  // namespace
 
-Trial verify(const Candidate& c, const VerifyProblem& vp, const RunFn& run_fn,
-             const AdviceDomain& d) {
-  const double target = vp.problem.target;
-  Trial t{.candidate = c};
+std::vector<std::pair<std::string, RunParams>> verifying_params(const Candidate& c,
+                                                                const VerifyProblem& vp,
+                                                                const AdviceDomain& d) {
   const RunParams base = run_params(c, vp);
-  t.runs.push_back(verifying_run("the problem", base, target, run_fn));
-  if (!t.runs.back().passes) {
-    t.why = failure_words(t.runs.back(), target);
-    return t;
-  }
   RunParams longer = base;
   longer.T = base.T * d.length_factor;
   RunParams finer = base;
   finer.cells = base.cells * d.grid_factor;
-  // The two are independent: side by side, each its own run (no sum is shared).
+  return {{"the problem", base},
+          {shortest(d.length_factor) + " x c T", longer},
+          {std::to_string(d.grid_factor) + " x the cells", finer}};
+}
+
+Trial verify(const Candidate& c, const VerifyProblem& vp, const RunFn& run_fn,
+             const AdviceDomain& d) {
+  const double target = vp.problem.target;
+  Trial t{.candidate = c};
+  const auto runs = verifying_params(c, vp, d);
+  t.runs.push_back(verifying_run(runs[0].first, runs[0].second, target, run_fn));
+  if (!t.runs.back().passes) {
+    t.why = failure_words(t.runs.back(), target);
+    return t;
+  }
+  // The two others are independent: side by side, each its own run (no sum is shared).
   auto later = std::async(std::launch::async, [&] {
-    return verifying_run(shortest(d.length_factor) + " x c T", longer, target, run_fn);
+    return verifying_run(runs[1].first, runs[1].second, target, run_fn);
   });
-  VerifyingRun grid =
-      verifying_run(std::to_string(d.grid_factor) + " x the cells", finer, target, run_fn);
+  VerifyingRun grid = verifying_run(runs[2].first, runs[2].second, target, run_fn);
   t.runs.push_back(later.get());
   t.runs.push_back(std::move(grid));
   t.passed = true;
@@ -416,7 +425,7 @@ Verified verified_advice(const std::vector<CheckedSetting>& settings, const Veri
     // Every candidate of the methods asked for is too short for a verdict, or none is offered.
     double shortest_cT = INFINITY;
     for (const auto& s : settings)
-      if (advice_selected(s, p.methods) && s.courant_from != "balance")
+      if (advice_selected(s, p.methods))
         shortest_cT =
             std::min(shortest_cT, double(kMinStepsToJudge) * s.courant / double(d.cells.back()));
     v.bound = std::isfinite(shortest_cT) ? "too_short" : "methods";
@@ -489,6 +498,34 @@ Verified verified_advice(const std::vector<CheckedSetting>& settings, const Veri
     v.edges.not_measured = "not measured (--no-margins)";
   }
   return v;
+}
+
+std::vector<VerifyProblem> draw_problems(const SampleRule& rule, const AdviceDomain& d) {
+  std::mt19937_64 gen(rule.seed);
+  auto u = [&] { return double(gen() >> 11) * 0x1.0p-53; };
+  auto rounded = [](double x, double low, double high) {
+    return std::clamp(std::stod(significant(x, 2)), low, high);
+  };
+  auto log_uniform = [&](double low, double high) {
+    return rounded(std::exp(std::log(low) + u() * (std::log(high) - std::log(low))), low, high);
+  };
+  std::vector<VerifyProblem> out;
+  for (int i = 0; i < rule.problems; ++i) {
+    VerifyProblem vp;
+    Problem& p = vp.problem;
+    p.A = log_uniform(d.A_min, d.A_max);
+    p.cT = log_uniform(rule.cT_low, d.cT_max);
+    p.target = log_uniform(d.target_min, d.target_max);
+    p.scene = u() < 0.5 ? "bar" : "steffen";
+    p.bc = u() < 0.5 ? "dirichlet" : "periodic";
+    const bool jittered = u() >= 0.5;
+    const double j = u();
+    if (jittered)
+      vp.jitter = rounded(rule.jitter_low + j * (d.jitter_max - rule.jitter_low), rule.jitter_low,
+                          d.jitter_max);
+    out.push_back(std::move(vp));
+  }
+  return out;
 }
 
 // ---------------------------------------------------------------------------------------------

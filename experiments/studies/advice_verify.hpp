@@ -6,6 +6,7 @@
 // with it what the prediction alone is worth.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -76,6 +77,11 @@ std::string run_command(const Candidate& c, const VerifyProblem& p);
 std::vector<Candidate> candidates(const std::vector<CheckedSetting>& settings,
                                   const VerifyProblem& p, const AdviceDomain& d = kAdviceDomain);
 
+// A candidate's verifying runs, named, in the order they are made: the problem, length_factor x
+// c T, grid_factor x the cells at the same C.
+std::vector<std::pair<std::string, RunParams>> verifying_params(
+    const Candidate& c, const VerifyProblem& p, const AdviceDomain& d = kAdviceDomain);
+
 // One verifying run.
 struct VerifyingRun {
   std::string what;  // "the problem", "4 x c T", "2 x the cells"
@@ -134,6 +140,24 @@ Trial verify(const Candidate& c, const VerifyProblem& p, const RunFn& run_fn,
 Verified verified_advice(const std::vector<CheckedSetting>& settings, const VerifyProblem& p,
                          double budget_seconds, bool edges, const RunFn& run_fn,
                          const AdviceDomain& d = kAdviceDomain);
+
+// The advice sample (docs/design.md, "Advice: verified on the problem"): problems drawn at
+// random over the domain from a fixed seed (std::mt19937_64, each uniform u in [0, 1) from the
+// top 53 bits of a draw), each value rounded to two significant digits: A / L, c T / L (from
+// cT_low) and the target log-uniform over the domain; the scene, the boundary and the layout
+// each one of two with even odds, a jittered layout's jitter uniform in (jitter_low,
+// jitter_max]. The lookup of a problem (the prediction's cheapest candidate) is verified where
+// its three runs cost at most verify_cap particle-steps.
+struct SampleRule {
+  std::uint64_t seed = 20261128;
+  int problems = 240;
+  double cT_low = 1;
+  double jitter_low = 0.01;
+  double verify_cap = 1e8;
+};
+inline constexpr SampleRule kSampleRule{};
+std::vector<VerifyProblem> draw_problems(const SampleRule& rule = kSampleRule,
+                                         const AdviceDomain& d = kAdviceDomain);
 
 // The search's result as `mpmstab advise` prints it (without the seconds, which vary from run to
 // run: what a generated document shows), and as JSON.

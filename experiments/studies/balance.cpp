@@ -1,14 +1,17 @@
 // The balance study: where the time error and the spatial error of a run balance, against the
-// grid. For each method, scene and grid, the error over time e(C) at each Courant number C; the
-// plateau is e at the smallest C (the spatial error, with what time error is left there), the
-// time part is e(C) less the plateau, the balancing C is where the time part equals the plateau
-// (interpolated on log axes between the two C that bracket it), and the time order is the slope
-// of log(time part) against log(C) over the C where the time part is at least the plateau /
-// kVisible. Why a fixed C is not accurate on every grid: where the time order is below the
-// spatial one, the balancing C falls as the grid is refined. FMPM(8) rows test one cause of a
-// first-order time error, FLIP's lumped-mass re-projection.
+// grid. For each method, scene and grid, the error over time e(C) at each Courant number C is
+// fitted by e(C) = S + k C^p (S >= 0, the floor the error keeps as C goes to zero; k C^p, k > 0,
+// p > 0, the time term), by least squares on the logarithms of the errors. The balancing C is
+// where the fitted time term equals the floor, (S / k)^(1 / p), reported where it lies within
+// the C the curve measured. The time term is resolved where its fitted value at the largest C
+// measured is at least S / kResolved, negligible otherwise. FMPM(8) rows test one cause of a
+// first-order time error, FLIP's lumped-mass re-projection; the rows with a half-step start test
+// the other, a start from rest with a non-zero acceleration: where the half-step start leaves a
+// negligible time term on a curve whose exact start has a resolved one, that time term and the
+// balance it makes are a start-up effect.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <optional>
 #include <sstream>
@@ -25,11 +28,212 @@ namespace {
 
 using ojson = nlohmann::ordered_json;
 
-// A time part is fitted where it is at least the plateau / kVisible (smaller ones are the noise
-// of the plateau's own time error).
-constexpr double kVisible = 4;
+// ---------------------------------------------------------------------------------------------
+// The fit e(C) = S + k C^p
+
+// The range of p, and the step of the grid it is first searched on.
+constexpr double kOrderLow = 0.25;
+constexpr double kOrderHigh = 4;
+constexpr double kOrderStep = 0.025;
+// For each p, v = ln(S / (k C_max^p)), the floor against the time term at the curve's largest C,
+// is searched from ln((C_min / C_max)^p / kReach) (the floor a 1 / kReach of the time term at
+// the smallest C) to ln(kReach) (kReach times the time term at the largest C), first on a grid
+// of step kLogStep. Beyond those ends lie the fits with no floor and with no time term.
+constexpr double kReach = 1e9;
+constexpr double kLogStep = 0.1;
+// Golden-section steps that refine each grid minimum (the bracket shrinks to 0.618^n of two
+// grid steps: below the resolution of a double).
+constexpr int kGoldenSteps = 80;
+// A curve is fitted where it has at least this many points (three parameters, one to spare).
+constexpr std::size_t kFitPoints = 4;
+// The time term is resolved where k C_max^p >= S / kResolved, negligible otherwise.
+constexpr double kResolved = 4;
 // An order agrees with first or second order within this.
 constexpr double kOrderTolerance = 0.5;
+// The scene that starts with zero acceleration (the other starts from rest).
+constexpr const char* kStillScene = "bar";
+
+// What the least-squares fit found: a floor and a time term, no floor (S = 0, the pure power
+// law), or no time term (k = 0, the errors are fitted best by a constant).
+enum class FitForm { floor_and_term, no_floor, no_term };
+
+struct Fit {
+  FitForm form = FitForm::floor_and_term;
+  double S = 0, k = 0;
+  std::optional<double> p;  // none where k = 0
+  double rms = 0;           // sqrt(mean over the points of (ln e - ln(S + k C^p))^2)
+};
+
+// The sum of squared log residuals of e = k (b^p + C^p) = S + k C^p over the points, as a
+// function of p and the floor against the time term at C_max, with ln k at its least-squares
+// value (the mean residual).
+class LogResiduals {
+ public:
+  explicit LogResiduals(const std::vector<std::pair<double, double>>& points) {
+    for (const auto& [C, e] : points) {
+      u_.push_back(std::log(C));
+      y_.push_back(std::log(e));
+    }
+    d_.resize(u_.size());
+    u_max_ = *std::max_element(u_.begin(), u_.end());
+  }
+
+  double u_max() const { return u_max_; }
+
+  // At p and v = ln(S / (k C_max^p)), so that S = k b^p with ln(b^p) = p ln C_max + v.
+  double at(double p, double v, double* log_k = nullptr) {
+    const double n = static_cast<double>(u_.size());
+    double mean = 0;
+    const double x = p * u_max_ + v;
+    for (std::size_t i = 0; i < u_.size(); ++i) {
+      // ln(b^p + C^p) = ln(e^x + e^z), without overflow.
+      const double z = p * u_[i];
+      d_[i] = y_[i] - (std::max(x, z) + std::log1p(std::exp(-std::abs(x - z))));
+      mean += d_[i];
+    }
+    mean /= n;
+    double sum = 0;
+    for (const double d : d_)
+      sum += (d - mean) * (d - mean);
+    if (log_k) *log_k = mean;
+    return sum;
+  }
+
+  // The power law e = k C^p (S = 0): p is the least-squares slope of ln e against ln C,
+  // clamped to [kOrderLow, kOrderHigh] (the sum of squares is quadratic in p).
+  double no_floor(double& p, double& log_k) const {
+    const double n = static_cast<double>(u_.size());
+    double mu = 0, my = 0;
+    for (std::size_t i = 0; i < u_.size(); ++i) {
+      mu += u_[i];
+      my += y_[i];
+    }
+    mu /= n;
+    my /= n;
+    double suy = 0, suu = 0;
+    for (std::size_t i = 0; i < u_.size(); ++i) {
+      suy += (u_[i] - mu) * (y_[i] - my);
+      suu += (u_[i] - mu) * (u_[i] - mu);
+    }
+    p = std::clamp(suu > 0 ? suy / suu : kOrderLow, kOrderLow, kOrderHigh);
+    log_k = my - p * mu;
+    double sum = 0;
+    for (std::size_t i = 0; i < u_.size(); ++i) {
+      const double r = y_[i] - log_k - p * u_[i];
+      sum += r * r;
+    }
+    return sum;
+  }
+
+  // The constant e = S (k = 0).
+  double no_term(double& log_S) const {
+    const double n = static_cast<double>(y_.size());
+    log_S = 0;
+    for (const double y : y_)
+      log_S += y;
+    log_S /= n;
+    double sum = 0;
+    for (const double y : y_)
+      sum += (y - log_S) * (y - log_S);
+    return sum;
+  }
+
+ private:
+  std::vector<double> u_, y_, d_;  // ln C, ln e, the residuals of the last evaluation
+  double u_max_ = 0;               // ln C_max
+};
+
+// The minimum of f over [lo, hi] by golden-section search: (x, f(x)).
+template <class F>
+std::pair<double, double> golden(const F& f, double lo, double hi) {
+  const double r = (std::sqrt(5.0) - 1) / 2;
+  double x1 = hi - r * (hi - lo), x2 = lo + r * (hi - lo);
+  double f1 = f(x1), f2 = f(x2);
+  for (int step = 0; step < kGoldenSteps; ++step) {
+    if (f1 <= f2) {
+      hi = x2;
+      x2 = x1;
+      f2 = f1;
+      x1 = hi - r * (hi - lo);
+      f1 = f(x1);
+    } else {
+      lo = x1;
+      x1 = x2;
+      f1 = f2;
+      x2 = lo + r * (hi - lo);
+      f2 = f(x2);
+    }
+  }
+  return f1 <= f2 ? std::pair{x1, f1} : std::pair{x2, f2};
+}
+
+// The minimum of f over [lo, hi]: the least of a grid of step `step` (both ends included),
+// refined by golden-section search between its two neighbours (kept where it is lower).
+template <class F>
+std::pair<double, double> grid_then_golden(const F& f, double lo, double hi, double step) {
+  const int n = std::max(1, static_cast<int>(std::ceil((hi - lo) / step)));
+  const auto x_at = [&](int j) { return j == n ? hi : lo + j * step; };
+  int best = 0;
+  double best_f = f(x_at(0));
+  for (int j = 1; j <= n; ++j) {
+    const double v = f(x_at(j));
+    if (v < best_f) {
+      best = j;
+      best_f = v;
+    }
+  }
+  const auto refined = golden(f, x_at(std::max(0, best - 1)), x_at(std::min(n, best + 1)));
+  return refined.second < best_f ? refined : std::pair{x_at(best), best_f};
+}
+
+// The least-squares fit of ln e = ln(S + k C^p) to the points (C, e), C and e positive.
+Fit fit_curve(const std::vector<std::pair<double, double>>& points) {
+  LogResiduals r(points);
+  double c_min = points.front().first, c_max = points.front().first;
+  for (const auto& pt : points) {
+    c_min = std::min(c_min, pt.first);
+    c_max = std::max(c_max, pt.first);
+  }
+  // For each p the best v; over p the best of those.
+  const auto best_v = [&](double p) {
+    const double lo = p * std::log(c_min / c_max) - std::log(kReach), hi = std::log(kReach);
+    return grid_then_golden([&](double v) { return r.at(p, v); }, lo, hi, kLogStep);
+  };
+  const double p = grid_then_golden([&](double q) { return best_v(q).second; }, kOrderLow,
+                                    kOrderHigh, kOrderStep)
+                       .first;
+  const double v = best_v(p).first;
+  double log_k = 0;
+  const double interior = r.at(p, v, &log_k);
+
+  Fit fit;
+  double best = interior;
+  fit.form = FitForm::floor_and_term;
+  fit.p = p;
+  fit.k = std::exp(log_k);
+  fit.S = std::exp(log_k + p * r.u_max() + v);
+  // The two ends of the search over v: no floor (S = 0) and no time term (k = 0).
+  double p0 = 0, log_k0 = 0;
+  const double no_floor = r.no_floor(p0, log_k0);
+  if (no_floor <= best) {
+    best = no_floor;
+    fit.form = FitForm::no_floor;
+    fit.p = p0;
+    fit.k = std::exp(log_k0);
+    fit.S = 0;
+  }
+  double log_S = 0;
+  const double no_term = r.no_term(log_S);
+  if (no_term <= best) {
+    best = no_term;
+    fit.form = FitForm::no_term;
+    fit.p.reset();
+    fit.k = 0;
+    fit.S = std::exp(log_S);
+  }
+  fit.rms = std::sqrt(best / static_cast<double>(points.size()));
+  return fit;
+}
 
 // ---------------------------------------------------------------------------------------------
 // Findings
@@ -40,10 +244,15 @@ struct Curve {
   std::vector<std::pair<double, double>> points;  // (C, error over time), C descending
   std::vector<double> left_out;   // the C of runs not stable, accurate and crossing-free
   bool complete = true;           // no run left out at a C below one that entered (report_util.hpp)
-  double plateau = 0;             // the error at the smallest C
-  std::optional<double> balance;  // the balancing C
-  std::string balance_note;       // why there is none: "above C = 0.8", "below C = 0.05"
-  std::optional<double> order;    // the time order
+  std::optional<Fit> fit;         // where there are at least kFitPoints points
+  std::optional<double> b;        // (S / k)^(1 / p), where the fit has a floor and a time term
+  std::optional<double> balance;  // b, where within the measured C
+  std::string balance_note;       // why there is none: "above C = 0.8", "none: S = 0"
+  // k C_max^p / S: the fitted time term at the largest C measured against the floor (infinite
+  // where S = 0, zero where k = 0).
+  double time_share = 0;
+  bool resolved() const { return fit && time_share >= 1 / kResolved; }
+  bool negligible() const { return fit && time_share < 1 / kResolved; }
 };
 
 using CurveKey = std::tuple<std::string, std::string, int>;
@@ -57,6 +266,42 @@ std::string curve_label(const ojson& r) {
 
 bool half_step(const std::string& label) {
   return label.find(kHalfStep) != std::string::npos;
+}
+
+bool consistent_mass(const std::string& method) {
+  return method.find("fmpm") != std::string::npos;
+}
+
+// The fit of a curve, its balancing C and its time share.
+void fit_into(Curve& c) {
+  bool positive = true;
+  for (const auto& [C, e] : c.points)
+    positive = positive && C > 0 && e > 0;
+  if (c.points.size() < kFitPoints || !positive) return;
+  c.fit = fit_curve(c.points);
+  const Fit& f = *c.fit;
+  const double c_max = c.points.front().first, c_min = c.points.back().first;
+  switch (f.form) {
+    case FitForm::no_floor:
+      c.balance_note = "none: S = " + shortest(f.S);
+      c.time_share = std::numeric_limits<double>::infinity();
+      return;
+    case FitForm::no_term:
+      c.balance_note = "none: k = " + shortest(f.k);
+      c.time_share = 0;
+      return;
+    case FitForm::floor_and_term:
+      break;
+  }
+  const double b = std::pow(f.S / f.k, 1 / *f.p);
+  c.b = b;
+  c.time_share = f.k * std::pow(c_max, *f.p) / f.S;
+  if (b < c_min)
+    c.balance_note = "below C = " + shortest(c_min);
+  else if (b > c_max)
+    c.balance_note = "above C = " + shortest(c_max);
+  else
+    c.balance = b;
 }
 
 std::map<CurveKey, Curve> curves(const std::vector<ojson>& rows) {
@@ -80,41 +325,33 @@ std::map<CurveKey, Curve> curves(const std::vector<ojson>& rows) {
         if (C < p.first) c.complete = false;
     std::sort(c.points.begin(), c.points.end(),
               [](const auto& a, const auto& b) { return TotalLess()(b.first, a.first); });
-    if (c.points.size() < 3) continue;
-    c.plateau = c.points.back().second;
-    // The time part at each C but the smallest.
-    std::vector<std::pair<double, double>> time;
-    for (std::size_t k = 0; k + 1 < c.points.size(); ++k)
-      time.emplace_back(c.points[k].first, c.points[k].second - c.plateau);
-    std::vector<std::pair<double, double>> visible;
-    for (const auto& [C, t] : time)
-      if (t >= c.plateau / kVisible) visible.emplace_back(C, t);
-    c.order = loglog_slope(visible);
-    // The balancing C: between the C whose time part is at least the plateau and the next.
-    if (time.front().second < c.plateau) {
-      c.balance_note = "above C = " + shortest(time.front().first);
-    } else {
-      for (std::size_t k = 0; k + 1 < time.size(); ++k) {
-        const auto [C1, t1] = time[k];
-        const auto [C2, t2] = time[k + 1];
-        if (t1 >= c.plateau && t2 < c.plateau && t2 > 0) {
-          const double s = std::log(c.plateau / t2) / std::log(t1 / t2);
-          c.balance = std::exp(std::log(C2) + s * std::log(C1 / C2));
-          break;
-        }
-      }
-      if (!c.balance) c.balance_note = "below C = " + shortest(time.back().first);
-    }
+    fit_into(c);
   }
   return out;
 }
 
+// The same method, scene and grid with the half-step start, for an exact-start curve.
+const Curve* half_step_twin(const std::map<CurveKey, Curve>& all, const Curve& exact) {
+  const auto it = all.find({exact.scene, exact.method + kHalfStep, exact.cells});
+  return it == all.end() ? nullptr : &it->second;
+}
+
+// The time term of an exact-start curve is a start-up effect: it is resolved, and the same
+// method, scene and grid with the half-step start has a negligible one. nullopt where the exact
+// start's time term is not resolved or the curve has no fitted half-step twin.
+std::optional<bool> start_up_effect(const std::map<CurveKey, Curve>& all, const Curve& c) {
+  if (half_step(c.method) || !c.resolved()) return std::nullopt;
+  const Curve* twin = half_step_twin(all, c);
+  if (!twin || !twin->fit) return std::nullopt;
+  return twin->negligible();
+}
+
 // Per method and scene: the grids in order, and the slope of log(balancing C) against log(h)
-// over the grids where it is bracketed (at least three).
+// over the grids where it lies within the scan (at least three).
 struct Trend {
   std::vector<const Curve*> grids;
   std::optional<double> slope;
-  bool falls = false;  // the balancing C falls with every refinement where bracketed
+  bool falls = false;  // the balancing C falls with every refinement where within the scan
   int bracketed = 0;
 };
 
@@ -138,38 +375,34 @@ std::map<std::pair<std::string, std::string>, Trend> trends(const std::map<Curve
   return out;
 }
 
-bool consistent_mass(const std::string& method) {
-  return method.find("fmpm") != std::string::npos;
-}
-
 // ---------------------------------------------------------------------------------------------
 // Claims
 
 std::vector<Claim> balance_claims(const std::map<CurveKey, Curve>& all,
                                   const std::map<std::pair<std::string, std::string>, Trend>& tr) {
   int flip_n = 0, flip_first = 0, fmpm_n = 0, fmpm_second = 0, trend_n = 0, trend_falls = 0;
-  int half_n = 0, half_raised = 0, half_order_n = 0, half_second = 0;
+  int start_n = 0, start_up = 0, half_order_n = 0, half_second = 0, still_n = 0, still_none = 0;
   for (const auto& [key, c] : all) {
-    if (half_step(c.method)) {
-      if (c.order) {
-        ++half_order_n;
-        half_second += std::abs(*c.order - 2) <= kOrderTolerance;
-      }
-      // Against the same method, scene and grid started exactly, where that one balances.
-      const std::string exact = c.method.substr(0, c.method.find(kHalfStep));
-      const auto it = all.find({c.scene, exact, c.cells});
-      if (it == all.end() || !it->second.balance) continue;
-      ++half_n;
-      half_raised += !c.balance || *c.balance > *it->second.balance;
-      continue;
+    if (!c.fit) continue;
+    if (c.scene == kStillScene) {
+      ++still_n;
+      still_none += c.time_share < 1;
     }
-    if (!c.order) continue;
-    if (consistent_mass(c.method)) {
+    if (const auto effect = start_up_effect(all, c)) {
+      ++start_n;
+      start_up += *effect;
+    }
+    if (!c.resolved()) continue;
+    const double p = *c.fit->p;
+    if (half_step(c.method)) {
+      ++half_order_n;
+      half_second += std::abs(p - 2) <= kOrderTolerance;
+    } else if (consistent_mass(c.method)) {
       ++fmpm_n;
-      fmpm_second += std::abs(*c.order - 2) <= kOrderTolerance;
+      fmpm_second += std::abs(p - 2) <= kOrderTolerance;
     } else {
       ++flip_n;
-      flip_first += std::abs(*c.order - 1) <= kOrderTolerance;
+      flip_first += std::abs(p - 1) <= kOrderTolerance;
     }
   }
   for (const auto& [key, t] : tr) {
@@ -178,34 +411,45 @@ std::vector<Claim> balance_claims(const std::map<CurveKey, Curve>& all,
     trend_falls += t.falls;
   }
   Claim first = claim("flip-time-error-first-order",
-                      "With FLIP, USL and the exact start the time part of the error over time is "
-                      "first order in C (within {tol}) on every method, scene and grid where it "
-                      "is measured",
+                      "With FLIP, USL and the exact start the fitted time order p is first order "
+                      "in C (within {tol}) on every method, scene and grid where the time term is "
+                      "resolved",
                       "{first} of {n} curves");
   first.value("tol", shortest(kOrderTolerance)).every("first", flip_first, "n", flip_n);
   Claim second = claim("consistent-mass-restores-second-order",
-                       "With the consistent mass nearly restored (FMPM of order eight) the time "
-                       "part is second order in C (within {tol}) on every scene and grid where it "
-                       "is measured",
+                       "With the consistent mass nearly restored (FMPM of order eight) the fitted "
+                       "time order p is second order in C (within {tol}) on every scene and grid "
+                       "where the time term is resolved",
                        "{second} of {n} curves");
   second.value("tol", shortest(kOrderTolerance)).every("second", fmpm_second, "n", fmpm_n);
   Claim falls = claim("balance-falls-with-h",
-                      "With FLIP and USL the balancing C falls with every refinement of the grid, "
-                      "for every method and scene where it is bracketed on two grids or more",
+                      "With FLIP and USL the fitted balancing C falls with every refinement of "
+                      "the grid, for every method and scene where it lies within the scan on two "
+                      "grids or more",
                       "{falls} of {n} methods and scenes");
   falls.every("falls", trend_falls, "n", trend_n);
-  Claim raised = claim("half-step-start-raises-balance",
-                       "A half-step start raises the balancing C (or takes it above the scan) on "
-                       "every method, scene and grid where the exact start balances inside it",
-                       "{raised} of {n} curves");
-  raised.every("raised", half_raised, "n", half_n);
+  Claim start =
+      claim("balance-is-start-up-effect",
+            "The balance is a start-up effect: on every method, scene and grid where "
+            "the exact start's fitted time term is resolved (which includes every curve "
+            "whose balancing C lies within or under the scan), the half-step start leaves a "
+            "negligible time term (its fitted k C^p under S / {resolved} at every "
+            "measured C)",
+            "{removed} of {n} curves");
+  start.value("resolved", shortest(kResolved)).every("removed", start_up, "n", start_n);
   Claim half_order = claim("half-step-start-second-order",
-                           "With a half-step start the time part is second order in C (within "
-                           "{tol}) wherever it is measured",
+                           "With a half-step start the fitted time order p is second order in C "
+                           "(within {tol}) wherever the time term is resolved",
                            "{second} of {n} curves");
   half_order.value("tol", shortest(kOrderTolerance))
       .every("second", half_second, "n", half_order_n);
-  return {first, second, falls, raised, half_order};
+  Claim still = claim("no-balance-without-initial-acceleration",
+                      "On the {scene} scene, which starts with zero acceleration, the fitted time "
+                      "term stays under S at every measured C (no balancing C within or under "
+                      "the scan) for every method, start and grid",
+                      "{none} of {n} curves");
+  still.value("scene", kStillScene).every("none", still_none, "n", still_n);
+  return {first, second, falls, start, half_order, still};
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -213,6 +457,23 @@ std::vector<Claim> balance_claims(const std::map<CurveKey, Curve>& all,
 
 std::string scene_name(const std::string& scene) {
   return scene == "steffen" ? "neo-Hookean" : scene;
+}
+
+std::string balance_text(const Curve& c) {
+  if (c.balance) return significant(*c.balance, 3);
+  return c.balance_note.empty() ? "–" : c.balance_note;
+}
+
+// p, with `†` where it lies at an end of the range it is searched over.
+std::string order_text(const Curve& c) {
+  if (!c.fit || !c.fit->p) return "–";
+  const double p = *c.fit->p;
+  const double near = kOrderStep * 1e-6;
+  return fixed(p, 2) + (p <= kOrderLow + near || p >= kOrderHigh - near ? " †" : "");
+}
+
+std::string time_term_text(const Curve& c) {
+  return !c.fit ? "–" : c.resolved() ? "resolved" : "negligible";
 }
 
 std::string balance_table(const std::map<std::pair<std::string, std::string>, Trend>& tr) {
@@ -224,7 +485,7 @@ std::string balance_table(const std::map<std::pair<std::string, std::string>, Tr
   std::sort(cells.begin(), cells.end());
   md << "| scene | method |";
   for (int n : cells)
-    md << " " << n << " cells: balancing C (time order) |";
+    md << " " << n << " cells: balancing C (p) |";
   md << " slope of log(balancing C) against log(h) |\n|---|---|";
   for (std::size_t k = 0; k <= cells.size(); ++k)
     md << "---|";
@@ -239,40 +500,73 @@ std::string balance_table(const std::map<std::pair<std::string, std::string>, Tr
         continue;
       }
       const Curve& c = **it;
-      md << " "
-         << (c.balance                ? significant(*c.balance, 3)
-             : c.balance_note.empty() ? "–"
-                                      : c.balance_note)
-         << " (" << (c.order ? fixed(*c.order, 2) : std::string("–")) << ")"
-         << (c.complete ? "" : " ‡") << " |";
+      md << " " << balance_text(c) << " (" << order_text(c) << ")" << (c.complete ? "" : " ‡")
+         << " |";
     }
     md << " " << (t.slope ? fixed(*t.slope, 2) : std::string("–")) << " |\n";
   }
   return md.str();
 }
 
+std::string fits_table(const std::map<CurveKey, Curve>& all) {
+  std::ostringstream md;
+  md << "| scene | method | cells | S | k | p | RMS of ln residuals (ln e − ln fit) | balancing C "
+        "| "
+        "time term | "
+        "k C_max^p / S |\n|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const auto& [key, c] : all) {
+    md << "| " << scene_name(c.scene) << " | " << c.method << " | " << c.cells << " | ";
+    if (!c.fit) {
+      md << "– | – | – | – | – | – | – |\n";
+      continue;
+    }
+    const Fit& f = *c.fit;
+    md << sci(f.S, 3) << " | " << sci(f.k, 3) << " | " << order_text(c) << " | " << sci(f.rms, 2)
+       << " | " << balance_text(c) << (c.complete ? "" : " ‡") << " | " << time_term_text(c)
+       << " | " << (std::isfinite(c.time_share) ? sci(c.time_share, 2) : std::string("–"))
+       << " |\n";
+  }
+  return md.str();
+}
+
 std::string curves_table(const std::map<CurveKey, Curve>& all) {
   std::ostringstream md;
-  md << "| scene | method | cells | error over time at each C (C: error) | plateau |\n"
-        "|---|---|---|---|---|\n";
+  md << "| scene | method | cells | error over time at each C (C: error) |\n"
+        "|---|---|---|---|\n";
   for (const auto& [key, c] : all) {
     md << "| " << scene_name(c.scene) << " | " << c.method << " | " << c.cells << " | ";
     for (std::size_t k = 0; k < c.points.size(); ++k)
       md << (k ? "; " : "") << shortest(c.points[k].first) << ": " << sci(c.points[k].second);
-    md << " | " << (c.points.size() >= 3 ? sci(c.plateau) : std::string("–")) << " |\n";
+    md << " |\n";
   }
   return md.str();
+}
+
+ojson optional_number(const std::optional<double>& v) {
+  return v ? ojson(*v) : ojson(nullptr);
 }
 
 ojson curves_json(const std::map<CurveKey, Curve>& all) {
   ojson out = ojson::array();
   for (const auto& [key, c] : all) {
-    out.push_back({{"scene", c.scene},
-                   {"method", c.method},
-                   {"cells", c.cells},
-                   {"balancing_courant", c.balance ? ojson(*c.balance) : ojson(nullptr)},
-                   {"time_order", c.order ? ojson(*c.order) : ojson(nullptr)},
-                   {"plateau", c.points.size() >= 3 ? ojson(c.plateau) : ojson(nullptr)}});
+    const bool fitted = c.fit.has_value();
+    const auto start_up = start_up_effect(all, c);
+    out.push_back(
+        {{"scene", c.scene},
+         {"method", c.method},
+         {"cells", c.cells},
+         {"points", c.points.size()},
+         {"S", fitted ? ojson(c.fit->S) : ojson(nullptr)},
+         {"k", fitted ? ojson(c.fit->k) : ojson(nullptr)},
+         {"p", fitted ? optional_number(c.fit->p) : ojson(nullptr)},
+         {"rms_log_residual", fitted ? ojson(c.fit->rms) : ojson(nullptr)},
+         {"b", optional_number(c.b)},
+         {"balancing_courant", optional_number(c.balance)},
+         {"balance_note", c.balance_note.empty() ? ojson(nullptr) : ojson(c.balance_note)},
+         {"time_share",
+          fitted && std::isfinite(c.time_share) ? ojson(c.time_share) : ojson(nullptr)},
+         {"time_term", fitted ? ojson(time_term_text(c)) : ojson(nullptr)},
+         {"start_up_effect", start_up ? ojson(*start_up) : ojson(nullptr)}});
   }
   return out;
 }
@@ -281,32 +575,65 @@ StudyReport balance_report(const ReportContext& ctx) {
   const auto all = curves(ctx.rows);
   const auto tr = trends(all);
   std::ostringstream md;
-  md << "## Results\n\nPer method, scene and grid: the *plateau* is the error over time at the "
-        "smallest C run; the *time part* at a C is its error over time less the plateau; the "
-        "*balancing C* is where the time part equals the plateau, interpolated on log axes "
-        "between the two C that bracket it (\"above\" or \"below\" the scan where none does); "
-        "the *time order* is the least-squares slope of log(time part) against log(C) over the "
-        "C whose time part is at least the plateau / "
-     << shortest(kVisible)
-     << " (at least three). Only runs that end stable and accurate and in which no particle "
-        "crosses a cell enter; a run left out at the largest C is the stability limit (the curve "
-        "starts below it), and `‡` marks a grid where one was left out below a C that entered. The "
-        "last column fits log of "
-        "the balancing C against log(h) over the grids where it is bracketed: a positive slope q "
-        "means the balancing C falls as h^q and the balancing step dt = C h / c as h times h^q, "
-        "so a C that balances on one grid leaves the time error above the spatial one on a "
-        "finer grid.\n\n"
+  md << "## Results\n\nPer method, scene and grid the error over time e at the Courant numbers C "
+        "run is fitted by e(C) = S + k C^p: S is the floor the error keeps as C goes to zero (the "
+        "spatial error), k C^p the time term. The fit is a nonlinear least-squares fit in log "
+        "space: it minimises the sum over the measured C of (ln e − ln(S + k C^p))² over S "
+        "non-negative, k positive and p from "
+     << shortest(kOrderLow) << " to " << shortest(kOrderHigh)
+     << ". With b the p-th root of S/k (the C at which k C^p = S) the model reads ln e = ln k + "
+        "ln(b^p + C^p), in which ln k enters linearly and is solved for exactly. C_min and C_max "
+        "are the smallest and largest C of the curve; p is searched on a grid of step "
+     << shortest(kOrderStep)
+     << " and, for each p, v = ln(S / (k C_max^p)), the floor against the time term at C_max, on "
+        "a grid of step "
+     << shortest(kLogStep) << " from ln((C_min / C_max)^p / " << value_text(kReach)
+     << ") (the floor a " << value_text(1 / kReach) << " of the time term at C_min) to ln("
+     << value_text(kReach)
+     << "); each grid minimum is "
+        "refined by "
+     << kGoldenSteps
+     << " steps of golden-section search. The two ends of that search, no floor (S zero, p the "
+        "least-squares slope of ln e against ln C clamped to its range) and no time term (k "
+        "zero, e constant), replace the fit where their sum of squares is not larger. A curve is "
+        "fitted where at least "
+     << kFitPoints
+     << " of its runs enter. The *RMS of ln residuals* is the square root of the mean over the "
+        "measured C of (ln e − ln(S + k C^p))², the typical relative misfit of the fit. The "
+        "*balancing C* is b where it lies between C_min and C_max, \"below\" or \"above\" the "
+        "scan where it lies outside, and \"none\" with the parameter that is zero where the fit "
+        "puts no floor (S) or no time term (k). The time term is *resolved* where its fitted value "
+        "at "
+        "C_max, k C_max^p, is at least S / "
+     << shortest(kResolved) << ", and *negligible* otherwise (then k C^p is under S / "
+     << shortest(kResolved)
+     << " at every measured C, since it rises with C); a fitted p is compared with first or "
+        "second order only where the time term is resolved. The time term of a curve with the "
+        "exact start, and with it its balance, is a *start-up effect* where it is resolved and the "
+        "same method, scene and grid with the half-step start has a negligible time term; a "
+        "curve that balances within or under the scan has a resolved time term.\n\n"
+        "Only runs that end stable and accurate and in which no particle crosses a cell enter; "
+        "a run left out at the largest C is the stability limit (the curve starts below it), "
+        "and `‡` marks a grid where one was left out below a C that entered. Each balancing C "
+        "is that of one curve, one scene, method and grid, and the last column fits log of the "
+        "balancing C against log(h) over the grids of one scene and method where it lies within "
+        "the scan (at least three): no balancing C of one scene is applied to another scene in "
+        "this report. A positive slope q means the balancing C falls as h^q and the balancing "
+        "step dt = C h / c as h times h^q, so a C that balances on one grid leaves the time "
+        "error above the spatial one on a finer grid.\n\n"
      << balance_table(tr)
      << "\nTwo known causes of a first-order time term are tested: FLIP's lumped-mass "
         "re-projection, by the rows of FMPM of order eight (the consistent mass nearly "
         "restored), and a start from rest with a non-zero acceleration (the neo-Hookean scene "
         "starts at rest, the bar with its acceleration zero), by the rows with a half-step "
-        "start (the particles' velocity starts half a step before the start, so that the velocity "
-        "of "
-        "the first position update lies half a step after it, as the leapfrog's staggered start "
-        "has it). The claims "
-        "above say which one moves the balance.\n"
-     << "\n### Each curve\n\n"
+        "start (the particles' velocity starts half a step before the start, so that the "
+        "velocity of the first position update lies half a step after it, as the leapfrog's "
+        "staggered start has it). The claims above say which one moves the balance.\n"
+     << "\n### The fit of each curve\n\n"
+        "k C_max^p / S is the fitted time term at the largest measured C against the floor "
+        "(– where S is zero); `†` marks a p at an end of the range it is searched over, "
+        "where that range, not the data, stops the fit.\n\n"
+     << fits_table(all) << "\n### Each curve\n\n"
      << curves_table(all);
   return StudyReport{.markdown = md.str(),
                      .json = {{"curves", curves_json(all)}},
@@ -315,15 +642,16 @@ StudyReport balance_report(const ReportContext& ctx) {
 
 std::string balance_index(const Spec& spec, const std::vector<ojson>& rows) {
   const auto all = curves(rows);
-  int bracketed = 0;
-  for (const auto& [key, c] : all)
+  int fitted = 0, bracketed = 0;
+  for (const auto& [key, c] : all) {
+    fitted += c.fit.has_value();
     bracketed += c.balance.has_value();
+  }
   std::ostringstream md;
-  md << "**What it shows.** The Courant number at which the time error equals the spatial one, "
-        "per method, scene and grid ("
-     << bracketed << " of " << all.size()
-     << " curves bracket it), with the order of the time error: [" << spec.name << ".md]("
-     << spec.name << ".md).\n\n";
+  md << "**What it shows.** The fit e(C) = S + k C^p of the error over time against the Courant "
+        "number per method, scene and grid, and the C at which its time term equals its floor ("
+     << bracketed << " of " << fitted << " fitted curves balance within the scan): [" << spec.name
+     << ".md](" << spec.name << ".md).\n\n";
   return md.str();
 }
 

@@ -115,9 +115,7 @@ std::string advise_example(const std::filesystem::path& results) {
     md << "(results/advice.json is not there yet: make studies writes it)\n```\n";
     return md.str();
   }
-  std::vector<CheckedSetting> settings;
-  for (const auto& s : doc["study"]["settings"])
-    settings.push_back(checked_setting_from_json(s));
+  const std::vector<CheckedSetting> settings = checked_settings_of(doc);
   // The search without a budget: the answer does not depend on this machine's speed. The
   // seconds, which do, are left out.
   const VerifyProblem vp{.problem = p};
