@@ -530,10 +530,20 @@ TEST(HostileOptions, NonFiniteNumbersAndUnknownNamesAreRefusedByName) {
           {"--cfl-factor: 'inf' is not a finite number"});
   refused("edge --method gimp --E 4 --A 0.01 --T 1e-3 --tolerance inf",
           {"--tolerance: 'inf' is not a finite number"});
-  for (const char* o : {"A", "cT", "error"})
+  for (const char* o : {"A", "cT", "error", "budget", "jitter"})
     for (const char* v : {"inf", "nan"})
       refused(with("advise", {{"A", "0.01"}, {"cT", "1"}, {"error", "0.1"}}, o, v),
               {std::string("--") + o + ": '" + v + "' is not a finite number"});
+  // advise: values out of range name their option and bound; --no-verify runs nothing, so a
+  // budget beside it is refused.
+  const std::string advise_base = "advise --A 0.01 --cT 1 --error 0.1 ";
+  refused(advise_base + "--budget 0", {"--budget", "> 0"});
+  refused(advise_base + "--jitter -0.1", {"--jitter", ">= 0"});
+  refused(advise_base + "--jitter 0.9", {"--jitter", "domain"});
+  refused("advise --A 0.3 --cT 1e6 --error 1e-9", {"--A", "domain"});
+  refused("advise --A 0.01 --cT 1e6 --error 0.1", {"--cT", "domain"});
+  refused("advise --A 0.01 --cT 10 --error 1e-9", {"--error", "domain"});
+  refused(advise_base + "--no-verify --budget 5", {"--no-verify"});
   refused("check " + table2 + " --rtol inf", {"--rtol: 'inf' is not a finite number"});
   refused("check " + table2 + " --budget nan", {"--budget: 'nan' is not a finite number"});
 
