@@ -16,6 +16,7 @@
 #include "report_util.hpp"
 #include "spec.hpp"
 #include "support.hpp"
+#include "verdicts.hpp"
 
 namespace mpmstab {
 namespace {
@@ -90,6 +91,26 @@ TEST(Documents, CheckFailsWhenABlockIsEditedByHandOrItsResultChanges) {
 
 // make timings publishes this machine's timings and keeps the last tier run of every other
 // machine the published file held, under "(<label> on <cpu>)"; README's table shows each.
+// The tables of outcomes, failure reasons and accuracy classes that docs/design.md shows are
+// the code's own lists: every value of each enum has a definition and a row, in enum order, and
+// the committed document holds each generated table as the code writes it now.
+TEST(Documents, TheVerdictTablesAreTheCodesOwnLists) {
+  const auto outcomes = all_outcomes();
+  ASSERT_EQ(outcomes.size(), std::size_t(Outcome::too_short) + 1);
+  EXPECT_EQ(all_failure_reasons().back(), FailureReason::dt_collapse);
+  EXPECT_EQ(all_accuracy_classes().size(), std::size_t(Accuracy::meaningless) + 1);
+  for (const Outcome o : outcomes)
+    EXPECT_NE(outcomes_table().find("| `" + std::string(to_string(o)) + "` | " + definition(o)),
+              std::string::npos)
+        << to_string(o);
+  EXPECT_NE(definition(Outcome::stable).find(std::to_string(kMinStepsToJudge)), std::string::npos);
+  std::ifstream in(std::filesystem::path(MPMSTAB_SOURCE_DIR) / "docs" / "design.md");
+  std::stringstream design;
+  design << in.rdbuf();
+  for (const std::string& t : {outcomes_table(), failure_reasons_table(), accuracy_classes_table()})
+    EXPECT_NE(design.str().find(t), std::string::npos) << t;
+}
+
 TEST(Documents, PublishedTimingsKeepEachMachinesLastTierRun) {
   const auto dir = std::filesystem::temp_directory_path() / "mpmstab_timings_test";
   std::filesystem::remove_all(dir);

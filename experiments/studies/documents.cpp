@@ -11,6 +11,7 @@
 #include "report_util.hpp"
 #include "run/run.hpp"
 #include "strict_json.hpp"
+#include "verdicts.hpp"
 
 namespace mpmstab {
 
@@ -232,6 +233,9 @@ std::map<std::string, std::string> document_blocks(const std::filesystem::path& 
           {"readme-advise-example", advise_example(results)},
           {"design-advice-counts", advice_counts(results)},
           {"design-advice-domain", advice_domain_table()},
+          {"design-outcomes", outcomes_table()},
+          {"design-failure-reasons", failure_reasons_table()},
+          {"design-accuracy-classes", accuracy_classes_table()},
           {"design-cells-per-wavelength", cells_per_wavelength(results)}};
 }
 
