@@ -12,6 +12,7 @@
 #include "result_json.hpp"
 #include "run/run.hpp"
 #include "run_options.hpp"
+#include "run_summary.hpp"
 
 namespace mpmstab::cli {
 
@@ -125,73 +126,6 @@ reason and step), meaningless (it reached T but its error over time reached A) o
 Exit status: 0 when the run completed (stable or not: an unstable run is a result),
 2 for invalid input (nothing is run or written), 1 for an internal error.
 )";
-
-using cli::fmt;  // fmt(double) of run_options.hpp, which the overload below would hide
-
-// A measurement that may be absent: "-" when it is.
-template <class T>
-std::string fmt(const std::optional<T>& v) {
-  if (!v) return "-";
-  if constexpr (std::is_floating_point_v<T>) {
-    return fmt(*v);
-  } else {
-    return std::to_string(*v);
-  }
-}
-
-std::string text_summary(const RunResult& r) {
-  const RunParams& p = r.params;
-  std::ostringstream s;
-  const bool fixed = p.stepping.policy == TimeStepPolicy::fixed;
-  s << "mpmstab run: " << to_string(p.method) << ", E = " << fmt(p.E) << ", A = " << fmt(p.A)
-    << (fixed ? ", dt = " + fmt(p.dt) : ", policy " + std::string(to_string(p.stepping.policy)))
-    << ", T = " << fmt(p.T) << ", " << p.cells << " cells x " << p.ppc << " ppc, "
-    << to_string(p.bc) << nondefault_choices(p) << "\n";
-  std::string verdict(r.outcome ? to_string(*r.outcome)
-                                : "survived (error over time not measured)");
-  if (r.failure) {
-    verdict += " (" + std::string(to_string(r.failure->reason)) + " at step " +
-               std::to_string(r.failure->step) + ", t = " + fmt(r.failure->time) +
-               (r.failure->particle >= 0 ? ", particle " + std::to_string(r.failure->particle)
-                                         : std::string()) +
-               ")";
-  }
-  if (r.outcome == Outcome::meaningless) verdict += " (the error over time reached A)";
-  auto line = [&](std::string_view key, const std::string& value) {
-    s << "  " << key << std::string(key.size() < 22 ? 22 - key.size() : 1, ' ') << value << "\n";
-  };
-  line("verdict", verdict);
-  line("steps", std::to_string(r.steps) +
-                    (r.steps_planned ? " of " + std::to_string(r.steps_planned) : std::string()) +
-                    "  (policy " + std::string(to_string(p.stepping.policy)) + ", dt " +
-                    (r.steps ? fmt(r.dt_min) + " to " + fmt(r.dt_max) + ", mean " + fmt(r.dt_mean)
-                             : std::string("-")) +
-                    ")");
-  line("max_error", fmt(r.max_error));
-  line("max_error_over_time", fmt(r.max_error_over_time));
-  if (p.observe.error_l2) line("error_l2_time", fmt(r.error_l2_time));
-  line("dt_stable_min", fmt(r.dt_stable_min) + "  (eq. 108, sigma " +
-                            std::string(to_string(p.stable.sigma)) + ", ||v|| " +
-                            std::string(to_string(p.stable.vnorm)) + ")");
-  line("crossings", fmt(r.crossings));
-  if (p.observe.energy) {
-    line("energy_error_max", fmt(r.energy_error_max) + "  (balance, per the initial energy)");
-    line("energy_exact_error_max", fmt(r.energy_exact_error_max) + "  (against the exact K + U)");
-    line("energy_drift", fmt(r.energy_drift) + "  (per period of the exact solution)");
-    line("energy_warning_step",
-         r.energy_warning_step ? std::to_string(*r.energy_warning_step)
-                               : std::string("-  (balance within ") + fmt(kEnergyWarning) + ")");
-  }
-  line("dt_cfl = h/c", fmt(r.dt_cfl));
-  line("dt_sound = 1/c", fmt(r.dt_sound));
-  line("courant = c dt/h", fmt(r.courant) + (r.dt_min != r.dt_max ? "  (largest dt)" : ""));
-  line("A_over_h = A / h", fmt(amplitude_per_cell(p)));
-  line("cT = wave passes", fmt(wave_passes(p)));
-  line("particle-steps", std::to_string(r.particles * r.steps));
-  line("wall_seconds", fmt(r.wall_seconds));
-  line("ns/particle-step", r.steps ? fmt(r.ns_per_particle_step) : std::string("-"));
-  return s.str();
-}
 
 // One line of the history CSV (header: kHistoryHeader).
 // The energy columns are empty unless the run observes its energy (--energy), the tip columns

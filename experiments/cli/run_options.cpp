@@ -193,10 +193,4 @@ RunParams params_from(const Args& a, bool searching_dt, bool amplitude_required)
   return p;
 }
 
-std::string fmt(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.4g", v);
-  return buf;
-}
-
 }  // namespace mpmstab::cli

@@ -7,6 +7,7 @@
 
 #include "args.hpp"
 #include "base/params.hpp"
+#include "run_summary.hpp"
 
 namespace mpmstab::cli {
 
@@ -18,7 +19,7 @@ const std::vector<OptionSpec>& run_options();
 // `amplitude_required` (spectral) a missing --A is 0.
 RunParams params_from(const Args& a, bool searching_dt = false, bool amplitude_required = true);
 
-// A number in the text summaries: four significant digits.
-std::string fmt(double v);
+// A number in the text summaries: four significant digits (run_summary.hpp).
+using mpmstab::fmt;
 
 }  // namespace mpmstab::cli

@@ -10,6 +10,7 @@
 #include "performance.hpp"
 #include "report_util.hpp"
 #include "run/run.hpp"
+#include "run_summary.hpp"
 #include "strict_json.hpp"
 #include "verdicts.hpp"
 
@@ -126,6 +127,27 @@ std::string advise_example(const std::filesystem::path& results) {
   return md.str();
 }
 
+// README.md: `mpmstab run` on one case of Table 1, its text summary as the command prints it
+// (without the wall time, which varies from run to run).
+RunParams readme_run_params() {
+  RunParams p;
+  p.method = Method::gimp;
+  p.E = 4;
+  p.A = 0.015;
+  p.dt = 1e-3;
+  return p;
+}
+
+std::string run_example() {
+  const RunParams p = readme_run_params();
+  std::ostringstream md;
+  md << "```\n$ build/mpmstab run --method " << to_string(p.method) << " --E " << shortest(p.E)
+     << " --A " << shortest(p.A) << " --dt " << value_text(p.dt) << "\n"
+     << text_summary(run(p), false)
+     << "  (then wall_seconds and ns/particle-step, which vary from run to run)\n```\n";
+  return md.str();
+}
+
 // docs/design.md: the domain and the constants of the verified advice, from AdviceDomain.
 std::string advice_domain_table() {
   const AdviceDomain& d = kAdviceDomain;
@@ -231,6 +253,7 @@ std::map<std::string, std::string> document_blocks(const std::filesystem::path& 
   return {{"readme-tier-times", tier_times(results)},
           {"readme-speed", kernel_brief(results / "benchmark_step.json")},
           {"readme-advise-example", advise_example(results)},
+          {"readme-run-example", run_example()},
           {"design-advice-counts", advice_counts(results)},
           {"design-advice-domain", advice_domain_table()},
           {"design-outcomes", outcomes_table()},
