@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <sstream>
 
+#include "base/accuracy.hpp"
 #include "csv.hpp"
 #include "report_util.hpp"
 #include "study.hpp"
@@ -102,18 +103,44 @@ std::string case_row(const ojson& r, const std::vector<std::string>& params,
   return md.str();
 }
 
-// How many cases failed, and how many survived with an error over time that reached A.
+// The verdicts of the cases: how many failed, survived with an error over time that reached A,
+// took too few steps for a verdict, or ended stable, and of the stable ones how many are
+// accurate and inaccurate (core/base/accuracy.hpp; unknown where the error over time was not
+// recorded).
 struct VerdictCounts {
-  int unstable = 0, meaningless = 0;
+  int unstable = 0, meaningless = 0, too_short = 0, stable = 0;
+  int accurate = 0, inaccurate = 0, unknown = 0;
 };
 
 VerdictCounts count_verdicts(const std::vector<ojson>& rows) {
   VerdictCounts n;
   for (const auto& r : rows) {
-    n.unstable += outcome(r) == "unstable";
-    n.meaningless += outcome(r) == "meaningless";
+    const std::string o = outcome(r);
+    n.unstable += o == "unstable";
+    n.meaningless += o == "meaningless";
+    n.too_short += o == "too_short";
+    if (o != "stable") continue;
+    ++n.stable;
+    if (!has_number(r, "max_error_over_time") || !has_number(r, "A") ||
+        !(r["A"].get<double>() > 0)) {
+      ++n.unknown;
+    } else if (accuracy_class(r["max_error_over_time"].get<double>(), r["A"].get<double>()) ==
+               Accuracy::accurate) {
+      ++n.accurate;
+    } else {
+      ++n.inaccurate;
+    }
   }
   return n;
+}
+
+// "12 stable (9 accurate, 3 inaccurate)".
+std::string stable_text(const VerdictCounts& n) {
+  std::ostringstream s;
+  s << n.stable << " stable (" << n.accurate << " accurate, " << n.inaccurate << " inaccurate";
+  if (n.unknown > 0) s << ", " << n.unknown << " with no error over time recorded";
+  s << ")";
+  return s.str();
 }
 
 // The verdicts counted, the parameters common to every case, then one row per case.
@@ -123,10 +150,10 @@ std::string cases_markdown(const Spec& spec, const std::vector<ojson>& rows) {
   const VerdictCounts n = count_verdicts(rows);
   std::ostringstream md;
   md << "## Results\n\n"
-     << rows.size() << " cases: " << rows.size() - n.unstable - n.meaningless << " stable, "
-     << n.meaningless << " meaningless (survived, but the error over time reached A), "
-     << n.unstable << " unstable."
-     << " Common to all: " << common_params(rows, params) << ".\n\n"
+     << rows.size() << " cases: " << stable_text(n) << ", " << n.meaningless
+     << " meaningless (survived, but the error over time reached A), " << n.unstable << " unstable";
+  if (n.too_short > 0) md << ", " << n.too_short << " too short for a verdict";
+  md << ". Common to all: " << common_params(rows, params) << ".\n\n"
      << cases_header(params, observe);
   for (const auto& r : rows)
     md << case_row(r, params, observe);
@@ -136,9 +163,10 @@ std::string cases_markdown(const Spec& spec, const std::vector<ojson>& rows) {
 std::string cases_index(const Spec& spec, const std::vector<ojson>& rows) {
   const VerdictCounts n = count_verdicts(rows);
   std::ostringstream md;
-  md << "**What it shows.** " << rows.size() << " cases, " << n.unstable << " unstable, "
-     << n.meaningless << " meaningless. Full table: [" << spec.name << ".md](" << spec.name
-     << ".md).\n\n";
+  md << "**What it shows.** " << rows.size() << " cases: " << stable_text(n) << ", "
+     << n.meaningless << " meaningless, " << n.unstable << " unstable";
+  if (n.too_short > 0) md << ", " << n.too_short << " too short for a verdict";
+  md << ". Full table: [" << spec.name << ".md](" << spec.name << ".md).\n\n";
   return md.str();
 }
 
