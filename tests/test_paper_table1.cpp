@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <limits>
 #include <map>
 #include <string>
@@ -17,6 +18,7 @@
 #include "key.hpp"
 #include "paper_table1.hpp"
 #include "spec.hpp"
+#include "study_rows.hpp"
 
 namespace mpmstab {
 namespace {
@@ -119,6 +121,70 @@ TEST(PaperTable1, ATranscriptionWhoseKeyIsNotAFiniteNumberIsRefusedNamingTheRow)
     }
   }
   fs::remove_all(dir);
+}
+
+// The table1 study's report for rows of experiments/table1.json's cases: every case stable with
+// an error over time of 0.01 A, except those `change` alters (it is given the case and its row).
+StudyReport table1_report(
+    const std::function<void(const CaseSpec&, nlohmann::ordered_json&)>& change) {
+  const Spec spec = load_spec(kExperiments / "table1.json");
+  std::vector<nlohmann::ordered_json> rows;
+  for (const CaseSpec& c : spec.cases) {
+    auto r = test_support::study_row(std::string(to_string(c.params.method)), c.params.E);
+    r["A"] = c.params.A;
+    r["dt"] = c.params.dt;
+    r["max_error_over_time"] = 0.01 * c.params.A;
+    change(c, r);
+    rows.push_back(r);
+  }
+  const SweepOutcome outcome;
+  const fs::path out = fs::temp_directory_path();
+  const std::string header = "# header\n";
+  const StudyInputs inputs;
+  const std::vector<nlohmann::ordered_json> follow_up;
+  return spec.study->report(ReportContext{spec, rows, outcome, out, header, inputs, follow_up});
+}
+
+bool table1_claim_holds(const StudyReport& report, const std::string& id) {
+  for (const auto& c : report.claims)
+    if (c.id == id) return c.holds;
+  ADD_FAILURE() << "no claim " << id;
+  return false;
+}
+
+// A stable cell is given with its error over time / A and its accuracy class, and the count of
+// stable cells is split by class: a stable MPM cell at 0.89 A is stable but inaccurate.
+TEST(Table1Study, EveryStableCellStandsBesideItsErrorOverTimeAndAccuracyClass) {
+  const auto is = [](const CaseSpec& c, double E, double A, double dt, Method m) {
+    return c.params.E == E && c.params.A == A && c.params.dt == dt && c.params.method == m;
+  };
+  int cases = 0;
+  const StudyReport report = table1_report([&](const CaseSpec& c, nlohmann::ordered_json& r) {
+    ++cases;
+    if (is(c, 64, 0.015, 1e-5, Method::mpm)) r["max_error_over_time"] = 0.89 * c.params.A;
+    if (is(c, 64, 0.015, 1e-6, Method::mpm)) test_support::meaningless_row(r);
+    if (is(c, 1e4, 0.015, 1e-4, Method::mpm)) test_support::fail_row(r, "nonpositive_F");
+  });
+  const std::string& md = report.markdown;
+  const std::string inaccurate = test_support::line_with(md, "| 0.89 | inaccurate |");
+  EXPECT_EQ(inaccurate.rfind("| 1e-5 | mpm |", 0), 0u) << inaccurate;
+  EXPECT_NE(inaccurate.find("| stable | 0.89 | inaccurate |"), std::string::npos) << inaccurate;
+  EXPECT_NE(md.find("| stable | 0.01 | accurate |"), std::string::npos) << md;
+  EXPECT_NE(md.find("error over time reached A) | 1 | meaningless |"), std::string::npos) << md;
+  EXPECT_NE(md.find("(t = 1.0e-3) | – | – |"), std::string::npos) << md;
+  const int stable = cases - 2;
+  EXPECT_NE(
+      md.find("Ours: " + std::to_string(stable) +
+              " stable (survived to T with an error over time below A): " +
+              std::to_string(stable - 1) + " accurate and 1 inaccurate (error over time 0.89 A)"),
+      std::string::npos)
+      << md;
+  EXPECT_FALSE(table1_claim_holds(report, "stable-cells-accurate"));
+  // With every stable cell below 0.1 A, the claim holds.
+  const StudyReport accurate = table1_report([&](const CaseSpec&, nlohmann::ordered_json&) {});
+  EXPECT_TRUE(table1_claim_holds(accurate, "stable-cells-accurate"));
+  EXPECT_NE(accurate.markdown.find(std::to_string(cases) + " accurate and 0 inaccurate"),
+            std::string::npos);
 }
 
 TEST(Key, HoldsOnlyFiniteNumbersAndOrdersThemTotally) {

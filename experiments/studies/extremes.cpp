@@ -6,9 +6,11 @@
 #include <cstdint>
 #include <limits>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <tuple>
 
+#include "base/accuracy.hpp"
 #include "base/params.hpp"
 #include "claims.hpp"
 #include "csv.hpp"
@@ -16,6 +18,7 @@
 #include "report_util.hpp"
 #include "scenes.hpp"
 #include "study.hpp"
+#include "verdicts.hpp"
 
 namespace mpmstab {
 
@@ -31,6 +34,46 @@ const std::vector<std::string> kVerdicts = {"stable", "meaningless", "unstable",
 int verdict_code(const ojson& r) {
   const auto it = std::find(kVerdicts.begin(), kVerdicts.end(), outcome(r));
   return it == kVerdicts.end() ? 0 : int(it - kVerdicts.begin());
+}
+
+// A run that reached T in fewer wave passes c T than this is too short to show an instability
+// that takes a wave across the body: whatever its outcome says, it is not counted as stable.
+constexpr double kMinWavePasses = 1;
+
+double wave_passes_of(const ojson& r) {
+  return number_or_zero(r, "cT");
+}
+
+// How a run that the solver calls stable is counted here: stable over at least kMinWavePasses
+// wave passes, accurate or not (core/base/accuracy.hpp: an error over time that is not
+// recorded is not accurate), or too short in wave passes to count as stable.
+enum class Standing { accurate, inaccurate, under_a_pass };
+
+Standing standing(const ojson& r) {
+  if (wave_passes_of(r) < kMinWavePasses) return Standing::under_a_pass;
+  const bool accurate = has_number(r, "max_error_over_time") && has_number(r, "A") &&
+                        std::isfinite(r["max_error_over_time"].get<double>()) &&
+                        accuracy_class(r["max_error_over_time"].get<double>(),
+                                       r["A"].get<double>()) == Accuracy::accurate;
+  return accurate ? Standing::accurate : Standing::inaccurate;
+}
+
+// The error over time per A of a run that reached T with a stable or meaningless outcome.
+std::optional<double> error_per_A(const ojson& r) {
+  const std::string o = outcome(r);
+  if ((o != "stable" && o != "meaningless") || !has_number(r, "max_error_over_time") ||
+      !has_number(r, "A"))
+    return std::nullopt;
+  return r["max_error_over_time"].get<double>() / r["A"].get<double>();
+}
+
+// The verdict of a row as this report gives it: the solver's, except that a stable run of
+// fewer than kMinWavePasses wave passes is said to be too short in wave passes.
+std::string extremes_verdict(const ojson& r) {
+  if (verdict_code(r) == 0 && standing(r) == Standing::under_a_pass)
+    return "survived, c T = " + param(wave_passes_of(r)) + " < " + shortest(kMinWavePasses) +
+           " wave pass: too short to count as stable";
+  return verdict(r);
 }
 
 // The quantities a run that reached T reports, and which of them it measures. Eq. (108) is
@@ -101,7 +144,12 @@ Slowest slowest_case(const std::vector<ojson>& rows) {
 // What the opening and the conclusions count, from the rows.
 struct Counts {
   int total = 0, with_verdict = 0, stable = 0, meaningless = 0, too_short = 0;
-  std::map<std::string, int> reasons;  // of the unstable runs
+  // The runs the solver calls stable: over at least kMinWavePasses wave passes, accurate or
+  // inaccurate (the stable ones here), or over fewer (counted apart).
+  int accurate = 0, inaccurate = 0, under_a_pass = 0;
+  std::vector<double> inaccurate_errors;  // error over time / A of the inaccurate ones
+  std::vector<double> under_a_pass_cT;    // c T of those counted apart
+  std::map<std::string, int> reasons;     // of the unstable runs
   long long too_short_min = 0, too_short_max = 0;
   int reached = 0;            // runs that reached T (stable, meaningless or too short)
   int non_finite = 0;         // ... with a measured quantity null or not finite
@@ -109,9 +157,10 @@ struct Counts {
   int few_step_verdicts = 0;  // stable or meaningless verdicts on fewer than kMinStepsToJudge
   // Runs above their scheme's spectral limit (courant > courant_spectral).
   int above = 0, above_failed = 0, above_too_short = 0, above_survived = 0;
-  long long above_survivor_steps = 0;  // the most steps an above-limit survivor took
-  double above_survivor_ratio = 0;     // the largest c dt/h over the limit of a survivor
-  int unlimited = 0;                   // runs without a spectral limit
+  long long above_survivor_steps = 0;   // the most steps an above-limit survivor took
+  double above_survivor_ratio = 0;      // the largest c dt/h over the limit of a survivor
+  int above_survivor_under_a_pass = 0;  // survivors of fewer than kMinWavePasses wave passes
+  int unlimited = 0;                    // runs without a spectral limit
 };
 
 Counts count_rows(const std::vector<ojson>& rows) {
@@ -127,6 +176,18 @@ Counts count_rows(const std::vector<ojson>& rows) {
     } else {
       c.stable += v == 0;
       c.meaningless += v == 1;
+      if (v == 0) {
+        const Standing st = standing(r);
+        if (st == Standing::accurate) {
+          ++c.accurate;
+        } else if (st == Standing::inaccurate) {
+          ++c.inaccurate;
+          if (const auto e = error_per_A(r)) c.inaccurate_errors.push_back(*e);
+        } else {
+          ++c.under_a_pass;
+          c.under_a_pass_cT.push_back(wave_passes_of(r));
+        }
+      }
       if (v == 3) {
         c.too_short_min = c.too_short++ ? std::min(c.too_short_min, steps) : steps;
         c.too_short_max = std::max(c.too_short_max, steps);
@@ -150,6 +211,7 @@ Counts count_rows(const std::vector<ojson>& rows) {
       ++c.above_too_short;
     } else {
       ++c.above_survived;
+      c.above_survivor_under_a_pass += wave_passes_of(r) < kMinWavePasses;
       c.above_survivor_steps = std::max(c.above_survivor_steps, steps);
       c.above_survivor_ratio = std::max(c.above_survivor_ratio, over);
     }
@@ -165,7 +227,16 @@ std::string extremes_summary(const Spec& spec, const std::vector<ojson>& rows, c
   const Slowest slowest = slowest_case(rows);
   std::ostringstream md;
   md << "## Results\n\n**Summary.** " << c.total << " cases, " << c.with_verdict
-     << " with a verdict: " << c.stable << " stable, " << c.meaningless
+     << " with a verdict. " << c.stable << " reached T in at least " << kMinStepsToJudge
+     << " steps with an error over time below A (the solver's outcome stable); of these, "
+     << c.accurate + c.inaccurate << " ran at least c T = " << shortest(kMinWavePasses)
+     << " wave pass and are counted as stable here: " << c.accurate << " accurate (error over "
+     << "time below " << shortest(kAccurateFraction) << " A) and " << c.inaccurate << " inaccurate";
+  if (!c.inaccurate_errors.empty())
+    md << " (error over time " << span(c.inaccurate_errors, 2) << " A)";
+  md << "; the other " << c.under_a_pass << " ran fewer wave passes";
+  if (!c.under_a_pass_cT.empty()) md << " (c T " << span(c.under_a_pass_cT, 2) << ")";
+  md << ", too short to count as stable, and are counted apart. " << c.meaningless
      << " meaningless (survived, but the error over time reached A), " << unstable << " unstable ("
      << reason_counts(c.reasons) << ")";
   if (c.too_short) {
@@ -220,17 +291,30 @@ std::vector<Claim> extremes_claims(const Counts& c) {
                       "Every run above its scheme's spectral limit that is long enough to judge "
                       "fails",
                       "{failed} of {judged} fail; {survived} survive (the longest ran {steps} "
-                      "steps, at most {ratio} times the limit); {short} more are too short to "
-                      "judge");
+                      "steps, at most {ratio} times the limit; {survived_short} of them ran under "
+                      "c T = {passes} wave pass); {short} more are too short to judge");
   above.count("failed", c.above_failed)
       .count("judged", c.above_failed + c.above_survived)
       .count("survived", c.above_survived)
       .count("steps", c.above_survivor_steps)
       .value("ratio", c.above_survived ? fixed(c.above_survivor_ratio, 5) : "–")
+      .count("survived_short", c.above_survivor_under_a_pass)
+      .value("passes", shortest(kMinWavePasses))
       .count("short", c.above_too_short)
       .over(c.above_failed + c.above_survived);
   above.holds = c.above_survived == 0;
   claims.push_back(above);
+
+  Claim accurate = claim("stable-runs-accurate",
+                         "Every run counted stable (it reached T over at least {passes} wave "
+                         "pass) is accurate: its error over time stays below {fraction} A",
+                         "{accurate} of {stable} are accurate, {inaccurate} inaccurate; {apart} "
+                         "runs the solver calls stable ran fewer wave passes and are not counted");
+  accurate.value("passes", shortest(kMinWavePasses))
+      .value("fraction", shortest(kAccurateFraction))
+      .every("accurate", c.accurate, "stable", c.accurate + c.inaccurate);
+  accurate.count("inaccurate", c.inaccurate).count("apart", c.under_a_pass);
+  claims.push_back(accurate);
   return claims;
 }
 
@@ -264,10 +348,13 @@ std::string band_table(const std::vector<ojson>& rows, const std::string& method
                        const std::vector<Band>& bands, bool by_courant) {
   std::ostringstream md;
   md << "| " << (by_courant ? "Courant number" : "amplitude in cells")
-     << " | runs | stable | meaningless | too short to judge | unstable: reasons "
-        "|\n|---|---|---|---|---|---|\n";
+     << " | runs | stable, c T >= " << shortest(kMinWavePasses)
+     << ": accurate | stable, c T >= " << shortest(kMinWavePasses)
+     << ": inaccurate | survived, c T < " << shortest(kMinWavePasses)
+     << ": too short to count | meaningless | too short to judge | unstable: reasons "
+        "|\n|---|---|---|---|---|---|---|---|\n";
   for (const auto& b : bands) {
-    int n = 0, s = 0, m = 0, t = 0;
+    int n = 0, acc = 0, inacc = 0, under = 0, m = 0, t = 0;
     std::map<std::string, int> why;
     for (const auto& r : rows) {
       if (method_label(r) != method) continue;
@@ -276,13 +363,19 @@ std::string band_table(const std::vector<ojson>& rows, const std::string& method
       if (x < b.lo || x >= b.hi) continue;
       ++n;
       const int v = verdict_code(r);
-      s += v == 0;
+      if (v == 0) {
+        const Standing st = standing(r);
+        acc += st == Standing::accurate;
+        inacc += st == Standing::inaccurate;
+        under += st == Standing::under_a_pass;
+      }
       m += v == 1;
       t += v == 3;
       if (v == 2) ++why[r["failure_reason"].get<std::string>()];
     }
-    md << "| " << band_name(b, by_courant ? "c dt/h" : "A/h") << " | " << n << " | " << s << " | "
-       << m << " | " << t << " | " << reason_counts(why) << (why.empty() ? "none" : "") << " |\n";
+    md << "| " << band_name(b, by_courant ? "c dt/h" : "A/h") << " | " << n << " | " << acc << " | "
+       << inacc << " | " << under << " | " << m << " | " << t << " | "
+       << (why.empty() ? std::string("–") : reason_counts(why)) << " |\n";
   }
   md << "\n";
   return md.str();
@@ -319,7 +412,9 @@ std::string method_reading(const std::vector<ojson>& rows, const std::string& me
      << " runs long enough to judge fail";
   if (c.above_survived) {
     md << ", " << c.above_survived << " survive (the longest ran " << c.above_survivor_steps
-       << " steps, at most " << fixed(c.above_survivor_ratio, 5) << " times the limit)";
+       << " steps, at most " << fixed(c.above_survivor_ratio, 5) << " times the limit; "
+       << c.above_survivor_under_a_pass << " of them ran under c T = " << shortest(kMinWavePasses)
+       << " wave pass)";
   }
   md << " and " << c.above_too_short << " are too short to judge. Below it, " << below_failed
      << " runs fail, " << below_failed_crossing << " of them with "
@@ -327,18 +422,23 @@ std::string method_reading(const std::vector<ojson>& rows, const std::string& me
   return md.str();
 }
 
-// Every case: its parameters, Courant number, verdict, error over time and cost.
+// Every case: its parameters, Courant number, wave passes, verdict, error over time (and per A
+// with its accuracy class where the run reached T stable or meaningless) and cost.
 std::string every_case_table(const std::vector<ojson>& rows) {
   std::ostringstream md;
-  md << "### Every case\n\n| method | bc | E | A | dt | T | cells | ppc | c dt/h | verdict | "
-        "max error over time | particle-steps "
-        "|\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  md << "### Each case\n\n| method | bc | E | A | dt | T | cells | ppc | c dt/h | c T | verdict | "
+        "max error over time | error over time / A | accuracy | particle-steps "
+        "|\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& r : rows) {
+    const auto e = error_per_A(r);
     md << "| " << method_label(r) << " | " << r["bc"].get<std::string>() << " | "
        << shortest(r["E"].get<double>()) << " | " << shortest(r["A"].get<double>()) << " | "
        << param(r["dt"].get<double>()) << " | " << param(r["T"].get<double>()) << " | "
        << r["cells"].dump() << " | " << r["ppc"].dump() << " | " << opt_sci(r["courant"]) << " | "
-       << verdict(r) << " | " << opt_sci(r["max_error_over_time"]) << " | " << work(r) << " |\n";
+       << opt_sci(r["cT"]) << " | " << extremes_verdict(r) << " | "
+       << opt_sci(r["max_error_over_time"]) << " | " << (e ? sci(*e) : "–") << " | "
+       << (e ? std::string(to_string(accuracy_class(*e, 1.0))) : std::string("–")) << " | "
+       << work(r) << " |\n";
   }
   return md.str();
 }
@@ -367,6 +467,16 @@ std::string extremes_markdown(const Spec& spec, const std::vector<ojson>& rows,
                               const Counts& counts) {
   std::ostringstream md;
   md << extremes_summary(spec, rows, counts);
+  md << "*Stable* here: the solver's outcome stable (the run reached T in at least "
+     << kMinStepsToJudge
+     << " steps with an error over time below A) over at least c T = " << shortest(kMinWavePasses)
+     << " wave pass, beside its accuracy class (docs/design.md, \"Accuracy classes\": "
+        "accurate below "
+     << shortest(kAccurateFraction)
+     << " A, inaccurate from there up to A). A run the solver calls stable that ran fewer wave "
+        "passes is *too short to count* as stable and is counted apart; *too short to judge*: "
+        "fewer than "
+     << kMinStepsToJudge << " steps, whatever its error.\n\n";
   const std::vector<std::string> methods = methods_of(rows);
   for (const std::string& method : methods) {
     md << "### " << method << "\n\n"
@@ -417,23 +527,30 @@ std::string extremes_data_csv(const std::vector<ojson>& rows, const std::string&
 // What the figure draws: every case, at fewer spots than cases.
 std::string extremes_subtitle(const Spec&, const ojson& doc) {
   const std::vector<ojson> rows(doc["cases"].begin(), doc["cases"].end());
+  const Counts c = count_rows(rows);
   std::string s = std::to_string(rows.size());
   s += " cases at ";
   s += std::to_string(spots(rows).size());
   s += " spots; the verdicts of one spot side by side, the marker growing with its number of "
-       "cases (printed where it holds more than one)";
+       "cases (printed where it holds more than one); the stable marker is the solver's "
+       "outcome: ";
+  s += std::to_string(c.under_a_pass);
+  s += " of its ";
+  s += std::to_string(c.stable);
+  s += " runs ran under c T = " + shortest(kMinWavePasses) + " wave pass";
   return s;
 }
 
 std::string extremes_index(const Spec& spec, const std::vector<ojson>& rows) {
-  int unstable = 0;
-  for (const auto& r : rows)
-    unstable += outcome(r) == "unstable";
+  const Counts c = count_rows(rows);
   std::ostringstream md;
   md << "![" << spec.title << "](" << spec.name << ".png)\n\n**What it shows.** " << rows.size()
-     << " cases at the extremes, each with a verdict (" << unstable
-     << " unstable); per method, where and why it fails: [" << spec.name << ".md](" << spec.name
-     << ".md).\n\n";
+     << " cases at the extremes, " << c.with_verdict << " with a verdict ("
+     << c.accurate + c.inaccurate << " stable over at least c T = " << shortest(kMinWavePasses)
+     << " wave pass: " << c.accurate << " accurate, " << c.inaccurate << " inaccurate; "
+     << c.under_a_pass << " survived fewer wave passes; " << c.meaningless << " meaningless; "
+     << c.total - c.reached << " unstable); per method, where and why it fails: [" << spec.name
+     << ".md](" << spec.name << ".md).\n\n";
   return md.str();
 }
 

@@ -3,9 +3,12 @@
 // spectral limit of its body, with its verdicts at the edge and just above it rerun on perturbed
 // layouts (ensemble.hpp) and every edge rerun for length (edge_length.hpp). The scenes study
 // reads these rows for its table.
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
+#include "base/accuracy.hpp"
 #include "claims.hpp"
 #include "edge_length.hpp"
 #include "ensemble.hpp"
@@ -13,6 +16,7 @@
 #include "scenes.hpp"
 #include "study.hpp"
 #include "sweep.hpp"
+#include "verdicts.hpp"
 
 namespace mpmstab {
 
@@ -23,6 +27,34 @@ using ojson = nlohmann::ordered_json;
 // The margin an edge may exceed its body's dense spectral limit by and still count as at it:
 // the search's own bisection tolerance is 2%.
 constexpr double kLimitMargin = 1.05;
+
+// The round-off floor of an error over time, in machine epsilons times A: a run accumulates at
+// most a few epsilons of relative error per step, and the scans take at most some 1e5 steps, so
+// an error below this is round-off. Where the reference's error (the smallest dt's) is below it,
+// the accuracy edge's rule (within a factor of the reference's error) compares round-off with
+// round-off, and no accuracy edge is read.
+constexpr double kRoundOffEpsilons = 1e6;
+
+double round_off_floor_over_A() {
+  return kRoundOffEpsilons * std::numeric_limits<double>::epsilon();
+}
+
+bool reference_at_round_off(const ojson& r) {
+  return has_number(r, "error_reference_over_A") &&
+         r["error_reference_over_A"].get<double>() < round_off_floor_over_A();
+}
+
+// Where a row stands in the scan: an edge inside it (a dt that survives with a verdict, and a
+// larger one that fails), or none: it survives to the top of the scan (a step of T), the run at
+// its largest surviving dt is too short to judge, or no dt probed survives.
+enum class ScanEdge { inside, survives_to_top, edge_too_short, none_survives };
+
+ScanEdge scan_edge(const ojson& r) {
+  if (!has_number(r, "dt_edge")) return ScanEdge::none_survives;
+  if (!has_number(r, "dt_fail")) return ScanEdge::survives_to_top;
+  if (outcome(r) == "too_short") return ScanEdge::edge_too_short;
+  return ScanEdge::inside;
+}
 
 RunParams at_dt(RunParams p, double dt) {
   p.stepping.policy = TimeStepPolicy::fixed;
@@ -73,7 +105,11 @@ std::vector<std::optional<Robustness>> robustness(const std::vector<ojson>& rows
 // What the rows and their follow-ups found, over every row.
 struct EdgeCounts {
   int rows = 0, with_edge = 0, robust_rows = 0, checked = 0, above = 0, compared = 0;
-  int all_survived = 0, meaningless_edges = 0;
+  int meaningless_edges = 0;
+  // The rows without an edge inside the scan, by why, and their scenes.
+  int to_top = 0, edge_too_short = 0, none_survives = 0;
+  std::vector<std::string> edgeless_scenes;
+  int round_off_references = 0;
   LengthTally length_tally;
   double worst = 0;
 };
@@ -87,21 +123,84 @@ LengthRuns length_runs_of(const std::vector<ojson>& rows, const std::vector<ojso
   return next == after ? read_length_runs(rows, follow_up, next) : LengthRuns{};
 }
 
+// The survival edge as the table prints it: its c dt/h (marked where the run there is
+// meaningless), or why the row has none inside the scan.
+std::string survival_edge_text(const ojson& r) {
+  const auto edge = courant_of(r, "dt_edge");
+  switch (scan_edge(r)) {
+    case ScanEdge::inside:
+      return opt_fixed(edge) + (outcome(r) == "meaningless" ? " (meaningless)" : "");
+    case ScanEdge::survives_to_top:
+      return "none in the scan: it survives to its top, a step of T (c dt/h " +
+             significant(*edge, 3) + ")";
+    case ScanEdge::edge_too_short:
+      return "none in the scan: the run at c dt/h " + opt_fixed(edge) + " is too short to judge";
+    case ScanEdge::none_survives:
+      return "none in the scan: no dt probed survives";
+  }
+  return "–";
+}
+
+// The run at the largest surviving dt: its outcome, with its error over time per A and, where
+// it is stable, its accuracy class.
+std::string run_at_edge_text(const ojson& r) {
+  const std::string o = outcome(r);
+  if (o == "too_short") return verdict(r);
+  if (!has_number(r, "error_at_edge_over_A")) return o;
+  const double e = r["error_at_edge_over_A"].get<double>();
+  const std::string per_A = significant(e, 2) + " A";
+  if (o == "meaningless") return "**meaningless** (" + per_A + ")";
+  if (o == "stable")
+    return "stable, " + std::string(to_string(accuracy_class(e, 1.0))) + " (" + per_A + ")";
+  return o + " (" + per_A + ")";
+}
+
+// "none: the reference is inaccurate (0.3 A)": a run's error over time per A in `column` where
+// its class is not accurate; "" where it is accurate or not recorded.
+std::string not_accurate(const ojson& r, const char* column, const char* run) {
+  if (!has_number(r, column)) return "";
+  const double e = r[column].get<double>();
+  const Accuracy a = accuracy_class(e, 1.0);
+  if (a == Accuracy::accurate) return "";
+  return std::string("none: ") + run + " is " + std::string(to_string(a)) + " (" +
+         significant(e, 2) + " A)";
+}
+
+// The accuracy edge as the table prints it: its c dt/h, or why there is none.
+std::string accuracy_edge_text(const ojson& r) {
+  if (reference_at_round_off(r))
+    return "none: the reference error is at round-off (" +
+           sci(r["error_reference_over_A"].get<double>()) + " A)";
+  if (const auto accurate = courant_of(r, "dt_accurate")) return opt_fixed(accurate);
+  for (const auto& [column, run] : {std::pair{"error_reference_over_A", "the reference"},
+                                    std::pair{"error_at_accurate_over_A", "the run at it"}}) {
+    const std::string why = not_accurate(r, column, run);
+    if (!why.empty()) return why;
+  }
+  return "–";
+}
+
 // One row of the table, counted into `n`.
 std::string edge_row(const ojson& r, const std::optional<Robustness>& robust,
                      const LengthRuns& lengths, EdgeCounts& n) {
   ++n.rows;
-  const auto edge = courant_of(r, "dt_edge"), fail = courant_of(r, "dt_fail"),
-             accurate = courant_of(r, "dt_accurate");
-  // Every dt of the scan survives (a step of T itself): no edge to compare with a limit.
-  const bool all_survive = edge && !fail;
-  n.all_survived += all_survive;
+  const ScanEdge where = scan_edge(r);
+  const bool inside = where == ScanEdge::inside;
+  const auto edge = courant_of(r, "dt_edge"), fail = courant_of(r, "dt_fail");
+  const bool accurate = !reference_at_round_off(r) && courant_of(r, "dt_accurate").has_value();
+  n.round_off_references += reference_at_round_off(r);
   const std::optional<double> limit = has_number(r, "courant_spectral")
                                           ? std::optional(r["courant_spectral"].get<double>())
                                           : std::nullopt;
-  n.with_edge += edge.has_value();
+  n.with_edge += inside;
+  n.to_top += where == ScanEdge::survives_to_top;
+  n.edge_too_short += where == ScanEdge::edge_too_short;
+  n.none_survives += where == ScanEdge::none_survives;
+  if (!inside && std::find(n.edgeless_scenes.begin(), n.edgeless_scenes.end(), text(r, "scene")) ==
+                     n.edgeless_scenes.end())
+    n.edgeless_scenes.push_back(text(r, "scene"));
   std::string ratio_text = "–";
-  if (edge && limit && !all_survive) {
+  if (inside && limit) {
     ++n.compared;
     const double q = *edge / *limit;
     n.worst = std::max(n.worst, q);
@@ -109,7 +208,7 @@ std::string edge_row(const ojson& r, const std::optional<Robustness>& robust,
     ratio_text = fixed(q, 2);
   }
   std::string perturbed = "–";
-  if (robust) {
+  if (robust && inside) {
     ++n.checked;
     n.robust_rows +=
         robust->survive_at_edge == robust->members && robust->fail_above == robust->members;
@@ -117,46 +216,48 @@ std::string edge_row(const ojson& r, const std::optional<Robustness>& robust,
                 ", " + std::to_string(robust->fail_above) + " of " +
                 std::to_string(robust->members);
   }
-  std::string at_edge = "–";
-  if (edge) {
-    const bool meaningless = outcome(r) == "meaningless";
-    n.meaningless_edges += meaningless;
-    at_edge = (meaningless ? "**meaningless**" : outcome(r)) +
-              (has_number(r, "error_at_edge_over_A")
-                   ? " (" + significant(r["error_at_edge_over_A"].get<double>(), 2) + " A)"
-                   : std::string());
+  if (inside) {
+    n.meaningless_edges += outcome(r) == "meaningless";
     n.length_tally.add(lasting(lengths, r, "dt_edge"));
   }
   std::ostringstream md;
   md << "| " << text(r, "scene") << " | " << text(r, "method") << " | " << small_mass_of(r) << " | "
-     << edge_text(r) << " | " << opt_fixed(fail) << " | " << at_edge << " | "
-     << (edge ? lasting_text(lengths, r, "dt_edge") : std::string("–")) << " | "
-     << opt_fixed(accurate) << " | "
+     << survival_edge_text(r) << " | " << (inside ? opt_fixed(fail) : std::string("–")) << " | "
+     << (edge ? run_at_edge_text(r) : std::string("–")) << " | "
+     << (inside ? lasting_text(lengths, r, "dt_edge") : std::string("–")) << " | "
+     << accuracy_edge_text(r) << " | "
      << (accurate ? lasting_text(lengths, r, "dt_accurate") : std::string("–")) << " | "
      << opt_fixed(limit) << " | " << ratio_text << " | " << perturbed << " |\n";
   return md.str();
 }
 
 std::vector<Claim> edges_claims(const EdgeCounts& n) {
-  Claim edge = claim("every-case-has-an-edge",
-                     "Every case has a survival edge inside the scan: {with} of {cases}.");
+  Claim edge = claim("every-case-has-an-edge", "Every case has a survival edge inside the scan",
+                     "{with} of {cases} do; of the others, {top} survive to the top of the scan (a "
+                     "step of T), {short} have a run at their largest surviving dt too short to "
+                     "judge and {none_survive} survive at no dt probed");
   edge.every("with", n.with_edge, "cases", n.rows);
+  edge.count("top", n.to_top)
+      .count("short", n.edge_too_short)
+      .count("none_survive", n.none_survives);
   Claim robust = claim("edges-survive-perturbation",
-                       "Every edge holds on every perturbed layout (all survive at the edge, all "
-                       "fail just above it): {robust} of {checked} edges.");
+                       "Every edge inside the scan holds on every perturbed layout (all survive "
+                       "at the edge, all fail just above it)",
+                       "{robust} of {checked} edges do");
   robust.every("robust", n.robust_rows, "checked", n.checked);
-  Claim meaningful = claim("edges-meaningful",
-                           "No survival edge is a meaningless run: {meaningless} of {with} are.");
+  Claim meaningful =
+      claim("edges-meaningful", "No survival edge inside the scan is a meaningless run",
+            "{meaningless} of {with} are");
   meaningful.count("meaningless", n.meaningless_edges).count("with", n.with_edge).over(n.with_edge);
   meaningful.holds = n.meaningless_edges == 0;
   const Claim length = length_claim("edges-hold-for-length",
-                                    "Every survival edge survives {first}x and {second}x its run "
-                                    "length (at most {cap} wave passes): {held} of {tested} do.",
-                                    "", n.length_tally);
+                                    "Every survival edge inside the scan survives {first}x and "
+                                    "{second}x its run length (at most {cap} wave passes)",
+                                    "{held} of {tested} do", n.length_tally);
   Claim limit = claim("edges-at-or-below-limit",
-                      "No survival edge lies above {margin} times the dense spectral limit of "
-                      "its body: {above} of {compared} with an edge do (the largest ratio is "
-                      "{worst}).");
+                      "No survival edge inside the scan lies above {margin} times the dense "
+                      "spectral limit of its body",
+                      "{above} of {compared} edges do (the largest ratio is {worst})");
   limit.number("margin", kLimitMargin, 3).count("above", n.above).count("compared", n.compared);
   limit.number("worst", n.worst, 3).over(n.compared);
   limit.holds = n.compared > 0 && n.above == 0;
@@ -168,15 +269,24 @@ std::string edges_intro(const ReportContext& ctx) {
   std::ostringstream md;
   md << "Each row: a scene, a method and a small-mass treatment (docs/design.md, \"Small-mass "
         "nodes\"). *Survival edge*: the largest c dt/h probed that survives to T, and the "
-        "smallest above it that fails; *accuracy edge*: the largest up to which the error over "
-        "time stays within the search's factor of the smallest dt's ("
+        "smallest above it that fails; a row has none inside the scan where it survives to the "
+        "top of the scan (a step of T), where the run at its largest surviving dt is too short "
+        "to judge, or where no dt probed survives; *accuracy edge*: the largest up to which the "
+        "error over time stays within the search's factor of the smallest dt's (the "
+        "reference's) ("
      << edge_search_text(ctx.spec.study->edge)
-     << "); *dense limit*: the spectral limit of the whole body with its free surfaces "
+     << "); none is read where the reference's error over time is at round-off, below "
+     << param(kRoundOffEpsilons) << " machine epsilons (" << sci(round_off_floor_over_A())
+     << ") times A, nor where the reference or the run at the edge is not accurate (its class and "
+        "error over time per A are given); *dense limit*: the spectral limit of the whole body "
+        "with its free surfaces "
         "(docs/design.md, \"The spectral limit\"); *perturbed*: of "
      << kEnsembleMembers << " layouts perturbed by " << sci(kEnsemblePerturbation)
      << " of the particle spacing, how many survive at the edge and how many fail just above "
-        "it; *run at the edge*: its outcome and error over time per A (a meaningless edge is a "
-        "run whose error reached A: it survives and answers nothing); *length*: each edge rerun "
+        "it; *run at the edge*: the run at the largest surviving dt, its outcome and error over "
+        "time per A, with its accuracy class where it is stable (docs/design.md, \"Accuracy "
+        "classes\"; a meaningless edge is a run whose error reached A: it survives and answers "
+        "nothing); *length*: each edge rerun "
         "at "
      << shortest(kLengthFactors[0]) << " and " << shortest(kLengthFactors[1])
      << " times its wave passes (at most " << shortest(kLongPasses)
@@ -199,20 +309,26 @@ StudyReport edges_report(const ReportContext& ctx) {
   for (std::size_t i = 0; i < rows.size(); ++i)
     md << edge_row(rows[i], robust[i], lengths, n);
   md << "\nAn edge above the dense limit is one at which the growth the limit predicts has "
-        "not reached a failure by T (c T is given per scene in the scenes report); every dt up "
-        "to T survives where nothing grows at all (the block: no stress). "
-     << n.all_survived << " of " << n.rows << " rows survive every dt.\n";
+        "not reached a failure by T (c T is given per scene in the scenes report). "
+     << n.rows - n.with_edge << " of " << n.rows
+     << " rows have no survival edge inside the scan: " << n.to_top << " survive to its top, "
+     << n.edge_too_short << " have a run at their largest surviving dt too short to judge, "
+     << n.none_survives << " survive at no dt probed";
+  if (!n.edgeless_scenes.empty()) md << " (scenes: " << list_of(n.edgeless_scenes) << ")";
+  md << ". " << n.round_off_references << " of " << n.rows
+     << " rows have a reference error at round-off, and no accuracy edge.\n";
   return StudyReport{.markdown = md.str(), .claims = edges_claims(n)};
 }
 
 std::string edges_index(const Spec& spec, const std::vector<ojson>& rows) {
   int with_edge = 0;
   for (const auto& r : rows)
-    with_edge += has_number(r, "dt_edge");
+    with_edge += scan_edge(r) == ScanEdge::inside;
   std::ostringstream md;
   md << "**What it shows.** The survival and accuracy edges in c dt/h of " << rows.size()
      << " scene, method and small-mass cases (" << with_edge
-     << " with an edge in the scan), each beside the dense spectral limit of its body and "
+     << " with a survival edge inside the scan), each beside the dense spectral limit of its body "
+        "and "
         "checked on perturbed layouts. ["
      << spec.name << ".md](" << spec.name << ".md)\n";
   return md.str();
@@ -220,7 +336,7 @@ std::string edges_index(const Spec& spec, const std::vector<ojson>& rows) {
 
 const StudyRegistration kSceneEdges{{
     .name = "scene_edges",
-    .summary = "survival and accuracy edges of every scene, method and small-mass treatment",
+    .summary = "survival and accuracy edges of each scene, method and small-mass treatment",
     .work = CaseWork::edge_search,
     .records = {.error_over_time = true},
     .follow_up = edges_follow_up,

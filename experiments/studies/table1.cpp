@@ -3,13 +3,18 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <sstream>
+#include <vector>
 
+#include "base/accuracy.hpp"
+#include "claims.hpp"
 #include "csv.hpp"
 #include "ensemble.hpp"
 #include "paper_table1.hpp"
 #include "report_util.hpp"
 #include "study.hpp"
+#include "verdicts.hpp"
 
 namespace mpmstab {
 
@@ -18,17 +23,70 @@ namespace {
 using ojson = nlohmann::ordered_json;
 namespace fs = std::filesystem;
 
+// The error over time per A of a run that reached T (stable, meaningless or too short), where it
+// was recorded.
+std::optional<double> error_per_A(const ojson& r) {
+  if (!survived(r) || !has_number(r, "max_error_over_time") || !has_number(r, "A"))
+    return std::nullopt;
+  return r["max_error_over_time"].get<double>() / r["A"].get<double>();
+}
+
+// The accuracy class of a stable or meaningless run (core/base/accuracy.hpp); none for a run
+// that failed, was too short to judge or did not record its error over time.
+std::optional<Accuracy> accuracy_of(const ojson& r) {
+  const std::string o = outcome(r);
+  const auto e = error_per_A(r);
+  if ((o != "stable" && o != "meaningless") || !e) return std::nullopt;
+  return accuracy_class(*e, 1.0);
+}
+
+bool stable_accurate(const ojson& r) {
+  return outcome(r) == "stable" && accuracy_of(r) == Accuracy::accurate;
+}
+
+// Stable cells by accuracy class: how many are accurate and inaccurate, the error over time per
+// A of the inaccurate ones, and how many did not record their error over time (no class).
+struct StableAccuracy {
+  int accurate = 0, inaccurate = 0, unmeasured = 0;
+  std::vector<double> inaccurate_errors;
+  void add(const ojson& r) {
+    if (outcome(r) != "stable") return;
+    const auto a = accuracy_of(r);
+    if (!a) {
+      ++unmeasured;
+    } else if (*a == Accuracy::accurate) {
+      ++accurate;
+    } else {
+      ++inaccurate;
+      inaccurate_errors.push_back(*error_per_A(r));
+    }
+  }
+  int stable() const { return accurate + inaccurate + unmeasured; }
+};
+
 struct Table1Summary {
   int cells = 0, paper_stable = 0, paper_unstable = 0, paper_unknown = 0;
   int ours_stable = 0, ours_meaningless = 0, ours_unstable = 0, ours_too_short = 0;
+  // Our stable cells by accuracy class, over every cell and per method (in row order).
+  StableAccuracy stable_accuracy;
+  std::vector<std::pair<std::string, StableAccuracy>> stable_by_method;
   int verdicts_agree = 0, verdicts_compared = 0;
+  // Of the cells whose verdicts are the same: both stable (ours accurate or inaccurate), both
+  // unstable.
+  int both_stable_accurate = 0, both_stable_inaccurate = 0, both_unstable = 0;
   // Cells whose ensemble disagrees with their verdict: counted apart from the agreement.
   int sensitive = 0, sensitive_agree = 0;
   int paper_stable_ours_not = 0, paper_stable_ours_not_above_limit = 0;
   int paper_stable_ours_meaningless = 0, paper_unstable_ours_meaningless = 0;
-  int errors_within_factor = 0, errors_compared = 0;
+  int errors_within_factor = 0, errors_compared = 0, errors_compared_accurate = 0;
   std::map<std::string, int> reasons;
 };
+
+StableAccuracy& method_accuracy(Table1Summary& s, const std::string& method) {
+  for (auto& [m, a] : s.stable_by_method)
+    if (m == method) return a;
+  return s.stable_by_method.emplace_back(method, StableAccuracy{}).second;
+}
 
 bool above_limit(const ojson& r) {
   return has_number(r, "courant_spectral") &&
@@ -46,6 +104,8 @@ Table1Summary summarize_table1(const Spec& spec, const std::vector<ojson>& rows,
     const bool sensitive = i < ensembles.size() && ensembles[i].sensitive();
     if (ours_outcome == "stable") {
       ++s.ours_stable;
+      s.stable_accuracy.add(r);
+      method_accuracy(s, text(r, "method")).add(r);
     } else if (ours_outcome == "meaningless") {
       ++s.ours_meaningless;
     } else if (ours_outcome == "too_short") {
@@ -77,6 +137,11 @@ Table1Summary summarize_table1(const Spec& spec, const std::vector<ojson>& rows,
       (paper_stable ? s.paper_stable_ours_meaningless : s.paper_unstable_ours_meaningless) += 1;
     } else if (paper_stable == (ours_outcome == "stable")) {
       ++s.verdicts_agree;
+      if (!paper_stable) {
+        ++s.both_unstable;
+      } else {
+        (stable_accurate(r) ? s.both_stable_accurate : s.both_stable_inaccurate) += 1;
+      }
     } else if (paper_stable) {
       ++s.paper_stable_ours_not;
       if (above_limit(r)) ++s.paper_stable_ours_not_above_limit;
@@ -84,18 +149,41 @@ Table1Summary summarize_table1(const Spec& spec, const std::vector<ojson>& rows,
     const auto ours = compared_error(r, spec.cases[i].error_at);
     if (paper_stable && ours && ours_outcome == "stable") {
       ++s.errors_compared;
+      s.errors_compared_accurate += stable_accurate(r);
       if (within_agreement_factor(*ours, pe.value)) ++s.errors_within_factor;
     }
   }
   return s;
 }
 
+// "23 accurate and 17 inaccurate (error over time 0.1 to 0.89 A)".
+std::string accuracy_split(const StableAccuracy& a) {
+  std::string t =
+      std::to_string(a.accurate) + " accurate and " + std::to_string(a.inaccurate) + " inaccurate";
+  if (!a.inaccurate_errors.empty())
+    t += " (error over time " + span(a.inaccurate_errors, 2) + " A)";
+  if (a.unmeasured)
+    t += ", " + std::to_string(a.unmeasured) + " without a recorded error over time";
+  return t;
+}
+
 std::string table1_summary_text(const Table1Summary& s) {
   std::ostringstream md;
   md << s.cells << " cells. Paper: " << s.paper_stable << " stable, " << s.paper_unstable
      << " unstable (`*`), " << s.paper_unknown
-     << " unreadable in the transcription. Ours: " << s.ours_stable << " stable, "
-     << s.ours_meaningless << " meaningless (survived, but the error over time reached A), "
+     << " unreadable in the transcription. Ours: " << s.ours_stable
+     << " stable (survived to T with an error over time below A): "
+     << accuracy_split(s.stable_accuracy) << " by the accuracy classes (accurate below "
+     << shortest(kAccurateFraction) << " A, inaccurate from there up to A)";
+  if (s.stable_by_method.size() > 1) {
+    md << "; per method, ";
+    bool first = true;
+    for (const auto& [method, a] : s.stable_by_method) {
+      md << (first ? "" : "; ") << method << " " << a.stable() << " stable: " << accuracy_split(a);
+      first = false;
+    }
+  }
+  md << ". " << s.ours_meaningless << " meaningless (survived, but the error over time reached A), "
      << s.ours_unstable << " unstable";
   if (!s.reasons.empty()) {
     md << " (";
@@ -110,17 +198,22 @@ std::string table1_summary_text(const Table1Summary& s) {
   md << ". Sensitive here (a perturbed layout changes the verdict: column *ensemble*), counted "
         "apart: "
      << s.sensitive << " cells with a paper verdict, of which " << s.sensitive_agree
-     << " match the paper's verdict as run. Of the other cells, stability verdicts agree in "
-     << s.verdicts_agree << " of " << s.verdicts_compared << "; the paper lists as stable "
+     << " match the paper's verdict as run. Of the other cells, the paper's stability verdict "
+        "and ours are the same in "
+     << s.verdicts_agree << " of " << s.verdicts_compared << " ("
+     << s.both_stable_accurate + s.both_stable_inaccurate << " stable in both, ours "
+     << s.both_stable_accurate << " accurate and " << s.both_stable_inaccurate << " inaccurate; "
+     << s.both_unstable << " unstable in both); the paper lists as stable "
      << s.paper_stable_ours_not << " cells that are unstable here, "
      << s.paper_stable_ours_not_above_limit
      << " of them at a Courant number c dt / h above the scheme's spectral limit (the linear "
-        "limit of the step at the uniform layout: spectral.md). Meaningless here, counted as "
-        "agreeing with neither verdict: "
+        "limit of the step at the uniform layout: spectral.md). Meaningless here, counted with "
+        "neither verdict: "
      << s.paper_stable_ours_meaningless << " cells the paper lists as stable and "
      << s.paper_unstable_ours_meaningless
-     << " it marks `*`. Where both are stable (ours: stable, not meaningless), our max error is "
-        "within a factor "
+     << " it marks `*`. Where both are stable (ours: stable, not meaningless; "
+     << s.errors_compared_accurate << " of these " << s.errors_compared
+     << " accurate here, the others inaccurate), our max error is within a factor "
      << agreement_factor() << " of the paper's in " << s.errors_within_factor << " of "
      << s.errors_compared << " cells.";
   return md.str();
@@ -133,7 +226,12 @@ std::string table1_legend(const Spec& spec, const fs::path& out) {
     over_time = over_time || c.error_at == ErrorAt::max_over_time;
   std::ostringstream md;
   md << "Legend: `*` unstable (ours: the reason and the step where the run stopped); "
-        "*meaningless*: the run survived but its error over time reached the amplitude A; "
+        "*stable* (ours): the run survived to T with an error over time below the amplitude A; "
+        "*meaningless*: the run survived but its error over time reached A; *error over time / "
+        "A*: the largest displacement error over the steps and particles of a run that reached "
+        "T, per A; *accuracy*: its class (docs/design.md, \"Accuracy classes\"): accurate below "
+     << shortest(kAccurateFraction)
+     << " A, inaccurate from there up to A, meaningless from A, given beside each stable verdict; "
         "*inferred*: the paper does not print this cell's dt; *transcription*: the confidence of "
         "the paper value as transcribed in ["
      << link(out, spec.reference) << "](" << link(out, spec.reference)
@@ -162,6 +260,8 @@ std::string table1_row(const CaseSpec& cs, const ojson& r,
   if (pc && pc->max_error.kind == PaperValue::number && ours) {
     ratio_text = ratio(*ours / pc->max_error.value);
   }
+  const auto e = error_per_A(r);
+  const auto a = accuracy_of(r);
   std::ostringstream md;
   md << "| " << param(p.dt) << (cs.dt_inferred ? " (inferred)" : "") << " | " << to_string(p.method)
      << " | " << sci(r["courant"].get<double>()) << " | " << (pc ? show(pc->dt_stable) : "–")
@@ -171,8 +271,10 @@ std::string table1_row(const CaseSpec& cs, const ojson& r,
          : ours       ? sci(*ours)
                       : std::string("–"))
      << (cs.error_at == ErrorAt::max_over_time ? " (over time)" : "") << " | " << ratio_text
-     << " | " << verdict(r) << " | " << (pc ? pc->confidence : "not in the paper") << " | "
-     << work(r) << " | " << ensemble << " |\n";
+     << " | " << verdict(r) << " | " << (e && a ? significant(*e, 2) : std::string("–")) << " | "
+     << (a ? std::string(to_string(*a)) : std::string("–")) << " | "
+     << (pc ? pc->confidence : "not in the paper") << " | " << work(r) << " | " << ensemble
+     << " |\n";
   return md.str();
 }
 
@@ -224,8 +326,9 @@ std::string table1_markdown(const Spec& spec, const std::vector<ojson>& rows, co
     md << "**A = " << shortest(A)
        << " (A / h = " << significant(amplitude_per_cell(in_block->params), 3) << ")**\n\n";
     md << "| dt | method | c dt/h | dt_stable paper | dt_stable ours | max error paper | max error "
-          "ours | ours / paper | ours: verdict | transcription | particle-steps | ensemble |\n";
-    md << "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+          "ours | ours / paper | ours: verdict | error over time / A | accuracy | transcription | "
+          "particle-steps | ensemble |\n";
+    md << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (std::size_t i = 0; i < rows.size(); ++i) {
       const auto& p = spec.cases[i].params;
       if (p.E == E && p.A == A)
@@ -238,9 +341,9 @@ std::string table1_markdown(const Spec& spec, const std::vector<ojson>& rows, co
 
 std::string table1_index(const Spec& spec, const std::vector<ojson>& rows) {
   return "**What it shows.** The " + std::to_string(rows.size()) +
-         " cells of the paper's Table 1 beside ours, each with its verdict, its errors, the "
-         "paper's values and whether its verdict survives a perturbed layout. Full table, "
-         "agreement counts and conclusions: [" +
+         " cells of the paper's Table 1 beside ours, each with its verdict, its errors, its "
+         "error over time / A and accuracy class, the paper's values and whether its verdict "
+         "survives a perturbed layout. Full table, counts and conclusions: [" +
          spec.name + ".md](" + spec.name + ".md).\n\n";
 }
 
@@ -257,7 +360,9 @@ std::vector<EnsembleResult> table1_ensembles(const std::vector<ojson>& rows,
 std::vector<Claim> table1_claims(const std::vector<ojson>& rows,
                                  const std::vector<EnsembleResult>& ensembles) {
   int above = 0, stable_above = 0, tested = 0, sensitive = 0, costly = 0, in_studies = 0;
+  StableAccuracy stable;
   for (std::size_t i = 0; i < rows.size(); ++i) {
+    stable.add(rows[i]);
     if (above_limit(rows[i])) {
       ++above;
       stable_above += outcome(rows[i]) == "stable";
@@ -290,6 +395,17 @@ std::vector<Claim> table1_claims(const std::vector<ojson>& rows,
   b.over(tested);
   b.holds = sensitive == 0;
   claims.push_back(b);
+  Claim c = claim("stable-cells-accurate",
+                  "Every cell that ends stable is accurate: its error over time stays below "
+                  "{fraction} A",
+                  "{accurate} of {stable} stable cells are accurate; {inaccurate} are inaccurate, "
+                  "with an error over time of {range} A");
+  c.value("fraction", shortest(kAccurateFraction))
+      .every("accurate", stable.accurate, "stable", stable.stable());
+  c.count("inaccurate", stable.inaccurate)
+      .value("range", stable.inaccurate_errors.empty() ? std::string("–")
+                                                       : span(stable.inaccurate_errors, 2));
+  claims.push_back(c);
   return claims;
 }
 
