@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -202,6 +203,72 @@ TEST(Documents, PerformanceGroupsTheCpuTimeByExperimentAndTimeStep) {
             std::string::npos);
   EXPECT_EQ(md.find("| table2 |"), std::string::npos);  // in no group
   std::filesystem::remove_all(dir);
+}
+
+// performance.md counts an experiment's follow-up runs in it: a Table 1 cell near its edge asks
+// for an ensemble of layouts once it is done, and those runs' particle-steps and CPU time, read
+// back from the cache, join the case's; a follow-up the cache no longer holds is said so and
+// adds nothing.
+TEST(Documents, PerformanceCountsTheFollowUpRunsInTheExperimentThatAskedForThem) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / "mpmstab_follow_up_work_test";
+  fs::remove_all(dir);
+  fs::create_directories(dir / "out");
+  // A meaningless run near its edge (MPM, E = 4, A = 0.05, dt = 1e-3): table1 reruns it as an
+  // ensemble of layouts.
+  std::ofstream(dir / "table1.json")
+      << R"({"name": "table1", "title": "T", "description": "d", "report": "table1", )"
+      << R"("tier": "paper", "reference": ")"
+      << (fs::path(MPMSTAB_SOURCE_DIR) / "reference" / "paper" / "table1.csv").generic_string()
+      << R"(", "record": ["error_over_time", "dt_stable"], "defaults": {"T": 1, "cells": 100, )"
+      << R"("ppc": 2, "bc": "dirichlet"}, "cases": [{"A": 0.05, "E": 4.0, "method": "mpm", )"
+      << R"("dt": 0.001}]})";
+  const auto swept = test_support::run_mpmstab("sweep " + (dir / "table1.json").string() +
+                                               " --out " + (dir / "out").string());
+  ASSERT_EQ(swept.status, 0) << swept.output;
+  const Spec spec = load_spec(dir / "table1.json");
+  // Every record in the cache: the case's and its follow-ups', by file.
+  std::map<fs::path, std::pair<double, double>> records;  // file -> particle-steps, seconds
+  double steps = 0, secs = 0;
+  for (const auto& f : fs::directory_iterator(dir / "out" / "cache")) {
+    if (f.path().extension() != ".json" || f.path().filename() == "timings.json") continue;
+    const auto rec = nlohmann::ordered_json::parse(slurp(f.path()));
+    const double w =
+        rec["result"]["steps"].get<double>() * rec["result"]["particles"].get<double>();
+    records[f.path()] = {w, rec["timing"]["wall_seconds"].get<double>()};
+    steps += w;
+    secs += rec["timing"]["wall_seconds"].get<double>();
+  }
+  ASSERT_EQ(records.size(), 9u);  // the case and its 8 layouts
+  const auto row = [&] {
+    write_performance({spec}, dir / "no_benchmark.json", dir / "out");
+    const std::string md = slurp(dir / "out" / "performance.md");
+    const auto at = md.find("| [table1](table1.md) |");
+    return at == std::string::npos ? md : md.substr(at, md.find('\n', at) - at);
+  };
+  EXPECT_EQ(row().rfind(
+                "| [table1](table1.md) | 1 | 8 | " + sci(steps) + " | " + seconds(secs) + " | ", 0),
+            0u)
+      << row();
+  FollowUpWork work = follow_up_work(spec, dir / "out");
+  EXPECT_EQ(work.runs, 8u);
+  EXPECT_EQ(work.cached, 8u);
+  EXPECT_EQ(work.ns_per_particle_step.size(), 8u);
+  // One layout's record gone from the cache: still asked for, said so, its work left out.
+  const auto case_file = dir / "out" / "cache" / (case_key(spec.cases[0].params) + ".json");
+  ASSERT_TRUE(records.count(case_file));
+  auto member = records.begin();
+  if (member->first == case_file) ++member;
+  fs::remove(member->first);
+  work = follow_up_work(spec, dir / "out");
+  EXPECT_EQ(work.runs, 8u);
+  EXPECT_EQ(work.cached, 7u);
+  EXPECT_DOUBLE_EQ(work.particle_steps, steps - records[case_file].first - member->second.first);
+  EXPECT_NE(
+      row().find("| 1 | 8 (1 not in the cache) | " + sci(steps - member->second.first) + " | "),
+      std::string::npos)
+      << row();
+  fs::remove_all(dir);
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <ostream>
+#include <set>
 #include <sstream>
 
 #include "cache.hpp"
@@ -14,6 +15,7 @@
 #include "report.hpp"
 #include "report_util.hpp"
 #include "strict_json.hpp"
+#include "sweep.hpp"
 
 namespace mpmstab {
 
@@ -278,45 +280,63 @@ ojson read_timings(const fs::path& out) {
   return timings;
 }
 
-// One row per experiment with cases: its work, CPU time, wall time and median ns per
-// particle-step; then the total.
-void experiment_rows(std::ostream& md, const std::vector<Spec>& specs, const ojson& timings) {
+// The follow-up runs of every experiment with cases, by name.
+using FollowUps = std::map<std::string, FollowUpWork>;
+
+// The follow-up runs column: how many, and how many of them the cache lacks.
+std::string follow_up_cell(const FollowUpWork& f) {
+  if (f.runs == 0) return "–";
+  std::string s = std::to_string(f.runs);
+  if (f.cached < f.runs) s += " (" + std::to_string(f.runs - f.cached) + " not in the cache)";
+  return s;
+}
+
+// One row per experiment with cases: its work and CPU time with its follow-up runs', its wall
+// time and median ns per particle-step; then the total.
+void experiment_rows(std::ostream& md, const std::vector<Spec>& specs, const ojson& timings,
+                     const FollowUps& follow) {
   double total_compute = 0, total_work = 0;
   for (const auto& spec : specs) {
     if (!spec.study->has_cases) continue;  // computed from other experiments' results
     if (!timings.contains(spec.name)) {
-      md << "| " << spec.name << " | not run | | | | |\n";
+      md << "| " << spec.name << " | not run | | | | | |\n";
       continue;
     }
     const ojson& e = timings[spec.name];
+    const FollowUpWork& f = follow.at(spec.name);
     const double wall = e["sweep_wall_seconds"].get<double>();
-    const double compute = e["compute_seconds"].get<double>();
-    const double work = e.contains("particle_steps") ? e["particle_steps"].get<double>() : 0.0;
-    std::vector<double> ns;
+    const double compute = e["compute_seconds"].get<double>() + f.seconds;
+    const double work =
+        (e.contains("particle_steps") ? e["particle_steps"].get<double>() : 0.0) + f.particle_steps;
+    std::vector<double> ns = f.ns_per_particle_step;
     for (const auto& c : e["per_case"]) {
       if (c["ns_per_particle_step"].is_number()) ns.push_back(c["ns_per_particle_step"]);
     }
     total_compute += compute;
     total_work += work;
     md << "| [" << spec.name << "](" << spec.name << ".md) | " << e["cases"].dump() << " | "
-       << sci(work) << " | " << seconds(compute) << " | " << seconds(wall) << " | "
-       << (ns.empty() ? std::string("-") : fixed(quantile(ns, 0.5), 1)) << " |\n";
+       << follow_up_cell(f) << " | " << sci(work) << " | " << seconds(compute) << " | "
+       << seconds(wall) << " | " << (ns.empty() ? std::string("-") : fixed(quantile(ns, 0.5), 1))
+       << " |\n";
   }
-  md << "| all | | " << sci(total_work) << " | " << seconds(total_compute) << " | | "
+  md << "| all | | | " << sci(total_work) << " | " << seconds(total_compute) << " | | "
      << (total_work > 0 ? fixed(1e9 * total_compute / total_work, 1) : std::string("-"))
      << " (mean) |\n\n";
 }
 
 // The groups of cases of one experiment and one time step with the most CPU time: where the
 // time goes, finer than by experiment. A case's CPU time is its run's, or its share of a run it
-// shares; an experiment whose timings do not match its spec case for case (the spec changed since
-// they were measured) is left out, and said so.
-void costliest_groups(std::ostream& md, const std::vector<Spec>& specs, const ojson& timings) {
+// shares; an experiment's follow-up runs found in the cache are a group of their own. An
+// experiment whose timings do not match its spec case for case (the spec changed since they were
+// measured) is left out, and said so.
+void costliest_groups(std::ostream& md, const std::vector<Spec>& specs, const ojson& timings,
+                      const FollowUps& follow) {
   struct Group {
     std::string experiment, step;
     std::size_t cases = 0;
     double seconds = 0;
   };
+  static const std::string kFollowUpGroup = "follow-up runs";
   std::vector<Group> groups;
   std::vector<std::string> stale;
   double total = 0;
@@ -344,6 +364,9 @@ void costliest_groups(std::ostream& md, const std::vector<Spec>& specs, const oj
     if (!matches) {
       stale.push_back(spec.name);
       continue;
+    }
+    if (const FollowUpWork& f = follow.at(spec.name); f.cached > 0) {
+      by_step[kFollowUpGroup] = Group{spec.name, kFollowUpGroup, f.cached, f.seconds};
     }
     for (auto& [step, g] : by_step) {
       total += g.seconds;
@@ -438,21 +461,32 @@ void build_paragraph(std::ostream& md, const std::string& label, const ojson& r)
 
 void write_experiment_times(std::ostream& md, const std::vector<Spec>& specs, const fs::path& out,
                             const BenchFigures& bench) {
-  md << "## The cost of every experiment\n\nFrom [timings.json](timings.json), the one file "
-        "of the machine's measurements (every other result file is the same on any machine). "
+  md << "## The cost of every experiment\n\nFrom [timings.json](timings.json), the machine's "
+        "measurements of the cases, and the records of the follow-up runs in the cache (every "
+        "other result file is the same on any machine). "
         "Particle-steps (particles x steps, of every run of an edge search) are the "
-        "deterministic work; CPU time is the sum of the cases' own run times. Cases that differ "
+        "deterministic work; CPU time is the sum of the runs' own run times. Both, and the median "
+        "ns per particle-step, count the experiment's cases and its follow-up runs: the runs its "
+        "study asks for once its cases "
+        "are done (an ensemble's members, an edge's longer runs, the verifying runs of the "
+        "advice), as the experiment's published results ask for them and as the cache "
+        "(cache/ beside timings.json, not committed) holds their records; a follow-up run the "
+        "cache lacks is "
+        "counted in the follow-up runs column and said so, but adds no work. Cases that differ "
         "only in eq. (108)'s options, at a policy that does not step by eq. (108), share one run "
         "(its trajectory is theirs): each counts its share of that run's particle-steps and "
         "time. Wall time is the "
         "span from the experiment's first case's start to its last case's end in the run that "
-        "computed them (`make reproduce` runs every experiment's cases in one queue, so the "
-        "spans overlap).\n\n"
-        "| experiment | cases | particle-steps | CPU time | wall time | median ns per "
-        "particle-step |\n|---|---|---|---|---|---|\n";
+        "computed them, its follow-up runs not included (`make reproduce` runs every "
+        "experiment's cases in one queue, so the spans overlap).\n\n"
+        "| experiment | cases | follow-up runs | particle-steps | CPU time | wall time | median ns "
+        "per particle-step |\n|---|---|---|---|---|---|---|\n";
   const ojson timings = read_timings(out);
-  experiment_rows(md, specs, timings);
-  costliest_groups(md, specs, timings);
+  FollowUps follow;
+  for (const auto& spec : specs)
+    if (spec.study->has_cases) follow[spec.name] = follow_up_work(spec, out);
+  experiment_rows(md, specs, timings, follow);
+  costliest_groups(md, specs, timings, follow);
   bool any = false;
   for (const auto& [key, r] : timings.items()) {
     const auto label = timing_label(key);
@@ -465,8 +499,8 @@ void write_experiment_times(std::ostream& md, const std::vector<Spec>& specs, co
     }
   }
   if (any) {
-    md << "The table's CPU times and particle-steps count a case shared by two experiments in "
-          "each.\n";
+    md << "The table's CPU times and particle-steps count a run shared by two experiments (a "
+          "case or a follow-up run) in each.\n";
   } else {
     md << "`make reproduce` and `make studies` print their own wall time when they end and "
           "record it in timings.json.\n";
@@ -496,6 +530,33 @@ ojson merged_timings(const ojson& measured, const ojson& published) {
 }
 
 }  // namespace
+
+FollowUpWork follow_up_work(const Spec& spec, const fs::path& out) {
+  FollowUpWork w;
+  const std::vector<RunParams> runs = expected_follow_ups(spec, out);
+  if (runs.empty()) return w;
+  // A run is counted once in the experiment: a follow-up that repeats one of its cases (a case
+  // that is one run, as the cache keys it) or another follow-up adds nothing.
+  std::set<std::string> counted;
+  if (case_search(spec).empty())
+    for (const CaseSpec& c : spec.cases)
+      counted.insert(case_key(c.params));
+  const ResultCache cache(out / "cache");
+  for (const RunParams& p : runs) {
+    if (!counted.insert(case_key(p)).second) continue;
+    ++w.runs;
+    const std::optional<ojson> record = cache.load(p);
+    if (!record || !record->contains("timing") || !(*record)["timing"].is_object()) continue;
+    const ojson& t = (*record)["timing"];
+    if (!t.contains("wall_seconds") || !t["wall_seconds"].is_number()) continue;
+    ++w.cached;
+    w.particle_steps += record_particle_steps(*record);
+    w.seconds += t["wall_seconds"].get<double>();
+    if (t.contains("ns_per_particle_step") && t["ns_per_particle_step"].is_number())
+      w.ns_per_particle_step.push_back(t["ns_per_particle_step"].get<double>());
+  }
+  return w;
+}
 
 std::string machine_of(const ojson& timing) {
   const std::string cpu = text(timing, "cpu"), kernels = text(timing, "kernels");

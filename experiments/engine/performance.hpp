@@ -18,6 +18,21 @@ namespace mpmstab {
 void write_performance(const std::vector<Spec>& specs, const std::filesystem::path& bench,
                        const std::filesystem::path& out);
 
+// The follow-up runs of an experiment (Study::follow_up) as its published results in `out` ask
+// for them (expected_follow_ups, report.hpp), each read back from the cache <out>/cache/: how
+// many distinct runs (a follow-up that repeats one of the experiment's cases or another follow-up
+// is not counted again), how many of them the cache holds with their timing, and the
+// particle-steps, CPU seconds and ns per particle-step of those. All zero where the study asks for
+// none or its results cannot be read.
+struct FollowUpWork {
+  std::size_t runs = 0;
+  std::size_t cached = 0;
+  double particle_steps = 0;
+  double seconds = 0;
+  std::vector<double> ns_per_particle_step;
+};
+FollowUpWork follow_up_work(const Spec& spec, const std::filesystem::path& out);
+
 // The machine of an entry of timings.json: its CPU and the kernels' instruction set it ran
 // ("AMD EPYC, AVX2 kernels"); "CPU not recorded" without a CPU, the CPU alone without a version
 // (entries written before it was recorded).
