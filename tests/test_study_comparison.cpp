@@ -9,6 +9,7 @@
 #include <fstream>
 #include <iterator>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <string>
 
 #include "comparison.hpp"
@@ -152,6 +153,50 @@ TEST(ComparisonVerdicts, AMeaninglessRowIsNotCountedAsAgreeing) {
   EXPECT_NE(k->kind, ClassKind::agreement);
 }
 
+// The classes come from one list, each with a definition of what its predicate decides; every
+// class a failure can be put in is on it, and the predicates are tested in the order the
+// definitions state.
+TEST(ComparisonClasses, OneListDefinesEveryClassThePredicatesReturn) {
+  std::set<std::string> ids;
+  const std::string table = comparison_classes_markdown();
+  for (const ClassDefinition& k : comparison_classes()) {
+    EXPECT_TRUE(ids.insert(k.id).second) << k.id;
+    EXPECT_FALSE(k.title.empty()) << k.id;
+    EXPECT_GT(k.definition.size(), k.title.size()) << k.id;
+    EXPECT_NE(
+        table.find(std::string("| `") + k.id + "` | " + k.title + " | " + k.definition + " |"),
+        std::string::npos)
+        << k.id;
+  }
+  EXPECT_FALSE(explained_definition().empty());
+
+  // A failed run of the bar, paper stable, at c dt / h = C against a spectral limit of 0.756
+  // and, for gimp A = 0.015, a scan edge of 0.9.
+  const CourantEdges edges = {{{"gimp", Key(0.015, "A")}, 0.9}};
+  auto failed = [](const char* method, double C, const char* reason) {
+    ojson r = study_row(method, 4);
+    r["courant"] = C;
+    r["courant_spectral"] = 0.756;
+    fail_row(r, reason);
+    return r;
+  };
+  const std::vector<std::pair<ojson, std::string>> cases = {
+      {failed("gimp", 0.8, "left_domain"), "above-spectral-limit"},  // above the limit first
+      {failed("mpm", 1.0, "nonpositive_F"), "above-spectral-limit"},
+      {failed("gimp", 0.756, "nonpositive_F"), "other-failure"},  // at the limit, below the edge
+      {failed("gimp", 0.5, "left_domain"), "gimp-wall-exit"},
+      {failed("mpm", 0.5, "nonpositive_F"), "mpm-crossing-failure"},
+      {failed("mpm", 0.5, "left_domain"), "other-failure"},
+  };
+  for (const auto& [row, cls] : cases) {
+    EXPECT_EQ(failure_class(row, edges), cls) << row.dump();
+    EXPECT_TRUE(ids.count(failure_class(row, edges)));
+  }
+  // With an edge at or below the run's C (and the run at or below the limit): above-our-edge.
+  const CourantEdges low_edge = {{{"gimp", Key(0.015, "A")}, 0.5}};
+  EXPECT_EQ(failure_class(failed("gimp", 0.5, "left_domain"), low_edge), "above-our-edge");
+}
+
 // The comparison written from synthetic inputs: two Table 1 cells and the three figures, with
 // the paper's figures transcribed beside its Table 1.
 class ComparisonFigures : public ::testing::Test {
@@ -190,19 +235,22 @@ class ComparisonFigures : public ::testing::Test {
     fig2["dt_stable_min"] = 5e-8;
     ojson& doc2 = input("fig2", {fig2}).doc;
     doc2["history"] = ojson::array();
-    for (int step : {20, 5000, 11420, 11439}) {
+    for (int step : {20, 40, 60, 80, 100, 120, 5000, 11420, 11439}) {
       doc2["history"].push_back({{"step", step},
                                  {"time", step * 1e-5},
                                  {"error", step == 5000 ? 0.108 : 1e-3},
                                  {"dt_stable", step == 11420 ? 5e-8 : 1e-6},
                                  {"crossings", step}});
     }
-    // Fig. 3: failing at step 14, 30 crossings per step.
+    // Fig. 3: failing at step 14, ten times Fig. 2's step. By each time both histories record
+    // (every 20th step of Fig. 2, each step of Fig. 3), it has crossed as often as Fig. 2's run;
+    // its error is Fig. 2's up to t = 8e-4 and ten times it from t = 1e-3 on.
     ojson fig3 = figure_row(1e-4);
     fail_row(fig3, "nonpositive_F");
     fig3["steps"] = fig3["failure_step"] = 14;
+    fig3["failure_time"] = 1.4e-3;
     fig3["crossings"] = 420;
-    input("fig3", {fig3});
+    input("fig3", {fig3}).doc["history"] = fig3_history(1);
 
     // The variant runs of Fig. 2's case: periodic boundaries reach T with an error below A, the
     // ghost nodes reach T as a meaningless run.
@@ -216,6 +264,24 @@ class ComparisonFigures : public ::testing::Test {
     input("fig2_variants", {fig2, periodic, ghost});
   }
   void TearDown() override { fs::remove_all(dir); }
+
+  // Fig. 3's history: at step s (t = s 1e-4), `crossing_factor` times the crossings of Fig. 2's
+  // run by then (10 s), and an error of 1e-3 up to step 8, 1e-2 from step 10 on.
+  static ojson fig3_history(int crossing_factor) {
+    ojson h = ojson::array();
+    for (int step = 1; step <= 13; ++step) {
+      h.push_back({{"step", step},
+                   {"time", step * 1e-4},
+                   {"error", step >= 10 ? 1e-2 : 1e-3},
+                   {"dt_stable", 1e-6},
+                   {"crossings", crossing_factor * 10 * step}});
+    }
+    return h;
+  }
+  std::string claims_csv() {
+    std::ifstream in(dir / "out/comparison_claims.csv");
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  }
 
   // The transcription of the figures, with Fig. 3's failure at `fig3_steps`.
   void write_figures(const std::string& fig3_steps) {
@@ -289,7 +355,7 @@ TEST_F(ComparisonFigures, SectionsSetThePapersObservablesBesideOurs) {
             std::string::npos)
       << fig2;
   EXPECT_EQ(line_with(fig2, "| grid crossings |"),
-            "| grid crossings | not stated | 22880 (2 per step) | – |");
+            "| grid crossings | not stated | 22880 by t = 1.1e-1 (the run's end) | – |");
   EXPECT_NE(fig2.find("Class: [gimp-wall-exit](#gimp-wall-exit)"), std::string::npos) << fig2;
   EXPECT_NE(fig2.find("- 'Figure 2 shows'"), std::string::npos) << fig2;
 
@@ -298,23 +364,37 @@ TEST_F(ComparisonFigures, SectionsSetThePapersObservablesBesideOurs) {
   EXPECT_NE(fig1.find("*Our run of it (`experiments/fig1.json`) has not been run"),
             std::string::npos)
       << fig1;
-  EXPECT_NE(fig2.find("| bc = periodic | stable | 100000 |"), std::string::npos) << fig2;
-  EXPECT_NE(fig2.find("The paper's run is reproduced by: bc = periodic."), std::string::npos)
+  // A stable run is shown with its error over time per A and its accuracy class.
+  EXPECT_NE(fig2.find("| bc = periodic | stable (0.00017 A, accurate) | 100000 |"),
+            std::string::npos)
+      << fig2;
+  EXPECT_NE(fig2.find("1 of 3 of these runs reproduce the paper's run: bc = periodic."),
+            std::string::npos)
       << fig2;
   EXPECT_NE(fig2.find("Reaching T only as meaningless runs (error over time at least A): walls "
                       "= ghost (2.5 A)."),
             std::string::npos)
       << fig2;
 
-  // Fig. 3: both fail, ours far sooner: the class of our failure (Courant 1); more crossings per
-  // step than Fig. 2, as the paper says.
+  // Fig. 3: both fail, ours far sooner: the class of our failure (Courant 1). Against Fig. 2 at
+  // equal times, not per step: as many crossings at each of the 6 times both record, and an
+  // error per crossing more than 3 times Fig. 2's at 2 of them.
   const std::string fig3 = section(md, "fig3");
   EXPECT_EQ(line_with(fig3, "| run |"),
-            "| run | fails | \\* nonpositive_F at step 14 (t = 1.0e-3) | agree |");
+            "| run | fails | \\* nonpositive_F at step 14 (t = 1.4e-3) | agree |");
   EXPECT_EQ(line_with(fig3, "| steps |"), "| steps | 8500 | 14 of 10000 | differ: ours 0.0016x |");
-  EXPECT_EQ(
-      line_with(fig3, "| grid crossings per step, against Fig. 2 |"),
-      "| grid crossings per step, against Fig. 2 | more than Fig. 2 | 30 against 2 | agree |");
+  EXPECT_EQ(line_with(fig3, "| grid crossings by equal times, against Fig. 2 |"),
+            "| grid crossings by equal times, against Fig. 2 | more grid-crossing errors than Fig. "
+            "2 | more at 0 of 6 times (6 within a factor 3, 0 fewer; t = 2.0e-4 to 1.2e-3; ours / "
+            "theirs 1 to 1) | differ: more at 0 of 6 times |");
+  EXPECT_EQ(line_with(fig3, "| error in u per grid crossing by equal times, against Fig. 2 |"),
+            "| error in u per grid crossing by equal times, against Fig. 2 | more grid-crossing "
+            "errors than Fig. 2 | more at 2 of 6 times (4 within a factor 3, 0 fewer; t = 2.0e-4 "
+            "to 1.2e-3; ours / theirs 1 to 10) | partly: more at 2 of 6 times |");
+  EXPECT_EQ(line_with(fig3, "| 1.2e-3 |"), "| 1.2e-3 | 120 | 120 | 1.0e-2 | 1.0e-3 | 10 |");
+  EXPECT_EQ(fig3.find("per step)"), std::string::npos) << fig3;
+  EXPECT_NE(claims_csv().find("fig3-crossings-vs-fig2,no,"), std::string::npos) << claims_csv();
+  EXPECT_NE(claims_csv().find("fig3-error-per-crossing-vs-fig2,no,"), std::string::npos);
   EXPECT_NE(fig3.find("Class: [above-spectral-limit](#above-spectral-limit)"), std::string::npos)
       << fig3;
   EXPECT_NE(fig3.find("*No variant runs of this case have been run"), std::string::npos) << fig3;
@@ -322,6 +402,68 @@ TEST_F(ComparisonFigures, SectionsSetThePapersObservablesBesideOurs) {
   EXPECT_NE(md.find("[fig1](#fig1): not run; [fig2](#fig2): gimp-wall-exit; [fig3](#fig3): "
                     "above-spectral-limit"),
             std::string::npos);
+}
+
+TEST_F(ComparisonFigures, MoreCrossingsAtEqualTimesTurnTheVerdictAndTheClaim) {
+  inputs["fig3"].doc["history"] = fig3_history(4);
+  const std::string fig3 = section(comparison(), "fig3");
+  EXPECT_NE(line_with(fig3, "| grid crossings by equal times, against Fig. 2 |")
+                .find("| more at 6 of 6 times (0 within a factor 3, 0 fewer;"),
+            std::string::npos)
+      << fig3;
+  EXPECT_EQ(
+      line_with(fig3, "| grid crossings by equal times, against Fig. 2 |")
+          .substr(line_with(fig3, "| grid crossings by equal times, against Fig. 2 |").size() - 9),
+      "| agree |");
+  EXPECT_NE(claims_csv().find("fig3-crossings-vs-fig2,yes,"), std::string::npos) << claims_csv();
+  // Four times the crossings with the same errors: a quarter of the error per crossing early on.
+  EXPECT_NE(claims_csv().find("fig3-error-per-crossing-vs-fig2,no,"), std::string::npos);
+}
+
+TEST_F(ComparisonFigures, AFigureWithoutAHistoryIsNotComparedAtEqualTimes) {
+  inputs["fig3"].doc.erase("history");
+  const std::string fig3 = section(comparison(), "fig3");
+  EXPECT_NE(fig3.find("| no time both runs record | – |"), std::string::npos) << fig3;
+  EXPECT_NE(fig3.find("share no recorded time"), std::string::npos) << fig3;
+  EXPECT_NE(claims_csv().find("fig3-crossings-vs-fig2,vacuous,"), std::string::npos)
+      << claims_csv();
+}
+
+// A cell is explained when its rerun with one choice changed alone (periodic boundaries, in the
+// walls experiment) agrees with the paper; the report counts per class, and says how many are
+// left unexplained.
+TEST_F(ComparisonFigures, ACellIsExplainedOnlyByARerunThatAgrees) {
+  ojson periodic = study_row("mpm", 4);
+  periodic["dt"] = 1e-3;
+  periodic["bc"] = "periodic";
+  periodic["max_error"] = 6e-5;  // within a factor 3 of the paper's 5e-5
+  input("walls", {periodic});
+  std::string md = comparison();
+  EXPECT_EQ(line_with(md, "](#ours-meaningless) |")
+                .substr(line_with(md, "](#ours-meaningless) |").find(") | ")),
+            ") | 1 | 1 of 1 | 0 | 1 of 1 |");
+  EXPECT_NE(md.find("Of the 1 cells that disagree with the paper, a rerun explains 1 and leaves "
+                    "0 unexplained"),
+            std::string::npos);
+  EXPECT_NE(md.find("**Explained by a rerun:** 1 of 1 (0 unexplained; the walls experiment "
+                    "reruns 1 of 1 with periodic boundaries): mpm E=4 A=0.015 dt=1e-3."),
+            std::string::npos)
+      << md;
+
+  // A rerun that is itself meaningless reaches T but does not agree: the cell stays unexplained.
+  meaningless_row(inputs["walls"].doc["cases"][0]);
+  md = comparison();
+  EXPECT_EQ(line_with(md, "](#ours-meaningless) |")
+                .substr(line_with(md, "](#ours-meaningless) |").find(") | ")),
+            ") | 1 | 0 of 1 | 1 | 1 of 1 |");
+  EXPECT_NE(md.find("a rerun explains 0 and leaves 1 unexplained"), std::string::npos);
+  EXPECT_NE(claims_csv().find("every-disagreement-explained,"), std::string::npos);
+  // A rerun on another grid is another case: it reruns nothing.
+  inputs["walls"].doc["cases"][0]["cells"] = 10;
+  md = comparison();
+  EXPECT_EQ(line_with(md, "](#ours-meaningless) |")
+                .substr(line_with(md, "](#ours-meaningless) |").find(") | ")),
+            ") | 1 | 0 of 1 | 1 | 0 of 1 |");
 }
 
 TEST_F(ComparisonFigures, AChangedPaperValueChangesTheVerdict) {

@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "claims.hpp"
 #include "key.hpp"
 #include "paper_table1.hpp"
 #include "spec.hpp"
@@ -28,15 +29,34 @@ enum class ClassKind {
   unreadable,  // the paper's value is not readable
 };
 
+// A class of cells: its id, a short title, and the definition of the predicate that puts a cell
+// in it (classify() and failure_class() below), in words. The one list of them,
+// comparison_classes(), is what comparison.md, variants.md and docs/design.md's generated block
+// `design-comparison-classes` print.
 struct ComparisonClass {
-  const char* id;  // also the anchor of its section in comparison.md and variants.md
-  std::string title;
+  const char* id;          // also the anchor of its section in comparison.md and variants.md
+  std::string title;       // a name that says no more than the definition
+  std::string definition;  // what the predicate decides, in the order classify() tests it
   ClassKind kind;
 };
+using ClassDefinition = ComparisonClass;
 
 // Every class, in the order the reports explain them.
-const std::vector<ComparisonClass>& comparison_classes();
+const std::vector<ClassDefinition>& comparison_classes();
 const ComparisonClass* find_class(const std::string& id);
+
+// The classes as a Markdown table, one row per class: its id, its title and its definition
+// (for docs/design.md's generated block `design-comparison-classes`).
+std::string comparison_classes_markdown();
+
+// When an experiment of the comparison *explains* a cell that disagrees with the paper, in
+// words: a rerun of the cell by that experiment with one documented choice changed alone agrees
+// with the paper (explains() below). comparison.md counts, per class, the cells explained.
+const std::string& explained_definition();
+
+// A run's verdict as report_util.hpp's verdict() gives it, and for a stable run its error over
+// time per A and its accuracy class beside it: "stable (0.0043 A, accurate)".
+std::string verdict_with_accuracy(const nlohmann::ordered_json& row);
 
 // A run's Courant number as the courant scan groups its runs: rounded to 1e-4 (the scan's dts
 // are C h / c rounded to six digits, so this recovers C).
@@ -63,6 +83,10 @@ struct CellVerdict {
   bool agrees() const { return cls == "agree-stable" || cls == "agree-unstable"; }
 };
 
+// Whether a rerun of a disagreeing cell (its verdict by classify() against the cell's paper
+// value) explains the cell: the rerun agrees fully (CellVerdict::agrees()).
+bool explains(const CellVerdict& rerun);
+
 // Agreement counted over a set of cells, as the comparison's summary states it.
 struct AgreementCounts {
   int verdicts_compared = 0;             // cells with a readable paper value
@@ -81,7 +105,8 @@ CellVerdict classify(const nlohmann::ordered_json& row, const PaperCell* paper,
                      const CourantEdges& edges, ErrorAt error_at);
 
 // The class of our failed run (a flat row whose outcome is unstable) where the paper's run goes
-// on: courant-above-1, above-our-edge, gimp-wall-exit, mpm-crossing-failure or other-failure.
+// on: above-spectral-limit, above-our-edge, gimp-wall-exit, mpm-crossing-failure or
+// other-failure (tested in that order).
 std::string failure_class(const nlohmann::ordered_json& row, const CourantEdges& edges);
 
 // ---- The paper's Figs. 1-3 against our runs of them (comparison_figures.cpp).
@@ -110,12 +135,27 @@ std::vector<PaperFigure> read_paper_figures(const std::filesystem::path& csv);
 const std::vector<std::string>& figure_variant_inputs();
 
 // What comparison.md says about the figures: a section per figure (the paper's observables
-// beside ours, each with a verdict; the figure's class; the variant runs of its case), and per
-// figure its class for the summary.
+// beside ours, each with a verdict; the figure's class; the variant runs of its case), per
+// figure its class for the summary, and the claims of the comparisons between two figures (a
+// figure whose text says it has more or fewer crossing errors than another: its crossings and
+// its error per crossing against the other run's, at the times both histories record).
 struct FigureSections {
   std::string markdown;
   std::vector<std::pair<std::string, std::string>> classes;  // (figure, class id), paper order
+  std::vector<Claim> claims;
 };
+
+// One time both runs of two figures record in their histories: the cumulative grid crossings
+// and the error in u of each by then.
+struct EqualTime {
+  double t = 0;
+  double crossings = 0, other_crossings = 0;
+  double error = 0, other_error = 0;
+};
+// The times (t > 0) at which both histories hold a step with crossings and an error, matched to
+// a relative 1e-9, in increasing t. Empty when either history is missing.
+std::vector<EqualTime> equal_times(const nlohmann::ordered_json* history,
+                                   const nlohmann::ordered_json* other_history);
 
 // A Table 1 cell as a figure's section quotes it: the cell nearest to the figure's case.
 struct QuotedCell {

@@ -24,13 +24,16 @@ namespace fs = std::filesystem;
 
 // The quantities a transcription may state, in the order a figure's table shows them.
 const std::vector<std::string> kQuantities = {
-    "outcome",             // survived (reached T) or unstable
-    "steps",               // steps taken: to T, or to the failure
-    "peak_error",          // the largest max error in u over the run
-    "dt_stable_min",       // the minimum of the eq. (108) bound over the run
-    "bound_min_step",      // the step at which the eq. (108) bound is smallest
-    "crossings",           // grid crossings over the run
-    "crossings_per_step",  // "more than figN" / "fewer than figN": against another figure
+    "outcome",         // survived (reached T) or unstable
+    "steps",           // steps taken: to T, or to the failure
+    "peak_error",      // the largest max error in u over the run
+    "dt_stable_min",   // the minimum of the eq. (108) bound over the run
+    "bound_min_step",  // the step at which the eq. (108) bound is smallest
+    "crossings",       // grid crossings over the run
+    // "more than figN" / "fewer than figN": the paper's "more grid-crossing errors" than another
+    // figure's run; compared at equal times (equal_times()), its crossings and its error per
+    // crossing.
+    "crossings_per_step",
 };
 
 // The parameters that tell a variant run from the figure's own run (the first case of its spec).
@@ -167,7 +170,7 @@ Line numeric_line(const std::string& label, const PaperObservable* p, std::optio
 }
 
 Line outcome_line(const PaperObservable* p, const ojson& row) {
-  Line l{"run", kNotStated, verdict(row), kNoValue};
+  Line l{"run", kNotStated, verdict_with_accuracy(row), kNoValue};
   if (!p || !p->stated()) return l;
   const std::string ours = outcome(row);
   if (p->value == "survived") {
@@ -227,43 +230,191 @@ Line bound_min_step_line(const PaperObservable* p, const OurRun& run) {
   return l;
 }
 
+// The time a run ends: T when it reached it, the failure's time otherwise.
+std::optional<double> end_time(const ojson& row) {
+  if (outcome(row) == "unstable") return number(row, "failure_time");
+  return number(row, "T");
+}
+
 Line crossings_line(const PaperObservable* p, const OurRun& run) {
   const auto c = number(*run.row, "crossings");
   std::string ours = "not recorded";
-  const auto steps = run.row->at("steps").get<double>();
-  if (c) ours = shortest(*c) + (steps > 0 ? " (" + ratio(*c / steps) + " per step)" : "");
+  if (c) {
+    ours = shortest(*c);
+    if (const auto t = end_time(*run.row)) ours += " by t = " + sci(*t) + " (the run's end)";
+  }
   return numeric_line("grid crossings", p, c, ours);
 }
 
-std::optional<double> crossings_per_step(const ojson* row) {
-  if (!row) return std::nullopt;
-  const auto c = number(*row, "crossings");
-  const double steps = row->at("steps").get<double>();
-  if (!c || steps <= 0) return std::nullopt;
-  return *c / steps;
+// ---- Two figures at equal times: the paper's "more grid-crossing errors" than another figure.
+
+// The paper's comparison of a figure with another ("more than fig2"): the direction and the
+// other figure's name.
+struct Against {
+  std::string direction, other;  // "more" or "fewer"; "fig2"
+};
+
+std::optional<Against> against(const PaperObservable* p) {
+  if (!p || !p->stated()) return std::nullopt;
+  std::istringstream words(p->value);
+  Against a;
+  std::string than;
+  words >> a.direction >> than >> a.other;
+  if (a.other.empty()) return std::nullopt;
+  return a;
 }
 
-// "more than fig2": our crossings per step against those of the other figure's run.
-Line crossings_vs_line(const PaperObservable* p, const OurRun& run, const StudyInputs& inputs) {
-  Line l{"grid crossings per step", kNotStated, kNoValue, kNoValue};
-  if (!p || !p->stated()) return l;
-  std::istringstream words(p->value);
-  std::string direction, than, other;
-  words >> direction >> than >> other;
-  l.label = "grid crossings per step, against " + figure_title(other);
-  l.paper = p->value.substr(0, p->value.find(' ')) + " than " + figure_title(other);
-  const auto mine = crossings_per_step(run.row);
-  const auto theirs = crossings_per_step(first_row(inputs, other));
-  if (!mine || !theirs) {
-    l.ours = mine ? "no run of " + other : "not recorded";
-    return l;
+// One quantity of our run against the other figure's run at the times both record: how many
+// times it is more than the agreement factor above the other's, within it, and below it.
+struct EqualTimeCount {
+  int more = 0, within = 0, fewer = 0;
+  std::vector<double> ratios, times;  // ours / the other's, per time counted
+  int total() const { return more + within + fewer; }
+  void add(double t, double mine, double theirs) {
+    if (!(theirs > 0) || !(mine >= 0)) return;
+    times.push_back(t);
+    ratios.push_back(mine / theirs);
+    if (within_agreement_factor(mine, theirs)) {
+      ++within;
+    } else if (mine > theirs) {
+      ++more;
+    } else {
+      ++fewer;
+    }
   }
-  l.ours = ratio(*mine) + " against " + ratio(*theirs);
-  const bool more = *mine > *theirs;
-  l.verdict = (direction == "more") == more
-                  ? "agree"
-                  : std::string("differ: ours ") + (more ? "more" : "fewer");
-  return l;
+  // The count the paper's direction asks for.
+  int in_direction(const std::string& direction) const {
+    return direction == "fewer" ? fewer : more;
+  }
+};
+
+struct EqualTimeComparison {
+  std::vector<EqualTime> times;
+  EqualTimeCount crossings, error_per_crossing;
+};
+
+EqualTimeComparison compare_at_equal_times(const ojson* history, const ojson* other) {
+  EqualTimeComparison c;
+  c.times = equal_times(history, other);
+  for (const auto& e : c.times) {
+    c.crossings.add(e.t, e.crossings, e.other_crossings);
+    if (e.crossings > 0 && e.other_crossings > 0)
+      c.error_per_crossing.add(e.t, e.error / e.crossings, e.other_error / e.other_crossings);
+  }
+  return c;
+}
+
+// "more at 0 of 6 times (6 within a factor 3, 0 fewer; t = 2.0e-4 to 1.2e-3; ours / Fig. 2's
+// 1 to 1)"
+std::string equal_time_text(const EqualTimeCount& n, const std::string& direction) {
+  if (n.total() == 0) return "no time both runs record";
+  const auto [lo, hi] = std::minmax_element(n.ratios.begin(), n.ratios.end(), TotalLess());
+  std::ostringstream s;
+  s << direction << " at " << n.in_direction(direction) << " of " << n.total() << " times ("
+    << n.within << " within a factor " << agreement_factor() << ", "
+    << (direction == "fewer" ? n.more : n.fewer) << (direction == "fewer" ? " more" : " fewer")
+    << "; t = " << sci(n.times.front()) << " to " << sci(n.times.back()) << "; ours / theirs "
+    << ratio(*lo) << " to " << ratio(*hi) << ")";
+  return s.str();
+}
+
+// The verdict of a count: the paper's direction at each time both record, at none, or at some.
+std::string count_verdict(const EqualTimeCount& n, const std::string& direction) {
+  if (n.total() == 0) return kNoValue;
+  const int k = n.in_direction(direction);
+  if (k == n.total()) return "agree";
+  const std::string at =
+      direction + " at " + std::to_string(k) + " of " + std::to_string(n.total()) + " times";
+  return (k == 0 ? "differ: " : "partly: ") + at;
+}
+
+std::vector<Line> equal_time_lines(const Against& a, const EqualTimeComparison& c) {
+  const std::string paper = a.direction + " grid-crossing errors than " + figure_title(a.other);
+  const std::string other = figure_title(a.other);
+  return {
+      {"grid crossings by equal times, against " + other, paper,
+       equal_time_text(c.crossings, a.direction), count_verdict(c.crossings, a.direction)},
+      {"error in u per grid crossing by equal times, against " + other, paper,
+       equal_time_text(c.error_per_crossing, a.direction),
+       count_verdict(c.error_per_crossing, a.direction)},
+  };
+}
+
+// The claims of one comparison between two figures: at each time both record, our run's
+// crossings, and its error per crossing, more (or fewer) than the other run's by more than the
+// agreement factor, as the paper's text has it.
+std::vector<Claim> equal_time_claims(const PaperFigure& f, const Against& a,
+                                     const EqualTimeComparison& c) {
+  std::vector<Claim> out;
+  const std::string relation = a.direction + " than " + agreement_factor() + " times";
+  auto one = [&](const std::string& id, const std::string& statement, const EqualTimeCount& n) {
+    Claim k = claim(f.name + "-" + id + "-vs-" + a.other, statement,
+                    "{n} of {times} times both runs record, from t = {first} to {last}; ours / "
+                    "the other run's {lo} to {hi}");
+    k.value("fig", figure_title(f.name)).value("other", figure_title(a.other));
+    k.value("relation", relation)
+        .value("paper", a.direction + " grid-crossing errors than " + figure_title(a.other));
+    k.every("n", n.in_direction(a.direction), "times", n.total());
+    if (n.total() > 0) {
+      const auto [lo, hi] = std::minmax_element(n.ratios.begin(), n.ratios.end(), TotalLess());
+      k.value("first", sci(n.times.front()))
+          .value("last", sci(n.times.back()))
+          .value("lo", ratio(*lo))
+          .value("hi", ratio(*hi));
+    } else {
+      for (const char* v : {"first", "last", "lo", "hi"})
+        k.value(v, kNoValue);
+    }
+    out.push_back(k);
+  };
+  one("crossings",
+      "At each time both runs record, our run of {fig} has crossed cell boundaries {relation} "
+      "as often as our run of {other} (the paper's text: {paper})",
+      c.crossings);
+  one("error-per-crossing",
+      "At each time both runs record, our run of {fig} has an error in u per grid crossing "
+      "{relation} that of our run of {other} (the paper's text: {paper})",
+      c.error_per_crossing);
+  return out;
+}
+
+// The times both runs record, in a table: crossings and errors of each, and the ratios.
+void equal_time_table(std::ostream& md, const PaperFigure& f, const Against& a,
+                      const EqualTimeComparison& c, const ojson& row, const ojson* other_row) {
+  const std::string fig = figure_title(f.name), other = figure_title(a.other);
+  md << "**" << fig << " against " << other << " at equal times.** The paper compares the bottom "
+     << "plots of the two figures, each drawn against its own step number; ";
+  const auto dt = number(row, "dt");
+  const auto other_dt = other_row ? number(*other_row, "dt") : std::nullopt;
+  if (dt && other_dt) {
+    md << "a step of " << fig << " is " << ratio(*dt / *other_dt) << " times one of " << other
+       << ", so a count per step would set the runs side by side at different times. ";
+  }
+  if (c.times.empty()) {
+    md << "Our histories of the two runs share no recorded time, so they are not compared "
+          "here.\n\n";
+    return;
+  }
+  md << "The transcription's note, quoted below, reads the plots per step; this report compares "
+        "the runs at the "
+     << c.times.size() << " times both histories record, t = " << sci(c.times.front().t) << " to "
+     << sci(c.times.back().t);
+  if (const auto end = end_time(row))
+    md << " (our run of " << fig << " ends at t = " << sci(*end) << ")";
+  md << "; the verdicts of the two rows above count the times at which ours "
+     << (a.direction == "fewer" ? "lies under " : "exceeds ") << other
+     << "'s by more than a factor " << agreement_factor() << ".\n\n"
+     << "| t | crossings " << fig << " | " << other << " | error in u " << fig << " | " << other
+     << " | error per crossing, " << fig << " / " << other << " |\n|---|---|---|---|---|---|\n";
+  for (const auto& e : c.times) {
+    md << "| " << sci(e.t) << " | " << shortest(e.crossings) << " | " << shortest(e.other_crossings)
+       << " | " << sci(e.error) << " | " << sci(e.other_error) << " | "
+       << (e.crossings > 0 && e.other_crossings > 0 && e.other_error > 0
+               ? ratio((e.error / e.crossings) / (e.other_error / e.other_crossings))
+               : kNoValue)
+       << " |\n";
+  }
+  md << "\n";
 }
 
 // ---- The figure's class and what explains it.
@@ -339,7 +490,7 @@ std::string courant_context(const ojson& row, const StudyInputs& inputs) {
   std::string s = "In the courant scan ([courant.md](courant.md)), " + std::to_string(reached) +
                   " of the " + std::to_string(n) + " " + row.at("method").get<std::string>() +
                   " runs at c dt/h = " + shortest(c) + " (A = " + as + ") reach T";
-  if (reached < n) s += "; every failure comes by step " + std::to_string(last_failure);
+  if (reached < n) s += "; the last of the failures comes at step " + std::to_string(last_failure);
   return s + ".";
 }
 
@@ -431,8 +582,8 @@ void variant_runs(std::ostream& md, const PaperFigure& f, const ojson& row,
     const std::string rep = reproduces(f, r);
     const auto e = number(r, "max_error_over_time");
     const auto A = number(r, "A");
-    md << "| " << label << " | " << verdict(r) << " | " << r.at("steps").dump() << " | "
-       << (e && A && *A > 0 ? ratio(*e / *A) : kNoValue) << " | "
+    md << "| " << label << " | " << verdict_with_accuracy(r) << " | " << r.at("steps").dump()
+       << " | " << (e && A && *A > 0 ? ratio(*e / *A) : kNoValue) << " | "
        << (number(r, "crossings") ? r.at("crossings").dump() : kNoValue) << " | "
        << opt_sci(r.contains("dt_stable_min") ? r.at("dt_stable_min") : ojson()) << " | " << rep
        << " |\n";
@@ -449,11 +600,8 @@ void variant_runs(std::ostream& md, const PaperFigure& f, const ojson& row,
     return s;
   };
   md << "\n";
-  if (!yes.empty()) {
-    md << "The paper's run is reproduced by: " << listed(yes) << ".";
-  } else {
-    md << "None of these choices reproduces the paper's run.";
-  }
+  md << yes.size() << " of " << cases.size() << " of these runs reproduce the paper's run"
+     << (yes.empty() ? std::string(".") : ": " + listed(yes) + ".");
   if (!meaningless.empty()) {
     md << " Reaching T only as meaningless runs (error over time at least A): "
        << listed(meaningless) << ".";
@@ -552,12 +700,23 @@ void figure_section(std::ostream& md, const PaperFigure& f, const std::vector<Pa
                              bound_min_line(f.find("dt_stable_min"), run),
                              bound_min_step_line(f.find("bound_min_step"), run),
                              crossings_line(f.find("crossings"), run)};
-  if (const PaperObservable* p = f.find("crossings_per_step"); p && p->stated()) {
-    lines.push_back(crossings_vs_line(p, run, inputs));
+  const std::optional<Against> vs = against(f.find("crossings_per_step"));
+  EqualTimeComparison at_equal_times;
+  const ojson* other_row = vs ? first_row(inputs, vs->other) : nullptr;
+  if (vs) {
+    const auto o = inputs.find(vs->other);
+    const ojson* other_history =
+        o != inputs.end() && o->second.present() ? history_of(o->second.doc) : nullptr;
+    at_equal_times = compare_at_equal_times(history, other_history);
+    for (auto& l : equal_time_lines(*vs, at_equal_times))
+      lines.push_back(std::move(l));
+    for (auto& figure_claim : equal_time_claims(f, *vs, at_equal_times))
+      out.claims.push_back(std::move(figure_claim));
   }
   for (const auto& l : lines)
     md << "| " << l.label << " | " << l.paper << " | " << l.ours << " | " << l.verdict << " |\n";
   md << "\n";
+  if (vs) equal_time_table(md, f, *vs, at_equal_times, *row, other_row);
   // The passages the paper's values are read from, each once, by section.
   std::vector<std::pair<std::string, std::vector<std::string>>> quoted;
   for (const auto& o : f.observables) {
@@ -623,6 +782,24 @@ std::vector<PaperFigure> read_paper_figures(const fs::path& csv) {
   return figures;
 }
 
+std::vector<EqualTime> equal_times(const ojson* history, const ojson* other_history) {
+  std::vector<EqualTime> out;
+  if (!history || !other_history) return out;
+  for (const auto& h : *history) {
+    const auto t = number(h, "time"), c = number(h, "crossings"), e = number(h, "error");
+    if (!t || !c || !e || !(*t > 0)) continue;
+    for (const auto& o : *other_history) {
+      const auto ot = number(o, "time"), oc = number(o, "crossings"), oe = number(o, "error");
+      if (!ot || !oc || !oe || std::abs(*ot - *t) > 1e-9 * std::max(*t, *ot)) continue;
+      out.push_back({*t, *c, *oc, *e, *oe});
+      break;
+    }
+  }
+  std::sort(out.begin(), out.end(),
+            [](const EqualTime& a, const EqualTime& b) { return a.t < b.t; });
+  return out;
+}
+
 const std::vector<std::string>& figure_variant_inputs() {
   static const std::vector<std::string> names = {"fig2_variants", "fig3_variants"};
   return names;
@@ -642,11 +819,13 @@ FigureSections figure_sections(const std::vector<PaperFigure>& paper,
   }
   md << "The paper's section 5.2 says in words what its Figs. 1-3 show; the plots themselves "
         "are not in its text, so an observable that only a plot would show is *not stated*. "
-        "The transcription, with the passage every value is read from: ["
+        "The transcription, with the passage each value is read from: ["
      << transcription << "](" << transcription
-     << "). Steps, errors, bounds and crossings agree within a factor " << agreement_factor()
-     << " (the rule of the max "
-        "errors). A figure's class is the one Table 1's rules give "
+     << "). A number of ours (steps, errors, bounds, crossings) and the paper's are said to "
+        "agree when within a factor "
+     << agreement_factor()
+     << " of each other (the rule of the max errors). A figure's class is the one Table 1's rules "
+        "give "
         "its run; where both runs fail but ours more than a factor "
      << agreement_factor()
      << " sooner, the class of our "

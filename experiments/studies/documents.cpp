@@ -5,6 +5,7 @@
 
 #include "advice.hpp"
 #include "advice_verify.hpp"
+#include "comparison.hpp"
 #include "csv.hpp"
 #include "files.hpp"
 #include "performance.hpp"
@@ -259,6 +260,7 @@ std::map<std::string, std::string> document_blocks(const std::filesystem::path& 
           {"design-outcomes", outcomes_table()},
           {"design-failure-reasons", failure_reasons_table()},
           {"design-accuracy-classes", accuracy_classes_table()},
+          {"design-comparison-classes", comparison_classes_markdown()},
           {"design-cells-per-wavelength", cells_per_wavelength(results)}};
 }
 
