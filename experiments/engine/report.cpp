@@ -727,14 +727,24 @@ std::string index_intro() {
 
 std::string index_row(const Spec& spec, const ojson& doc) {
   std::map<std::string, int> n;
-  for (const auto& c : doc["cases"])
-    ++n[c["outcome"].is_string() ? c["outcome"].get<std::string>() : "unknown"];
+  for (const auto& c : doc["cases"]) {
+    const std::string o = c["outcome"].is_string() ? c["outcome"].get<std::string>() : "unknown";
+    ++n[o];
+    // A stable run's accuracy class (core/base/accuracy.hpp), where its error over time is
+    // recorded.
+    if (o != "stable" || !has_number(c, "max_error_over_time") || !has_number(c, "A") ||
+        !(c["A"].get<double>() > 0))
+      continue;
+    const Accuracy a = accuracy_class(c["max_error_over_time"].get<double>(), c["A"].get<double>());
+    ++n[a == Accuracy::accurate ? "accurate" : "inaccurate"];
+  }
   std::ostringstream md;
   md << "| " << spec.title << " | "
      << (spec.tier == Tier::paper ? "make reproduce" : "make studies") << " | [" << spec.name
      << ".md](" << spec.name << ".md) | [" << spec.name << ".csv](" << spec.name << ".csv), ["
      << spec.name << ".json](" << spec.name << ".json) | " << doc["cases"].size() << " | "
-     << n["unstable"] << " | " << n["meaningless"] << " | " << n["stable"] << " |\n";
+     << n["unstable"] << " | " << n["meaningless"] << " | " << n["too_short"] << " | "
+     << n["stable"] << " | " << n["accurate"] << " | " << n["inaccurate"] << " |\n";
   return md.str();
 }
 
@@ -759,17 +769,22 @@ void write_index(const std::vector<Spec>& specs, const fs::path& out) {
   for (const auto& spec : specs) {
     if (!spec.study->has_cases) md << spec.study->index(spec, {});
   }
-  md << "Outcomes (docs/design.md): *unstable*, the run stopped with a failure; *meaningless*, it "
-        "survived but its error over time reached the amplitude A; *stable*, neither. Wall times: "
-        "[performance.md](performance.md).\n\n"
-        "| experiment | made by | report | data | cases | unstable | meaningless | stable |\n"
-        "|---|---|---|---|---|---|---|---|\n";
+  md << "Outcomes and accuracy classes (docs/design.md, \"Outcomes\"): *unstable*, the run "
+        "stopped with a failure; *meaningless*, it reached T but its error over time reached the "
+        "amplitude A; *too short*, it reached T in too few steps for a verdict; *stable*, it "
+        "reached T with an error over time below A, and of those *accurate* below "
+     << shortest(kAccurateFraction)
+     << " A, *inaccurate* from there (a run whose error over time is not recorded is in "
+        "neither). Wall times: [performance.md](performance.md).\n\n"
+        "| experiment | made by | report | data | cases | unstable | meaningless | too short | "
+        "stable | of them accurate | of them inaccurate |\n"
+        "|---|---|---|---|---|---|---|---|---|---|---|\n";
   std::vector<std::pair<const Spec*, ojson>> docs;
   for (const auto& spec : specs) {
     if (!spec.study->has_cases) continue;
     ojson doc = load_results(spec, out);
     if (doc.is_null()) {
-      md << "| " << spec.title << " | not generated | | | | | | |\n";
+      md << "| " << spec.title << " | not generated | | | | | | | | | |\n";
       continue;
     }
     docs.emplace_back(&spec, std::move(doc));
