@@ -102,6 +102,69 @@ TEST(Dispersion, CellsPerWavelengthIsWhereThePhaseErrorReachesTheTolerance) {
   }
 }
 
+// The wave error after n steps, |lambda^n - e^{i C kh n}|, in the cases with a closed form: an
+// exact eigenvalue gives 0, a pure phase lag delta per step 2 |sin(n delta / 2)|, a pure damping
+// 1 - |lambda|^n; a branch that stops propagating has no phase to carry the wave (infinite).
+TEST(Dispersion, AmplitudeErrorIsDampingAndPhaseErrorTogether) {
+  const double C = 0.5, kh = 0.2, periods = 3;
+  const double steps = periods * 2 * kPi / (C * kh);
+  DispersionPoint d;
+  d.kh = kh;
+  d.damping = 1;
+  d.phase = C * kh;
+  EXPECT_NEAR(amplitude_error(d, C, periods), 0, 1e-12);
+  const double lag = 1e-3;  // per step
+  d.phase = C * kh - lag;
+  EXPECT_NEAR(amplitude_error(d, C, periods), 2 * std::abs(std::sin(steps * lag / 2)), 1e-12);
+  d.phase = C * kh;
+  d.damping = 0.999;
+  EXPECT_NEAR(amplitude_error(d, C, periods), 1 - std::pow(0.999, steps), 1e-12);
+  // Twice the periods: a phase error grows with them.
+  d.damping = 1;
+  d.phase = C * kh - lag;
+  EXPECT_GT(amplitude_error(d, C, 2 * periods), 1.9 * amplitude_error(d, C, periods));
+  d.propagates = false;
+  EXPECT_TRUE(std::isinf(amplitude_error(d, C, periods)));
+  EXPECT_THROW(amplitude_error(d, 0, periods), std::invalid_argument);
+}
+
+// The cells per wavelength for a wave error are where the error reaches the tolerance: within it
+// on every longer wave of a fine scan, at it (to the bisection's accuracy) at the wavelength
+// returned. FLIP barely damps a long wave below its limit, so its wave error after N periods is
+// its phase drift, 2 pi N |c_num / c - 1| to first order: the cells it needs are those for a
+// phase error of tolerance / (2 pi N), within 1%. PIC damps every wave: it needs more cells
+// per wavelength than the scan's first kh holds (2 kDispersionSamples), found by halving below
+// it, and none up to kMaxCellsPerWavelength for a tolerance a thousand times smaller.
+TEST(Dispersion, CellsPerWavelengthForAWaveErrorIsWhereItReachesTheTolerance) {
+  const double C = 0.5, periods = 10, tolerance = 0.01;
+  for (const Transfer t : {Transfer::flip, Transfer::pic}) {
+    const RunParams p = scheme(Method::gimp, 2, t);
+    SCOPED_TRACE(std::string(to_string(t)));
+    const auto cells = cells_per_wavelength_amplitude(p, C, periods, tolerance);
+    ASSERT_TRUE(cells.has_value());
+    const double kh_max = 2 * kPi / *cells;
+    for (int j = 1; j <= 20; ++j) {
+      const double kh = kh_max * j / 20;
+      EXPECT_LE(amplitude_error(dispersion_at(p, C, kh), C, periods), tolerance * (1 + 1e-4)) << kh;
+    }
+    EXPECT_NEAR(amplitude_error(dispersion_at(p, C, kh_max), C, periods), tolerance,
+                1e-4 * tolerance);
+    if (t == Transfer::flip) {
+      const auto phase_only = cells_per_wavelength(p, C, tolerance / (2 * kPi * periods));
+      ASSERT_TRUE(phase_only.has_value());
+      EXPECT_NEAR(*cells / *phase_only, 1, 1e-2);
+      EXPECT_LT(*cells, 2 * kDispersionSamples);
+    } else {
+      EXPECT_GT(*cells, 2 * kDispersionSamples);
+      EXPECT_GT(*cells, 10 * *cells_per_wavelength(p, C));  // the phase error alone: far fewer
+      EXPECT_FALSE(cells_per_wavelength_amplitude(p, C, periods, tolerance / 1000).has_value());
+    }
+  }
+  // A tolerance no wave error reaches (at most 1 + |lambda|^n <= 2 below the limit, where the
+  // branch propagates up to kh = pi): the shortest wave of the grid, 2 cells.
+  EXPECT_EQ(cells_per_wavelength_amplitude(scheme(Method::gimp), C, periods, 2.5), 2.0);
+}
+
 // (c) A run of the mode scene measures the period the branch predicts: within a relative 1e-5
 // (measured: about 1e-8; the prediction's own error is that of the symbol's central
 // differences, the measurement's that of the quartic through the samples at each turning

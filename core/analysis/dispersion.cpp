@@ -99,9 +99,10 @@ class Branch {
       throw std::invalid_argument("dispersion: the Courant number must be > 0");
   }
 
-  // The branch at kh from the last point committed (or the start rule at the first); with
-  // `commit`, it becomes the last point.
-  DispersionPoint at(double kh, bool commit) {
+  // The branch at kh from the last point committed (or the start rule at the first, and with
+  // `anew` at any kh, ignoring the points committed); with `commit`, it becomes the last point.
+  DispersionPoint at(double kh, bool commit, bool anew = false) {
+    const bool start = !started_ || anew;
     const EigenPairs es = eigen_pairs(symbol_.at(kh), true);
     const auto& values = es.values;
     const Eigen::Index n = values.size();
@@ -110,7 +111,7 @@ class Branch {
     for (Eigen::Index j = 0; j < n; ++j) {
       const Eigen::VectorXcd w = es.vectors.col(j).normalized();
       double score;
-      if (!started_) {
+      if (start) {
         // Nearest e^{i C kh} among the acoustic eigenvectors of positive phase.
         if (std::arg(values[j]) <= 0 || acoustic_share(w, ppc_) < kAcousticShare) continue;
         score = -std::abs(values[j] - std::polar(1.0, courant_ * kh));
@@ -127,10 +128,10 @@ class Branch {
     point.kh = kh;
     point.lambda = values[pick];
     point.phase =
-        started_ ? last_.phase + std::arg(point.lambda / last_.lambda) : std::arg(point.lambda);
+        start ? std::arg(point.lambda) : last_.phase + std::arg(point.lambda / last_.lambda);
     point.phase_speed = point.phase / (courant_ * kh);
     point.damping = std::abs(point.lambda);
-    if (ended_ || std::abs(point.lambda.imag()) <= kRealEigenvalue * point.damping) {
+    if ((ended_ && !start) || std::abs(point.lambda.imag()) <= kRealEigenvalue * point.damping) {
       point.propagates = false;
       point.phase = point.phase_speed = 0;
     }
@@ -212,6 +213,46 @@ std::optional<double> cells_per_wavelength(const RunParams& p, double courant, d
         (error(branch.at(mid, false)) > tolerance ? b : a) = mid;
       }
       return 2 * kPi / b;
+    }
+    branch.at(grid_kh(j), true);
+  }
+  return 2.0;  // within the tolerance up to kh = pi
+}
+
+double amplitude_error(const DispersionPoint& d, double courant, double periods) {
+  if (!(courant > 0) || !(periods > 0))
+    throw std::invalid_argument("amplitude_error: the Courant number and periods must be > 0");
+  if (!d.propagates) return std::numeric_limits<double>::infinity();
+  const double steps = periods * 2 * kPi / (courant * d.kh);
+  const std::complex<double> ratio =
+      std::polar(std::pow(d.damping, steps), steps * (d.phase - courant * d.kh));
+  return std::abs(ratio - 1.0);
+}
+
+std::optional<double> cells_per_wavelength_amplitude(const RunParams& p, double courant,
+                                                     double periods, double tolerance) {
+  Branch branch(p, courant);
+  const auto error = [&](const DispersionPoint& d) { return amplitude_error(d, courant, periods); };
+  // Bisection between a kh within the tolerance and one beyond it; `at` gives the branch there.
+  const auto bisect = [&](double a, double b, const auto& at) {
+    while (b - a > kBisectionTolerance * a) {
+      const double mid = 0.5 * (a + b);
+      (error(at(mid)) > tolerance ? b : a) = mid;
+    }
+    return 2 * kPi / b;
+  };
+  for (int j = 1; j <= kDispersionSamples; ++j) {
+    const DispersionPoint& lo = branch.last();
+    const DispersionPoint hi = branch.at(grid_kh(j), false);
+    if (error(hi) > tolerance) {
+      if (j > 1) return bisect(lo.kh, hi.kh, [&](double kh) { return branch.at(kh, false); });
+      // Below the scan: each kh identified anew by the start rule.
+      const auto fresh = [&](double kh) { return branch.at(kh, false, true); };
+      const double longest = 2 * kPi / kMaxCellsPerWavelength;
+      for (double b = hi.kh; b / 2 >= longest * (1 - kBisectionTolerance); b /= 2) {
+        if (error(fresh(b / 2)) <= tolerance) return bisect(b / 2, b, fresh);
+      }
+      return std::nullopt;
     }
     branch.at(grid_kh(j), true);
   }

@@ -72,6 +72,31 @@ DispersionPoint dispersion_at(const RunParams& p, double courant, double kh);
 std::optional<double> cells_per_wavelength(const RunParams& p, double courant,
                                            double tolerance = kPhaseTolerance);
 
+// The complex amplitude error of a wave of the branch after `periods` of its exact periods at the
+// Courant number C: |lambda^n - e^{i omega n dt}| with n = periods 2 pi / (C kh) steps (n need not
+// be a whole number: lambda^n = |lambda|^n e^{i n phase}, the phase unwrapped), which is
+// | |lambda|^n e^{i n (phase - C kh)} - 1 |: its damping and its phase error together, per unit
+// amplitude (0 is exact, 1 a wave damped away, 2 one in antiphase). Infinite where the branch does
+// not propagate (it has no phase to carry the wave). Throws std::invalid_argument for C or
+// periods not positive.
+double amplitude_error(const DispersionPoint& d, double courant, double periods);
+
+// The longest wave the search of cells_per_wavelength_amplitude reaches, in cells per wavelength
+// (kh = 2 pi / kMaxCellsPerWavelength = pi / kDispersionSamples / 32).
+inline constexpr double kMaxCellsPerWavelength = 65536;
+
+// The cells per wavelength 2 pi / kh_max that p's scheme needs at the Courant number C for an
+// amplitude error (amplitude_error) of at most `tolerance` after `periods` periods. kh_max is the
+// first kh at which the error exceeds the tolerance, scanning up the kh of cells_per_wavelength
+// (pi j / kDispersionSamples, the branch followed) and bisecting to a relative 1e-6; where the
+// error exceeds the tolerance at the first of them already, kh is halved below it, each kh
+// identified anew by the branch's start rule, down to 2 pi / kMaxCellsPerWavelength, and the
+// bisection runs between the last halving within the tolerance and the one before. 2 when the
+// error stays within the tolerance up to kh = pi; nullopt when it exceeds it at every kh down to
+// 2 pi / kMaxCellsPerWavelength.
+std::optional<double> cells_per_wavelength_amplitude(const RunParams& p, double courant,
+                                                     double periods, double tolerance);
+
 // The period of the mode scene (scene = mode: wavelength 1 on p.cells cells, kh = 2 pi / cells)
 // that the physical branch predicts at p's step: 2 pi dt / arg(lambda), in units of time (the
 // exact period is 1 / c; infinite where the branch does not propagate). Requires a fixed step
