@@ -732,11 +732,9 @@ std::string index_row(const Spec& spec, const ojson& doc) {
     ++n[o];
     // A stable run's accuracy class (core/base/accuracy.hpp), where its error over time is
     // recorded.
-    if (o != "stable" || !has_number(c, "max_error_over_time") || !has_number(c, "A") ||
-        !(c["A"].get<double>() > 0))
-      continue;
-    const Accuracy a = accuracy_class(c["max_error_over_time"].get<double>(), c["A"].get<double>());
-    ++n[a == Accuracy::accurate ? "accurate" : "inaccurate"];
+    const std::optional<Accuracy> a = row_accuracy(c);
+    if (o != "stable" || !a) continue;
+    ++n[*a == Accuracy::accurate ? "accurate" : "inaccurate"];
   }
   std::ostringstream md;
   md << "| " << spec.title << " | "

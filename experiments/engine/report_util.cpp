@@ -213,10 +213,14 @@ std::string work(const ojson& r) {
   return sci(particle_steps(r));
 }
 
+std::optional<Accuracy> row_accuracy(const ojson& r) {
+  if (!has_number(r, "max_error_over_time") || !has_number(r, "A") || !(r["A"].get<double>() > 0))
+    return std::nullopt;
+  return accuracy_class(r["max_error_over_time"].get<double>(), r["A"].get<double>());
+}
+
 bool accurate_run(const ojson& r) {
-  return outcome(r) == "stable" && has_number(r, "max_error_over_time") && has_number(r, "A") &&
-         accuracy_class(r["max_error_over_time"].get<double>(), r["A"].get<double>()) ==
-             Accuracy::accurate;
+  return outcome(r) == "stable" && row_accuracy(r) == Accuracy::accurate;
 }
 
 bool crossing_free(const ojson& r) {

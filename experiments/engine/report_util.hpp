@@ -10,6 +10,7 @@
 #include <tuple>
 #include <vector>
 
+#include "base/accuracy.hpp"
 #include "run/edge.hpp"
 #include "spec.hpp"
 
@@ -93,6 +94,9 @@ std::optional<double> loglog_slope(const std::vector<std::pair<double, double>>&
 // recorded, A / h is below 1 / (2 ppc) (the particles nearest a cell boundary start a quarter
 // cell from it at 2 per cell). A point outside it is shown and never fitted.
 bool accurate_run(const nlohmann::ordered_json& row);
+// The accuracy class (core/base/accuracy.hpp) of a row's error over time against its A, whatever
+// its outcome; none where either is not recorded or A is not positive.
+std::optional<Accuracy> row_accuracy(const nlohmann::ordered_json& row);
 bool crossing_free(const nlohmann::ordered_json& row);
 // "the order is fitted only over grids where no particle crosses a cell and the error over
 // time is below 0.1 A": the regime in words, for the reports that fit orders.

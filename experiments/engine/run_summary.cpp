@@ -20,18 +20,6 @@ std::string fmt(double v) {
 
 namespace {
 
-std::string_view accuracy_name(Accuracy a) {
-  switch (a) {
-    case Accuracy::accurate:
-      return "accurate";
-    case Accuracy::inaccurate:
-      return "inaccurate";
-    case Accuracy::meaningless:
-      return "meaningless";
-  }
-  return "";
-}
-
 // A measurement that may be absent: "-" when it is.
 template <class T>
 std::string fmt(const std::optional<T>& v) {
@@ -65,7 +53,7 @@ std::string text_summary(const RunResult& r, bool with_timing) {
   if (r.outcome == Outcome::meaningless) verdict += " (the error over time reached A)";
   if (r.outcome == Outcome::stable && r.max_error_over_time && p.A > 0) {
     const double e = *r.max_error_over_time;
-    verdict += ", " + std::string(accuracy_name(accuracy_class(e, p.A))) + " (error over time " +
+    verdict += ", " + std::string(to_string(accuracy_class(e, p.A))) + " (error over time " +
                fmt(e / p.A) + " A)";
   }
   auto line = [&](std::string_view key, const std::string& value) {

@@ -121,15 +121,10 @@ VerdictCounts count_verdicts(const std::vector<ojson>& rows) {
     n.too_short += o == "too_short";
     if (o != "stable") continue;
     ++n.stable;
-    if (!has_number(r, "max_error_over_time") || !has_number(r, "A") ||
-        !(r["A"].get<double>() > 0)) {
-      ++n.unknown;
-    } else if (accuracy_class(r["max_error_over_time"].get<double>(), r["A"].get<double>()) ==
-               Accuracy::accurate) {
-      ++n.accurate;
-    } else {
-      ++n.inaccurate;
-    }
+    const std::optional<Accuracy> a = row_accuracy(r);
+    n.unknown += !a;
+    n.accurate += a == Accuracy::accurate;
+    n.inaccurate += a && *a != Accuracy::accurate;
   }
   return n;
 }

@@ -137,8 +137,7 @@ std::string verdict_with_accuracy(const ojson& row) {
     return v;
   }
   const double e = row["max_error_over_time"].get<double>(), A = row["A"].get<double>();
-  return v + " (" + ratio(e / A) + " A, " +
-         (accuracy_class(e, A) == Accuracy::accurate ? "accurate" : "inaccurate") + ")";
+  return v + " (" + ratio(e / A) + " A, " + std::string(to_string(accuracy_class(e, A))) + ")";
 }
 
 double scan_courant(const ojson& row) {

@@ -142,8 +142,7 @@ std::string run_text(const ojson& r) {
   if (has_number(r, "max_error_over_time")) {
     const double e = r["max_error_over_time"].get<double>(), A = r["A"].get<double>();
     s += " (" + significant(e / A, 2) + " A";
-    if (o == "stable")
-      s += accuracy_class(e, A) == Accuracy::accurate ? ", accurate" : ", inaccurate";
+    if (o == "stable") s += ", " + std::string(to_string(accuracy_class(e, A)));
     s += ")";
   }
   return s;

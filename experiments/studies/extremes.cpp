@@ -51,11 +51,7 @@ enum class Standing { accurate, inaccurate, under_a_pass };
 
 Standing standing(const ojson& r) {
   if (wave_passes_of(r) < kMinWavePasses) return Standing::under_a_pass;
-  const bool accurate = has_number(r, "max_error_over_time") && has_number(r, "A") &&
-                        std::isfinite(r["max_error_over_time"].get<double>()) &&
-                        accuracy_class(r["max_error_over_time"].get<double>(),
-                                       r["A"].get<double>()) == Accuracy::accurate;
-  return accurate ? Standing::accurate : Standing::inaccurate;
+  return row_accuracy(r) == Accuracy::accurate ? Standing::accurate : Standing::inaccurate;
 }
 
 // The error over time per A of a run that reached T with a stable or meaningless outcome.

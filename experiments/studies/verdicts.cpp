@@ -50,18 +50,6 @@ std::string definition(FailureReason r) {
   return "";
 }
 
-std::string_view to_string(Accuracy a) {
-  switch (a) {
-    case Accuracy::accurate:
-      return "accurate";
-    case Accuracy::inaccurate:
-      return "inaccurate";
-    case Accuracy::meaningless:
-      return "meaningless";
-  }
-  return "";
-}
-
 std::string definition(Accuracy a) {
   const std::string f = shortest(kAccurateFraction);
   switch (a) {

@@ -19,7 +19,6 @@ namespace mpmstab {
 std::string definition(Outcome o);
 std::string definition(FailureReason r);
 std::string definition(Accuracy a);
-std::string_view to_string(Accuracy a);
 
 // Every value of each list, in the order of its enum.
 std::vector<Outcome> all_outcomes();
