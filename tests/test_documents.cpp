@@ -112,6 +112,30 @@ TEST(Documents, TheVerdictTablesAreTheCodesOwnLists) {
     EXPECT_NE(design.str().find(t), std::string::npos) << t;
 }
 
+// A report calls a run stable only over at least kMinWavePasses wave passes, and always with its
+// accuracy class and error over time per A beside it; a shorter run is said to be too short.
+TEST(Documents, AVerdictCallsARunStableOnlyOverAWavePassAndWithItsAccuracy) {
+  nlohmann::ordered_json r = {{"outcome", "stable"},
+                              {"A", 0.01},
+                              {"max_error_over_time", 0.0043},
+                              {"cT", 2 * kMinWavePasses},
+                              {"steps", 500}};
+  EXPECT_FALSE(under_a_wave_pass(r));
+  EXPECT_EQ(verdict_word(r), "stable");
+  EXPECT_EQ(verdict(r), "stable, inaccurate (0.43 A)");
+  r["cT"] = 0.5 * kMinWavePasses;
+  EXPECT_TRUE(under_a_wave_pass(r));
+  EXPECT_EQ(verdict_word(r).rfind("survived, c T = ", 0), 0u) << verdict_word(r);
+  EXPECT_NE(verdict_word(r).find("too short to count as stable"), std::string::npos);
+  EXPECT_EQ(verdict(r), verdict_word(r) + ", inaccurate (0.43 A)");
+  r["cT"] = 2 * kMinWavePasses;
+  r.erase("max_error_over_time");
+  EXPECT_EQ(verdict(r), "stable (error over time not recorded)");
+  r["outcome"] = "meaningless";
+  EXPECT_FALSE(under_a_wave_pass(r));
+  EXPECT_EQ(verdict(r), verdict_word(r));  // no class beside a run that is not stable
+}
+
 TEST(Documents, PublishedTimingsKeepEachMachinesLastTierRun) {
   const auto dir = std::filesystem::temp_directory_path() / "mpmstab_timings_test";
   std::filesystem::remove_all(dir);
@@ -157,6 +181,35 @@ TEST(Documents, PublishedTimingsKeepEachMachinesLastTierRun) {
   const std::string before = slurp(dir / "timings.json");
   write_performance({}, dir / "no_benchmark.json", dir);
   EXPECT_EQ(slurp(dir / "timings.json"), before);
+  std::filesystem::remove_all(dir);
+}
+
+// A tier run that found most of its cases in the cache does not measure the tier: it does not
+// replace the published run of the same CPU that computed more of them; one that computed as many
+// does, and one that computed none is not published.
+TEST(Documents, PublishedTimingsKeepTheTierRunThatComputedMore) {
+  const auto dir = std::filesystem::temp_directory_path() / "mpmstab_timings_computed_test";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir / "cache");
+  const auto entry = [](double computed, double wall) {
+    return nlohmann::ordered_json{
+        {"cases", 10},  {"computed", computed}, {"particle_steps", 1e6}, {"compute_seconds", 2},
+        {"threads", 2}, {"cpu", "This CPU"},    {"commit", "abcdef012"}, {"wall_seconds", wall}};
+  };
+  std::ofstream(dir / "timings.json") << nlohmann::ordered_json{
+      {"(make reproduce)", entry(10, 30)},
+      {"(make studies on This CPU)",
+       entry(10, 480)}}.dump(1);
+  std::ofstream(dir / "cache" / "timings.json") << nlohmann::ordered_json{
+      {"(make reproduce)", entry(1, 3)},
+      {"(make studies)", entry(10, 470)},
+      {"(reproduce)", entry(0, 2)}}.dump(1);
+  write_performance({}, dir / "no_benchmark.json", dir);
+  const auto published = nlohmann::ordered_json::parse(slurp(dir / "timings.json"));
+  EXPECT_EQ(published["(make reproduce)"]["wall_seconds"], 30);  // the cached run measured less
+  EXPECT_EQ(published["(make studies)"]["wall_seconds"], 470);   // as many computed: the newer
+  EXPECT_FALSE(published.contains("(make studies on This CPU)"));
+  EXPECT_FALSE(published.contains("(reproduce)"));  // every case from the cache: measured nothing
   std::filesystem::remove_all(dir);
 }
 

@@ -296,7 +296,7 @@ class ComparisonFigures : public ::testing::Test {
            "fig3,GIMP,1e4,6e-2,1e-4,steps,"
         << fig3_steps
         << ",medium,section 5.2,'the calculation fails'\n"
-           "fig3,GIMP,1e4,6e-2,1e-4,crossings_per_step,more than fig2,medium,section 5.2,"
+           "fig3,GIMP,1e4,6e-2,1e-4,crossing_errors,more than fig2,medium,section 5.2,"
            "'more grid-crossing errors'\n";
   }
   // The bar with E = 1e4 (c = 100) on 100 cells: c dt / h = 1e4 dt.
@@ -365,7 +365,7 @@ TEST_F(ComparisonFigures, SectionsSetThePapersObservablesBesideOurs) {
             std::string::npos)
       << fig1;
   // A stable run is shown with its error over time per A and its accuracy class.
-  EXPECT_NE(fig2.find("| bc = periodic | stable (0.00017 A, accurate) | 100000 |"),
+  EXPECT_NE(fig2.find("| bc = periodic | stable, accurate (0.00017 A) | 100000 |"),
             std::string::npos)
       << fig2;
   EXPECT_NE(fig2.find("1 of 3 of these runs reproduce the paper's run: bc = periodic."),

@@ -180,14 +180,17 @@ ojson edge_row(const char* scene, double edge, double fail, const char* outcome,
 // reference's error over time is at round-off.
 TEST(SceneEdgesStudy, AnEdgeInsideTheScanNeedsAFailureAboveItAndAVerdictAndRoundOffReadsNoEdge) {
   const ojson inside = edge_row("vibration", 0.685, 0.692, "stable", 0.2, 1e-3);
-  const ojson to_top = edge_row("block", 640, 0, "too_short", 0, 8.9e-16);
+  const ojson to_top = edge_row("block", 640, 0, "stable", 1e-15, 8.9e-16);
+  // A run at the top of the scan with no verdict gives no edge either: too short, not a survivor.
+  const ojson short_top = edge_row("block", 640, 0, "too_short", 0, 8.9e-16);
   const ojson short_edge = edge_row("block", 2, 2.05, "too_short", 0, 1e-3);
-  const auto report = test_support::study_report("scene_edges", {inside, to_top, short_edge});
+  const auto report =
+      test_support::study_report("scene_edges", {inside, to_top, short_top, short_edge});
   EXPECT_FALSE(claim_holds(report, "every-case-has-an-edge"));
   EXPECT_EQ(claim_value(report, "every-case-has-an-edge", "with"), "1");
-  EXPECT_EQ(claim_value(report, "every-case-has-an-edge", "cases"), "3");
+  EXPECT_EQ(claim_value(report, "every-case-has-an-edge", "cases"), "4");
   EXPECT_EQ(claim_value(report, "every-case-has-an-edge", "top"), "1");
-  EXPECT_EQ(claim_value(report, "every-case-has-an-edge", "short"), "1");
+  EXPECT_EQ(claim_value(report, "every-case-has-an-edge", "short"), "2");
   EXPECT_EQ(claim_value(report, "edges-at-or-below-limit", "compared"), "1");
   EXPECT_EQ(claim_value(report, "edges-meaningful", "with"), "1");
   const std::string& md = report.markdown;
@@ -195,7 +198,11 @@ TEST(SceneEdgesStudy, AnEdgeInsideTheScanNeedsAFailureAboveItAndAVerdictAndRound
   EXPECT_NE(top.find("none: the reference error is at round-off (8.9e-16 A)"), std::string::npos)
       << top;
   EXPECT_EQ(top.find("0.062"), std::string::npos) << top;
-  EXPECT_NE(md.find("none in the scan: the run at c dt/h 2.000 is too short to judge"),
+  EXPECT_NE(md.find("none in the scan: the run at c dt/h 2 is too short to judge"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("none in the scan: the run at c dt/h 640, the top of the scan (a step of T), "
+                    "is too short to judge"),
             std::string::npos)
       << md;
   const std::string edge = test_support::line_with(md, "| vibration |");

@@ -34,8 +34,9 @@ TEST(WallsStudy, PairsEachCellWithItsPeriodicTwinAndReadsWhatTheWallsCost) {
                                    failed};
   const auto report = test_support::study_report("walls", rows);
   const std::string& md = report.markdown;
-  EXPECT_NE(md.find("| gimp | 4 | 0.015 | 1e-4 | 2.0e-2 | 1.5 | 2 | stable | 1.0e-4 | stable | "
-                    "1.0e-5 | 0.1 |"),
+  // Each run called stable with its accuracy class and error over time per A.
+  EXPECT_NE(md.find("| gimp | 4 | 0.015 | 1e-4 | 2.0e-2 | 1.5 | 2 | stable, accurate (0.0067 A) | "
+                    "1.0e-4 | stable, accurate (0.00067 A) | 1.0e-5 | 0.1 |"),
             std::string::npos)
       << md;
   // The one-sided survivor is stable, not meaningless: counted as both.

@@ -187,10 +187,13 @@ void write_kernel_summary(std::ostream& md, const BenchFigures& b) {
        << fixed(instrumented, 2) << " ns with every observer (target " << fixed(observed_target, 1)
        << " ns: **" << verdict(instrumented, observed_target) << "**)";
     if (base > 0) md << "; " << fixed(base / step, 1) << " times faster than the baseline";
-    // A difference of two medians that comes out negative is the benchmark's noise, not a
-    // speed-up: it is printed as such, never as a cost.
+    // A difference of two medians that comes out negative is no speed-up (the benchmark with
+    // the check does more work): no cost can be read from it, and it is printed as such.
     auto cost = [](double d) {
-      return d > 0 ? fixed(d, 2) + " ns" : "no measurable cost (" + fixed(d, 2) + " ns: noise)";
+      return d > 0 ? fixed(d, 2) + " ns"
+                   : "no cost that can be read (" + fixed(d, 2) +
+                         " ns: the benchmark doing more "
+                         "work ran faster)";
     };
     if (checked > 0 && instrumented > 0) {
       md << "; the failure check adds " << cost(checked - step) << ", the observers together "
@@ -206,7 +209,9 @@ void write_kernel_summary(std::ostream& md, const BenchFigures& b) {
   }
   md << "\nEach cost is a difference of two medians, each observer's measured in a benchmark "
         "of its own: they need not add up to the cost of all together. Differences below the "
-        "coefficient of variation are within the noise.\n";
+        "coefficient of variation are within the noise; a negative one shows two benchmarks "
+        "whose medians drift apart by more than their repetitions vary, so that the other "
+        "differences of the same list are uncertain by as much.\n";
 }
 
 // The hand-counted flops per particle-step and the fraction of the core's peak they reach.
@@ -440,8 +445,9 @@ void tier_paragraph(std::ostream& md, const std::string& label, const ojson& r,
                     : std::string(""));
   }
   if (kernel > 0) {
-    md << "; at the step kernel's speed with every observer (BM_StepInstrumented, GIMP, "
-       << fixed(kernel, 2) << " ns per particle-step) it would take "
+    md << "; at the step kernel's speed with every observer as benchmarked above, on the "
+          "benchmark's machine (BM_StepInstrumented, GIMP, "
+       << fixed(kernel, 2) << " ns per particle-step), it would take "
        << seconds(work * kernel * 1e-9 / threads);
   }
   md << ".";
@@ -478,10 +484,23 @@ void write_experiment_times(std::ostream& md, const std::vector<Spec>& specs, co
         "time. Wall time is the "
         "span from the experiment's first case's start to its last case's end in the run that "
         "computed them, its follow-up runs not included (`make reproduce` runs every "
-        "experiment's cases in one queue, so the spans overlap).\n\n"
-        "| experiment | cases | follow-up runs | particle-steps | CPU time | wall time | median ns "
-        "per particle-step |\n|---|---|---|---|---|---|---|\n";
+        "experiment's cases in one queue, so the spans overlap).";
   const ojson timings = read_timings(out);
+  // The machines that measured the table's cases (timings.json records each experiment's).
+  std::set<std::string> machines;
+  for (const auto& spec : specs)
+    if (spec.study->has_cases && timings.contains(spec.name))
+      machines.insert(machine_of(timings[spec.name]));
+  if (!machines.empty()) {
+    md << " The times below were measured on ";
+    for (auto it = machines.begin(); it != machines.end(); ++it)
+      md << (it == machines.begin() ? "" : std::next(it) == machines.end() ? " and " : ", ") << *it;
+    md << (machines.size() > 1 ? " (each experiment's in timings.json)" : "")
+       << "; the kernel benchmark above in a run of its own (its date, host and clock given "
+          "there).";
+  }
+  md << "\n\n| experiment | cases | follow-up runs | particle-steps | CPU time | wall time | "
+        "median ns per particle-step |\n|---|---|---|---|---|---|---|\n";
   FollowUps follow;
   for (const auto& spec : specs)
     if (spec.study->has_cases) follow[spec.name] = follow_up_work(spec, out);
@@ -507,24 +526,39 @@ void write_experiment_times(std::ostream& md, const std::vector<Spec>& specs, co
   }
 }
 
+// How many cases a tier run computed (0 where it did not record it).
+double computed_cases(const ojson& e) {
+  return e.contains("computed") && e["computed"].is_number() ? e["computed"].get<double>() : 0.0;
+}
+
 // This machine's timings (the cache's) with the tier runs of other machines that the published
-// file holds: a tier run of this machine replaces the published one of the same CPU; one of
-// another CPU is kept as "(<label> on <cpu>)", so that the published file keeps the last tier run
-// of each machine (README's table shows them all).
+// file holds: a tier run of this machine replaces the published one of the same CPU unless it
+// computed fewer cases (a run that found most of its cases in the cache does not measure the
+// tier); one of another CPU is kept as "(<label> on <cpu>)", so that the published file keeps
+// the last tier run of each machine (README's table shows them all).
 ojson merged_timings(const ojson& measured, const ojson& published) {
-  ojson out = measured;
+  ojson out = ojson::object();
+  // A tier run that computed no case (every one from the cache) measured nothing: not published.
+  for (const auto& [key, e] : measured.items())
+    if (!timing_label(key) || !e.is_object() || !e.contains("computed") || computed_cases(e) > 0)
+      out[key] = e;
   for (const auto& [key, e] : published.items()) {
     const auto published_label = timing_label(key);
     if (!published_label || !e.is_object()) continue;
     if (!e.contains("cpu") || !e["cpu"].is_string()) continue;
+    if (e.contains("computed") && computed_cases(e) == 0) continue;  // measured nothing
     const std::string cpu = e["cpu"].get<std::string>();
     const std::string label = command_of(*published_label);
     const std::string current = reproduce_timing_key(label);
-    const bool same_machine = measured.contains(current) && measured[current].contains("cpu") &&
-                              measured[current]["cpu"] == cpu;
-    if (same_machine) continue;  // superseded by this machine's run
+    const bool same_machine =
+        out.contains(current) && out[current].contains("cpu") && out[current]["cpu"] == cpu;
+    if (same_machine) {
+      // Superseded by this machine's run, unless that run computed fewer of the tier's cases.
+      if (computed_cases(e) > computed_cases(out[current])) out[current] = e;
+      continue;
+    }
     // Kept as it was where this machine has no run of the tier; else renamed after its CPU.
-    out[measured.contains(current) ? reproduce_timing_key(label + " on " + cpu) : key] = e;
+    out[out.contains(current) ? reproduce_timing_key(label + " on " + cpu) : key] = e;
   }
   return out;
 }

@@ -127,15 +127,22 @@ bool survived(const ojson& r) {
   return outcome(r) != "unstable";
 }
 
+bool under_a_wave_pass(const ojson& r) {
+  return outcome(r) == "stable" && has_number(r, "cT") && r["cT"].get<double>() < kMinWavePasses;
+}
+
 // Our verdict, in the notation of the table: "*" for unstable, with the reason and step.
-std::string verdict(const ojson& r) {
+std::string verdict_word(const ojson& r) {
   if (survived(r)) {
     if (outcome(r) == "too_short") {
       return "too short to judge (reached T in " + r["steps"].dump() + " steps, fewer than " +
              std::to_string(kMinStepsToJudge) + ")";
     }
-    return outcome(r) == "meaningless" ? "meaningless (survived; error over time reached A)"
-                                       : "stable";
+    if (outcome(r) == "meaningless") return "meaningless (survived; error over time reached A)";
+    if (under_a_wave_pass(r))
+      return "survived, c T = " + param(r["cT"].get<double>()) + " < " + shortest(kMinWavePasses) +
+             " wave pass: too short to count as stable";
+    return "stable";
   }
   std::string s = "\\* ";
   s += r["failure_reason"].get<std::string>();
@@ -145,6 +152,15 @@ std::string verdict(const ojson& r) {
   s += sci(r["failure_time"].get<double>());
   s += ")";
   return s;
+}
+
+std::string verdict(const ojson& r) {
+  const std::string word = verdict_word(r);
+  if (outcome(r) != "stable") return word;
+  const std::optional<Accuracy> a = row_accuracy(r);
+  if (!a) return word + " (error over time not recorded)";
+  const double per_A = r["max_error_over_time"].get<double>() / r["A"].get<double>();
+  return word + ", " + std::string(to_string(*a)) + " (" + significant(per_A, 2) + " A)";
 }
 
 std::string text(const ojson& row, const char* column) {

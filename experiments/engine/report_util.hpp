@@ -72,8 +72,19 @@ std::string scheme_label(const nlohmann::ordered_json& row);
 std::string outcome(const nlohmann::ordered_json& row);
 // The run of a flat record survived to T: its outcome is meaningless or stable.
 bool survived(const nlohmann::ordered_json& row);
-// Our verdict for a flat record: "stable", "meaningless (...)", "too short to judge (...)",
-// "\\* reason at step n (t = ..)".
+// A run that reached T in fewer wave passes c T / L than this is too short to show an
+// instability that takes a wave across the body: whatever its outcome says, no report calls it
+// stable (docs/design.md, "Outcomes").
+inline constexpr double kMinWavePasses = 1;
+// The run's outcome is stable, but it covered fewer than kMinWavePasses wave passes (column cT).
+bool under_a_wave_pass(const nlohmann::ordered_json& row);
+// Our verdict word for a flat record: "stable", "survived, c T = 0.5 < 1 wave pass: too short to
+// count as stable", "meaningless (...)", "too short to judge (...)", "\\* reason at step n (t =
+// ..)". For a table that gives the error over time / A and the accuracy class in columns of its
+// own.
+std::string verdict_word(const nlohmann::ordered_json& row);
+// verdict_word with, for a run that reached T below A, its accuracy class and error over time / A
+// beside it: "stable, inaccurate (0.43 A)", "stable (error over time not recorded)".
 std::string verdict(const nlohmann::ordered_json& row);
 // The deterministic cost of a run: particles x steps (an edge case: of its run at dt_edge).
 double particle_steps(const nlohmann::ordered_json& row);

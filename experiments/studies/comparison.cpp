@@ -130,16 +130,6 @@ bool explains(const CellVerdict& rerun) {
   return rerun.agrees();
 }
 
-std::string verdict_with_accuracy(const ojson& row) {
-  const std::string v = verdict(row);
-  if (outcome(row) != "stable" || !has_number(row, "max_error_over_time") ||
-      !has_number(row, "A")) {
-    return v;
-  }
-  const double e = row["max_error_over_time"].get<double>(), A = row["A"].get<double>();
-  return v + " (" + ratio(e / A) + " A, " + std::string(to_string(accuracy_class(e, A))) + ")";
-}
-
 double scan_courant(const ojson& row) {
   constexpr double kResolution = 1e4;  // steps per unit of c dt / h
   return std::round(row.at("courant").get<double>() * kResolution) / kResolution;

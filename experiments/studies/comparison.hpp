@@ -54,10 +54,6 @@ std::string comparison_classes_markdown();
 // with the paper (explains() below). comparison.md counts, per class, the cells explained.
 const std::string& explained_definition();
 
-// A run's verdict as report_util.hpp's verdict() gives it, and for a stable run its error over
-// time per A and its accuracy class beside it: "stable (0.0043 A, accurate)".
-std::string verdict_with_accuracy(const nlohmann::ordered_json& row);
-
 // A run's Courant number as the courant scan groups its runs: rounded to 1e-4 (the scan's dts
 // are C h / c rounded to six digits, so this recovers C).
 double scan_courant(const nlohmann::ordered_json& row);

@@ -33,7 +33,7 @@ const std::vector<std::string> kQuantities = {
     // "more than figN" / "fewer than figN": the paper's "more grid-crossing errors" than another
     // figure's run; compared at equal times (equal_times()), its crossings and its error per
     // crossing.
-    "crossings_per_step",
+    "crossing_errors",
 };
 
 // The parameters that tell a variant run from the figure's own run (the first case of its spec).
@@ -170,7 +170,7 @@ Line numeric_line(const std::string& label, const PaperObservable* p, std::optio
 }
 
 Line outcome_line(const PaperObservable* p, const ojson& row) {
-  Line l{"run", kNotStated, verdict_with_accuracy(row), kNoValue};
+  Line l{"run", kNotStated, verdict(row), kNoValue};
   if (!p || !p->stated()) return l;
   const std::string ours = outcome(row);
   if (p->value == "survived") {
@@ -395,9 +395,8 @@ void equal_time_table(std::ostream& md, const PaperFigure& f, const Against& a,
           "here.\n\n";
     return;
   }
-  md << "The transcription's note, quoted below, reads the plots per step; this report compares "
-        "the runs at the "
-     << c.times.size() << " times both histories record, t = " << sci(c.times.front().t) << " to "
+  md << "This report compares the runs at the " << c.times.size()
+     << " times both histories record, t = " << sci(c.times.front().t) << " to "
      << sci(c.times.back().t);
   if (const auto end = end_time(row))
     md << " (our run of " << fig << " ends at t = " << sci(*end) << ")";
@@ -582,8 +581,8 @@ void variant_runs(std::ostream& md, const PaperFigure& f, const ojson& row,
     const std::string rep = reproduces(f, r);
     const auto e = number(r, "max_error_over_time");
     const auto A = number(r, "A");
-    md << "| " << label << " | " << verdict_with_accuracy(r) << " | " << r.at("steps").dump()
-       << " | " << (e && A && *A > 0 ? ratio(*e / *A) : kNoValue) << " | "
+    md << "| " << label << " | " << verdict(r) << " | " << r.at("steps").dump() << " | "
+       << (e && A && *A > 0 ? ratio(*e / *A) : kNoValue) << " | "
        << (number(r, "crossings") ? r.at("crossings").dump() : kNoValue) << " | "
        << opt_sci(r.contains("dt_stable_min") ? r.at("dt_stable_min") : ojson()) << " | " << rep
        << " |\n";
@@ -700,7 +699,7 @@ void figure_section(std::ostream& md, const PaperFigure& f, const std::vector<Pa
                              bound_min_line(f.find("dt_stable_min"), run),
                              bound_min_step_line(f.find("bound_min_step"), run),
                              crossings_line(f.find("crossings"), run)};
-  const std::optional<Against> vs = against(f.find("crossings_per_step"));
+  const std::optional<Against> vs = against(f.find("crossing_errors"));
   EqualTimeComparison at_equal_times;
   const ojson* other_row = vs ? first_row(inputs, vs->other) : nullptr;
   if (vs) {

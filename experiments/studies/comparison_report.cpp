@@ -346,14 +346,14 @@ std::string paper_verdict(const Cell& c) {
 // Our verdict in a few words: "stable (0.0043 A, accurate)", "meaningless" or "\* reason at step
 // n (t = ...)".
 std::string short_verdict(const ojson& row) {
-  return outcome(row) == "meaningless" ? outcome(row) : verdict_with_accuracy(row);
+  return outcome(row) == "meaningless" ? outcome(row) : verdict(row);
 }
 
 // The verdict column of the cell table: "\*", "meaningless", or a stable run with its error over
 // time per A and accuracy class.
 std::string our_verdict(const ojson& row) {
   const std::string o = outcome(row);
-  return o == "unstable" ? "\\*" : o == "stable" ? verdict_with_accuracy(row) : o;
+  return o == "unstable" ? "\\*" : o == "stable" ? verdict(row) : o;
 }
 
 // How many cells have each pair of verdicts: the paper's (rows) against ours (columns).

@@ -93,7 +93,10 @@ std::string tier_times(const std::filesystem::path& results) {
     md << "\nThe experiments with the most CPU time in those runs: ";
     for (std::size_t k = 0; k < cpu.size() && k < 3; ++k)
       md << (k ? ", " : "") << cpu[k].second << " " << fixed(100 * cpu[k].first / total, 0) << "%";
-    md << " of the " << seconds(total) << " that every experiment's last published run took.\n";
+    md << " of the " << seconds(total)
+       << " of CPU time that the experiments' cases took in their last published runs (their "
+          "follow-up runs not included; [results/performance.md](results/performance.md) counts "
+          "them).\n";
   }
   return md.str();
 }

@@ -36,10 +36,6 @@ int verdict_code(const ojson& r) {
   return it == kVerdicts.end() ? 0 : int(it - kVerdicts.begin());
 }
 
-// A run that reached T in fewer wave passes c T than this is too short to show an instability
-// that takes a wave across the body: whatever its outcome says, it is not counted as stable.
-constexpr double kMinWavePasses = 1;
-
 double wave_passes_of(const ojson& r) {
   return number_or_zero(r, "cT");
 }
@@ -61,15 +57,6 @@ std::optional<double> error_per_A(const ojson& r) {
       !has_number(r, "A"))
     return std::nullopt;
   return r["max_error_over_time"].get<double>() / r["A"].get<double>();
-}
-
-// The verdict of a row as this report gives it: the solver's, except that a stable run of
-// fewer than kMinWavePasses wave passes is said to be too short in wave passes.
-std::string extremes_verdict(const ojson& r) {
-  if (verdict_code(r) == 0 && standing(r) == Standing::under_a_pass)
-    return "survived, c T = " + param(wave_passes_of(r)) + " < " + shortest(kMinWavePasses) +
-           " wave pass: too short to count as stable";
-  return verdict(r);
 }
 
 // The quantities a run that reached T reports, and which of them it measures. Eq. (108) is
@@ -431,8 +418,8 @@ std::string every_case_table(const std::vector<ojson>& rows) {
        << shortest(r["E"].get<double>()) << " | " << shortest(r["A"].get<double>()) << " | "
        << param(r["dt"].get<double>()) << " | " << param(r["T"].get<double>()) << " | "
        << r["cells"].dump() << " | " << r["ppc"].dump() << " | " << opt_sci(r["courant"]) << " | "
-       << opt_sci(r["cT"]) << " | " << extremes_verdict(r) << " | "
-       << opt_sci(r["max_error_over_time"]) << " | " << (e ? sci(*e) : "–") << " | "
+       << opt_sci(r["cT"]) << " | " << verdict_word(r) << " | " << opt_sci(r["max_error_over_time"])
+       << " | " << (e ? sci(*e) : "–") << " | "
        << (e ? std::string(to_string(accuracy_class(*e, 1.0))) : std::string("–")) << " | "
        << work(r) << " |\n";
   }

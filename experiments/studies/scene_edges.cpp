@@ -51,8 +51,9 @@ enum class ScanEdge { inside, survives_to_top, edge_too_short, none_survives };
 
 ScanEdge scan_edge(const ojson& r) {
   if (!has_number(r, "dt_edge")) return ScanEdge::none_survives;
-  if (!has_number(r, "dt_fail")) return ScanEdge::survives_to_top;
+  // A largest surviving run too short to judge gives no edge, whether or not a larger dt failed.
   if (outcome(r) == "too_short") return ScanEdge::edge_too_short;
+  if (!has_number(r, "dt_fail")) return ScanEdge::survives_to_top;
   return ScanEdge::inside;
 }
 
@@ -106,6 +107,7 @@ std::vector<std::optional<Robustness>> robustness(const std::vector<ojson>& rows
 struct EdgeCounts {
   int rows = 0, with_edge = 0, robust_rows = 0, checked = 0, above = 0, compared = 0;
   int meaningless_edges = 0;
+  int above_under_a_pass = 0;  // edges above the limit whose run covered under a wave pass
   // The rows without an edge inside the scan, by why, and their scenes.
   int to_top = 0, edge_too_short = 0, none_survives = 0;
   std::vector<std::string> edgeless_scenes;
@@ -134,7 +136,9 @@ std::string survival_edge_text(const ojson& r) {
       return "none in the scan: it survives to its top, a step of T (c dt/h " +
              significant(*edge, 3) + ")";
     case ScanEdge::edge_too_short:
-      return "none in the scan: the run at c dt/h " + opt_fixed(edge) + " is too short to judge";
+      return "none in the scan: the run at c dt/h " + (edge ? significant(*edge, 3) : "–") +
+             (has_number(r, "dt_fail") ? "" : ", the top of the scan (a step of T),") +
+             " is too short to judge";
     case ScanEdge::none_survives:
       return "none in the scan: no dt probed survives";
   }
@@ -151,7 +155,8 @@ std::string run_at_edge_text(const ojson& r) {
   const std::string per_A = significant(e, 2) + " A";
   if (o == "meaningless") return "**meaningless** (" + per_A + ")";
   if (o == "stable")
-    return "stable, " + std::string(to_string(accuracy_class(e, 1.0))) + " (" + per_A + ")";
+    return (under_a_wave_pass(r) ? verdict_word(r) + ", " : std::string("stable, ")) +
+           std::string(to_string(accuracy_class(e, 1.0))) + " (" + per_A + ")";
   return o + " (" + per_A + ")";
 }
 
@@ -205,6 +210,7 @@ std::string edge_row(const ojson& r, const std::optional<Robustness>& robust,
     const double q = *edge / *limit;
     n.worst = std::max(n.worst, q);
     n.above += q > kLimitMargin;
+    n.above_under_a_pass += q > kLimitMargin && number_or_zero(r, "cT") < kMinWavePasses;
     ratio_text = fixed(q, 2);
   }
   std::string perturbed = "–";
@@ -257,8 +263,10 @@ std::vector<Claim> edges_claims(const EdgeCounts& n) {
   Claim limit = claim("edges-at-or-below-limit",
                       "No survival edge inside the scan lies above {margin} times the dense "
                       "spectral limit of its body",
-                      "{above} of {compared} edges do (the largest ratio is {worst})");
+                      "{above} of {compared} edges do, {short_above} of them on runs of fewer "
+                      "than {passes} wave pass (the largest ratio is {worst})");
   limit.number("margin", kLimitMargin, 3).count("above", n.above).count("compared", n.compared);
+  limit.count("short_above", n.above_under_a_pass).number("passes", kMinWavePasses, 3);
   limit.number("worst", n.worst, 3).over(n.compared);
   limit.holds = n.compared > 0 && n.above == 0;
   return {edge, robust, meaningful, length, limit};

@@ -65,7 +65,10 @@ std::string opt_fixed(std::optional<double> v, int decimals) {
 
 std::string edge_text(const ojson& r) {
   const auto edge = courant_of(r, "dt_edge");
-  if (edge && !has_number(r, "dt_fail")) return "every dt to T survives";
+  // Where the run at the largest surviving dt has no verdict, the scan found no edge.
+  if (edge && outcome(r) == "too_short")
+    return "none: the run at " + opt_fixed(edge) + " is too short to judge";
+  if (edge && !has_number(r, "dt_fail")) return "no dt probed up to a step of T fails";
   if (edge && outcome(r) == "meaningless") return opt_fixed(edge) + " (meaningless)";
   return opt_fixed(edge);
 }

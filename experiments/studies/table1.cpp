@@ -271,8 +271,8 @@ std::string table1_row(const CaseSpec& cs, const ojson& r,
          : ours       ? sci(*ours)
                       : std::string("–"))
      << (cs.error_at == ErrorAt::max_over_time ? " (over time)" : "") << " | " << ratio_text
-     << " | " << verdict(r) << " | " << (e && a ? significant(*e, 2) : std::string("–")) << " | "
-     << (a ? std::string(to_string(*a)) : std::string("–")) << " | "
+     << " | " << verdict_word(r) << " | " << (e && a ? significant(*e, 2) : std::string("–"))
+     << " | " << (a ? std::string(to_string(*a)) : std::string("–")) << " | "
      << (pc ? pc->confidence : "not in the paper") << " | " << work(r) << " | " << ensemble
      << " |\n";
   return md.str();

@@ -71,6 +71,7 @@ constexpr double kSameError = 0.01;
 
 struct MethodWalls {
   int cells = 0, both_stable = 0;
+  int both_accurate = 0;  // of both_stable: both runs accurate (core/base/accuracy.hpp)
   int walls_raise = 0, walls_lower = 0, same = 0;  // the Dirichlet error against the periodic one
   int only_periodic_survives = 0, only_dirichlet_survives = 0, same_verdict = 0;
   // Of those, the runs that survive only one way and are meaningless there (they survive and
@@ -98,6 +99,7 @@ std::map<std::string, MethodWalls> per_method(const std::vector<Twin>& cells) {
     const auto ed = stable_error(t.dirichlet), ep = stable_error(t.periodic);
     if (ed && ep) {
       ++m.both_stable;
+      m.both_accurate += accurate_run(*t.dirichlet) && accurate_run(*t.periodic);
       const double r = *ep / *ed;
       m.ratios.push_back(r);
       if (std::abs(r - 1) <= kSameError) {
@@ -120,7 +122,9 @@ std::string reading(const std::map<std::string, MethodWalls>& methods) {
        << " of them meaningless there) and " << m.only_dirichlet_survives << " only with them ("
        << m.only_dirichlet_meaningless << " meaningless); " << m.only_periodic_stable
        << " are stable only without walls and " << m.only_dirichlet_stable
-       << " only with them. Where both runs end stable (" << m.both_stable << " cells)";
+       << " only with them. Where both runs end stable (" << m.both_stable << " cells: both "
+       << "accurate in " << m.both_accurate << ", at least one inaccurate in "
+       << m.both_stable - m.both_accurate << ")";
     if (m.ratios.empty()) {
       md << ", nothing to compare. ";
       continue;
