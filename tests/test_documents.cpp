@@ -131,6 +131,8 @@ TEST(Documents, AVerdictCallsARunStableOnlyOverAWavePassAndWithItsAccuracy) {
   r["cT"] = 2 * kMinWavePasses;
   r.erase("max_error_over_time");
   EXPECT_EQ(verdict(r), "stable (error over time not recorded)");
+  // An edge search's row gives the error of its run at the edge in a column of its own.
+  EXPECT_EQ(verdict_with_error(r, 0.05), "stable, accurate (0.05 A)");
   r["outcome"] = "meaningless";
   EXPECT_FALSE(under_a_wave_pass(r));
   EXPECT_EQ(verdict(r), verdict_word(r));  // no class beside a run that is not stable

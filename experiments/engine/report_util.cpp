@@ -155,12 +155,18 @@ std::string verdict_word(const ojson& r) {
 }
 
 std::string verdict(const ojson& r) {
+  const std::optional<Accuracy> a = row_accuracy(r);
+  return verdict_with_error(
+      r, a ? std::optional(r["max_error_over_time"].get<double>() / r["A"].get<double>())
+           : std::nullopt);
+}
+
+std::string verdict_with_error(const ojson& r, std::optional<double> error_over_A) {
   const std::string word = verdict_word(r);
   if (outcome(r) != "stable") return word;
-  const std::optional<Accuracy> a = row_accuracy(r);
-  if (!a) return word + " (error over time not recorded)";
-  const double per_A = r["max_error_over_time"].get<double>() / r["A"].get<double>();
-  return word + ", " + std::string(to_string(*a)) + " (" + significant(per_A, 2) + " A)";
+  if (!error_over_A) return word + " (error over time not recorded)";
+  return word + ", " + std::string(to_string(accuracy_class(*error_over_A, 1.0))) + " (" +
+         significant(*error_over_A, 2) + " A)";
 }
 
 std::string text(const ojson& row, const char* column) {

@@ -86,6 +86,10 @@ std::string verdict_word(const nlohmann::ordered_json& row);
 // verdict_word with, for a run that reached T below A, its accuracy class and error over time / A
 // beside it: "stable, inaccurate (0.43 A)", "stable (error over time not recorded)".
 std::string verdict(const nlohmann::ordered_json& row);
+// verdict() with the error over time / A given, for a record whose error of the run it names is
+// in another column (an edge search's run at its edge).
+std::string verdict_with_error(const nlohmann::ordered_json& row,
+                               std::optional<double> error_over_A);
 // The deterministic cost of a run: particles x steps (an edge case: of its run at dt_edge).
 double particle_steps(const nlohmann::ordered_json& row);
 // particle_steps() in sci(): "2.4e5".

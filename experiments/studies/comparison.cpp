@@ -24,8 +24,8 @@ const std::vector<ClassDefinition>& comparison_classes() {
     const std::string f = agreement_factor();
     // The failure classes (failure_class()) share their first condition.
     const std::string goes_on =
-        "The paper's run goes on where ours fails before T (a Table 1 cell: the paper gives a max "
-        "error, ours fails; a figure: the paper's run reaches T, or takes more than " +
+        "The paper's run lasts longer than ours, which fails before T (a Table 1 cell: the paper "
+        "gives a max error, ours fails; a figure: the paper's run reaches T, or takes more than " +
         f + " times as many steps as ours before it fails)";
     const std::string below =
         ", at a c dt / h at or below the spectral limit (or with none recorded) and below the "
@@ -40,13 +40,14 @@ const std::vector<ClassDefinition>& comparison_classes() {
          ClassKind::agreement},
         {"agree-unstable", "Agree: both unstable",
          "The paper marks the cell `*` (unstable); ours fails before T.", ClassKind::agreement},
-        {"above-spectral-limit", "Paper's run goes on; ours fails above the spectral limit",
+        {"above-spectral-limit", "Paper's run lasts longer; ours fails above the spectral limit",
          goes_on +
              ", at a Courant number c dt / h above the spectral limit of its scheme at its layout "
              "(the record's `courant_spectral`, spectral.md).",
          ClassKind::verdict},
         {"above-our-edge",
-         "Paper's run goes on; ours fails at or below the spectral limit, at or above the scan's "
+         "Paper's run lasts longer; ours fails at or below the spectral limit, at or above the "
+         "scan's "
          "edge",
          goes_on +
              ", at a c dt / h at or below the spectral limit (or with none recorded) and at or "
@@ -55,19 +56,19 @@ const std::vector<ClassDefinition>& comparison_classes() {
              "of the scan, at each E, fails.",
          ClassKind::verdict},
         {"gimp-wall-exit",
-         "Paper's run goes on; ours, not mpm, fails with a particle leaving the domain",
+         "Paper's run lasts longer; ours, not mpm, fails with a particle leaving the domain",
          goes_on + below +
              ", by a method other than mpm (GIMP in Table 1), with a particle leaving the domain "
              "through a wall (`left_domain`).",
          ClassKind::verdict},
         {"mpm-crossing-failure",
-         "Paper's run goes on; ours, mpm, fails with its particles inside the domain",
+         "Paper's run lasts longer; ours, mpm, fails with its particles inside the domain",
          goes_on + below +
              ", by mpm, for a reason other than a particle leaving the domain (`nonpositive_F`, "
              "for one). The predicate reads no crossing count: the word crossing in the id "
              "names no measured cause.",
          ClassKind::verdict},
-        {"other-failure", "Paper's run goes on; ours fails, in no class above",
+        {"other-failure", "Paper's run lasts longer; ours fails, in no class above",
          goes_on + ", and the cell is not in the four classes above.", ClassKind::verdict},
         {"ours-meaningless", "Ours meaningless: reached T, error over time at least A",
          "The paper's value is readable (a max error or `*`); ours reaches T with an error over "

@@ -456,7 +456,7 @@ FigureClass figure_class(const PaperFigure& f, const ojson& row, const CourantEd
     return {failure_class(row, edges),
             "both fail, but " + paper_goes_on + " and ours fails at step " + std::to_string(steps) +
                 " (" + row.at("failure_reason").get<std::string>() +
-                "): the class of a failure where the paper's run goes on"};
+                "): the class of a failure where the paper's run lasts longer"};
   }
   return {"agree-unstable", "both fail"};
 }
@@ -828,7 +828,7 @@ FigureSections figure_sections(const std::vector<PaperFigure>& paper,
         "its run; where both runs fail but ours more than a factor "
      << agreement_factor()
      << " sooner, the class of our "
-        "failure where the paper's run goes on.\n\n";
+        "failure where the paper's run lasts longer.\n\n";
   std::map<std::string, std::string> shown;  // variant input -> figure whose section shows it
   for (const auto& f : paper)
     figure_section(md, f, paper, inputs, edges, table1, out, shown);

@@ -154,9 +154,7 @@ std::string run_at_edge_text(const ojson& r) {
   const double e = r["error_at_edge_over_A"].get<double>();
   const std::string per_A = significant(e, 2) + " A";
   if (o == "meaningless") return "**meaningless** (" + per_A + ")";
-  if (o == "stable")
-    return (under_a_wave_pass(r) ? verdict_word(r) + ", " : std::string("stable, ")) +
-           std::string(to_string(accuracy_class(e, 1.0))) + " (" + per_A + ")";
+  if (o == "stable") return verdict_with_error(r, e);
   return o + " (" + per_A + ")";
 }
 
