@@ -295,6 +295,14 @@ TEST(Documents, PerformanceCountsTheFollowUpRunsInTheExperimentThatAskedForThem)
     secs += rec["timing"]["wall_seconds"].get<double>();
   }
   ASSERT_EQ(records.size(), 9u);  // the case and its 8 layouts
+  // The follow-up runs are published beside the report, one row each, and the report links them.
+  std::istringstream follow_csv(slurp(dir / "out" / "table1_follow_up.csv"));
+  int data_rows = 0;
+  for (std::string line; std::getline(follow_csv, line);)
+    data_rows += !line.empty() && line[0] != '#';
+  EXPECT_EQ(data_rows, 1 + 8);  // the column names and the 8 layouts
+  EXPECT_NE(slurp(dir / "out" / "table1.md").find("[table1_follow_up.csv](table1_follow_up.csv)"),
+            std::string::npos);
   const auto row = [&] {
     write_performance({spec}, dir / "no_benchmark.json", dir / "out");
     const std::string md = slurp(dir / "out" / "performance.md");

@@ -123,7 +123,8 @@ TEST_F(Hostile, EveryBadInputExitsTwoNamesTheCulpritAndChangesNothing) {
       "badname.json",
       R"({"name": "../escape", "report": "cases", "cases": [{"method": "gimp", "E": 4, "A": 0.01, "dt": 1e-3}]})");
   // Names that would overwrite a file another command (or another experiment) writes.
-  for (const char* name : {"performance", "timings", "benchmark_step", "fig1_data", "comparison"}) {
+  for (const char* name : {"performance", "timings", "benchmark_step", "fig1_data",
+                           "table1_follow_up", "comparison"}) {
     write(
         std::string("reserved_") + name + ".json",
         std::string(R"({"name": ")") + name +
@@ -300,6 +301,7 @@ TEST_F(Hostile, EveryBadInputExitsTwoNamesTheCulpritAndChangesNothing) {
       {"sweep DIR/reserved_timings.json --out DIR/out", "'timings' is reserved"},
       {"sweep DIR/reserved_benchmark_step.json --out DIR/out", "'benchmark_step' is reserved"},
       {"sweep DIR/reserved_fig1_data.json --out DIR/out", "'fig1_data' is reserved"},
+      {"sweep DIR/reserved_table1_follow_up.json --out DIR/out", "'table1_follow_up' is reserved"},
       {"sweep DIR/reserved_comparison.json --out DIR/out", "'comparison' is reserved"},
       {"sweep DIR/dup.json --out DIR/out", "cases[1]: repeats cases[0]"},
       {"sweep DIR/edge_dt.json --out DIR/out", "cases[0].dt"},

@@ -408,21 +408,25 @@ void expand_variants(const Reader& r, const json& variants, const std::vector<Ca
 
 // Files of the results folder that no experiment's name may claim: those other commands write
 // (performance.md, benchmark_step.json, timings.json, the cache folder), the comparison's files
-// (written under that name whatever its spec is called), and <name>_data, which would collide
-// with the figure data of the experiment <name>.
+// (written under that name whatever its spec is called), and <name>_data and <name>_follow_up,
+// which would collide with the figure data or the follow-up runs of the experiment <name>.
 void check_reserved_name(const Reader& r, const std::string& name, const std::string& report) {
   static const std::vector<std::string> reserved = {"performance", "benchmark_step", "timings",
                                                     "cache", "readme"};
   const bool taken = std::find(reserved.begin(), reserved.end(), name) != reserved.end() ||
                      (name == "comparison" && report != "comparison");
-  const std::string suffix = "_data";
-  const bool data = name.size() > suffix.size() &&
-                    name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
-  if (taken || data) {
+  const auto ends_with = [&](const std::string& suffix) {
+    return name.size() > suffix.size() &&
+           name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
+  };
+  const bool data = ends_with("_data"), follow_up = ends_with("_follow_up");
+  if (taken || data || follow_up) {
     r.fail("name", "'" + name + "' is reserved: " +
-                       (data ? "<name>_data.csv is the figure data of the experiment <name>"
-                             : "another command writes a file of that name in the results "
-                               "folder"));
+                       (data        ? "<name>_data.csv is the figure data of the experiment <name>"
+                        : follow_up ? "<name>_follow_up.csv holds the follow-up runs of the "
+                                      "experiment <name>"
+                                    : "another command writes a file of that name in the results "
+                                      "folder"));
   }
 }
 
