@@ -131,6 +131,11 @@ TEST(Documents, AVerdictCallsARunStableOnlyOverAWavePassAndWithItsAccuracy) {
   r["cT"] = 2 * kMinWavePasses;
   r.erase("max_error_over_time");
   EXPECT_EQ(verdict(r), "stable (error over time not recorded)");
+  // A value beside a verdict judged against a threshold prints on the side it was judged.
+  EXPECT_EQ(beside_thresholds(0.0997, {kAccurateFraction, 1.0}), "0.0997");
+  EXPECT_EQ(beside_thresholds(0.43, {kAccurateFraction, 1.0}), "0.43");
+  EXPECT_EQ(beside_thresholds(3.006, {3.0}), "3.01");
+  EXPECT_EQ(verdict_with_error(r, 0.0997), "stable, accurate (0.0997 A)");
   // An edge search's row gives the error of its run at the edge in a column of its own.
   EXPECT_EQ(verdict_with_error(r, 0.05), "stable, accurate (0.05 A)");
   r["outcome"] = "meaningless";

@@ -67,6 +67,19 @@ std::string significant(double v, int digits) {
   return fmt::format("{:.{}g}", v, digits);
 }
 
+std::string beside_thresholds(double v, std::initializer_list<double> thresholds, int digits) {
+  constexpr int kMostDigits = 6;
+  auto side = [](double x, double t) { return (x > t) - (x < t); };
+  for (int d = digits;; ++d) {
+    const std::string s = significant(v, d);
+    const double shown = std::stod(s);
+    bool same_side = true;
+    for (const double t : thresholds)
+      same_side = same_side && side(shown, t) == side(v, t);
+    if (same_side || d >= kMostDigits) return s;
+  }
+}
+
 std::string value_text(double v) {
   const double a = std::abs(v);
   return a == 0 || (a >= 1e-2 && a < 1e5) ? shortest(v) : param(v);
@@ -166,7 +179,7 @@ std::string verdict_with_error(const ojson& r, std::optional<double> error_over_
   if (outcome(r) != "stable") return word;
   if (!error_over_A) return word + " (error over time not recorded)";
   return word + ", " + std::string(to_string(accuracy_class(*error_over_A, 1.0))) + " (" +
-         significant(*error_over_A, 2) + " A)";
+         beside_thresholds(*error_over_A, {kAccurateFraction, 1.0}) + " A)";
 }
 
 std::string text(const ojson& row, const char* column) {

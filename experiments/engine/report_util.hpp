@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <initializer_list>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -27,6 +28,10 @@ std::string ratio(double r);
 std::string param(double v);
 // v to `digits` significant digits, printf's %g: "0.03162".
 std::string significant(double v, int digits);
+// significant(v, digits), with more digits (up to 6) where fewer would print v on a threshold it
+// is not on, or on its other side: a value set beside a verdict judged against a threshold reads
+// on the side it was judged ("0.0997 A, accurate", not "0.1 A, accurate"; "3.01x", not "3x").
+std::string beside_thresholds(double v, std::initializer_list<double> thresholds, int digits = 2);
 // Items joined as prose: "a", "a and b", "a, b and c" ("" when empty).
 std::string list_of(const std::vector<std::string>& items);
 // A value of a parameter as prose prints it: shortest() from 0.01 to 1e5 ("0.05", "10000"),

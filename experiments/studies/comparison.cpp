@@ -219,10 +219,14 @@ CellVerdict classify(const ojson& r, const PaperCell* paper, const CourantEdges&
       cell.verdict = "agree";
       cell.cls = "agree-stable";
     } else if (*cell.error_ratio > 1) {
-      cell.verdict = "differ: our error " + ratio(*cell.error_ratio) + "x";
+      cell.verdict =
+          "differ: our error " +
+          beside_thresholds(*cell.error_ratio, {kAgreementFactor, 1 / kAgreementFactor}) + "x";
       cell.cls = method == "mpm" ? "mpm-error-larger" : "gimp-error-larger";
     } else {
-      cell.verdict = "differ: our error " + ratio(*cell.error_ratio) + "x";
+      cell.verdict =
+          "differ: our error " +
+          beside_thresholds(*cell.error_ratio, {kAgreementFactor, 1 / kAgreementFactor}) + "x";
       cell.cls = "error-smaller";
     }
     return cell;

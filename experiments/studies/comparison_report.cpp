@@ -447,8 +447,10 @@ void cell_table(std::ostream& md, const Comparison& cmp) {
        << (c.v.dt_stable_ratio ? ratio(*c.v.dt_stable_ratio) : "–") << " | "
        << (c.paper ? show(c.paper->max_error) : "–") << " | "
        << (stable ? (error ? sci(*error) : std::string("–")) : "\\*") << " | "
-       << (c.v.error_ratio ? ratio(*c.v.error_ratio) : "–") << " | " << c.v.verdict << " | ["
-       << c.v.cls << "](#" << c.v.cls << ") | "
+       << (c.v.error_ratio
+               ? beside_thresholds(*c.v.error_ratio, {kAgreementFactor, 1 / kAgreementFactor})
+               : "–")
+       << " | " << c.v.verdict << " | [" << c.v.cls << "](#" << c.v.cls << ") | "
        << (c.paper ? (c.paper->confidence == "high" ? "high" : "**" + c.paper->confidence + "**")
                    : "–")
        << " |\n";
