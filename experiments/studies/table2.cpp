@@ -308,8 +308,11 @@ std::string counting_rules_section(const Table2Data& d, std::vector<Claim>& clai
   md << "\n**Reading.** Paper / rule, over the " << counts.size() << " cells: ";
   int best = 0;
   for (std::size_t k = 0; k < names.size(); ++k) {
-    md << (k ? "; " : "") << names[k].first << " " << span(ratios[k], 3) << " (within "
-       << percent(kApproximate) << " in " << within[k] << ")";
+    md << (k ? "; " : "") << names[k].first << " " << span(ratios[k], 3);
+    if (ratios[k].size() != counts.size())
+      md << " over " << ratios[k].size() << " cells (it counts none in the other "
+         << counts.size() - ratios[k].size() << ")";
+    md << " (within " << percent(kApproximate) << " in " << within[k] << ")";
     best = std::max(best, within[k]);
   }
   std::vector<double> gimp_over_exact;

@@ -34,6 +34,10 @@ struct VariantClassOutcome {
   int verdict_agree = 0;  // of the covered, with the paper's stability verdict (whatever the error)
   int meaningless = 0;    // of the verdict_agree, stable but meaningless: error over time reached A
   std::vector<double> error_ratios;  // ours / paper where both stable, of the verdict_agree
+  // Of the agree, the runs that end stable: their error over time / A, and how many are not
+  // accurate (core/base/accuracy.hpp): agreeing with the paper's max error is not accuracy.
+  std::vector<double> agreeing_error_over_A;
+  int agreeing_not_accurate = 0;
 };
 
 struct VariantOutcome {

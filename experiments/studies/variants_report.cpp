@@ -32,6 +32,10 @@ std::string agree_text(const VariantClassOutcome& o, int n) {
     if (o.meaningless) s += ", " + std::to_string(o.meaningless) + " of them meaningless";
   }
   if (!o.error_ratios.empty()) s += "; ours / paper " + span(o.error_ratios, 2);
+  if (!o.agreeing_error_over_A.empty())
+    s += "; the agreeing stable runs' error over time " + span(o.agreeing_error_over_A, 2) +
+         " A, " + of(o.agreeing_not_accurate, int(o.agreeing_error_over_A.size())) +
+         " not accurate";
   return s;
 }
 
