@@ -182,6 +182,12 @@ std::string verdict_with_error(const ojson& r, std::optional<double> error_over_
          beside_thresholds(*error_over_A, {kAccurateFraction, 1.0}) + " A)";
 }
 
+std::string edge_run_verdict(const ojson& r) {
+  return verdict_with_error(r, has_number(r, "error_at_edge_over_A")
+                                   ? std::optional(r["error_at_edge_over_A"].get<double>())
+                                   : std::nullopt);
+}
+
 std::string text(const ojson& row, const char* column) {
   const auto it = row.find(column);
   return it != row.end() && it->is_string() ? it->get<std::string>() : std::string();

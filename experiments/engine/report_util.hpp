@@ -95,6 +95,9 @@ std::string verdict(const nlohmann::ordered_json& row);
 // in another column (an edge search's run at its edge).
 std::string verdict_with_error(const nlohmann::ordered_json& row,
                                std::optional<double> error_over_A);
+// The verdict of an edge search's run at its edge: verdict_with_error() with the row's
+// error_at_edge_over_A.
+std::string edge_run_verdict(const nlohmann::ordered_json& row);
 // The deterministic cost of a run: particles x steps (an edge case: of its run at dt_edge).
 double particle_steps(const nlohmann::ordered_json& row);
 // particle_steps() in sci(): "2.4e5".

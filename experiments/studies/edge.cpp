@@ -490,11 +490,8 @@ std::string edge_table(const std::vector<ojson>& rows, const EdgeFollowUps& f) {
          << in_cfl(r["dt_edge_over_cfl"].get<double>());
       if (has_number(r, "dt_fail"))
         md << "; fails at " << in_cfl(r["dt_fail"].get<double>() / r["dt_cfl"].get<double>());
-      md << ") | " << margin_text(f, r, "dt_edge") << " | "
-         << verdict_with_error(r, has_number(r, "error_at_edge_over_A")
-                                      ? std::optional(r["error_at_edge_over_A"].get<double>())
-                                      : std::nullopt)
-         << " | " << opt_sci(r["max_error"]) << " | ";
+      md << ") | " << margin_text(f, r, "dt_edge") << " | " << edge_run_verdict(r) << " | "
+         << opt_sci(r["max_error"]) << " | ";
       if (has_number(r, "dt_accurate")) {
         md << sci(r["dt_accurate"].get<double>(), 3) << " ("
            << in_cfl(r["dt_accurate_over_cfl"].get<double>()) << ") | "
@@ -652,7 +649,7 @@ std::string amplitude_table(const std::vector<ojson>& rows, const EdgeFollowUps&
         continue;
       }
       md << in_cfl((*r)["dt_edge_over_cfl"].get<double>()) << " | " << margin_text(f, *r, "dt_edge")
-         << " | " << outcome(*r) << " | ";
+         << " | " << edge_run_verdict(*r) << " | ";
       if (has_number(*r, "dt_accurate")) {
         md << in_cfl((*r)["dt_accurate_over_cfl"].get<double>()) << " | "
            << margin_text(f, *r, "dt_accurate") << " |\n";

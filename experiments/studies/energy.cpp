@@ -78,7 +78,7 @@ std::string history_table(const std::vector<ojson>& rows, const std::set<Cell>& 
               "K + U, max | drift per period | error over time |\n|---|---|---|---|---|---|\n";
         first = false;
       }
-      md << "| " << method_label(r) << " | " << outcome(r) << " | " << num(r, "energy_error_max")
+      md << "| " << method_label(r) << " | " << verdict(r) << " | " << num(r, "energy_error_max")
          << " | " << num(r, "energy_exact_error_max") << " | " << num(r, "energy_drift") << " | "
          << num(r, "max_error_over_time") << " |\n";
     }

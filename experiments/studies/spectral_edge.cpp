@@ -173,8 +173,8 @@ std::string length_table(const std::vector<ojson>& rows, const LengthRuns& lengt
   for (const auto& r : rows) {
     if (!has_number(r, "dt_edge")) continue;
     md << "| " << scheme_label(r) << " | " << shortest(r["A"].get<double>()) << " | "
-       << fixed(r["dt_edge"].get<double>() / r["dt_cfl"].get<double>(), 4) << " | " << outcome(r)
-       << " | "
+       << fixed(r["dt_edge"].get<double>() / r["dt_cfl"].get<double>(), 4) << " | "
+       << edge_run_verdict(r) << " | "
        << (has_number(r, "error_at_edge_over_A")
                ? significant(r["error_at_edge_over_A"].get<double>(), 2)
                : std::string("–"))
