@@ -44,7 +44,9 @@ TEST(Eq108Study, EachReadingIsSetAgainstThePapersDtStable) {
   ASSERT_EQ(report.claims.size(), 1u);
   EXPECT_TRUE(report.claims[0].holds);  // raw, l2 is within a factor 3 in its one cell
   EXPECT_EQ(render(report.claims[0], report.claims[0].evidence),
-            "the best reading (raw, l2) is within it in 1 of 1 cells; its ratios 0.51");
+            "the best reading (raw, l2: the most cells within it, ties broken by the smallest mean "
+            "absolute natural log of ours / paper, here 0.668) is within it in 1 of 1 cells; its "
+            "ratios 0.51");
   // A reading whose bound is 0.1 times the paper's everywhere does not reproduce it.
   rows[1]["dt_stable_min"] = 3.9e-6;
   const StudyReport worse =
@@ -99,7 +101,9 @@ TEST(Eq108Study, ACoarserGridIsSetAgainstThePaperBesideThePapersGrid) {
   // The paper's grid: its one reading is 0.08 times the paper in each of its 3 cells.
   EXPECT_FALSE(r.claims[0].holds);
   EXPECT_EQ(render(r.claims[0], r.claims[0].evidence),
-            "the best reading (scaled, l2) is within it in 0 of 3 cells; its ratios 0.08");
+            "the best reading (scaled, l2: the most cells within it, ties broken by the smallest "
+            "mean absolute natural log of ours / paper, here 2.53) is within it in 0 of 3 cells; "
+            "its ratios 0.08");
   // The coarser grid: 1.2 times the paper in each, beside 0.08 on the paper's grid.
   EXPECT_EQ(r.claims[1].id, "grid-10-mpm-gives-the-paper");
   EXPECT_TRUE(r.claims[1].holds);

@@ -660,8 +660,9 @@ StudyReport methods_report(const ReportContext& c) {
   const auto waves = wave_column(rows);
   std::ostringstream md;
   md << "## Results\n\n**Reading.** " << reading(rows, waves) << "\n\n"
-     << "This table measures; it does not recommend: this project's recommendations are made in "
-        "[advice.md](advice.md), from settings checked at the corners of a stated region.\n\n"
+     << "This table measures; it does not recommend: this project answers a user's problem with "
+        "`mpmstab advise`, which runs each answer on that problem before giving it "
+        "([advice.md](advice.md)).\n\n"
      << cost_metric_text() << "\n\n![" << c.spec.title << "](" << c.spec.name
      << ".png)\n\nThe figure places each method by its survival edge at the tiny "
      << "amplitude (x) and its error over time at Table 1's setting (y), one panel per update "
