@@ -25,7 +25,7 @@ DOCUMENTS   := README.md docs/design.md
 FUZZ_SECONDS ?= 15
 FUZZ_DIR     ?= build-fuzz
 
-.PHONY: all build build-tests deps test test-cluster check bless fuzz bench timings reproduce studies tier figures plots format format-check clean help
+.PHONY: all build build-tests deps test test-cluster check bless fuzz bench timings reproduce studies tier figures plots reports-unchanged format format-check clean help
 
 all: build
 
@@ -39,6 +39,8 @@ help:
 	@echo "make bless REASON=\"...\"  accept the current values as blessed, logged in BLESSED.md"
 	@echo "make reproduce    regenerate the paper: Tables 1 and 2, Figs. 1-3, the comparison (results/)"
 	@echo "make studies      regenerate every other study (cached cases are not rerun)"
+	@echo "make reports-unchanged  re-render both tiers (from the cache when warm) and fail unless"
+	@echo "                   every report, README.md and docs/ come out byte for byte as committed"
 	@echo "make bench        run the step benchmark, write results/benchmark_step.json"
 	@echo "make timings      publish this machine's timings: results/timings.json, performance.md"
 	@echo "make format       clang-format every source file in place"
@@ -170,6 +172,19 @@ tier:
 	  echo "make: $(DOCUMENTS) describe results/ and are left as they are (RESULTS=$(RESULTS))"; \
 	fi; \
 	echo "make $(if $(filter paper,$(TIER)),reproduce,studies): $$(echo "$$(date +%s.%N) - $$start" | bc | xargs printf '%.1f') s wall; reports in $(RESULTS)/README.md"
+
+# Both tiers re-rendered into results/ (from the cache when it is warm: nothing is recomputed),
+# then every committed report, figure and generated document compared byte for byte with the
+# commit: a change of the code that moves no result passes; one that moves a byte fails, naming
+# the files. Run it after every step of a refactoring.
+reports-unchanged: build
+	@$(MAKE) --no-print-directory tier TIER=paper RESULTS=results
+	@$(MAKE) --no-print-directory tier TIER=studies RESULTS=results
+	$(MPMSTAB) documents --check $(DOCUMENTS) --results results
+	@changed=$$(git status --porcelain --untracked-files=all -- results $(DOCUMENTS)); \
+	if [ -n "$$changed" ]; then \
+	  echo "make reports-unchanged: these files differ from the commit:" >&2; echo "$$changed" >&2; exit 1; \
+	fi; echo "make reports-unchanged: every report of both tiers is byte for byte as committed"
 
 # The machine's timings (results/cache/timings.json, written by every sweep and reproduce, not
 # committed) published as results/timings.json with results/performance.md: the only way those two

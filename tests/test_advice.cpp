@@ -1,13 +1,13 @@
-// The advice study's settings (experiments/studies/advice.hpp): the corners of a setting's
-// region, how a failing corner shrinks the region, the data file `mpmstab advise` reads, and the
-// command on a data file of its own (the verified search itself: test_advice_verify.cpp).
+// The advice study's settings (experiments/studies/choice/advice_rule.hpp): the corners of a
+// setting's region, how a failing corner shrinks the region, the data file `mpmstab advise` reads,
+// and the command on a data file of its own (the verified search itself: test_advice_verify.cpp).
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "advice.hpp"
+#include "choice/advice_rule.hpp"
 #include "files.hpp"
 #include "run/run.hpp"
 #include "support.hpp"

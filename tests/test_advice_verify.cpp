@@ -1,7 +1,7 @@
-// Advice verified on the problem (experiments/studies/advice_verify.hpp): the prediction from the
-// runs that match the problem, the order candidates are tried in, the verifying runs and the
-// answer they allow, each refusal (domain, too short, target, budget), the margins, and the JSON.
-// The search is driven by a stand-in for the solver whose error is a known function of the
+// Advice verified on the problem (experiments/studies/choice/advice_verify.hpp): the prediction
+// from the runs that match the problem, the order candidates are tried in, the verifying runs and
+// the answer they allow, each refusal (domain, too short, target, budget), the margins, and the
+// JSON. The search is driven by a stand-in for the solver whose error is a known function of the
 // setting, so that which candidate must answer is known exactly; one test runs the real command.
 #include <gtest/gtest.h>
 
@@ -9,8 +9,8 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
-#include "advice.hpp"
-#include "advice_verify.hpp"
+#include "choice/advice_rule.hpp"
+#include "choice/advice_verify.hpp"
 #include "support.hpp"
 
 namespace mpmstab {

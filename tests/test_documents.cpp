@@ -1,4 +1,4 @@
-// Generated blocks of the documents (experiments/studies/documents.hpp): written from the
+// Generated blocks of the documents (experiments/studies/publish/documents.hpp): written from the
 // results, and `mpmstab documents --check` (make check) fails where a block was edited by hand
 // or its result changed; a malformed marker is refused and leaves the file untouched.
 #include <gtest/gtest.h>
@@ -11,13 +11,13 @@
 
 #include "base/instruction_set.hpp"
 #include "cache.hpp"
-#include "documents.hpp"
 #include "files.hpp"
 #include "performance.hpp"
+#include "publish/documents.hpp"
+#include "publish/verdicts.hpp"
 #include "report_util.hpp"
 #include "spec.hpp"
 #include "support.hpp"
-#include "verdicts.hpp"
 
 namespace mpmstab {
 namespace {

@@ -1,5 +1,5 @@
-// The transcribed Table 1 as the studies read it (experiments/studies/paper_table1.hpp): every
-// cell a spec runs is found, a cell whose dt the paper does not print is placed by the case
+// The transcribed Table 1 as the studies read it (experiments/studies/shared/paper_table1.hpp):
+// every cell a spec runs is found, a cell whose dt the paper does not print is placed by the case
 // marked dt_inferred and never keyed by a NaN, and a transcription or spec that cannot be read
 // exactly is refused with the file and the row or case named.
 #include <gtest/gtest.h>
@@ -16,7 +16,7 @@
 
 #include "files.hpp"
 #include "key.hpp"
-#include "paper_table1.hpp"
+#include "shared/paper_table1.hpp"
 #include "spec.hpp"
 #include "study_rows.hpp"
 

@@ -93,7 +93,7 @@ std::string typed_digits(const std::string& text) {
 std::vector<std::filesystem::path> study_sources() {
   std::vector<std::filesystem::path> files;
   const auto root = std::filesystem::path(MPMSTAB_SOURCE_DIR) / "experiments";
-  for (const auto& e : std::filesystem::directory_iterator(root / "studies"))
+  for (const auto& e : std::filesystem::recursive_directory_iterator(root / "studies"))
     if (e.path().extension() == ".cpp") files.push_back(e.path());
   files.push_back(root / "engine" / "performance.cpp");
   files.push_back(root / "engine" / "report.cpp");

@@ -12,7 +12,7 @@
 #include <set>
 #include <string>
 
-#include "comparison.hpp"
+#include "agreement/comparison.hpp"
 #include "study_rows.hpp"
 #include "support.hpp"
 

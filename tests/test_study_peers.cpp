@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "peers.hpp"
+#include "agreement/peers.hpp"
 #include "study_rows.hpp"
 
 namespace mpmstab {

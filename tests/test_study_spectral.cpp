@@ -1,6 +1,6 @@
-// The spectral studies' reports (experiments/studies/spectral.cpp, spectral_edge.cpp), from
-// synthetic rows: a scheme is confirmed only when its run below the limit stays bounded and its
-// run above it grows; a measured edge agrees only within 5% of the limit.
+// The spectral studies' reports (experiments/studies/stability/spectral.cpp, spectral_edge.cpp),
+// from synthetic rows: a scheme is confirmed only when its run below the limit stays bounded and
+// its run above it grows; a measured edge agrees only within 5% of the limit.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -6,11 +6,11 @@
 #include <filesystem>
 #include <fstream>
 
+#include "agreement/variants.hpp"
 #include "report_util.hpp"
 #include "spec.hpp"
 #include "study.hpp"
 #include "study_rows.hpp"
-#include "variants.hpp"
 
 namespace mpmstab {
 namespace {

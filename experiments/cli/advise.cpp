@@ -5,12 +5,11 @@
 #include <iostream>
 #include <sstream>
 
-#include "advice.hpp"
-#include "advice_verify.hpp"
 #include "args.hpp"
 #include "base/params.hpp"
+#include "choice/advice_rule.hpp"
+#include "choice/advice_verify.hpp"
 #include "commands.hpp"
-#include "csv.hpp"
 #include "files.hpp"
 #include "report_util.hpp"
 #include "run/run.hpp"

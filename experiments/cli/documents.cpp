@@ -3,8 +3,8 @@
 #include <iostream>
 
 #include "commands.hpp"
-#include "documents.hpp"
 #include "files.hpp"
+#include "publish/documents.hpp"
 
 namespace mpmstab::cli {
 

@@ -13,7 +13,6 @@
 #include "files.hpp"
 #include "provenance.hpp"
 #include "report.hpp"
-#include "report_util.hpp"
 #include "result_json.hpp"
 #include "sweep.hpp"
 

@@ -1,0 +1,306 @@
+// The rules that give a Table 1 cell its verdict and class against the paper, and the
+// comparison study's registration. Its report (comparison.md, comparison.csv) is written in
+// comparison_report.cpp.
+#include "agreement/comparison.hpp"
+
+#include <cmath>
+#include <limits>
+#include <map>
+#include <optional>
+
+#include "base/accuracy.hpp"
+#include "key.hpp"
+#include "report_util.hpp"
+#include "study.hpp"
+
+namespace mpmstab {
+
+namespace studies::comparison {
+namespace {
+using ojson = nlohmann::ordered_json;
+}  // namespace
+}  // namespace studies::comparison
+
+const std::vector<ClassDefinition>& comparison_classes() {
+  static const std::vector<ClassDefinition> classes = [] {
+    const std::string f = agreement_factor();
+    // The failure classes (failure_class()) share their first condition.
+    const std::string goes_on =
+        "The paper's run lasts longer than ours, which fails before T (a Table 1 cell: the paper "
+        "gives a max error, ours fails; a figure: the paper's run reaches T, or takes more than " +
+        f + " times as many steps as ours before it fails)";
+    const std::string below =
+        ", at a c dt / h at or below the spectral limit (or with none recorded) and below the "
+        "scan's edge (both as in the classes above)";
+    const std::string stable_ours =
+        "ours reaches T with an error over time below A (an error over time of at least A is the "
+        "class ours-meaningless)";
+    return std::vector<ClassDefinition>{
+        {"agree-stable", "Agree: both stable, max errors within a factor " + f,
+         "The paper gives a max error (its run stable); " + stable_ours +
+             "; the two max errors are within a factor " + f + " of each other.",
+         ClassKind::agreement},
+        {"agree-unstable", "Agree: both unstable",
+         "The paper marks the cell `*` (unstable); ours fails before T.", ClassKind::agreement},
+        {"above-spectral-limit", "Paper's run lasts longer; ours fails above the spectral limit",
+         goes_on +
+             ", at a Courant number c dt / h above the spectral limit of its scheme at its layout "
+             "(the record's `courant_spectral`, spectral.md).",
+         ClassKind::verdict},
+        {"above-our-edge",
+         "Paper's run lasts longer; ours fails at or below the spectral limit, at or above the "
+         "scan's "
+         "edge",
+         goes_on +
+             ", at a c dt / h at or below the spectral limit (or with none recorded) and at or "
+             "above the courant scan's edge for its method and A: the smallest c dt / h of the "
+             "scan from which on each run "
+             "of the scan, at each E, fails.",
+         ClassKind::verdict},
+        {"gimp-wall-exit",
+         "Paper's run lasts longer; ours, not mpm, fails with a particle leaving the domain",
+         goes_on + below +
+             ", by a method other than mpm (GIMP in Table 1), with a particle leaving the domain "
+             "through a wall (`left_domain`).",
+         ClassKind::verdict},
+        {"mpm-crossing-failure",
+         "Paper's run lasts longer; ours, mpm, fails with its particles inside the domain",
+         goes_on + below +
+             ", by mpm, for a reason other than a particle leaving the domain (`nonpositive_F`, "
+             "for one). The predicate reads no crossing count: the word crossing in the id "
+             "names no measured cause.",
+         ClassKind::verdict},
+        {"other-failure", "Paper's run lasts longer; ours fails, in no class above",
+         goes_on + ", and the cell is not in the four classes above.", ClassKind::verdict},
+        {"ours-meaningless", "Ours meaningless: reached T, error over time at least A",
+         "The paper's value is readable (a max error or `*`); ours reaches T with an error over "
+         "time of at least A. It agrees with neither of the paper's verdicts and its error is "
+         "not compared.",
+         ClassKind::verdict},
+        {"mpm-error-larger",
+         "MPM: both stable, our max error more than " + f + " times the paper's",
+         "The paper gives a max error; " + stable_ours + ", by mpm, with a max error more than " +
+             f + " times the paper's.",
+         ClassKind::error},
+        {"gimp-error-larger",
+         "Not mpm (GIMP in Table 1): both stable, our max error more than " + f +
+             " times the paper's",
+         "The paper gives a max error; " + stable_ours +
+             ", by a method other than mpm, with a max error more than " + f +
+             " times the paper's.",
+         ClassKind::error},
+        {"error-smaller", "Both stable, the paper's max error more than " + f + " times ours",
+         "The paper gives a max error; " + stable_ours + "; the paper's max error is more than " +
+             f + " times ours.",
+         ClassKind::error},
+        {"paper-unstable-ours-stable", "Paper unstable, ours stable",
+         "The paper marks the cell `*`; " + stable_ours + ".", ClassKind::verdict},
+        {"unreadable", "Paper value unreadable, or our error not recorded",
+         "The paper's value is missing from the transcription (or the cell is not in it), or "
+         "both runs are stable and our compared error was not recorded.",
+         ClassKind::unreadable},
+    };
+  }();
+  return classes;
+}
+
+const ComparisonClass* find_class(const std::string& id) {
+  for (const auto& k : comparison_classes()) {
+    if (id == k.id) return &k;
+  }
+  return nullptr;
+}
+
+std::string comparison_classes_markdown() {
+  using namespace studies::comparison;
+  std::string md = "| class | name | what its predicate decides |\n|---|---|---|\n";
+  for (const auto& k : comparison_classes())
+    md += std::string("| `") + k.id + "` | " + k.title + " | " + k.definition + " |\n";
+  return md;
+}
+
+const std::string& explained_definition() {
+  static const std::string text =
+      "a cell that disagrees with the paper is explained by an experiment of this report when "
+      "the experiment reruns the cell with one documented choice changed alone and the rerun "
+      "agrees with the paper (class agree-stable or agree-unstable by the same rules). Of the "
+      "experiments this report reads, walls reruns Table 1 cells so (periodic boundaries "
+      "instead of Dirichlet walls, for the cells it holds); the variants study, of the studies "
+      "tier, does the same for each documented choice and is linked, not read";
+  return text;
+}
+
+bool explains(const CellVerdict& rerun) {
+  using namespace studies::comparison;
+  return rerun.agrees();
+}
+
+double scan_courant(const nlohmann::ordered_json& row) {
+  using namespace studies::comparison;
+  constexpr double kResolution = 1e4;  // steps per unit of c dt / h
+  return std::round(row.at("courant").get<double>() * kResolution) / kResolution;
+}
+
+CourantEdges courant_edges(const std::vector<nlohmann::ordered_json>& rows) {
+  using namespace studies::comparison;
+  std::map<std::pair<std::string, Key>, std::map<Key, bool>> all_fail;  // -> C -> all fail
+  for (const auto& r : rows) {
+    const auto key = std::make_pair(r["method"].get<std::string>(), Key(r["A"].get<double>(), "A"));
+    auto [it, fresh] = all_fail[key].try_emplace(Key(scan_courant(r), "c dt/h"), true);
+    it->second = it->second && outcome(r) == "unstable";
+  }
+  CourantEdges edge;
+  for (const auto& [key, by_c] : all_fail) {
+    double e = std::numeric_limits<double>::infinity();
+    for (auto it = by_c.rbegin(); it != by_c.rend() && it->second; ++it)
+      e = it->first;
+    edge[key] = e;
+  }
+  return edge;
+}
+
+bool CellVerdict::same_verdict() const {
+  using namespace studies::comparison;
+  const ComparisonClass* k = find_class(cls);
+  return k && (k->kind == ClassKind::agreement || k->kind == ClassKind::error);
+}
+
+void AgreementCounts::add(const CellVerdict& v) {
+  using namespace studies::comparison;
+  if (!v.compared()) return;
+  ++verdicts_compared;
+  if (v.same_verdict()) ++verdicts_agree;
+  if (v.cls == "ours-meaningless") ++meaningless;
+  if (v.error_ratio) {
+    ++errors_compared;
+    if (v.cls == "agree-stable") ++errors_within;
+    error_ratios.push_back(*v.error_ratio);
+  }
+  if (v.dt_stable_ratio) dt_stable_ratios.push_back(*v.dt_stable_ratio);
+}
+
+std::string failure_class(const nlohmann::ordered_json& r, const CourantEdges& edges) {
+  using namespace studies::comparison;
+  const std::string method = r["method"].get<std::string>();
+  const double courant = r["courant"].get<double>();
+  const auto edge = edges.find({method, Key(r["A"].get<double>(), "A")});
+  const std::string reason = r["failure_reason"].get<std::string>();
+  if (has_number(r, "courant_spectral") && courant > r["courant_spectral"].get<double>())
+    return "above-spectral-limit";
+  if (edge != edges.end() && courant >= edge->second * (1 - 1e-9)) return "above-our-edge";
+  if (method != "mpm" && reason == "left_domain") return "gimp-wall-exit";
+  if (method == "mpm" && reason != "left_domain") return "mpm-crossing-failure";
+  return "other-failure";
+}
+
+CellVerdict classify(const nlohmann::ordered_json& r, const PaperCell* paper,
+                     const CourantEdges& edges, ErrorAt error_at) {
+  using namespace studies::comparison;
+  CellVerdict cell;
+  const std::string method = r["method"].get<std::string>();
+  const std::string ours = outcome(r);
+  if (!paper || paper->max_error.kind == PaperValue::unreadable) {
+    cell.verdict = "paper unreadable";
+    cell.cls = "unreadable";
+    return cell;
+  }
+  const bool paper_stable = paper->max_error.kind == PaperValue::number;
+  if (paper->dt_stable.kind == PaperValue::number && r["dt_stable_min"].is_number() &&
+      ours == "stable") {
+    cell.dt_stable_ratio = r["dt_stable_min"].get<double>() / paper->dt_stable.value;
+  }
+  if (ours == "meaningless") {
+    // It survived, but its answer is as large as the solution: it agrees with neither verdict.
+    cell.verdict =
+        paper_stable ? "paper stable, ours meaningless" : "paper unstable, ours meaningless";
+    cell.cls = "ours-meaningless";
+    return cell;
+  }
+  const bool ours_stable = ours == "stable";
+  const std::optional<double> error = compared_error(r, error_at);
+  if (paper_stable && ours_stable && !error) {
+    cell.verdict = "our error not recorded";
+    cell.cls = "unreadable";
+    return cell;
+  }
+  if (paper_stable && ours_stable) {
+    cell.error_ratio = *error / paper->max_error.value;
+    if (within_agreement_factor(*error, paper->max_error.value)) {
+      cell.verdict = "agree";
+      cell.cls = "agree-stable";
+    } else if (*cell.error_ratio > 1) {
+      cell.verdict =
+          "differ: our error " +
+          beside_thresholds(*cell.error_ratio, {kAgreementFactor, 1 / kAgreementFactor}) + "x";
+      cell.cls = method == "mpm" ? "mpm-error-larger" : "gimp-error-larger";
+    } else {
+      cell.verdict =
+          "differ: our error " +
+          beside_thresholds(*cell.error_ratio, {kAgreementFactor, 1 / kAgreementFactor}) + "x";
+      cell.cls = "error-smaller";
+    }
+    return cell;
+  }
+  if (!paper_stable && !ours_stable) {
+    cell.verdict = "agree: both unstable";
+    cell.cls = "agree-unstable";
+    return cell;
+  }
+  if (!paper_stable) {
+    cell.verdict = "paper unstable, ours stable";
+    cell.cls = "paper-unstable-ours-stable";
+    return cell;
+  }
+  cell.verdict = "paper stable, ours unstable";
+  cell.cls = failure_class(r, edges);
+  return cell;
+}
+
+namespace studies::comparison {
+namespace {
+
+// The study: every Table 1 cell of the table1 experiment against the paper, explained by the
+// supporting experiments of the paper tier (the variants study, in the studies tier, is linked,
+// not read).
+void write_derived_comparison(const DerivedContext& c) {
+  std::optional<ErrorAt> error_at;
+  if (c.options.contains("error_at")) {
+    error_at = parse_error_at(c.options["error_at"].get<std::string>());
+  }
+  write_comparison(c.inputs, c.out, error_at);
+}
+
+const StudyRegistration kComparison{{
+    .name = "comparison",
+    .summary = "every Table 1 cell and Figs. 1-3 against the paper; per class, the cells a rerun "
+               "explains",
+    .has_cases = false,
+    .inputs = {{.name = "table1", .required = true},
+               {.name = "peers"},
+               {.name = "courant"},
+               {.name = "walls"},
+               {.name = "crossing"},
+               {.name = "eq108"},
+               {.name = "fig1"},
+               {.name = "fig2"},
+               {.name = "fig3"},
+               {.name = "fig2_variants"},
+               {.name = "fig3_variants"}},
+    .index = [](const Spec&, const std::vector<ojson>&) -> std::string {
+      return "**Against the paper:** [comparison.md](comparison.md) sets every Table 1 cell "
+             "beside the paper's, with a verdict and a class, and says per class how many of its "
+             "cells a rerun of ours explains (brings to agreement with the paper) and how many "
+             "it leaves unexplained; then what the paper's text says about its Figs. 1-3 beside "
+             "our runs of them.\n\n";
+    },
+    .write_derived = write_derived_comparison,
+    .blessed = {{.file = "comparison.csv",
+                 .key_columns = {"method", "E", "A", "dt"},
+                 .value_columns = {"verdict", "class"},
+                 .what = "comparison verdicts"}},
+}};
+
+}  // namespace
+}  // namespace studies::comparison
+
+}  // namespace mpmstab

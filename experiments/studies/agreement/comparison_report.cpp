@@ -1,0 +1,1128 @@
+// The comparison's report: comparison.csv (the verdict and class of every Table 1 cell) and
+// comparison.md (a summary, every cell beside the paper's, then a section per class of
+// disagreement with the experiment of ours that explains it, then the paper's Figs. 1-3 beside
+// our runs of them, written in comparison_figures.cpp). Everything is read from the study's
+// inputs: the table1 experiment, the supporting experiments (courant, walls, crossing, eq108),
+// the figures and their variant runs, all of the paper tier; a section whose experiment is not
+// among the inputs (mpmstab compare with explicit specs) says so.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <ostream>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+#include "agreement/comparison.hpp"
+#include "base/accuracy.hpp"
+#include "claims.hpp"
+#include "csv.hpp"
+#include "key.hpp"
+#include "report_util.hpp"
+
+namespace mpmstab {
+
+namespace studies::comparison_report {
+namespace {
+
+using ojson = nlohmann::ordered_json;
+namespace fs = std::filesystem;
+using Rows = std::vector<ojson>;  // flat result rows, one per case
+
+struct Cell {
+  const CaseSpec* spec;
+  ojson row;  // our flat result row
+  const PaperCell* paper = nullptr;
+  CellVerdict v;
+  // The verdict of its rerun with periodic boundaries (the walls experiment), if it has one.
+  std::optional<CellVerdict> periodic;
+  // explained_definition(): a rerun with one choice changed alone agrees with the paper.
+  bool explained() const { return periodic && explains(*periodic); }
+};
+
+// What every part of the report is written from. The cells point into `paper` and `by_class`
+// into `cells`, so it is built in place and never copied.
+struct Comparison {
+  Comparison(const Spec& table1_spec, const fs::path& out_dir, std::optional<ErrorAt> at)
+      : table1(table1_spec), out(out_dir), error_at(at), paper(read_paper_table1(table1_spec)) {}
+  Comparison(const Comparison&) = delete;
+  Comparison& operator=(const Comparison&) = delete;
+
+  const Spec& table1;
+  const fs::path& out;
+  std::optional<ErrorAt> error_at;       // --error-at: replaces every case's own choice
+  std::map<Table1Key, PaperCell> paper;  // the transcribed Table 1
+  std::map<std::string, Rows> support;   // the supporting experiments run, by input name
+  const ojson* peers = nullptr;          // the peers study's "study" object; null: not run
+  Rows peer_rows;                        // the peers experiment's cases (empty: not run)
+  const ojson* ensemble = nullptr;       // table1's ensemble per cell; null: not in its results
+  std::vector<Claim> claims;             // the conclusions (claims.hpp)
+  CourantEdges edges;                    // from the courant scan; empty without it
+  std::vector<Cell> cells;               // in the order of the table1 spec's cases
+  std::map<std::string, std::vector<const Cell*>> by_class;
+
+  bool have(const std::string& name) const { return support.count(name) > 0; }
+  const Rows& rows(const std::string& name) const { return support.at(name); }
+  const std::vector<const Cell*>& in_class(const std::string& cls) const {
+    static const std::vector<const Cell*> none;
+    const auto it = by_class.find(cls);
+    return it == by_class.end() ? none : it->second;
+  }
+  std::size_t count(const std::string& cls) const { return in_class(cls).size(); }
+  // The error of a cell compared with the paper's: --error-at, or the case's own choice.
+  ErrorAt error_of(const Cell& c) const { return error_at.value_or(c.spec->error_at); }
+};
+
+// ---- Reading the inputs.
+
+Rows case_rows(const ojson& doc) {
+  if (!doc.contains("cases")) return {};
+  const ojson& cases = doc.at("cases");
+  return Rows(cases.begin(), cases.end());
+}
+
+// The rows of every supporting experiment that has been run, by input name.
+std::map<std::string, Rows> supporting_rows(const StudyInputs& inputs) {
+  std::map<std::string, Rows> rows;
+  for (const auto& [name, input] : inputs) {
+    if (name != "table1" && name != "peers" && input.present()) rows[name] = case_rows(input.doc);
+  }
+  return rows;
+}
+
+// The "study" object of an input study's results (peers), or null when not run.
+const ojson* study_object(const StudyInputs& inputs, const std::string& name) {
+  const auto it = inputs.find(name);
+  if (it == inputs.end() || !it->second.present() || !it->second.doc.contains("study")) {
+    return nullptr;
+  }
+  return &it->second.doc.at("study");
+}
+
+// Every case of the table1 experiment (rows[i] is its case i) against its paper cell.
+void compare_cells(Comparison& cmp, const Rows& rows) {
+  const Spec& table1 = cmp.table1;
+  for (std::size_t i = 0; i < table1.cases.size(); ++i) {
+    Cell c;
+    c.spec = &table1.cases[i];
+    c.row = rows.at(i);
+    const auto it = cmp.paper.find(paper_key(table1.cases[i]));
+    if (it != cmp.paper.end()) c.paper = &it->second;
+    c.v = classify(c.row, c.paper, cmp.edges, cmp.error_of(c));
+    cmp.cells.push_back(std::move(c));
+  }
+  for (const auto& c : cmp.cells)
+    cmp.by_class[c.v.cls].push_back(&c);
+}
+
+// ---- Formatting and looking up cells and runs.
+
+std::string distribution(const std::vector<double>& v) {
+  if (v.empty()) return "no cells";
+  std::ostringstream s;
+  s << "min " << ratio(quantile(v, 0)) << ", quartiles " << ratio(quantile(v, 0.25)) << " / "
+    << ratio(quantile(v, 0.5)) << " / " << ratio(quantile(v, 0.75)) << ", max "
+    << ratio(quantile(v, 1)) << " (" << v.size() << " cells)";
+  return s.str();
+}
+
+std::size_t table1_E_count(const Rows& rows) {
+  std::set<Key> Es;
+  for (const auto& r : rows)
+    Es.insert(Key(r["E"].get<double>(), "E"));
+  return Es.size();
+}
+
+// The spectral limit of each method at the paper's layout, from the Table 1 records.
+std::map<std::string, double> spectral_limits(const Comparison& cmp) {
+  std::map<std::string, double> limit;
+  for (const auto& c : cmp.cells)
+    if (has_number(c.row, "courant_spectral"))
+      limit[c.row["method"].get<std::string>()] = c.row["courant_spectral"].get<double>();
+  return limit;
+}
+
+// Whether a row of another experiment runs the cell's case: its method, E, A and dt on the same
+// grid and particles (its boundaries or another choice may differ).
+bool same_cell(const ojson& a, const CaseSpec& c) {
+  const auto& p = c.params;
+  auto same_int = [&](const char* key, int v) {
+    return !a.contains(key) || !a[key].is_number() || a[key].get<int>() == v;
+  };
+  return a["method"] == std::string(to_string(p.method)) && a["E"].get<double>() == p.E &&
+         a["A"].get<double>() == p.A && a["dt"].get<double>() == p.dt &&
+         same_int("cells", p.cells) && same_int("ppc", p.ppc);
+}
+
+std::string cell_name(const Cell& c) {
+  const auto& p = c.spec->params;
+  return std::string(to_string(p.method)) + " E=" + shortest(p.E) + " A=" + shortest(p.A) +
+         " dt=" + param(p.dt);
+}
+
+// The cells of a class, named ("" for a class without cells).
+std::string cell_list(const Comparison& cmp, const std::string& cls) {
+  std::string s;
+  for (const Cell* c : cmp.in_class(cls))
+    s += (s.empty() ? "" : "; ") + cell_name(*c);
+  return s;
+}
+
+// The run of a Table 1 cell in the walls experiment (periodic boundaries), if there is one.
+const ojson* periodic_run(const Comparison& cmp, const Cell& c) {
+  if (!cmp.have("walls")) return nullptr;
+  for (const auto& r : cmp.rows("walls")) {
+    if (text(r, "bc") == "periodic" && same_cell(r, *c.spec)) return &r;
+  }
+  return nullptr;
+}
+
+// Whether a class holds cells that disagree with the paper (a verdict or an error class).
+bool disagreeing(const std::string& cls) {
+  const ComparisonClass* k = find_class(cls);
+  return k && (k->kind == ClassKind::verdict || k->kind == ClassKind::error);
+}
+
+// Each cell's rerun with periodic boundaries, classified against the cell's paper value by the
+// same rules: where it agrees, the walls experiment explains the cell (explained_definition()).
+void rerun_cells(Comparison& cmp) {
+  for (auto& c : cmp.cells) {
+    if (const ojson* r = periodic_run(cmp, c)) {
+      c.periodic = classify(*r, c.paper, cmp.edges, cmp.error_of(c));
+    }
+  }
+}
+
+// How many cells of a class a rerun explains, and how many it reruns at all.
+struct Explained {
+  std::size_t cells = 0, rerun = 0, explained = 0;
+};
+
+Explained explained_in(const Comparison& cmp, const std::string& cls) {
+  Explained e;
+  for (const Cell* c : cmp.in_class(cls)) {
+    ++e.cells;
+    e.rerun += c->periodic.has_value();
+    e.explained += c->explained();
+  }
+  return e;
+}
+
+// ---- comparison.csv
+
+// The verdict and class of every cell: make check compares them with the blessed expectations.
+void write_verdicts_csv(const Comparison& cmp) {
+  std::ostringstream csv;
+  csv << "# experiment: comparison of " << cmp.table1.name << " with "
+      << cmp.table1.reference.generic_string()
+      << "\n# verdict and class of every cell; make check compares them with "
+         "reference/regression/comparison_verdicts.csv\n"
+      << "method,E,A,dt,verdict,class,confidence\n";
+  for (const auto& c : cmp.cells) {
+    const auto& p = c.spec->params;
+    csv << to_string(p.method) << ',' << shortest(p.E) << ',' << shortest(p.A) << ','
+        << shortest(p.dt) << ',' << csv_field(c.v.verdict) << ',' << c.v.cls << ','
+        << (c.paper ? c.paper->confidence : "") << '\n';
+  }
+  write_if_changed(cmp.out / "comparison.csv", csv.str());
+}
+
+// ---- comparison.md: the summary and the table of every cell.
+
+// What the peers experiment covered, counted from its cases: per method and dt, how many runs,
+// how many compared at the table's T and how many only up to an earlier time.
+std::string peer_coverage(const Comparison& cmp) {
+  std::map<std::pair<std::string, Key>, std::vector<double>> runs;  // -> each compared T
+  for (const auto& r : cmp.peer_rows)
+    runs[{r["method"].get<std::string>(), Key(r["dt"].get<double>(), "dt")}].push_back(
+        r["T"].get<double>());
+  const double table_T = cmp.table1.cases.front().params.T;
+  std::ostringstream s;
+  s << "Our solver was run beside independent code (Uintah's 1D MPM code) on "
+    << cmp.peer_rows.size() << " cases of the paper's bar, and agrees on "
+    << (*cmp.peers)["agree"].dump() << " of " << (*cmp.peers)["cases"].dump()
+    << " (same outcome and failure step, errors within the stated tolerances: "
+       "[peers.md](peers.md)). Those cases cover only:";
+  bool first = true;
+  for (const auto& [k, Ts] : runs) {
+    int complete = 0;
+    double lo = table_T, hi = 0;
+    for (const double T : Ts) {
+      if (T >= table_T) {
+        ++complete;
+      } else {
+        lo = std::min(lo, T);
+        hi = std::max(hi, T);
+      }
+    }
+    s << (first ? " " : "; ") << k.first << " at dt = " << param(k.second) << ": " << Ts.size()
+      << " runs, " << complete << " compared at T = " << shortest(table_T);
+    if (complete < int(Ts.size()))
+      s << " and " << Ts.size() - complete << " only up to T = " << shortest(lo) << " to "
+        << shortest(hi) << " (the peer run stopped there)";
+    first = false;
+  }
+  std::set<std::string> methods;
+  for (const auto& [k, Ts] : runs)
+    methods.insert(k.first);
+  s << ". Table 1's methods not among them: ";
+  first = true;
+  for (const auto& c : cmp.table1.cases) {
+    const std::string m(to_string(c.params.method));
+    if (methods.count(m)) continue;
+    methods.insert(m);
+    s << (first ? "" : ", ") << m;
+    first = false;
+  }
+  if (first) s << "none";
+  s << ".";
+  return s.str();
+}
+
+// What the report is and how its verdicts are kept.
+void introduction(std::ostream& md, const Comparison& cmp) {
+  const std::string reference = link(cmp.out, cmp.table1.reference);
+  md << "# Our results against the paper, cell by cell\n\n";
+  if (cmp.peers && !cmp.peer_rows.empty()) {
+    md << "**What independent code covered.** " << peer_coverage(cmp)
+       << " Where we disagree with the paper below outside that coverage, the solver has not been "
+          "checked against independent code on that method or step; a disagreement there may "
+          "come from the paper's choices, the paper's values, or ours.\n\n";
+  } else {
+    md << "The check against independent code (peers.md) has not been run into this folder.\n\n";
+  }
+  std::size_t disagree = 0, explained = 0;
+  for (const auto& c : cmp.cells) {
+    if (!disagreeing(c.v.cls)) continue;
+    ++disagree;
+    explained += c.explained();
+  }
+  md << "Each cell of the paper's Table 1 (as transcribed in [" << reference << "](" << reference
+     << ")) beside ours ([" << cmp.table1.name << ".md](" << cmp.table1.name
+     << ".md)), each put in one class by a predicate (the class's definition opens its section "
+        "below; the outcomes and quantities are defined in [docs/design.md](../docs/design.md)). "
+        "The paper's text does not fix every choice its code made. In this report, "
+     << explained_definition() << ". Of the " << disagree
+     << " cells that disagree with the paper, a rerun explains " << explained << " and leaves "
+     << disagree - explained
+     << " unexplained; the class table of the summary counts them per class, and no parameter "
+        "is tuned to move a cell. Low-confidence transcriptions are labelled in the table. This "
+        "report does not fail CI; each cell's verdict is stored in "
+        "[`reference/regression/comparison_verdicts.csv`](../reference/regression/"
+        "comparison_verdicts.csv) and a changed verdict fails `make check` until it is "
+        "blessed (`make bless REASON=...`).\n\n";
+}
+
+// Which of our errors the cells compare with the paper's Max Error.
+std::string compared_error_text(const Comparison& cmp) {
+  std::set<ErrorAt> compared;
+  for (const auto& c : cmp.cells)
+    compared.insert(cmp.error_of(c));
+  return compared.size() > 1 ? "per case (error_at): at T, or the largest over the run"
+         : *compared.begin() == ErrorAt::T
+             ? "max error at T (`max_error`)"
+             : "max error over the run (`max_error_over_time`, chosen with --error-at or error_at)";
+}
+
+// Our dt_stable / the paper's over the cells of one method ("mpm") or of the other (GIMP).
+std::vector<double> dt_stable_ratios(const Comparison& cmp, bool mpm) {
+  AgreementCounts counts;
+  for (const auto& c : cmp.cells) {
+    if ((c.row["method"] == "mpm") == mpm) counts.add(c.v);
+  }
+  return counts.dt_stable_ratios;
+}
+
+// The agreement in numbers, and how many cells each class holds.
+// The paper's verdict of a cell ("stable", "*", or "?" when unreadable) and ours.
+std::string paper_verdict(const Cell& c) {
+  if (!c.paper || c.paper->max_error.kind == PaperValue::unreadable) return "?";
+  return c.paper->max_error.kind == PaperValue::number ? "stable" : "*";
+}
+
+// Our verdict in a few words: "stable (0.0043 A, accurate)", "meaningless" or "\* reason at step
+// n (t = ...)".
+std::string short_verdict(const ojson& row) {
+  return outcome(row) == "meaningless" ? outcome(row) : verdict(row);
+}
+
+// The verdict column of the cell table: "\*", "meaningless", or a stable run with its error over
+// time per A and accuracy class.
+std::string our_verdict(const ojson& row) {
+  const std::string o = outcome(row);
+  return o == "unstable" ? "\\*" : o == "stable" ? verdict(row) : o;
+}
+
+// How many cells have each pair of verdicts: the paper's (rows) against ours (columns).
+void verdict_table(std::ostream& md, const Comparison& cmp) {
+  std::map<std::string, std::map<std::string, int>> n;
+  for (const auto& c : cmp.cells)
+    ++n[paper_verdict(c)][outcome(c.row)];
+  md << "| cells by verdict | ours stable | ours meaningless | ours unstable (`*`) |\n"
+        "|---|---|---|---|\n";
+  for (const char* p : {"stable", "*", "?"}) {
+    if (!n.count(p)) continue;
+    const std::string name = std::string(p) == "*"   ? "paper unstable (`*`)"
+                             : std::string(p) == "?" ? "paper unreadable"
+                                                     : "paper stable";
+    md << "| " << name << " | " << n[p]["stable"] << " | " << n[p]["meaningless"] << " | "
+       << n[p]["unstable"] << " |\n";
+  }
+  md << "\nA cell's stability verdicts are the same on the diagonal of this table only: a "
+        "meaningless run (it reached T, but its error over time reached A) matches neither of "
+        "the paper's verdicts.\n\n";
+}
+
+void summary(std::ostream& md, const Comparison& cmp, const FigureSections& figures) {
+  AgreementCounts all;
+  for (const auto& c : cmp.cells)
+    all.add(c.v);
+  md << "## Summary\n\n"
+     << "| | |\n|---|---|\n"
+     << "| cells | " << cmp.cells.size() << " (" << cmp.count("unreadable")
+     << " with an unreadable paper value) |\n"
+     << "| stability verdicts agreeing | " << all.verdicts_agree << " of " << all.verdicts_compared
+     << " |\n"
+     << "| ours meaningless (agreeing with neither verdict) | " << all.meaningless << " of "
+     << all.verdicts_compared << " |\n"
+     << "| max errors within a factor " << agreement_factor() << " (both stable) | "
+     << all.errors_within << " of " << all.errors_compared << " |\n"
+     << "| our error compared with the paper's Max Error | " << compared_error_text(cmp) << " |\n"
+     << "| our dt_stable / paper's, MPM | " << distribution(dt_stable_ratios(cmp, true)) << " |\n"
+     << "| our dt_stable / paper's, GIMP | " << distribution(dt_stable_ratios(cmp, false))
+     << " |\n";
+  if (!figures.classes.empty()) {
+    md << "| Figs. 1-3, class of each ([below](#figures)) | ";
+    for (std::size_t i = 0; i < figures.classes.size(); ++i) {
+      const auto& [fig, cls] = figures.classes[i];
+      md << (i ? "; " : "") << "[" << fig << "](#" << fig << "): " << cls;
+    }
+    md << " |\n";
+  }
+  md << "\n";
+  verdict_table(md, cmp);
+  md << "Per class, its cells and, for a class of disagreement, how many of them a rerun "
+        "explains (the rule is in the introduction) and how many the walls experiment reruns at "
+        "all:\n\n| class | cells | explained by a rerun | unexplained | rerun |\n"
+        "|---|---|---|---|---|\n";
+  for (const auto& k : comparison_classes()) {
+    md << "| [" << k.title << "](#" << k.id << ") | " << cmp.count(k.id) << " | ";
+    if (disagreeing(k.id)) {
+      const Explained e = explained_in(cmp, k.id);
+      md << e.explained << " of " << e.cells << " | " << e.cells - e.explained << " | " << e.rerun
+         << " of " << e.cells << " |\n";
+    } else {
+      md << "– | – | – |\n";
+    }
+  }
+  md << "\n";
+}
+
+// Every cell: the paper's dt_stable and max error beside ours, the ratios, verdict and class.
+void cell_table(std::ostream& md, const Comparison& cmp) {
+  md << "## The cells\n\nRatios are ours / paper. `*`: unstable; meaningless: reached T, but "
+        "the error over time reached A (its errors are shown, not compared). Confidence: of the "
+        "transcription.\n\n"
+        "Each cell is placed in the coordinates that fix a run: c dt/h, A/h and the wave passes "
+        "c T (E and T enter only through c T).\n\n"
+        "| E | A | dt | method | c dt/h | A/h | c T | verdict paper | ours | dt_stable paper | "
+        "ours "
+        "| ratio | max error paper | ours | ratio | verdict | class | confidence |\n"
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const auto& c : cmp.cells) {
+    const auto& p = c.spec->params;
+    const ojson& r = c.row;
+    const auto error = compared_error(r, cmp.error_of(c));
+    const bool stable = survived(r);
+    const std::string pv = paper_verdict(c);
+    md << "| " << shortest(p.E) << " | " << shortest(p.A) << " | " << param(p.dt)
+       << (c.spec->dt_inferred ? " (inferred)" : "") << " | " << to_string(p.method) << " | "
+       << sci(r["courant"].get<double>()) << " | " << significant(amplitude_per_cell(p), 3) << " | "
+       << significant(wave_passes(p), 3) << " | " << (pv == "*" ? "\\*" : pv) << " | "
+       << our_verdict(r) << " | " << (c.paper ? show(c.paper->dt_stable) : "–") << " | "
+       << (stable ? opt_sci(r["dt_stable_min"]) : "\\*") << " | "
+       << (c.v.dt_stable_ratio ? ratio(*c.v.dt_stable_ratio) : "–") << " | "
+       << (c.paper ? show(c.paper->max_error) : "–") << " | "
+       << (stable ? (error ? sci(*error) : std::string("–")) : "\\*") << " | "
+       << (c.v.error_ratio
+               ? beside_thresholds(*c.v.error_ratio, {kAgreementFactor, 1 / kAgreementFactor})
+               : "–")
+       << " | " << c.v.verdict << " | [" << c.v.cls << "](#" << c.v.cls << ") | "
+       << (c.paper ? (c.paper->confidence == "high" ? "high" : "**" + c.paper->confidence + "**")
+                   : "–")
+       << " |\n";
+  }
+  md << "\n## Classes of disagreement\n\n";
+}
+
+// ---- comparison.md: the sections of the classes of disagreement.
+
+// A class's heading (its anchor is the class id the tables link to), its cell count and its
+// definition.
+void class_heading(std::ostream& md, const Comparison& cmp, const std::string& id) {
+  if (const ComparisonClass* k = find_class(id)) {
+    md << "<a id=\"" << id << "\"></a>\n### " << k->title << " (" << cmp.count(id) << ")\n\n"
+       << "**Definition** (`" << id << "`): " << k->definition << "\n\n";
+  }
+}
+
+// The heading of a class section, its cells, how many of them a rerun explains, and where the
+// variants study (in the studies tier, which this report does not read) runs them under each
+// implementation choice.
+void class_opening(std::ostream& md, const Comparison& cmp, const std::string& id) {
+  class_heading(md, cmp, id);
+  const std::string cells = cell_list(cmp, id);
+  md << "Cells (" << cmp.count(id) << ")" << (cells.empty() ? "" : ": " + cells) << ".\n\n";
+  if (cmp.count(id) > 0) {
+    const Explained e = explained_in(cmp, id);
+    md << "**Explained by a rerun:** " << e.explained << " of " << e.cells << " ("
+       << e.cells - e.explained << " unexplained; the walls experiment reruns " << e.rerun << " of "
+       << e.cells << " with periodic boundaries)";
+    std::string listed;
+    for (const Cell* c : cmp.in_class(id))
+      if (c->explained()) listed += (listed.empty() ? "" : "; ") + cell_name(*c);
+    md << (listed.empty() ? std::string(".") : ": " + listed + ".") << "\n\n";
+  }
+  const std::string anchor = "variants.md#" + id;
+  md << "**Implementation choices:** these cells under each documented choice, changed alone "
+        "and in pairs, are in the studies tier (`make studies`): ["
+     << anchor << "](" << anchor << ").\n\n";
+}
+
+void not_run(std::ostream& md, const char* name) {
+  md << "*The supporting experiment `" << name << "` has not been run: `make reproduce` runs "
+     << "it.*\n\n";
+}
+
+// The courant scan: per Courant number, how many values of E reach T, per method and amplitude.
+void courant_scan_table(std::ostream& md, const Comparison& cmp) {
+  // Courant -> (method, A) -> survived, runs
+  std::map<Key, std::map<std::pair<std::string, Key>, std::pair<int, int>>> by_c;
+  std::set<std::pair<std::string, Key>> groups;
+  std::int64_t worst_step = 0;
+  int above_failed = 0, above_survived = 0;
+  double above_survivor_ratio = 0;  // the largest c dt/h over the limit of a scan run reaching T
+  for (const auto& r : cmp.rows("courant")) {
+    const double c = scan_courant(r);
+    const auto g = std::make_pair(r["method"].get<std::string>(), Key(r["A"].get<double>(), "A"));
+    groups.insert(g);
+    auto& [ok, n] = by_c[Key(c, "c dt/h")][g];
+    ++n;
+    if (survived(r)) ++ok;
+    const bool above = has_number(r, "courant_spectral") && c > r["courant_spectral"].get<double>();
+    if (above && outcome(r) == "unstable") {
+      ++above_failed;
+      worst_step = std::max(worst_step, r["failure_step"].get<std::int64_t>());
+    }
+    if (above && survived(r)) {
+      ++above_survived;
+      above_survivor_ratio = std::max(
+          above_survivor_ratio, r["courant"].get<double>() / r["courant_spectral"].get<double>());
+    }
+  }
+  md << "**Experiment** ([courant.md](courant.md)): each E of Table 1 for each method and A, "
+        "dt = C h / c. Runs reaching T out of the "
+     << table1_E_count(cmp.rows("courant")) << " values of E:\n\n| c dt/h |";
+  for (const auto& g : groups)
+    md << " " << g.first << " A=" << shortest(g.second) << " |";
+  md << "\n|---|";
+  for (std::size_t k = 0; k < groups.size(); ++k)
+    md << "---|";
+  md << "\n";
+  for (const auto& [c, per] : by_c) {
+    md << "| " << shortest(c) << " |";
+    for (const auto& g : groups)
+      md << " " << per.at(g).first << " |";
+    md << "\n";
+  }
+  md << "\nOf the scan's runs above their scheme's spectral limit, " << above_failed
+     << " fail, the last of them at step " << worst_step << ", and " << above_survived
+     << " reach T";
+  if (above_survived > 0) {
+    md << ", at a c dt / h of at most " << fixed(above_survivor_ratio, 3)
+       << " times the limit: for a run of this length the scan's survival edge can lie above "
+          "the limit";
+  }
+  md << ". The Table 1 cells run above the limit, and how many of them fail here, are counted "
+        "by the first conclusion above.\n\n";
+}
+
+// Paper stable (its run goes on) where ours fails above the scheme's spectral limit.
+void above_spectral_limit_section(std::ostream& md, const Comparison& cmp) {
+  class_opening(md, cmp, "above-spectral-limit");
+  md << "Linearised about rest, the step of each scheme amplifies some mode above its spectral "
+        "limit (spectral.md; USL with FLIP at the paper's "
+     << shortest(cmp.cells.empty() ? 0.0 : cmp.cells.front().row["ppc"].get<double>())
+     << " particles per cell: the limit on each record, in the table above). For this problem E "
+        "and dt enter the discrete "
+        "dynamics only through c dt / h and the run length c T (the manufactured solution and "
+        "the scheme are invariant when t is scaled by c): at a fixed T a larger E is the same "
+        "Courant number run for more wave passes, so an outcome at one C can change with E, "
+        "and the scan runs each E of Table 1. ";
+  if (cmp.have("courant")) {
+    courant_scan_table(md, cmp);
+  } else {
+    not_run(md, "courant");
+  }
+}
+
+// Paper stable (its run goes on) where ours fails at or below the spectral limit but at or above
+// the scan's edge for its method and amplitude.
+void above_our_edge_section(std::ostream& md, const Comparison& cmp) {
+  class_opening(md, cmp, "above-our-edge");
+  if (!cmp.have("courant")) {
+    not_run(md, "courant");
+    return;
+  }
+  const std::map<std::string, double> limit = spectral_limits(cmp);
+  md << "The scan's edges per method and A, and their ratio to the scheme's spectral limit "
+        "(below an edge runs can fail too; courant.md gives per case where survival stops): ";
+  bool first = true;
+  int edges = 0, above = 0;
+  for (const auto& [k, c] : cmp.edges) {
+    md << (first ? "" : ", ") << k.first << " A=" << shortest(k.second) << ": "
+       << (std::isfinite(c) ? shortest(c) : std::string("no edge in the scan"));
+    const auto l = limit.find(k.first);
+    if (std::isfinite(c) && l != limit.end()) {
+      md << " (" << fixed(c / l->second, 3) << "x)";
+      ++edges;
+      above += c > l->second;
+    }
+    first = false;
+  }
+  md << "). " << above << " of " << edges
+     << " of these edges lie above the spectral limit; a cell failing above the limit is in the "
+        "previous class whatever the edge.\n\n";
+}
+
+// GIMP runs ending with a particle pushed out through a wall: the walls experiment reruns them
+// with periodic boundaries.
+void gimp_wall_exit_section(std::ostream& md, const Comparison& cmp) {
+  class_opening(md, cmp, "gimp-wall-exit");
+  if (!cmp.have("walls")) {
+    not_run(md, "walls");
+    return;
+  }
+  int reached = 0, n = 0, meaningless = 0;
+  std::vector<double> paper_rel, amplitudes, in_cells, moduli, rerun_dt;
+  for (const Cell* c : cmp.in_class("gimp-wall-exit")) {
+    const RunParams& p = c->spec->params;
+    amplitudes.push_back(p.A);
+    in_cells.push_back(p.A * p.cells);
+    moduli.push_back(p.E);
+    if (c->paper && c->paper->max_error.kind == PaperValue::number) {
+      paper_rel.push_back(c->paper->max_error.value / p.A);
+    }
+    if (const ojson* r = periodic_run(cmp, *c)) {
+      ++n;
+      reached += survived(*r);
+      meaningless += outcome(*r) == "meaningless";
+      rerun_dt.push_back(p.dt);
+    }
+  }
+  md << "Their amplitudes: A = " << listing(amplitudes) << " (A/h = " << listing(in_cells)
+     << ": displacements of that many cells), at E = " << listing(moduli)
+     << ". The paper's own max errors for them are " << distribution(paper_rel)
+     << " times A (by this project's classes, docs/design.md \"Accuracy classes\", applied to "
+        "its error at T: "
+     << std::count_if(paper_rel.begin(), paper_rel.end(), [](double x) { return x >= 1; })
+     << " meaningless, "
+     << std::count_if(paper_rel.begin(), paper_rel.end(),
+                      [](double x) { return x >= kAccurateFraction && x < 1; })
+     << " inaccurate, "
+     << std::count_if(paper_rel.begin(), paper_rel.end(),
+                      [](double x) { return x < kAccurateFraction; })
+     << " accurate; the paper gives no error over time). "
+        "**Experiment** ([walls.md](walls.md)): the same cells with periodic boundaries, "
+     << n << " of " << cmp.count("gimp-wall-exit") << " (dt = " << listing(rerun_dt)
+     << "): " << reached << " of " << n << " reach T, " << meaningless << " of those with an error "
+     << "over time of at least A (meaningless, so not agreeing with the paper). With Dirichlet "
+        "walls our GIMP drops the weight of the nodes beyond a wall (the design's default); the "
+        "periodic reruns have no wall.\n\n";
+}
+
+// MPM failing inside the domain, at or below the spectral limit and below the scan's edge: what
+// the runs record of each failure, and their reruns with periodic boundaries.
+void mpm_crossing_failure_section(std::ostream& md, const Comparison& cmp) {
+  class_opening(md, cmp, "mpm-crossing-failure");
+  const auto& cells = cmp.in_class("mpm-crossing-failure");
+  if (cells.empty()) return;
+  md << "What our runs record of each failure, and the rerun with periodic boundaries "
+        "([walls.md](walls.md)); the Table 1 runs do not record grid crossings of a run that "
+        "fails, and the crossing experiment of the next class does not rerun these cells.\n\n"
+        "| cell | c dt/h | failure | at t / T | error over time / A before it | with periodic "
+        "boundaries |\n|---|---|---|---|---|---|\n";
+  for (const Cell* c : cells) {
+    const ojson& r = c->row;
+    const ojson* periodic = periodic_run(cmp, *c);
+    md << "| " << cell_name(*c) << " | " << sci(r["courant"].get<double>()) << " | "
+       << text(r, "failure_reason") << " | "
+       << (has_number(r, "failure_time")
+               ? ratio(r["failure_time"].get<double>() / r["T"].get<double>())
+               : std::string("–"))
+       << " | "
+       << (has_number(r, "max_error_over_time")
+               ? ratio(r["max_error_over_time"].get<double>() / r["A"].get<double>())
+               : std::string("–"))
+       << " | " << (periodic ? short_verdict(*periodic) : std::string("not rerun")) << " |\n";
+  }
+  md << "\n";
+}
+
+// The crossing experiment: MPM's and GIMP's error over time per E and amplitude.
+void crossing_table(std::ostream& md, const Comparison& cmp) {
+  md << "Linear MPM's shape-function gradient jumps when a particle crosses a cell boundary "
+        "(the grid-crossing error of the literature); GIMP's weights are C1 and their gradient "
+        "does not jump. The experiment measures the error against the number of crossings, not "
+        "the force at a crossing. "
+        "**Experiment** ([crossing.md](crossing.md)): E = "
+     << listing(cmp.rows("crossing"), "E") << ", dt = " << listing(cmp.rows("crossing"), "dt")
+     << ", amplitude " << span(numbers(cmp.rows("crossing"), "A"))
+     << ".\n\n| E | A | crossings MPM | MPM error over time / A | GIMP error over time / A |\n"
+        "|---|---|---|---|---|\n";
+  const Rows& rows = cmp.rows("crossing");
+  auto rel = [](const ojson& x) {
+    return survived(x) ? ratio(x["max_error_over_time"].get<double>() / x["A"].get<double>())
+                       : "\\* " + x["failure_reason"].get<std::string>();
+  };
+  for (const auto& r : rows) {
+    if (r["method"] != "mpm") continue;
+    const ojson* g = nullptr;
+    for (const auto& q : rows) {
+      if (q["method"] == "gimp" && q["E"] == r["E"] && q["A"] == r["A"]) g = &q;
+    }
+    md << "| " << shortest(r["E"].get<double>()) << " | " << shortest(r["A"].get<double>()) << " | "
+       << (r["crossings"].is_null() ? std::string("–") : r["crossings"].dump()) << " | " << rel(r)
+       << " | " << (g ? rel(*g) : "–") << " |\n";
+  }
+}
+
+// The stable runs at the crossing experiment's smallest E that the summary quotes: per method
+// the smallest amplitude, and MPM's smallest amplitude with crossings.
+struct CalmAndCrossing {
+  const ojson* calm_mpm = nullptr;
+  const ojson* calm_gimp = nullptr;
+  const ojson* crossing_mpm = nullptr;
+};
+
+CalmAndCrossing calm_and_crossing(const Rows& crossing) {
+  CalmAndCrossing runs;
+  double smallest_E = std::numeric_limits<double>::infinity();
+  for (const auto& r : crossing)
+    smallest_E = std::min(smallest_E, r["E"].get<double>());
+  for (const auto& r : crossing) {
+    if (r["E"].get<double>() != smallest_E || !survived(r)) continue;
+    const bool mpm = r["method"] == "mpm";
+    const ojson*& calm = mpm ? runs.calm_mpm : runs.calm_gimp;
+    if (!calm || r["A"].get<double>() < (*calm)["A"].get<double>()) calm = &r;
+    if (mpm && r["crossings"].is_number() && r["crossings"].get<std::int64_t>() > 0 &&
+        (!runs.crossing_mpm || r["A"].get<double>() < (*runs.crossing_mpm)["A"].get<double>())) {
+      runs.crossing_mpm = &r;
+    }
+  }
+  return runs;
+}
+
+// Our MPM errors in this class and the paper's, against the crossing runs with and without
+// crossings: the paper's MPM column sits at the level of runs without crossings.
+void crossing_summary(std::ostream& md, const Comparison& cmp) {
+  std::vector<double> paper_rel, ours_rel;
+  const Cell* widest = nullptr;  // the cell of the class with the largest ours / paper
+  for (const Cell* c : cmp.in_class("mpm-error-larger")) {
+    paper_rel.push_back(c->paper->max_error.value / c->spec->params.A);
+    ours_rel.push_back(*compared_error(c->row, cmp.error_of(*c)) / c->spec->params.A);
+    if (!widest || *c->v.error_ratio > *widest->v.error_ratio) widest = c;
+  }
+  const CalmAndCrossing runs = calm_and_crossing(cmp.rows("crossing"));
+  // Every error here is the error at T, the paper's measure (its error over time is not
+  // published), per A.
+  auto at_T = [](const ojson* r) -> std::optional<double> {
+    if (!r || !has_number(*r, "max_error")) return std::nullopt;
+    return (*r)["max_error"].get<double>() / (*r)["A"].get<double>();
+  };
+  auto rel = [&](const ojson* r) {
+    const auto e = at_T(r);
+    return e ? ratio(*e) : std::string("–");
+  };
+  auto crossings = [](const ojson* r) {
+    return r && (*r)["crossings"].is_number() ? (*r)["crossings"].dump() : std::string("–");
+  };
+  md << "\nErrors at T per A, the paper's measure. At E = "
+     << (runs.calm_mpm ? shortest((*runs.calm_mpm)["E"].get<double>()) : "–")
+     << " and the smallest amplitude (" << crossings(runs.calm_mpm) << " crossings) MPM's is "
+     << rel(runs.calm_mpm) << " and GIMP's " << rel(runs.calm_gimp)
+     << "; at the first amplitude with crossings MPM's is " << rel(runs.crossing_mpm)
+     << ". In the cells of this class ours are " << distribution(ours_rel) << ", the paper's "
+     << distribution(paper_rel);
+  const auto calm = at_T(runs.calm_mpm), crossed = at_T(runs.crossing_mpm);
+  if (!paper_rel.empty() && calm && crossed && *calm > 0 && *crossed > 0) {
+    const double median = quantile(paper_rel, 0.5);
+    md << "; the paper's median is " << ratio(median / *calm)
+       << " times our MPM run without crossings and " << ratio(median / *crossed)
+       << " times the one with crossings";
+  }
+  if (widest) {
+    md << " (the widest gap, " << cell_name(*widest) << ": ours "
+       << sci(*compared_error(widest->row, cmp.error_of(*widest))) << ", the paper's "
+       << show(widest->paper->max_error) << ")";
+  }
+  md << ".\n\n";
+}
+
+// The MPM failures of the crossing-failure class rerun with periodic boundaries: how many reach T.
+// Closes the section of the next class.
+void periodic_mpm_failures(std::ostream& md, const Comparison& cmp) {
+  if (!cmp.have("walls")) return;
+  int reached = 0, n = 0;
+  for (const Cell* c : cmp.in_class("mpm-crossing-failure")) {
+    if (const ojson* r = periodic_run(cmp, *c)) {
+      ++n;
+      reached += survived(*r);
+    }
+  }
+  md << "With periodic boundaries ([walls.md](walls.md)), " << reached << " of " << n
+     << " of the MPM failures of the previous class that the walls experiment reruns reach "
+        "T.\n\n";
+}
+
+// MPM's max error more than 3 times the paper's: the grid-crossing error.
+void mpm_error_larger_section(std::ostream& md, const Comparison& cmp) {
+  class_opening(md, cmp, "mpm-error-larger");
+  if (cmp.have("crossing")) {
+    crossing_table(md, cmp);
+    crossing_summary(md, cmp);
+  } else {
+    not_run(md, "crossing");
+  }
+  periodic_mpm_failures(md, cmp);
+}
+
+// GIMP's max error more than 3 times the paper's: the cells the walls explain, from the same cells
+// rerun with periodic boundaries.
+void gimp_error_larger_section(std::ostream& md, const Comparison& cmp) {
+  class_opening(md, cmp, "gimp-error-larger");
+  if (!cmp.have("walls")) {
+    not_run(md, "walls");
+    return;
+  }
+  std::vector<double> dirichlet, periodic;
+  std::string helped;
+  int meaningless = 0, within = 0;
+  for (const Cell* c : cmp.in_class("gimp-error-larger")) {
+    const ojson* r = periodic_run(cmp, *c);
+    if (r && outcome(*r) == "meaningless") ++meaningless;
+    const bool stable = r && outcome(*r) == "stable";
+    const auto periodic_error = stable ? compared_error(*r, cmp.error_of(*c)) : std::nullopt;
+    if (!periodic_error) continue;
+    const double ours = *periodic_error;
+    dirichlet.push_back(*c->v.error_ratio);
+    periodic.push_back(ours / c->paper->max_error.value);
+    if (within_agreement_factor(ours, c->paper->max_error.value)) {
+      ++within;
+      helped += (helped.empty() ? "" : "; ") + cell_name(*c);
+    }
+  }
+  md << "Near a Dirichlet wall our GIMP keeps only the nodes inside the domain, so a particle "
+        "whose "
+        "support reaches past the wall loses part of its weight (the design's default). "
+        "**Experiment** ([walls.md](walls.md)): the cells of this class that the walls experiment "
+        "holds, rerun with periodic boundaries: ours / paper goes from "
+     << distribution(dirichlet) << " to " << distribution(periodic)
+     << " over the periodic runs that are stable (" << meaningless
+     << " meaningless, not compared). Within a factor " << agreement_factor()
+     << " with periodic boundaries: " << within << " of " << dirichlet.size()
+     << (helped.empty() ? std::string() : " (" + helped + ")")
+     << ". Those are the cells of this class the walls experiment explains; the other cells of "
+        "the class are not explained here. What the other documented implementation choices "
+        "(position update, velocity transfer, stress-update order and the others) do to this "
+        "class is in the variants study (linked above).\n\n";
+}
+
+// Our runs that reached T with an error over time of at least A: a class of their own, never
+// counted as agreeing with either of the paper's verdicts.
+void ours_meaningless_section(std::ostream& md, const Comparison& cmp) {
+  class_opening(md, cmp, "ours-meaningless");
+  const auto& cells = cmp.in_class("ours-meaningless");
+  if (cells.empty()) return;
+  md << "These runs reached T, but at some step their error was at least the amplitude A of "
+        "the solution: their answer is meaningless, so the cell matches neither of the paper's "
+        "verdicts, whatever its error at T.\n\n"
+        "| cell | paper max error | ours at T | ours over time / A | with periodic boundaries "
+        "([walls.md](walls.md)) |\n|---|---|---|---|---|\n";
+  int mpm = 0;
+  for (const Cell* c : cells) {
+    const ojson& r = c->row;
+    mpm += r["method"] == "mpm";
+    const ojson* periodic = cmp.have("walls") ? periodic_run(cmp, *c) : nullptr;
+    md << "| " << cell_name(*c) << " | " << (c->paper ? show(c->paper->max_error) : "–") << " | "
+       << opt_sci(r["max_error"]) << " | "
+       << (r["max_error_over_time"].is_number()
+               ? ratio(r["max_error_over_time"].get<double>() / r["A"].get<double>())
+               : std::string("–"))
+       << " | " << (periodic ? short_verdict(*periodic) : std::string("–")) << " |\n";
+  }
+  md << "\n"
+     << mpm << " of " << cells.size()
+     << " of these cells are MPM cells; the crossing experiment of the [MPM error "
+        "class](#mpm-error-larger) measures MPM's error over time against amplitude and "
+        "crossings, not these cells.\n\n";
+}
+
+// The remaining failures: each at a Courant number where the scan is on the edge for its
+// method and amplitude.
+void other_failure_section(std::ostream& md, const Comparison& cmp) {
+  class_opening(md, cmp, "other-failure");
+  if (!cmp.have("courant") || cmp.in_class("other-failure").empty()) return;
+  md << "Per cell, how many runs of the scan ([courant.md](courant.md)) of the same method and "
+        "amplitude reach T at its Courant number.\n\n| cell | c dt/h | its failure | scan runs "
+        "reaching T at that c dt/h |\n"
+        "|---|---|---|---|\n";
+  for (const Cell* c : cmp.in_class("other-failure")) {
+    const double cr = scan_courant(c->row);
+    int ok = 0, n = 0;
+    for (const auto& r : cmp.rows("courant")) {
+      if (r["method"] != c->row["method"] || r["A"] != c->row["A"] || scan_courant(r) != cr) {
+        continue;
+      }
+      ++n;
+      ok += survived(r);
+    }
+    md << "| " << cell_name(*c) << " | " << shortest(cr) << " | " << verdict(c->row) << " | "
+       << (n ? std::to_string(ok) + " of " + std::to_string(n) : std::string("not scanned"))
+       << " |\n";
+  }
+  md << "\n";
+}
+
+// Our eq. (108) bound / the paper's dt_stable under each reading of the eq108 experiment, by
+// method, over the stable runs of Table 1 cells whose paper dt_stable is a number.
+std::map<std::string, std::map<std::string, std::vector<double>>> eq108_ratios(
+    const Comparison& cmp) {
+  std::map<std::string, std::map<std::string, std::vector<double>>> per_option;
+  for (const auto& r : cmp.rows("eq108")) {
+    if (!r["dt_stable_min"].is_number() || outcome(r) != "stable") continue;
+    for (const auto& c : cmp.cells) {
+      if (!same_cell(r, *c.spec) || !c.paper || c.paper->dt_stable.kind != PaperValue::number) {
+        continue;
+      }
+      const std::string option = "sigma " + r["dt_stable_sigma"].get<std::string>() + ", ||v|| " +
+                                 r["dt_stable_vnorm"].get<std::string>();
+      per_option[option][r["method"].get<std::string>()].push_back(
+          r["dt_stable_min"].get<double>() / c.paper->dt_stable.value);
+    }
+  }
+  return per_option;
+}
+
+// Our dt_stable against the paper's in the cells where ours is stable, and the readings of
+// eq. (108) that the eq108 experiment tries.
+void dt_stable_section(std::ostream& md, const Comparison& cmp) {
+  const std::vector<double> mpm = dt_stable_ratios(cmp, true), gimp = dt_stable_ratios(cmp, false);
+  const auto smaller = std::count_if(mpm.begin(), mpm.end(), [](double x) { return x < 1; }) +
+                       std::count_if(gimp.begin(), gimp.end(), [](double x) { return x < 1; });
+  md << "<a id=\"dt-stable\"></a>\n### dt_stable: ours against the paper's\n\n"
+        "Over the cells where the paper gives a dt_stable and our run is stable (reached T with "
+        "an error over time below A; the cell table gives its error over time per A and its "
+        "accuracy class), our eq. (108) bound is "
+        "smaller than the paper's in "
+     << smaller << " of " << mpm.size() + gimp.size() << ": ours / paper is " << distribution(mpm)
+     << " for MPM and " << distribution(gimp) << " for GIMP. ";
+  if (!cmp.have("eq108")) {
+    not_run(md, "eq108");
+    return;
+  }
+  const Rows& eq108 = cmp.rows("eq108");
+  md << "**Experiment** ([eq108.md](eq108.md)): the cells at dt = " << listing(eq108, "dt")
+     << " under the four readings of the two ambiguities of eq. (108), stress divided by "
+        "sqrt(E) or not and the Euclidean or maximum norm of the nodal velocity. Ours / paper "
+        "per reading:\n\n| reading | MPM | GIMP |\n|---|---|---|\n";
+  double largest = 0, widest_mpm_spread = 0;
+  std::size_t mpm_cells = 0;
+  for (auto& [option, by_method] : eq108_ratios(cmp)) {
+    md << "| " << option << " | " << distribution(by_method["mpm"]) << " | "
+       << distribution(by_method["gimp"]) << " |\n";
+    for (const auto& [method, v] : by_method)
+      for (double x : v)
+        largest = std::max(largest, x);
+    const auto& m = by_method["mpm"];
+    mpm_cells = std::max(mpm_cells, m.size());
+    if (!m.empty()) {
+      const auto [lo, hi] = std::minmax_element(m.begin(), m.end(), TotalLess());
+      widest_mpm_spread = std::max(widest_mpm_spread, *hi / *lo);
+    }
+  }
+  md << "\nThe largest ratio under any reading is " << ratio(largest)
+     << (largest < 1 ? " (under each reading our bound is the smaller in each cell compared). "
+                     : " (under some reading our bound is at least the paper's in some cell). ")
+     << "Under each reading MPM's ratio varies by at most a factor " << ratio(widest_mpm_spread)
+     << " over the " << mpm_cells
+     << " MPM cells compared (eq108.md lists them; GIMP's spread is in the table). The paper's "
+        "text does not say where the difference from the printed eq. (108) comes from; we keep "
+        "the printed formula and its documented default reading.\n\n";
+}
+
+// Cells whose paper value is missing from the transcription, and where the transcription's
+// evidence is.
+void unreadable_section(std::ostream& md, const Comparison& cmp) {
+  class_heading(md, cmp, "unreadable");
+  md << "Cells: " << cell_list(cmp, "unreadable")
+     << ". Their paper values are missing from the text copy "
+        "of the paper; see the evidence column of the transcription.\n\n";
+  const std::string reference = link(cmp.out, cmp.table1.reference);
+  md << "Paper values marked **medium** or **low** are transcriptions with the evidence in ["
+     << reference << "](" << reference << "); they are compared like the others but labelled.\n";
+}
+
+// comparison.md: the summary, every cell, then the classes of disagreement in the order of
+// comparison_classes(), with the dt_stable gap before the unreadable cells, then the figures.
+// The comparison's conclusions, each decided by the cells.
+std::vector<Claim> comparison_claims(const Comparison& cmp) {
+  std::vector<Claim> claims;
+  int above = 0, above_fail = 0;
+  std::map<std::string, std::vector<double>> paper_dt_stable;  // method -> c dt_stable / h
+  const std::map<std::string, double> limit = spectral_limits(cmp);
+  int sensitive = 0, sensitive_paper_stable = 0, rerun = 0;
+  for (std::size_t i = 0; i < cmp.cells.size(); ++i) {
+    const Cell& c = cmp.cells[i];
+    const ojson& r = c.row;
+    if (!has_number(r, "courant_spectral")) continue;
+    const double lim = r["courant_spectral"].get<double>();
+    const std::string m = r["method"].get<std::string>();
+    if (r["courant"].get<double>() > lim) {
+      ++above;
+      above_fail += outcome(r) == "unstable";
+    }
+    if (c.paper && c.paper->dt_stable.kind == PaperValue::number) {
+      paper_dt_stable[m].push_back(c.paper->dt_stable.value * std::sqrt(r["E"].get<double>()) *
+                                   r["cells"].get<double>());
+    }
+    if (cmp.ensemble && i < cmp.ensemble->size() && (*cmp.ensemble)[i].is_object() &&
+        number_or_zero((*cmp.ensemble)[i], "members") > 0)
+      ++rerun;
+    if (cmp.ensemble && i < cmp.ensemble->size() && (*cmp.ensemble)[i]["sensitive"] == true) {
+      ++sensitive;
+      sensitive_paper_stable += c.paper && c.paper->max_error.kind == PaperValue::number;
+    }
+  }
+  Claim a = claim("above-limit-fails",
+                  "Every Table 1 cell run above its scheme's spectral limit fails here",
+                  "{fail} of {above} such cells fail");
+  a.every("fail", above_fail, "above", above);
+  claims.push_back(a);
+  for (const auto& [m, v] : paper_dt_stable) {
+    const double lo = *std::min_element(v.begin(), v.end(), TotalLess());
+    const double hi = *std::max_element(v.begin(), v.end(), TotalLess());
+    const double lim = limit.at(m);  // a structured binding is not captured (clang 14)
+    const auto below = std::count_if(v.begin(), v.end(), [lim](double x) { return x <= lim; });
+    Claim b = claim("paper-dt-stable-vs-limit-" + m,
+                    "Every cell of the paper's dt stable column for {method}, in units of h/c, "
+                    "lies at or below the scheme's spectral limit",
+                    "{below} of {n} cells do ({lo} to {hi} h/c against a limit of {limit})");
+    b.value("method", m)
+        .count("below", static_cast<long long>(below))
+        .number("lo", lo, 3)
+        .number("hi", hi, 3)
+        .count("n", static_cast<long long>(v.size()))
+        .number("limit", limit.at(m), 3);
+    b.over(static_cast<long long>(v.size()));
+    b.holds = below == static_cast<long long>(v.size());
+    claims.push_back(b);
+  }
+  {
+    long long disagree = 0, explained = 0;
+    for (const auto& c : cmp.cells) {
+      if (!disagreeing(c.v.cls)) continue;
+      ++disagree;
+      explained += c.explained();
+    }
+    Claim x = claim("every-disagreement-explained",
+                    "Every Table 1 cell that disagrees with the paper is explained by a rerun of "
+                    "this report (the rerun, with one documented choice changed alone, agrees "
+                    "with the paper)",
+                    "{explained} of {cells} such cells are; {unexplained} are not");
+    x.every("explained", explained, "cells", disagree);
+    x.count("unexplained", disagree - explained);
+    claims.push_back(x);
+  }
+  if (cmp.ensemble) {
+    Claim e = claim("no-sensitive-cell",
+                    "No cell this tier reruns as an ensemble changes its verdict when its layout "
+                    "is perturbed far below the discretisation error",
+                    "{sensitive} of {rerun} cells rerun are sensitive ({paper_stable} of them "
+                    "stable in the paper); they are counted apart in table1.md; the cells near "
+                    "their edge too costly for this tier are rerun in ensembles.md (make "
+                    "studies), which this tier does not read");
+    e.count("sensitive", sensitive).count("rerun", rerun);
+    e.count("paper_stable", sensitive_paper_stable);
+    e.holds = sensitive == 0;
+    claims.push_back(e);
+  }
+  return claims;
+}
+
+void write_markdown(const Comparison& cmp, const FigureSections& figures) {
+  std::ostringstream md;
+  introduction(md, cmp);
+  md << claims_markdown(cmp.claims);
+  summary(md, cmp, figures);
+  cell_table(md, cmp);
+  above_spectral_limit_section(md, cmp);
+  above_our_edge_section(md, cmp);
+  gimp_wall_exit_section(md, cmp);
+  mpm_crossing_failure_section(md, cmp);
+  mpm_error_larger_section(md, cmp);
+  gimp_error_larger_section(md, cmp);
+  other_failure_section(md, cmp);
+  ours_meaningless_section(md, cmp);
+  class_opening(md, cmp, "error-smaller");
+  class_opening(md, cmp, "paper-unstable-ours-stable");
+  dt_stable_section(md, cmp);
+  unreadable_section(md, cmp);
+  md << "\n<a id=\"figures\"></a>\n" << figures.markdown;
+  write_if_changed(cmp.out / "comparison.md", md.str());
+}
+
+}  // namespace
+}  // namespace studies::comparison_report
+
+void write_comparison(const StudyInputs& inputs, const std::filesystem::path& out,
+                      std::optional<ErrorAt> error_at) {
+  using namespace studies::comparison_report;
+  const auto table1 = inputs.find("table1");
+  if (table1 == inputs.end() || !table1->second.spec || !table1->second.present()) {
+    const std::string name = table1 != inputs.end() && table1->second.spec
+                                 ? table1->second.spec->name
+                                 : std::string("table1");
+    throw MissingInput((out / (name + ".json")).string() + " not found: run the sweep first");
+  }
+  Comparison cmp(*table1->second.spec, out, error_at);
+  cmp.support = supporting_rows(inputs);
+  cmp.peers = study_object(inputs, "peers");
+  if (const auto p = inputs.find("peers"); p != inputs.end() && p->second.present())
+    cmp.peer_rows = case_rows(p->second.doc);
+  if (const nlohmann::ordered_json& t = table1->second.doc;
+      t.contains("study") && t["study"].contains("ensemble"))
+    cmp.ensemble = &t["study"]["ensemble"];
+  if (cmp.have("courant")) cmp.edges = courant_edges(cmp.rows("courant"));
+  compare_cells(cmp, case_rows(table1->second.doc));
+  rerun_cells(cmp);
+  // The transcription of the figures lies beside that of Table 1.
+  const std::filesystem::path figures_csv = cmp.table1.reference.parent_path() / "figures.csv";
+  std::vector<QuotedCell> quoted;
+  for (const auto& c : cmp.cells) {
+    const auto& p = c.spec->params;
+    quoted.push_back({std::string(to_string(p.method)), p.E, p.A, p.dt,
+                      c.paper ? show(c.paper->max_error) : "–", short_verdict(c.row), c.v.cls});
+  }
+  const FigureSections figures = figure_sections(read_paper_figures(figures_csv),
+                                                 link(out, figures_csv), inputs, cmp.edges, quoted);
+  cmp.claims = comparison_claims(cmp);
+  cmp.claims.insert(cmp.claims.end(), figures.claims.begin(), figures.claims.end());
+  write_claims(out, "comparison", cmp.claims, "# experiment: comparison\n");
+  write_verdicts_csv(cmp);
+  write_markdown(cmp, figures);
+}
+
+}  // namespace mpmstab

@@ -1,0 +1,255 @@
+// The Courant scan: each E and A of Table 1 and both methods at Courant numbers c dt / h over a
+// fixed list. Per case (method, A, E: A / h and c T fixed), where survival to T stops in C: the
+// largest C such that the runs at it and at each smaller C of the scan reach T (its run's outcome,
+// error over time per A and accuracy class, and how long it holds when rerun for length,
+// edge_length.hpp), the same for runs that end stable, and the C at which survival comes back
+// above a failure (not monotone).
+#include <algorithm>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <tuple>
+
+#include "base/accuracy.hpp"
+#include "claims.hpp"
+#include "csv.hpp"
+#include "key.hpp"
+#include "report_util.hpp"
+#include "shared/edge_length.hpp"
+#include "study.hpp"
+
+namespace mpmstab {
+
+namespace studies::courant {
+namespace {
+
+using ojson = nlohmann::ordered_json;
+
+// ---------------------------------------------------------------------------------------------
+// Findings
+
+// One case of the scan: its runs in increasing C, and where survival stops.
+struct Scan {
+  std::string method;
+  double A = 0, E = 0;
+  std::vector<std::size_t> runs;        // row indices, increasing C
+  std::optional<std::size_t> survives;  // the run at the largest C up to which all survive
+  std::optional<std::size_t> stable;    // the run at the largest C up to which all are stable
+  std::vector<double> comes_back;       // C that survive above a C that failed
+  bool any_survives = false;            // some C of the scan reaches T
+};
+
+std::vector<Scan> scans(const std::vector<ojson>& rows) {
+  std::map<std::tuple<std::string, Key, Key>, Scan> by;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const ojson& r = rows[i];
+    const auto key = std::make_tuple(text(r, "method"), Key(r["A"].get<double>(), "A"),
+                                     Key(r["E"].get<double>(), "E"));
+    Scan& s = by[key];
+    s.method = text(r, "method");
+    s.A = r["A"].get<double>();
+    s.E = r["E"].get<double>();
+    s.runs.push_back(i);
+  }
+  std::vector<Scan> out;
+  for (auto& [key, s] : by) {
+    std::stable_sort(s.runs.begin(), s.runs.end(), [&](std::size_t a, std::size_t b) {
+      return TotalLess()(rows[a]["courant"].get<double>(), rows[b]["courant"].get<double>());
+    });
+    bool all_survive = true, all_stable = true, failed = false;
+    for (const std::size_t i : s.runs) {
+      const bool survives = survived(rows[i]);
+      all_survive = all_survive && survives;
+      all_stable = all_stable && outcome(rows[i]) == "stable";
+      if (all_survive) s.survives = i;
+      if (all_stable) s.stable = i;
+      if (survives && failed) s.comes_back.push_back(rows[i]["courant"].get<double>());
+      s.any_survives = s.any_survives || survives;
+      failed = failed || !survives;
+    }
+    out.push_back(std::move(s));
+  }
+  return out;
+}
+
+// The rows whose run is a survival edge of the scan (a C up to which every run survives, with
+// a failure above it), in row order: the runs rerun for length.
+std::vector<std::size_t> edge_rows(const std::vector<ojson>& rows) {
+  std::vector<std::size_t> out;
+  for (const Scan& s : scans(rows))
+    if (s.survives && *s.survives != s.runs.back()) out.push_back(*s.survives);
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// An edge row as edge_length reads it: its own dt as dt_edge.
+ojson as_edge(const ojson& r) {
+  ojson e = r;
+  e["dt_edge"] = r["dt"];
+  e["dt_accurate"] = nullptr;
+  return e;
+}
+
+std::vector<RunParams> courant_follow_up(const FollowUpContext& c) {
+  std::vector<ojson> edges;
+  std::vector<CaseSpec> cases;
+  for (const std::size_t i : edge_rows(c.rows)) {
+    edges.push_back(as_edge(c.rows[i]));
+    cases.push_back(c.spec.cases.at(i));
+  }
+  return all_length_runs(edges, cases);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Claims and rendering
+
+// A Courant number of the scan (dt = C h / c was rounded to 6 digits): "0.78", "0.0625".
+std::string c_text(double C) {
+  return significant(C, 3);
+}
+
+struct Counts {
+  int cases = 0, no_survivor = 0, fail_everywhere = 0, not_monotone = 0, edges = 0,
+      edges_meaningless = 0;
+  LengthTally length_tally;
+};
+
+std::vector<Claim> courant_claims(const Counts& n) {
+  Claim some = claim("every-case-survives-somewhere",
+                     "Every case survives to T at the smallest Courant number of the scan",
+                     "{none} of {cases} cases fail at the smallest C of the scan");
+  some.count("none", n.no_survivor).count("cases", n.cases);
+  some.over(n.cases);
+  some.holds = n.no_survivor == 0;
+  Claim mono = claim("survival-monotone-in-courant",
+                     "Survival to T is monotone in C in every case: no C survives above one "
+                     "that failed",
+                     "{not_monotone} of {cases} cases survive again above a failure");
+  mono.count("not_monotone", n.not_monotone).count("cases", n.cases);
+  mono.over(n.cases);
+  mono.holds = n.not_monotone == 0;
+  const Claim length = length_claim("courant-edges-hold-for-length",
+                                    "Every survival edge of the scan survives {first}x and "
+                                    "{second}x its run length (at most {cap} wave passes)",
+                                    "{held} of {tested} do", n.length_tally);
+  return {some, mono, length};
+}
+
+// A run's outcome with its error over time per A and, for a stable run, its accuracy class
+// (core/base/accuracy.hpp): "stable (0.0043 A, accurate)", "**meaningless** (1.3 A)".
+std::string run_text(const ojson& r) {
+  const std::string o = outcome(r);
+  std::string s = o == "meaningless" ? "**meaningless**" : o;
+  if (has_number(r, "max_error_over_time")) {
+    const double e = r["max_error_over_time"].get<double>(), A = r["A"].get<double>();
+    s += " (" + significant(e / A, 2) + " A";
+    if (o == "stable") s += ", " + std::string(to_string(accuracy_class(e, A)));
+    s += ")";
+  }
+  return s;
+}
+
+StudyReport courant_report(const ReportContext& c) {
+  const auto all = scans(c.rows);
+  // The length runs, keyed by the edge rows as edge_length reads them.
+  std::vector<ojson> edges;
+  std::map<std::size_t, std::size_t> edge_of;  // row index -> index in edges
+  for (const std::size_t i : edge_rows(c.rows)) {
+    edge_of[i] = edges.size();
+    edges.push_back(as_edge(c.rows[i]));
+  }
+  std::size_t next = 0;
+  const LengthRuns lengths = read_length_runs(edges, c.follow_up, next);
+  Counts n;
+  std::ostringstream table;
+  table << "| method | A | E | A/h | c T | survives to T up to C | run there | length | stable up "
+           "to C | run there | survives again above a failure at C |\n"
+           "|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const Scan& s : all) {
+    ++n.cases;
+    const ojson& first = c.rows[s.runs.front()];
+    table << "| " << s.method << " | " << shortest(s.A) << " | " << shortest(s.E) << " | "
+          << significant(first["A_over_h"].get<double>(), 3) << " | "
+          << significant(first["cT"].get<double>(), 3) << " | ";
+    n.fail_everywhere += !s.any_survives;
+    if (!s.survives) {
+      ++n.no_survivor;
+      table << "below the scan: its smallest C, " << c_text(first["courant"].get<double>())
+            << ", fails | – | – | ";
+    } else {
+      const ojson& at = c.rows[*s.survives];
+      const bool top = *s.survives == s.runs.back();
+      table << c_text(at["courant"].get<double>()) << (top ? " (the largest C of the scan)" : "")
+            << " | " << run_text(at) << " | ";
+      if (const auto e = edge_of.find(*s.survives); e != edge_of.end()) {
+        ++n.edges;
+        n.edges_meaningless += outcome(at) == "meaningless";
+        n.length_tally.add(lasting(lengths, edges[e->second], "dt_edge"));
+        table << lasting_text(lengths, edges[e->second], "dt_edge") << " | ";
+      } else {
+        table << "– | ";
+      }
+    }
+    if (s.stable) {
+      table << c_text(c.rows[*s.stable]["courant"].get<double>()) << " | "
+            << run_text(c.rows[*s.stable]) << " | ";
+    } else {
+      table << "below the scan: its smallest C is not stable | – | ";
+    }
+    n.not_monotone += !s.comes_back.empty();
+    std::vector<std::string> back;
+    for (const double C : s.comes_back)
+      back.push_back(c_text(C));
+    table << (back.empty() ? std::string("–") : list_of(back)) << " |\n";
+  }
+  std::ostringstream md;
+  md << "## Results\n\n**Reading.** Per case (method, A and E: A / h and c T fixed): *survives "
+        "to T up to C*, the largest Courant number C of the scan such that the runs at C and at "
+        "each smaller C of the scan reach T; the run there (its outcome, its error over time per "
+        "A and, for a stable run, its accuracy class: accurate below "
+     << shortest(kAccurateFraction)
+     << " A, inaccurate below A; a meaningless run reaches T with an error over time of at "
+        "least A and answers nothing); how long that run lasts when rerun at "
+     << shortest(kLengthFactors[0]) << " and " << shortest(kLengthFactors[1])
+     << " times its wave passes (at most " << shortest(kLongPasses)
+     << "); *stable up to C*, the same with runs that reach T with an error over time below A, "
+        "and the run there; and the C that reach T above a C that failed. Of "
+     << n.cases << " cases, " << n.no_survivor << " fail at the smallest C of the scan ("
+     << n.fail_everywhere << " of them at each C of the scan) and " << n.not_monotone
+     << " reach T again above a failure; of " << n.edges
+     << " survival edges (a failure above them), " << n.edges_meaningless
+     << " are meaningless runs and " << n.length_tally.held << " of " << n.length_tally.tested
+     << " rerun for length survive each length they were rerun for.\n\n"
+     << table.str();
+  return StudyReport{.markdown = md.str(), .claims = courant_claims(n)};
+}
+
+std::string courant_index(const Spec& spec, const std::vector<ojson>& rows) {
+  int at_smallest = 0, everywhere = 0, cases = 0;
+  for (const Scan& s : scans(rows)) {
+    ++cases;
+    at_smallest += !s.survives;
+    everywhere += !s.any_survives;
+  }
+  std::ostringstream md;
+  md << "**What it shows.** Per case, the largest Courant number of the scan up to which its "
+        "runs reach T ("
+     << at_smallest << " of " << cases << " cases fail at the smallest C of the scan, "
+     << everywhere << " at each C of it), the run there and how long it lasts: [" << spec.name
+     << ".md](" << spec.name << ".md).\n\n";
+  return md.str();
+}
+
+const StudyRegistration kCourant{{
+    .name = "courant",
+    .summary = "per case, the largest Courant number up to which the scan's runs reach T",
+    .records = {.error_over_time = true},
+    .follow_up = courant_follow_up,
+    .report = courant_report,
+    .index = courant_index,
+}};
+
+}  // namespace
+}  // namespace studies::courant
+
+}  // namespace mpmstab

@@ -1,0 +1,546 @@
+// Scenes: every scene whose body lies inside a larger grid, against its exact solution, per
+// method (docs/design.md, "Scenes"): the error over time and in L2 with its cost at three
+// Courant numbers (the speed/accuracy trade), the dense spectral limit of the body with its free
+// surfaces against the interior Bloch limit of the same scheme (the bar on a periodic grid,
+// rows of this spec), the survival edge (read from the scene_edges experiment), the small-mass
+// treatments and an extremes battery. The cases say which part they belong to by what they are:
+// the bar rows are the interior limits, a small_mass other than none the treatments, c dt/h
+// above the trade's or A or T other than the scene's reference the extremes.
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "claims.hpp"
+#include "csv.hpp"
+#include "key.hpp"
+#include "report_util.hpp"
+#include "shared/by_scene.hpp"
+#include "study.hpp"
+#include "sweep.hpp"
+
+namespace mpmstab {
+
+namespace studies::scenes {
+namespace {
+
+using ojson = nlohmann::ordered_json;
+
+// The reference setting of every scene: its trade's middle Courant number and its history.
+constexpr double kReferenceCourant = 0.2;
+// At most this many points of a history per series in the figure's data.
+constexpr int kFigurePoints = 300;
+
+std::string str(const ojson& r, const char* column) {
+  return r[column].is_string() ? r[column].get<std::string>() : std::string();
+}
+double num(const ojson& r, const char* column) {
+  return r[column].get<double>();
+}
+std::optional<double> opt(const ojson& r, const char* column) {
+  return has_number(r, column) ? std::optional(r[column].get<double>()) : std::nullopt;
+}
+std::string opt_sci_of(std::optional<double> v) {
+  return v ? sci(*v) : "–";
+}
+
+// Which part of the study a row belongs to.
+enum class Part { interior, trade, treatment, extreme, peer };
+
+// A dense limit more than this fraction below the interior one is lowered by the free surface
+// (the limits are bisected to a relative 1e-4).
+constexpr double kLimitDrop = 0.01;
+
+// The peer comparison: Uintah's final particle error must be matched within this relative
+// tolerance (its step is its CFL choice, within 2e-6 relative of the fixed step compared).
+constexpr double kPeerTolerance = 0.05;
+// The peer's grid: cells of its domain (the scenes' own grid has another count).
+constexpr int kPeerCells = 52;
+// A rigid translation is exact to round-off in both codes: the largest position error over the
+// run, in the peer's length unit (its cell), must stay below this in each.
+constexpr double kRoundOffCells = 1e-9;
+
+// The scene's reference amplitude and run length: those of its trade rows.
+struct Reference {
+  double A = 0, T = 0;
+};
+std::map<std::string, Reference> references(const std::vector<ojson>& rows) {
+  // The trade rows are the first rows of each scene (the spec lists them first); a scene's
+  // reference is its first row's.
+  std::map<std::string, Reference> out;
+  for (const auto& r : rows) {
+    const std::string scene = str(r, "scene");
+    if (scene == "bar" || out.count(scene)) continue;
+    out[scene] = {num(r, "A"), num(r, "T")};
+  }
+  return out;
+}
+
+Part part_of(const ojson& r, const std::map<std::string, Reference>& ref) {
+  const std::string scene = str(r, "scene");
+  if (scene == "bar") return Part::interior;
+  if (num(r, "cells") == kPeerCells) return Part::peer;
+  if (small_mass_of(r) != "none") return Part::treatment;
+  const Reference& f = ref.at(scene);
+  const bool cfl = str(r, "policy") == "cfl";
+  if (!cfl || num(r, "A") != f.A || num(r, "T") != f.T ||
+      num(r, "cfl_factor") > 2 * kReferenceCourant)
+    return Part::extreme;
+  return Part::trade;
+}
+
+// The error over time (or in L2) per A: the scenes' yardstick.
+std::optional<double> relative(const ojson& r, const char* column) {
+  const auto v = opt(r, column);
+  if (!v || !has_number(r, "A") || num(r, "A") <= 0) return std::nullopt;
+  return *v / num(r, "A");
+}
+
+bool at_reference(const ojson& r) {
+  return has_number(r, "cfl_factor") && num(r, "cfl_factor") == kReferenceCourant;
+}
+
+// The scene_edges rows by (scene, method, small_mass).
+using EdgeKey = std::tuple<std::string, std::string, std::string>;
+std::map<EdgeKey, ojson> edges_of(const StudyInputs& inputs) {
+  std::map<EdgeKey, ojson> out;
+  const auto it = inputs.find("scene_edges");
+  if (it == inputs.end() || !it->second.present()) return out;
+  for (const auto& r : it->second.doc["cases"])
+    out[{str(r, "scene"), str(r, "method"), small_mass_of(r)}] = r;
+  return out;
+}
+// The survival edge of a (scene, method, treatment) as the tables print it.
+std::string edge_text(const std::map<EdgeKey, ojson>& edges, const EdgeKey& key) {
+  const auto it = edges.find(key);
+  return it == edges.end() ? "–" : mpmstab::edge_text(it->second);
+}
+
+// The interior (Bloch) limit of each method, from the bar rows.
+std::map<std::string, double> interior_limits(const std::vector<ojson>& rows,
+                                              const std::map<std::string, Reference>& ref) {
+  std::map<std::string, double> out;
+  for (const auto& r : rows)
+    if (part_of(r, ref) == Part::interior && has_number(r, "courant_spectral"))
+      out[str(r, "method")] = num(r, "courant_spectral");
+  return out;
+}
+
+std::vector<std::string> scenes_in_order(const std::vector<ojson>& rows) {
+  std::vector<std::string> out;
+  for (const auto& r : rows) {
+    const std::string s = str(r, "scene");
+    if (s != "bar" && std::find(out.begin(), out.end(), s) == out.end()) out.push_back(s);
+  }
+  return out;
+}
+
+// A history row's value `key` per A, empty where the row has none.
+std::string over_A(const ojson& row, const char* key, double A) {
+  const auto it = row.find(key);
+  return it != row.end() && it->is_number() ? sci(it->get<double>() / A, 6) : "";
+}
+
+// A peer row's error beside ours: our `column` in the peer's length unit (its cell: this grid's
+// h), and the peer's final largest particle error in `problem` with the row's basis (linear for
+// mpm, the peer's GIMP for cpgimp).
+std::pair<std::optional<double>, std::optional<double>> beside_peer(const ojson& r,
+                                                                    const char* column,
+                                                                    const CsvTable& peer,
+                                                                    const std::string& problem) {
+  const std::string basis = str(r, "method") == "mpm" ? "linear" : "GIMP";
+  std::optional<double> theirs;
+  for (const auto& row : peer.rows)
+    if (row.at("problem") == problem && row.at("basis") == basis &&
+        row.at("quantity") == "final_max_abs_displacement_error")
+      theirs = std::stod(row.at("peer_value"));
+  const auto ours = opt(r, column);
+  return {ours ? std::optional(*ours * num(r, "cells")) : std::nullopt, theirs};
+}
+
+std::string scenes_data(const std::vector<ojson>& rows, const SweepOutcome& out,
+                        const std::map<std::string, Reference>& ref, const std::string& header) {
+  const auto scenes = scenes_in_order(rows);
+  std::map<std::string, int> series;
+  for (const auto& r : rows)
+    if (part_of(r, ref) == Part::trade) series.emplace(str(r, "method"), 0);
+  int k = 0;
+  for (auto& [m, s] : series)
+    s = k++;
+  std::ostringstream csv;
+  csv << header << "panel,series,scene,method,t,error_over_A,tip_over_A,tip_exact_over_A\n";
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const ojson& r = rows[i];
+    if (part_of(r, ref) != Part::trade || !at_reference(r)) continue;
+    const ojson& record = out.records[i];
+    if (!record.is_object() || !record.contains("history")) continue;
+    const auto& h = record["history"];
+    const int panel =
+        int(std::find(scenes.begin(), scenes.end(), str(r, "scene")) - scenes.begin());
+    const std::size_t stride = std::max<std::size_t>(1, h.size() / kFigurePoints);
+    for (std::size_t j = 0; j < h.size(); j += stride) {
+      if (!h[j]["error"].is_number()) continue;
+      csv << panel << "," << series[str(r, "method")] << "," << str(r, "scene") << ","
+          << str(r, "method") << "," << shortest(h[j]["time"].get<double>()) << ","
+          << sci(h[j]["error"].get<double>() / num(r, "A"), 4) << ","
+          << over_A(h[j], "tip_u", num(r, "A")) << "," << over_A(h[j], "tip_u_exact", num(r, "A"))
+          << "\n";
+    }
+  }
+  return csv.str();
+}
+
+// What the sections count, for the claims.
+struct SurveyCounts {
+  int spline_lowered = 0, splines = 0, other_lowered = 0, others = 0, limits_compared = 0;
+  double ratio_lo = 1e300, ratio_hi = 0;
+  int verdicts = 0, peer_compared = 0, peer_agree = 0, rigid_compared = 0, rigid_agree = 0;
+};
+using Treated = std::map<std::pair<std::string, std::string>, std::map<std::string, ojson>>;
+
+// The runs at the reference Courant number with and without each small-mass treatment, by scene
+// and method.
+Treated treated_runs(const std::vector<ojson>& rows, const std::map<std::string, Reference>& ref) {
+  Treated treated;
+  for (const auto& r : rows) {
+    const Part p = part_of(r, ref);
+    if (p == Part::treatment || (p == Part::trade && at_reference(r)))
+      treated[{str(r, "scene"), str(r, "method")}][small_mass_of(r)] = r;
+  }
+  return treated;
+}
+
+// 1. Per scene and method, at the reference Courant number.
+std::string per_scene_section(const std::vector<ojson>& rows,
+                              const std::map<std::string, Reference>& ref,
+                              const std::map<std::string, double>& interior,
+                              const std::map<EdgeKey, ojson>& edges, SurveyCounts& n) {
+  std::ostringstream md;
+  md << "## Per scene and method\n\nAt c dt/h = " << shortest(kReferenceCourant)
+     << ", no small-mass treatment.\n\n"
+        "| scene | method | verdict | error over time / A | L2 / A | cost | edge c dt/h | "
+        "dense limit | interior limit | dense / interior |\n"
+        "|---|---|---|---:|---:|---:|---:|---:|---:|---:|\n";
+  for (const auto& r : rows) {
+    if (part_of(r, ref) != Part::trade || !at_reference(r)) continue;
+    const std::string method = str(r, "method");
+    const auto dense = opt(r, "courant_spectral");
+    const auto it = interior.find(method);
+    std::string q = "–";
+    if (dense && it != interior.end()) {
+      const double x = *dense / it->second;
+      ++n.limits_compared;
+      const bool spline = method.rfind("bspline", 0) == 0;
+      (spline ? n.splines : n.others) += 1;
+      (spline ? n.spline_lowered : n.other_lowered) += x < 1 - kLimitDrop;
+      n.ratio_lo = std::min(n.ratio_lo, x);
+      n.ratio_hi = std::max(n.ratio_hi, x);
+      q = fixed(x, 3);
+    }
+    md << "| " << str(r, "scene") << " | " << method << " | " << verdict(r) << " | "
+       << opt_sci_of(relative(r, "max_error_over_time")) << " | "
+       << opt_sci_of(relative(r, "error_l2_time")) << " | " << work(r) << " | "
+       << edge_text(edges, {str(r, "scene"), method, "none"}) << " | " << opt_fixed(dense) << " | "
+       << (it == interior.end() ? "–" : fixed(it->second, 3)) << " | " << q << " |\n";
+  }
+
+  return md.str();
+}
+
+// 2. The trade: every run of it.
+std::string trade_section(const std::vector<ojson>& rows,
+                          const std::map<std::string, Reference>& ref) {
+  std::ostringstream md;
+  md << "\n## The speed/accuracy trade\n\nError over time / A and cost at each c dt/h, no "
+        "small-mass treatment.\n\n| scene | method | c dt/h | verdict | error over time / A | "
+        "cost |\n|---|---|---:|---|---:|---:|\n";
+  for (const auto& r : rows) {
+    if (part_of(r, ref) != Part::trade) continue;
+    md << "| " << str(r, "scene") << " | " << str(r, "method") << " | "
+       << shortest(num(r, "cfl_factor")) << " | " << verdict(r) << " | "
+       << opt_sci_of(relative(r, "max_error_over_time")) << " | " << work(r) << " |\n";
+  }
+
+  return md.str();
+}
+
+// 4. The extremes: every run of them, and how many runs of the study have a verdict.
+std::string extremes_section(const std::vector<ojson>& rows,
+                             const std::map<std::string, Reference>& ref, SurveyCounts& n) {
+  std::ostringstream md;
+  md << "\n## Extremes\n\nEvery scene far beyond its reference: above the limit in c dt/h, a "
+        "large amplitude, a long run. Each run ends with a verdict.\n\n| scene | method | c dt/h "
+        "| A/h | c T | verdict | error over time / A |\n|---|---|---:|---:|---:|---|---:|\n";
+  for (const auto& r : rows)
+    n.verdicts += !outcome(r).empty();
+  for (const auto& r : rows) {
+    if (part_of(r, ref) != Part::extreme) continue;
+    md << "| " << str(r, "scene") << " | " << str(r, "method") << " | "
+       << shortest(num(r, "cfl_factor")) << " | " << significant(num(r, "A_over_h"), 3) << " | "
+       << significant(num(r, "cT"), 3) << " | " << verdict(r) << " | "
+       << opt_sci_of(relative(r, "max_error_over_time")) << " |\n";
+  }
+
+  return md.str();
+}
+
+// 3. Small-mass treatments.
+std::string small_mass_section(const Treated& treated, const std::map<EdgeKey, ojson>& edges) {
+  std::ostringstream md;
+  md << "\n## Small-mass nodes\n\nAt c dt/h = " << shortest(kReferenceCourant)
+     << " (docs/design.md, \"Small-mass nodes\"): the verdict and error of each treatment, "
+        "and its survival edge.\n\n| scene | method | treatment | verdict | error over time / A "
+        "| edge c dt/h |\n|---|---|---|---|---:|---:|\n";
+  for (const auto& [key, by] : treated) {
+    if (by.size() < 2) continue;  // a method run without treatments
+    for (const char* t : {"none", "cutoff", "drop", "momentum"}) {
+      const auto it = by.find(t);
+      if (it == by.end()) continue;
+      md << "| " << key.first << " | " << key.second << " | " << t << " | " << verdict(it->second)
+         << " | " << opt_sci_of(relative(it->second, "max_error_over_time")) << " | "
+         << edge_text(edges, {key.first, key.second, t}) << " |\n";
+    }
+  }
+
+  return md.str();
+}
+
+// 5. and 6. Beside Uintah's impulsiveBar and advectBlock.
+std::string peer_sections(const ReportContext& ctx, const std::map<std::string, Reference>& ref,
+                          SurveyCounts& n) {
+  const auto& rows = ctx.rows;
+  const CsvTable peer = read_csv(ctx.spec.reference);
+  std::ostringstream md;
+  md << "\n## Beside Uintah's impulsiveBar\n\nUintah's 1D MPM code, AMRMPM.m, run on its "
+        "impulsively loaded bar (["
+     << ctx.spec.reference.filename().string() << "](../reference/peers/"
+     << ctx.spec.reference.filename().string()
+     << ") and its notes beside it): the same bar in this grid's units (lengths over the "
+        "peer's domain), its effective tip traction and end time, its basis (linear, and the "
+        "cpGIMP it runs as GIMP). Both errors are the largest |u_p - u(X_p, T)| over the "
+        "particles at the peer's end time, in the peer's length unit; the tolerance is "
+     << percent(kPeerTolerance)
+     << ".\n\n| method | outcome | peer outcome | error | peer error | "
+        "ratio |\n|---|---|---|---:|---:|---:|\n";
+  for (const auto& r : rows) {
+    if (part_of(r, ref) != Part::peer || str(r, "scene") != "impulsive") continue;
+    const auto [in_cells, theirs] = beside_peer(r, "max_error", peer, "impulsiveBar");
+    const bool agree =
+        survived(r) && theirs && in_cells && std::abs(*in_cells / *theirs - 1) <= kPeerTolerance;
+    ++n.peer_compared;
+    n.peer_agree += agree;
+    md << "| " << str(r, "method") << " | " << outcome(r) << " | stable | " << opt_sci_of(in_cells)
+       << " | " << opt_sci_of(theirs) << " | "
+       << (in_cells && theirs ? fixed(*in_cells / *theirs, 5) : "–") << " |\n";
+  }
+
+  md << "\n## Beside Uintah's advectBlock\n\nThe same code's block at its own setting: a "
+        "bar two cells shorter than its domain, moving at a constant speed (A c in this grid's "
+        "units, the block's length and speed over the peer's domain) until the code stops it, "
+        "at its fixed dt; here on a periodic grid, since the peer prescribes the block's "
+        "velocity at its end nodes, which a periodic grid makes unnecessary. Both "
+        "errors are the largest |u_p - u(X_p, t)| over the particles and the steps, in the "
+        "peer's length unit; a rigid translation is exact but for round-off, so both must stay "
+        "below "
+     << sci(kRoundOffCells, 1)
+     << " cells.\n\n| method | steps | outcome | peer outcome | error over time | peer error "
+        "|\n|---|---:|---|---|---:|---:|\n";
+  for (const auto& r : rows) {
+    if (part_of(r, ref) != Part::peer || str(r, "scene") != "block") continue;
+    const auto [in_cells, theirs] = beside_peer(r, "max_error_over_time", peer, "advectBlock");
+    const bool agree =
+        survived(r) && theirs && in_cells && *in_cells < kRoundOffCells && *theirs < kRoundOffCells;
+    ++n.rigid_compared;
+    n.rigid_agree += agree;
+    md << "| " << str(r, "method") << " | " << shortest(num(r, "steps")) << " | " << outcome(r)
+       << " | stable | " << opt_sci_of(in_cells) << " | " << opt_sci_of(theirs) << " |\n";
+  }
+
+  return md.str();
+}
+
+// The claims on the peers, the verdicts and the limits.
+std::vector<Claim> survey_claims(const std::vector<ojson>& rows, const SurveyCounts& n) {
+  std::vector<Claim> claims;
+  {
+    Claim c = claim("rigid-like-uintah-advect-block",
+                    "On Uintah's advectBlock at its own setting, every basis compared survives "
+                    "and keeps the block rigid to round-off in both codes (position error over "
+                    "the run below {tolerance} cells): {agree} of {compared}.");
+    c.value("tolerance", sci(kRoundOffCells, 1))
+        .every("agree", n.rigid_agree, "compared", n.rigid_compared);
+    claims.push_back(c);
+  }
+  {
+    Claim c = claim("agrees-with-uintah-impulsive",
+                    "On Uintah's impulsiveBar at its own setting, every basis compared has the "
+                    "peer's outcome and its final error within {tolerance}: {agree} of "
+                    "{compared}.");
+    c.value("tolerance", percent(kPeerTolerance))
+        .every("agree", n.peer_agree, "compared", n.peer_compared);
+    claims.push_back(c);
+  }
+  {
+    Claim c = claim("every-run-has-a-verdict",
+                    "Every run ends with a verdict (unstable, meaningless or stable): {with} of "
+                    "{runs}.");
+    c.every("with", n.verdicts, "runs", static_cast<long long>(rows.size()));
+    claims.push_back(c);
+  }
+  {
+    Claim c = claim("free-surface-lowers-only-spline-limits",
+                    "The free surface lowers the spectral limit (the dense limit of the body more "
+                    "than {tolerance} below the interior one) for each B-spline pair (scene and "
+                    "B-spline basis run here) and for no other method: {spline_lowered} of "
+                    "{splines} B-spline pairs, "
+                    "{other_lowered} of {others} others (dense over interior from {lo} to "
+                    "{hi}).");
+    c.value("tolerance", percent(kLimitDrop));
+    c.count("spline_lowered", n.spline_lowered).count("splines", n.splines);
+    c.count("other_lowered", n.other_lowered).count("others", n.others);
+    c.number("lo", n.limits_compared ? n.ratio_lo : 0, 3).number("hi", n.ratio_hi, 3);
+    c.holds =
+        n.splines > 0 && n.others > 0 && n.spline_lowered == n.splines && n.other_lowered == 0;
+    claims.push_back(c);
+  }
+  return claims;
+}
+
+// Each treatment against no treatment.
+std::vector<Claim> treatment_claims(const Treated& treated) {
+  std::vector<Claim> claims;
+  // Each treatment against no treatment, over the (scene, method) pairs that ran both: a run
+  // is good when it is stable (not unstable, not meaningless).
+  for (const char* treatment : {"cutoff", "drop", "momentum"}) {
+    int rescued = 0, rescued_accurate = 0, failing = 0, broken = 0, good = 0;
+    for (const auto& [key, by] : treated) {
+      const auto none = by.find("none"), it = by.find(treatment);
+      if (none == by.end() || it == by.end()) continue;
+      const bool stable_without = outcome(none->second) == "stable";
+      const bool stable_with = outcome(it->second) == "stable";
+      if (!stable_without) {
+        ++failing;
+        rescued += stable_with;
+        rescued_accurate += stable_with && accurate_run(it->second);
+      } else {
+        ++good;
+        broken += !stable_with;
+      }
+    }
+    Claim c = claim(std::string("small-mass-") + treatment,
+                    "The {treatment} treatment makes every run that is not stable without a "
+                    "treatment stable, and no stable run worse: {rescued} of {failing} made "
+                    "stable ({accurate} of them accurate), {broken} of {good} made unstable or "
+                    "meaningless.");
+    c.value("treatment", treatment).count("rescued", rescued).count("failing", failing);
+    c.count("accurate", rescued_accurate);
+    c.count("broken", broken).count("good", good);
+    c.over(failing);  // a rescue of one run is not "every run"
+    c.holds = failing > 0 && rescued == failing && broken == 0;
+    claims.push_back(c);
+  }
+  return claims;
+}
+
+// Whether a smaller step buys accuracy, per scene and method.
+Claim trade_claim(const std::vector<ojson>& rows, const std::map<std::string, Reference>& ref) {
+  {
+    // The trade: whether a smaller step buys accuracy, per scene and method.
+    std::map<std::pair<std::string, std::string>, std::map<Key, double>> err;
+    for (const auto& r : rows) {
+      if (part_of(r, ref) != Part::trade || !survived(r)) continue;
+      if (const auto e = relative(r, "max_error_over_time"))
+        err[{str(r, "scene"), str(r, "method")}][Key(num(r, "cfl_factor"), "cfl_factor")] = *e;
+    }
+    int pairs = 0, flat = 0;
+    double worst = 0;
+    for (const auto& [key, by] : err) {
+      if (by.size() < 2) continue;
+      ++pairs;
+      const double smallest = by.begin()->second, largest = by.rbegin()->second;
+      const double gain = largest / smallest;
+      worst = std::max(worst, gain);
+      flat += gain < 2;
+    }
+    Claim c = claim("space-error-dominates",
+                    "At these settings the error does not move with the step: from the largest "
+                    "to the smallest c dt/h of the trade the error falls by less than a factor "
+                    "{factor} in {flat} of {pairs} scene and method pairs (the largest fall is "
+                    "{worst}).");
+    c.number("factor", 2).every("flat", flat, "pairs", pairs).number("worst", worst, 3);
+    return c;
+  }
+}
+
+StudyReport scenes_report(const ReportContext& ctx) {
+  const auto& rows = ctx.rows;
+  const auto ref = references(rows);
+  const auto interior = interior_limits(rows, ref);
+  const auto edges = edges_of(ctx.inputs);
+  const Treated treated = treated_runs(rows, ref);
+  SurveyCounts n;
+  std::ostringstream md;
+  md << "**The measures** (docs/design.md, \"Scenes\"): *error over time / A*, the largest "
+        "|u_p - u(X_p, t)| over the particles and the steps, per the scene's displacement scale "
+        "A; *L2 / A*, the RMS over the body and the run; *cost*, particle-steps. *Dense limit*: "
+        "the spectral limit, in c dt/h, of the whole body with its free surfaces; *interior*: "
+        "the Bloch limit of the same scheme on a periodic lattice; *edge*: the survival edge "
+        "in c dt/h from [scene_edges.md](scene_edges.md) (none where that experiment has not "
+        "been run).\n\n"
+     << cost_metric_text() << "\n\n";
+
+  md << per_scene_section(rows, ref, interior, edges, n) << trade_section(rows, ref)
+     << small_mass_section(treated, edges) << extremes_section(rows, ref, n)
+     << peer_sections(ctx, ref, n);
+  std::vector<Claim> claims = survey_claims(rows, n);
+  for (auto& c : treatment_claims(treated))
+    claims.push_back(std::move(c));
+  claims.push_back(trade_claim(rows, ref));
+  StudyReport report;
+  report.markdown = md.str();
+  report.claims = std::move(claims);
+  report.data_csv = scenes_data(rows, ctx.outcome, ref, ctx.csv_header);
+  return report;
+}
+
+std::string scenes_subtitle(const Spec&, const ojson& doc) {
+  const std::vector<ojson> rows(doc["cases"].begin(), doc["cases"].end());
+  const auto ref = references(rows);
+  int n = 0;
+  for (const auto& r : rows)
+    n += part_of(r, ref) == Part::trade && at_reference(r);
+  return std::to_string(n) + " runs at c dt/h = " + shortest(kReferenceCourant) +
+         "; error over time per A";
+}
+
+std::string scenes_index(const Spec& spec, const std::vector<ojson>& rows) {
+  const auto scenes = scenes_in_order(rows);
+  std::ostringstream md;
+  md << "![" << spec.title << "](" << spec.name << ".png)\n\n**What it shows.** " << scenes.size()
+     << " scenes (" << list_of(scenes)
+     << ") against their exact solutions, per method: the error over time, the free end's "
+        "motion beside the exact one, and the cost at "
+        "three Courant numbers, the dense spectral limit of each body with its free surfaces "
+        "against the interior limit, the survival edge, the small-mass treatments and an "
+        "extremes battery, in "
+     << rows.size() << " runs. [" << spec.name << ".md](" << spec.name << ".md)\n";
+  return md.str();
+}
+
+const StudyRegistration kScenes{{
+    .name = "scenes",
+    .summary = "scenes with free surfaces, loads and impact: error, cost, limits, small mass",
+    .needs_reference = true,
+    .records = {.error_over_time = true, .history = true},
+    .inputs = {{.name = "scene_edges"}},
+    .figure = true,
+    .report = scenes_report,
+    .index = scenes_index,
+    .figure_subtitle = scenes_subtitle,
+}};
+
+}  // namespace
+}  // namespace studies::scenes
+
+}  // namespace mpmstab

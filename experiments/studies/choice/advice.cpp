@@ -1,0 +1,366 @@
+// The advice study: settings a user can choose (a method, a grid, a Courant number), each run on
+// a base problem and, where that run is accurate, at other amplitudes, lengths, boundaries,
+// scenes, layouts and a finer grid (advice.hpp). advice.json stores the settings and their runs,
+// from which `mpmstab advise` predicts before it verifies on the problem (advice_verify.hpp);
+// advice.md lists every setting with its runs and where they passed, and answers no problem.
+#include <algorithm>
+#include <map>
+#include <sstream>
+
+#include "base/accuracy.hpp"
+#include "choice/advice_rule.hpp"
+#include "choice/advice_verify.hpp"
+#include "claims.hpp"
+#include "csv.hpp"
+#include "report_util.hpp"
+#include "study.hpp"
+
+namespace mpmstab {
+
+namespace studies::advice {
+namespace {
+
+using ojson = nlohmann::ordered_json;
+
+// ---------------------------------------------------------------------------------------------
+// Findings: the settings, their corners and regions
+
+std::string transfer_of(const ojson& r) {
+  std::string t = text(r, "transfer");
+  for (const char* order : {"flip_fraction", "xpic_order", "fmpm_order"})
+    if (has_number(r, order)) t += "(" + shortest(r[order].get<double>()) + ")";
+  return t;
+}
+
+CornerRun corner_of(const ojson& r, CornerKind kind, double length) {
+  CornerRun c{.kind = kind, .length = length, .A = r["A"].get<double>()};
+  c.cells = r["cells"].get<int>();
+  c.outcome = outcome(r);
+  if (has_number(r, "max_error_over_time"))
+    c.error_over_A = r["max_error_over_time"].get<double>() / c.A;
+  return c;
+}
+
+// The base run of a setting is checked at its corners where it is accurate and within its
+// spectral limit: a region can exist only there.
+bool worth_checking(const ojson& base) {
+  const CornerRun c = corner_of(base, CornerKind::base, kRegionRule.lengths.front());
+  return c.passes() && has_number(base, "courant_spectral") &&
+         base["courant"].get<double>() <=
+             base["courant_spectral"].get<double>() / kRegionRule.limit_margin;
+}
+
+std::vector<RunParams> advice_follow_up(const FollowUpContext& c) {
+  std::vector<RunParams> runs;
+  for (std::size_t i = 0; i < c.rows.size(); ++i) {
+    if (!worth_checking(c.rows[i])) continue;
+    for (auto& corner : region_corners(c.spec.cases.at(i).params))
+      runs.push_back(std::move(corner.params));
+  }
+  return runs;
+}
+
+CheckedSetting setting_of(const ojson& r) {
+  CheckedSetting s{.method = text(r, "method"),
+                   .transfer = transfer_of(r),
+                   .update = text(r, "update"),
+                   .cells = r["cells"].get<int>(),
+                   .ppc = r["ppc"].get<int>(),
+                   .courant = r["cfl_factor"].get<double>()};
+  if (has_number(r, "courant_spectral")) s.courant_spectral = r["courant_spectral"].get<double>();
+  s.corners.push_back(corner_of(r, CornerKind::base, kRegionRule.lengths.front()));
+  return s;
+}
+
+// Every setting of the spec with its corner runs (the follow-ups, kRegionCorners per checked
+// setting in the order advice_follow_up asked for them) and its regions.
+std::vector<CheckedSetting> checked_settings(const ReportContext& c) {
+  std::vector<CheckedSetting> out;
+  std::size_t next = 0;
+  for (std::size_t i = 0; i < c.rows.size(); ++i) {
+    CheckedSetting s = setting_of(c.rows[i]);
+    if (worth_checking(c.rows[i]) && next + kRegionCorners <= c.follow_up.size()) {
+      for (const auto& k : region_corners(c.spec.cases.at(i).params))
+        s.corners.push_back(corner_of(c.follow_up[next++], k.kind, k.length));
+    }
+    out.push_back(std::move(s));
+  }
+  for (auto& s : out)
+    s.regions = regions_of(s);
+  return out;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Claims
+
+struct Counts {
+  int settings = 0, checked = 0, with_region = 0;
+  int finer_fails = 0, finer_tested = 0;    // accurate base, finer corner not accurate
+  int longer_fails = 0, longer_tested = 0;  // accurate base, base to the longer length not
+  int scene_fails = 0, scene_tested = 0;    // largest A passes on the bar, neo-Hookean fails
+};
+
+Counts count(const std::vector<CheckedSetting>& settings) {
+  Counts n;
+  const double shorter = kRegionRule.lengths.front(), longer = kRegionRule.lengths.back();
+  for (const auto& s : settings) {
+    ++n.settings;
+    if (s.corners.size() <= 1) continue;
+    ++n.checked;
+    n.with_region += !s.regions.empty();
+    if (const CornerRun* f = s.corner(CornerKind::finer, shorter)) {
+      ++n.finer_tested;
+      n.finer_fails += !f->passes();
+    }
+    if (const CornerRun* b = s.corner(CornerKind::base, longer)) {
+      ++n.longer_tested;
+      n.longer_fails += !b->passes();
+    }
+    for (const double length : kRegionRule.lengths) {
+      const CornerRun* large = s.corner(CornerKind::largest_A, length);
+      const CornerRun* scene = s.corner(CornerKind::other_scene, length);
+      if (!large || !scene || !large->passes()) continue;
+      ++n.scene_tested;
+      n.scene_fails += !scene->passes();
+    }
+  }
+  return n;
+}
+
+std::vector<Claim> advice_claims(const Counts& n) {
+  std::vector<Claim> claims;
+  Claim finer = claim("fixed-courant-fails-finer",
+                      "A Courant number accurate on its grid is not accurate on every finer grid: "
+                      "some setting accurate on its grid is not at {refine}x the cells",
+                      "{fails} of {tested} checked settings fail at {refine}x the cells");
+  finer.count("refine", kRegionRule.refine)
+      .count("fails", n.finer_fails)
+      .count("tested", n.finer_tested);
+  finer.holds = n.finer_fails > 0;
+  claims.push_back(finer);
+  Claim longer = claim("accurate-base-fails-longer",
+                       "A setting accurate to c T/L = {short} is not always accurate to {long}",
+                       "{fails} of {tested} checked settings fail to the longer length");
+  longer.value("short", value_text(kRegionRule.lengths.front()))
+      .value("long", value_text(kRegionRule.lengths.back()))
+      .count("fails", n.longer_fails)
+      .count("tested", n.longer_tested);
+  longer.holds = n.longer_fails > 0;
+  claims.push_back(longer);
+  Claim scene = claim("bar-does-not-cover-neo-hookean",
+                      "A setting accurate on the bar at the largest amplitude is not always "
+                      "accurate on the neo-Hookean scene there",
+                      "{fails} of {tested} such corners fail on the neo-Hookean scene");
+  scene.count("fails", n.scene_fails).count("tested", n.scene_tested);
+  scene.holds = n.scene_fails > 0;
+  claims.push_back(scene);
+  return claims;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Rendering
+
+std::string error_text(const std::optional<double>& e) {
+  return e ? sci(*e) + " A" : std::string("–");
+}
+
+std::string corner_text(const CornerRun& c) {
+  std::ostringstream s;
+  switch (c.kind) {
+    case CornerKind::base:
+      s << "base";
+      break;
+    case CornerKind::smallest_A:
+    case CornerKind::largest_A:
+      s << "A/L " << value_text(c.A);
+      break;
+    case CornerKind::periodic:
+      s << "periodic";
+      break;
+    case CornerKind::other_scene:
+      s << "neo-Hookean";
+      break;
+    case CornerKind::jittered:
+      s << "jittered";
+      break;
+    case CornerKind::finer:
+      s << c.cells << " cells";
+      break;
+  }
+  s << " to c T/L " << value_text(c.length) << ": "
+    << (c.outcome == "stable" ? error_text(c.error_over_A) : c.outcome);
+  return s.str();
+}
+
+std::string rule_text() {
+  const RegionRule& r = kRegionRule;
+  std::ostringstream md;
+  md << "**What is run** (docs/design.md, \"Advice: verified on the problem\"). A setting is a "
+        "method, a grid and a Courant number C = c dt/h. Its base run is the bar with walls at "
+        "A/L = "
+     << value_text(r.amplitudes[1]) << " to c T/L = " << value_text(r.lengths.front())
+     << " (E only rescales time). Where the base run is accurate (error over time below "
+     << shortest(kAccurateFraction) << " A) and C is at most the spectral limit / "
+     << shortest(r.limit_margin)
+     << ", the setting is run again: on the bar with walls at A/L = " << value_text(r.amplitudes[0])
+     << ", " << value_text(r.amplitudes[1]) << " and " << value_text(r.amplitudes[2])
+     << "; at A/L = " << value_text(r.amplitudes[2])
+     << " with periodic boundaries, on the neo-Hookean scene and on a layout jittered by "
+     << shortest(r.jitter)
+     << " of the particle spacing; each to c T/L = " << value_text(r.lengths.front()) << " and "
+     << value_text(r.lengths.back()) << "; and on " << r.refine
+     << " times the cells at the same C, A/L = " << value_text(r.amplitudes[1])
+     << ", to c T/L = " << value_text(r.lengths.front())
+     << ".\n\n**What these runs are for.** `mpmstab advise` predicts a candidate's error on a "
+        "problem from the runs below that match the problem's scene, boundary and layout, tries "
+        "the candidates predicted to meet its target cheapest first, and answers only with one "
+        "it has run on that problem (to c T, to "
+     << shortest(kAdviceDomain.length_factor) << " x c T and on " << kAdviceDomain.grid_factor
+     << " times the cells). This report "
+        "answers no problem. The box beside each setting (the amplitudes, lengths, boundaries, "
+        "scene, layout and grids whose runs ended stable and accurate, its error the largest of "
+        "theirs) describes where its runs passed; the error between those runs was not measured "
+        "here, and no answer is given from the box. How often the prediction alone misses on "
+        "problems drawn at random over the domain, per setting beside its box: "
+        "[advice_sample.md](advice_sample.md).\n\n";
+  return md.str();
+}
+
+std::string settings_table(const std::vector<CheckedSetting>& settings) {
+  std::ostringstream md;
+  md << "## Every setting, its runs and where they passed\n\n"
+     << "| method | cells | C | spectral limit / C | base error / A | runs passed in (largest "
+        "error / A) | failed runs |\n|---|---|---|---|---|---|---|\n";
+  for (const auto& s : settings) {
+    md << "| " << s.method_text() << " | " << s.cells << " | " << shortest(s.courant) << " | "
+       << (s.courant_spectral ? ratio(*s.courant_spectral / s.courant) : std::string("–")) << " | "
+       << (s.corners.front().outcome == "stable" ? error_text(s.corners.front().error_over_A)
+                                                 : s.corners.front().outcome)
+       << " | ";
+    if (s.regions.empty()) {
+      md << (s.corners.size() > 1 ? "none: the base run to the longer length fails too"
+                                  : "none: not checked (the base run is not accurate or C is "
+                                    "beyond the spectral limit / " +
+                                        shortest(kRegionRule.limit_margin) + ")")
+         << " | – |\n";
+      continue;
+    }
+    std::string regions, excluded;
+    for (const auto& r : s.regions) {
+      regions +=
+          (regions.empty() ? "" : "<br>") + region_text(r) + " (" + sci(r.error_over_A) + ")";
+      for (const auto& c : r.excluded)
+        excluded += (excluded.empty() ? "" : "<br>") + corner_text(c);
+    }
+    for (const auto& c : s.corners) {
+      if (c.kind == CornerKind::base && c.length != kRegionRule.lengths.front() && !c.passes())
+        excluded += (excluded.empty() ? "" : "<br>") + corner_text(c);
+    }
+    md << regions << " | " << (excluded.empty() ? "–" : excluded) << " |\n";
+  }
+  return md.str() + "\n";
+}
+
+std::string reading(const Counts& n) {
+  std::ostringstream md;
+  md << "**Reading.** Of " << n.settings << " settings, " << n.checked
+     << " have an accurate base run within the spectral limit's margin and were run at their "
+        "corners; "
+     << n.with_region << " passed to at least one length. " << n.finer_fails << " of "
+     << n.finer_tested << " checked settings are not accurate on " << kRegionRule.refine
+     << " times their cells at the same C; " << n.longer_fails << " of " << n.longer_tested
+     << " are not accurate to c T/L = " << value_text(kRegionRule.lengths.back()) << "; "
+     << n.scene_fails << " of " << n.scene_tested
+     << " corners accurate on the bar at the largest amplitude are not on the neo-Hookean "
+        "scene.\n\n";
+  return md.str();
+}
+
+// The figure's data: per setting, its method's panel, cells, C, the longest region (0: none) and
+// error over time / A of its runs there.
+std::string figure_csv(const std::vector<CheckedSetting>& settings) {
+  std::ostringstream csv;
+  csv << "panel,method,cells,courant,region_cT,error_over_A\n";
+  std::map<std::string, int> panel;
+  for (const auto& s : settings) {
+    const std::string name = s.method_text();
+    const auto [it, added] = panel.emplace(name, int(panel.size()));
+    (void)added;
+    const Region* longest = s.regions.empty() ? nullptr : &s.regions.back();
+    csv << it->second << ',' << name << ',' << s.cells << ',' << shortest(s.courant) << ','
+        << (longest ? longest->length : 0.0) << ','
+        << (longest ? sci(longest->error_over_A, 3) : std::string("nan")) << '\n';
+  }
+  return csv.str();
+}
+
+StudyReport advice_report(const ReportContext& c) {
+  const auto settings = checked_settings(c);
+  const Counts n = count(settings);
+  std::ostringstream md;
+  md << "## Results\n\n"
+     << rule_text() << reading(n) << settings_table(settings)
+     << "The figure marks each setting by the longest length to which its runs passed (none: "
+        "its base run did not pass to either length).\n";
+  ojson list = ojson::array();
+  for (const auto& s : settings)
+    list.push_back(to_json(s));
+  const RegionRule& r = kRegionRule;
+  ojson rule = {{"amplitudes", r.amplitudes},
+                {"lengths", r.lengths},
+                {"refine", r.refine},
+                {"jitter", r.jitter},
+                {"limit_margin", r.limit_margin},
+                {"accurate_fraction", kAccurateFraction}};
+  return StudyReport{.markdown = md.str(),
+                     .data_csv = figure_csv(settings),
+                     .json = {{"rule", rule}, {"settings", list}},
+                     .claims = advice_claims(n)};
+}
+
+std::string advice_index(const Spec& spec, const std::vector<ojson>& rows) {
+  int accurate = 0;
+  for (const auto& r : rows)
+    accurate += worth_checking(r);
+  std::ostringstream md;
+  md << "**What it shows.** Of the " << rows.size() << " settings of its fixed grid of C, "
+     << accurate
+     << " have an accurate base run within the spectral limit's margin and were run again at "
+        "other amplitudes, lengths, boundaries, on the neo-Hookean scene, jittered and on a finer "
+        "grid. `mpmstab advise` "
+        "predicts from these runs and answers a problem only with a setting it has run on that "
+        "problem. Details: ["
+     << spec.name << ".md](" << spec.name << ".md).\n\n";
+  return md.str();
+}
+
+// "120 settings; 90 checked at their corners; 41 with a region to c T/L = 100".
+std::string advice_subtitle(const Spec&, const ojson& doc) {
+  std::size_t checked = 0, longest = 0;
+  const ojson& settings = doc["study"]["settings"];
+  for (const auto& s : settings) {
+    checked += s["corners"].size() > 1;
+    for (const auto& r : s["regions"])
+      longest += r["cT_max"].get<double>() == kRegionRule.lengths.back();
+  }
+  return std::to_string(settings.size()) + " settings; " + std::to_string(checked) +
+         " run again beyond their base run; " + std::to_string(longest) +
+         " whose runs passed to c T/L = " + value_text(kRegionRule.lengths.back());
+}
+
+const StudyRegistration kAdvice{{
+    .name = "advice",
+    .summary = "the runs `mpmstab advise` predicts from: each setting at other amplitudes, "
+               "lengths, boundaries, scenes, layouts and grids",
+    .records = {.error_over_time = true},
+    .figure = true,
+    .follow_up = advice_follow_up,
+    .report = advice_report,
+    .index = advice_index,
+    .figure_subtitle = advice_subtitle,
+}};
+
+}  // namespace
+}  // namespace studies::advice
+
+}  // namespace mpmstab

@@ -1,0 +1,733 @@
+#include "choice/advice_verify.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <future>
+#include <random>
+#include <sstream>
+
+#include "csv.hpp"
+#include "report_util.hpp"
+
+namespace mpmstab {
+
+std::string outside_domain(const VerifyProblem& vp, const AdviceDomain& d) {
+  const Problem& p = vp.problem;
+  std::ostringstream s;
+  if (p.A < d.A_min || p.A > d.A_max)
+    s << "--A: A/L = " << value_text(p.A) << " is outside the domain advise answers (A/L "
+      << value_text(d.A_min) << " to " << value_text(d.A_max) << ")";
+  else if (p.cT > d.cT_max)
+    s << "--cT: c T/L = " << value_text(p.cT) << " is longer than the domain advise answers (c T/L "
+      << "to " << value_text(d.cT_max) << ")";
+  else if (p.target < d.target_min || p.target > d.target_max)
+    s << "--error: a target of " << value_text(p.target) << " A is outside the domain advise "
+      << "answers (" << value_text(d.target_min) << " A to " << value_text(d.target_max) << " A)";
+  else if (vp.jitter < 0 || vp.jitter > d.jitter_max)
+    s << "--jitter: " << value_text(vp.jitter) << " is outside the domain advise answers (at most "
+      << value_text(d.jitter_max) << ")";
+  return s.str();
+}
+
+namespace studies::advice_verify {
+namespace {
+
+// ---------------------------------------------------------------------------------------------
+// The prediction (docs/design.md, "Advice: verified on the problem")
+
+// The corner kinds whose runs match a problem: its scene, boundary and layout. A problem that
+// differs from the bar with walls and a uniform layout in one attribute is matched by the corner
+// of that attribute; in several, by each of theirs (no corner differs in two).
+std::vector<CornerKind> matching_kinds(const VerifyProblem& vp) {
+  const Problem& p = vp.problem;
+  std::vector<CornerKind> kinds;
+  if (p.bc == "periodic") kinds.push_back(CornerKind::periodic);
+  if (p.scene == "steffen") kinds.push_back(CornerKind::other_scene);
+  if (vp.jitter > 0) kinds.push_back(CornerKind::jittered);
+  if (kinds.empty()) kinds = {CornerKind::base, CornerKind::smallest_A, CornerKind::largest_A};
+  return kinds;
+}
+
+bool bar_kind(CornerKind k) {
+  return k == CornerKind::base || k == CornerKind::smallest_A || k == CornerKind::largest_A;
+}
+
+// Of the runs of `kinds` to `length`, the one nearest the problem's amplitude (in log A; ties:
+// the larger amplitude).
+const CornerRun* nearest(const CheckedSetting& s, const std::vector<CornerKind>& kinds,
+                         double length, double A) {
+  const CornerRun* best = nullptr;
+  for (const auto& c : s.corners) {
+    if (c.length != length || std::find(kinds.begin(), kinds.end(), c.kind) == kinds.end())
+      continue;
+    const double d = std::abs(std::log(c.A / A));
+    if (!best || d < std::abs(std::log(best->A / A)) - 1e-12 ||
+        (std::abs(d - std::abs(std::log(best->A / A))) <= 1e-12 && c.A > best->A))
+      best = &c;
+  }
+  return best;
+}
+
+std::string run_words(const CornerRun& c) {
+  std::string kind;
+  switch (c.kind) {
+    case CornerKind::periodic:
+      kind = "periodic ";
+      break;
+    case CornerKind::other_scene:
+      kind = "neo-Hookean ";
+      break;
+    case CornerKind::jittered:
+      kind = "jittered ";
+      break;
+    default:
+      break;
+  }
+  return kind + "A/L = " + value_text(c.A) + ", c T/L = " + value_text(c.length);
+}
+
+struct Prediction {
+  std::optional<double> error_over_A;
+  std::string from;
+};
+
+// The prediction for the setting's own grid: the largest error of its runs that match the
+// problem (matching_kinds), each the nearest in amplitude, to the length that covers c T (the
+// shorter checked length, else the longer; the error over time of a run is the largest up to its
+// end, so a shorter problem's is at most it); beyond the longer length, that error grown in
+// proportion to c T (a phase error grows linearly in time). No prediction where no run matches or
+// a matching run did not end stable.
+Prediction predict_own(const CheckedSetting& s, const VerifyProblem& vp, const RegionRule& rule) {
+  const Problem& p = vp.problem;
+  const double shorter = rule.lengths.front(), longer = rule.lengths.back();
+  const double length = p.cT <= shorter ? shorter : longer;
+  const std::vector<CornerKind> kinds = matching_kinds(vp);
+  std::vector<const CornerRun*> used;
+  if (bar_kind(kinds.front())) {
+    if (const CornerRun* c = nearest(s, kinds, length, p.A)) used.push_back(c);
+  } else {
+    for (const CornerKind k : kinds)
+      if (const CornerRun* c = nearest(s, {k}, length, p.A)) used.push_back(c);
+  }
+  Prediction out;
+  if (used.empty() || (!bar_kind(kinds.front()) && used.size() < kinds.size())) {
+    out.from =
+        "no run of " + setting_name(s) + " matches the problem to c T/L = " + value_text(length);
+    return out;
+  }
+  double e = 0;
+  std::vector<std::string> words;
+  for (const CornerRun* c : used) {
+    if (c->outcome != "stable" || !c->error_over_A) {
+      out.from = "its run at " + run_words(*c) + " was " + c->outcome;
+      return out;
+    }
+    e = std::max(e, *c->error_over_A);
+    words.push_back(run_words(*c));
+  }
+  std::ostringstream from;
+  from << "the run" << (used.size() > 1 ? "s" : "") << " at " << list_of(words);
+  if (p.cT > longer) {
+    e *= p.cT / longer;
+    from << ", grown in proportion to c T (x " << value_text(p.cT / longer) << ")";
+  }
+  out.error_over_A = e;
+  out.from = from.str();
+  return out;
+}
+
+// The prediction on a finer grid: the own grid's, scaled by (cells / n)^q, with q the order that
+// the setting's finer run measured (its error at refine x the cells against its base run's, both
+// at the middle amplitude to the shorter length; q below zero counts as zero).
+Prediction predict(const CheckedSetting& s, int cells, const VerifyProblem& vp,
+                   const RegionRule& rule) {
+  Prediction own = predict_own(s, vp, rule);
+  if (cells == s.cells || !own.error_over_A) return own;
+  const CornerRun* base = s.corner(CornerKind::base, rule.lengths.front());
+  const CornerRun* finer = s.corner(CornerKind::finer, rule.lengths.front());
+  if (!base || !finer || !base->passes() || !finer->passes() || !(*base->error_over_A > 0) ||
+      !(*finer->error_over_A > 0)) {
+    return {std::nullopt, setting_name(s) + " has no passing run on " +
+                              std::to_string(s.cells * rule.refine) + " cells to scale it by"};
+  }
+  const double q =
+      std::max(0.0, std::log(*base->error_over_A / *finer->error_over_A) / std::log(rule.refine));
+  const double scale = std::pow(double(s.cells) / cells, q);
+  own.error_over_A = *own.error_over_A * scale;
+  own.from += ", scaled to " + std::to_string(cells) + " cells by (" + std::to_string(s.cells) +
+              "/" + std::to_string(cells) + ")^" + significant(q, 2) + " (the order its run on " +
+              std::to_string(s.cells * rule.refine) + " cells measured)";
+  return own;
+}
+
+double steps_of(double cT, int cells, double courant) {
+  return std::max(1.0, std::ceil(cT * cells / courant - 1e-9));
+}
+
+}  // namespace
+}  // namespace studies::advice_verify
+
+std::string candidate_name(const Candidate& c) {
+  using namespace studies::advice_verify;
+  std::ostringstream t;
+  t << c.from->method_text() << ", " << c.cells << " cells, C = " << shortest(c.from->courant);
+  if (c.start == VelocityStart::half_step) t << ", half-step start";
+  return t.str();
+}
+
+RunParams run_params(const Candidate& c, const VerifyProblem& vp) {
+  using namespace studies::advice_verify;
+  const CheckedSetting& s = *c.from;
+  const Problem& p = vp.problem;
+  RunParams r;
+  r.method = *parse_method(s.method);
+  const std::string transfer = transfer_name(s.transfer);
+  r.transfer = *parse_transfer(transfer);
+  if (transfer != s.transfer) {
+    const double order = std::stod(s.transfer.substr(transfer.size() + 1));
+    if (r.transfer == Transfer::fmpm) r.fmpm_order = int(order);
+    if (r.transfer == Transfer::xpic) r.xpic_order = int(order);
+    if (r.transfer == Transfer::blend) r.flip_fraction = order;
+  }
+  r.update = *parse_update_order(s.update);
+  r.start = c.start;
+  r.E = kAdviceE;
+  r.A = p.A;
+  r.T = p.cT;
+  r.cells = c.cells;
+  r.ppc = s.ppc;
+  r.scene = *parse_scene(p.scene);
+  r.bc = *parse_boundary(p.bc);
+  r.layout.jitter = vp.jitter;
+  r.stepping.policy = TimeStepPolicy::cfl;
+  r.stepping.cfl_factor = s.courant;
+  r.observe = Observe{};
+  r.observe.dt_stable = false;
+  r.observe.crossings = false;
+  return r;
+}
+
+std::string run_command(const Candidate& c, const VerifyProblem& vp) {
+  using namespace studies::advice_verify;
+  const CheckedSetting& s = *c.from;
+  const Problem& p = vp.problem;
+  std::ostringstream out;
+  out << "mpmstab run --method " << s.method << " " << transfer_options(s.transfer) << " --update "
+      << s.update << " --cells " << c.cells << " --policy cfl --cfl-factor " << shortest(s.courant)
+      << " --E " << value_text(kAdviceE) << " --A " << value_text(p.A) << " --T "
+      << value_text(p.cT);
+  if (c.start == VelocityStart::half_step) out << " --start half_step";
+  if (p.scene != "bar") out << " --scene " << p.scene;
+  if (p.bc != "dirichlet") out << " --bc " << p.bc;
+  if (vp.jitter > 0) out << " --jitter " << value_text(vp.jitter);
+  return out.str();
+}
+
+std::vector<Candidate> candidates(const std::vector<CheckedSetting>& settings,
+                                  const VerifyProblem& vp, const AdviceDomain& d) {
+  using namespace studies::advice_verify;
+  const Problem& p = vp.problem;
+  std::vector<Candidate> out;
+  for (std::size_t i = 0; i < settings.size(); ++i) {
+    const CheckedSetting& s = settings[i];
+    if (!advice_selected(s, p.methods)) continue;
+    for (const int cells : d.cells) {
+      // A finer grid rests on the setting of the same method and C with the most cells not
+      // above it; the study's own grids on themselves.
+      if (cells < s.cells) continue;
+      bool coarser_than_another = false;
+      for (const auto& t : settings)
+        if (&t != &s && t.method_text() == s.method_text() && t.courant == s.courant &&
+            t.cells > s.cells && t.cells <= cells)
+          coarser_than_another = true;
+      if (coarser_than_another) continue;
+      const studies::advice_verify::Prediction pr = predict(s, cells, vp, kRegionRule);
+      const double steps = steps_of(p.cT, cells, s.courant);
+      if (steps < double(kMinStepsToJudge)) continue;  // too short for a verdict
+      for (const VelocityStart start : {VelocityStart::exact, VelocityStart::half_step}) {
+        Candidate c{.from = &s, .cells = cells, .start = start};
+        c.predicted_error_over_A = pr.error_over_A;
+        c.predicted_from = pr.from;
+        if (start == VelocityStart::half_step) c.predicted_from += " (runs from the exact start)";
+        c.particle_steps = double(s.ppc) * cells * steps;
+        c.verify_particle_steps =
+            c.particle_steps +
+            double(s.ppc) * cells * steps_of(d.length_factor * p.cT, cells, s.courant) +
+            double(s.ppc) * cells * d.grid_factor *
+                steps_of(p.cT, cells * d.grid_factor, s.courant);
+        out.push_back(std::move(c));
+      }
+    }
+  }
+  std::stable_sort(out.begin(), out.end(), [&](const Candidate& a, const Candidate& b) {
+    const bool ea = a.predicted_error_over_A && *a.predicted_error_over_A <= p.target;
+    const bool eb = b.predicted_error_over_A && *b.predicted_error_over_A <= p.target;
+    if (ea != eb) return ea;
+    if (a.particle_steps != b.particle_steps) return a.particle_steps < b.particle_steps;
+    const double pa = a.predicted_error_over_A.value_or(INFINITY);
+    const double pb = b.predicted_error_over_A.value_or(INFINITY);
+    if (pa != pb) return pa < pb;
+    return a.start == VelocityStart::exact && b.start != VelocityStart::exact;
+  });
+  return out;
+}
+
+namespace studies::advice_verify {
+namespace {
+
+VerifyingRun verifying_run(std::string what, const RunParams& params, double target,
+                           const RunFn& run_fn) {
+  VerifyingRun v{.what = std::move(what), .params = params};
+  const auto start = std::chrono::steady_clock::now();
+  const RunResult r = run_fn(params);
+  v.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  v.outcome = r.outcome ? std::string(to_string(*r.outcome)) : std::string("no verdict");
+  if (r.max_error_over_time) v.error_over_A = *r.max_error_over_time / params.A;
+  v.particle_steps = double(r.particles) * double(r.steps);
+  v.passes =
+      r.outcome && *r.outcome == Outcome::stable && v.error_over_A && *v.error_over_A <= target;
+  return v;
+}
+
+std::string failure_words(const VerifyingRun& r, double target) {
+  std::ostringstream s;
+  s << r.what << ": " << r.outcome;
+  if (r.outcome == "too_short")
+    s << " (" << r.params.cells << " cells at C = " << shortest(r.params.stepping.cfl_factor)
+      << " take fewer than " << kMinStepsToJudge << " steps)";
+  else if (r.error_over_A)
+    s << ", error over time " << sci(*r.error_over_A) << " A"
+      << (r.outcome == "stable" ? " > the target " + value_text(target) + " A" : "");
+  return s.str();
+}
+
+}  // namespace
+}  // namespace studies::advice_verify
+
+std::vector<std::pair<std::string, RunParams>> verifying_params(const Candidate& c,
+                                                                const VerifyProblem& vp,
+                                                                const AdviceDomain& d) {
+  using namespace studies::advice_verify;
+  const RunParams base = run_params(c, vp);
+  RunParams longer = base;
+  longer.T = base.T * d.length_factor;
+  RunParams finer = base;
+  finer.cells = base.cells * d.grid_factor;
+  return {{"the problem", base},
+          {shortest(d.length_factor) + " x c T", longer},
+          {std::to_string(d.grid_factor) + " x the cells", finer}};
+}
+
+Trial verify(const Candidate& c, const VerifyProblem& vp, const RunFn& run_fn,
+             const AdviceDomain& d) {
+  using namespace studies::advice_verify;
+  const double target = vp.problem.target;
+  Trial t{.candidate = c};
+  const auto runs = verifying_params(c, vp, d);
+  t.runs.push_back(verifying_run(runs[0].first, runs[0].second, target, run_fn));
+  if (!t.runs.back().passes) {
+    t.why = failure_words(t.runs.back(), target);
+    return t;
+  }
+  // The two others are independent: side by side, each its own run (no sum is shared).
+  auto later = std::async(std::launch::async, [&] {
+    return verifying_run(runs[1].first, runs[1].second, target, run_fn);
+  });
+  VerifyingRun grid = verifying_run(runs[2].first, runs[2].second, target, run_fn);
+  t.runs.push_back(later.get());
+  t.runs.push_back(std::move(grid));
+  t.passed = true;
+  for (const auto& r : t.runs)
+    if (!r.passes) {
+      t.passed = false;
+      t.why = failure_words(r, target);
+      break;
+    }
+  return t;
+}
+
+namespace studies::advice_verify {
+namespace {
+
+// The margins on the problem: C stepped up by edge_step from the answer's (which passed) until a
+// run fails to survive or C reaches edge_top, then each bracket bisected (geometric mean) until
+// its ends are within edge_tolerance. Stops, unmeasured, where a probe would pass the budget
+// left.
+
+ProblemEdges problem_edges(const Candidate& c, const VerifyProblem& vp, double budget_left,
+                           double seconds_per_particle_step, const RunFn& run_fn,
+                           const AdviceDomain& d) {
+  ProblemEdges e;
+  const double target = vp.problem.target;
+  RunParams params = run_params(c, vp);
+  const double C0 = params.stepping.cfl_factor;
+  struct Probe {
+    bool survives = false, accurate = false;
+  };
+  bool over_budget = false;
+  auto probe = [&](double C) -> std::optional<Probe> {
+    const double work = double(params.ppc) * params.cells * steps_of(params.T, params.cells, C);
+    if (e.seconds + work * seconds_per_particle_step > budget_left) {
+      over_budget = true;
+      return std::nullopt;
+    }
+    params.stepping.cfl_factor = C;
+    const VerifyingRun r = verifying_run("edge", params, target, run_fn);
+    e.seconds += r.seconds;
+    e.particle_steps += r.particle_steps;
+    return Probe{.survives = r.outcome != "unstable", .accurate = r.passes};
+  };
+  double survive = C0, accurate = C0;
+  std::optional<double> fail, inaccurate;
+  double C = C0;
+  while (!fail && C * d.edge_step <= d.edge_top) {
+    C *= d.edge_step;
+    const auto r = probe(C);
+    if (!r) break;
+    if (r->survives)
+      survive = C;
+    else
+      fail = C;
+    if (!inaccurate) {
+      if (r->accurate)
+        accurate = C;
+      else
+        inaccurate = C;
+    }
+  }
+  e.scan_top = C;
+  auto bisect = [&](double& low, std::optional<double>& high, bool accuracy) {
+    while (!over_budget && high && *high / low > d.edge_tolerance) {
+      const double mid = std::sqrt(low * *high);
+      const auto r = probe(mid);
+      if (!r) return;
+      if (accuracy ? r->accurate : r->survives)
+        low = mid;
+      else
+        high = mid;
+    }
+  };
+  bisect(survive, fail, false);
+  bisect(accurate, inaccurate, true);
+  if (over_budget) {
+    e.not_measured = "not measured: its probes would pass the budget";
+    return e;
+  }
+  e.measured = true;
+  e.survival = survive;
+  e.survival_fail = fail;
+  e.accurate = accurate;
+  e.accurate_fail = inaccurate;
+  return e;
+}
+
+}  // namespace
+}  // namespace studies::advice_verify
+
+Verified verified_advice(const std::vector<CheckedSetting>& settings, const VerifyProblem& vp,
+                         double budget_seconds, bool edges, const RunFn& run_fn,
+                         const AdviceDomain& d) {
+  using namespace studies::advice_verify;
+  const Problem& p = vp.problem;
+  Verified v;
+  const std::vector<Candidate> list = candidates(settings, vp, d);
+  for (const auto& c : list)
+    if (c.predicted_error_over_A && *c.predicted_error_over_A <= p.target) ++v.eligible;
+  if (list.empty()) {
+    // Every candidate of the methods asked for is too short for a verdict, or none is offered.
+    double shortest_cT = INFINITY;
+    for (const auto& s : settings)
+      if (advice_selected(s, p.methods))
+        shortest_cT =
+            std::min(shortest_cT, double(kMinStepsToJudge) * s.courant / double(d.cells.back()));
+    v.bound = std::isfinite(shortest_cT) ? "too_short" : "methods";
+    v.refusal = std::isfinite(shortest_cT)
+                    ? "--cT: c T/L = " + value_text(p.cT) +
+                          " is too short for a verdict (fewer than " +
+                          std::to_string(kMinStepsToJudge) +
+                          " steps on every grid offered); the shortest that gets one is c T/L = " +
+                          value_text(shortest_cT)
+                    : "--methods: no setting of the methods asked for is offered";
+    return v;
+  }
+  if (v.eligible == 0) {
+    const Candidate* closest = nullptr;
+    for (const auto& c : list)
+      if (c.predicted_error_over_A &&
+          (!closest || *c.predicted_error_over_A < *closest->predicted_error_over_A))
+        closest = &c;
+    v.bound = "target";
+    v.refusal = "--error: no candidate is predicted to meet " + value_text(p.target) + " A";
+    if (closest)
+      v.refusal += "; the most accurate prediction is " + candidate_name(*closest) + " at " +
+                   sci(*closest->predicted_error_over_A) + " A (" + closest->predicted_from + ")";
+    return v;
+  }
+  double rate = d.nominal_seconds_per_particle_step;
+  for (std::size_t i = 0; i < v.eligible; ++i) {
+    const Candidate& c = list[i];
+    const double estimate = c.verify_particle_steps * rate;
+    if (v.seconds + estimate > budget_seconds) {
+      v.bound = "budget";
+      std::ostringstream s;
+      if (v.rejected.empty())
+        s << "--budget: the cheapest candidate, " << candidate_name(c) << ", needs about "
+          << significant(estimate, 2) << " s of verifying runs (" << sci(c.verify_particle_steps)
+          << " particle-steps); the budget is " << value_text(budget_seconds) << " s";
+      else
+        s << "--budget: " << v.rejected.size() << " candidate" << (v.rejected.size() > 1 ? "s" : "")
+          << " failed in " << significant(v.seconds, 2) << " s; the next, " << candidate_name(c)
+          << ", needs about " << significant(estimate, 2) << " s more ("
+          << sci(c.verify_particle_steps) << " particle-steps); the budget is "
+          << value_text(budget_seconds) << " s";
+      v.refusal = s.str();
+      return v;
+    }
+    Trial t = verify(c, vp, run_fn, d);
+    for (const auto& r : t.runs) {
+      v.seconds += r.seconds;
+      v.particle_steps += r.particle_steps;
+    }
+    if (v.particle_steps > 0) rate = std::max(rate * 0.25, v.seconds / v.particle_steps);
+    if (t.passed) {
+      v.answer = std::move(t);
+      break;
+    }
+    v.rejected.push_back(std::move(t));
+  }
+  if (!v.answer) {
+    v.bound = "target";
+    v.refusal = "--error: each of the " + std::to_string(v.eligible) +
+                " candidates predicted to meet " + value_text(p.target) +
+                " A failed its verifying runs";
+    return v;
+  }
+  if (edges) {
+    const double left = std::max(0.0, budget_seconds - v.seconds);
+    v.edges = problem_edges(v.answer->candidate, vp, left,
+                            v.particle_steps > 0 ? v.seconds / v.particle_steps : rate, run_fn, d);
+  } else {
+    v.edges.not_measured = "not measured (--no-margins)";
+  }
+  return v;
+}
+
+std::vector<VerifyProblem> draw_problems(const SampleRule& rule, const AdviceDomain& d) {
+  using namespace studies::advice_verify;
+  std::mt19937_64 gen(rule.seed);
+  auto u = [&] { return double(gen() >> 11) * 0x1.0p-53; };
+  auto rounded = [](double x, double low, double high) {
+    return std::clamp(std::stod(significant(x, 2)), low, high);
+  };
+  auto log_uniform = [&](double low, double high) {
+    return rounded(std::exp(std::log(low) + u() * (std::log(high) - std::log(low))), low, high);
+  };
+  std::vector<VerifyProblem> out;
+  for (int i = 0; i < rule.problems; ++i) {
+    VerifyProblem vp;
+    Problem& p = vp.problem;
+    p.A = log_uniform(d.A_min, d.A_max);
+    p.cT = log_uniform(rule.cT_low, d.cT_max);
+    p.target = log_uniform(d.target_min, d.target_max);
+    p.scene = u() < 0.5 ? "bar" : "steffen";
+    p.bc = u() < 0.5 ? "dirichlet" : "periodic";
+    const bool jittered = u() >= 0.5;
+    const double j = u();
+    if (jittered)
+      vp.jitter = rounded(rule.jitter_low + j * (d.jitter_max - rule.jitter_low), rule.jitter_low,
+                          d.jitter_max);
+    out.push_back(std::move(vp));
+  }
+  return out;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Output
+
+namespace studies::advice_verify {
+namespace {
+
+using ojson = nlohmann::ordered_json;
+
+std::string problem_line(const VerifyProblem& vp) {
+  const Problem& p = vp.problem;
+  std::ostringstream s;
+  s << "mpmstab advise: A/L = " << value_text(p.A) << ", c T/L = " << value_text(p.cT)
+    << ", target error over time " << value_text(p.target) << " A, " << p.scene << ", " << p.bc
+    << ", " << (vp.jitter > 0 ? "jittered " + value_text(vp.jitter) : std::string("uniform"))
+    << "\n";
+  return s.str();
+}
+
+std::string run_line(const VerifyingRun& r, bool with_seconds) {
+  std::ostringstream s;
+  s << "    " << r.what << " (" << r.params.cells << " cells, c T/L = " << value_text(r.params.T)
+    << "): " << r.outcome;
+  if (r.error_over_A) s << ", error over time " << sci(*r.error_over_A) << " A";
+  s << ", " << sci(r.particle_steps) << " particle-steps";
+  if (with_seconds) s << ", " << significant(r.seconds, 2) << " s";
+  s << ": " << (r.passes ? "passes" : "FAILS") << "\n";
+  return s.str();
+}
+
+std::string prediction_words(const Candidate& c) {
+  return c.predicted_error_over_A ? sci(*c.predicted_error_over_A) + " A from " + c.predicted_from
+                                  : "none (" + c.predicted_from + ")";
+}
+
+std::string edge_words(const std::optional<double>& low, const std::optional<double>& high,
+                       double C0, double top) {
+  if (!low) return "–";
+  std::ostringstream s;
+  s << "C = " << significant(*low, 3) << " (" << ratio(*low / C0) << "x the setting's C)";
+  if (high)
+    s << ", fails at C = " << significant(*high, 3);
+  else
+    s << ", not reached up to C = " << significant(top, 3);
+  return s.str();
+}
+
+ojson run_json(const VerifyingRun& r) {
+  return {{"what", r.what},
+          {"cells", r.params.cells},
+          {"cT", r.params.T},
+          {"outcome", r.outcome},
+          {"error_over_A", r.error_over_A ? ojson(*r.error_over_A) : ojson(nullptr)},
+          {"particle_steps", r.particle_steps},
+          {"seconds", r.seconds},
+          {"passes", r.passes}};
+}
+
+ojson candidate_json(const Candidate& c, const VerifyProblem& vp) {
+  const CheckedSetting& s = *c.from;
+  return {{"method", s.method},
+          {"transfer", s.transfer},
+          {"update", s.update},
+          {"cells", c.cells},
+          {"ppc", s.ppc},
+          {"courant", s.courant},
+          {"start", std::string(c.start == VelocityStart::exact ? "exact" : "half_step")},
+          {"predicted_error_over_A",
+           c.predicted_error_over_A ? ojson(*c.predicted_error_over_A) : ojson(nullptr)},
+          {"predicted_from", c.predicted_from},
+          {"particle_steps", c.particle_steps},
+          {"run", run_command(c, vp)}};
+}
+
+ojson problem_json(const VerifyProblem& vp) {
+  const Problem& p = vp.problem;
+  return {{"A", p.A},         {"cT", p.cT}, {"error", p.target},
+          {"scene", p.scene}, {"bc", p.bc}, {"jitter", vp.jitter}};
+}
+
+ojson opt(const std::optional<double>& x) {
+  return x ? ojson(*x) : ojson(nullptr);
+}
+
+}  // namespace
+}  // namespace studies::advice_verify
+
+std::string verified_text(const Verified& v, const VerifyProblem& vp, bool with_seconds) {
+  using namespace studies::advice_verify;
+  std::ostringstream out;
+  out << problem_line(vp);
+  out << "  candidates predicted to meet the target: " << v.eligible << "; tried "
+      << v.rejected.size() + (v.answer ? 1 : 0) << ", cheapest first\n";
+  for (const Trial& t : v.rejected) {
+    out << "  rejected " << candidate_name(t.candidate) << ": " << t.why << "\n";
+    for (const auto& r : t.runs)
+      out << run_line(r, with_seconds);
+  }
+  if (!v.answer) {
+    out << "  refused (" << v.bound << "): " << v.refusal << "\n";
+    return out.str();
+  }
+  const Candidate& c = v.answer->candidate;
+  const CheckedSetting& s = *c.from;
+  out << "  setting                 " << candidate_name(c) << " (" << s.ppc
+      << " particles per cell), verified on this problem\n"
+      << "  verifying runs          each stable with an error over time at most "
+      << value_text(vp.problem.target) << " A\n";
+  for (const auto& r : v.answer->runs)
+    out << run_line(r, with_seconds);
+  out << "  predicted error / A     " << prediction_words(c) << "\n"
+      << "  particle-steps          " << sci(c.particle_steps) << " (the run of the problem)\n"
+      << "  verification cost       " << sci(v.particle_steps) << " particle-steps"
+      << (with_seconds ? ", " + significant(v.seconds, 2) + " s" : std::string()) << "\n";
+  if (v.edges.measured) {
+    out << "  survival edge           "
+        << edge_words(v.edges.survival, v.edges.survival_fail, s.courant, v.edges.scan_top)
+        << " (on this problem)\n"
+        << "  accuracy edge           "
+        << edge_words(v.edges.accurate, v.edges.accurate_fail, s.courant, v.edges.scan_top)
+        << " (within the target on this problem)\n";
+  } else {
+    out << "  margins                 " << v.edges.not_measured << "\n";
+  }
+  out << "  small-amplitude limit   "
+      << (s.courant_spectral ? "C = " + significant(*s.courant_spectral, 3) + " (" +
+                                   ratio(*s.courant_spectral / s.courant) +
+                                   "x; the Bloch limit of the uniform layout at rest)"
+                             : std::string("not measured"))
+      << "\n  run it with             " << run_command(c, vp) << "\n";
+  return out.str();
+}
+
+nlohmann::ordered_json verified_json(const Verified& v, const VerifyProblem& vp) {
+  using namespace studies::advice_verify;
+  nlohmann::ordered_json rejected = nlohmann::ordered_json::array();
+  for (const Trial& t : v.rejected) {
+    nlohmann::ordered_json runs = nlohmann::ordered_json::array();
+    for (const auto& r : t.runs)
+      runs.push_back(run_json(r));
+    rejected.push_back(
+        {{"candidate", candidate_json(t.candidate, vp)}, {"why", t.why}, {"runs", runs}});
+  }
+  nlohmann::ordered_json out = {{"problem", problem_json(vp)},
+                                {"verified", true},
+                                {"eligible", v.eligible},
+                                {"rejected", rejected},
+                                {"particle_steps", v.particle_steps},
+                                {"seconds", v.seconds}};
+  if (!v.answer) {
+    out["refused"] = v.refusal;
+    out["bound"] = v.bound;
+    return out;
+  }
+  nlohmann::ordered_json runs = nlohmann::ordered_json::array();
+  for (const auto& r : v.answer->runs)
+    runs.push_back(run_json(r));
+  out["answer"] = candidate_json(v.answer->candidate, vp);
+  out["verifying_runs"] = runs;
+  const auto& s = *v.answer->candidate.from;
+  out["margins"] = {{"measured", v.edges.measured},
+                    {"survival_courant", opt(v.edges.survival)},
+                    {"survival_fails_at", opt(v.edges.survival_fail)},
+                    {"accuracy_courant", opt(v.edges.accurate)},
+                    {"accuracy_fails_at", opt(v.edges.accurate_fail)},
+                    {"scan_top", v.edges.measured ? nlohmann::ordered_json(v.edges.scan_top)
+                                                  : nlohmann::ordered_json(nullptr)},
+                    {"small_amplitude_limit", opt(s.courant_spectral)}};
+  return out;
+}
+
+std::string unverified_text(const Candidate& c, const VerifyProblem& vp) {
+  using namespace studies::advice_verify;
+  std::ostringstream out;
+  out << problem_line(vp) << "  UNVERIFIED (--no-verify): no run of this problem was made; the "
+      << "setting is the prediction's cheapest\n"
+      << "  setting                 " << candidate_name(c) << " (" << c.from->ppc
+      << " particles per cell)\n"
+      << "  predicted error / A     " << prediction_words(c) << "\n"
+      << "  particle-steps          " << sci(c.particle_steps) << "\n"
+      << "  run it with             " << run_command(c, vp) << "\n";
+  return out.str();
+}
+
+nlohmann::ordered_json unverified_json(const Candidate& c, const VerifyProblem& vp) {
+  using namespace studies::advice_verify;
+  return {{"problem", problem_json(vp)}, {"verified", false}, {"answer", candidate_json(c, vp)}};
+}
+
+}  // namespace mpmstab

@@ -1,0 +1,170 @@
+// Advice verified at the point of use (docs/design.md, "Advice: verified on the problem"): the
+// candidates a problem can be answered with, each with the error the advice study's matching runs
+// predict for it and its cost on the problem; the runs that verify a candidate on the problem
+// itself; and the search that answers with the cheapest candidate whose every verifying run is
+// stable and within the target. `mpmstab advise` answers by it, and the advice study measures
+// with it what the prediction alone is worth.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "base/params.hpp"
+#include "base/result.hpp"
+#include "choice/advice_rule.hpp"
+
+namespace mpmstab {
+
+// The problems `mpmstab advise` answers, and the grids and steps it answers with.
+struct AdviceDomain {
+  double A_min = 1e-4, A_max = 0.05;         // A / L
+  double cT_max = 1000;                      // c T / L (the shortest: a verdict, kMinStepsToJudge)
+  double target_min = 1e-3, target_max = 1;  // error over time / A
+  double jitter_max = 0.5;                   // of the particle spacing
+  std::vector<int> cells{25, 50, 100, 200, 400, 800};
+  double length_factor = 4;    // a verifying run goes to this many times c T
+  int grid_factor = 2;         // the grid check: this many times the cells at the same C
+  double budget_seconds = 60;  // the default bound on the verifying runs
+  // Before any run has measured this machine, a verifying run is estimated at this many seconds
+  // per particle-step (later estimates use the runs made so far).
+  double nominal_seconds_per_particle_step = 4e-8;
+  // The margins: C stepped up by edge_step from the answer's until a run fails or C passes
+  // edge_top, then each bracket bisected until its ends are within a factor edge_tolerance.
+  double edge_step = 1.4142135623730951;  // sqrt(2)
+  double edge_top = 8;
+  double edge_tolerance = 1.025;
+};
+inline const AdviceDomain kAdviceDomain{};
+
+// A problem as `mpmstab advise` takes it: the Problem of the lookup and its particle layout.
+struct VerifyProblem {
+  Problem problem;
+  double jitter = 0;  // particles moved by up to jitter / 2 of their spacing (0: uniform)
+};
+
+// Why a problem is outside the domain, naming the option and the bound; empty when inside.
+std::string outside_domain(const VerifyProblem& p, const AdviceDomain& d = kAdviceDomain);
+
+// A setting a problem can be answered with: a checked setting of the advice study, or that
+// setting's method and C on a finer grid of the domain; with the exact or the half-step start.
+struct Candidate {
+  const CheckedSetting* from = nullptr;  // the study's setting its prediction rests on
+  int cells = 0;
+  VelocityStart start = VelocityStart::exact;
+  // The prediction: the error over time / A of the matching runs (none: no matching run, or one
+  // that failed), and in words which runs and what scaling.
+  std::optional<double> predicted_error_over_A;
+  std::string predicted_from;
+  double particle_steps = 0;         // of the run on the problem
+  double verify_particle_steps = 0;  // of its verifying runs together
+};
+
+// "gimp/flip/usl, 100 cells, C = 0.5" (", half-step start" where it starts so).
+std::string candidate_name(const Candidate& c);
+// The candidate as the parameters of a run of the problem (E = kAdviceE: c = 1, T = c T).
+RunParams run_params(const Candidate& c, const VerifyProblem& p);
+// The options of `mpmstab run` that run it on the problem.
+std::string run_command(const Candidate& c, const VerifyProblem& p);
+
+// Every candidate for the problem, in the order they are tried: those the prediction says meet
+// the target (predicted error at most the target), cheapest on the problem first (ties: the
+// smaller prediction, then the exact start), then none of the others. The prediction of a
+// candidate comes from its setting's runs that match the problem (docs/design.md).
+std::vector<Candidate> candidates(const std::vector<CheckedSetting>& settings,
+                                  const VerifyProblem& p, const AdviceDomain& d = kAdviceDomain);
+
+// A candidate's verifying runs, named, in the order they are made: the problem, length_factor x
+// c T, grid_factor x the cells at the same C.
+std::vector<std::pair<std::string, RunParams>> verifying_params(
+    const Candidate& c, const VerifyProblem& p, const AdviceDomain& d = kAdviceDomain);
+
+// One verifying run.
+struct VerifyingRun {
+  std::string what;  // "the problem", "4 x c T", "2 x the cells"
+  RunParams params;
+  std::string outcome;  // unstable, meaningless, stable, too_short, or "not run"
+  std::optional<double> error_over_A;
+  double particle_steps = 0;
+  double seconds = 0;
+  bool passes = false;  // stable, with an error over time at most the target
+};
+
+// A candidate tried, with its verifying runs and, where it failed, why.
+struct Trial {
+  Candidate candidate;
+  std::vector<VerifyingRun> runs;
+  bool passed = false;
+  std::string why;  // the first run that failed, in words
+};
+
+// The margins of the answer on the problem, in C: where its run stops surviving and where it
+// stops meeting the target, found by stepping C up by sqrt(2) from the answer's and bisecting
+// to 2%.
+struct ProblemEdges {
+  bool measured = false;
+  std::string not_measured;             // why, where not measured
+  std::optional<double> survival;       // the largest C probed that survives
+  std::optional<double> survival_fail;  // the smallest C above it that fails
+  std::optional<double> accurate;       // the largest C probed up to which every probe meets
+  std::optional<double> accurate_fail;  // the target; and the next probed, which does not
+  double scan_top = 0;                  // the largest C the scan reaches
+  double particle_steps = 0;
+  double seconds = 0;
+};
+
+struct Verified {
+  std::optional<Trial> answer;  // the first candidate whose every verifying run passed
+  std::vector<Trial> rejected;  // the candidates tried before it, in order
+  std::size_t eligible = 0;     // the candidates predicted to meet the target
+  std::string refusal;          // where refused: why, naming the bound that decided it
+  std::string bound;            // "target", "length", "amplitude", "budget", "too_short", ...
+  ProblemEdges edges;
+  double particle_steps = 0;  // of every run made
+  double seconds = 0;         // wall time of every run made
+};
+
+// Runs a candidate's verifying runs: the problem first (where it fails, nothing more is run),
+// then 4 x c T and the grid check side by side. `target` is the error over time / A to meet.
+using RunFn = std::function<RunResult(const RunParams&)>;
+Trial verify(const Candidate& c, const VerifyProblem& p, const RunFn& run_fn,
+             const AdviceDomain& d = kAdviceDomain);
+
+// The search: candidates in order, each verified, until one passes, the budget (seconds of
+// verifying runs, estimated before each candidate from the runs made so far) is spent, or none
+// is left. With `edges`, the answer's margins are measured on the problem within what is left
+// of the budget.
+Verified verified_advice(const std::vector<CheckedSetting>& settings, const VerifyProblem& p,
+                         double budget_seconds, bool edges, const RunFn& run_fn,
+                         const AdviceDomain& d = kAdviceDomain);
+
+// The advice sample (docs/design.md, "Advice: verified on the problem"): problems drawn at
+// random over the domain from a fixed seed (std::mt19937_64, each uniform u in [0, 1) from the
+// top 53 bits of a draw), each value rounded to two significant digits: A / L, c T / L (from
+// cT_low) and the target log-uniform over the domain; the scene, the boundary and the layout
+// each one of two with even odds, a jittered layout's jitter uniform in (jitter_low,
+// jitter_max]. The lookup of a problem (the prediction's cheapest candidate) is verified where
+// its three runs cost at most verify_cap particle-steps.
+struct SampleRule {
+  std::uint64_t seed = 20261128;
+  int problems = 240;
+  double cT_low = 1;
+  double jitter_low = 0.01;
+  double verify_cap = 1e8;
+};
+inline constexpr SampleRule kSampleRule{};
+std::vector<VerifyProblem> draw_problems(const SampleRule& rule = kSampleRule,
+                                         const AdviceDomain& d = kAdviceDomain);
+
+// The search's result as `mpmstab advise` prints it (without the seconds, which vary from run to
+// run: what a generated document shows), and as JSON.
+std::string verified_text(const Verified& v, const VerifyProblem& p, bool with_seconds = true);
+nlohmann::ordered_json verified_json(const Verified& v, const VerifyProblem& p);
+// The lookup alone (--no-verify): the first candidate, said plainly to be unverified.
+std::string unverified_text(const Candidate& c, const VerifyProblem& p);
+nlohmann::ordered_json unverified_json(const Candidate& c, const VerifyProblem& p);
+
+}  // namespace mpmstab

@@ -1,0 +1,741 @@
+// Choosing a method: one row per method (basis x velocity transfer x update order) with the
+// error at Table 1's setting, the orders in h and dt with the runs each is fitted over, the cells
+// per wavelength a wave needs to stay within a tolerance of the exact one after a number of
+// periods (phase and damping together, from the Bloch symbol), the survival and accuracy edges
+// at a tiny amplitude and the counted work per particle-step. It recommends nothing: the
+// project's recommendations are advice.md's (advice.hpp). The edges are this study's own cases
+// (edge searches); the errors and orders come from the rows of methods_grid, which it reads; the
+// wave column from each scheme's Bloch symbol (core/analysis/dispersion.hpp), set against the
+// single-mode runs of the dispersion study where its results are in the folder.
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+#include <tuple>
+
+#include "analysis/bloch.hpp"
+#include "analysis/dispersion.hpp"
+#include "analysis/spectral.hpp"
+#include "base/accuracy.hpp"
+#include "claims.hpp"
+#include "csv.hpp"
+#include "report_util.hpp"
+#include "step/simulation.hpp"
+#include "study.hpp"
+
+namespace mpmstab {
+
+namespace studies::methods {
+namespace {
+
+using ojson = nlohmann::ordered_json;
+
+// What identifies a method in a row: basis, wall treatment, transfer and its order, update.
+using MethodKey = std::tuple<std::string, std::string, std::string, int, std::string>;
+MethodKey key_of(const ojson& r) {
+  const std::string transfer = r["transfer"].get<std::string>();
+  int order = 0;
+  if (transfer == "xpic" && has_number(r, "xpic_order")) order = r["xpic_order"].get<int>();
+  if (transfer == "fmpm" && has_number(r, "fmpm_order")) order = r["fmpm_order"].get<int>();
+  return {r["method"].get<std::string>(), r["walls"].get<std::string>(), transfer, order,
+          r["update"].get<std::string>()};
+}
+
+std::string basis_text(const MethodKey& k) {
+  const auto& [method, walls, transfer, order, update] = k;
+  if (walls == "modified") return method + " (modified)";
+  return method;
+}
+
+std::string transfer_text(const MethodKey& k) {
+  const auto& [method, walls, transfer, order, update] = k;
+  return order > 0 ? transfer + "(" + std::to_string(order) + ")" : transfer;
+}
+
+// Passes over the particle's stencil per step, counted from Simulation::step: p2g, g2p and the
+// stress update (3); USF adds p2g_force, MUSL p2g_momentum; APIC adds p2g_affine (twice with
+// MUSL) and the interpolation of C_p in g2p; XPIC(m) adds 2 (m - 1) for its series and one for
+// the correction in g2p; FMPM(k) adds 2 (k - 1) per series, run once (USL) or twice (USF, MUSL).
+int stencil_passes(const MethodKey& k) {
+  const auto& [method, walls, transfer, order, update] = k;
+  int passes = 3;
+  if (update != "usl") passes += 1;
+  if (transfer == "apic") passes += update == "musl" ? 3 : 2;
+  if (transfer == "xpic") passes += 2 * (order - 1) + 1;
+  if (transfer == "fmpm") passes += 2 * (order - 1) * (update == "usl" ? 1 : 2);
+  return passes;
+}
+
+// 0 for a basis this program does not know (a results file written by hand).
+int node_visits(const MethodKey& k) {
+  const auto method = parse_method(std::get<0>(k));
+  return method ? stencil_width(*method) * stencil_passes(k) : 0;
+}
+
+// A fitted order and its support: the runs in the regime it describes (the points fitted) of
+// the runs of its kind.
+struct Order {
+  std::optional<double> value;
+  int fitted = 0, runs = 0;
+};
+
+struct MethodRow {
+  MethodKey key;
+  const ojson* edge = nullptr;    // this study's edge search
+  const ojson* table1 = nullptr;  // methods_grid: 100 cells, dt = 1e-4
+  std::vector<const ojson*> grid;
+  Order order_h, order_dt;
+};
+
+// Table 1's setting among the rows of methods_grid: the paper's grid at its smallest fixed dt.
+constexpr int kTable1Cells = 100;
+constexpr double kTable1Dt = 1e-4;
+// The order in h is fitted over methods_grid's CFL runs at this Courant number (the smallest the
+// grid sweeps: the time error least visible) and this amplitude, small enough that A / h stays
+// far below a quarter of a cell on the finest of their grids, so that no particle crosses a cell
+// (at Table 1's A = 0.015, A / h is at least 0.375 on the sweep's grids, where report_util.hpp's
+// regime keeps no run). The order in dt is fitted over the runs at Table 1's amplitude on its grid.
+constexpr double kOrderHCourant = 0.2;
+constexpr double kOrderHAmplitude = 2.5e-4;
+
+bool is_table1_setting(const ojson& r) {
+  return r["policy"].get<std::string>() == "fixed" && r["cells"].get<int>() == kTable1Cells &&
+         has_number(r, "dt") && r["dt"].get<double>() == kTable1Dt;
+}
+
+bool is_order_h_run(const ojson& r) {
+  return r["policy"].get<std::string>() == "cfl" &&
+         r["cfl_factor"].get<double>() == kOrderHCourant &&
+         r["A"].get<double>() == kOrderHAmplitude;
+}
+
+std::optional<double> error_of(const ojson& r) {
+  if (outcome(r) != "stable" || !has_number(r, "max_error")) return std::nullopt;
+  return r["max_error"].get<double>();
+}
+
+// The error over time (max over steps and particles) of a stable run: what the orders are fitted
+// to and the methods are ranked by; the error at T is shown, never fitted (docs/design.md,
+// "Orders of convergence").
+std::optional<double> over_time_of(const ojson& r) {
+  if (outcome(r) != "stable" || !has_number(r, "max_error_over_time")) return std::nullopt;
+  return r["max_error_over_time"].get<double>();
+}
+
+double dt_of(const ojson& r) {
+  return has_number(r, "dt") ? r["dt"].get<double>()
+                             : r["cfl_factor"].get<double>() * r["dt_cfl"].get<double>();
+}
+
+std::vector<MethodRow> method_rows(const std::vector<ojson>& edges,
+                                   const std::vector<ojson>& grid) {
+  std::vector<MethodRow> rows;
+  std::map<MethodKey, std::size_t> index;
+  for (const auto& r : edges) {
+    index[key_of(r)] = rows.size();
+    rows.push_back(MethodRow{.key = key_of(r), .edge = &r});
+  }
+  for (const auto& r : grid) {
+    const auto it = index.find(key_of(r));
+    if (it == index.end()) continue;
+    MethodRow& m = rows[it->second];
+    m.grid.push_back(&r);
+    if (is_table1_setting(r)) m.table1 = &r;
+  }
+  for (MethodRow& m : rows) {
+    std::vector<std::pair<double, double>> h_points, dt_points;
+    for (const ojson* r : m.grid) {
+      const auto e = over_time_of(*r);
+      // Orders only in their regime (report_util.hpp): accurate runs, and for h no crossing.
+      if (is_order_h_run(*r)) {
+        ++m.order_h.runs;
+        if (e && accurate_run(*r) && crossing_free(*r))
+          h_points.emplace_back(1.0 / (*r)["cells"].get<double>(), *e);
+      }
+      // The order in dt: Table 1's grid and amplitude, and that of the convergent scheme: not
+      // from a run above its limit.
+      if (!m.table1 || (*r)["cells"].get<int>() != kTable1Cells ||
+          (*r)["A"].get<double>() != (*m.table1)["A"].get<double>())
+        continue;
+      ++m.order_dt.runs;
+      const bool below_limit =
+          !has_number(*r, "courant_spectral") ||
+          (*r)["courant"].get<double>() <= (*r)["courant_spectral"].get<double>();
+      if (e && below_limit && accurate_run(*r)) dt_points.emplace_back(dt_of(*r), *e);
+    }
+    m.order_h.value = loglog_slope(h_points);
+    m.order_h.fitted = int(h_points.size());
+    m.order_dt.value = loglog_slope(dt_points);
+    m.order_dt.fitted = int(dt_points.size());
+  }
+  return rows;
+}
+
+// "2.01 (5 of 5)": the order and the runs it is fitted over of the runs of its kind; "– (2 of 5)"
+// with fewer than loglog_slope needs.
+std::string order_text(const Order& o) {
+  if (o.runs == 0) return "–";
+  return (o.value ? fixed(*o.value, 2) : std::string("–")) + " (" + std::to_string(o.fitted) +
+         " of " + std::to_string(o.runs) + ")";
+}
+
+std::string edge_text(const ojson& r, const char* column, const char* missing) {
+  return has_number(r, column) ? fixed(r[column].get<double>(), 3) : std::string(missing);
+}
+
+// The accuracy edge, or why there is none: withheld where the search's reference run or its run
+// at the edge is not accurate (report.hpp, add_accuracy_classes); "–" where the search found
+// none (its reference run meaningless).
+std::string accuracy_edge_text(const ojson& r) {
+  if (has_number(r, "dt_accurate_over_cfl"))
+    return fixed(r["dt_accurate_over_cfl"].get<double>(), 3);
+  return r.contains("accuracy_edge_withheld") && r["accuracy_edge_withheld"].is_boolean() &&
+                 r["accuracy_edge_withheld"].get<bool>()
+             ? "withheld"
+             : "–";
+}
+
+std::string table1_text(const MethodRow& m) {
+  if (!m.table1) return "–";
+  const auto e = error_of(*m.table1);
+  return e ? sci(*e) : verdict(*m.table1);
+}
+
+// The error over time at Table 1's setting with its size per A and its accuracy class, and the
+// energy balance error there ("–" where the run did not end stable: its verdict is in the column
+// before).
+std::string table1_over_time(const MethodRow& m) {
+  const auto e = m.table1 ? over_time_of(*m.table1) : std::nullopt;
+  if (!e || !has_number(*m.table1, "A")) return "–";
+  const double A = (*m.table1)["A"].get<double>();
+  return sci(*e) + " (" + ratio(*e / A) + " A, " + std::string(to_string(accuracy_class(*e, A))) +
+         ")";
+}
+std::string table1_energy(const MethodRow& m) {
+  if (!m.table1 || outcome(*m.table1) != "stable" || !has_number(*m.table1, "energy_error_max"))
+    return "–";
+  return sci((*m.table1)["energy_error_max"].get<double>());
+}
+
+std::string method_name(const MethodRow& m) {
+  return basis_text(m.key) + " / " + transfer_text(m.key) + " / " + std::get<4>(m.key);
+}
+
+// ---------------------------------------------------------------------------------------------
+// The wave column: how many cells per wavelength a wave needs to come out within kWaveTolerance
+// of the exact one after kWavePeriods of its periods, at c dt / h = kWaveCourant. A wave of the
+// uniform layout's interior is carried by the scheme's physical branch lambda (its Bloch symbol,
+// core/analysis/dispersion.hpp); its error per unit amplitude after n steps is
+// |lambda^n - e^{i omega n dt}| (amplitude_error), the damping and the phase error together.
+constexpr double kWaveCourant = 0.5;
+constexpr double kWavePeriods = 10;
+constexpr double kWaveTolerance = 0.01;
+// Two Courant numbers of a row are the same within this (the mode runs' c dt / h is a ratio of
+// powers of two, exact in binary).
+constexpr double kSameCourant = 1e-9;
+
+// The scheme of a row's method at `ppc` particles per cell (nullopt for a name this program does
+// not know); the walls do not enter the interior's symbol.
+std::optional<RunParams> scheme_params(const MethodKey& k, int ppc) {
+  const auto& [method, walls, transfer, order, update] = k;
+  const auto b = parse_method(method);
+  const auto t = parse_transfer(transfer);
+  const auto u = parse_update_order(update);
+  if (!b || !t || !u) return std::nullopt;
+  RunParams p;
+  p.method = *b;
+  p.transfer = *t;
+  p.update = *u;
+  p.ppc = ppc;
+  if (*t == Transfer::xpic && order > 0) p.xpic_order = order;
+  if (*t == Transfer::fmpm && order > 0) p.fmpm_order = order;
+  return p;
+}
+
+struct WaveCells {
+  bool computed = false;        // false where the symbol does not apply (or the name is unknown)
+  bool above_limit = false;     // kWaveCourant at or above the scheme's Bloch limit
+  std::optional<double> cells;  // nullopt: more than kMaxCellsPerWavelength (or not computed)
+};
+
+WaveCells wave_cells(const std::optional<RunParams>& p) {
+  WaveCells w;
+  if (!p) return w;
+  try {
+    const RunParams q = dispersion_scheme(*p);
+    const auto limit = bloch_courant(q);
+    w.computed = true;
+    w.above_limit = limit && *limit <= kWaveCourant;
+    if (!w.above_limit)
+      w.cells = cells_per_wavelength_amplitude(q, kWaveCourant, kWavePeriods, kWaveTolerance);
+  } catch (const std::invalid_argument&) {
+    w.computed = false;
+  }
+  return w;
+}
+
+// One per method row, the schemes that share an interior (the walls' treatments) computed once.
+std::vector<WaveCells> wave_column(const std::vector<MethodRow>& rows) {
+  std::map<std::tuple<std::string, std::string, int, std::string, int>, WaveCells> computed;
+  std::vector<WaveCells> out;
+  for (const auto& m : rows) {
+    const auto& [method, walls, transfer, order, update] = m.key;
+    const int ppc = has_number(*m.edge, "ppc") ? (*m.edge)["ppc"].get<int>() : 0;
+    const auto id = std::tuple{method, transfer, order, update, ppc};
+    auto it = computed.find(id);
+    if (it == computed.end())
+      it = computed.emplace(id, wave_cells(scheme_params(m.key, ppc))).first;
+    out.push_back(it->second);
+  }
+  return out;
+}
+
+// Three significant digits: "45.9", "176", "7370".
+std::string cells_text(double cells) {
+  const int magnitude = int(std::floor(std::log10(cells)));
+  const double unit = std::pow(10.0, magnitude - 2);
+  return fixed(std::round(cells / unit) * unit, std::max(0, 2 - magnitude));
+}
+
+std::string wave_text(const WaveCells& w) {
+  if (!w.computed) return "–";
+  if (w.above_limit) return "above the limit";
+  return w.cells ? cells_text(*w.cells) : "> " + shortest(kMaxCellsPerWavelength);
+}
+
+// The wave column set against runs: the dispersion study's single-mode runs at kWaveCourant (the
+// mode scene, one standing wave of the periodic bar, to T = its periods), each run's error over
+// time per A beside the symbol's largest |lambda^n - e^{i omega n dt}| over the run's steps.
+struct ModeCheck {
+  std::string label;
+  int cells = 0;
+  long long steps = 0;
+  double run = 0, symbol = 0;
+  std::string run_outcome;  // the run's outcome (outcome(), report_util.hpp)
+  double difference() const { return run - symbol; }
+};
+
+// Two schemes' symbol errors closer than this (per amplitude) are the same scheme's: at the
+// uniform layout with two particles per cell linear MPM, uGIMP, cpGIMP and CPDI share a symbol.
+constexpr double kSameWaveError = 1e-3;
+
+std::vector<ModeCheck> mode_checks(const StudyInputs& inputs) {
+  std::vector<ModeCheck> out;
+  const auto it = inputs.find("dispersion");
+  if (it == inputs.end() || !it->second.present() || !it->second.doc["cases"].is_array())
+    return out;
+  for (const auto& r : it->second.doc["cases"]) {
+    if (!has_number(r, "courant") ||
+        std::abs(r["courant"].get<double>() - kWaveCourant) > kSameCourant || !survived(r) ||
+        !has_number(r, "max_error_over_time") || !has_number(r, "A") || !has_number(r, "steps") ||
+        !has_number(r, "cells") || !has_number(r, "ppc"))
+      continue;
+    const auto p = scheme_params(key_of(r), r["ppc"].get<int>());
+    if (!p) continue;
+    ModeCheck c;
+    c.label = method_label(r);
+    c.cells = r["cells"].get<int>();
+    c.steps = r["steps"].get<long long>();
+    c.run = r["max_error_over_time"].get<double>() / r["A"].get<double>();
+    c.run_outcome = outcome(r);
+    const double kh = 2 * std::numbers::pi / c.cells;
+    const DispersionPoint d = dispersion_at(*p, kWaveCourant, kh);
+    for (long long n = 1; n <= c.steps; ++n) {
+      const double periods = double(n) * kWaveCourant * kh / (2 * std::numbers::pi);
+      c.symbol = std::max(c.symbol, amplitude_error(d, kWaveCourant, periods));
+    }
+    out.push_back(c);
+  }
+  return out;
+}
+
+// The pairs of schemes on the same grid whose runs end stable and whose symbol errors stay below
+// the amplitude (neither measure has lost the wave: an error from A on says only that, 2 for a
+// wave in antiphase, 1 for one damped away) and differ by more than kSameWaveError: how many the
+// runs' errors order as the symbol's do.
+struct PairOrder {
+  int alike = 0, pairs = 0;
+};
+PairOrder pair_order(const std::vector<ModeCheck>& checks) {
+  PairOrder o;
+  for (std::size_t i = 0; i < checks.size(); ++i) {
+    for (std::size_t j = i + 1; j < checks.size(); ++j) {
+      const ModeCheck &a = checks[i], &b = checks[j];
+      if (a.cells != b.cells || a.run_outcome != "stable" || b.run_outcome != "stable" ||
+          a.symbol >= 1 || b.symbol >= 1 || std::abs(a.symbol - b.symbol) <= kSameWaveError)
+        continue;
+      ++o.pairs;
+      o.alike += (a.run - b.run) * (a.symbol - b.symbol) > 0;
+    }
+  }
+  return o;
+}
+
+Claim wave_order_claim(const std::vector<ModeCheck>& checks) {
+  const PairOrder o = pair_order(checks);
+  Claim c = claim("runs-order-schemes-as-the-wave-column",
+                  "On each grid of the dispersion study's single-mode runs at c dt / h = "
+                  "{courant}, the runs' errors over time order the schemes as the Bloch symbol's "
+                  "wave errors over the same steps do",
+                  "{alike} of {pairs} pairs of schemes on the same grid whose runs end stable and "
+                  "whose symbol errors stay below A (neither measure meaningless), apart by more "
+                  "than {tie}");
+  c.value("courant", shortest(kWaveCourant))
+      .value("tie", shortest(kSameWaveError))
+      .every("alike", o.alike, "pairs", o.pairs);
+  return c;
+}
+
+std::string run_text(const ModeCheck& c) {
+  std::string s = fixed(c.run, 3) + " (" + c.run_outcome;
+  if (c.run_outcome == "stable") s += ", " + std::string(to_string(accuracy_class(c.run, 1.0)));
+  return s + ")";
+}
+
+std::string mode_check_text(const std::vector<ModeCheck>& checks) {
+  if (checks.empty()) {
+    return "The dispersion study has not been run into this folder: the wave column is not set "
+           "against runs here.\n\n";
+  }
+  std::vector<double> differences;
+  int larger = 0;
+  for (const auto& c : checks) {
+    differences.push_back(c.difference());
+    larger += c.difference() > 0;
+  }
+  std::ostringstream md;
+  md << "**The wave column against runs.** The dispersion study's " << checks.size()
+     << " single-mode runs at c dt / h = " << shortest(kWaveCourant)
+     << " (the mode scene: one free standing wave of the periodic bar, its wavelength the bar's "
+        "length, on as many cells as the wave has cells per wavelength, to the end of its "
+     << "periods) give their error over time per A beside the symbol's largest "
+        "|lambda^n - e^(i omega n dt)| over the same steps. The difference, run minus symbol, "
+        "spans "
+     << span(differences, 2) << " (the run's error the larger in " << larger << " of "
+     << checks.size()
+     << " runs): a run measures the displacement, the sum of the grid velocities over the "
+        "steps, where the symbol carries the velocity and the strain. How the two order the "
+        "schemes on each grid is the claim above.\n\n"
+     << "| scheme | cells per wavelength | steps | run: error over time / A (outcome, class) | "
+        "symbol: largest error over its steps | run minus symbol |\n|---|---|---|---|---|---|\n";
+  for (const auto& c : checks) {
+    md << "| " << c.label << " | " << c.cells << " | " << c.steps << " | " << run_text(c) << " | "
+       << fixed(c.symbol, 3) << " | " << fixed(c.difference(), 3) << " |\n";
+  }
+  md << "\n";
+  return md.str();
+}
+
+// ---------------------------------------------------------------------------------------------
+// The reading: facts of the table, every number from its rows.
+
+// The methods whose value prints as the best's does (ties at the printed precision), by name.
+template <class Text>
+std::string tied_names(const std::vector<MethodRow>& rows, const std::string& best, Text text) {
+  std::vector<std::string> names;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const auto t = text(i);
+    if (t && *t == best) names.push_back(method_name(rows[i]));
+  }
+  return list_of(names);
+}
+
+std::string reading(const std::vector<MethodRow>& rows, const std::vector<WaveCells>& waves) {
+  std::map<std::string, int> outcomes;
+  int accurate = 0, inaccurate = 0, with_order_h = 0, with_order_dt = 0, beyond = 0;
+  std::optional<double> best_error, widest, fewest, most;
+  std::size_t edges = 0, meaningless_edges = 0;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const MethodRow& m = rows[i];
+    ++outcomes[m.table1 ? outcome(*m.table1) : std::string()];
+    if (const auto e = m.table1 ? over_time_of(*m.table1) : std::nullopt) {
+      (accurate_run(*m.table1) ? accurate : inaccurate) += 1;
+      if (!best_error || *e < *best_error) best_error = e;
+    }
+    with_order_h += m.order_h.value.has_value();
+    with_order_dt += m.order_dt.value.has_value();
+    if (waves[i].computed && !waves[i].above_limit) {
+      const auto& cells = waves[i].cells;
+      beyond += !cells;
+      if (cells && (!fewest || *cells < *fewest)) fewest = cells;
+      if (cells && (!most || *cells > *most)) most = cells;
+    }
+    if (!has_number(*m.edge, "dt_edge_over_cfl")) continue;
+    ++edges;
+    if (outcome(*m.edge) == "meaningless") {
+      ++meaningless_edges;
+      continue;
+    }
+    const double edge = (*m.edge)["dt_edge_over_cfl"].get<double>();
+    if (!widest || edge > *widest) widest = edge;
+  }
+  const auto error_text = [&](std::size_t i) -> std::optional<std::string> {
+    const auto e = rows[i].table1 ? over_time_of(*rows[i].table1) : std::nullopt;
+    return e ? std::optional(sci(*e)) : std::nullopt;
+  };
+  const auto edge_of = [&](std::size_t i) -> std::optional<std::string> {
+    const ojson& r = *rows[i].edge;
+    if (!has_number(r, "dt_edge_over_cfl") || outcome(r) == "meaningless") return std::nullopt;
+    return fixed(r["dt_edge_over_cfl"].get<double>(), 3);
+  };
+  const auto wave_of = [&](std::size_t i) -> std::optional<std::string> {
+    return waves[i].cells ? std::optional(cells_text(*waves[i].cells)) : std::nullopt;
+  };
+
+  std::ostringstream md;
+  md << "Of " << rows.size() << " methods at Table 1's setting, " << outcomes["stable"]
+     << " end stable (" << accurate << " accurate, error over time below "
+     << shortest(kAccurateFraction) << " A; " << inaccurate << " inaccurate, from "
+     << shortest(kAccurateFraction) << " A up to A), " << outcomes["meaningless"]
+     << " meaningless and " << outcomes["unstable"] << " unstable";
+  const int others =
+      int(rows.size()) - outcomes["stable"] - outcomes["meaningless"] - outcomes["unstable"];
+  if (others > 0) md << " (" << others << " too short or not run)";
+  if (best_error) {
+    md << "; the smallest error over time there is " << sci(*best_error) << " ("
+       << tied_names(rows, sci(*best_error), error_text) << ")";
+  }
+  md << ". An order in h is fitted for " << with_order_h << " of " << rows.size()
+     << " methods and an order in dt for " << with_order_dt << ". ";
+  if (fewest) {
+    md << "The smallest number of cells per wavelength for a wave error of at most "
+       << percent(kWaveTolerance) << " after " << shortest(kWavePeriods)
+       << " periods at c dt / h = " << shortest(kWaveCourant) << " is " << cells_text(*fewest)
+       << " (" << tied_names(rows, cells_text(*fewest), wave_of) << "), the largest found "
+       << cells_text(*most) << " (" << tied_names(rows, cells_text(*most), wave_of) << ")";
+    if (beyond > 0)
+      md << "; " << beyond << " methods need more than " << shortest(kMaxCellsPerWavelength);
+    md << ". ";
+  }
+  md << "Of " << edges << " survival edges at the tiny amplitude, " << meaningless_edges
+     << " are runs whose error over time reached A (meaningless: marked in the table and the "
+        "figure)";
+  if (widest) {
+    md << "; the widest of the others is " << fixed(*widest, 3) << " h/c ("
+       << tied_names(rows, fixed(*widest, 3), edge_of)
+       << "), a run of this length only: an edge is not a recommended step";
+  }
+  md << ".";
+  return md.str();
+}
+
+std::string methods_table(const std::vector<MethodRow>& rows, const std::vector<WaveCells>& waves) {
+  std::ostringstream md;
+  md << "| basis | transfer | update | error at T at Table 1's setting | error over time there | "
+        "energy balance error there | cells per wavelength for a wave error (damping and phase "
+        "together, per amplitude) of at most "
+     << percent(kWaveTolerance) << " after " << shortest(kWavePeriods)
+     << " periods (Bloch symbol, C = " << shortest(kWaveCourant)
+     << ") | order in h (fitted over n of N runs) | order in dt (fitted over n of N runs) | "
+        "spectral limit (h/c) | survival edge (h/c) | accuracy edge (h/c) | node visits per "
+        "particle-step |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const MethodRow& m = rows[i];
+    md << "| " << basis_text(m.key) << " | " << transfer_text(m.key) << " | " << std::get<4>(m.key)
+       << " | " << table1_text(m) << " | " << table1_over_time(m) << " | " << table1_energy(m)
+       << " | " << wave_text(waves[i]) << " | " << order_text(m.order_h) << " | "
+       << order_text(m.order_dt) << " | "
+       << edge_text(*m.edge, "courant_spectral", ("> " + shortest(kMaxSpectralCourant)).c_str())
+       << " | " << edge_text(*m.edge, "dt_edge_over_cfl", "not found in the scan");
+    if (has_number(*m.edge, "dt_edge") && outcome(*m.edge) == "meaningless") md << " (meaningless)";
+    md << " | " << accuracy_edge_text(*m.edge) << " | " << node_visits(m.key) << " |\n";
+  }
+  return md.str();
+}
+
+std::vector<ojson> grid_rows(const StudyInputs& inputs) {
+  const StudyInput& in = inputs.at("methods_grid");
+  if (!in.present()) return {};
+  return std::vector<ojson>(in.doc["cases"].begin(), in.doc["cases"].end());
+}
+
+const std::vector<std::string> kBases = {"mpm",
+                                         "gimp",
+                                         "cpgimp",
+                                         "cpdi",
+                                         "bspline2",
+                                         "bspline3",
+                                         "bspline2 (modified)",
+                                         "bspline3 (modified)"};
+const std::vector<std::string> kTransfers = {"flip", "pic", "apic", "xpic(2)", "fmpm(2)"};
+const std::vector<std::string> kUpdates = {"usl", "usf", "musl"};
+
+int index_in(const std::vector<std::string>& list, const std::string& s) {
+  const auto it = std::find(list.begin(), list.end(), s);
+  return it == list.end() ? -1 : int(it - list.begin());
+}
+
+// <name>_data.csv: one row per method with an error over time at Table 1's setting and a survival
+// edge.
+std::string methods_data(const std::vector<MethodRow>& rows, const std::string& header) {
+  std::ostringstream csv;
+  csv << header << "# panel: update order (" << codes(kUpdates) << "); series: basis ("
+      << codes(kBases) << "); shape: transfer (" << codes(kTransfers) << ")\n"
+      << "panel,series,shape,edge_over_cfl,error,meaningless_at_edge\n";
+  for (const auto& m : rows) {
+    const auto e = m.table1 ? over_time_of(*m.table1) : std::nullopt;
+    if (!e || !has_number(*m.edge, "dt_edge_over_cfl")) continue;
+    csv << index_in(kUpdates, std::get<4>(m.key)) << ',' << index_in(kBases, basis_text(m.key))
+        << ',' << index_in(kTransfers, transfer_text(m.key)) << ','
+        << shortest((*m.edge)["dt_edge_over_cfl"].get<double>()) << ',' << shortest(*e) << ','
+        << (outcome(*m.edge) == "meaningless" ? 1 : 0) << '\n';
+  }
+  return csv.str();
+}
+
+// How the error at Table 1's setting and the orders are measured, every number from the rows
+// of methods_grid that give them.
+std::string how_to_read_the_setting(const std::vector<ojson>& grid) {
+  std::vector<ojson> table1, h_runs, cfl_runs, fixed_runs;
+  for (const auto& r : grid) {
+    if (is_table1_setting(r)) table1.push_back(r);
+    if (is_order_h_run(r)) {
+      h_runs.push_back(r);
+      continue;
+    }
+    if (r["cells"].get<int>() != kTable1Cells) continue;
+    (r["policy"].get<std::string>() == "cfl" ? cfl_runs : fixed_runs).push_back(r);
+  }
+  std::ostringstream md;
+  md << "- *error at T at Table 1's setting*: max_p |u_p - u(X_p, T)| at T = "
+     << listing(table1, "T") << " on the bar, E = " << listing(table1, "E")
+     << ", A = " << listing(table1, "A") << ", " << kTable1Cells << " cells x "
+     << listing(table1, "ppc") << " particles, dt = " << param(kTable1Dt)
+     << " (the verdict where the run did not end stable), shown, never fitted; *error over time "
+        "there*: the largest such error after any step, with its size per A and its accuracy "
+        "class; *energy balance error there*: the largest "
+        "balance error of the particles' kinetic and strain energy and the body force's work, per "
+        "the initial energy (docs/design.md, \"Energy\");\n"
+     << "- *order in h*: least-squares slope of log(error over time) against log(h) over the runs "
+        "on "
+     << listing(h_runs, "cells") << " cells at C = c dt / h = " << shortest(kOrderHCourant)
+     << " and A = " << listing(h_runs, "A") << " (E = " << listing(h_runs, "E")
+     << ", T = " << listing(h_runs, "T") << "; A / h " << span(numbers(h_runs, "A_over_h"))
+     << "); *order in dt*: against log(dt), over the runs at Table 1's amplitude below the "
+        "scheme's spectral limit, on "
+     << kTable1Cells << " cells over C = " << listing(cfl_runs, "cfl_factor")
+     << " and dt = " << listing(fixed_runs, "dt") << " (C = " << listing(fixed_runs, "courant")
+     << "); " << order_regime_text()
+     << ". Beside each order, (n of N): the N runs of its kind the method has and the n of them "
+        "in the regime, the points it is fitted over (`–` before them with fewer than the fit "
+        "needs). An order in dt near zero is what a time error smaller than the grid's gives;\n";
+  return md.str();
+}
+
+std::string wave_how_to_read(const std::vector<ojson>& edge_rows) {
+  std::ostringstream md;
+  md << "- *cells per wavelength for |lambda^n - e^(i omega t)| <= " << percent(kWaveTolerance)
+     << " after " << shortest(kWavePeriods)
+     << " periods*: the smallest number of cells per wavelength above which a wave of the "
+        "interior of the uniform layout comes out within "
+     << percent(kWaveTolerance) << " of the exact wave after " << shortest(kWavePeriods)
+     << " of its periods, at c dt / h = " << shortest(kWaveCourant)
+     << ". The wave is carried by the scheme's physical branch lambda, the acoustic eigenvalue "
+        "of its Bloch symbol ([dispersion.md](dispersion.md); docs/design.md, \"Dispersion\"), "
+        "and its error per unit amplitude after n steps of dt is |lambda^n - e^(i omega n dt)|, "
+        "omega = c k: the damping (|lambda| below one) and the phase error together, taken at "
+        "t = "
+     << shortest(kWavePeriods)
+     << " periods (a wave whose branch stops propagating counts as beyond the tolerance). The "
+        "scan runs from the longest waves up, then bisects (core/analysis/dispersion.hpp, "
+        "cells_per_wavelength_amplitude); `> "
+     << shortest(kMaxCellsPerWavelength)
+     << "` where the error exceeds the tolerance even at that many cells per wavelength; `above "
+        "the limit` where c dt / h = "
+     << shortest(kWaveCourant)
+     << " is at or above the scheme's spectral limit. At the rows' particles per cell ("
+     << listing(edge_rows, "ppc")
+     << "); the walls do not enter it (a B-spline with modified walls has its interior's "
+        "value). dispersion.md's cells per wavelength for a phase error alone leave the damping "
+        "out;\n";
+  return md.str();
+}
+
+StudyReport methods_report(const ReportContext& c) {
+  const std::vector<ojson> grid = grid_rows(c.inputs);
+  const auto rows = method_rows(c.rows, grid);
+  const auto waves = wave_column(rows);
+  std::ostringstream md;
+  md << "## Results\n\n**Reading.** " << reading(rows, waves) << "\n\n"
+     << "This table measures; it does not recommend: this project answers a user's problem with "
+        "`mpmstab advise`, which runs each answer on that problem before giving it "
+        "([advice.md](advice.md)).\n\n"
+     << cost_metric_text() << "\n\n![" << c.spec.title << "](" << c.spec.name
+     << ".png)\n\nThe figure places each method by its survival edge at the tiny "
+     << "amplitude (x) and its error over time at Table 1's setting (y), one panel per update "
+        "order; a "
+     << "method unstable at that setting or without an edge is left out. Vector version: ["
+     << c.spec.name << ".svg](" << c.spec.name << ".svg); data: [" << c.spec.name << "_data.csv]("
+     << c.spec.name << "_data.csv).\n\n"
+     << "How to read a row:\n\n"
+     << how_to_read_the_setting(grid) << wave_how_to_read(c.rows)
+     << "- *spectral limit*: the largest c dt / h at which the scheme's map, linearised about "
+        "rest at the uniform layout, amplifies nothing: the Bloch limit of the interior "
+        "(docs/design.md, \"The spectral limit\"; the walls' treatment does not enter it; "
+        "spectral.md sets the limits against runs); `> "
+     << shortest(kMaxSpectralCourant) << "` when nothing amplifies up to "
+     << shortest(kMaxSpectralCourant) << ";\n"
+     << "- *survival edge*: the largest fixed dt with which the bar at A = " << listing(c.rows, "A")
+     << ", E = " << listing(c.rows, "E") << " survives to T = " << listing(c.rows, "T")
+     << ", in units of h/c; *accuracy edge*: the largest dt up to which its error stays within "
+     << shortest(c.spec.study->edge.accuracy_factor)
+     << " times that of the smallest dt that survives (the edge study's rules), `withheld` where "
+        "that reference run or the run at the edge is not accurate (error over time at least "
+     << shortest(kAccurateFraction) << " A);\n"
+     << "- *node visits per particle-step*: the nodes of the stencil times the passes over it "
+        "that one step makes (counted from the code: p2g, g2p and the stress update, plus what "
+        "the update order and the transfer add), what makes one particle-step of a method dearer "
+        "than another's; the measured time per particle-step is in performance.md.\n\n";
+  if (grid.empty()) {
+    md << "methods_grid has not been run into this folder: the columns it provides are `–`.\n\n";
+  }
+  const std::vector<ModeCheck> checks = mode_checks(c.inputs);
+  md << methods_table(rows, waves) << "\n" << mode_check_text(checks);
+  std::vector<Claim> claims;
+  if (!checks.empty()) claims.push_back(wave_order_claim(checks));
+  return StudyReport{.markdown = md.str(),
+                     .data_csv = methods_data(rows, c.csv_header),
+                     .claims = std::move(claims)};
+}
+
+std::string methods_index(const Spec& spec, const std::vector<ojson>& rows) {
+  std::ostringstream md;
+  md << "![" << spec.title << "](" << spec.name << ".png)\n\n**What it shows.** " << rows.size()
+     << " methods (basis x transfer x update order), each with its error at Table 1's setting, "
+        "its orders in h and dt with the runs each is fitted over, the cells per wavelength for "
+        "a wave error of at most "
+     << percent(kWaveTolerance) << " after " << shortest(kWavePeriods)
+     << " periods, its edges and its work per particle-step; the recommendations are "
+        "advice.md's. Details: ["
+     << spec.name << ".md](" << spec.name << ".md).\n\n";
+  return md.str();
+}
+
+std::string methods_subtitle(const Spec&, const ojson& doc) {
+  std::size_t n = 0;
+  for (const auto& r : doc["cases"])
+    n += has_number(r, "dt_edge_over_cfl") ? 1 : 0;
+  const std::vector<ojson> rows(doc["cases"].begin(), doc["cases"].end());
+  return std::to_string(n) + " methods with a survival edge; E = " + listing(rows, "E") + ", " +
+         listing(rows, "cells") + " cells";
+}
+
+const StudyRegistration kMethods{{
+    .name = "methods",
+    .summary = "one row per method: error, orders with their support, cells per wavelength for "
+               "a wave error after some periods, tiny-amplitude edges, work per particle-step",
+    .work = CaseWork::edge_search,
+    .inputs = {{.name = "methods_grid", .required = true}, {.name = "dispersion"}},
+    .figure = true,
+    .report = methods_report,
+    .index = methods_index,
+    .figure_subtitle = methods_subtitle,
+}};
+
+}  // namespace
+}  // namespace studies::methods
+
+}  // namespace mpmstab

@@ -1,0 +1,1197 @@
+// The speed/accuracy trade: error against cost across methods, time-step policies and their
+// parameters. Cost is the deterministic work of a run, particles x steps (particle-steps); the
+// machine's wall times are kept apart (performance.md, timings.json), so a rerun writes the same
+// report. It measures and recommends nothing: every recommendation is advice.md's (advice.hpp).
+// From the rows of every scene, each parameter's stable range with a margin, and the rows it
+// rests on. Per scene: the cheapest setting for each accuracy, how the runs of each policy
+// ended, and per E every setting with the Pareto front marked.
+#include <algorithm>
+#include <iomanip>
+#include <limits>
+#include <map>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <tuple>
+
+#include "base/params.hpp"
+#include "claims.hpp"
+#include "csv.hpp"
+#include "key.hpp"
+#include "report_util.hpp"
+#include "scenes/validate.hpp"
+#include "shared/by_scene.hpp"
+#include "study.hpp"
+
+namespace mpmstab {
+
+namespace studies::tradeoff {
+namespace {
+
+using ojson = nlohmann::ordered_json;
+
+// ---------------------------------------------------------------------------------------------
+// Settings and their parameters (docs/design.md, "Time-step policies")
+
+const std::vector<std::string> kPolicies = {"fixed", "cfl", "adaptive", "min", "spectral"};
+
+// The parameter a policy is advised on: the fixed dt, the CFL factor C or the safety factor s
+// (the min policy: s, at its C).
+const char* parameter_key(const std::string& policy) {
+  if (policy == "fixed") return "dt";
+  return policy == "cfl" ? "cfl_factor" : "safety";
+}
+
+const char* parameter_symbol(const std::string& policy) {
+  if (policy == "fixed") return "dt";
+  return policy == "cfl" ? "C" : "s";
+}
+
+double parameter(const ojson& r) {
+  return r[parameter_key(text(r, "policy"))].get<double>();
+}
+
+// A parameter value as the report writes it: "1e-4" for a dt, "0.25" for C or s.
+std::string parameter_text(const std::string& policy, double v) {
+  if (policy == "fixed") return param(v);
+  std::ostringstream s;  // a factor: three significant digits, plain ("0.375", "1.05")
+  s << std::setprecision(3) << v;
+  return s.str();
+}
+
+// A setting's name: "gimp cfl C=0.5", "mpm adaptive s=2", "gimp fixed dt=1e-4".
+std::string setting(const ojson& r) {
+  const std::string policy = text(r, "policy");
+  std::string s = method_label(r);
+  s += " " + policy;
+  if (policy == "fixed") s += " dt=" + param(r["dt"].get<double>());
+  if (policy == "cfl" || policy == "min") s += " C=" + shortest(r["cfl_factor"].get<double>());
+  if (policy == "adaptive" || policy == "min" || policy == "spectral")
+    s += " s=" + shortest(r["safety"].get<double>());
+  if (r["cells"].get<int>() != 100) s += ", " + r["cells"].dump() + " cells";
+  return s;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Accuracy and cost
+
+// The accuracy of a run: its max error over time, when its outcome is stable. A run that failed
+// or whose error reached A reaches none (docs/design.md, "Outcomes").
+std::optional<double> accuracy(const ojson& r) {
+  if (outcome(r) != "stable" || !r["max_error_over_time"].is_number()) return std::nullopt;
+  return r["max_error_over_time"].get<double>();
+}
+
+// Whether run i ranks before run j on cost: fewer particle-steps, then the smaller error, then
+// the earlier row. A total order, so that every ranking is the same on every rerun.
+bool cheaper(const std::vector<ojson>& rows, std::size_t i, std::size_t j) {
+  const TotalLess less;  // total even where a record holds a NaN
+  const double ci = particle_steps(rows[i]), cj = particle_steps(rows[j]);
+  if (less(ci, cj) || less(cj, ci)) return less(ci, cj);
+  constexpr double kNone = std::numeric_limits<double>::infinity();
+  const double ei = accuracy(rows[i]).value_or(kNone), ej = accuracy(rows[j]).value_or(kNone);
+  if (less(ei, ej) || less(ej, ei)) return less(ei, ej);
+  return i < j;
+}
+
+// Indices of the runs on the Pareto front of (particle-steps, error): no other run is both
+// cheaper and more accurate. Runs equal in both are both on it.
+std::set<std::size_t> pareto_front(const std::vector<ojson>& rows,
+                                   const std::vector<std::size_t>& idx) {
+  std::set<std::size_t> front;
+  for (std::size_t i : idx) {
+    const auto ei = accuracy(rows[i]);
+    if (!ei) continue;
+    const double ci = particle_steps(rows[i]);
+    bool dominated = false;
+    for (std::size_t j : idx) {
+      const auto ej = accuracy(rows[j]);
+      if (j == i || !ej) continue;
+      const double cj = particle_steps(rows[j]);
+      if (cj <= ci && *ej <= *ei && (cj < ci || *ej < *ei)) dominated = true;
+    }
+    if (!dominated) front.insert(i);
+  }
+  return front;
+}
+
+const std::vector<double> kTargets = {1e-3, 1e-4, 1e-5};
+
+// The cheapest run (cheaper()) of `idx` reaching each target error.
+std::vector<std::optional<std::size_t>> cheapest(const std::vector<ojson>& rows,
+                                                 const std::vector<std::size_t>& idx) {
+  std::vector<std::optional<std::size_t>> best(kTargets.size());
+  for (std::size_t t = 0; t < kTargets.size(); ++t) {
+    for (std::size_t i : idx) {
+      const auto e = accuracy(rows[i]);
+      if (!e || *e > kTargets[t]) continue;
+      if (!best[t] || cheaper(rows, i, *best[t])) best[t] = i;
+    }
+  }
+  return best;
+}
+
+// The rows of one scene, the values of E they hold (in the order they first appear) and the
+// look-ups the advice is computed from.
+struct TradeRows {
+  const std::vector<ojson>& rows;
+  std::vector<double> Es;
+
+  explicit TradeRows(const std::vector<ojson>& scene_rows) : rows(scene_rows) {
+    for (const auto& r : rows) {
+      const double E = r["E"].get<double>();
+      if (std::find(Es.begin(), Es.end(), E) == Es.end()) Es.push_back(E);
+    }
+  }
+
+  // Indices of the runs at E.
+  std::vector<std::size_t> at(double E) const {
+    std::vector<std::size_t> idx;
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      if (rows[i]["E"].get<double>() == E) idx.push_back(i);
+    }
+    return idx;
+  }
+
+  // The run at E of `method` under `policy` on `cells` cells whose parameter (parameter()) is
+  // `value`; null when the sweep has none.
+  const ojson* find(double E, const std::string& method, const std::string& policy, double value,
+                    int cells) const {
+    for (const auto& r : rows) {
+      if (r["E"].get<double>() == E && method_label(r) == method && text(r, "policy") == policy &&
+          r["cells"].get<int>() == cells && parameter(r) == value) {
+        return &r;
+      }
+    }
+    return nullptr;
+  }
+};
+
+// "4, 64 and 1000".
+std::string list_of_E(const std::vector<double>& Es) {
+  std::vector<std::string> items;
+  for (double E : Es)
+    items.push_back(shortest(E));
+  return list_of(items);
+}
+
+// ---------------------------------------------------------------------------------------------
+// How the runs ended, per policy (docs/design.md, "Outcomes")
+
+struct Endings {
+  int runs = 0;
+  std::map<std::string, int> outcomes;  // by outcome(): unstable, meaningless, stable
+  std::map<std::string, int> reasons;   // the unstable runs, by failure_reason
+};
+
+std::map<std::string, Endings> endings_by_policy(const std::vector<ojson>& rows) {
+  std::map<std::string, Endings> by_policy;
+  for (const auto& p : kPolicies)
+    by_policy[p];
+  for (const auto& r : rows) {
+    Endings& e = by_policy[text(r, "policy")];
+    ++e.runs;
+    ++e.outcomes[outcome(r)];
+    if (outcome(r) == "unstable") ++e.reasons[text(r, "failure_reason")];
+  }
+  return by_policy;
+}
+
+// The failure reasons the table has a column for: dt_collapse always, then every other reason
+// some run stopped with, alphabetically.
+std::vector<std::string> reason_columns(const std::map<std::string, Endings>& by_policy) {
+  std::set<std::string> others;
+  for (const auto& [p, e] : by_policy) {
+    for (const auto& [reason, n] : e.reasons) {
+      if (reason != "dt_collapse") others.insert(reason);
+    }
+  }
+  std::vector<std::string> columns = {"dt_collapse"};
+  columns.insert(columns.end(), others.begin(), others.end());
+  return columns;
+}
+
+int count_of(const std::map<std::string, int>& m, const std::string& key) {
+  const auto it = m.find(key);
+  return it == m.end() ? 0 : it->second;
+}
+
+// Per policy, the runs and how they ended; the unstable ones per failure reason.
+std::string endings_table(const std::vector<ojson>& rows, const std::string& of_scene) {
+  const auto by_policy = endings_by_policy(rows);
+  const auto reasons = reason_columns(by_policy);
+  std::ostringstream md;
+  md << "### How the runs ended" << of_scene
+     << "\n\nPer time-step policy, the runs that were stable, meaningless (survived, but the "
+        "error over time reached A) and unstable, and the unstable ones by the reason they "
+        "stopped. dt_collapse: the adaptive or min policy asked for a step below "
+     << sci(kDtCollapseFraction, 1) << " times the CFL step h/c.\n\n"
+     << "| policy | runs | stable | meaningless | unstable |";
+  for (const auto& reason : reasons)
+    md << " " << reason << " |";
+  md << "\n|---|---|---|---|---|";
+  for (std::size_t k = 0; k < reasons.size(); ++k)
+    md << "---|";
+  md << "\n";
+  for (const auto& p : kPolicies) {
+    const Endings& e = by_policy.at(p);
+    md << "| " << p << " | " << e.runs << " | " << count_of(e.outcomes, "stable") << " | "
+       << count_of(e.outcomes, "meaningless") << " | " << count_of(e.outcomes, "unstable") << " |";
+    for (const auto& reason : reasons)
+      md << " " << count_of(e.reasons, reason) << " |";
+    md << "\n";
+  }
+  md << "\n";
+  return md.str();
+}
+
+ojson endings_json(const std::vector<ojson>& rows) {
+  ojson j = ojson::object();
+  for (const auto& [p, e] : endings_by_policy(rows)) {
+    ojson reasons = {{"dt_collapse", count_of(e.reasons, "dt_collapse")}};
+    for (const auto& [reason, n] : e.reasons)
+      reasons[reason] = n;
+    j[p] = {{"runs", e.runs},
+            {"stable", count_of(e.outcomes, "stable")},
+            {"meaningless", count_of(e.outcomes, "meaningless")},
+            {"unstable", count_of(e.outcomes, "unstable")},
+            {"failure_reasons", reasons}};
+  }
+  return j;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Stable ranges with a margin, a description of the runs (recommendations are advice.md's): a
+// value v of a parameter is stable with a margin for a method and policy if, at
+// every E of the scene, they were run at v and at some p >= 1.5 v, and every one of their runs
+// with the parameter up to p (on every grid) is stable and takes no step above its scheme's
+// spectral limit (where recorded). The largest such v is reported.
+
+constexpr double kMargin = 1.5;
+
+// The runs one piece of advice is about: one method under one policy (the min policy at one C).
+struct AdviceGroup {
+  std::string method, policy;
+  std::optional<double> cfl_factor;  // the min policy's C
+
+  bool holds(const ojson& r) const {
+    return method_label(r) == method && text(r, "policy") == policy &&
+           (!cfl_factor || r["cfl_factor"].get<double>() == *cfl_factor);
+  }
+  // "gimp cfl", "gimp min at C = 0.5".
+  std::string name() const {
+    std::string s = method + " " + policy;
+    if (cfl_factor) s += " at C = " + shortest(*cfl_factor);
+    return s;
+  }
+  std::string value(double v) const {
+    return std::string(parameter_symbol(policy)) + " = " + parameter_text(policy, v);
+  }
+};
+
+// The groups of a scene: by method in the order they first appear, then by policy.
+std::vector<AdviceGroup> advice_groups(const std::vector<ojson>& rows) {
+  std::vector<std::string> methods;
+  for (const auto& r : rows) {
+    const std::string m = method_label(r);
+    if (std::find(methods.begin(), methods.end(), m) == methods.end()) methods.push_back(m);
+  }
+  std::vector<AdviceGroup> groups;
+  for (const auto& m : methods) {
+    for (const auto& p : kPolicies) {
+      std::set<Key> Cs;
+      bool any = false;
+      for (const auto& r : rows) {
+        if (method_label(r) != m || text(r, "policy") != p) continue;
+        any = true;
+        if (p == "min") Cs.insert(Key(r["cfl_factor"].get<double>(), "cfl_factor"));
+      }
+      if (!any) continue;
+      if (p != "min") groups.push_back({m, p, std::nullopt});
+      for (double C : Cs)
+        groups.push_back({m, p, C});
+    }
+  }
+  return groups;
+}
+
+// The rule applied to one value v of a group's parameter.
+struct ValueCheck {
+  double value = 0;
+  bool advised = false;
+  std::vector<std::size_t> rests_on;  // the group's runs up to the checking value, per E
+  std::vector<double> checked;        // per E, the smallest value run at or beyond 1.5 v
+  std::string why_not;                // why it is not advised
+};
+
+// The group's runs at E, by parameter (then row order).
+std::vector<std::size_t> group_rows_at(const TradeRows& t, const AdviceGroup& g, double E) {
+  std::vector<std::size_t> idx;
+  for (std::size_t i : t.at(E)) {
+    if (g.holds(t.rows[i])) idx.push_back(i);
+  }
+  std::stable_sort(idx.begin(), idx.end(), [&](std::size_t a, std::size_t b) {
+    return TotalLess()(parameter(t.rows[a]), parameter(t.rows[b]));
+  });
+  return idx;
+}
+
+// The smallest parameter of `idx` at or beyond `at_least` (a relative 1e-9 below it counts, so
+// that 1.5 x 1e-4 finds a run at 1.5e-4).
+std::optional<double> first_at_or_beyond(const TradeRows& t, const std::vector<std::size_t>& idx,
+                                         double at_least) {
+  for (std::size_t i : idx) {
+    const double p = parameter(t.rows[i]);
+    if (p >= at_least * (1 - 1e-9)) return p;
+  }
+  return std::nullopt;
+}
+
+// "gimp cfl C=0.7 at E = 4 (bar): \* nonpositive_F at step 258 (t = 9.0e-1)".
+std::string row_verdict(const ojson& r) {
+  return setting(r) + " at E = " + shortest(r["E"].get<double>()) + " (" + text(r, "scene") +
+         "): " + verdict(r);
+}
+
+// A run whose largest step lies above its scheme's spectral limit (where both are recorded):
+// its survival holds for this amplitude and run length only.
+bool above_limit(const ojson& r) {
+  return has_number(r, "courant") && has_number(r, "courant_spectral") &&
+         r["courant"].get<double>() > r["courant_spectral"].get<double>();
+}
+
+// Whether v is advised (the rule above), and the rows it rests on or why not. A run that is not
+// stable up to the checking value (or, with none, among all the group's runs at E) tells first,
+// then a value not run at some E, then a margin that no run checks.
+ValueCheck check_value(const TradeRows& t, const AdviceGroup& g, double v) {
+  ValueCheck c;
+  c.value = v;
+  std::vector<double> not_run, unchecked;  // the values of E
+  for (double E : t.Es) {
+    const auto idx = group_rows_at(t, g, E);
+    const auto p = first_at_or_beyond(t, idx, kMargin * v);
+    const double limit = p.value_or(std::numeric_limits<double>::infinity());
+    for (std::size_t i : idx) {
+      if (parameter(t.rows[i]) > limit) break;
+      if (outcome(t.rows[i]) != "stable" && c.why_not.empty()) {
+        c.why_not = row_verdict(t.rows[i]);
+      }
+      if (above_limit(t.rows[i]) && c.why_not.empty()) {
+        c.why_not = row_verdict(t.rows[i]) + ", but its steps reach c dt/h " +
+                    fixed(t.rows[i]["courant"].get<double>(), 3) + ", above the spectral limit " +
+                    fixed(t.rows[i]["courant_spectral"].get<double>(), 3);
+      }
+      c.rests_on.push_back(i);
+    }
+    const bool run_at_v = std::any_of(idx.begin(), idx.end(),
+                                      [&](std::size_t i) { return parameter(t.rows[i]) == v; });
+    if (!run_at_v) not_run.push_back(E);
+    if (p) {
+      c.checked.push_back(*p);
+    } else {
+      unchecked.push_back(E);
+    }
+  }
+  if (c.why_not.empty() && !not_run.empty()) c.why_not = "not run at E = " + list_of_E(not_run);
+  if (c.why_not.empty() && !unchecked.empty()) {
+    c.why_not = "no row at " + shortest(kMargin) + "x (" + g.value(kMargin * v) +
+                ") at E = " + list_of_E(unchecked) + "; margin not checked";
+  }
+  c.advised = c.why_not.empty();
+  return c;
+}
+
+// The advice for one group: the largest value advised (if any) and the next value run, which
+// is not.
+struct MarginRange {
+  AdviceGroup group;
+  std::optional<ValueCheck> advised;
+  ValueCheck next;
+};
+
+MarginRange stable_range(const TradeRows& t, const AdviceGroup& g) {
+  std::set<Key> values;
+  for (const auto& r : t.rows) {
+    if (g.holds(r)) values.insert(Key(parameter(r), "the policy's parameter"));
+  }
+  MarginRange a{g, std::nullopt, {}};
+  std::vector<ValueCheck> checks;
+  for (double v : values)
+    checks.push_back(check_value(t, g, v));
+  std::size_t next = 0;
+  for (std::size_t k = 0; k < checks.size(); ++k) {
+    if (checks[k].advised) {
+      a.advised = checks[k];
+      next = k + 1;
+    }
+  }
+  // The largest value (positive, as validate() asks) has no run at 1.5 times it, so some value
+  // is always left not advised.
+  static_assert(kMargin > 1);
+  a.next = checks.at(next);
+  return a;
+}
+
+std::vector<MarginRange> stable_ranges(const TradeRows& t) {
+  std::vector<MarginRange> all;
+  for (const auto& g : advice_groups(t.rows))
+    all.push_back(stable_range(t, g));
+  return all;
+}
+
+// "36 rows: gimp cfl C = 0.05..0.5 at E = 4, 64 and 1000 on 100, 200 and 400 cells in the
+// scenes bar and steffen".
+std::string describe_rows(const TradeRows& t, const AdviceGroup& g,
+                          const std::vector<std::size_t>& idx) {
+  std::set<Key> values;
+  std::set<int> cells;
+  std::vector<double> Es;
+  std::vector<std::string> scenes;
+  for (std::size_t i : idx) {
+    values.insert(Key(parameter(t.rows[i]), "the policy's parameter"));
+    cells.insert(t.rows[i]["cells"].get<int>());
+    const double E = t.rows[i]["E"].get<double>();
+    if (std::find(Es.begin(), Es.end(), E) == Es.end()) Es.push_back(E);
+    const std::string scene = text(t.rows[i], "scene");
+    if (std::find(scenes.begin(), scenes.end(), scene) == scenes.end()) scenes.push_back(scene);
+  }
+  std::string s = std::to_string(idx.size()) + " rows: " + g.name() + (g.cfl_factor ? ", " : " ") +
+                  parameter_symbol(g.policy) + " = " + parameter_text(g.policy, *values.begin());
+  if (values.size() > 1) s += ".." + parameter_text(g.policy, *values.rbegin());
+  s += " at E = " + list_of_E(Es);
+  if (cells.size() > 1 || *cells.begin() != 100) {
+    std::vector<std::string> names;
+    for (int n : cells)
+      names.push_back(std::to_string(n));
+    s += " on " + list_of(names) + " cells";
+  }
+  return s + (scenes.size() > 1 ? " in the scenes " : " in the scene ") + list_of(scenes);
+}
+
+// "C = 0.5": the value checked beyond the advised one (a range when it differs between values
+// of E).
+std::string checked_text(const AdviceGroup& g, const ValueCheck& c) {
+  const auto [lo, hi] = std::minmax_element(c.checked.begin(), c.checked.end(), TotalLess());
+  std::string s = g.value(*lo);
+  if (*hi != *lo) s += " to " + parameter_text(g.policy, *hi);
+  return s;
+}
+
+// "C up to 0.25".
+std::string advised_text(const MarginRange& a) {
+  return std::string(parameter_symbol(a.group.policy)) + " up to " +
+         parameter_text(a.group.policy, a.advised->value);
+}
+
+// The rule, and per method and policy the value advised, the rows it rests on, the value checked
+// beyond it and why the next value run is not advised.
+std::string advice_table(const TradeRows& t, const std::vector<MarginRange>& all) {
+  std::ostringstream md;
+  md << "### Stable ranges of each policy's parameter, over every scene\n\nA description of the "
+        "runs, not a recommendation (`mpmstab advise` answers a problem, and verifies the answer "
+        "by runs on it; advice.md). A value v of a "
+        "parameter (a fixed dt, the CFL factor C, the safety factor s) is stable with a "
+     << shortest(kMargin) << "x margin for a method and policy if, at every E the study runs ("
+     << list_of_E(t.Es) << "), they were run at v and at some p >= " << shortest(kMargin)
+     << " v, and every one of their runs with the parameter up to p (on every grid, in every "
+        "scene) is stable: not unstable, not meaningless, and none of its steps above the "
+        "scheme's spectral limit (where the run records it: a run that survives above the limit "
+        "survives at this amplitude and run length only). The largest such v is shown; p is the "
+        "value checked beyond it. A value with no run at "
+     << shortest(kMargin)
+     << " times it or beyond is not shown: its margin is not checked. These runs lie at A / h = "
+     << listing(t.rows, "A_over_h") << " and c T = " << span(numbers(t.rows, "cT"), 3)
+     << " wave passes, and a range is checked there only.\n\n"
+     << "| method and policy | stable with margin | rests on | checked to | the next value run, "
+        "not stable with margin |\n|---|---|---|---|---|\n";
+  for (const auto& a : all) {
+    md << "| " << a.group.name() << " | ";
+    if (a.advised) {
+      md << advised_text(a) << " | " << describe_rows(t, a.group, a.advised->rests_on)
+         << ", all stable | " << checked_text(a.group, *a.advised) << " (" << shortest(kMargin)
+         << "x = " << parameter_text(a.group.policy, kMargin * a.advised->value) << ") | ";
+    } else {
+      md << "no value | – | – | ";
+    }
+    md << a.group.value(a.next.value) << ": " << a.next.why_not << " |\n";
+  }
+  md << "\n";
+  return md.str();
+}
+
+ojson advice_json(const TradeRows& t, const std::vector<MarginRange>& all) {
+  ojson j = ojson::array();
+  for (const auto& a : all) {
+    const ojson checked_to = a.advised
+                                 ? ojson(*std::max_element(a.advised->checked.begin(),
+                                                           a.advised->checked.end(), TotalLess()))
+                                 : ojson(nullptr);
+    ojson g = {{"method", a.group.method},
+               {"policy", a.group.policy},
+               {"cfl_factor", a.group.cfl_factor ? ojson(*a.group.cfl_factor) : ojson(nullptr)},
+               {"parameter", parameter_key(a.group.policy)},
+               {"advised", a.advised ? ojson(a.advised->value) : ojson(nullptr)},
+               {"rests_on",
+                a.advised ? ojson(describe_rows(t, a.group, a.advised->rests_on)) : ojson(nullptr)},
+               {"checked_to", checked_to},
+               {"next_value", a.next.value},
+               {"next_not_advised", a.next.why_not}};
+    j.push_back(g);
+  }
+  return j;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The advice paragraph
+
+// Per E (in the order of TradeRows::Es), the cheapest run reaching each target.
+using CheapestByE = std::vector<std::vector<std::optional<std::size_t>>>;
+
+CheapestByE cheapest_by_E(const TradeRows& t) {
+  CheapestByE best;
+  for (double E : t.Es)
+    best.push_back(cheapest(t.rows, t.at(E)));
+  return best;
+}
+
+// How often each method and policy ("gimp cfl") is the cheapest for an (E, target) pair.
+std::map<std::string, int> wins_by_policy(const TradeRows& t, const CheapestByE& best) {
+  std::map<std::string, int> count;
+  for (const auto& per_target : best) {
+    for (const auto& b : per_target) {
+      if (!b) continue;
+      const ojson& r = t.rows[*b];
+      ++count[method_label(r) + " " + text(r, "policy")];
+    }
+  }
+  return count;
+}
+
+// The first scene's opening: what accuracy and cost mean here, where the wall times are, and
+// the figure.
+std::string results_intro(const Spec& spec) {
+  std::ostringstream md;
+  md << "## Results\n\nAccuracy is the max error over time (the largest particle displacement "
+        "error after any step), since for most E the exact displacement at T is zero. Cost is "
+        "the work of the run in particle-steps (particles x steps), which a rerun reproduces "
+        "exactly; ties are broken by the smaller error, then by the order of the spec. The wall "
+        "times of these runs are measurements of the machine and are kept apart: see "
+        "[performance.md](performance.md) and [timings.json](timings.json). Only a stable run "
+        "reaches an accuracy: a run that failed (unstable) or whose error reached A "
+        "(meaningless) reaches none. Pareto front: no other setting at the same E is both "
+        "cheaper and more accurate.\n\n"
+     << cost_metric_text() << "\n\n![" << spec.title << "](" << spec.name << ".png)\n\n"
+     << "Vector version: [" << spec.name << ".svg](" << spec.name << ".svg); data: [" << spec.name
+     << "_data.csv](" << spec.name << "_data.csv).\n\n";
+  return md.str();
+}
+
+// Per E and target error, the cheapest setting that reaches it, with its error and cost.
+std::string cheapest_table(const TradeRows& t, const CheapestByE& best,
+                           const std::string& of_scene) {
+  std::ostringstream md;
+  md << "### The cheapest setting for each accuracy" << of_scene
+     << "\n\nEach reached the accuracy in one run, with no margin and no confirming run: "
+        "the cheapest on these runs, not a recommendation (advice.md recommends).\n\n| E |";
+  for (double target : kTargets)
+    md << " max error <= " << sci(target, 1) << " |";
+  md << "\n|---|";
+  for (std::size_t k = 0; k < kTargets.size(); ++k)
+    md << "---|";
+  md << "\n";
+  for (std::size_t e = 0; e < t.Es.size(); ++e) {
+    md << "| " << shortest(t.Es[e]) << " |";
+    for (const auto& b : best[e]) {
+      if (!b) {
+        md << " not reached |";
+        continue;
+      }
+      const ojson& r = t.rows[*b];
+      md << " " << setting(r) << ": " << sci(*accuracy(r)) << " in " << work(r)
+         << " particle-steps (" << r["steps"].dump() << " steps) |";
+    }
+    md << "\n";
+  }
+  return md.str();
+}
+
+// Which method and policy is most often the cheapest way to a target accuracy (the first by
+// name on a tie).
+std::string cheapest_overall_sentence(const std::map<std::string, int>& winners) {
+  if (winners.empty()) return "No setting reaches any of the target accuracies. ";
+  const auto top =
+      std::max_element(winners.begin(), winners.end(),
+                       [](const auto& a, const auto& b) { return a.second < b.second; });
+  int reached = 0;
+  for (const auto& [k, n] : winners)
+    reached += n;
+  std::ostringstream s;
+  s << "The cheapest setting for a target accuracy, in particle-steps, is " << top->first << " in "
+    << top->second << " of the " << reached << " (E, target) pairs that some setting reaches. ";
+  return s.str();
+}
+
+// The settings the sentences and claims compare: the paper's grid (kCoarse) against the finest
+// (kFine), both under the CFL rule at kCflRef; stepping at the eq. (108) bound with safety
+// kBoundSafety; the bound "buys no accuracy" when its error is within kNoGainFactor of the CFL
+// rule's.
+constexpr int kCoarse = 100, kFine = 400;
+constexpr double kCflRef = 0.5, kBoundSafety = 1.0, kNoGainFactor = 2.0;
+
+// GIMP's errors at E over every stable fixed and CFL step on the paper's grid (kCoarse).
+std::vector<double> gimp_step_errors(const TradeRows& t, double E) {
+  std::vector<double> errs;
+  for (const auto& r : t.rows) {
+    const std::string policy = text(r, "policy");
+    if (r["E"].get<double>() == E && method_label(r) == "gimp" &&
+        r["cells"].get<int>() == kCoarse && (policy == "cfl" || policy == "fixed") && accuracy(r)) {
+      errs.push_back(*accuracy(r));
+    }
+  }
+  return errs;
+}
+
+// Stepping at the eq. (108) bound (adaptive, kBoundSafety) against the CFL rule at kCflRef on
+// the paper's grid, for MPM and GIMP at every E where both have an error: the ratios of their
+// step counts and of their errors, pair by pair.
+struct BoundAgainstCfl {
+  std::vector<double> step_ratio, error_ratio;
+};
+
+BoundAgainstCfl bound_against_cfl(const TradeRows& t) {
+  BoundAgainstCfl out;
+  for (double E : t.Es) {
+    for (const char* m : {"gimp", "mpm"}) {
+      const ojson* b = t.find(E, m, "adaptive", kBoundSafety, kCoarse);
+      const ojson* c = t.find(E, m, "cfl", kCflRef, kCoarse);
+      if (b && c && accuracy(*b) && accuracy(*c)) {
+        out.step_ratio.push_back((*b)["steps"].get<double>() / (*c)["steps"].get<double>());
+        out.error_ratio.push_back(*accuracy(*b) / *accuracy(*c));
+      }
+    }
+  }
+  return out;
+}
+
+// Per E, how far GIMP's error moves with dt on the paper's grid (fixed and CFL steps), and how
+// far it moves with the grid (CFL at kCflRef, on every finer grid run).
+std::string gimp_spread_sentences(const TradeRows& t) {
+  std::ostringstream s;
+  for (double E : t.Es) {
+    const std::vector<double> errs = gimp_step_errors(t, E);
+    if (errs.empty()) continue;
+    std::vector<int> finer;  // the finer grids run under the CFL rule at kCflRef, ascending
+    for (const auto& r : t.rows) {
+      const int cells = r["cells"].get<int>();
+      if (cells > kCoarse && t.find(E, "gimp", "cfl", kCflRef, cells) == &r &&
+          std::find(finer.begin(), finer.end(), cells) == finer.end())
+        finer.push_back(cells);
+    }
+    std::sort(finer.begin(), finer.end());
+    const auto [lo, hi] = std::minmax_element(errs.begin(), errs.end(), TotalLess());
+    s << "E = " << shortest(E) << ": every stable fixed or CFL step of GIMP on " << kCoarse
+      << " cells gives an error between " << sci(*lo) << " and " << sci(*hi);
+    std::string moved;
+    for (std::size_t i = 0; i < finer.size(); ++i) {
+      const ojson* g = t.find(E, "gimp", "cfl", kCflRef, finer[i]);
+      if (!accuracy(*g)) continue;
+      moved += (moved.empty() ? "" : ", ") + sci(*accuracy(*g)) + " on " +
+               std::to_string(finer[i]) + " cells";
+    }
+    if (!moved.empty())
+      s << "; the grid moves it: " << moved << " (CFL, C = " << shortest(kCflRef) << ")";
+    s << ". ";
+  }
+  return s.str();
+}
+
+// At how many values of E refining the grid from kCoarse to kFine cells lowered GIMP's error.
+std::string refinement_sentence(const TradeRows& t) {
+  int refined_better = 0, refined_total = 0;
+  for (double E : t.Es) {
+    const ojson* g100 = t.find(E, "gimp", "cfl", kCflRef, kCoarse);
+    const ojson* g400 = t.find(E, "gimp", "cfl", kCflRef, kFine);
+    if (g100 && g400 && accuracy(*g100) && accuracy(*g400)) {
+      ++refined_total;
+      refined_better += *accuracy(*g400) < *accuracy(*g100);
+    }
+  }
+  if (refined_total == 0) return "";
+  std::ostringstream s;
+  s << "A finer grid lowered GIMP's error at " << refined_better << " of " << refined_total
+    << " values of E (" << kFine << " against " << kCoarse << " cells). ";
+  return s.str();
+}
+
+// Stepping at the eq. (108) bound against the CFL rule: the ranges of the ratios of their step
+// counts and of their errors.
+std::string bound_stepping_sentence(const TradeRows& t) {
+  const auto [step_ratio, error_ratio] = bound_against_cfl(t);
+  if (step_ratio.empty()) return "";
+  const auto [slo, shi] = std::minmax_element(step_ratio.begin(), step_ratio.end(), TotalLess());
+  const auto [elo, ehi] = std::minmax_element(error_ratio.begin(), error_ratio.end(), TotalLess());
+  std::ostringstream s;
+  s << "Stepping at the eq. (108) bound (adaptive, s = " << shortest(kBoundSafety) << ") takes "
+    << ratio(*slo) << " to " << ratio(*shi)
+    << " times the steps of the CFL rule at C = " << shortest(kCflRef) << " for " << ratio(*elo)
+    << " to " << ratio(*ehi) << " times its error. ";
+  return s.str();
+}
+
+// Per E, the best accuracy MPM reaches against the best GIMP reaches; whether GIMP's is the
+// better at every E where both reach one.
+struct MethodComparison {
+  std::string sentences;
+  int gimp_better = 0, compared = 0;
+};
+
+MethodComparison mpm_against_gimp(const TradeRows& t) {
+  MethodComparison c;
+  std::ostringstream s;
+  for (double E : t.Es) {
+    const ojson *best_gimp = nullptr, *best_mpm = nullptr;
+    for (const auto& r : t.rows) {
+      const std::string m = method_label(r);
+      if (r["E"].get<double>() != E || !accuracy(r) || (m != "gimp" && m != "mpm")) continue;
+      const ojson*& best = m == "gimp" ? best_gimp : best_mpm;
+      if (!best || *accuracy(r) < *accuracy(*best)) best = &r;
+    }
+    // The error with its size against A and its accuracy class: the best is not always accurate.
+    auto error_text = [](const ojson& r) {
+      const std::optional<Accuracy> a = row_accuracy(r);
+      return sci(*accuracy(r)) + (a ? " (" +
+                                          beside_thresholds(r["max_error_over_time"].get<double>() /
+                                                                r["A"].get<double>(),
+                                                            {kAccurateFraction, 1.0}) +
+                                          " A, " + std::string(to_string(*a)) + ")"
+                                    : std::string());
+    };
+    if (best_gimp && best_mpm) {
+      s << "E = " << shortest(E) << ": the best MPM error is " << error_text(*best_mpm)
+        << ", GIMP's " << error_text(*best_gimp) << ". ";
+      ++c.compared;
+      c.gimp_better += *accuracy(*best_gimp) < *accuracy(*best_mpm);
+    }
+  }
+  c.sentences = s.str();
+  return c;
+}
+
+// What one scene's rows show: every sentence is computed from them.
+std::string what_the_rows_show(const TradeRows& t, const std::map<std::string, int>& winners) {
+  std::string s = "**What the rows show.** " + cheapest_overall_sentence(winners) +
+                  gimp_spread_sentences(t) + refinement_sentence(t) + bound_stepping_sentence(t) +
+                  mpm_against_gimp(t).sentences;
+  while (s.back() == ' ')
+    s.pop_back();
+  return s;
+}
+
+// The claims the rows of the paper's bar (the first scene) decide for GIMP: the step moves the
+// error less than the grid does; a finer grid lowers it; stepping at the eq. (108) bound buys
+// no accuracy over the CFL rule.
+
+void grid_and_step_claims(const TradeRows& t, std::vector<Claim>& claims) {
+  double spread_max = 0, grid_min = 1e300;
+  int better = 0, total = 0;
+  for (double E : t.Es) {
+    const std::vector<double> errs = gimp_step_errors(t, E);
+    const ojson* coarse = t.find(E, "gimp", "cfl", kCflRef, kCoarse);
+    const ojson* fine = t.find(E, "gimp", "cfl", kCflRef, kFine);
+    if (errs.empty() || !coarse || !fine || !accuracy(*coarse) || !accuracy(*fine)) continue;
+    const auto [lo, hi] = std::minmax_element(errs.begin(), errs.end(), TotalLess());
+    spread_max = std::max(spread_max, *hi / *lo);
+    const double change = *accuracy(*fine) / *accuracy(*coarse);
+    grid_min = std::min(grid_min, 1 / change);  // the fall with the grid (below 1: a rise)
+    ++total;
+    better += change < 1;
+  }
+  Claim spread = claim("step-moves-error-less-than-grid",
+                       "For GIMP on the paper's bar, below the edge the time step moves the error "
+                       "over time less than the grid does, at every E: a smaller step costs work "
+                       "and buys no accuracy",
+                       "the step moves it by a factor of at most {spread} (every stable fixed and "
+                       "CFL step on {coarse} cells); {coarse} to {fine} cells lower it by a factor "
+                       "of at least {grid} (a factor below one: it rises); {total} values of E");
+  spread.number("spread", spread_max)
+      .count("coarse", kCoarse)
+      .count("fine", kFine)
+      .number("grid", total ? grid_min : 0)
+      .count("total", total);
+  spread.holds = total > 0 && spread_max < grid_min;
+  claims.push_back(spread);
+
+  Claim finer = claim("finer-grid-lowers-error",
+                      "A finer grid lowers GIMP's error over time on the paper's bar at every E",
+                      "{better} of {total} values of E ({fine} against {coarse} cells, CFL C = "
+                      "{C})");
+  finer.every("better", better, "total", total)
+      .count("fine", kFine)
+      .count("coarse", kCoarse)
+      .value("C", shortest(kCflRef));
+  claims.push_back(finer);
+
+  const auto [step_ratio, error_ratio] = bound_against_cfl(t);
+  Claim bound = claim("bound-buys-no-accuracy",
+                      "Stepping at the eq. (108) bound (adaptive, s = {s}) takes more steps than "
+                      "the CFL rule at C = {C} and does not lower the error over time by a factor "
+                      "of {factor}, for MPM and GIMP at every E on the paper's bar where both runs "
+                      "reach T below A",
+                      "{pairs} pairs: {slo} to {shi} times the steps, {elo} to {ehi} times the "
+                      "error; {left} of {all} (method, E) pairs left out: a run failed or was "
+                      "meaningless");
+  bound.value("s", shortest(kBoundSafety))
+      .value("C", shortest(kCflRef))
+      .value("factor", shortest(kNoGainFactor))
+      .count("pairs", static_cast<long long>(step_ratio.size()))
+      .count("left", static_cast<long long>(2 * t.Es.size() - step_ratio.size()))
+      .count("all", static_cast<long long>(2 * t.Es.size()));
+  if (step_ratio.empty()) {
+    bound.value("slo", "–").value("shi", "–").value("elo", "–").value("ehi", "–");
+  } else {
+    const auto [slo, shi] = std::minmax_element(step_ratio.begin(), step_ratio.end(), TotalLess());
+    const auto [elo, ehi] =
+        std::minmax_element(error_ratio.begin(), error_ratio.end(), TotalLess());
+    bound.value("slo", ratio(*slo))
+        .value("shi", ratio(*shi))
+        .value("elo", ratio(*elo))
+        .value("ehi", ratio(*ehi));
+    bound.holds = *slo > 1 && *elo > 1 / kNoGainFactor;
+  }
+  claims.push_back(bound);
+}
+
+// What the runs say about picking a setting (advice.md recommends): GIMP against MPM over every
+// scene as a claim; the claims the bar's rows decide; then the stable ranges of each
+// policy's parameter (a description).
+std::string advice_section(const std::vector<ojson>& rows, const std::vector<SceneRows>& scenes,
+                           const std::vector<MarginRange>& ranges, std::vector<Claim>& claims) {
+  MethodComparison methods;
+  for (const auto& sc : scenes) {
+    const MethodComparison c = mpm_against_gimp(TradeRows(sc.rows));
+    methods.gimp_better += c.gimp_better;
+    methods.compared += c.compared;
+  }
+  Claim gimp = claim("gimp-more-accurate-than-mpm",
+                     "GIMP's best error over time is below MPM's at every (scene, E) pair where "
+                     "both reach an accuracy",
+                     "{better} of {compared} pairs");
+  gimp.every("better", methods.gimp_better, "compared", methods.compared);
+  claims.push_back(gimp);
+  grid_and_step_claims(TradeRows(scenes.front().rows), claims);
+  return "### What the runs say about picking a setting\n\nThis study measures; it does not "
+         "recommend. This project answers a user's problem with `mpmstab advise`, which runs each "
+         "answer on that problem before giving it ([advice.md](advice.md)): a setting that is "
+         "cheapest here is cheapest on these runs only.\n\n" +
+         advice_table(TradeRows(rows), ranges);
+}
+
+// ---------------------------------------------------------------------------------------------
+// The tables per E and the scene's section
+
+// Every setting at one E with its steps, particle-steps, dt range, verdict and error; the
+// Pareto front marked.
+std::string settings_table(const TradeRows& t, double E, const std::string& of_scene) {
+  const auto idx = t.at(E);
+  const auto front = pareto_front(t.rows, idx);
+  std::ostringstream md;
+  std::vector<double> passes;
+  for (std::size_t i : idx)
+    if (has_number(t.rows[i], "cT")) passes.push_back(t.rows[i]["cT"].get<double>());
+  md << "### E = " << shortest(E) << " (c T = " << span(passes, 3) << " wave passes)" << of_scene
+     << "\n\n| setting | steps | particle-steps | dt range | mean dt | verdict | max error over "
+        "time | Pareto |\n|---|---|---|---|---|---|---|---|\n";
+  for (std::size_t i : idx) {
+    const ojson& r = t.rows[i];
+    md << "| " << setting(r) << " | " << r["steps"].dump() << " | " << work(r) << " | "
+       << opt_sci(r["dt_min"]) << " to " << opt_sci(r["dt_max"]) << " | " << opt_sci(r["dt_mean"])
+       << " | " << verdict(r) << " | " << opt_sci(r["max_error_over_time"]) << " | "
+       << (front.count(i) ? "**yes**" : "") << " |\n";
+  }
+  md << "\n";
+  return md.str();
+}
+
+// One scene's section, headed by the scene; a further scene's (`first` false) tables name it.
+std::string scene_markdown(const std::vector<ojson>& rows, bool first) {
+  const TradeRows t(rows);
+  const std::string scene = rows.front()["scene"].get<std::string>();
+  const std::string of_scene = first ? "" : " (" + scene + ")";
+  const auto best = cheapest_by_E(t);
+  std::ostringstream md;
+  md << "## " << scene_title(scene) << "\n\n";
+  md << cheapest_table(t, best, of_scene) << "\n"
+     << what_the_rows_show(t, wins_by_policy(t, best)) << "\n\n"
+     << endings_table(rows, of_scene);
+  for (double E : t.Es)
+    md << settings_table(t, E, of_scene);
+  return md.str();
+}
+
+// ---------------------------------------------------------------------------------------------
+// The figure: the first scene's stable runs, error against particle-steps
+
+// A run the figure draws: stable, with an error a log axis can show.
+bool drawn(const ojson& r) {
+  const auto e = accuracy(r);
+  return e && *e > 0;
+}
+
+// The runs of a scene the figure draws and those it leaves out, by outcome.
+struct FigureCount {
+  std::string scene;
+  std::size_t runs = 0, drawn = 0, unstable = 0, meaningless = 0, no_error = 0;
+};
+
+FigureCount figure_count(const std::vector<ojson>& rows) {
+  FigureCount n;
+  n.scene = rows.front()["scene"].get<std::string>();
+  n.runs = rows.size();
+  for (const auto& r : rows) {
+    if (drawn(r)) {
+      ++n.drawn;
+    } else if (outcome(r) == "unstable") {
+      ++n.unstable;
+    } else if (outcome(r) == "meaningless") {
+      ++n.meaningless;
+    } else {
+      ++n.no_error;
+    }
+  }
+  return n;
+}
+
+// "120 of 136 runs of the scene bar drawn; left out: 14 unstable, 2 meaningless". No single
+// quotes: it is handed to gnuplot inside them.
+std::string figure_count_text(const FigureCount& n) {
+  std::string s = std::to_string(n.drawn) + " of " + std::to_string(n.runs) +
+                  " runs of the scene " + n.scene +
+                  " drawn; left out: " + std::to_string(n.unstable) + " unstable, " +
+                  std::to_string(n.meaningless) + " meaningless";
+  if (n.no_error > 0) s += ", " + std::to_string(n.no_error) + " stable without an error to draw";
+  return s;
+}
+
+// The methods the figure names (tradeoff.gp's method_name), in its order; any other is drawn as
+// "other" (the code after the last).
+const std::vector<std::string> kFigureMethods = {"mpm",       "gimp",         "cpgimp",
+                                                 "bspline2",  "bspline3",     "cpdi",
+                                                 "gimp/apic", "gimp/xpic(2)", "gimp/fmpm(2)"};
+
+int method_code(const std::string& m) {
+  return static_cast<int>(std::find(kFigureMethods.begin(), kFigureMethods.end(), m) -
+                          kFigureMethods.begin());
+}
+
+int policy_code(const std::string& p) {
+  return static_cast<int>(std::find(kPolicies.begin(), kPolicies.end(), p) - kPolicies.begin());
+}
+
+// The index of `key` in `seen`, appended when new: panels and series in the order they first
+// appear.
+template <class T>
+std::size_t index_in(std::vector<T>& seen, const T& key) {
+  const auto it = std::find(seen.begin(), seen.end(), key);
+  if (it != seen.end()) return static_cast<std::size_t>(it - seen.begin());
+  seen.push_back(key);
+  return seen.size() - 1;
+}
+
+// One row per run drawn: its panel (E), its series (method, policy, grid) and grid rank
+// (0 the coarsest), its cost and its error.
+std::string tradeoff_data_csv(const std::vector<ojson>& rows, const std::string& header_lines) {
+  const TradeRows t(rows);
+  std::set<int> grids;
+  for (const auto& r : rows)
+    grids.insert(r["cells"].get<int>());
+  std::vector<std::tuple<std::string, std::string, int>> series;
+  std::ostringstream csv;
+  csv << header_lines << "# " << figure_count_text(figure_count(rows)) << "\n"
+      << "# one row per run drawn (stable, with an error); panel: the index of E; series: the "
+         "index of (method, policy, cells) in the order of the spec; method: "
+      << codes(kFigureMethods) << ", " << kFigureMethods.size()
+      << " another; policy: " << codes(kPolicies)
+      << "; grid: the rank of cells, counting from the coarsest at zero; pareto: whether the run "
+         "is on the Pareto front of its E, a boolean (no other run at that E both cheaper and "
+         "more accurate)\nE,panel,series,method,policy,cells,grid,particle_steps,steps,error,"
+         "pareto\n";
+  std::set<std::size_t> front;
+  for (double E : t.Es) {
+    const auto f = pareto_front(rows, t.at(E));
+    front.insert(f.begin(), f.end());
+  }
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const ojson& r = rows[i];
+    if (!drawn(r)) continue;
+    const double E = r["E"].get<double>();
+    const int cells = r["cells"].get<int>();
+    const std::size_t panel =
+        static_cast<std::size_t>(std::find(t.Es.begin(), t.Es.end(), E) - t.Es.begin());
+    const std::size_t s = index_in(series, {method_label(r), text(r, "policy"), cells});
+    csv << shortest(E) << ',' << panel << ',' << s << ',' << method_code(method_label(r)) << ','
+        << policy_code(text(r, "policy")) << ',' << cells << ','
+        << std::distance(grids.begin(), grids.find(cells)) << ','
+        << static_cast<long long>(particle_steps(r)) << ',' << r["steps"].dump() << ','
+        << shortest(*accuracy(r)) << ',' << (front.count(i) ? 1 : 0) << '\n';
+  }
+  return csv.str();
+}
+
+// The figure's subtitle: what it draws and leaves out of the first scene.
+std::string tradeoff_subtitle(const Spec& spec, const ojson& doc) {
+  const std::vector<ojson> rows(doc["cases"].begin(), doc["cases"].end());
+  std::string s = figure_count_text(figure_count(by_scene(rows).front().rows));
+  return s + "; every run of every scene is in " + spec.name + ".md";
+}
+
+// The study's JSON: the advice from every scene's rows, per scene how the runs of each policy
+// ended, and what the figure draws.
+ojson tradeoff_json(const std::vector<ojson>& rows, const std::vector<SceneRows>& scenes,
+                    const std::vector<MarginRange>& ranges) {
+  ojson endings = ojson::object();
+  for (const auto& sc : scenes)
+    endings[sc.scene] = endings_json(sc.rows);
+  const FigureCount n = figure_count(scenes.front().rows);
+  return {{"margin", kMargin},
+          {"stable_ranges", advice_json(TradeRows(rows), ranges)},
+          {"endings", endings},
+          {"figure",
+           {{"scene", n.scene},
+            {"runs", n.runs},
+            {"drawn", n.drawn},
+            {"unstable", n.unstable},
+            {"meaningless", n.meaningless},
+            {"stable_without_error", n.no_error}}}};
+}
+
+// The report: the definitions and the figure, the advice from every scene's rows, then one
+// section per scene; the figure's data from the first scene (the paper's bar).
+// ---------------------------------------------------------------------------------------------
+// What the walls cost: every run of the paper's bar under the CFL rule at kCflRef (every method,
+// and GIMP and MPM on every grid) is rerun with periodic boundaries, which the periodic
+// manufactured solution allows. The twin has no wall: its error is the interior's own, and the
+// ratio of the two is what the Dirichlet walls' treatment adds.
+
+// The rows whose periodic twin is run, in row order.
+std::vector<std::size_t> twin_rows(const std::vector<ojson>& rows) {
+  std::vector<std::size_t> idx;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const ojson& r = rows[i];
+    if (text(r, "scene") == "bar" && text(r, "bc") == "dirichlet" && text(r, "policy") == "cfl" &&
+        parameter(r) == kCflRef)
+      idx.push_back(i);
+  }
+  return idx;
+}
+
+// The follow-up runs: the periodic twins.
+std::vector<RunParams> tradeoff_follow_ups(const FollowUpContext& c) {
+  std::vector<RunParams> runs;
+  for (const std::size_t i : twin_rows(c.rows)) {
+    RunParams p = c.spec.cases.at(i).params;
+    p.bc = Boundary::periodic;
+    runs.push_back(p);
+  }
+  return runs;
+}
+
+// Each twin by the index of its row (absent where the follow-up runs are).
+std::map<std::size_t, const ojson*> periodic_twins(const std::vector<ojson>& rows,
+                                                   const std::vector<ojson>& follow_up) {
+  std::map<std::size_t, const ojson*> out;
+  std::size_t next = 0;
+  for (const std::size_t i : twin_rows(rows)) {
+    if (next >= follow_up.size()) break;
+    out[i] = &follow_up[next++];
+  }
+  return out;
+}
+
+std::string walls_cost_section(const std::vector<ojson>& rows,
+                               const std::map<std::size_t, const ojson*>& twins) {
+  if (twins.empty()) return "";
+  std::ostringstream md;
+  md << "### What the walls cost\n\nEvery run of the paper's bar under the CFL rule at C = "
+     << shortest(kCflRef)
+     << " rerun with periodic boundaries (no wall: the interior's own error). A ratio well "
+        "below one is error the Dirichlet walls' treatment adds; walls.md does the same for "
+        "every Table 1 cell.\n\n";
+  // GIMP without walls against the grid: does refining lower the interior's error?
+  int lowered = 0, compared = 0;
+  for (const auto& [i, twin] : twins) {
+    if (method_label(rows[i]) != "gimp" || rows[i]["cells"].get<int>() != kFine) continue;
+    for (const auto& [j, coarse] : twins) {
+      if (method_label(rows[j]) == "gimp" && rows[j]["cells"].get<int>() == kCoarse &&
+          rows[j]["E"] == rows[i]["E"] && accuracy(*twin) && accuracy(*coarse)) {
+        ++compared;
+        lowered += *accuracy(*twin) < *accuracy(*coarse);
+      }
+    }
+  }
+  if (compared > 0) {
+    md << "Without walls a finer grid lowered GIMP's error at " << lowered << " of " << compared
+       << " values of E (" << kFine << " against " << kCoarse << " cells).\n\n";
+  }
+  md << "| method | E | cells | Dirichlet: error over time | periodic twin | periodic / Dirichlet "
+        "|\n|---|---|---|---|---|---|\n";
+  // By method (in the order the rows first name it), then E, then cells.
+  std::vector<std::string> methods;
+  for (const auto& r : rows) {
+    const std::string m = method_label(r);
+    if (std::find(methods.begin(), methods.end(), m) == methods.end()) methods.push_back(m);
+  }
+  auto order = [&](std::size_t i) {
+    const ojson& r = rows[i];
+    return std::tuple(std::find(methods.begin(), methods.end(), method_label(r)) - methods.begin(),
+                      Key(r["E"].get<double>(), "E"), r["cells"].get<int>());
+  };
+  std::vector<std::pair<std::size_t, const ojson*>> sorted(twins.begin(), twins.end());
+  std::stable_sort(sorted.begin(), sorted.end(),
+                   [&](const auto& a, const auto& b) { return order(a.first) < order(b.first); });
+  for (const auto& [i, twin] : sorted) {
+    const ojson& r = rows[i];
+    const auto d = accuracy(r), p = accuracy(*twin);
+    md << "| " << method_label(r) << " | " << shortest(r["E"].get<double>()) << " | "
+       << r["cells"].get<int>() << " | " << (d ? sci(*d) : verdict(r)) << " | "
+       << (p ? sci(*p) : verdict(*twin)) << " | " << (d && p ? ratio(*p / *d) : std::string("–"))
+       << " |\n";
+  }
+  md << "\n";
+  return md.str();
+}
+
+StudyReport tradeoff_report(const ReportContext& c) {
+  const auto scenes = by_scene(c.rows);
+  const auto ranges = stable_ranges(TradeRows(c.rows));
+  StudyReport report;
+  report.markdown = results_intro(c.spec) + advice_section(c.rows, scenes, ranges, report.claims) +
+                    walls_cost_section(c.rows, periodic_twins(c.rows, c.follow_up));
+  for (std::size_t i = 0; i < scenes.size(); ++i)
+    report.markdown += scene_markdown(scenes[i].rows, i == 0);
+  report.data_csv = tradeoff_data_csv(scenes.front().rows, c.csv_header);
+  report.json = tradeoff_json(c.rows, scenes, ranges);
+  return report;
+}
+
+const StudyRegistration kTradeoff{{
+    .name = "tradeoff",
+    .summary = "error against cost across methods, time-step policies and their parameters",
+    .records = {.error_over_time = true},
+    .figure = true,
+    .follow_up = tradeoff_follow_ups,
+    .report = tradeoff_report,
+    .index =
+        [](const Spec& spec, const std::vector<ojson>&) {
+          return "![" + spec.title + "](" + spec.name + ".png)\n\n**What it shows.** The cost of " +
+                 "each accuracy in particle-steps across methods, time-step policies and their "
+                 "parameters, the Pareto front, the cheapest run for each target on these runs and "
+                 "each parameter's stable range; the recommendations are advice.md's: [" +
+                 spec.name + ".md](" + spec.name + ".md).\n\n";
+        },
+    .figure_subtitle = tradeoff_subtitle,
+}};
+
+}  // namespace
+}  // namespace studies::tradeoff
+
+}  // namespace mpmstab

@@ -1,0 +1,182 @@
+// Supporting experiments: a plain table of every case, the parameters that vary and the measured
+// quantities the spec records.
+#include <algorithm>
+#include <sstream>
+
+#include "base/accuracy.hpp"
+#include "csv.hpp"
+#include "report_util.hpp"
+#include "study.hpp"
+
+namespace mpmstab {
+
+namespace studies::cases {
+namespace {
+
+using ojson = nlohmann::ordered_json;
+
+// Parameters shown as a column where the cases differ and stated once where they do not; method,
+// E, A and dt always have a column.
+const std::vector<std::string> kOptionalParams = {
+    "T", "cells", "ppc", "bc", "position_update", "scene", "walls",
+    // The transfer and the order of the update, and the form of the eq. (108) bound.
+    "transfer", "flip_fraction", "xpic_order", "fmpm_order", "update", "body_force_time",
+    "dt_stable_sigma", "dt_stable_vnorm"};
+
+// The parameter columns: method, E, A, dt, then every optional parameter that differs between
+// the cases.
+std::vector<std::string> varying_params(const std::vector<ojson>& rows) {
+  std::vector<std::string> params = {"method", "E", "A", "dt"};
+  for (const std::string& col : kOptionalParams) {
+    for (const auto& r : rows) {
+      if (r[col] != rows.front()[col]) {
+        params.push_back(col);
+        break;
+      }
+    }
+  }
+  return params;
+}
+
+// "T = 1, cells = 100, ...": the optional parameters without a column, common to every case.
+std::string common_params(const std::vector<ojson>& rows, const std::vector<std::string>& params) {
+  std::string text;
+  for (const std::string& col : kOptionalParams) {
+    if (std::find(params.begin(), params.end(), col) != params.end()) continue;
+    const ojson& v = rows.front()[col];
+    if (v.is_null()) continue;  // not applicable to these runs (flip_fraction without a blend)
+    text += std::string(text.empty() ? "" : ", ") + col + " = " +
+            (v.is_string() ? v.get<std::string>() : shortest(v.get<double>()));
+  }
+  return text;
+}
+
+// The header of the table: the parameter columns, then the measured quantities the spec records.
+std::string cases_header(const std::vector<std::string>& params, const Observe& observe) {
+  std::ostringstream md;
+  md << "|";
+  for (const auto& p : params)
+    md << " " << p << " |";
+  md << " c dt/h | A/h | c T | verdict | max error |";
+  if (observe.error_over_time) md << " max error over time | over time / A |";
+  if (observe.dt_stable) md << " dt_stable min |";
+  if (observe.crossings) md << " crossings |";
+  md << " particle-steps |\n|";
+  const std::size_t n_cols = params.size() + 6 + (observe.error_over_time ? 2 : 0) +
+                             (observe.dt_stable ? 1 : 0) + (observe.crossings ? 1 : 0);
+  for (std::size_t k = 0; k < n_cols; ++k)
+    md << "---|";
+  md << "\n";
+  return md.str();
+}
+
+// One case: its parameters and what it measured.
+std::string case_row(const ojson& r, const std::vector<std::string>& params,
+                     const Observe& observe) {
+  std::ostringstream md;
+  md << "|";
+  for (const auto& p : params) {
+    const ojson& v = r[p];
+    md << " "
+       << (v.is_string() ? v.get<std::string>()
+           : v.is_null() ? std::string("–")
+           : p == "dt"   ? param(v.get<double>())
+                         : shortest(v.get<double>()))
+       << " |";
+  }
+  auto coordinate = [&](const char* col) {
+    return has_number(r, col) ? significant(r[col].get<double>(), 3) : std::string("–");
+  };
+  md << " " << opt_sci(r["courant"]) << " | " << coordinate("A_over_h") << " | " << coordinate("cT")
+     << " | " << verdict(r) << " | " << opt_sci(r["max_error"]) << " |";
+  if (observe.error_over_time) {
+    md << " " << opt_sci(r["max_error_over_time"]) << " | "
+       << (r["max_error_over_time"].is_number() && r["A"].get<double>() > 0
+               ? ratio(r["max_error_over_time"].get<double>() / r["A"].get<double>())
+               : "–")
+       << " |";
+  }
+  if (observe.dt_stable) md << " " << opt_sci(r["dt_stable_min"]) << " |";
+  if (observe.crossings) {
+    md << " " << (r["crossings"].is_null() ? std::string("–") : r["crossings"].dump()) << " |";
+  }
+  md << " " << work(r) << " |\n";
+  return md.str();
+}
+
+// The verdicts of the cases: how many failed, survived with an error over time that reached A,
+// took too few steps for a verdict, or ended stable, and of the stable ones how many are
+// accurate and inaccurate (core/base/accuracy.hpp; unknown where the error over time was not
+// recorded).
+struct VerdictCounts {
+  int unstable = 0, meaningless = 0, too_short = 0, stable = 0;
+  int accurate = 0, inaccurate = 0, unknown = 0;
+};
+
+VerdictCounts count_verdicts(const std::vector<ojson>& rows) {
+  VerdictCounts n;
+  for (const auto& r : rows) {
+    const std::string o = outcome(r);
+    n.unstable += o == "unstable";
+    n.meaningless += o == "meaningless";
+    n.too_short += o == "too_short";
+    if (o != "stable") continue;
+    ++n.stable;
+    const std::optional<Accuracy> a = row_accuracy(r);
+    n.unknown += !a;
+    n.accurate += a == Accuracy::accurate;
+    n.inaccurate += a && *a != Accuracy::accurate;
+  }
+  return n;
+}
+
+// "12 stable (9 accurate, 3 inaccurate)".
+std::string stable_text(const VerdictCounts& n) {
+  std::ostringstream s;
+  s << n.stable << " stable (" << n.accurate << " accurate, " << n.inaccurate << " inaccurate";
+  if (n.unknown > 0) s << ", " << n.unknown << " with no error over time recorded";
+  s << ")";
+  return s.str();
+}
+
+// The verdicts counted, the parameters common to every case, then one row per case.
+std::string cases_markdown(const Spec& spec, const std::vector<ojson>& rows) {
+  const auto params = varying_params(rows);
+  const auto& observe = spec.cases.front().params.observe;
+  const VerdictCounts n = count_verdicts(rows);
+  std::ostringstream md;
+  md << "## Results\n\n"
+     << rows.size() << " cases: " << stable_text(n) << ", " << n.meaningless
+     << " meaningless (survived, but the error over time reached A), " << n.unstable << " unstable";
+  if (n.too_short > 0) md << ", " << n.too_short << " too short for a verdict";
+  md << ". Common to all: " << common_params(rows, params) << ".\n\n"
+     << cases_header(params, observe);
+  for (const auto& r : rows)
+    md << case_row(r, params, observe);
+  return md.str();
+}
+
+std::string cases_index(const Spec& spec, const std::vector<ojson>& rows) {
+  const VerdictCounts n = count_verdicts(rows);
+  std::ostringstream md;
+  md << "**What it shows.** " << rows.size() << " cases: " << stable_text(n) << ", "
+     << n.meaningless << " meaningless, " << n.unstable << " unstable";
+  if (n.too_short > 0) md << ", " << n.too_short << " too short for a verdict";
+  md << ". Full table: [" << spec.name << ".md](" << spec.name << ".md).\n\n";
+  return md.str();
+}
+
+const StudyRegistration kCases{{
+    .name = "cases",
+    .summary = "a plain table of every case (the experiments that support the comparison)",
+    .report =
+        [](const ReportContext& c) {
+          return StudyReport{.markdown = cases_markdown(c.spec, c.rows)};
+        },
+    .index = cases_index,
+}};
+
+}  // namespace
+}  // namespace studies::cases
+
+}  // namespace mpmstab

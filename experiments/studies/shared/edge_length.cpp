@@ -1,0 +1,153 @@
+#include "shared/edge_length.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string_view>
+
+#include "base/accuracy.hpp"
+#include "csv.hpp"
+#include "report_util.hpp"
+
+namespace mpmstab {
+
+using ojson = nlohmann::ordered_json;
+
+std::vector<double> edges_of(const ojson& r) {
+  std::vector<double> dts;
+  for (const char* col : {"dt_edge", "dt_accurate"}) {
+    if (!has_number(r, col)) continue;
+    const double dt = r[col].get<double>();
+    if (std::find(dts.begin(), dts.end(), dt) == dts.end()) dts.push_back(dt);
+  }
+  return dts;
+}
+
+std::vector<double> test_lengths(double cT) {
+  std::vector<double> out;
+  for (const double f : kLengthFactors) {
+    const double length = std::min(f * cT, kLongPasses);
+    if (length > cT && (out.empty() || length > out.back())) out.push_back(length);
+  }
+  return out;
+}
+
+std::vector<RunParams> length_runs(const RunParams& base, double dt) {
+  std::vector<RunParams> out;
+  for (const double length : test_lengths(wave_passes(base))) {
+    RunParams p = base;
+    p.stepping.policy = TimeStepPolicy::fixed;
+    p.dt = dt;
+    p.T = length / wave_speed(p);
+    p.observe.error_over_time = true;
+    out.push_back(p);
+  }
+  return out;
+}
+
+bool LongRun::accurate() const {
+  return outcome == "stable" && error_over_A && *error_over_A < kAccurateFraction;
+}
+
+std::vector<RunParams> all_length_runs(const std::vector<ojson>& rows,
+                                       const std::vector<CaseSpec>& cases) {
+  std::vector<RunParams> runs;
+  for (std::size_t i = 0; i < rows.size() && i < cases.size(); ++i) {
+    for (const double dt : edges_of(rows[i]))
+      for (auto& p : length_runs(cases[i].params, dt))
+        runs.push_back(std::move(p));
+  }
+  return runs;
+}
+
+LengthRuns read_length_runs(const std::vector<ojson>& rows, const std::vector<ojson>& follow_up,
+                            std::size_t& next) {
+  LengthRuns out;
+  for (const auto& r : rows) {
+    for (const double dt : edges_of(r)) {
+      for (const double length : test_lengths(r["cT"].get<double>())) {
+        if (next >= follow_up.size()) return out;
+        const ojson& run = follow_up[next++];
+        LongRun l;
+        l.dt = dt;
+        l.length = length;
+        l.survived = survived(run);
+        l.outcome = outcome(run);
+        if (has_number(run, "max_error_over_time"))
+          l.error_over_A = run["max_error_over_time"].get<double>() / run["A"].get<double>();
+        const double c = std::sqrt(run["E"].get<double>());
+        l.passes = l.survived || !has_number(run, "failure_time")
+                       ? run["cT"].get<double>()
+                       : c * run["failure_time"].get<double>();
+        out[&r].push_back(l);
+      }
+    }
+  }
+  return out;
+}
+
+Lasting lasting(const LengthRuns& runs, const ojson& r, const char* dt_col,
+                std::optional<double> bound) {
+  Lasting out;
+  if (!has_number(r, dt_col)) return out;
+  const auto it = runs.find(&r);
+  if (it == runs.end()) return out;
+  const double dt = r[dt_col].get<double>();
+  const bool survival = std::string_view(dt_col) == "dt_edge";
+  for (const LongRun& l : it->second) {
+    if (l.dt != dt) continue;
+    out.tested = true;
+    const bool bounded = !bound || (l.error_over_A && *l.error_over_A <= *bound);
+    if (survival ? !(l.survived && bounded) : !l.accurate()) {
+      out.holds = false;
+      out.failing = &l;
+      out.length = l.survived ? l.length : l.passes;
+      return out;
+    }
+    out.holds = true;
+    out.length = l.length;
+    out.longest = &l;
+  }
+  return out;
+}
+
+std::string lasting_text(const LengthRuns& runs, const ojson& r, const char* dt_col,
+                         std::optional<double> bound) {
+  const Lasting l = lasting(runs, r, dt_col, bound);
+  if (!l.tested) return "not tested for length";
+  if (l.holds) {
+    std::string s = "holds to c T = " + significant(l.length, 4);
+    if (l.longest && l.longest->outcome == "meaningless") s += " (meaningless there)";
+    return s;
+  }
+  const LongRun& run = *l.failing;
+  if (!run.survived) return "**transient**: fails at c T = " + significant(run.passes, 3);
+  if (std::string_view(dt_col) == "dt_edge")
+    return "**transient**: unbounded at c T = " + significant(run.length, 4) + " (" +
+           (run.error_over_A ? significant(*run.error_over_A, 2) + " A" : run.outcome) + ")";
+  return "**transient**: not accurate at c T = " + significant(run.length, 4) + " (" +
+         (run.outcome == "stable" && run.error_over_A ? significant(*run.error_over_A, 2) + " A"
+                                                      : run.outcome) +
+         ")";
+}
+
+void LengthTally::add(const Lasting& l) {
+  if (!l.tested) return;
+  ++tested;
+  if (l.holds) {
+    ++held;
+  } else {
+    failed_at.push_back(l.length);
+  }
+}
+
+Claim length_claim(std::string id, std::string statement, std::string evidence,
+                   const LengthTally& t) {
+  Claim c = claim(std::move(id), std::move(statement), std::move(evidence));
+  c.value("first", shortest(kLengthFactors[0]))
+      .value("second", shortest(kLengthFactors[1]))
+      .value("cap", shortest(kLongPasses))
+      .every("held", t.held, "tested", t.tested);
+  return c;
+}
+
+}  // namespace mpmstab

@@ -1,0 +1,835 @@
+// The edges in dt: per case, the survival edge (the largest fixed dt that survives to T) and the
+// accuracy edge (the largest that keeps the error over time of the smallest dt), against h/c and
+// the eq. (108) bound, with the dts where survival flips; one section per scene, the figure drawing
+// every scene.
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cmath>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <string_view>
+#include <tuple>
+
+#include "base/accuracy.hpp"
+#include "claims.hpp"
+#include "csv.hpp"
+#include "key.hpp"
+#include "report.hpp"
+#include "report_util.hpp"
+#include "shared/by_scene.hpp"
+#include "shared/edge_length.hpp"
+#include "shared/ensemble.hpp"
+#include "study.hpp"
+
+namespace mpmstab {
+
+namespace studies::edge {
+namespace {
+
+using ojson = nlohmann::ordered_json;
+
+// A dt in units of h/c: "0.823".
+std::string in_cfl(double v) {
+  return fixed(v, 3);
+}
+
+// A row's wave passes c T: "8", "31.6".
+std::string passes(const ojson& r) {
+  return significant(r["cT"].get<double>(), 3);
+}
+
+// "mpm, A = 0.05, E = 4 (c T = 2)".
+std::string case_name(const ojson& r) {
+  std::string s = r["method"].get<std::string>();
+  s += ", A = ";
+  s += shortest(r["A"].get<double>());
+  s += ", E = ";
+  s += shortest(r["E"].get<double>());
+  s += " (c T = " + passes(r) + ")";
+  return s;
+}
+
+struct Flip {
+  bool survives = false;
+  double dt = 0;
+};
+
+// The column survival_flips, "fails 0.000625; survives 0.00088": each dt from which survival
+// changes as dt grows, below the survival edge.
+std::vector<Flip> flips_of(const ojson& r) {
+  std::vector<Flip> flips;
+  if (!r.contains("survival_flips") || !r["survival_flips"].is_string()) return flips;
+  std::string text = r["survival_flips"].get<std::string>();
+  std::replace(text.begin(), text.end(), ';', ' ');
+  std::istringstream in(text);
+  std::string word;
+  double dt = 0;
+  while (in >> word >> dt)
+    flips.push_back({word == "survives", dt});
+  return flips;
+}
+
+// "fails from 6.25e-4, survives from 8.84e-4".
+std::string flips_text(const std::vector<Flip>& flips) {
+  std::string s;
+  for (const auto& f : flips) {
+    if (!s.empty()) s += ", ";
+    s += f.survives ? "survives from " : "fails from ";
+    s += sci(f.dt, 3);
+  }
+  return s;
+}
+
+std::string min_max(std::vector<double> v) {
+  const auto [lo, hi] = std::minmax_element(v.begin(), v.end(), TotalLess());
+  return *lo == *hi ? in_cfl(*lo) : in_cfl(*lo) + " to " + in_cfl(*hi);
+}
+
+// The reading of one scene's searches, computed from its rows: per method, the range of both
+// edges over h/c, how often the run at the survival edge is meaningless and the accuracy edge
+// lies below it; the searches without an edge; the non-monotone ones with their flips.
+// What one method's searches found.
+struct MethodEdges {
+  int cases = 0, with_edge = 0, meaningless = 0, below = 0, no_accuracy = 0, withheld = 0;
+  std::vector<double> edge, accurate, accurate_over_edge, over_bound;
+};
+
+// One method's sentence of the summary.
+std::string method_summary(const std::string& name, const MethodEdges& m) {
+  std::ostringstream md;
+  if (m.edge.empty()) {
+    md << name << ": no dt of the scan survives (" << m.cases << (m.cases == 1 ? " case" : " cases")
+       << "). ";
+    return md.str();
+  }
+  md << name << ": the survival edge is " << min_max(m.edge) << " h/c, and the run there is "
+     << "meaningless in " << m.meaningless << " of " << m.with_edge << " cases";
+  if (!m.accurate.empty()) {
+    md << "; the accuracy edge is " << min_max(m.accurate) << " h/c, below the survival edge "
+       << "in " << m.below << " of " << m.accurate.size() << " cases (down to "
+       << ratio(*std::min_element(m.accurate_over_edge.begin(), m.accurate_over_edge.end(),
+                                  TotalLess()))
+       << " times it)";
+  }
+  if (m.no_accuracy) {
+    md << "; " << m.no_accuracy << " ha" << (m.no_accuracy == 1 ? "s" : "ve")
+       << " no accuracy edge (the run at the smallest surviving dt is meaningless)";
+  }
+  if (m.withheld) {
+    md << "; " << m.withheld << " ha" << (m.withheld == 1 ? "s" : "ve")
+       << " none that is accurate (the search's reference run or its run at the edge has an "
+          "error over time of at least "
+       << shortest(kAccurateFraction) << " A)";
+  }
+  if (!m.over_bound.empty()) {
+    const auto [lo, hi] =
+        std::minmax_element(m.over_bound.begin(), m.over_bound.end(), TotalLess());
+    md << "; eq. (108) at the survival edge is " << ratio(*lo) << " to " << ratio(*hi)
+       << " times below it";
+  }
+  md << ". ";
+  return md.str();
+}
+
+std::string edge_summary_text(const std::vector<ojson>& rows) {
+  std::map<std::string, MethodEdges> per;
+  std::vector<std::string> non_monotone;
+  int none = 0;
+  for (const auto& r : rows) {
+    MethodEdges& m = per[r["method"].get<std::string>()];
+    ++m.cases;
+    if (!has_number(r, "dt_edge")) {
+      ++none;
+      continue;
+    }
+    ++m.with_edge;
+    m.edge.push_back(r["dt_edge_over_cfl"].get<double>());
+    m.meaningless += outcome(r) == "meaningless";
+    if (has_number(r, "dt_edge_over_stable"))
+      m.over_bound.push_back(r["dt_edge_over_stable"].get<double>());
+    if (has_number(r, "dt_accurate")) {
+      m.accurate.push_back(r["dt_accurate_over_cfl"].get<double>());
+      const double below = r["dt_accurate"].get<double>() / r["dt_edge"].get<double>();
+      m.accurate_over_edge.push_back(below);
+      m.below += below < 1;
+    } else if (r.value("accuracy_edge_withheld", false)) {
+      ++m.withheld;
+    } else {
+      ++m.no_accuracy;
+    }
+    const auto flips = flips_of(r);
+    if (!flips.empty()) non_monotone.push_back(case_name(r) + " (" + flips_text(flips) + ")");
+  }
+  std::ostringstream md;
+  md << "Of " << rows.size() << " searches, " << rows.size() - std::size_t(none)
+     << " found a survival edge";
+  if (none) md << " and " << none << " no surviving dt in the scan";
+  md << ". ";
+  for (const auto& [name, m] : per)
+    md << method_summary(name, m);
+  md << non_monotone.size() << " of " << rows.size()
+     << " searches found survival not monotone in dt (a dt below the survival edge fails)";
+  if (!non_monotone.empty()) {
+    md << ": ";
+    for (std::size_t i = 0; i < non_monotone.size(); ++i)
+      md << (i ? "; " : "") << non_monotone[i];
+  }
+  md << ".";
+  return md.str();
+}
+
+// ---------------------------------------------------------------------------------------------
+// The edges under perturbation (ensemble.hpp): every survival edge the report quotes is rerun
+// as an ensemble of kEnsembleMembers layouts perturbed far below the discretisation error, at
+// dt_edge (where the search's run survived) and at dt_fail (the dt just above it, which failed).
+// The edge is robust when every member survives at dt_edge and fails at dt_fail; otherwise it is
+// *sensitive*, with the counts.
+
+struct EdgeEnsemble {
+  int at_edge = 0, survived = 0;  // members at dt_edge, and those that survived
+  int at_fail = 0, failed = 0;    // members at dt_fail, and those that failed
+  bool run() const { return at_edge > 0; }
+  bool robust() const { return run() && survived == at_edge && failed == at_fail; }
+};
+
+RunParams at_dt(const RunParams& base, double dt) {
+  RunParams p = base;
+  p.dt = dt;
+  return p;
+}
+
+// What the walls cost at the accuracy edge: a case with Dirichlet walls and an accuracy edge is
+// rerun there with periodic boundaries (both scenes' exact solutions are periodic), whose error
+// at T is the interior's own.
+bool has_twin(const ojson& r) {
+  return text(r, "bc") == "dirichlet" && has_number(r, "dt_accurate");
+}
+
+// The members of every case with an edge, in row order: at dt_edge, then at dt_fail; after them,
+// in row order, the runs of each edge at each test length; then the periodic twins.
+std::vector<RunParams> edge_follow_up(const FollowUpContext& c) {
+  std::vector<RunParams> runs;
+  for (std::size_t i = 0; i < c.rows.size(); ++i) {
+    const ojson& r = c.rows[i];
+    if (!has_number(r, "dt_edge")) continue;
+    const RunParams& base = c.spec.cases.at(i).params;
+    for (auto& p : ensemble_members(at_dt(base, r["dt_edge"].get<double>())))
+      runs.push_back(std::move(p));
+    if (!has_number(r, "dt_fail")) continue;
+    for (auto& p : ensemble_members(at_dt(base, r["dt_fail"].get<double>())))
+      runs.push_back(std::move(p));
+  }
+  for (auto& p : all_length_runs(c.rows, c.spec.cases))
+    runs.push_back(std::move(p));
+  for (std::size_t i = 0; i < c.rows.size(); ++i) {
+    if (!has_twin(c.rows[i])) continue;
+    RunParams p = at_dt(c.spec.cases.at(i).params, c.rows[i]["dt_accurate"].get<double>());
+    p.bc = Boundary::periodic;
+    runs.push_back(p);
+  }
+  return runs;
+}
+
+// What the follow-up runs found per row, keyed by the row's address: its ensemble (empty where
+// it has no edge or the follow-up runs are absent) and its runs at the test lengths.
+struct EdgeFollowUps {
+  std::map<const ojson*, EdgeEnsemble> ensembles;
+  LengthRuns long_runs;
+  std::map<const ojson*, ojson> twins;  // the periodic twin at dt_accurate
+};
+
+EdgeFollowUps edge_follow_ups(const std::vector<ojson>& rows, const std::vector<ojson>& follow_up) {
+  EdgeFollowUps out;
+  std::size_t next = 0;
+  auto take = [&](int& members, int& count, bool want_survived) {
+    for (int k = 0; k < kEnsembleMembers && next < follow_up.size(); ++k) {
+      ++members;
+      count += survived(follow_up[next++]) == want_survived;
+    }
+  };
+  for (const auto& r : rows) {
+    if (!has_number(r, "dt_edge") || next >= follow_up.size()) continue;
+    EdgeEnsemble& e = out.ensembles[&r];
+    take(e.at_edge, e.survived, true);
+    if (has_number(r, "dt_fail")) take(e.at_fail, e.failed, false);
+  }
+  out.long_runs = read_length_runs(rows, follow_up, next);
+  for (const auto& r : rows) {
+    if (!has_twin(r)) continue;
+    if (next >= follow_up.size()) return out;
+    out.twins[&r] = follow_up[next++];
+  }
+  return out;
+}
+
+// The margin of an edge to the spectral limit and how long it holds: "0.97 x limit; holds to
+// c T = 1000", "1.04 x limit; **transient**: fails at c T = 530".
+std::string margin_text(const EdgeFollowUps& f, const ojson& r, const char* dt_col) {
+  if (!has_number(r, dt_col)) return "";
+  std::string s;
+  if (has_number(r, "courant_spectral")) {
+    const double dt = r[dt_col].get<double>();
+    s = fixed(dt / r["dt_cfl"].get<double>() / r["courant_spectral"].get<double>(), 3) +
+        " x limit; ";
+  }
+  return s + lasting_text(f.long_runs, r, dt_col);
+}
+
+// The table's cell: "robust: 8 of 8 survive, 8 of 8 fail above", "**sensitive**: 5 of 8
+// survive, 8 of 8 fail above", "–".
+std::string ensemble_cell(const std::map<const ojson*, EdgeEnsemble>& all, const ojson& r) {
+  const auto it = all.find(&r);
+  if (it == all.end() || !it->second.run()) return "–";
+  const EdgeEnsemble& e = it->second;
+  std::ostringstream s;
+  s << (e.robust() ? "robust: " : "**sensitive**: ") << e.survived << " of " << e.at_edge
+    << " survive";
+  if (e.at_fail) s << ", " << e.failed << " of " << e.at_fail << " fail above";
+  return s.str();
+}
+
+// The claim on the accuracy edges against the spectral limit.
+Claim accuracy_limit_claim(const std::vector<ojson>& rows) {
+  int accurate_n = 0, accurate_above = 0;
+  for (const auto& r : rows) {
+    if (!has_number(r, "dt_accurate") || !has_number(r, "courant_spectral")) continue;
+    ++accurate_n;
+    const double dt = r["dt_accurate"].get<double>();
+    accurate_above += dt / r["dt_cfl"].get<double>() > r["courant_spectral"].get<double>();
+  }
+  Claim below = claim("accurate-edges-at-most-the-limit",
+                      "Every accuracy edge lies at or below its scheme's spectral limit (where no "
+                      "mode of the linearised step grows; how long each holds is tested apart)",
+                      "{above} of {n} lie above it");
+  below.count("above", accurate_above).count("n", accurate_n);
+  below.over(accurate_n);
+  below.holds = accurate_above == 0;
+  return below;
+}
+
+// The claims on each kind of edge rerun for length: which hold to the longest test length.
+std::vector<Claim> length_claims(const std::vector<ojson>& rows, const EdgeFollowUps& f) {
+  std::vector<Claim> claims;
+  for (const char* col : {"dt_edge", "dt_accurate"}) {
+    LengthTally t;
+    for (const auto& r : rows)
+      t.add(lasting(f.long_runs, r, col));
+    const bool survival = std::string_view(col) == "dt_edge";
+    Claim c = length_claim(
+        survival ? "survival-edges-hold-for-length" : "accuracy-edges-hold-for-length",
+        std::string("Every ") + (survival ? "survival" : "accuracy") +
+            " edge holds when its run is {first}x and {second}x as long (at most {cap} wave "
+            "passes)",
+        "{held} of {tested} hold; the others fail or leave the accuracy class at c T = {span}", t);
+    c.value("span", span(t.failed_at, 3));
+    claims.push_back(c);
+  }
+
+  return claims;
+}
+
+// The conclusions the rows and their ensembles decide.
+std::vector<Claim> edge_claims(const std::vector<ojson>& rows, const EdgeFollowUps& f) {
+  const auto& ensembles = f.ensembles;
+  int with_edge = 0, robust = 0, run = 0, monotone = 0, eq108_below = 0, eq108_n = 0;
+  int above_limit = 0, limit_n = 0;
+  double over_lo = 1e300, over_hi = 0, limit_hi = 0;
+  for (const auto& r : rows) {
+    monotone += flips_of(r).empty();
+    if (!has_number(r, "dt_edge")) continue;
+    ++with_edge;
+    const auto it = ensembles.find(&r);
+    if (it != ensembles.end() && it->second.run()) {
+      ++run;
+      robust += it->second.robust();
+    }
+    if (has_number(r, "dt_edge_over_stable")) {
+      const double over = r["dt_edge_over_stable"].get<double>();
+      ++eq108_n;
+      eq108_below += over > 1;
+      over_lo = std::min(over_lo, over);
+      over_hi = std::max(over_hi, over);
+    }
+    if (has_number(r, "courant_spectral")) {
+      const double rel = r["dt_edge_over_cfl"].get<double>() / r["courant_spectral"].get<double>();
+      ++limit_n;
+      above_limit += rel > 1;
+      limit_hi = std::max(limit_hi, rel);
+    }
+  }
+  std::vector<Claim> claims;
+  Claim ens = claim("edges-robust",
+                    "Every survival edge quoted here survives, and the dt above it fails, on "
+                    "{members} layouts perturbed by {unit} of the particle spacing",
+                    "{robust} of {run} edges rerun are robust; {with_edge} edges found");
+  ens.count("members", kEnsembleMembers)
+      .value("unit", sci(kEnsemblePerturbation, 1))
+      .count("robust", robust)
+      .count("run", run)
+      .count("with_edge", with_edge);
+  ens.over(run);
+  ens.holds = run == with_edge && robust == run;
+  claims.push_back(ens);
+
+  Claim eq108 = claim("eq108-below-every-edge",
+                      "Eq. (108) at the survival edge lies below the edge in every case where "
+                      "both are measured",
+                      "{below} of {n}; the edge is {lo} to {hi} times eq. (108)");
+  eq108.every("below", eq108_below, "n", eq108_n)
+      .value("lo", eq108_n ? ratio(over_lo) : "–")
+      .value("hi", eq108_n ? ratio(over_hi) : "–");
+  claims.push_back(eq108);
+
+  Claim limit = claim("edges-at-most-the-limit",
+                      "No survival edge lies above its scheme's spectral limit at the layout",
+                      "{above} of {n} lie above it, at most {hi} times it");
+  limit.count("above", above_limit)
+      .count("n", limit_n)
+      .value("hi", limit_n ? fixed(limit_hi, 3) : "–");
+  limit.over(limit_n);
+  limit.holds = above_limit == 0;
+  claims.push_back(limit);
+
+  claims.push_back(accuracy_limit_claim(rows));
+  for (auto& c : length_claims(rows, f))
+    claims.push_back(std::move(c));
+  Claim mono = claim("survival-monotone", "Survival is monotone in dt in every search",
+                     "{monotone} of {n} searches");
+  mono.every("monotone", monotone, "n", static_cast<long long>(rows.size()));
+  claims.push_back(mono);
+  return claims;
+}
+
+// The search and both rules, stated once, with the numbers of the study's search options.
+std::string search_rule(const EdgeOptions& o) {
+  std::string search = edge_search_text(o);
+  search[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(search[0])));
+  return "**The search.** " + search +
+         ". The *survival edge* dt_edge is the largest dt tried that survives to T; the run there "
+         "is "
+         "measured (its outcome, its error at T, the minimum of eq. (108) over it). The *accuracy "
+         "edge* dt_accurate: the reference is the smallest dt tried that survives, and its error "
+         "over time (max over steps and particles) the yardstick; walking up from it, "
+         "dt_accurate is the last dt tried before the first that fails or has an error over time "
+         "more than " +
+         shortest(o.accuracy_factor) +
+         " times the reference's, bisected against that one to "
+         "the same tolerance, and its run must be stable (its error over time stays below A), else "
+         "the search "
+         "goes on below it. An accuracy edge is one only where its reference run and its own run "
+         "are accurate (their error over time below " +
+         shortest(kAccurateFraction) +
+         " A, docs/design.md, \"Accuracy classes\"); elsewhere the table says why there is none. "
+         "Every error over time is also given per A. The "
+         "probes observe only their error over time; the outcome is "
+         "measured for the reference and at both edges. Survival is *not monotone* when a dt below "
+         "the survival edge fails; the flips column lists, in increasing dt, each dt from which "
+         "the "
+         "run fails or survives again (between it and the dt tried just below it). The *spectral "
+         "limit* is the Courant number at which the scheme, linearised about rest with the "
+         "particles "
+         "of the initial layout frozen, starts to amplify (docs/design.md, \"The spectral "
+         "limit\"): "
+         "the edge of a tiny amplitude; where the edges at the paper's amplitudes lie against it "
+         "is "
+         "counted in the conclusions. The *ensemble* column: the case rerun on layouts perturbed "
+         "far "
+         "below the discretisation error (docs/design.md, \"Ensembles\") at dt_edge and at the dt "
+         "just above it that failed; *robust* when every member survives at dt_edge and fails "
+         "above, "
+         "*sensitive* otherwise. The survival edge's *bracket* is the dt just above it that "
+         "failed: the edge lies between the two. The *edge / limit* columns give each edge's "
+         "margin "
+         "to the spectral limit (below one: below the limit) and how long it holds: every edge, "
+         "below the limit too, is rerun at its dt for " +
+         shortest(kLengthFactors[0]) + " and " + shortest(kLengthFactors[1]) +
+         " times its wave passes (at most " + shortest(kLongPasses) +
+         "), and printed as holding to the longest it passed (a survival edge by surviving, an "
+         "accuracy edge by staying stable and accurate) or as **transient** with the length at "
+         "which it failed. No edge is claimed beyond the length it was rerun for. E only "
+         "rescales time: a case at E run to T is the scheme run for c T = sqrt(E) T "
+         "wave passes (column c T), so the edges against E at a fixed T are edges against run "
+         "length.";
+}
+
+// An error over time with its size per A: "3.1e-4 (0.021 A)".
+std::string per_A(const ojson& r, const char* error, const char* over_A) {
+  if (!has_number(r, error)) return "–";
+  return sci(r[error].get<double>(), 2) +
+         (has_number(r, over_A) ? " (" + significant(r[over_A].get<double>(), 2) + " A)"
+                                : std::string());
+}
+
+// Per case: where it lies (A / h, c T), both edges against h/c with the bracket the bisection
+// left and their margin to the spectral limit, the run at the survival edge, the errors at T,
+// eq. (108), the flips and what the search cost.
+std::string edge_table(const std::vector<ojson>& rows, const EdgeFollowUps& f) {
+  std::ostringstream md;
+  md << "| method | A | A/h | E | c T | h/c | spectral limit (h/c) | survival edge dt_edge (h/c; "
+        "bracket) | survival edge / limit; length | run at dt_edge | error at T there | accuracy "
+        "edge dt_accurate (h/c) | accuracy edge / limit; length | error over time: reference → at "
+        "dt_accurate "
+        "(periodic "
+        "twin) | "
+        "eq. (108) at dt_edge (dt_edge / it) | survival in dt | ensemble | probes | "
+        "particle-steps |\n"
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const auto& r : rows) {
+    const bool found = has_number(r, "dt_edge");
+    md << "| " << r["method"].get<std::string>() << " | " << shortest(r["A"].get<double>()) << " | "
+       << significant(r["A_over_h"].get<double>(), 3) << " | " << shortest(r["E"].get<double>())
+       << " | " << passes(r) << " | " << sci(r["dt_cfl"].get<double>(), 3) << " | "
+       << (has_number(r, "courant_spectral") ? in_cfl(r["courant_spectral"].get<double>())
+                                             : std::string("–"))
+       << " | ";
+    if (!found) {
+      md << "none in the scan | – | – | – | – | – | – | – | ";
+    } else {
+      md << sci(r["dt_edge"].get<double>(), 3) << " ("
+         << in_cfl(r["dt_edge_over_cfl"].get<double>());
+      if (has_number(r, "dt_fail"))
+        md << "; fails at " << in_cfl(r["dt_fail"].get<double>() / r["dt_cfl"].get<double>());
+      md << ") | " << margin_text(f, r, "dt_edge") << " | " << edge_run_verdict(r) << " | "
+         << opt_sci(r["max_error"]) << " | ";
+      if (has_number(r, "dt_accurate")) {
+        md << sci(r["dt_accurate"].get<double>(), 3) << " ("
+           << in_cfl(r["dt_accurate_over_cfl"].get<double>()) << ") | "
+           << margin_text(f, r, "dt_accurate") << " | ";
+      } else if (r.value("accuracy_edge_withheld", false)) {
+        md << "none (not accurate) | – | ";
+      } else {
+        md << "none (reference meaningless) | – | ";
+      }
+      md << per_A(r, "max_error_reference", "error_reference_over_A") << " → "
+         << per_A(r, "max_error_at_accurate", "error_at_accurate_over_A");
+      if (const auto it = f.twins.find(&r); it != f.twins.end())
+        md << " (periodic "
+           << (survived(it->second) ? opt_sci(it->second["max_error_over_time"])
+                                    : verdict(it->second))
+           << ")";
+      md << " | " << opt_sci(r["dt_stable_min_at_edge"]);
+      if (has_number(r, "dt_edge_over_stable"))
+        md << " (" << ratio(r["dt_edge_over_stable"].get<double>()) << ")";
+      md << " | ";
+    }
+    const auto flips = flips_of(r);
+    md << (flips.empty() ? std::string("monotone") : "**not monotone**: " + flips_text(flips))
+       << " | " << ensemble_cell(f.ensembles, r) << " | " << r["probes"].dump() << " | "
+       << sci(r["search_particle_steps"].get<double>()) << " |\n";
+  }
+  return md.str();
+}
+
+// The figure: one panel per scene, one series per method and amplitude.
+const std::vector<std::string> kPanels = {"bar", "steffen"};
+const std::vector<std::pair<std::string, double>> kSeries = {
+    {"gimp", 0.015}, {"gimp", 0.05},      {"mpm", 0.015},     {"mpm", 0.05},
+    {"cpdi", 0.015}, {"bspline2", 0.015}, {"bspline3", 0.015}};
+
+int panel_of(const ojson& r) {
+  const auto it = std::find(kPanels.begin(), kPanels.end(), r["scene"].get<std::string>());
+  return it == kPanels.end() ? -1 : int(it - kPanels.begin());
+}
+
+int series_of(const ojson& r) {
+  for (std::size_t i = 0; i < kSeries.size(); ++i) {
+    if (r["method"].get<std::string>() == kSeries[i].first &&
+        r["A"].get<double>() == kSeries[i].second) {
+      return int(i) + 1;
+    }
+  }
+  return 0;
+}
+
+// Why a case is not drawn ("" when it is).
+std::string not_drawn_reason(const ojson& r) {
+  if (panel_of(r) < 0) return "a scene the figure has no panel for";
+  if (series_of(r) == 0) return "no series in the figure";
+  if (!has_number(r, "dt_edge")) return "no dt of the scan survives";
+  return "";
+}
+
+struct FigureCount {
+  std::size_t cases = 0, drawn = 0, with_accuracy = 0;
+  std::map<std::string, std::vector<const ojson*>> not_drawn;  // by reason
+  std::vector<const ojson*> no_accuracy;                       // drawn without accuracy edge
+};
+
+FigureCount figure_count(const std::vector<ojson>& rows) {
+  FigureCount c;
+  c.cases = rows.size();
+  for (const auto& r : rows) {
+    const std::string reason = not_drawn_reason(r);
+    if (!reason.empty()) {
+      c.not_drawn[reason].push_back(&r);
+      continue;
+    }
+    ++c.drawn;
+    if (has_number(r, "dt_accurate")) {
+      ++c.with_accuracy;
+    } else {
+      c.no_accuracy.push_back(&r);
+    }
+  }
+  return c;
+}
+
+// "bar: mpm, A = 0.05, c T = 4, 8; steffen: ...".
+std::string listed(const std::vector<const ojson*>& rows) {
+  std::vector<std::pair<std::string, std::vector<std::string>>> groups;
+  for (const ojson* r : rows) {
+    std::string key = (*r)["scene"].get<std::string>() + ": " + (*r)["method"].get<std::string>() +
+                      ", A = " + shortest((*r)["A"].get<double>());
+    auto it =
+        std::find_if(groups.begin(), groups.end(), [&](const auto& g) { return g.first == key; });
+    if (it == groups.end()) it = groups.insert(groups.end(), {key, {}});
+    it->second.push_back(passes(*r));
+  }
+  std::string s;
+  for (const auto& [key, Es] : groups) {
+    if (!s.empty()) s += "; ";
+    s += key + ", c T = ";
+    for (std::size_t i = 0; i < Es.size(); ++i)
+      s += (i ? ", " : "") + Es[i];
+  }
+  return s;
+}
+
+// What the figure leaves out, and why.
+std::string not_drawn_text(const FigureCount& c) {
+  std::ostringstream md;
+  md << "**Drawn.** " << c.drawn << " of " << c.cases << " cases, " << c.with_accuracy
+     << " of them with their accuracy edge.";
+  for (const auto& [reason, rows] : c.not_drawn)
+    md << " Not drawn, " << reason << " (" << rows.size() << "): " << listed(rows) << ".";
+  if (!c.no_accuracy.empty()) {
+    md << " Drawn without an accuracy edge, their reference run being meaningless or the edge "
+          "not accurate ("
+       << c.no_accuracy.size() << "): " << listed(c.no_accuracy) << ".";
+  }
+  return md.str();
+}
+
+std::string edge_subtitle_text(const FigureCount& c) {
+  std::string s = std::to_string(c.drawn) + " of " + std::to_string(c.cases) + " cases drawn (" +
+                  std::to_string(c.with_accuracy) + " with an accuracy edge)";
+  for (const auto& [reason, rows] : c.not_drawn)
+    s += "; not drawn, " + reason + ": " + std::to_string(rows.size());
+  return s;
+}
+
+// Against amplitude: for each method of the scene run at one c T with at least kAmplitudeSweep
+// amplitudes, its edges in order of A / h, with their margins to the spectral limit ("" when the
+// scene has no such sweep).
+constexpr std::size_t kAmplitudeSweep = 3;
+
+std::string amplitude_table(const std::vector<ojson>& rows, const EdgeFollowUps& f) {
+  std::map<std::pair<std::string, Key>, std::vector<const ojson*>> sweeps;
+  for (const auto& r : rows)
+    sweeps[{r["method"].get<std::string>(), Key(r["cT"].get<double>(), "c T")}].push_back(&r);
+  std::ostringstream md;
+  for (auto& [key, list] : sweeps) {
+    if (list.size() < kAmplitudeSweep) continue;
+    std::sort(list.begin(), list.end(), [](const ojson* a, const ojson* b) {
+      return TotalLess()((*a)["A_over_h"].get<double>(), (*b)["A_over_h"].get<double>());
+    });
+    if (md.tellp() == 0) {
+      md << "\n**Against amplitude.** The same cases ordered by A / h at one run length: each "
+            "edge, its margin to the spectral limit and the run there.\n\n"
+            "| method | c T | A/h | survival edge (h/c) | survival edge / limit; length | run at "
+            "it | accuracy edge (h/c) | accuracy edge / limit; length |\n"
+            "|---|---|---|---|---|---|---|---|\n";
+    }
+    for (const ojson* r : list) {
+      md << "| " << key.first << " | " << passes(*r) << " | "
+         << significant((*r)["A_over_h"].get<double>(), 3) << " | ";
+      if (!has_number(*r, "dt_edge")) {
+        md << "none in the scan | – | – | – | – |\n";
+        continue;
+      }
+      md << in_cfl((*r)["dt_edge_over_cfl"].get<double>()) << " | " << margin_text(f, *r, "dt_edge")
+         << " | " << edge_run_verdict(*r) << " | ";
+      if (has_number(*r, "dt_accurate")) {
+        md << in_cfl((*r)["dt_accurate_over_cfl"].get<double>()) << " | "
+           << margin_text(f, *r, "dt_accurate") << " |\n";
+      } else if (r->value("accuracy_edge_withheld", false)) {
+        md << "none (not accurate) | – |\n";
+      } else {
+        md << "none (reference meaningless) | – |\n";
+      }
+    }
+  }
+  return md.str();
+}
+
+// What the walls cost at the accuracy edge, per method: the periodic twin's error over time against
+// the Dirichlet run's ("" when no twin was run).
+std::string walls_text(const std::vector<ojson>& rows, const EdgeFollowUps& f) {
+  std::map<std::string, std::vector<double>> ratios;
+  std::map<std::string, int> twins;
+  for (const auto& r : rows) {
+    const auto it = f.twins.find(&r);
+    if (it == f.twins.end()) continue;
+    const std::string m = text(r, "method");
+    ++twins[m];
+    if (survived(it->second) && has_number(it->second, "max_error_over_time") &&
+        has_number(r, "max_error_at_accurate"))
+      ratios[m].push_back(it->second["max_error_over_time"].get<double>() /
+                          r["max_error_at_accurate"].get<double>());
+  }
+  if (twins.empty()) return "";
+  std::ostringstream md;
+  md << "**Walls.** Each case with Dirichlet walls is rerun at its accuracy edge with periodic "
+        "boundaries (no wall: the interior's own error); the periodic error over time is, per "
+        "method, ";
+  bool first = true;
+  for (const auto& [m, n] : twins) {
+    md << (first ? "" : "; ") << m << " ";
+    first = false;
+    const auto& v = ratios[m];
+    if (v.empty()) {
+      md << "not compared (" << n << " twins, none reached T)";
+      continue;
+    }
+    const auto [lo, hi] = std::minmax_element(v.begin(), v.end(), TotalLess());
+    md << ratio(*lo) << " to " << ratio(*hi) << " times the Dirichlet one (median "
+       << ratio(quantile(v, 0.5)) << ", " << v.size() << " of " << n << " twins)";
+  }
+  md << ".\n\n";
+  return md.str();
+}
+
+// One scene's section: the first has the figure and states the rules; each has its own reading
+// and table.
+std::string edge_markdown(const Spec& spec, const std::vector<ojson>& all,
+                          const std::vector<ojson>& rows, bool first, const EdgeFollowUps& f) {
+  std::ostringstream md;
+  if (first) {
+    md << "## Results\n\n"
+       << search_rule(spec.study->edge) << "\n\n"
+       << cost_metric_text() << "\n\n![" << spec.title << "](" << spec.name
+       << ".png)\n\nThe figure draws both edges in units of h/c for every scene, on a log "
+          "scale, beside each series' spectral limit (dotted) and eq. (108) at its survival edge "
+          "(dash-dotted). "
+       << not_drawn_text(figure_count(all)) << " Vector version: [" << spec.name << ".svg]("
+       << spec.name << ".svg); data: [" << spec.name << "_data.csv](" << spec.name
+       << "_data.csv).\n\n## " << scene_title(rows.front()["scene"].get<std::string>()) << "\n\n";
+  } else {
+    md << "\n## " << scene_title(rows.front()["scene"].get<std::string>()) << "\n\n";
+  }
+  md << "**Reading.** " << edge_summary_text(rows) << "\n\n"
+     << walls_text(rows, f) << edge_table(rows, f) << amplitude_table(rows, f);
+  return md.str();
+}
+
+// A row per drawn case, by panel, series and E; the cases not drawn in the header.
+std::string edge_data_csv(const std::vector<ojson>& rows, const std::string& header_lines) {
+  const FigureCount count = figure_count(rows);
+  std::vector<const ojson*> drawn;
+  for (const auto& r : rows) {
+    if (not_drawn_reason(r).empty()) drawn.push_back(&r);
+  }
+  std::stable_sort(drawn.begin(), drawn.end(), [](const ojson* a, const ojson* b) {
+    return std::tuple(panel_of(*a), series_of(*a), Key((*a)["cT"].get<double>(), "c T")) <
+           std::tuple(panel_of(*b), series_of(*b), Key((*b)["cT"].get<double>(), "c T"));
+  });
+  std::ostringstream csv;
+  csv << header_lines << "# " << edge_subtitle_text(count) << "\n";
+  for (const auto& [reason, list] : count.not_drawn)
+    csv << "# not drawn, " << reason << ": " << listed(list) << "\n";
+  if (!count.no_accuracy.empty()) {
+    csv << "# drawn without an accuracy edge (reference meaningless or not accurate): "
+        << listed(count.no_accuracy) << "\n";
+  }
+  csv << "# panel:";
+  for (std::size_t i = 0; i < kPanels.size(); ++i)
+    csv << (i ? ", " : " ") << i << ' ' << kPanels[i];
+  csv << "; series:";
+  for (std::size_t i = 0; i < kSeries.size(); ++i)
+    csv << (i ? ", " : " ") << i + 1 << ' ' << kSeries[i].first
+        << " A = " << shortest(kSeries[i].second);
+  csv << "; cT: the wave passes c T = sqrt(E) T of the run; dt in units of h/c; "
+         "meaningless_at_edge: "
+         "whether the run at the survival edge is meaningless (a boolean); limit_over_cfl: the "
+         "scheme's "
+         "spectral limit at the layout; eq108_over_cfl: eq. (108) at the survival edge (its "
+         "minimum over the run there), both in units of h/c (empty where not measured)\n"
+         "panel,series,cT,dt_edge_over_cfl,dt_accurate_over_cfl,meaningless_at_edge,limit_over_cfl,"
+         "eq108_over_cfl\n";
+  for (const ojson* r : drawn) {
+    csv << panel_of(*r) << ',' << series_of(*r) << ',' << shortest((*r)["cT"].get<double>()) << ','
+        << csv_cell((*r)["dt_edge_over_cfl"]) << ',' << csv_cell((*r)["dt_accurate_over_cfl"])
+        << ',' << (outcome(*r) == "meaningless" ? 1 : 0) << ','
+        << (has_number(*r, "courant_spectral") ? shortest((*r)["courant_spectral"].get<double>())
+                                               : std::string())
+        << ',';
+    if (has_number(*r, "dt_stable_min_at_edge"))
+      csv << shortest((*r)["dt_stable_min_at_edge"].get<double>() / (*r)["dt_cfl"].get<double>());
+    csv << '\n';
+  }
+  return csv.str();
+}
+
+std::string edge_subtitle(const Spec& spec, const ojson& doc) {
+  const std::vector<ojson> rows(doc["cases"].begin(), doc["cases"].end());
+  return edge_subtitle_text(figure_count(rows)) + "; each listed in " + spec.name + ".md";
+}
+
+StudyReport edge_report(const ReportContext& c) {
+  StudyReport report;
+  // by_scene copies the rows, in their order within each scene: the follow-ups, keyed by the
+  // rows of c.rows, are handed to each scene's copies in that order.
+  const auto scenes = by_scene(c.rows);
+  const EdgeFollowUps all = edge_follow_ups(c.rows, c.follow_up);
+  std::vector<Claim> claims = edge_claims(c.rows, all);
+  for (std::size_t i = 0; i < scenes.size(); ++i) {
+    EdgeFollowUps mine;
+    std::size_t k = 0;
+    for (const auto& r : c.rows) {
+      if (r["scene"] != scenes[i].scene) continue;
+      if (k < scenes[i].rows.size()) {
+        const ojson* copy = &scenes[i].rows[k];
+        if (const auto it = all.ensembles.find(&r); it != all.ensembles.end())
+          mine.ensembles[copy] = it->second;
+        if (const auto it = all.long_runs.find(&r); it != all.long_runs.end())
+          mine.long_runs[copy] = it->second;
+        if (const auto it = all.twins.find(&r); it != all.twins.end())
+          mine.twins[copy] = it->second;
+      }
+      ++k;
+    }
+    report.markdown += edge_markdown(c.spec, c.rows, scenes[i].rows, i == 0, mine);
+  }
+  report.data_csv = edge_data_csv(c.rows, c.csv_header);
+  report.claims = std::move(claims);
+  return report;
+}
+
+std::string edge_index(const Spec& spec, const std::vector<ojson>& rows) {
+  std::ostringstream md;
+  md << "![" << spec.title << "](" << spec.name << ".png)\n\n**What it shows.** ";
+  for (const auto& scene : by_scene(rows))
+    md << "*" << scene_title(scene.scene) << ".* " << edge_summary_text(scene.rows) << " ";
+  md << "Details: [" << spec.name << ".md](" << spec.name << ".md).\n\n";
+  return md.str();
+}
+
+const StudyRegistration kEdge{{
+    .name = "edge",
+    .summary = "per case, the largest fixed dt that survives to T and the largest that stays "
+               "accurate (a search over dt)",
+    .work = CaseWork::edge_search,
+    .records = {.error_over_time = true},
+    .figure = true,
+    .follow_up = edge_follow_up,
+    .report = edge_report,
+    .index = edge_index,
+    .figure_subtitle = edge_subtitle,
+}};
+
+}  // namespace
+}  // namespace studies::edge
+
+}  // namespace mpmstab

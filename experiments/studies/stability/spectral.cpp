@@ -1,0 +1,997 @@
+// The spectral study: each scheme's spectral limit (core/analysis/spectral.hpp) beside two runs of
+// the bar at a tiny amplitude under the spectral policy, at 0.95 and at 1.05 times the limit. The
+// limit is confirmed when the first stays bounded and the second grows. Beside them, eq. (108)'s
+// minimum over runs below the limit at every E the studies use, every particles per cell and
+// several grids: its ratio to the limit, which is not fixed by c dt / h, A/h and c T (eq. (108) is
+// not dimensionally homogeneous), against its value at rest.
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "analysis/spectral.hpp"
+#include "analysis/stable_dt.hpp"
+#include "base/params.hpp"
+#include "claims.hpp"
+#include "csv.hpp"
+#include "key.hpp"
+#include "report_util.hpp"
+#include "shared/paper_table1.hpp"
+#include "study.hpp"
+
+namespace mpmstab {
+
+namespace studies::spectral {
+namespace {
+
+using ojson = nlohmann::ordered_json;
+
+// A bounded run's error, its phase error included, is at most 2 A; a growing mode passes 3 A.
+constexpr double kBound = 3.0;
+// The particles per cell of the paper's bar (the default layout).
+const int kDefaultPpc = RunParams{}.ppc;
+// The methods of the figure's data, in the order of their codes.
+const std::vector<std::string> kFigureMethods = {"mpm", "gimp"};
+
+// The distinct safety factors s of the runs below (s < 1) or above (s > 1) the limit: "0.95".
+std::string safeties(const std::vector<ojson>& rows, bool below) {
+  std::vector<double> v;
+  for (const auto& r : rows) {
+    if (!has_number(r, "safety")) continue;
+    const double s = r["safety"].get<double>();
+    if (below ? s < 1 : s > 1) v.push_back(s);
+  }
+  return listing(std::move(v));
+}
+
+// A run is bounded when it reached T and its error over time stayed within kBound A, as the
+// spectral_edge search counts it; a bounded run may still be meaningless (error >= A), which
+// its text says.
+bool bounded(const ojson& r) {
+  return survived(r) && has_number(r, "max_error_over_time") &&
+         r["max_error_over_time"].get<double>() <= kBound * r["A"].get<double>();
+}
+
+// "bounded (error 0.41 A)", "bounded (error 1.2 A, meaningless)", "grew (error 2.3e+02 A)",
+// "* nonpositive_F at step 96 (...)".
+std::string run_text(const ojson& r) {
+  if (outcome(r) == "unstable") return verdict(r);
+  if (!has_number(r, "max_error_over_time")) return "–";
+  const double ratio_to_A = r["max_error_over_time"].get<double>() / r["A"].get<double>();
+  return std::string(bounded(r) ? "bounded" : "grew") + " (error " + sci(ratio_to_A) + " A" +
+         (bounded(r) && outcome(r) == "meaningless" ? ", meaningless" : "") + ")";
+}
+
+// A row's layout parameter (0, the uniform layout, where the row has none).
+double layout_of(const ojson& r, const char* key) {
+  return has_number(r, key) ? r[key].get<double>() : 0.0;
+}
+
+// The scheme rows: those at the first row's E and grid (each scheme's pair of runs). The others
+// measure eq. (108) against the limit at other E and particle counts (one run each, at 0.95
+// times the limit).
+bool scheme_row(const ojson& r, const ojson& first) {
+  return r["E"] == first["E"] && r["cells"] == first["cells"];
+}
+
+std::vector<ojson> scheme_rows(const std::vector<ojson>& rows) {
+  std::vector<ojson> out;
+  for (const auto& r : rows)
+    if (scheme_row(r, rows.front())) out.push_back(r);
+  return out;
+}
+
+// One scheme: its two runs, by the policy's safety factor.
+struct Scheme {
+  std::string name;              // scheme_label
+  const ojson* below = nullptr;  // s < 1
+  const ojson* above = nullptr;  // s > 1
+  const ojson& row() const { return below ? *below : *above; }
+  std::optional<double> limit() const {
+    return has_number(row(), "courant_spectral")
+               ? std::optional(row()["courant_spectral"].get<double>())
+               : std::nullopt;
+  }
+  int ppc() const { return row()["ppc"].get<int>(); }
+  bool uniform_two() const {  // the default particles per cell, uniform layout
+    return ppc() == kDefaultPpc && layout_of(row(), "shift") == 0 &&
+           layout_of(row(), "jitter") == 0;
+  }
+  bool confirmed() const { return below && above && bounded(*below) && !bounded(*above); }
+  // The eq. (108) bound of the run below the limit (its minimum over the run), in c dt / h.
+  std::optional<double> eq108() const {
+    if (!below || !has_number(*below, "dt_stable_min")) return std::nullopt;
+    return (*below)["dt_stable_min"].get<double>() / (*below)["dt_cfl"].get<double>();
+  }
+};
+
+std::vector<Scheme> schemes_of(const std::vector<ojson>& rows) {
+  std::vector<Scheme> out;
+  for (const auto& r : rows) {
+    const std::string name = scheme_label(r);
+    auto it = std::find_if(out.begin(), out.end(), [&](const Scheme& s) { return s.name == name; });
+    if (it == out.end()) it = out.insert(out.end(), Scheme{name});
+    const double s = has_number(r, "safety") ? r["safety"].get<double>() : 1.0;
+    (s < 1 ? it->below : it->above) = &r;
+  }
+  return out;
+}
+
+// The measured edges of the spectral_edge experiment at a tiny amplitude, by scheme label, in
+// c dt / h (empty when it has not been run).
+std::map<std::string, double> measured_edges(const StudyInputs& inputs) {
+  std::map<std::string, double> out;
+  const auto it = inputs.find("spectral_edge");
+  if (it == inputs.end() || !it->second.present()) return out;
+  for (const auto& r : it->second.doc.at("cases")) {
+    if (r["A"].get<double>() >= 1e-5 || !has_number(r, "dt_edge")) continue;
+    out[scheme_label(r)] = r["dt_edge"].get<double>() / r["dt_cfl"].get<double>();
+  }
+  return out;
+}
+
+// The update order of a scheme's name ("gimp/xpic(2)/usf" -> "usf"; no suffix: usl).
+std::string update_of(const std::string& name) {
+  for (const char* u : {"/usf", "/musl"}) {
+    if (name.find(u) != std::string::npos) return u + 1;
+  }
+  return "usl";
+}
+
+// ---------------------------------------------------------------------------------------------
+// Eq. (108) against the limit, per E and per particle count
+
+// The bases eq. (108) is derived for, in the order of the tables.
+const std::vector<std::string> kEq108Bases = {"mpm", "gimp", "cpgimp"};
+
+// One run below the limit (s < 1) of a basis eq. (108) is derived for, with USL, FLIP and the
+// uniform layout: eq. (108)'s minimum over it and the limit, both in c dt / h, and eq. (108) at
+// rest at the same E, grid and particles per cell.
+struct Eq108Point {
+  std::string method;
+  double E = 0;
+  int cells = 0, ppc = 0, particles = 0;
+  double A = 0, T = 0, safety = 0;
+  double limit = 0, eq108 = 0, rest = 0;
+  double ratio() const { return eq108 / limit; }
+  double c() const { return std::sqrt(E); }  // the bar's density is 1
+  // How far the run's state moved eq. (108) from its value at rest, relative.
+  double state_shift() const { return std::abs(1 - eq108 / rest); }
+};
+
+// Eq. (108) at rest (F = 1, no stress, no velocity) at E, h = c dt_cfl and ppc particles per
+// cell, in c dt / h: the formula's constants alone.
+double eq108_at_rest(Method method, double E, double dt_cfl, int ppc) {
+  StableDtInputs rest;
+  rest.F_max = 1;
+  const double h = dt_cfl * std::sqrt(E);
+  return stable_dt(rest, StableDtGeometry{method, E, h, ppc, h / ppc}, StressScaling::scaled) /
+         dt_cfl;
+}
+
+std::vector<Eq108Point> eq108_points(const std::vector<ojson>& rows) {
+  std::vector<Eq108Point> out;
+  for (const auto& r : rows) {
+    const std::string m = r["method"].get<std::string>();
+    const auto method = parse_method(m);
+    if (!method || !has_eq108(*method) || method_label(r) != m || layout_of(r, "shift") != 0 ||
+        layout_of(r, "jitter") != 0 || !has_number(r, "safety") || r["safety"].get<double>() >= 1 ||
+        !has_number(r, "courant_spectral") || !has_number(r, "dt_stable_min"))
+      continue;
+    const double dt_cfl = r["dt_cfl"].get<double>();
+    Eq108Point p{m,
+                 r["E"].get<double>(),
+                 r["cells"].get<int>(),
+                 r["ppc"].get<int>(),
+                 r["particles"].get<int>(),
+                 r["A"].get<double>(),
+                 r["T"].get<double>(),
+                 r["safety"].get<double>(),
+                 r["courant_spectral"].get<double>(),
+                 r["dt_stable_min"].get<double>() / dt_cfl};
+    p.rest = eq108_at_rest(*method, p.E, dt_cfl, p.ppc);
+    out.push_back(p);
+  }
+  return out;
+}
+
+// Thresholds of the claims. A bound homogeneous in E would give the same ratio at every E of a
+// run at the same c dt / h, A and c T (E alone rescales time). At a fixed grid the measured ratio
+// falls about as ppc^(-1/2); at a fixed number of particles per cell it does not move with the
+// grid. At a tiny amplitude the state (F - 1, the stress, the velocities) moves the bound by
+// less than kStateNegligible, relative, from its value at rest.
+constexpr double kHomogeneousSpread = 1.1;
+constexpr double kSqrtSlope = -0.5, kSlopeTolerance = 0.1;
+constexpr double kStateNegligible = 0.01;
+
+// c = sqrt(E) to three significant digits: "1", "31.6", "100".
+std::string speed(double c) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", c);
+  return buf;
+}
+
+std::string ratio_text(double r) {
+  return fixed(r, 3);
+}
+
+template <class T>
+void add_unique(std::vector<T>& v, const T& x) {
+  if (std::find(v.begin(), v.end(), x) == v.end()) v.push_back(x);
+}
+
+struct Eq108Findings {
+  std::string markdown;
+  std::vector<Claim> claims;
+  // For the scheme table's reading: the ratio at the first row's particles per cell over every
+  // E (lo > hi: none), and the E it spans.
+  double lo = 1e300, hi = 0, E_lo = 0, E_hi = 0;
+};
+
+// The runs the eq. (108) section reads: every run's point, and those on the first row's grid by
+// E, particles per cell and basis.
+struct Eq108Grid {
+  std::vector<Eq108Point> points;
+  int cells0 = 0, ppc0 = 0;
+  double E0 = 0, cT_lo = 1e300, cT_hi = 0;
+  std::vector<double> Es;
+  std::vector<int> ppcs;
+  std::vector<std::string> bases;
+  const Eq108Point* find(const std::string& m, double E, int ppc) const {
+    for (const auto& p : points)
+      if (p.method == m && p.E == E && p.ppc == ppc && p.cells == cells0) return &p;
+    return nullptr;
+  }
+  // The runs of basis `m` at the first row's E and particles per cell, by particle count (grids
+  // refined at a fixed particles per cell); empty where fewer than two.
+  std::vector<const Eq108Point*> by_count(const std::string& m) const {
+    std::vector<const Eq108Point*> out;
+    for (const auto& p : points)
+      if (p.method == m && p.E == E0 && p.ppc == ppc0) out.push_back(&p);
+    if (out.size() < 2) return {};
+    std::sort(out.begin(), out.end(),
+              [](const Eq108Point* x, const Eq108Point* y) { return x->particles < y->particles; });
+    return out;
+  }
+  std::vector<int> ppcs_of(const std::string& m) const {
+    std::vector<int> out;
+    for (int ppc : ppcs)
+      if (std::any_of(Es.begin(), Es.end(), [&](double E) { return find(m, E, ppc); }))
+        out.push_back(ppc);
+    return out;
+  }
+};
+
+Eq108Grid eq108_grid(const std::vector<ojson>& rows) {
+  Eq108Grid g;
+  g.points = eq108_points(rows);
+  const ojson& first = rows.front();
+  g.cells0 = first["cells"].get<int>();
+  g.ppc0 = first["ppc"].get<int>();
+  g.E0 = first["E"].get<double>();
+  for (const auto& p : g.points) {
+    if (p.cells != g.cells0) continue;
+    add_unique(g.Es, p.E);
+    add_unique(g.ppcs, p.ppc);
+    g.cT_lo = std::min(g.cT_lo, p.c() * p.T);
+    g.cT_hi = std::max(g.cT_hi, p.c() * p.T);
+  }
+  std::sort(g.Es.begin(), g.Es.end(), TotalLess());
+  std::sort(g.ppcs.begin(), g.ppcs.end());
+  for (const auto& b : kEq108Bases)
+    if (std::any_of(g.points.begin(), g.points.end(),
+                    [&](const Eq108Point& p) { return p.method == b && p.cells == g.cells0; }))
+      g.bases.push_back(b);
+  return g;
+}
+
+// Findings: how far one basis and layout moves with E, the ratio against the particles per cell
+// and against the particle count (GIMP), and how far the state moved the bound from rest.
+struct Eq108Spread {
+  double spread = 1, lo = 0, hi = 0, E_lo = 0, E_hi = 0;
+  std::string basis;
+  int ppc = 0;
+};
+Eq108Spread eq108_spread(const Eq108Grid& g) {
+  Eq108Spread s;
+  for (const auto& b : g.bases) {
+    for (int ppc : g.ppcs) {
+      const Eq108Point *lo = nullptr, *hi = nullptr;
+      for (double E : g.Es) {
+        const Eq108Point* p = g.find(b, E, ppc);
+        if (!p) continue;
+        if (!lo || p->ratio() < lo->ratio()) lo = p;
+        if (!hi || p->ratio() > hi->ratio()) hi = p;
+      }
+      if (lo && hi->ratio() / lo->ratio() > s.spread) {
+        s.spread = hi->ratio() / lo->ratio();
+        s.basis = b;
+        s.ppc = ppc;
+        s.lo = lo->ratio();
+        s.hi = hi->ratio();
+        s.E_lo = lo->E;
+        s.E_hi = hi->E;
+      }
+    }
+  }
+  return s;
+}
+
+struct Eq108Trends {
+  std::vector<std::pair<double, double>> by_ppc;  // GIMP at the first E: ppc, ratio
+  std::optional<double> ppc_slope;
+  std::vector<std::pair<double, double>> by_count;  // GIMP: particles, ratio
+  std::vector<const Eq108Point*> gimp_count;
+  std::optional<double> count_slope;
+  double shift = 0;
+  const Eq108Point* shifted = nullptr;  // the run whose state moved the bound most
+};
+Eq108Trends eq108_trends(const Eq108Grid& g) {
+  Eq108Trends t;
+  for (const auto& p : g.points)
+    if (p.method == "gimp" && p.E == g.E0 && p.cells == g.cells0)
+      t.by_ppc.emplace_back(p.ppc, p.ratio());
+  t.ppc_slope = loglog_slope(t.by_ppc);
+  if (std::find(g.bases.begin(), g.bases.end(), "gimp") != g.bases.end()) {
+    t.gimp_count = g.by_count("gimp");
+    for (const Eq108Point* p : t.gimp_count)
+      t.by_count.emplace_back(p->particles, p->ratio());
+  }
+  t.count_slope = loglog_slope(t.by_count);
+  for (const auto& p : g.points) {
+    if (!t.shifted || p.state_shift() > t.shift) {
+      t.shift = p.state_shift();
+      t.shifted = &p;
+    }
+  }
+  return t;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Rendering of the eq. (108) section
+
+std::string eq108_intro(const Eq108Grid& g) {
+  std::ostringstream md;
+  md << "## Eq. (108) against the limit, per E and per particle count\n\n";
+  if (!g.points.empty()) {
+    const Eq108Point& p0 = g.points.front();
+    md << "Eq. (108) is not dimensionally homogeneous: it adds sqrt(E), a speed in these units, to "
+          "F_max, a pure number, divides the stress by sqrt(E), and adds the l2 norm of the "
+          "nodal velocities, a sum over the nodes. So its step in units of h/c is not fixed by "
+          "what fixes the scheme's behaviour (c dt / h, A/h and c T): it changes with E, as the "
+          "first table shows, and with the particles per cell. Each run is the bar at A = "
+       << shortest(p0.A) << " with USL, FLIP and the uniform layout, under the spectral policy at "
+       << shortest(p0.safety) << " times the limit, ";
+    if (g.cT_hi <= g.cT_lo * (1 + 1e-9)) {
+      md << "for T = " << shortest(g.cT_lo) << " / sqrt(E) (c T / L = " << shortest(g.cT_lo)
+         << " crossings of the bar and the same steps at every E)";
+    } else {
+      md << "for c T / L = " << shortest(g.cT_lo) << " to " << shortest(g.cT_hi)
+         << " crossings of the bar";
+    }
+    int cells_lo = g.cells0, cells_hi = g.cells0;
+    for (const auto& p : g.points) {
+      cells_lo = std::min(cells_lo, p.cells);
+      cells_hi = std::max(cells_hi, p.cells);
+    }
+    md << ", on " << g.cells0 << " cells";
+    if (cells_hi > cells_lo)
+      md << " (the last table: " << cells_lo << " to " << cells_hi << " cells)";
+    md << ". Eq. (108) is the minimum of the bound over the run, in units of h/c; the spectral "
+          "limit, in c dt / h, is the same at every E.\n\n";
+  }
+
+  return md.str();
+}
+
+// The per-E table at the first row's particles per cell; `per_E` gets each E's range of the
+// ratio, and `f` the reading's range at the first row's particles per cell.
+std::string eq108_per_E(const Eq108Grid& g, Eq108Findings& f,
+                        std::vector<std::pair<double, std::pair<double, double>>>& per_E) {
+  std::ostringstream md;
+  md << "**Per E**, at " << g.ppc0
+     << " particles per cell (the last column: the ratio over every particles per cell run at "
+        "that E)\n\n| E | c | basis | spectral limit (c dt / h) | eq. (108) minimum (h / c) | "
+        "eq. (108) / limit | eq. (108) / limit over the particles per cell |\n"
+        "|---|---|---|---|---|---|---|\n";
+  for (double E : g.Es) {
+    double lo = 1e300, hi = 0;
+    for (const auto& b : g.bases) {
+      double blo = 1e300, bhi = 0;
+      int n = 0;
+      for (int ppc : g.ppcs) {
+        if (const Eq108Point* p = g.find(b, E, ppc)) {
+          blo = std::min(blo, p->ratio());
+          bhi = std::max(bhi, p->ratio());
+          ++n;
+        }
+      }
+      lo = std::min(lo, blo);
+      hi = std::max(hi, bhi);
+      const Eq108Point* p = g.find(b, E, g.ppc0);
+      if (!p) continue;
+      f.lo = std::min(f.lo, p->ratio());
+      f.hi = std::max(f.hi, p->ratio());
+      md << "| " << shortest(E) << " | " << speed(p->c()) << " | " << b << " | "
+         << fixed(p->limit, 4) << " | " << fixed(p->eq108, 4) << " | " << ratio_text(p->ratio())
+         << " | "
+         << (n > 1 ? ratio_text(blo) + " to " + ratio_text(bhi) + " (ppc " +
+                         std::to_string(g.ppcs_of(b).front()) + " to " +
+                         std::to_string(g.ppcs_of(b).back()) + ")"
+                   : std::string("–"))
+         << " |\n";
+    }
+    if (hi > 0) per_E.push_back({E, {lo, hi}});
+  }
+  if (!g.Es.empty()) {
+    f.E_lo = g.Es.front();
+    f.E_hi = g.Es.back();
+  }
+
+  return md.str();
+}
+
+std::string eq108_per_E_reading(
+    const std::vector<std::pair<double, std::pair<double, double>>>& per_E, const Eq108Spread& s) {
+  std::ostringstream md;
+  if (!per_E.empty()) {
+    md << "\nThe ratio per E, over the bases and particles per cell:";
+    std::string sep = " ";
+    for (const auto& [E, r] : per_E) {
+      md << sep << "E = " << shortest(E) << ", " << ratio_text(r.first) << " to "
+         << ratio_text(r.second);
+      sep = "; ";
+    }
+    md << ".";
+    if (!s.basis.empty()) {
+      md << " At one basis and layout it changes with E by up to a factor " << fixed(s.spread, 2)
+         << " (" << s.basis << " at " << s.ppc << " particles per cell: " << ratio_text(s.lo)
+         << " at E = " << shortest(s.E_lo) << ", " << ratio_text(s.hi)
+         << " at E = " << shortest(s.E_hi)
+         << "); a bound homogeneous in E would give one ratio at every E.";
+    }
+    md << "\n\n";
+  }
+
+  return md.str();
+}
+
+// By particles per cell at every E, for the bases run at more than one.
+std::string eq108_per_ppc(const Eq108Grid& g, const Eq108Trends& t) {
+  std::ostringstream md;
+  if (g.ppcs.size() > 1) {
+    md << "**Per particles per cell** on " << g.cells0
+       << " cells: the spectral limit, then eq. (108) / limit at each E\n\n| basis | E |";
+    for (int ppc : g.ppcs)
+      md << " ppc " << ppc << " |";
+    md << "\n|---|---|";
+    for (std::size_t k = 0; k < g.ppcs.size(); ++k)
+      md << "---|";
+    md << "\n";
+    for (const auto& b : g.bases) {
+      if (g.ppcs_of(b).size() < 2) continue;
+      md << "| " << b << " | spectral limit |";
+      for (int ppc : g.ppcs) {
+        const Eq108Point* p = nullptr;
+        for (double E : g.Es)
+          if (!p) p = g.find(b, E, ppc);
+        md << " " << (p ? fixed(p->limit, 3) : std::string("–")) << " |";
+      }
+      md << "\n";
+      for (double E : g.Es) {
+        md << "| " << b << " | " << shortest(E) << " |";
+        for (int ppc : g.ppcs) {
+          const Eq108Point* p = g.find(b, E, ppc);
+          md << " " << (p ? ratio_text(p->ratio()) : std::string("–")) << " |";
+        }
+        md << "\n";
+      }
+    }
+    md << "\nAt a fixed grid the ratio falls with the particles per cell";
+    if (t.ppc_slope)
+      md << ": fitted exponent " << fixed(*t.ppc_slope, 3) << " (GIMP at E = " << shortest(g.E0)
+         << ")";
+    md << ".\n\n";
+  }
+
+  return md.str();
+}
+
+// Against the particle count: the first E and particles per cell on every grid.
+std::string eq108_per_count(const Eq108Grid& g, const Eq108Trends& t) {
+  std::ostringstream md;
+  std::ostringstream count_table;
+  for (const auto& b : g.bases) {
+    for (const Eq108Point* p : g.by_count(b)) {
+      count_table << "| " << p->method << " | " << p->cells << " | " << p->particles << " | "
+                  << ratio_text(p->ratio()) << " | "
+                  << fixed(p->ratio() * std::sqrt(double(p->particles)), 3) << " |\n";
+    }
+  }
+  if (!count_table.str().empty()) {
+    md << "**Against the particle count**, at E = " << shortest(g.E0) << " and " << g.ppc0
+       << " particles per cell on every grid\n\n| basis | cells | particles | eq. (108) / "
+          "limit | eq. (108) / limit x sqrt(particles) |\n|---|---|---|---|---|\n"
+       << count_table.str() << "\n";
+    if (t.gimp_count.size() >= 2) {
+      const Eq108Point *a = t.gimp_count.front(), *z = t.gimp_count.back();
+      md << "Refining the grid from " << a->particles << " to " << z->particles
+         << " particles moves GIMP's ratio from " << ratio_text(a->ratio()) << " to "
+         << ratio_text(z->ratio());
+      if (t.count_slope)
+        md << " (fitted exponent against the particle count " << fixed(*t.count_slope, 3) << ")";
+      md << ", and the ratio times sqrt(particles) from "
+         << fixed(a->ratio() * std::sqrt(double(a->particles)), 3) << " to "
+         << fixed(z->ratio() * std::sqrt(double(z->particles)), 3) << ". ";
+      if (t.count_slope && std::abs(*t.count_slope) <= kSlopeTolerance) {
+        md << "So eq. (108) does not shrink as 1/sqrt(particles) when the grid is refined at a "
+              "fixed number of particles per cell; at a fixed grid, where the particles per cell "
+              "set the count, it falls with them as the previous table shows.";
+      } else if (t.count_slope) {
+        md << "So eq. (108)'s ratio changes with the particle count on a refined grid as its "
+              "power "
+           << fixed(*t.count_slope, 3) << ".";
+      }
+      md << "\n\n";
+    }
+  }
+
+  return md.str();
+}
+
+// The state against the bound at rest.
+std::string eq108_state(const Eq108Grid& g, const Eq108Trends& t) {
+  std::ostringstream md;
+  if (!g.points.empty()) {
+    md << "The l2 norm of the nodal velocities grows as the square root of the node count for "
+          "nodal velocities of a given size, and the bound falls as it grows. ";
+    if (t.shift < kStateNegligible) {
+      md << "At A = " << shortest(g.points.front().A) << " that term does not show: over the "
+         << g.points.size() << " runs, eq. (108)'s minimum lies within " << sci(t.shift, 2)
+         << " (relative) of its value at rest (F = 1, no stress, no velocity, at the run's E, "
+            "grid and particles per cell), so what the tables show is the formula's constants "
+            "(sqrt(E) beside F_max = 1, and the particles per cell m in h sqrt(m) / (4 m "
+            "(sqrt(E) + F_max + ||v||) + ...)), not the state of the runs.\n\n";
+    } else {
+      md << "Over the " << g.points.size() << " runs the state moves eq. (108)'s minimum by up to "
+         << sci(t.shift, 2)
+         << " (relative) from its value at rest (F = 1, no stress, no velocity).\n\n";
+    }
+  }
+
+  return md.str();
+}
+
+// The claim that the runs' state does not move eq. (108) at the tiny amplitude.
+Claim eq108_rest_claim(const Eq108Grid& g, const Eq108Trends& t) {
+  const auto n = static_cast<long long>(g.points.size());
+  Claim e = claim("eq108-at-rest",
+                  "At the tiny amplitude the state of the runs does not move eq. (108): its "
+                  "minimum is its value at rest, so what changes it with E, the particles per "
+                  "cell and the grid is the formula's constants",
+                  "{n} runs at A = {A}: the largest relative gap to eq. (108) at rest is {gap}, "
+                  "{basis} at E = {E}, ppc {ppc} (negligible: below {tolerance})");
+  e.count("n", n)
+      .value("A", g.points.empty() ? "–" : shortest(g.points.front().A))
+      .value("gap", n ? sci(t.shift, 2) : "–")
+      .value("basis", t.shifted ? t.shifted->method : "–")
+      .value("E", t.shifted ? shortest(t.shifted->E) : "–")
+      .value("ppc", t.shifted ? std::to_string(t.shifted->ppc) : "–")
+      .value("tolerance", shortest(kStateNegligible));
+  e.holds = n > 0 && t.shift < kStateNegligible;
+  return e;
+}
+
+std::vector<Claim> eq108_claims(const Eq108Grid& g, const Eq108Spread& s, const Eq108Trends& t) {
+  std::vector<Claim> claims;
+  int below = 0, n = 0;
+  const Eq108Point* worst = nullptr;
+  for (const auto& p : g.points) {
+    ++n;
+    below += p.ratio() < 1;
+    if (!worst || p.ratio() > worst->ratio()) worst = &p;
+  }
+  Claim a = claim("eq108-below-limit-every-E",
+                  "Eq. (108) lies below the spectral limit at every E and particles per cell",
+                  "{below} of {n} runs; the largest ratio is {worst}, {basis} at E = {E}, ppc "
+                  "{ppc}");
+  a.every("below", below, "n", n)
+      .value("worst", worst ? ratio_text(worst->ratio()) : "–")
+      .value("basis", worst ? worst->method : "–")
+      .value("E", worst ? shortest(worst->E) : "–")
+      .value("ppc", worst ? std::to_string(worst->ppc) : "–");
+  claims.push_back(a);
+
+  Claim b = claim("eq108-not-homogeneous",
+                  "Eq. (108)'s ratio to the spectral limit changes with E at the same c dt/h, "
+                  "A/h and c T: it is not dimensionally homogeneous",
+                  "at one basis and layout the ratio changes with E by up to a factor {spread}: "
+                  "{basis} at ppc {ppc}, {lo} at E = {E_lo} and {hi} at E = {E_hi} "
+                  "(homogeneous: below {threshold})");
+  const bool spread_found = !s.basis.empty();
+  b.value("spread", fixed(s.spread, 2))
+      .value("basis", spread_found ? s.basis : "–")
+      .value("ppc", spread_found ? std::to_string(s.ppc) : "–")
+      .value("lo", spread_found ? ratio_text(s.lo) : "–")
+      .value("E_lo", spread_found ? shortest(s.E_lo) : "–")
+      .value("hi", spread_found ? ratio_text(s.hi) : "–")
+      .value("E_hi", spread_found ? shortest(s.E_hi) : "–")
+      .value("threshold", shortest(kHomogeneousSpread));
+  b.holds = s.spread > kHomogeneousSpread;
+  claims.push_back(b);
+
+  Claim c = claim("eq108-falls-as-sqrt-ppc",
+                  "At a fixed grid, eq. (108)'s ratio to the limit falls as the inverse square "
+                  "root of the particles per cell",
+                  "GIMP at E = {E}, {points} values of particles per cell: fitted exponent "
+                  "{slope} (expected {expected} within {tolerance})");
+  c.value("E", shortest(g.E0))
+      .count("points", static_cast<long long>(t.by_ppc.size()))
+      .value("slope", t.ppc_slope ? fixed(*t.ppc_slope, 3) : "–")
+      .value("expected", shortest(kSqrtSlope))
+      .value("tolerance", shortest(kSlopeTolerance));
+  c.holds = t.ppc_slope && std::abs(*t.ppc_slope - kSqrtSlope) <= kSlopeTolerance;
+  claims.push_back(c);
+
+  Claim d = claim("eq108-independent-of-grid",
+                  "At a fixed number of particles per cell, refining the grid leaves eq. (108)'s "
+                  "ratio to the limit unchanged",
+                  "GIMP at E = {E}, {points} grids: fitted exponent against the particle count "
+                  "{slope} (unchanged: within {tolerance} of zero)");
+  d.value("E", shortest(g.E0))
+      .count("points", static_cast<long long>(t.by_count.size()))
+      .value("slope", t.count_slope ? fixed(*t.count_slope, 3) : "–")
+      .value("tolerance", shortest(kSlopeTolerance));
+  d.holds = t.count_slope && std::abs(*t.count_slope) <= kSlopeTolerance;
+  claims.push_back(d);
+
+  claims.push_back(eq108_rest_claim(g, t));
+  return claims;
+}
+
+Eq108Findings eq108_findings(const std::vector<ojson>& rows) {
+  Eq108Findings f;
+  const Eq108Grid g = eq108_grid(rows);
+  const Eq108Spread s = eq108_spread(g);
+  const Eq108Trends t = eq108_trends(g);
+  std::vector<std::pair<double, std::pair<double, double>>> per_E;  // E -> ratio lo, hi
+  std::ostringstream md;
+  md << eq108_intro(g);
+  md << eq108_per_E(g, f, per_E);
+  md << eq108_per_E_reading(per_E, s) << eq108_per_ppc(g, t) << eq108_per_count(g, t)
+     << eq108_state(g, t);
+  f.claims = eq108_claims(g, s, t);
+  f.markdown = md.str();
+  return f;
+}
+
+// The schemes' limits confirmed by their runs, as a claim.
+Claim confirmed_claim(const std::vector<Scheme>& schemes) {
+  long long confirmed = 0;
+  double s_below = 0, s_above = 0;
+  for (const auto& s : schemes) {
+    confirmed += s.confirmed();
+    if (s.below && s.above && s_below == 0 && has_number(*s.below, "safety") &&
+        has_number(*s.above, "safety")) {
+      s_below = (*s.below)["safety"].get<double>();
+      s_above = (*s.above)["safety"].get<double>();
+    }
+  }
+  Claim c = claim("spectral-limit-confirmed",
+                  "Every scheme's spectral limit is confirmed by runs: the run just below it "
+                  "stays bounded and the run just above it grows",
+                  "{confirmed} of {schemes} schemes, runs at {below} and {above} times the limit");
+  c.every("confirmed", confirmed, "schemes", static_cast<long long>(schemes.size()))
+      .value("below", s_below > 0 ? shortest(s_below) : "–")
+      .value("above", s_above > 0 ? shortest(s_above) : "–");
+  return c;
+}
+
+std::string reading(const std::vector<ojson>& rows, const std::vector<Scheme>& schemes,
+                    const std::map<std::string, double>& edges, const Eq108Findings& eq108) {
+  std::ostringstream md;
+  int confirmed = 0;
+  std::vector<std::string> not_confirmed;
+  std::map<std::string, std::pair<double, double>> range;  // update order -> limits at ppc 2
+  double eq_lo = 1e300, eq_hi = 0, edge_lo = 1e300, edge_hi = 0;
+  int particles_lo = 0, particles_hi = 0;
+  for (const auto& s : schemes) {
+    if (s.confirmed()) {
+      ++confirmed;
+    } else {
+      not_confirmed.push_back(s.name);
+    }
+    const auto limit = s.limit();
+    if (limit && s.uniform_two()) {
+      auto [it, fresh] = range.emplace(update_of(s.name), std::pair{*limit, *limit});
+      if (!fresh) {
+        it->second.first = std::min(it->second.first, *limit);
+        it->second.second = std::max(it->second.second, *limit);
+      }
+    }
+    if (const auto e = s.eq108(); e && limit) {
+      eq_lo = std::min(eq_lo, *e / *limit);
+      eq_hi = std::max(eq_hi, *e / *limit);
+      const int particles = s.row()["particles"].get<int>();
+      particles_lo = particles_lo ? std::min(particles_lo, particles) : particles;
+      particles_hi = std::max(particles_hi, particles);
+    }
+    if (const auto e = edges.find(s.name); e != edges.end() && limit) {
+      edge_lo = std::min(edge_lo, e->second / *limit);
+      edge_hi = std::max(edge_hi, e->second / *limit);
+    }
+  }
+  md << "**Reading** (computed from the rows). The limit is confirmed (the run at "
+     << safeties(rows, true) << " times it stays bounded, the run at " << safeties(rows, false)
+     << " times it grows) for " << confirmed << " of " << schemes.size() << " schemes";
+  if (not_confirmed.empty()) {
+    md << ". ";
+  } else {
+    md << "; not for ";
+    for (std::size_t i = 0; i < not_confirmed.size(); ++i)
+      md << (i ? ", " : "") << "`" << not_confirmed[i] << "`";
+    md << " (their rows show which run disagrees). ";
+  }
+  md << "Limits at " << kDefaultPpc
+     << " particles per cell and the uniform layout, in c dt / h, by update order:";
+  std::string sep = " ";
+  for (const char* u : {"usl", "usf", "musl"}) {
+    const auto it = range.find(u);
+    if (it == range.end()) continue;
+    md << sep << u << " " << fixed(it->second.first, 3) << " to " << fixed(it->second.second, 3);
+    sep = "; ";
+  }
+  md << " (the CFL number is 1).";
+  if (edge_hi > 0) {
+    md << " The measured edges lie at " << fixed(edge_lo, 4) << " to " << fixed(edge_hi, 4)
+       << " times the limit.";
+  }
+  if (eq_hi > 0) {
+    const ojson& r = schemes.front().row();
+    md << " Eq. (108) at the same state lies at " << fixed(eq_lo, 3) << " to " << fixed(eq_hi, 3)
+       << " times the limit, at E = " << shortest(r["E"].get<double>()) << " on "
+       << r["cells"].get<int>() << " cells ("
+       << (particles_lo == particles_hi
+               ? std::to_string(particles_lo)
+               : std::to_string(particles_lo) + " to " + std::to_string(particles_hi))
+       << " particles) only: its ratio changes with E";
+    if (eq108.hi > 0 && eq108.E_hi > eq108.E_lo) {
+      md << " (at " << r["ppc"].get<int>() << " particles per cell with USL and FLIP, "
+         << fixed(eq108.lo, 3) << " to " << fixed(eq108.hi, 3)
+         << " over E = " << shortest(eq108.E_lo) << " to " << shortest(eq108.E_hi) << ")";
+    }
+    md << " and with the particles per cell (the section on eq. (108) below).";
+  }
+  md << "\n\n";
+  return md.str();
+}
+
+// The paper's grid for Table 1 (experiments/table1.json): h = 1 / kPaperCells.
+constexpr int kPaperCells = 100;
+
+// The paper's dt stable column of Table 1 in c dt / h, per method, A and E: the median of its
+// rows (each dt), with the count of rows read and of the rows whose value is unreadable.
+std::string paper_table(const std::filesystem::path& reference,
+                        const std::vector<Scheme>& schemes) {
+  if (reference.empty() || !std::filesystem::exists(reference)) return "";
+  std::map<std::tuple<std::string, Key, Key>, std::vector<double>> values;
+  std::vector<double> Es;
+  std::vector<std::pair<std::string, double>> keys;  // method, A, in order
+  for (const PaperRow& r : read_paper_rows(reference)) {
+    if (std::find(Es.begin(), Es.end(), r.E) == Es.end()) Es.push_back(r.E);
+    if (std::find(keys.begin(), keys.end(), std::pair{r.method, r.A}) == keys.end())
+      keys.emplace_back(r.method, r.A);
+    // Table 1's own reading of a cell: '*' and unreadable text ('4.?e-6') are no number.
+    const PaperValue& dt_stable = r.cell.dt_stable;
+    if (dt_stable.kind != PaperValue::number || !(dt_stable.value > 0)) continue;
+    values[{r.method, Key(r.A), Key(r.E)}].push_back(dt_stable.value * std::sqrt(r.E) *
+                                                     kPaperCells);
+  }
+  std::sort(Es.begin(), Es.end());  // finite: read_paper_rows refuses any other E
+  auto limit_of = [&](const std::string& method) -> std::string {
+    for (const auto& s : schemes)
+      if (s.name == method && s.limit()) return fixed(*s.limit(), 3);
+    return "–";
+  };
+  auto eq108_of = [&](const std::string& method) -> std::string {
+    for (const auto& s : schemes)
+      if (s.name == method && s.eq108()) return fixed(*s.eq108(), 3);
+    return "–";
+  };
+  std::ostringstream md;
+  md << "## The paper's dt stable column\n\nTable 1's \"dt stable\" (eq. (108) of the paper's "
+        "runs, at its amplitudes and E, on "
+     << kPaperCells
+     << " cells), converted to c dt / h: the median over the dts of each cell's block. The "
+        "paper's bound changes with the state (A and E); the spectral limit, a property of the "
+        "scheme in c dt / h, does not. Our eq. (108) at the tiny amplitude is given at one E "
+        "(named in its column); it changes with E too (per E in the table above).\n\n"
+        "| method | A | ";
+  for (double E : Es)
+    md << "E = " << shortest(E) << " | ";
+  md << "spectral limit | our eq. (108) at A = "
+     << (schemes.empty() ? std::string("–") : value_text(schemes.front().row()["A"].get<double>()))
+     << ", E = "
+     << (schemes.empty() ? std::string("–") : value_text(schemes.front().row()["E"].get<double>()))
+     << " |\n|---|---|";
+  for (std::size_t i = 0; i < Es.size() + 2; ++i)
+    md << "---|";
+  md << "\n";
+  int above = 0, cells = 0;
+  for (const auto& [method, A] : keys) {
+    md << "| " << method << " | " << shortest(A) << " | ";
+    for (double E : Es) {
+      const auto it = values.find({method, Key(A), Key(E)});
+      if (it == values.end() || it->second.empty()) {
+        md << "– | ";
+        continue;
+      }
+      const double m = quantile(it->second, 0.5);
+      md << fixed(m, 3) << " | ";
+      for (const auto& s : schemes) {
+        if (s.name != method || !s.limit()) continue;
+        ++cells;
+        above += m > *s.limit() ? 1 : 0;
+      }
+    }
+    md << limit_of(method) << " | " << eq108_of(method) << " |\n";
+  }
+  md << "\n**Reading** (computed from the rows). " << above << " of " << cells
+     << " of the paper's medians lie above the spectral limit of their method (a step the "
+        "linearised scheme amplifies at a tiny amplitude).\n\n";
+  return md.str();
+}
+
+std::string spectral_markdown(const ReportContext& c, const Eq108Findings& eq108) {
+  const std::vector<ojson> rows = scheme_rows(c.rows);
+  const std::vector<Scheme> schemes = schemes_of(rows);
+  const auto edges = measured_edges(c.inputs);
+  const ojson& first = rows.front();
+  std::ostringstream md;
+  md << "![The spectral limit and eq. (108) / limit against the particles per cell](spectral.png)"
+        "\n\n"
+     << "Each scheme's spectral limit: the largest c dt / h at which its one-step map, "
+        "linearised about rest with the particles frozen at the bar's initial layout, amplifies "
+        "nothing (docs/design.md, \"The spectral limit\"): the Bloch limit of the interior for a "
+        "uniform layout, the dense map of the whole bar for a jittered one. Beside it, two runs "
+        "of the bar under the spectral policy at s = "
+     << safeties(rows, true) << " and s = " << safeties(rows, false)
+     << " times the limit, at A = " << shortest(first["A"].get<double>())
+     << ", E = " << shortest(first["E"].get<double>())
+     << " and T = " << shortest(first["T"].get<double>())
+     << " (c T / L = " << shortest(std::sqrt(first["E"].get<double>()) * first["T"].get<double>())
+     << " crossings of the bar), " << first["cells"].get<int>()
+     << " cells. A run is *bounded* when it reaches T with an error over time of at most "
+     << shortest(kBound)
+     << " A (a bounded run's error, its phase error included, is at most twice A; one that "
+        "reaches A is also marked meaningless); a run that grows passes "
+     << shortest(kBound)
+     << " A or fails. Eq. (108) is "
+        "defined for MPM, GIMP and cpGIMP only (`–` for the other bases). The measured edge is the "
+        "spectral_edge experiment's "
+        "([spectral_edge.md](spectral_edge.md)): the largest fixed dt that stays bounded, found "
+        "by its search without reading the limit. Eq. (108) is the minimum of our bound "
+        "over the run at "
+     << safeties(rows, true) << " times the limit. The CFL number is 1 in these units.\n\n"
+     << reading(rows, schemes, edges, eq108)
+     << "| scheme | spectral limit (c dt / h) | analysis | measured edge | eq. (108) at the same "
+        "state | run at "
+     << safeties(rows, true) << " x | run at " << safeties(rows, false)
+     << " x | confirmed |\n|---|---|---|---|---|---|---|---|\n";
+  for (const auto& s : schemes) {
+    const auto limit = s.limit();
+    const auto edge = edges.find(s.name);
+    const auto eq = s.eq108();
+    md << "| " << s.name << " | "
+       << (limit ? fixed(*limit, 4) : "none up to " + shortest(kMaxSpectralCourant)) << " | "
+       << (s.row()["spectral_analysis"].is_string()
+               ? s.row()["spectral_analysis"].get<std::string>()
+               : std::string("–"))
+       << " | " << (edge != edges.end() ? fixed(edge->second, 4) : std::string("–")) << " | "
+       << (eq ? fixed(*eq, 4) : std::string("–")) << " | " << (s.below ? run_text(*s.below) : "–")
+       << " | " << (s.above ? run_text(*s.above) : "–") << " | "
+       << (s.confirmed() ? "yes" : "**no**") << " |\n";
+  }
+  md << "\n" << eq108.markdown << paper_table(c.spec.reference, schemes);
+  return md.str();
+}
+
+// The figure: MPM and GIMP (USL, FLIP, uniform layout) on the first row's grid against the
+// particles per cell: the limit and the measured edge (first E), eq. (108) and its ratio to the
+// limit at every E.
+std::string spectral_data(const ReportContext& c) {
+  const auto edges = measured_edges(c.inputs);
+  const ojson& first = c.rows.front();
+  std::ostringstream csv;
+  csv << c.csv_header << "# method: " << codes(kFigureMethods) << " (USL, FLIP, uniform layout, "
+      << first["cells"].get<int>()
+      << " cells); in c dt / h: limit the spectral limit, edge the measured edge (empty: not "
+         "measured), eq108 our eq. (108), the minimum over the run at "
+      << safeties(c.rows, true)
+      << " times the limit; "
+         "ratio eq108 / limit\n"
+         "method,E,ppc,limit,edge,eq108,ratio\n";
+  // Sorted by method, E and ppc: each curve one contiguous block.
+  auto points = eq108_points(c.rows);
+  std::stable_sort(points.begin(), points.end(), [](const Eq108Point& a, const Eq108Point& b) {
+    return std::tuple(a.method != "mpm", Key(a.E, "E"), a.ppc) <
+           std::tuple(b.method != "mpm", Key(b.E, "E"), b.ppc);
+  });
+  for (const auto& p : points) {
+    const auto code = std::find(kFigureMethods.begin(), kFigureMethods.end(), p.method);
+    if (p.cells != first["cells"].get<int>() || code == kFigureMethods.end()) continue;
+    std::string name = p.method;
+    if (p.ppc != kDefaultPpc) name += " (ppc " + std::to_string(p.ppc) + ")";
+    const auto edge = p.E == first["E"].get<double>() ? edges.find(name) : edges.end();
+    csv << code - kFigureMethods.begin() << ',' << shortest(p.E) << ',' << p.ppc << ','
+        << shortest(p.limit) << ',' << (edge != edges.end() ? shortest(edge->second) : "") << ','
+        << shortest(p.eq108) << ',' << shortest(p.ratio()) << '\n';
+  }
+  return csv.str();
+}
+
+// What the figure draws, from the records.
+std::string spectral_subtitle(const Spec&, const ojson& doc) {
+  const std::vector<ojson> rows(doc["cases"].begin(), doc["cases"].end());
+  if (rows.empty()) return "";
+  const auto points = eq108_points(rows);
+  std::ostringstream s;
+  s << "USL, FLIP, uniform layout, " << rows.front()["cells"].get<int>() << " cells";
+  if (!points.empty()) {
+    const Eq108Point& p = points.front();
+    s << "; eq. (108): its minimum over a run at " << shortest(p.safety)
+      << " x the limit, A = " << shortest(p.A) << ", T = " << shortest(p.c() * p.T) << " / sqrt(E)";
+  }
+  return s.str();
+}
+
+std::string spectral_index(const Spec& spec, const std::vector<ojson>& all) {
+  const std::vector<ojson> rows = scheme_rows(all);  // the schemes point into it
+  const std::vector<Scheme> schemes = schemes_of(rows);
+  const auto confirmed =
+      std::count_if(schemes.begin(), schemes.end(), [](const Scheme& s) { return s.confirmed(); });
+  std::ostringstream md;
+  md << "![" << spec.title << "](" << spec.name
+     << ".png)\n\n**What it shows.** The spectral limit of " << schemes.size()
+     << " schemes (basis x transfer x update order, particles per cell and layout), each checked "
+        "by "
+        "two runs at a tiny amplitude just below and just above it: confirmed for "
+     << confirmed << " of " << schemes.size()
+     << "; and eq. (108) against the limit at every E the studies use: [" << spec.name << ".md]("
+     << spec.name << ".md).\n\n";
+  return md.str();
+}
+
+const StudyRegistration kSpectral{{
+    .name = "spectral",
+    .summary = "each scheme's spectral limit, checked by runs just below and above it, beside "
+               "the measured edge, eq. (108) and the paper's dt stable; eq. (108) against the "
+               "limit per E and per particle count",
+    .records = {.error_over_time = true, .dt_stable = true},
+    .inputs = {{.name = "spectral_edge"}},
+    .figure = true,
+    .report =
+        [](const ReportContext& c) {
+          Eq108Findings eq108 = eq108_findings(c.rows);
+          const std::vector<ojson> rows = scheme_rows(c.rows);
+          std::vector<Claim> claims = {confirmed_claim(schemes_of(rows))};
+          claims.insert(claims.end(), eq108.claims.begin(), eq108.claims.end());
+          return StudyReport{.markdown = spectral_markdown(c, eq108),
+                             .data_csv = spectral_data(c),
+                             .claims = std::move(claims)};
+        },
+    .index = spectral_index,
+    .figure_subtitle = spectral_subtitle,
+}};
+
+}  // namespace
+}  // namespace studies::spectral
+
+}  // namespace mpmstab

@@ -1,0 +1,331 @@
+// The measured edges beside the spectral limit: for each case, the largest fixed dt with which the
+// bar stays bounded to T (an edge search whose probes count as failing when their error over time
+// passes 3 A, core/run/edge.hpp), against the spectral limit its record carries. At a tiny
+// amplitude the two must agree (the agreement table, with its tolerance); at the paper's amplitudes
+// the table shows where the nonlinear edge lies against the linear limit.
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "claims.hpp"
+#include "csv.hpp"
+#include "key.hpp"
+#include "report_util.hpp"
+#include "shared/edge_length.hpp"
+#include "study.hpp"
+
+namespace mpmstab {
+
+namespace studies::spectral_edge {
+namespace {
+
+using ojson = nlohmann::ordered_json;
+
+// The amplitude below which a case measures the linear edge.
+constexpr double kTinyA = 1e-5;
+// The agreement asked of the measured tiny-amplitude edge and the spectral limit.
+constexpr double kAgreement = 0.05;
+// A probe is bounded when its error over time ends at most kProbeBound A.
+constexpr double kProbeBound = 3.0;
+
+// The search: the default scan, bisected to a finer tolerance, a probe surviving only bounded.
+const EdgeOptions kSearch{.tolerance = 0.005, .bound = kProbeBound};
+
+bool tiny(const ojson& r) {
+  return r["A"].get<double>() < kTinyA;
+}
+
+// The measured edge over the spectral limit; none without either.
+std::optional<double> edge_ratio(const ojson& r) {
+  if (!has_number(r, "dt_edge") || !has_number(r, "dt_spectral")) return std::nullopt;
+  return r["dt_edge"].get<double>() / r["dt_spectral"].get<double>();
+}
+
+bool agrees(const ojson& r) {
+  const auto q = edge_ratio(r);
+  return q && std::abs(*q - 1) <= kAgreement;
+}
+
+std::string analysis_of(const ojson& r) {
+  return r["spectral_analysis"].is_string() ? r["spectral_analysis"].get<std::string>() : "–";
+}
+
+std::string agreement_table(const std::vector<const ojson*>& rows) {
+  std::ostringstream md;
+  const auto n = std::count_if(rows.begin(), rows.end(), [](const ojson* r) { return agrees(*r); });
+  md << "## The measured edge against the spectral limit at A = "
+     << shortest((*rows.front())["A"].get<double>()) << "\n\n**Reading** (computed from the rows). "
+     << n << " of " << rows.size() << " measured edges lie within " << shortest(100 * kAgreement)
+     << "% of the spectral limit";
+  double lo = 1e300, hi = -1e300;
+  for (const ojson* r : rows) {
+    if (const auto q = edge_ratio(*r)) {
+      lo = std::min(lo, *q);
+      hi = std::max(hi, *q);
+    }
+  }
+  if (lo <= hi) md << " (edge / limit from " << fixed(lo, 4) << " to " << fixed(hi, 4) << ")";
+  md << ".\n\n| scheme | measured edge (c dt / h) | first dt above it that grew | spectral limit "
+        "(c dt / h) | analysis | edge / limit | within "
+     << shortest(100 * kAgreement) << "% |\n|---|---|---|---|---|---|---|\n";
+  for (const ojson* r : rows) {
+    const double cfl = (*r)["dt_cfl"].get<double>();
+    auto in_h = [&](const char* column) {
+      return has_number(*r, column) ? fixed((*r)[column].get<double>() / cfl, 4) : std::string("–");
+    };
+    const auto q = edge_ratio(*r);
+    md << "| " << scheme_label(*r) << " | " << in_h("dt_edge") << " | " << in_h("dt_fail") << " | "
+       << in_h("dt_spectral") << " | " << analysis_of(*r) << " | "
+       << (q ? fixed(*q, 4) : std::string("–")) << " | " << (agrees(*r) ? "yes" : "**no**")
+       << " |\n";
+  }
+  return md.str();
+}
+
+// Per scheme, the edge over the limit at each amplitude.
+std::string amplitude_table(const std::vector<const ojson*>& rows) {
+  std::vector<double> amplitudes;
+  std::vector<std::string> schemes;
+  std::map<std::pair<std::string, Key>, const ojson*> at;
+  for (const ojson* r : rows) {
+    const double A = (*r)["A"].get<double>();
+    const std::string s = scheme_label(*r);
+    if (std::find(amplitudes.begin(), amplitudes.end(), A) == amplitudes.end())
+      amplitudes.push_back(A);
+    if (std::find(schemes.begin(), schemes.end(), s) == schemes.end()) schemes.push_back(s);
+    at[{s, Key(A, "A")}] = r;
+  }
+  std::sort(amplitudes.begin(), amplitudes.end(), TotalLess());
+  std::ostringstream md;
+  md << "## The nonlinear edge as A grows\n\nEach cell: the measured edge over the spectral limit "
+        "(the linear edge); `*` marks a case whose run at the edge is meaningless (its error "
+        "reached A although it stayed below "
+     << shortest(kProbeBound)
+     << " A); `–` no edge in the scan.\n\n"
+        "**Reading** (computed from the rows).";
+  for (const auto& s : schemes) {
+    double worst = 1e300, worst_A = 0;
+    for (double A : amplitudes) {
+      const auto it = at.find({s, Key(A)});
+      if (it == at.end()) continue;
+      if (const auto q = edge_ratio(*it->second); q && *q < worst) {
+        worst = *q;
+        worst_A = A;
+      }
+    }
+    if (worst < 1e300) {
+      md << " " << s << ": lowest " << fixed(worst, 3)
+         << " of the limit, at A = " << shortest(worst_A) << ".";
+    }
+  }
+  md << "\n\n| scheme |";
+  for (double A : amplitudes)
+    md << " A = " << shortest(A) << " |";
+  md << "\n|---|";
+  for (std::size_t i = 0; i < amplitudes.size(); ++i)
+    md << "---|";
+  md << "\n";
+  for (const auto& s : schemes) {
+    md << "| " << s << " |";
+    for (double A : amplitudes) {
+      const auto it = at.find({s, Key(A)});
+      if (it == at.end()) {
+        md << " |";
+        continue;
+      }
+      const auto q = edge_ratio(*it->second);
+      md << " " << (q ? fixed(*q, 3) : std::string("–"))
+         << (q && outcome(*it->second) == "meaningless" ? " *" : "") << " |";
+    }
+    md << "\n";
+  }
+  return md.str();
+}
+
+// The rows of the amplitude table: the schemes measured at more than one amplitude.
+std::vector<const ojson*> amplitude_rows(const std::vector<ojson>& rows) {
+  std::map<std::string, int> amplitudes;
+  for (const auto& r : rows)
+    ++amplitudes[scheme_label(r)];
+  std::vector<const ojson*> out;
+  for (const auto& r : rows)
+    if (amplitudes[scheme_label(r)] > 1) out.push_back(&r);
+  return out;
+}
+
+// Every edge rerun for length (edge_length.hpp): its run's error over time per A and the length
+// to which it stays bounded.
+std::string length_table(const std::vector<ojson>& rows, const LengthRuns& lengths) {
+  std::ostringstream md;
+  md << "## Each edge for length\n\nEvery measured edge rerun at its dt for "
+     << shortest(kLengthFactors[0]) << " and " << shortest(kLengthFactors[1])
+     << " times its wave passes (at most " << shortest(kLongPasses)
+     << "): it holds to a length where that run stays bounded (reaches it with an error over time "
+        "at most "
+     << shortest(kProbeBound)
+     << " A), and is **transient** where it does not. The error over time at the edge is the "
+        "search's own run.\n\n| scheme | A | edge (c dt / h) | run at the edge | error over "
+        "time / A there | length |\n|---|---|---|---|---|---|\n";
+  for (const auto& r : rows) {
+    if (!has_number(r, "dt_edge")) continue;
+    md << "| " << scheme_label(r) << " | " << shortest(r["A"].get<double>()) << " | "
+       << fixed(r["dt_edge"].get<double>() / r["dt_cfl"].get<double>(), 4) << " | "
+       << edge_run_verdict(r) << " | "
+       << (has_number(r, "error_at_edge_over_A")
+               ? significant(r["error_at_edge_over_A"].get<double>(), 2)
+               : std::string("–"))
+       << " | " << lasting_text(lengths, r, "dt_edge", kProbeBound) << " |\n";
+  }
+  return md.str();
+}
+
+std::vector<Claim> spectral_edge_claims(const std::vector<ojson>& rows, const LengthRuns& lengths) {
+  LengthTally t;
+  int below = 0, nonlinear = 0;
+  for (const auto& r : rows) {
+    t.add(lasting(lengths, r, "dt_edge", kProbeBound));
+    if (tiny(r)) continue;
+    if (const auto q = edge_ratio(r)) {
+      ++nonlinear;
+      below += *q < 1;
+    }
+  }
+  const Claim length = length_claim("edges-hold-for-length",
+                                    "Every measured edge stays bounded for {first}x and {second}x "
+                                    "its run length (at most {cap} wave passes)",
+                                    "{held} of {tested} do", t);
+  Claim under = claim("nonlinear-edges-below-limit",
+                      "Every edge measured above the tiny amplitude lies below the spectral limit",
+                      "{below} of {n} do");
+  under.every("below", below, "n", nonlinear);
+  return {length, under};
+}
+
+std::string spectral_edge_markdown(const std::vector<ojson>& rows, const LengthRuns& lengths) {
+  const ojson& first = rows.front();
+  std::ostringstream md;
+  md << "![The measured edge over the spectral limit against A](spectral_edge.png)\n\n"
+     << "Each case's edge is the largest fixed dt with which the bar (E = "
+     << shortest(first["E"].get<double>()) << ", " << first["cells"].get<int>()
+     << " cells, T = " << shortest(first["T"].get<double>())
+     << ": c T / L = " << shortest(std::sqrt(first["E"].get<double>()) * first["T"].get<double>())
+     << " crossings) stays **bounded**: it reaches T without failing and its error over time "
+        "stays at most "
+     << shortest(kProbeBound)
+     << " A. A growing mode at a tiny amplitude does not fail within T; this criterion sees it. "
+        "The search: "
+     << edge_search_text(kSearch)
+     << "; `dt_fail` is the smallest dt above the edge that grew or failed. The spectral limit is "
+        "the one each record carries: the Bloch limit of the interior for a uniform layout, the "
+        "dense map of the whole bar for a jittered one (docs/design.md, \"The spectral "
+        "limit\").\n\n";
+  std::vector<const ojson*> linear;
+  for (const auto& r : rows)
+    if (tiny(r)) linear.push_back(&r);
+  if (!linear.empty()) md << agreement_table(linear) << "\n";
+  const auto nonlinear = amplitude_rows(rows);
+  if (!nonlinear.empty()) md << amplitude_table(nonlinear) << "\n";
+  md << length_table(rows, lengths);
+  return md.str();
+}
+
+// The figure's data, one row per amplitude and two columns per scheme (named in the header,
+// which gnuplot takes for the legend): its edge over the limit, and the same where the run at
+// the edge is meaningless. The first column holds the number of schemes.
+std::string spectral_edge_data(const std::vector<ojson>& rows, const std::string& header) {
+  std::vector<std::string> schemes;
+  std::vector<double> amplitudes;
+  std::map<std::pair<std::string, Key>, const ojson*> at;
+  for (const ojson* r : amplitude_rows(rows)) {
+    const std::string s = scheme_label(*r);
+    const double A = (*r)["A"].get<double>();
+    if (std::find(schemes.begin(), schemes.end(), s) == schemes.end()) schemes.push_back(s);
+    if (std::find(amplitudes.begin(), amplitudes.end(), A) == amplitudes.end())
+      amplitudes.push_back(A);
+    at[{s, Key(A, "A")}] = r;
+  }
+  std::sort(amplitudes.begin(), amplitudes.end(), TotalLess());
+  std::ostringstream csv;
+  csv << header
+      << "# one row per amplitude; per scheme (schemes of them): its measured edge over the "
+         "spectral limit, and the same in the column '<scheme> meaningless' where the run at the "
+         "edge is meaningless; empty: no edge in the scan\nschemes,A";
+  for (const auto& s : schemes)
+    csv << ',' << s;
+  for (const auto& s : schemes)
+    csv << ',' << s << " meaningless";
+  csv << '\n';
+  for (double A : amplitudes) {
+    csv << schemes.size() << ',' << shortest(A);
+    for (int meaningless = 0; meaningless < 2; ++meaningless) {
+      for (const auto& s : schemes) {
+        csv << ',';
+        const auto it = at.find({s, Key(A)});
+        if (it == at.end()) continue;
+        const auto q = edge_ratio(*it->second);
+        if (q && (!meaningless || outcome(*it->second) == "meaningless")) csv << shortest(*q);
+      }
+    }
+    csv << '\n';
+  }
+  return csv.str();
+}
+
+std::string spectral_edge_index(const Spec& spec, const std::vector<ojson>& rows) {
+  std::size_t linear = 0, agreeing = 0, below = 0, nonlinear = 0;
+  std::vector<double> amplitudes;
+  for (const auto& r : rows) {
+    if (!tiny(r)) {
+      if (const auto q = edge_ratio(r)) {
+        ++nonlinear;
+        below += *q < 1;
+      }
+      continue;
+    }
+    amplitudes.push_back(r["A"].get<double>());
+    ++linear;
+    agreeing += agrees(r) ? 1 : 0;
+  }
+  std::ostringstream md;
+  md << "![" << spec.title << "](" << spec.name
+     << ".png)\n\n**What it shows.** At A = " << listing(amplitudes) << " " << agreeing << " of "
+     << linear << " measured edges lie within " << shortest(100 * kAgreement)
+     << "% of the spectral limit; above it, " << below << " of " << nonlinear
+     << " measured edges lie below the limit, and each edge is rerun for length: [" << spec.name
+     << ".md](" << spec.name << ".md).\n\n";
+  return md.str();
+}
+
+const StudyRegistration kSpectralEdge{{
+    .name = "spectral_edge",
+    .summary = "per case, the largest fixed dt that stays bounded (error within " +
+               shortest(kProbeBound) + " A), against the spectral limit (a search over dt)",
+    .work = CaseWork::edge_search,
+    .edge = kSearch,
+    .records = {.error_over_time = true},
+    .figure = true,
+    .follow_up = [](const FollowUpContext& c) { return all_length_runs(c.rows, c.spec.cases); },
+    .report =
+        [](const ReportContext& c) {
+          std::size_t next = 0;
+          const LengthRuns lengths = read_length_runs(c.rows, c.follow_up, next);
+          return StudyReport{.markdown = spectral_edge_markdown(c.rows, lengths),
+                             .data_csv = spectral_edge_data(c.rows, c.csv_header),
+                             .claims = spectral_edge_claims(c.rows, lengths)};
+        },
+    .index = spectral_edge_index,
+    .figure_subtitle =
+        [](const Spec&, const ojson&) {
+          return "edge: the largest fixed dt whose error over time stays within " +
+                 shortest(kProbeBound) + " A to T; limit: the Bloch limit of the uniform layout";
+        },
+}};
+
+}  // namespace
+}  // namespace studies::spectral_edge
+
+}  // namespace mpmstab
