@@ -5,6 +5,7 @@
 #include "csv.hpp"
 #include "report_util.hpp"
 #include "study.hpp"
+#include "sweep.hpp"
 
 namespace mpmstab {
 
