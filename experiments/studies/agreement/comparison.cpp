@@ -21,85 +21,114 @@ using ojson = nlohmann::ordered_json;
 }  // namespace
 }  // namespace studies::comparison
 
+namespace studies::comparison {
+namespace {
+
+// The condition every run of ours that reaches T meets in the classes that compare errors.
+std::string stable_ours() {
+  return "ours reaches T with an error over time below A (an error over time of at least A is the "
+         "class ours-meaningless)";
+}
+
+// The two classes where the verdicts agree.
+std::vector<ClassDefinition> agreement_classes() {
+  const std::string f = agreement_factor();
+  return {
+      {"agree-stable", "Agree: both stable, max errors within a factor " + f,
+       "The paper gives a max error (its run stable); " + stable_ours() +
+           "; the two max errors are within a factor " + f + " of each other.",
+       ClassKind::agreement},
+      {"agree-unstable", "Agree: both unstable",
+       "The paper marks the cell `*` (unstable); ours fails before T.", ClassKind::agreement},
+  };
+}
+
+// The failure classes (failure_class()) and the meaningless one: the paper's run lasts longer.
+std::vector<ClassDefinition> failure_classes() {
+  const std::string f = agreement_factor();
+  // The failure classes (failure_class()) share their first condition.
+  const std::string goes_on =
+      "The paper's run lasts longer than ours, which fails before T (a Table 1 cell: the paper "
+      "gives a max error, ours fails; a figure: the paper's run reaches T, or takes more than " +
+      f + " times as many steps as ours before it fails)";
+  const std::string below =
+      ", at a c dt / h at or below the spectral limit (or with none recorded) and below the "
+      "scan's edge (both as in the classes above)";
+  return {
+      {"above-spectral-limit", "Paper's run lasts longer; ours fails above the spectral limit",
+       goes_on +
+           ", at a Courant number c dt / h above the spectral limit of its scheme at its layout "
+           "(the record's `courant_spectral`, spectral.md).",
+       ClassKind::verdict},
+      {"above-our-edge",
+       "Paper's run lasts longer; ours fails at or below the spectral limit, at or above the "
+       "scan's "
+       "edge",
+       goes_on + ", at a c dt / h at or below the spectral limit (or with none recorded) and at or "
+                 "above the courant scan's edge for its method and A: the smallest c dt / h of the "
+                 "scan from which on each run "
+                 "of the scan, at each E, fails.",
+       ClassKind::verdict},
+      {"gimp-wall-exit",
+       "Paper's run lasts longer; ours, not mpm, fails with a particle leaving the domain",
+       goes_on + below +
+           ", by a method other than mpm (GIMP in Table 1), with a particle leaving the domain "
+           "through a wall (`left_domain`).",
+       ClassKind::verdict},
+      {"mpm-crossing-failure",
+       "Paper's run lasts longer; ours, mpm, fails with its particles inside the domain",
+       goes_on + below +
+           ", by mpm, for a reason other than a particle leaving the domain (`nonpositive_F`, "
+           "for one). The predicate reads no crossing count: the word crossing in the id "
+           "names no measured cause.",
+       ClassKind::verdict},
+      {"other-failure", "Paper's run lasts longer; ours fails, in no class above",
+       goes_on + ", and the cell is not in the four classes above.", ClassKind::verdict},
+      {"ours-meaningless", "Ours meaningless: reached T, error over time at least A",
+       "The paper's value is readable (a max error or `*`); ours reaches T with an error over "
+       "time of at least A. It agrees with neither of the paper's verdicts and its error is "
+       "not compared.",
+       ClassKind::verdict},
+  };
+}
+
+// The classes where both runs are stable and the errors differ, and the rest.
+std::vector<ClassDefinition> error_classes() {
+  const std::string f = agreement_factor();
+  return {
+      {"mpm-error-larger", "MPM: both stable, our max error more than " + f + " times the paper's",
+       "The paper gives a max error; " + stable_ours() + ", by mpm, with a max error more than " +
+           f + " times the paper's.",
+       ClassKind::error},
+      {"gimp-error-larger",
+       "Not mpm (GIMP in Table 1): both stable, our max error more than " + f +
+           " times the paper's",
+       "The paper gives a max error; " + stable_ours() +
+           ", by a method other than mpm, with a max error more than " + f + " times the paper's.",
+       ClassKind::error},
+      {"error-smaller", "Both stable, the paper's max error more than " + f + " times ours",
+       "The paper gives a max error; " + stable_ours() + "; the paper's max error is more than " +
+           f + " times ours.",
+       ClassKind::error},
+      {"paper-unstable-ours-stable", "Paper unstable, ours stable",
+       "The paper marks the cell `*`; " + stable_ours() + ".", ClassKind::verdict},
+      {"unreadable", "Paper value unreadable, or our error not recorded",
+       "The paper's value is missing from the transcription (or the cell is not in it), or "
+       "both runs are stable and our compared error was not recorded.",
+       ClassKind::unreadable},
+  };
+}
+
+}  // namespace
+}  // namespace studies::comparison
+
 const std::vector<ClassDefinition>& comparison_classes() {
+  using namespace studies::comparison;
   static const std::vector<ClassDefinition> classes = [] {
-    const std::string f = agreement_factor();
-    // The failure classes (failure_class()) share their first condition.
-    const std::string goes_on =
-        "The paper's run lasts longer than ours, which fails before T (a Table 1 cell: the paper "
-        "gives a max error, ours fails; a figure: the paper's run reaches T, or takes more than " +
-        f + " times as many steps as ours before it fails)";
-    const std::string below =
-        ", at a c dt / h at or below the spectral limit (or with none recorded) and below the "
-        "scan's edge (both as in the classes above)";
-    const std::string stable_ours =
-        "ours reaches T with an error over time below A (an error over time of at least A is the "
-        "class ours-meaningless)";
-    return std::vector<ClassDefinition>{
-        {"agree-stable", "Agree: both stable, max errors within a factor " + f,
-         "The paper gives a max error (its run stable); " + stable_ours +
-             "; the two max errors are within a factor " + f + " of each other.",
-         ClassKind::agreement},
-        {"agree-unstable", "Agree: both unstable",
-         "The paper marks the cell `*` (unstable); ours fails before T.", ClassKind::agreement},
-        {"above-spectral-limit", "Paper's run lasts longer; ours fails above the spectral limit",
-         goes_on +
-             ", at a Courant number c dt / h above the spectral limit of its scheme at its layout "
-             "(the record's `courant_spectral`, spectral.md).",
-         ClassKind::verdict},
-        {"above-our-edge",
-         "Paper's run lasts longer; ours fails at or below the spectral limit, at or above the "
-         "scan's "
-         "edge",
-         goes_on +
-             ", at a c dt / h at or below the spectral limit (or with none recorded) and at or "
-             "above the courant scan's edge for its method and A: the smallest c dt / h of the "
-             "scan from which on each run "
-             "of the scan, at each E, fails.",
-         ClassKind::verdict},
-        {"gimp-wall-exit",
-         "Paper's run lasts longer; ours, not mpm, fails with a particle leaving the domain",
-         goes_on + below +
-             ", by a method other than mpm (GIMP in Table 1), with a particle leaving the domain "
-             "through a wall (`left_domain`).",
-         ClassKind::verdict},
-        {"mpm-crossing-failure",
-         "Paper's run lasts longer; ours, mpm, fails with its particles inside the domain",
-         goes_on + below +
-             ", by mpm, for a reason other than a particle leaving the domain (`nonpositive_F`, "
-             "for one). The predicate reads no crossing count: the word crossing in the id "
-             "names no measured cause.",
-         ClassKind::verdict},
-        {"other-failure", "Paper's run lasts longer; ours fails, in no class above",
-         goes_on + ", and the cell is not in the four classes above.", ClassKind::verdict},
-        {"ours-meaningless", "Ours meaningless: reached T, error over time at least A",
-         "The paper's value is readable (a max error or `*`); ours reaches T with an error over "
-         "time of at least A. It agrees with neither of the paper's verdicts and its error is "
-         "not compared.",
-         ClassKind::verdict},
-        {"mpm-error-larger",
-         "MPM: both stable, our max error more than " + f + " times the paper's",
-         "The paper gives a max error; " + stable_ours + ", by mpm, with a max error more than " +
-             f + " times the paper's.",
-         ClassKind::error},
-        {"gimp-error-larger",
-         "Not mpm (GIMP in Table 1): both stable, our max error more than " + f +
-             " times the paper's",
-         "The paper gives a max error; " + stable_ours +
-             ", by a method other than mpm, with a max error more than " + f +
-             " times the paper's.",
-         ClassKind::error},
-        {"error-smaller", "Both stable, the paper's max error more than " + f + " times ours",
-         "The paper gives a max error; " + stable_ours + "; the paper's max error is more than " +
-             f + " times ours.",
-         ClassKind::error},
-        {"paper-unstable-ours-stable", "Paper unstable, ours stable",
-         "The paper marks the cell `*`; " + stable_ours + ".", ClassKind::verdict},
-        {"unreadable", "Paper value unreadable, or our error not recorded",
-         "The paper's value is missing from the transcription (or the cell is not in it), or "
-         "both runs are stable and our compared error was not recorded.",
-         ClassKind::unreadable},
-    };
+    std::vector<ClassDefinition> all = agreement_classes();
+    for (auto part : {failure_classes(), error_classes()})
+      all.insert(all.end(), part.begin(), part.end());
+    return all;
   }();
   return classes;
 }

@@ -649,6 +649,27 @@ std::string same_case_figures(const PaperFigure& f, const ojson& row,
   return s;
 }
 
+// The passages the paper's values are read from, each once, by section.
+void quoted_passages(std::ostream& md, const PaperFigure& f) {
+  std::vector<std::pair<std::string, std::vector<std::string>>> quoted;
+  for (const auto& o : f.observables) {
+    if (!o.stated()) continue;
+    auto sec = std::find_if(quoted.begin(), quoted.end(),
+                            [&](const auto& q) { return q.first == o.section; });
+    if (sec == quoted.end()) sec = quoted.insert(quoted.end(), {o.section, {}});
+    auto& passages = sec->second;
+    if (std::find(passages.begin(), passages.end(), o.evidence) == passages.end()) {
+      passages.push_back(o.evidence);
+    }
+  }
+  for (const auto& [section, passages] : quoted) {
+    md << "The paper, " << section << ":";
+    for (const auto& q : passages)
+      md << "\n- " << q;
+    md << "\n\n";
+  }
+}
+
 void figure_section(std::ostream& md, const PaperFigure& f, const std::vector<PaperFigure>& paper,
                     const StudyInputs& inputs, const CourantEdges& edges,
                     const std::vector<QuotedCell>& table1, FigureSections& out,
@@ -717,24 +738,7 @@ void figure_section(std::ostream& md, const PaperFigure& f, const std::vector<Pa
     md << "| " << l.label << " | " << l.paper << " | " << l.ours << " | " << l.verdict << " |\n";
   md << "\n";
   if (vs) equal_time_table(md, f, *vs, at_equal_times, *row, other_row);
-  // The passages the paper's values are read from, each once, by section.
-  std::vector<std::pair<std::string, std::vector<std::string>>> quoted;
-  for (const auto& o : f.observables) {
-    if (!o.stated()) continue;
-    auto sec = std::find_if(quoted.begin(), quoted.end(),
-                            [&](const auto& q) { return q.first == o.section; });
-    if (sec == quoted.end()) sec = quoted.insert(quoted.end(), {o.section, {}});
-    auto& passages = sec->second;
-    if (std::find(passages.begin(), passages.end(), o.evidence) == passages.end()) {
-      passages.push_back(o.evidence);
-    }
-  }
-  for (const auto& [section, passages] : quoted) {
-    md << "The paper, " << section << ":";
-    for (const auto& q : passages)
-      md << "\n- " << q;
-    md << "\n\n";
-  }
+  quoted_passages(md, f);
   variant_runs(md, f, *row, inputs, shown);
 }
 

@@ -232,20 +232,49 @@ std::string outside_text(const Eq108Cell& cell, double q) {
          cell.paper->confidence + " confidence)";
 }
 
+// Per reading and method on another grid: ours / paper, how many within the factor, and the
+// same reading's ratios on the paper's grid.
+struct GridStats {
+  std::vector<double> ratios, paper_grid_ratios;
+  int within = 0;
+  std::vector<std::string> outside;  // the compared cells beyond the factor
+};
+
+// The claim of one (reading, method) on `grid` cells: every compared cell within the factor.
+Claim grid_claim(int grid, const std::pair<std::string, std::string>& key, const GridStats& s) {
+  const double h = 1.0 / grid;
+  const std::string evidence =
+      "{within} of {n} cells; ratios {span} (on {paper_cells} cells {paper_span} in {paper_n} "
+      "cells)";
+  Claim c = claim("grid-" + std::to_string(grid) + "-" + key.second + "-gives-the-paper",
+                  "On {cells} cells (h = {h}) instead of the paper's {paper_cells}, eq. (108) "
+                  "({reading}) gives the paper's {method} dt stable within a factor {k} in "
+                  "every cell where both are measured",
+                  s.outside.empty() ? evidence : evidence + "; beyond it: {outside}");
+  if (!s.outside.empty()) c.value("outside", list_of(s.outside));
+  c.count("cells", grid)
+      .value("h", shortest(h))
+      .count("paper_cells", paper_grid())
+      .value("reading", key.first)
+      .value("method", key.second == "mpm"    ? "MPM"
+                       : key.second == "gimp" ? "GIMP"
+                                              : key.second)
+      .value("k", agreement_factor())
+      .every("within", s.within, "n", static_cast<long long>(s.ratios.size()))
+      .value("span", s.ratios.empty() ? std::string("–") : span(s.ratios, 2))
+      .value("paper_span",
+             s.paper_grid_ratios.empty() ? std::string("–") : span(s.paper_grid_ratios, 2))
+      .count("paper_n", static_cast<long long>(s.paper_grid_ratios.size()));
+  return c;
+}
+
 // The cells run on `grid` cells, each under its reading, beside the paper and beside the same
 // cell and reading on the paper's grid; a claim per method: that reading on this grid gives the
 // paper's dt stable within the agreement factor in every cell where both are measured.
 void other_grid_section(std::ostream& md, const Eq108Cells& grid_cells,
                         const Eq108Cells& paper_cells, int grid, std::vector<Claim>& claims) {
   const double h = 1.0 / grid, paper_h = 1.0 / paper_grid();
-  // Per reading and method: ours / paper on this grid, how many within the factor, and the same
-  // reading's ratios on the paper's grid.
-  struct Stats {
-    std::vector<double> ratios, paper_grid_ratios;
-    int within = 0;
-    std::vector<std::string> outside;  // the compared cells beyond the factor
-  };
-  std::map<std::pair<std::string, std::string>, Stats> stats;
+  std::map<std::pair<std::string, std::string>, GridStats> stats;
   std::ostringstream table;
   table << "| method | E | A | dt | c dt/h | A/h | paper's dt stable | reading | ours on "
         << paper_grid() << " cells | ratio | ours on " << grid
@@ -266,7 +295,7 @@ void other_grid_section(std::ostream& md, const Eq108Cells& grid_cells,
             << (paper_run ? bound_text(*paper_run) : "–") << " | "
             << (q_paper ? ratio(*q_paper) : "–") << " | " << bound_text(*run) << " | "
             << accuracy_columns(*run) << " | " << (q ? ratio(*q) : "–") << " |\n";
-      Stats& s = stats[{reading, std::string(to_string(p.method))}];
+      GridStats& s = stats[{reading, std::string(to_string(p.method))}];
       if (q_paper) s.paper_grid_ratios.push_back(*q_paper);
       if (q) {
         s.ratios.push_back(*q);
@@ -296,29 +325,7 @@ void other_grid_section(std::ostream& md, const Eq108Cells& grid_cells,
        << ", " << s.paper_grid_ratios.size() << " cells)"
        << (s.outside.empty() ? std::string("") : "; beyond the factor: " + list_of(s.outside))
        << ". ";
-    const std::string evidence =
-        "{within} of {n} cells; ratios {span} (on {paper_cells} cells {paper_span} in {paper_n} "
-        "cells)";
-    Claim c = claim("grid-" + std::to_string(grid) + "-" + key.second + "-gives-the-paper",
-                    "On {cells} cells (h = {h}) instead of the paper's {paper_cells}, eq. (108) "
-                    "({reading}) gives the paper's {method} dt stable within a factor {k} in "
-                    "every cell where both are measured",
-                    s.outside.empty() ? evidence : evidence + "; beyond it: {outside}");
-    if (!s.outside.empty()) c.value("outside", list_of(s.outside));
-    c.count("cells", grid)
-        .value("h", shortest(h))
-        .count("paper_cells", paper_grid())
-        .value("reading", key.first)
-        .value("method", key.second == "mpm"    ? "MPM"
-                         : key.second == "gimp" ? "GIMP"
-                                                : key.second)
-        .value("k", agreement_factor())
-        .every("within", s.within, "n", static_cast<long long>(s.ratios.size()))
-        .value("span", s.ratios.empty() ? std::string("–") : span(s.ratios, 2))
-        .value("paper_span",
-               s.paper_grid_ratios.empty() ? std::string("–") : span(s.paper_grid_ratios, 2))
-        .count("paper_n", static_cast<long long>(s.paper_grid_ratios.size()));
-    claims.push_back(c);
+    claims.push_back(grid_claim(grid, key, s));
   }
   md << "\n\n" << table.str();
 }

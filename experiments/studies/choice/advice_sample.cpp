@@ -179,10 +179,10 @@ std::string status_text(const SampleProblem& sp) {
   return "";
 }
 
-std::string sample_markdown(const std::vector<SampleProblem>& problems, const Tally& all) {
+// How the problems were drawn and what the lookups gave, in two paragraphs.
+void draw_text(std::ostream& md, const Tally& all) {
   const SampleRule& rule = kSampleRule;
   const AdviceDomain& d = kAdviceDomain;
-  std::ostringstream md;
   md << "## Results\n\n**The draw** (docs/design.md, \"Advice: verified on the problem\"). "
      << rule.problems << " problems from the seed " << rule.seed
      << " (std::mt19937_64): A/L log-uniform from " << value_text(d.A_min) << " to "
@@ -205,8 +205,10 @@ std::string sample_markdown(const std::vector<SampleProblem>& problems, const Ta
      << " lookups verified, " << all.misses
      << " miss. A miss is what `mpmstab advise` catches before it answers; its answer is the "
         "first candidate that passes.\n\n";
+}
 
-  // Per method.
+// The lookups' misses per method, then per attribute of the problem.
+void per_method_tables(std::ostream& md, const std::vector<SampleProblem>& problems) {
   std::map<std::string, Tally> per_method;
   for (const auto& sp : problems)
     if (sp.lookup) per_method[sp.lookup->from->method_text()].add(sp);
@@ -224,8 +226,10 @@ std::string sample_markdown(const std::vector<SampleProblem>& problems, const Ta
       md << "| " << a.name << " | " << value << " | " << t.drawn << " | " << t.no_lookup << " | "
          << t.over_cap << " | " << rate(t) << " |\n";
   }
+}
 
-  // Per setting: the box where its runs passed, and what the sample found inside and out of it.
+// Per setting: the box where its runs passed, and what the sample found inside and out of it.
+void per_setting_table(std::ostream& md, const std::vector<SampleProblem>& problems) {
   std::map<const CheckedSetting*, Tally> per_setting;
   for (const auto& sp : problems)
     if (sp.lookup) per_setting[sp.lookup->from].add(sp);
@@ -246,8 +250,10 @@ std::string sample_markdown(const std::vector<SampleProblem>& problems, const Ta
     md << "| " << setting_name(*s) << " | " << (box.empty() ? "none" : box) << " | " << t.drawn
        << " | " << rate(t) << " |\n";
   }
+}
 
-  // What verification costs against the run it protects.
+// What verification costs against the run it protects.
+void cost_text(std::ostream& md, const std::vector<SampleProblem>& problems) {
   std::vector<double> ratios;
   for (const auto& sp : problems)
     if (sp.lookup) ratios.push_back(sp.lookup->verify_particle_steps / sp.lookup->particle_steps);
@@ -259,8 +265,10 @@ std::string sample_markdown(const std::vector<SampleProblem>& problems, const Ta
        << "(median " << significant(ratios[ratios.size() / 2], 3)
        << "); `mpmstab advise` adds the problem runs of the candidates it rejects before its "
           "answer.\n\n";
+}
 
-  // The draw, every problem.
+// The draw, every problem.
+void problems_table(std::ostream& md, const std::vector<SampleProblem>& problems) {
   md << "## Every problem drawn\n\n| # | A/L | c T/L | target / A | scene | boundary | layout | "
         "lookup | predicted / A | verifying runs: error over time / A | result |\n"
         "|---|---|---|---|---|---|---|---|---|---|---|\n";
@@ -279,6 +287,15 @@ std::string sample_markdown(const std::vector<SampleProblem>& problems, const Ta
                 (r.outcome == "stable" && r.error_over_A ? sci(*r.error_over_A) : r.outcome);
     md << (errors.empty() ? "–" : errors) << " | " << status_text(sp) << " |\n";
   }
+}
+
+std::string sample_markdown(const std::vector<SampleProblem>& problems, const Tally& all) {
+  std::ostringstream md;
+  draw_text(md, all);
+  per_method_tables(md, problems);
+  per_setting_table(md, problems);
+  cost_text(md, problems);
+  problems_table(md, problems);
   return md.str() + "\n";
 }
 

@@ -425,6 +425,62 @@ ProblemEdges problem_edges(const Candidate& c, const VerifyProblem& vp, double b
 }  // namespace
 }  // namespace studies::advice_verify
 
+namespace studies::advice_verify {
+namespace {
+
+// The refusal when no candidate is offered: every one of the methods asked for is too short for
+// a verdict on every grid, or none is offered.
+void refuse_without_candidates(Verified& v, const std::vector<CheckedSetting>& settings,
+                               const Problem& p, const AdviceDomain& d) {
+  // Every candidate of the methods asked for is too short for a verdict, or none is offered.
+  double shortest_cT = INFINITY;
+  for (const auto& s : settings)
+    if (advice_selected(s, p.methods))
+      shortest_cT =
+          std::min(shortest_cT, double(kMinStepsToJudge) * s.courant / double(d.cells.back()));
+  v.bound = std::isfinite(shortest_cT) ? "too_short" : "methods";
+  v.refusal = std::isfinite(shortest_cT)
+                  ? "--cT: c T/L = " + value_text(p.cT) +
+                        " is too short for a verdict (fewer than " +
+                        std::to_string(kMinStepsToJudge) +
+                        " steps on every grid offered); the shortest that gets one is c T/L = " +
+                        value_text(shortest_cT)
+                  : "--methods: no setting of the methods asked for is offered";
+}
+
+// The refusal when no candidate is predicted to meet the target: the closest prediction.
+void refuse_without_eligible(Verified& v, const std::vector<Candidate>& list, const Problem& p) {
+  const Candidate* closest = nullptr;
+  for (const auto& c : list)
+    if (c.predicted_error_over_A &&
+        (!closest || *c.predicted_error_over_A < *closest->predicted_error_over_A))
+      closest = &c;
+  v.bound = "target";
+  v.refusal = "--error: no candidate is predicted to meet " + value_text(p.target) + " A";
+  if (closest)
+    v.refusal += "; the most accurate prediction is " + candidate_name(*closest) + " at " +
+                 sci(*closest->predicted_error_over_A) + " A (" + closest->predicted_from + ")";
+}
+
+// The refusal when the next candidate's verifying runs would pass the budget.
+std::string budget_refusal(const Verified& v, const Candidate& c, double estimate,
+                           double budget_seconds) {
+  std::ostringstream s;
+  if (v.rejected.empty())
+    s << "--budget: the cheapest candidate, " << candidate_name(c) << ", needs about "
+      << significant(estimate, 2) << " s of verifying runs (" << sci(c.verify_particle_steps)
+      << " particle-steps); the budget is " << value_text(budget_seconds) << " s";
+  else
+    s << "--budget: " << v.rejected.size() << " candidate" << (v.rejected.size() > 1 ? "s" : "")
+      << " failed in " << significant(v.seconds, 2) << " s; the next, " << candidate_name(c)
+      << ", needs about " << significant(estimate, 2) << " s more (" << sci(c.verify_particle_steps)
+      << " particle-steps); the budget is " << value_text(budget_seconds) << " s";
+  return s.str();
+}
+
+}  // namespace
+}  // namespace studies::advice_verify
+
 Verified verified_advice(const std::vector<CheckedSetting>& settings, const VerifyProblem& vp,
                          double budget_seconds, bool edges, const RunFn& run_fn,
                          const AdviceDomain& d) {
@@ -435,33 +491,11 @@ Verified verified_advice(const std::vector<CheckedSetting>& settings, const Veri
   for (const auto& c : list)
     if (c.predicted_error_over_A && *c.predicted_error_over_A <= p.target) ++v.eligible;
   if (list.empty()) {
-    // Every candidate of the methods asked for is too short for a verdict, or none is offered.
-    double shortest_cT = INFINITY;
-    for (const auto& s : settings)
-      if (advice_selected(s, p.methods))
-        shortest_cT =
-            std::min(shortest_cT, double(kMinStepsToJudge) * s.courant / double(d.cells.back()));
-    v.bound = std::isfinite(shortest_cT) ? "too_short" : "methods";
-    v.refusal = std::isfinite(shortest_cT)
-                    ? "--cT: c T/L = " + value_text(p.cT) +
-                          " is too short for a verdict (fewer than " +
-                          std::to_string(kMinStepsToJudge) +
-                          " steps on every grid offered); the shortest that gets one is c T/L = " +
-                          value_text(shortest_cT)
-                    : "--methods: no setting of the methods asked for is offered";
+    refuse_without_candidates(v, settings, p, d);
     return v;
   }
   if (v.eligible == 0) {
-    const Candidate* closest = nullptr;
-    for (const auto& c : list)
-      if (c.predicted_error_over_A &&
-          (!closest || *c.predicted_error_over_A < *closest->predicted_error_over_A))
-        closest = &c;
-    v.bound = "target";
-    v.refusal = "--error: no candidate is predicted to meet " + value_text(p.target) + " A";
-    if (closest)
-      v.refusal += "; the most accurate prediction is " + candidate_name(*closest) + " at " +
-                   sci(*closest->predicted_error_over_A) + " A (" + closest->predicted_from + ")";
+    refuse_without_eligible(v, list, p);
     return v;
   }
   double rate = d.nominal_seconds_per_particle_step;
@@ -470,18 +504,7 @@ Verified verified_advice(const std::vector<CheckedSetting>& settings, const Veri
     const double estimate = c.verify_particle_steps * rate;
     if (v.seconds + estimate > budget_seconds) {
       v.bound = "budget";
-      std::ostringstream s;
-      if (v.rejected.empty())
-        s << "--budget: the cheapest candidate, " << candidate_name(c) << ", needs about "
-          << significant(estimate, 2) << " s of verifying runs (" << sci(c.verify_particle_steps)
-          << " particle-steps); the budget is " << value_text(budget_seconds) << " s";
-      else
-        s << "--budget: " << v.rejected.size() << " candidate" << (v.rejected.size() > 1 ? "s" : "")
-          << " failed in " << significant(v.seconds, 2) << " s; the next, " << candidate_name(c)
-          << ", needs about " << significant(estimate, 2) << " s more ("
-          << sci(c.verify_particle_steps) << " particle-steps); the budget is "
-          << value_text(budget_seconds) << " s";
-      v.refusal = s.str();
+      v.refusal = budget_refusal(v, c, estimate, budget_seconds);
       return v;
     }
     Trial t = verify(c, vp, run_fn, d);
