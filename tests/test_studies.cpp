@@ -92,6 +92,34 @@ TEST(StudyRegistry, EverySpecNamesAKnownStudyAndEveryStudyHasASpec) {
   }
 }
 
+// A follow-up run is found by what it was asked for, the case it serves and its role, in the
+// order asked; never by its position among the others.
+TEST(FollowUps, AreFoundByTheCaseTheyServeAndTheirRole) {
+  auto row = [](ojson of, const char* role, int id) {
+    return ojson{{kFollowUpOf, of}, {kFollowUpRole, role}, {"id", id}};
+  };
+  const std::vector<ojson> follow_up = {row(1, "twin", 0),   row(0, "member", 1),
+                                        row(1, "member", 2), row(nullptr, "problem 1", 3),
+                                        row(1, "member", 4), ojson{{"id", 5}}};
+  auto ids = [&](std::size_t of, const char* role) {
+    std::vector<int> out;
+    for (const ojson* r : follow_ups_of(follow_up, of, role))
+      out.push_back(r->at("id").get<int>());
+    return out;
+  };
+  EXPECT_EQ(ids(1, "member"), (std::vector<int>{2, 4}));
+  EXPECT_EQ(ids(0, "member"), (std::vector<int>{1}));
+  EXPECT_EQ(ids(1, "twin"), (std::vector<int>{0}));
+  EXPECT_EQ(ids(FollowUp::kNoCase, "problem 1"), (std::vector<int>{3}));
+  EXPECT_TRUE(ids(2, "member").empty());
+  EXPECT_TRUE(ids(0, "twin").empty());
+  // Untagged requests serve no case and have no role.
+  const auto u = untagged({RunParams{}, RunParams{}});
+  ASSERT_EQ(u.size(), 2u);
+  EXPECT_EQ(u[0].of, FollowUp::kNoCase);
+  EXPECT_EQ(u[0].role, "");
+}
+
 TEST(StudyRegistry, AnUnknownStudyIsRefusedWithTheKnownOnes) {
   try {
     parse_spec(R"({"name": "x", "report": "tabel1", "cases": []})", "x.json");

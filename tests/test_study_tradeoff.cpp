@@ -290,9 +290,17 @@ TEST(TradeoffStudy, ThePeriodicTwinShowsWhatTheWallsCost) {
   ojson twin = run;
   twin["bc"] = "periodic";
   twin["max_error_over_time"] = 5e-6;
+  twin[kFollowUpOf] = 0;  // asked for the run of row 0, as its periodic twin
+  twin[kFollowUpRole] = "periodic twin";
   const auto report = test_support::study_report("tradeoff", {run}, {twin});
   EXPECT_NE(report.markdown.find("| gimp | 4 | 100 | 1.0e-5 | 5.0e-6 | 0.5 |"), std::string::npos)
       << report.markdown;
+  // A follow-up asked for another row, or in another role, is not this run's twin.
+  ojson stray = twin;
+  stray[kFollowUpRole] = "ensemble member";
+  EXPECT_EQ(
+      test_support::study_report("tradeoff", {run}, {stray}).markdown.find("What the walls cost"),
+      std::string::npos);
   // Without the follow-up runs the section is left out.
   EXPECT_EQ(test_support::study_report("tradeoff", {run}).markdown.find("What the walls cost"),
             std::string::npos);

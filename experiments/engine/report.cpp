@@ -526,8 +526,8 @@ namespace {
 std::unique_ptr<FollowUps> make_follow_ups(const Spec& spec, const std::vector<ojson>& rows,
                                            const StudyInputs& inputs) {
   if (!spec.study->follow_up) return nullptr;
-  const std::vector<RunParams> params = spec.study->follow_up(FollowUpContext{spec, rows, inputs});
-  if (params.empty()) return nullptr;
+  const std::vector<FollowUp> asked = spec.study->follow_up(FollowUpContext{spec, rows, inputs});
+  if (asked.empty()) return nullptr;
   // The same study, but every follow-up is one run (an edge study's too).
   auto f = std::make_unique<FollowUps>();
   f->study = *spec.study;
@@ -537,9 +537,12 @@ std::unique_ptr<FollowUps> make_follow_ups(const Spec& spec, const std::vector<o
   follow.study = &f->study;
   follow.variants.clear();
   follow.cases.clear();
-  for (const auto& p : params) {
+  for (const FollowUp& a : asked) {
+    if (a.of != FollowUp::kNoCase && a.of >= rows.size())
+      throw std::logic_error(spec.name + ": a follow-up run serves a case that is not there");
+    f->asked.push_back({a.of, a.role});
     CaseSpec c;
-    c.params = p;
+    c.params = a.params;
     // A follow-up is read for its verdict, its errors and how long it ran, never for the
     // spectral limit of its layout: no dense analysis of it (Bloch's, where the layout is
     // uniform, costs nothing and stays). The perturbed layouts of an edge's ensemble each took
@@ -570,8 +573,13 @@ std::vector<ojson> follow_up_rows(const Spec& spec, const std::vector<ojson>& ro
   if (done.records.size() != follow.cases.size())
     throw std::logic_error(spec.name + ": the follow-up runs given are not the ones asked for");
   std::vector<ojson> out;
-  for (std::size_t i = 0; i < follow.cases.size(); ++i)
-    out.push_back(flat_row(follow.cases[i], done.records.at(i)));
+  for (std::size_t i = 0; i < follow.cases.size(); ++i) {
+    ojson row = flat_row(follow.cases[i], done.records.at(i));
+    const auto& [of, role] = f->asked.at(i);
+    row[kFollowUpOf] = of == FollowUp::kNoCase ? ojson(nullptr) : ojson(of);
+    row[kFollowUpRole] = role;
+    out.push_back(std::move(row));
+  }
   return out;
 }
 

@@ -74,6 +74,8 @@ using FollowUpRunner = std::function<SweepOutcome(const Spec& follow_up_spec)>;
 struct FollowUps {
   Study study;
   Spec spec;
+  // What each case of `spec` was asked for: the case it serves and its role (Study::follow_up).
+  std::vector<std::pair<std::size_t, std::string>> asked;
 };
 // Null when the study asks for none.
 std::unique_ptr<FollowUps> follow_ups(const Spec& spec, const SweepOutcome& outcome,

@@ -27,6 +27,32 @@ std::vector<const Study*> all_studies() {
   return list;
 }
 
+std::vector<const nlohmann::ordered_json*> follow_ups_of(
+    const std::vector<nlohmann::ordered_json>& follow_up, std::size_t of, std::string_view role) {
+  std::vector<const nlohmann::ordered_json*> out;
+  for (const auto& r : follow_up) {
+    const auto o = r.find(kFollowUpOf);
+    const auto k = r.find(kFollowUpRole);
+    if (o == r.end() || k == r.end() || !k->is_string()) continue;
+    const bool same_case = o->is_null() ? of == FollowUp::kNoCase
+                                        : o->is_number_integer() && o->get<long long>() >= 0 &&
+                                              static_cast<std::size_t>(o->get<long long>()) == of;
+    if (same_case && k->get_ref<const std::string&>() == role) out.push_back(&r);
+  }
+  return out;
+}
+
+std::vector<FollowUp> untagged(std::vector<RunParams> runs) {
+  std::vector<FollowUp> out;
+  out.reserve(runs.size());
+  for (auto& p : runs) {
+    FollowUp f;
+    f.params = std::move(p);
+    out.push_back(std::move(f));
+  }
+  return out;
+}
+
 StudyRegistration::StudyRegistration(Study study) {
   const std::string name = study.name;
   if (!registry().emplace(name, std::move(study)).second) {

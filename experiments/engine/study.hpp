@@ -64,9 +64,31 @@ struct ReportContext {
   const std::string& csv_header;                    // '#' lines heading every CSV it writes
   const StudyInputs& inputs;                        // the declared inputs, by name
   // The follow-up runs the study asked for (Study::follow_up), as flat rows in the order it
-  // asked: empty when it asks for none.
+  // asked: empty when it asks for none. Each row carries what it was asked for (kFollowUpOf,
+  // kFollowUpRole): read them with follow_ups_of(), never by position.
   const std::vector<nlohmann::ordered_json>& follow_up;
 };
+
+// A run a study asks for after its cases, and what it is for: the case it serves (its index in
+// FollowUpContext::rows, or kNoCase for one that serves the study as a whole) and its role, a
+// few words ("ensemble member", "periodic twin", "corner", "verifying run"). The engine computes
+// it like any case and hands its flat row to the report with both written into it.
+struct FollowUp {
+  static constexpr std::size_t kNoCase = static_cast<std::size_t>(-1);
+  std::size_t of = kNoCase;
+  std::string role;
+  RunParams params;
+};
+// The keys of a follow-up row that say what it was asked for (they are not among the columns of
+// <name>_follow_up.csv, which lists the runs in the order asked).
+inline constexpr const char* kFollowUpOf = "follow_up_of";
+inline constexpr const char* kFollowUpRole = "follow_up_role";
+// The follow-up rows asked for case `of` in role `role`, in the order asked.
+std::vector<const nlohmann::ordered_json*> follow_ups_of(
+    const std::vector<nlohmann::ordered_json>& follow_up, std::size_t of, std::string_view role);
+// Requests that say nothing of what they are for (a study that still matches its follow-ups by
+// position: the edge studies), each of no case and no role.
+std::vector<FollowUp> untagged(std::vector<RunParams> runs);
 
 // What a study's follow-up runs are chosen from: its spec and the rows of its cases.
 struct FollowUpContext {
@@ -131,7 +153,7 @@ struct Study {
   // Runs chosen from the rows of its cases (a confirming run of a recommendation, an ensemble of
   // perturbed layouts near an edge): computed after its cases, through the cache like any case
   // (always one run each), and handed to `report` as ReportContext::follow_up.
-  std::function<std::vector<RunParams>(const FollowUpContext&)> follow_up;
+  std::function<std::vector<FollowUp>(const FollowUpContext&)> follow_up;
   // <name>.md's body and the figure data, from the rows of a sweep (studies with cases).
   std::function<StudyReport(const ReportContext&)> report;
   // The paragraph of results/README.md, after the spec's title and description: "What it

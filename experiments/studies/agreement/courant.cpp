@@ -244,7 +244,7 @@ const StudyRegistration kCourant{{
     .name = "courant",
     .summary = "per case, the largest Courant number up to which the scan's runs reach T",
     .records = {.error_over_time = true},
-    .follow_up = courant_follow_up,
+    .follow_up = [](const FollowUpContext& c) { return untagged(courant_follow_up(c)); },
     .report = courant_report,
     .index = courant_index,
 }};

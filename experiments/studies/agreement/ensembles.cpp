@@ -35,7 +35,7 @@ std::vector<EnsembleCell> rerun_cells(const std::vector<ojson>& rows,
   return cells;
 }
 
-std::vector<RunParams> ensembles_follow_up(const FollowUpContext& c) {
+std::vector<FollowUp> ensembles_follow_up(const FollowUpContext& c) {
   return ensemble_follow_up(c, EnsembleNeed::in_studies);
 }
 

@@ -346,7 +346,7 @@ const StudyRegistration kSceneEdges{{
     .summary = "survival and accuracy edges of each scene, method and small-mass treatment",
     .work = CaseWork::edge_search,
     .records = {.error_over_time = true},
-    .follow_up = edges_follow_up,
+    .follow_up = [](const FollowUpContext& c) { return untagged(edges_follow_up(c)); },
     .report = edges_report,
     .index = edges_index,
 }};

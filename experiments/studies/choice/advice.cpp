@@ -50,12 +50,17 @@ bool worth_checking(const ojson& base) {
              base["courant_spectral"].get<double>() / kRegionRule.limit_margin;
 }
 
-std::vector<RunParams> advice_follow_up(const FollowUpContext& c) {
-  std::vector<RunParams> runs;
+// What a corner run is for: its corner (kind and length).
+std::string corner_role(const Corner& k) {
+  return "corner " + std::string(to_string(k.kind)) + " at c T/L " + shortest(k.length);
+}
+
+std::vector<FollowUp> advice_follow_up(const FollowUpContext& c) {
+  std::vector<FollowUp> runs;
   for (std::size_t i = 0; i < c.rows.size(); ++i) {
     if (!worth_checking(c.rows[i])) continue;
     for (auto& corner : region_corners(c.spec.cases.at(i).params))
-      runs.push_back(std::move(corner.params));
+      runs.push_back({.of = i, .role = corner_role(corner), .params = std::move(corner.params)});
   }
   return runs;
 }
@@ -72,16 +77,16 @@ CheckedSetting setting_of(const ojson& r) {
   return s;
 }
 
-// Every setting of the spec with its corner runs (the follow-ups, kRegionCorners per checked
-// setting in the order advice_follow_up asked for them) and its regions.
+// Every setting of the spec with its corner runs (the follow-ups asked for its row, one per
+// corner of region_corners()) and its regions.
 std::vector<CheckedSetting> checked_settings(const ReportContext& c) {
   std::vector<CheckedSetting> out;
-  std::size_t next = 0;
   for (std::size_t i = 0; i < c.rows.size(); ++i) {
     CheckedSetting s = setting_of(c.rows[i]);
-    if (worth_checking(c.rows[i]) && next + kRegionCorners <= c.follow_up.size()) {
+    if (worth_checking(c.rows[i])) {
       for (const auto& k : region_corners(c.spec.cases.at(i).params))
-        s.corners.push_back(corner_of(c.follow_up[next++], k.kind, k.length));
+        for (const ojson* run : follow_ups_of(c.follow_up, i, corner_role(k)))
+          s.corners.push_back(corner_of(*run, k.kind, k.length));
     }
     out.push_back(std::move(s));
   }

@@ -62,27 +62,35 @@ std::vector<SampleProblem> lookups(const std::vector<CheckedSetting>& settings) 
   return out;
 }
 
-std::vector<RunParams> sample_follow_up(const FollowUpContext& c) {
+// What a verifying run of the sample is for: its problem (by its index in the draw) and its check.
+std::string verifying_role(std::size_t problem, const std::string& what) {
+  return "problem " + std::to_string(problem + 1) + ": " + what;
+}
+
+std::vector<FollowUp> sample_follow_up(const FollowUpContext& c) {
   const std::vector<CheckedSetting> settings = sample_settings(c.inputs);
-  std::vector<RunParams> out;
-  for (const SampleProblem& sp : lookups(settings)) {
+  const std::vector<SampleProblem> problems = lookups(settings);
+  std::vector<FollowUp> out;
+  for (std::size_t i = 0; i < problems.size(); ++i) {
+    const SampleProblem& sp = problems[i];
     if (sp.status != SampleStatus::passes) continue;
     for (auto& [what, params] : verifying_params(*sp.lookup, sp.problem))
-      out.push_back(params);
+      out.push_back({.role = verifying_role(i, what), .params = params});
   }
   return out;
 }
 
-// The verdicts of the follow-up runs, three a verified lookup, in the order asked for.
+// The verdicts of the follow-up runs, three a verified lookup, each by what it was asked for.
 std::vector<SampleProblem> findings(const std::vector<CheckedSetting>& settings,
                                     const std::vector<ojson>& follow_up) {
   std::vector<SampleProblem> out = lookups(settings);
-  std::size_t next = 0;
-  for (SampleProblem& sp : out) {
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    SampleProblem& sp = out[i];
     if (sp.status != SampleStatus::passes) continue;
     for (auto& [what, params] : verifying_params(*sp.lookup, sp.problem)) {
-      if (next >= follow_up.size()) throw std::logic_error("advice_sample: a follow-up is missing");
-      const ojson& r = follow_up[next++];
+      const auto asked = follow_ups_of(follow_up, FollowUp::kNoCase, verifying_role(i, what));
+      if (asked.size() != 1) throw std::logic_error("advice_sample: a follow-up is missing");
+      const ojson& r = *asked.front();
       VerifyingRun v{.what = what, .params = params};
       v.outcome = outcome(r);
       if (has_number(r, "max_error_over_time"))

@@ -1085,12 +1085,13 @@ std::vector<std::size_t> twin_rows(const std::vector<ojson>& rows) {
 }
 
 // The follow-up runs: the periodic twins.
-std::vector<RunParams> tradeoff_follow_ups(const FollowUpContext& c) {
-  std::vector<RunParams> runs;
+constexpr const char* kPeriodicTwin = "periodic twin";
+std::vector<FollowUp> tradeoff_follow_ups(const FollowUpContext& c) {
+  std::vector<FollowUp> runs;
   for (const std::size_t i : twin_rows(c.rows)) {
     RunParams p = c.spec.cases.at(i).params;
     p.bc = Boundary::periodic;
-    runs.push_back(p);
+    runs.push_back({.of = i, .role = kPeriodicTwin, .params = p});
   }
   return runs;
 }
@@ -1099,11 +1100,9 @@ std::vector<RunParams> tradeoff_follow_ups(const FollowUpContext& c) {
 std::map<std::size_t, const ojson*> periodic_twins(const std::vector<ojson>& rows,
                                                    const std::vector<ojson>& follow_up) {
   std::map<std::size_t, const ojson*> out;
-  std::size_t next = 0;
-  for (const std::size_t i : twin_rows(rows)) {
-    if (next >= follow_up.size()) break;
-    out[i] = &follow_up[next++];
-  }
+  for (const std::size_t i : twin_rows(rows))
+    for (const ojson* twin : follow_ups_of(follow_up, i, kPeriodicTwin))
+      out[i] = twin;
   return out;
 }
 

@@ -348,7 +348,7 @@ std::string table1_index(const Spec& spec, const std::vector<ojson>& rows) {
 }
 
 // The ensembles of the cells near their edge (ensemble.hpp), in row order.
-std::vector<RunParams> table1_follow_up(const FollowUpContext& c) {
+std::vector<FollowUp> table1_follow_up(const FollowUpContext& c) {
   return ensemble_follow_up(c, EnsembleNeed::near);
 }
 

@@ -63,12 +63,12 @@ std::vector<RunParams> ensemble_members(const RunParams& base) {
   return out;
 }
 
-std::vector<RunParams> ensemble_follow_up(const FollowUpContext& c, EnsembleNeed need) {
-  std::vector<RunParams> runs;
+std::vector<FollowUp> ensemble_follow_up(const FollowUpContext& c, EnsembleNeed need) {
+  std::vector<FollowUp> runs;
   for (std::size_t i = 0; i < c.rows.size(); ++i) {
     if (ensemble_need(c.rows[i]) != need) continue;
     for (auto& p : ensemble_members(c.spec.cases[i].params))
-      runs.push_back(std::move(p));
+      runs.push_back({.of = i, .role = kEnsembleMember, .params = std::move(p)});
   }
   return runs;
 }
@@ -77,15 +77,13 @@ std::vector<EnsembleResult> ensemble_results(const std::vector<nlohmann::ordered
                                              const std::vector<nlohmann::ordered_json>& follow_up,
                                              EnsembleNeed need) {
   std::vector<EnsembleResult> out;
-  std::size_t next = 0;
-  for (const auto& r : rows) {
-    const EnsembleNeed n = ensemble_need(r);
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const EnsembleNeed n = ensemble_need(rows[i]);
     std::vector<nlohmann::ordered_json> members;
-    if (n == need) {
-      for (int k = 0; k < kEnsembleMembers && next < follow_up.size(); ++k)
-        members.push_back(follow_up[next++]);
-    }
-    out.push_back(ensemble_result(r, n, members));
+    if (n == need)
+      for (const auto* m : follow_ups_of(follow_up, i, kEnsembleMember))
+        members.push_back(*m);
+    out.push_back(ensemble_result(rows[i], n, members));
   }
   return out;
 }

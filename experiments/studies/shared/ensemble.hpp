@@ -55,11 +55,13 @@ struct EnsembleResult {
 // members: the flat rows of the cell's ensemble, in ensemble_members order.
 EnsembleResult ensemble_result(const nlohmann::ordered_json& row, EnsembleNeed need,
                                const std::vector<nlohmann::ordered_json>& members);
+// The role of an ensemble's member among a study's follow-up runs.
+inline constexpr const char* kEnsembleMember = "ensemble member";
 // The follow-up runs of a study that reruns its cells of need `need` as ensembles: the members
-// of each such cell, in row order.
-std::vector<RunParams> ensemble_follow_up(const FollowUpContext& c, EnsembleNeed need);
-// Every row's ensemble, the members of the rows of need `need` taken in turn from `follow_up`
-// (what ensemble_follow_up asked for), the other rows' without members.
+// of each such cell, each asked for its cell.
+std::vector<FollowUp> ensemble_follow_up(const FollowUpContext& c, EnsembleNeed need);
+// Every row's ensemble, the members of the rows of need `need` being the follow-up runs asked
+// for that row (ensemble_follow_up), the other rows' without members.
 std::vector<EnsembleResult> ensemble_results(const std::vector<nlohmann::ordered_json>& rows,
                                              const std::vector<nlohmann::ordered_json>& follow_up,
                                              EnsembleNeed need);

@@ -823,7 +823,7 @@ const StudyRegistration kEdge{{
     .work = CaseWork::edge_search,
     .records = {.error_over_time = true},
     .figure = true,
-    .follow_up = edge_follow_up,
+    .follow_up = [](const FollowUpContext& c) { return untagged(edge_follow_up(c)); },
     .report = edge_report,
     .index = edge_index,
     .figure_subtitle = edge_subtitle,

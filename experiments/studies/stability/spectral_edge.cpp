@@ -308,7 +308,8 @@ const StudyRegistration kSpectralEdge{{
     .edge = kSearch,
     .records = {.error_over_time = true},
     .figure = true,
-    .follow_up = [](const FollowUpContext& c) { return all_length_runs(c.rows, c.spec.cases); },
+    .follow_up =
+        [](const FollowUpContext& c) { return untagged(all_length_runs(c.rows, c.spec.cases)); },
     .report =
         [](const ReportContext& c) {
           std::size_t next = 0;
