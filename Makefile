@@ -20,7 +20,7 @@ MPMSTAB     := $(BUILD_DIR)/mpmstab
 # The documents whose generated blocks the results write (mpmstab documents): only from results/,
 # the committed results they describe; a tier run into another RESULTS folder leaves them as they
 # are, so that no run elsewhere writes into the source tree.
-DOCUMENTS   := README.md docs/design.md
+DOCUMENTS   := README.md docs/theory.md docs/studies.md
 
 FUZZ_SECONDS ?= 15
 FUZZ_DIR     ?= build-fuzz

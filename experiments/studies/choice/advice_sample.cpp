@@ -183,7 +183,7 @@ std::string sample_markdown(const std::vector<SampleProblem>& problems, const Ta
   const SampleRule& rule = kSampleRule;
   const AdviceDomain& d = kAdviceDomain;
   std::ostringstream md;
-  md << "## Results\n\n**The draw** (docs/design.md, \"Advice: verified on the problem\"). "
+  md << "## Results\n\n**The draw** (docs/studies.md, \"Advice: verified on the problem\"). "
      << rule.problems << " problems from the seed " << rule.seed
      << " (std::mt19937_64): A/L log-uniform from " << value_text(d.A_min) << " to "
      << value_text(d.A_max) << ", c T/L from " << value_text(rule.cT_low) << " to "
