@@ -1,5 +1,5 @@
-// Helpers shared by the report writers: number formatting, our verdict in the paper's notation,
-// and the paper's Table 1 as transcribed.
+// Helpers shared by the report writers: number formatting and our verdict in the paper's
+// notation. The paper's Table 1 as transcribed is studies/shared/paper_table1.hpp's.
 #pragma once
 
 #include <filesystem>

@@ -168,9 +168,9 @@ FigureSections figure_sections(const std::vector<PaperFigure>& paper,
                                const CourantEdges& edges, const std::vector<QuotedCell>& table1);
 
 // Writes <out>/comparison.md and <out>/comparison.csv (one row per cell: verdict and class) from
-// the study's inputs, by name: "table1" (required: its spec and results), the supporting
-// experiments "courant", "walls", "crossing" and "eq108", the "variants" study, the figures
-// "fig1", "fig2", "fig3" and their variant runs (figure_variant_inputs()); an input without
+// the study's inputs, by name: "table1" (required: its spec and results), "peers", the
+// supporting experiments "courant", "walls", "crossing" and "eq108", the figures "fig1", "fig2",
+// "fig3" and their variant runs (figure_variant_inputs()), all of the paper tier; an input without
 // results is reported as not run. The transcription of the figures is read from figures.csv
 // beside the table1 spec's reference. `error_at`, when given, replaces every case's own
 // choice of the error compared with the paper's.

@@ -1064,8 +1064,6 @@ ojson tradeoff_json(const std::vector<ojson>& rows, const std::vector<SceneRows>
             {"stable_without_error", n.no_error}}}};
 }
 
-// The report: the definitions and the figure, the advice from every scene's rows, then one
-// section per scene; the figure's data from the first scene (the paper's bar).
 // ---------------------------------------------------------------------------------------------
 // What the walls cost: every run of the paper's bar under the CFL rule at kCflRef (every method,
 // and GIMP and MPM on every grid) is rerun with periodic boundaries, which the periodic
@@ -1160,6 +1158,8 @@ std::string walls_cost_section(const std::vector<ojson>& rows,
   return md.str();
 }
 
+// The report: the definitions and the figure, the advice from every scene's rows, then one
+// section per scene; the figure's data from the first scene (the paper's bar).
 StudyReport tradeoff_report(const ReportContext& c) {
   const auto scenes = by_scene(c.rows);
   const auto ranges = stable_ranges(TradeRows(c.rows));
