@@ -20,7 +20,7 @@ MPMSTAB     := $(BUILD_DIR)/mpmstab
 # The documents whose generated blocks the results write (mpmstab documents): only from results/,
 # the committed results they describe; a tier run into another RESULTS folder leaves them as they
 # are, so that no run elsewhere writes into the source tree.
-DOCUMENTS   := README.md docs/design.md
+DOCUMENTS   := README.md docs/theory.md docs/studies.md
 
 FUZZ_SECONDS ?= 15
 FUZZ_DIR     ?= build-fuzz
@@ -69,7 +69,7 @@ $(BUILD_DIR)/CMakeCache.txt: CMakeLists.txt | deps
 
 # `make` builds the tool only; the test programs (the suite, the kernels of every instruction
 # set, the benchmark) are built by `make test` and `make bench`. What keeps a fresh build short is
-# in CMakeLists.txt: the harness at -O1 in unity groups, the solver exactly as its recorded flags
+# in CMakeLists.txt: the harness at -Og in unity groups, the solver exactly as its recorded flags
 # say with a precompiled Eigen, and the layers compiled side by side.
 build: deps $(BUILD_DIR)/CMakeCache.txt
 	cmake -S . -B $(BUILD_DIR) -DMPMSTAB_WERROR=$(WERROR) > /dev/null

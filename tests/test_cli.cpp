@@ -58,7 +58,7 @@ TEST(Cli, ValidRunPrintsJsonWithEveryKey) {
 }
 
 // One name per quantity: every label the run's summary prints is the key of the record that
-// holds the value (docs/design.md, "Measured quantities"), or one of the few lines about the run
+// holds the value (docs/theory.md, "Measured quantities"), or one of the few lines about the run
 // itself; and no command calls the error over time the error at T (the edge search's probes
 // measure the error over time only).
 TEST(Cli, TheSummarysLabelsAreTheRecordsKeysAndNoErrorOverTimeIsCalledTheErrorAtT) {

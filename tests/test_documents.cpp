@@ -92,7 +92,7 @@ TEST(Documents, CheckFailsWhenABlockIsEditedByHandOrItsResultChanges) {
 
 // make timings publishes this machine's timings and keeps the last tier run of every other
 // machine the published file held, under "(<label> on <cpu>)"; README's table shows each.
-// The tables of outcomes, failure reasons and accuracy classes that docs/design.md shows are
+// The tables of outcomes, failure reasons and accuracy classes that docs/studies.md shows are
 // the code's own lists: every value of each enum has a definition and a row, in enum order, and
 // the committed document holds each generated table as the code writes it now.
 TEST(Documents, TheVerdictTablesAreTheCodesOwnLists) {
@@ -105,11 +105,11 @@ TEST(Documents, TheVerdictTablesAreTheCodesOwnLists) {
               std::string::npos)
         << to_string(o);
   EXPECT_NE(definition(Outcome::stable).find(std::to_string(kMinStepsToJudge)), std::string::npos);
-  std::ifstream in(std::filesystem::path(MPMSTAB_SOURCE_DIR) / "docs" / "design.md");
-  std::stringstream design;
-  design << in.rdbuf();
+  std::ifstream in(std::filesystem::path(MPMSTAB_SOURCE_DIR) / "docs" / "studies.md");
+  std::stringstream doc;
+  doc << in.rdbuf();
   for (const std::string& t : {outcomes_table(), failure_reasons_table(), accuracy_classes_table()})
-    EXPECT_NE(design.str().find(t), std::string::npos) << t;
+    EXPECT_NE(doc.str().find(t), std::string::npos) << t;
 }
 
 // A report calls a run stable only over at least kMinWavePasses wave passes, and always with its

@@ -1,4 +1,4 @@
-// The reproducibility guarantee across the kernels' instruction-set versions (docs/design.md,
+// The reproducibility guarantee across the kernels' instruction-set versions (docs/engineering.md,
 // "What is reproducible"): the same cases give the same records, byte for byte, on every
 // version of the kernels this machine can run. The suite runs the kernels the build's dispatch
 // picks for this CPU (AVX-512 where the CPU has it, else AVX2, else the portable one);

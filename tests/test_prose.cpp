@@ -131,7 +131,8 @@ std::vector<std::pair<std::string, std::string>> descriptions() {
     ss << in.rdbuf();
     out.emplace_back(e.path().filename().string(), ss.str());
   }
-  for (const char* doc : {"README.md", "docs/design.md"}) {
+  for (const char* doc : {"README.md", "docs/theory.md", "docs/studies.md", "docs/engineering.md",
+                          "docs/architecture.md"}) {
     std::ifstream in(root / doc);
     std::stringstream ss;
     ss << in.rdbuf();

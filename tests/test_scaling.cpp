@@ -1,6 +1,6 @@
 // E only rescales time. With rho0 = 1 and c = sqrt(E), the substitution tau = c t turns the
 // balance of momentum, the body force and the exact solution of both scenes into equations free
-// of E (docs/design.md, "Dimensionless coordinates"), and a fixed dt into the Courant number
+// of E (docs/theory.md, "Dimensionless coordinates"), and a fixed dt into the Courant number
 // c dt / h. A run is therefore fixed by c dt / h, A / h, the wave passes c T, the grid, the
 // particles per cell and the method: two runs that share them at different E are the same run.
 #include <gtest/gtest.h>

@@ -182,7 +182,7 @@ TEST_F(Studies, ListRunsEachExperimentAfterItsInputs) {
 
 // The recipe: a spec naming the throwaway study is swept and reported through the engine with
 // nothing but the declaration above.
-// The two tiers (docs/design.md, "Two tiers"): make reproduce runs the paper's tier, make
+// The two tiers (docs/engineering.md, "Two tiers"): make reproduce runs the paper's tier, make
 // studies the rest with the paper experiments it reads; a paper experiment reads only paper
 // experiments, so that no report depends on which tier ran first.
 TEST_F(Studies, EachTierRunsWhatItReadsAndThePaperReadsOnlyThePaper) {

@@ -611,7 +611,7 @@ TEST(ProgressLine, TimeToGoFollowsTheMeasuredRateAndIsWithheldWhenAbsurd) {
   EXPECT_NE(tiny.text("q", 1).find("estimating"), std::string::npos);
 }
 
-// Work done once (docs/design.md): PIC and APIC cases that differ only in the position update
+// Work done once (docs/engineering.md): PIC and APIC cases that differ only in the position update
 // share one run, because their records are the same but for that column. Checked on random
 // cases (fixed seed) over every basis, both transfers, every update order and four scenes, at
 // Courant numbers from 0.05 to 1.5 (some fail); FLIP, where the two updates differ, is the

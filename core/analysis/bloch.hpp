@@ -1,5 +1,5 @@
 // The spectral limit of the interior of a uniform layout, by Bloch (Fourier) analysis
-// (docs/design.md, "The spectral limit", "Bloch analysis").
+// (docs/theory.md, "The spectral limit", "Bloch analysis").
 //
 // At a uniform layout (every cell holds its particles at the same offsets) the linearised
 // one-step map is the same from every cell to its neighbours, away from the walls: the state of

@@ -1,6 +1,6 @@
 // The dispersion of a scheme: how fast and how damped a Fourier mode of the uniform layout
 // travels, from the Bloch symbol (bloch.hpp), and the period of the mode scene measured by a run
-// (docs/design.md, "Dispersion").
+// (docs/theory.md, "Dispersion").
 //
 // The symbol S(theta) maps the state of a Fourier mode s_j = s e^{i j theta} of cell j over one
 // step; theta is the phase per cell, so theta = k h for the wavenumber k and the cell size h

@@ -166,7 +166,8 @@ struct SpectralSearch {
 SpectralSearch search_limit(const RunParams& p, const Eigen::ArrayXd& x, std::optional<double> near,
                             SpectralLimit& out) {
   SpectralSearch s;
-  // Every scheme's map is a polynomial of degree two in the Courant number (docs/design.md).
+  // Every scheme's map is a polynomial of degree two in the Courant number (docs/theory.md, "The
+  // spectral limit").
   s.map_at = quadratic_in_courant([&p, &x](double C) { return linear_step_map(p, x, C); },
                                   out.evaluations);
   s.bracket = first_amplifying_courant(

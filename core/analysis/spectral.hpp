@@ -1,6 +1,6 @@
 // The spectral limit of a scheme: the largest time step at which its one-step map, linearised
 // about rest with the particles frozen where they are, does not amplify any state
-// (docs/design.md, "The spectral limit").
+// (docs/theory.md, "The spectral limit").
 //
 // The state of the map is, per particle, the velocity and the strain, and APIC's affine
 // velocity: s = (v_p / c, F_p - 1, C_p h / c). Linearised about rest (v_p = 0, F_p = 1,

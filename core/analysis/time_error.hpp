@@ -1,4 +1,4 @@
-// The time error of the fixed-step scheme on one grid (docs/design.md, "Time order"): the
+// The time error of the fixed-step scheme on one grid (docs/theory.md, "Time order"): the
 // difference between the particle displacements of runs that differ only in their time step.
 // On the same grid and layout the spatial error is common to both runs and cancels; what is
 // left is the error the time step makes.

@@ -1,5 +1,5 @@
 // Accuracy classes of a run that reached T, by its error over time e (the largest displacement
-// error over steps and particles) against the amplitude A of its solution (docs/design.md,
+// error over steps and particles) against the amplitude A of its solution (docs/studies.md,
 // "Accuracy classes"): accurate below kAccurateFraction A, inaccurate from there up to A, and
 // meaningless from A on (run.cpp's meaningless flag: the answer is as large as the solution).
 #pragma once

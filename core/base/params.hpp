@@ -2,7 +2,7 @@
 // (scenes/validate.hpp: the checks need the scene each run poses).
 //
 // Every choice the paper's text leaves open is a named option here with the default documented
-// in README.md ("Interpretation options").
+// in docs/theory.md ("Interpretation options and other choices").
 #pragma once
 
 #include <cstdint>
@@ -14,7 +14,7 @@
 
 namespace mpmstab {
 
-// Shape functions (docs/design.md, "The scheme"): linear hat ("mpm"), uGIMP with fixed half-width
+// Shape functions (docs/theory.md, "The scheme"): linear hat ("mpm"), uGIMP with fixed half-width
 // lp = h / (2 m) ("gimp"), or cpGIMP, whose half-width follows the deformation, lp = F_p h / (2 m)
 // ("cpgimp"); a cpGIMP particle wider than two cells (lp > h) ends the run (support_too_wide);
 // or the uniform quadratic or cubic B-spline ("bspline2", "bspline3"), whose node beyond a
@@ -45,7 +45,7 @@ constexpr bool has_eq108(Method m) {
 // one free standing wave of the periodic linear bar ("mode": no body force,
 // u = A sin(2 pi X) cos(2 pi c t), periodic boundaries only; the dispersion study's scene).
 // Five scenes put a body inside a larger grid, with empty cells beside it (core/scenes/, one
-// file each; docs/design.md, "Scenes"): the axial vibration of a bar fixed at X = 0 and free at
+// file each; docs/theory.md, "Scenes"): the axial vibration of a bar fixed at X = 0 and free at
 // its other end ("vibration"), the same bar under a step force at its free end ("impulsive"),
 // a column compacted by a ramped body force ("compaction"), a block in rigid translation
 // ("block") and two bars meeting at speeds +v and -v ("impact"). In each, A is the scene's
@@ -53,7 +53,7 @@ constexpr bool has_eq108(Method m) {
 // compaction, the block's travel per time L / c with L = 1), so that A / h keeps its meaning.
 enum class SceneKind { bar, steffen, mode, vibration, impulsive, compaction, block, impact };
 
-// What a grid node with a sliver of mass does (docs/design.md, "Small-mass nodes"). A node
+// What a grid node with a sliver of mass does (docs/theory.md, "Small-mass nodes"). A node
 // whose mass m_i is below small_mass_fraction * rho0 h (the mass of a node inside the body) is
 // a small-mass node:
 //  - none:     no treatment: a_i = f_i / m_i wherever m_i > 0;
@@ -74,7 +74,7 @@ enum class Boundary { dirichlet, periodic };
 // updated particle velocity v_p^{n+1} (the paper's eq. 10).
 enum class PositionUpdate { grid, particle };
 
-// Documented implementation choices of the MPM literature (docs/design.md, "The scheme"). The first
+// Documented implementation choices of the MPM literature (docs/theory.md, "The scheme"). The first
 // value of each is the default.
 //  - walls (Dirichlet, GIMP supports): `clip` keeps nodes on [0, 1] only, so what a support
 //    puts beyond a wall is dropped; `ghost` adds one free node beyond each wall (as codes that
@@ -98,7 +98,7 @@ enum class Walls { clip, ghost, modified };
 enum class Transfer { flip, pic, blend, apic, xpic, fmpm };
 enum class UpdateOrder { usl, usf, musl };
 enum class BodyForceTime { start, end };
-// How the particles' velocity starts (docs/design.md, "The scheme"): `exact`, the exact v(X_p, 0);
+// How the particles' velocity starts (docs/theory.md, "The scheme"): `exact`, the exact v(X_p, 0);
 // `half_step`, the exact v(X_p, -dt / 2). Symplectic Euler with USL is the leapfrog scheme with
 // the velocity at half steps: the velocity the first position update uses is v^0 + dt a^0, which
 // lies at t = dt / 2 only when v^0 lies at -dt / 2 (the staggered start of centred differences);
@@ -267,7 +267,7 @@ std::optional<std::int64_t> step_count(double T, double dt);
 // The step of the fixed and cfl policies (dt, or C h / c); nullopt for the state-dependent ones.
 std::optional<double> fixed_step(const RunParams& p);
 
-// The dimensionless coordinates of a run (docs/design.md, "Dimensionless coordinates"). With
+// The dimensionless coordinates of a run (docs/theory.md, "Dimensionless coordinates"). With
 // rho0 = 1 and c = sqrt(E), tau = c t removes E from both scenes: a run is fixed by the Courant
 // number c dt / h, the amplitude in cells A / h, the wave passes c T / L (L = 1), the grid, the
 // particles per cell and the method.

@@ -1,4 +1,4 @@
-// Everything one run measures (docs/design.md, "Measured quantities").
+// Everything one run measures (docs/theory.md, "Measured quantities").
 #pragma once
 
 #include <array>
@@ -43,7 +43,7 @@ struct FinalState {
   Eigen::ArrayXd u_exact, v_exact, sigma_exact;  // exact solution at (X_p, time)
 };
 
-// The verdict of a run (docs/design.md, "Outcomes"): unstable (it stopped with a failure),
+// The verdict of a run (docs/studies.md, "Outcomes"): unstable (it stopped with a failure),
 // meaningless (it survived to T but its error over time reached the amplitude A: the answer is as
 // large as the solution), stable (survived, error over time below A), or too_short (it reached T
 // in fewer than kMinStepsToJudge steps: so few steps judge nothing, whatever its error).

@@ -1,4 +1,4 @@
-// The energy of the particles and the energy balance of a run (docs/design.md, "Energy").
+// The energy of the particles and the energy balance of a run (docs/theory.md, "Energy").
 //
 // With rho0 = 1 and unit cross-section, at step n:
 //   kinetic  K_n = sum_p 1/2 m_p v_p^2,

@@ -1,4 +1,4 @@
-// The displacement error in L2 over the body and over time (docs/design.md, "Measured
+// The displacement error in L2 over the body and over time (docs/theory.md, "Measured
 // quantities", error_l2_time):
 //   e_n^2 = sum_p V_p^0 (u_p^n - u(X_p, t_n))^2 / sum_p V_p^0,
 //   error_l2_time = sqrt( sum_n (t_n - t_{n-1}) e_n^2 / t_N ),

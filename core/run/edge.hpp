@@ -1,5 +1,5 @@
 // The real edges of a case in fixed dt, found by a log-spaced scan around the speed-of-sound
-// limit h / c followed by bisection (docs/design.md, "The stability edge"):
+// limit h / c followed by bisection (docs/studies.md, "The stability edge"):
 // - the survival edge dt_edge: the largest dt probed with which the case survives to T;
 // - the accuracy edge dt_accurate: the largest dt probed up to which every probed dt from the
 //   reference (the smallest dt that survives) survives with an error over time within

@@ -9,7 +9,7 @@
 // u(X, t) = displacement_profile(X) * displacement_factor(t), which the error observer uses: it
 // keeps the profile per particle and evaluates the factor once per step.
 //
-// bar (the paper's section 5.1, docs/design.md, "The problem"): linear material sigma = E (F - 1),
+// bar (the paper's section 5.1, docs/theory.md, "The problem"): linear material sigma = E (F - 1),
 //   u(X, t) = A sin(2 pi X) sin(c pi t),  b(X, t) = 3 (c pi)^2 A sin(2 pi X) sin(c pi t).
 //   The paper's eq. (114) prints "3 A (c pi)^2 u", which counts A twice; substituting u into the
 //   balance of momentum gives this form. The particles start undeformed (x_p = X_p, F_p = 1,

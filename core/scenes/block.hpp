@@ -1,5 +1,5 @@
 // Rigid translation of a block through the grid: the purest test of the noise of particles
-// crossing cells (docs/design.md, "Scenes"). The block [x0, x0 + L] moves at v0 = A c with
+// crossing cells (docs/theory.md, "Scenes"). The block [x0, x0 + L] moves at v0 = A c with
 // nothing acting on it: the exact motion has no deformation and no stress at any time,
 //   u(X, t) = v0 t,  v = v0,  sigma = 0,
 // and the block travels A per time 1 / c (the grid's length over c). Linear material, no load.

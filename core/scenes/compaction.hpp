@@ -1,5 +1,5 @@
 // Quasi-static compaction of a column under a ramped body force (Uintah's 1D MPM code,
-// AMRMPM.m, problem "compaction"; docs/design.md, "Scenes"). The column [0, L] is fixed at
+// AMRMPM.m, problem "compaction"; docs/theory.md, "Scenes"). The column [0, L] is fixed at
 // X = 0 and free at X = L; a body force b(t) = -g r(t) pulls it towards its base, ramped by
 // r(t) = min(t / t_r, 1) over t_r = kRampPasses L / c.
 //

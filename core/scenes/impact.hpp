@@ -1,4 +1,4 @@
-// Two identical elastic bars meeting at speeds +v and -v (docs/design.md, "Scenes"): the left
+// Two identical elastic bars meeting at speeds +v and -v (docs/theory.md, "Scenes"): the left
 // bar [x0, m] moves right at v, the right bar [m, x0 + L] left at v, m = x0 + L / 2, touching at
 // t = 0. One velocity field carries both (no contact algorithm): the grid sees one body.
 //

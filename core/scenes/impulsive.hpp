@@ -1,6 +1,6 @@
 // The impulsively loaded bar: a bar fixed at X = 0, free at X = L, at rest and undeformed until
 // a traction sigma0 is applied at its free end at t = 0 and held (Uintah's 1D MPM code,
-// AMRMPM.m, problem "impulsiveBar"; docs/design.md, "Scenes").
+// AMRMPM.m, problem "impulsiveBar"; docs/theory.md, "Scenes").
 //
 // Linear material, rho0 = 1. sigma0 = E A / (2 L), so that the largest tip displacement,
 // 2 sigma0 L / E, is A. d'Alembert with the fixed end: u(X, t) = phi(c t + X) - phi(c t - X).

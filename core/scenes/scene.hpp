@@ -119,7 +119,7 @@ class Scene {
   // body_force_at's object and its force sums add zero.
   virtual bool has_body_force() const { return true; }
 
-  // The exact energies at time t (docs/design.md, "Energy"). By default by quadrature of the
+  // The exact energies at time t (docs/theory.md, "Energy"). By default by quadrature of the
   // exact velocity and stress over the body (kExactEnergyPoints midpoints; fields with a jump
   // are then exact to about 1 / kExactEnergyPoints relative), the work by the balance
   // K + U - (K + U)(0) of the exact solution. Scenes with a closed form override it.

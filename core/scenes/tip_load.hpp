@@ -1,5 +1,5 @@
 // A tip load added to a scene: a traction held on the free end of a bar fixed at X = 0 from
-// t = 0 on (RunParams::tip_load; docs/design.md, "Scenes", "A tip load on any free end").
+// t = 0 on (RunParams::tip_load; docs/theory.md, "Scenes", "A tip load on any free end").
 //
 // The scenes that take one (SceneInfo::tip_load: vibration, impulsive, compaction) are posed on
 // the same bar [0, L], fixed at X = 0 and free at X = L, with the linear law sigma = E u_X. Their

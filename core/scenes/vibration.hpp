@@ -1,5 +1,5 @@
 // Axial vibration of a bar fixed at X = 0 and free at X = L, inside a grid with empty cells
-// beyond its free end (Bardenhagen and Kober 2004, section 5; docs/design.md, "Scenes").
+// beyond its free end (Bardenhagen and Kober 2004, section 5; docs/theory.md, "Scenes").
 //
 // Linear material sigma = E (F - 1), no load. The first mode of the fixed-free bar:
 //   u(X, t) = A sin(beta X) sin(omega t),  beta = pi / (2 L),  omega = c beta,

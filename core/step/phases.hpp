@@ -1,4 +1,4 @@
-// The phases of one step, symplectic Euler A (paper sections 2 and 4; docs/design.md, "The
+// The phases of one step, symplectic Euler A (paper sections 2 and 4; docs/theory.md, "The
 // scheme"). Equation numbers are the paper's.
 //
 //   p2g           mass, momentum and force to the grid                   eqs. (5)-(7)

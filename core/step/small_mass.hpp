@@ -1,4 +1,4 @@
-// The momentum treatment of small-mass nodes (params.hpp, SmallMass::momentum; docs/design.md,
+// The momentum treatment of small-mass nodes (params.hpp, SmallMass::momentum; docs/theory.md,
 // "Small-mass nodes"), after grid_update: each node with 0 < m_i < G.mass_cutoff takes as its
 // new velocity the mass-weighted mean of the particles' FLIP-updated velocities,
 //   v_i = sum_p S_ip m_p v_p* / m_i,  v_p* = v_p + dt sum_j S_jp a_j,

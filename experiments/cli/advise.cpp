@@ -26,7 +26,7 @@ constexpr const char* kAdviseHelp =
 Answers a problem of the bar (or the neo-Hookean scene) in dimensionless form, amplitude A/L,
 run length c T/L (wave passes) and a target error over time (the largest displacement error over
 steps and particles) as a fraction of A, with a setting (method, transfer, update order, cells,
-C = c dt/h, start) verified on that problem (docs/design.md, "Advice: verified on the problem").
+C = c dt/h, start) verified on that problem (docs/studies.md, "Advice: verified on the problem").
 The candidates are the advice study's settings (results/advice.json) and their methods and
 Courant numbers on finer grids, to 800 cells, each with the exact or the half-step start. Those
 whose prediction (the study's runs that match the problem's scene, boundary and layout) meets

@@ -1,4 +1,4 @@
-// `mpmstab documents`: the generated blocks of README.md and docs/design.md (studies/
+// `mpmstab documents`: the generated blocks of README.md and docs/ (publish/
 // documents.hpp), written from the results, or with --check compared with them.
 #include <iostream>
 

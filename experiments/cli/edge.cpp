@@ -26,7 +26,7 @@ survival edge dt_edge, the largest dt with which the bar survives to T, and the 
 dt_accurate, the largest dt up to which every dt tried from the reference (the smallest that
 survives) survives with an error over time within 2 times the reference's; it is printed only
 where the reference run and its own run are accurate (an error over time below a tenth of A:
-docs/design.md, "Accuracy classes"). A log-spaced scan dt = (h/c) 2^(k/2) from h/(16c) to 4h/c, then bisection to
+docs/studies.md, "Accuracy classes"). A log-spaced scan dt = (h/c) 2^(k/2) from h/(16c) to 4h/c, then bisection to
 within --tolerance. Reports both edges against h/c, dt_edge / (the eq. 108 minimum of the run
 at dt_edge), and warns with the dts where survival flips when it is not monotone in dt.
 

@@ -28,7 +28,7 @@ Commands:
   sweep   run the cases of an experiment spec in parallel and write its reports
   reproduce  run the cases of several specs in one queue, writing each one's reports when done
   index   write results/README.md, the index of the reports
-  documents  write (or --check) the generated blocks of README.md and docs/design.md
+  documents  write (or --check) the generated blocks of README.md and docs/
   plot    draw a figure experiment with gnuplot
   compare write results/comparison.md: every Table 1 cell against the paper
   performance  write results/performance.md (benchmark and experiment wall times)

@@ -1,5 +1,5 @@
 // `mpmstab merge`: the reports of a sweep that ran in shards, gathered from the shards' folders
-// (see experiments/README.md and `mpmstab slurm`).
+// (see README.md, "Running on a cluster", and `mpmstab slurm`).
 #include <iostream>
 
 #include "cache.hpp"

@@ -1,4 +1,4 @@
-// `mpmstab run`: one case of the bar, measured (docs/design.md, "Measured quantities").
+// `mpmstab run`: one case of the bar, measured (docs/theory.md, "Measured quantities").
 #include <iostream>
 #include <optional>
 #include <sstream>
@@ -51,7 +51,7 @@ Options:
                            u = A sin(2 pi X) cos(c pi t), or mode: one free standing wave
                            of the linear bar, u = A sin(2 pi X) cos(2 pi c t), no body
                            force, --bc periodic only; or a body in a larger grid (A is its
-                           displacement scale; docs/design.md, "Scenes"): vibration (fixed-
+                           displacement scale; docs/theory.md, "Scenes"): vibration (fixed-
                            free bar, first mode of tip amplitude A), impulsive (tip traction
                            E A / (2 L) from t = 0), compaction (body force ramped to the
                            static top compaction A), block (rigid translation at A c),
@@ -120,7 +120,7 @@ Options:
 
 Every quantity printed (outcome, steps, dt_min/dt_max/dt_mean, max_error,
 max_error_over_time, dt_stable_min, crossings, dt_cfl, courant, ...) is defined with its
-unit in docs/design.md, "Measured quantities". The outcome is unstable (the run stopped:
+unit in docs/theory.md, "Measured quantities". The outcome is unstable (the run stopped:
 reason and step), meaningless (it reached T but its error over time reached A) or stable.
 
 Exit status: 0 when the run completed (stable or not: an unstable run is a result),

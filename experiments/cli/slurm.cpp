@@ -1,5 +1,5 @@
 // `mpmstab slurm`: a Slurm job array that runs a sweep in shards, and the job that merges them
-// (`mpmstab merge`) once every shard succeeded. See experiments/README.md.
+// (`mpmstab merge`) once every shard succeeded. See README.md, "Running on a cluster".
 #include <unistd.h>
 
 #include <cstdint>

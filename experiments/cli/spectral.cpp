@@ -22,7 +22,7 @@ constexpr const char* kSpectralHelp =
 
 The spectral limit of one scheme: the largest time step at which its one-step map, linearised
 about rest (v = 0, F = 1) with the particles frozen at the scene's initial layout, has no
-eigenvalue of modulus above 1 + 1e-8 (docs/design.md, "The spectral limit"). The map is taken
+eigenvalue of modulus above 1 + 1e-8 (docs/theory.md, "The spectral limit"). The map is taken
 from the program's own step by central differences; it is a polynomial of degree two in
 c dt / h, built from four maps; the limit is found by a scan up from c dt / h = 0.25 by factors
 of 1.4 (to 8) and a bisection to a relative 1e-4. Two analyses:

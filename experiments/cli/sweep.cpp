@@ -69,7 +69,7 @@ Options:
              belongs to the shard given by a hash of its key (parameters, solver version), so
              it always lands in the same shard whatever the order of the spec. The records go
              to DIR/cache/, with a manifest DIR/<name>.shard-I-of-N.json; 'mpmstab merge'
-             gathers the shards and writes the reports (see experiments/README.md).
+             gathers the shards and writes the reports (see README.md, "Running on a cluster").
   --timing keep|omit
              The reports never hold machine measurements: wall times, ns per
              particle-step, date and threads go to DIR/cache/timings.json only. omit writes

@@ -1,5 +1,5 @@
-// Helpers shared by the report writers: number formatting, our verdict in the paper's notation,
-// and the paper's Table 1 as transcribed.
+// Helpers shared by the report writers: number formatting and our verdict in the paper's
+// notation. The paper's Table 1 as transcribed is studies/shared/paper_table1.hpp's.
 #pragma once
 
 #include <filesystem>
@@ -79,7 +79,7 @@ std::string outcome(const nlohmann::ordered_json& row);
 bool survived(const nlohmann::ordered_json& row);
 // A run that reached T in fewer wave passes c T / L than this is too short to show an
 // instability that takes a wave across the body: whatever its outcome says, no report calls it
-// stable (docs/design.md, "Outcomes").
+// stable (docs/studies.md, "Outcomes").
 inline constexpr double kMinWavePasses = 1;
 // The run's outcome is stable, but it covered fewer than kMinWavePasses wave passes (column cT).
 bool under_a_wave_pass(const nlohmann::ordered_json& row);
@@ -111,7 +111,7 @@ double quantile(std::vector<double> v, double q);
 // Least-squares slope of log(y) against log(x) over the points with x, y > 0: a fitted order.
 // nullopt with fewer than three such points.
 std::optional<double> loglog_slope(const std::vector<std::pair<double, double>>& points);
-// The regime orders are fitted in (docs/design.md, "Orders of convergence"): a run that ended
+// The regime orders are fitted in (docs/theory.md, "Orders of convergence"): a run that ended
 // stable with an error over time below kAccurateFraction A (accurate), and, for an order in h, in
 // which no particle crossed a cell: its recorded crossings are zero, or, where they are not
 // recorded, A / h is below 1 / (2 ppc) (the particles nearest a cell boundary start a quarter

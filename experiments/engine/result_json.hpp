@@ -1,4 +1,4 @@
-// RunResult as JSON: the keys defined in docs/design.md, "Measured quantities", in a fixed order.
+// RunResult as JSON: the keys defined in docs/theory.md, "Measured quantities", in a fixed order.
 #pragma once
 
 #include <string>

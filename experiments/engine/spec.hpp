@@ -45,7 +45,7 @@ struct VariantSpec {
   std::size_t cases = 0;
 };
 
-// Which `make` target regenerates an experiment (docs/design.md, "Two tiers"): `paper`, the
+// Which `make` target regenerates an experiment (docs/engineering.md, "Two tiers"): `paper`, the
 // paper's tables and figures and the comparison with the experiments it cites (make reproduce);
 // `studies`, everything else (make studies). A paper experiment reads only paper experiments.
 enum class Tier { paper, studies };

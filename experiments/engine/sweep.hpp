@@ -113,7 +113,7 @@ double dense_analysis_cost(const RunParams& p);
 // velocity to sum_i S_ip v_i (FMPM's v_i being its series velocity), the very value the grid
 // update adds, so x_p += dt v_p (particle) and
 // x_p += dt sum_i S_ip v_i (grid) are one operation on the same operands (transfers.cpp,
-// transfer_particle; docs/design.md, "Work done once"). Such cases share one run.
+// transfer_particle; docs/engineering.md, "Work done once"). Such cases share one run.
 bool position_update_is_moot(const RunParams& p);
 
 // The cases of several specs in one queue, to which specs can be added while it runs (make

@@ -53,7 +53,7 @@ constexpr double kPublishedTimeOrder = 2;
 // of the grid's basis.
 constexpr double kTheoryMaxOrder = 2;
 
-// The published order in h of each basis for a smooth small-amplitude problem (docs/design.md,
+// The published order in h of each basis for a smooth small-amplitude problem (docs/theory.md,
 // "Published orders"); nullopt where none is published for this kind of problem.
 struct PublishedOrder {
   std::optional<double> order;
@@ -371,7 +371,7 @@ struct TimeErrorRow {
 
 // FLIP re-projects the particle velocities through the lumped mass every step: the grid velocity
 // it stores then grows by Q a dt (Q = M_L^-1 M, the consistent over the lumped mass) while the
-// positions move with a dt, an O((kh)^2 dt) inconsistency per step (docs/design.md, "Orders of
+// positions move with a dt, an O((kh)^2 dt) inconsistency per step (docs/theory.md, "Orders of
 // convergence"). FMPM of this order restores the consistent mass; its twin of the FLIP row at the
 // smallest E isolates that term.
 constexpr int kConsistentOrder = 8;
@@ -478,7 +478,7 @@ std::string usl_reading(const std::vector<TimeErrorRow>& t) {
      << " rows: the second-order term of the leapfrog reading shows only at the largest steps, "
         "and below them a first-order term takes over, with a constant far below USF's (compare "
         "the rows at the same C). Its source is FLIP's re-projection of the particle velocities "
-        "through the lumped mass (docs/design.md, \"Orders of convergence\"): the stored grid "
+        "through the lumped mass (docs/theory.md, \"Orders of convergence\"): the stored grid "
         "velocity grows by the consistent over the lumped mass times a dt while the positions "
         "move with a dt. The twins with FMPM("
      << kConsistentOrder << "), whose series restores the consistent mass, isolate it: ";
@@ -862,7 +862,7 @@ StudyReport convergence_report(const ReportContext& ctx) {
      << sweep_table(g, "h", Norm::l2_time) << "\n"
      << agreement_reading(m, rows) << "\n\n"
      << above_theory_reading(above_theory(m)) << "\n\n"
-     << "### Published orders beside ours\n\nThe sources are listed in docs/design.md "
+     << "### Published orders beside ours\n\nThe sources are listed in docs/theory.md "
         "(\"Published orders\"). The claim below compares where a number is published.\n\n"
      << published_table(m)
      << "\n## The time error against dt\n\nOn one grid, every run is compared with a reference "

@@ -387,7 +387,7 @@ std::optional<double> cells_of(const std::vector<Scheme>& schemes, Method m, Tra
 const std::vector<Method> kSplines = {Method::bspline2, Method::bspline3};
 
 // With FLIP, each B-spline needs more cells per wavelength than linear MPM: FLIP's transfer
-// acts as the mass M_L M^-1 M_L (docs/design.md, "Dispersion"), and a wider basis's consistent
+// acts as the mass M_L M^-1 M_L (docs/theory.md, "Dispersion"), and a wider basis's consistent
 // mass M differs more from its lumped one.
 Claim flip_spline_claim(const std::vector<Scheme>& schemes) {
   int more = 0, compared = 0;
@@ -461,14 +461,14 @@ std::string dispersion_markdown(const ReportContext& c, const std::vector<Scheme
   md << "![The phase speed of the physical branch against kh](" << c.spec.name << ".png)\n\n"
      << "A Fourier mode of the uniform layout with phase kh per cell (k the wavenumber, h the "
         "cell size: the wave spans a full turn of phase divided by kh cells) is multiplied each "
-        "step by the eigenvalues of the Bloch symbol S(kh) (docs/design.md, \"Dispersion\"). The "
+        "step by the eigenvalues of the Bloch symbol S(kh) (docs/theory.md, \"Dispersion\"). The "
         "*physical branch* is the acoustic eigenvalue lambda of positive phase, followed "
         "continuously from kh near zero; its phase speed is c_num / c = arg(lambda) / (C kh) "
         "and its damping |lambda| per step, at the Courant number C = c dt / h. Every scheme "
         "here is USL with "
      << first["ppc"].get<int>()
      << " particles per cell at the uniform layout; XPIC and FMPM at order " << kSeriesOrder
-     << ". E only rescales time (docs/design.md, \"Dimensionless coordinates\"): the phase "
+     << ". E only rescales time (docs/theory.md, \"Dimensionless coordinates\"): the phase "
         "speed, the damping per step and the period in units of 1/c depend on C, kh and the "
         "scheme alone, so the runs take E = "
      << shortest(first["E"].get<double>())

@@ -1,6 +1,6 @@
 // Energy: the energy balance of every transfer and update order at Table 1 cells, its drift per
 // period against dt and h with fitted orders, and how early the balance, eq. (108) and the
-// spectral limit warn of a failure (docs/design.md, "Energy"). The cases say which part they
+// spectral limit warn of a failure (docs/theory.md, "Energy"). The cases say which part they
 // belong to by what they are: fixed-step cells run with more than one transfer or update order
 // are the histories, cfl runs the drift sweeps (on 100 cells against C, at one C against the
 // cells), fixed-step runs that fail the early warnings.
@@ -387,7 +387,7 @@ StudyReport energy_report(const ReportContext& ctx) {
   const auto sweeps = drift_sweeps(rows);
   const auto w = warnings(rows, ctx.outcome);
   std::ostringstream md;
-  md << "**The quantities** (docs/design.md, \"Energy\"): the kinetic energy K (half of sum_p "
+  md << "**The quantities** (docs/theory.md, \"Energy\"): the kinetic energy K (half of sum_p "
         "m_p v_p squared), the strain energy U (sum_p of the reference volume times W(F_p)), the "
         "work W of the body force along the particles' motion, and the balance error e = (K + U - "
         "W) - (the initial K + U); every one per the initial K + U, so dimensionless. *Balance "

@@ -31,7 +31,7 @@ enum class ClassKind {
 
 // A class of cells: its id, a short title, and the definition of the predicate that puts a cell
 // in it (classify() and failure_class() below), in words. The one list of them,
-// comparison_classes(), is what comparison.md, variants.md and docs/design.md's generated block
+// comparison_classes(), is what comparison.md, variants.md and docs/studies.md's generated block
 // `design-comparison-classes` print.
 struct ComparisonClass {
   const char* id;          // also the anchor of its section in comparison.md and variants.md
@@ -46,7 +46,7 @@ const std::vector<ClassDefinition>& comparison_classes();
 const ComparisonClass* find_class(const std::string& id);
 
 // The classes as a Markdown table, one row per class: its id, its title and its definition
-// (for docs/design.md's generated block `design-comparison-classes`).
+// (for docs/studies.md's generated block `design-comparison-classes`).
 std::string comparison_classes_markdown();
 
 // When an experiment of the comparison *explains* a cell that disagrees with the paper, in
@@ -168,9 +168,9 @@ FigureSections figure_sections(const std::vector<PaperFigure>& paper,
                                const CourantEdges& edges, const std::vector<QuotedCell>& table1);
 
 // Writes <out>/comparison.md and <out>/comparison.csv (one row per cell: verdict and class) from
-// the study's inputs, by name: "table1" (required: its spec and results), the supporting
-// experiments "courant", "walls", "crossing" and "eq108", the "variants" study, the figures
-// "fig1", "fig2", "fig3" and their variant runs (figure_variant_inputs()); an input without
+// the study's inputs, by name: "table1" (required: its spec and results), "peers", the
+// supporting experiments "courant", "walls", "crossing" and "eq108", the figures "fig1", "fig2",
+// "fig3" and their variant runs (figure_variant_inputs()), all of the paper tier; an input without
 // results is reported as not run. The transcription of the figures is read from figures.csv
 // beside the table1 spec's reference. `error_at`, when given, replaces every case's own
 // choice of the error compared with the paper's.

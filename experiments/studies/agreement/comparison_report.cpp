@@ -302,7 +302,8 @@ void introduction(std::ostream& md, const Comparison& cmp) {
   md << "Each cell of the paper's Table 1 (as transcribed in [" << reference << "](" << reference
      << ")) beside ours ([" << cmp.table1.name << ".md](" << cmp.table1.name
      << ".md)), each put in one class by a predicate (the class's definition opens its section "
-        "below; the outcomes and quantities are defined in [docs/design.md](../docs/design.md)). "
+        "below; the outcomes are defined in [docs/studies.md](../docs/studies.md) and the "
+        "quantities in [docs/theory.md](../docs/theory.md)). "
         "The paper's text does not fix every choice its code made. In this report, "
      << explained_definition() << ". Of the " << disagree
      << " cells that disagree with the paper, a rerun explains " << explained << " and leaves "
@@ -625,7 +626,7 @@ void gimp_wall_exit_section(std::ostream& md, const Comparison& cmp) {
   md << "Their amplitudes: A = " << listing(amplitudes) << " (A/h = " << listing(in_cells)
      << ": displacements of that many cells), at E = " << listing(moduli)
      << ". The paper's own max errors for them are " << distribution(paper_rel)
-     << " times A (by this project's classes, docs/design.md \"Accuracy classes\", applied to "
+     << " times A (by this project's classes, docs/studies.md \"Accuracy classes\", applied to "
         "its error at T: "
      << std::count_if(paper_rel.begin(), paper_rel.end(), [](double x) { return x >= 1; })
      << " meaningless, "

@@ -1,7 +1,7 @@
 // The ensembles study: the Table 1 cells near their edge whose ensemble members cost more than
 // Table 1's budget in the paper tier (kPaperEnsembleBudget: the cells at dt = 1e-6, 2e8
 // particle-steps a member), rerun in the studies tier as ensembles of kEnsembleMembers perturbed
-// layouts (ensemble.hpp; docs/design.md, "Ensembles"). Its cases are Table 1's (cases_from), so
+// layouts (ensemble.hpp; docs/studies.md, "Ensembles"). Its cases are Table 1's (cases_from), so
 // a run of both tiers computes them once.
 #include <sstream>
 

@@ -337,7 +337,7 @@ StudyReport eq108_report(const ReportContext& c) {
   const std::string table = eq108_table(cells, stats);
   std::ostringstream md;
   md << "## Results\n\nEach Table 1 cell run on the paper's grid of " << paper_grid()
-     << " cells under every reading of eq. (108) (docs/design.md, "
+     << " cells under every reading of eq. (108) (docs/theory.md, "
         "\"The paper's bound, eq. (108)\"); *ours* is the minimum of the bound over the run, "
         "compared with the paper's dt stable where our run ended stable (a meaningless run's "
         "bound is shown, not compared) and the paper prints a number; *ratio* is ours / "

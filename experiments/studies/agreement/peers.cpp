@@ -18,7 +18,7 @@ namespace {
 
 using ojson = nlohmann::ordered_json;
 
-// The tolerances a faithful solver meets (docs/design.md, "Against independent code"): the same
+// The tolerances a faithful solver meets (docs/studies.md, "Against independent code"): the same
 // outcome, the failure at the same step give or take one, and, for runs that are stable (not
 // meaningless) in both, errors equal to a relative 1e-9 with the linear basis (the same
 // arithmetic) and within 5% with GIMP (the peer's cpGIMP and wall details differ slightly).

@@ -78,7 +78,8 @@ VariantsStudy study_variants(const Spec& spec, const std::vector<nlohmann::order
                              const std::map<Table1Key, PaperCell>& paper,
                              const CourantEdges& edges);
 
-// The study in numbers, stored as "study" in <name>.json; comparison.md reads it from there.
+// The study in numbers, stored as "study" in <name>.json (the comparison does not read it: its
+// classes link variants.md's sections).
 nlohmann::ordered_json study_to_json(const VariantsStudy& s);
 
 // The report's body (after the spec's title and description) and the figure's data.

@@ -1,5 +1,5 @@
 // Scene edges: the survival and accuracy edges in dt of every scene with a free surface, method
-// and small-mass treatment (docs/design.md, "Scenes", "Small-mass nodes"), each beside the dense
+// and small-mass treatment (docs/theory.md, "Scenes", "Small-mass nodes"), each beside the dense
 // spectral limit of its body, with its verdicts at the edge and just above it rerun on perturbed
 // layouts (ensemble.hpp) and every edge rerun for length (edge_length.hpp). The scenes study
 // reads these rows for its table.
@@ -274,7 +274,7 @@ std::vector<Claim> edges_claims(const EdgeCounts& n) {
 // What each column means, every number from the study's own rules.
 std::string edges_intro(const ReportContext& ctx) {
   std::ostringstream md;
-  md << "Each row: a scene, a method and a small-mass treatment (docs/design.md, \"Small-mass "
+  md << "Each row: a scene, a method and a small-mass treatment (docs/theory.md, \"Small-mass "
         "nodes\"). *Survival edge*: the largest c dt/h probed that survives to T, and the "
         "smallest above it that fails; a row has none inside the scan where it survives to the "
         "top of the scan (a step of T), where the run at its largest surviving dt is too short "
@@ -287,11 +287,11 @@ std::string edges_intro(const ReportContext& ctx) {
      << ") times A, nor where the reference or the run at the edge is not accurate (its class and "
         "error over time per A are given); *dense limit*: the spectral limit of the whole body "
         "with its free surfaces "
-        "(docs/design.md, \"The spectral limit\"); *perturbed*: of "
+        "(docs/theory.md, \"The spectral limit\"); *perturbed*: of "
      << kEnsembleMembers << " layouts perturbed by " << sci(kEnsemblePerturbation)
      << " of the particle spacing, how many survive at the edge and how many fail just above "
         "it; *run at the edge*: the run at the largest surviving dt, its outcome and error over "
-        "time per A, with its accuracy class where it is stable (docs/design.md, \"Accuracy "
+        "time per A, with its accuracy class where it is stable (docs/studies.md, \"Accuracy "
         "classes\"; a meaningless edge is a run whose error reached A: it survives and answers "
         "nothing); *length*: each edge rerun "
         "at "

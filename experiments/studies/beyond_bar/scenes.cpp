@@ -1,5 +1,5 @@
 // Scenes: every scene whose body lies inside a larger grid, against its exact solution, per
-// method (docs/design.md, "Scenes"): the error over time and in L2 with its cost at three
+// method (docs/theory.md, "Scenes"): the error over time and in L2 with its cost at three
 // Courant numbers (the speed/accuracy trade), the dense spectral limit of the body with its free
 // surfaces against the interior Bloch limit of the same scheme (the bar on a periodic grid,
 // rows of this spec), the survival edge (read from the scene_edges experiment), the small-mass
@@ -289,7 +289,7 @@ std::string extremes_section(const std::vector<ojson>& rows,
 std::string small_mass_section(const Treated& treated, const std::map<EdgeKey, ojson>& edges) {
   std::ostringstream md;
   md << "\n## Small-mass nodes\n\nAt c dt/h = " << shortest(kReferenceCourant)
-     << " (docs/design.md, \"Small-mass nodes\"): the verdict and error of each treatment, "
+     << " (docs/theory.md, \"Small-mass nodes\"): the verdict and error of each treatment, "
         "and its survival edge.\n\n| scene | method | treatment | verdict | error over time / A "
         "| edge c dt/h |\n|---|---|---|---|---:|---:|\n";
   for (const auto& [key, by] : treated) {
@@ -481,7 +481,7 @@ StudyReport scenes_report(const ReportContext& ctx) {
   const Treated treated = treated_runs(rows, ref);
   SurveyCounts n;
   std::ostringstream md;
-  md << "**The measures** (docs/design.md, \"Scenes\"): *error over time / A*, the largest "
+  md << "**The measures** (docs/theory.md, \"Scenes\"): *error over time / A*, the largest "
         "|u_p - u(X_p, t)| over the particles and the steps, per the scene's displacement scale "
         "A; *L2 / A*, the RMS over the body and the run; *cost*, particle-steps. *Dense limit*: "
         "the spectral limit, in c dt/h, of the whole body with its free surfaces; *interior*: "

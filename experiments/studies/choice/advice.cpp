@@ -200,7 +200,7 @@ std::string corner_text(const CornerRun& c) {
 std::string rule_text() {
   const RegionRule& r = kRegionRule;
   std::ostringstream md;
-  md << "**What is run** (docs/design.md, \"Advice: verified on the problem\"). A setting is a "
+  md << "**What is run** (docs/studies.md, \"Advice: verified on the problem\"). A setting is a "
         "method, a grid and a Courant number C = c dt/h. Its base run is the bar with walls at "
         "A/L = "
      << value_text(r.amplitudes[1]) << " to c T/L = " << value_text(r.lengths.front())

@@ -1,6 +1,6 @@
 // The advice study's settings (a method, a grid and a Courant number) and the runs each is
 // checked by, as results/advice.json stores them: what `mpmstab advise` predicts from before it
-// verifies a candidate on the user's problem (advice_verify.hpp; docs/design.md, "Advice:
+// verifies a candidate on the user's problem (advice_verify.hpp; docs/studies.md, "Advice:
 // verified on the problem").
 #pragma once
 
@@ -16,7 +16,7 @@
 namespace mpmstab {
 
 // ---------------------------------------------------------------------------------------------
-// Regions (docs/design.md, "Advice: verified on the problem"). A setting is a method (basis,
+// Regions (docs/studies.md, "Advice: verified on the problem"). A setting is a method (basis,
 // transfer, update order), a grid of `cells` cells with 2 particles each and a Courant number
 // C = c dt / h. Its base run solves the bar with walls at the middle amplitude to the shorter
 // length. E only rescales time (c T and c dt / h fix a run), so the region of a setting is

@@ -191,7 +191,7 @@ std::string status_text(const SampleProblem& sp) {
 void draw_text(std::ostream& md, const Tally& all) {
   const SampleRule& rule = kSampleRule;
   const AdviceDomain& d = kAdviceDomain;
-  md << "## Results\n\n**The draw** (docs/design.md, \"Advice: verified on the problem\"). "
+  md << "## Results\n\n**The draw** (docs/studies.md, \"Advice: verified on the problem\"). "
      << rule.problems << " problems from the seed " << rule.seed
      << " (std::mt19937_64): A/L log-uniform from " << value_text(d.A_min) << " to "
      << value_text(d.A_max) << ", c T/L from " << value_text(rule.cT_low) << " to "

@@ -34,7 +34,7 @@ namespace studies::advice_verify {
 namespace {
 
 // ---------------------------------------------------------------------------------------------
-// The prediction (docs/design.md, "Advice: verified on the problem")
+// The prediction (docs/studies.md, "Advice: verified on the problem")
 
 // The corner kinds whose runs match a problem: its scene, boundary and layout. A problem that
 // differs from the bar with walls and a uniform layout in one attribute is matched by the corner

@@ -1,4 +1,4 @@
-// Advice verified at the point of use (docs/design.md, "Advice: verified on the problem"): the
+// Advice verified at the point of use (docs/studies.md, "Advice: verified on the problem"): the
 // candidates a problem can be answered with, each with the error the advice study's matching runs
 // predict for it and its cost on the problem; the runs that verify a candidate on the problem
 // itself; and the search that answers with the cheapest candidate whose every verifying run is
@@ -73,7 +73,8 @@ std::string run_command(const Candidate& c, const VerifyProblem& p);
 // Every candidate for the problem, in the order they are tried: those the prediction says meet
 // the target (predicted error at most the target), cheapest on the problem first (ties: the
 // smaller prediction, then the exact start), then none of the others. The prediction of a
-// candidate comes from its setting's runs that match the problem (docs/design.md).
+// candidate comes from its setting's runs that match the problem (docs/studies.md, "Advice:
+// verified on the problem").
 std::vector<Candidate> candidates(const std::vector<CheckedSetting>& settings,
                                   const VerifyProblem& p, const AdviceDomain& d = kAdviceDomain);
 
@@ -141,7 +142,7 @@ Verified verified_advice(const std::vector<CheckedSetting>& settings, const Veri
                          double budget_seconds, bool edges, const RunFn& run_fn,
                          const AdviceDomain& d = kAdviceDomain);
 
-// The advice sample (docs/design.md, "Advice: verified on the problem"): problems drawn at
+// The advice sample (docs/studies.md, "Advice: verified on the problem"): problems drawn at
 // random over the domain from a fixed seed (std::mt19937_64, each uniform u in [0, 1) from the
 // top 53 bits of a draw), each value rounded to two significant digits: A / L, c T / L (from
 // cT_low) and the target log-uniform over the domain; the scene, the boundary and the layout

@@ -118,7 +118,7 @@ std::optional<double> error_of(const ojson& r) {
 }
 
 // The error over time (max over steps and particles) of a stable run: what the orders are fitted
-// to and the methods are ranked by; the error at T is shown, never fitted (docs/design.md,
+// to and the methods are ranked by; the error at T is shown, never fitted (docs/theory.md,
 // "Orders of convergence").
 std::optional<double> over_time_of(const ojson& r) {
   if (outcome(r) != "stable" || !has_number(r, "max_error_over_time")) return std::nullopt;
@@ -608,7 +608,7 @@ std::string how_to_read_the_setting(const std::vector<ojson>& grid) {
         "there*: the largest such error after any step, with its size per A and its accuracy "
         "class; *energy balance error there*: the largest "
         "balance error of the particles' kinetic and strain energy and the body force's work, per "
-        "the initial energy (docs/design.md, \"Energy\");\n"
+        "the initial energy (docs/theory.md, \"Energy\");\n"
      << "- *order in h*: least-squares slope of log(error over time) against log(h) over the runs "
         "on "
      << listing(h_runs, "cells") << " cells at C = c dt / h = " << shortest(kOrderHCourant)
@@ -634,7 +634,7 @@ std::string wave_how_to_read(const std::vector<ojson>& edge_rows) {
      << percent(kWaveTolerance) << " of the exact wave after " << shortest(kWavePeriods)
      << " of its periods, at c dt / h = " << shortest(kWaveCourant)
      << ". The wave is carried by the scheme's physical branch lambda, the acoustic eigenvalue "
-        "of its Bloch symbol ([dispersion.md](dispersion.md); docs/design.md, \"Dispersion\"), "
+        "of its Bloch symbol ([dispersion.md](dispersion.md); docs/theory.md, \"Dispersion\"), "
         "and its error per unit amplitude after n steps of dt is |lambda^n - e^(i omega n dt)|, "
         "omega = c k: the damping (|lambda| below one) and the phase error together, taken at "
         "t = "
@@ -674,7 +674,7 @@ StudyReport methods_report(const ReportContext& c) {
      << how_to_read_the_setting(grid) << wave_how_to_read(c.rows)
      << "- *spectral limit*: the largest c dt / h at which the scheme's map, linearised about "
         "rest at the uniform layout, amplifies nothing: the Bloch limit of the interior "
-        "(docs/design.md, \"The spectral limit\"; the walls' treatment does not enter it; "
+        "(docs/theory.md, \"The spectral limit\"; the walls' treatment does not enter it; "
         "spectral.md sets the limits against runs); `> "
      << shortest(kMaxSpectralCourant) << "` when nothing amplifies up to "
      << shortest(kMaxSpectralCourant) << ";\n"

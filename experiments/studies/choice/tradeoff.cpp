@@ -31,7 +31,7 @@ namespace {
 using ojson = nlohmann::ordered_json;
 
 // ---------------------------------------------------------------------------------------------
-// Settings and their parameters (docs/design.md, "Time-step policies")
+// Settings and their parameters (docs/studies.md, "Time-step policies")
 
 const std::vector<std::string> kPolicies = {"fixed", "cfl", "adaptive", "min", "spectral"};
 
@@ -76,7 +76,7 @@ std::string setting(const ojson& r) {
 // Accuracy and cost
 
 // The accuracy of a run: its max error over time, when its outcome is stable. A run that failed
-// or whose error reached A reaches none (docs/design.md, "Outcomes").
+// or whose error reached A reaches none (docs/studies.md, "Outcomes").
 std::optional<double> accuracy(const ojson& r) {
   if (outcome(r) != "stable" || !r["max_error_over_time"].is_number()) return std::nullopt;
   return r["max_error_over_time"].get<double>();
@@ -176,7 +176,7 @@ std::string list_of_E(const std::vector<double>& Es) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// How the runs ended, per policy (docs/design.md, "Outcomes")
+// How the runs ended, per policy (docs/studies.md, "Outcomes")
 
 struct Endings {
   int runs = 0;
@@ -1064,8 +1064,6 @@ ojson tradeoff_json(const std::vector<ojson>& rows, const std::vector<SceneRows>
             {"stable_without_error", n.no_error}}}};
 }
 
-// The report: the definitions and the figure, the advice from every scene's rows, then one
-// section per scene; the figure's data from the first scene (the paper's bar).
 // ---------------------------------------------------------------------------------------------
 // What the walls cost: every run of the paper's bar under the CFL rule at kCflRef (every method,
 // and GIMP and MPM on every grid) is rerun with periodic boundaries, which the periodic
@@ -1159,6 +1157,8 @@ std::string walls_cost_section(const std::vector<ojson>& rows,
   return md.str();
 }
 
+// The report: the definitions and the figure, the advice from every scene's rows, then one
+// section per scene; the figure's data from the first scene (the paper's bar).
 StudyReport tradeoff_report(const ReportContext& c) {
   const auto scenes = by_scene(c.rows);
   const auto ranges = stable_ranges(TradeRows(c.rows));

@@ -229,7 +229,7 @@ std::string table1_legend(const Spec& spec, const fs::path& out) {
         "*stable* (ours): the run survived to T with an error over time below the amplitude A; "
         "*meaningless*: the run survived but its error over time reached A; *error over time / "
         "A*: the largest displacement error over the steps and particles of a run that reached "
-        "T, per A; *accuracy*: its class (docs/design.md, \"Accuracy classes\"): accurate below "
+        "T, per A; *accuracy*: its class (docs/studies.md, \"Accuracy classes\"): accurate below "
      << shortest(kAccurateFraction)
      << " A, inaccurate from there up to A, meaningless from A, given beside each stable verdict; "
         "*inferred*: the paper does not print this cell's dt; *transcription*: the confidence of "
@@ -240,7 +240,7 @@ std::string table1_legend(const Spec& spec, const fs::path& out) {
      << to_string(spec.cases.front().params.stable.sigma) << ", ||v|| "
      << to_string(spec.cases.front().params.stable.vnorm)
      << "). Work: particles x steps of the run (deterministic; wall times are in "
-        "[performance.md](performance.md)). Quantities are defined in docs/design.md."
+        "[performance.md](performance.md)). Quantities are defined in docs/theory.md."
      << (over_time ? " Max error ours: at T, or the largest over the run where marked (over time), "
                      "as the case's error_at chooses."
                    : "")
@@ -292,7 +292,7 @@ std::string ensemble_legend() {
      << " particle-steps is rerun in the studies tier, [ensembles.md](ensembles.md) (`make "
         "studies`), up to "
      << sci(kEnsembleMemberBudget, 2)
-     << " each; above that it is not rerun (cost), and says so (docs/design.md, "
+     << " each; above that it is not rerun (cost), and says so (docs/studies.md, "
         "\"Ensembles\").\n\n";
   return md.str();
 }

@@ -126,7 +126,7 @@ std::string table2_intro(const Spec& spec, const std::vector<ojson>& rows, const
   std::ostringstream md;
   md << "## Results\n\n**Summary.** " << table2_summary_text(spec, rows)
      << "\n\nCrossings: the number of cell boundaries passed by all particles over the "
-        "run ([design](../docs/design.md#measured-quantities)). `*`: the run became unstable; the "
+        "run ([theory](../docs/theory.md#measured-quantities)). `*`: the run became unstable; the "
         "count is up to the failure. "
         "The paper's counts are \"approximate\"; its dt and method for them are not stated. Ours "
         "use dt = "

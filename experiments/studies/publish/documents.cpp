@@ -153,7 +153,7 @@ std::string run_example() {
   return md.str();
 }
 
-// docs/design.md: the domain and the constants of the verified advice, from AdviceDomain.
+// docs/studies.md: the domain and the constants of the verified advice, from AdviceDomain.
 std::string advice_domain_table() {
   const AdviceDomain& d = kAdviceDomain;
   std::ostringstream md;
@@ -179,7 +179,7 @@ std::string advice_domain_table() {
   return md.str();
 }
 
-// docs/design.md: what the advice study found, in counts.
+// docs/studies.md: what the advice study found, in counts.
 std::string advice_counts(const std::filesystem::path& results) {
   const ojson doc = results_file(results, "advice.json");
   if (doc.is_null() || !doc.contains("study") || !doc["study"].contains("settings"))
@@ -200,7 +200,7 @@ std::string advice_counts(const std::filesystem::path& results) {
   return md.str();
 }
 
-// docs/design.md: cells per wavelength for a 1% phase error, per scheme and C, from
+// docs/theory.md: cells per wavelength for a 1% phase error, per scheme and C, from
 // results/dispersion.json.
 std::string cells_per_wavelength(const std::filesystem::path& results) {
   const ojson doc = results_file(results, "dispersion.json");

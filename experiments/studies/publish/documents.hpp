@@ -1,5 +1,5 @@
-// Generated blocks of the project's documents (README.md, docs/design.md). A passage of a
-// document that states a result is not typed by hand: it lies between the markers
+// Generated blocks of the project's documents (README.md, docs/theory.md, docs/studies.md). A
+// passage of a document that states a result is not typed by hand: it lies between the markers
 //   <!-- generated: NAME (mpmstab documents writes this block from results/; do not edit) -->
 //   ...
 //   <!-- end generated: NAME -->

@@ -1,6 +1,6 @@
 // The words a report judges a run by, each defined once, from the code's own lists: a run's
 // outcome (core/base/result.hpp), the reason an unstable run stopped (core/base/failure.hpp) and
-// its accuracy class (core/base/accuracy.hpp). docs/design.md's tables of them are generated from
+// its accuracy class (core/base/accuracy.hpp). docs/studies.md's tables of them are generated from
 // these definitions (mpmstab documents), so a name the code gains appears there, and a table
 // edited by hand fails `make check`.
 #pragma once

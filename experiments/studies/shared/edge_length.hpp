@@ -1,10 +1,10 @@
-// Edges tested for length (docs/design.md, "The stability edges"). An edge in dt is found for
+// Edges tested for length (docs/studies.md, "The stability edges"). An edge in dt is found for
 // the run length searched. Every edge a report prints (below the spectral limit too: a mode that
 // does not grow in the linearised step can grow through the nonlinear terms) is rerun at its dt
 // for kLengthFactors times its wave passes c T, at most kLongPasses, and printed as holding to
 // the longest length it passed or as transient, with the length at which it failed. A survival
 // edge passes a length when its run survives it; an accuracy edge when its run ends stable and
-// accurate (docs/design.md, "Accuracy classes").
+// accurate (docs/studies.md, "Accuracy classes").
 #pragma once
 
 #include <array>

@@ -1,4 +1,4 @@
-// Verdicts that are robust or say they are not (docs/design.md, "Ensembles"). Near an edge a
+// Verdicts that are robust or say they are not (docs/studies.md, "Ensembles"). Near an edge a
 // run's verdict can flip with the last bits of its layout. A cell near its edge is rerun as an
 // ensemble of kEnsembleMembers layouts perturbed far below the discretisation error (shifted or
 // jittered by a few 1e-9 of the particle spacing); its verdict is robust when every member

@@ -451,7 +451,7 @@ std::string extremes_markdown(const Spec& spec, const std::vector<ojson>& rows,
   md << "*Stable* here: the solver's outcome stable (the run reached T in at least "
      << kMinStepsToJudge
      << " steps with an error over time below A) over at least c T = " << shortest(kMinWavePasses)
-     << " wave pass, beside its accuracy class (docs/design.md, \"Accuracy classes\": "
+     << " wave pass, beside its accuracy class (docs/studies.md, \"Accuracy classes\": "
         "accurate below "
      << shortest(kAccurateFraction)
      << " A, inaccurate from there up to A). A run the solver calls stable that ran fewer wave "

@@ -859,7 +859,7 @@ std::string spectral_markdown(const ReportContext& c, const Eq108Findings& eq108
         "\n\n"
      << "Each scheme's spectral limit: the largest c dt / h at which its one-step map, "
         "linearised about rest with the particles frozen at the bar's initial layout, amplifies "
-        "nothing (docs/design.md, \"The spectral limit\"): the Bloch limit of the interior for a "
+        "nothing (docs/theory.md, \"The spectral limit\"): the Bloch limit of the interior for a "
         "uniform layout, the dense map of the whole bar for a jittered one. Beside it, two runs "
         "of the bar under the spectral policy at s = "
      << safeties(rows, true) << " and s = " << safeties(rows, false)

@@ -221,7 +221,7 @@ std::string spectral_edge_markdown(const std::vector<ojson>& rows, const LengthR
      << edge_search_text(kSearch)
      << "; `dt_fail` is the smallest dt above the edge that grew or failed. The spectral limit is "
         "the one each record carries: the Bloch limit of the interior for a uniform layout, the "
-        "dense map of the whole bar for a jittered one (docs/design.md, \"The spectral "
+        "dense map of the whole bar for a jittered one (docs/theory.md, \"The spectral "
         "limit\").\n\n";
   std::vector<const ojson*> linear;
   for (const auto& r : rows)
