@@ -17,6 +17,7 @@
 #include "key.hpp"
 #include "observers/energy.hpp"
 #include "report_util.hpp"
+#include "run_row.hpp"
 #include "study.hpp"
 #include "sweep.hpp"
 
@@ -202,8 +203,7 @@ std::vector<Warning> warnings(const std::vector<ojson>& rows, const SweepOutcome
         }
       }
     }
-    if (has_number(r, "courant_spectral"))
-      x.above_spectral = r["courant"].get<double>() > r["courant_spectral"].get<double>();
+    x.above_spectral = above_spectral_limit(r);
     w.push_back(x);
   }
   return w;

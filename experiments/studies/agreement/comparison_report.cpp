@@ -21,6 +21,7 @@
 #include "csv.hpp"
 #include "key.hpp"
 #include "report_util.hpp"
+#include "run_row.hpp"
 
 namespace mpmstab {
 
@@ -384,7 +385,8 @@ void summary(std::ostream& md, const Comparison& cmp, const FigureSections& figu
      << "| cells | " << cmp.cells.size() << " (" << cmp.count("unreadable")
      << " with an unreadable paper value) |\n"
      << "| stability verdicts agreeing | " << all.verdicts_agree << " of " << all.verdicts_compared
-     << " |\n"
+     << " (every cell with a readable paper value, the sensitive ones by their verdict as run: "
+        "the cells table1.md counts) |\n"
      << "| ours meaningless (agreeing with neither verdict) | " << all.meaningless << " of "
      << all.verdicts_compared << " |\n"
      << "| max errors within a factor " << agreement_factor() << " (both stable) | "
@@ -511,15 +513,16 @@ void courant_scan_table(std::ostream& md, const Comparison& cmp) {
     auto& [ok, n] = by_c[Key(c, "c dt/h")][g];
     ++n;
     if (survived(r)) ++ok;
-    const bool above = has_number(r, "courant_spectral") && c > r["courant_spectral"].get<double>();
-    if (above && outcome(r) == "unstable") {
+    const RunRow run(r);
+    // Above the limit at the scan's c dt / h (the row's, rounded: scan_courant()).
+    const bool above = run.courant_spectral && c > *run.courant_spectral;
+    if (above && run.outcome == "unstable") {
       ++above_failed;
-      worst_step = std::max(worst_step, r["failure_step"].get<std::int64_t>());
+      worst_step = std::max(worst_step, run.failure_step.value_or(0));
     }
-    if (above && survived(r)) {
+    if (above && run.survived()) {
       ++above_survived;
-      above_survivor_ratio = std::max(
-          above_survivor_ratio, r["courant"].get<double>() / r["courant_spectral"].get<double>());
+      above_survivor_ratio = std::max(above_survivor_ratio, *run.courant / *run.courant_spectral);
     }
   }
   md << "**Experiment** ([courant.md](courant.md)): each E of Table 1 for each method and A, "
@@ -662,10 +665,7 @@ void mpm_crossing_failure_section(std::ostream& md, const Comparison& cmp) {
        << (has_number(r, "failure_time")
                ? ratio(r["failure_time"].get<double>() / r["T"].get<double>())
                : std::string("–"))
-       << " | "
-       << (has_number(r, "max_error_over_time")
-               ? ratio(r["max_error_over_time"].get<double>() / r["A"].get<double>())
-               : std::string("–"))
+       << " | " << (RunRow(r).error_over_A() ? ratio(*RunRow(r).error_over_A()) : std::string("–"))
        << " | " << (periodic ? short_verdict(*periodic) : std::string("not rerun")) << " |\n";
   }
   md << "\n";
@@ -684,8 +684,8 @@ void crossing_table(std::ostream& md, const Comparison& cmp) {
         "|---|---|---|---|---|\n";
   const Rows& rows = cmp.rows("crossing");
   auto rel = [](const ojson& x) {
-    return survived(x) ? ratio(x["max_error_over_time"].get<double>() / x["A"].get<double>())
-                       : "\\* " + x["failure_reason"].get<std::string>();
+    const RunRow run(x);
+    return run.survived() ? ratio(*run.error_over_A()) : "\\* " + run.failure_reason.value_or("");
   };
   for (const auto& r : rows) {
     if (r["method"] != "mpm") continue;
@@ -858,10 +858,8 @@ void ours_meaningless_section(std::ostream& md, const Comparison& cmp) {
     const ojson* periodic = cmp.have("walls") ? periodic_run(cmp, *c) : nullptr;
     md << "| " << cell_name(*c) << " | " << (c->paper ? show(c->paper->max_error) : "–") << " | "
        << opt_sci(r["max_error"]) << " | "
-       << (r["max_error_over_time"].is_number()
-               ? ratio(r["max_error_over_time"].get<double>() / r["A"].get<double>())
-               : std::string("–"))
-       << " | " << (periodic ? short_verdict(*periodic) : std::string("–")) << " |\n";
+       << (RunRow(r).error_over_A() ? ratio(*RunRow(r).error_over_A()) : std::string("–")) << " | "
+       << (periodic ? short_verdict(*periodic) : std::string("–")) << " |\n";
   }
   md << "\n"
      << mpm << " of " << cells.size()
@@ -1051,7 +1049,8 @@ std::vector<Claim> comparison_claims(const Comparison& cmp) {
                     "No cell this tier reruns as an ensemble changes its verdict when its layout "
                     "is perturbed far below the discretisation error",
                     "{sensitive} of {rerun} cells rerun are sensitive ({paper_stable} of them "
-                    "stable in the paper); they are counted apart in table1.md; the cells near "
+                    "stable in the paper); table1.md counts each by its verdict as run, as this "
+                    "report does, and names it; the cells near "
                     "their edge too costly for this tier are rerun in ensembles.md (make "
                     "studies), which this tier does not read");
     e.count("sensitive", sensitive).count("rerun", rerun);

@@ -16,6 +16,7 @@
 #include "csv.hpp"
 #include "key.hpp"
 #include "report_util.hpp"
+#include "run_row.hpp"
 #include "shared/by_scene.hpp"
 #include "study.hpp"
 #include "sweep.hpp"
@@ -411,18 +412,28 @@ std::vector<Claim> survey_claims(const std::vector<ojson>& rows, const SurveyCou
 std::vector<Claim> treatment_claims(const Treated& treated) {
   std::vector<Claim> claims;
   // Each treatment against no treatment, over the (scene, method) pairs that ran both: a run
-  // is good when it is stable (not unstable, not meaningless).
+  // is good when it is stable over at least a wave pass (not unstable, not meaningless). A pair
+  // with a run too short for a verdict (under a wave pass, or too few steps) is left out.
+  auto has_verdict = [](const RunRow& r) {
+    return r.ending() == Ending::stable || r.ending() == Ending::unstable ||
+           r.ending() == Ending::meaningless;
+  };
   for (const char* treatment : {"cutoff", "drop", "momentum"}) {
-    int rescued = 0, rescued_accurate = 0, failing = 0, broken = 0, good = 0;
+    int rescued = 0, rescued_accurate = 0, failing = 0, broken = 0, good = 0, short_pairs = 0;
     for (const auto& [key, by] : treated) {
       const auto none = by.find("none"), it = by.find(treatment);
       if (none == by.end() || it == by.end()) continue;
-      const bool stable_without = outcome(none->second) == "stable";
-      const bool stable_with = outcome(it->second) == "stable";
+      const RunRow without(none->second), with(it->second);
+      if (!has_verdict(without) || !has_verdict(with)) {
+        ++short_pairs;
+        continue;
+      }
+      const bool stable_without = without.ending() == Ending::stable;
+      const bool stable_with = with.ending() == Ending::stable;
       if (!stable_without) {
         ++failing;
         rescued += stable_with;
-        rescued_accurate += stable_with && accurate_run(it->second);
+        rescued_accurate += with.accurate();
       } else {
         ++good;
         broken += !stable_with;
@@ -432,7 +443,9 @@ std::vector<Claim> treatment_claims(const Treated& treated) {
                     "The {treatment} treatment makes every run that is not stable without a "
                     "treatment stable, and no stable run worse: {rescued} of {failing} made "
                     "stable ({accurate} of them accurate), {broken} of {good} made unstable or "
-                    "meaningless.");
+                    "meaningless; {short} pairs with a run too short for a verdict (under a "
+                    "wave pass, or too few steps) are not counted.");
+    c.count("short", short_pairs);
     c.value("treatment", treatment).count("rescued", rescued).count("failing", failing);
     c.count("accurate", rescued_accurate);
     c.count("broken", broken).count("good", good);

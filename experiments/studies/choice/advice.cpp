@@ -13,6 +13,7 @@
 #include "claims.hpp"
 #include "csv.hpp"
 #include "report_util.hpp"
+#include "run_row.hpp"
 #include "study.hpp"
 
 namespace mpmstab {
@@ -36,8 +37,7 @@ CornerRun corner_of(const ojson& r, CornerKind kind, double length) {
   CornerRun c{.kind = kind, .length = length, .A = r["A"].get<double>()};
   c.cells = r["cells"].get<int>();
   c.outcome = outcome(r);
-  if (has_number(r, "max_error_over_time"))
-    c.error_over_A = r["max_error_over_time"].get<double>() / c.A;
+  if (const auto e = RunRow(r).error_over_time) c.error_over_A = *e / c.A;
   return c;
 }
 
