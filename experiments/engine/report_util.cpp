@@ -131,6 +131,10 @@ std::string opt_sci(const ojson& v) {
   return v.is_number() ? sci(v.get<double>()) : "–";
 }
 
+std::string opt_sci(const std::optional<double>& v) {
+  return v ? sci(*v) : "–";
+}
+
 std::string text(const ojson& row, const char* column) {
   const auto it = row.find(column);
   return it != row.end() && it->is_string() ? it->get<std::string>() : std::string();

@@ -59,6 +59,8 @@ std::string percent(double fraction);
 std::string codes(const std::vector<std::string>& names, int first = 0);
 // A JSON number in sci(), or "–" for null.
 std::string opt_sci(const nlohmann::ordered_json& v);
+// A value in sci(), or "–" for none (a RunRow's optional columns).
+std::string opt_sci(const std::optional<double>& v);
 // A string column of a row ("" where it is missing or not a string).
 std::string text(const nlohmann::ordered_json& row, const char* column);
 // The row has a number in `column` (not null, not missing).

@@ -129,8 +129,7 @@ std::map<GroupKey, std::vector<Point>> groups(const std::vector<ojson>& rows) {
     // An order in dt asks the run to be accurate; an order in h also that no particle crossed.
     p.fit = accurate_run(r) && (sweep_of(r) == "dt" || crossing_free(r));
     if (p.verdict == "stable") {
-      if (has_number(r, "max_error_over_time"))
-        p.over_time = r["max_error_over_time"].get<double>();
+      p.over_time = RunRow(r).error_over_time;
       if (has_number(r, "error_l2_time")) p.l2_time = r["error_l2_time"].get<double>();
       if (has_number(r, "max_error")) p.error_at_T = r["max_error"].get<double>();
     }
@@ -296,7 +295,7 @@ std::string agreement_reading(const std::map<std::string, MethodOrders>& m,
                               const std::vector<ojson>& rows) {
   std::map<Key, double> wave_passes;
   for (const auto& r : rows)
-    if (sweep_of(r) == "h") wave_passes[Key(r["E"].get<double>(), "E")] = r["cT"].get<double>();
+    if (sweep_of(r) == "h") wave_passes[Key(r["E"].get<double>(), "E")] = *RunRow(r).wave_passes;
   std::ostringstream md;
   md << "**Orders across E.** E only rescales time: at the same T a larger E is a longer run in "
         "wave passes c T (";
@@ -578,7 +577,7 @@ std::string peer_section(const Spec& spec, const std::map<GroupKey, std::vector<
         "MPM, "
      << (*first)["ppc"].get<int>() << " particles per cell, the cfl policy at C = "
      << shortest((*first)["cfl_factor"].get<double>())
-     << ", one wave transit (c T = " << shortest((*first)["cT"].get<double>())
+     << ", one wave transit (c T = " << shortest(*RunRow(*first).wave_passes)
      << "), A / L = " << shortest((*first)["A"].get<double>())
      << " (the baseline's A over its bar's length L), on our unit bar with walls at both ends. "
         "The setting differs in what the scene declares, and each difference is named: Uintah's "
@@ -916,12 +915,12 @@ std::string convergence_data(const std::vector<ojson>& rows, const std::string& 
   std::ostringstream csv;
   csv << header << "E,panel,series,method,h,error_over_time\n";
   for (const auto& r : rows) {
-    if (sweep_of(r) != "h" || outcome(r) != "stable" || !has_number(r, "max_error_over_time"))
-      continue;
+    const RunRow run(r);
+    if (sweep_of(r) != "h" || run.outcome != "stable" || !run.error_over_time) continue;
     const std::string method = method_label(r);
     csv << shortest(r["E"].get<double>()) << "," << panel[Key(r["E"].get<double>(), "E")] << ","
         << series[method] << "," << method << "," << shortest(variable(r)) << ","
-        << shortest(r["max_error_over_time"].get<double>()) << "\n";
+        << shortest(*run.error_over_time) << "\n";
   }
   return csv.str();
 }

@@ -75,14 +75,14 @@ std::string history_table(const std::vector<ojson>& rows, const std::set<Cell>& 
       if (first) {
         md << shortest(r["courant"].get<double>())
            << ", A/h = " << shortest(r["A_over_h"].get<double>())
-           << ", c T = " << shortest(r["cT"].get<double>())
+           << ", c T = " << shortest(*RunRow(r).wave_passes)
            << ")\n\n| transfer and update | outcome | balance error, max | against the exact "
               "K + U, max | drift per period | error over time |\n|---|---|---|---|---|---|\n";
         first = false;
       }
       md << "| " << method_label(r) << " | " << verdict(r) << " | " << num(r, "energy_error_max")
          << " | " << num(r, "energy_exact_error_max") << " | " << num(r, "energy_drift") << " | "
-         << num(r, "max_error_over_time") << " |\n";
+         << opt_sci(RunRow(r).error_over_time) << " |\n";
     }
     md << "\n";
   }
@@ -222,12 +222,12 @@ std::string warning_table(const std::vector<Warning>& w) {
   for (const auto& x : w) {
     if (!x.failed) continue;
     const ojson& r = *x.row;
-    md << "| " << cell_text(cell_of(r)) << " | " << fixed(r["courant"].get<double>(), 3) << " ("
-       << (has_number(r, "courant_spectral") ? fixed(r["courant_spectral"].get<double>(), 3) : "–")
-       << ") | " << shortest(r["A_over_h"].get<double>()) << " | "
-       << r["failure_reason"].get<std::string>() << " at step " << x.failure_step << " | "
-       << lead_text(x.energy_step, x.failure_step) << " | "
-       << lead_text(x.eq108_step, x.failure_step) << " | "
+    const RunRow run(r);
+    md << "| " << cell_text(cell_of(r)) << " | " << fixed(*run.courant, 3) << " ("
+       << (run.courant_spectral ? fixed(*run.courant_spectral, 3) : "–") << ") | "
+       << shortest(r["A_over_h"].get<double>()) << " | " << run.failure_reason.value_or("")
+       << " at step " << x.failure_step << " | " << lead_text(x.energy_step, x.failure_step)
+       << " | " << lead_text(x.eq108_step, x.failure_step) << " | "
        << (!x.above_spectral   ? "not recorded"
            : *x.above_spectral ? "above from the first step"
                                : "below: no warning")
@@ -425,8 +425,8 @@ StudyReport energy_report(const ReportContext& ctx) {
 std::string energy_subtitle(const Spec&, const ojson& doc) {
   int n = 0;
   for (const auto& r : doc["cases"])
-    n += r["policy"].get<std::string>() == "fixed" && r["outcome"].is_string() &&
-         r["outcome"].get<std::string>() != "unstable";
+    n += r["policy"].get<std::string>() == "fixed" && !RunRow(r).outcome.empty() &&
+         RunRow(r).survived();
   return std::to_string(n) + " fixed-step runs that reach T";
 }
 

@@ -140,8 +140,7 @@ std::size_t table1_E_count(const Rows& rows) {
 std::map<std::string, double> spectral_limits(const Comparison& cmp) {
   std::map<std::string, double> limit;
   for (const auto& c : cmp.cells)
-    if (has_number(c.row, "courant_spectral"))
-      limit[c.row["method"].get<std::string>()] = c.row["courant_spectral"].get<double>();
+    if (const RunRow r(c.row); r.courant_spectral) limit[r.method] = *r.courant_spectral;
   return limit;
 }
 
@@ -661,7 +660,7 @@ void mpm_crossing_failure_section(std::ostream& md, const Comparison& cmp) {
     const ojson& r = c->row;
     const ojson* periodic = periodic_run(cmp, *c);
     md << "| " << cell_name(*c) << " | " << sci(r["courant"].get<double>()) << " | "
-       << text(r, "failure_reason") << " | "
+       << RunRow(r).failure_reason.value_or("") << " | "
        << (has_number(r, "failure_time")
                ? ratio(r["failure_time"].get<double>() / r["T"].get<double>())
                : std::string("–"))
@@ -985,10 +984,10 @@ std::vector<Claim> comparison_claims(const Comparison& cmp) {
   for (std::size_t i = 0; i < cmp.cells.size(); ++i) {
     const Cell& c = cmp.cells[i];
     const ojson& r = c.row;
-    if (!has_number(r, "courant_spectral")) continue;
-    const double lim = r["courant_spectral"].get<double>();
-    const std::string m = r["method"].get<std::string>();
-    if (r["courant"].get<double>() > lim) {
+    const RunRow run(r);
+    if (!run.courant_spectral) continue;
+    const std::string m = run.method;
+    if (run.above_spectral_limit()) {
       ++above;
       above_fail += outcome(r) == "unstable";
     }

@@ -9,6 +9,7 @@
 #include "csv.hpp"
 #include "key.hpp"
 #include "report_util.hpp"
+#include "run_row.hpp"
 #include "study.hpp"
 
 namespace mpmstab {
@@ -236,7 +237,7 @@ std::string every_case(const PeersStudy& s) {
        << (c.peer_outcome == "stable" ? std::string("reached T") : c.peer_outcome) << " | "
        << our_step << " / " << peer_step << " | " << opt_sci(r["max_error"]) << " / "
        << opt_number(c.peer_error) << " | " << opt_ratio(c.error_ratio) << " | "
-       << opt_sci(r["max_error_over_time"]) << " / " << opt_number(c.peer_over_time) << " | "
+       << opt_sci(RunRow(r).error_over_time) << " / " << opt_number(c.peer_over_time) << " | "
        << opt_ratio(c.over_time_ratio) << (c.errors_judged ? "" : " (not judged)") << " | "
        << (c.agrees ? "yes" : "**no**") << " |\n";
   }

@@ -123,8 +123,8 @@ std::map<std::string, double> interior_limits(const std::vector<ojson>& rows,
                                               const std::map<std::string, Reference>& ref) {
   std::map<std::string, double> out;
   for (const auto& r : rows)
-    if (part_of(r, ref) == Part::interior && has_number(r, "courant_spectral"))
-      out[str(r, "method")] = num(r, "courant_spectral");
+    if (const RunRow run(r); part_of(r, ref) == Part::interior && run.courant_spectral)
+      out[run.method] = *run.courant_spectral;
   return out;
 }
 
@@ -225,8 +225,9 @@ std::string per_scene_section(const std::vector<ojson>& rows,
         "|---|---|---|---:|---:|---:|---:|---:|---:|---:|\n";
   for (const auto& r : rows) {
     if (part_of(r, ref) != Part::trade || !at_reference(r)) continue;
-    const std::string method = str(r, "method");
-    const auto dense = opt(r, "courant_spectral");
+    const RunRow run(r);
+    const std::string method = run.method;
+    const auto dense = run.courant_spectral;
     const auto it = interior.find(method);
     std::string q = "–";
     if (dense && it != interior.end()) {
@@ -240,10 +241,10 @@ std::string per_scene_section(const std::vector<ojson>& rows,
       q = fixed(x, 3);
     }
     md << "| " << str(r, "scene") << " | " << method << " | " << verdict(r) << " | "
-       << opt_sci_of(relative(r, "max_error_over_time")) << " | "
-       << opt_sci_of(relative(r, "error_l2_time")) << " | " << work(r) << " | "
-       << edge_text(edges, {str(r, "scene"), method, "none"}) << " | " << opt_fixed(dense) << " | "
-       << (it == interior.end() ? "–" : fixed(it->second, 3)) << " | " << q << " |\n";
+       << opt_sci_of(RunRow(r).error_over_A()) << " | " << opt_sci_of(relative(r, "error_l2_time"))
+       << " | " << work(r) << " | " << edge_text(edges, {str(r, "scene"), method, "none"}) << " | "
+       << opt_fixed(dense) << " | " << (it == interior.end() ? "–" : fixed(it->second, 3)) << " | "
+       << q << " |\n";
   }
 
   return md.str();
@@ -260,7 +261,7 @@ std::string trade_section(const std::vector<ojson>& rows,
     if (part_of(r, ref) != Part::trade) continue;
     md << "| " << str(r, "scene") << " | " << str(r, "method") << " | "
        << shortest(num(r, "cfl_factor")) << " | " << verdict(r) << " | "
-       << opt_sci_of(relative(r, "max_error_over_time")) << " | " << work(r) << " |\n";
+       << opt_sci_of(RunRow(r).error_over_A()) << " | " << work(r) << " |\n";
   }
 
   return md.str();
@@ -279,8 +280,8 @@ std::string extremes_section(const std::vector<ojson>& rows,
     if (part_of(r, ref) != Part::extreme) continue;
     md << "| " << str(r, "scene") << " | " << str(r, "method") << " | "
        << shortest(num(r, "cfl_factor")) << " | " << significant(num(r, "A_over_h"), 3) << " | "
-       << significant(num(r, "cT"), 3) << " | " << verdict(r) << " | "
-       << opt_sci_of(relative(r, "max_error_over_time")) << " |\n";
+       << significant(*RunRow(r).wave_passes, 3) << " | " << verdict(r) << " | "
+       << opt_sci_of(RunRow(r).error_over_A()) << " |\n";
   }
 
   return md.str();
@@ -299,7 +300,7 @@ std::string small_mass_section(const Treated& treated, const std::map<EdgeKey, o
       const auto it = by.find(t);
       if (it == by.end()) continue;
       md << "| " << key.first << " | " << key.second << " | " << t << " | " << verdict(it->second)
-         << " | " << opt_sci_of(relative(it->second, "max_error_over_time")) << " | "
+         << " | " << opt_sci_of(RunRow(it->second).error_over_A()) << " | "
          << edge_text(edges, {key.first, key.second, t}) << " |\n";
     }
   }
@@ -463,7 +464,7 @@ Claim trade_claim(const std::vector<ojson>& rows, const std::map<std::string, Re
     std::map<std::pair<std::string, std::string>, std::map<Key, double>> err;
     for (const auto& r : rows) {
       if (part_of(r, ref) != Part::trade || !survived(r)) continue;
-      if (const auto e = relative(r, "max_error_over_time"))
+      if (const auto e = RunRow(r).error_over_A())
         err[{str(r, "scene"), str(r, "method")}][Key(num(r, "cfl_factor"), "cfl_factor")] = *e;
     }
     int pairs = 0, flat = 0;

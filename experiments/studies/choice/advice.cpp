@@ -67,7 +67,7 @@ CheckedSetting setting_of(const ojson& r) {
                    .cells = r["cells"].get<int>(),
                    .ppc = r["ppc"].get<int>(),
                    .courant = r["cfl_factor"].get<double>()};
-  if (has_number(r, "courant_spectral")) s.courant_spectral = r["courant_spectral"].get<double>();
+  s.courant_spectral = RunRow(r).courant_spectral;
   s.corners.push_back(corner_of(r, CornerKind::base, kRegionRule.lengths.front()));
   return s;
 }

@@ -889,7 +889,7 @@ std::string settings_table(const TradeRows& t, double E, const std::string& of_s
     const ojson& r = t.rows[i];
     md << "| " << setting(r) << " | " << r["steps"].dump() << " | " << work(r) << " | "
        << opt_sci(r["dt_min"]) << " to " << opt_sci(r["dt_max"]) << " | " << opt_sci(r["dt_mean"])
-       << " | " << verdict(r) << " | " << opt_sci(r["max_error_over_time"]) << " | "
+       << " | " << verdict(r) << " | " << opt_sci(RunRow(r).error_over_time) << " | "
        << (front.count(i) ? "**yes**" : "") << " |\n";
   }
   md << "\n";
