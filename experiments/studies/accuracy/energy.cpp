@@ -37,8 +37,8 @@ constexpr int kFigurePoints = 400;
 // A Table 1 cell: method, E, A, dt.
 using Cell = std::tuple<std::string, Key, Key, Key>;
 Cell cell_of(const ojson& r) {
-  return {r["method"].get<std::string>(), Key(r["E"].get<double>(), "E"),
-          Key(r["A"].get<double>(), "A"), Key(r["dt"].get<double>(), "dt")};
+  return {RunRow(r).method, Key(r["E"].get<double>(), "E"), Key(r["A"].get<double>(), "A"),
+          Key(r["dt"].get<double>(), "dt")};
 }
 std::string cell_text(const Cell& c) {
   return std::get<0>(c) + ", E = " + shortest(std::get<1>(c)) +

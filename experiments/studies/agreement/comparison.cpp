@@ -175,7 +175,7 @@ CourantEdges courant_edges(const std::vector<nlohmann::ordered_json>& rows) {
   using namespace studies::comparison;
   std::map<std::pair<std::string, Key>, std::map<Key, bool>> all_fail;  // -> C -> all fail
   for (const auto& r : rows) {
-    const auto key = std::make_pair(r["method"].get<std::string>(), Key(r["A"].get<double>(), "A"));
+    const auto key = std::make_pair(RunRow(r).method, Key(r["A"].get<double>(), "A"));
     auto [it, fresh] = all_fail[key].try_emplace(Key(scan_courant(r), "c dt/h"), true);
     it->second = it->second && outcome(r) == "unstable";
   }

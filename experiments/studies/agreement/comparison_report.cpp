@@ -151,7 +151,7 @@ bool same_cell(const ojson& a, const CaseSpec& c) {
   auto same_int = [&](const char* key, int v) {
     return !a.contains(key) || !a[key].is_number() || a[key].get<int>() == v;
   };
-  return a["method"] == std::string(to_string(p.method)) && a["E"].get<double>() == p.E &&
+  return RunRow(a).method == std::string(to_string(p.method)) && a["E"].get<double>() == p.E &&
          a["A"].get<double>() == p.A && a["dt"].get<double>() == p.dt &&
          same_int("cells", p.cells) && same_int("ppc", p.ppc);
 }
@@ -236,8 +236,7 @@ void write_verdicts_csv(const Comparison& cmp) {
 std::string peer_coverage(const Comparison& cmp) {
   std::map<std::pair<std::string, Key>, std::vector<double>> runs;  // -> each compared T
   for (const auto& r : cmp.peer_rows)
-    runs[{r["method"].get<std::string>(), Key(r["dt"].get<double>(), "dt")}].push_back(
-        r["T"].get<double>());
+    runs[{RunRow(r).method, Key(r["dt"].get<double>(), "dt")}].push_back(r["T"].get<double>());
   const double table_T = cmp.table1.cases.front().params.T;
   std::ostringstream s;
   s << "Our solver was run beside independent code (Uintah's 1D MPM code) on "
@@ -330,7 +329,7 @@ std::string compared_error_text(const Comparison& cmp) {
 std::vector<double> dt_stable_ratios(const Comparison& cmp, bool mpm) {
   AgreementCounts counts;
   for (const auto& c : cmp.cells) {
-    if ((c.row["method"] == "mpm") == mpm) counts.add(c.v);
+    if ((RunRow(c.row).method == "mpm") == mpm) counts.add(c.v);
   }
   return counts.dt_stable_ratios;
 }
@@ -507,7 +506,7 @@ void courant_scan_table(std::ostream& md, const Comparison& cmp) {
   double above_survivor_ratio = 0;  // the largest c dt/h over the limit of a scan run reaching T
   for (const auto& r : cmp.rows("courant")) {
     const double c = scan_courant(r);
-    const auto g = std::make_pair(r["method"].get<std::string>(), Key(r["A"].get<double>(), "A"));
+    const auto g = std::make_pair(RunRow(r).method, Key(r["A"].get<double>(), "A"));
     groups.insert(g);
     auto& [ok, n] = by_c[Key(c, "c dt/h")][g];
     ++n;
@@ -687,10 +686,10 @@ void crossing_table(std::ostream& md, const Comparison& cmp) {
     return run.survived() ? ratio(*run.error_over_A()) : "\\* " + run.failure_reason.value_or("");
   };
   for (const auto& r : rows) {
-    if (r["method"] != "mpm") continue;
+    if (RunRow(r).method != "mpm") continue;
     const ojson* g = nullptr;
     for (const auto& q : rows) {
-      if (q["method"] == "gimp" && q["E"] == r["E"] && q["A"] == r["A"]) g = &q;
+      if (RunRow(q).method == "gimp" && q["E"] == r["E"] && q["A"] == r["A"]) g = &q;
     }
     md << "| " << shortest(r["E"].get<double>()) << " | " << shortest(r["A"].get<double>()) << " | "
        << (r["crossings"].is_null() ? std::string("–") : r["crossings"].dump()) << " | " << rel(r)
@@ -713,7 +712,7 @@ CalmAndCrossing calm_and_crossing(const Rows& crossing) {
     smallest_E = std::min(smallest_E, r["E"].get<double>());
   for (const auto& r : crossing) {
     if (r["E"].get<double>() != smallest_E || !survived(r)) continue;
-    const bool mpm = r["method"] == "mpm";
+    const bool mpm = RunRow(r).method == "mpm";
     const ojson*& calm = mpm ? runs.calm_mpm : runs.calm_gimp;
     if (!calm || r["A"].get<double>() < (*calm)["A"].get<double>()) calm = &r;
     if (mpm && r["crossings"].is_number() && r["crossings"].get<std::int64_t>() > 0 &&
@@ -853,7 +852,7 @@ void ours_meaningless_section(std::ostream& md, const Comparison& cmp) {
   int mpm = 0;
   for (const Cell* c : cells) {
     const ojson& r = c->row;
-    mpm += r["method"] == "mpm";
+    mpm += RunRow(r).method == "mpm";
     const ojson* periodic = cmp.have("walls") ? periodic_run(cmp, *c) : nullptr;
     md << "| " << cell_name(*c) << " | " << (c->paper ? show(c->paper->max_error) : "–") << " | "
        << opt_sci(r["max_error"]) << " | "
@@ -880,7 +879,8 @@ void other_failure_section(std::ostream& md, const Comparison& cmp) {
     const double cr = scan_courant(c->row);
     int ok = 0, n = 0;
     for (const auto& r : cmp.rows("courant")) {
-      if (r["method"] != c->row["method"] || r["A"] != c->row["A"] || scan_courant(r) != cr) {
+      if (RunRow(r).method != RunRow(c->row).method || r["A"] != c->row["A"] ||
+          scan_courant(r) != cr) {
         continue;
       }
       ++n;
@@ -906,8 +906,8 @@ std::map<std::string, std::map<std::string, std::vector<double>>> eq108_ratios(
       }
       const std::string option = "sigma " + r["dt_stable_sigma"].get<std::string>() + ", ||v|| " +
                                  r["dt_stable_vnorm"].get<std::string>();
-      per_option[option][r["method"].get<std::string>()].push_back(
-          r["dt_stable_min"].get<double>() / c.paper->dt_stable.value);
+      per_option[option][RunRow(r).method].push_back(r["dt_stable_min"].get<double>() /
+                                                     c.paper->dt_stable.value);
     }
   }
   return per_option;

@@ -76,7 +76,7 @@ std::string basis_of(const std::string& method) {
 }
 
 const PeerValue* find_peer(const std::vector<PeerValue>& peer, const ojson& row) {
-  const std::string basis = basis_of(row["method"].get<std::string>());
+  const std::string basis = basis_of(RunRow(row).method);
   for (const auto& v : peer) {
     if (v.basis == basis && v.E == row["E"].get<double>() && v.A == row["A"].get<double>() &&
         v.dt == row["dt"].get<double>() && v.T == row["T"].get<double>()) {
@@ -261,7 +261,7 @@ std::string peers_verdicts_csv(const PeersStudy& s, const std::string& header_li
   auto yes = [](bool b) { return b ? "yes" : "no"; };
   for (const auto& c : s.cases) {
     const nlohmann::ordered_json& r = *c.row;
-    csv << r["method"].get<std::string>() << ',' << shortest(r["E"].get<double>()) << ','
+    csv << RunRow(r).method << ',' << shortest(r["E"].get<double>()) << ','
         << shortest(r["A"].get<double>()) << ',' << shortest(r["dt"].get<double>()) << ','
         << shortest(r["T"].get<double>()) << ',' << yes(c.outcome_agrees) << ','
         << yes(c.step_agrees) << ',' << yes(c.errors_agree) << ',' << yes(c.agrees) << '\n';

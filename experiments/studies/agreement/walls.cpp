@@ -85,7 +85,7 @@ std::map<std::string, MethodWalls> per_method(const std::vector<Twin>& cells) {
   std::map<std::string, MethodWalls> out;
   for (const auto& t : cells) {
     if (!t.dirichlet) continue;
-    MethodWalls& m = out[text(*t.periodic, "method")];
+    MethodWalls& m = out[RunRow(*t.periodic).method];
     ++m.cells;
     const bool d = survived(*t.dirichlet), p = survived(*t.periodic);
     m.same_verdict += outcome(*t.dirichlet) == outcome(*t.periodic);
@@ -170,7 +170,7 @@ std::string walls_table(const std::vector<Twin>& cells) {
   for (const auto& t : cells) {
     const ojson& p = *t.periodic;
     const auto ed = stable_error(t.dirichlet), ep = stable_error(t.periodic);
-    md << "| " << text(p, "method") << " | " << shortest(p["E"].get<double>()) << " | "
+    md << "| " << RunRow(p).method << " | " << shortest(p["E"].get<double>()) << " | "
        << shortest(p["A"].get<double>()) << " | " << param(p["dt"].get<double>()) << " | "
        << sci(p["courant"].get<double>()) << " | " << significant(p["A_over_h"].get<double>(), 3)
        << " | " << significant(*RunRow(p).wave_passes, 3) << " | " << verdict_or_dash(t.dirichlet)

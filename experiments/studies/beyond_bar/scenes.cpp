@@ -109,7 +109,7 @@ std::map<EdgeKey, ojson> edges_of(const StudyInputs& inputs) {
   const auto it = inputs.find("scene_edges");
   if (it == inputs.end() || !it->second.present()) return out;
   for (const auto& r : it->second.doc["cases"])
-    out[{str(r, "scene"), str(r, "method"), small_mass_of(r)}] = r;
+    out[{str(r, "scene"), RunRow(r).method, small_mass_of(r)}] = r;
   return out;
 }
 // The survival edge of a (scene, method, treatment) as the tables print it.
@@ -150,7 +150,7 @@ std::pair<std::optional<double>, std::optional<double>> beside_peer(const ojson&
                                                                     const char* column,
                                                                     const CsvTable& peer,
                                                                     const std::string& problem) {
-  const std::string basis = str(r, "method") == "mpm" ? "linear" : "GIMP";
+  const std::string basis = RunRow(r).method == "mpm" ? "linear" : "GIMP";
   std::optional<double> theirs;
   for (const auto& row : peer.rows)
     if (row.at("problem") == problem && row.at("basis") == basis &&
@@ -165,7 +165,7 @@ std::string scenes_data(const std::vector<ojson>& rows, const SweepOutcome& out,
   const auto scenes = scenes_in_order(rows);
   std::map<std::string, int> series;
   for (const auto& r : rows)
-    if (part_of(r, ref) == Part::trade) series.emplace(str(r, "method"), 0);
+    if (part_of(r, ref) == Part::trade) series.emplace(RunRow(r).method, 0);
   int k = 0;
   for (auto& [m, s] : series)
     s = k++;
@@ -182,8 +182,8 @@ std::string scenes_data(const std::vector<ojson>& rows, const SweepOutcome& out,
     const std::size_t stride = std::max<std::size_t>(1, h.size() / kFigurePoints);
     for (std::size_t j = 0; j < h.size(); j += stride) {
       if (!h[j]["error"].is_number()) continue;
-      csv << panel << "," << series[str(r, "method")] << "," << str(r, "scene") << ","
-          << str(r, "method") << "," << shortest(h[j]["time"].get<double>()) << ","
+      csv << panel << "," << series[RunRow(r).method] << "," << str(r, "scene") << ","
+          << RunRow(r).method << "," << shortest(h[j]["time"].get<double>()) << ","
           << sci(h[j]["error"].get<double>() / num(r, "A"), 4) << ","
           << over_A(h[j], "tip_u", num(r, "A")) << "," << over_A(h[j], "tip_u_exact", num(r, "A"))
           << "\n";
@@ -207,7 +207,7 @@ Treated treated_runs(const std::vector<ojson>& rows, const std::map<std::string,
   for (const auto& r : rows) {
     const Part p = part_of(r, ref);
     if (p == Part::treatment || (p == Part::trade && at_reference(r)))
-      treated[{str(r, "scene"), str(r, "method")}][small_mass_of(r)] = r;
+      treated[{str(r, "scene"), RunRow(r).method}][small_mass_of(r)] = r;
   }
   return treated;
 }
@@ -259,7 +259,7 @@ std::string trade_section(const std::vector<ojson>& rows,
         "cost |\n|---|---|---:|---|---:|---:|\n";
   for (const auto& r : rows) {
     if (part_of(r, ref) != Part::trade) continue;
-    md << "| " << str(r, "scene") << " | " << str(r, "method") << " | "
+    md << "| " << str(r, "scene") << " | " << RunRow(r).method << " | "
        << shortest(num(r, "cfl_factor")) << " | " << verdict(r) << " | "
        << opt_sci_of(RunRow(r).error_over_A()) << " | " << work(r) << " |\n";
   }
@@ -278,7 +278,7 @@ std::string extremes_section(const std::vector<ojson>& rows,
     n.verdicts += !outcome(r).empty();
   for (const auto& r : rows) {
     if (part_of(r, ref) != Part::extreme) continue;
-    md << "| " << str(r, "scene") << " | " << str(r, "method") << " | "
+    md << "| " << str(r, "scene") << " | " << RunRow(r).method << " | "
        << shortest(num(r, "cfl_factor")) << " | " << significant(num(r, "A_over_h"), 3) << " | "
        << significant(*RunRow(r).wave_passes, 3) << " | " << verdict(r) << " | "
        << opt_sci_of(RunRow(r).error_over_A()) << " |\n";
@@ -332,7 +332,7 @@ std::string peer_sections(const ReportContext& ctx, const std::map<std::string, 
         survived(r) && theirs && in_cells && std::abs(*in_cells / *theirs - 1) <= kPeerTolerance;
     ++n.peer_compared;
     n.peer_agree += agree;
-    md << "| " << str(r, "method") << " | " << outcome(r) << " | stable | " << opt_sci_of(in_cells)
+    md << "| " << RunRow(r).method << " | " << outcome(r) << " | stable | " << opt_sci_of(in_cells)
        << " | " << opt_sci_of(theirs) << " | "
        << (in_cells && theirs ? fixed(*in_cells / *theirs, 5) : "–") << " |\n";
   }
@@ -355,7 +355,7 @@ std::string peer_sections(const ReportContext& ctx, const std::map<std::string, 
         survived(r) && theirs && in_cells && *in_cells < kRoundOffCells && *theirs < kRoundOffCells;
     ++n.rigid_compared;
     n.rigid_agree += agree;
-    md << "| " << str(r, "method") << " | " << shortest(num(r, "steps")) << " | " << outcome(r)
+    md << "| " << RunRow(r).method << " | " << shortest(num(r, "steps")) << " | " << outcome(r)
        << " | stable | " << opt_sci_of(in_cells) << " | " << opt_sci_of(theirs) << " |\n";
   }
 
@@ -465,7 +465,7 @@ Claim trade_claim(const std::vector<ojson>& rows, const std::map<std::string, Re
     for (const auto& r : rows) {
       if (part_of(r, ref) != Part::trade || !survived(r)) continue;
       if (const auto e = RunRow(r).error_over_A())
-        err[{str(r, "scene"), str(r, "method")}][Key(num(r, "cfl_factor"), "cfl_factor")] = *e;
+        err[{str(r, "scene"), RunRow(r).method}][Key(num(r, "cfl_factor"), "cfl_factor")] = *e;
     }
     int pairs = 0, flat = 0;
     double worst = 0;

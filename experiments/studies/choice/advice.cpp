@@ -45,9 +45,9 @@ CornerRun corner_of(const ojson& r, CornerKind kind, double length) {
 // spectral limit: a region can exist only there.
 bool worth_checking(const ojson& base) {
   const CornerRun c = corner_of(base, CornerKind::base, kRegionRule.lengths.front());
-  return c.passes() && has_number(base, "courant_spectral") &&
-         base["courant"].get<double>() <=
-             base["courant_spectral"].get<double>() / kRegionRule.limit_margin;
+  const RunRow run(base);
+  return c.passes() && run.courant_spectral &&
+         *run.courant <= *run.courant_spectral / kRegionRule.limit_margin;
 }
 
 std::vector<RunParams> advice_follow_up(const FollowUpContext& c) {
@@ -61,7 +61,7 @@ std::vector<RunParams> advice_follow_up(const FollowUpContext& c) {
 }
 
 CheckedSetting setting_of(const ojson& r) {
-  CheckedSetting s{.method = text(r, "method"),
+  CheckedSetting s{.method = RunRow(r).method,
                    .transfer = transfer_of(r),
                    .update = text(r, "update"),
                    .cells = r["cells"].get<int>(),

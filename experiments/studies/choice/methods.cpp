@@ -41,7 +41,7 @@ MethodKey key_of(const ojson& r) {
   int order = 0;
   if (transfer == "xpic" && has_number(r, "xpic_order")) order = r["xpic_order"].get<int>();
   if (transfer == "fmpm" && has_number(r, "fmpm_order")) order = r["fmpm_order"].get<int>();
-  return {r["method"].get<std::string>(), r["walls"].get<std::string>(), transfer, order,
+  return {RunRow(r).method, r["walls"].get<std::string>(), transfer, order,
           r["update"].get<std::string>()};
 }
 

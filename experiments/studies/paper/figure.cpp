@@ -102,11 +102,11 @@ std::string figure_subtitle(const Spec&, const ojson& doc) {
     drawn += doc["study"]["drawn_what"].get<std::string>();
     drawn += " drawn; ";
   }
-  std::string subtitle =
-      c["method"].get<std::string>() + ", E = " + shortest(c["E"].get<double>()) +
-      ", A = " + shortest(c["A"].get<double>()) + ", dt = " + shortest(c["dt"].get<double>()) +
-      ", " + c["cells"].dump() + " cells x " + c["ppc"].dump() + " ppc, " +
-      c["bc"].get<std::string>() + "; " + drawn;
+  std::string subtitle = RunRow(c).method + ", E = " + shortest(c["E"].get<double>()) +
+                         ", A = " + shortest(c["A"].get<double>()) +
+                         ", dt = " + shortest(c["dt"].get<double>()) + ", " + c["cells"].dump() +
+                         " cells x " + c["ppc"].dump() + " ppc, " + c["bc"].get<std::string>() +
+                         "; " + drawn;
   const RunRow run(c);
   if (run.outcome == "unstable") {
     return subtitle + "unstable: " + run.failure_reason.value_or("") + " at step " +
