@@ -481,7 +481,8 @@ TEST_F(ComparisonFigures, AMeaninglessRunAgreesWithNeitherVerdict) {
   std::string md = comparison();
   // Table 1: the meaningless MPM cell is counted on its own, not with the agreeing one.
   EXPECT_EQ(line_with(md, "| stability verdicts agreeing |"),
-            "| stability verdicts agreeing | 1 of 2 |");
+            "| stability verdicts agreeing | 1 of 2 (every cell with a readable paper value, the "
+            "sensitive ones by their verdict as run: the cells table1.md counts) |");
   EXPECT_EQ(line_with(md, "| ours meaningless (agreeing with neither verdict) |"),
             "| ours meaningless (agreeing with neither verdict) | 1 of 2 |");
   EXPECT_EQ(line_with(md, "| paper stable |"), "| paper stable | 1 | 1 | 0 |");

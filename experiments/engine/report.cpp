@@ -17,6 +17,7 @@
 #include "key.hpp"
 #include "report_util.hpp"
 #include "result_json.hpp"
+#include "run_row.hpp"
 #include "scenes/validate.hpp"
 #include "strict_json.hpp"
 #include "study.hpp"
@@ -749,25 +750,15 @@ std::string index_intro() {
 }
 
 std::string index_row(const Spec& spec, const ojson& doc) {
-  std::map<std::string, int> n;
-  for (const auto& c : doc["cases"]) {
-    const std::string o = c["outcome"].is_string() ? c["outcome"].get<std::string>() : "unknown";
-    // A stable run of fewer than kMinWavePasses wave passes is counted apart, not as stable.
-    ++n[under_a_wave_pass(c) ? "under_a_pass" : o];
-    // A stable run's accuracy class (core/base/accuracy.hpp), where its error over time is
-    // recorded.
-    const std::optional<Accuracy> a = row_accuracy(c);
-    if (o != "stable" || under_a_wave_pass(c) || !a) continue;
-    ++n[*a == Accuracy::accurate ? "accurate" : "inaccurate"];
-  }
+  const VerdictTally n =
+      verdict_tally(std::vector<ojson>(doc["cases"].begin(), doc["cases"].end()));
   std::ostringstream md;
   md << "| " << spec.title << " | "
      << (spec.tier == Tier::paper ? "make reproduce" : "make studies") << " | [" << spec.name
      << ".md](" << spec.name << ".md) | [" << spec.name << ".csv](" << spec.name << ".csv), ["
      << spec.name << ".json](" << spec.name << ".json) | " << doc["cases"].size() << " | "
-     << n["unstable"] << " | " << n["meaningless"] << " | " << n["too_short"] << " | "
-     << n["under_a_pass"] << " | " << n["stable"] << " | " << n["accurate"] << " | "
-     << n["inaccurate"] << " |\n";
+     << n.unstable << " | " << n.meaningless << " | " << n.too_short << " | " << n.under_a_wave_pass
+     << " | " << n.stable << " | " << n.accurate << " | " << n.inaccurate << " |\n";
   return md.str();
 }
 

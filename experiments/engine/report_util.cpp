@@ -131,61 +131,8 @@ std::string opt_sci(const ojson& v) {
   return v.is_number() ? sci(v.get<double>()) : "–";
 }
 
-std::string outcome(const ojson& r) {
-  const ojson& o = r["outcome"];
-  return o.is_string() ? o.get<std::string>() : std::string();
-}
-
-bool survived(const ojson& r) {
-  return outcome(r) != "unstable";
-}
-
-bool under_a_wave_pass(const ojson& r) {
-  return outcome(r) == "stable" && has_number(r, "cT") && r["cT"].get<double>() < kMinWavePasses;
-}
-
-// Our verdict, in the notation of the table: "*" for unstable, with the reason and step.
-std::string verdict_word(const ojson& r) {
-  if (survived(r)) {
-    if (outcome(r) == "too_short") {
-      return "too short to judge (reached T in " + r["steps"].dump() + " steps, fewer than " +
-             std::to_string(kMinStepsToJudge) + ")";
-    }
-    if (outcome(r) == "meaningless") return "meaningless (survived; error over time reached A)";
-    if (under_a_wave_pass(r))
-      return "survived, c T = " + param(r["cT"].get<double>()) + " < " + shortest(kMinWavePasses) +
-             " wave pass: too short to count as stable";
-    return "stable";
-  }
-  std::string s = "\\* ";
-  s += r["failure_reason"].get<std::string>();
-  s += " at step ";
-  s += std::to_string(r["failure_step"].get<std::int64_t>());
-  s += " (t = ";
-  s += sci(r["failure_time"].get<double>());
-  s += ")";
-  return s;
-}
-
-std::string verdict(const ojson& r) {
-  const std::optional<Accuracy> a = row_accuracy(r);
-  return verdict_with_error(
-      r, a ? std::optional(r["max_error_over_time"].get<double>() / r["A"].get<double>())
-           : std::nullopt);
-}
-
-std::string verdict_with_error(const ojson& r, std::optional<double> error_over_A) {
-  const std::string word = verdict_word(r);
-  if (outcome(r) != "stable") return word;
-  if (!error_over_A) return word + " (error over time not recorded)";
-  return word + ", " + std::string(to_string(accuracy_class(*error_over_A, 1.0))) + " (" +
-         beside_thresholds(*error_over_A, {kAccurateFraction, 1.0}) + " A)";
-}
-
-std::string edge_run_verdict(const ojson& r) {
-  return verdict_with_error(r, has_number(r, "error_at_edge_over_A")
-                                   ? std::optional(r["error_at_edge_over_A"].get<double>())
-                                   : std::nullopt);
+std::string opt_sci(const std::optional<double>& v) {
+  return v ? sci(*v) : "–";
 }
 
 std::string text(const ojson& row, const char* column) {
@@ -202,66 +149,12 @@ double number_or_zero(const ojson& row, const char* column) {
   return it != row.end() && it->is_number() ? it->get<double>() : 0.0;
 }
 
-std::string method_label(const ojson& r) {
-  std::string s = r["method"].get<std::string>();
-  auto column = [&](const char* key) { return text(r, key); };
-  const std::string transfer = column("transfer"), update = column("update");
-  if (!transfer.empty() && transfer != "flip") {
-    s += '/';
-    s += transfer;
-    for (const char* order : {"flip_fraction", "xpic_order", "fmpm_order"}) {
-      if (!has_number(r, order)) continue;
-      s += '(';
-      s += shortest(r[order].get<double>());
-      s += ')';
-    }
-  }
-  if (!update.empty() && update != "usl") {
-    s += '/';
-    s += update;
-  }
-  return s;
-}
-
-std::string scheme_label(const ojson& r) {
-  std::string s = method_label(r);
-  if (has_number(r, "ppc") && r["ppc"].get<int>() != 2)
-    s += " (ppc " + std::to_string(r["ppc"].get<int>()) + ")";
-  for (const char* key : {"shift", "jitter"}) {
-    if (!has_number(r, key) || r[key].get<double>() == 0) continue;
-    s += " (";
-    s += key;
-    s += ' ';
-    s += shortest(r[key].get<double>());
-    s += ')';
-  }
-  return s;
-}
-
-double particle_steps(const ojson& r) {
-  return r["particles"].get<double>() * r["steps"].get<double>();
-}
-
 std::string cost_metric_text() {
   return "**Cost.** Every cost here is in particle-steps (particles x steps, of every run a "
          "result needs): deterministic, the same on any machine. What one particle-step of each "
          "method costs in time is measured, with Google Benchmark, in [performance.md]"
          "(performance.md#the-step-kernel) (ns per particle-step per basis, transfer and update "
          "order): particle-steps times that is the time on the measured machine.";
-}
-
-std::string work(const ojson& r) {
-  return sci(particle_steps(r));
-}
-
-std::optional<Accuracy> row_accuracy(const ojson& r) {
-  if (!has_number(r, "max_error_over_time") || !has_number(r, "A") || !(r["A"].get<double>() > 0))
-    return std::nullopt;
-  return accuracy_class(r["max_error_over_time"].get<double>(), r["A"].get<double>());
-}
-
-bool accurate_run(const ojson& r) {
-  return outcome(r) == "stable" && row_accuracy(r) == Accuracy::accurate;
 }
 
 bool crossing_free(const ojson& r) {
@@ -272,7 +165,8 @@ bool crossing_free(const ojson& r) {
 
 std::string order_regime_text() {
   return "an order is fitted only over points in the regime it describes: runs that end stable "
-         "and accurate (error over time below " +
+         "over at least " +
+         shortest(kMinWavePasses) + " wave pass c T / L and accurate (error over time below " +
          shortest(kAccurateFraction) +
          " A) and, for an order in h, in which no particle crosses a cell (no crossing recorded; "
          "where crossings are not recorded, A / h below 1 / (2 ppc)); a point outside it is "
@@ -309,12 +203,6 @@ double quantile(std::vector<double> v, double q) {
 
 std::string link(const fs::path& from_dir, const fs::path& target) {
   return fs::relative(target, from_dir).generic_string();
-}
-
-std::optional<double> compared_error(const ojson& row, ErrorAt error_at) {
-  if (!survived(row)) return std::nullopt;
-  const ojson& v = row[error_at == ErrorAt::T ? "max_error" : "max_error_over_time"];
-  return v.is_number() ? std::optional<double>(v.get<double>()) : std::nullopt;
 }
 
 std::string sci(double v, int digits) {

@@ -1,5 +1,5 @@
-// Helpers shared by the report writers: number formatting and our verdict in the paper's
-// notation. The paper's Table 1 as transcribed is studies/shared/paper_table1.hpp's.
+// Helpers shared by the report writers: number formatting, prose lists and ranges, fits. The row
+// vocabulary (a run's outcome, verdict, accuracy, labels and cost) is run_row.hpp, included here.
 #pragma once
 
 #include <filesystem>
@@ -11,8 +11,8 @@
 #include <tuple>
 #include <vector>
 
-#include "base/accuracy.hpp"
 #include "run/edge.hpp"
+#include "run_row.hpp"
 #include "spec.hpp"
 
 namespace mpmstab {
@@ -59,6 +59,8 @@ std::string percent(double fraction);
 std::string codes(const std::vector<std::string>& names, int first = 0);
 // A JSON number in sci(), or "–" for null.
 std::string opt_sci(const nlohmann::ordered_json& v);
+// A value in sci(), or "–" for none (a RunRow's optional columns).
+std::string opt_sci(const std::optional<double>& v);
 // A string column of a row ("" where it is missing or not a string).
 std::string text(const nlohmann::ordered_json& row, const char* column);
 // The row has a number in `column` (not null, not missing).
@@ -72,36 +74,6 @@ std::string method_label(const nlohmann::ordered_json& row);
 // method_label with the particles per cell where not 2 and the layout where not uniform:
 // "gimp/usf (ppc 4)", "mpm (shift 0.45)", "gimp (jitter 0.5)".
 std::string scheme_label(const nlohmann::ordered_json& row);
-// The outcome of a flat record: "unstable", "meaningless", "stable", "too_short" ("" where not
-// measured).
-std::string outcome(const nlohmann::ordered_json& row);
-// The run of a flat record survived to T: its outcome is meaningless or stable.
-bool survived(const nlohmann::ordered_json& row);
-// A run that reached T in fewer wave passes c T / L than this is too short to show an
-// instability that takes a wave across the body: whatever its outcome says, no report calls it
-// stable (docs/studies.md, "Outcomes").
-inline constexpr double kMinWavePasses = 1;
-// The run's outcome is stable, but it covered fewer than kMinWavePasses wave passes (column cT).
-bool under_a_wave_pass(const nlohmann::ordered_json& row);
-// Our verdict word for a flat record: "stable", "survived, c T = 0.5 < 1 wave pass: too short to
-// count as stable", "meaningless (...)", "too short to judge (...)", "\\* reason at step n (t =
-// ..)". For a table that gives the error over time / A and the accuracy class in columns of its
-// own.
-std::string verdict_word(const nlohmann::ordered_json& row);
-// verdict_word with, for a run that reached T below A, its accuracy class and error over time / A
-// beside it: "stable, inaccurate (0.43 A)", "stable (error over time not recorded)".
-std::string verdict(const nlohmann::ordered_json& row);
-// verdict() with the error over time / A given, for a record whose error of the run it names is
-// in another column (an edge search's run at its edge).
-std::string verdict_with_error(const nlohmann::ordered_json& row,
-                               std::optional<double> error_over_A);
-// The verdict of an edge search's run at its edge: verdict_with_error() with the row's
-// error_at_edge_over_A.
-std::string edge_run_verdict(const nlohmann::ordered_json& row);
-// The deterministic cost of a run: particles x steps (an edge case: of its run at dt_edge).
-double particle_steps(const nlohmann::ordered_json& row);
-// particle_steps() in sci(): "2.4e5".
-std::string work(const nlohmann::ordered_json& row);
 // The one cost metric of every report that compares costs (tradeoff, methods, edge), in words,
 // linking performance.md from a report in the same folder: particle-steps, and the measured time
 // of one particle-step per method.
@@ -111,24 +83,17 @@ double quantile(std::vector<double> v, double q);
 // Least-squares slope of log(y) against log(x) over the points with x, y > 0: a fitted order.
 // nullopt with fewer than three such points.
 std::optional<double> loglog_slope(const std::vector<std::pair<double, double>>& points);
-// The regime orders are fitted in (docs/theory.md, "Orders of convergence"): a run that ended
-// stable with an error over time below kAccurateFraction A (accurate), and, for an order in h, in
-// which no particle crossed a cell: its recorded crossings are zero, or, where they are not
-// recorded, A / h is below 1 / (2 ppc) (the particles nearest a cell boundary start a quarter
-// cell from it at 2 per cell). A point outside it is shown and never fitted.
-bool accurate_run(const nlohmann::ordered_json& row);
-// The accuracy class (core/base/accuracy.hpp) of a row's error over time against its A, whatever
-// its outcome; none where either is not recorded or A is not positive.
-std::optional<Accuracy> row_accuracy(const nlohmann::ordered_json& row);
+// The regime orders are fitted in (docs/theory.md, "Orders of convergence"): a run that is
+// accurate_run() (run_row.hpp: stable over at least a wave pass, error over time below
+// kAccurateFraction A), and, for an order in h, in which no particle crossed a cell: its recorded
+// crossings are zero, or, where they are not recorded, A / h is below 1 / (2 ppc) (the particles
+// nearest a cell boundary start a quarter cell from it at 2 per cell). A point outside it is shown
+// and never fitted.
 bool crossing_free(const nlohmann::ordered_json& row);
 // "the order is fitted only over grids where no particle crosses a cell and the error over
 // time is below 0.1 A": the regime in words, for the reports that fit orders.
 std::string order_regime_text();
 // Relative link from a report folder to a file.
 std::string link(const std::filesystem::path& from_dir, const std::filesystem::path& target);
-
-// Our error compared with the paper's "Max Error" in a flat result row: max_error (at T) or
-// max_error_over_time; null when the run failed or the value was not recorded.
-std::optional<double> compared_error(const nlohmann::ordered_json& row, ErrorAt error_at);
 
 }  // namespace mpmstab

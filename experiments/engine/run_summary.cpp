@@ -9,6 +9,7 @@
 #include "base/failure.hpp"
 #include "base/params.hpp"
 #include "observers/energy.hpp"
+#include "run_row.hpp"
 
 namespace mpmstab {
 
@@ -41,8 +42,11 @@ std::string text_summary(const RunResult& r, bool with_timing) {
     << (fixed ? ", dt = " + fmt(p.dt) : ", policy " + std::string(to_string(p.stepping.policy)))
     << ", T = " << fmt(p.T) << ", " << p.cells << " cells x " << p.ppc << " ppc, "
     << to_string(p.bc) << nondefault_choices(p) << "\n";
-  std::string verdict(r.outcome ? to_string(*r.outcome)
-                                : "survived (error over time not measured)");
+  // A stable run of fewer than kMinWavePasses wave passes is named as every report names it.
+  const bool under_a_pass = r.outcome == Outcome::stable && wave_passes(p) < kMinWavePasses;
+  std::string verdict(under_a_pass ? under_a_wave_pass_word(wave_passes(p))
+                      : r.outcome  ? to_string(*r.outcome)
+                                   : "survived (error over time not measured)");
   if (r.failure) {
     verdict += " (" + std::string(to_string(r.failure->reason)) + " at step " +
                std::to_string(r.failure->step) + ", t = " + fmt(r.failure->time) +

@@ -21,6 +21,7 @@
 #include "csv.hpp"
 #include "key.hpp"
 #include "report_util.hpp"
+#include "run_row.hpp"
 #include "study.hpp"
 
 namespace mpmstab {
@@ -318,7 +319,7 @@ std::map<CurveKey, Curve> curves(const std::vector<ojson>& rows) {
       c.left_out.push_back(r["cfl_factor"].get<double>());
       continue;
     }
-    c.points.emplace_back(r["cfl_factor"].get<double>(), r["max_error_over_time"].get<double>());
+    c.points.emplace_back(r["cfl_factor"].get<double>(), *RunRow(r).error_over_time);
   }
   for (auto& [key, c] : out) {
     // A run left out above every C that entered is the stability limit, not a gap in the curve.

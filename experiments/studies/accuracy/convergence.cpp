@@ -20,6 +20,7 @@
 #include "csv.hpp"
 #include "key.hpp"
 #include "report_util.hpp"
+#include "run_row.hpp"
 #include "study.hpp"
 
 namespace mpmstab {
@@ -128,8 +129,7 @@ std::map<GroupKey, std::vector<Point>> groups(const std::vector<ojson>& rows) {
     // An order in dt asks the run to be accurate; an order in h also that no particle crossed.
     p.fit = accurate_run(r) && (sweep_of(r) == "dt" || crossing_free(r));
     if (p.verdict == "stable") {
-      if (has_number(r, "max_error_over_time"))
-        p.over_time = r["max_error_over_time"].get<double>();
+      p.over_time = RunRow(r).error_over_time;
       if (has_number(r, "error_l2_time")) p.l2_time = r["error_l2_time"].get<double>();
       if (has_number(r, "max_error")) p.error_at_T = r["max_error"].get<double>();
     }
@@ -295,7 +295,7 @@ std::string agreement_reading(const std::map<std::string, MethodOrders>& m,
                               const std::vector<ojson>& rows) {
   std::map<Key, double> wave_passes;
   for (const auto& r : rows)
-    if (sweep_of(r) == "h") wave_passes[Key(r["E"].get<double>(), "E")] = r["cT"].get<double>();
+    if (sweep_of(r) == "h") wave_passes[Key(r["E"].get<double>(), "E")] = *RunRow(r).wave_passes;
   std::ostringstream md;
   md << "**Orders across E.** E only rescales time: at the same T a larger E is a longer run in "
         "wave passes c T (";
@@ -577,7 +577,7 @@ std::string peer_section(const Spec& spec, const std::map<GroupKey, std::vector<
         "MPM, "
      << (*first)["ppc"].get<int>() << " particles per cell, the cfl policy at C = "
      << shortest((*first)["cfl_factor"].get<double>())
-     << ", one wave transit (c T = " << shortest((*first)["cT"].get<double>())
+     << ", one wave transit (c T = " << shortest(*RunRow(*first).wave_passes)
      << "), A / L = " << shortest((*first)["A"].get<double>())
      << " (the baseline's A over its bar's length L), on our unit bar with walls at both ends. "
         "The setting differs in what the scene declares, and each difference is named: Uintah's "
@@ -915,38 +915,77 @@ std::string convergence_data(const std::vector<ojson>& rows, const std::string& 
   std::ostringstream csv;
   csv << header << "E,panel,series,method,h,error_over_time\n";
   for (const auto& r : rows) {
-    if (sweep_of(r) != "h" || outcome(r) != "stable" || !has_number(r, "max_error_over_time"))
-      continue;
+    const RunRow run(r);
+    if (sweep_of(r) != "h" || run.outcome != "stable" || !run.error_over_time) continue;
     const std::string method = method_label(r);
     csv << shortest(r["E"].get<double>()) << "," << panel[Key(r["E"].get<double>(), "E")] << ","
         << series[method] << "," << method << "," << shortest(variable(r)) << ","
-        << shortest(r["max_error_over_time"].get<double>()) << "\n";
+        << shortest(*run.error_over_time) << "\n";
   }
   return csv.str();
 }
 
+// The runs drawn: those that reached T below A, the stable ones apart from those under a wave
+// pass (drawn, never called stable, no order fitted on them: VerdictTally, run_row.hpp).
 std::string convergence_subtitle(const Spec&, const ojson& doc) {
-  int drawn = 0, left_out = 0;
-  for (const auto& r : doc["cases"]) {
-    if (sweep_of(r) != "h") continue;
-    (outcome(r) == "stable" && has_number(r, "max_error_over_time") ? drawn : left_out) += 1;
+  VerdictTally drawn;
+  std::vector<double> short_cT;
+  int left_out = 0;
+  for (const auto& row : doc["cases"]) {
+    const RunRow r(row);
+    if (sweep_of(row) != "h") continue;
+    if (r.outcome != "stable" || !r.error_over_time) {
+      ++left_out;
+      continue;
+    }
+    drawn.add(r);
+    if (r.under_a_wave_pass()) short_cT.push_back(*r.wave_passes);
   }
-  return std::to_string(drawn) + " stable runs drawn, " + std::to_string(left_out) +
-         " not stable left out";
+  std::string s = std::to_string(drawn.stable) + " stable runs drawn";
+  if (drawn.under_a_wave_pass > 0)
+    s += ", " + std::to_string(drawn.under_a_wave_pass) + " under a wave pass (c T " +
+         span(short_cT, 2) + ": not stable, no order fitted) drawn beside them";
+  return s + ", " + std::to_string(left_out) + " not stable left out";
 }
 
-// The index paragraph: the figure and the fitted orders in h, read from the rows.
+// The wave passes c T of the h sweep's runs at E that ran under a wave pass (none where none did):
+// no order is fitted on them.
+std::optional<double> under_a_pass_at(const std::vector<ojson>& rows, double E) {
+  for (const auto& row : rows) {
+    const RunRow r(row);
+    if (sweep_of(row) == "h" && row["E"].get<double>() == E && r.under_a_wave_pass())
+      return r.wave_passes;
+  }
+  return std::nullopt;
+}
+
+// The index paragraph: the figure and the fitted orders in h, read from the rows. An E whose
+// runs are under a wave pass has none fitted, and says why.
 std::string convergence_index(const Spec& spec, const std::vector<ojson>& rows) {
   std::ostringstream md;
   md << "![" << spec.title << "](" << spec.name << ".png)\n\n**What it shows.** Fitted order "
      << "of the error over time in h:";
-  double last_E = -1;
+  std::map<Key, std::vector<std::string>> by_E;
+  std::map<Key, bool> any_fitted;
   for (const auto& [key, points] : groups(rows)) {
     const auto& [sweep, E, method] = key;
     if (sweep != "h") continue;
-    md << (E != last_E ? std::string(last_E < 0 ? " " : "; ") + "E = " + shortest(E) + ": " : ", ")
-       << method << " " << order_text(fitted_order(points, Norm::over_time));
-    last_E = E;
+    const auto order = fitted_order(points, Norm::over_time);
+    by_E[E].push_back(method + " " + order_text(order));
+    any_fitted[E] = any_fitted[E] || order.has_value();
+  }
+  bool first = true;
+  for (const auto& [E, orders] : by_E) {
+    md << (first ? " " : "; ") << "E = " << shortest(E) << ": ";
+    first = false;
+    const auto short_cT = under_a_pass_at(rows, E);
+    if (!any_fitted[E] && short_cT) {
+      md << "none fitted (its runs cover c T = " << shortest(*short_cT) << " < "
+         << shortest(kMinWavePasses) << " wave pass: not stable)";
+      continue;
+    }
+    for (std::size_t k = 0; k < orders.size(); ++k)
+      md << (k ? ", " : "") << orders[k];
   }
   md << ". The L2 norm over time, the observed order of each refinement, the time error against "
         "dt, the published orders and Uintah's baseline: ["

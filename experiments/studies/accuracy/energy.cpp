@@ -17,6 +17,7 @@
 #include "key.hpp"
 #include "observers/energy.hpp"
 #include "report_util.hpp"
+#include "run_row.hpp"
 #include "study.hpp"
 #include "sweep.hpp"
 
@@ -36,8 +37,8 @@ constexpr int kFigurePoints = 400;
 // A Table 1 cell: method, E, A, dt.
 using Cell = std::tuple<std::string, Key, Key, Key>;
 Cell cell_of(const ojson& r) {
-  return {r["method"].get<std::string>(), Key(r["E"].get<double>(), "E"),
-          Key(r["A"].get<double>(), "A"), Key(r["dt"].get<double>(), "dt")};
+  return {RunRow(r).method, Key(r["E"].get<double>(), "E"), Key(r["A"].get<double>(), "A"),
+          Key(r["dt"].get<double>(), "dt")};
 }
 std::string cell_text(const Cell& c) {
   return std::get<0>(c) + ", E = " + shortest(std::get<1>(c)) +
@@ -74,14 +75,14 @@ std::string history_table(const std::vector<ojson>& rows, const std::set<Cell>& 
       if (first) {
         md << shortest(r["courant"].get<double>())
            << ", A/h = " << shortest(r["A_over_h"].get<double>())
-           << ", c T = " << shortest(r["cT"].get<double>())
+           << ", c T = " << shortest(*RunRow(r).wave_passes)
            << ")\n\n| transfer and update | outcome | balance error, max | against the exact "
               "K + U, max | drift per period | error over time |\n|---|---|---|---|---|---|\n";
         first = false;
       }
       md << "| " << method_label(r) << " | " << verdict(r) << " | " << num(r, "energy_error_max")
          << " | " << num(r, "energy_exact_error_max") << " | " << num(r, "energy_drift") << " | "
-         << num(r, "max_error_over_time") << " |\n";
+         << opt_sci(RunRow(r).error_over_time) << " |\n";
     }
     md << "\n";
   }
@@ -202,8 +203,7 @@ std::vector<Warning> warnings(const std::vector<ojson>& rows, const SweepOutcome
         }
       }
     }
-    if (has_number(r, "courant_spectral"))
-      x.above_spectral = r["courant"].get<double>() > r["courant_spectral"].get<double>();
+    x.above_spectral = above_spectral_limit(r);
     w.push_back(x);
   }
   return w;
@@ -222,12 +222,12 @@ std::string warning_table(const std::vector<Warning>& w) {
   for (const auto& x : w) {
     if (!x.failed) continue;
     const ojson& r = *x.row;
-    md << "| " << cell_text(cell_of(r)) << " | " << fixed(r["courant"].get<double>(), 3) << " ("
-       << (has_number(r, "courant_spectral") ? fixed(r["courant_spectral"].get<double>(), 3) : "–")
-       << ") | " << shortest(r["A_over_h"].get<double>()) << " | "
-       << r["failure_reason"].get<std::string>() << " at step " << x.failure_step << " | "
-       << lead_text(x.energy_step, x.failure_step) << " | "
-       << lead_text(x.eq108_step, x.failure_step) << " | "
+    const RunRow run(r);
+    md << "| " << cell_text(cell_of(r)) << " | " << fixed(*run.courant, 3) << " ("
+       << (run.courant_spectral ? fixed(*run.courant_spectral, 3) : "–") << ") | "
+       << shortest(r["A_over_h"].get<double>()) << " | " << run.failure_reason.value_or("")
+       << " at step " << x.failure_step << " | " << lead_text(x.energy_step, x.failure_step)
+       << " | " << lead_text(x.eq108_step, x.failure_step) << " | "
        << (!x.above_spectral   ? "not recorded"
            : *x.above_spectral ? "above from the first step"
                                : "below: no warning")
@@ -425,8 +425,8 @@ StudyReport energy_report(const ReportContext& ctx) {
 std::string energy_subtitle(const Spec&, const ojson& doc) {
   int n = 0;
   for (const auto& r : doc["cases"])
-    n += r["policy"].get<std::string>() == "fixed" && r["outcome"].is_string() &&
-         r["outcome"].get<std::string>() != "unstable";
+    n += r["policy"].get<std::string>() == "fixed" && !RunRow(r).outcome.empty() &&
+         RunRow(r).survived();
   return std::to_string(n) + " fixed-step runs that reach T";
 }
 

@@ -9,8 +9,11 @@
 #include <optional>
 
 #include "base/accuracy.hpp"
+#include "base/result.hpp"
+#include "csv.hpp"
 #include "key.hpp"
 #include "report_util.hpp"
+#include "run_row.hpp"
 #include "study.hpp"
 
 namespace mpmstab {
@@ -18,6 +21,26 @@ namespace mpmstab {
 namespace studies::comparison {
 namespace {
 using ojson = nlohmann::ordered_json;
+
+// The verdict and class of a cell that cell_agreement() (shared/paper_table1.hpp) finds stable
+// in both: by the factor between the max errors.
+void classify_both_stable(CellVerdict& cell, const RunRow& run, double error, double paper) {
+  cell.error_ratio = error / paper;
+  if (within_agreement_factor(error, paper)) {
+    cell.verdict = "agree";
+    cell.cls = "agree-stable";
+    return;
+  }
+  cell.verdict = "differ: our error " +
+                 beside_thresholds(*cell.error_ratio, {kAgreementFactor, 1 / kAgreementFactor}) +
+                 "x";
+  if (*cell.error_ratio > 1) {
+    cell.cls = run.method == "mpm" ? "mpm-error-larger" : "gimp-error-larger";
+  } else {
+    cell.cls = "error-smaller";
+  }
+}
+
 }  // namespace
 }  // namespace studies::comparison
 
@@ -43,7 +66,7 @@ std::vector<ClassDefinition> agreement_classes() {
   };
 }
 
-// The failure classes (failure_class()) and the meaningless one: the paper's run lasts longer.
+// The failure classes (failure_class()), the meaningless one and the one without a verdict.
 std::vector<ClassDefinition> failure_classes() {
   const std::string f = agreement_factor();
   // The failure classes (failure_class()) share their first condition.
@@ -88,6 +111,13 @@ std::vector<ClassDefinition> failure_classes() {
        "The paper's value is readable (a max error or `*`); ours reaches T with an error over "
        "time of at least A. It agrees with neither of the paper's verdicts and its error is "
        "not compared.",
+       ClassKind::verdict},
+      {"ours-too-short", "Ours without a verdict: too few steps, or under a wave pass",
+       "The paper's value is readable (a max error or `*`); ours reached T in fewer than " +
+           std::to_string(kMinStepsToJudge) + " steps, or stable in fewer than " +
+           shortest(kMinWavePasses) +
+           " wave pass c T / L: too short for a stability verdict. It agrees with neither of "
+           "the paper's verdicts and its error is not compared.",
        ClassKind::verdict},
   };
 }
@@ -174,7 +204,7 @@ CourantEdges courant_edges(const std::vector<nlohmann::ordered_json>& rows) {
   using namespace studies::comparison;
   std::map<std::pair<std::string, Key>, std::map<Key, bool>> all_fail;  // -> C -> all fail
   for (const auto& r : rows) {
-    const auto key = std::make_pair(r["method"].get<std::string>(), Key(r["A"].get<double>(), "A"));
+    const auto key = std::make_pair(RunRow(r).method, Key(r["A"].get<double>(), "A"));
     auto [it, fresh] = all_fail[key].try_emplace(Key(scan_courant(r), "c dt/h"), true);
     it->second = it->second && outcome(r) == "unstable";
   }
@@ -190,6 +220,7 @@ CourantEdges courant_edges(const std::vector<nlohmann::ordered_json>& rows) {
 
 bool CellVerdict::same_verdict() const {
   using namespace studies::comparison;
+  if (agreement) return verdicts_agree(*agreement);
   const ComparisonClass* k = find_class(cls);
   return k && (k->kind == ClassKind::agreement || k->kind == ClassKind::error);
 }
@@ -210,12 +241,13 @@ void AgreementCounts::add(const CellVerdict& v) {
 
 std::string failure_class(const nlohmann::ordered_json& r, const CourantEdges& edges) {
   using namespace studies::comparison;
-  const std::string method = r["method"].get<std::string>();
-  const double courant = r["courant"].get<double>();
-  const auto edge = edges.find({method, Key(r["A"].get<double>(), "A")});
-  const std::string reason = r["failure_reason"].get<std::string>();
-  if (has_number(r, "courant_spectral") && courant > r["courant_spectral"].get<double>())
-    return "above-spectral-limit";
+  const RunRow run(r);
+  const std::string& method = run.method;
+  const double courant = *run.courant;
+  const auto edge = edges.find({method, Key(*run.A, "A")});
+  // A run without a failure (too short for a verdict, say) has no reason: it is no wall exit.
+  const std::string reason = run.failure_reason.value_or("");
+  if (run.above_spectral_limit()) return "above-spectral-limit";
   if (edge != edges.end() && courant >= edge->second * (1 - 1e-9)) return "above-our-edge";
   if (method != "mpm" && reason == "left_domain") return "gimp-wall-exit";
   if (method == "mpm" && reason != "left_domain") return "mpm-crossing-failure";
@@ -225,64 +257,54 @@ std::string failure_class(const nlohmann::ordered_json& r, const CourantEdges& e
 CellVerdict classify(const nlohmann::ordered_json& r, const PaperCell* paper,
                      const CourantEdges& edges, ErrorAt error_at) {
   using namespace studies::comparison;
+  using enum CellAgreement;
   CellVerdict cell;
-  const std::string method = r["method"].get<std::string>();
-  const std::string ours = outcome(r);
-  if (!paper || paper->max_error.kind == PaperValue::unreadable) {
+  const RunRow run(r);
+  const CellAgreement agreement = cell_agreement(run, paper);
+  cell.agreement = agreement;
+  if (agreement == unreadable) {
     cell.verdict = "paper unreadable";
     cell.cls = "unreadable";
     return cell;
   }
-  const bool paper_stable = paper->max_error.kind == PaperValue::number;
   if (paper->dt_stable.kind == PaperValue::number && r["dt_stable_min"].is_number() &&
-      ours == "stable") {
+      run.outcome == "stable") {
     cell.dt_stable_ratio = r["dt_stable_min"].get<double>() / paper->dt_stable.value;
   }
-  if (ours == "meaningless") {
-    // It survived, but its answer is as large as the solution: it agrees with neither verdict.
-    cell.verdict =
-        paper_stable ? "paper stable, ours meaningless" : "paper unstable, ours meaningless";
-    cell.cls = "ours-meaningless";
-    return cell;
-  }
-  const bool ours_stable = ours == "stable";
-  const std::optional<double> error = compared_error(r, error_at);
-  if (paper_stable && ours_stable && !error) {
-    cell.verdict = "our error not recorded";
-    cell.cls = "unreadable";
-    return cell;
-  }
-  if (paper_stable && ours_stable) {
-    cell.error_ratio = *error / paper->max_error.value;
-    if (within_agreement_factor(*error, paper->max_error.value)) {
-      cell.verdict = "agree";
-      cell.cls = "agree-stable";
-    } else if (*cell.error_ratio > 1) {
+  const bool stable_in_paper = paper_says_stable(*paper);
+  switch (agreement) {
+    case ours_meaningless:
+      // It survived, but its answer is as large as the solution: it agrees with neither verdict.
       cell.verdict =
-          "differ: our error " +
-          beside_thresholds(*cell.error_ratio, {kAgreementFactor, 1 / kAgreementFactor}) + "x";
-      cell.cls = method == "mpm" ? "mpm-error-larger" : "gimp-error-larger";
-    } else {
-      cell.verdict =
-          "differ: our error " +
-          beside_thresholds(*cell.error_ratio, {kAgreementFactor, 1 / kAgreementFactor}) + "x";
-      cell.cls = "error-smaller";
-    }
-    return cell;
+          stable_in_paper ? "paper stable, ours meaningless" : "paper unstable, ours meaningless";
+      cell.cls = "ours-meaningless";
+      return cell;
+    case ours_too_short:
+      cell.verdict = stable_in_paper ? "paper stable, ours too short for a verdict"
+                                     : "paper unstable, ours too short for a verdict";
+      cell.cls = "ours-too-short";
+      return cell;
+    case both_stable:
+      if (const std::optional<double> error = compared_error(r, error_at)) {
+        classify_both_stable(cell, run, *error, paper->max_error.value);
+      } else {
+        cell.verdict = "our error not recorded";
+        cell.cls = "unreadable";
+      }
+      return cell;
+    case both_unstable:
+      cell.verdict = "agree: both unstable";
+      cell.cls = "agree-unstable";
+      return cell;
+    case paper_unstable_ours_stable:
+      cell.verdict = "paper unstable, ours stable";
+      cell.cls = "paper-unstable-ours-stable";
+      return cell;
+    default:
+      cell.verdict = "paper stable, ours unstable";
+      cell.cls = failure_class(r, edges);
+      return cell;
   }
-  if (!paper_stable && !ours_stable) {
-    cell.verdict = "agree: both unstable";
-    cell.cls = "agree-unstable";
-    return cell;
-  }
-  if (!paper_stable) {
-    cell.verdict = "paper unstable, ours stable";
-    cell.cls = "paper-unstable-ours-stable";
-    return cell;
-  }
-  cell.verdict = "paper stable, ours unstable";
-  cell.cls = failure_class(r, edges);
-  return cell;
 }
 
 namespace studies::comparison {

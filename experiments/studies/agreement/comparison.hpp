@@ -63,17 +63,20 @@ double scan_courant(const nlohmann::ordered_json& row);
 using CourantEdges = std::map<std::pair<std::string, Key>, double>;
 CourantEdges courant_edges(const std::vector<nlohmann::ordered_json>& courant_rows);
 
-// One cell against the paper. Our outcome is one of three (report_util.hpp's outcome()):
-// unstable, meaningless (survived to T, but the error over time reached A) and stable; the
-// paper's is stable or `*`. A meaningless run agrees with neither of the paper's verdicts: it is
-// a class of its own (ours-meaningless), never counted as agreeing.
+// One cell against the paper. Whether its stability verdicts agree is cell_agreement()'s
+// (shared/paper_table1.hpp), the rule table1.md counts by too: a meaningless run, or one too short
+// for a verdict, agrees with neither of the paper's verdicts (classes ours-meaningless and
+// ours-too-short), never counted as agreeing.
 struct CellVerdict {
   std::string verdict;                    // "agree", "differ: our error 7.6x", ...
   std::string cls;                        // class id
   std::optional<double> error_ratio;      // ours / paper, both stable
   std::optional<double> dt_stable_ratio;  // ours / paper, both numbers and ours stable
-  bool compared() const { return cls != "unreadable"; }
-  // Both stable (ours not meaningless) or both unstable.
+  // A Table 1 cell's agreement (classify()); none for a verdict of another kind (a figure's).
+  std::optional<CellAgreement> agreement;
+  // The paper's verdict is readable: compared.
+  bool compared() const { return agreement ? mpmstab::compared(*agreement) : cls != "unreadable"; }
+  // Both stable (ours stable over a wave pass, not meaningless) or both unstable.
   bool same_verdict() const;
   // Fully in agreement: same verdict, and the max errors within a factor 3 where both stable.
   bool agrees() const { return cls == "agree-stable" || cls == "agree-unstable"; }

@@ -14,6 +14,7 @@
 #include "csv.hpp"
 #include "key.hpp"
 #include "report_util.hpp"
+#include "run_row.hpp"
 
 namespace mpmstab {
 
@@ -441,7 +442,7 @@ FigureClass figure_class(const PaperFigure& f, const ojson& row, const CourantEd
     }
     return {failure_class(row, edges), paper_goes_on + " (T); ours fails at step " +
                                            std::to_string(steps) + " (" +
-                                           row.at("failure_reason").get<std::string>() + ")"};
+                                           RunRow(row).failure_reason.value_or("") + ")"};
   }
   if (ours == "meaningless") {
     return {"ours-meaningless",
@@ -456,7 +457,7 @@ FigureClass figure_class(const PaperFigure& f, const ojson& row, const CourantEd
       steps < *paper_steps) {
     return {failure_class(row, edges),
             "both fail, but " + paper_goes_on + " and ours fails at step " + std::to_string(steps) +
-                " (" + row.at("failure_reason").get<std::string>() +
+                " (" + RunRow(row).failure_reason.value_or("") +
                 "): the class of a failure where the paper's run lasts longer"};
   }
   return {"agree-unstable", "both fail"};

@@ -21,6 +21,7 @@
 #include "csv.hpp"
 #include "key.hpp"
 #include "report_util.hpp"
+#include "run_row.hpp"
 
 namespace mpmstab {
 
@@ -139,8 +140,7 @@ std::size_t table1_E_count(const Rows& rows) {
 std::map<std::string, double> spectral_limits(const Comparison& cmp) {
   std::map<std::string, double> limit;
   for (const auto& c : cmp.cells)
-    if (has_number(c.row, "courant_spectral"))
-      limit[c.row["method"].get<std::string>()] = c.row["courant_spectral"].get<double>();
+    if (const RunRow r(c.row); r.courant_spectral) limit[r.method] = *r.courant_spectral;
   return limit;
 }
 
@@ -151,7 +151,7 @@ bool same_cell(const ojson& a, const CaseSpec& c) {
   auto same_int = [&](const char* key, int v) {
     return !a.contains(key) || !a[key].is_number() || a[key].get<int>() == v;
   };
-  return a["method"] == std::string(to_string(p.method)) && a["E"].get<double>() == p.E &&
+  return RunRow(a).method == std::string(to_string(p.method)) && a["E"].get<double>() == p.E &&
          a["A"].get<double>() == p.A && a["dt"].get<double>() == p.dt &&
          same_int("cells", p.cells) && same_int("ppc", p.ppc);
 }
@@ -236,8 +236,7 @@ void write_verdicts_csv(const Comparison& cmp) {
 std::string peer_coverage(const Comparison& cmp) {
   std::map<std::pair<std::string, Key>, std::vector<double>> runs;  // -> each compared T
   for (const auto& r : cmp.peer_rows)
-    runs[{r["method"].get<std::string>(), Key(r["dt"].get<double>(), "dt")}].push_back(
-        r["T"].get<double>());
+    runs[{RunRow(r).method, Key(r["dt"].get<double>(), "dt")}].push_back(r["T"].get<double>());
   const double table_T = cmp.table1.cases.front().params.T;
   std::ostringstream s;
   s << "Our solver was run beside independent code (Uintah's 1D MPM code) on "
@@ -331,7 +330,7 @@ std::string compared_error_text(const Comparison& cmp) {
 std::vector<double> dt_stable_ratios(const Comparison& cmp, bool mpm) {
   AgreementCounts counts;
   for (const auto& c : cmp.cells) {
-    if ((c.row["method"] == "mpm") == mpm) counts.add(c.v);
+    if ((RunRow(c.row).method == "mpm") == mpm) counts.add(c.v);
   }
   return counts.dt_stable_ratios;
 }
@@ -385,7 +384,8 @@ void summary(std::ostream& md, const Comparison& cmp, const FigureSections& figu
      << "| cells | " << cmp.cells.size() << " (" << cmp.count("unreadable")
      << " with an unreadable paper value) |\n"
      << "| stability verdicts agreeing | " << all.verdicts_agree << " of " << all.verdicts_compared
-     << " |\n"
+     << " (every cell with a readable paper value, the sensitive ones by their verdict as run: "
+        "the cells table1.md counts) |\n"
      << "| ours meaningless (agreeing with neither verdict) | " << all.meaningless << " of "
      << all.verdicts_compared << " |\n"
      << "| max errors within a factor " << agreement_factor() << " (both stable) | "
@@ -507,20 +507,21 @@ void courant_scan_table(std::ostream& md, const Comparison& cmp) {
   double above_survivor_ratio = 0;  // the largest c dt/h over the limit of a scan run reaching T
   for (const auto& r : cmp.rows("courant")) {
     const double c = scan_courant(r);
-    const auto g = std::make_pair(r["method"].get<std::string>(), Key(r["A"].get<double>(), "A"));
+    const auto g = std::make_pair(RunRow(r).method, Key(r["A"].get<double>(), "A"));
     groups.insert(g);
     auto& [ok, n] = by_c[Key(c, "c dt/h")][g];
     ++n;
     if (survived(r)) ++ok;
-    const bool above = has_number(r, "courant_spectral") && c > r["courant_spectral"].get<double>();
-    if (above && outcome(r) == "unstable") {
+    const RunRow run(r);
+    // Above the limit at the scan's c dt / h (the row's, rounded: scan_courant()).
+    const bool above = run.courant_spectral && c > *run.courant_spectral;
+    if (above && run.outcome == "unstable") {
       ++above_failed;
-      worst_step = std::max(worst_step, r["failure_step"].get<std::int64_t>());
+      worst_step = std::max(worst_step, run.failure_step.value_or(0));
     }
-    if (above && survived(r)) {
+    if (above && run.survived()) {
       ++above_survived;
-      above_survivor_ratio = std::max(
-          above_survivor_ratio, r["courant"].get<double>() / r["courant_spectral"].get<double>());
+      above_survivor_ratio = std::max(above_survivor_ratio, *run.courant / *run.courant_spectral);
     }
   }
   md << "**Experiment** ([courant.md](courant.md)): each E of Table 1 for each method and A, "
@@ -659,14 +660,11 @@ void mpm_crossing_failure_section(std::ostream& md, const Comparison& cmp) {
     const ojson& r = c->row;
     const ojson* periodic = periodic_run(cmp, *c);
     md << "| " << cell_name(*c) << " | " << sci(r["courant"].get<double>()) << " | "
-       << text(r, "failure_reason") << " | "
+       << RunRow(r).failure_reason.value_or("") << " | "
        << (has_number(r, "failure_time")
                ? ratio(r["failure_time"].get<double>() / r["T"].get<double>())
                : std::string("–"))
-       << " | "
-       << (has_number(r, "max_error_over_time")
-               ? ratio(r["max_error_over_time"].get<double>() / r["A"].get<double>())
-               : std::string("–"))
+       << " | " << (RunRow(r).error_over_A() ? ratio(*RunRow(r).error_over_A()) : std::string("–"))
        << " | " << (periodic ? short_verdict(*periodic) : std::string("not rerun")) << " |\n";
   }
   md << "\n";
@@ -685,14 +683,14 @@ void crossing_table(std::ostream& md, const Comparison& cmp) {
         "|---|---|---|---|---|\n";
   const Rows& rows = cmp.rows("crossing");
   auto rel = [](const ojson& x) {
-    return survived(x) ? ratio(x["max_error_over_time"].get<double>() / x["A"].get<double>())
-                       : "\\* " + x["failure_reason"].get<std::string>();
+    const RunRow run(x);
+    return run.survived() ? ratio(*run.error_over_A()) : "\\* " + run.failure_reason.value_or("");
   };
   for (const auto& r : rows) {
-    if (r["method"] != "mpm") continue;
+    if (RunRow(r).method != "mpm") continue;
     const ojson* g = nullptr;
     for (const auto& q : rows) {
-      if (q["method"] == "gimp" && q["E"] == r["E"] && q["A"] == r["A"]) g = &q;
+      if (RunRow(q).method == "gimp" && q["E"] == r["E"] && q["A"] == r["A"]) g = &q;
     }
     md << "| " << shortest(r["E"].get<double>()) << " | " << shortest(r["A"].get<double>()) << " | "
        << (r["crossings"].is_null() ? std::string("–") : r["crossings"].dump()) << " | " << rel(r)
@@ -715,7 +713,7 @@ CalmAndCrossing calm_and_crossing(const Rows& crossing) {
     smallest_E = std::min(smallest_E, r["E"].get<double>());
   for (const auto& r : crossing) {
     if (r["E"].get<double>() != smallest_E || !survived(r)) continue;
-    const bool mpm = r["method"] == "mpm";
+    const bool mpm = RunRow(r).method == "mpm";
     const ojson*& calm = mpm ? runs.calm_mpm : runs.calm_gimp;
     if (!calm || r["A"].get<double>() < (*calm)["A"].get<double>()) calm = &r;
     if (mpm && r["crossings"].is_number() && r["crossings"].get<std::int64_t>() > 0 &&
@@ -855,14 +853,12 @@ void ours_meaningless_section(std::ostream& md, const Comparison& cmp) {
   int mpm = 0;
   for (const Cell* c : cells) {
     const ojson& r = c->row;
-    mpm += r["method"] == "mpm";
+    mpm += RunRow(r).method == "mpm";
     const ojson* periodic = cmp.have("walls") ? periodic_run(cmp, *c) : nullptr;
     md << "| " << cell_name(*c) << " | " << (c->paper ? show(c->paper->max_error) : "–") << " | "
        << opt_sci(r["max_error"]) << " | "
-       << (r["max_error_over_time"].is_number()
-               ? ratio(r["max_error_over_time"].get<double>() / r["A"].get<double>())
-               : std::string("–"))
-       << " | " << (periodic ? short_verdict(*periodic) : std::string("–")) << " |\n";
+       << (RunRow(r).error_over_A() ? ratio(*RunRow(r).error_over_A()) : std::string("–")) << " | "
+       << (periodic ? short_verdict(*periodic) : std::string("–")) << " |\n";
   }
   md << "\n"
      << mpm << " of " << cells.size()
@@ -884,7 +880,8 @@ void other_failure_section(std::ostream& md, const Comparison& cmp) {
     const double cr = scan_courant(c->row);
     int ok = 0, n = 0;
     for (const auto& r : cmp.rows("courant")) {
-      if (r["method"] != c->row["method"] || r["A"] != c->row["A"] || scan_courant(r) != cr) {
+      if (RunRow(r).method != RunRow(c->row).method || r["A"] != c->row["A"] ||
+          scan_courant(r) != cr) {
         continue;
       }
       ++n;
@@ -910,8 +907,8 @@ std::map<std::string, std::map<std::string, std::vector<double>>> eq108_ratios(
       }
       const std::string option = "sigma " + r["dt_stable_sigma"].get<std::string>() + ", ||v|| " +
                                  r["dt_stable_vnorm"].get<std::string>();
-      per_option[option][r["method"].get<std::string>()].push_back(
-          r["dt_stable_min"].get<double>() / c.paper->dt_stable.value);
+      per_option[option][RunRow(r).method].push_back(r["dt_stable_min"].get<double>() /
+                                                     c.paper->dt_stable.value);
     }
   }
   return per_option;
@@ -1026,10 +1023,10 @@ std::vector<Claim> comparison_claims(const Comparison& cmp) {
   for (std::size_t i = 0; i < cmp.cells.size(); ++i) {
     const Cell& c = cmp.cells[i];
     const ojson& r = c.row;
-    if (!has_number(r, "courant_spectral")) continue;
-    const double lim = r["courant_spectral"].get<double>();
-    const std::string m = r["method"].get<std::string>();
-    if (r["courant"].get<double>() > lim) {
+    const RunRow run(r);
+    if (!run.courant_spectral) continue;
+    const std::string m = run.method;
+    if (run.above_spectral_limit()) {
       ++above;
       above_fail += outcome(r) == "unstable";
     }
@@ -1059,7 +1056,8 @@ std::vector<Claim> comparison_claims(const Comparison& cmp) {
                     "No cell this tier reruns as an ensemble changes its verdict when its layout "
                     "is perturbed far below the discretisation error",
                     "{sensitive} of {rerun} cells rerun are sensitive ({paper_stable} of them "
-                    "stable in the paper); they are counted apart in table1.md; the cells near "
+                    "stable in the paper); table1.md counts each by its verdict as run, as this "
+                    "report does, and names it; the cells near "
                     "their edge too costly for this tier are rerun in ensembles.md (make "
                     "studies), which this tier does not read");
     e.count("sensitive", sensitive).count("rerun", rerun);

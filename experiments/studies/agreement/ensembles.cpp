@@ -8,6 +8,7 @@
 #include "claims.hpp"
 #include "csv.hpp"
 #include "report_util.hpp"
+#include "run_row.hpp"
 #include "shared/ensemble.hpp"
 #include "study.hpp"
 
@@ -75,9 +76,9 @@ std::string ensembles_markdown(const std::vector<ojson>& rows,
   for (const auto& c : cells) {
     const ojson& r = rows[c.row];
     md << "| " << shortest(r["E"].get<double>()) << " | " << shortest(r["A"].get<double>()) << " | "
-       << param(r["dt"].get<double>()) << " | " << text(r, "method") << " | "
+       << param(r["dt"].get<double>()) << " | " << RunRow(r).method << " | "
        << sci(r["courant"].get<double>()) << " | " << significant(r["A_over_h"].get<double>(), 3)
-       << " | " << significant(r["cT"].get<double>(), 3) << " | " << verdict(r) << " | " << work(r)
+       << " | " << significant(*RunRow(r).wave_passes, 3) << " | " << verdict(r) << " | " << work(r)
        << " | " << ensemble_text(r, c.result) << " |\n";
   }
   if (cells.empty()) md << "| – | | | | | | | no such cell | | |\n";

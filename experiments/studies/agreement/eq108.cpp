@@ -13,6 +13,7 @@
 #include "claims.hpp"
 #include "csv.hpp"
 #include "report_util.hpp"
+#include "run_row.hpp"
 #include "shared/paper_table1.hpp"
 #include "study.hpp"
 
@@ -217,9 +218,9 @@ std::string bound_text(const ojson& r) {
 
 // The error over time / A and the accuracy class of a run that reached T; dashes otherwise.
 std::string accuracy_columns(const ojson& r) {
-  if (!survived(r) || !has_number(r, "max_error_over_time")) return "– | –";
-  const double e = r["max_error_over_time"].get<double>() / r["A"].get<double>();
-  return sci(e) + " | " + std::string(to_string(accuracy_class(e, 1.0)));
+  const RunRow run(r);
+  if (!run.survived() || !run.error_over_A()) return "– | –";
+  return sci(*run.error_over_A()) + " | " + std::string(to_string(*run.accuracy()));
 }
 
 // A compared cell beyond the agreement factor, with the paper's value and the confidence of its

@@ -9,6 +9,7 @@
 #include "csv.hpp"
 #include "key.hpp"
 #include "report_util.hpp"
+#include "run_row.hpp"
 #include "study.hpp"
 
 namespace mpmstab {
@@ -75,7 +76,7 @@ std::string basis_of(const std::string& method) {
 }
 
 const PeerValue* find_peer(const std::vector<PeerValue>& peer, const ojson& row) {
-  const std::string basis = basis_of(row["method"].get<std::string>());
+  const std::string basis = basis_of(RunRow(row).method);
   for (const auto& v : peer) {
     if (v.basis == basis && v.E == row["E"].get<double>() && v.A == row["A"].get<double>() &&
         v.dt == row["dt"].get<double>() && v.T == row["T"].get<double>()) {
@@ -236,7 +237,7 @@ std::string every_case(const PeersStudy& s) {
        << (c.peer_outcome == "stable" ? std::string("reached T") : c.peer_outcome) << " | "
        << our_step << " / " << peer_step << " | " << opt_sci(r["max_error"]) << " / "
        << opt_number(c.peer_error) << " | " << opt_ratio(c.error_ratio) << " | "
-       << opt_sci(r["max_error_over_time"]) << " / " << opt_number(c.peer_over_time) << " | "
+       << opt_sci(RunRow(r).error_over_time) << " / " << opt_number(c.peer_over_time) << " | "
        << opt_ratio(c.over_time_ratio) << (c.errors_judged ? "" : " (not judged)") << " | "
        << (c.agrees ? "yes" : "**no**") << " |\n";
   }
@@ -260,7 +261,7 @@ std::string peers_verdicts_csv(const PeersStudy& s, const std::string& header_li
   auto yes = [](bool b) { return b ? "yes" : "no"; };
   for (const auto& c : s.cases) {
     const nlohmann::ordered_json& r = *c.row;
-    csv << r["method"].get<std::string>() << ',' << shortest(r["E"].get<double>()) << ','
+    csv << RunRow(r).method << ',' << shortest(r["E"].get<double>()) << ','
         << shortest(r["A"].get<double>()) << ',' << shortest(r["dt"].get<double>()) << ','
         << shortest(r["T"].get<double>()) << ',' << yes(c.outcome_agrees) << ','
         << yes(c.step_agrees) << ',' << yes(c.errors_agree) << ',' << yes(c.agrees) << '\n';

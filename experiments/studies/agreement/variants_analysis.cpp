@@ -5,6 +5,7 @@
 
 #include "agreement/variants.hpp"
 #include "report_util.hpp"
+#include "run_row.hpp"
 #include "shared/paper_table1.hpp"
 
 namespace mpmstab {
@@ -64,11 +65,9 @@ void tally_case(VariantOutcome& o, const CellReader& read, std::size_t i,
     if (outcome(row) == "meaningless") ++co.meaningless;
     if (v.error_ratio) co.error_ratios.push_back(*v.error_ratio);
     co.agree += v.agrees();
-    if (const std::optional<Accuracy> a = row_accuracy(row);
-        v.agrees() && outcome(row) == "stable" && a) {
-      co.agreeing_error_over_A.push_back(row["max_error_over_time"].get<double>() /
-                                         row["A"].get<double>());
-      co.agreeing_not_accurate += *a != Accuracy::accurate;
+    if (const RunRow run(row); v.agrees() && run.outcome == "stable" && run.accuracy()) {
+      co.agreeing_error_over_A.push_back(*run.error_over_A());
+      co.agreeing_not_accurate += *run.accuracy() != Accuracy::accurate;
     }
   }
   if (d->second.agrees()) {

@@ -10,6 +10,7 @@
 #include "csv.hpp"
 #include "key.hpp"
 #include "report_util.hpp"
+#include "run_row.hpp"
 #include "study.hpp"
 
 namespace mpmstab {
@@ -50,10 +51,9 @@ std::vector<Twin> twins(const std::vector<ojson>& rows) {
   return out;
 }
 
-// A run's error over time where it ended stable, else nullopt.
+// A run's error over time where it ended stable over at least a wave pass, else nullopt.
 std::optional<double> stable_error(const ojson* r) {
-  if (!r || outcome(*r) != "stable" || !has_number(*r, "max_error_over_time")) return std::nullopt;
-  return (*r)["max_error_over_time"].get<double>();
+  return r ? RunRow(*r).stable_error_over_time() : std::nullopt;
 }
 
 std::string verdict_or_dash(const ojson* r) {
@@ -61,8 +61,7 @@ std::string verdict_or_dash(const ojson* r) {
 }
 
 std::string error_or_dash(const ojson* r) {
-  return r && has_number(*r, "max_error_over_time") ? sci((*r)["max_error_over_time"].get<double>())
-                                                    : std::string("–");
+  return r ? opt_sci(RunRow(*r).error_over_time) : std::string("–");
 }
 
 // What the walls do, per method: the cells, how many change verdict, and over the cells where
@@ -86,7 +85,7 @@ std::map<std::string, MethodWalls> per_method(const std::vector<Twin>& cells) {
   std::map<std::string, MethodWalls> out;
   for (const auto& t : cells) {
     if (!t.dirichlet) continue;
-    MethodWalls& m = out[text(*t.periodic, "method")];
+    MethodWalls& m = out[RunRow(*t.periodic).method];
     ++m.cells;
     const bool d = survived(*t.dirichlet), p = survived(*t.periodic);
     m.same_verdict += outcome(*t.dirichlet) == outcome(*t.periodic);
@@ -171,10 +170,10 @@ std::string walls_table(const std::vector<Twin>& cells) {
   for (const auto& t : cells) {
     const ojson& p = *t.periodic;
     const auto ed = stable_error(t.dirichlet), ep = stable_error(t.periodic);
-    md << "| " << text(p, "method") << " | " << shortest(p["E"].get<double>()) << " | "
+    md << "| " << RunRow(p).method << " | " << shortest(p["E"].get<double>()) << " | "
        << shortest(p["A"].get<double>()) << " | " << param(p["dt"].get<double>()) << " | "
        << sci(p["courant"].get<double>()) << " | " << significant(p["A_over_h"].get<double>(), 3)
-       << " | " << significant(p["cT"].get<double>(), 3) << " | " << verdict_or_dash(t.dirichlet)
+       << " | " << significant(*RunRow(p).wave_passes, 3) << " | " << verdict_or_dash(t.dirichlet)
        << " | " << error_or_dash(t.dirichlet) << " | " << verdict(p) << " | "
        << error_or_dash(t.periodic) << " | " << (ed && ep ? ratio(*ep / *ed) : std::string("–"))
        << " |\n";

@@ -16,6 +16,7 @@
 #include "csv.hpp"
 #include "key.hpp"
 #include "report_util.hpp"
+#include "run_row.hpp"
 #include "shared/by_scene.hpp"
 #include "study.hpp"
 #include "sweep.hpp"
@@ -108,7 +109,7 @@ std::map<EdgeKey, ojson> edges_of(const StudyInputs& inputs) {
   const auto it = inputs.find("scene_edges");
   if (it == inputs.end() || !it->second.present()) return out;
   for (const auto& r : it->second.doc["cases"])
-    out[{str(r, "scene"), str(r, "method"), small_mass_of(r)}] = r;
+    out[{str(r, "scene"), RunRow(r).method, small_mass_of(r)}] = r;
   return out;
 }
 // The survival edge of a (scene, method, treatment) as the tables print it.
@@ -122,8 +123,8 @@ std::map<std::string, double> interior_limits(const std::vector<ojson>& rows,
                                               const std::map<std::string, Reference>& ref) {
   std::map<std::string, double> out;
   for (const auto& r : rows)
-    if (part_of(r, ref) == Part::interior && has_number(r, "courant_spectral"))
-      out[str(r, "method")] = num(r, "courant_spectral");
+    if (const RunRow run(r); part_of(r, ref) == Part::interior && run.courant_spectral)
+      out[run.method] = *run.courant_spectral;
   return out;
 }
 
@@ -149,7 +150,7 @@ std::pair<std::optional<double>, std::optional<double>> beside_peer(const ojson&
                                                                     const char* column,
                                                                     const CsvTable& peer,
                                                                     const std::string& problem) {
-  const std::string basis = str(r, "method") == "mpm" ? "linear" : "GIMP";
+  const std::string basis = RunRow(r).method == "mpm" ? "linear" : "GIMP";
   std::optional<double> theirs;
   for (const auto& row : peer.rows)
     if (row.at("problem") == problem && row.at("basis") == basis &&
@@ -164,7 +165,7 @@ std::string scenes_data(const std::vector<ojson>& rows, const SweepOutcome& out,
   const auto scenes = scenes_in_order(rows);
   std::map<std::string, int> series;
   for (const auto& r : rows)
-    if (part_of(r, ref) == Part::trade) series.emplace(str(r, "method"), 0);
+    if (part_of(r, ref) == Part::trade) series.emplace(RunRow(r).method, 0);
   int k = 0;
   for (auto& [m, s] : series)
     s = k++;
@@ -181,8 +182,8 @@ std::string scenes_data(const std::vector<ojson>& rows, const SweepOutcome& out,
     const std::size_t stride = std::max<std::size_t>(1, h.size() / kFigurePoints);
     for (std::size_t j = 0; j < h.size(); j += stride) {
       if (!h[j]["error"].is_number()) continue;
-      csv << panel << "," << series[str(r, "method")] << "," << str(r, "scene") << ","
-          << str(r, "method") << "," << shortest(h[j]["time"].get<double>()) << ","
+      csv << panel << "," << series[RunRow(r).method] << "," << str(r, "scene") << ","
+          << RunRow(r).method << "," << shortest(h[j]["time"].get<double>()) << ","
           << sci(h[j]["error"].get<double>() / num(r, "A"), 4) << ","
           << over_A(h[j], "tip_u", num(r, "A")) << "," << over_A(h[j], "tip_u_exact", num(r, "A"))
           << "\n";
@@ -206,7 +207,7 @@ Treated treated_runs(const std::vector<ojson>& rows, const std::map<std::string,
   for (const auto& r : rows) {
     const Part p = part_of(r, ref);
     if (p == Part::treatment || (p == Part::trade && at_reference(r)))
-      treated[{str(r, "scene"), str(r, "method")}][small_mass_of(r)] = r;
+      treated[{str(r, "scene"), RunRow(r).method}][small_mass_of(r)] = r;
   }
   return treated;
 }
@@ -224,8 +225,9 @@ std::string per_scene_section(const std::vector<ojson>& rows,
         "|---|---|---|---:|---:|---:|---:|---:|---:|---:|\n";
   for (const auto& r : rows) {
     if (part_of(r, ref) != Part::trade || !at_reference(r)) continue;
-    const std::string method = str(r, "method");
-    const auto dense = opt(r, "courant_spectral");
+    const RunRow run(r);
+    const std::string method = run.method;
+    const auto dense = run.courant_spectral;
     const auto it = interior.find(method);
     std::string q = "–";
     if (dense && it != interior.end()) {
@@ -239,10 +241,10 @@ std::string per_scene_section(const std::vector<ojson>& rows,
       q = fixed(x, 3);
     }
     md << "| " << str(r, "scene") << " | " << method << " | " << verdict(r) << " | "
-       << opt_sci_of(relative(r, "max_error_over_time")) << " | "
-       << opt_sci_of(relative(r, "error_l2_time")) << " | " << work(r) << " | "
-       << edge_text(edges, {str(r, "scene"), method, "none"}) << " | " << opt_fixed(dense) << " | "
-       << (it == interior.end() ? "–" : fixed(it->second, 3)) << " | " << q << " |\n";
+       << opt_sci_of(RunRow(r).error_over_A()) << " | " << opt_sci_of(relative(r, "error_l2_time"))
+       << " | " << work(r) << " | " << edge_text(edges, {str(r, "scene"), method, "none"}) << " | "
+       << opt_fixed(dense) << " | " << (it == interior.end() ? "–" : fixed(it->second, 3)) << " | "
+       << q << " |\n";
   }
 
   return md.str();
@@ -257,9 +259,9 @@ std::string trade_section(const std::vector<ojson>& rows,
         "cost |\n|---|---|---:|---|---:|---:|\n";
   for (const auto& r : rows) {
     if (part_of(r, ref) != Part::trade) continue;
-    md << "| " << str(r, "scene") << " | " << str(r, "method") << " | "
+    md << "| " << str(r, "scene") << " | " << RunRow(r).method << " | "
        << shortest(num(r, "cfl_factor")) << " | " << verdict(r) << " | "
-       << opt_sci_of(relative(r, "max_error_over_time")) << " | " << work(r) << " |\n";
+       << opt_sci_of(RunRow(r).error_over_A()) << " | " << work(r) << " |\n";
   }
 
   return md.str();
@@ -276,10 +278,10 @@ std::string extremes_section(const std::vector<ojson>& rows,
     n.verdicts += !outcome(r).empty();
   for (const auto& r : rows) {
     if (part_of(r, ref) != Part::extreme) continue;
-    md << "| " << str(r, "scene") << " | " << str(r, "method") << " | "
+    md << "| " << str(r, "scene") << " | " << RunRow(r).method << " | "
        << shortest(num(r, "cfl_factor")) << " | " << significant(num(r, "A_over_h"), 3) << " | "
-       << significant(num(r, "cT"), 3) << " | " << verdict(r) << " | "
-       << opt_sci_of(relative(r, "max_error_over_time")) << " |\n";
+       << significant(*RunRow(r).wave_passes, 3) << " | " << verdict(r) << " | "
+       << opt_sci_of(RunRow(r).error_over_A()) << " |\n";
   }
 
   return md.str();
@@ -298,7 +300,7 @@ std::string small_mass_section(const Treated& treated, const std::map<EdgeKey, o
       const auto it = by.find(t);
       if (it == by.end()) continue;
       md << "| " << key.first << " | " << key.second << " | " << t << " | " << verdict(it->second)
-         << " | " << opt_sci_of(relative(it->second, "max_error_over_time")) << " | "
+         << " | " << opt_sci_of(RunRow(it->second).error_over_A()) << " | "
          << edge_text(edges, {key.first, key.second, t}) << " |\n";
     }
   }
@@ -330,7 +332,7 @@ std::string peer_sections(const ReportContext& ctx, const std::map<std::string, 
         survived(r) && theirs && in_cells && std::abs(*in_cells / *theirs - 1) <= kPeerTolerance;
     ++n.peer_compared;
     n.peer_agree += agree;
-    md << "| " << str(r, "method") << " | " << outcome(r) << " | stable | " << opt_sci_of(in_cells)
+    md << "| " << RunRow(r).method << " | " << outcome(r) << " | stable | " << opt_sci_of(in_cells)
        << " | " << opt_sci_of(theirs) << " | "
        << (in_cells && theirs ? fixed(*in_cells / *theirs, 5) : "–") << " |\n";
   }
@@ -353,7 +355,7 @@ std::string peer_sections(const ReportContext& ctx, const std::map<std::string, 
         survived(r) && theirs && in_cells && *in_cells < kRoundOffCells && *theirs < kRoundOffCells;
     ++n.rigid_compared;
     n.rigid_agree += agree;
-    md << "| " << str(r, "method") << " | " << shortest(num(r, "steps")) << " | " << outcome(r)
+    md << "| " << RunRow(r).method << " | " << shortest(num(r, "steps")) << " | " << outcome(r)
        << " | stable | " << opt_sci_of(in_cells) << " | " << opt_sci_of(theirs) << " |\n";
   }
 
@@ -411,18 +413,28 @@ std::vector<Claim> survey_claims(const std::vector<ojson>& rows, const SurveyCou
 std::vector<Claim> treatment_claims(const Treated& treated) {
   std::vector<Claim> claims;
   // Each treatment against no treatment, over the (scene, method) pairs that ran both: a run
-  // is good when it is stable (not unstable, not meaningless).
+  // is good when it is stable over at least a wave pass (not unstable, not meaningless). A pair
+  // with a run too short for a verdict (under a wave pass, or too few steps) is left out.
+  auto has_verdict = [](const RunRow& r) {
+    return r.ending() == Ending::stable || r.ending() == Ending::unstable ||
+           r.ending() == Ending::meaningless;
+  };
   for (const char* treatment : {"cutoff", "drop", "momentum"}) {
-    int rescued = 0, rescued_accurate = 0, failing = 0, broken = 0, good = 0;
+    int rescued = 0, rescued_accurate = 0, failing = 0, broken = 0, good = 0, short_pairs = 0;
     for (const auto& [key, by] : treated) {
       const auto none = by.find("none"), it = by.find(treatment);
       if (none == by.end() || it == by.end()) continue;
-      const bool stable_without = outcome(none->second) == "stable";
-      const bool stable_with = outcome(it->second) == "stable";
+      const RunRow without(none->second), with(it->second);
+      if (!has_verdict(without) || !has_verdict(with)) {
+        ++short_pairs;
+        continue;
+      }
+      const bool stable_without = without.ending() == Ending::stable;
+      const bool stable_with = with.ending() == Ending::stable;
       if (!stable_without) {
         ++failing;
         rescued += stable_with;
-        rescued_accurate += stable_with && accurate_run(it->second);
+        rescued_accurate += with.accurate();
       } else {
         ++good;
         broken += !stable_with;
@@ -432,7 +444,9 @@ std::vector<Claim> treatment_claims(const Treated& treated) {
                     "The {treatment} treatment makes every run that is not stable without a "
                     "treatment stable, and no stable run worse: {rescued} of {failing} made "
                     "stable ({accurate} of them accurate), {broken} of {good} made unstable or "
-                    "meaningless.");
+                    "meaningless; {short} pairs with a run too short for a verdict (under a "
+                    "wave pass, or too few steps) are not counted.");
+    c.count("short", short_pairs);
     c.value("treatment", treatment).count("rescued", rescued).count("failing", failing);
     c.count("accurate", rescued_accurate);
     c.count("broken", broken).count("good", good);
@@ -450,8 +464,8 @@ Claim trade_claim(const std::vector<ojson>& rows, const std::map<std::string, Re
     std::map<std::pair<std::string, std::string>, std::map<Key, double>> err;
     for (const auto& r : rows) {
       if (part_of(r, ref) != Part::trade || !survived(r)) continue;
-      if (const auto e = relative(r, "max_error_over_time"))
-        err[{str(r, "scene"), str(r, "method")}][Key(num(r, "cfl_factor"), "cfl_factor")] = *e;
+      if (const auto e = RunRow(r).error_over_A())
+        err[{str(r, "scene"), RunRow(r).method}][Key(num(r, "cfl_factor"), "cfl_factor")] = *e;
     }
     int pairs = 0, flat = 0;
     double worst = 0;

@@ -13,6 +13,7 @@
 #include "claims.hpp"
 #include "csv.hpp"
 #include "report_util.hpp"
+#include "run_row.hpp"
 #include "study.hpp"
 
 namespace mpmstab {
@@ -36,8 +37,7 @@ CornerRun corner_of(const ojson& r, CornerKind kind, double length) {
   CornerRun c{.kind = kind, .length = length, .A = r["A"].get<double>()};
   c.cells = r["cells"].get<int>();
   c.outcome = outcome(r);
-  if (has_number(r, "max_error_over_time"))
-    c.error_over_A = r["max_error_over_time"].get<double>() / c.A;
+  if (const auto e = RunRow(r).error_over_time) c.error_over_A = *e / c.A;
   return c;
 }
 
@@ -45,9 +45,9 @@ CornerRun corner_of(const ojson& r, CornerKind kind, double length) {
 // spectral limit: a region can exist only there.
 bool worth_checking(const ojson& base) {
   const CornerRun c = corner_of(base, CornerKind::base, kRegionRule.lengths.front());
-  return c.passes() && has_number(base, "courant_spectral") &&
-         base["courant"].get<double>() <=
-             base["courant_spectral"].get<double>() / kRegionRule.limit_margin;
+  const RunRow run(base);
+  return c.passes() && run.courant_spectral &&
+         *run.courant <= *run.courant_spectral / kRegionRule.limit_margin;
 }
 
 // What a corner run is for: its corner (kind and length).
@@ -66,13 +66,13 @@ std::vector<FollowUp> advice_follow_up(const FollowUpContext& c) {
 }
 
 CheckedSetting setting_of(const ojson& r) {
-  CheckedSetting s{.method = text(r, "method"),
+  CheckedSetting s{.method = RunRow(r).method,
                    .transfer = transfer_of(r),
                    .update = text(r, "update"),
                    .cells = r["cells"].get<int>(),
                    .ppc = r["ppc"].get<int>(),
                    .courant = r["cfl_factor"].get<double>()};
-  if (has_number(r, "courant_spectral")) s.courant_spectral = r["courant_spectral"].get<double>();
+  s.courant_spectral = RunRow(r).courant_spectral;
   s.corners.push_back(corner_of(r, CornerKind::base, kRegionRule.lengths.front()));
   return s;
 }

@@ -15,6 +15,7 @@
 #include "claims.hpp"
 #include "csv.hpp"
 #include "report_util.hpp"
+#include "run_row.hpp"
 #include "study.hpp"
 
 namespace mpmstab {
@@ -93,8 +94,7 @@ std::vector<SampleProblem> findings(const std::vector<CheckedSetting>& settings,
       const ojson& r = *asked.front();
       VerifyingRun v{.what = what, .params = params};
       v.outcome = outcome(r);
-      if (has_number(r, "max_error_over_time"))
-        v.error_over_A = r["max_error_over_time"].get<double>() / params.A;
+      if (const auto e = RunRow(r).error_over_time) v.error_over_A = *e / params.A;
       v.particle_steps = particle_steps(r);
       v.passes =
           v.outcome == "stable" && v.error_over_A && *v.error_over_A <= sp.problem.problem.target;

@@ -23,6 +23,7 @@
 #include "claims.hpp"
 #include "csv.hpp"
 #include "report_util.hpp"
+#include "run_row.hpp"
 #include "step/simulation.hpp"
 #include "study.hpp"
 
@@ -40,7 +41,7 @@ MethodKey key_of(const ojson& r) {
   int order = 0;
   if (transfer == "xpic" && has_number(r, "xpic_order")) order = r["xpic_order"].get<int>();
   if (transfer == "fmpm" && has_number(r, "fmpm_order")) order = r["fmpm_order"].get<int>();
-  return {r["method"].get<std::string>(), r["walls"].get<std::string>(), transfer, order,
+  return {RunRow(r).method, r["walls"].get<std::string>(), transfer, order,
           r["update"].get<std::string>()};
 }
 
@@ -117,14 +118,6 @@ std::optional<double> error_of(const ojson& r) {
   return r["max_error"].get<double>();
 }
 
-// The error over time (max over steps and particles) of a stable run: what the orders are fitted
-// to and the methods are ranked by; the error at T is shown, never fitted (docs/theory.md,
-// "Orders of convergence").
-std::optional<double> over_time_of(const ojson& r) {
-  if (outcome(r) != "stable" || !has_number(r, "max_error_over_time")) return std::nullopt;
-  return r["max_error_over_time"].get<double>();
-}
-
 double dt_of(const ojson& r) {
   return has_number(r, "dt") ? r["dt"].get<double>()
                              : r["cfl_factor"].get<double>() * r["dt_cfl"].get<double>();
@@ -148,7 +141,7 @@ std::vector<MethodRow> method_rows(const std::vector<ojson>& edges,
   for (MethodRow& m : rows) {
     std::vector<std::pair<double, double>> h_points, dt_points;
     for (const ojson* r : m.grid) {
-      const auto e = over_time_of(*r);
+      const auto e = stable_error_over_time(*r);
       // Orders only in their regime (report_util.hpp): accurate runs, and for h no crossing.
       if (is_order_h_run(*r)) {
         ++m.order_h.runs;
@@ -161,9 +154,10 @@ std::vector<MethodRow> method_rows(const std::vector<ojson>& edges,
           (*r)["A"].get<double>() != (*m.table1)["A"].get<double>())
         continue;
       ++m.order_dt.runs;
-      const bool below_limit =
-          !has_number(*r, "courant_spectral") ||
-          (*r)["courant"].get<double>() <= (*r)["courant_spectral"].get<double>();
+      // The error over time (max over steps and particles) of a stable run is what the orders
+      // are fitted to and the methods are ranked by; the error at T is shown, never fitted
+      // (docs/theory.md, "Orders of convergence").
+      const bool below_limit = !above_spectral_limit(*r);
       if (e && below_limit && accurate_run(*r)) dt_points.emplace_back(dt_of(*r), *e);
     }
     m.order_h.value = loglog_slope(h_points);
@@ -208,7 +202,7 @@ std::string table1_text(const MethodRow& m) {
 // energy balance error there ("–" where the run did not end stable: its verdict is in the column
 // before).
 std::string table1_over_time(const MethodRow& m) {
-  const auto e = m.table1 ? over_time_of(*m.table1) : std::nullopt;
+  const auto e = m.table1 ? stable_error_over_time(*m.table1) : std::nullopt;
   if (!e || !has_number(*m.table1, "A")) return "–";
   const double A = (*m.table1)["A"].get<double>();
   return sci(*e) + " (" + ratio(*e / A) + " A, " + std::string(to_string(accuracy_class(*e, A))) +
@@ -339,7 +333,7 @@ std::vector<ModeCheck> mode_checks(const StudyInputs& inputs) {
     c.label = method_label(r);
     c.cells = r["cells"].get<int>();
     c.steps = r["steps"].get<long long>();
-    c.run = r["max_error_over_time"].get<double>() / r["A"].get<double>();
+    c.run = *RunRow(r).error_over_A();
     c.run_outcome = outcome(r);
     const double kh = 2 * std::numbers::pi / c.cells;
     const DispersionPoint d = dispersion_at(*p, kWaveCourant, kh);
@@ -451,7 +445,7 @@ std::string reading(const std::vector<MethodRow>& rows, const std::vector<WaveCe
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const MethodRow& m = rows[i];
     ++outcomes[m.table1 ? outcome(*m.table1) : std::string()];
-    if (const auto e = m.table1 ? over_time_of(*m.table1) : std::nullopt) {
+    if (const auto e = m.table1 ? stable_error_over_time(*m.table1) : std::nullopt) {
       (accurate_run(*m.table1) ? accurate : inaccurate) += 1;
       if (!best_error || *e < *best_error) best_error = e;
     }
@@ -473,7 +467,7 @@ std::string reading(const std::vector<MethodRow>& rows, const std::vector<WaveCe
     if (!widest || edge > *widest) widest = edge;
   }
   const auto error_text = [&](std::size_t i) -> std::optional<std::string> {
-    const auto e = rows[i].table1 ? over_time_of(*rows[i].table1) : std::nullopt;
+    const auto e = rows[i].table1 ? stable_error_over_time(*rows[i].table1) : std::nullopt;
     return e ? std::optional(sci(*e)) : std::nullopt;
   };
   const auto edge_of = [&](std::size_t i) -> std::optional<std::string> {
@@ -576,7 +570,7 @@ std::string methods_data(const std::vector<MethodRow>& rows, const std::string& 
       << codes(kBases) << "); shape: transfer (" << codes(kTransfers) << ")\n"
       << "panel,series,shape,edge_over_cfl,error,meaningless_at_edge\n";
   for (const auto& m : rows) {
-    const auto e = m.table1 ? over_time_of(*m.table1) : std::nullopt;
+    const auto e = m.table1 ? stable_error_over_time(*m.table1) : std::nullopt;
     if (!e || !has_number(*m.edge, "dt_edge_over_cfl")) continue;
     csv << index_in(kUpdates, std::get<4>(m.key)) << ',' << index_in(kBases, basis_text(m.key))
         << ',' << index_in(kTransfers, transfer_text(m.key)) << ','

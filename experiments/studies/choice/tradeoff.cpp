@@ -19,6 +19,7 @@
 #include "csv.hpp"
 #include "key.hpp"
 #include "report_util.hpp"
+#include "run_row.hpp"
 #include "scenes/validate.hpp"
 #include "shared/by_scene.hpp"
 #include "study.hpp"
@@ -75,13 +76,6 @@ std::string setting(const ojson& r) {
 // ---------------------------------------------------------------------------------------------
 // Accuracy and cost
 
-// The accuracy of a run: its max error over time, when its outcome is stable. A run that failed
-// or whose error reached A reaches none (docs/studies.md, "Outcomes").
-std::optional<double> accuracy(const ojson& r) {
-  if (outcome(r) != "stable" || !r["max_error_over_time"].is_number()) return std::nullopt;
-  return r["max_error_over_time"].get<double>();
-}
-
 // Whether run i ranks before run j on cost: fewer particle-steps, then the smaller error, then
 // the earlier row. A total order, so that every ranking is the same on every rerun.
 bool cheaper(const std::vector<ojson>& rows, std::size_t i, std::size_t j) {
@@ -89,7 +83,8 @@ bool cheaper(const std::vector<ojson>& rows, std::size_t i, std::size_t j) {
   const double ci = particle_steps(rows[i]), cj = particle_steps(rows[j]);
   if (less(ci, cj) || less(cj, ci)) return less(ci, cj);
   constexpr double kNone = std::numeric_limits<double>::infinity();
-  const double ei = accuracy(rows[i]).value_or(kNone), ej = accuracy(rows[j]).value_or(kNone);
+  const double ei = stable_error_over_time(rows[i]).value_or(kNone),
+               ej = stable_error_over_time(rows[j]).value_or(kNone);
   if (less(ei, ej) || less(ej, ei)) return less(ei, ej);
   return i < j;
 }
@@ -100,12 +95,12 @@ std::set<std::size_t> pareto_front(const std::vector<ojson>& rows,
                                    const std::vector<std::size_t>& idx) {
   std::set<std::size_t> front;
   for (std::size_t i : idx) {
-    const auto ei = accuracy(rows[i]);
+    const auto ei = stable_error_over_time(rows[i]);
     if (!ei) continue;
     const double ci = particle_steps(rows[i]);
     bool dominated = false;
     for (std::size_t j : idx) {
-      const auto ej = accuracy(rows[j]);
+      const auto ej = stable_error_over_time(rows[j]);
       if (j == i || !ej) continue;
       const double cj = particle_steps(rows[j]);
       if (cj <= ci && *ej <= *ei && (cj < ci || *ej < *ei)) dominated = true;
@@ -123,7 +118,7 @@ std::vector<std::optional<std::size_t>> cheapest(const std::vector<ojson>& rows,
   std::vector<std::optional<std::size_t>> best(kTargets.size());
   for (std::size_t t = 0; t < kTargets.size(); ++t) {
     for (std::size_t i : idx) {
-      const auto e = accuracy(rows[i]);
+      const auto e = stable_error_over_time(rows[i]);
       if (!e || *e > kTargets[t]) continue;
       if (!best[t] || cheaper(rows, i, *best[t])) best[t] = i;
     }
@@ -178,28 +173,18 @@ std::string list_of_E(const std::vector<double>& Es) {
 // ---------------------------------------------------------------------------------------------
 // How the runs ended, per policy (docs/studies.md, "Outcomes")
 
-struct Endings {
-  int runs = 0;
-  std::map<std::string, int> outcomes;  // by outcome(): unstable, meaningless, stable
-  std::map<std::string, int> reasons;   // the unstable runs, by failure_reason
-};
-
-std::map<std::string, Endings> endings_by_policy(const std::vector<ojson>& rows) {
-  std::map<std::string, Endings> by_policy;
+std::map<std::string, VerdictTally> endings_by_policy(const std::vector<ojson>& rows) {
+  std::map<std::string, VerdictTally> by_policy;
   for (const auto& p : kPolicies)
     by_policy[p];
-  for (const auto& r : rows) {
-    Endings& e = by_policy[text(r, "policy")];
-    ++e.runs;
-    ++e.outcomes[outcome(r)];
-    if (outcome(r) == "unstable") ++e.reasons[text(r, "failure_reason")];
-  }
+  for (const auto& r : rows)
+    by_policy[text(r, "policy")].add(r);
   return by_policy;
 }
 
 // The failure reasons the table has a column for: dt_collapse always, then every other reason
 // some run stopped with, alphabetically.
-std::vector<std::string> reason_columns(const std::map<std::string, Endings>& by_policy) {
+std::vector<std::string> reason_columns(const std::map<std::string, VerdictTally>& by_policy) {
   std::set<std::string> others;
   for (const auto& [p, e] : by_policy) {
     for (const auto& [reason, n] : e.reasons) {
@@ -234,9 +219,9 @@ std::string endings_table(const std::vector<ojson>& rows, const std::string& of_
     md << "---|";
   md << "\n";
   for (const auto& p : kPolicies) {
-    const Endings& e = by_policy.at(p);
-    md << "| " << p << " | " << e.runs << " | " << count_of(e.outcomes, "stable") << " | "
-       << count_of(e.outcomes, "meaningless") << " | " << count_of(e.outcomes, "unstable") << " |";
+    const VerdictTally& e = by_policy.at(p);
+    md << "| " << p << " | " << e.runs << " | " << e.stable << " | " << e.meaningless << " | "
+       << e.unstable << " |";
     for (const auto& reason : reasons)
       md << " " << count_of(e.reasons, reason) << " |";
     md << "\n";
@@ -252,9 +237,9 @@ ojson endings_json(const std::vector<ojson>& rows) {
     for (const auto& [reason, n] : e.reasons)
       reasons[reason] = n;
     j[p] = {{"runs", e.runs},
-            {"stable", count_of(e.outcomes, "stable")},
-            {"meaningless", count_of(e.outcomes, "meaningless")},
-            {"unstable", count_of(e.outcomes, "unstable")},
+            {"stable", e.stable},
+            {"meaningless", e.meaningless},
+            {"unstable", e.unstable},
             {"failure_reasons", reasons}};
   }
   return j;
@@ -355,10 +340,6 @@ std::string row_verdict(const ojson& r) {
 
 // A run whose largest step lies above its scheme's spectral limit (where both are recorded):
 // its survival holds for this amplitude and run length only.
-bool above_limit(const ojson& r) {
-  return has_number(r, "courant") && has_number(r, "courant_spectral") &&
-         r["courant"].get<double>() > r["courant_spectral"].get<double>();
-}
 
 // Whether v is advised (the rule above), and the rows it rests on or why not. A run that is not
 // stable up to the checking value (or, with none, among all the group's runs at E) tells first,
@@ -376,10 +357,10 @@ ValueCheck check_value(const TradeRows& t, const AdviceGroup& g, double v) {
       if (outcome(t.rows[i]) != "stable" && c.why_not.empty()) {
         c.why_not = row_verdict(t.rows[i]);
       }
-      if (above_limit(t.rows[i]) && c.why_not.empty()) {
+      if (above_spectral_limit(t.rows[i]) && c.why_not.empty()) {
         c.why_not = row_verdict(t.rows[i]) + ", but its steps reach c dt/h " +
                     fixed(t.rows[i]["courant"].get<double>(), 3) + ", above the spectral limit " +
-                    fixed(t.rows[i]["courant_spectral"].get<double>(), 3);
+                    fixed(*RunRow(t.rows[i]).courant_spectral, 3);
       }
       c.rests_on.push_back(i);
     }
@@ -607,7 +588,7 @@ std::string cheapest_table(const TradeRows& t, const CheapestByE& best,
         continue;
       }
       const ojson& r = t.rows[*b];
-      md << " " << setting(r) << ": " << sci(*accuracy(r)) << " in " << work(r)
+      md << " " << setting(r) << ": " << sci(*stable_error_over_time(r)) << " in " << work(r)
          << " particle-steps (" << r["steps"].dump() << " steps) |";
     }
     md << "\n";
@@ -644,8 +625,9 @@ std::vector<double> gimp_step_errors(const TradeRows& t, double E) {
   for (const auto& r : t.rows) {
     const std::string policy = text(r, "policy");
     if (r["E"].get<double>() == E && method_label(r) == "gimp" &&
-        r["cells"].get<int>() == kCoarse && (policy == "cfl" || policy == "fixed") && accuracy(r)) {
-      errs.push_back(*accuracy(r));
+        r["cells"].get<int>() == kCoarse && (policy == "cfl" || policy == "fixed") &&
+        stable_error_over_time(r)) {
+      errs.push_back(*stable_error_over_time(r));
     }
   }
   return errs;
@@ -664,9 +646,9 @@ BoundAgainstCfl bound_against_cfl(const TradeRows& t) {
     for (const char* m : {"gimp", "mpm"}) {
       const ojson* b = t.find(E, m, "adaptive", kBoundSafety, kCoarse);
       const ojson* c = t.find(E, m, "cfl", kCflRef, kCoarse);
-      if (b && c && accuracy(*b) && accuracy(*c)) {
+      if (b && c && stable_error_over_time(*b) && stable_error_over_time(*c)) {
         out.step_ratio.push_back((*b)["steps"].get<double>() / (*c)["steps"].get<double>());
-        out.error_ratio.push_back(*accuracy(*b) / *accuracy(*c));
+        out.error_ratio.push_back(*stable_error_over_time(*b) / *stable_error_over_time(*c));
       }
     }
   }
@@ -694,8 +676,8 @@ std::string gimp_spread_sentences(const TradeRows& t) {
     std::string moved;
     for (std::size_t i = 0; i < finer.size(); ++i) {
       const ojson* g = t.find(E, "gimp", "cfl", kCflRef, finer[i]);
-      if (!accuracy(*g)) continue;
-      moved += (moved.empty() ? "" : ", ") + sci(*accuracy(*g)) + " on " +
+      if (!stable_error_over_time(*g)) continue;
+      moved += (moved.empty() ? "" : ", ") + sci(*stable_error_over_time(*g)) + " on " +
                std::to_string(finer[i]) + " cells";
     }
     if (!moved.empty())
@@ -711,9 +693,9 @@ std::string refinement_sentence(const TradeRows& t) {
   for (double E : t.Es) {
     const ojson* g100 = t.find(E, "gimp", "cfl", kCflRef, kCoarse);
     const ojson* g400 = t.find(E, "gimp", "cfl", kCflRef, kFine);
-    if (g100 && g400 && accuracy(*g100) && accuracy(*g400)) {
+    if (g100 && g400 && stable_error_over_time(*g100) && stable_error_over_time(*g400)) {
       ++refined_total;
-      refined_better += *accuracy(*g400) < *accuracy(*g100);
+      refined_better += *stable_error_over_time(*g400) < *stable_error_over_time(*g100);
     }
   }
   if (refined_total == 0) return "";
@@ -752,25 +734,25 @@ MethodComparison mpm_against_gimp(const TradeRows& t) {
     const ojson *best_gimp = nullptr, *best_mpm = nullptr;
     for (const auto& r : t.rows) {
       const std::string m = method_label(r);
-      if (r["E"].get<double>() != E || !accuracy(r) || (m != "gimp" && m != "mpm")) continue;
+      if (r["E"].get<double>() != E || !stable_error_over_time(r) || (m != "gimp" && m != "mpm"))
+        continue;
       const ojson*& best = m == "gimp" ? best_gimp : best_mpm;
-      if (!best || *accuracy(r) < *accuracy(*best)) best = &r;
+      if (!best || *stable_error_over_time(r) < *stable_error_over_time(*best)) best = &r;
     }
     // The error with its size against A and its accuracy class: the best is not always accurate.
     auto error_text = [](const ojson& r) {
-      const std::optional<Accuracy> a = row_accuracy(r);
-      return sci(*accuracy(r)) + (a ? " (" +
-                                          beside_thresholds(r["max_error_over_time"].get<double>() /
-                                                                r["A"].get<double>(),
-                                                            {kAccurateFraction, 1.0}) +
-                                          " A, " + std::string(to_string(*a)) + ")"
-                                    : std::string());
+      const RunRow run(r);
+      const std::optional<Accuracy> a = run.accuracy();
+      return sci(*run.stable_error_over_time()) +
+             (a ? " (" + beside_thresholds(*run.error_over_A(), {kAccurateFraction, 1.0}) + " A, " +
+                      std::string(to_string(*a)) + ")"
+                : std::string());
     };
     if (best_gimp && best_mpm) {
       s << "E = " << shortest(E) << ": the best MPM error is " << error_text(*best_mpm)
         << ", GIMP's " << error_text(*best_gimp) << ". ";
       ++c.compared;
-      c.gimp_better += *accuracy(*best_gimp) < *accuracy(*best_mpm);
+      c.gimp_better += *stable_error_over_time(*best_gimp) < *stable_error_over_time(*best_mpm);
     }
   }
   c.sentences = s.str();
@@ -798,10 +780,12 @@ void grid_and_step_claims(const TradeRows& t, std::vector<Claim>& claims) {
     const std::vector<double> errs = gimp_step_errors(t, E);
     const ojson* coarse = t.find(E, "gimp", "cfl", kCflRef, kCoarse);
     const ojson* fine = t.find(E, "gimp", "cfl", kCflRef, kFine);
-    if (errs.empty() || !coarse || !fine || !accuracy(*coarse) || !accuracy(*fine)) continue;
+    if (errs.empty() || !coarse || !fine || !stable_error_over_time(*coarse) ||
+        !stable_error_over_time(*fine))
+      continue;
     const auto [lo, hi] = std::minmax_element(errs.begin(), errs.end(), TotalLess());
     spread_max = std::max(spread_max, *hi / *lo);
-    const double change = *accuracy(*fine) / *accuracy(*coarse);
+    const double change = *stable_error_over_time(*fine) / *stable_error_over_time(*coarse);
     grid_min = std::min(grid_min, 1 / change);  // the fall with the grid (below 1: a rise)
     ++total;
     better += change < 1;
@@ -897,7 +881,7 @@ std::string settings_table(const TradeRows& t, double E, const std::string& of_s
   std::ostringstream md;
   std::vector<double> passes;
   for (std::size_t i : idx)
-    if (has_number(t.rows[i], "cT")) passes.push_back(t.rows[i]["cT"].get<double>());
+    if (const auto cT = RunRow(t.rows[i]).wave_passes) passes.push_back(*cT);
   md << "### E = " << shortest(E) << " (c T = " << span(passes, 3) << " wave passes)" << of_scene
      << "\n\n| setting | steps | particle-steps | dt range | mean dt | verdict | max error over "
         "time | Pareto |\n|---|---|---|---|---|---|---|---|\n";
@@ -905,7 +889,7 @@ std::string settings_table(const TradeRows& t, double E, const std::string& of_s
     const ojson& r = t.rows[i];
     md << "| " << setting(r) << " | " << r["steps"].dump() << " | " << work(r) << " | "
        << opt_sci(r["dt_min"]) << " to " << opt_sci(r["dt_max"]) << " | " << opt_sci(r["dt_mean"])
-       << " | " << verdict(r) << " | " << opt_sci(r["max_error_over_time"]) << " | "
+       << " | " << verdict(r) << " | " << opt_sci(RunRow(r).error_over_time) << " | "
        << (front.count(i) ? "**yes**" : "") << " |\n";
   }
   md << "\n";
@@ -933,7 +917,7 @@ std::string scene_markdown(const std::vector<ojson>& rows, bool first) {
 
 // A run the figure draws: stable, with an error a log axis can show.
 bool drawn(const ojson& r) {
-  const auto e = accuracy(r);
+  const auto e = stable_error_over_time(r);
   return e && *e > 0;
 }
 
@@ -948,11 +932,12 @@ FigureCount figure_count(const std::vector<ojson>& rows) {
   n.scene = rows.front()["scene"].get<std::string>();
   n.runs = rows.size();
   for (const auto& r : rows) {
+    const Ending e = RunRow(r).ending();
     if (drawn(r)) {
       ++n.drawn;
-    } else if (outcome(r) == "unstable") {
+    } else if (e == Ending::unstable) {
       ++n.unstable;
-    } else if (outcome(r) == "meaningless") {
+    } else if (e == Ending::meaningless) {
       ++n.meaningless;
     } else {
       ++n.no_error;
@@ -1032,7 +1017,7 @@ std::string tradeoff_data_csv(const std::vector<ojson>& rows, const std::string&
         << policy_code(text(r, "policy")) << ',' << cells << ','
         << std::distance(grids.begin(), grids.find(cells)) << ','
         << static_cast<long long>(particle_steps(r)) << ',' << r["steps"].dump() << ','
-        << shortest(*accuracy(r)) << ',' << (front.count(i) ? 1 : 0) << '\n';
+        << shortest(*stable_error_over_time(r)) << ',' << (front.count(i) ? 1 : 0) << '\n';
   }
   return csv.str();
 }
@@ -1119,9 +1104,10 @@ std::string walls_cost_section(const std::vector<ojson>& rows,
     if (method_label(rows[i]) != "gimp" || rows[i]["cells"].get<int>() != kFine) continue;
     for (const auto& [j, coarse] : twins) {
       if (method_label(rows[j]) == "gimp" && rows[j]["cells"].get<int>() == kCoarse &&
-          rows[j]["E"] == rows[i]["E"] && accuracy(*twin) && accuracy(*coarse)) {
+          rows[j]["E"] == rows[i]["E"] && stable_error_over_time(*twin) &&
+          stable_error_over_time(*coarse)) {
         ++compared;
-        lowered += *accuracy(*twin) < *accuracy(*coarse);
+        lowered += *stable_error_over_time(*twin) < *stable_error_over_time(*coarse);
       }
     }
   }
@@ -1147,7 +1133,7 @@ std::string walls_cost_section(const std::vector<ojson>& rows,
                    [&](const auto& a, const auto& b) { return order(a.first) < order(b.first); });
   for (const auto& [i, twin] : sorted) {
     const ojson& r = rows[i];
-    const auto d = accuracy(r), p = accuracy(*twin);
+    const auto d = stable_error_over_time(r), p = stable_error_over_time(*twin);
     md << "| " << method_label(r) << " | " << shortest(r["E"].get<double>()) << " | "
        << r["cells"].get<int>() << " | " << (d ? sci(*d) : verdict(r)) << " | "
        << (p ? sci(*p) : verdict(*twin)) << " | " << (d && p ? ratio(*p / *d) : std::string("–"))

@@ -4,6 +4,7 @@
 #include "base/params.hpp"
 #include "csv.hpp"
 #include "report_util.hpp"
+#include "run_row.hpp"
 #include "study.hpp"
 #include "sweep.hpp"
 
@@ -29,7 +30,7 @@ std::string figure_markdown(const Spec& spec, const std::vector<ojson>& rows) {
   md << "| " << to_string(p.method) << " | " << shortest(p.E) << " | " << shortest(p.A) << " | "
      << param(p.dt) << " | " << sci(r["courant"].get<double>()) << " | " << r["steps"].dump()
      << " of " << *step_count(p.T, p.dt) << " | " << verdict(r) << " | " << opt_sci(r["max_error"])
-     << " | " << opt_sci(r["max_error_over_time"]) << " | " << opt_sci(r["dt_stable_min"]) << " | "
+     << " | " << opt_sci(RunRow(r).error_over_time) << " | " << opt_sci(r["dt_stable_min"]) << " | "
      << (r["crossings"].is_null() ? std::string("–") : r["crossings"].dump()) << " | " << work(r)
      << " |\n";
   return md.str();
@@ -69,7 +70,7 @@ std::string figure_index(const Spec& spec, const std::vector<ojson>& rows) {
   std::ostringstream md;
   md << "![" << spec.title << "](" << spec.name << ".png)\n\n**What it shows.** This run "
      << (survived(r) ? "reached T" : "did not reach T") << ": " << verdict(r) << "; "
-     << r["steps"].dump() << " steps, max error over time " << opt_sci(r["max_error_over_time"])
+     << r["steps"].dump() << " steps, max error over time " << opt_sci(RunRow(r).error_over_time)
      << ", eq. (108) minimum " << opt_sci(r["dt_stable_min"])
      << " against dt = " << param(r["dt"].get<double>()) << ". Details: [" << spec.name << ".md]("
      << spec.name << ".md).\n\n";
@@ -101,17 +102,19 @@ std::string figure_subtitle(const Spec&, const ojson& doc) {
     drawn += doc["study"]["drawn_what"].get<std::string>();
     drawn += " drawn; ";
   }
-  std::string subtitle =
-      c["method"].get<std::string>() + ", E = " + shortest(c["E"].get<double>()) +
-      ", A = " + shortest(c["A"].get<double>()) + ", dt = " + shortest(c["dt"].get<double>()) +
-      ", " + c["cells"].dump() + " cells x " + c["ppc"].dump() + " ppc, " +
-      c["bc"].get<std::string>() + "; " + drawn;
-  if (outcome(c) == "unstable") {
-    return subtitle + "unstable: " + c["failure_reason"].get<std::string>() + " at step " +
+  std::string subtitle = RunRow(c).method + ", E = " + shortest(c["E"].get<double>()) +
+                         ", A = " + shortest(c["A"].get<double>()) +
+                         ", dt = " + shortest(c["dt"].get<double>()) + ", " + c["cells"].dump() +
+                         " cells x " + c["ppc"].dump() + " ppc, " + c["bc"].get<std::string>() +
+                         "; " + drawn;
+  const RunRow run(c);
+  if (run.outcome == "unstable") {
+    return subtitle + "unstable: " + run.failure_reason.value_or("") + " at step " +
            c["failure_step"].dump();
   }
-  return subtitle + (outcome(c) == "meaningless" ? "meaningless: survived to T, error reached A"
-                                                 : "stable to T");
+  if (run.under_a_wave_pass()) return subtitle + under_a_wave_pass_word(*run.wave_passes);
+  return subtitle + (run.outcome == "meaningless" ? "meaningless: survived to T, error reached A"
+                                                  : "stable to T");
 }
 
 const StudyRegistration kFigure{{

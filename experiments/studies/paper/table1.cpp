@@ -11,6 +11,7 @@
 #include "claims.hpp"
 #include "csv.hpp"
 #include "report_util.hpp"
+#include "run_row.hpp"
 #include "shared/ensemble.hpp"
 #include "shared/paper_table1.hpp"
 #include "study.hpp"
@@ -23,74 +24,55 @@ namespace {
 using ojson = nlohmann::ordered_json;
 namespace fs = std::filesystem;
 
-// The error over time per A of a run that reached T (stable, meaningless or too short), where it
-// was recorded.
-std::optional<double> error_per_A(const ojson& r) {
-  if (!survived(r) || !has_number(r, "max_error_over_time") || !has_number(r, "A"))
-    return std::nullopt;
-  return r["max_error_over_time"].get<double>() / r["A"].get<double>();
-}
-
-// The accuracy class of a stable or meaningless run (core/base/accuracy.hpp); none for a run
-// that failed, was too short to judge or did not record its error over time.
-std::optional<Accuracy> accuracy_of(const ojson& r) {
-  const std::string o = outcome(r);
-  const auto e = error_per_A(r);
-  if ((o != "stable" && o != "meaningless") || !e) return std::nullopt;
-  return accuracy_class(*e, 1.0);
-}
-
-bool stable_accurate(const ojson& r) {
-  return outcome(r) == "stable" && accuracy_of(r) == Accuracy::accurate;
-}
-
-// Stable cells by accuracy class: how many are accurate and inaccurate, the error over time per
-// A of the inaccurate ones, and how many did not record their error over time (no class).
-struct StableAccuracy {
-  int accurate = 0, inaccurate = 0, unmeasured = 0;
-  std::vector<double> inaccurate_errors;
-  void add(const ojson& r) {
-    if (outcome(r) != "stable") return;
-    const auto a = accuracy_of(r);
-    if (!a) {
-      ++unmeasured;
-    } else if (*a == Accuracy::accurate) {
-      ++accurate;
-    } else {
-      ++inaccurate;
-      inaccurate_errors.push_back(*error_per_A(r));
-    }
-  }
-  int stable() const { return accurate + inaccurate + unmeasured; }
-};
-
 struct Table1Summary {
   int cells = 0, paper_stable = 0, paper_unstable = 0, paper_unknown = 0;
-  int ours_stable = 0, ours_meaningless = 0, ours_unstable = 0, ours_too_short = 0;
-  // Our stable cells by accuracy class, over every cell and per method (in row order).
-  StableAccuracy stable_accuracy;
-  std::vector<std::pair<std::string, StableAccuracy>> stable_by_method;
+  // How our runs ended (run_row.hpp), over every cell and per method (in row order).
+  VerdictTally ours;
+  std::vector<std::pair<std::string, VerdictTally>> by_method;
+  // The stability verdicts against the paper's (cell_agreement(), shared/paper_table1.hpp), over
+  // every cell with a readable paper value, as comparison.md counts them.
   int verdicts_agree = 0, verdicts_compared = 0;
   // Of the cells whose verdicts are the same: both stable (ours accurate or inaccurate), both
   // unstable.
   int both_stable_accurate = 0, both_stable_inaccurate = 0, both_unstable = 0;
-  // Cells whose ensemble disagrees with their verdict: counted apart from the agreement.
+  // Compared cells whose ensemble disagrees with their verdict: counted by their verdict as run.
   int sensitive = 0, sensitive_agree = 0;
   int paper_stable_ours_not = 0, paper_stable_ours_not_above_limit = 0;
   int paper_stable_ours_meaningless = 0, paper_unstable_ours_meaningless = 0;
+  int paper_stable_ours_too_short = 0, paper_unstable_ours_too_short = 0;
   int errors_within_factor = 0, errors_compared = 0, errors_compared_accurate = 0;
-  std::map<std::string, int> reasons;
 };
 
-StableAccuracy& method_accuracy(Table1Summary& s, const std::string& method) {
-  for (auto& [m, a] : s.stable_by_method)
+VerdictTally& method_tally(Table1Summary& s, const std::string& method) {
+  for (auto& [m, a] : s.by_method)
     if (m == method) return a;
-  return s.stable_by_method.emplace_back(method, StableAccuracy{}).second;
+  return s.by_method.emplace_back(method, VerdictTally{}).second;
 }
 
-bool above_limit(const ojson& r) {
-  return has_number(r, "courant_spectral") &&
-         r["courant"].get<double>() > r["courant_spectral"].get<double>();
+// A compared cell counted by how it stands against the paper's verdict.
+void count_agreement(Table1Summary& s, const RunRow& r, CellAgreement agreement,
+                     bool stable_in_paper) {
+  using enum CellAgreement;
+  switch (agreement) {
+    case both_stable:
+      (r.accurate() ? s.both_stable_accurate : s.both_stable_inaccurate) += 1;
+      break;
+    case both_unstable:
+      ++s.both_unstable;
+      break;
+    case paper_stable_ours_unstable:
+      ++s.paper_stable_ours_not;
+      s.paper_stable_ours_not_above_limit += r.above_spectral_limit();
+      break;
+    case ours_meaningless:
+      (stable_in_paper ? s.paper_stable_ours_meaningless : s.paper_unstable_ours_meaningless) += 1;
+      break;
+    case ours_too_short:
+      (stable_in_paper ? s.paper_stable_ours_too_short : s.paper_unstable_ours_too_short) += 1;
+      break;
+    default:
+      break;
+  }
 }
 
 Table1Summary summarize_table1(const Spec& spec, const std::vector<ojson>& rows,
@@ -98,66 +80,38 @@ Table1Summary summarize_table1(const Spec& spec, const std::vector<ojson>& rows,
                                const std::vector<EnsembleResult>& ensembles) {
   Table1Summary s;
   for (std::size_t i = 0; i < rows.size(); ++i) {
-    const ojson& r = rows[i];
+    const RunRow r(rows[i]);
     ++s.cells;
-    const std::string ours_outcome = outcome(r);
-    const bool sensitive = i < ensembles.size() && ensembles[i].sensitive();
-    if (ours_outcome == "stable") {
-      ++s.ours_stable;
-      s.stable_accuracy.add(r);
-      method_accuracy(s, text(r, "method")).add(r);
-    } else if (ours_outcome == "meaningless") {
-      ++s.ours_meaningless;
-    } else if (ours_outcome == "too_short") {
-      ++s.ours_too_short;
-    } else {
-      ++s.ours_unstable;
-      ++s.reasons[r["failure_reason"].get<std::string>()];
-    }
+    s.ours.add(r);
+    if (r.outcome == "stable") method_tally(s, r.method).add(r);
     const auto it = paper.find(paper_key(spec.cases[i]));
-    if (it == paper.end()) {
+    const PaperCell* pc = it == paper.end() ? nullptr : &it->second;
+    const CellAgreement agreement = cell_agreement(r, pc);
+    if (!compared(agreement)) {
       ++s.paper_unknown;
       continue;
     }
-    const PaperValue& pe = it->second.max_error;
-    if (pe.kind == PaperValue::unreadable) {
-      ++s.paper_unknown;
-      continue;
-    }
-    const bool paper_stable = pe.kind == PaperValue::number;
-    (paper_stable ? s.paper_stable : s.paper_unstable) += 1;
-    if (sensitive) {
-      ++s.sensitive;
-      s.sensitive_agree += paper_stable == (ours_outcome == "stable");
-      continue;
-    }
+    const bool stable_in_paper = paper_says_stable(*pc);
+    (stable_in_paper ? s.paper_stable : s.paper_unstable) += 1;
     ++s.verdicts_compared;
-    // A meaningless run agrees with neither verdict of the paper: it is counted on its own.
-    if (ours_outcome == "meaningless" || ours_outcome == "too_short") {
-      (paper_stable ? s.paper_stable_ours_meaningless : s.paper_unstable_ours_meaningless) += 1;
-    } else if (paper_stable == (ours_outcome == "stable")) {
-      ++s.verdicts_agree;
-      if (!paper_stable) {
-        ++s.both_unstable;
-      } else {
-        (stable_accurate(r) ? s.both_stable_accurate : s.both_stable_inaccurate) += 1;
-      }
-    } else if (paper_stable) {
-      ++s.paper_stable_ours_not;
-      if (above_limit(r)) ++s.paper_stable_ours_not_above_limit;
+    s.verdicts_agree += verdicts_agree(agreement);
+    if (i < ensembles.size() && ensembles[i].sensitive()) {
+      ++s.sensitive;
+      s.sensitive_agree += verdicts_agree(agreement);
     }
-    const auto ours = compared_error(r, spec.cases[i].error_at);
-    if (paper_stable && ours && ours_outcome == "stable") {
+    count_agreement(s, r, agreement, stable_in_paper);
+    const auto ours = compared_error(rows[i], spec.cases[i].error_at);
+    if (agreement == CellAgreement::both_stable && ours) {
       ++s.errors_compared;
-      s.errors_compared_accurate += stable_accurate(r);
-      if (within_agreement_factor(*ours, pe.value)) ++s.errors_within_factor;
+      s.errors_compared_accurate += r.accurate();
+      if (within_agreement_factor(*ours, pc->max_error.value)) ++s.errors_within_factor;
     }
   }
   return s;
 }
 
 // "23 accurate and 17 inaccurate (error over time 0.1 to 0.89 A)".
-std::string accuracy_split(const StableAccuracy& a) {
+std::string accuracy_split(const VerdictTally& a) {
   std::string t =
       std::to_string(a.accurate) + " accurate and " + std::to_string(a.inaccurate) + " inaccurate";
   if (!a.inaccurate_errors.empty())
@@ -167,39 +121,12 @@ std::string accuracy_split(const StableAccuracy& a) {
   return t;
 }
 
-std::string table1_summary_text(const Table1Summary& s) {
+// The stability verdicts against the paper's, over the cells comparison.md counts.
+std::string table1_agreement_text(const Table1Summary& s) {
   std::ostringstream md;
-  md << s.cells << " cells. Paper: " << s.paper_stable << " stable, " << s.paper_unstable
-     << " unstable (`*`), " << s.paper_unknown
-     << " unreadable in the transcription. Ours: " << s.ours_stable
-     << " stable (survived to T with an error over time below A): "
-     << accuracy_split(s.stable_accuracy) << " by the accuracy classes (accurate below "
-     << shortest(kAccurateFraction) << " A, inaccurate from there up to A)";
-  if (s.stable_by_method.size() > 1) {
-    md << "; per method, ";
-    bool first = true;
-    for (const auto& [method, a] : s.stable_by_method) {
-      md << (first ? "" : "; ") << method << " " << a.stable() << " stable: " << accuracy_split(a);
-      first = false;
-    }
-  }
-  md << ". " << s.ours_meaningless << " meaningless (survived, but the error over time reached A), "
-     << s.ours_unstable << " unstable";
-  if (!s.reasons.empty()) {
-    md << " (";
-    bool first = true;
-    for (const auto& [reason, count] : s.reasons) {
-      md << (first ? "" : ", ") << reason << " " << count;
-      first = false;
-    }
-    md << ")";
-  }
-  if (s.ours_too_short) md << ", " << s.ours_too_short << " too short to judge";
-  md << ". Sensitive here (a perturbed layout changes the verdict: column *ensemble*), counted "
-        "apart: "
-     << s.sensitive << " cells with a paper verdict, of which " << s.sensitive_agree
-     << " match the paper's verdict as run. Of the other cells, the paper's stability verdict "
-        "and ours are the same in "
+  md << "Of the " << s.verdicts_compared
+     << " cells with a readable paper value (the cells comparison.md counts), the paper's "
+        "stability verdict and ours are the same in "
      << s.verdicts_agree << " of " << s.verdicts_compared << " ("
      << s.both_stable_accurate + s.both_stable_inaccurate << " stable in both, ours "
      << s.both_stable_accurate << " accurate and " << s.both_stable_inaccurate << " inaccurate; "
@@ -210,12 +137,55 @@ std::string table1_summary_text(const Table1Summary& s) {
         "limit of the step at the uniform layout: spectral.md). Meaningless here, counted with "
         "neither verdict: "
      << s.paper_stable_ours_meaningless << " cells the paper lists as stable and "
-     << s.paper_unstable_ours_meaningless
-     << " it marks `*`. Where both are stable (ours: stable, not meaningless; "
+     << s.paper_unstable_ours_meaningless << " it marks `*`.";
+  if (s.paper_stable_ours_too_short + s.paper_unstable_ours_too_short > 0)
+    md << " Without a verdict here (too few steps, or under a wave pass), counted with neither: "
+       << s.paper_stable_ours_too_short << " cells the paper lists as stable and "
+       << s.paper_unstable_ours_too_short << " it marks `*`.";
+  md << " Sensitive here (a perturbed layout changes the verdict: column *ensemble*): "
+     << s.sensitive << " of these " << s.verdicts_compared << " cells, of which "
+     << s.sensitive_agree
+     << " match the paper's verdict as run; each is counted above by its verdict as run. Where "
+        "both are stable (ours: stable, not meaningless; "
      << s.errors_compared_accurate << " of these " << s.errors_compared
      << " accurate here, the others inaccurate), our max error is within a factor "
      << agreement_factor() << " of the paper's in " << s.errors_within_factor << " of "
      << s.errors_compared << " cells.";
+  return md.str();
+}
+
+std::string table1_summary_text(const Table1Summary& s) {
+  std::ostringstream md;
+  md << s.cells << " cells. Paper: " << s.paper_stable << " stable, " << s.paper_unstable
+     << " unstable (`*`), " << s.paper_unknown
+     << " unreadable in the transcription. Ours: " << s.ours.stable
+     << " stable (survived to T with an error over time below A): " << accuracy_split(s.ours)
+     << " by the accuracy classes (accurate below " << shortest(kAccurateFraction)
+     << " A, inaccurate from there up to A)";
+  if (s.by_method.size() > 1) {
+    md << "; per method, ";
+    bool first = true;
+    for (const auto& [method, a] : s.by_method) {
+      md << (first ? "" : "; ") << method << " " << a.stable << " stable: " << accuracy_split(a);
+      first = false;
+    }
+  }
+  md << ". " << s.ours.meaningless << " meaningless (survived, but the error over time reached A), "
+     << s.ours.unstable << " unstable";
+  if (!s.ours.reasons.empty()) {
+    md << " (";
+    bool first = true;
+    for (const auto& [reason, count] : s.ours.reasons) {
+      md << (first ? "" : ", ") << reason << " " << count;
+      first = false;
+    }
+    md << ")";
+  }
+  if (s.ours.too_short) md << ", " << s.ours.too_short << " too short to judge";
+  if (s.ours.under_a_wave_pass)
+    md << ", " << s.ours.under_a_wave_pass << " under a wave pass (survived in fewer than "
+       << shortest(kMinWavePasses) << " wave pass c T / L: not counted as stable)";
+  md << ". " << table1_agreement_text(s);
   return md.str();
 }
 
@@ -260,8 +230,11 @@ std::string table1_row(const CaseSpec& cs, const ojson& r,
   if (pc && pc->max_error.kind == PaperValue::number && ours) {
     ratio_text = ratio(*ours / pc->max_error.value);
   }
-  const auto e = error_per_A(r);
-  const auto a = accuracy_of(r);
+  // The error over time / A and accuracy class of a run that reached T stable or meaningless.
+  const RunRow run(r);
+  const bool classed = run.outcome == "stable" || run.outcome == "meaningless";
+  const auto e = classed ? run.error_over_A() : std::nullopt;
+  const auto a = classed ? run.accuracy() : std::nullopt;
   std::ostringstream md;
   md << "| " << param(p.dt) << (cs.dt_inferred ? " (inferred)" : "") << " | " << to_string(p.method)
      << " | " << sci(r["courant"].get<double>()) << " | " << (pc ? show(pc->dt_stable) : "–")
@@ -360,12 +333,13 @@ std::vector<EnsembleResult> table1_ensembles(const std::vector<ojson>& rows,
 std::vector<Claim> table1_claims(const std::vector<ojson>& rows,
                                  const std::vector<EnsembleResult>& ensembles) {
   int above = 0, stable_above = 0, tested = 0, sensitive = 0, costly = 0, in_studies = 0;
-  StableAccuracy stable;
+  VerdictTally stable;
   for (std::size_t i = 0; i < rows.size(); ++i) {
-    stable.add(rows[i]);
-    if (above_limit(rows[i])) {
+    const RunRow r(rows[i]);
+    stable.add(r);
+    if (r.above_spectral_limit()) {
       ++above;
-      stable_above += outcome(rows[i]) == "stable";
+      stable_above += r.ending() == Ending::stable;
     }
     tested += ensembles[i].members > 0;
     sensitive += ensembles[i].sensitive();
@@ -401,7 +375,7 @@ std::vector<Claim> table1_claims(const std::vector<ojson>& rows,
                   "{accurate} of {stable} stable cells are accurate; {inaccurate} are inaccurate, "
                   "with an error over time of {range} A");
   c.value("fraction", shortest(kAccurateFraction))
-      .every("accurate", stable.accurate, "stable", stable.stable());
+      .every("accurate", stable.accurate, "stable", stable.stable);
   c.count("inaccurate", stable.inaccurate)
       .value("range", stable.inaccurate_errors.empty() ? std::string("–")
                                                        : span(stable.inaccurate_errors, 2));

@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <sstream>
 
-#include "base/accuracy.hpp"
 #include "csv.hpp"
 #include "report_util.hpp"
+#include "run_row.hpp"
 #include "study.hpp"
 
 namespace mpmstab {
@@ -90,11 +90,9 @@ std::string case_row(const ojson& r, const std::vector<std::string>& params,
   md << " " << opt_sci(r["courant"]) << " | " << coordinate("A_over_h") << " | " << coordinate("cT")
      << " | " << verdict(r) << " | " << opt_sci(r["max_error"]) << " |";
   if (observe.error_over_time) {
-    md << " " << opt_sci(r["max_error_over_time"]) << " | "
-       << (r["max_error_over_time"].is_number() && r["A"].get<double>() > 0
-               ? ratio(r["max_error_over_time"].get<double>() / r["A"].get<double>())
-               : "–")
-       << " |";
+    const RunRow row(r);
+    md << " " << (row.error_over_time ? sci(*row.error_over_time) : "–") << " | "
+       << (row.error_over_A() ? ratio(*row.error_over_A()) : "–") << " |";
   }
   if (observe.dt_stable) md << " " << opt_sci(r["dt_stable_min"]) << " |";
   if (observe.crossings) {
@@ -104,37 +102,11 @@ std::string case_row(const ojson& r, const std::vector<std::string>& params,
   return md.str();
 }
 
-// The verdicts of the cases: how many failed, survived with an error over time that reached A,
-// took too few steps for a verdict, or ended stable, and of the stable ones how many are
-// accurate and inaccurate (core/base/accuracy.hpp; unknown where the error over time was not
-// recorded).
-struct VerdictCounts {
-  int unstable = 0, meaningless = 0, too_short = 0, stable = 0;
-  int accurate = 0, inaccurate = 0, unknown = 0;
-};
-
-VerdictCounts count_verdicts(const std::vector<ojson>& rows) {
-  VerdictCounts n;
-  for (const auto& r : rows) {
-    const std::string o = outcome(r);
-    n.unstable += o == "unstable";
-    n.meaningless += o == "meaningless";
-    n.too_short += o == "too_short";
-    if (o != "stable") continue;
-    ++n.stable;
-    const std::optional<Accuracy> a = row_accuracy(r);
-    n.unknown += !a;
-    n.accurate += a == Accuracy::accurate;
-    n.inaccurate += a && *a != Accuracy::accurate;
-  }
-  return n;
-}
-
 // "12 stable (9 accurate, 3 inaccurate)".
-std::string stable_text(const VerdictCounts& n) {
+std::string stable_text(const VerdictTally& n) {
   std::ostringstream s;
   s << n.stable << " stable (" << n.accurate << " accurate, " << n.inaccurate << " inaccurate";
-  if (n.unknown > 0) s << ", " << n.unknown << " with no error over time recorded";
+  if (n.unmeasured > 0) s << ", " << n.unmeasured << " with no error over time recorded";
   s << ")";
   return s.str();
 }
@@ -143,12 +115,15 @@ std::string stable_text(const VerdictCounts& n) {
 std::string cases_markdown(const Spec& spec, const std::vector<ojson>& rows) {
   const auto params = varying_params(rows);
   const auto& observe = spec.cases.front().params.observe;
-  const VerdictCounts n = count_verdicts(rows);
+  const VerdictTally n = verdict_tally(rows);
   std::ostringstream md;
   md << "## Results\n\n"
      << rows.size() << " cases: " << stable_text(n) << ", " << n.meaningless
      << " meaningless (survived, but the error over time reached A), " << n.unstable << " unstable";
   if (n.too_short > 0) md << ", " << n.too_short << " too short for a verdict";
+  if (n.under_a_wave_pass > 0)
+    md << ", " << n.under_a_wave_pass << " under a wave pass (reached T below A in fewer than "
+       << shortest(kMinWavePasses) << " wave pass c T / L: not counted as stable)";
   md << ". Common to all: " << common_params(rows, params) << ".\n\n"
      << cases_header(params, observe);
   for (const auto& r : rows)
@@ -157,11 +132,14 @@ std::string cases_markdown(const Spec& spec, const std::vector<ojson>& rows) {
 }
 
 std::string cases_index(const Spec& spec, const std::vector<ojson>& rows) {
-  const VerdictCounts n = count_verdicts(rows);
+  const VerdictTally n = verdict_tally(rows);
   std::ostringstream md;
   md << "**What it shows.** " << rows.size() << " cases: " << stable_text(n) << ", "
      << n.meaningless << " meaningless, " << n.unstable << " unstable";
   if (n.too_short > 0) md << ", " << n.too_short << " too short for a verdict";
+  if (n.under_a_wave_pass > 0)
+    md << ", " << n.under_a_wave_pass << " under a wave pass (reached T below A in fewer than "
+       << shortest(kMinWavePasses) << " wave pass c T / L: not counted as stable)";
   md << ". Full table: [" << spec.name << ".md](" << spec.name << ".md).\n\n";
   return md.str();
 }

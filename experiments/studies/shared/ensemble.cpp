@@ -4,29 +4,30 @@
 #include <sstream>
 
 #include "report_util.hpp"
+#include "run_row.hpp"
 
 namespace mpmstab {
 
 using ojson = nlohmann::ordered_json;
 
 EnsembleNeed ensemble_need(const ojson& row) {
-  const std::string o = outcome(row);
+  const RunRow r(row);
+  const std::string& o = r.outcome;
   if (o == "too_short" || o.empty()) return EnsembleNeed::no_verdict;
-  const double c = row["courant"].get<double>();
-  const bool has_limit = has_number(row, "courant_spectral");
-  const double limit = has_limit ? row["courant_spectral"].get<double>() : 0;
+  const double c = *r.courant;
+  const bool has_limit = r.courant_spectral.has_value();
+  const double limit = r.courant_spectral.value_or(0);
   EnsembleNeed need = EnsembleNeed::near;
   if (o == "unstable" && has_limit && c >= limit) need = EnsembleNeed::far_linear;
   if (o == "stable") {
-    const double eot =
-        row["max_error_over_time"].is_number() ? row["max_error_over_time"].get<double>() : 0;
-    const bool near = eot >= kNearErrorFraction * row["A"].get<double>() ||
-                      (has_limit && c > limit / kNearLimitMargin);
+    const double eot = r.error_over_time.value_or(0);
+    const bool near =
+        eot >= kNearErrorFraction * *r.A || (has_limit && c > limit / kNearLimitMargin);
     need = near ? EnsembleNeed::near : EnsembleNeed::far_margin;
   }
-  if (need == EnsembleNeed::near && particle_steps(row) > kPaperEnsembleBudget)
-    need = particle_steps(row) > kEnsembleMemberBudget ? EnsembleNeed::too_costly
-                                                       : EnsembleNeed::in_studies;
+  if (need == EnsembleNeed::near && r.particle_steps() > kPaperEnsembleBudget)
+    need = r.particle_steps() > kEnsembleMemberBudget ? EnsembleNeed::too_costly
+                                                      : EnsembleNeed::in_studies;
   return need;
 }
 

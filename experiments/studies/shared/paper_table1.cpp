@@ -7,6 +7,7 @@
 #include "csv.hpp"
 #include "files.hpp"
 #include "report_util.hpp"
+#include "run_row.hpp"
 
 namespace mpmstab {
 
@@ -126,6 +127,26 @@ bool within_agreement_factor(double ours, double paper) {
   static const ColumnRule rule{"max_error", 0, (kAgreementFactor - 1) / kAgreementFactor, false};
   return cells_agree(CellValue{CellValue::Kind::number, ours, ""},
                      CellValue{CellValue::Kind::number, paper, ""}, rule);
+}
+
+bool paper_says_stable(const PaperCell& paper) {
+  return paper.max_error.kind == PaperValue::number;
+}
+
+CellAgreement cell_agreement(const RunRow& row, const PaperCell* paper) {
+  using enum CellAgreement;
+  if (!paper || paper->max_error.kind == PaperValue::unreadable) return unreadable;
+  const bool stable_in_paper = paper_says_stable(*paper);
+  switch (row.ending()) {
+    case Ending::meaningless:
+      return ours_meaningless;
+    case Ending::stable:
+      return stable_in_paper ? both_stable : paper_unstable_ours_stable;
+    case Ending::unstable:
+      return stable_in_paper ? paper_stable_ours_unstable : both_unstable;
+    default:  // too few steps, under a wave pass, no outcome: no verdict
+      return ours_too_short;
+  }
 }
 
 std::string agreement_factor() {

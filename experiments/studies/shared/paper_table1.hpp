@@ -12,6 +12,7 @@
 
 #include "key.hpp"
 #include "report_util.hpp"
+#include "run_row.hpp"
 #include "spec.hpp"
 
 namespace mpmstab {
@@ -45,6 +46,34 @@ inline constexpr double kAgreementFactor = 3;
 bool within_agreement_factor(double ours, double paper);
 // kAgreementFactor as the reports print it: "3".
 std::string agreement_factor();
+
+// How a Table 1 cell of ours stands against the paper's stability verdict: the one rule of
+// agreement, by which table1.md and comparison.md both count (over the same cells: every cell
+// with a readable paper value). A cell is compared when the paper's value is readable (a max
+// error, its run stable, or `*`, unstable); the verdicts agree when both are stable (ours stable
+// over at least a wave pass, below A) or both unstable (ours failed before T). A meaningless run
+// (it reached T with an error over time of at least A) and a run without a verdict (too few steps,
+// or under a wave pass) agree with neither of the paper's verdicts.
+enum class CellAgreement {
+  unreadable,                  // the paper's value is missing or unreadable: not compared
+  both_stable,                 // the paper gives a max error; ours is stable
+  both_unstable,               // the paper marks `*`; ours failed before T
+  paper_stable_ours_unstable,  // the paper gives a max error; ours failed before T
+  paper_unstable_ours_stable,  // the paper marks `*`; ours is stable
+  ours_meaningless,            // ours reached T with an error over time of at least A
+  ours_too_short,              // ours has no verdict: too few steps, or under a wave pass
+};
+CellAgreement cell_agreement(const RunRow& row, const PaperCell* paper);
+// The paper's verdict is readable (every CellAgreement but unreadable).
+inline bool compared(CellAgreement a) {
+  return a != CellAgreement::unreadable;
+}
+// The stability verdicts are the same: both stable or both unstable.
+inline bool verdicts_agree(CellAgreement a) {
+  return a == CellAgreement::both_stable || a == CellAgreement::both_unstable;
+}
+// The paper's run is stable (it gives a max error), of a compared cell.
+bool paper_says_stable(const PaperCell& paper);
 
 // A row of the transcribed Table 1 (reference/paper/table1.csv): A, E and the method in lower
 // case, its dt where the paper prints one, and its cell.

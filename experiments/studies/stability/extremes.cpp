@@ -15,6 +15,7 @@
 #include "claims.hpp"
 #include "csv.hpp"
 #include "report_util.hpp"
+#include "run_row.hpp"
 #include "study.hpp"
 
 namespace mpmstab {
@@ -29,32 +30,24 @@ using ojson = nlohmann::ordered_json;
 // The verdicts in the order of their codes in extremes_data.csv (the figure's colours).
 const std::vector<std::string> kVerdicts = {"stable", "meaningless", "unstable", "too_short"};
 
-int verdict_code(const ojson& r) {
-  const auto it = std::find(kVerdicts.begin(), kVerdicts.end(), outcome(r));
+int verdict_code(const RunRow& r) {
+  const auto it = std::find(kVerdicts.begin(), kVerdicts.end(), r.outcome);
   return it == kVerdicts.end() ? 0 : int(it - kVerdicts.begin());
 }
 
-double wave_passes_of(const ojson& r) {
-  return number_or_zero(r, "cT");
-}
-
-// How a run that the solver calls stable is counted here: stable over at least kMinWavePasses
-// wave passes, accurate or not (core/base/accuracy.hpp: an error over time that is not
+// How a run that the solver calls stable is counted here (VerdictTally, run_row.hpp): stable
+// over at least kMinWavePasses wave passes, accurate or not (an error over time that is not
 // recorded is not accurate), or too short in wave passes to count as stable.
 enum class Standing { accurate, inaccurate, under_a_pass };
 
-Standing standing(const ojson& r) {
-  if (wave_passes_of(r) < kMinWavePasses) return Standing::under_a_pass;
-  return row_accuracy(r) == Accuracy::accurate ? Standing::accurate : Standing::inaccurate;
+Standing standing(const RunRow& r) {
+  if (r.under_a_wave_pass()) return Standing::under_a_pass;
+  return r.accuracy() == Accuracy::accurate ? Standing::accurate : Standing::inaccurate;
 }
 
 // The error over time per A of a run that reached T with a stable or meaningless outcome.
-std::optional<double> error_per_A(const ojson& r) {
-  const std::string o = outcome(r);
-  if ((o != "stable" && o != "meaningless") || !has_number(r, "max_error_over_time") ||
-      !has_number(r, "A"))
-    return std::nullopt;
-  return r["max_error_over_time"].get<double>() / r["A"].get<double>();
+std::optional<double> error_per_A(const RunRow& r) {
+  return r.outcome == "stable" || r.outcome == "meaningless" ? r.error_over_A() : std::nullopt;
 }
 
 // The quantities a run that reached T reports, and which of them it measures. Eq. (108) is
@@ -66,7 +59,7 @@ const std::vector<const char*> kSurvivorOutputs = {
 
 bool measured(const ojson& r, const std::string& key) {
   if (key != "dt_stable_min") return true;
-  const auto m = parse_method(r["method"].get<std::string>());
+  const auto m = parse_method(RunRow(r).method);
   return m && has_eq108(*m);
 }
 
@@ -124,13 +117,12 @@ Slowest slowest_case(const std::vector<ojson>& rows) {
 
 // What the opening and the conclusions count, from the rows.
 struct Counts {
-  int total = 0, with_verdict = 0, stable = 0, meaningless = 0, too_short = 0;
-  // The runs the solver calls stable: over at least kMinWavePasses wave passes, accurate or
-  // inaccurate (the stable ones here), or over fewer (counted apart).
-  int accurate = 0, inaccurate = 0, under_a_pass = 0;
-  std::vector<double> inaccurate_errors;  // error over time / A of the inaccurate ones
-  std::vector<double> under_a_pass_cT;    // c T of those counted apart
-  std::map<std::string, int> reasons;     // of the unstable runs
+  int total = 0, with_verdict = 0;
+  // How the runs ended (run_row.hpp): stable over at least kMinWavePasses wave passes, accurate
+  // or inaccurate (an error over time that is not recorded is not accurate: inaccurate() counts
+  // it), or over fewer (counted apart), meaningless, too short, unstable by reason.
+  VerdictTally verdicts;
+  std::vector<double> under_a_pass_cT;  // c T of those counted apart
   long long too_short_min = 0, too_short_max = 0;
   int reached = 0;            // runs that reached T (stable, meaningless or too short)
   int non_finite = 0;         // ... with a measured quantity null or not finite
@@ -142,49 +134,38 @@ struct Counts {
   double above_survivor_ratio = 0;      // the largest c dt/h over the limit of a survivor
   int above_survivor_under_a_pass = 0;  // survivors of fewer than kMinWavePasses wave passes
   int unlimited = 0;                    // runs without a spectral limit
+  // The runs the solver calls stable, over a wave pass or not.
+  int solver_stable() const { return verdicts.stable + verdicts.under_a_wave_pass; }
+  int inaccurate() const { return verdicts.inaccurate + verdicts.unmeasured; }
 };
 
 Counts count_rows(const std::vector<ojson>& rows) {
   Counts c;
   c.total = static_cast<int>(rows.size());
-  for (const auto& r : rows) {
-    const std::string o = outcome(r);
-    c.with_verdict += !o.empty();
+  for (const auto& row : rows) {
+    const RunRow r(row);
+    c.with_verdict += !r.outcome.empty();
+    c.verdicts.add(r);
     const int v = verdict_code(r);
-    const long long steps = r["steps"].get<long long>();
-    if (v == 2) {
-      ++c.reasons[r["failure_reason"].get<std::string>()];
-    } else {
-      c.stable += v == 0;
-      c.meaningless += v == 1;
-      if (v == 0) {
-        const Standing st = standing(r);
-        if (st == Standing::accurate) {
-          ++c.accurate;
-        } else if (st == Standing::inaccurate) {
-          ++c.inaccurate;
-          if (const auto e = error_per_A(r)) c.inaccurate_errors.push_back(*e);
-        } else {
-          ++c.under_a_pass;
-          c.under_a_pass_cT.push_back(wave_passes_of(r));
-        }
-      }
+    const long long steps = r.steps.value_or(0);
+    if (v != 2) {
+      if (r.under_a_wave_pass()) c.under_a_pass_cT.push_back(*r.wave_passes);
       if (v == 3) {
-        c.too_short_min = c.too_short++ ? std::min(c.too_short_min, steps) : steps;
+        c.too_short_min = c.verdicts.too_short > 1 ? std::min(c.too_short_min, steps) : steps;
         c.too_short_max = std::max(c.too_short_max, steps);
       }
       if (v < 3 && steps < kMinStepsToJudge) ++c.few_step_verdicts;
       ++c.reached;
-      const OutputCheck out = check_outputs(r);
+      const OutputCheck out = check_outputs(row);
       c.non_finite += out.non_finite > 0;
       c.not_measured += out.not_measured > 0;
     }
-    if (!has_number(r, "courant_spectral")) {
+    if (!r.courant_spectral) {
       ++c.unlimited;
       continue;
     }
-    const double over = r["courant"].get<double>() / r["courant_spectral"].get<double>();
-    if (over <= 1) continue;
+    const double over = *r.courant / *r.courant_spectral;
+    if (!r.above_spectral_limit()) continue;
     ++c.above;
     if (v == 2) {
       ++c.above_failed;
@@ -192,7 +173,7 @@ Counts count_rows(const std::vector<ojson>& rows) {
       ++c.above_too_short;
     } else {
       ++c.above_survived;
-      c.above_survivor_under_a_pass += wave_passes_of(r) < kMinWavePasses;
+      c.above_survivor_under_a_pass += r.under_a_wave_pass();
       c.above_survivor_steps = std::max(c.above_survivor_steps, steps);
       c.above_survivor_ratio = std::max(c.above_survivor_ratio, over);
     }
@@ -208,21 +189,23 @@ std::string extremes_summary(const Spec& spec, const std::vector<ojson>& rows, c
   const Slowest slowest = slowest_case(rows);
   std::ostringstream md;
   md << "## Results\n\n**Summary.** " << c.total << " cases, " << c.with_verdict
-     << " with a verdict. " << c.stable << " reached T in at least " << kMinStepsToJudge
+     << " with a verdict. " << c.solver_stable() << " reached T in at least " << kMinStepsToJudge
      << " steps with an error over time below A (the solver's outcome stable); of these, "
-     << c.accurate + c.inaccurate << " ran at least c T = " << shortest(kMinWavePasses)
-     << " wave pass and are counted as stable here: " << c.accurate << " accurate (error over "
-     << "time below " << shortest(kAccurateFraction) << " A) and " << c.inaccurate << " inaccurate";
-  if (!c.inaccurate_errors.empty())
-    md << " (error over time " << span(c.inaccurate_errors, 2) << " A)";
-  md << "; the other " << c.under_a_pass << " ran fewer wave passes";
+     << c.verdicts.accurate + c.inaccurate() << " ran at least c T = " << shortest(kMinWavePasses)
+     << " wave pass and are counted as stable here: " << c.verdicts.accurate
+     << " accurate (error over "
+     << "time below " << shortest(kAccurateFraction) << " A) and " << c.inaccurate()
+     << " inaccurate";
+  if (!c.verdicts.inaccurate_errors.empty())
+    md << " (error over time " << span(c.verdicts.inaccurate_errors, 2) << " A)";
+  md << "; the other " << c.verdicts.under_a_wave_pass << " ran fewer wave passes";
   if (!c.under_a_pass_cT.empty()) md << " (c T " << span(c.under_a_pass_cT, 2) << ")";
-  md << ", too short to count as stable, and are counted apart. " << c.meaningless
+  md << ", too short to count as stable, and are counted apart. " << c.verdicts.meaningless
      << " meaningless (survived, but the error over time reached A), " << unstable << " unstable ("
-     << reason_counts(c.reasons) << ")";
-  if (c.too_short) {
-    md << ", " << c.too_short << " too short to judge (they reached T in " << c.too_short_min
-       << " to " << c.too_short_max << " steps, fewer than " << kMinStepsToJudge
+     << reason_counts(c.verdicts.reasons) << ")";
+  if (c.verdicts.too_short) {
+    md << ", " << c.verdicts.too_short << " too short to judge (they reached T in "
+       << c.too_short_min << " to " << c.too_short_max << " steps, fewer than " << kMinStepsToJudge
        << ": no verdict on their stability)";
   }
   md << ". Runs that reached T with a measured quantity that is a NaN or an infinity: "
@@ -264,7 +247,7 @@ std::vector<Claim> extremes_claims(const Counts& c) {
                        "to judge");
   enough.count("min", kMinStepsToJudge)
       .count("few", c.few_step_verdicts)
-      .count("short", c.too_short);
+      .count("short", c.verdicts.too_short);
   enough.holds = c.few_step_verdicts == 0;
   claims.push_back(enough);
 
@@ -293,8 +276,8 @@ std::vector<Claim> extremes_claims(const Counts& c) {
                          "runs the solver calls stable ran fewer wave passes and are not counted");
   accurate.value("passes", shortest(kMinWavePasses))
       .value("fraction", shortest(kAccurateFraction))
-      .every("accurate", c.accurate, "stable", c.accurate + c.inaccurate);
-  accurate.count("inaccurate", c.inaccurate).count("apart", c.under_a_pass);
+      .every("accurate", c.verdicts.accurate, "stable", c.verdicts.accurate + c.inaccurate());
+  accurate.count("inaccurate", c.inaccurate()).count("apart", c.verdicts.under_a_wave_pass);
   claims.push_back(accurate);
   return claims;
 }
@@ -337,10 +320,10 @@ std::string band_table(const std::vector<ojson>& rows, const std::string& method
   for (const auto& b : bands) {
     int n = 0, acc = 0, inacc = 0, under = 0, m = 0, t = 0;
     std::map<std::string, int> why;
-    for (const auto& r : rows) {
-      if (method_label(r) != method) continue;
-      const double x =
-          by_courant ? r["courant"].get<double>() : r["A"].get<double>() * r["cells"].get<double>();
+    for (const auto& row : rows) {
+      const RunRow r(row);
+      if (r.method_label != method) continue;
+      const double x = by_courant ? *r.courant : *r.A * row["cells"].get<double>();
       if (x < b.lo || x >= b.hi) continue;
       ++n;
       const int v = verdict_code(r);
@@ -352,7 +335,7 @@ std::string band_table(const std::vector<ojson>& rows, const std::string& method
       }
       m += v == 1;
       t += v == 3;
-      if (v == 2) ++why[r["failure_reason"].get<std::string>()];
+      if (v == 2) ++why[*r.failure_reason];
     }
     md << "| " << band_name(b, by_courant ? "c dt/h" : "A/h") << " | " << n << " | " << acc << " | "
        << inacc << " | " << under << " | " << m << " | " << t << " | "
@@ -370,17 +353,17 @@ std::string method_reading(const std::vector<ojson>& rows, const std::string& me
   std::vector<ojson> mine;
   int below_failed = 0, below_failed_crossing = 0;
   double limit_lo = 1e300, limit_hi = 0;
-  for (const auto& r : rows) {
-    if (method_label(r) != method) continue;
-    mine.push_back(r);
-    if (!has_number(r, "courant_spectral")) continue;
-    const double limit = r["courant_spectral"].get<double>();
+  for (const auto& row : rows) {
+    const RunRow r(row);
+    if (r.method_label != method) continue;
+    mine.push_back(row);
+    if (!r.courant_spectral) continue;
+    const double limit = *r.courant_spectral;
     limit_lo = std::min(limit_lo, limit);
     limit_hi = std::max(limit_hi, limit);
-    if (r["courant"].get<double>() <= limit && outcome(r) == "unstable") {
+    if (!r.above_spectral_limit() && r.outcome == "unstable") {
       ++below_failed;
-      below_failed_crossing +=
-          r["A"].get<double>() * r["cells"].get<double>() >= kCrossingAmplitude;
+      below_failed_crossing += *r.A * row["cells"].get<double>() >= kCrossingAmplitude;
     }
   }
   const Counts c = count_rows(mine);
@@ -411,14 +394,15 @@ std::string every_case_table(const std::vector<ojson>& rows) {
         "max error over time | error over time / A | accuracy | particle-steps "
         "|\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& r : rows) {
-    const auto e = error_per_A(r);
-    md << "| " << method_label(r) << " | " << r["bc"].get<std::string>() << " | "
+    const RunRow run(r);
+    const auto e = error_per_A(run);
+    md << "| " << run.method_label << " | " << r["bc"].get<std::string>() << " | "
        << shortest(r["E"].get<double>()) << " | " << shortest(r["A"].get<double>()) << " | "
        << param(r["dt"].get<double>()) << " | " << param(r["T"].get<double>()) << " | "
        << r["cells"].dump() << " | " << r["ppc"].dump() << " | " << opt_sci(r["courant"]) << " | "
-       << opt_sci(r["cT"]) << " | " << verdict_word(r) << " | " << opt_sci(r["max_error_over_time"])
-       << " | " << (e ? sci(*e) : "–") << " | "
-       << (e ? std::string(to_string(accuracy_class(*e, 1.0))) : std::string("–")) << " | "
+       << (run.wave_passes ? sci(*run.wave_passes) : "–") << " | " << verdict_word(r) << " | "
+       << (run.error_over_time ? sci(*run.error_over_time) : "–") << " | " << (e ? sci(*e) : "–")
+       << " | " << (e ? std::string(to_string(accuracy_class(*e, 1.0))) : std::string("–")) << " | "
        << work(r) << " |\n";
   }
   return md.str();
@@ -479,10 +463,11 @@ using Spot = std::tuple<int, std::string, std::string, int>;
 std::map<Spot, int> spots(const std::vector<ojson>& rows) {
   const std::vector<std::string> methods = methods_of(rows);
   std::map<Spot, int> n;
-  for (const auto& r : rows) {
-    const auto m = std::find(methods.begin(), methods.end(), method_label(r));
-    ++n[{int(m - methods.begin()), param(r["courant"].get<double>()),
-         param(r["A"].get<double>() * r["cells"].get<double>()), verdict_code(r)}];
+  for (const auto& row : rows) {
+    const RunRow r(row);
+    const auto m = std::find(methods.begin(), methods.end(), r.method_label);
+    ++n[{int(m - methods.begin()), param(*r.courant), param(*r.A * row["cells"].get<double>()),
+         verdict_code(r)}];
   }
   return n;
 }
@@ -515,9 +500,9 @@ std::string extremes_subtitle(const Spec&, const ojson& doc) {
   s += " spots; the verdicts of one spot side by side, the marker growing with its number of "
        "cases (printed where it holds more than one); the stable marker is the solver's "
        "outcome: ";
-  s += std::to_string(c.under_a_pass);
+  s += std::to_string(c.verdicts.under_a_wave_pass);
   s += " of its ";
-  s += std::to_string(c.stable);
+  s += std::to_string(c.solver_stable());
   s += " runs ran under c T = " + shortest(kMinWavePasses) + " wave pass";
   return s;
 }
@@ -527,11 +512,13 @@ std::string extremes_index(const Spec& spec, const std::vector<ojson>& rows) {
   std::ostringstream md;
   md << "![" << spec.title << "](" << spec.name << ".png)\n\n**What it shows.** " << rows.size()
      << " cases at the extremes, " << c.with_verdict << " with a verdict ("
-     << c.accurate + c.inaccurate << " stable over at least c T = " << shortest(kMinWavePasses)
-     << " wave pass: " << c.accurate << " accurate, " << c.inaccurate << " inaccurate; "
-     << c.under_a_pass << " survived fewer wave passes; " << c.meaningless << " meaningless; "
-     << c.total - c.reached << " unstable); per method, where and why it fails: [" << spec.name
-     << ".md](" << spec.name << ".md).\n\n";
+     << c.verdicts.accurate + c.inaccurate()
+     << " stable over at least c T = " << shortest(kMinWavePasses)
+     << " wave pass: " << c.verdicts.accurate << " accurate, " << c.inaccurate() << " inaccurate; "
+     << c.verdicts.under_a_wave_pass << " survived fewer wave passes; " << c.verdicts.meaningless
+     << " meaningless; " << c.total - c.reached
+     << " unstable); per method, where and why it fails: [" << spec.name << ".md](" << spec.name
+     << ".md).\n\n";
   return md.str();
 }
 

@@ -23,6 +23,7 @@
 #include "csv.hpp"
 #include "key.hpp"
 #include "report_util.hpp"
+#include "run_row.hpp"
 #include "shared/paper_table1.hpp"
 #include "study.hpp"
 
@@ -55,18 +56,19 @@ std::string safeties(const std::vector<ojson>& rows, bool below) {
 // spectral_edge search counts it; a bounded run may still be meaningless (error >= A), which
 // its text says.
 bool bounded(const ojson& r) {
-  return survived(r) && has_number(r, "max_error_over_time") &&
-         r["max_error_over_time"].get<double>() <= kBound * r["A"].get<double>();
+  const RunRow run(r);
+  return run.survived() && run.error_over_time && *run.error_over_time <= kBound * *run.A;
 }
 
 // "bounded (error 0.41 A)", "bounded (error 1.2 A, meaningless)", "grew (error 2.3e+02 A)",
 // "* nonpositive_F at step 96 (...)".
 std::string run_text(const ojson& r) {
-  if (outcome(r) == "unstable") return verdict(r);
-  if (!has_number(r, "max_error_over_time")) return "–";
-  const double ratio_to_A = r["max_error_over_time"].get<double>() / r["A"].get<double>();
+  const RunRow run(r);
+  if (run.outcome == "unstable") return verdict(r);
+  if (!run.error_over_time) return "–";
+  const double ratio_to_A = *run.error_over_time / *run.A;
   return std::string(bounded(r) ? "bounded" : "grew") + " (error " + sci(ratio_to_A) + " A" +
-         (bounded(r) && outcome(r) == "meaningless" ? ", meaningless" : "") + ")";
+         (bounded(r) && run.outcome == "meaningless" ? ", meaningless" : "") + ")";
 }
 
 // A row's layout parameter (0, the uniform layout, where the row has none).
@@ -94,11 +96,7 @@ struct Scheme {
   const ojson* below = nullptr;  // s < 1
   const ojson* above = nullptr;  // s > 1
   const ojson& row() const { return below ? *below : *above; }
-  std::optional<double> limit() const {
-    return has_number(row(), "courant_spectral")
-               ? std::optional(row()["courant_spectral"].get<double>())
-               : std::nullopt;
-  }
+  std::optional<double> limit() const { return RunRow(row()).courant_spectral; }
   int ppc() const { return row()["ppc"].get<int>(); }
   bool uniform_two() const {  // the default particles per cell, uniform layout
     return ppc() == kDefaultPpc && layout_of(row(), "shift") == 0 &&
@@ -179,22 +177,23 @@ double eq108_at_rest(Method method, double E, double dt_cfl, int ppc) {
 std::vector<Eq108Point> eq108_points(const std::vector<ojson>& rows) {
   std::vector<Eq108Point> out;
   for (const auto& r : rows) {
-    const std::string m = r["method"].get<std::string>();
+    const RunRow run(r);
+    const std::string& m = run.method;
     const auto method = parse_method(m);
-    if (!method || !has_eq108(*method) || method_label(r) != m || layout_of(r, "shift") != 0 ||
+    if (!method || !has_eq108(*method) || run.method_label != m || layout_of(r, "shift") != 0 ||
         layout_of(r, "jitter") != 0 || !has_number(r, "safety") || r["safety"].get<double>() >= 1 ||
-        !has_number(r, "courant_spectral") || !has_number(r, "dt_stable_min"))
+        !run.courant_spectral || !has_number(r, "dt_stable_min"))
       continue;
     const double dt_cfl = r["dt_cfl"].get<double>();
     Eq108Point p{m,
                  r["E"].get<double>(),
                  r["cells"].get<int>(),
                  r["ppc"].get<int>(),
-                 r["particles"].get<int>(),
+                 int(*run.particles),
                  r["A"].get<double>(),
                  r["T"].get<double>(),
                  r["safety"].get<double>(),
-                 r["courant_spectral"].get<double>(),
+                 *run.courant_spectral,
                  r["dt_stable_min"].get<double>() / dt_cfl};
     p.rest = eq108_at_rest(*method, p.E, dt_cfl, p.ppc);
     out.push_back(p);
@@ -719,7 +718,7 @@ std::string reading(const std::vector<ojson>& rows, const std::vector<Scheme>& s
     if (const auto e = s.eq108(); e && limit) {
       eq_lo = std::min(eq_lo, *e / *limit);
       eq_hi = std::max(eq_hi, *e / *limit);
-      const int particles = s.row()["particles"].get<int>();
+      const int particles = int(*RunRow(s.row()).particles);
       particles_lo = particles_lo ? std::min(particles_lo, particles) : particles;
       particles_hi = std::max(particles_hi, particles);
     }
