@@ -77,10 +77,7 @@ std::string scheme_label(const nlohmann::ordered_json& row);
 std::string outcome(const nlohmann::ordered_json& row);
 // The run of a flat record survived to T: its outcome is meaningless or stable.
 bool survived(const nlohmann::ordered_json& row);
-// A run that reached T in fewer wave passes c T / L than this is too short to show an
-// instability that takes a wave across the body: whatever its outcome says, no report calls it
-// stable (docs/design.md, "Outcomes").
-inline constexpr double kMinWavePasses = 1;
+// kMinWavePasses (base/result.hpp): no report calls a run of fewer wave passes stable.
 // The run's outcome is stable, but it covered fewer than kMinWavePasses wave passes (column cT).
 bool under_a_wave_pass(const nlohmann::ordered_json& row);
 // Our verdict word for a flat record: "stable", "survived, c T = 0.5 < 1 wave pass: too short to
