@@ -223,11 +223,35 @@ TEST(AdviceVerify, TheMarginsAreTheSurvivalAndAccuracyEdgesOnTheProblem) {
   const Verified v = verified_advice(settings, problem(0.015, 2, 0.05), 1e9, true, fake(solver));
   ASSERT_TRUE(v.answer) << v.refusal;
   ASSERT_TRUE(v.edges.measured) << v.edges.not_measured;
-  ASSERT_TRUE(v.edges.survival && v.edges.survival_fail);
-  EXPECT_LE(*v.edges.survival, 0.9);
-  EXPECT_GT(*v.edges.survival_fail, 0.9);
-  EXPECT_LE(*v.edges.survival_fail / *v.edges.survival, 1.025);
-  EXPECT_EQ(v.edges.accurate, v.edges.survival);
+  const EdgeResult& m = v.edges.search;
+  ASSERT_TRUE(m.dt_edge && m.dt_fail);
+  EXPECT_LE(*m.dt_edge, 0.9);
+  EXPECT_GT(*m.dt_fail, 0.9);
+  EXPECT_LE(*m.dt_fail / *m.dt_edge, 1.025);
+  EXPECT_EQ(m.dt_accurate, m.dt_edge);
+  EXPECT_TRUE(m.monotone());
+  // Measured at the length the answer is verified at: 4 x c T.
+  EXPECT_DOUBLE_EQ(v.edges.cT, 4 * 2.0);
+  EXPECT_DOUBLE_EQ(v.edges.A, 0.015);
+  // Scanned densely below the edge: at least 8 runs from 0.9x the edge up to it.
+  int below = 0;
+  for (const auto& p : m.probes)
+    below += p.dt >= 0.9 * *m.dt_edge && p.dt < *m.dt_edge;
+  EXPECT_GE(below, 8);
+}
+
+TEST(AdviceVerify, MarginsOfRunsUnderAWavePassAreNone) {
+  // c T = 0.1: even 4 x c T is under a wave pass, too short for a verdict: no margin.
+  const std::vector<CheckedSetting> settings{setting("mpm", 100, 0.25, 1e-4)};
+  FakeSolver solver;
+  const VerifyProblem vp = problem(0.015, 0.1, 0.05);
+  const Verified v = verified_advice(settings, vp, 1e9, true, fake(solver));
+  if (!v.answer) GTEST_SKIP() << v.refusal;
+  ASSERT_TRUE(v.edges.measured);
+  EXPECT_TRUE(v.edges.search.too_short);
+  EXPECT_FALSE(v.edges.search.dt_edge);
+  EXPECT_TRUE(v.edges.search.probes.empty());
+  EXPECT_NE(verified_text(v, vp).find("too short for a verdict"), std::string::npos);
 }
 
 TEST(AdviceVerify, TheJsonCarriesEveryVerifyingRunAndEveryRejection) {

@@ -45,8 +45,10 @@ struct SyntheticCase {
   }
 };
 
-EdgeResult search(SyntheticCase& c) {
-  return find_edge(kCfl, 1.0, [&](double dt, bool outcome) { return c(dt, outcome); });
+// The runs go to T = 1 (2 wave passes at A = 0.015); the largest dt tried takes 10 steps.
+EdgeResult search(SyntheticCase& c, double top = 0.1) {
+  return find_edge(EdgeAxis{.unit = kCfl, .top = top, .wave_passes = 2, .A = 0.015},
+                   [&](double dt, bool outcome) { return c(dt, outcome); });
 }
 
 TEST(EdgeSearch, AccuracyEdgeBelowTheSurvivalEdge) {
@@ -81,7 +83,15 @@ TEST(EdgeSearch, AccuracyEdgeBelowTheSurvivalEdge) {
   EXPECT_EQ(row["dt_accurate_over_cfl"], *e.dt_accurate / kCfl);
   EXPECT_EQ(row["dt_inaccurate"], *e.dt_inaccurate);
   EXPECT_EQ(row["survival_flips"].get<std::string>(), "");
-  EXPECT_EQ(row["failed_below_edge"], 0);
+  EXPECT_EQ(j["wave_passes"], 2.0);
+  EXPECT_EQ(j["A"], 0.015);
+  // The dense scan below each edge: at least 8 runs from 0.9x the edge up to it.
+  for (const double edge : {*e.dt_edge, *e.dt_accurate}) {
+    int below = 0;
+    for (const auto& p : e.probes)
+      below += p.dt >= 0.9 * edge * (1 - 1e-12) && p.dt < edge;
+    EXPECT_GE(below, 8) << edge / kCfl;
+  }
 }
 
 TEST(EdgeSearch, NoAccuracyEdgeWhenTheReferenceIsMeaningless) {
@@ -96,37 +106,114 @@ TEST(EdgeSearch, NoAccuracyEdgeWhenTheReferenceIsMeaningless) {
   EXPECT_TRUE(row["outcome_at_accurate"].is_null());
 }
 
-TEST(EdgeSearch, NonMonotoneSurvivalIsFlaggedWithItsFlips) {
-  // Fails between 0.3 and 0.4 h/c: the scan's 0.354 h/c fails, 0.5 h/c survives again.
+TEST(EdgeSearch, TheLowestFailureIsTheEdgeAndNonMonotoneSurvivalIsSaid) {
+  // Fails between 0.3 and 0.4 h/c: the scan's 0.354 h/c fails, 0.5 h/c to 0.82 h/c survive
+  // again. The edge is the lowest failure: below 0.3 h/c, not 0.82 h/c.
   SyntheticCase c;
   c.fail_low = 0.3;
   c.fail_high = 0.4;
   const EdgeResult e = search(c);
-  ASSERT_TRUE(e.dt_edge);
-  EXPECT_LE(*e.dt_edge, 0.82 * kCfl);
-  ASSERT_EQ(e.flips.size(), 2u);
+  ASSERT_TRUE(e.dt_edge && e.dt_fail && e.survives_above);
+  EXPECT_LT(*e.dt_edge, 0.3 * kCfl);
+  EXPECT_GE(*e.dt_fail, 0.3 * kCfl);
+  EXPECT_LE(*e.dt_fail / *e.dt_edge, 1.02);
+  EXPECT_FALSE(e.monotone());
+  EXPECT_LE(*e.survives_above, 0.82 * kCfl);
+  EXPECT_GE(*e.survives_above, 0.5 * kCfl);
+  // Every dt tried up to the edge survives.
+  for (const auto& p : e.probes)
+    if (p.dt <= *e.dt_edge) {
+      EXPECT_TRUE(p.survived) << p.dt / kCfl;
+    }
+  ASSERT_GE(e.flips.size(), 2u);
   EXPECT_FALSE(e.flips[0].survives);
-  EXPECT_GE(e.flips[0].dt, 0.3 * kCfl);
-  EXPECT_LT(e.flips[0].below, 0.3 * kCfl);
   EXPECT_TRUE(e.flips[1].survives);
-  EXPECT_DOUBLE_EQ(e.flips[1].dt, 0.5 * kCfl);
-  EXPECT_LT(e.flips[1].below, 0.4 * kCfl);
   // The accuracy edge stops below the first failure above the reference.
   ASSERT_TRUE(e.dt_accurate);
-  EXPECT_LT(*e.dt_accurate, 0.3 * kCfl);
-  EXPECT_EQ(*e.dt_inaccurate, e.flips[0].dt);
+  EXPECT_LE(*e.dt_accurate, *e.dt_edge);
 
   const ojson j = edge_to_json(e);
   EXPECT_EQ(j["monotone"], false);
-  ASSERT_EQ(j["survival_flips"].size(), 2u);
-  EXPECT_EQ(j["survival_flips"][1]["dt"], e.flips[1].dt);
+  EXPECT_EQ(j["dt_survives_above"], *e.survives_above);
   const ojson row = edge_columns(j);
-  std::string expected = "fails ";
-  expected += ojson(e.flips[0].dt).dump();
-  expected += "; survives ";
-  expected += ojson(e.flips[1].dt).dump();
-  EXPECT_EQ(row["survival_flips"].get<std::string>(), expected);
-  EXPECT_GE(row["failed_below_edge"].get<int>(), 1);
+  EXPECT_EQ(row["monotone"], false);
+  EXPECT_EQ(row["dt_survives_above"], *e.survives_above);
+  EXPECT_NE(row["survival_flips"].get<std::string>(), "");
+}
+
+TEST(EdgeSearch, AFailureAFewPercentBelowTheBisectedEdgeMovesTheEdgeBelowIt) {
+  // Survives to 0.82 h/c but fails in [0.78, 0.79) h/c, which neither the scan (0.707, 1) nor
+  // the bisection visits: the dense scan below 0.82 finds it.
+  SyntheticCase c;
+  c.fail_low = 0.78;
+  c.fail_high = 0.79;
+  const EdgeResult e = search(c);
+  ASSERT_TRUE(e.dt_edge && e.dt_fail && e.survives_above);
+  EXPECT_LT(*e.dt_edge, 0.78 * kCfl);
+  EXPECT_LT(*e.dt_fail, 0.79 * kCfl);
+  EXPECT_FALSE(e.monotone());
+  EXPECT_GT(*e.survives_above, 0.8 * kCfl);
+}
+
+TEST(EdgeSearch, NoEdgeWhereTheSmallestDtFails) {
+  // Fails at the bottom of the scan (h/16c), survives from 0.1 h/c: no dt below survives, so
+  // there is no edge, and survival is not monotone.
+  SyntheticCase c;
+  c.fail_low = 0;
+  c.fail_high = 0.1;
+  const EdgeResult e = search(c);
+  EXPECT_FALSE(e.dt_edge);
+  ASSERT_TRUE(e.dt_fail && e.survives_above);
+  EXPECT_EQ(*e.dt_fail, kCfl / 16);
+  EXPECT_FALSE(e.monotone());
+}
+
+TEST(EdgeLine, TheLowestFailureIsTheEdgeAndRunsWithoutAVerdictAreLeftOut) {
+  using V = EdgeVerdict;
+  // Holds at 1 to 3, fails at 4, holds at 5, no verdict at 6 (too short).
+  const EdgeLine l =
+      edge_line({{5, V::holds}, {1, V::holds}, {4, V::fails}, {2, V::holds}, {6, V::none}});
+  EXPECT_EQ(l.edge, 2.0);
+  EXPECT_EQ(l.fail, 4.0);
+  EXPECT_EQ(l.holds_above, 5.0);
+  EXPECT_FALSE(l.monotone());
+  // A run too short for a verdict is neither a survival nor a failure.
+  const EdgeLine s = edge_line({{1, V::holds}, {2, V::none}, {3, V::fails}});
+  EXPECT_EQ(s.edge, 1.0);
+  EXPECT_EQ(s.fail, 3.0);
+  EXPECT_TRUE(s.monotone());
+  EXPECT_FALSE(edge_line({{1, V::none}}).edge);
+}
+
+TEST(EdgeSearch, ARunTooShortForAVerdictIsNotASurvival) {
+  // Survives at every dt; above dt = 0.1 a run to T = 1 takes fewer than kMinStepsToJudge steps.
+  // With the top at T, those runs are tried but give no verdict: the edge is the largest dt
+  // whose run has one.
+  SyntheticCase c;
+  c.edge = 1e9;
+  c.accurate = 1e9;
+  const EdgeResult e = search(c, 1.0);
+  ASSERT_TRUE(e.dt_edge);
+  EXPECT_LE(*e.dt_edge, 0.1 + 1e-12);
+  EXPECT_FALSE(e.dt_fail);
+  for (const auto& p : e.probes)
+    if (p.dt == *e.dt_edge) {
+      EXPECT_GE(p.steps, kMinStepsToJudge);
+    }
+}
+
+TEST(EdgeSearch, RunsUnderAWavePassFindNoEdge) {
+  RunParams p;
+  p.method = Method::gimp;
+  p.E = 4;
+  p.A = 0.015;
+  p.T = 0.2;  // c T = 0.4 wave passes
+  const EdgeResult e = find_edge(p);
+  EXPECT_TRUE(e.too_short);
+  EXPECT_FALSE(e.dt_edge);
+  EXPECT_TRUE(e.probes.empty());
+  EXPECT_DOUBLE_EQ(e.wave_passes, 0.4);
+  EXPECT_EQ(edge_to_json(e)["too_short"], true);
 }
 
 // A small real case: GIMP at E = 4 survives to about 0.82 h/c, but the run there is meaningless;
@@ -169,7 +256,7 @@ std::vector<ojson> edge_rows() {
   a["max_error_at_accurate"] = 6e-6;
   a["outcome_at_accurate"] = "stable";
   a["search_particle_steps"] = 2.4e6;
-  a["failed_below_edge"] = 0;
+  a["dt_survives_above"] = nullptr;
   a["survival_flips"] = "";
   a["probes"] = 20;
   ojson b = a;
@@ -180,8 +267,8 @@ std::vector<ojson> edge_rows() {
   b["dt_accurate"] = b["dt_accurate_over_cfl"] = b["max_error_at_accurate"] = nullptr;
   b["outcome_at_accurate"] = nullptr;
   b["monotone"] = false;
-  b["failed_below_edge"] = 1;
-  b["survival_flips"] = "fails 0.000625; survives 0.00088388347648318";
+  b["dt_survives_above"] = 0.0042;
+  b["survival_flips"] = "fails 0.0035355339059327; survives 0.00420448207626857";
   a["courant_spectral"] = 0.7564;  // recorded for the first row only
   ojson none = study_row("mpm", 4);
   test_support::fail_row(none, "nonpositive_F");
@@ -191,7 +278,7 @@ std::vector<ojson> edge_rows() {
         "dt_accurate_over_cfl", "max_error_at_accurate", "outcome_at_accurate"})
     none[k] = nullptr;
   none["monotone"] = true;
-  none["failed_below_edge"] = 0;
+  none["dt_survives_above"] = nullptr;
   none["survival_flips"] = "";
   none["probes"] = 13;
   none["search_particle_steps"] = 2.8e6;
@@ -210,8 +297,10 @@ TEST(EdgeStudy, ReportStatesTheRuleAndReadsBothEdgesFromTheRows) {
             std::string::npos)
       << md;
   // The reading, computed from the rows.
-  EXPECT_NE(md.find("Of 3 searches, 2 found a survival edge and 1 no surviving dt in the scan."),
-            std::string::npos)
+  EXPECT_NE(
+      md.find("Of 3 searches, 2 found a survival edge and 1 none (no dt of the scan survives, or "
+              "the smallest dt tried fails)."),
+      std::string::npos)
       << md;
   EXPECT_NE(md.find("gimp: the survival edge is 0.700 to 0.820 h/c, and the run there is "
                     "meaningless in 1 of 2 cases; the accuracy edge is 0.788 h/c, below the "
@@ -219,11 +308,15 @@ TEST(EdgeStudy, ReportStatesTheRuleAndReadsBothEdgesFromTheRows) {
                     "edge"),
             std::string::npos)
       << md;
-  EXPECT_NE(md.find("mpm: no dt of the scan survives (1 case)."), std::string::npos) << md;
+  EXPECT_NE(md.find("mpm: no edge: no dt of the scan survives, or the smallest dt tried fails (1 "
+                    "case)."),
+            std::string::npos)
+      << md;
   EXPECT_NE(
-      md.find("1 of 3 searches found survival not monotone in dt (a dt below the survival "
-              "edge fails): gimp, A = 0.05, E = 4 (c T = 2) (fails from 6.25e-4, survives from "
-              "8.84e-4)."),
+      md.find("1 of 3 searches found survival not monotone in dt (a dt above the lowest "
+              "failure survives; the edge is below that failure): gimp, A = 0.05, E = 4 (c T = 2) "
+              "(**not monotone**: survives again at up to 4.20e-3 (fails from 3.54e-3, survives "
+              "from 4.20e-3))."),
       std::string::npos)
       << md;
   // The table: A / h and c T, the spectral limit (where recorded), both edges with h/c, the
@@ -237,7 +330,8 @@ TEST(EdgeStudy, ReportStatesTheRuleAndReadsBothEdgesFromTheRows) {
             std::string::npos)
       << md;
   EXPECT_NE(md.find("none (reference meaningless)"), std::string::npos);
-  EXPECT_NE(md.find("**not monotone**: fails from 6.25e-4, survives from 8.84e-4"),
+  EXPECT_NE(md.find("| **not monotone**: survives again at up to 4.20e-3 (fails from 3.54e-3, "
+                    "survives from 4.20e-3) |"),
             std::string::npos);
   EXPECT_NE(md.find("| mpm | 0.015 | 1.5 | 4 | 2 | 5.00e-3 | – | none in the scan |"),
             std::string::npos);
@@ -360,14 +454,14 @@ TEST(EdgeStudy, FigureDataHasARowPerDrawnCaseAndTheTitleCountsThem) {
             std::string::npos)
       << csv;
   // Not drawn, each with its reason, in the data and in the report.
-  EXPECT_NE(csv.find("# not drawn, no dt of the scan survives: bar: mpm, A = 0.015, c T = 2\n"),
+  EXPECT_NE(csv.find("# not drawn, no edge (none in the scan): bar: mpm, A = 0.015, c T = 2\n"),
             std::string::npos)
       << csv;
   EXPECT_NE(csv.find("# not drawn, no series in the figure: bar: cpgimp, A = 0.015, c T = 2\n"),
             std::string::npos)
       << csv;
   EXPECT_NE(report.markdown.find("**Drawn.** 3 of 5 cases, 2 of them with their accuracy edge. "
-                                 "Not drawn, no dt of the scan survives (1): bar: mpm, A = "
+                                 "Not drawn, no edge (none in the scan) (1): bar: mpm, A = "
                                  "0.015, c T = 2. Not drawn, no series in the figure (1): bar: "
                                  "cpgimp, A = 0.015, c T = 2. Drawn "
                                  "without an accuracy edge"),

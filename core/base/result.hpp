@@ -51,6 +51,10 @@ enum class Outcome { unstable, meaningless, stable, too_short };
 
 // A run that reaches T in fewer steps than this gets no verdict but too_short.
 inline constexpr long long kMinStepsToJudge = 10;
+// A run that reached T in fewer wave passes c T / L than this is too short to show an
+// instability that takes a wave across the body: whatever its outcome says, it is not called
+// stable, and an edge search over runs this short finds no edge (docs/studies.md, "Outcomes").
+inline constexpr double kMinWavePasses = 1;
 
 std::string_view to_string(Outcome o);
 

@@ -1,12 +1,22 @@
-// The real edges of a case in fixed dt, found by a log-spaced scan around the speed-of-sound
-// limit h / c followed by bisection (docs/studies.md, "The stability edge"):
-// - the survival edge dt_edge: the largest dt probed with which the case survives to T;
-// - the accuracy edge dt_accurate: the largest dt probed up to which every probed dt from the
-//   reference (the smallest dt that survives) survives with an error over time within
-//   accuracy_factor times the reference's, and whose run is not meaningless (none when the
-//   reference's run is meaningless: its error is no yardstick).
-// Survival that is not monotone in dt (a dt below the edge fails) is reported as the dts where
-// it flips.
+// The real edges of a case in fixed dt, and every edge and margin the project prints (the edge,
+// spectral_edge, scene_edges and courant studies, `mpmstab edge`, `mpmstab advise`'s margins):
+// one rule and one search (docs/studies.md, "The stability edges").
+// - The rule (edge_line): over the runs tried, in increasing step, the edge is the largest step
+//   up to which every run tried holds (survives; or is accurate), and the run above it that does
+//   not hold is the *lowest* failure found. A run that holds above that failure makes the edge
+//   not monotone: the highest such run is reported beside the edge. A run too short for a verdict
+//   (fewer than kMinStepsToJudge steps) neither holds nor fails.
+// - The search: a log-spaced scan from scan_low to scan_high times the unit (h / c), doubling
+//   while every step tried holds, bisection to `tolerance`, then a dense scan below the edge
+//   (below_points steps from below_span x the edge up to it, and as many from below_from when
+//   set); a failure found there moves the edge below it, and the search bisects and scans below
+//   the new edge again, erratic_factor times as densely.
+// - the survival edge dt_edge; the accuracy edge dt_accurate: by the same rule from the
+//   reference (the smallest dt that survives), a run being accurate when it survives with an
+//   error over time within accuracy_factor times the reference's (or, with accuracy_bound, at
+//   most that bound) and is not meaningless; none when the reference's run is meaningless.
+// - Every edge holds for the run length (wave passes c T / L) and the amplitude A it was
+//   searched at; a search over runs of fewer than kMinWavePasses wave passes finds none.
 #pragma once
 
 #include <atomic>
@@ -33,7 +43,33 @@ struct EdgeOptions {
   // most bound x A. A mode that grows but has not yet failed by T then counts as failing (the
   // edge of a tiny amplitude, where growth does not reach a failure within T).
   std::optional<double> bound;
+  // When set, a run is accurate when it ends stable with an error over time at most this (the
+  // target of `mpmstab advise`), instead of within accuracy_factor x the reference's.
+  std::optional<double> accuracy_bound;
+  // The dense scan below an edge: below_points steps from below_span x the edge up to it, and
+  // when below_from is set, as many from below_from up to it. Once a scan below an edge has
+  // found a failure (survival is erratic there), each scan below the next edge tries
+  // erratic_factor times as many.
+  double below_span = 0.9;
+  int below_points = 8;
+  int erratic_factor = 4;
+  std::optional<double> below_from;
 };
+
+// The verdict of one run on one property: it holds (survives, or is accurate), it fails, or it
+// is too short for a verdict.
+enum class EdgeVerdict { holds, fails, none };
+
+// The rule, on the runs tried (step, verdict), in any order: the edge is the largest step up to
+// which every judged run holds; `fail` the lowest judged run that fails (none below it holds:
+// no edge); `holds_above` the highest judged run above `fail` that holds (not monotone).
+struct EdgeLine {
+  std::optional<double> edge;
+  std::optional<double> fail;
+  std::optional<double> holds_above;
+  bool monotone() const { return !holds_above; }
+};
+EdgeLine edge_line(std::vector<std::pair<double, EdgeVerdict>> runs);
 
 // One run of the search. The probes run without observers: whether a surviving run is
 // meaningless is known only for the scan's probes up to the first that survives (the
@@ -57,21 +93,29 @@ struct SurvivalFlip {
 };
 
 struct EdgeResult {
-  double dt_cfl = 0;              // h / c
-  std::optional<double> dt_edge;  // largest dt found to survive; none in the scan: nullopt
-  std::optional<double> dt_fail;  // smallest dt above it found to fail
-  bool above_scan = false;        // every dt up to T survived
-  // Stability is not monotone in dt: smaller steps that failed although dt_edge survived, and
-  // the dts where survival flips below dt_fail (empty when monotone).
-  std::vector<double> failed_below_edge;
+  double dt_cfl = 0;  // h / c
+  // What every run of the search holds for: its wave passes c T / L and its amplitude A. Under
+  // kMinWavePasses the runs are too short for a verdict and the search makes none (too_short).
+  double wave_passes = 0;
+  double A = 0;
+  bool too_short = false;
+  std::optional<double> dt_edge;  // every dt tried up to it survives; none: nullopt
+  std::optional<double> dt_fail;  // the lowest dt tried that fails (above dt_edge)
+  bool above_scan = false;        // every dt up to the largest with a verdict survived
+  // Survival is not monotone in dt: the highest dt above dt_fail that survives, and the dts
+  // where survival flips, in increasing dt, over every dt tried (empty when monotone).
+  std::optional<double> survives_above;
   std::vector<SurvivalFlip> flips;
+  bool monotone() const { return !survives_above; }
 
   // The accuracy edge. The reference is the smallest dt probed that survived.
   double accuracy_factor = 2;
   std::optional<double> dt_reference;
   std::optional<double> max_error_reference;
-  std::optional<double> dt_accurate;    // none when the reference's run is meaningless
-  std::optional<double> dt_inaccurate;  // the next dt probed above it (not accurate)
+  std::optional<double> dt_accurate;     // none when the reference's run is meaningless
+  std::optional<double> dt_inaccurate;   // the lowest dt above it that is not accurate
+  std::optional<double> accurate_above;  // the highest dt above dt_inaccurate that is accurate
+  bool accuracy_monotone() const { return !accurate_above; }
 
   std::vector<EdgeProbe> probes;     // every run without observers, in the order made
   std::optional<RunResult> at_edge;  // the run at dt_edge, with the observers of the params
@@ -81,7 +125,8 @@ struct EdgeResult {
   bool interrupted = false;
 };
 
-// `base` must be valid apart from its dt, which the search sets (the fixed policy is used).
+// `base` must be valid apart from its dt, which the search sets (the fixed policy is used); the
+// largest dt tried takes kMinStepsToJudge steps to T.
 // The probes run with every observer off (those of the scan up to the first that survives, the
 // candidates for the reference, observe the error over time); the run at dt_edge uses base's
 // observers with
@@ -92,12 +137,19 @@ struct EdgeResult {
 EdgeResult find_edge(const RunParams& base, const EdgeOptions& options = {},
                      const std::atomic<bool>* cancel = nullptr);
 
-// The same search on a given function of dt, for tests: `survey(dt, outcome)` stands for the
-// probe at dt (`outcome`: the search needs its outcome, and find_edge observes the run's error
-// over time). No run is measured: at_edge stays empty and a survivor's outcome is the one
-// `survey` gives (unknown counts as not meaningless).
+// The same search on a given function of the step, for tests and for searches in other units
+// (`advise`'s margins in C): `survey(x, outcome)` stands for the run at x (`outcome`: the search
+// needs its outcome). No run is measured: at_edge stays empty and a survivor's outcome is the
+// one `survey` gives (unknown counts as not meaningless). `axis`: the unit of the scan (h / c),
+// the largest step tried, and the wave passes and amplitude of every run.
 using EdgeSurvey = std::function<EdgeProbe(double dt, bool outcome)>;
-EdgeResult find_edge(double dt_cfl, double T, const EdgeSurvey& survey,
+struct EdgeAxis {
+  double unit = 0;
+  double top = 0;
+  double wave_passes = 0;
+  double A = 0;
+};
+EdgeResult find_edge(const EdgeAxis& axis, const EdgeSurvey& survey,
                      const EdgeOptions& options = {});
 
 }  // namespace mpmstab

@@ -26,9 +26,13 @@ survival edge dt_edge, the largest dt with which the bar survives to T, and the 
 dt_accurate, the largest dt up to which every dt tried from the reference (the smallest that
 survives) survives with an error over time within 2 times the reference's; it is printed only
 where the reference run and its own run are accurate (an error over time below a tenth of A:
-docs/studies.md, "Accuracy classes"). A log-spaced scan dt = (h/c) 2^(k/2) from h/(16c) to 4h/c, then bisection to
-within --tolerance. Reports both edges against h/c, dt_edge / (the eq. 108 minimum of the run
-at dt_edge), and warns with the dts where survival flips when it is not monotone in dt.
+docs/studies.md, "Accuracy classes"). A log-spaced scan dt = (h/c) 2^(k/2) from h/(16c) to 4h/c
+(at most T / 10: a run of fewer steps gets no verdict), bisection to within --tolerance, then 8
+dts from 0.9 x the edge up to it; a failure there moves the edge below it. Each edge is the
+lowest failure found: where a larger dt survives again it says so (not monotone). Reports the
+run length c T and amplitude A the edges hold for, both edges against h/c, dt_edge / (the
+eq. 108 minimum of the run at dt_edge), and the dts where survival flips. Runs of fewer than
+one wave pass are too short for a verdict: no edge.
 
 Options: --T, --cells, --ppc, --bc, --position-update, --scene, --walls, --transfer,
 --flip-fraction, --xpic-order, --fmpm-order, --update, --shift, --jitter, --body-force-time, --dt-stable-sigma, --dt-stable-vnorm,
@@ -70,13 +74,29 @@ void print_summary(std::ostream& out, const RunParams& params, const EdgeResult&
       << ", A = " << fmt(params.A) << ", T = " << fmt(params.T) << ", " << params.cells
       << " cells x " << params.ppc << " ppc, " << to_string(params.bc) << nondefault_choices(params)
       << "\n";
+  out << "  holds for             c T = " << fmt(e.wave_passes) << " wave passes, A = " << fmt(e.A)
+      << "\n";
+  if (e.too_short) {
+    out << "  no edge: runs of fewer than " << fmt(kMinWavePasses)
+        << " wave pass are too short for a verdict\n";
+    return;
+  }
   if (!e.dt_edge) {
-    out << "  no dt from h/(16c) to 4h/c survives to T\n";
+    out << "  no edge: "
+        << (e.dt_fail ? "the smallest dt tried, " + fmt(*e.dt_fail) + ", fails"
+                      : std::string("no dt from h/(16c) survives to T"))
+        << (e.survives_above ? " (not monotone: survives at " + fmt(*e.survives_above) + ")"
+                             : std::string())
+        << "\n";
     return;
   }
   out << "  dt_edge               " << fmt(*e.dt_edge)
       << (e.dt_fail ? "  (fails at " + fmt(*e.dt_fail) + ")"
-                    : std::string("  (every dt up to T survives)"))
+                    : std::string("  (every dt with a verdict survives)"))
+      << "\n  monotone              "
+      << (e.monotone() ? std::string("yes: every dt tried up to the edge survives, none above")
+                       : "no: the lowest failure is the edge; survives again at up to " +
+                             fmt(*e.survives_above))
       << "\n  h/c                   " << fmt(e.dt_cfl) << "\n  dt_edge / (h/c)       "
       << fmt(*e.dt_edge / e.dt_cfl) << "\n";
   if (e.at_edge) {
@@ -106,14 +126,18 @@ void print_summary(std::ostream& out, const RunParams& params, const EdgeResult&
     out << "  dt_accurate           " << fmt(*e.dt_accurate) << "  (error over time within "
         << fmt(e.accuracy_factor) << " x the reference's"
         << (e.dt_inaccurate ? "; not at " + fmt(*e.dt_inaccurate) : std::string()) << ")"
-        << "\n  dt_accurate / (h/c)   " << fmt(*e.dt_accurate / e.dt_cfl) << "\n";
+        << "\n  dt_accurate / (h/c)   " << fmt(*e.dt_accurate / e.dt_cfl) << "\n"
+        << "  accuracy monotone     "
+        << (e.accuracy_monotone() ? std::string("yes")
+                                  : "no: accurate again at up to " + fmt(*e.accurate_above))
+        << "\n";
   } else {
     out << "  dt_accurate           none: the reference run is meaningless\n";
   }
   out << "  runs                  " << e.probes.size() << ", " << fmt(double(e.particle_steps))
       << " particle-steps, in " << fmt(e.wall_seconds) << " s\n";
   if (!e.flips.empty()) {
-    out << "  warning: survival is not monotone in dt: as dt grows it";
+    out << "  survival flips        as dt grows it";
     for (const auto& f : e.flips)
       out << (&f == &e.flips.front() ? " " : ", ")
           << (f.survives ? "survives from " : "fails from ") << fmt(f.dt);

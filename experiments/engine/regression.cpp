@@ -63,7 +63,9 @@ std::vector<ColumnRule> value_rules(double rtol) {
           {"survival_flips", 0, 0, true},
           {"search_particle_steps", 0, 0, false},
           {"monotone", 0, 0, true},
-          {"failed_below_edge", 0, 0, false},
+          {"dt_survives_above", 0, rtol, false},
+          {"accuracy_monotone", 0, 0, true},
+          {"dt_accurate_above", 0, rtol, false},
           {"probes", 0, 0, false}};
 }
 

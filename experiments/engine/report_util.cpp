@@ -111,9 +111,14 @@ std::string span(const std::vector<double>& v, int digits) {
 
 std::string edge_search_text(const EdgeOptions& o) {
   return "a log-spaced scan of dt, " + std::to_string(o.per_octave) + " per octave, from " +
-         shortest(o.scan_low) + " to " + shortest(o.scan_high) +
-         " times h/c, then bisection until the smallest failing dt is within " +
-         percent(o.tolerance) + " of the largest surviving one";
+         shortest(o.scan_low) + " to " + shortest(o.scan_high) + " times h/c (at most T / " +
+         std::to_string(kMinStepsToJudge) +
+         ": a run of fewer steps gets no verdict), then bisection until the lowest failing dt is "
+         "within " +
+         percent(o.tolerance) + " of the largest surviving one, then " +
+         std::to_string(o.below_points) + " dts from " + shortest(o.below_span) +
+         " times the edge up to it; a failure there moves the edge below it, and the search "
+         "bisects and scans below the new edge again. Each edge is the lowest failure found";
 }
 
 std::string percent(double fraction) {

@@ -145,7 +145,11 @@ nlohmann::ordered_json edge_to_json(const EdgeResult& e) {
   };
   ojson j;
   j["dt_cfl"] = e.dt_cfl;
-  // The survival edge.
+  // What every run of the search holds for: its wave passes and amplitude.
+  j["wave_passes"] = e.wave_passes;
+  j["A"] = e.A;
+  j["too_short"] = e.too_short;
+  // The survival edge (the lowest failure found), and the highest survival above it.
   j["dt_edge"] = or_null(e.dt_edge);
   j["dt_fail"] = or_null(e.dt_fail);
   j["dt_edge_over_cfl"] = over_cfl(e.dt_edge);
@@ -154,8 +158,8 @@ nlohmann::ordered_json edge_to_json(const EdgeResult& e) {
   j["dt_stable_min_at_edge"] = have_bound ? ojson(bound) : nullptr;
   j["dt_edge_over_stable"] = have_bound ? ojson(e.dt_edge.value() / bound) : nullptr;
   j["above_scan"] = e.above_scan;
-  j["monotone"] = e.flips.empty();
-  j["failed_below_edge"] = e.failed_below_edge;
+  j["monotone"] = e.monotone();
+  j["dt_survives_above"] = or_null(e.survives_above);
   auto flips = ojson::array();
   for (const auto& f : e.flips)
     flips.push_back({{"below", f.below}, {"dt", f.dt}, {"survives", f.survives}});
@@ -167,6 +171,8 @@ nlohmann::ordered_json edge_to_json(const EdgeResult& e) {
   j["dt_accurate"] = or_null(e.dt_accurate);
   j["dt_inaccurate"] = or_null(e.dt_inaccurate);
   j["dt_accurate_over_cfl"] = over_cfl(e.dt_accurate);
+  j["accuracy_monotone"] = e.accuracy_monotone();
+  j["dt_accurate_above"] = or_null(e.accurate_above);
   const EdgeProbe* at_accurate = nullptr;
   for (const auto& p : e.probes) {
     if (e.dt_accurate && p.dt == *e.dt_accurate) at_accurate = &p;
@@ -193,12 +199,11 @@ nlohmann::ordered_json edge_columns(const nlohmann::ordered_json& edge) {
   nlohmann::ordered_json row;
   for (const char* col :
        {"dt_edge", "dt_fail", "dt_edge_over_cfl", "dt_stable_min_at_edge", "dt_edge_over_stable",
-        "monotone", "dt_reference", "max_error_reference", "dt_accurate", "dt_inaccurate",
-        "dt_accurate_over_cfl", "max_error_at_accurate", "outcome_at_accurate",
-        "search_particle_steps"}) {
+        "monotone", "dt_survives_above", "dt_reference", "max_error_reference", "dt_accurate",
+        "dt_inaccurate", "dt_accurate_over_cfl", "accuracy_monotone", "dt_accurate_above",
+        "max_error_at_accurate", "outcome_at_accurate", "search_particle_steps"}) {
     row[col] = edge.contains(col) ? edge[col] : nlohmann::ordered_json(nullptr);
   }
-  row["failed_below_edge"] = edge["failed_below_edge"].size();
   // "fails 0.00119; survives 0.00168": each dt from which survival changes, in increasing dt.
   std::string flips;
   for (const auto& f : edge.value("survival_flips", nlohmann::ordered_json::array())) {

@@ -13,14 +13,14 @@
 #include <vector>
 
 #include "base/accuracy.hpp"
+#include "base/result.hpp"
 #include "spec.hpp"
 
 namespace mpmstab {
 
-// A run that reached T in fewer wave passes c T / L than this is too short to show an
-// instability that takes a wave across the body: whatever its outcome says, no report, fit,
-// tally or command calls it stable (docs/studies.md, "Outcomes").
-inline constexpr double kMinWavePasses = 1;
+// kMinWavePasses (base/result.hpp): a run that reached T in fewer wave passes c T / L is too
+// short to show an instability that takes a wave across the body: whatever its outcome says, no
+// report, fit, tally, edge or command calls it stable (docs/studies.md, "Outcomes").
 
 // How a run ended, as every report counts it: unstable (it stopped with a failure), meaningless
 // (it reached T with an error over time of at least A), too short (too few steps for a verdict),

@@ -271,8 +271,9 @@ std::string case_search(const Spec& spec) {
   const EdgeOptions& o = spec.study->edge;
   const EdgeOptions d;
   std::ostringstream s;
-  // "over-time": the accuracy edge compares the error over time, not the error at T.
-  s << "edge-accuracy-over-time";
+  // "over-time": the accuracy edge compares the error over time, not the error at T; "edge2":
+  // the lowest failure found is the edge, after a dense scan below it.
+  s << "edge2-accuracy-over-time";
   if (o.tolerance != d.tolerance || o.scan_low != d.scan_low || o.scan_high != d.scan_high ||
       o.per_octave != d.per_octave || o.accuracy_factor != d.accuracy_factor) {
     s << ";tolerance=" << shortest(o.tolerance) << ";scan=" << shortest(o.scan_low) << ","

@@ -15,6 +15,7 @@
 #include "csv.hpp"
 #include "key.hpp"
 #include "report_util.hpp"
+#include "run/edge.hpp"
 #include "shared/edge_length.hpp"
 #include "study.hpp"
 
@@ -56,17 +57,27 @@ std::vector<Scan> scans(const std::vector<ojson>& rows) {
     std::stable_sort(s.runs.begin(), s.runs.end(), [&](std::size_t a, std::size_t b) {
       return TotalLess()(rows[a]["courant"].get<double>(), rows[b]["courant"].get<double>());
     });
-    bool all_survive = true, all_stable = true, failed = false;
+    // The rule of every edge (core/run/edge.hpp, edge_line): the edge is the largest C up to
+    // which every run with a verdict holds; a run too short for one neither holds nor fails.
+    std::vector<std::pair<double, EdgeVerdict>> survival, stability;
+    std::map<double, std::size_t> at;
     for (const std::size_t i : s.runs) {
-      const bool survives = survived(rows[i]);
-      all_survive = all_survive && survives;
-      all_stable = all_stable && outcome(rows[i]) == "stable";
-      if (all_survive) s.survives = i;
-      if (all_stable) s.stable = i;
-      if (survives && failed) s.comes_back.push_back(rows[i]["courant"].get<double>());
-      s.any_survives = s.any_survives || survives;
-      failed = failed || !survives;
+      const double C = rows[i]["courant"].get<double>();
+      at[C] = i;
+      const bool judged =
+          outcome(rows[i]) != "too_short" && number_or_zero(rows[i], "cT") >= kMinWavePasses;
+      auto verdict = [&](bool holds) {
+        return !judged ? EdgeVerdict::none : holds ? EdgeVerdict::holds : EdgeVerdict::fails;
+      };
+      survival.emplace_back(C, verdict(survived(rows[i])));
+      stability.emplace_back(C, verdict(outcome(rows[i]) == "stable"));
+      s.any_survives = s.any_survives || survival.back().second == EdgeVerdict::holds;
     }
+    const EdgeLine line = edge_line(survival), stable = edge_line(stability);
+    if (line.edge) s.survives = at[*line.edge];
+    if (stable.edge) s.stable = at[*stable.edge];
+    for (const auto& [C, v] : survival)
+      if (line.fail && C > *line.fail && v == EdgeVerdict::holds) s.comes_back.push_back(C);
     out.push_back(std::move(s));
   }
   return out;

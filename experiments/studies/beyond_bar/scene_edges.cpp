@@ -51,6 +51,8 @@ bool reference_at_round_off(const ojson& r) {
 enum class ScanEdge { inside, survives_to_top, edge_too_short, none_survives };
 
 ScanEdge scan_edge(const ojson& r) {
+  // Runs under a wave pass are too short for a verdict: the search makes none.
+  if (number_or_zero(r, "cT") < kMinWavePasses) return ScanEdge::edge_too_short;
   if (!has_number(r, "dt_edge")) return ScanEdge::none_survives;
   // A largest surviving run too short to judge gives no edge, whether or not a larger dt failed.
   if (outcome(r) == "too_short") return ScanEdge::edge_too_short;
@@ -132,15 +134,22 @@ std::string survival_edge_text(const ojson& r) {
   const auto edge = courant_of(r, "dt_edge");
   switch (scan_edge(r)) {
     case ScanEdge::inside:
-      return opt_fixed(edge) + (outcome(r) == "meaningless" ? " (meaningless)" : "");
+      return opt_fixed(edge) + (outcome(r) == "meaningless" ? " (meaningless)" : "") +
+             monotone_words(r);
     case ScanEdge::survives_to_top:
       return "none in the scan: it survives to its top, a step of T (c dt/h " +
              significant(*edge, 3) + ")";
     case ScanEdge::edge_too_short:
+      if (number_or_zero(r, "cT") < kMinWavePasses)
+        return "none: runs of c T = " + param(number_or_zero(r, "cT")) + " < " +
+               shortest(kMinWavePasses) + " wave pass are too short for a verdict";
       return "none in the scan: the run at c dt/h " + (edge ? significant(*edge, 3) : "–") +
              (has_number(r, "dt_fail") ? "" : ", the top of the scan (a step of T),") +
              " is too short to judge";
     case ScanEdge::none_survives:
+      if (const auto fail = courant_of(r, "dt_fail"))
+        return "none: the smallest c dt/h tried, " + significant(*fail, 3) + ", fails" +
+               monotone_words(r);
       return "none in the scan: no dt probed survives";
   }
   return "–";
@@ -227,8 +236,9 @@ std::string edge_row(const ojson& r, const std::optional<Robustness>& robust,
   }
   std::ostringstream md;
   md << "| " << text(r, "scene") << " | " << text(r, "method") << " | " << small_mass_of(r) << " | "
-     << survival_edge_text(r) << " | " << (inside ? opt_fixed(fail) : std::string("–")) << " | "
-     << (edge ? run_at_edge_text(r) : std::string("–")) << " | "
+     << shortest(number_or_zero(r, "A_over_h")) << ", " << shortest(number_or_zero(r, "cT"))
+     << " | " << survival_edge_text(r) << " | " << (inside ? opt_fixed(fail) : std::string("–"))
+     << " | " << (edge ? run_at_edge_text(r) : std::string("–")) << " | "
      << (inside ? lasting_text(lengths, r, "dt_edge") : std::string("–")) << " | "
      << accuracy_edge_text(r) << " | "
      << (accurate ? lasting_text(lengths, r, "dt_accurate") : std::string("–")) << " | "
@@ -237,10 +247,11 @@ std::string edge_row(const ojson& r, const std::optional<Robustness>& robust,
 }
 
 std::vector<Claim> edges_claims(const EdgeCounts& n) {
-  Claim edge = claim("every-case-has-an-edge", "Every case has a survival edge inside the scan",
-                     "{with} of {cases} do; of the others, {top} survive to the top of the scan (a "
-                     "step of T), {short} have a run at their largest surviving dt too short to "
-                     "judge and {none_survive} survive at no dt probed");
+  Claim edge =
+      claim("every-case-has-an-edge", "Every case has a survival edge inside the scan",
+            "{with} of {cases} do; of the others, {top} survive to the top of the scan (a "
+            "step of T), {short} have runs too short to judge (under a wave pass or too few "
+            "steps) and {none_survive} fail at the smallest dt tried");
   edge.every("with", n.with_edge, "cases", n.rows);
   edge.count("top", n.to_top)
       .count("short", n.edge_too_short)
@@ -275,10 +286,13 @@ std::vector<Claim> edges_claims(const EdgeCounts& n) {
 std::string edges_intro(const ReportContext& ctx) {
   std::ostringstream md;
   md << "Each row: a scene, a method and a small-mass treatment (docs/theory.md, \"Small-mass "
-        "nodes\"). *Survival edge*: the largest c dt/h probed that survives to T, and the "
-        "smallest above it that fails; a row has none inside the scan where it survives to the "
-        "top of the scan (a step of T), where the run at its largest surviving dt is too short "
-        "to judge, or where no dt probed survives; *accuracy edge*: the largest up to which the "
+        "nodes\"). *A/h, c T*: the amplitude and the run length (wave passes) every edge of "
+        "the row holds for. *Survival edge*: the largest c dt/h up to which every c dt/h tried "
+        "survives to T, and the lowest above it that fails (where a larger one survives again, "
+        "**not monotone** and the highest that does); a row has none inside the scan where it "
+        "survives to the top of the scan (a step of T), where its runs are too short to judge "
+        "(under a wave pass, or too few steps), or where the smallest dt tried fails; *accuracy "
+        "edge*: the largest up to which the "
         "error over time stays within the search's factor of the smallest dt's (the "
         "reference's) ("
      << edge_search_text(ctx.spec.study->edge)
@@ -298,10 +312,11 @@ std::string edges_intro(const ReportContext& ctx) {
      << shortest(kLengthFactors[0]) << " and " << shortest(kLengthFactors[1])
      << " times its wave passes (at most " << shortest(kLongPasses)
      << "), holding to the longest it passed or **transient** where it failed.\n\n"
-     << "| scene | method | small-mass | survival edge c dt/h | fails at | run at the edge | "
+     << "| scene | method | small-mass | A/h, c T | survival edge c dt/h | fails at | run at the "
+        "edge | "
         "survival edge: length | accuracy edge | accuracy edge: length | dense limit | edge / "
         "limit | perturbed: survive at edge, fail above |\n"
-        "|---|---|---|---:|---:|---|---|---:|---|---:|---:|---|\n";
+        "|---|---|---|---|---:|---:|---|---|---:|---|---:|---:|---|\n";
   return md.str();
 }
 
@@ -319,8 +334,8 @@ StudyReport edges_report(const ReportContext& ctx) {
         "not reached a failure by T (c T is given per scene in the scenes report). "
      << n.rows - n.with_edge << " of " << n.rows
      << " rows have no survival edge inside the scan: " << n.to_top << " survive to its top, "
-     << n.edge_too_short << " have a run at their largest surviving dt too short to judge, "
-     << n.none_survives << " survive at no dt probed";
+     << n.edge_too_short << " have runs too short to judge (under a wave pass or too few steps), "
+     << n.none_survives << " fail at the smallest dt tried";
   if (!n.edgeless_scenes.empty()) md << " (scenes: " << list_of(n.edgeless_scenes) << ")";
   md << ". " << n.round_off_references << " of " << n.rows
      << " rows have a reference error at round-off, and no accuracy edge.\n";

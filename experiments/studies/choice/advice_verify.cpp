@@ -290,9 +290,17 @@ VerifyingRun verifying_run(std::string what, const RunParams& params, double tar
   return v;
 }
 
+// A verifying run's outcome in the reports' words: a run stable over fewer than kMinWavePasses
+// wave passes is not called stable (docs/studies.md, "Outcomes").
+std::string outcome_words(const VerifyingRun& r) {
+  return r.outcome == "stable" && wave_passes(r.params) < kMinWavePasses
+             ? under_a_wave_pass_word(wave_passes(r.params))
+             : r.outcome;
+}
+
 std::string failure_words(const VerifyingRun& r, double target) {
   std::ostringstream s;
-  s << r.what << ": " << r.outcome;
+  s << r.what << ": " << outcome_words(r);
   if (r.outcome == "too_short")
     s << " (" << r.params.cells << " cells at C = " << shortest(r.params.stepping.cfl_factor)
       << " take fewer than " << kMinStepsToJudge << " steps)";
@@ -350,10 +358,11 @@ Trial verify(const Candidate& c, const VerifyProblem& vp, const RunFn& run_fn,
 namespace studies::advice_verify {
 namespace {
 
-// The margins on the problem: C stepped up by edge_step from the answer's (which passed) until a
-// run fails to survive or C reaches edge_top, then each bracket bisected (geometric mean) until
-// its ends are within edge_tolerance. Stops, unmeasured, where a probe would pass the budget
-// left.
+// The margins on the problem: the one edge search (core/run/edge.hpp) in C, from the answer's C
+// up by edge_step to edge_top, bisected to edge_tolerance and scanned below each edge from the
+// answer's C up to it; every run at length_factor x c T, the length the answer is verified at.
+// Stops, unmeasured, where a probe would pass the budget left.
+struct OverBudget {};
 
 ProblemEdges problem_edges(const Candidate& c, const VerifyProblem& vp, double budget_left,
                            double seconds_per_particle_step, const RunFn& run_fn,
@@ -361,64 +370,42 @@ ProblemEdges problem_edges(const Candidate& c, const VerifyProblem& vp, double b
   ProblemEdges e;
   const double target = vp.problem.target;
   RunParams params = run_params(c, vp);
+  params.T *= d.length_factor;
+  params.observe.error_over_time = true;
   const double C0 = params.stepping.cfl_factor;
-  struct Probe {
-    bool survives = false, accurate = false;
-  };
-  bool over_budget = false;
-  auto probe = [&](double C) -> std::optional<Probe> {
+  e.cT = wave_passes(params);
+  e.A = params.A;
+  const EdgeSurvey survey = [&](double C, bool) {
     const double work = double(params.ppc) * params.cells * steps_of(params.T, params.cells, C);
-    if (e.seconds + work * seconds_per_particle_step > budget_left) {
-      over_budget = true;
-      return std::nullopt;
-    }
+    if (e.seconds + work * seconds_per_particle_step > budget_left) throw OverBudget{};
     params.stepping.cfl_factor = C;
     const VerifyingRun r = verifying_run("edge", params, target, run_fn);
     e.seconds += r.seconds;
     e.particle_steps += r.particle_steps;
-    return Probe{.survives = r.outcome != "unstable", .accurate = r.passes};
+    EdgeProbe p{.dt = C, .survived = r.outcome != "unstable" && r.outcome != "no verdict"};
+    // A run too short for a verdict neither survives nor fails (the search reads its steps).
+    p.steps = r.outcome == "too_short" ? 0 : kMinStepsToJudge;
+    if (r.error_over_A) p.max_error = *r.error_over_A;  // per A, as the target
+    for (const Outcome o :
+         {Outcome::unstable, Outcome::meaningless, Outcome::stable, Outcome::too_short})
+      if (r.outcome == to_string(o)) p.outcome = o;
+    return p;
   };
-  double survive = C0, accurate = C0;
-  std::optional<double> fail, inaccurate;
-  double C = C0;
-  while (!fail && C * d.edge_step <= d.edge_top) {
-    C *= d.edge_step;
-    const auto r = probe(C);
-    if (!r) break;
-    if (r->survives)
-      survive = C;
-    else
-      fail = C;
-    if (!inaccurate) {
-      if (r->accurate)
-        accurate = C;
-      else
-        inaccurate = C;
-    }
-  }
-  e.scan_top = C;
-  auto bisect = [&](double& low, std::optional<double>& high, bool accuracy) {
-    while (!over_budget && high && *high / low > d.edge_tolerance) {
-      const double mid = std::sqrt(low * *high);
-      const auto r = probe(mid);
-      if (!r) return;
-      if (accuracy ? r->accurate : r->survives)
-        low = mid;
-      else
-        high = mid;
-    }
-  };
-  bisect(survive, fail, false);
-  bisect(accurate, inaccurate, true);
-  if (over_budget) {
+  EdgeOptions o{.tolerance = d.edge_tolerance - 1,
+                .scan_low = 1,
+                .scan_high = d.edge_top / C0,
+                .per_octave = static_cast<int>(std::lround(1 / std::log2(d.edge_step))),
+                .accuracy_bound = target,
+                .below_from = C0};
+  try {
+    e.search = find_edge(EdgeAxis{.unit = C0, .top = d.edge_top, .wave_passes = e.cT, .A = e.A},
+                         survey, o);
+  } catch (const OverBudget&) {
     e.not_measured = "not measured: its probes would pass the budget";
     return e;
   }
   e.measured = true;
-  e.survival = survive;
-  e.survival_fail = fail;
-  e.accurate = accurate;
-  e.accurate_fail = inaccurate;
+  e.scan_top = d.edge_top;
   return e;
 }
 
@@ -586,7 +573,7 @@ std::string problem_line(const VerifyProblem& vp) {
 std::string run_line(const VerifyingRun& r, bool with_seconds) {
   std::ostringstream s;
   s << "    " << r.what << " (" << r.params.cells << " cells, c T/L = " << value_text(r.params.T)
-    << "): " << r.outcome;
+    << "): " << studies::advice_verify::outcome_words(r);
   if (r.error_over_A) s << ", error over time " << sci(*r.error_over_A) << " A";
   s << ", " << sci(r.particle_steps) << " particle-steps";
   if (with_seconds) s << ", " << significant(r.seconds, 2) << " s";
@@ -599,15 +586,24 @@ std::string prediction_words(const Candidate& c) {
                                   : "none (" + c.predicted_from + ")";
 }
 
+// "C = 0.79 (1.6x the setting's C), fails at C = 0.8; monotone" or "none: fails at the
+// setting's C = 0.5 over this length", with the highest C that holds above the failure where
+// the edge is not monotone.
 std::string edge_words(const std::optional<double>& low, const std::optional<double>& high,
-                       double C0, double top) {
-  if (!low) return "–";
+                       const std::optional<double>& above, double C0, double top) {
   std::ostringstream s;
-  s << "C = " << significant(*low, 3) << " (" << ratio(*low / C0) << "x the setting's C)";
-  if (high)
-    s << ", fails at C = " << significant(*high, 3);
-  else
-    s << ", not reached up to C = " << significant(top, 3);
+  if (!low) {
+    s << "none: "
+      << (high ? "fails at the setting's C = " + significant(*high, 3) : std::string("no verdict"));
+  } else {
+    s << "C = " << significant(*low, 3) << " (" << ratio(*low / C0) << "x the setting's C)";
+    if (high)
+      s << ", fails at C = " << significant(*high, 3);
+    else
+      s << ", not reached up to C = " << significant(top, 3);
+  }
+  s << (above ? "; not monotone: holds again at up to C = " + significant(*above, 3)
+              : std::string(low ? "; monotone" : ""));
   return s.str();
 }
 
@@ -616,6 +612,7 @@ ojson run_json(const VerifyingRun& r) {
           {"cells", r.params.cells},
           {"cT", r.params.T},
           {"outcome", r.outcome},
+          {"under_a_wave_pass", r.outcome == "stable" && wave_passes(r.params) < kMinWavePasses},
           {"error_over_A", r.error_over_A ? ojson(*r.error_over_A) : ojson(nullptr)},
           {"particle_steps", r.particle_steps},
           {"seconds", r.seconds},
@@ -670,20 +667,27 @@ std::string verified_text(const Verified& v, const VerifyProblem& vp, bool with_
   const CheckedSetting& s = *c.from;
   out << "  setting                 " << candidate_name(c) << " (" << s.ppc
       << " particles per cell), verified on this problem\n"
-      << "  verifying runs          each stable with an error over time at most "
-      << value_text(vp.problem.target) << " A\n";
+      << "  verifying runs          each reaching T with an error over time at most "
+      << value_text(vp.problem.target) << " A (stable where it covers at least "
+      << shortest(kMinWavePasses) << " wave pass)\n";
   for (const auto& r : v.answer->runs)
     out << run_line(r, with_seconds);
   out << "  predicted error / A     " << prediction_words(c) << "\n"
       << "  particle-steps          " << sci(c.particle_steps) << " (the run of the problem)\n"
       << "  verification cost       " << sci(v.particle_steps) << " particle-steps"
       << (with_seconds ? ", " + significant(v.seconds, 2) + " s" : std::string()) << "\n";
-  if (v.edges.measured) {
-    out << "  survival edge           "
-        << edge_words(v.edges.survival, v.edges.survival_fail, s.courant, v.edges.scan_top)
+  const EdgeResult& m = v.edges.search;
+  if (v.edges.measured && m.too_short) {
+    out << "  margins                 none: runs of c T = " << value_text(v.edges.cT) << " < "
+        << shortest(kMinWavePasses) << " wave pass are too short for a verdict\n";
+  } else if (v.edges.measured) {
+    out << "  margins measured at     c T = " << value_text(v.edges.cT) << " (the length the "
+        << "answer is verified at), A = " << value_text(v.edges.A) << "\n"
+        << "  survival edge           "
+        << edge_words(m.dt_edge, m.dt_fail, m.survives_above, s.courant, v.edges.scan_top)
         << " (on this problem)\n"
         << "  accuracy edge           "
-        << edge_words(v.edges.accurate, v.edges.accurate_fail, s.courant, v.edges.scan_top)
+        << edge_words(m.dt_accurate, m.dt_inaccurate, m.accurate_above, s.courant, v.edges.scan_top)
         << " (within the target on this problem)\n";
   } else {
     out << "  margins                 " << v.edges.not_measured << "\n";
@@ -724,11 +728,19 @@ nlohmann::ordered_json verified_json(const Verified& v, const VerifyProblem& vp)
   out["answer"] = candidate_json(v.answer->candidate, vp);
   out["verifying_runs"] = runs;
   const auto& s = *v.answer->candidate.from;
+  const EdgeResult& m = v.edges.search;
   out["margins"] = {{"measured", v.edges.measured},
-                    {"survival_courant", opt(v.edges.survival)},
-                    {"survival_fails_at", opt(v.edges.survival_fail)},
-                    {"accuracy_courant", opt(v.edges.accurate)},
-                    {"accuracy_fails_at", opt(v.edges.accurate_fail)},
+                    {"cT", v.edges.cT},
+                    {"A", v.edges.A},
+                    {"too_short", m.too_short},
+                    {"survival_courant", opt(m.dt_edge)},
+                    {"survival_fails_at", opt(m.dt_fail)},
+                    {"survival_monotone", m.monotone()},
+                    {"survives_above", opt(m.survives_above)},
+                    {"accuracy_courant", opt(m.dt_accurate)},
+                    {"accuracy_fails_at", opt(m.dt_inaccurate)},
+                    {"accuracy_monotone", m.accuracy_monotone()},
+                    {"accurate_above", opt(m.accurate_above)},
                     {"scan_top", v.edges.measured ? nlohmann::ordered_json(v.edges.scan_top)
                                                   : nlohmann::ordered_json(nullptr)},
                     {"small_amplitude_limit", opt(s.courant_spectral)}};

@@ -16,6 +16,7 @@
 #include "base/params.hpp"
 #include "base/result.hpp"
 #include "choice/advice_rule.hpp"
+#include "run/edge.hpp"
 
 namespace mpmstab {
 
@@ -103,16 +104,16 @@ struct Trial {
 };
 
 // The margins of the answer on the problem, in C: where its run stops surviving and where it
-// stops meeting the target, found by stepping C up by sqrt(2) from the answer's and bisecting
-// to 2%.
+// stops meeting the target, by the one edge search (core/run/edge.hpp; its steps are C): from
+// the answer's C up by edge_step, bisected to edge_tolerance, scanned below each edge from the
+// answer's C; every run at length_factor x c T (the length the answer is verified at). The
+// survival edge is dt_edge, the accuracy edge (stable and within the target) dt_accurate.
 struct ProblemEdges {
   bool measured = false;
-  std::string not_measured;             // why, where not measured
-  std::optional<double> survival;       // the largest C probed that survives
-  std::optional<double> survival_fail;  // the smallest C above it that fails
-  std::optional<double> accurate;       // the largest C probed up to which every probe meets
-  std::optional<double> accurate_fail;  // the target; and the next probed, which does not
-  double scan_top = 0;                  // the largest C the scan reaches
+  std::string not_measured;  // why, where not measured
+  EdgeResult search;
+  double cT = 0, A = 0;  // the run length and amplitude of every run of the search
+  double scan_top = 0;   // the largest C the scan reaches
   double particle_steps = 0;
   double seconds = 0;
 };

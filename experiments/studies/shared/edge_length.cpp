@@ -12,6 +12,15 @@ namespace mpmstab {
 
 using ojson = nlohmann::ordered_json;
 
+std::string monotone_words(const ojson& r) {
+  if (!r.contains("monotone") || !r["monotone"].is_boolean() || r["monotone"].get<bool>())
+    return "";
+  std::string above = "–";
+  if (has_number(r, "dt_survives_above") && has_number(r, "dt_cfl"))
+    above = significant(r["dt_survives_above"].get<double>() / r["dt_cfl"].get<double>(), 3);
+  return ", **not monotone**: survives again at up to c dt/h = " + above;
+}
+
 std::vector<double> edges_of(const ojson& r) {
   std::vector<double> dts;
   for (const char* col : {"dt_edge", "dt_accurate"}) {

@@ -23,6 +23,11 @@ namespace mpmstab {
 inline constexpr double kLongPasses = 1000;
 inline constexpr std::array<double, 2> kLengthFactors = {10, 100};
 
+// ", **not monotone**: survives again at up to c dt/h = 0.237" where the row's search found a dt
+// above its lowest failure that survives (the edge stays below that failure); "" where survival
+// is monotone (core/run/edge.hpp, edge_line).
+std::string monotone_words(const nlohmann::ordered_json& row);
+
 // The edges of a row (dt_edge, then dt_accurate where it differs).
 std::vector<double> edges_of(const nlohmann::ordered_json& row);
 

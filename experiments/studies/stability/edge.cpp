@@ -82,6 +82,30 @@ std::string flips_text(const std::vector<Flip>& flips) {
   return s;
 }
 
+// The search found survival monotone in dt (column monotone; a row without one: no search).
+bool monotone_row(const ojson& r) {
+  return !r.contains("monotone") || !r["monotone"].is_boolean() || r["monotone"].get<bool>();
+}
+
+// "monotone", or "**not monotone**: survives again at up to 1.58e-4 (fails from 1.12e-4,
+// survives from 1.58e-4)".
+std::string monotone_text(const ojson& r) {
+  if (monotone_row(r)) return "monotone";
+  std::string s = "**not monotone**";
+  if (has_number(r, "dt_survives_above"))
+    s += ": survives again at up to " + sci(r["dt_survives_above"].get<double>(), 3);
+  const auto flips = flips_of(r);
+  if (!flips.empty()) s += " (" + flips_text(flips) + ")";
+  return s;
+}
+
+// Why a row has no survival edge: no dt of the scan survives, or the smallest dt tried fails
+// (a larger one may survive: no dt below it does).
+std::string no_edge_text(const ojson& r) {
+  if (has_number(r, "dt_fail")) return "none: the smallest dt tried fails";
+  return "none in the scan";
+}
+
 std::string min_max(std::vector<double> v) {
   const auto [lo, hi] = std::minmax_element(v.begin(), v.end(), TotalLess());
   return *lo == *hi ? in_cfl(*lo) : in_cfl(*lo) + " to " + in_cfl(*hi);
@@ -100,8 +124,8 @@ struct MethodEdges {
 std::string method_summary(const std::string& name, const MethodEdges& m) {
   std::ostringstream md;
   if (m.edge.empty()) {
-    md << name << ": no dt of the scan survives (" << m.cases << (m.cases == 1 ? " case" : " cases")
-       << "). ";
+    md << name << ": no edge: no dt of the scan survives, or the smallest dt tried fails ("
+       << m.cases << (m.cases == 1 ? " case" : " cases") << "). ";
     return md.str();
   }
   md << name << ": the survival edge is " << min_max(m.edge) << " h/c, and the run there is "
@@ -159,18 +183,19 @@ std::string edge_summary_text(const std::vector<ojson>& rows) {
     } else {
       ++m.no_accuracy;
     }
-    const auto flips = flips_of(r);
-    if (!flips.empty()) non_monotone.push_back(case_name(r) + " (" + flips_text(flips) + ")");
+    if (!monotone_row(r)) non_monotone.push_back(case_name(r) + " (" + monotone_text(r) + ")");
   }
   std::ostringstream md;
   md << "Of " << rows.size() << " searches, " << rows.size() - std::size_t(none)
      << " found a survival edge";
-  if (none) md << " and " << none << " no surviving dt in the scan";
+  if (none)
+    md << " and " << none << " none (no dt of the scan survives, or the smallest dt tried fails)";
   md << ". ";
   for (const auto& [name, m] : per)
     md << method_summary(name, m);
   md << non_monotone.size() << " of " << rows.size()
-     << " searches found survival not monotone in dt (a dt below the survival edge fails)";
+     << " searches found survival not monotone in dt (a dt above the lowest failure survives; "
+        "the edge is below that failure)";
   if (!non_monotone.empty()) {
     md << ": ";
     for (std::size_t i = 0; i < non_monotone.size(); ++i)
@@ -337,7 +362,7 @@ std::vector<Claim> edge_claims(const std::vector<ojson>& rows, const EdgeFollowU
   int above_limit = 0, limit_n = 0;
   double over_lo = 1e300, over_hi = 0, limit_hi = 0;
   for (const auto& r : rows) {
-    monotone += flips_of(r).empty();
+    monotone += monotone_row(r);
     if (!has_number(r, "dt_edge")) continue;
     ++with_edge;
     const auto it = ensembles.find(&r);
@@ -407,16 +432,17 @@ std::string search_rule(const EdgeOptions& o) {
   std::string search = edge_search_text(o);
   search[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(search[0])));
   return "**The search.** " + search +
-         ". The *survival edge* dt_edge is the largest dt tried that survives to T; the run there "
-         "is "
-         "measured (its outcome, its error at T, the minimum of eq. (108) over it). The *accuracy "
+         ". The *survival edge* dt_edge is the largest dt up to which every dt tried survives to "
+         "T; the run there is measured (its outcome, its error at T, the minimum of eq. (108) over "
+         "it). The *accuracy "
          "edge* dt_accurate: the reference is the smallest dt tried that survives, and its error "
          "over time (max over steps and particles) the yardstick; walking up from it, "
          "dt_accurate is the last dt tried before the first that fails or has an error over time "
          "more than " +
          shortest(o.accuracy_factor) +
          " times the reference's, bisected against that one to "
-         "the same tolerance, and its run must be stable (its error over time stays below A), else "
+         "the same tolerance and scanned below in the same way, and its run must be stable (its "
+         "error over time stays below A), else "
          "the search "
          "goes on below it. An accuracy edge is one only where its reference run and its own run "
          "are accurate (their error over time below " +
@@ -424,10 +450,11 @@ std::string search_rule(const EdgeOptions& o) {
          " A, docs/studies.md, \"Accuracy classes\"); elsewhere the table says why there is none. "
          "Every error over time is also given per A. The "
          "probes observe only their error over time; the outcome is "
-         "measured for the reference and at both edges. Survival is *not monotone* when a dt below "
-         "the survival edge fails; the flips column lists, in increasing dt, each dt from which "
-         "the "
-         "run fails or survives again (between it and the dt tried just below it). The *spectral "
+         "measured for the reference and at both edges. Survival is *not monotone* when a dt above "
+         "the lowest failure survives again: the edge stays below that failure, and the column "
+         "gives the highest dt that survives above it and, in increasing dt, each dt from which "
+         "the run fails or survives again (between it and the dt tried just below it). Every "
+         "edge holds for the amplitude A and the run length c T of its row. The *spectral "
          "limit* is the Courant number at which the scheme, linearised about rest with the "
          "particles "
          "of the initial layout frozen, starts to amplify (docs/theory.md, \"The spectral "
@@ -485,7 +512,7 @@ std::string edge_table(const std::vector<ojson>& rows, const EdgeFollowUps& f) {
                                              : std::string("–"))
        << " | ";
     if (!found) {
-      md << "none in the scan | – | – | – | – | – | – | – | ";
+      md << no_edge_text(r) << " | – | – | – | – | – | – | – | ";
     } else {
       md << sci(r["dt_edge"].get<double>(), 3) << " ("
          << in_cfl(r["dt_edge_over_cfl"].get<double>());
@@ -514,10 +541,8 @@ std::string edge_table(const std::vector<ojson>& rows, const EdgeFollowUps& f) {
         md << " (" << ratio(r["dt_edge_over_stable"].get<double>()) << ")";
       md << " | ";
     }
-    const auto flips = flips_of(r);
-    md << (flips.empty() ? std::string("monotone") : "**not monotone**: " + flips_text(flips))
-       << " | " << ensemble_cell(f.ensembles, r) << " | " << r["probes"].dump() << " | "
-       << sci(r["search_particle_steps"].get<double>()) << " |\n";
+    md << monotone_text(r) << " | " << ensemble_cell(f.ensembles, r) << " | " << r["probes"].dump()
+       << " | " << sci(r["search_particle_steps"].get<double>()) << " |\n";
   }
   return md.str();
 }
@@ -547,7 +572,7 @@ int series_of(const ojson& r) {
 std::string not_drawn_reason(const ojson& r) {
   if (panel_of(r) < 0) return "a scene the figure has no panel for";
   if (series_of(r) == 0) return "no series in the figure";
-  if (!has_number(r, "dt_edge")) return "no dt of the scan survives";
+  if (!has_number(r, "dt_edge")) return "no edge (" + no_edge_text(r) + ")";
   return "";
 }
 
@@ -646,11 +671,11 @@ std::string amplitude_table(const std::vector<ojson>& rows, const EdgeFollowUps&
       md << "| " << key.first << " | " << passes(*r) << " | "
          << significant((*r)["A_over_h"].get<double>(), 3) << " | ";
       if (!has_number(*r, "dt_edge")) {
-        md << "none in the scan | – | – | – | – |\n";
+        md << no_edge_text(*r) << " | – | – | – | – |\n";
         continue;
       }
-      md << in_cfl((*r)["dt_edge_over_cfl"].get<double>()) << " | " << margin_text(f, *r, "dt_edge")
-         << " | " << edge_run_verdict(*r) << " | ";
+      md << in_cfl((*r)["dt_edge_over_cfl"].get<double>()) << monotone_words(*r) << " | "
+         << margin_text(f, *r, "dt_edge") << " | " << edge_run_verdict(*r) << " | ";
       if (has_number(*r, "dt_accurate")) {
         md << in_cfl((*r)["dt_accurate_over_cfl"].get<double>()) << " | "
            << margin_text(f, *r, "dt_accurate") << " |\n";

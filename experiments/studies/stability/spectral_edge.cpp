@@ -58,9 +58,10 @@ std::string agreement_table(const std::vector<const ojson*>& rows) {
   std::ostringstream md;
   const auto n = std::count_if(rows.begin(), rows.end(), [](const ojson* r) { return agrees(*r); });
   md << "## The measured edge against the spectral limit at A = "
-     << shortest((*rows.front())["A"].get<double>()) << "\n\n**Reading** (computed from the rows). "
-     << n << " of " << rows.size() << " measured edges lie within " << shortest(100 * kAgreement)
-     << "% of the spectral limit";
+     << shortest((*rows.front())["A"].get<double>())
+     << ", c T = " << shortest((*rows.front())["cT"].get<double>())
+     << "\n\n**Reading** (computed from the rows). " << n << " of " << rows.size()
+     << " measured edges lie within " << shortest(100 * kAgreement) << "% of the spectral limit";
   double lo = 1e300, hi = -1e300;
   for (const ojson* r : rows) {
     if (const auto q = edge_ratio(*r)) {
@@ -78,8 +79,8 @@ std::string agreement_table(const std::vector<const ojson*>& rows) {
       return has_number(*r, column) ? fixed((*r)[column].get<double>() / cfl, 4) : std::string("–");
     };
     const auto q = edge_ratio(*r);
-    md << "| " << scheme_label(*r) << " | " << in_h("dt_edge") << " | " << in_h("dt_fail") << " | "
-       << in_h("dt_spectral") << " | " << analysis_of(*r) << " | "
+    md << "| " << scheme_label(*r) << " | " << in_h("dt_edge") << monotone_words(*r) << " | "
+       << in_h("dt_fail") << " | " << in_h("dt_spectral") << " | " << analysis_of(*r) << " | "
        << (q ? fixed(*q, 4) : std::string("–")) << " | " << (agrees(*r) ? "yes" : "**no**")
        << " |\n";
   }
@@ -168,13 +169,14 @@ std::string length_table(const std::vector<ojson>& rows, const LengthRuns& lengt
         "at most "
      << shortest(kProbeBound)
      << " A), and is **transient** where it does not. The error over time at the edge is the "
-        "search's own run.\n\n| scheme | A | edge (c dt / h) | run at the edge | error over "
+        "search's own run.\n\n| scheme | A, c T | edge (c dt / h) | run at the edge | error over "
         "time / A there | length |\n|---|---|---|---|---|---|\n";
   for (const auto& r : rows) {
     if (!has_number(r, "dt_edge")) continue;
-    md << "| " << scheme_label(r) << " | " << shortest(r["A"].get<double>()) << " | "
-       << fixed(r["dt_edge"].get<double>() / r["dt_cfl"].get<double>(), 4) << " | "
-       << edge_run_verdict(r) << " | "
+    md << "| " << scheme_label(r) << " | " << shortest(r["A"].get<double>()) << ", "
+       << shortest(r["cT"].get<double>()) << " | "
+       << fixed(r["dt_edge"].get<double>() / r["dt_cfl"].get<double>(), 4) << monotone_words(r)
+       << " | " << edge_run_verdict(r) << " | "
        << (has_number(r, "error_at_edge_over_A")
                ? significant(r["error_at_edge_over_A"].get<double>(), 2)
                : std::string("–"))
