@@ -67,6 +67,33 @@ inline void meaningless_row(nlohmann::ordered_json& r) {
   r["max_error_over_time"] = r["A"];
 }
 
+// Follow-up rows given in the order the study's follow_up hook asks for its runs, each tagged
+// with what its request was for (the case it serves and its role), as the engine tags them. The
+// hook reads each case's parameters: E, T, A and the cells of its row. Rows already tagged stay.
+inline std::vector<nlohmann::ordered_json> tagged_follow_ups(
+    const Spec& spec, const std::vector<nlohmann::ordered_json>& rows,
+    std::vector<nlohmann::ordered_json> follow_up) {
+  if (follow_up.empty() || !spec.study->follow_up) return follow_up;
+  Spec asking = spec;
+  for (const auto& r : rows) {
+    CaseSpec c;
+    for (auto [key, field] : {std::pair{"E", &c.params.E}, {"T", &c.params.T}, {"A", &c.params.A}})
+      if (r.contains(key) && r[key].is_number()) *field = r[key].get<double>();
+    if (r.contains("cells") && r["cells"].is_number()) c.params.cells = r["cells"].get<int>();
+    asking.cases.push_back(c);
+  }
+  const StudyInputs inputs;
+  const std::vector<FollowUp> asked = spec.study->follow_up(FollowUpContext{asking, rows, inputs});
+  for (std::size_t i = 0; i < follow_up.size() && i < asked.size(); ++i) {
+    if (follow_up[i].contains(kFollowUpOf)) continue;
+    follow_up[i][kFollowUpOf] = asked[i].of == FollowUp::kNoCase
+                                    ? nlohmann::ordered_json(nullptr)
+                                    : nlohmann::ordered_json(asked[i].of);
+    follow_up[i][kFollowUpRole] = asked[i].role;
+  }
+  return follow_up;
+}
+
 // What the study registered under `study` writes for these rows (and these follow-up rows, in
 // the order its follow_up hook asks for them).
 inline StudyReport study_report(const std::string& study,
@@ -80,7 +107,8 @@ inline StudyReport study_report(const std::string& study,
   const std::filesystem::path out = std::filesystem::temp_directory_path();
   const std::string header = "# header\n";
   const StudyInputs inputs;
-  return spec.study->report(ReportContext{spec, rows, outcome, out, header, inputs, follow_up});
+  const std::vector<nlohmann::ordered_json> tagged = tagged_follow_ups(spec, rows, follow_up);
+  return spec.study->report(ReportContext{spec, rows, outcome, out, header, inputs, tagged});
 }
 
 // The data lines of a CSV: neither its '#' lines nor its header.

@@ -113,11 +113,6 @@ TEST(FollowUps, AreFoundByTheCaseTheyServeAndTheirRole) {
   EXPECT_EQ(ids(FollowUp::kNoCase, "problem 1"), (std::vector<int>{3}));
   EXPECT_TRUE(ids(2, "member").empty());
   EXPECT_TRUE(ids(0, "twin").empty());
-  // Untagged requests serve no case and have no role.
-  const auto u = untagged({RunParams{}, RunParams{}});
-  ASSERT_EQ(u.size(), 2u);
-  EXPECT_EQ(u[0].of, FollowUp::kNoCase);
-  EXPECT_EQ(u[0].role, "");
 }
 
 TEST(StudyRegistry, AnUnknownStudyIsRefusedWithTheKnownOnes) {

@@ -42,17 +42,6 @@ std::vector<const nlohmann::ordered_json*> follow_ups_of(
   return out;
 }
 
-std::vector<FollowUp> untagged(std::vector<RunParams> runs) {
-  std::vector<FollowUp> out;
-  out.reserve(runs.size());
-  for (auto& p : runs) {
-    FollowUp f;
-    f.params = std::move(p);
-    out.push_back(std::move(f));
-  }
-  return out;
-}
-
 StudyRegistration::StudyRegistration(Study study) {
   const std::string name = study.name;
   if (!registry().emplace(name, std::move(study)).second) {

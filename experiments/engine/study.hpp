@@ -86,9 +86,6 @@ inline constexpr const char* kFollowUpRole = "follow_up_role";
 // The follow-up rows asked for case `of` in role `role`, in the order asked.
 std::vector<const nlohmann::ordered_json*> follow_ups_of(
     const std::vector<nlohmann::ordered_json>& follow_up, std::size_t of, std::string_view role);
-// Requests that say nothing of what they are for (a study that still matches its follow-ups by
-// position: the edge studies), each of no case and no role.
-std::vector<FollowUp> untagged(std::vector<RunParams> runs);
 
 // What a study's follow-up runs are chosen from: its spec and the rows of its cases.
 struct FollowUpContext {

@@ -101,14 +101,16 @@ ojson as_edge(const ojson& r) {
   return e;
 }
 
-std::vector<RunParams> courant_follow_up(const FollowUpContext& c) {
+// The runs of every edge for length, each asked for the case whose run is the edge.
+std::vector<FollowUp> courant_follow_up(const FollowUpContext& c) {
   std::vector<ojson> edges;
   std::vector<CaseSpec> cases;
-  for (const std::size_t i : edge_rows(c.rows)) {
+  const std::vector<std::size_t> rows = edge_rows(c.rows);
+  for (const std::size_t i : rows) {
     edges.push_back(as_edge(c.rows[i]));
     cases.push_back(c.spec.cases.at(i));
   }
-  return all_length_runs(edges, cases);
+  return all_length_runs(edges, cases, rows);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -165,12 +167,12 @@ StudyReport courant_report(const ReportContext& c) {
   // The length runs, keyed by the edge rows as edge_length reads them.
   std::vector<ojson> edges;
   std::map<std::size_t, std::size_t> edge_of;  // row index -> index in edges
-  for (const std::size_t i : edge_rows(c.rows)) {
+  const std::vector<std::size_t> rows = edge_rows(c.rows);
+  for (const std::size_t i : rows) {
     edge_of[i] = edges.size();
     edges.push_back(as_edge(c.rows[i]));
   }
-  std::size_t next = 0;
-  const LengthRuns lengths = read_length_runs(edges, c.follow_up, next);
+  const LengthRuns lengths = read_length_runs(edges, c.follow_up, rows);
   Counts n;
   std::ostringstream table;
   table << "| method | A | E | A/h | c T | survives to T up to C | run there | length | stable up "
@@ -255,7 +257,7 @@ const StudyRegistration kCourant{{
     .name = "courant",
     .summary = "per case, the largest Courant number up to which the scan's runs reach T",
     .records = {.error_over_time = true},
-    .follow_up = [](const FollowUpContext& c) { return untagged(courant_follow_up(c)); },
+    .follow_up = courant_follow_up,
     .report = courant_report,
     .index = courant_index,
 }};

@@ -66,20 +66,26 @@ RunParams at_dt(RunParams p, double dt) {
   return p;
 }
 
-// The ensembles of every row with both edges, in row order; then the runs of every edge for
-// length.
-std::vector<RunParams> edges_follow_up(const FollowUpContext& c) {
-  std::vector<RunParams> runs;
+// What each follow-up run of a row is for: a member of its ensemble at dt_edge or at dt_fail, or
+// a rerun of an edge for length (edge_length).
+constexpr const char* kMemberAtEdge = "ensemble member at dt_edge";
+constexpr const char* kMemberAtFail = "ensemble member at dt_fail";
+
+// The ensembles of every row with both edges; the runs of every edge for length.
+std::vector<FollowUp> edges_follow_up(const FollowUpContext& c) {
+  std::vector<FollowUp> runs;
   for (std::size_t i = 0; i < c.rows.size(); ++i) {
     const ojson& r = c.rows[i];
     if (!has_number(r, "dt_edge") || !has_number(r, "dt_fail")) continue;
     const RunParams& base = c.spec.cases.at(i).params;
     for (const char* column : {"dt_edge", "dt_fail"})
       for (auto& p : ensemble_members(at_dt(base, r[column].get<double>())))
-        runs.push_back(std::move(p));
+        runs.push_back({.of = i,
+                        .role = column == std::string("dt_edge") ? kMemberAtEdge : kMemberAtFail,
+                        .params = std::move(p)});
   }
-  for (auto& p : all_length_runs(c.rows, c.spec.cases))
-    runs.push_back(std::move(p));
+  for (auto& f : all_length_runs(c.rows, c.spec.cases))
+    runs.push_back(std::move(f));
   return runs;
 }
 
@@ -89,18 +95,21 @@ struct Robustness {
   int survive_at_edge = 0, fail_above = 0, members = 0;
 };
 std::vector<std::optional<Robustness>> robustness(const std::vector<ojson>& rows,
-                                                  const std::vector<ojson>& follow_up,
-                                                  std::size_t& next) {
+                                                  const std::vector<ojson>& follow_up) {
   std::vector<std::optional<Robustness>> out(rows.size());
   for (std::size_t i = 0; i < rows.size(); ++i) {
     if (!has_number(rows[i], "dt_edge") || !has_number(rows[i], "dt_fail")) continue;
-    if (next + 2 * kEnsembleMembers > follow_up.size()) break;
+    const auto at_edge = follow_ups_of(follow_up, i, kMemberAtEdge);
+    const auto at_fail = follow_ups_of(follow_up, i, kMemberAtFail);
+    if (at_edge.size() != std::size_t(kEnsembleMembers) ||
+        at_fail.size() != std::size_t(kEnsembleMembers))
+      continue;
     Robustness r;
     r.members = kEnsembleMembers;
-    for (int k = 0; k < kEnsembleMembers; ++k)
-      r.survive_at_edge += survived(follow_up[next++]);
-    for (int k = 0; k < kEnsembleMembers; ++k)
-      r.fail_above += !survived(follow_up[next++]);
+    for (const ojson* m : at_edge)
+      r.survive_at_edge += survived(*m);
+    for (const ojson* m : at_fail)
+      r.fail_above += !survived(*m);
     out[i] = r;
   }
   return out;
@@ -118,15 +127,6 @@ struct EdgeCounts {
   LengthTally length_tally;
   double worst = 0;
 };
-
-// The length runs follow every ensemble; none are read when the ensembles are incomplete.
-LengthRuns length_runs_of(const std::vector<ojson>& rows, const std::vector<ojson>& follow_up,
-                          std::size_t next) {
-  std::size_t after = 0;
-  for (const auto& r : rows)
-    after += has_number(r, "dt_edge") && has_number(r, "dt_fail") ? 2 * kEnsembleMembers : 0;
-  return next == after ? read_length_runs(rows, follow_up, next) : LengthRuns{};
-}
 
 // The survival edge as the table prints it: its c dt/h (marked where the run there is
 // meaningless), or why the row has none inside the scan.
@@ -322,9 +322,8 @@ std::string edges_intro(const ReportContext& ctx) {
 
 StudyReport edges_report(const ReportContext& ctx) {
   const auto& rows = ctx.rows;
-  std::size_t next = 0;
-  const auto robust = robustness(rows, ctx.follow_up, next);
-  const LengthRuns lengths = length_runs_of(rows, ctx.follow_up, next);
+  const auto robust = robustness(rows, ctx.follow_up);
+  const LengthRuns lengths = read_length_runs(rows, ctx.follow_up);
   EdgeCounts n;
   std::ostringstream md;
   md << edges_intro(ctx);
@@ -361,7 +360,7 @@ const StudyRegistration kSceneEdges{{
     .summary = "survival and accuracy edges of each scene, method and small-mass treatment",
     .work = CaseWork::edge_search,
     .records = {.error_over_time = true},
-    .follow_up = [](const FollowUpContext& c) { return untagged(edges_follow_up(c)); },
+    .follow_up = edges_follow_up,
     .report = edges_report,
     .index = edges_index,
 }};

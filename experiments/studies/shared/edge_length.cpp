@@ -57,25 +57,38 @@ bool LongRun::accurate() const {
   return outcome == "stable" && error_over_A && *error_over_A < kAccurateFraction;
 }
 
-std::vector<RunParams> all_length_runs(const std::vector<ojson>& rows,
-                                       const std::vector<CaseSpec>& cases) {
-  std::vector<RunParams> runs;
+std::string length_role(double dt, std::size_t k) {
+  return "length rerun " + std::to_string(k + 1) + " of dt " + shortest(dt);
+}
+
+std::vector<FollowUp> all_length_runs(const std::vector<ojson>& rows,
+                                      const std::vector<CaseSpec>& cases,
+                                      const std::vector<std::size_t>& case_of) {
+  std::vector<FollowUp> runs;
   for (std::size_t i = 0; i < rows.size() && i < cases.size(); ++i) {
-    for (const double dt : edges_of(rows[i]))
-      for (auto& p : length_runs(cases[i].params, dt))
-        runs.push_back(std::move(p));
+    const std::size_t of = case_of.empty() ? i : case_of.at(i);
+    for (const double dt : edges_of(rows[i])) {
+      std::vector<RunParams> lengths = length_runs(cases[i].params, dt);
+      for (std::size_t k = 0; k < lengths.size(); ++k)
+        runs.push_back({.of = of, .role = length_role(dt, k), .params = std::move(lengths[k])});
+    }
   }
   return runs;
 }
 
 LengthRuns read_length_runs(const std::vector<ojson>& rows, const std::vector<ojson>& follow_up,
-                            std::size_t& next) {
+                            const std::vector<std::size_t>& case_of) {
   LengthRuns out;
-  for (const auto& r : rows) {
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const ojson& r = rows[i];
+    const std::size_t of = case_of.empty() ? i : case_of.at(i);
     for (const double dt : edges_of(r)) {
-      for (const double length : test_lengths(r["cT"].get<double>())) {
-        if (next >= follow_up.size()) return out;
-        const ojson& run = follow_up[next++];
+      const std::vector<double> lengths = test_lengths(r["cT"].get<double>());
+      for (std::size_t k = 0; k < lengths.size(); ++k) {
+        const double length = lengths[k];
+        const auto asked = follow_ups_of(follow_up, of, length_role(dt, k));
+        if (asked.empty()) continue;
+        const ojson& run = *asked.front();
         LongRun l;
         l.dt = dt;
         l.length = length;

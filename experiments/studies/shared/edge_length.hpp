@@ -50,16 +50,20 @@ struct LongRun {
   bool accurate() const;  // stable with an error over time below kAccurateFraction A
 };
 
-// The runs of every edge of every row, read from `follow_up` from `next` on in the order
-// length_runs asked for them (row order, then edges_of, then test_lengths), by row address.
-// `next` ends after the last one read; rows whose runs are missing get none.
+// The runs of every edge of every row, each found by what it was asked for (its case, its edge's
+// dt and its length: length_role), by row address; rows whose runs are missing get none.
+// `case_of[i]` is the case rows[i] stands for (default: the i-th).
 using LengthRuns = std::map<const nlohmann::ordered_json*, std::vector<LongRun>>;
 LengthRuns read_length_runs(const std::vector<nlohmann::ordered_json>& rows,
                             const std::vector<nlohmann::ordered_json>& follow_up,
-                            std::size_t& next);
-// The follow-up runs read_length_runs reads, for rows[i] and its case `cases[i]`.
-std::vector<RunParams> all_length_runs(const std::vector<nlohmann::ordered_json>& rows,
-                                       const std::vector<CaseSpec>& cases);
+                            const std::vector<std::size_t>& case_of = {});
+// The follow-up runs read_length_runs reads, for rows[i] and its case `cases[i]`, each asked for
+// case case_of[i] (default: i).
+std::vector<FollowUp> all_length_runs(const std::vector<nlohmann::ordered_json>& rows,
+                                      const std::vector<CaseSpec>& cases,
+                                      const std::vector<std::size_t>& case_of = {});
+// What a length rerun is for: "length rerun 2 of dt 1.2e-3", the second of test_lengths().
+std::string length_role(double dt, std::size_t k);
 
 // How far an edge (dt_col: "dt_edge" or "dt_accurate") holds: the first test length it does not
 // pass, or the longest it passed. With `bound`, a survival edge passes a length only where its

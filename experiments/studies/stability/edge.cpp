@@ -232,27 +232,31 @@ bool has_twin(const ojson& r) {
   return text(r, "bc") == "dirichlet" && has_number(r, "dt_accurate");
 }
 
-// The members of every case with an edge, in row order: at dt_edge, then at dt_fail; after them,
-// in row order, the runs of each edge at each test length; then the periodic twins.
-std::vector<RunParams> edge_follow_up(const FollowUpContext& c) {
-  std::vector<RunParams> runs;
+// What each follow-up run of a case is for: a member of its ensemble at dt_edge or at dt_fail,
+// a rerun of an edge for length (edge_length), the periodic twin at dt_accurate.
+constexpr const char* kMemberAtEdge = "ensemble member at dt_edge";
+constexpr const char* kMemberAtFail = "ensemble member at dt_fail";
+constexpr const char* kTwin = "periodic twin at dt_accurate";
+
+std::vector<FollowUp> edge_follow_up(const FollowUpContext& c) {
+  std::vector<FollowUp> runs;
   for (std::size_t i = 0; i < c.rows.size(); ++i) {
     const ojson& r = c.rows[i];
     if (!has_number(r, "dt_edge")) continue;
     const RunParams& base = c.spec.cases.at(i).params;
     for (auto& p : ensemble_members(at_dt(base, r["dt_edge"].get<double>())))
-      runs.push_back(std::move(p));
+      runs.push_back({.of = i, .role = kMemberAtEdge, .params = std::move(p)});
     if (!has_number(r, "dt_fail")) continue;
     for (auto& p : ensemble_members(at_dt(base, r["dt_fail"].get<double>())))
-      runs.push_back(std::move(p));
+      runs.push_back({.of = i, .role = kMemberAtFail, .params = std::move(p)});
   }
-  for (auto& p : all_length_runs(c.rows, c.spec.cases))
-    runs.push_back(std::move(p));
+  for (auto& f : all_length_runs(c.rows, c.spec.cases))
+    runs.push_back(std::move(f));
   for (std::size_t i = 0; i < c.rows.size(); ++i) {
     if (!has_twin(c.rows[i])) continue;
     RunParams p = at_dt(c.spec.cases.at(i).params, c.rows[i]["dt_accurate"].get<double>());
     p.bc = Boundary::periodic;
-    runs.push_back(p);
+    runs.push_back({.of = i, .role = kTwin, .params = p});
   }
   return runs;
 }
@@ -267,25 +271,24 @@ struct EdgeFollowUps {
 
 EdgeFollowUps edge_follow_ups(const std::vector<ojson>& rows, const std::vector<ojson>& follow_up) {
   EdgeFollowUps out;
-  std::size_t next = 0;
-  auto take = [&](int& members, int& count, bool want_survived) {
-    for (int k = 0; k < kEnsembleMembers && next < follow_up.size(); ++k) {
-      ++members;
-      count += survived(follow_up[next++]) == want_survived;
-    }
-  };
-  for (const auto& r : rows) {
-    if (!has_number(r, "dt_edge") || next >= follow_up.size()) continue;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const ojson& r = rows[i];
+    const auto at_edge = follow_ups_of(follow_up, i, kMemberAtEdge);
+    if (!has_number(r, "dt_edge") || at_edge.empty()) continue;
     EdgeEnsemble& e = out.ensembles[&r];
-    take(e.at_edge, e.survived, true);
-    if (has_number(r, "dt_fail")) take(e.at_fail, e.failed, false);
+    for (const ojson* m : at_edge) {
+      ++e.at_edge;
+      e.survived += survived(*m);
+    }
+    for (const ojson* m : follow_ups_of(follow_up, i, kMemberAtFail)) {
+      ++e.at_fail;
+      e.failed += !survived(*m);
+    }
   }
-  out.long_runs = read_length_runs(rows, follow_up, next);
-  for (const auto& r : rows) {
-    if (!has_twin(r)) continue;
-    if (next >= follow_up.size()) return out;
-    out.twins[&r] = follow_up[next++];
-  }
+  out.long_runs = read_length_runs(rows, follow_up);
+  for (std::size_t i = 0; i < rows.size(); ++i)
+    for (const ojson* twin : follow_ups_of(follow_up, i, kTwin))
+      out.twins[&rows[i]] = *twin;
   return out;
 }
 
@@ -848,7 +851,7 @@ const StudyRegistration kEdge{{
     .work = CaseWork::edge_search,
     .records = {.error_over_time = true},
     .figure = true,
-    .follow_up = [](const FollowUpContext& c) { return untagged(edge_follow_up(c)); },
+    .follow_up = edge_follow_up,
     .report = edge_report,
     .index = edge_index,
     .figure_subtitle = edge_subtitle,

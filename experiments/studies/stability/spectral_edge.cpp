@@ -310,12 +310,10 @@ const StudyRegistration kSpectralEdge{{
     .edge = kSearch,
     .records = {.error_over_time = true},
     .figure = true,
-    .follow_up =
-        [](const FollowUpContext& c) { return untagged(all_length_runs(c.rows, c.spec.cases)); },
+    .follow_up = [](const FollowUpContext& c) { return all_length_runs(c.rows, c.spec.cases); },
     .report =
         [](const ReportContext& c) {
-          std::size_t next = 0;
-          const LengthRuns lengths = read_length_runs(c.rows, c.follow_up, next);
+          const LengthRuns lengths = read_length_runs(c.rows, c.follow_up);
           return StudyReport{.markdown = spectral_edge_markdown(c.rows, lengths),
                              .data_csv = spectral_edge_data(c.rows, c.csv_header),
                              .claims = spectral_edge_claims(c.rows, lengths)};
