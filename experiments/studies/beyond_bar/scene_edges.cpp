@@ -118,6 +118,7 @@ std::vector<std::optional<Robustness>> robustness(const std::vector<ojson>& rows
 // What the rows and their follow-ups found, over every row.
 struct EdgeCounts {
   int rows = 0, with_edge = 0, robust_rows = 0, checked = 0, above = 0, compared = 0;
+  int monotone = 0;  // rows whose search found survival monotone in dt
   int meaningless_edges = 0;
   int above_under_a_pass = 0;  // edges above the limit whose run covered under a wave pass
   // The rows without an edge inside the scan, by why, and their scenes.
@@ -197,6 +198,7 @@ std::string accuracy_edge_text(const ojson& r) {
 std::string edge_row(const ojson& r, const std::optional<Robustness>& robust,
                      const LengthRuns& lengths, EdgeCounts& n) {
   ++n.rows;
+  n.monotone += survival_monotone(r);
   const ScanEdge where = scan_edge(r);
   const bool inside = where == ScanEdge::inside;
   const auto edge = courant_of(r, "dt_edge"), fail = courant_of(r, "dt_fail");
@@ -279,7 +281,11 @@ std::vector<Claim> edges_claims(const EdgeCounts& n) {
   limit.count("short_above", n.above_under_a_pass).number("passes", kMinWavePasses, 3);
   limit.number("worst", n.worst, 3).over(n.compared);
   limit.holds = n.compared > 0 && n.above == 0;
-  return {edge, robust, meaningful, length, limit};
+  Claim mono = claim("survival-monotone", "Survival is monotone in dt in every row",
+                     "{monotone} of {rows} rows (where it is not, the edge is the lowest failure "
+                     "found)");
+  mono.every("monotone", n.monotone, "rows", n.rows);
+  return {edge, robust, meaningful, length, limit, mono};
 }
 
 // What each column means, every number from the study's own rules.

@@ -12,9 +12,12 @@ namespace mpmstab {
 
 using ojson = nlohmann::ordered_json;
 
+bool survival_monotone(const ojson& r) {
+  return !r.contains("monotone") || !r["monotone"].is_boolean() || r["monotone"].get<bool>();
+}
+
 std::string monotone_words(const ojson& r) {
-  if (!r.contains("monotone") || !r["monotone"].is_boolean() || r["monotone"].get<bool>())
-    return "";
+  if (survival_monotone(r)) return "";
   std::string above = "–";
   if (has_number(r, "dt_survives_above") && has_number(r, "dt_cfl"))
     above = significant(r["dt_survives_above"].get<double>() / r["dt_cfl"].get<double>(), 3);

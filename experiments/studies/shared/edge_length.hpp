@@ -23,6 +23,8 @@ namespace mpmstab {
 inline constexpr double kLongPasses = 1000;
 inline constexpr std::array<double, 2> kLengthFactors = {10, 100};
 
+// The row's search found survival monotone in dt (column monotone; a row without one: no search).
+bool survival_monotone(const nlohmann::ordered_json& row);
 // ", **not monotone**: survives again at up to c dt/h = 0.237" where the row's search found a dt
 // above its lowest failure that survives (the edge stays below that failure); "" where survival
 // is monotone (core/run/edge.hpp, edge_line).

@@ -82,15 +82,10 @@ std::string flips_text(const std::vector<Flip>& flips) {
   return s;
 }
 
-// The search found survival monotone in dt (column monotone; a row without one: no search).
-bool monotone_row(const ojson& r) {
-  return !r.contains("monotone") || !r["monotone"].is_boolean() || r["monotone"].get<bool>();
-}
-
 // "monotone", or "**not monotone**: survives again at up to 1.58e-4 (fails from 1.12e-4,
 // survives from 1.58e-4)".
 std::string monotone_text(const ojson& r) {
-  if (monotone_row(r)) return "monotone";
+  if (survival_monotone(r)) return "monotone";
   std::string s = "**not monotone**";
   if (has_number(r, "dt_survives_above"))
     s += ": survives again at up to " + sci(r["dt_survives_above"].get<double>(), 3);
@@ -183,7 +178,7 @@ std::string edge_summary_text(const std::vector<ojson>& rows) {
     } else {
       ++m.no_accuracy;
     }
-    if (!monotone_row(r)) non_monotone.push_back(case_name(r) + " (" + monotone_text(r) + ")");
+    if (!survival_monotone(r)) non_monotone.push_back(case_name(r) + " (" + monotone_text(r) + ")");
   }
   std::ostringstream md;
   md << "Of " << rows.size() << " searches, " << rows.size() - std::size_t(none)
@@ -365,7 +360,7 @@ std::vector<Claim> edge_claims(const std::vector<ojson>& rows, const EdgeFollowU
   int above_limit = 0, limit_n = 0;
   double over_lo = 1e300, over_hi = 0, limit_hi = 0;
   for (const auto& r : rows) {
-    monotone += monotone_row(r);
+    monotone += survival_monotone(r);
     if (!has_number(r, "dt_edge")) continue;
     ++with_edge;
     const auto it = ensembles.find(&r);
@@ -802,7 +797,11 @@ std::string edge_data_csv(const std::vector<ojson>& rows, const std::string& hea
 
 std::string edge_subtitle(const Spec& spec, const ojson& doc) {
   const std::vector<ojson> rows(doc["cases"].begin(), doc["cases"].end());
-  return edge_subtitle_text(figure_count(rows)) + "; each listed in " + spec.name + ".md";
+  const auto not_monotone =
+      std::count_if(rows.begin(), rows.end(), [](const ojson& r) { return !survival_monotone(r); });
+  return edge_subtitle_text(figure_count(rows)) + "; " + std::to_string(not_monotone) +
+         " not monotone in dt (each edge drawn is the lowest failure found); each listed in " +
+         spec.name + ".md";
 }
 
 StudyReport edge_report(const ReportContext& c) {
