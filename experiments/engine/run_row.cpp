@@ -249,6 +249,14 @@ bool above_spectral_limit(const ojson& r) {
   return RunRow(r).above_spectral_limit();
 }
 
+std::vector<double> values_of(const std::vector<ojson>& rows,
+                              std::optional<double> RunRow::*field) {
+  std::vector<double> v;
+  for (const auto& r : rows)
+    if (const auto x = RunRow(r).*field) v.push_back(*x);
+  return v;
+}
+
 std::optional<double> compared_error(const ojson& row, ErrorAt error_at) {
   if (!survived(row)) return std::nullopt;
   return error_at == ErrorAt::T ? number_at(row, "max_error") : RunRow(row).error_over_time;

@@ -133,6 +133,9 @@ std::optional<double> row_error_over_A(const nlohmann::ordered_json& row);
 std::optional<double> stable_error_over_time(const nlohmann::ordered_json& row);
 // RunRow(row).above_spectral_limit().
 bool above_spectral_limit(const nlohmann::ordered_json& row);
+// A field of the rows' RunRows, in row order, where recorded: values_of(rows, &RunRow::courant).
+std::vector<double> values_of(const std::vector<nlohmann::ordered_json>& rows,
+                              std::optional<double> RunRow::*field);
 // Our error compared with the paper's "Max Error" in a flat result row: max_error (at T) or
 // max_error_over_time; null when the run failed or the value was not recorded.
 std::optional<double> compared_error(const nlohmann::ordered_json& row, ErrorAt error_at);

@@ -196,12 +196,12 @@ Line steps_line(const PaperObservable* p, const ojson& row) {
 }
 
 Line peak_error_line(const PaperObservable* p, const OurRun& run) {
-  const auto e = number(*run.row, "max_error_over_time");
-  const auto A = number(*run.row, "A");
+  const RunRow rr(*run.row);
   std::string ours = "not recorded";
+  const auto e = rr.error_over_time;
   if (e) {
     ours = sci(*e);
-    if (A && *A > 0) ours += " = " + ratio(*e / *A) + " A";
+    if (const auto over_A = rr.error_over_A()) ours += " = " + ratio(*over_A) + " A";
     if (run.trace.peak_error) ours += " (step " + steps_text(run.trace.peak_step) + ")";
   }
   return numeric_line("peak error over time", p, e, ours);
@@ -471,14 +471,16 @@ std::string courant_context(const ojson& row, const StudyInputs& inputs) {
     return "The courant scan has not been run: `make reproduce` runs it.";
   }
   const double c = scan_courant(row);
+  const std::string method = RunRow(row).method;
   int n = 0, reached = 0;
   std::int64_t last_failure = 0;
   std::set<Key> amplitudes;
   for (const auto& r : it->second.doc.at("cases")) {
-    if (scan_courant(r) != c || r["method"] != row.at("method")) continue;
+    const RunRow rr(r);
+    if (scan_courant(r) != c || rr.method != method) continue;
     ++n;
-    amplitudes.insert(Key(r["A"].get<double>(), "A"));
-    if (survived(r)) {
+    amplitudes.insert(Key(*rr.A, "A"));
+    if (rr.survived()) {
       ++reached;
     } else {
       last_failure = std::max(last_failure, r["failure_step"].get<std::int64_t>());
@@ -489,7 +491,7 @@ std::string courant_context(const ojson& row, const StudyInputs& inputs) {
   for (double a : amplitudes)
     as += (as.empty() ? "" : " and ") + shortest(a);
   std::string s = "In the courant scan ([courant.md](courant.md)), " + std::to_string(reached) +
-                  " of the " + std::to_string(n) + " " + row.at("method").get<std::string>() +
+                  " of the " + std::to_string(n) + " " + method +
                   " runs at c dt/h = " + shortest(c) + " (A = " + as + ") reach T";
   if (reached < n) s += "; the last of the failures comes at step " + std::to_string(last_failure);
   return s + ".";
@@ -581,16 +583,15 @@ void variant_runs(std::ostream& md, const PaperFigure& f, const ojson& row,
   for (const auto& r : cases) {
     const std::string label = choice_label(r, base);
     const std::string rep = reproduces(f, r);
-    const auto e = number(r, "max_error_over_time");
-    const auto A = number(r, "A");
+    const auto e = row_error_over_A(r);
     md << "| " << label << " | " << verdict(r) << " | " << r.at("steps").dump() << " | "
-       << (e && A && *A > 0 ? ratio(*e / *A) : kNoValue) << " | "
+       << (e ? ratio(*e) : kNoValue) << " | "
        << (number(r, "crossings") ? r.at("crossings").dump() : kNoValue) << " | "
        << opt_sci(r.contains("dt_stable_min") ? r.at("dt_stable_min") : ojson()) << " | " << rep
        << " |\n";
     if (rep == "yes") yes.push_back(label);
     if (rep == "reaches T, meaningless") {
-      meaningless.push_back(label + " (" + (e && A ? ratio(*e / *A) : kNoValue) + " A)");
+      meaningless.push_back(label + " (" + (e ? ratio(*e) : kNoValue) + " A)");
     }
     if (paper_steps && (!closest || distance(r) < distance(*closest))) closest = &r;
   }
@@ -628,7 +629,7 @@ const QuotedCell* nearest_cell(const ojson& row, const std::vector<QuotedCell>& 
   const QuotedCell* best = nullptr;
   const double A = row.at("A").get<double>();
   for (const auto& c : table1) {
-    if (row.at("method") != c.method || row.at("E").get<double>() != c.E ||
+    if (RunRow(row).method != c.method || row.at("E").get<double>() != c.E ||
         row.at("dt").get<double>() != c.dt) {
       continue;
     }
@@ -691,9 +692,8 @@ void figure_section(std::ostream& md, const PaperFigure& f, const std::vector<Pa
   const ojson* history = history_of(it->second.doc);
   run.history = history != nullptr;
   run.trace = trace_of(history);
-  const std::string ours_case =
-      case_text(row->at("method").get<std::string>(), row->at("E").get<double>(),
-                row->at("A").get<double>(), row->at("dt").get<double>());
+  const std::string ours_case = case_text(RunRow(*row).method, row->at("E").get<double>(),
+                                          row->at("A").get<double>(), row->at("dt").get<double>());
   md << "Our run: [" << f.name << ".md](" << f.name << ".md)";
   if (ours_case != case_text(f.method, f.E, f.A, f.dt)) {
     md << " (**a different case: " << ours_case << "**)";

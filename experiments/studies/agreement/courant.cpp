@@ -41,36 +41,36 @@ struct Scan {
 };
 
 std::vector<Scan> scans(const std::vector<ojson>& rows) {
+  const std::vector<RunRow> runs(rows.begin(), rows.end());
   std::map<std::tuple<std::string, Key, Key>, Scan> by;
   for (std::size_t i = 0; i < rows.size(); ++i) {
-    const ojson& r = rows[i];
-    const auto key = std::make_tuple(text(r, "method"), Key(r["A"].get<double>(), "A"),
-                                     Key(r["E"].get<double>(), "E"));
-    Scan& s = by[key];
-    s.method = text(r, "method");
-    s.A = r["A"].get<double>();
-    s.E = r["E"].get<double>();
+    const RunRow& r = runs[i];
+    const double E = rows[i]["E"].get<double>();
+    Scan& s = by[std::make_tuple(r.method, Key(*r.A, "A"), Key(E, "E"))];
+    s.method = r.method;
+    s.A = *r.A;
+    s.E = E;
     s.runs.push_back(i);
   }
   std::vector<Scan> out;
   for (auto& [key, s] : by) {
     std::stable_sort(s.runs.begin(), s.runs.end(), [&](std::size_t a, std::size_t b) {
-      return TotalLess()(rows[a]["courant"].get<double>(), rows[b]["courant"].get<double>());
+      return TotalLess()(*runs[a].courant, *runs[b].courant);
     });
     // The rule of every edge (core/run/edge.hpp, edge_line): the edge is the largest C up to
     // which every run with a verdict holds; a run too short for one neither holds nor fails.
     std::vector<std::pair<double, EdgeVerdict>> survival, stability;
     std::map<double, std::size_t> at;
     for (const std::size_t i : s.runs) {
-      const double C = rows[i]["courant"].get<double>();
+      const RunRow& r = runs[i];
+      const double C = *r.courant;
       at[C] = i;
-      const bool judged =
-          outcome(rows[i]) != "too_short" && number_or_zero(rows[i], "cT") >= kMinWavePasses;
+      const bool judged = r.outcome != "too_short" && r.wave_passes.value_or(0) >= kMinWavePasses;
       auto verdict = [&](bool holds) {
         return !judged ? EdgeVerdict::none : holds ? EdgeVerdict::holds : EdgeVerdict::fails;
       };
-      survival.emplace_back(C, verdict(survived(rows[i])));
-      stability.emplace_back(C, verdict(outcome(rows[i]) == "stable"));
+      survival.emplace_back(C, verdict(r.survived()));
+      stability.emplace_back(C, verdict(r.outcome == "stable"));
       s.any_survives = s.any_survives || survival.back().second == EdgeVerdict::holds;
     }
     const EdgeLine line = edge_line(survival), stable = edge_line(stability);
@@ -151,12 +151,11 @@ std::vector<Claim> courant_claims(const Counts& n) {
 // A run's outcome with its error over time per A and, for a stable run, its accuracy class
 // (core/base/accuracy.hpp): "stable (0.0043 A, accurate)", "**meaningless** (1.3 A)".
 std::string run_text(const ojson& r) {
-  const std::string o = outcome(r);
-  std::string s = o == "meaningless" ? "**meaningless**" : o;
-  if (has_number(r, "max_error_over_time")) {
-    const double e = r["max_error_over_time"].get<double>(), A = r["A"].get<double>();
-    s += " (" + significant(e / A, 2) + " A";
-    if (o == "stable") s += ", " + std::string(to_string(accuracy_class(e, A)));
+  const RunRow rr(r);
+  std::string s = rr.outcome == "meaningless" ? "**meaningless**" : rr.outcome;
+  if (const auto e = rr.error_over_A()) {
+    s += " (" + significant(*e, 2) + " A";
+    if (rr.outcome == "stable") s += ", " + std::string(to_string(*rr.accuracy()));
     s += ")";
   }
   return s;
@@ -183,17 +182,17 @@ StudyReport courant_report(const ReportContext& c) {
     const ojson& first = c.rows[s.runs.front()];
     table << "| " << s.method << " | " << shortest(s.A) << " | " << shortest(s.E) << " | "
           << significant(first["A_over_h"].get<double>(), 3) << " | "
-          << significant(first["cT"].get<double>(), 3) << " | ";
+          << significant(*RunRow(first).wave_passes, 3) << " | ";
     n.fail_everywhere += !s.any_survives;
     if (!s.survives) {
       ++n.no_survivor;
-      table << "below the scan: its smallest C, " << c_text(first["courant"].get<double>())
+      table << "below the scan: its smallest C, " << c_text(*RunRow(first).courant)
             << ", fails | – | – | ";
     } else {
       const ojson& at = c.rows[*s.survives];
       const bool top = *s.survives == s.runs.back();
-      table << c_text(at["courant"].get<double>()) << (top ? " (the largest C of the scan)" : "")
-            << " | " << run_text(at) << " | ";
+      table << c_text(*RunRow(at).courant) << (top ? " (the largest C of the scan)" : "") << " | "
+            << run_text(at) << " | ";
       if (const auto e = edge_of.find(*s.survives); e != edge_of.end()) {
         ++n.edges;
         n.edges_meaningless += outcome(at) == "meaningless";
@@ -204,8 +203,8 @@ StudyReport courant_report(const ReportContext& c) {
       }
     }
     if (s.stable) {
-      table << c_text(c.rows[*s.stable]["courant"].get<double>()) << " | "
-            << run_text(c.rows[*s.stable]) << " | ";
+      table << c_text(*RunRow(c.rows[*s.stable]).courant) << " | " << run_text(c.rows[*s.stable])
+            << " | ";
     } else {
       table << "below the scan: its smallest C is not stable | – | ";
     }

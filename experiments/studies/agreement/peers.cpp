@@ -86,25 +86,28 @@ const PeerValue* find_peer(const std::vector<PeerValue>& peer, const ojson& row)
   return nullptr;
 }
 
-std::optional<double> ratio_of(const ojson& ours, const std::optional<double>& peer) {
-  if (!ours.is_number() || !peer || *peer == 0) return std::nullopt;
-  return ours.get<double>() / *peer;
+std::optional<double> ratio_of(const std::optional<double>& ours,
+                               const std::optional<double>& peer) {
+  if (!ours || !peer || *peer == 0) return std::nullopt;
+  return *ours / *peer;
 }
 
 PeerCase compare_case(const ojson& row, const PeerValue& v) {
+  const RunRow rr(row);
   PeerCase c;
   c.basis = v.basis;
-  c.ours_outcome = outcome(row);
+  c.ours_outcome = rr.outcome;
   c.peer_outcome = v.outcome;
-  c.outcome_agrees = (v.outcome == "unstable") == !survived(row);
-  if (v.fail_step && row["failure_step"].is_number()) {
-    c.step_agrees =
-        std::llabs(row["failure_step"].get<std::int64_t>() - *v.fail_step) <= kStepTolerance;
+  c.outcome_agrees = (v.outcome == "unstable") == !rr.survived();
+  if (v.fail_step && rr.failure_step) {
+    c.step_agrees = std::llabs(*rr.failure_step - *v.fail_step) <= kStepTolerance;
   } else {
-    c.step_agrees = !v.fail_step && row["failure_step"].is_null();
+    c.step_agrees = !v.fail_step && !rr.failure_step;
   }
-  c.error_ratio = ratio_of(row["max_error"], v.max_error_T);
-  c.over_time_ratio = ratio_of(row["max_error_over_time"], v.max_error_over_time);
+  const ojson& e = row["max_error"];
+  c.error_ratio =
+      ratio_of(e.is_number() ? std::optional(e.get<double>()) : std::nullopt, v.max_error_T);
+  c.over_time_ratio = ratio_of(rr.error_over_time, v.max_error_over_time);
   // Errors are judged where both runs are stable: a meaningless run's error is as large as the
   // solution, and an unstable run's error over time is that of its last steps before a blow-up.
   c.errors_judged = c.ours_outcome == "stable" && v.outcome == "stable";

@@ -52,7 +52,7 @@ enum class ScanEdge { inside, survives_to_top, edge_too_short, none_survives };
 
 ScanEdge scan_edge(const ojson& r) {
   // Runs under a wave pass are too short for a verdict: the search makes none.
-  if (number_or_zero(r, "cT") < kMinWavePasses) return ScanEdge::edge_too_short;
+  if (RunRow(r).wave_passes.value_or(0) < kMinWavePasses) return ScanEdge::edge_too_short;
   if (!has_number(r, "dt_edge")) return ScanEdge::none_survives;
   // A largest surviving run too short to judge gives no edge, whether or not a larger dt failed.
   if (outcome(r) == "too_short") return ScanEdge::edge_too_short;
@@ -141,9 +141,9 @@ std::string survival_edge_text(const ojson& r) {
       return "none in the scan: it survives to its top, a step of T (c dt/h " +
              significant(*edge, 3) + ")";
     case ScanEdge::edge_too_short:
-      if (number_or_zero(r, "cT") < kMinWavePasses)
-        return "none: runs of c T = " + param(number_or_zero(r, "cT")) + " < " +
-               shortest(kMinWavePasses) + " wave pass are too short for a verdict";
+      if (const double passes = RunRow(r).wave_passes.value_or(0); passes < kMinWavePasses)
+        return "none: runs of c T = " + param(passes) + " < " + shortest(kMinWavePasses) +
+               " wave pass are too short for a verdict";
       return "none in the scan: the run at c dt/h " + (edge ? significant(*edge, 3) : "–") +
              (has_number(r, "dt_fail") ? "" : ", the top of the scan (a step of T),") +
              " is too short to judge";
@@ -204,9 +204,8 @@ std::string edge_row(const ojson& r, const std::optional<Robustness>& robust,
   const auto edge = courant_of(r, "dt_edge"), fail = courant_of(r, "dt_fail");
   const bool accurate = !reference_at_round_off(r) && courant_of(r, "dt_accurate").has_value();
   n.round_off_references += reference_at_round_off(r);
-  const std::optional<double> limit = has_number(r, "courant_spectral")
-                                          ? std::optional(r["courant_spectral"].get<double>())
-                                          : std::nullopt;
+  const RunRow rr(r);
+  const std::optional<double> limit = rr.courant_spectral;
   n.with_edge += inside;
   n.to_top += where == ScanEdge::survives_to_top;
   n.edge_too_short += where == ScanEdge::edge_too_short;
@@ -220,7 +219,7 @@ std::string edge_row(const ojson& r, const std::optional<Robustness>& robust,
     const double q = *edge / *limit;
     n.worst = std::max(n.worst, q);
     n.above += q > kLimitMargin;
-    n.above_under_a_pass += q > kLimitMargin && number_or_zero(r, "cT") < kMinWavePasses;
+    n.above_under_a_pass += q > kLimitMargin && rr.wave_passes.value_or(0) < kMinWavePasses;
     ratio_text = fixed(q, 2);
   }
   std::string perturbed = "–";
@@ -233,12 +232,12 @@ std::string edge_row(const ojson& r, const std::optional<Robustness>& robust,
                 std::to_string(robust->members);
   }
   if (inside) {
-    n.meaningless_edges += outcome(r) == "meaningless";
+    n.meaningless_edges += rr.outcome == "meaningless";
     n.length_tally.add(lasting(lengths, r, "dt_edge"));
   }
   std::ostringstream md;
-  md << "| " << text(r, "scene") << " | " << text(r, "method") << " | " << small_mass_of(r) << " | "
-     << shortest(number_or_zero(r, "A_over_h")) << ", " << shortest(number_or_zero(r, "cT"))
+  md << "| " << text(r, "scene") << " | " << rr.method << " | " << small_mass_of(r) << " | "
+     << shortest(number_or_zero(r, "A_over_h")) << ", " << shortest(rr.wave_passes.value_or(0))
      << " | " << survival_edge_text(r) << " | " << (inside ? opt_fixed(fail) : std::string("–"))
      << " | " << (edge ? run_at_edge_text(r) : std::string("–")) << " | "
      << (inside ? lasting_text(lengths, r, "dt_edge") : std::string("–")) << " | "

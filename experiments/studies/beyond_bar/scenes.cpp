@@ -143,11 +143,11 @@ std::string over_A(const ojson& row, const char* key, double A) {
   return it != row.end() && it->is_number() ? sci(it->get<double>() / A, 6) : "";
 }
 
-// A peer row's error beside ours: our `column` in the peer's length unit (its cell: this grid's
+// A peer row's error beside ours: our error `ours` in the peer's length unit (its cell: this grid's
 // h), and the peer's final largest particle error in `problem` with the row's basis (linear for
 // mpm, the peer's GIMP for cpgimp).
 std::pair<std::optional<double>, std::optional<double>> beside_peer(const ojson& r,
-                                                                    const char* column,
+                                                                    std::optional<double> ours,
                                                                     const CsvTable& peer,
                                                                     const std::string& problem) {
   const std::string basis = RunRow(r).method == "mpm" ? "linear" : "GIMP";
@@ -156,7 +156,6 @@ std::pair<std::optional<double>, std::optional<double>> beside_peer(const ojson&
     if (row.at("problem") == problem && row.at("basis") == basis &&
         row.at("quantity") == "final_max_abs_displacement_error")
       theirs = std::stod(row.at("peer_value"));
-  const auto ours = opt(r, column);
   return {ours ? std::optional(*ours * num(r, "cells")) : std::nullopt, theirs};
 }
 
@@ -327,7 +326,7 @@ std::string peer_sections(const ReportContext& ctx, const std::map<std::string, 
         "ratio |\n|---|---|---|---:|---:|---:|\n";
   for (const auto& r : rows) {
     if (part_of(r, ref) != Part::peer || str(r, "scene") != "impulsive") continue;
-    const auto [in_cells, theirs] = beside_peer(r, "max_error", peer, "impulsiveBar");
+    const auto [in_cells, theirs] = beside_peer(r, opt(r, "max_error"), peer, "impulsiveBar");
     const bool agree =
         survived(r) && theirs && in_cells && std::abs(*in_cells / *theirs - 1) <= kPeerTolerance;
     ++n.peer_compared;
@@ -350,12 +349,13 @@ std::string peer_sections(const ReportContext& ctx, const std::map<std::string, 
         "|\n|---|---:|---|---|---:|---:|\n";
   for (const auto& r : rows) {
     if (part_of(r, ref) != Part::peer || str(r, "scene") != "block") continue;
-    const auto [in_cells, theirs] = beside_peer(r, "max_error_over_time", peer, "advectBlock");
-    const bool agree =
-        survived(r) && theirs && in_cells && *in_cells < kRoundOffCells && *theirs < kRoundOffCells;
+    const RunRow rr(r);
+    const auto [in_cells, theirs] = beside_peer(r, rr.error_over_time, peer, "advectBlock");
+    const bool agree = rr.survived() && theirs && in_cells && *in_cells < kRoundOffCells &&
+                       *theirs < kRoundOffCells;
     ++n.rigid_compared;
     n.rigid_agree += agree;
-    md << "| " << RunRow(r).method << " | " << shortest(num(r, "steps")) << " | " << outcome(r)
+    md << "| " << rr.method << " | " << shortest(num(r, "steps")) << " | " << rr.outcome
        << " | stable | " << opt_sci_of(in_cells) << " | " << opt_sci_of(theirs) << " |\n";
   }
 

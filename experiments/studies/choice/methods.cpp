@@ -322,19 +322,18 @@ std::vector<ModeCheck> mode_checks(const StudyInputs& inputs) {
   if (it == inputs.end() || !it->second.present() || !it->second.doc["cases"].is_array())
     return out;
   for (const auto& r : it->second.doc["cases"]) {
-    if (!has_number(r, "courant") ||
-        std::abs(r["courant"].get<double>() - kWaveCourant) > kSameCourant || !survived(r) ||
-        !has_number(r, "max_error_over_time") || !has_number(r, "A") || !has_number(r, "steps") ||
-        !has_number(r, "cells") || !has_number(r, "ppc"))
+    const RunRow rr(r);
+    if (!rr.courant || std::abs(*rr.courant - kWaveCourant) > kSameCourant || !rr.survived() ||
+        !rr.error_over_A() || !rr.steps || !has_number(r, "cells") || !has_number(r, "ppc"))
       continue;
     const auto p = scheme_params(key_of(r), r["ppc"].get<int>());
     if (!p) continue;
     ModeCheck c;
-    c.label = method_label(r);
+    c.label = rr.method_label;
     c.cells = r["cells"].get<int>();
-    c.steps = r["steps"].get<long long>();
-    c.run = *RunRow(r).error_over_A();
-    c.run_outcome = outcome(r);
+    c.steps = *rr.steps;
+    c.run = *rr.error_over_A();
+    c.run_outcome = rr.outcome;
     const double kh = 2 * std::numbers::pi / c.cells;
     const DispersionPoint d = dispersion_at(*p, kWaveCourant, kh);
     for (long long n = 1; n <= c.steps; ++n) {
@@ -528,13 +527,15 @@ std::string methods_table(const std::vector<MethodRow>& rows, const std::vector<
         "particle-step |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const MethodRow& m = rows[i];
+    const RunRow edge(*m.edge);
     md << "| " << basis_text(m.key) << " | " << transfer_text(m.key) << " | " << std::get<4>(m.key)
        << " | " << table1_text(m) << " | " << table1_over_time(m) << " | " << table1_energy(m)
        << " | " << wave_text(waves[i]) << " | " << order_text(m.order_h) << " | "
        << order_text(m.order_dt) << " | "
-       << edge_text(*m.edge, "courant_spectral", ("> " + shortest(kMaxSpectralCourant)).c_str())
+       << (edge.courant_spectral ? fixed(*edge.courant_spectral, 3)
+                                 : "> " + shortest(kMaxSpectralCourant))
        << " | " << edge_text(*m.edge, "dt_edge_over_cfl", "not found in the scan");
-    if (has_number(*m.edge, "dt_edge") && outcome(*m.edge) == "meaningless") md << " (meaningless)";
+    if (has_number(*m.edge, "dt_edge") && edge.outcome == "meaningless") md << " (meaningless)";
     md << " | " << accuracy_edge_text(*m.edge) << " | " << node_visits(m.key) << " |\n";
   }
   return md.str();
@@ -611,8 +612,8 @@ std::string how_to_read_the_setting(const std::vector<ojson>& grid) {
      << "); *order in dt*: against log(dt), over the runs at Table 1's amplitude below the "
         "scheme's spectral limit, on "
      << kTable1Cells << " cells over C = " << listing(cfl_runs, "cfl_factor")
-     << " and dt = " << listing(fixed_runs, "dt") << " (C = " << listing(fixed_runs, "courant")
-     << "); " << order_regime_text()
+     << " and dt = " << listing(fixed_runs, "dt")
+     << " (C = " << listing(values_of(fixed_runs, &RunRow::courant)) << "); " << order_regime_text()
      << ". Beside each order, (n of N): the N runs of its kind the method has and the n of them "
         "in the regime, the points it is fitted over (`–` before them with fewer than the fit "
         "needs). An order in dt near zero is what a time error smaller than the grid's gives;\n";

@@ -354,13 +354,12 @@ ValueCheck check_value(const TradeRows& t, const AdviceGroup& g, double v) {
     const double limit = p.value_or(std::numeric_limits<double>::infinity());
     for (std::size_t i : idx) {
       if (parameter(t.rows[i]) > limit) break;
-      if (outcome(t.rows[i]) != "stable" && c.why_not.empty()) {
-        c.why_not = row_verdict(t.rows[i]);
-      }
-      if (above_spectral_limit(t.rows[i]) && c.why_not.empty()) {
+      const RunRow rr(t.rows[i]);
+      if (rr.outcome != "stable" && c.why_not.empty()) c.why_not = row_verdict(t.rows[i]);
+      if (rr.above_spectral_limit() && c.why_not.empty()) {
         c.why_not = row_verdict(t.rows[i]) + ", but its steps reach c dt/h " +
-                    fixed(t.rows[i]["courant"].get<double>(), 3) + ", above the spectral limit " +
-                    fixed(*RunRow(t.rows[i]).courant_spectral, 3);
+                    fixed(*rr.courant, 3) + ", above the spectral limit " +
+                    fixed(*rr.courant_spectral, 3);
       }
       c.rests_on.push_back(i);
     }
@@ -481,7 +480,8 @@ std::string advice_table(const TradeRows& t, const std::vector<MarginRange>& all
         "value checked beyond it. A value with no run at "
      << shortest(kMargin)
      << " times it or beyond is not shown: its margin is not checked. These runs lie at A / h = "
-     << listing(t.rows, "A_over_h") << " and c T = " << span(numbers(t.rows, "cT"), 3)
+     << listing(t.rows, "A_over_h")
+     << " and c T = " << span(values_of(t.rows, &RunRow::wave_passes), 3)
      << " wave passes, and a range is checked there only.\n\n"
      << "| method and policy | stable with margin | rests on | checked to | the next value run, "
         "not stable with margin |\n|---|---|---|---|---|\n";

@@ -87,10 +87,11 @@ std::string case_row(const ojson& r, const std::vector<std::string>& params,
   auto coordinate = [&](const char* col) {
     return has_number(r, col) ? significant(r[col].get<double>(), 3) : std::string("–");
   };
-  md << " " << opt_sci(r["courant"]) << " | " << coordinate("A_over_h") << " | " << coordinate("cT")
-     << " | " << verdict(r) << " | " << opt_sci(r["max_error"]) << " |";
+  const RunRow row(r);
+  md << " " << opt_sci(row.courant) << " | " << coordinate("A_over_h") << " | "
+     << (row.wave_passes ? significant(*row.wave_passes, 3) : "–") << " | " << verdict(r) << " | "
+     << opt_sci(r["max_error"]) << " |";
   if (observe.error_over_time) {
-    const RunRow row(r);
     md << " " << (row.error_over_time ? sci(*row.error_over_time) : "–") << " | "
        << (row.error_over_A() ? ratio(*row.error_over_A()) : "–") << " |";
   }

@@ -86,23 +86,22 @@ LengthRuns read_length_runs(const std::vector<ojson>& rows, const std::vector<oj
     const ojson& r = rows[i];
     const std::size_t of = case_of.empty() ? i : case_of.at(i);
     for (const double dt : edges_of(r)) {
-      const std::vector<double> lengths = test_lengths(r["cT"].get<double>());
+      const std::vector<double> lengths = test_lengths(*RunRow(r).wave_passes);
       for (std::size_t k = 0; k < lengths.size(); ++k) {
         const double length = lengths[k];
         const auto asked = follow_ups_of(follow_up, of, length_role(dt, k));
         if (asked.empty()) continue;
         const ojson& run = *asked.front();
+        const RunRow rr(run);
         LongRun l;
         l.dt = dt;
         l.length = length;
-        l.survived = survived(run);
-        l.outcome = outcome(run);
-        if (has_number(run, "max_error_over_time"))
-          l.error_over_A = run["max_error_over_time"].get<double>() / run["A"].get<double>();
-        const double c = std::sqrt(run["E"].get<double>());
-        l.passes = l.survived || !has_number(run, "failure_time")
-                       ? run["cT"].get<double>()
-                       : c * run["failure_time"].get<double>();
+        l.survived = rr.survived();
+        l.outcome = rr.outcome;
+        l.error_over_A = rr.error_over_A();
+        l.passes = l.survived || !rr.failure_time
+                       ? *rr.wave_passes
+                       : std::sqrt(run["E"].get<double>()) * *rr.failure_time;
         out[&r].push_back(l);
       }
     }

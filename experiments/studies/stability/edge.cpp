@@ -37,12 +37,12 @@ std::string in_cfl(double v) {
 
 // A row's wave passes c T: "8", "31.6".
 std::string passes(const ojson& r) {
-  return significant(r["cT"].get<double>(), 3);
+  return significant(*RunRow(r).wave_passes, 3);
 }
 
 // "mpm, A = 0.05, E = 4 (c T = 2)".
 std::string case_name(const ojson& r) {
-  std::string s = r["method"].get<std::string>();
+  std::string s = RunRow(r).method;
   s += ", A = ";
   s += shortest(r["A"].get<double>());
   s += ", E = ";
@@ -157,7 +157,8 @@ std::string edge_summary_text(const std::vector<ojson>& rows) {
   std::vector<std::string> non_monotone;
   int none = 0;
   for (const auto& r : rows) {
-    MethodEdges& m = per[r["method"].get<std::string>()];
+    const RunRow rr(r);
+    MethodEdges& m = per[rr.method];
     ++m.cases;
     if (!has_number(r, "dt_edge")) {
       ++none;
@@ -165,7 +166,7 @@ std::string edge_summary_text(const std::vector<ojson>& rows) {
     }
     ++m.with_edge;
     m.edge.push_back(r["dt_edge_over_cfl"].get<double>());
-    m.meaningless += outcome(r) == "meaningless";
+    m.meaningless += rr.outcome == "meaningless";
     if (has_number(r, "dt_edge_over_stable"))
       m.over_bound.push_back(r["dt_edge_over_stable"].get<double>());
     if (has_number(r, "dt_accurate")) {
@@ -292,11 +293,8 @@ EdgeFollowUps edge_follow_ups(const std::vector<ojson>& rows, const std::vector<
 std::string margin_text(const EdgeFollowUps& f, const ojson& r, const char* dt_col) {
   if (!has_number(r, dt_col)) return "";
   std::string s;
-  if (has_number(r, "courant_spectral")) {
-    const double dt = r[dt_col].get<double>();
-    s = fixed(dt / r["dt_cfl"].get<double>() / r["courant_spectral"].get<double>(), 3) +
-        " x limit; ";
-  }
+  if (const auto limit = RunRow(r).courant_spectral)
+    s = fixed(r[dt_col].get<double>() / r["dt_cfl"].get<double>() / *limit, 3) + " x limit; ";
   return s + lasting_text(f.long_runs, r, dt_col);
 }
 
@@ -317,10 +315,10 @@ std::string ensemble_cell(const std::map<const ojson*, EdgeEnsemble>& all, const
 Claim accuracy_limit_claim(const std::vector<ojson>& rows) {
   int accurate_n = 0, accurate_above = 0;
   for (const auto& r : rows) {
-    if (!has_number(r, "dt_accurate") || !has_number(r, "courant_spectral")) continue;
+    const auto limit = RunRow(r).courant_spectral;
+    if (!has_number(r, "dt_accurate") || !limit) continue;
     ++accurate_n;
-    const double dt = r["dt_accurate"].get<double>();
-    accurate_above += dt / r["dt_cfl"].get<double>() > r["courant_spectral"].get<double>();
+    accurate_above += r["dt_accurate"].get<double>() / r["dt_cfl"].get<double>() > *limit;
   }
   Claim below = claim("accurate-edges-at-most-the-limit",
                       "Every accuracy edge lies at or below its scheme's spectral limit (where no "
@@ -375,8 +373,8 @@ std::vector<Claim> edge_claims(const std::vector<ojson>& rows, const EdgeFollowU
       over_lo = std::min(over_lo, over);
       over_hi = std::max(over_hi, over);
     }
-    if (has_number(r, "courant_spectral")) {
-      const double rel = r["dt_edge_over_cfl"].get<double>() / r["courant_spectral"].get<double>();
+    if (const auto limit = RunRow(r).courant_spectral) {
+      const double rel = r["dt_edge_over_cfl"].get<double>() / *limit;
       ++limit_n;
       above_limit += rel > 1;
       limit_hi = std::max(limit_hi, rel);
@@ -503,12 +501,11 @@ std::string edge_table(const std::vector<ojson>& rows, const EdgeFollowUps& f) {
         "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& r : rows) {
     const bool found = has_number(r, "dt_edge");
-    md << "| " << r["method"].get<std::string>() << " | " << shortest(r["A"].get<double>()) << " | "
+    const RunRow rr(r);
+    md << "| " << rr.method << " | " << shortest(*rr.A) << " | "
        << significant(r["A_over_h"].get<double>(), 3) << " | " << shortest(r["E"].get<double>())
        << " | " << passes(r) << " | " << sci(r["dt_cfl"].get<double>(), 3) << " | "
-       << (has_number(r, "courant_spectral") ? in_cfl(r["courant_spectral"].get<double>())
-                                             : std::string("–"))
-       << " | ";
+       << (rr.courant_spectral ? in_cfl(*rr.courant_spectral) : std::string("–")) << " | ";
     if (!found) {
       md << no_edge_text(r) << " | – | – | – | – | – | – | – | ";
     } else {
@@ -531,7 +528,7 @@ std::string edge_table(const std::vector<ojson>& rows, const EdgeFollowUps& f) {
          << per_A(r, "max_error_at_accurate", "error_at_accurate_over_A");
       if (const auto it = f.twins.find(&r); it != f.twins.end())
         md << " (periodic "
-           << (survived(it->second) ? opt_sci(it->second["max_error_over_time"])
+           << (survived(it->second) ? opt_sci(RunRow(it->second).error_over_time)
                                     : verdict(it->second))
            << ")";
       md << " | " << opt_sci(r["dt_stable_min_at_edge"]);
@@ -557,9 +554,9 @@ int panel_of(const ojson& r) {
 }
 
 int series_of(const ojson& r) {
+  const RunRow rr(r);
   for (std::size_t i = 0; i < kSeries.size(); ++i) {
-    if (r["method"].get<std::string>() == kSeries[i].first &&
-        r["A"].get<double>() == kSeries[i].second) {
+    if (rr.method == kSeries[i].first && rr.A == kSeries[i].second) {
       return int(i) + 1;
     }
   }
@@ -603,8 +600,9 @@ FigureCount figure_count(const std::vector<ojson>& rows) {
 std::string listed(const std::vector<const ojson*>& rows) {
   std::vector<std::pair<std::string, std::vector<std::string>>> groups;
   for (const ojson* r : rows) {
-    std::string key = (*r)["scene"].get<std::string>() + ": " + (*r)["method"].get<std::string>() +
-                      ", A = " + shortest((*r)["A"].get<double>());
+    const RunRow rr(*r);
+    std::string key =
+        (*r)["scene"].get<std::string>() + ": " + rr.method + ", A = " + shortest(*rr.A);
     auto it =
         std::find_if(groups.begin(), groups.end(), [&](const auto& g) { return g.first == key; });
     if (it == groups.end()) it = groups.insert(groups.end(), {key, {}});
@@ -650,8 +648,10 @@ constexpr std::size_t kAmplitudeSweep = 3;
 
 std::string amplitude_table(const std::vector<ojson>& rows, const EdgeFollowUps& f) {
   std::map<std::pair<std::string, Key>, std::vector<const ojson*>> sweeps;
-  for (const auto& r : rows)
-    sweeps[{r["method"].get<std::string>(), Key(r["cT"].get<double>(), "c T")}].push_back(&r);
+  for (const auto& r : rows) {
+    const RunRow rr(r);
+    sweeps[{rr.method, Key(*rr.wave_passes, "c T")}].push_back(&r);
+  }
   std::ostringstream md;
   for (auto& [key, list] : sweeps) {
     if (list.size() < kAmplitudeSweep) continue;
@@ -695,12 +695,11 @@ std::string walls_text(const std::vector<ojson>& rows, const EdgeFollowUps& f) {
   for (const auto& r : rows) {
     const auto it = f.twins.find(&r);
     if (it == f.twins.end()) continue;
-    const std::string m = text(r, "method");
+    const std::string m = RunRow(r).method;
     ++twins[m];
-    if (survived(it->second) && has_number(it->second, "max_error_over_time") &&
-        has_number(r, "max_error_at_accurate"))
-      ratios[m].push_back(it->second["max_error_over_time"].get<double>() /
-                          r["max_error_at_accurate"].get<double>());
+    const RunRow twin(it->second);
+    if (twin.survived() && twin.error_over_time && has_number(r, "max_error_at_accurate"))
+      ratios[m].push_back(*twin.error_over_time / r["max_error_at_accurate"].get<double>());
   }
   if (twins.empty()) return "";
   std::ostringstream md;
@@ -755,8 +754,8 @@ std::string edge_data_csv(const std::vector<ojson>& rows, const std::string& hea
     if (not_drawn_reason(r).empty()) drawn.push_back(&r);
   }
   std::stable_sort(drawn.begin(), drawn.end(), [](const ojson* a, const ojson* b) {
-    return std::tuple(panel_of(*a), series_of(*a), Key((*a)["cT"].get<double>(), "c T")) <
-           std::tuple(panel_of(*b), series_of(*b), Key((*b)["cT"].get<double>(), "c T"));
+    return std::tuple(panel_of(*a), series_of(*a), Key(*RunRow(*a).wave_passes, "c T")) <
+           std::tuple(panel_of(*b), series_of(*b), Key(*RunRow(*b).wave_passes, "c T"));
   });
   std::ostringstream csv;
   csv << header_lines << "# " << edge_subtitle_text(count) << "\n";
@@ -782,12 +781,11 @@ std::string edge_data_csv(const std::vector<ojson>& rows, const std::string& hea
          "panel,series,cT,dt_edge_over_cfl,dt_accurate_over_cfl,meaningless_at_edge,limit_over_cfl,"
          "eq108_over_cfl\n";
   for (const ojson* r : drawn) {
-    csv << panel_of(*r) << ',' << series_of(*r) << ',' << shortest((*r)["cT"].get<double>()) << ','
+    const RunRow rr(*r);
+    csv << panel_of(*r) << ',' << series_of(*r) << ',' << shortest(*rr.wave_passes) << ','
         << csv_cell((*r)["dt_edge_over_cfl"]) << ',' << csv_cell((*r)["dt_accurate_over_cfl"])
-        << ',' << (outcome(*r) == "meaningless" ? 1 : 0) << ','
-        << (has_number(*r, "courant_spectral") ? shortest((*r)["courant_spectral"].get<double>())
-                                               : std::string())
-        << ',';
+        << ',' << (rr.outcome == "meaningless" ? 1 : 0) << ','
+        << (rr.courant_spectral ? shortest(*rr.courant_spectral) : std::string()) << ',';
     if (has_number(*r, "dt_stable_min_at_edge"))
       csv << shortest((*r)["dt_stable_min_at_edge"].get<double>() / (*r)["dt_cfl"].get<double>());
     csv << '\n';

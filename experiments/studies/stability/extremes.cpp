@@ -399,7 +399,7 @@ std::string every_case_table(const std::vector<ojson>& rows) {
     md << "| " << run.method_label << " | " << r["bc"].get<std::string>() << " | "
        << shortest(r["E"].get<double>()) << " | " << shortest(r["A"].get<double>()) << " | "
        << param(r["dt"].get<double>()) << " | " << param(r["T"].get<double>()) << " | "
-       << r["cells"].dump() << " | " << r["ppc"].dump() << " | " << opt_sci(r["courant"]) << " | "
+       << r["cells"].dump() << " | " << r["ppc"].dump() << " | " << opt_sci(run.courant) << " | "
        << (run.wave_passes ? sci(*run.wave_passes) : "–") << " | " << verdict_word(r) << " | "
        << (run.error_over_time ? sci(*run.error_over_time) : "–") << " | " << (e ? sci(*e) : "–")
        << " | " << (e ? std::string(to_string(accuracy_class(*e, 1.0))) : std::string("–")) << " | "

@@ -57,11 +57,11 @@ std::string analysis_of(const ojson& r) {
 std::string agreement_table(const std::vector<const ojson*>& rows) {
   std::ostringstream md;
   const auto n = std::count_if(rows.begin(), rows.end(), [](const ojson* r) { return agrees(*r); });
-  md << "## The measured edge against the spectral limit at A = "
-     << shortest((*rows.front())["A"].get<double>())
-     << ", c T = " << shortest((*rows.front())["cT"].get<double>())
-     << "\n\n**Reading** (computed from the rows). " << n << " of " << rows.size()
-     << " measured edges lie within " << shortest(100 * kAgreement) << "% of the spectral limit";
+  const RunRow front(*rows.front());
+  md << "## The measured edge against the spectral limit at A = " << shortest(*front.A)
+     << ", c T = " << shortest(*front.wave_passes) << "\n\n**Reading** (computed from the rows). "
+     << n << " of " << rows.size() << " measured edges lie within " << shortest(100 * kAgreement)
+     << "% of the spectral limit";
   double lo = 1e300, hi = -1e300;
   for (const ojson* r : rows) {
     if (const auto q = edge_ratio(*r)) {
@@ -173,10 +173,10 @@ std::string length_table(const std::vector<ojson>& rows, const LengthRuns& lengt
         "time / A there | length |\n|---|---|---|---|---|---|\n";
   for (const auto& r : rows) {
     if (!has_number(r, "dt_edge")) continue;
-    md << "| " << scheme_label(r) << " | " << shortest(r["A"].get<double>()) << ", "
-       << shortest(r["cT"].get<double>()) << " | "
-       << fixed(r["dt_edge"].get<double>() / r["dt_cfl"].get<double>(), 4) << monotone_words(r)
-       << " | " << edge_run_verdict(r) << " | "
+    const RunRow rr(r);
+    md << "| " << rr.scheme_label << " | " << shortest(*rr.A) << ", " << shortest(*rr.wave_passes)
+       << " | " << fixed(r["dt_edge"].get<double>() / r["dt_cfl"].get<double>(), 4)
+       << monotone_words(r) << " | " << edge_run_verdict(r) << " | "
        << (has_number(r, "error_at_edge_over_A")
                ? significant(r["error_at_edge_over_A"].get<double>(), 2)
                : std::string("–"))
