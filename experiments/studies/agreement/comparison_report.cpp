@@ -435,12 +435,13 @@ void cell_table(std::ostream& md, const Comparison& cmp) {
   for (const auto& c : cmp.cells) {
     const auto& p = c.spec->params;
     const ojson& r = c.row;
+    const RunRow rr(r);
     const auto error = compared_error(r, cmp.error_of(c));
-    const bool stable = survived(r);
+    const bool stable = rr.survived();
     const std::string pv = paper_verdict(c);
     md << "| " << shortest(p.E) << " | " << shortest(p.A) << " | " << param(p.dt)
        << (c.spec->dt_inferred ? " (inferred)" : "") << " | " << to_string(p.method) << " | "
-       << sci(r["courant"].get<double>()) << " | " << significant(amplitude_per_cell(p), 3) << " | "
+       << sci(*rr.courant) << " | " << significant(amplitude_per_cell(p), 3) << " | "
        << significant(wave_passes(p), 3) << " | " << (pv == "*" ? "\\*" : pv) << " | "
        << our_verdict(r) << " | " << (c.paper ? show(c.paper->dt_stable) : "–") << " | "
        << (stable ? opt_sci(r["dt_stable_min"]) : "\\*") << " | "
@@ -658,14 +659,13 @@ void mpm_crossing_failure_section(std::ostream& md, const Comparison& cmp) {
         "boundaries |\n|---|---|---|---|---|---|\n";
   for (const Cell* c : cells) {
     const ojson& r = c->row;
+    const RunRow rr(r);
     const ojson* periodic = periodic_run(cmp, *c);
-    md << "| " << cell_name(*c) << " | " << sci(r["courant"].get<double>()) << " | "
-       << RunRow(r).failure_reason.value_or("") << " | "
-       << (has_number(r, "failure_time")
-               ? ratio(r["failure_time"].get<double>() / r["T"].get<double>())
-               : std::string("–"))
-       << " | " << (RunRow(r).error_over_A() ? ratio(*RunRow(r).error_over_A()) : std::string("–"))
-       << " | " << (periodic ? short_verdict(*periodic) : std::string("not rerun")) << " |\n";
+    md << "| " << cell_name(*c) << " | " << sci(*rr.courant) << " | "
+       << rr.failure_reason.value_or("") << " | "
+       << (rr.failure_time ? ratio(*rr.failure_time / r["T"].get<double>()) : std::string("–"))
+       << " | " << (rr.error_over_A() ? ratio(*rr.error_over_A()) : std::string("–")) << " | "
+       << (periodic ? short_verdict(*periodic) : std::string("not rerun")) << " |\n";
   }
   md << "\n";
 }
