@@ -290,12 +290,15 @@ VerifyingRun verifying_run(std::string what, const RunParams& params, double tar
   return v;
 }
 
-// A verifying run's outcome in the reports' words: a run stable over fewer than kMinWavePasses
-// wave passes is not called stable (docs/studies.md, "Outcomes").
+// A verifying run stable over fewer than kMinWavePasses wave passes: not called stable
+// (docs/studies.md, "Outcomes").
+bool under_a_pass(const VerifyingRun& r) {
+  return r.outcome == "stable" && wave_passes(r.params) < kMinWavePasses;
+}
+
+// A verifying run's outcome in the reports' words.
 std::string outcome_words(const VerifyingRun& r) {
-  return r.outcome == "stable" && wave_passes(r.params) < kMinWavePasses
-             ? under_a_wave_pass_word(wave_passes(r.params))
-             : r.outcome;
+  return under_a_pass(r) ? under_a_wave_pass_word(wave_passes(r.params)) : r.outcome;
 }
 
 std::string failure_words(const VerifyingRun& r, double target) {
@@ -612,7 +615,7 @@ ojson run_json(const VerifyingRun& r) {
           {"cells", r.params.cells},
           {"cT", r.params.T},
           {"outcome", r.outcome},
-          {"under_a_wave_pass", r.outcome == "stable" && wave_passes(r.params) < kMinWavePasses},
+          {"under_a_wave_pass", studies::advice_verify::under_a_pass(r)},
           {"error_over_A", r.error_over_A ? ojson(*r.error_over_A) : ojson(nullptr)},
           {"particle_steps", r.particle_steps},
           {"seconds", r.seconds},
