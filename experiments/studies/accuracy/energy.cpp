@@ -73,7 +73,7 @@ std::string history_table(const std::vector<ojson>& rows, const std::set<Cell>& 
     for (const auto& r : rows) {
       if (!fixed_step(r) || cell_of(r) != c) continue;
       if (first) {
-        md << shortest(r["courant"].get<double>())
+        md << shortest(RunRow(r).courant.value())
            << ", A/h = " << shortest(r["A_over_h"].get<double>())
            << ", c T = " << shortest(*RunRow(r).wave_passes)
            << ")\n\n| transfer and update | outcome | balance error, max | against the exact "

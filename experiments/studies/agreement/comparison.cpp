@@ -197,7 +197,7 @@ bool explains(const CellVerdict& rerun) {
 double scan_courant(const nlohmann::ordered_json& row) {
   using namespace studies::comparison;
   constexpr double kResolution = 1e4;  // steps per unit of c dt / h
-  return std::round(row.at("courant").get<double>() * kResolution) / kResolution;
+  return std::round(RunRow(row).courant.value() * kResolution) / kResolution;
 }
 
 CourantEdges courant_edges(const std::vector<nlohmann::ordered_json>& rows) {

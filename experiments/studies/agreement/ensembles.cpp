@@ -77,7 +77,7 @@ std::string ensembles_markdown(const std::vector<ojson>& rows,
     const ojson& r = rows[c.row];
     md << "| " << shortest(r["E"].get<double>()) << " | " << shortest(r["A"].get<double>()) << " | "
        << param(r["dt"].get<double>()) << " | " << RunRow(r).method << " | "
-       << sci(r["courant"].get<double>()) << " | " << significant(r["A_over_h"].get<double>(), 3)
+       << sci(RunRow(r).courant.value()) << " | " << significant(r["A_over_h"].get<double>(), 3)
        << " | " << significant(*RunRow(r).wave_passes, 3) << " | " << verdict(r) << " | " << work(r)
        << " | " << ensemble_text(r, c.result) << " |\n";
   }

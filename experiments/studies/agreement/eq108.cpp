@@ -98,7 +98,7 @@ std::string eq108_table(const Eq108Cells& e,
     const RunParams& p = cell.spec->params;
     const ojson& first = *cell.runs.front();
     table << "| " << to_string(p.method) << " | " << shortest(p.E) << " | " << shortest(p.A)
-          << " | " << param(p.dt) << " | " << sci(first["courant"].get<double>()) << " | "
+          << " | " << param(p.dt) << " | " << sci(RunRow(first).courant.value()) << " | "
           << significant(amplitude_per_cell(p), 3) << " | " << significant(wave_passes(p), 3)
           << " | " << (cell.paper ? show(cell.paper->dt_stable) : "–") << " |";
     for (const auto& reading : readings) {
@@ -290,7 +290,7 @@ void other_grid_section(std::ostream& md, const Eq108Cells& grid_cells,
       const auto q = bound_ratio(cell, *run);
       const auto q_paper = paper_run ? bound_ratio(*on_paper_grid, *paper_run) : std::nullopt;
       table << "| " << to_string(p.method) << " | " << shortest(p.E) << " | " << shortest(p.A)
-            << " | " << param(p.dt) << " | " << sci((*run)["courant"].get<double>()) << " | "
+            << " | " << param(p.dt) << " | " << sci(RunRow(*run).courant.value()) << " | "
             << significant(amplitude_per_cell(p), 3) << " | "
             << (cell.paper ? show(cell.paper->dt_stable) : "–") << " | " << reading << " | "
             << (paper_run ? bound_text(*paper_run) : "–") << " | "

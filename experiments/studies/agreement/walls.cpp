@@ -172,7 +172,7 @@ std::string walls_table(const std::vector<Twin>& cells) {
     const auto ed = stable_error(t.dirichlet), ep = stable_error(t.periodic);
     md << "| " << RunRow(p).method << " | " << shortest(p["E"].get<double>()) << " | "
        << shortest(p["A"].get<double>()) << " | " << param(p["dt"].get<double>()) << " | "
-       << sci(p["courant"].get<double>()) << " | " << significant(p["A_over_h"].get<double>(), 3)
+       << sci(RunRow(p).courant.value()) << " | " << significant(p["A_over_h"].get<double>(), 3)
        << " | " << significant(*RunRow(p).wave_passes, 3) << " | " << verdict_or_dash(t.dirichlet)
        << " | " << error_or_dash(t.dirichlet) << " | " << verdict(p) << " | "
        << error_or_dash(t.periodic) << " | " << (ed && ep ? ratio(*ep / *ed) : std::string("–"))

@@ -28,7 +28,7 @@ std::string figure_markdown(const Spec& spec, const std::vector<ojson>& rows) {
         "|\n|---|---|---|---|---|---|---|---|---|---|---|"
         "---|\n";
   md << "| " << to_string(p.method) << " | " << shortest(p.E) << " | " << shortest(p.A) << " | "
-     << param(p.dt) << " | " << sci(r["courant"].get<double>()) << " | " << r["steps"].dump()
+     << param(p.dt) << " | " << sci(RunRow(r).courant.value()) << " | " << r["steps"].dump()
      << " of " << *step_count(p.T, p.dt) << " | " << verdict(r) << " | " << opt_sci(r["max_error"])
      << " | " << opt_sci(RunRow(r).error_over_time) << " | " << opt_sci(r["dt_stable_min"]) << " | "
      << (r["crossings"].is_null() ? std::string("–") : r["crossings"].dump()) << " | " << work(r)

@@ -237,7 +237,7 @@ std::string table1_row(const CaseSpec& cs, const ojson& r,
   const auto a = classed ? run.accuracy() : std::nullopt;
   std::ostringstream md;
   md << "| " << param(p.dt) << (cs.dt_inferred ? " (inferred)" : "") << " | " << to_string(p.method)
-     << " | " << sci(r["courant"].get<double>()) << " | " << (pc ? show(pc->dt_stable) : "–")
+     << " | " << sci(RunRow(r).courant.value()) << " | " << (pc ? show(pc->dt_stable) : "–")
      << " | " << (survived(r) ? opt_sci(r["dt_stable_min"]) : "\\*") << " | "
      << (pc ? show(pc->max_error) : "–") << " | "
      << (!survived(r) ? std::string("\\*")

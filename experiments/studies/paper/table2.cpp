@@ -206,7 +206,7 @@ std::string every_case_table(const Spec& spec, const std::vector<ojson>& rows) {
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const auto& p = spec.cases[i].params;
     md << "| " << shortest(p.E) << " | " << shortest(p.A) << " | " << to_string(p.method) << " | "
-       << param(p.dt) << " | " << sci(rows[i]["courant"].get<double>()) << " | " << verdict(rows[i])
+       << param(p.dt) << " | " << sci(RunRow(rows[i]).courant.value()) << " | " << verdict(rows[i])
        << " | " << crossings(&rows[i]) << " | " << work(rows[i]) << " |\n";
   }
   return md.str();
