@@ -20,14 +20,9 @@ std::optional<std::int64_t> integer_at(const ojson& row, const char* column) {
   return it != row.end() && it->is_number() ? std::optional(it->get<std::int64_t>()) : std::nullopt;
 }
 
-std::string string_at(const ojson& row, const char* column) {
-  const auto it = row.find(column);
-  return it != row.end() && it->is_string() ? it->get<std::string>() : std::string();
-}
-
 std::string label_of_method(const ojson& r) {
-  std::string s = string_at(r, "method");
-  const std::string transfer = string_at(r, "transfer"), update = string_at(r, "update");
+  std::string s = text(r, "method");
+  const std::string transfer = text(r, "transfer"), update = text(r, "update");
   if (!transfer.empty() && transfer != "flip") {
     s += '/';
     s += transfer;
@@ -64,7 +59,7 @@ std::string label_of_scheme(const ojson& r, std::string s) {
 }  // namespace
 
 RunRow::RunRow(const ojson& row)
-    : outcome(string_at(row, "outcome")),
+    : outcome(text(row, "outcome")),
       failure_step(integer_at(row, "failure_step")),
       failure_time(number_at(row, "failure_time")),
       steps(integer_at(row, "steps")),
@@ -74,15 +69,15 @@ RunRow::RunRow(const ojson& row)
       wave_passes(number_at(row, "cT")),
       courant(number_at(row, "courant")),
       courant_spectral(number_at(row, "courant_spectral")),
-      method(string_at(row, "method")),
+      method(text(row, "method")),
       method_label(label_of_method(row)),
       scheme_label(label_of_scheme(row, method_label)) {
-  if (const std::string reason = string_at(row, "failure_reason"); !reason.empty())
+  if (const std::string reason = text(row, "failure_reason"); !reason.empty())
     failure_reason = reason;
 }
 
 bool RunRow::under_a_wave_pass() const {
-  return outcome == "stable" && wave_passes && *wave_passes < kMinWavePasses;
+  return wave_passes && stable_under_a_wave_pass(outcome == "stable", *wave_passes);
 }
 
 Ending RunRow::ending() const {
@@ -161,7 +156,7 @@ VerdictTally verdict_tally(const std::vector<ojson>& rows) {
 }
 
 std::string outcome(const ojson& r) {
-  return string_at(r, "outcome");
+  return text(r, "outcome");
 }
 
 bool survived(const ojson& r) {

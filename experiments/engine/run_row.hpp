@@ -26,6 +26,12 @@ namespace mpmstab {
 // (it reached T with an error over time of at least A), too short (too few steps for a verdict),
 // under a wave pass (stable by its outcome, but over fewer than kMinWavePasses wave passes),
 // stable (over at least kMinWavePasses wave passes); unknown where the row has no outcome.
+// The one rule: a run whose outcome is stable but that covered fewer than kMinWavePasses wave
+// passes is not called stable (a row, `mpmstab run` and `advise`'s verifying runs alike).
+inline bool stable_under_a_wave_pass(bool outcome_stable, double wave_passes) {
+  return outcome_stable && wave_passes < kMinWavePasses;
+}
+
 enum class Ending { unstable, meaningless, too_short, under_a_wave_pass, stable, unknown };
 
 // A flat result row, read once.

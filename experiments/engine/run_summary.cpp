@@ -43,7 +43,7 @@ std::string text_summary(const RunResult& r, bool with_timing) {
     << ", T = " << fmt(p.T) << ", " << p.cells << " cells x " << p.ppc << " ppc, "
     << to_string(p.bc) << nondefault_choices(p) << "\n";
   // A stable run of fewer than kMinWavePasses wave passes is named as every report names it.
-  const bool under_a_pass = r.outcome == Outcome::stable && wave_passes(p) < kMinWavePasses;
+  const bool under_a_pass = stable_under_a_wave_pass(r.outcome == Outcome::stable, wave_passes(p));
   std::string verdict(under_a_pass ? under_a_wave_pass_word(wave_passes(p))
                       : r.outcome  ? to_string(*r.outcome)
                                    : "survived (error over time not measured)");

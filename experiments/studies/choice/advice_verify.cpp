@@ -293,7 +293,7 @@ VerifyingRun verifying_run(std::string what, const RunParams& params, double tar
 // A verifying run stable over fewer than kMinWavePasses wave passes: not called stable
 // (docs/studies.md, "Outcomes").
 bool under_a_pass(const VerifyingRun& r) {
-  return r.outcome == "stable" && wave_passes(r.params) < kMinWavePasses;
+  return stable_under_a_wave_pass(r.outcome == "stable", wave_passes(r.params));
 }
 
 // A verifying run's outcome in the reports' words.
