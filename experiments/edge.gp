@@ -22,6 +22,9 @@ if (!exists("datafile") || !exists("outbase")) {
     exit error "missing variables"
 }
 if (!exists("subtitle")) subtitle = ""
+# A subtitle too long for one line (clipped past about 160 characters) is broken after a "; "
+# until each line fits.
+wrapsub(s) = (strlen(s) <= 150 || strstrt(s, "; ") == 0) ? s : s[1:strstrt(s, "; ")] . "\n" . wrapsub(s[strstrt(s, "; ")+2:])
 
 set datafile separator comma
 set datafile commentschars '#'
@@ -59,7 +62,7 @@ do for [ext in "png svg"] {
         set terminal svg size 1200,900 dynamic font "sans,11" noenhanced background "white"
     }
     set output outbase . "." . ext
-    set multiplot title "Survival and accuracy edges against the run length c T, in units of h/c" . (strlen(subtitle) > 0 ? "\n" . subtitle : "")
+    set multiplot title "Survival and accuracy edges against the run length c T, in units of h/c" . (strlen(subtitle) > 0 ? "\n" . wrapsub(subtitle) : "")
     set logscale xy
     set xrange [0.7:150]
     set yrange [ylow:yhigh]
