@@ -66,6 +66,7 @@ do for [ext in "png svg"] {
     set logscale xy
     set xrange [0.7:150]
     set yrange [ylow:yhigh]
+    set format y "%g"
     set xlabel "wave passes c T (T = 1: c T = sqrt(E))"
     set ylabel "dt / (h/c)"
     set grid xtics ytics mxtics lc rgb "#e0e0e0"
