@@ -350,6 +350,7 @@ struct MethodFindings {
   int below_failed = 0, below_failed_crossing = 0;
 };
 
+// The findings of one method's runs.
 MethodFindings method_findings(const std::vector<ojson>& rows, const std::string& method) {
   MethodFindings f{.name = method,
                    .by_courant = band_counts(rows, method, kCourantBands, true),
@@ -473,6 +474,7 @@ struct Findings {
   std::map<Spot, int> spots;
 };
 
+// The findings of every case.
 Findings find(const std::vector<ojson>& rows) {
   Findings f{
       .counts = count_rows(rows), .slowest = slowest_case(rows), .methods = methods_of(rows)};

@@ -74,6 +74,7 @@ struct Findings {
   LengthTally lengths;
 };
 
+// The findings of the rows and their runs for length.
 Findings find(const std::vector<ojson>& rows, const LengthRuns& lengths) {
   Findings f;
   std::map<std::string, int> runs;  // rows per scheme
