@@ -18,9 +18,7 @@
 #include "study.hpp"
 #include "sweep.hpp"
 
-namespace mpmstab {
-
-namespace studies::scene_edges {
+namespace mpmstab::studies::scene_edges {
 namespace {
 
 using ojson = nlohmann::ordered_json;
@@ -115,20 +113,6 @@ std::vector<std::optional<Robustness>> robustness(const std::vector<ojson>& rows
   return out;
 }
 
-// What the rows and their follow-ups found, over every row.
-struct EdgeCounts {
-  int rows = 0, with_edge = 0, robust_rows = 0, checked = 0, above = 0, compared = 0;
-  int monotone = 0;  // rows whose search found survival monotone in dt
-  int meaningless_edges = 0;
-  int above_under_a_pass = 0;  // edges above the limit whose run covered under a wave pass
-  // The rows without an edge inside the scan, by why, and their scenes.
-  int to_top = 0, edge_too_short = 0, none_survives = 0;
-  std::vector<std::string> edgeless_scenes;
-  int round_off_references = 0;
-  LengthTally length_tally;
-  double worst = 0;
-};
-
 // The survival edge as the table prints it: its c dt/h (marked where the run there is
 // meaningless), or why the row has none inside the scan.
 std::string survival_edge_text(const ojson& r) {
@@ -194,60 +178,65 @@ std::string accuracy_edge_text(const ojson& r) {
   return "–";
 }
 
-// One row of the table, counted into `n`.
-std::string edge_row(const ojson& r, const std::optional<Robustness>& robust,
-                     const LengthRuns& lengths, EdgeCounts& n) {
-  ++n.rows;
-  n.monotone += survival_monotone(r);
-  const ScanEdge where = scan_edge(r);
-  const bool inside = where == ScanEdge::inside;
-  const auto edge = courant_of(r, "dt_edge"), fail = courant_of(r, "dt_fail");
-  const bool accurate = !reference_at_round_off(r) && courant_of(r, "dt_accurate").has_value();
-  n.round_off_references += reference_at_round_off(r);
-  const RunRow rr(r);
-  const std::optional<double> limit = rr.courant_spectral;
-  n.with_edge += inside;
-  n.to_top += where == ScanEdge::survives_to_top;
-  n.edge_too_short += where == ScanEdge::edge_too_short;
-  n.none_survives += where == ScanEdge::none_survives;
-  if (!inside && std::find(n.edgeless_scenes.begin(), n.edgeless_scenes.end(), text(r, "scene")) ==
-                     n.edgeless_scenes.end())
-    n.edgeless_scenes.push_back(text(r, "scene"));
-  std::string ratio_text = "–";
-  if (inside && limit) {
-    ++n.compared;
-    const double q = *edge / *limit;
-    n.worst = std::max(n.worst, q);
-    n.above += q > kLimitMargin;
-    n.above_under_a_pass += q > kLimitMargin && rr.wave_passes.value_or(0) < kMinWavePasses;
-    ratio_text = fixed(q, 2);
-  }
-  std::string perturbed = "–";
-  if (robust && inside) {
-    ++n.checked;
-    n.robust_rows +=
-        robust->survive_at_edge == robust->members && robust->fail_above == robust->members;
-    perturbed = std::to_string(robust->survive_at_edge) + " of " + std::to_string(robust->members) +
-                ", " + std::to_string(robust->fail_above) + " of " +
-                std::to_string(robust->members);
-  }
-  if (inside) {
+// What the study finds, from its rows and their follow-up runs (none for the index, which prints
+// no finding of them): how many rows have an edge inside the scan, why the others have none and
+// their scenes, how many are monotone or have a reference at round-off; of the edges inside the
+// scan, how many are meaningless, how they lie against the dense limit, how many hold on every
+// perturbed layout and how long they hold.
+struct Findings {
+  int rows = 0, with_edge = 0, robust_rows = 0, checked = 0, above = 0, compared = 0;
+  int monotone = 0;  // rows whose search found survival monotone in dt
+  int meaningless_edges = 0;
+  int above_under_a_pass = 0;  // edges above the limit whose run covered under a wave pass
+  // The rows without an edge inside the scan, by why, and their scenes.
+  int to_top = 0, edge_too_short = 0, none_survives = 0;
+  std::vector<std::string> edgeless_scenes;
+  int round_off_references = 0;
+  LengthTally length_tally;
+  double worst = 0;
+  std::vector<std::optional<Robustness>> robust;  // per row
+  LengthRuns lengths;
+};
+
+// The findings of the rows and their follow-up runs.
+Findings find(const std::vector<ojson>& rows, const std::vector<ojson>& follow_up) {
+  Findings n{.robust = robustness(rows, follow_up), .lengths = read_length_runs(rows, follow_up)};
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const ojson& r = rows[i];
+    const RunRow rr(r);
+    const ScanEdge where = scan_edge(r);
+    ++n.rows;
+    n.monotone += survival_monotone(r);
+    n.round_off_references += reference_at_round_off(r);
+    n.to_top += where == ScanEdge::survives_to_top;
+    n.edge_too_short += where == ScanEdge::edge_too_short;
+    n.none_survives += where == ScanEdge::none_survives;
+    if (where != ScanEdge::inside) {
+      if (std::find(n.edgeless_scenes.begin(), n.edgeless_scenes.end(), text(r, "scene")) ==
+          n.edgeless_scenes.end())
+        n.edgeless_scenes.push_back(text(r, "scene"));
+      continue;
+    }
+    ++n.with_edge;
     n.meaningless_edges += rr.outcome == "meaningless";
-    n.length_tally.add(lasting(lengths, r, "dt_edge"));
+    n.length_tally.add(lasting(n.lengths, r, "dt_edge"));
+    if (rr.courant_spectral) {
+      const double q = *courant_of(r, "dt_edge") / *rr.courant_spectral;
+      ++n.compared;
+      n.worst = std::max(n.worst, q);
+      n.above += q > kLimitMargin;
+      n.above_under_a_pass += q > kLimitMargin && rr.wave_passes.value_or(0) < kMinWavePasses;
+    }
+    if (const auto& robust = n.robust[i]) {
+      ++n.checked;
+      n.robust_rows +=
+          robust->survive_at_edge == robust->members && robust->fail_above == robust->members;
+    }
   }
-  std::ostringstream md;
-  md << "| " << text(r, "scene") << " | " << rr.method << " | " << small_mass_of(r) << " | "
-     << shortest(number_or_zero(r, "A_over_h")) << ", " << shortest(rr.wave_passes.value_or(0))
-     << " | " << survival_edge_text(r) << " | " << (inside ? opt_fixed(fail) : std::string("–"))
-     << " | " << (edge ? run_at_edge_text(r) : std::string("–")) << " | "
-     << (inside ? lasting_text(lengths, r, "dt_edge") : std::string("–")) << " | "
-     << accuracy_edge_text(r) << " | "
-     << (accurate ? lasting_text(lengths, r, "dt_accurate") : std::string("–")) << " | "
-     << opt_fixed(limit) << " | " << ratio_text << " | " << perturbed << " |\n";
-  return md.str();
+  return n;
 }
 
-std::vector<Claim> edges_claims(const EdgeCounts& n) {
+std::vector<Claim> edges_claims(const Findings& n) {
   Claim edge =
       claim("every-case-has-an-edge", "Every case has a survival edge inside the scan",
             "{with} of {cases} do; of the others, {top} survive to the top of the scan (a "
@@ -325,15 +314,40 @@ std::string edges_intro(const ReportContext& ctx) {
   return md.str();
 }
 
+// One row of the table.
+std::string edge_row(const ojson& r, const std::optional<Robustness>& robust,
+                     const LengthRuns& lengths) {
+  const bool inside = scan_edge(r) == ScanEdge::inside;
+  const auto edge = courant_of(r, "dt_edge"), fail = courant_of(r, "dt_fail");
+  const bool accurate = !reference_at_round_off(r) && courant_of(r, "dt_accurate").has_value();
+  const RunRow rr(r);
+  const std::optional<double> limit = rr.courant_spectral;
+  std::string perturbed = "–";
+  if (robust && inside) {
+    perturbed = std::to_string(robust->survive_at_edge) + " of " + std::to_string(robust->members) +
+                ", " + std::to_string(robust->fail_above) + " of " +
+                std::to_string(robust->members);
+  }
+  std::ostringstream md;
+  md << "| " << text(r, "scene") << " | " << rr.method << " | " << small_mass_of(r) << " | "
+     << shortest(number_or_zero(r, "A_over_h")) << ", " << shortest(rr.wave_passes.value_or(0))
+     << " | " << survival_edge_text(r) << " | " << (inside ? opt_fixed(fail) : std::string("–"))
+     << " | " << (edge ? run_at_edge_text(r) : std::string("–")) << " | "
+     << (inside ? lasting_text(lengths, r, "dt_edge") : std::string("–")) << " | "
+     << accuracy_edge_text(r) << " | "
+     << (accurate ? lasting_text(lengths, r, "dt_accurate") : std::string("–")) << " | "
+     << opt_fixed(limit) << " | " << (inside && limit ? fixed(*edge / *limit, 2) : "–") << " | "
+     << perturbed << " |\n";
+  return md.str();
+}
+
 StudyReport edges_report(const ReportContext& ctx) {
   const auto& rows = ctx.rows;
-  const auto robust = robustness(rows, ctx.follow_up);
-  const LengthRuns lengths = read_length_runs(rows, ctx.follow_up);
-  EdgeCounts n;
+  const Findings n = find(rows, ctx.follow_up);
   std::ostringstream md;
   md << edges_intro(ctx);
   for (std::size_t i = 0; i < rows.size(); ++i)
-    md << edge_row(rows[i], robust[i], lengths, n);
+    md << edge_row(rows[i], n.robust[i], n.lengths);
   md << "\nAn edge above the dense limit is one at which the growth the limit predicts has "
         "not reached a failure by T (c T is given per scene in the scenes report). "
      << n.rows - n.with_edge << " of " << n.rows
@@ -347,12 +361,10 @@ StudyReport edges_report(const ReportContext& ctx) {
 }
 
 std::string edges_index(const Spec& spec, const std::vector<ojson>& rows) {
-  int with_edge = 0;
-  for (const auto& r : rows)
-    with_edge += scan_edge(r) == ScanEdge::inside;
+  const Findings n = find(rows, {});
   std::ostringstream md;
-  md << "**What it shows.** The survival and accuracy edges in c dt/h of " << rows.size()
-     << " scene, method and small-mass cases (" << with_edge
+  md << "**What it shows.** The survival and accuracy edges in c dt/h of " << n.rows
+     << " scene, method and small-mass cases (" << n.with_edge
      << " with a survival edge inside the scan), each beside the dense spectral limit of its body "
         "and "
         "checked on perturbed layouts. ["
@@ -371,6 +383,4 @@ const StudyRegistration kSceneEdges{{
 }};
 
 }  // namespace
-}  // namespace studies::scene_edges
-
-}  // namespace mpmstab
+}  // namespace mpmstab::studies::scene_edges

@@ -21,9 +21,7 @@
 #include "study.hpp"
 #include "sweep.hpp"
 
-namespace mpmstab {
-
-namespace studies::scenes {
+namespace mpmstab::studies::scenes {
 namespace {
 
 using ojson = nlohmann::ordered_json;
@@ -33,17 +31,11 @@ constexpr double kReferenceCourant = 0.2;
 // At most this many points of a history per series in the figure's data.
 constexpr int kFigurePoints = 300;
 
-std::string str(const ojson& r, const char* column) {
-  return r[column].is_string() ? r[column].get<std::string>() : std::string();
-}
 double num(const ojson& r, const char* column) {
   return r[column].get<double>();
 }
 std::optional<double> opt(const ojson& r, const char* column) {
   return has_number(r, column) ? std::optional(r[column].get<double>()) : std::nullopt;
-}
-std::string opt_sci_of(std::optional<double> v) {
-  return v ? sci(*v) : "–";
 }
 
 // Which part of the study a row belongs to.
@@ -71,7 +63,7 @@ std::map<std::string, Reference> references(const std::vector<ojson>& rows) {
   // reference is its first row's.
   std::map<std::string, Reference> out;
   for (const auto& r : rows) {
-    const std::string scene = str(r, "scene");
+    const std::string scene = text(r, "scene");
     if (scene == "bar" || out.count(scene)) continue;
     out[scene] = {num(r, "A"), num(r, "T")};
   }
@@ -79,12 +71,12 @@ std::map<std::string, Reference> references(const std::vector<ojson>& rows) {
 }
 
 Part part_of(const ojson& r, const std::map<std::string, Reference>& ref) {
-  const std::string scene = str(r, "scene");
+  const std::string scene = text(r, "scene");
   if (scene == "bar") return Part::interior;
   if (num(r, "cells") == kPeerCells) return Part::peer;
   if (small_mass_of(r) != "none") return Part::treatment;
   const Reference& f = ref.at(scene);
-  const bool cfl = str(r, "policy") == "cfl";
+  const bool cfl = text(r, "policy") == "cfl";
   if (!cfl || num(r, "A") != f.A || num(r, "T") != f.T ||
       num(r, "cfl_factor") > 2 * kReferenceCourant)
     return Part::extreme;
@@ -109,7 +101,7 @@ std::map<EdgeKey, ojson> edges_of(const StudyInputs& inputs) {
   const auto it = inputs.find("scene_edges");
   if (it == inputs.end() || !it->second.present()) return out;
   for (const auto& r : it->second.doc["cases"])
-    out[{str(r, "scene"), RunRow(r).method, small_mass_of(r)}] = r;
+    out[{text(r, "scene"), RunRow(r).method, small_mass_of(r)}] = r;
   return out;
 }
 // The survival edge of a (scene, method, treatment) as the tables print it.
@@ -131,7 +123,7 @@ std::map<std::string, double> interior_limits(const std::vector<ojson>& rows,
 std::vector<std::string> scenes_in_order(const std::vector<ojson>& rows) {
   std::vector<std::string> out;
   for (const auto& r : rows) {
-    const std::string s = str(r, "scene");
+    const std::string s = text(r, "scene");
     if (s != "bar" && std::find(out.begin(), out.end(), s) == out.end()) out.push_back(s);
   }
   return out;
@@ -177,11 +169,11 @@ std::string scenes_data(const std::vector<ojson>& rows, const SweepOutcome& out,
     if (!record.is_object() || !record.contains("history")) continue;
     const auto& h = record["history"];
     const int panel =
-        int(std::find(scenes.begin(), scenes.end(), str(r, "scene")) - scenes.begin());
+        int(std::find(scenes.begin(), scenes.end(), text(r, "scene")) - scenes.begin());
     const std::size_t stride = std::max<std::size_t>(1, h.size() / kFigurePoints);
     for (std::size_t j = 0; j < h.size(); j += stride) {
       if (!h[j]["error"].is_number()) continue;
-      csv << panel << "," << series[RunRow(r).method] << "," << str(r, "scene") << ","
+      csv << panel << "," << series[RunRow(r).method] << "," << text(r, "scene") << ","
           << RunRow(r).method << "," << shortest(h[j]["time"].get<double>()) << ","
           << sci(h[j]["error"].get<double>() / num(r, "A"), 4) << ","
           << over_A(h[j], "tip_u", num(r, "A")) << "," << over_A(h[j], "tip_u_exact", num(r, "A"))
@@ -191,12 +183,6 @@ std::string scenes_data(const std::vector<ojson>& rows, const SweepOutcome& out,
   return csv.str();
 }
 
-// What the sections count, for the claims.
-struct SurveyCounts {
-  int spline_lowered = 0, splines = 0, other_lowered = 0, others = 0, limits_compared = 0;
-  double ratio_lo = 1e300, ratio_hi = 0;
-  int verdicts = 0, peer_compared = 0, peer_agree = 0, rigid_compared = 0, rigid_agree = 0;
-};
 using Treated = std::map<std::pair<std::string, std::string>, std::map<std::string, ojson>>;
 
 // The runs at the reference Courant number with and without each small-mass treatment, by scene
@@ -206,16 +192,127 @@ Treated treated_runs(const std::vector<ojson>& rows, const std::map<std::string,
   for (const auto& r : rows) {
     const Part p = part_of(r, ref);
     if (p == Part::treatment || (p == Part::trade && at_reference(r)))
-      treated[{str(r, "scene"), RunRow(r).method}][small_mass_of(r)] = r;
+      treated[{text(r, "scene"), RunRow(r).method}][small_mass_of(r)] = r;
   }
   return treated;
+}
+
+// Each small-mass treatment against no treatment, over the (scene, method) pairs that ran both:
+// a run is good when it is stable over at least a wave pass (not unstable, not meaningless). A
+// pair with a run too short for a verdict (under a wave pass, or too few steps) is left out.
+struct TreatmentCount {
+  int rescued = 0, rescued_accurate = 0, failing = 0, broken = 0, good = 0, short_pairs = 0;
+};
+
+// One treatment against none.
+TreatmentCount treatment_count(const Treated& treated, const char* treatment) {
+  auto has_verdict = [](const RunRow& r) {
+    return r.ending() == Ending::stable || r.ending() == Ending::unstable ||
+           r.ending() == Ending::meaningless;
+  };
+  TreatmentCount n;
+  for (const auto& [key, by] : treated) {
+    const auto none = by.find("none"), it = by.find(treatment);
+    if (none == by.end() || it == by.end()) continue;
+    const RunRow without(none->second), with(it->second);
+    if (!has_verdict(without) || !has_verdict(with)) {
+      ++n.short_pairs;
+      continue;
+    }
+    const bool stable_with = with.ending() == Ending::stable;
+    if (without.ending() != Ending::stable) {
+      ++n.failing;
+      n.rescued += stable_with;
+      n.rescued_accurate += with.accurate();
+    } else {
+      ++n.good;
+      n.broken += !stable_with;
+    }
+  }
+  return n;
+}
+
+// What the study finds, from its rows and the peer's table: the scenes, each one's reference,
+// the interior limits, the runs with and without each treatment; how many runs the figure draws
+// and how many have a verdict; the dense limit against the interior one (lowered for the
+// B-splines and for the others, the range of the ratio); the peers matched; each treatment
+// against none; the trade (the pairs whose error does not fall by a factor 2 with the step).
+struct Findings {
+  std::map<std::string, Reference> ref;
+  std::vector<std::string> scenes;
+  std::map<std::string, double> interior;
+  Treated treated;
+  int runs = 0, at_reference = 0, verdicts = 0;
+  int spline_lowered = 0, splines = 0, other_lowered = 0, others = 0, limits_compared = 0;
+  double ratio_lo = 1e300, ratio_hi = 0;
+  int peer_compared = 0, peer_agree = 0, rigid_compared = 0, rigid_agree = 0;
+  std::map<std::string, TreatmentCount> treatments;
+  int trade_pairs = 0, trade_flat = 0;
+  double trade_worst = 0;
+};
+
+// The peers' rows matched: within kPeerTolerance on the impulsive bar, rigid to round-off on the
+// block.
+void find_peers(const ojson& r, const CsvTable& peer, Findings& f) {
+  const RunRow rr(r);
+  if (text(r, "scene") == "impulsive") {
+    const auto [in_cells, theirs] = beside_peer(r, opt(r, "max_error"), peer, "impulsiveBar");
+    ++f.peer_compared;
+    f.peer_agree +=
+        rr.survived() && theirs && in_cells && std::abs(*in_cells / *theirs - 1) <= kPeerTolerance;
+  } else if (text(r, "scene") == "block") {
+    const auto [in_cells, theirs] = beside_peer(r, rr.error_over_time, peer, "advectBlock");
+    ++f.rigid_compared;
+    f.rigid_agree += rr.survived() && theirs && in_cells && *in_cells < kRoundOffCells &&
+                     *theirs < kRoundOffCells;
+  }
+}
+
+// The findings of the rows and the peer's table.
+Findings find(const Spec& spec, const std::vector<ojson>& rows) {
+  Findings f{.ref = references(rows), .scenes = scenes_in_order(rows)};
+  f.interior = interior_limits(rows, f.ref);
+  f.treated = treated_runs(rows, f.ref);
+  const CsvTable peer = read_csv(spec.reference);
+  std::map<std::pair<std::string, std::string>, std::map<Key, double>> err;  // the trade's
+  f.runs = int(rows.size());
+  for (const auto& r : rows) {
+    f.verdicts += !outcome(r).empty();
+    const Part part = part_of(r, f.ref);
+    const RunRow run(r);
+    if (part == Part::peer) find_peers(r, peer, f);
+    if (part != Part::trade) continue;
+    if (const auto e = run.error_over_A(); e && run.survived())
+      err[{text(r, "scene"), run.method}][Key(num(r, "cfl_factor"), "cfl_factor")] = *e;
+    if (!at_reference(r)) continue;
+    ++f.at_reference;
+    const auto it = f.interior.find(run.method);
+    if (!run.courant_spectral || it == f.interior.end()) continue;
+    const double x = *run.courant_spectral / it->second;
+    ++f.limits_compared;
+    const bool spline = run.method.rfind("bspline", 0) == 0;
+    (spline ? f.splines : f.others) += 1;
+    (spline ? f.spline_lowered : f.other_lowered) += x < 1 - kLimitDrop;
+    f.ratio_lo = std::min(f.ratio_lo, x);
+    f.ratio_hi = std::max(f.ratio_hi, x);
+  }
+  for (const char* treatment : {"cutoff", "drop", "momentum"})
+    f.treatments[treatment] = treatment_count(f.treated, treatment);
+  for (const auto& [key, by] : err) {
+    if (by.size() < 2) continue;
+    ++f.trade_pairs;
+    const double gain = by.rbegin()->second / by.begin()->second;
+    f.trade_worst = std::max(f.trade_worst, gain);
+    f.trade_flat += gain < 2;
+  }
+  return f;
 }
 
 // 1. Per scene and method, at the reference Courant number.
 std::string per_scene_section(const std::vector<ojson>& rows,
                               const std::map<std::string, Reference>& ref,
                               const std::map<std::string, double>& interior,
-                              const std::map<EdgeKey, ojson>& edges, SurveyCounts& n) {
+                              const std::map<EdgeKey, ojson>& edges) {
   std::ostringstream md;
   md << "## Per scene and method\n\nAt c dt/h = " << shortest(kReferenceCourant)
      << ", no small-mass treatment.\n\n"
@@ -229,19 +326,10 @@ std::string per_scene_section(const std::vector<ojson>& rows,
     const auto dense = run.courant_spectral;
     const auto it = interior.find(method);
     std::string q = "–";
-    if (dense && it != interior.end()) {
-      const double x = *dense / it->second;
-      ++n.limits_compared;
-      const bool spline = method.rfind("bspline", 0) == 0;
-      (spline ? n.splines : n.others) += 1;
-      (spline ? n.spline_lowered : n.other_lowered) += x < 1 - kLimitDrop;
-      n.ratio_lo = std::min(n.ratio_lo, x);
-      n.ratio_hi = std::max(n.ratio_hi, x);
-      q = fixed(x, 3);
-    }
-    md << "| " << str(r, "scene") << " | " << method << " | " << verdict(r) << " | "
-       << opt_sci_of(RunRow(r).error_over_A()) << " | " << opt_sci_of(relative(r, "error_l2_time"))
-       << " | " << work(r) << " | " << edge_text(edges, {str(r, "scene"), method, "none"}) << " | "
+    if (dense && it != interior.end()) q = fixed(*dense / it->second, 3);
+    md << "| " << text(r, "scene") << " | " << method << " | " << verdict(r) << " | "
+       << opt_sci(RunRow(r).error_over_A()) << " | " << opt_sci(relative(r, "error_l2_time"))
+       << " | " << work(r) << " | " << edge_text(edges, {text(r, "scene"), method, "none"}) << " | "
        << opt_fixed(dense) << " | " << (it == interior.end() ? "–" : fixed(it->second, 3)) << " | "
        << q << " |\n";
   }
@@ -258,9 +346,9 @@ std::string trade_section(const std::vector<ojson>& rows,
         "cost |\n|---|---|---:|---|---:|---:|\n";
   for (const auto& r : rows) {
     if (part_of(r, ref) != Part::trade) continue;
-    md << "| " << str(r, "scene") << " | " << RunRow(r).method << " | "
+    md << "| " << text(r, "scene") << " | " << RunRow(r).method << " | "
        << shortest(num(r, "cfl_factor")) << " | " << verdict(r) << " | "
-       << opt_sci_of(RunRow(r).error_over_A()) << " | " << work(r) << " |\n";
+       << opt_sci(RunRow(r).error_over_A()) << " | " << work(r) << " |\n";
   }
 
   return md.str();
@@ -268,19 +356,17 @@ std::string trade_section(const std::vector<ojson>& rows,
 
 // 4. The extremes: every run of them, and how many runs of the study have a verdict.
 std::string extremes_section(const std::vector<ojson>& rows,
-                             const std::map<std::string, Reference>& ref, SurveyCounts& n) {
+                             const std::map<std::string, Reference>& ref) {
   std::ostringstream md;
   md << "\n## Extremes\n\nEvery scene far beyond its reference: above the limit in c dt/h, a "
         "large amplitude, a long run. Each run ends with a verdict.\n\n| scene | method | c dt/h "
         "| A/h | c T | verdict | error over time / A |\n|---|---|---:|---:|---:|---|---:|\n";
-  for (const auto& r : rows)
-    n.verdicts += !outcome(r).empty();
   for (const auto& r : rows) {
     if (part_of(r, ref) != Part::extreme) continue;
-    md << "| " << str(r, "scene") << " | " << RunRow(r).method << " | "
+    md << "| " << text(r, "scene") << " | " << RunRow(r).method << " | "
        << shortest(num(r, "cfl_factor")) << " | " << significant(num(r, "A_over_h"), 3) << " | "
        << significant(*RunRow(r).wave_passes, 3) << " | " << verdict(r) << " | "
-       << opt_sci_of(RunRow(r).error_over_A()) << " |\n";
+       << opt_sci(RunRow(r).error_over_A()) << " |\n";
   }
 
   return md.str();
@@ -299,7 +385,7 @@ std::string small_mass_section(const Treated& treated, const std::map<EdgeKey, o
       const auto it = by.find(t);
       if (it == by.end()) continue;
       md << "| " << key.first << " | " << key.second << " | " << t << " | " << verdict(it->second)
-         << " | " << opt_sci_of(RunRow(it->second).error_over_A()) << " | "
+         << " | " << opt_sci(RunRow(it->second).error_over_A()) << " | "
          << edge_text(edges, {key.first, key.second, t}) << " |\n";
     }
   }
@@ -309,9 +395,8 @@ std::string small_mass_section(const Treated& treated, const std::map<EdgeKey, o
 
 // 5. and 6. Beside Uintah's impulsiveBar and advectBlock.
 std::string peer_sections(const ReportContext& ctx, const std::map<std::string, Reference>& ref,
-                          SurveyCounts& n) {
+                          const CsvTable& peer) {
   const auto& rows = ctx.rows;
-  const CsvTable peer = read_csv(ctx.spec.reference);
   std::ostringstream md;
   md << "\n## Beside Uintah's impulsiveBar\n\nUintah's 1D MPM code, AMRMPM.m, run on its "
         "impulsively loaded bar (["
@@ -325,14 +410,10 @@ std::string peer_sections(const ReportContext& ctx, const std::map<std::string, 
      << ".\n\n| method | outcome | peer outcome | error | peer error | "
         "ratio |\n|---|---|---|---:|---:|---:|\n";
   for (const auto& r : rows) {
-    if (part_of(r, ref) != Part::peer || str(r, "scene") != "impulsive") continue;
+    if (part_of(r, ref) != Part::peer || text(r, "scene") != "impulsive") continue;
     const auto [in_cells, theirs] = beside_peer(r, opt(r, "max_error"), peer, "impulsiveBar");
-    const bool agree =
-        survived(r) && theirs && in_cells && std::abs(*in_cells / *theirs - 1) <= kPeerTolerance;
-    ++n.peer_compared;
-    n.peer_agree += agree;
-    md << "| " << RunRow(r).method << " | " << outcome(r) << " | stable | " << opt_sci_of(in_cells)
-       << " | " << opt_sci_of(theirs) << " | "
+    md << "| " << RunRow(r).method << " | " << outcome(r) << " | stable | " << opt_sci(in_cells)
+       << " | " << opt_sci(theirs) << " | "
        << (in_cells && theirs ? fixed(*in_cells / *theirs, 5) : "–") << " |\n";
   }
 
@@ -348,22 +429,18 @@ std::string peer_sections(const ReportContext& ctx, const std::map<std::string, 
      << " cells.\n\n| method | steps | outcome | peer outcome | error over time | peer error "
         "|\n|---|---:|---|---|---:|---:|\n";
   for (const auto& r : rows) {
-    if (part_of(r, ref) != Part::peer || str(r, "scene") != "block") continue;
+    if (part_of(r, ref) != Part::peer || text(r, "scene") != "block") continue;
     const RunRow rr(r);
     const auto [in_cells, theirs] = beside_peer(r, rr.error_over_time, peer, "advectBlock");
-    const bool agree = rr.survived() && theirs && in_cells && *in_cells < kRoundOffCells &&
-                       *theirs < kRoundOffCells;
-    ++n.rigid_compared;
-    n.rigid_agree += agree;
     md << "| " << rr.method << " | " << shortest(num(r, "steps")) << " | " << rr.outcome
-       << " | stable | " << opt_sci_of(in_cells) << " | " << opt_sci_of(theirs) << " |\n";
+       << " | stable | " << opt_sci(in_cells) << " | " << opt_sci(theirs) << " |\n";
   }
 
   return md.str();
 }
 
 // The claims on the peers, the verdicts and the limits.
-std::vector<Claim> survey_claims(const std::vector<ojson>& rows, const SurveyCounts& n) {
+std::vector<Claim> survey_claims(const Findings& n) {
   std::vector<Claim> claims;
   {
     Claim c = claim("rigid-like-uintah-advect-block",
@@ -387,7 +464,7 @@ std::vector<Claim> survey_claims(const std::vector<ojson>& rows, const SurveyCou
     Claim c = claim("every-run-has-a-verdict",
                     "Every run ends with a verdict (unstable, meaningless or stable): {with} of "
                     "{runs}.");
-    c.every("with", n.verdicts, "runs", static_cast<long long>(rows.size()));
+    c.every("with", n.verdicts, "runs", static_cast<long long>(n.runs));
     claims.push_back(c);
   }
   {
@@ -409,91 +486,40 @@ std::vector<Claim> survey_claims(const std::vector<ojson>& rows, const SurveyCou
   return claims;
 }
 
-// Each treatment against no treatment.
-std::vector<Claim> treatment_claims(const Treated& treated) {
+// Each treatment against no treatment, and whether a smaller step buys accuracy.
+std::vector<Claim> treatment_and_trade_claims(const Findings& f) {
   std::vector<Claim> claims;
-  // Each treatment against no treatment, over the (scene, method) pairs that ran both: a run
-  // is good when it is stable over at least a wave pass (not unstable, not meaningless). A pair
-  // with a run too short for a verdict (under a wave pass, or too few steps) is left out.
-  auto has_verdict = [](const RunRow& r) {
-    return r.ending() == Ending::stable || r.ending() == Ending::unstable ||
-           r.ending() == Ending::meaningless;
-  };
-  for (const char* treatment : {"cutoff", "drop", "momentum"}) {
-    int rescued = 0, rescued_accurate = 0, failing = 0, broken = 0, good = 0, short_pairs = 0;
-    for (const auto& [key, by] : treated) {
-      const auto none = by.find("none"), it = by.find(treatment);
-      if (none == by.end() || it == by.end()) continue;
-      const RunRow without(none->second), with(it->second);
-      if (!has_verdict(without) || !has_verdict(with)) {
-        ++short_pairs;
-        continue;
-      }
-      const bool stable_without = without.ending() == Ending::stable;
-      const bool stable_with = with.ending() == Ending::stable;
-      if (!stable_without) {
-        ++failing;
-        rescued += stable_with;
-        rescued_accurate += with.accurate();
-      } else {
-        ++good;
-        broken += !stable_with;
-      }
-    }
+  for (const auto& [treatment, n] : f.treatments) {
     Claim c = claim(std::string("small-mass-") + treatment,
                     "The {treatment} treatment makes every run that is not stable without a "
                     "treatment stable, and no stable run worse: {rescued} of {failing} made "
                     "stable ({accurate} of them accurate), {broken} of {good} made unstable or "
                     "meaningless; {short} pairs with a run too short for a verdict (under a "
                     "wave pass, or too few steps) are not counted.");
-    c.count("short", short_pairs);
-    c.value("treatment", treatment).count("rescued", rescued).count("failing", failing);
-    c.count("accurate", rescued_accurate);
-    c.count("broken", broken).count("good", good);
-    c.over(failing);  // a rescue of one run is not "every run"
-    c.holds = failing > 0 && rescued == failing && broken == 0;
+    c.count("short", n.short_pairs);
+    c.value("treatment", treatment).count("rescued", n.rescued).count("failing", n.failing);
+    c.count("accurate", n.rescued_accurate);
+    c.count("broken", n.broken).count("good", n.good);
+    c.over(n.failing);  // a rescue of one run is not "every run"
+    c.holds = n.failing > 0 && n.rescued == n.failing && n.broken == 0;
     claims.push_back(c);
   }
+  Claim c = claim("space-error-dominates",
+                  "At these settings the error does not move with the step: from the largest "
+                  "to the smallest c dt/h of the trade the error falls by less than a factor "
+                  "{factor} in {flat} of {pairs} scene and method pairs (the largest fall is "
+                  "{worst}).");
+  c.number("factor", 2)
+      .every("flat", f.trade_flat, "pairs", f.trade_pairs)
+      .number("worst", f.trade_worst, 3);
+  claims.push_back(c);
   return claims;
-}
-
-// Whether a smaller step buys accuracy, per scene and method.
-Claim trade_claim(const std::vector<ojson>& rows, const std::map<std::string, Reference>& ref) {
-  {
-    // The trade: whether a smaller step buys accuracy, per scene and method.
-    std::map<std::pair<std::string, std::string>, std::map<Key, double>> err;
-    for (const auto& r : rows) {
-      if (part_of(r, ref) != Part::trade || !survived(r)) continue;
-      if (const auto e = RunRow(r).error_over_A())
-        err[{str(r, "scene"), RunRow(r).method}][Key(num(r, "cfl_factor"), "cfl_factor")] = *e;
-    }
-    int pairs = 0, flat = 0;
-    double worst = 0;
-    for (const auto& [key, by] : err) {
-      if (by.size() < 2) continue;
-      ++pairs;
-      const double smallest = by.begin()->second, largest = by.rbegin()->second;
-      const double gain = largest / smallest;
-      worst = std::max(worst, gain);
-      flat += gain < 2;
-    }
-    Claim c = claim("space-error-dominates",
-                    "At these settings the error does not move with the step: from the largest "
-                    "to the smallest c dt/h of the trade the error falls by less than a factor "
-                    "{factor} in {flat} of {pairs} scene and method pairs (the largest fall is "
-                    "{worst}).");
-    c.number("factor", 2).every("flat", flat, "pairs", pairs).number("worst", worst, 3);
-    return c;
-  }
 }
 
 StudyReport scenes_report(const ReportContext& ctx) {
   const auto& rows = ctx.rows;
-  const auto ref = references(rows);
-  const auto interior = interior_limits(rows, ref);
+  const Findings f = find(ctx.spec, rows);
   const auto edges = edges_of(ctx.inputs);
-  const Treated treated = treated_runs(rows, ref);
-  SurveyCounts n;
   std::ostringstream md;
   md << "**The measures** (docs/theory.md, \"Scenes\"): *error over time / A*, the largest "
         "|u_p - u(X_p, t)| over the particles and the steps, per the scene's displacement scale "
@@ -504,41 +530,36 @@ StudyReport scenes_report(const ReportContext& ctx) {
         "been run).\n\n"
      << cost_metric_text() << "\n\n";
 
-  md << per_scene_section(rows, ref, interior, edges, n) << trade_section(rows, ref)
-     << small_mass_section(treated, edges) << extremes_section(rows, ref, n)
-     << peer_sections(ctx, ref, n);
-  std::vector<Claim> claims = survey_claims(rows, n);
-  for (auto& c : treatment_claims(treated))
+  md << per_scene_section(rows, f.ref, f.interior, edges) << trade_section(rows, f.ref)
+     << small_mass_section(f.treated, edges) << extremes_section(rows, f.ref)
+     << peer_sections(ctx, f.ref, read_csv(ctx.spec.reference));
+  std::vector<Claim> claims = survey_claims(f);
+  for (auto& c : treatment_and_trade_claims(f))
     claims.push_back(std::move(c));
-  claims.push_back(trade_claim(rows, ref));
   StudyReport report;
   report.markdown = md.str();
   report.claims = std::move(claims);
-  report.data_csv = scenes_data(rows, ctx.outcome, ref, ctx.csv_header);
+  report.data_csv = scenes_data(rows, ctx.outcome, f.ref, ctx.csv_header);
   return report;
 }
 
-std::string scenes_subtitle(const Spec&, const ojson& doc) {
-  const std::vector<ojson> rows(doc["cases"].begin(), doc["cases"].end());
-  const auto ref = references(rows);
-  int n = 0;
-  for (const auto& r : rows)
-    n += part_of(r, ref) == Part::trade && at_reference(r);
-  return std::to_string(n) + " runs at c dt/h = " + shortest(kReferenceCourant) +
+std::string scenes_subtitle(const Spec& spec, const ojson& doc) {
+  const Findings f = find(spec, std::vector<ojson>(doc["cases"].begin(), doc["cases"].end()));
+  return std::to_string(f.at_reference) + " runs at c dt/h = " + shortest(kReferenceCourant) +
          "; error over time per A";
 }
 
 std::string scenes_index(const Spec& spec, const std::vector<ojson>& rows) {
-  const auto scenes = scenes_in_order(rows);
+  const Findings f = find(spec, rows);
   std::ostringstream md;
-  md << "![" << spec.title << "](" << spec.name << ".png)\n\n**What it shows.** " << scenes.size()
-     << " scenes (" << list_of(scenes)
+  md << "![" << spec.title << "](" << spec.name << ".png)\n\n**What it shows.** " << f.scenes.size()
+     << " scenes (" << list_of(f.scenes)
      << ") against their exact solutions, per method: the error over time, the free end's "
         "motion beside the exact one, and the cost at "
         "three Courant numbers, the dense spectral limit of each body with its free surfaces "
         "against the interior limit, the survival edge, the small-mass treatments and an "
         "extremes battery, in "
-     << rows.size() << " runs. [" << spec.name << ".md](" << spec.name << ".md)\n";
+     << f.runs << " runs. [" << spec.name << ".md](" << spec.name << ".md)\n";
   return md.str();
 }
 
@@ -555,6 +576,4 @@ const StudyRegistration kScenes{{
 }};
 
 }  // namespace
-}  // namespace studies::scenes
-
-}  // namespace mpmstab
+}  // namespace mpmstab::studies::scenes

@@ -23,9 +23,7 @@
 #include "shared/ensemble.hpp"
 #include "study.hpp"
 
-namespace mpmstab {
-
-namespace studies::edge {
+namespace mpmstab::studies::edge {
 namespace {
 
 using ojson = nlohmann::ordered_json;
@@ -106,99 +104,10 @@ std::string min_max(std::vector<double> v) {
   return *lo == *hi ? in_cfl(*lo) : in_cfl(*lo) + " to " + in_cfl(*hi);
 }
 
-// The reading of one scene's searches, computed from its rows: per method, the range of both
-// edges over h/c, how often the run at the survival edge is meaningless and the accuracy edge
-// lies below it; the searches without an edge; the non-monotone ones with their flips.
-// What one method's searches found.
-struct MethodEdges {
-  int cases = 0, with_edge = 0, meaningless = 0, below = 0, no_accuracy = 0, withheld = 0;
-  std::vector<double> edge, accurate, accurate_over_edge, over_bound;
-};
-
-// One method's sentence of the summary.
-std::string method_summary(const std::string& name, const MethodEdges& m) {
-  std::ostringstream md;
-  if (m.edge.empty()) {
-    md << name << ": no edge: no dt of the scan survives, or the smallest dt tried fails ("
-       << m.cases << (m.cases == 1 ? " case" : " cases") << "). ";
-    return md.str();
-  }
-  md << name << ": the survival edge is " << min_max(m.edge) << " h/c, and the run there is "
-     << "meaningless in " << m.meaningless << " of " << m.with_edge << " cases";
-  if (!m.accurate.empty()) {
-    md << "; the accuracy edge is " << min_max(m.accurate) << " h/c, below the survival edge "
-       << "in " << m.below << " of " << m.accurate.size() << " cases (down to "
-       << ratio(*std::min_element(m.accurate_over_edge.begin(), m.accurate_over_edge.end(),
-                                  TotalLess()))
-       << " times it)";
-  }
-  if (m.no_accuracy) {
-    md << "; " << m.no_accuracy << " ha" << (m.no_accuracy == 1 ? "s" : "ve")
-       << " no accuracy edge (the run at the smallest surviving dt is meaningless)";
-  }
-  if (m.withheld) {
-    md << "; " << m.withheld << " ha" << (m.withheld == 1 ? "s" : "ve")
-       << " none that is accurate (the search's reference run or its run at the edge has an "
-          "error over time of at least "
-       << shortest(kAccurateFraction) << " A)";
-  }
-  if (!m.over_bound.empty()) {
-    const auto [lo, hi] =
-        std::minmax_element(m.over_bound.begin(), m.over_bound.end(), TotalLess());
-    md << "; eq. (108) at the survival edge is " << ratio(*lo) << " to " << ratio(*hi)
-       << " times below it";
-  }
-  md << ". ";
-  return md.str();
-}
-
-std::string edge_summary_text(const std::vector<ojson>& rows) {
-  std::map<std::string, MethodEdges> per;
-  std::vector<std::string> non_monotone;
-  int none = 0;
-  for (const auto& r : rows) {
-    const RunRow rr(r);
-    MethodEdges& m = per[rr.method];
-    ++m.cases;
-    if (!has_number(r, "dt_edge")) {
-      ++none;
-      continue;
-    }
-    ++m.with_edge;
-    m.edge.push_back(r["dt_edge_over_cfl"].get<double>());
-    m.meaningless += rr.outcome == "meaningless";
-    if (has_number(r, "dt_edge_over_stable"))
-      m.over_bound.push_back(r["dt_edge_over_stable"].get<double>());
-    if (has_number(r, "dt_accurate")) {
-      m.accurate.push_back(r["dt_accurate_over_cfl"].get<double>());
-      const double below = r["dt_accurate"].get<double>() / r["dt_edge"].get<double>();
-      m.accurate_over_edge.push_back(below);
-      m.below += below < 1;
-    } else if (r.value("accuracy_edge_withheld", false)) {
-      ++m.withheld;
-    } else {
-      ++m.no_accuracy;
-    }
-    if (!survival_monotone(r)) non_monotone.push_back(case_name(r) + " (" + monotone_text(r) + ")");
-  }
-  std::ostringstream md;
-  md << "Of " << rows.size() << " searches, " << rows.size() - std::size_t(none)
-     << " found a survival edge";
-  if (none)
-    md << " and " << none << " none (no dt of the scan survives, or the smallest dt tried fails)";
-  md << ". ";
-  for (const auto& [name, m] : per)
-    md << method_summary(name, m);
-  md << non_monotone.size() << " of " << rows.size()
-     << " searches found survival not monotone in dt (a dt above the lowest failure survives; "
-        "the edge is below that failure)";
-  if (!non_monotone.empty()) {
-    md << ": ";
-    for (std::size_t i = 0; i < non_monotone.size(); ++i)
-      md << (i ? "; " : "") << non_monotone[i];
-  }
-  md << ".";
-  return md.str();
+// "0.91 to 1.2": the range of some ratios.
+std::string ratio_range(const std::vector<double>& v) {
+  const auto [lo, hi] = std::minmax_element(v.begin(), v.end(), TotalLess());
+  return ratio(*lo) + " to " + ratio(*hi);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -311,33 +220,257 @@ std::string ensemble_cell(const std::map<const ojson*, EdgeEnsemble>& all, const
   return s.str();
 }
 
-// The claim on the accuracy edges against the spectral limit.
-Claim accuracy_limit_claim(const std::vector<ojson>& rows) {
-  int accurate_n = 0, accurate_above = 0;
-  for (const auto& r : rows) {
-    const auto limit = RunRow(r).courant_spectral;
-    if (!has_number(r, "dt_accurate") || !limit) continue;
-    ++accurate_n;
-    accurate_above += r["dt_accurate"].get<double>() / r["dt_cfl"].get<double>() > *limit;
+// The figure: one panel per scene, one series per method and amplitude.
+const std::vector<std::string> kPanels = {"bar", "steffen"};
+const std::vector<std::pair<std::string, double>> kSeries = {
+    {"gimp", 0.015}, {"gimp", 0.05},      {"mpm", 0.015},     {"mpm", 0.05},
+    {"cpdi", 0.015}, {"bspline2", 0.015}, {"bspline3", 0.015}};
+
+int panel_of(const ojson& r) {
+  const auto it = std::find(kPanels.begin(), kPanels.end(), r["scene"].get<std::string>());
+  return it == kPanels.end() ? -1 : int(it - kPanels.begin());
+}
+
+int series_of(const ojson& r) {
+  const RunRow rr(r);
+  for (std::size_t i = 0; i < kSeries.size(); ++i) {
+    if (rr.method == kSeries[i].first && rr.A == kSeries[i].second) {
+      return int(i) + 1;
+    }
   }
+  return 0;
+}
+
+// Why a case is not drawn ("" when it is).
+std::string not_drawn_reason(const ojson& r) {
+  if (panel_of(r) < 0) return "a scene the figure has no panel for";
+  if (series_of(r) == 0) return "no series in the figure";
+  if (!has_number(r, "dt_edge")) return "no edge (" + no_edge_text(r) + ")";
+  return "";
+}
+
+// What the figure draws: the cases drawn (sorted by panel, series and c T), how many with an
+// accuracy edge, and those drawn without one; the cases not drawn, by reason.
+struct FigureCount {
+  std::size_t cases = 0, with_accuracy = 0;
+  std::vector<const ojson*> drawn;
+  std::map<std::string, std::vector<const ojson*>> not_drawn;  // by reason
+  std::vector<const ojson*> no_accuracy;                       // drawn without accuracy edge
+};
+
+FigureCount figure_count(const std::vector<ojson>& rows) {
+  FigureCount c;
+  c.cases = rows.size();
+  for (const auto& r : rows) {
+    const std::string reason = not_drawn_reason(r);
+    if (!reason.empty()) {
+      c.not_drawn[reason].push_back(&r);
+      continue;
+    }
+    c.drawn.push_back(&r);
+    if (has_number(r, "dt_accurate")) {
+      ++c.with_accuracy;
+    } else {
+      c.no_accuracy.push_back(&r);
+    }
+  }
+  std::stable_sort(c.drawn.begin(), c.drawn.end(), [](const ojson* a, const ojson* b) {
+    return std::tuple(panel_of(*a), series_of(*a), Key(*RunRow(*a).wave_passes, "c T")) <
+           std::tuple(panel_of(*b), series_of(*b), Key(*RunRow(*b).wave_passes, "c T"));
+  });
+  return c;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Findings
+
+// What some searches found (one method's in one scene, or every search): how many found a
+// survival edge, how often the run there is meaningless, both edges over h/c, the accuracy edge
+// against the survival edge (how often below it, and the lowest ratio), why some have none; the
+// survival edge against eq. (108) at it and against the spectral limit at the layout, and the
+// accuracy edge against that limit.
+struct Edges {
+  int cases = 0, with_edge = 0, meaningless = 0, below = 0, no_accuracy = 0, withheld = 0;
+  std::vector<double> edge, accurate;
+  double below_lo = 1e300;
+  int bound_n = 0, bound_below = 0;  // edges with eq. (108) measured, and those it lies below
+  double bound_lo = 1e300, bound_hi = 0;
+  int limit_n = 0, limit_above = 0, accurate_limit_n = 0, accurate_limit_above = 0;
+  double limit_hi = 0;
+  // Counts one search in.
+  void add(const ojson& r) {
+    ++cases;
+    if (!has_number(r, "dt_edge")) return;
+    ++with_edge;
+    const RunRow rr(r);
+    edge.push_back(r["dt_edge_over_cfl"].get<double>());
+    meaningless += rr.outcome == "meaningless";
+    if (has_number(r, "dt_edge_over_stable")) {
+      const double over = r["dt_edge_over_stable"].get<double>();
+      ++bound_n;
+      bound_below += over > 1;
+      bound_lo = std::min(bound_lo, over);
+      bound_hi = std::max(bound_hi, over);
+    }
+    const auto limit = rr.courant_spectral;
+    if (limit) {
+      const double rel = r["dt_edge_over_cfl"].get<double>() / *limit;
+      ++limit_n;
+      limit_above += rel > 1;
+      limit_hi = std::max(limit_hi, rel);
+    }
+    if (has_number(r, "dt_accurate")) {
+      accurate.push_back(r["dt_accurate_over_cfl"].get<double>());
+      const double ratio = r["dt_accurate"].get<double>() / r["dt_edge"].get<double>();
+      below_lo = std::min(below_lo, ratio);
+      below += ratio < 1;
+      accurate_limit_n += limit.has_value();
+      accurate_limit_above +=
+          limit && r["dt_accurate"].get<double>() / r["dt_cfl"].get<double>() > *limit;
+    } else if (r.value("accuracy_edge_withheld", false)) {
+      ++withheld;
+    } else {
+      ++no_accuracy;
+    }
+  }
+};
+
+// Against amplitude: for each method of a scene run at one c T with at least kAmplitudeSweep
+// amplitudes, its searches in order of A / h.
+constexpr std::size_t kAmplitudeSweep = 3;
+
+// What one scene's searches found: per method, its edges; the searches not monotone (with their
+// flips); per method, how many periodic twins were run and each one's error over time against
+// the Dirichlet run's; the amplitude sweeps.
+struct SceneFindings {
+  std::string scene;
+  std::vector<const ojson*> rows;
+  std::map<std::string, Edges> per;
+  std::vector<std::string> non_monotone;
+  std::map<std::string, int> twins;
+  std::map<std::string, std::vector<double>> twin_ratios;
+  std::vector<std::pair<std::string, std::vector<const ojson*>>> sweeps;  // method, rows
+  int none = 0;  // searches without a survival edge
+};
+
+// The findings of one scene's searches.
+SceneFindings scene_findings(std::string scene, std::vector<const ojson*> rows,
+                             const EdgeFollowUps& f) {
+  SceneFindings s{.scene = std::move(scene), .rows = std::move(rows)};
+  std::map<std::pair<std::string, Key>, std::vector<const ojson*>> sweeps;
+  for (const ojson* p : s.rows) {
+    const ojson& r = *p;
+    const RunRow rr(r);
+    s.per[rr.method].add(r);
+    s.none += !has_number(r, "dt_edge");
+    sweeps[{rr.method, Key(*rr.wave_passes, "c T")}].push_back(p);
+    if (has_number(r, "dt_edge") && !survival_monotone(r))
+      s.non_monotone.push_back(case_name(r) + " (" + monotone_text(r) + ")");
+    const auto it = f.twins.find(p);
+    if (it == f.twins.end()) continue;
+    ++s.twins[rr.method];
+    const RunRow twin(it->second);
+    if (twin.survived() && twin.error_over_time && has_number(r, "max_error_at_accurate"))
+      s.twin_ratios[rr.method].push_back(*twin.error_over_time /
+                                         r["max_error_at_accurate"].get<double>());
+  }
+  for (auto& [key, list] : sweeps) {
+    if (list.size() < kAmplitudeSweep) continue;
+    std::sort(list.begin(), list.end(), [](const ojson* a, const ojson* b) {
+      return TotalLess()((*a)["A_over_h"].get<double>(), (*b)["A_over_h"].get<double>());
+    });
+    s.sweeps.emplace_back(key.first, list);
+  }
+  return s;
+}
+
+// What the study finds, from its rows and their follow-up runs (none for the index and the
+// subtitle, which print no finding of them): each scene's, every search's, how many edges were
+// rerun on an ensemble and how many of those are robust, how many searches found survival
+// monotone, the survival and the accuracy edges rerun for length, and what the figure draws.
+// Its pointers are into the rows.
+struct Findings {
+  std::vector<SceneFindings> scenes;
+  Edges all;
+  int run = 0, robust = 0, monotone = 0;
+  std::array<LengthTally, 2> lengths;  // dt_edge, dt_accurate
+  FigureCount figure;
+};
+
+// The findings of every search: grouped by scene in the order the scenes first appear.
+Findings find(const std::vector<ojson>& rows, const EdgeFollowUps& f) {
+  Findings out{.figure = figure_count(rows)};
+  std::vector<std::pair<std::string, std::vector<const ojson*>>> scenes;  // in order of first row
+  for (const auto& r : rows) {
+    const std::string scene = r["scene"].get<std::string>();
+    auto it = std::find_if(scenes.begin(), scenes.end(), [&](auto& s) { return s.first == scene; });
+    if (it == scenes.end()) it = scenes.insert(scenes.end(), {scene, {}});
+    it->second.push_back(&r);
+    out.all.add(r);
+    out.monotone += survival_monotone(r);
+    out.lengths[0].add(lasting(f.long_runs, r, "dt_edge"));
+    out.lengths[1].add(lasting(f.long_runs, r, "dt_accurate"));
+    const auto e = f.ensembles.find(&r);
+    if (!has_number(r, "dt_edge") || e == f.ensembles.end() || !e->second.run()) continue;
+    ++out.run;
+    out.robust += e->second.robust();
+  }
+  for (auto& [scene, list] : scenes)
+    out.scenes.push_back(scene_findings(scene, std::move(list), f));
+  return out;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Claims
+
+// The conclusions the rows and their follow-up runs decide.
+std::vector<Claim> edge_claims(const Findings& f) {
+  const Edges& e = f.all;
+  std::vector<Claim> claims;
+  Claim ens = claim("edges-robust",
+                    "Every survival edge quoted here survives, and the dt above it fails, on "
+                    "{members} layouts perturbed by {unit} of the particle spacing",
+                    "{robust} of {run} edges rerun are robust; {with_edge} edges found");
+  ens.count("members", kEnsembleMembers)
+      .value("unit", sci(kEnsemblePerturbation, 1))
+      .count("robust", f.robust)
+      .count("run", f.run)
+      .count("with_edge", e.with_edge);
+  ens.over(f.run);
+  ens.holds = f.run == e.with_edge && f.robust == f.run;
+  claims.push_back(ens);
+
+  Claim eq108 = claim("eq108-below-every-edge",
+                      "Eq. (108) at the survival edge lies below the edge in every case where "
+                      "both are measured",
+                      "{below} of {n}; the edge is {lo} to {hi} times eq. (108)");
+  eq108.every("below", e.bound_below, "n", e.bound_n)
+      .value("lo", e.bound_n ? ratio(e.bound_lo) : "–")
+      .value("hi", e.bound_n ? ratio(e.bound_hi) : "–");
+  claims.push_back(eq108);
+
+  Claim limit = claim("edges-at-most-the-limit",
+                      "No survival edge lies above its scheme's spectral limit at the layout",
+                      "{above} of {n} lie above it, at most {hi} times it");
+  limit.count("above", e.limit_above)
+      .count("n", e.limit_n)
+      .value("hi", e.limit_n ? fixed(e.limit_hi, 3) : "–");
+  limit.over(e.limit_n);
+  limit.holds = e.limit_above == 0;
+  claims.push_back(limit);
+
   Claim below = claim("accurate-edges-at-most-the-limit",
                       "Every accuracy edge lies at or below its scheme's spectral limit (where no "
                       "mode of the linearised step grows; how long each holds is tested apart)",
                       "{above} of {n} lie above it");
-  below.count("above", accurate_above).count("n", accurate_n);
-  below.over(accurate_n);
-  below.holds = accurate_above == 0;
-  return below;
-}
+  below.count("above", e.accurate_limit_above).count("n", e.accurate_limit_n);
+  below.over(e.accurate_limit_n);
+  below.holds = e.accurate_limit_above == 0;
+  claims.push_back(below);
 
-// The claims on each kind of edge rerun for length: which hold to the longest test length.
-std::vector<Claim> length_claims(const std::vector<ojson>& rows, const EdgeFollowUps& f) {
-  std::vector<Claim> claims;
-  for (const char* col : {"dt_edge", "dt_accurate"}) {
-    LengthTally t;
-    for (const auto& r : rows)
-      t.add(lasting(f.long_runs, r, col));
-    const bool survival = std::string_view(col) == "dt_edge";
+  // Each kind of edge rerun for length: which hold to the longest test length.
+  for (const bool survival : {true, false}) {
+    const LengthTally& t = f.lengths[survival ? 0 : 1];
     Claim c = length_claim(
         survival ? "survival-edges-hold-for-length" : "accuracy-edges-hold-for-length",
         std::string("Every ") + (survival ? "survival" : "accuracy") +
@@ -347,80 +480,71 @@ std::vector<Claim> length_claims(const std::vector<ojson>& rows, const EdgeFollo
     c.value("span", span(t.failed_at, 3));
     claims.push_back(c);
   }
-
+  Claim mono = claim("survival-monotone", "Survival is monotone in dt in every search",
+                     "{monotone} of {n} searches");
+  mono.every("monotone", f.monotone, "n", static_cast<long long>(f.all.cases));
+  claims.push_back(mono);
   return claims;
 }
 
-// The conclusions the rows and their ensembles decide.
-std::vector<Claim> edge_claims(const std::vector<ojson>& rows, const EdgeFollowUps& f) {
-  const auto& ensembles = f.ensembles;
-  int with_edge = 0, robust = 0, run = 0, monotone = 0, eq108_below = 0, eq108_n = 0;
-  int above_limit = 0, limit_n = 0;
-  double over_lo = 1e300, over_hi = 0, limit_hi = 0;
-  for (const auto& r : rows) {
-    monotone += survival_monotone(r);
-    if (!has_number(r, "dt_edge")) continue;
-    ++with_edge;
-    const auto it = ensembles.find(&r);
-    if (it != ensembles.end() && it->second.run()) {
-      ++run;
-      robust += it->second.robust();
-    }
-    if (has_number(r, "dt_edge_over_stable")) {
-      const double over = r["dt_edge_over_stable"].get<double>();
-      ++eq108_n;
-      eq108_below += over > 1;
-      over_lo = std::min(over_lo, over);
-      over_hi = std::max(over_hi, over);
-    }
-    if (const auto limit = RunRow(r).courant_spectral) {
-      const double rel = r["dt_edge_over_cfl"].get<double>() / *limit;
-      ++limit_n;
-      above_limit += rel > 1;
-      limit_hi = std::max(limit_hi, rel);
-    }
+// ---------------------------------------------------------------------------------------------
+// Text
+
+// One method's sentence of the summary.
+std::string method_summary(const std::string& name, const Edges& m) {
+  std::ostringstream md;
+  if (m.edge.empty()) {
+    md << name << ": no edge: no dt of the scan survives, or the smallest dt tried fails ("
+       << m.cases << (m.cases == 1 ? " case" : " cases") << "). ";
+    return md.str();
   }
-  std::vector<Claim> claims;
-  Claim ens = claim("edges-robust",
-                    "Every survival edge quoted here survives, and the dt above it fails, on "
-                    "{members} layouts perturbed by {unit} of the particle spacing",
-                    "{robust} of {run} edges rerun are robust; {with_edge} edges found");
-  ens.count("members", kEnsembleMembers)
-      .value("unit", sci(kEnsemblePerturbation, 1))
-      .count("robust", robust)
-      .count("run", run)
-      .count("with_edge", with_edge);
-  ens.over(run);
-  ens.holds = run == with_edge && robust == run;
-  claims.push_back(ens);
+  md << name << ": the survival edge is " << min_max(m.edge) << " h/c, and the run there is "
+     << "meaningless in " << m.meaningless << " of " << m.with_edge << " cases";
+  if (!m.accurate.empty()) {
+    md << "; the accuracy edge is " << min_max(m.accurate) << " h/c, below the survival edge "
+       << "in " << m.below << " of " << m.accurate.size() << " cases (down to " << ratio(m.below_lo)
+       << " times it)";
+  }
+  if (m.no_accuracy) {
+    md << "; " << m.no_accuracy << " ha" << (m.no_accuracy == 1 ? "s" : "ve")
+       << " no accuracy edge (the run at the smallest surviving dt is meaningless)";
+  }
+  if (m.withheld) {
+    md << "; " << m.withheld << " ha" << (m.withheld == 1 ? "s" : "ve")
+       << " none that is accurate (the search's reference run or its run at the edge has an "
+          "error over time of at least "
+       << shortest(kAccurateFraction) << " A)";
+  }
+  if (m.bound_n) {
+    md << "; eq. (108) at the survival edge is " << ratio(m.bound_lo) << " to " << ratio(m.bound_hi)
+       << " times below it";
+  }
+  md << ". ";
+  return md.str();
+}
 
-  Claim eq108 = claim("eq108-below-every-edge",
-                      "Eq. (108) at the survival edge lies below the edge in every case where "
-                      "both are measured",
-                      "{below} of {n}; the edge is {lo} to {hi} times eq. (108)");
-  eq108.every("below", eq108_below, "n", eq108_n)
-      .value("lo", eq108_n ? ratio(over_lo) : "–")
-      .value("hi", eq108_n ? ratio(over_hi) : "–");
-  claims.push_back(eq108);
-
-  Claim limit = claim("edges-at-most-the-limit",
-                      "No survival edge lies above its scheme's spectral limit at the layout",
-                      "{above} of {n} lie above it, at most {hi} times it");
-  limit.count("above", above_limit)
-      .count("n", limit_n)
-      .value("hi", limit_n ? fixed(limit_hi, 3) : "–");
-  limit.over(limit_n);
-  limit.holds = above_limit == 0;
-  claims.push_back(limit);
-
-  claims.push_back(accuracy_limit_claim(rows));
-  for (auto& c : length_claims(rows, f))
-    claims.push_back(std::move(c));
-  Claim mono = claim("survival-monotone", "Survival is monotone in dt in every search",
-                     "{monotone} of {n} searches");
-  mono.every("monotone", monotone, "n", static_cast<long long>(rows.size()));
-  claims.push_back(mono);
-  return claims;
+// The reading of one scene's searches: per method, the range of both edges over h/c, how often
+// the run at the survival edge is meaningless and the accuracy edge lies below it; the searches
+// without an edge; the non-monotone ones with their flips.
+std::string edge_summary_text(const SceneFindings& s) {
+  const std::size_t n = s.rows.size();
+  std::ostringstream md;
+  md << "Of " << n << " searches, " << n - std::size_t(s.none) << " found a survival edge";
+  if (s.none)
+    md << " and " << s.none << " none (no dt of the scan survives, or the smallest dt tried fails)";
+  md << ". ";
+  for (const auto& [name, m] : s.per)
+    md << method_summary(name, m);
+  md << s.non_monotone.size() << " of " << n
+     << " searches found survival not monotone in dt (a dt above the lowest failure survives; "
+        "the edge is below that failure)";
+  if (!s.non_monotone.empty()) {
+    md << ": ";
+    for (std::size_t i = 0; i < s.non_monotone.size(); ++i)
+      md << (i ? "; " : "") << s.non_monotone[i];
+  }
+  md << ".";
+  return md.str();
 }
 
 // The search and both rules, stated once, with the numbers of the study's search options.
@@ -488,7 +612,7 @@ std::string per_A(const ojson& r, const char* error, const char* over_A) {
 // Per case: where it lies (A / h, c T), both edges against h/c with the bracket the bisection
 // left and their margin to the spectral limit, the run at the survival edge, the errors at T,
 // eq. (108), the flips and what the search cost.
-std::string edge_table(const std::vector<ojson>& rows, const EdgeFollowUps& f) {
+std::string edge_table(const std::vector<const ojson*>& rows, const EdgeFollowUps& f) {
   std::ostringstream md;
   md << "| method | A | A/h | E | c T | h/c | spectral limit (h/c) | survival edge dt_edge (h/c; "
         "bracket) | survival edge / limit; length | run at dt_edge | error at T there | accuracy "
@@ -499,7 +623,8 @@ std::string edge_table(const std::vector<ojson>& rows, const EdgeFollowUps& f) {
         "eq. (108) at dt_edge (dt_edge / it) | survival in dt | ensemble | probes | "
         "particle-steps |\n"
         "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
-  for (const auto& r : rows) {
+  for (const ojson* p : rows) {
+    const ojson& r = *p;
     const bool found = has_number(r, "dt_edge");
     const RunRow rr(r);
     md << "| " << rr.method << " | " << shortest(*rr.A) << " | "
@@ -542,60 +667,6 @@ std::string edge_table(const std::vector<ojson>& rows, const EdgeFollowUps& f) {
   return md.str();
 }
 
-// The figure: one panel per scene, one series per method and amplitude.
-const std::vector<std::string> kPanels = {"bar", "steffen"};
-const std::vector<std::pair<std::string, double>> kSeries = {
-    {"gimp", 0.015}, {"gimp", 0.05},      {"mpm", 0.015},     {"mpm", 0.05},
-    {"cpdi", 0.015}, {"bspline2", 0.015}, {"bspline3", 0.015}};
-
-int panel_of(const ojson& r) {
-  const auto it = std::find(kPanels.begin(), kPanels.end(), r["scene"].get<std::string>());
-  return it == kPanels.end() ? -1 : int(it - kPanels.begin());
-}
-
-int series_of(const ojson& r) {
-  const RunRow rr(r);
-  for (std::size_t i = 0; i < kSeries.size(); ++i) {
-    if (rr.method == kSeries[i].first && rr.A == kSeries[i].second) {
-      return int(i) + 1;
-    }
-  }
-  return 0;
-}
-
-// Why a case is not drawn ("" when it is).
-std::string not_drawn_reason(const ojson& r) {
-  if (panel_of(r) < 0) return "a scene the figure has no panel for";
-  if (series_of(r) == 0) return "no series in the figure";
-  if (!has_number(r, "dt_edge")) return "no edge (" + no_edge_text(r) + ")";
-  return "";
-}
-
-struct FigureCount {
-  std::size_t cases = 0, drawn = 0, with_accuracy = 0;
-  std::map<std::string, std::vector<const ojson*>> not_drawn;  // by reason
-  std::vector<const ojson*> no_accuracy;                       // drawn without accuracy edge
-};
-
-FigureCount figure_count(const std::vector<ojson>& rows) {
-  FigureCount c;
-  c.cases = rows.size();
-  for (const auto& r : rows) {
-    const std::string reason = not_drawn_reason(r);
-    if (!reason.empty()) {
-      c.not_drawn[reason].push_back(&r);
-      continue;
-    }
-    ++c.drawn;
-    if (has_number(r, "dt_accurate")) {
-      ++c.with_accuracy;
-    } else {
-      c.no_accuracy.push_back(&r);
-    }
-  }
-  return c;
-}
-
 // "bar: mpm, A = 0.05, c T = 4, 8; steffen: ...".
 std::string listed(const std::vector<const ojson*>& rows) {
   std::vector<std::pair<std::string, std::vector<std::string>>> groups;
@@ -621,7 +692,7 @@ std::string listed(const std::vector<const ojson*>& rows) {
 // What the figure leaves out, and why.
 std::string not_drawn_text(const FigureCount& c) {
   std::ostringstream md;
-  md << "**Drawn.** " << c.drawn << " of " << c.cases << " cases, " << c.with_accuracy
+  md << "**Drawn.** " << c.drawn.size() << " of " << c.cases << " cases, " << c.with_accuracy
      << " of them with their accuracy edge.";
   for (const auto& [reason, rows] : c.not_drawn)
     md << " Not drawn, " << reason << " (" << rows.size() << "): " << listed(rows) << ".";
@@ -633,40 +704,19 @@ std::string not_drawn_text(const FigureCount& c) {
   return md.str();
 }
 
-std::string edge_subtitle_text(const FigureCount& c) {
-  std::string s = std::to_string(c.drawn) + " of " + std::to_string(c.cases) + " cases drawn (" +
-                  std::to_string(c.with_accuracy) + " with an accuracy edge)";
-  for (const auto& [reason, rows] : c.not_drawn)
-    s += "; not drawn, " + reason + ": " + std::to_string(rows.size());
-  return s;
-}
-
-// Against amplitude: for each method of the scene run at one c T with at least kAmplitudeSweep
-// amplitudes, its edges in order of A / h, with their margins to the spectral limit ("" when the
-// scene has no such sweep).
-constexpr std::size_t kAmplitudeSweep = 3;
-
-std::string amplitude_table(const std::vector<ojson>& rows, const EdgeFollowUps& f) {
-  std::map<std::pair<std::string, Key>, std::vector<const ojson*>> sweeps;
-  for (const auto& r : rows) {
-    const RunRow rr(r);
-    sweeps[{rr.method, Key(*rr.wave_passes, "c T")}].push_back(&r);
-  }
+// Against amplitude: each amplitude sweep of the scene, its edges in order of A / h, with their
+// margins to the spectral limit ("" when the scene has no such sweep).
+std::string amplitude_table(const SceneFindings& s, const EdgeFollowUps& f) {
+  if (s.sweeps.empty()) return "";
   std::ostringstream md;
-  for (auto& [key, list] : sweeps) {
-    if (list.size() < kAmplitudeSweep) continue;
-    std::sort(list.begin(), list.end(), [](const ojson* a, const ojson* b) {
-      return TotalLess()((*a)["A_over_h"].get<double>(), (*b)["A_over_h"].get<double>());
-    });
-    if (md.tellp() == 0) {
-      md << "\n**Against amplitude.** The same cases ordered by A / h at one run length: each "
-            "edge, its margin to the spectral limit and the run there.\n\n"
-            "| method | c T | A/h | survival edge (h/c) | survival edge / limit; length | run at "
-            "it | accuracy edge (h/c) | accuracy edge / limit; length |\n"
-            "|---|---|---|---|---|---|---|---|\n";
-    }
+  md << "\n**Against amplitude.** The same cases ordered by A / h at one run length: each "
+        "edge, its margin to the spectral limit and the run there.\n\n"
+        "| method | c T | A/h | survival edge (h/c) | survival edge / limit; length | run at "
+        "it | accuracy edge (h/c) | accuracy edge / limit; length |\n"
+        "|---|---|---|---|---|---|---|---|\n";
+  for (const auto& [method, list] : s.sweeps) {
     for (const ojson* r : list) {
-      md << "| " << key.first << " | " << passes(*r) << " | "
+      md << "| " << method << " | " << passes(*r) << " | "
          << significant((*r)["A_over_h"].get<double>(), 3) << " | ";
       if (!has_number(*r, "dt_edge")) {
         md << no_edge_text(*r) << " | – | – | – | – |\n";
@@ -689,35 +739,23 @@ std::string amplitude_table(const std::vector<ojson>& rows, const EdgeFollowUps&
 
 // What the walls cost at the accuracy edge, per method: the periodic twin's error over time against
 // the Dirichlet run's ("" when no twin was run).
-std::string walls_text(const std::vector<ojson>& rows, const EdgeFollowUps& f) {
-  std::map<std::string, std::vector<double>> ratios;
-  std::map<std::string, int> twins;
-  for (const auto& r : rows) {
-    const auto it = f.twins.find(&r);
-    if (it == f.twins.end()) continue;
-    const std::string m = RunRow(r).method;
-    ++twins[m];
-    const RunRow twin(it->second);
-    if (twin.survived() && twin.error_over_time && has_number(r, "max_error_at_accurate"))
-      ratios[m].push_back(*twin.error_over_time / r["max_error_at_accurate"].get<double>());
-  }
-  if (twins.empty()) return "";
+std::string walls_text(const SceneFindings& s) {
+  if (s.twins.empty()) return "";
   std::ostringstream md;
   md << "**Walls.** Each case with Dirichlet walls is rerun at its accuracy edge with periodic "
         "boundaries (no wall: the interior's own error); the periodic error over time is, per "
         "method, ";
   bool first = true;
-  for (const auto& [m, n] : twins) {
+  for (const auto& [m, n] : s.twins) {
     md << (first ? "" : "; ") << m << " ";
     first = false;
-    const auto& v = ratios[m];
-    if (v.empty()) {
+    const auto it = s.twin_ratios.find(m);
+    if (it == s.twin_ratios.end()) {
       md << "not compared (" << n << " twins, none reached T)";
       continue;
     }
-    const auto [lo, hi] = std::minmax_element(v.begin(), v.end(), TotalLess());
-    md << ratio(*lo) << " to " << ratio(*hi) << " times the Dirichlet one (median "
-       << ratio(quantile(v, 0.5)) << ", " << v.size() << " of " << n << " twins)";
+    md << ratio_range(it->second) << " times the Dirichlet one (median "
+       << ratio(quantile(it->second, 0.5)) << ", " << it->second.size() << " of " << n << " twins)";
   }
   md << ".\n\n";
   return md.str();
@@ -725,8 +763,8 @@ std::string walls_text(const std::vector<ojson>& rows, const EdgeFollowUps& f) {
 
 // One scene's section: the first has the figure and states the rules; each has its own reading
 // and table.
-std::string edge_markdown(const Spec& spec, const std::vector<ojson>& all,
-                          const std::vector<ojson>& rows, bool first, const EdgeFollowUps& f) {
+std::string edge_markdown(const Spec& spec, const Findings& all, const SceneFindings& s, bool first,
+                          const EdgeFollowUps& f) {
   std::ostringstream md;
   if (first) {
     md << "## Results\n\n"
@@ -735,28 +773,30 @@ std::string edge_markdown(const Spec& spec, const std::vector<ojson>& all,
        << ".png)\n\nThe figure draws both edges in units of h/c for every scene, on a log "
           "scale, beside each series' spectral limit (dotted) and eq. (108) at its survival edge "
           "(dash-dotted). "
-       << not_drawn_text(figure_count(all)) << " Vector version: [" << spec.name << ".svg]("
-       << spec.name << ".svg); data: [" << spec.name << "_data.csv](" << spec.name
-       << "_data.csv).\n\n## " << scene_title(rows.front()["scene"].get<std::string>()) << "\n\n";
+       << not_drawn_text(all.figure) << " Vector version: [" << spec.name << ".svg](" << spec.name
+       << ".svg); data: [" << spec.name << "_data.csv](" << spec.name << "_data.csv).\n\n## "
+       << scene_title(s.scene) << "\n\n";
   } else {
-    md << "\n## " << scene_title(rows.front()["scene"].get<std::string>()) << "\n\n";
+    md << "\n## " << scene_title(s.scene) << "\n\n";
   }
-  md << "**Reading.** " << edge_summary_text(rows) << "\n\n"
-     << walls_text(rows, f) << edge_table(rows, f) << amplitude_table(rows, f);
+  md << "**Reading.** " << edge_summary_text(s) << "\n\n"
+     << walls_text(s) << edge_table(s.rows, f) << amplitude_table(s, f);
   return md.str();
 }
 
+// ---------------------------------------------------------------------------------------------
+// Figure
+
+std::string edge_subtitle_text(const FigureCount& c) {
+  std::string s = std::to_string(c.drawn.size()) + " of " + std::to_string(c.cases) +
+                  " cases drawn (" + std::to_string(c.with_accuracy) + " with an accuracy edge)";
+  for (const auto& [reason, rows] : c.not_drawn)
+    s += "; not drawn, " + reason + ": " + std::to_string(rows.size());
+  return s;
+}
+
 // A row per drawn case, by panel, series and E; the cases not drawn in the header.
-std::string edge_data_csv(const std::vector<ojson>& rows, const std::string& header_lines) {
-  const FigureCount count = figure_count(rows);
-  std::vector<const ojson*> drawn;
-  for (const auto& r : rows) {
-    if (not_drawn_reason(r).empty()) drawn.push_back(&r);
-  }
-  std::stable_sort(drawn.begin(), drawn.end(), [](const ojson* a, const ojson* b) {
-    return std::tuple(panel_of(*a), series_of(*a), Key(*RunRow(*a).wave_passes, "c T")) <
-           std::tuple(panel_of(*b), series_of(*b), Key(*RunRow(*b).wave_passes, "c T"));
-  });
+std::string edge_data_csv(const FigureCount& count, const std::string& header_lines) {
   std::ostringstream csv;
   csv << header_lines << "# " << edge_subtitle_text(count) << "\n";
   for (const auto& [reason, list] : count.not_drawn)
@@ -780,7 +820,7 @@ std::string edge_data_csv(const std::vector<ojson>& rows, const std::string& hea
          "minimum over the run there), both in units of h/c (empty where not measured)\n"
          "panel,series,cT,dt_edge_over_cfl,dt_accurate_over_cfl,meaningless_at_edge,limit_over_cfl,"
          "eq108_over_cfl\n";
-  for (const ojson* r : drawn) {
+  for (const ojson* r : count.drawn) {
     const RunRow rr(*r);
     csv << panel_of(*r) << ',' << series_of(*r) << ',' << shortest(*rr.wave_passes) << ','
         << csv_cell((*r)["dt_edge_over_cfl"]) << ',' << csv_cell((*r)["dt_accurate_over_cfl"])
@@ -795,48 +835,29 @@ std::string edge_data_csv(const std::vector<ojson>& rows, const std::string& hea
 
 std::string edge_subtitle(const Spec& spec, const ojson& doc) {
   const std::vector<ojson> rows(doc["cases"].begin(), doc["cases"].end());
-  const auto not_monotone =
-      std::count_if(rows.begin(), rows.end(), [](const ojson& r) { return !survival_monotone(r); });
-  return edge_subtitle_text(figure_count(rows)) + "; " + std::to_string(not_monotone) +
+  const Findings f = find(rows, {});
+  return edge_subtitle_text(f.figure) + "; " + std::to_string(f.all.cases - f.monotone) +
          " not monotone in dt (each edge drawn is the lowest failure found); each listed in " +
          spec.name + ".md";
 }
 
 StudyReport edge_report(const ReportContext& c) {
+  const EdgeFollowUps follow_ups = edge_follow_ups(c.rows, c.follow_up);
+  const Findings f = find(c.rows, follow_ups);
   StudyReport report;
-  // by_scene copies the rows, in their order within each scene: the follow-ups, keyed by the
-  // rows of c.rows, are handed to each scene's copies in that order.
-  const auto scenes = by_scene(c.rows);
-  const EdgeFollowUps all = edge_follow_ups(c.rows, c.follow_up);
-  std::vector<Claim> claims = edge_claims(c.rows, all);
-  for (std::size_t i = 0; i < scenes.size(); ++i) {
-    EdgeFollowUps mine;
-    std::size_t k = 0;
-    for (const auto& r : c.rows) {
-      if (r["scene"] != scenes[i].scene) continue;
-      if (k < scenes[i].rows.size()) {
-        const ojson* copy = &scenes[i].rows[k];
-        if (const auto it = all.ensembles.find(&r); it != all.ensembles.end())
-          mine.ensembles[copy] = it->second;
-        if (const auto it = all.long_runs.find(&r); it != all.long_runs.end())
-          mine.long_runs[copy] = it->second;
-        if (const auto it = all.twins.find(&r); it != all.twins.end())
-          mine.twins[copy] = it->second;
-      }
-      ++k;
-    }
-    report.markdown += edge_markdown(c.spec, c.rows, scenes[i].rows, i == 0, mine);
-  }
-  report.data_csv = edge_data_csv(c.rows, c.csv_header);
-  report.claims = std::move(claims);
+  for (std::size_t i = 0; i < f.scenes.size(); ++i)
+    report.markdown += edge_markdown(c.spec, f, f.scenes[i], i == 0, follow_ups);
+  report.data_csv = edge_data_csv(f.figure, c.csv_header);
+  report.claims = edge_claims(f);
   return report;
 }
 
 std::string edge_index(const Spec& spec, const std::vector<ojson>& rows) {
   std::ostringstream md;
   md << "![" << spec.title << "](" << spec.name << ".png)\n\n**What it shows.** ";
-  for (const auto& scene : by_scene(rows))
-    md << "*" << scene_title(scene.scene) << ".* " << edge_summary_text(scene.rows) << " ";
+  const Findings f = find(rows, {});
+  for (const SceneFindings& scene : f.scenes)
+    md << "*" << scene_title(scene.scene) << ".* " << edge_summary_text(scene) << " ";
   md << "Details: [" << spec.name << ".md](" << spec.name << ".md).\n\n";
   return md.str();
 }
@@ -855,6 +876,4 @@ const StudyRegistration kEdge{{
 }};
 
 }  // namespace
-}  // namespace studies::edge
-
-}  // namespace mpmstab
+}  // namespace mpmstab::studies::edge

@@ -18,9 +18,7 @@
 #include "run_row.hpp"
 #include "study.hpp"
 
-namespace mpmstab {
-
-namespace studies::extremes {
+namespace mpmstab::studies::extremes {
 namespace {
 
 using ojson = nlohmann::ordered_json;
@@ -137,6 +135,7 @@ struct Counts {
   // The runs the solver calls stable, over a wave pass or not.
   int solver_stable() const { return verdicts.stable + verdicts.under_a_wave_pass; }
   int inaccurate() const { return verdicts.inaccurate + verdicts.unmeasured; }
+  int unstable() const { return total - reached; }
 };
 
 Counts count_rows(const std::vector<ojson>& rows) {
@@ -184,9 +183,7 @@ Counts count_rows(const std::vector<ojson>& rows) {
 // The opening: how many cases reached each verdict and why the unstable ones failed, the runs
 // too short to judge, whether any output holds a NaN or an infinity, the slowest case, and the
 // figure.
-std::string extremes_summary(const Spec& spec, const std::vector<ojson>& rows, const Counts& c) {
-  const int unstable = c.total - c.reached;
-  const Slowest slowest = slowest_case(rows);
+std::string extremes_summary(const Spec& spec, const Counts& c, const Slowest& slowest) {
   std::ostringstream md;
   md << "## Results\n\n**Summary.** " << c.total << " cases, " << c.with_verdict
      << " with a verdict. " << c.solver_stable() << " reached T in at least " << kMinStepsToJudge
@@ -201,8 +198,8 @@ std::string extremes_summary(const Spec& spec, const std::vector<ojson>& rows, c
   md << "; the other " << c.verdicts.under_a_wave_pass << " ran fewer wave passes";
   if (!c.under_a_pass_cT.empty()) md << " (c T " << span(c.under_a_pass_cT, 2) << ")";
   md << ", too short to count as stable, and are counted apart. " << c.verdicts.meaningless
-     << " meaningless (survived, but the error over time reached A), " << unstable << " unstable ("
-     << reason_counts(c.verdicts.reasons) << ")";
+     << " meaningless (survived, but the error over time reached A), " << c.unstable()
+     << " unstable (" << reason_counts(c.verdicts.reasons) << ")";
   if (c.verdicts.too_short) {
     md << ", " << c.verdicts.too_short << " too short to judge (they reached T in "
        << c.too_short_min << " to " << c.too_short_max << " steps, fewer than " << kMinStepsToJudge
@@ -306,10 +303,79 @@ std::string band_name(const Band& b, const std::string& x) {
   return name + b.note;
 }
 
+// One band of one method: how many runs fall in it, by verdict (a stable one by its standing),
+// and the reasons of the failures.
+struct BandCount {
+  int runs = 0, accurate = 0, inaccurate = 0, under = 0, meaningless = 0, too_short = 0;
+  std::map<std::string, int> why;
+};
+
 // Where one method fails: per band of the Courant number (`by_courant`) or of the amplitude in
-// cells, how many runs fall in it, their verdicts and the reasons of the failures.
-std::string band_table(const std::vector<ojson>& rows, const std::string& method,
-                       const std::vector<Band>& bands, bool by_courant) {
+// cells, its runs there.
+std::vector<BandCount> band_counts(const std::vector<ojson>& rows, const std::string& method,
+                                   const std::vector<Band>& bands, bool by_courant) {
+  std::vector<BandCount> out;
+  for (const auto& b : bands) {
+    BandCount n;
+    for (const auto& row : rows) {
+      const RunRow r(row);
+      if (r.method_label != method) continue;
+      const double x = by_courant ? *r.courant : *r.A * row["cells"].get<double>();
+      if (x < b.lo || x >= b.hi) continue;
+      ++n.runs;
+      const int v = verdict_code(r);
+      if (v == 0) {
+        const Standing st = standing(r);
+        n.accurate += st == Standing::accurate;
+        n.inaccurate += st == Standing::inaccurate;
+        n.under += st == Standing::under_a_pass;
+      }
+      n.meaningless += v == 1;
+      n.too_short += v == 3;
+      if (v == 2) ++n.why[*r.failure_reason];
+    }
+    out.push_back(n);
+  }
+  return out;
+}
+
+// One method's findings: its band tables and, above its spectral limit at each run's layout
+// (the range of that limit), its counts; below it, how many runs fail and how many of those have
+// particles crossing cells.
+struct MethodFindings {
+  std::string name;
+  std::vector<BandCount> by_courant, by_amplitude;
+  Counts counts;
+  double limit_lo = 1e300, limit_hi = 0;  // limit_hi 0: no spectral limit recorded
+  int below_failed = 0, below_failed_crossing = 0;
+};
+
+// The findings of one method's runs.
+MethodFindings method_findings(const std::vector<ojson>& rows, const std::string& method) {
+  MethodFindings f{.name = method,
+                   .by_courant = band_counts(rows, method, kCourantBands, true),
+                   .by_amplitude = band_counts(rows, method, kAmplitudeBands, false)};
+  std::vector<ojson> mine;
+  for (const auto& row : rows) {
+    const RunRow r(row);
+    if (r.method_label != method) continue;
+    mine.push_back(row);
+    if (!r.courant_spectral) continue;
+    const double limit = *r.courant_spectral;
+    f.limit_lo = std::min(f.limit_lo, limit);
+    f.limit_hi = std::max(f.limit_hi, limit);
+    if (!r.above_spectral_limit() && r.outcome == "unstable") {
+      ++f.below_failed;
+      f.below_failed_crossing += *r.A * row["cells"].get<double>() >= kCrossingAmplitude;
+    }
+  }
+  f.counts = count_rows(mine);
+  return f;
+}
+
+// One of a method's band tables.
+std::string band_table(const std::vector<BandCount>& counts, const std::vector<Band>& bands,
+                       bool by_courant) {
   std::ostringstream md;
   md << "| " << (by_courant ? "Courant number" : "amplitude in cells")
      << " | runs | stable, c T >= " << shortest(kMinWavePasses)
@@ -317,61 +383,27 @@ std::string band_table(const std::vector<ojson>& rows, const std::string& method
      << ": inaccurate | survived, c T < " << shortest(kMinWavePasses)
      << ": too short to count | meaningless | too short to judge | unstable: reasons "
         "|\n|---|---|---|---|---|---|---|---|\n";
-  for (const auto& b : bands) {
-    int n = 0, acc = 0, inacc = 0, under = 0, m = 0, t = 0;
-    std::map<std::string, int> why;
-    for (const auto& row : rows) {
-      const RunRow r(row);
-      if (r.method_label != method) continue;
-      const double x = by_courant ? *r.courant : *r.A * row["cells"].get<double>();
-      if (x < b.lo || x >= b.hi) continue;
-      ++n;
-      const int v = verdict_code(r);
-      if (v == 0) {
-        const Standing st = standing(r);
-        acc += st == Standing::accurate;
-        inacc += st == Standing::inaccurate;
-        under += st == Standing::under_a_pass;
-      }
-      m += v == 1;
-      t += v == 3;
-      if (v == 2) ++why[*r.failure_reason];
-    }
-    md << "| " << band_name(b, by_courant ? "c dt/h" : "A/h") << " | " << n << " | " << acc << " | "
-       << inacc << " | " << under << " | " << m << " | " << t << " | "
-       << (why.empty() ? std::string("–") : reason_counts(why)) << " |\n";
+  for (std::size_t i = 0; i < bands.size(); ++i) {
+    const BandCount& n = counts[i];
+    md << "| " << band_name(bands[i], by_courant ? "c dt/h" : "A/h") << " | " << n.runs << " | "
+       << n.accurate << " | " << n.inaccurate << " | " << n.under << " | " << n.meaningless << " | "
+       << n.too_short << " | " << (n.why.empty() ? std::string("–") : reason_counts(n.why))
+       << " |\n";
   }
   md << "\n";
   return md.str();
 }
 
-// The reading for one method, computed from the rows: above its spectral limit at each run's
-// layout, how many runs long enough to judge fail, how many survive and how long and how far
-// above the limit they ran, how many are too short to judge; below it, how many fail and how
-// many of those have particles crossing cells.
-std::string method_reading(const std::vector<ojson>& rows, const std::string& method) {
-  std::vector<ojson> mine;
-  int below_failed = 0, below_failed_crossing = 0;
-  double limit_lo = 1e300, limit_hi = 0;
-  for (const auto& row : rows) {
-    const RunRow r(row);
-    if (r.method_label != method) continue;
-    mine.push_back(row);
-    if (!r.courant_spectral) continue;
-    const double limit = *r.courant_spectral;
-    limit_lo = std::min(limit_lo, limit);
-    limit_hi = std::max(limit_hi, limit);
-    if (!r.above_spectral_limit() && r.outcome == "unstable") {
-      ++below_failed;
-      below_failed_crossing += *r.A * row["cells"].get<double>() >= kCrossingAmplitude;
-    }
-  }
-  const Counts c = count_rows(mine);
+// The reading for one method: above its limit, how many runs long enough to judge fail, how many
+// survive and how long and how far above the limit they ran, how many are too short to judge;
+// below it, how many fail and how many of those have particles crossing cells.
+std::string method_reading(const MethodFindings& f) {
+  const Counts& c = f.counts;
   std::ostringstream md;
-  md << method << ": ";
-  if (limit_hi == 0) return md.str() + "no spectral limit recorded. ";
-  md << "above its spectral limit (c dt/h " << fixed(limit_lo, 3);
-  if (limit_hi > limit_lo) md << " to " << fixed(limit_hi, 3);
+  md << f.name << ": ";
+  if (f.limit_hi == 0) return md.str() + "no spectral limit recorded. ";
+  md << "above its spectral limit (c dt/h " << fixed(f.limit_lo, 3);
+  if (f.limit_hi > f.limit_lo) md << " to " << fixed(f.limit_hi, 3);
   md << " at these layouts) " << c.above_failed << " of " << c.above_failed + c.above_survived
      << " runs long enough to judge fail";
   if (c.above_survived) {
@@ -380,8 +412,8 @@ std::string method_reading(const std::vector<ojson>& rows, const std::string& me
        << c.above_survivor_under_a_pass << " of them ran under c T = " << shortest(kMinWavePasses)
        << " wave pass)";
   }
-  md << " and " << c.above_too_short << " are too short to judge. Below it, " << below_failed
-     << " runs fail, " << below_failed_crossing << " of them with "
+  md << " and " << c.above_too_short << " are too short to judge. Below it, " << f.below_failed
+     << " runs fail, " << f.below_failed_crossing << " of them with "
      << band_name(kAmplitudeBands.back(), "A/h") << ". ";
   return md.str();
 }
@@ -427,11 +459,40 @@ std::vector<std::string> methods_of(const std::vector<ojson>& rows) {
   return present;
 }
 
+// The cases drawn at one spot of the figure: a method, a Courant number, an amplitude in cells
+// and a verdict. Many cases share a spot (they differ in E, T, cells or ppc): they are drawn once,
+// with their count.
+using Spot = std::tuple<int, std::string, std::string, int>;
+
+// What the study finds, from its rows: the counts over every case, the slowest case, per method
+// its bands and reading, and the spots of the figure.
+struct Findings {
+  Counts counts;
+  Slowest slowest;
+  std::vector<std::string> methods;  // methods_of
+  std::vector<MethodFindings> per_method;
+  std::map<Spot, int> spots;
+};
+
+// The findings of every case.
+Findings find(const std::vector<ojson>& rows) {
+  Findings f{
+      .counts = count_rows(rows), .slowest = slowest_case(rows), .methods = methods_of(rows)};
+  for (const std::string& method : f.methods)
+    f.per_method.push_back(method_findings(rows, method));
+  for (const auto& row : rows) {
+    const RunRow r(row);
+    const auto m = std::find(f.methods.begin(), f.methods.end(), r.method_label);
+    ++f.spots[{int(m - f.methods.begin()), param(*r.courant),
+               param(*r.A * row["cells"].get<double>()), verdict_code(r)}];
+  }
+  return f;
+}
+
 // The report: the summary, per method its band tables, the reading and every case.
-std::string extremes_markdown(const Spec& spec, const std::vector<ojson>& rows,
-                              const Counts& counts) {
+std::string extremes_markdown(const Spec& spec, const std::vector<ojson>& rows, const Findings& f) {
   std::ostringstream md;
-  md << extremes_summary(spec, rows, counts);
+  md << extremes_summary(spec, f.counts, f.slowest);
   md << "*Stable* here: the solver's outcome stable (the run reached T in at least "
      << kMinStepsToJudge
      << " steps with an error over time below A) over at least c T = " << shortest(kMinWavePasses)
@@ -442,37 +503,19 @@ std::string extremes_markdown(const Spec& spec, const std::vector<ojson>& rows,
         "passes is *too short to count* as stable and is counted apart; *too short to judge*: "
         "fewer than "
      << kMinStepsToJudge << " steps, whatever its error.\n\n";
-  const std::vector<std::string> methods = methods_of(rows);
-  for (const std::string& method : methods) {
-    md << "### " << method << "\n\n"
-       << band_table(rows, method, kCourantBands, true)
-       << band_table(rows, method, kAmplitudeBands, false);
+  for (const MethodFindings& m : f.per_method) {
+    md << "### " << m.name << "\n\n"
+       << band_table(m.by_courant, kCourantBands, true)
+       << band_table(m.by_amplitude, kAmplitudeBands, false);
   }
   md << "Reading (computed from the rows): ";
-  for (const std::string& method : methods)
-    md << method_reading(rows, method);
+  for (const MethodFindings& m : f.per_method)
+    md << method_reading(m);
   md << "\n\n" << every_case_table(rows);
   return md.str();
 }
 
-// The cases drawn at one spot of the figure: a method, a Courant number, an amplitude in cells
-// and a verdict. Many cases share a spot (they differ in E, T, cells or ppc): they are drawn once,
-// with their count.
-using Spot = std::tuple<int, std::string, std::string, int>;
-
-std::map<Spot, int> spots(const std::vector<ojson>& rows) {
-  const std::vector<std::string> methods = methods_of(rows);
-  std::map<Spot, int> n;
-  for (const auto& row : rows) {
-    const RunRow r(row);
-    const auto m = std::find(methods.begin(), methods.end(), r.method_label);
-    ++n[{int(m - methods.begin()), param(*r.courant), param(*r.A * row["cells"].get<double>()),
-         verdict_code(r)}];
-  }
-  return n;
-}
-
-std::string extremes_data_csv(const std::vector<ojson>& rows, const std::string& header_lines) {
+std::string extremes_data_csv(const Findings& f, const std::string& header_lines) {
   std::ostringstream csv;
   csv << header_lines
       << "# one row per spot: method (its panel, counted from zero), Courant number, amplitude "
@@ -481,44 +524,41 @@ std::string extremes_data_csv(const std::vector<ojson>& rows, const std::string&
     csv << (i ? ", " : "") << i << ' ' << kVerdicts[i];
   csv << "), the number of cases there and the method's name\n"
          "method,courant,A_over_h,verdict,cases,name\n";
-  const std::vector<std::string> methods = methods_of(rows);
-  for (const auto& [spot, count] : spots(rows)) {
+  for (const auto& [spot, count] : f.spots) {
     const auto& [method, courant, a_over_h, verdict] = spot;
     csv << method << ',' << courant << ',' << a_over_h << ',' << verdict << ',' << count << ','
-        << methods[static_cast<std::size_t>(method)] << '\n';
+        << f.methods[static_cast<std::size_t>(method)] << '\n';
   }
   return csv.str();
 }
 
 // What the figure draws: every case, at fewer spots than cases.
 std::string extremes_subtitle(const Spec&, const ojson& doc) {
-  const std::vector<ojson> rows(doc["cases"].begin(), doc["cases"].end());
-  const Counts c = count_rows(rows);
-  std::string s = std::to_string(rows.size());
+  const Findings f = find(std::vector<ojson>(doc["cases"].begin(), doc["cases"].end()));
+  std::string s = std::to_string(f.counts.total);
   s += " cases at ";
-  s += std::to_string(spots(rows).size());
+  s += std::to_string(f.spots.size());
   s += " spots; the verdicts of one spot side by side, the marker growing with its number of "
        "cases (printed where it holds more than one); the stable marker is the solver's "
        "outcome: ";
-  s += std::to_string(c.verdicts.under_a_wave_pass);
+  s += std::to_string(f.counts.verdicts.under_a_wave_pass);
   s += " of its ";
-  s += std::to_string(c.solver_stable());
+  s += std::to_string(f.counts.solver_stable());
   s += " runs ran under c T = " + shortest(kMinWavePasses) + " wave pass";
   return s;
 }
 
 std::string extremes_index(const Spec& spec, const std::vector<ojson>& rows) {
-  const Counts c = count_rows(rows);
+  const Counts c = find(rows).counts;
   std::ostringstream md;
-  md << "![" << spec.title << "](" << spec.name << ".png)\n\n**What it shows.** " << rows.size()
+  md << "![" << spec.title << "](" << spec.name << ".png)\n\n**What it shows.** " << c.total
      << " cases at the extremes, " << c.with_verdict << " with a verdict ("
      << c.verdicts.accurate + c.inaccurate()
      << " stable over at least c T = " << shortest(kMinWavePasses)
      << " wave pass: " << c.verdicts.accurate << " accurate, " << c.inaccurate() << " inaccurate; "
      << c.verdicts.under_a_wave_pass << " survived fewer wave passes; " << c.verdicts.meaningless
-     << " meaningless; " << c.total - c.reached
-     << " unstable); per method, where and why it fails: [" << spec.name << ".md](" << spec.name
-     << ".md).\n\n";
+     << " meaningless; " << c.unstable() << " unstable); per method, where and why it fails: ["
+     << spec.name << ".md](" << spec.name << ".md).\n\n";
   return md.str();
 }
 
@@ -529,16 +569,14 @@ const StudyRegistration kExtremes{{
     .figure = true,
     .report =
         [](const ReportContext& c) {
-          const Counts counts = count_rows(c.rows);
-          return StudyReport{.markdown = extremes_markdown(c.spec, c.rows, counts),
-                             .data_csv = extremes_data_csv(c.rows, c.csv_header),
-                             .claims = extremes_claims(counts)};
+          const Findings f = find(c.rows);
+          return StudyReport{.markdown = extremes_markdown(c.spec, c.rows, f),
+                             .data_csv = extremes_data_csv(f, c.csv_header),
+                             .claims = extremes_claims(f.counts)};
         },
     .index = extremes_index,
     .figure_subtitle = extremes_subtitle,
 }};
 
 }  // namespace
-}  // namespace studies::extremes
-
-}  // namespace mpmstab
+}  // namespace mpmstab::studies::extremes

@@ -27,9 +27,7 @@
 #include "shared/paper_table1.hpp"
 #include "study.hpp"
 
-namespace mpmstab {
-
-namespace studies::spectral {
+namespace mpmstab::studies::spectral {
 namespace {
 
 using ojson = nlohmann::ordered_json;
@@ -41,11 +39,19 @@ const int kDefaultPpc = RunParams{}.ppc;
 // The methods of the figure's data, in the order of their codes.
 const std::vector<std::string> kFigureMethods = {"mpm", "gimp"};
 
-// The distinct safety factors s of the runs below (s < 1) or above (s > 1) the limit: "0.95".
-std::string safeties(const std::vector<ojson>& rows, bool below) {
+// The scheme rows: those at the first row's E and grid (each scheme's pair of runs). The others
+// measure eq. (108) against the limit at other E and particle counts (one run each, at 0.95
+// times the limit).
+bool scheme_row(const ojson& r, const ojson& first) {
+  return r["E"] == first["E"] && r["cells"] == first["cells"];
+}
+
+// The distinct safety factors s of the runs below (s < 1) or above (s > 1) the limit, of the
+// scheme rows only or of every row: "0.95".
+std::string safeties(const std::vector<ojson>& rows, bool below, bool schemes_only) {
   std::vector<double> v;
   for (const auto& r : rows) {
-    if (!has_number(r, "safety")) continue;
+    if (!has_number(r, "safety") || (schemes_only && !scheme_row(r, rows.front()))) continue;
     const double s = r["safety"].get<double>();
     if (below ? s < 1 : s > 1) v.push_back(s);
   }
@@ -76,20 +82,6 @@ double layout_of(const ojson& r, const char* key) {
   return has_number(r, key) ? r[key].get<double>() : 0.0;
 }
 
-// The scheme rows: those at the first row's E and grid (each scheme's pair of runs). The others
-// measure eq. (108) against the limit at other E and particle counts (one run each, at 0.95
-// times the limit).
-bool scheme_row(const ojson& r, const ojson& first) {
-  return r["E"] == first["E"] && r["cells"] == first["cells"];
-}
-
-std::vector<ojson> scheme_rows(const std::vector<ojson>& rows) {
-  std::vector<ojson> out;
-  for (const auto& r : rows)
-    if (scheme_row(r, rows.front())) out.push_back(r);
-  return out;
-}
-
 // One scheme: its two runs, by the policy's safety factor.
 struct Scheme {
   std::string name;              // scheme_label
@@ -110,9 +102,11 @@ struct Scheme {
   }
 };
 
+// The schemes of the scheme rows.
 std::vector<Scheme> schemes_of(const std::vector<ojson>& rows) {
   std::vector<Scheme> out;
   for (const auto& r : rows) {
+    if (!scheme_row(r, rows.front())) continue;
     const std::string name = scheme_label(r);
     auto it = std::find_if(out.begin(), out.end(), [&](const Scheme& s) { return s.name == name; });
     if (it == out.end()) it = out.insert(out.end(), Scheme{name});
@@ -225,14 +219,6 @@ template <class T>
 void add_unique(std::vector<T>& v, const T& x) {
   if (std::find(v.begin(), v.end(), x) == v.end()) v.push_back(x);
 }
-
-struct Eq108Findings {
-  std::string markdown;
-  std::vector<Claim> claims;
-  // For the scheme table's reading: the ratio at the first row's particles per cell over every
-  // E (lo > hi: none), and the E it spans.
-  double lo = 1e300, hi = 0, E_lo = 0, E_hi = 0;
-};
 
 // The runs the eq. (108) section reads: every run's point, and those on the first row's grid by
 // E, particles per cell and basis.
@@ -353,10 +339,279 @@ Eq108Trends eq108_trends(const Eq108Grid& g) {
   return t;
 }
 
+// Per E at the first row's particles per cell, one row of the table per basis run there: its run
+// and its ratio over every particles per cell run at that E (n of them, ppc_lo to ppc_hi).
+struct Eq108Row {
+  const Eq108Point* p = nullptr;
+  double lo = 1e300, hi = 0;
+  int n = 0, ppc_lo = 0, ppc_hi = 0;
+};
+
+// What the eq. (108) section finds: its runs and their trends; the table per E and each E's
+// range of the ratio over the bases and particles per cell; the range at the first row's
+// particles per cell over every E, for the scheme table's reading (lo > hi: none); the grids
+// run; the runs below the limit and the one with the largest ratio. Its pointers are into
+// grid.points: it is moved, never copied.
+struct Eq108Findings {
+  Eq108Grid grid;
+  Eq108Spread spread;
+  Eq108Trends trends;
+  std::vector<Eq108Row> rows;
+  std::vector<std::pair<double, std::pair<double, double>>> per_E;  // E -> ratio lo, hi
+  double lo = 1e300, hi = 0, E_lo = 0, E_hi = 0;
+  int cells_lo = 0, cells_hi = 0, below = 0;
+  const Eq108Point* worst = nullptr;
+};
+
+// The findings of the eq. (108) section.
+Eq108Findings eq108_findings(const std::vector<ojson>& rows) {
+  Eq108Findings f{.grid = eq108_grid(rows)};
+  const Eq108Grid& g = f.grid;
+  f.spread = eq108_spread(g);
+  f.trends = eq108_trends(g);
+  for (double E : g.Es) {
+    double lo = 1e300, hi = 0;
+    for (const auto& b : g.bases) {
+      Eq108Row row{.p = g.find(b, E, g.ppc0)};
+      for (int ppc : g.ppcs) {
+        if (const Eq108Point* p = g.find(b, E, ppc)) {
+          row.lo = std::min(row.lo, p->ratio());
+          row.hi = std::max(row.hi, p->ratio());
+          ++row.n;
+        }
+      }
+      lo = std::min(lo, row.lo);
+      hi = std::max(hi, row.hi);
+      if (!row.p) continue;
+      f.lo = std::min(f.lo, row.p->ratio());
+      f.hi = std::max(f.hi, row.p->ratio());
+      row.ppc_lo = g.ppcs_of(b).front();
+      row.ppc_hi = g.ppcs_of(b).back();
+      f.rows.push_back(row);
+    }
+    if (hi > 0) f.per_E.push_back({E, {lo, hi}});
+  }
+  if (!g.Es.empty()) {
+    f.E_lo = g.Es.front();
+    f.E_hi = g.Es.back();
+  }
+  f.cells_lo = f.cells_hi = g.cells0;
+  for (const auto& p : g.points) {
+    f.cells_lo = std::min(f.cells_lo, p.cells);
+    f.cells_hi = std::max(f.cells_hi, p.cells);
+    f.below += p.ratio() < 1;
+    if (!f.worst || p.ratio() > f.worst->ratio()) f.worst = &p;
+  }
+  return f;
+}
+
+// The paper's dt stable column of Table 1 in c dt / h, per method, A and E: the median of its
+// rows (each dt), the E and the (method, A) in the order read, and how many medians lie above
+// the spectral limit of their method (of those with a limit).
+struct PaperFindings {
+  std::vector<double> Es;
+  std::vector<std::pair<std::string, double>> keys;
+  std::map<std::tuple<std::string, Key, Key>, double> medians;
+  int above = 0, cells = 0;
+};
+
+// What the study finds, from its rows, the measured edges (spectral_edge, where it has been run)
+// and the paper's Table 1: each scheme and whether its limit is confirmed, the safety factors of
+// its runs, the range of the limits per update order (at the default particles per cell and the
+// uniform layout), of eq. (108) and of the measured edge over the limit, and the eq. (108)
+// section's and the paper's findings. Its schemes point into the rows.
+struct Findings {
+  std::vector<Scheme> schemes;
+  int confirmed = 0;
+  std::vector<std::string> not_confirmed;
+  std::string below, above;         // the safety factors of the scheme rows: "0.95", "1.05"
+  double s_below = 0, s_above = 0;  // those of the first scheme with both runs
+  std::map<std::string, std::pair<double, double>> limits;  // update order -> lo, hi
+  double eq_lo = 1e300, eq_hi = 0, edge_lo = 1e300, edge_hi = 0;
+  int particles_lo = 0, particles_hi = 0;
+  std::map<std::string, double> edges;  // measured_edges
+  Eq108Findings eq108;
+  std::optional<PaperFindings> paper;  // none without Table 1
+  const Scheme* scheme(const std::string& name) const {
+    for (const auto& s : schemes)
+      if (s.name == name) return &s;
+    return nullptr;
+  }
+};
+
+// The paper's grid for Table 1 (experiments/table1.json): h = 1 / kPaperCells.
+constexpr int kPaperCells = 100;
+
+// The findings on Table 1 (none without it).
+std::optional<PaperFindings> paper_findings(const std::filesystem::path& reference,
+                                            const Findings& f) {
+  if (reference.empty() || !std::filesystem::exists(reference)) return std::nullopt;
+  PaperFindings p;
+  std::map<std::tuple<std::string, Key, Key>, std::vector<double>> values;
+  for (const PaperRow& r : read_paper_rows(reference)) {
+    if (std::find(p.Es.begin(), p.Es.end(), r.E) == p.Es.end()) p.Es.push_back(r.E);
+    if (std::find(p.keys.begin(), p.keys.end(), std::pair{r.method, r.A}) == p.keys.end())
+      p.keys.emplace_back(r.method, r.A);
+    // Table 1's own reading of a cell: '*' and unreadable text ('4.?e-6') are no number.
+    const PaperValue& dt_stable = r.cell.dt_stable;
+    if (dt_stable.kind != PaperValue::number || !(dt_stable.value > 0)) continue;
+    values[{r.method, Key(r.A), Key(r.E)}].push_back(dt_stable.value * std::sqrt(r.E) *
+                                                     kPaperCells);
+  }
+  std::sort(p.Es.begin(), p.Es.end());  // finite: read_paper_rows refuses any other E
+  for (const auto& [key, v] : values) {
+    const double m = p.medians[key] = quantile(v, 0.5);
+    const Scheme* s = f.scheme(std::get<0>(key));
+    if (!s || !s->limit()) continue;
+    ++p.cells;
+    p.above += m > *s->limit() ? 1 : 0;
+  }
+  return p;
+}
+
+// The findings of the rows, the measured edges and Table 1 (none for the index and the
+// subtitle, which print no finding of the measured edges).
+Findings find(const Spec& spec, const std::vector<ojson>& rows, const StudyInputs& inputs) {
+  Findings f{.schemes = schemes_of(rows),
+             .below = safeties(rows, true, true),
+             .above = safeties(rows, false, true),
+             .edges = measured_edges(inputs),
+             .eq108 = eq108_findings(rows)};
+  for (const auto& s : f.schemes) {
+    if (s.confirmed()) {
+      ++f.confirmed;
+    } else {
+      f.not_confirmed.push_back(s.name);
+    }
+    if (s.below && s.above && f.s_below == 0 && has_number(*s.below, "safety") &&
+        has_number(*s.above, "safety")) {
+      f.s_below = (*s.below)["safety"].get<double>();
+      f.s_above = (*s.above)["safety"].get<double>();
+    }
+    const auto limit = s.limit();
+    if (limit && s.uniform_two()) {
+      auto [it, fresh] = f.limits.emplace(update_of(s.name), std::pair{*limit, *limit});
+      it->second = {std::min(it->second.first, *limit), std::max(it->second.second, *limit)};
+    }
+    if (const auto e = s.eq108(); e && limit) {
+      f.eq_lo = std::min(f.eq_lo, *e / *limit);
+      f.eq_hi = std::max(f.eq_hi, *e / *limit);
+      const int particles = int(*RunRow(s.row()).particles);
+      f.particles_lo = f.particles_lo ? std::min(f.particles_lo, particles) : particles;
+      f.particles_hi = std::max(f.particles_hi, particles);
+    }
+    if (const auto e = f.edges.find(s.name); e != f.edges.end() && limit) {
+      f.edge_lo = std::min(f.edge_lo, e->second / *limit);
+      f.edge_hi = std::max(f.edge_hi, e->second / *limit);
+    }
+  }
+  f.paper = paper_findings(spec.reference, f);
+  return f;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Claims
+
+// The schemes' limits confirmed by their runs.
+Claim confirmed_claim(const Findings& f) {
+  Claim c = claim("spectral-limit-confirmed",
+                  "Every scheme's spectral limit is confirmed by runs: the run just below it "
+                  "stays bounded and the run just above it grows",
+                  "{confirmed} of {schemes} schemes, runs at {below} and {above} times the limit");
+  c.every("confirmed", f.confirmed, "schemes", static_cast<long long>(f.schemes.size()))
+      .value("below", f.s_below > 0 ? shortest(f.s_below) : "–")
+      .value("above", f.s_above > 0 ? shortest(f.s_above) : "–");
+  return c;
+}
+
+// The claim that the runs' state does not move eq. (108) at the tiny amplitude.
+Claim eq108_rest_claim(const Eq108Grid& g, const Eq108Trends& t) {
+  const auto n = static_cast<long long>(g.points.size());
+  Claim e = claim("eq108-at-rest",
+                  "At the tiny amplitude the state of the runs does not move eq. (108): its "
+                  "minimum is its value at rest, so what changes it with E, the particles per "
+                  "cell and the grid is the formula's constants",
+                  "{n} runs at A = {A}: the largest relative gap to eq. (108) at rest is {gap}, "
+                  "{basis} at E = {E}, ppc {ppc} (negligible: below {tolerance})");
+  e.count("n", n)
+      .value("A", g.points.empty() ? "–" : shortest(g.points.front().A))
+      .value("gap", n ? sci(t.shift, 2) : "–")
+      .value("basis", t.shifted ? t.shifted->method : "–")
+      .value("E", t.shifted ? shortest(t.shifted->E) : "–")
+      .value("ppc", t.shifted ? std::to_string(t.shifted->ppc) : "–")
+      .value("tolerance", shortest(kStateNegligible));
+  e.holds = n > 0 && t.shift < kStateNegligible;
+  return e;
+}
+
+std::vector<Claim> eq108_claims(const Eq108Findings& f) {
+  const Eq108Grid& g = f.grid;
+  const Eq108Spread& s = f.spread;
+  const Eq108Trends& t = f.trends;
+  const Eq108Point* worst = f.worst;
+  std::vector<Claim> claims;
+  Claim a = claim("eq108-below-limit-every-E",
+                  "Eq. (108) lies below the spectral limit at every E and particles per cell",
+                  "{below} of {n} runs; the largest ratio is {worst}, {basis} at E = {E}, ppc "
+                  "{ppc}");
+  a.every("below", f.below, "n", static_cast<long long>(g.points.size()))
+      .value("worst", worst ? ratio_text(worst->ratio()) : "–")
+      .value("basis", worst ? worst->method : "–")
+      .value("E", worst ? shortest(worst->E) : "–")
+      .value("ppc", worst ? std::to_string(worst->ppc) : "–");
+  claims.push_back(a);
+  Claim b = claim("eq108-not-homogeneous",
+                  "Eq. (108)'s ratio to the spectral limit changes with E at the same c dt/h, "
+                  "A/h and c T: it is not dimensionally homogeneous",
+                  "at one basis and layout the ratio changes with E by up to a factor {spread}: "
+                  "{basis} at ppc {ppc}, {lo} at E = {E_lo} and {hi} at E = {E_hi} "
+                  "(homogeneous: below {threshold})");
+  const bool spread_found = !s.basis.empty();
+  b.value("spread", fixed(s.spread, 2))
+      .value("basis", spread_found ? s.basis : "–")
+      .value("ppc", spread_found ? std::to_string(s.ppc) : "–")
+      .value("lo", spread_found ? ratio_text(s.lo) : "–")
+      .value("E_lo", spread_found ? shortest(s.E_lo) : "–")
+      .value("hi", spread_found ? ratio_text(s.hi) : "–")
+      .value("E_hi", spread_found ? shortest(s.E_hi) : "–")
+      .value("threshold", shortest(kHomogeneousSpread));
+  b.holds = s.spread > kHomogeneousSpread;
+  claims.push_back(b);
+
+  Claim c = claim("eq108-falls-as-sqrt-ppc",
+                  "At a fixed grid, eq. (108)'s ratio to the limit falls as the inverse square "
+                  "root of the particles per cell",
+                  "GIMP at E = {E}, {points} values of particles per cell: fitted exponent "
+                  "{slope} (expected {expected} within {tolerance})");
+  c.value("E", shortest(g.E0))
+      .count("points", static_cast<long long>(t.by_ppc.size()))
+      .value("slope", t.ppc_slope ? fixed(*t.ppc_slope, 3) : "–")
+      .value("expected", shortest(kSqrtSlope))
+      .value("tolerance", shortest(kSlopeTolerance));
+  c.holds = t.ppc_slope && std::abs(*t.ppc_slope - kSqrtSlope) <= kSlopeTolerance;
+  claims.push_back(c);
+
+  Claim d = claim("eq108-independent-of-grid",
+                  "At a fixed number of particles per cell, refining the grid leaves eq. (108)'s "
+                  "ratio to the limit unchanged",
+                  "GIMP at E = {E}, {points} grids: fitted exponent against the particle count "
+                  "{slope} (unchanged: within {tolerance} of zero)");
+  d.value("E", shortest(g.E0))
+      .count("points", static_cast<long long>(t.by_count.size()))
+      .value("slope", t.count_slope ? fixed(*t.count_slope, 3) : "–")
+      .value("tolerance", shortest(kSlopeTolerance));
+  d.holds = t.count_slope && std::abs(*t.count_slope) <= kSlopeTolerance;
+  claims.push_back(d);
+
+  claims.push_back(eq108_rest_claim(g, t));
+  return claims;
+}
+
 // ---------------------------------------------------------------------------------------------
 // Rendering of the eq. (108) section
 
-std::string eq108_intro(const Eq108Grid& g) {
+std::string eq108_intro(const Eq108Findings& f) {
+  const Eq108Grid& g = f.grid;
   std::ostringstream md;
   md << "## Eq. (108) against the limit, per E and per particle count\n\n";
   if (!g.points.empty()) {
@@ -375,14 +630,9 @@ std::string eq108_intro(const Eq108Grid& g) {
       md << "for c T / L = " << shortest(g.cT_lo) << " to " << shortest(g.cT_hi)
          << " crossings of the bar";
     }
-    int cells_lo = g.cells0, cells_hi = g.cells0;
-    for (const auto& p : g.points) {
-      cells_lo = std::min(cells_lo, p.cells);
-      cells_hi = std::max(cells_hi, p.cells);
-    }
     md << ", on " << g.cells0 << " cells";
-    if (cells_hi > cells_lo)
-      md << " (the last table: " << cells_lo << " to " << cells_hi << " cells)";
+    if (f.cells_hi > f.cells_lo)
+      md << " (the last table: " << f.cells_lo << " to " << f.cells_hi << " cells)";
     md << ". Eq. (108) is the minimum of the bound over the run, in units of h/c; the spectral "
           "limit, in c dt / h, is the same at every E.\n\n";
   }
@@ -390,60 +640,35 @@ std::string eq108_intro(const Eq108Grid& g) {
   return md.str();
 }
 
-// The per-E table at the first row's particles per cell; `per_E` gets each E's range of the
-// ratio, and `f` the reading's range at the first row's particles per cell.
-std::string eq108_per_E(const Eq108Grid& g, Eq108Findings& f,
-                        std::vector<std::pair<double, std::pair<double, double>>>& per_E) {
+// The per-E table at the first row's particles per cell.
+std::string eq108_per_E(const Eq108Findings& f) {
   std::ostringstream md;
-  md << "**Per E**, at " << g.ppc0
+  md << "**Per E**, at " << f.grid.ppc0
      << " particles per cell (the last column: the ratio over every particles per cell run at "
         "that E)\n\n| E | c | basis | spectral limit (c dt / h) | eq. (108) minimum (h / c) | "
         "eq. (108) / limit | eq. (108) / limit over the particles per cell |\n"
         "|---|---|---|---|---|---|---|\n";
-  for (double E : g.Es) {
-    double lo = 1e300, hi = 0;
-    for (const auto& b : g.bases) {
-      double blo = 1e300, bhi = 0;
-      int n = 0;
-      for (int ppc : g.ppcs) {
-        if (const Eq108Point* p = g.find(b, E, ppc)) {
-          blo = std::min(blo, p->ratio());
-          bhi = std::max(bhi, p->ratio());
-          ++n;
-        }
-      }
-      lo = std::min(lo, blo);
-      hi = std::max(hi, bhi);
-      const Eq108Point* p = g.find(b, E, g.ppc0);
-      if (!p) continue;
-      f.lo = std::min(f.lo, p->ratio());
-      f.hi = std::max(f.hi, p->ratio());
-      md << "| " << shortest(E) << " | " << speed(p->c()) << " | " << b << " | "
-         << fixed(p->limit, 4) << " | " << fixed(p->eq108, 4) << " | " << ratio_text(p->ratio())
-         << " | "
-         << (n > 1 ? ratio_text(blo) + " to " + ratio_text(bhi) + " (ppc " +
-                         std::to_string(g.ppcs_of(b).front()) + " to " +
-                         std::to_string(g.ppcs_of(b).back()) + ")"
+  for (const Eq108Row& r : f.rows) {
+    const Eq108Point* p = r.p;
+    md << "| " << shortest(p->E) << " | " << speed(p->c()) << " | " << p->method << " | "
+       << fixed(p->limit, 4) << " | " << fixed(p->eq108, 4) << " | " << ratio_text(p->ratio())
+       << " | "
+       << (r.n > 1 ? ratio_text(r.lo) + " to " + ratio_text(r.hi) + " (ppc " +
+                         std::to_string(r.ppc_lo) + " to " + std::to_string(r.ppc_hi) + ")"
                    : std::string("–"))
-         << " |\n";
-    }
-    if (hi > 0) per_E.push_back({E, {lo, hi}});
-  }
-  if (!g.Es.empty()) {
-    f.E_lo = g.Es.front();
-    f.E_hi = g.Es.back();
+       << " |\n";
   }
 
   return md.str();
 }
 
-std::string eq108_per_E_reading(
-    const std::vector<std::pair<double, std::pair<double, double>>>& per_E, const Eq108Spread& s) {
+std::string eq108_per_E_reading(const Eq108Findings& f) {
+  const Eq108Spread& s = f.spread;
   std::ostringstream md;
-  if (!per_E.empty()) {
+  if (!f.per_E.empty()) {
     md << "\nThe ratio per E, over the bases and particles per cell:";
     std::string sep = " ";
-    for (const auto& [E, r] : per_E) {
+    for (const auto& [E, r] : f.per_E) {
       md << sep << "E = " << shortest(E) << ", " << ratio_text(r.first) << " to "
          << ratio_text(r.second);
       sep = "; ";
@@ -461,7 +686,6 @@ std::string eq108_per_E_reading(
 
   return md.str();
 }
-
 // By particles per cell at every E, for the bases run at more than one.
 std::string eq108_per_ppc(const Eq108Grid& g, const Eq108Trends& t) {
   std::ostringstream md;
@@ -568,201 +792,54 @@ std::string eq108_state(const Eq108Grid& g, const Eq108Trends& t) {
   return md.str();
 }
 
-// The claim that the runs' state does not move eq. (108) at the tiny amplitude.
-Claim eq108_rest_claim(const Eq108Grid& g, const Eq108Trends& t) {
-  const auto n = static_cast<long long>(g.points.size());
-  Claim e = claim("eq108-at-rest",
-                  "At the tiny amplitude the state of the runs does not move eq. (108): its "
-                  "minimum is its value at rest, so what changes it with E, the particles per "
-                  "cell and the grid is the formula's constants",
-                  "{n} runs at A = {A}: the largest relative gap to eq. (108) at rest is {gap}, "
-                  "{basis} at E = {E}, ppc {ppc} (negligible: below {tolerance})");
-  e.count("n", n)
-      .value("A", g.points.empty() ? "–" : shortest(g.points.front().A))
-      .value("gap", n ? sci(t.shift, 2) : "–")
-      .value("basis", t.shifted ? t.shifted->method : "–")
-      .value("E", t.shifted ? shortest(t.shifted->E) : "–")
-      .value("ppc", t.shifted ? std::to_string(t.shifted->ppc) : "–")
-      .value("tolerance", shortest(kStateNegligible));
-  e.holds = n > 0 && t.shift < kStateNegligible;
-  return e;
+// The eq. (108) section: its tables and readings.
+std::string eq108_markdown(const Eq108Findings& f) {
+  return eq108_intro(f) + eq108_per_E(f) + eq108_per_E_reading(f) +
+         eq108_per_ppc(f.grid, f.trends) + eq108_per_count(f.grid, f.trends) +
+         eq108_state(f.grid, f.trends);
 }
 
-std::vector<Claim> eq108_claims(const Eq108Grid& g, const Eq108Spread& s, const Eq108Trends& t) {
-  std::vector<Claim> claims;
-  int below = 0, n = 0;
-  const Eq108Point* worst = nullptr;
-  for (const auto& p : g.points) {
-    ++n;
-    below += p.ratio() < 1;
-    if (!worst || p.ratio() > worst->ratio()) worst = &p;
-  }
-  Claim a = claim("eq108-below-limit-every-E",
-                  "Eq. (108) lies below the spectral limit at every E and particles per cell",
-                  "{below} of {n} runs; the largest ratio is {worst}, {basis} at E = {E}, ppc "
-                  "{ppc}");
-  a.every("below", below, "n", n)
-      .value("worst", worst ? ratio_text(worst->ratio()) : "–")
-      .value("basis", worst ? worst->method : "–")
-      .value("E", worst ? shortest(worst->E) : "–")
-      .value("ppc", worst ? std::to_string(worst->ppc) : "–");
-  claims.push_back(a);
+// ---------------------------------------------------------------------------------------------
+// Text
 
-  Claim b = claim("eq108-not-homogeneous",
-                  "Eq. (108)'s ratio to the spectral limit changes with E at the same c dt/h, "
-                  "A/h and c T: it is not dimensionally homogeneous",
-                  "at one basis and layout the ratio changes with E by up to a factor {spread}: "
-                  "{basis} at ppc {ppc}, {lo} at E = {E_lo} and {hi} at E = {E_hi} "
-                  "(homogeneous: below {threshold})");
-  const bool spread_found = !s.basis.empty();
-  b.value("spread", fixed(s.spread, 2))
-      .value("basis", spread_found ? s.basis : "–")
-      .value("ppc", spread_found ? std::to_string(s.ppc) : "–")
-      .value("lo", spread_found ? ratio_text(s.lo) : "–")
-      .value("E_lo", spread_found ? shortest(s.E_lo) : "–")
-      .value("hi", spread_found ? ratio_text(s.hi) : "–")
-      .value("E_hi", spread_found ? shortest(s.E_hi) : "–")
-      .value("threshold", shortest(kHomogeneousSpread));
-  b.holds = s.spread > kHomogeneousSpread;
-  claims.push_back(b);
-
-  Claim c = claim("eq108-falls-as-sqrt-ppc",
-                  "At a fixed grid, eq. (108)'s ratio to the limit falls as the inverse square "
-                  "root of the particles per cell",
-                  "GIMP at E = {E}, {points} values of particles per cell: fitted exponent "
-                  "{slope} (expected {expected} within {tolerance})");
-  c.value("E", shortest(g.E0))
-      .count("points", static_cast<long long>(t.by_ppc.size()))
-      .value("slope", t.ppc_slope ? fixed(*t.ppc_slope, 3) : "–")
-      .value("expected", shortest(kSqrtSlope))
-      .value("tolerance", shortest(kSlopeTolerance));
-  c.holds = t.ppc_slope && std::abs(*t.ppc_slope - kSqrtSlope) <= kSlopeTolerance;
-  claims.push_back(c);
-
-  Claim d = claim("eq108-independent-of-grid",
-                  "At a fixed number of particles per cell, refining the grid leaves eq. (108)'s "
-                  "ratio to the limit unchanged",
-                  "GIMP at E = {E}, {points} grids: fitted exponent against the particle count "
-                  "{slope} (unchanged: within {tolerance} of zero)");
-  d.value("E", shortest(g.E0))
-      .count("points", static_cast<long long>(t.by_count.size()))
-      .value("slope", t.count_slope ? fixed(*t.count_slope, 3) : "–")
-      .value("tolerance", shortest(kSlopeTolerance));
-  d.holds = t.count_slope && std::abs(*t.count_slope) <= kSlopeTolerance;
-  claims.push_back(d);
-
-  claims.push_back(eq108_rest_claim(g, t));
-  return claims;
-}
-
-Eq108Findings eq108_findings(const std::vector<ojson>& rows) {
-  Eq108Findings f;
-  const Eq108Grid g = eq108_grid(rows);
-  const Eq108Spread s = eq108_spread(g);
-  const Eq108Trends t = eq108_trends(g);
-  std::vector<std::pair<double, std::pair<double, double>>> per_E;  // E -> ratio lo, hi
+std::string reading(const Findings& f, const ojson& first) {
   std::ostringstream md;
-  md << eq108_intro(g);
-  md << eq108_per_E(g, f, per_E);
-  md << eq108_per_E_reading(per_E, s) << eq108_per_ppc(g, t) << eq108_per_count(g, t)
-     << eq108_state(g, t);
-  f.claims = eq108_claims(g, s, t);
-  f.markdown = md.str();
-  return f;
-}
-
-// The schemes' limits confirmed by their runs, as a claim.
-Claim confirmed_claim(const std::vector<Scheme>& schemes) {
-  long long confirmed = 0;
-  double s_below = 0, s_above = 0;
-  for (const auto& s : schemes) {
-    confirmed += s.confirmed();
-    if (s.below && s.above && s_below == 0 && has_number(*s.below, "safety") &&
-        has_number(*s.above, "safety")) {
-      s_below = (*s.below)["safety"].get<double>();
-      s_above = (*s.above)["safety"].get<double>();
-    }
-  }
-  Claim c = claim("spectral-limit-confirmed",
-                  "Every scheme's spectral limit is confirmed by runs: the run just below it "
-                  "stays bounded and the run just above it grows",
-                  "{confirmed} of {schemes} schemes, runs at {below} and {above} times the limit");
-  c.every("confirmed", confirmed, "schemes", static_cast<long long>(schemes.size()))
-      .value("below", s_below > 0 ? shortest(s_below) : "–")
-      .value("above", s_above > 0 ? shortest(s_above) : "–");
-  return c;
-}
-
-std::string reading(const std::vector<ojson>& rows, const std::vector<Scheme>& schemes,
-                    const std::map<std::string, double>& edges, const Eq108Findings& eq108) {
-  std::ostringstream md;
-  int confirmed = 0;
-  std::vector<std::string> not_confirmed;
-  std::map<std::string, std::pair<double, double>> range;  // update order -> limits at ppc 2
-  double eq_lo = 1e300, eq_hi = 0, edge_lo = 1e300, edge_hi = 0;
-  int particles_lo = 0, particles_hi = 0;
-  for (const auto& s : schemes) {
-    if (s.confirmed()) {
-      ++confirmed;
-    } else {
-      not_confirmed.push_back(s.name);
-    }
-    const auto limit = s.limit();
-    if (limit && s.uniform_two()) {
-      auto [it, fresh] = range.emplace(update_of(s.name), std::pair{*limit, *limit});
-      if (!fresh) {
-        it->second.first = std::min(it->second.first, *limit);
-        it->second.second = std::max(it->second.second, *limit);
-      }
-    }
-    if (const auto e = s.eq108(); e && limit) {
-      eq_lo = std::min(eq_lo, *e / *limit);
-      eq_hi = std::max(eq_hi, *e / *limit);
-      const int particles = int(*RunRow(s.row()).particles);
-      particles_lo = particles_lo ? std::min(particles_lo, particles) : particles;
-      particles_hi = std::max(particles_hi, particles);
-    }
-    if (const auto e = edges.find(s.name); e != edges.end() && limit) {
-      edge_lo = std::min(edge_lo, e->second / *limit);
-      edge_hi = std::max(edge_hi, e->second / *limit);
-    }
-  }
-  md << "**Reading** (computed from the rows). The limit is confirmed (the run at "
-     << safeties(rows, true) << " times it stays bounded, the run at " << safeties(rows, false)
-     << " times it grows) for " << confirmed << " of " << schemes.size() << " schemes";
-  if (not_confirmed.empty()) {
+  md << "**Reading** (computed from the rows). The limit is confirmed (the run at " << f.below
+     << " times it stays bounded, the run at " << f.above << " times it grows) for " << f.confirmed
+     << " of " << f.schemes.size() << " schemes";
+  if (f.not_confirmed.empty()) {
     md << ". ";
   } else {
     md << "; not for ";
-    for (std::size_t i = 0; i < not_confirmed.size(); ++i)
-      md << (i ? ", " : "") << "`" << not_confirmed[i] << "`";
+    for (std::size_t i = 0; i < f.not_confirmed.size(); ++i)
+      md << (i ? ", " : "") << "`" << f.not_confirmed[i] << "`";
     md << " (their rows show which run disagrees). ";
   }
   md << "Limits at " << kDefaultPpc
      << " particles per cell and the uniform layout, in c dt / h, by update order:";
   std::string sep = " ";
   for (const char* u : {"usl", "usf", "musl"}) {
-    const auto it = range.find(u);
-    if (it == range.end()) continue;
+    const auto it = f.limits.find(u);
+    if (it == f.limits.end()) continue;
     md << sep << u << " " << fixed(it->second.first, 3) << " to " << fixed(it->second.second, 3);
     sep = "; ";
   }
   md << " (the CFL number is 1).";
-  if (edge_hi > 0) {
-    md << " The measured edges lie at " << fixed(edge_lo, 4) << " to " << fixed(edge_hi, 4)
+  if (f.edge_hi > 0) {
+    md << " The measured edges lie at " << fixed(f.edge_lo, 4) << " to " << fixed(f.edge_hi, 4)
        << " times the limit.";
   }
-  if (eq_hi > 0) {
-    const ojson& r = schemes.front().row();
-    md << " Eq. (108) at the same state lies at " << fixed(eq_lo, 3) << " to " << fixed(eq_hi, 3)
-       << " times the limit, at E = " << shortest(r["E"].get<double>()) << " on "
-       << r["cells"].get<int>() << " cells ("
-       << (particles_lo == particles_hi
-               ? std::to_string(particles_lo)
-               : std::to_string(particles_lo) + " to " + std::to_string(particles_hi))
+  if (f.eq_hi > 0) {
+    const Eq108Findings& eq108 = f.eq108;
+    md << " Eq. (108) at the same state lies at " << fixed(f.eq_lo, 3) << " to "
+       << fixed(f.eq_hi, 3) << " times the limit, at E = " << shortest(first["E"].get<double>())
+       << " on " << first["cells"].get<int>() << " cells ("
+       << (f.particles_lo == f.particles_hi
+               ? std::to_string(f.particles_lo)
+               : std::to_string(f.particles_lo) + " to " + std::to_string(f.particles_hi))
        << " particles) only: its ratio changes with E";
     if (eq108.hi > 0 && eq108.E_hi > eq108.E_lo) {
-      md << " (at " << r["ppc"].get<int>() << " particles per cell with USL and FLIP, "
+      md << " (at " << first["ppc"].get<int>() << " particles per cell with USL and FLIP, "
          << fixed(eq108.lo, 3) << " to " << fixed(eq108.hi, 3)
          << " over E = " << shortest(eq108.E_lo) << " to " << shortest(eq108.E_hi) << ")";
     }
@@ -772,37 +849,15 @@ std::string reading(const std::vector<ojson>& rows, const std::vector<Scheme>& s
   return md.str();
 }
 
-// The paper's grid for Table 1 (experiments/table1.json): h = 1 / kPaperCells.
-constexpr int kPaperCells = 100;
-
-// The paper's dt stable column of Table 1 in c dt / h, per method, A and E: the median of its
-// rows (each dt), with the count of rows read and of the rows whose value is unreadable.
-std::string paper_table(const std::filesystem::path& reference,
-                        const std::vector<Scheme>& schemes) {
-  if (reference.empty() || !std::filesystem::exists(reference)) return "";
-  std::map<std::tuple<std::string, Key, Key>, std::vector<double>> values;
-  std::vector<double> Es;
-  std::vector<std::pair<std::string, double>> keys;  // method, A, in order
-  for (const PaperRow& r : read_paper_rows(reference)) {
-    if (std::find(Es.begin(), Es.end(), r.E) == Es.end()) Es.push_back(r.E);
-    if (std::find(keys.begin(), keys.end(), std::pair{r.method, r.A}) == keys.end())
-      keys.emplace_back(r.method, r.A);
-    // Table 1's own reading of a cell: '*' and unreadable text ('4.?e-6') are no number.
-    const PaperValue& dt_stable = r.cell.dt_stable;
-    if (dt_stable.kind != PaperValue::number || !(dt_stable.value > 0)) continue;
-    values[{r.method, Key(r.A), Key(r.E)}].push_back(dt_stable.value * std::sqrt(r.E) *
-                                                     kPaperCells);
-  }
-  std::sort(Es.begin(), Es.end());  // finite: read_paper_rows refuses any other E
-  auto limit_of = [&](const std::string& method) -> std::string {
-    for (const auto& s : schemes)
-      if (s.name == method && s.limit()) return fixed(*s.limit(), 3);
-    return "–";
-  };
-  auto eq108_of = [&](const std::string& method) -> std::string {
-    for (const auto& s : schemes)
-      if (s.name == method && s.eq108()) return fixed(*s.eq108(), 3);
-    return "–";
+// The paper's dt stable column of Table 1 in c dt / h, per method, A and E, beside the spectral
+// limit and our eq. (108) ("" without Table 1).
+std::string paper_table(const Findings& f) {
+  if (!f.paper) return "";
+  const PaperFindings& p = *f.paper;
+  auto of = [&](const std::string& method, bool limit) -> std::string {
+    const Scheme* s = f.scheme(method);
+    const auto v = !s ? std::nullopt : limit ? s->limit() : s->eq108();
+    return v ? fixed(*v, 3) : "–";
   };
   std::ostringstream md;
   md << "## The paper's dt stable column\n\nTable 1's \"dt stable\" (eq. (108) of the paper's "
@@ -813,45 +868,33 @@ std::string paper_table(const std::filesystem::path& reference,
         "scheme in c dt / h, does not. Our eq. (108) at the tiny amplitude is given at one E "
         "(named in its column); it changes with E too (per E in the table above).\n\n"
         "| method | A | ";
-  for (double E : Es)
+  for (double E : p.Es)
     md << "E = " << shortest(E) << " | ";
   md << "spectral limit | our eq. (108) at A = "
-     << (schemes.empty() ? std::string("–") : value_text(schemes.front().row()["A"].get<double>()))
+     << (f.schemes.empty() ? std::string("–")
+                           : value_text(f.schemes.front().row()["A"].get<double>()))
      << ", E = "
-     << (schemes.empty() ? std::string("–") : value_text(schemes.front().row()["E"].get<double>()))
+     << (f.schemes.empty() ? std::string("–")
+                           : value_text(f.schemes.front().row()["E"].get<double>()))
      << " |\n|---|---|";
-  for (std::size_t i = 0; i < Es.size() + 2; ++i)
+  for (std::size_t i = 0; i < p.Es.size() + 2; ++i)
     md << "---|";
   md << "\n";
-  int above = 0, cells = 0;
-  for (const auto& [method, A] : keys) {
+  for (const auto& [method, A] : p.keys) {
     md << "| " << method << " | " << shortest(A) << " | ";
-    for (double E : Es) {
-      const auto it = values.find({method, Key(A), Key(E)});
-      if (it == values.end() || it->second.empty()) {
-        md << "– | ";
-        continue;
-      }
-      const double m = quantile(it->second, 0.5);
-      md << fixed(m, 3) << " | ";
-      for (const auto& s : schemes) {
-        if (s.name != method || !s.limit()) continue;
-        ++cells;
-        above += m > *s.limit() ? 1 : 0;
-      }
+    for (double E : p.Es) {
+      const auto it = p.medians.find({method, Key(A), Key(E)});
+      md << (it == p.medians.end() ? std::string("–") : fixed(it->second, 3)) << " | ";
     }
-    md << limit_of(method) << " | " << eq108_of(method) << " |\n";
+    md << of(method, true) << " | " << of(method, false) << " |\n";
   }
-  md << "\n**Reading** (computed from the rows). " << above << " of " << cells
+  md << "\n**Reading** (computed from the rows). " << p.above << " of " << p.cells
      << " of the paper's medians lie above the spectral limit of their method (a step the "
         "linearised scheme amplifies at a tiny amplitude).\n\n";
   return md.str();
 }
 
-std::string spectral_markdown(const ReportContext& c, const Eq108Findings& eq108) {
-  const std::vector<ojson> rows = scheme_rows(c.rows);
-  const std::vector<Scheme> schemes = schemes_of(rows);
-  const auto edges = measured_edges(c.inputs);
+std::string spectral_markdown(const std::vector<ojson>& rows, const Findings& f) {
   const ojson& first = rows.front();
   std::ostringstream md;
   md << "![The spectral limit and eq. (108) / limit against the particles per cell](spectral.png)"
@@ -861,7 +904,7 @@ std::string spectral_markdown(const ReportContext& c, const Eq108Findings& eq108
         "nothing (docs/theory.md, \"The spectral limit\"): the Bloch limit of the interior for a "
         "uniform layout, the dense map of the whole bar for a jittered one. Beside it, two runs "
         "of the bar under the spectral policy at s = "
-     << safeties(rows, true) << " and s = " << safeties(rows, false)
+     << f.below << " and s = " << f.above
      << " times the limit, at A = " << shortest(first["A"].get<double>())
      << ", E = " << shortest(first["E"].get<double>())
      << " and T = " << shortest(first["T"].get<double>())
@@ -878,47 +921,49 @@ std::string spectral_markdown(const ReportContext& c, const Eq108Findings& eq108
         "([spectral_edge.md](spectral_edge.md)): the largest fixed dt that stays bounded, found "
         "by its search without reading the limit. Eq. (108) is the minimum of our bound "
         "over the run at "
-     << safeties(rows, true) << " times the limit. The CFL number is 1 in these units.\n\n"
-     << reading(rows, schemes, edges, eq108)
+     << f.below << " times the limit. The CFL number is 1 in these units.\n\n"
+     << reading(f, first)
      << "| scheme | spectral limit (c dt / h) | analysis | measured edge | eq. (108) at the same "
         "state | run at "
-     << safeties(rows, true) << " x | run at " << safeties(rows, false)
+     << f.below << " x | run at " << f.above
      << " x | confirmed |\n|---|---|---|---|---|---|---|---|\n";
-  for (const auto& s : schemes) {
+  for (const auto& s : f.schemes) {
     const auto limit = s.limit();
-    const auto edge = edges.find(s.name);
+    const auto edge = f.edges.find(s.name);
     const auto eq = s.eq108();
     md << "| " << s.name << " | "
        << (limit ? fixed(*limit, 4) : "none up to " + shortest(kMaxSpectralCourant)) << " | "
        << (s.row()["spectral_analysis"].is_string()
                ? s.row()["spectral_analysis"].get<std::string>()
                : std::string("–"))
-       << " | " << (edge != edges.end() ? fixed(edge->second, 4) : std::string("–")) << " | "
+       << " | " << (edge != f.edges.end() ? fixed(edge->second, 4) : std::string("–")) << " | "
        << (eq ? fixed(*eq, 4) : std::string("–")) << " | " << (s.below ? run_text(*s.below) : "–")
        << " | " << (s.above ? run_text(*s.above) : "–") << " | "
        << (s.confirmed() ? "yes" : "**no**") << " |\n";
   }
-  md << "\n" << eq108.markdown << paper_table(c.spec.reference, schemes);
+  md << "\n" << eq108_markdown(f.eq108) << paper_table(f);
   return md.str();
 }
+
+// ---------------------------------------------------------------------------------------------
+// Figure
 
 // The figure: MPM and GIMP (USL, FLIP, uniform layout) on the first row's grid against the
 // particles per cell: the limit and the measured edge (first E), eq. (108) and its ratio to the
 // limit at every E.
-std::string spectral_data(const ReportContext& c) {
-  const auto edges = measured_edges(c.inputs);
+std::string spectral_data(const ReportContext& c, const Findings& f) {
   const ojson& first = c.rows.front();
   std::ostringstream csv;
   csv << c.csv_header << "# method: " << codes(kFigureMethods) << " (USL, FLIP, uniform layout, "
       << first["cells"].get<int>()
       << " cells); in c dt / h: limit the spectral limit, edge the measured edge (empty: not "
          "measured), eq108 our eq. (108), the minimum over the run at "
-      << safeties(c.rows, true)
+      << safeties(c.rows, true, false)
       << " times the limit; "
          "ratio eq108 / limit\n"
          "method,E,ppc,limit,edge,eq108,ratio\n";
   // Sorted by method, E and ppc: each curve one contiguous block.
-  auto points = eq108_points(c.rows);
+  auto points = f.eq108.grid.points;
   std::stable_sort(points.begin(), points.end(), [](const Eq108Point& a, const Eq108Point& b) {
     return std::tuple(a.method != "mpm", Key(a.E, "E"), a.ppc) <
            std::tuple(b.method != "mpm", Key(b.E, "E"), b.ppc);
@@ -928,19 +973,20 @@ std::string spectral_data(const ReportContext& c) {
     if (p.cells != first["cells"].get<int>() || code == kFigureMethods.end()) continue;
     std::string name = p.method;
     if (p.ppc != kDefaultPpc) name += " (ppc " + std::to_string(p.ppc) + ")";
-    const auto edge = p.E == first["E"].get<double>() ? edges.find(name) : edges.end();
+    const auto edge = p.E == first["E"].get<double>() ? f.edges.find(name) : f.edges.end();
     csv << code - kFigureMethods.begin() << ',' << shortest(p.E) << ',' << p.ppc << ','
-        << shortest(p.limit) << ',' << (edge != edges.end() ? shortest(edge->second) : "") << ','
+        << shortest(p.limit) << ',' << (edge != f.edges.end() ? shortest(edge->second) : "") << ','
         << shortest(p.eq108) << ',' << shortest(p.ratio()) << '\n';
   }
   return csv.str();
 }
 
 // What the figure draws, from the records.
-std::string spectral_subtitle(const Spec&, const ojson& doc) {
+std::string spectral_subtitle(const Spec& spec, const ojson& doc) {
   const std::vector<ojson> rows(doc["cases"].begin(), doc["cases"].end());
   if (rows.empty()) return "";
-  const auto points = eq108_points(rows);
+  const Findings f = find(spec, rows, {});
+  const auto& points = f.eq108.grid.points;
   std::ostringstream s;
   s << "USL, FLIP, uniform layout, " << rows.front()["cells"].get<int>() << " cells";
   if (!points.empty()) {
@@ -951,18 +997,15 @@ std::string spectral_subtitle(const Spec&, const ojson& doc) {
   return s.str();
 }
 
-std::string spectral_index(const Spec& spec, const std::vector<ojson>& all) {
-  const std::vector<ojson> rows = scheme_rows(all);  // the schemes point into it
-  const std::vector<Scheme> schemes = schemes_of(rows);
-  const auto confirmed =
-      std::count_if(schemes.begin(), schemes.end(), [](const Scheme& s) { return s.confirmed(); });
+std::string spectral_index(const Spec& spec, const std::vector<ojson>& rows) {
+  const Findings f = find(spec, rows, {});
   std::ostringstream md;
   md << "![" << spec.title << "](" << spec.name
-     << ".png)\n\n**What it shows.** The spectral limit of " << schemes.size()
+     << ".png)\n\n**What it shows.** The spectral limit of " << f.schemes.size()
      << " schemes (basis x transfer x update order, particles per cell and layout), each checked "
         "by "
         "two runs at a tiny amplitude just below and just above it: confirmed for "
-     << confirmed << " of " << schemes.size()
+     << f.confirmed << " of " << f.schemes.size()
      << "; and eq. (108) against the limit at every E the studies use: [" << spec.name << ".md]("
      << spec.name << ".md).\n\n";
   return md.str();
@@ -978,12 +1021,11 @@ const StudyRegistration kSpectral{{
     .figure = true,
     .report =
         [](const ReportContext& c) {
-          Eq108Findings eq108 = eq108_findings(c.rows);
-          const std::vector<ojson> rows = scheme_rows(c.rows);
-          std::vector<Claim> claims = {confirmed_claim(schemes_of(rows))};
-          claims.insert(claims.end(), eq108.claims.begin(), eq108.claims.end());
-          return StudyReport{.markdown = spectral_markdown(c, eq108),
-                             .data_csv = spectral_data(c),
+          const Findings f = find(c.spec, c.rows, c.inputs);
+          std::vector<Claim> claims = eq108_claims(f.eq108);
+          claims.insert(claims.begin(), confirmed_claim(f));
+          return StudyReport{.markdown = spectral_markdown(c.rows, f),
+                             .data_csv = spectral_data(c, f),
                              .claims = std::move(claims)};
         },
     .index = spectral_index,
@@ -991,6 +1033,4 @@ const StudyRegistration kSpectral{{
 }};
 
 }  // namespace
-}  // namespace studies::spectral
-
-}  // namespace mpmstab
+}  // namespace mpmstab::studies::spectral

@@ -18,9 +18,7 @@
 #include "shared/edge_length.hpp"
 #include "study.hpp"
 
-namespace mpmstab {
-
-namespace studies::spectral_edge {
+namespace mpmstab::studies::spectral_edge {
 namespace {
 
 using ojson = nlohmann::ordered_json;
@@ -54,26 +52,95 @@ std::string analysis_of(const ojson& r) {
   return r["spectral_analysis"].is_string() ? r["spectral_analysis"].get<std::string>() : "–";
 }
 
-std::string agreement_table(const std::vector<const ojson*>& rows) {
-  std::ostringstream md;
-  const auto n = std::count_if(rows.begin(), rows.end(), [](const ojson* r) { return agrees(*r); });
-  const RunRow front(*rows.front());
-  md << "## The measured edge against the spectral limit at A = " << shortest(*front.A)
-     << ", c T = " << shortest(*front.wave_passes) << "\n\n**Reading** (computed from the rows). "
-     << n << " of " << rows.size() << " measured edges lie within " << shortest(100 * kAgreement)
-     << "% of the spectral limit";
+// What the study finds, from its rows and the runs of each edge for length (none for the
+// index, which prints no length finding). Its pointers are into the rows.
+struct Findings {
+  // The tiny-amplitude rows (the linear edge), their amplitudes, how many agree with the limit
+  // and the range of their edge over the limit (lo > hi: none measured).
+  std::vector<const ojson*> linear;
+  std::vector<double> linear_A;
+  int agreeing = 0;
   double lo = 1e300, hi = -1e300;
-  for (const ojson* r : rows) {
-    if (const auto q = edge_ratio(*r)) {
-      lo = std::min(lo, *q);
-      hi = std::max(hi, *q);
+  // The edges measured above the tiny amplitude, and those below the limit.
+  int nonlinear = 0, below = 0;
+  // The schemes measured at more than one amplitude (first seen first), those amplitudes in
+  // increasing order, the row of each, and per scheme its lowest edge over the limit with its A.
+  std::vector<std::string> schemes;
+  std::vector<double> amplitudes;
+  std::map<std::pair<std::string, Key>, const ojson*> at;
+  std::map<std::string, std::pair<double, double>> lowest;
+  // The rows with an edge (each rerun for length), and how long their edges hold.
+  std::vector<const ojson*> with_edge;
+  LengthTally lengths;
+};
+
+// The findings of the rows and their runs for length.
+Findings find(const std::vector<ojson>& rows, const LengthRuns& lengths) {
+  Findings f;
+  std::map<std::string, int> runs;  // rows per scheme
+  for (const auto& r : rows) {
+    ++runs[scheme_label(r)];
+    f.lengths.add(lasting(lengths, r, "dt_edge", kProbeBound));
+    if (has_number(r, "dt_edge")) f.with_edge.push_back(&r);
+    const auto q = edge_ratio(r);
+    if (!tiny(r)) {
+      f.nonlinear += q.has_value();
+      f.below += q && *q < 1;
+      continue;
+    }
+    f.linear.push_back(&r);
+    f.linear_A.push_back(r["A"].get<double>());
+    f.agreeing += agrees(r);
+    if (q) {
+      f.lo = std::min(f.lo, *q);
+      f.hi = std::max(f.hi, *q);
     }
   }
-  if (lo <= hi) md << " (edge / limit from " << fixed(lo, 4) << " to " << fixed(hi, 4) << ")";
+  for (const auto& r : rows) {
+    const double A = r["A"].get<double>();
+    const std::string s = scheme_label(r);
+    if (runs[s] < 2) continue;
+    if (std::find(f.amplitudes.begin(), f.amplitudes.end(), A) == f.amplitudes.end())
+      f.amplitudes.push_back(A);
+    if (std::find(f.schemes.begin(), f.schemes.end(), s) == f.schemes.end()) f.schemes.push_back(s);
+    f.at[{s, Key(A, "A")}] = &r;
+  }
+  std::sort(f.amplitudes.begin(), f.amplitudes.end(), TotalLess());
+  for (const auto& s : f.schemes) {
+    for (double A : f.amplitudes) {
+      const auto it = f.at.find({s, Key(A)});
+      const auto q = it == f.at.end() ? std::nullopt : edge_ratio(*it->second);
+      if (q && (!f.lowest.count(s) || *q < f.lowest[s].first)) f.lowest[s] = {*q, A};
+    }
+  }
+  return f;
+}
+
+std::vector<Claim> spectral_edge_claims(const Findings& f) {
+  const Claim length = length_claim("edges-hold-for-length",
+                                    "Every measured edge stays bounded for {first}x and {second}x "
+                                    "its run length (at most {cap} wave passes)",
+                                    "{held} of {tested} do", f.lengths);
+  Claim under = claim("nonlinear-edges-below-limit",
+                      "Every edge measured above the tiny amplitude lies below the spectral limit",
+                      "{below} of {n} do");
+  under.every("below", f.below, "n", f.nonlinear);
+  return {length, under};
+}
+
+std::string agreement_table(const Findings& f) {
+  std::ostringstream md;
+  const RunRow front(*f.linear.front());
+  md << "## The measured edge against the spectral limit at A = " << shortest(*front.A)
+     << ", c T = " << shortest(*front.wave_passes) << "\n\n**Reading** (computed from the rows). "
+     << f.agreeing << " of " << f.linear.size() << " measured edges lie within "
+     << shortest(100 * kAgreement) << "% of the spectral limit";
+  if (f.lo <= f.hi)
+    md << " (edge / limit from " << fixed(f.lo, 4) << " to " << fixed(f.hi, 4) << ")";
   md << ".\n\n| scheme | measured edge (c dt / h) | first dt above it that grew | spectral limit "
         "(c dt / h) | analysis | edge / limit | within "
      << shortest(100 * kAgreement) << "% |\n|---|---|---|---|---|---|---|\n";
-  for (const ojson* r : rows) {
+  for (const ojson* r : f.linear) {
     const double cfl = (*r)["dt_cfl"].get<double>();
     auto in_h = [&](const char* column) {
       return has_number(*r, column) ? fixed((*r)[column].get<double>() / cfl, 4) : std::string("–");
@@ -88,19 +155,7 @@ std::string agreement_table(const std::vector<const ojson*>& rows) {
 }
 
 // Per scheme, the edge over the limit at each amplitude.
-std::string amplitude_table(const std::vector<const ojson*>& rows) {
-  std::vector<double> amplitudes;
-  std::vector<std::string> schemes;
-  std::map<std::pair<std::string, Key>, const ojson*> at;
-  for (const ojson* r : rows) {
-    const double A = (*r)["A"].get<double>();
-    const std::string s = scheme_label(*r);
-    if (std::find(amplitudes.begin(), amplitudes.end(), A) == amplitudes.end())
-      amplitudes.push_back(A);
-    if (std::find(schemes.begin(), schemes.end(), s) == schemes.end()) schemes.push_back(s);
-    at[{s, Key(A, "A")}] = r;
-  }
-  std::sort(amplitudes.begin(), amplitudes.end(), TotalLess());
+std::string amplitude_table(const Findings& f) {
   std::ostringstream md;
   md << "## The nonlinear edge as A grows\n\nEach cell: the measured edge over the spectral limit "
         "(the linear edge); `*` marks a case whose run at the edge is meaningless (its error "
@@ -108,33 +163,24 @@ std::string amplitude_table(const std::vector<const ojson*>& rows) {
      << shortest(kProbeBound)
      << " A); `–` no edge in the scan.\n\n"
         "**Reading** (computed from the rows).";
-  for (const auto& s : schemes) {
-    double worst = 1e300, worst_A = 0;
-    for (double A : amplitudes) {
-      const auto it = at.find({s, Key(A)});
-      if (it == at.end()) continue;
-      if (const auto q = edge_ratio(*it->second); q && *q < worst) {
-        worst = *q;
-        worst_A = A;
-      }
-    }
-    if (worst < 1e300) {
-      md << " " << s << ": lowest " << fixed(worst, 3)
-         << " of the limit, at A = " << shortest(worst_A) << ".";
+  for (const auto& s : f.schemes) {
+    if (const auto it = f.lowest.find(s); it != f.lowest.end()) {
+      md << " " << s << ": lowest " << fixed(it->second.first, 3)
+         << " of the limit, at A = " << shortest(it->second.second) << ".";
     }
   }
   md << "\n\n| scheme |";
-  for (double A : amplitudes)
+  for (double A : f.amplitudes)
     md << " A = " << shortest(A) << " |";
   md << "\n|---|";
-  for (std::size_t i = 0; i < amplitudes.size(); ++i)
+  for (std::size_t i = 0; i < f.amplitudes.size(); ++i)
     md << "---|";
   md << "\n";
-  for (const auto& s : schemes) {
+  for (const auto& s : f.schemes) {
     md << "| " << s << " |";
-    for (double A : amplitudes) {
-      const auto it = at.find({s, Key(A)});
-      if (it == at.end()) {
+    for (double A : f.amplitudes) {
+      const auto it = f.at.find({s, Key(A)});
+      if (it == f.at.end()) {
         md << " |";
         continue;
       }
@@ -147,20 +193,9 @@ std::string amplitude_table(const std::vector<const ojson*>& rows) {
   return md.str();
 }
 
-// The rows of the amplitude table: the schemes measured at more than one amplitude.
-std::vector<const ojson*> amplitude_rows(const std::vector<ojson>& rows) {
-  std::map<std::string, int> amplitudes;
-  for (const auto& r : rows)
-    ++amplitudes[scheme_label(r)];
-  std::vector<const ojson*> out;
-  for (const auto& r : rows)
-    if (amplitudes[scheme_label(r)] > 1) out.push_back(&r);
-  return out;
-}
-
 // Every edge rerun for length (edge_length.hpp): its run's error over time per A and the length
 // to which it stays bounded.
-std::string length_table(const std::vector<ojson>& rows, const LengthRuns& lengths) {
+std::string length_table(const Findings& f, const LengthRuns& lengths) {
   std::ostringstream md;
   md << "## Each edge for length\n\nEvery measured edge rerun at its dt for "
      << shortest(kLengthFactors[0]) << " and " << shortest(kLengthFactors[1])
@@ -171,8 +206,8 @@ std::string length_table(const std::vector<ojson>& rows, const LengthRuns& lengt
      << " A), and is **transient** where it does not. The error over time at the edge is the "
         "search's own run.\n\n| scheme | A, c T | edge (c dt / h) | run at the edge | error over "
         "time / A there | length |\n|---|---|---|---|---|---|\n";
-  for (const auto& r : rows) {
-    if (!has_number(r, "dt_edge")) continue;
+  for (const ojson* p : f.with_edge) {
+    const ojson& r = *p;
     const RunRow rr(r);
     md << "| " << rr.scheme_label << " | " << shortest(*rr.A) << ", " << shortest(*rr.wave_passes)
        << " | " << fixed(r["dt_edge"].get<double>() / r["dt_cfl"].get<double>(), 4)
@@ -185,29 +220,8 @@ std::string length_table(const std::vector<ojson>& rows, const LengthRuns& lengt
   return md.str();
 }
 
-std::vector<Claim> spectral_edge_claims(const std::vector<ojson>& rows, const LengthRuns& lengths) {
-  LengthTally t;
-  int below = 0, nonlinear = 0;
-  for (const auto& r : rows) {
-    t.add(lasting(lengths, r, "dt_edge", kProbeBound));
-    if (tiny(r)) continue;
-    if (const auto q = edge_ratio(r)) {
-      ++nonlinear;
-      below += *q < 1;
-    }
-  }
-  const Claim length = length_claim("edges-hold-for-length",
-                                    "Every measured edge stays bounded for {first}x and {second}x "
-                                    "its run length (at most {cap} wave passes)",
-                                    "{held} of {tested} do", t);
-  Claim under = claim("nonlinear-edges-below-limit",
-                      "Every edge measured above the tiny amplitude lies below the spectral limit",
-                      "{below} of {n} do");
-  under.every("below", below, "n", nonlinear);
-  return {length, under};
-}
-
-std::string spectral_edge_markdown(const std::vector<ojson>& rows, const LengthRuns& lengths) {
+std::string spectral_edge_markdown(const std::vector<ojson>& rows, const Findings& f,
+                                   const LengthRuns& lengths) {
   const ojson& first = rows.front();
   std::ostringstream md;
   md << "![The measured edge over the spectral limit against A](spectral_edge.png)\n\n"
@@ -225,49 +239,33 @@ std::string spectral_edge_markdown(const std::vector<ojson>& rows, const LengthR
         "the one each record carries: the Bloch limit of the interior for a uniform layout, the "
         "dense map of the whole bar for a jittered one (docs/theory.md, \"The spectral "
         "limit\").\n\n";
-  std::vector<const ojson*> linear;
-  for (const auto& r : rows)
-    if (tiny(r)) linear.push_back(&r);
-  if (!linear.empty()) md << agreement_table(linear) << "\n";
-  const auto nonlinear = amplitude_rows(rows);
-  if (!nonlinear.empty()) md << amplitude_table(nonlinear) << "\n";
-  md << length_table(rows, lengths);
+  if (!f.linear.empty()) md << agreement_table(f) << "\n";
+  if (!f.schemes.empty()) md << amplitude_table(f) << "\n";
+  md << length_table(f, lengths);
   return md.str();
 }
 
 // The figure's data, one row per amplitude and two columns per scheme (named in the header,
 // which gnuplot takes for the legend): its edge over the limit, and the same where the run at
 // the edge is meaningless. The first column holds the number of schemes.
-std::string spectral_edge_data(const std::vector<ojson>& rows, const std::string& header) {
-  std::vector<std::string> schemes;
-  std::vector<double> amplitudes;
-  std::map<std::pair<std::string, Key>, const ojson*> at;
-  for (const ojson* r : amplitude_rows(rows)) {
-    const std::string s = scheme_label(*r);
-    const double A = (*r)["A"].get<double>();
-    if (std::find(schemes.begin(), schemes.end(), s) == schemes.end()) schemes.push_back(s);
-    if (std::find(amplitudes.begin(), amplitudes.end(), A) == amplitudes.end())
-      amplitudes.push_back(A);
-    at[{s, Key(A, "A")}] = r;
-  }
-  std::sort(amplitudes.begin(), amplitudes.end(), TotalLess());
+std::string spectral_edge_data(const Findings& f, const std::string& header) {
   std::ostringstream csv;
   csv << header
       << "# one row per amplitude; per scheme (schemes of them): its measured edge over the "
          "spectral limit, and the same in the column '<scheme> meaningless' where the run at the "
          "edge is meaningless; empty: no edge in the scan\nschemes,A";
-  for (const auto& s : schemes)
+  for (const auto& s : f.schemes)
     csv << ',' << s;
-  for (const auto& s : schemes)
+  for (const auto& s : f.schemes)
     csv << ',' << s << " meaningless";
   csv << '\n';
-  for (double A : amplitudes) {
-    csv << schemes.size() << ',' << shortest(A);
+  for (double A : f.amplitudes) {
+    csv << f.schemes.size() << ',' << shortest(A);
     for (int meaningless = 0; meaningless < 2; ++meaningless) {
-      for (const auto& s : schemes) {
+      for (const auto& s : f.schemes) {
         csv << ',';
-        const auto it = at.find({s, Key(A)});
-        if (it == at.end()) continue;
+        const auto it = f.at.find({s, Key(A)});
+        if (it == f.at.end()) continue;
         const auto q = edge_ratio(*it->second);
         if (q && (!meaningless || outcome(*it->second) == "meaningless")) csv << shortest(*q);
       }
@@ -278,25 +276,12 @@ std::string spectral_edge_data(const std::vector<ojson>& rows, const std::string
 }
 
 std::string spectral_edge_index(const Spec& spec, const std::vector<ojson>& rows) {
-  std::size_t linear = 0, agreeing = 0, below = 0, nonlinear = 0;
-  std::vector<double> amplitudes;
-  for (const auto& r : rows) {
-    if (!tiny(r)) {
-      if (const auto q = edge_ratio(r)) {
-        ++nonlinear;
-        below += *q < 1;
-      }
-      continue;
-    }
-    amplitudes.push_back(r["A"].get<double>());
-    ++linear;
-    agreeing += agrees(r) ? 1 : 0;
-  }
+  const Findings f = find(rows, {});
   std::ostringstream md;
   md << "![" << spec.title << "](" << spec.name
-     << ".png)\n\n**What it shows.** At A = " << listing(amplitudes) << " " << agreeing << " of "
-     << linear << " measured edges lie within " << shortest(100 * kAgreement)
-     << "% of the spectral limit; above it, " << below << " of " << nonlinear
+     << ".png)\n\n**What it shows.** At A = " << listing(f.linear_A) << " " << f.agreeing << " of "
+     << f.linear.size() << " measured edges lie within " << shortest(100 * kAgreement)
+     << "% of the spectral limit; above it, " << f.below << " of " << f.nonlinear
      << " measured edges lie below the limit, and each edge is rerun for length: [" << spec.name
      << ".md](" << spec.name << ".md).\n\n";
   return md.str();
@@ -314,9 +299,10 @@ const StudyRegistration kSpectralEdge{{
     .report =
         [](const ReportContext& c) {
           const LengthRuns lengths = read_length_runs(c.rows, c.follow_up);
-          return StudyReport{.markdown = spectral_edge_markdown(c.rows, lengths),
-                             .data_csv = spectral_edge_data(c.rows, c.csv_header),
-                             .claims = spectral_edge_claims(c.rows, lengths)};
+          const Findings f = find(c.rows, lengths);
+          return StudyReport{.markdown = spectral_edge_markdown(c.rows, f, lengths),
+                             .data_csv = spectral_edge_data(f, c.csv_header),
+                             .claims = spectral_edge_claims(f)};
         },
     .index = spectral_edge_index,
     .figure_subtitle =
@@ -327,6 +313,4 @@ const StudyRegistration kSpectralEdge{{
 }};
 
 }  // namespace
-}  // namespace studies::spectral_edge
-
-}  // namespace mpmstab
+}  // namespace mpmstab::studies::spectral_edge
