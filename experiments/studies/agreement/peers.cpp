@@ -1,13 +1,10 @@
 // The peers study: our solver against independent code run on the same bar (a reference file
 // of the peer's measured values, reference/peers/), case by case, within stated tolerances.
-#include <algorithm>
 #include <cmath>
-#include <map>
 #include <sstream>
 
 #include "agreement/peers.hpp"
 #include "csv.hpp"
-#include "key.hpp"
 #include "report_util.hpp"
 #include "run_row.hpp"
 #include "study.hpp"
@@ -156,10 +153,9 @@ BasisFindings basis_findings(const std::vector<PeerCase>& cases, const char* bas
   }
   b.judged = static_cast<int>(ratios.size());
   if (ratios.empty()) return b;
-  std::sort(ratios.begin(), ratios.end(), TotalLess());
-  b.lo = ratios.front();
+  b.lo = quantile(ratios, 0);
   b.median = quantile(ratios, 0.5);
-  b.hi = ratios.back();
+  b.hi = quantile(ratios, 1);
   return b;
 }
 
@@ -179,9 +175,8 @@ std::string summary(const PeersStudy& s) {
   std::ostringstream md;
   md << "**Statement.** Our solver reproduces Uintah's 1D MPM code on " << s.agree << " of "
      << s.cases.size() << " cases within the tolerances below";
-  if (s.unmatched > 0) {
+  if (s.unmatched > 0)
     md << "; " << s.unmatched << " of our cases have no peer value and are not compared";
-  }
   md << ".\n\n";
   md << "| basis | cases | outcomes agree | failure steps equal (±1) | error ratios judged | "
         "ours / peer at T: min, median, max | within tolerance |\n|---|---|---|---|---|---|---|\n";
@@ -205,8 +200,7 @@ std::string rules(const Spec& spec, const std::filesystem::path& out) {
         "**Tolerances**, what a faithful solver must meet: the same outcome (the peer's "
         "records say only whether its run reached T, written *reached T* in the table, as our "
         "*stable*, *meaningless* and runs of under a wave pass do; ours is given with its "
-        "accuracy class); the failure at the "
-        "same step, ±"
+        "accuracy class); the failure at the same step, ±"
      << kStepTolerance
      << "; and where both runs are stable (ours not meaningless), the max error at T and over "
         "time within a relative "

@@ -38,12 +38,11 @@ Findings find(const Spec& spec, const std::vector<ojson>& rows, const CourantEdg
 // The variants study reads the courant scan (for the class above-our-edge) when it has been run
 // into the same folder.
 StudyReport variants_report(const ReportContext& c) {
-  CourantEdges edges;
   const StudyInput& courant = c.inputs.at("courant");
-  if (courant.present()) {
-    edges =
-        courant_edges(std::vector<ojson>(courant.doc["cases"].begin(), courant.doc["cases"].end()));
-  }
+  const CourantEdges edges = courant.present()
+                                 ? courant_edges(std::vector<ojson>(courant.doc["cases"].begin(),
+                                                                    courant.doc["cases"].end()))
+                                 : CourantEdges{};
   const Findings f = find(c.spec, c.rows, edges);
   return StudyReport{.markdown = variants_markdown(c.spec, f, courant.present()),
                      .data_csv = variants_data_csv(f, c.csv_header),

@@ -5,7 +5,6 @@
 // variants_report.cpp, and variants.cpp registers the study.
 #pragma once
 
-#include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -73,19 +72,12 @@ struct Findings {
   // default, and those that change no cell's agreement (indices in `variants`).
   std::optional<std::size_t> largest_gain;
   std::vector<std::size_t> unchanged;
-  // Per class of disagreement, the variants (not the default) that account for it.
-  std::map<std::string, std::vector<std::size_t>> accounted_by;
   // The runs, and those the figure draws: the paper and ours both stable, the paper's error
   // readable.
   std::size_t runs = 0, drawn = 0;
 };
 }  // namespace studies::variants
 using VariantsStudy = studies::variants::Findings;
-
-// Whether a cell of a class agrees with the paper in the sense of that class: the stability
-// verdict for the verdict classes, max errors within a factor 3 for the error classes, and full
-// agreement for the agreement classes.
-bool agrees_as(const CellVerdict& under_variant, ClassKind class_kind);
 
 Accounts accounts_for(const VariantClassOutcome& o, int class_cells);
 

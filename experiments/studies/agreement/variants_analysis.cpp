@@ -32,10 +32,26 @@ struct CellReader {
 
 // The index of the default variant (the first marked baseline; 0 when none is).
 std::size_t baseline_index(const Spec& spec) {
-  for (std::size_t j = 0; j < spec.variants.size(); ++j) {
+  for (std::size_t j = 0; j < spec.variants.size(); ++j)
     if (spec.variants[j].baseline) return j;
-  }
   return 0;
+}
+
+// Whether a cell of a class agrees with the paper in the sense of that class: the stability
+// verdict for the verdict classes, max errors within a factor 3 for the error classes, and full
+// agreement for the agreement classes.
+bool agrees_as(const CellVerdict& v, ClassKind kind) {
+  switch (kind) {
+    case ClassKind::verdict:
+      return v.same_verdict();
+    case ClassKind::error:
+      return v.cls == "agree-stable";
+    case ClassKind::agreement:
+      return v.agrees();
+    case ClassKind::unreadable:
+      return false;
+  }
+  return false;
 }
 
 // Adds case i to a variant's tallies: per column of the paper, per class of its cell under the
@@ -96,11 +112,9 @@ std::optional<double> median_ratio(const std::vector<double>& ratios) {
   return quantile(ratios, 0.5);
 }
 
-// What the reading and the figure say, from the tallies: the medians, each variant's verdict per
-// class, the variant of the largest net gain, those that change nothing, the runs drawn.
+// What the reading and the figure say, from the tallies: the medians, each variant's verdict
+// per class, the variant of the largest net gain, those that change nothing, the runs drawn.
 void conclude(VariantsStudy& s) {
-  for (const ComparisonClass* k : variants_disagreement_classes())
-    s.accounted_by[k->id];
   auto gain = [](const VariantOutcome& v) { return v.agreeing - v.agreeing_under_default; };
   for (std::size_t j = 0; j < s.variants.size(); ++j) {
     VariantOutcome& v = s.variants[j];
@@ -116,7 +130,6 @@ void conclude(VariantsStudy& s) {
       const ComparisonClass* k = find_class(cls);
       if (k && k->kind == ClassKind::agreement && o.agree != o.covered) same = false;
       if (k && k->kind != ClassKind::agreement && o.agree != 0) same = false;
-      if (!v.baseline && o.accounts == Accounts::yes) s.accounted_by[cls].push_back(j);
     }
     if (v.baseline) continue;
     if (same) s.unchanged.push_back(j);
@@ -184,9 +197,8 @@ ojson class_json(const VariantsStudy& s, const ComparisonClass& k) {
 
 std::vector<const ComparisonClass*> variants_disagreement_classes() {
   std::vector<const ComparisonClass*> out;
-  for (const auto& k : comparison_classes()) {
+  for (const auto& k : comparison_classes())
     if (k.kind == ClassKind::verdict || k.kind == ClassKind::error) out.push_back(&k);
-  }
   return out;
 }
 
@@ -198,20 +210,6 @@ int class_cell_count(const VariantsStudy& s, const std::string& class_id) {
 VariantClassOutcome class_outcome(const VariantOutcome& v, const std::string& class_id) {
   const auto it = v.by_class.find(class_id);
   return it == v.by_class.end() ? VariantClassOutcome{} : it->second;
-}
-
-bool agrees_as(const CellVerdict& v, ClassKind kind) {
-  switch (kind) {
-    case ClassKind::verdict:
-      return v.same_verdict();
-    case ClassKind::error:
-      return v.cls == "agree-stable";
-    case ClassKind::agreement:
-      return v.agrees();
-    case ClassKind::unreadable:
-      return false;
-  }
-  return false;
 }
 
 Accounts accounts_for(const VariantClassOutcome& o, int class_cells) {

@@ -83,10 +83,9 @@ ClassVerdicts class_verdicts(const VariantsStudy& s, const ComparisonClass& k, i
     switch (o.accounts) {
       case Accounts::yes:
         c.yes.push_back(named(v) + " (" + agree_text(o, n) + breaks + ")");
-        if (o.mostly_meaningless) {
+        if (o.mostly_meaningless)
           c.mostly_meaningless.push_back(named(v) + " (" + of(o.meaningless, o.verdict_agree) +
                                          ")");
-        }
         break;
       case Accounts::partly:
         c.partly.push_back(named(v) + " (" + agree_text(o, n) + breaks + ")");
@@ -167,8 +166,9 @@ void write_accounted_classes(std::ostream& md, const VariantsStudy& s) {
   for (const ComparisonClass* k : variants_disagreement_classes()) {
     if (class_cell_count(s, k->id) == 0) continue;
     std::string by;
-    for (const std::size_t j : s.accounted_by.at(k->id))
-      by += (by.empty() ? "" : ", ") + named(s.variants[j]);
+    for (const auto& v : s.variants)
+      if (!v.baseline && class_outcome(v, k->id).accounts == Accounts::yes)
+        by += (by.empty() ? "" : ", ") + named(v);
     std::string cls = "[";
     cls.append(k->id).append("](#").append(k->id).append(")");
     if (by.empty()) {
@@ -203,18 +203,16 @@ void write_method(std::ostream& md, const Spec& spec, bool have_courant) {
      << agreement_factor()
      << " (the comparator's rule |a − b| <= ((k − 1) / k) max(|a|, |b|) with k = "
      << agreement_factor()
-     << ", `experiments/engine/compare.hpp`). "
-        "Cells whose "
-        "paper value is unreadable are not compared. A variant that changes the method (cpGIMP) "
-        "is still compared with the paper's GIMP column. Our error is the max error at T unless "
-        "the variant's `error_at` says otherwise. Medians are over the cells where both are "
-        "stable (max error) or where ours is stable and the paper prints dt_stable. Work: the "
-        "particle-steps (particles x steps) of the variant's runs, summed; runs with the same "
-        "parameters in two variants (the `error_at` variant and the default, for example) are "
-        "computed once and counted in both. Wall times are in [performance.md](performance.md). "
-        "A meaningless run (it survived, but its error over time reached A) never agrees with a "
-        "stable cell of the paper. A cell's class is its class in comparison.md, that is under the "
-        "default run"
+     << ", `experiments/engine/compare.hpp`). Cells whose paper value is unreadable are not "
+        "compared. A variant that changes the method (cpGIMP) is still compared with the paper's "
+        "GIMP column. Our error is the max error at T unless the variant's `error_at` says "
+        "otherwise. Medians are over the cells where both are stable (max error) or where ours is "
+        "stable and the paper prints dt_stable. Work: the particle-steps (particles x steps) of "
+        "the variant's runs, summed; runs with the same parameters in two variants (the `error_at` "
+        "variant and the default, for example) are computed once and counted in both. Wall times "
+        "are in [performance.md](performance.md). A meaningless run (it survived, but its error "
+        "over time reached A) never agrees with a stable cell of the paper. A cell's class is its "
+        "class in comparison.md, that is under the default run"
      << (have_courant ? ""
                       : " (the Courant scan, courant.json, was not available: the class "
                         "above-our-edge could not be told apart)")
@@ -285,14 +283,13 @@ void write_classes(std::ostream& md, const VariantsStudy& s) {
         "class's cells agree with the paper under the variant: the same stability verdict and, "
         "where both are stable, max errors within a factor "
      << agreement_factor()
-     << " (a variant that only brings the verdict is shown with its error ratios to the paper, "
-        "and does not count), and how many cells that agree fully under the default it "
-        "breaks (over all its cells). **Criterion:** a variant *accounts* for a class when at "
-        "least half of the class's cells agree under it, and *partly* accounts when it brings "
-        "some, but fewer than half, into agreement. As in comparison.md, a run that reaches T "
-        "with an error over time of A or more is *meaningless*, never stable: such runs are "
-        "counted apart, beside the agreeing cells. The sentences below are generated from the "
-        "tables.\n\n";
+     << " (a variant that only brings the verdict is shown with its error ratios to the paper, and "
+        "does not count), and how many cells that agree fully under the default it breaks (over "
+        "all its cells). **Criterion:** a variant *accounts* for a class when at least half of the "
+        "class's cells agree under it, and *partly* accounts when it brings some, but fewer than "
+        "half, into agreement. As in comparison.md, a run that reaches T with an error over time "
+        "of A or more is *meaningless*, never stable: such runs are counted apart, beside the "
+        "agreeing cells. The sentences below are generated from the tables.\n\n";
   for (const ComparisonClass* k : variants_disagreement_classes())
     write_class(md, s, *k);
 }
@@ -331,15 +328,13 @@ std::string variants_data_csv(const VariantsStudy& s, const std::string& header_
       << "; kind: " << codes(kKinds) << "\nx,method,kind,ratio,variant\n";
   for (std::size_t j = 0; j < s.variants.size(); ++j) {
     const auto& v = s.variants[j];
-    for (const auto& [column, r] : v.error_ratios) {
+    for (const auto& [column, r] : v.error_ratios)
       csv << j + 1 << ',' << method_code(column) << ',' << kOneCell << ',' << shortest(r) << ','
           << v.name << "\n";
-    }
     for (const auto& [column, m] : v.by_method) {
-      if (const auto& med = m.median_error_ratio) {
+      if (const auto& med = m.median_error_ratio)
         csv << j + 1 << ',' << method_code(column) << ',' << kMedian << ',' << shortest(*med) << ','
             << v.name << "\n";
-      }
     }
   }
   // The tics last: gnuplot keeps the last label given at a position.
