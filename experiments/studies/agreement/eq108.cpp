@@ -39,11 +39,19 @@ std::string reading_of(const ojson& r) {
   return text(r, "dt_stable_sigma") + ", " + text(r, "dt_stable_vnorm");
 }
 
+// One run of a cell: our flat row, and our bound / the paper's dt stable where they are compared
+// (bound_ratio()).
+struct Run {
+  const ojson* row = nullptr;
+  std::optional<double> ratio;
+};
+
 // One Table 1 cell: the paper's value and our run under each reading (in the spec's order).
 struct Eq108Cell {
   const CaseSpec* spec = nullptr;    // the first case of the cell
   const PaperCell* paper = nullptr;  // in Findings::paper
-  std::vector<const ojson*> runs;
+  std::vector<Run> runs;
+  const Eq108Cell* on_paper_grid = nullptr;  // on another grid, the cell on the paper's grid
 };
 
 // Our bound / the paper's dt stable where both are numbers and our run ended stable (a
@@ -77,7 +85,8 @@ Eq108Cells eq108_cells(const Spec& spec, const std::vector<ojson>& rows,
       const auto p = paper.find(key);
       out.cells.push_back({&spec.cases[i], p == paper.end() ? nullptr : &p->second, {}});
     }
-    out.cells[it->second].runs.push_back(&rows[i]);
+    Eq108Cell& cell = out.cells[it->second];
+    cell.runs.push_back({&rows[i], bound_ratio(cell, rows[i])});
   }
   return out;
 }
@@ -98,10 +107,10 @@ std::vector<int> other_grids(const Spec& spec) {
 }
 
 // The run of a cell under `reading`, if the cell has one.
-const ojson* run_of(const Eq108Cell& cell, const std::string& reading) {
+const Run* run_of(const Eq108Cell& cell, const std::string& reading) {
   const auto run = std::find_if(cell.runs.begin(), cell.runs.end(),
-                                [&](const ojson* r) { return reading_of(*r) == reading; });
-  return run == cell.runs.end() ? nullptr : *run;
+                                [&](const Run& r) { return reading_of(*r.row) == reading; });
+  return run == cell.runs.end() ? nullptr : &*run;
 }
 
 // The same Table 1 cell (method, E, A, dt) among `cells`.
@@ -132,13 +141,13 @@ struct Stats {
   std::vector<std::string> outside;
 };
 
-// Adds a compared run of `cell`, ours / paper `q`, to `s`.
-void add(Stats& s, const Eq108Cell& cell, const ojson& run, double q) {
-  s.ratios.push_back(q);
-  const bool within =
-      within_agreement_factor(run["dt_stable_min"].get<double>(), cell.paper->dt_stable.value);
+// Adds a compared run of `cell` to `s`.
+void add(Stats& s, const Eq108Cell& cell, const Run& run) {
+  s.ratios.push_back(*run.ratio);
+  const bool within = within_agreement_factor((*run.row)["dt_stable_min"].get<double>(),
+                                              cell.paper->dt_stable.value);
   s.within += within;
-  if (!within) s.outside.push_back(outside_text(cell, q));
+  if (!within) s.outside.push_back(outside_text(cell, *run.ratio));
 }
 
 // One reading on the paper's grid: per method, and over every method (the cells within the
@@ -185,11 +194,9 @@ Findings find(const Spec& spec, const std::vector<ojson>& rows) {
   f.cells = eq108_cells(spec, rows, f.paper, paper_grid());
   for (const std::string& name : f.cells.readings) {
     Reading r{.name = name};
-    for (const Eq108Cell& cell : f.cells.cells) {
-      const ojson* run = run_of(cell, name);
-      if (const auto q = run ? bound_ratio(cell, *run) : std::nullopt)
-        add(r.by_method[std::string(to_string(cell.spec->params.method))], cell, *run, *q);
-    }
+    for (const Eq108Cell& cell : f.cells.cells)
+      if (const Run* run = run_of(cell, name); run && run->ratio)
+        add(r.by_method[std::string(to_string(cell.spec->params.method))], cell, *run);
     for (const auto& [method, s] : r.by_method) {
       r.within += s.within;
       r.ratios.insert(r.ratios.end(), s.ratios.begin(), s.ratios.end());
@@ -205,15 +212,14 @@ Findings find(const Spec& spec, const std::vector<ojson>& rows) {
   // paper's grid.
   for (const int grid : other_grids(spec)) {
     Grid& g = f.grids.emplace_back(Grid{grid, eq108_cells(spec, rows, f.paper, grid), {}});
-    for (const Eq108Cell& cell : g.on.cells) {
-      const Eq108Cell* on_paper_grid = same_cell(f.cells.cells, cell);
-      for (const ojson* run : cell.runs) {
-        const std::string reading = reading_of(*run);
+    for (Eq108Cell& cell : g.on.cells) {
+      cell.on_paper_grid = same_cell(f.cells.cells, cell);
+      for (const Run& run : cell.runs) {
+        const std::string reading = reading_of(*run.row);
         Stats& s = g.stats[{reading, std::string(to_string(cell.spec->params.method))}];
-        const ojson* paper_run = on_paper_grid ? run_of(*on_paper_grid, reading) : nullptr;
-        if (const auto q = paper_run ? bound_ratio(*on_paper_grid, *paper_run) : std::nullopt)
-          s.paper_grid_ratios.push_back(*q);
-        if (const auto q = bound_ratio(cell, *run)) add(s, cell, *run, *q);
+        const Run* paper_run = cell.on_paper_grid ? run_of(*cell.on_paper_grid, reading) : nullptr;
+        if (paper_run && paper_run->ratio) s.paper_grid_ratios.push_back(*paper_run->ratio);
+        if (run.ratio) add(s, cell, run);
       }
     }
   }
@@ -295,14 +301,14 @@ std::string eq108_table(const Eq108Cells& e) {
   for (const auto& cell : e.cells) {
     const RunParams& p = cell.spec->params;
     table << "| " << to_string(p.method) << " | " << shortest(p.E) << " | " << shortest(p.A)
-          << " | " << param(p.dt) << " | " << sci(RunRow(*cell.runs.front()).courant.value())
+          << " | " << param(p.dt) << " | " << sci(RunRow(*cell.runs.front().row).courant.value())
           << " | " << significant(amplitude_per_cell(p), 3) << " | "
           << significant(wave_passes(p), 3) << " | "
           << (cell.paper ? show(cell.paper->dt_stable) : "–") << " |";
     for (const auto& reading : e.readings) {
-      const ojson* run = run_of(cell, reading);
-      const auto q = run ? bound_ratio(cell, *run) : std::nullopt;
-      table << " " << (run ? bound_text(*run) : "–") << " | " << (q ? ratio(*q) : "–") << " |";
+      const Run* run = run_of(cell, reading);
+      table << " " << (run ? bound_text(*run->row) : "–") << " | "
+            << (run && run->ratio ? ratio(*run->ratio) : "–") << " |";
     }
     table << "\n";
   }
@@ -311,7 +317,7 @@ std::string eq108_table(const Eq108Cells& e) {
 
 // The cells run on another grid, each under its reading, beside the paper and beside the same
 // cell and reading on the paper's grid.
-void other_grid_section(std::ostream& md, const Grid& g, const Eq108Cells& paper_cells) {
+void other_grid_section(std::ostream& md, const Grid& g) {
   const double h = 1.0 / g.cells, paper_h = 1.0 / paper_grid();
   md << "\n## On " << g.cells << " cells\n\nEach cell run again on " << g.cells
      << " cells (h = " << shortest(h) << ", where the paper's bar has " << paper_grid()
@@ -339,19 +345,17 @@ void other_grid_section(std::ostream& md, const Grid& g, const Eq108Cells& paper
         "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const Eq108Cell& cell : g.on.cells) {
     const RunParams& p = cell.spec->params;
-    const Eq108Cell* on_paper_grid = same_cell(paper_cells.cells, cell);
-    for (const ojson* run : cell.runs) {
-      const std::string reading = reading_of(*run);
-      const ojson* paper_run = on_paper_grid ? run_of(*on_paper_grid, reading) : nullptr;
-      const auto q = bound_ratio(cell, *run);
-      const auto q_paper = paper_run ? bound_ratio(*on_paper_grid, *paper_run) : std::nullopt;
+    for (const Run& run : cell.runs) {
+      const std::string reading = reading_of(*run.row);
+      const Run* paper_run = cell.on_paper_grid ? run_of(*cell.on_paper_grid, reading) : nullptr;
       md << "| " << to_string(p.method) << " | " << shortest(p.E) << " | " << shortest(p.A) << " | "
-         << param(p.dt) << " | " << sci(RunRow(*run).courant.value()) << " | "
+         << param(p.dt) << " | " << sci(RunRow(*run.row).courant.value()) << " | "
          << significant(amplitude_per_cell(p), 3) << " | "
          << (cell.paper ? show(cell.paper->dt_stable) : "–") << " | " << reading << " | "
-         << (paper_run ? bound_text(*paper_run) : "–") << " | " << (q_paper ? ratio(*q_paper) : "–")
-         << " | " << bound_text(*run) << " | " << accuracy_columns(*run) << " | "
-         << (q ? ratio(*q) : "–") << " |\n";
+         << (paper_run ? bound_text(*paper_run->row) : "–") << " | "
+         << (paper_run && paper_run->ratio ? ratio(*paper_run->ratio) : "–") << " | "
+         << bound_text(*run.row) << " | " << accuracy_columns(*run.row) << " | "
+         << (run.ratio ? ratio(*run.ratio) : "–") << " |\n";
     }
   }
 }
@@ -375,7 +379,7 @@ StudyReport eq108_report(const ReportContext& c) {
   md << "\n\n" << eq108_table(f.cells);
   std::vector<Claim> claims = {reading_claim(f)};
   for (const Grid& g : f.grids) {
-    other_grid_section(md, g, f.cells);
+    other_grid_section(md, g);
     for (const auto& [key, s] : g.stats)
       claims.push_back(grid_claim(g.cells, key, s));
   }
