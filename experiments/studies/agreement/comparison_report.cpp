@@ -35,6 +35,7 @@ struct Cell {
   const CaseSpec* spec;
   ojson row;  // our flat result row
   const PaperCell* paper = nullptr;
+  std::string paper_verdict;  // the paper's: "stable", "*", or "?" where unreadable
   CellVerdict v;
   // Its rerun with periodic boundaries (the walls experiment), if it has one, and its verdict.
   const ojson* rerun = nullptr;
@@ -110,6 +111,10 @@ void compare_cells(Comparison& cmp, const Rows& rows) {
     c.row = rows.at(i);
     const auto it = cmp.paper.find(paper_key(table1.cases[i]));
     if (it != cmp.paper.end()) c.paper = &it->second;
+    const auto kind = c.paper ? c.paper->max_error.kind : PaperValue::unreadable;
+    c.paper_verdict = kind == PaperValue::unreadable ? "?"
+                      : kind == PaperValue::number   ? "stable"
+                                                     : "*";
     c.v = classify(c.row, c.paper, cmp.edges, cmp.error_of(c));
     cmp.cells.push_back(std::move(c));
   }
@@ -302,12 +307,6 @@ std::string compared_error_text(const Comparison& cmp) {
              : "max error over the run (`max_error_over_time`, chosen with --error-at or error_at)";
 }
 
-// The paper's verdict of a cell ("stable", "*", or "?" when unreadable) and ours.
-std::string paper_verdict(const Cell& c) {
-  if (!c.paper || c.paper->max_error.kind == PaperValue::unreadable) return "?";
-  return c.paper->max_error.kind == PaperValue::number ? "stable" : "*";
-}
-
 // Our verdict in a few words: "stable (0.0043 A, accurate)", "meaningless" or "\* reason at step
 // n (t = ...)".
 std::string short_verdict(const ojson& row) {
@@ -325,7 +324,7 @@ std::string our_verdict(const ojson& row) {
 void verdict_table(std::ostream& md, const Comparison& cmp) {
   std::map<std::string, std::map<std::string, int>> n;
   for (const auto& c : cmp.cells)
-    ++n[paper_verdict(c)][outcome(c.row)];
+    ++n[c.paper_verdict][outcome(c.row)];
   md << "| cells by verdict | ours stable | ours meaningless | ours unstable (`*`) |\n"
         "|---|---|---|---|\n";
   for (const char* p : {"stable", "*", "?"}) {
@@ -401,12 +400,12 @@ void cell_table(std::ostream& md, const Comparison& cmp) {
     const RunRow rr(r);
     const auto error = compared_error(r, cmp.error_of(c));
     const bool stable = rr.survived();
-    const std::string pv = paper_verdict(c);
     md << "| " << shortest(p.E) << " | " << shortest(p.A) << " | " << param(p.dt)
        << (c.spec->dt_inferred ? " (inferred)" : "") << " | " << to_string(p.method) << " | "
        << sci(*rr.courant) << " | " << significant(amplitude_per_cell(p), 3) << " | "
-       << significant(wave_passes(p), 3) << " | " << (pv == "*" ? "\\*" : pv) << " | "
-       << our_verdict(r) << " | " << (c.paper ? show(c.paper->dt_stable) : "–") << " | "
+       << significant(wave_passes(p), 3) << " | "
+       << (c.paper_verdict == "*" ? "\\*" : c.paper_verdict) << " | " << our_verdict(r) << " | "
+       << (c.paper ? show(c.paper->dt_stable) : "–") << " | "
        << (stable ? opt_sci(r["dt_stable_min"]) : "\\*") << " | "
        << (c.v.dt_stable_ratio ? ratio(*c.v.dt_stable_ratio) : "–") << " | "
        << (c.paper ? show(c.paper->max_error) : "–") << " | "

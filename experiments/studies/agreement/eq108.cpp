@@ -92,15 +92,13 @@ Eq108Cells eq108_cells(const Spec& spec, const std::vector<ojson>& rows,
 }
 
 // The grid of the paper's bar (Table 1's runs): the default cells.
-int paper_grid() {
-  return RunParams{}.cells;
-}
+const int kPaperGrid = RunParams{}.cells;
 
 // The cells of the cases on another grid than the paper's, in the order the spec first has them.
 std::vector<int> other_grids(const Spec& spec) {
   std::vector<int> grids;
   for (const CaseSpec& c : spec.cases)
-    if (c.params.cells != paper_grid() &&
+    if (c.params.cells != kPaperGrid &&
         std::find(grids.begin(), grids.end(), c.params.cells) == grids.end())
       grids.push_back(c.params.cells);
   return grids;
@@ -191,7 +189,7 @@ struct Findings {
 // The findings from the rows (rows[i] is spec.cases[i]) and the paper's table.
 Findings find(const Spec& spec, const std::vector<ojson>& rows) {
   Findings f{.paper = read_paper_table1(spec)};
-  f.cells = eq108_cells(spec, rows, f.paper, paper_grid());
+  f.cells = eq108_cells(spec, rows, f.paper, kPaperGrid);
   for (const std::string& name : f.cells.readings) {
     Reading r{.name = name};
     for (const Eq108Cell& cell : f.cells.cells)
@@ -235,7 +233,7 @@ Claim reading_claim(const Findings& f) {
                   "the best reading ({best}: the most cells within it, ties broken by the "
                   "smallest mean absolute natural log of ours / paper, here {distance}) is within "
                   "it in {within} of {n} cells; its ratios {span}");
-  c.count("cells", paper_grid())
+  c.count("cells", kPaperGrid)
       .value("k", agreement_factor())
       .value("best", best.name)
       .every("within", best.within, "n", static_cast<long long>(best.ratios.size()))
@@ -258,7 +256,7 @@ Claim grid_claim(int grid, const std::pair<std::string, std::string>& key, const
   if (!s.outside.empty()) c.value("outside", list_of(s.outside));
   c.count("cells", grid)
       .value("h", shortest(h))
-      .count("paper_cells", paper_grid())
+      .count("paper_cells", kPaperGrid)
       .value("reading", key.first)
       .value("method", key.second == "mpm"    ? "MPM"
                        : key.second == "gimp" ? "GIMP"
@@ -318,21 +316,21 @@ std::string eq108_table(const Eq108Cells& e) {
 // The cells run on another grid, each under its reading, beside the paper and beside the same
 // cell and reading on the paper's grid.
 void other_grid_section(std::ostream& md, const Grid& g) {
-  const double h = 1.0 / g.cells, paper_h = 1.0 / paper_grid();
+  const double h = 1.0 / g.cells, paper_h = 1.0 / kPaperGrid;
   md << "\n## On " << g.cells << " cells\n\nEach cell run again on " << g.cells
-     << " cells (h = " << shortest(h) << ", where the paper's bar has " << paper_grid()
+     << " cells (h = " << shortest(h) << ", where the paper's bar has " << kPaperGrid
      << " cells, h = " << shortest(paper_h)
      << ") at the same E, A and dt, under the reading named: eq. (108) evaluated with the "
         "coarser grid's h on the coarser grid's runs. *ratio* is ours / the paper's dt stable, "
         "compared as above; beside it the same cell and reading on "
-     << paper_grid()
+     << kPaperGrid
      << " cells. A run reported stable has its error over time / A and accuracy class beside "
         "it.\n\n**Reading.** ";
   for (const auto& [key, s] : g.stats) {
     md << key.second << " (" << key.first << ") on " << g.cells
        << " cells: " << (s.ratios.empty() ? std::string("no cell compared") : span(s.ratios, 2))
        << " times the paper (" << s.within << " of " << s.ratios.size() << " within a factor "
-       << agreement_factor() << "; on " << paper_grid() << " cells "
+       << agreement_factor() << "; on " << kPaperGrid << " cells "
        << (s.paper_grid_ratios.empty() ? std::string("no cell compared")
                                        : span(s.paper_grid_ratios, 2))
        << ", " << s.paper_grid_ratios.size() << " cells)"
@@ -340,7 +338,7 @@ void other_grid_section(std::ostream& md, const Grid& g) {
        << ". ";
   }
   md << "\n\n| method | E | A | dt | c dt/h | A/h | paper's dt stable | reading | ours on "
-     << paper_grid() << " cells | ratio | ours on " << g.cells
+     << kPaperGrid << " cells | ratio | ours on " << g.cells
      << " cells | error over time / A | accuracy | ratio |\n"
         "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const Eq108Cell& cell : g.on.cells) {
@@ -363,7 +361,7 @@ void other_grid_section(std::ostream& md, const Grid& g) {
 StudyReport eq108_report(const ReportContext& c) {
   const Findings f = find(c.spec, c.rows);
   std::ostringstream md;
-  md << "## Results\n\nEach Table 1 cell run on the paper's grid of " << paper_grid()
+  md << "## Results\n\nEach Table 1 cell run on the paper's grid of " << kPaperGrid
      << " cells under every reading of eq. (108) (docs/theory.md, \"The paper's bound, "
         "eq. (108)\"); *ours* is the minimum of the bound over the run, compared with the paper's "
         "dt stable where our run ended stable (a meaningless run's bound is shown, not compared) "
@@ -390,7 +388,7 @@ std::string eq108_index(const Spec& spec, const std::vector<ojson>& rows) {
   std::string grids;
   for (const Grid& g : find(spec, rows).grids)
     grids +=
-        ", and on " + std::to_string(g.cells) + " cells instead of " + std::to_string(paper_grid());
+        ", and on " + std::to_string(g.cells) + " cells instead of " + std::to_string(kPaperGrid);
   return "**What it shows.** Each reading of eq. (108) on the Table 1 cells" + grids +
          ", set against the paper's dt stable column: [" + spec.name + ".md](" + spec.name +
          ".md).\n\n";

@@ -112,10 +112,14 @@ std::optional<double> ratio_of(const std::optional<double>& ours,
 
 PeerCase compare_case(const ojson& row, const PeerValue& v) {
   const RunRow rr(row);
-  PeerCase c;
-  c.basis = v.basis;
-  c.ours_outcome = rr.outcome;
-  c.peer_outcome = v.outcome;
+  PeerCase c{.row = &row,
+             .basis = v.basis,
+             .ours_outcome = rr.outcome,
+             .peer_outcome = v.outcome,
+             .peer_failure = v.failure,
+             .peer_step = v.fail_step,
+             .peer_error = v.max_error_T,
+             .peer_over_time = v.max_error_over_time};
   c.outcome_agrees = (v.outcome == "unstable") == !rr.survived();
   if (v.fail_step && rr.failure_step) {
     c.step_agrees = std::llabs(*rr.failure_step - *v.fail_step) <= kStepTolerance;
@@ -157,6 +161,24 @@ BasisFindings basis_findings(const std::vector<PeerCase>& cases, const char* bas
   b.median = quantile(ratios, 0.5);
   b.hi = quantile(ratios, 1);
   return b;
+}
+
+// The findings: every row against the peer's values (rows must outlive them).
+Findings find(const Spec& spec, const std::vector<ojson>& rows) {
+  const std::vector<PeerValue> peer = read_peer(spec.reference);
+  Findings s;
+  for (const auto& row : rows) {
+    const PeerValue* v = find_peer(peer, row);
+    if (!v) {
+      ++s.unmatched;
+      continue;
+    }
+    s.cases.push_back(compare_case(row, *v));
+    s.agree += s.cases.back().agrees;
+  }
+  for (const char* basis : {"linear", "GIMP"})
+    s.bases.push_back(basis_findings(s.cases, basis));
+  return s;
 }
 
 std::string opt_ratio(const std::optional<double>& r) {
@@ -254,27 +276,7 @@ std::string peers_index(const Spec& spec, const std::vector<ojson>& rows) {
 }  // namespace studies::peers
 
 PeersStudy study_peers(const Spec& spec, const std::vector<nlohmann::ordered_json>& rows) {
-  using namespace studies::peers;
-  const std::vector<PeerValue> peer = read_peer(spec.reference);
-  PeersStudy s;
-  for (const auto& row : rows) {
-    const PeerValue* v = find_peer(peer, row);
-    if (!v) {
-      ++s.unmatched;
-      continue;
-    }
-    PeerCase c = compare_case(row, *v);
-    c.row = &row;
-    c.peer_failure = v->failure;
-    c.peer_step = v->fail_step;
-    c.peer_error = v->max_error_T;
-    c.peer_over_time = v->max_error_over_time;
-    s.cases.push_back(c);
-    s.agree += c.agrees;
-  }
-  for (const char* basis : {"linear", "GIMP"})
-    s.bases.push_back(basis_findings(s.cases, basis));
-  return s;
+  return studies::peers::find(spec, rows);
 }
 
 std::string peers_markdown(const Spec& spec, const PeersStudy& s,
