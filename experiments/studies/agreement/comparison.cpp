@@ -8,7 +8,6 @@
 #include <map>
 #include <optional>
 
-#include "base/accuracy.hpp"
 #include "base/result.hpp"
 #include "csv.hpp"
 #include "key.hpp"
@@ -40,12 +39,6 @@ void classify_both_stable(CellVerdict& cell, const RunRow& run, double error, do
     cell.cls = "error-smaller";
   }
 }
-
-}  // namespace
-}  // namespace studies::comparison
-
-namespace studies::comparison {
-namespace {
 
 // The condition every run of ours that reaches T meets in the classes that compare errors.
 std::string stable_ours() {
@@ -85,12 +78,10 @@ std::vector<ClassDefinition> failure_classes() {
        ClassKind::verdict},
       {"above-our-edge",
        "Paper's run lasts longer; ours fails at or below the spectral limit, at or above the "
-       "scan's "
-       "edge",
+       "scan's edge",
        goes_on + ", at a c dt / h at or below the spectral limit (or with none recorded) and at or "
                  "above the courant scan's edge for its method and A: the smallest c dt / h of the "
-                 "scan from which on each run "
-                 "of the scan, at each E, fails.",
+                 "scan from which on each run of the scan, at each E, fails.",
        ClassKind::verdict},
       {"gimp-wall-exit",
        "Paper's run lasts longer; ours, not mpm, fails with a particle leaving the domain",
@@ -164,14 +155,12 @@ const std::vector<ClassDefinition>& comparison_classes() {
 }
 
 const ComparisonClass* find_class(const std::string& id) {
-  for (const auto& k : comparison_classes()) {
+  for (const auto& k : comparison_classes())
     if (id == k.id) return &k;
-  }
   return nullptr;
 }
 
 std::string comparison_classes_markdown() {
-  using namespace studies::comparison;
   std::string md = "| class | name | what its predicate decides |\n|---|---|---|\n";
   for (const auto& k : comparison_classes())
     md += std::string("| `") + k.id + "` | " + k.title + " | " + k.definition + " |\n";
@@ -190,18 +179,15 @@ const std::string& explained_definition() {
 }
 
 bool explains(const CellVerdict& rerun) {
-  using namespace studies::comparison;
   return rerun.agrees();
 }
 
 double scan_courant(const nlohmann::ordered_json& row) {
-  using namespace studies::comparison;
   constexpr double kResolution = 1e4;  // steps per unit of c dt / h
   return std::round(RunRow(row).courant.value() * kResolution) / kResolution;
 }
 
 CourantEdges courant_edges(const std::vector<nlohmann::ordered_json>& rows) {
-  using namespace studies::comparison;
   std::map<std::pair<std::string, Key>, std::map<Key, bool>> all_fail;  // -> C -> all fail
   for (const auto& r : rows) {
     const auto key = std::make_pair(RunRow(r).method, Key(r["A"].get<double>(), "A"));
@@ -219,14 +205,12 @@ CourantEdges courant_edges(const std::vector<nlohmann::ordered_json>& rows) {
 }
 
 bool CellVerdict::same_verdict() const {
-  using namespace studies::comparison;
   if (agreement) return verdicts_agree(*agreement);
   const ComparisonClass* k = find_class(cls);
   return k && (k->kind == ClassKind::agreement || k->kind == ClassKind::error);
 }
 
 void AgreementCounts::add(const CellVerdict& v) {
-  using namespace studies::comparison;
   if (!v.compared()) return;
   ++verdicts_compared;
   if (v.same_verdict()) ++verdicts_agree;
@@ -240,7 +224,6 @@ void AgreementCounts::add(const CellVerdict& v) {
 }
 
 std::string failure_class(const nlohmann::ordered_json& r, const CourantEdges& edges) {
-  using namespace studies::comparison;
   const RunRow run(r);
   const std::string& method = run.method;
   const double courant = *run.courant;
@@ -315,9 +298,8 @@ namespace {
 // not read).
 void write_derived_comparison(const DerivedContext& c) {
   std::optional<ErrorAt> error_at;
-  if (c.options.contains("error_at")) {
+  if (c.options.contains("error_at"))
     error_at = parse_error_at(c.options["error_at"].get<std::string>());
-  }
   write_comparison(c.inputs, c.out, error_at);
 }
 

@@ -129,10 +129,6 @@ struct PaperFigure {
 // The transcription of the figures, in the order of the file; empty when the file is absent.
 std::vector<PaperFigure> read_paper_figures(const std::filesystem::path& csv);
 
-// The experiments that rerun a figure's case under each documented implementation choice: the
-// comparison reads the one whose first case is the figure's.
-const std::vector<std::string>& figure_variant_inputs();
-
 // What comparison.md says about the figures: a section per figure (the paper's observables
 // beside ours, each with a verdict; the figure's class; the variant runs of its case), per
 // figure its class for the summary, and the claims of the comparisons between two figures (a
@@ -143,18 +139,6 @@ struct FigureSections {
   std::vector<std::pair<std::string, std::string>> classes;  // (figure, class id), paper order
   std::vector<Claim> claims;
 };
-
-// One time both runs of two figures record in their histories: the cumulative grid crossings
-// and the error in u of each by then.
-struct EqualTime {
-  double t = 0;
-  double crossings = 0, other_crossings = 0;
-  double error = 0, other_error = 0;
-};
-// The times (t > 0) at which both histories hold a step with crossings and an error, matched to
-// a relative 1e-9, in increasing t. Empty when either history is missing.
-std::vector<EqualTime> equal_times(const nlohmann::ordered_json* history,
-                                   const nlohmann::ordered_json* other_history);
 
 // A Table 1 cell as a figure's section quotes it: the cell nearest to the figure's case.
 struct QuotedCell {
@@ -173,8 +157,8 @@ FigureSections figure_sections(const std::vector<PaperFigure>& paper,
 // Writes <out>/comparison.md and <out>/comparison.csv (one row per cell: verdict and class) from
 // the study's inputs, by name: "table1" (required: its spec and results), "peers", the
 // supporting experiments "courant", "walls", "crossing" and "eq108", the figures "fig1", "fig2",
-// "fig3" and their variant runs (figure_variant_inputs()), all of the paper tier; an input without
-// results is reported as not run. The transcription of the figures is read from figures.csv
+// "fig3" and their variant runs (fig2_variants, fig3_variants), all of the paper tier; an input
+// without results is reported as not run. The transcription of the figures is read from figures.csv
 // beside the table1 spec's reference. `error_at`, when given, replaces every case's own
 // choice of the error compared with the paper's.
 void write_comparison(const StudyInputs& inputs, const std::filesystem::path& out,

@@ -61,9 +61,8 @@ const ojson* first_row(const StudyInputs& inputs, const std::string& name) {
 // the study's object, or in the case itself. Null when it was not recorded.
 const ojson* history_of(const ojson& doc) {
   if (const ojson* h = array_at(doc, "history")) return h;
-  if (doc.contains("study")) {
+  if (doc.contains("study"))
     if (const ojson* h = array_at(doc.at("study"), "history")) return h;
-  }
   const ojson* cases = array_at(doc, "cases");
   return cases && !cases->empty() ? array_at(cases->at(0), "history") : nullptr;
 }
@@ -105,8 +104,7 @@ Trace trace_of(const ojson* history) {
 // Our run of a figure.
 struct OurRun {
   const ojson* row = nullptr;
-  Trace trace;
-  bool history = false;
+  Trace trace;  // empty without a history
 };
 
 std::string figure_title(const std::string& name) {
@@ -117,13 +115,9 @@ std::string case_text(const std::string& method, double E, double A, double dt) 
   return method + ", E = " + shortest(E) + ", A = " + shortest(A) + ", dt = " + param(dt);
 }
 
-std::string steps_text(std::int64_t s) {
-  return std::to_string(s);
-}
-
 // A count as the paper gives it: "100000", not "1e+05".
 std::string count_text(double v) {
-  return v == std::round(v) && std::abs(v) < 1e15 ? steps_text(std::llround(v)) : shortest(v);
+  return v == std::round(v) && std::abs(v) < 1e15 ? std::to_string(std::llround(v)) : shortest(v);
 }
 
 // The steps a run of the row's case takes to T.
@@ -190,8 +184,8 @@ Line outcome_line(const PaperObservable* p, const ojson& row) {
 Line steps_line(const PaperObservable* p, const ojson& row) {
   const std::int64_t steps = row.at("steps").get<std::int64_t>();
   const auto planned = planned_steps(row);
-  std::string ours = steps_text(steps);
-  if (planned) ours += " of " + steps_text(*planned);
+  std::string ours = std::to_string(steps);
+  if (planned) ours += " of " + std::to_string(*planned);
   return numeric_line("steps", p, double(steps), ours);
 }
 
@@ -202,7 +196,7 @@ Line peak_error_line(const PaperObservable* p, const OurRun& run) {
   if (e) {
     ours = sci(*e);
     if (const auto over_A = rr.error_over_A()) ours += " = " + ratio(*over_A) + " A";
-    if (run.trace.peak_error) ours += " (step " + steps_text(run.trace.peak_step) + ")";
+    if (run.trace.peak_error) ours += " (step " + std::to_string(run.trace.peak_step) + ")";
   }
   return numeric_line("peak error over time", p, e, ours);
 }
@@ -212,7 +206,7 @@ Line bound_min_line(const PaperObservable* p, const OurRun& run) {
   std::string ours = "not recorded";
   if (b) {
     ours = sci(*b);
-    if (run.trace.bound_min) ours += " (step " + steps_text(run.trace.bound_min_step) + ")";
+    if (run.trace.bound_min) ours += " (step " + std::to_string(run.trace.bound_min_step) + ")";
   }
   return numeric_line("eq. (108) bound, minimum", p, b, ours);
 }
@@ -223,8 +217,8 @@ Line bound_min_step_line(const PaperObservable* p, const OurRun& run) {
   const ojson& row = *run.row;
   Line l{"eq. (108) bound, smallest at", paper_text(p), "history not recorded", kNoValue};
   if (paper_number(p)) l.paper = "step " + l.paper;
-  if (!run.history || !t.bound_min) return l;
-  l.ours = "step " + steps_text(t.bound_min_step) + " (" +
+  if (!t.bound_min) return l;
+  l.ours = "step " + std::to_string(t.bound_min_step) + " (" +
            (outcome(row) == "unstable" ? "failure at step " + row.at("failure_step").dump()
                                        : "end at step " + row.at("steps").dump()) +
            "); " + ratio(*t.bound_min / *t.bound_median) + " x its median over the run";
@@ -264,6 +258,34 @@ std::optional<Against> against(const PaperObservable* p) {
   words >> a.direction >> than >> a.other;
   if (a.other.empty()) return std::nullopt;
   return a;
+}
+
+// One time both runs of two figures record in their histories: the cumulative grid crossings
+// and the error in u of each by then.
+struct EqualTime {
+  double t = 0;
+  double crossings = 0, other_crossings = 0;
+  double error = 0, other_error = 0;
+};
+
+// The times (t > 0) at which both histories hold a step with crossings and an error, matched to
+// a relative 1e-9, in increasing t. Empty when either history is missing.
+std::vector<EqualTime> equal_times(const ojson* history, const ojson* other_history) {
+  std::vector<EqualTime> out;
+  if (!history || !other_history) return out;
+  for (const auto& h : *history) {
+    const auto t = number(h, "time"), c = number(h, "crossings"), e = number(h, "error");
+    if (!t || !c || !e || !(*t > 0)) continue;
+    for (const auto& o : *other_history) {
+      const auto ot = number(o, "time"), oc = number(o, "crossings"), oe = number(o, "error");
+      if (!ot || !oc || !oe || std::abs(*ot - *t) > 1e-9 * std::max(*t, *ot)) continue;
+      out.push_back({*t, *c, *oc, *e, *oe});
+      break;
+    }
+  }
+  std::sort(out.begin(), out.end(),
+            [](const EqualTime& a, const EqualTime& b) { return a.t < b.t; });
+  return out;
 }
 
 // One quantity of our run against the other figure's run at the times both record: how many
@@ -388,10 +410,9 @@ void equal_time_table(std::ostream& md, const PaperFigure& f, const Against& a,
      << "plots of the two figures, each drawn against its own step number; ";
   const auto dt = number(row, "dt");
   const auto other_dt = other_row ? number(*other_row, "dt") : std::nullopt;
-  if (dt && other_dt) {
+  if (dt && other_dt)
     md << "a step of " << fig << " is " << ratio(*dt / *other_dt) << " times one of " << other
        << ", so a count per step would set the runs side by side at different times. ";
-  }
   if (c.times.empty()) {
     md << "Our histories of the two runs share no recorded time, so they are not compared "
           "here.\n\n";
@@ -436,23 +457,18 @@ FigureClass figure_class(const PaperFigure& f, const ojson& row, const CourantEd
                   : std::string("the paper's run goes on");
   if (o->value == "survived") {
     if (ours == "stable") return {"agree-stable", "both reach T"};
-    if (ours == "meaningless") {
+    if (ours == "meaningless")
       return {"ours-meaningless",
               "the paper's run reaches T; ours does too, but its error over time reached A"};
-    }
     return {failure_class(row, edges), paper_goes_on + " (T); ours fails at step " +
                                            std::to_string(steps) + " (" +
                                            RunRow(row).failure_reason.value_or("") + ")"};
   }
-  if (ours == "meaningless") {
+  if (ours == "meaningless")
     return {"ours-meaningless",
-            "the paper's run fails; ours reaches T with an error over "
-            "time that reached A"};
-  }
+            "the paper's run fails; ours reaches T with an error over time that reached A"};
   if (ours == "stable")
-    return {"paper-unstable-ours-stable",
-            "the paper's run fails; ours "
-            "reaches T"};
+    return {"paper-unstable-ours-stable", "the paper's run fails; ours reaches T"};
   if (paper_steps && !within_agreement_factor(double(steps), *paper_steps) &&
       steps < *paper_steps) {
     return {failure_class(row, edges),
@@ -467,9 +483,8 @@ FigureClass figure_class(const PaperFigure& f, const ojson& row, const CourantEd
 // above-our-edge).
 std::string courant_context(const ojson& row, const StudyInputs& inputs) {
   const auto it = inputs.find("courant");
-  if (it == inputs.end() || !it->second.present()) {
+  if (it == inputs.end() || !it->second.present())
     return "The courant scan has not been run: `make reproduce` runs it.";
-  }
   const double c = scan_courant(row);
   const std::string method = RunRow(row).method;
   int n = 0, reached = 0;
@@ -500,9 +515,8 @@ std::string courant_context(const ojson& row, const StudyInputs& inputs) {
 // ---- The variant runs of a figure's case.
 
 bool same_case(const ojson& a, const ojson& b) {
-  for (const char* k : {"method", "E", "A", "dt", "T", "cells", "ppc", "bc", "scene"}) {
+  for (const char* k : {"method", "E", "A", "dt", "T", "cells", "ppc", "bc", "scene"})
     if (!a.contains(k) || !b.contains(k) || a.at(k) != b.at(k)) return false;
-  }
   return true;
 }
 
@@ -527,17 +541,20 @@ std::string reproduces(const PaperFigure& f, const ojson& r) {
   const std::string ours = outcome(r);
   const double steps = r.at("steps").get<double>();
   if (!o || !o->stated()) return kNoValue;
-  if (o->value == "survived") {
+  if (o->value == "survived")
     return ours == "stable" ? "yes" : ours == "meaningless" ? "reaches T, meaningless" : "no";
-  }
   if (ours != "unstable") return "no: reaches T";
   if (!paper_steps || within_agreement_factor(steps, *paper_steps)) return "yes";
   return "no: " + ratio(steps / *paper_steps) + "x the paper's steps";
 }
 
+// The experiments that rerun a figure's case under each documented implementation choice: the
+// comparison reads the one whose first case is the figure's.
+const std::vector<std::string> kFigureVariants = {"fig2_variants", "fig3_variants"};
+
 // The input holding the variant runs of this figure's case, if any has been run.
 const StudyInput* variant_input(const ojson& row, const StudyInputs& inputs, std::string& name) {
-  for (const auto& n : figure_variant_inputs()) {
+  for (const auto& n : kFigureVariants) {
     const ojson* base = first_row(inputs, n);
     if (base && same_case(*base, row)) {
       name = n;
@@ -553,8 +570,8 @@ void variant_runs(std::ostream& md, const PaperFigure& f, const ojson& row,
   const StudyInput* in = variant_input(row, inputs, name);
   if (!in) {
     md << "*No variant runs of this case have been run (";
-    for (const auto& n : figure_variant_inputs())
-      md << (n == figure_variant_inputs().front() ? "" : ", ") << "`experiments/" << n << ".json`";
+    for (const auto& n : kFigureVariants)
+      md << (n == kFigureVariants.front() ? "" : ", ") << "`experiments/" << n << ".json`";
     md << "): `make reproduce` runs them.*\n\n";
     return;
   }
@@ -570,8 +587,7 @@ void variant_runs(std::ostream& md, const PaperFigure& f, const ojson& row,
      << ".md)): the case under each documented implementation choice of the variants study "
         "([variants.md](variants.md)), changed alone from our default or in its pairs, and "
         "with periodic boundaries. "
-        "Whether each reproduces the paper's run (how it ends and, where the paper says, "
-        "when):\n\n"
+        "Whether each reproduces the paper's run (how it ends and, where the paper says, when):\n\n"
         "| choice | run | steps | error over time / A | crossings | eq. (108) min | the paper's "
         "run |\n|---|---|---|---|---|---|---|\n";
   std::vector<std::string> yes, meaningless;
@@ -590,9 +606,8 @@ void variant_runs(std::ostream& md, const PaperFigure& f, const ojson& row,
        << opt_sci(r.contains("dt_stable_min") ? r.at("dt_stable_min") : ojson()) << " | " << rep
        << " |\n";
     if (rep == "yes") yes.push_back(label);
-    if (rep == "reaches T, meaningless") {
+    if (rep == "reaches T, meaningless")
       meaningless.push_back(label + " (" + (e ? ratio(*e) : kNoValue) + " A)");
-    }
     if (paper_steps && (!closest || distance(r) < distance(*closest))) closest = &r;
   }
   auto listed = [](const std::vector<std::string>& v) {
@@ -608,10 +623,9 @@ void variant_runs(std::ostream& md, const PaperFigure& f, const ojson& row,
     md << " Reaching T only as meaningless runs (error over time at least A): "
        << listed(meaningless) << ".";
     const PaperObservable* peak = f.find("peak_error");
-    if (!peak || !peak->stated()) {
+    if (!peak || !peak->stated())
       md << " The paper's text does not state its run's error, so whether it too reached A "
             "cannot be told from it.";
-    }
   }
   if (yes.empty() && meaningless.empty() && closest) {
     md << " The closest in steps is " << choice_label(*closest, base) << ": "
@@ -644,9 +658,8 @@ std::string same_case_figures(const PaperFigure& f, const ojson& row,
   std::string s;
   for (const auto& g : paper) {
     const ojson* other = g.name == f.name ? nullptr : first_row(inputs, g.name);
-    if (other && same_case(*other, row)) {
+    if (other && same_case(*other, row))
       s += (s.empty() ? "" : ", ") + std::string("[") + figure_title(g.name) + "](#" + g.name + ")";
-    }
   }
   return s;
 }
@@ -660,9 +673,8 @@ void quoted_passages(std::ostream& md, const PaperFigure& f) {
                             [&](const auto& q) { return q.first == o.section; });
     if (sec == quoted.end()) sec = quoted.insert(quoted.end(), {o.section, {}});
     auto& passages = sec->second;
-    if (std::find(passages.begin(), passages.end(), o.evidence) == passages.end()) {
+    if (std::find(passages.begin(), passages.end(), o.evidence) == passages.end())
       passages.push_back(o.evidence);
-    }
   }
   for (const auto& [section, passages] : quoted) {
     md << "The paper, " << section << ":";
@@ -682,39 +694,32 @@ void figure_section(std::ostream& md, const PaperFigure& f, const std::vector<Pa
   const ojson* row = first_row(inputs, f.name);
   if (!row) {
     md << "*Our run of it (`experiments/" << f.name
-       << ".json`) has not been run: `make "
-          "reproduce` runs it.*\n\n";
+       << ".json`) has not been run: `make reproduce` runs it.*\n\n";
     out.classes.emplace_back(f.name, "not run");
     return;
   }
-  OurRun run;
-  run.row = row;
   const ojson* history = history_of(it->second.doc);
-  run.history = history != nullptr;
-  run.trace = trace_of(history);
+  const OurRun run{row, trace_of(history)};
   const std::string ours_case = case_text(RunRow(*row).method, row->at("E").get<double>(),
                                           row->at("A").get<double>(), row->at("dt").get<double>());
   md << "Our run: [" << f.name << ".md](" << f.name << ".md)";
-  if (ours_case != case_text(f.method, f.E, f.A, f.dt)) {
+  if (ours_case != case_text(f.method, f.E, f.A, f.dt))
     md << " (**a different case: " << ours_case << "**)";
-  }
   const FigureClass k = figure_class(f, *row, edges);
   out.classes.emplace_back(f.name, k.cls);
   const ComparisonClass* c = find_class(k.cls);
   md << ". Class: [" << k.cls << "](#" << k.cls << ")"
      << (c ? std::string(", *") + c->title + "*" : std::string()) << ": " << k.why << ".";
-  if (k.cls == "above-spectral-limit" || k.cls == "above-our-edge") {
+  if (k.cls == "above-spectral-limit" || k.cls == "above-our-edge")
     md << " " << courant_context(*row, inputs);
-  }
   if (const QuotedCell* near = nearest_cell(*row, table1)) {
     md << " Table 1's nearest cell, " << case_text(near->method, near->E, near->A, near->dt)
        << ": the paper's "
        << "max error " << (near->paper == "*" ? std::string("\\* (unstable)") : near->paper)
        << ", ours " << near->ours << " ([" << near->cls << "](#" << near->cls << ")).";
   }
-  if (const std::string same = same_case_figures(f, *row, paper, inputs); !same.empty()) {
+  if (const std::string same = same_case_figures(f, *row, paper, inputs); !same.empty())
     md << " Our run is the same case as that of " << same << ".";
-  }
   md << "\n\n| observable | paper | ours | verdict |\n|---|---|---|---|\n";
   std::vector<Line> lines = {outcome_line(f.find("outcome"), *row),
                              steps_line(f.find("steps"), *row),
@@ -747,9 +752,8 @@ void figure_section(std::ostream& md, const PaperFigure& f, const std::vector<Pa
 }  // namespace studies::comparison_figures
 
 const PaperObservable* PaperFigure::find(const std::string& quantity) const {
-  for (const auto& o : observables) {
+  for (const auto& o : observables)
     if (o.quantity == quantity) return &o;
-  }
   return nullptr;
 }
 
@@ -761,15 +765,13 @@ std::vector<PaperFigure> read_paper_figures(const std::filesystem::path& csv) {
   const CsvTable t = read_csv(csv);
   for (const char* col : {"figure", "method", "E", "A", "dt", "quantity", "value", "confidence",
                           "section", "evidence"}) {
-    if (std::find(t.header.begin(), t.header.end(), col) == t.header.end()) {
+    if (std::find(t.header.begin(), t.header.end(), col) == t.header.end())
       throw std::runtime_error(csv.string() + ": no column '" + col + "'");
-    }
   }
   for (const auto& row : t.rows) {
     const std::string& q = row.at("quantity");
-    if (std::find(kQuantities.begin(), kQuantities.end(), q) == kQuantities.end()) {
+    if (std::find(kQuantities.begin(), kQuantities.end(), q) == kQuantities.end())
       throw std::runtime_error(csv.string() + ": unknown quantity '" + q + "'");
-    }
     auto f = std::find_if(figures.begin(), figures.end(),
                           [&](const PaperFigure& x) { return x.name == row.at("figure"); });
     if (f == figures.end()) {
@@ -787,31 +789,6 @@ std::vector<PaperFigure> read_paper_figures(const std::filesystem::path& csv) {
         {q, row.at("value"), row.at("confidence"), row.at("section"), row.at("evidence")});
   }
   return figures;
-}
-
-std::vector<EqualTime> equal_times(const nlohmann::ordered_json* history,
-                                   const nlohmann::ordered_json* other_history) {
-  using namespace studies::comparison_figures;
-  std::vector<EqualTime> out;
-  if (!history || !other_history) return out;
-  for (const auto& h : *history) {
-    const auto t = number(h, "time"), c = number(h, "crossings"), e = number(h, "error");
-    if (!t || !c || !e || !(*t > 0)) continue;
-    for (const auto& o : *other_history) {
-      const auto ot = number(o, "time"), oc = number(o, "crossings"), oe = number(o, "error");
-      if (!ot || !oc || !oe || std::abs(*ot - *t) > 1e-9 * std::max(*t, *ot)) continue;
-      out.push_back({*t, *c, *oc, *e, *oe});
-      break;
-    }
-  }
-  std::sort(out.begin(), out.end(),
-            [](const EqualTime& a, const EqualTime& b) { return a.t < b.t; });
-  return out;
-}
-
-const std::vector<std::string>& figure_variant_inputs() {
-  static const std::vector<std::string> names = {"fig2_variants", "fig3_variants"};
-  return names;
 }
 
 FigureSections figure_sections(const std::vector<PaperFigure>& paper,
@@ -835,11 +812,9 @@ FigureSections figure_sections(const std::vector<PaperFigure>& paper,
         "agree when within a factor "
      << agreement_factor()
      << " of each other (the rule of the max errors). A figure's class is the one Table 1's rules "
-        "give "
-        "its run; where both runs fail but ours more than a factor "
+        "give its run; where both runs fail but ours more than a factor "
      << agreement_factor()
-     << " sooner, the class of our "
-        "failure where the paper's run lasts longer.\n\n";
+     << " sooner, the class of our failure where the paper's run lasts longer.\n\n";
   std::map<std::string, std::string> shown;  // variant input -> figure whose section shows it
   for (const auto& f : paper)
     figure_section(md, f, paper, inputs, edges, table1, out, shown);

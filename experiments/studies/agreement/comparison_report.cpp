@@ -13,7 +13,6 @@
 #include <ostream>
 #include <set>
 #include <sstream>
-#include <stdexcept>
 
 #include "agreement/comparison.hpp"
 #include "base/accuracy.hpp"
@@ -36,11 +35,18 @@ struct Cell {
   const CaseSpec* spec;
   ojson row;  // our flat result row
   const PaperCell* paper = nullptr;
+  std::string paper_verdict;  // the paper's: "stable", "*", or "?" where unreadable
   CellVerdict v;
-  // The verdict of its rerun with periodic boundaries (the walls experiment), if it has one.
+  // Its rerun with periodic boundaries (the walls experiment), if it has one, and its verdict.
+  const ojson* rerun = nullptr;
   std::optional<CellVerdict> periodic;
   // explained_definition(): a rerun with one choice changed alone agrees with the paper.
   bool explained() const { return periodic && explains(*periodic); }
+};
+
+// How many cells (of a class, or that disagree) a rerun explains, and how many it reruns at all.
+struct Explained {
+  std::size_t cells = 0, rerun = 0, explained = 0;
 };
 
 // What every part of the report is written from. The cells point into `paper` and `by_class`
@@ -63,6 +69,9 @@ struct Comparison {
   CourantEdges edges;                    // from the courant scan; empty without it
   std::vector<Cell> cells;               // in the order of the table1 spec's cases
   std::map<std::string, std::vector<const Cell*>> by_class;
+  AgreementCounts all, mpm, gimp;       // over every cell, MPM's and the other methods' (GIMP's)
+  std::map<std::string, double> limit;  // each method's spectral limit at the paper's layout
+  Explained disagreements;              // over the cells that disagree with the paper
 
   bool have(const std::string& name) const { return support.count(name) > 0; }
   const Rows& rows(const std::string& name) const { return support.at(name); }
@@ -87,22 +96,13 @@ Rows case_rows(const ojson& doc) {
 // The rows of every supporting experiment that has been run, by input name.
 std::map<std::string, Rows> supporting_rows(const StudyInputs& inputs) {
   std::map<std::string, Rows> rows;
-  for (const auto& [name, input] : inputs) {
+  for (const auto& [name, input] : inputs)
     if (name != "table1" && name != "peers" && input.present()) rows[name] = case_rows(input.doc);
-  }
   return rows;
 }
 
-// The "study" object of an input study's results (peers), or null when not run.
-const ojson* study_object(const StudyInputs& inputs, const std::string& name) {
-  const auto it = inputs.find(name);
-  if (it == inputs.end() || !it->second.present() || !it->second.doc.contains("study")) {
-    return nullptr;
-  }
-  return &it->second.doc.at("study");
-}
-
-// Every case of the table1 experiment (rows[i] is its case i) against its paper cell.
+// Every case of the table1 experiment (rows[i] is its case i) against its paper cell, counted
+// per class and per method; the spectral limits from the Table 1 records.
 void compare_cells(Comparison& cmp, const Rows& rows) {
   const Spec& table1 = cmp.table1;
   for (std::size_t i = 0; i < table1.cases.size(); ++i) {
@@ -111,11 +111,20 @@ void compare_cells(Comparison& cmp, const Rows& rows) {
     c.row = rows.at(i);
     const auto it = cmp.paper.find(paper_key(table1.cases[i]));
     if (it != cmp.paper.end()) c.paper = &it->second;
+    const auto kind = c.paper ? c.paper->max_error.kind : PaperValue::unreadable;
+    c.paper_verdict = kind == PaperValue::unreadable ? "?"
+                      : kind == PaperValue::number   ? "stable"
+                                                     : "*";
     c.v = classify(c.row, c.paper, cmp.edges, cmp.error_of(c));
     cmp.cells.push_back(std::move(c));
   }
-  for (const auto& c : cmp.cells)
+  for (const auto& c : cmp.cells) {
     cmp.by_class[c.v.cls].push_back(&c);
+    cmp.all.add(c.v);
+    const RunRow r(c.row);
+    (r.method == "mpm" ? cmp.mpm : cmp.gimp).add(c.v);
+    if (r.courant_spectral) cmp.limit[r.method] = *r.courant_spectral;
+  }
 }
 
 // ---- Formatting and looking up cells and runs.
@@ -127,21 +136,6 @@ std::string distribution(const std::vector<double>& v) {
     << ratio(quantile(v, 0.5)) << " / " << ratio(quantile(v, 0.75)) << ", max "
     << ratio(quantile(v, 1)) << " (" << v.size() << " cells)";
   return s.str();
-}
-
-std::size_t table1_E_count(const Rows& rows) {
-  std::set<Key> Es;
-  for (const auto& r : rows)
-    Es.insert(Key(r["E"].get<double>(), "E"));
-  return Es.size();
-}
-
-// The spectral limit of each method at the paper's layout, from the Table 1 records.
-std::map<std::string, double> spectral_limits(const Comparison& cmp) {
-  std::map<std::string, double> limit;
-  for (const auto& c : cmp.cells)
-    if (const RunRow r(c.row); r.courant_spectral) limit[r.method] = *r.courant_spectral;
-  return limit;
 }
 
 // Whether a row of another experiment runs the cell's case: its method, E, A and dt on the same
@@ -162,21 +156,12 @@ std::string cell_name(const Cell& c) {
          " dt=" + param(p.dt);
 }
 
-// The cells of a class, named ("" for a class without cells).
-std::string cell_list(const Comparison& cmp, const std::string& cls) {
+// The cells of a class (only those a rerun explains, with `explained`), named; "" for none.
+std::string cell_list(const Comparison& cmp, const std::string& cls, bool explained = false) {
   std::string s;
   for (const Cell* c : cmp.in_class(cls))
-    s += (s.empty() ? "" : "; ") + cell_name(*c);
+    if (!explained || c->explained()) s += (s.empty() ? "" : "; ") + cell_name(*c);
   return s;
-}
-
-// The run of a Table 1 cell in the walls experiment (periodic boundaries), if there is one.
-const ojson* periodic_run(const Comparison& cmp, const Cell& c) {
-  if (!cmp.have("walls")) return nullptr;
-  for (const auto& r : cmp.rows("walls")) {
-    if (text(r, "bc") == "periodic" && same_cell(r, *c.spec)) return &r;
-  }
-  return nullptr;
 }
 
 // Whether a class holds cells that disagree with the paper (a verdict or an error class).
@@ -185,21 +170,24 @@ bool disagreeing(const std::string& cls) {
   return k && (k->kind == ClassKind::verdict || k->kind == ClassKind::error);
 }
 
-// Each cell's rerun with periodic boundaries, classified against the cell's paper value by the
-// same rules: where it agrees, the walls experiment explains the cell (explained_definition()).
+// Each cell's rerun with periodic boundaries (its run in the walls experiment), classified
+// against the cell's paper value by the same rules: where it agrees, the walls experiment
+// explains the cell (explained_definition()). Then how many of the cells that disagree it
+// explains.
 void rerun_cells(Comparison& cmp) {
+  const Rows none;
+  const Rows& walls = cmp.have("walls") ? cmp.rows("walls") : none;
   for (auto& c : cmp.cells) {
-    if (const ojson* r = periodic_run(cmp, c)) {
-      c.periodic = classify(*r, c.paper, cmp.edges, cmp.error_of(c));
-    }
+    for (const auto& r : walls)
+      if (!c.rerun && text(r, "bc") == "periodic" && same_cell(r, *c.spec)) c.rerun = &r;
+    if (c.rerun) c.periodic = classify(*c.rerun, c.paper, cmp.edges, cmp.error_of(c));
+    if (!disagreeing(c.v.cls)) continue;
+    ++cmp.disagreements.cells;
+    cmp.disagreements.explained += c.explained();
   }
 }
 
 // How many cells of a class a rerun explains, and how many it reruns at all.
-struct Explained {
-  std::size_t cells = 0, rerun = 0, explained = 0;
-};
-
 Explained explained_in(const Comparison& cmp, const std::string& cls) {
   Explained e;
   for (const Cell* c : cmp.in_class(cls)) {
@@ -244,7 +232,6 @@ std::string peer_coverage(const Comparison& cmp) {
     << (*cmp.peers)["agree"].dump() << " of " << (*cmp.peers)["cases"].dump()
     << " (same outcome and failure step, errors within the stated tolerances: "
        "[peers.md](peers.md)). Those cases cover only:";
-  bool first = true;
   for (const auto& [k, Ts] : runs) {
     int complete = 0;
     double lo = table_T, hi = 0;
@@ -256,18 +243,17 @@ std::string peer_coverage(const Comparison& cmp) {
         hi = std::max(hi, T);
       }
     }
-    s << (first ? " " : "; ") << k.first << " at dt = " << param(k.second) << ": " << Ts.size()
-      << " runs, " << complete << " compared at T = " << shortest(table_T);
+    s << (k == runs.begin()->first ? " " : "; ") << k.first << " at dt = " << param(k.second)
+      << ": " << Ts.size() << " runs, " << complete << " compared at T = " << shortest(table_T);
     if (complete < int(Ts.size()))
       s << " and " << Ts.size() - complete << " only up to T = " << shortest(lo) << " to "
         << shortest(hi) << " (the peer run stopped there)";
-    first = false;
   }
   std::set<std::string> methods;
   for (const auto& [k, Ts] : runs)
     methods.insert(k.first);
   s << ". Table 1's methods not among them: ";
-  first = true;
+  bool first = true;
   for (const auto& c : cmp.table1.cases) {
     const std::string m(to_string(c.params.method));
     if (methods.count(m)) continue;
@@ -292,21 +278,16 @@ void introduction(std::ostream& md, const Comparison& cmp) {
   } else {
     md << "The check against independent code (peers.md) has not been run into this folder.\n\n";
   }
-  std::size_t disagree = 0, explained = 0;
-  for (const auto& c : cmp.cells) {
-    if (!disagreeing(c.v.cls)) continue;
-    ++disagree;
-    explained += c.explained();
-  }
+  const Explained& d = cmp.disagreements;
   md << "Each cell of the paper's Table 1 (as transcribed in [" << reference << "](" << reference
      << ")) beside ours ([" << cmp.table1.name << ".md](" << cmp.table1.name
      << ".md)), each put in one class by a predicate (the class's definition opens its section "
         "below; the outcomes are defined in [docs/studies.md](../docs/studies.md) and the "
         "quantities in [docs/theory.md](../docs/theory.md)). "
         "The paper's text does not fix every choice its code made. In this report, "
-     << explained_definition() << ". Of the " << disagree
-     << " cells that disagree with the paper, a rerun explains " << explained << " and leaves "
-     << disagree - explained
+     << explained_definition() << ". Of the " << d.cells
+     << " cells that disagree with the paper, a rerun explains " << d.explained << " and leaves "
+     << d.cells - d.explained
      << " unexplained; the class table of the summary counts them per class, and no parameter "
         "is tuned to move a cell. Low-confidence transcriptions are labelled in the table. This "
         "report does not fail CI; each cell's verdict is stored in "
@@ -326,22 +307,6 @@ std::string compared_error_text(const Comparison& cmp) {
              : "max error over the run (`max_error_over_time`, chosen with --error-at or error_at)";
 }
 
-// Our dt_stable / the paper's over the cells of one method ("mpm") or of the other (GIMP).
-std::vector<double> dt_stable_ratios(const Comparison& cmp, bool mpm) {
-  AgreementCounts counts;
-  for (const auto& c : cmp.cells) {
-    if ((RunRow(c.row).method == "mpm") == mpm) counts.add(c.v);
-  }
-  return counts.dt_stable_ratios;
-}
-
-// The agreement in numbers, and how many cells each class holds.
-// The paper's verdict of a cell ("stable", "*", or "?" when unreadable) and ours.
-std::string paper_verdict(const Cell& c) {
-  if (!c.paper || c.paper->max_error.kind == PaperValue::unreadable) return "?";
-  return c.paper->max_error.kind == PaperValue::number ? "stable" : "*";
-}
-
 // Our verdict in a few words: "stable (0.0043 A, accurate)", "meaningless" or "\* reason at step
 // n (t = ...)".
 std::string short_verdict(const ojson& row) {
@@ -359,7 +324,7 @@ std::string our_verdict(const ojson& row) {
 void verdict_table(std::ostream& md, const Comparison& cmp) {
   std::map<std::string, std::map<std::string, int>> n;
   for (const auto& c : cmp.cells)
-    ++n[paper_verdict(c)][outcome(c.row)];
+    ++n[c.paper_verdict][outcome(c.row)];
   md << "| cells by verdict | ours stable | ours meaningless | ours unstable (`*`) |\n"
         "|---|---|---|---|\n";
   for (const char* p : {"stable", "*", "?"}) {
@@ -375,10 +340,9 @@ void verdict_table(std::ostream& md, const Comparison& cmp) {
         "the paper's verdicts.\n\n";
 }
 
+// The agreement in numbers, and how many cells each class holds.
 void summary(std::ostream& md, const Comparison& cmp, const FigureSections& figures) {
-  AgreementCounts all;
-  for (const auto& c : cmp.cells)
-    all.add(c.v);
+  const AgreementCounts& all = cmp.all;
   md << "## Summary\n\n"
      << "| | |\n|---|---|\n"
      << "| cells | " << cmp.cells.size() << " (" << cmp.count("unreadable")
@@ -391,9 +355,8 @@ void summary(std::ostream& md, const Comparison& cmp, const FigureSections& figu
      << "| max errors within a factor " << agreement_factor() << " (both stable) | "
      << all.errors_within << " of " << all.errors_compared << " |\n"
      << "| our error compared with the paper's Max Error | " << compared_error_text(cmp) << " |\n"
-     << "| our dt_stable / paper's, MPM | " << distribution(dt_stable_ratios(cmp, true)) << " |\n"
-     << "| our dt_stable / paper's, GIMP | " << distribution(dt_stable_ratios(cmp, false))
-     << " |\n";
+     << "| our dt_stable / paper's, MPM | " << distribution(cmp.mpm.dt_stable_ratios) << " |\n"
+     << "| our dt_stable / paper's, GIMP | " << distribution(cmp.gimp.dt_stable_ratios) << " |\n";
   if (!figures.classes.empty()) {
     md << "| Figs. 1-3, class of each ([below](#figures)) | ";
     for (std::size_t i = 0; i < figures.classes.size(); ++i) {
@@ -429,8 +392,7 @@ void cell_table(std::ostream& md, const Comparison& cmp) {
         "Each cell is placed in the coordinates that fix a run: c dt/h, A/h and the wave passes "
         "c T (E and T enter only through c T).\n\n"
         "| E | A | dt | method | c dt/h | A/h | c T | verdict paper | ours | dt_stable paper | "
-        "ours "
-        "| ratio | max error paper | ours | ratio | verdict | class | confidence |\n"
+        "ours | ratio | max error paper | ours | ratio | verdict | class | confidence |\n"
         "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& c : cmp.cells) {
     const auto& p = c.spec->params;
@@ -438,12 +400,12 @@ void cell_table(std::ostream& md, const Comparison& cmp) {
     const RunRow rr(r);
     const auto error = compared_error(r, cmp.error_of(c));
     const bool stable = rr.survived();
-    const std::string pv = paper_verdict(c);
     md << "| " << shortest(p.E) << " | " << shortest(p.A) << " | " << param(p.dt)
        << (c.spec->dt_inferred ? " (inferred)" : "") << " | " << to_string(p.method) << " | "
        << sci(*rr.courant) << " | " << significant(amplitude_per_cell(p), 3) << " | "
-       << significant(wave_passes(p), 3) << " | " << (pv == "*" ? "\\*" : pv) << " | "
-       << our_verdict(r) << " | " << (c.paper ? show(c.paper->dt_stable) : "–") << " | "
+       << significant(wave_passes(p), 3) << " | "
+       << (c.paper_verdict == "*" ? "\\*" : c.paper_verdict) << " | " << our_verdict(r) << " | "
+       << (c.paper ? show(c.paper->dt_stable) : "–") << " | "
        << (stable ? opt_sci(r["dt_stable_min"]) : "\\*") << " | "
        << (c.v.dt_stable_ratio ? ratio(*c.v.dt_stable_ratio) : "–") << " | "
        << (c.paper ? show(c.paper->max_error) : "–") << " | "
@@ -464,10 +426,9 @@ void cell_table(std::ostream& md, const Comparison& cmp) {
 // A class's heading (its anchor is the class id the tables link to), its cell count and its
 // definition.
 void class_heading(std::ostream& md, const Comparison& cmp, const std::string& id) {
-  if (const ComparisonClass* k = find_class(id)) {
+  if (const ComparisonClass* k = find_class(id))
     md << "<a id=\"" << id << "\"></a>\n### " << k->title << " (" << cmp.count(id) << ")\n\n"
        << "**Definition** (`" << id << "`): " << k->definition << "\n\n";
-  }
 }
 
 // The heading of a class section, its cells, how many of them a rerun explains, and where the
@@ -482,9 +443,7 @@ void class_opening(std::ostream& md, const Comparison& cmp, const std::string& i
     md << "**Explained by a rerun:** " << e.explained << " of " << e.cells << " ("
        << e.cells - e.explained << " unexplained; the walls experiment reruns " << e.rerun << " of "
        << e.cells << " with periodic boundaries)";
-    std::string listed;
-    for (const Cell* c : cmp.in_class(id))
-      if (c->explained()) listed += (listed.empty() ? "" : "; ") + cell_name(*c);
+    const std::string listed = cell_list(cmp, id, true);
     md << (listed.empty() ? std::string(".") : ": " + listed + ".") << "\n\n";
   }
   const std::string anchor = "variants.md#" + id;
@@ -503,6 +462,7 @@ void courant_scan_table(std::ostream& md, const Comparison& cmp) {
   // Courant -> (method, A) -> survived, runs
   std::map<Key, std::map<std::pair<std::string, Key>, std::pair<int, int>>> by_c;
   std::set<std::pair<std::string, Key>> groups;
+  std::set<Key> Es;  // the scan's values of E: Table 1's
   std::int64_t worst_step = 0;
   int above_failed = 0, above_survived = 0;
   double above_survivor_ratio = 0;  // the largest c dt/h over the limit of a scan run reaching T
@@ -510,6 +470,7 @@ void courant_scan_table(std::ostream& md, const Comparison& cmp) {
     const double c = scan_courant(r);
     const auto g = std::make_pair(RunRow(r).method, Key(r["A"].get<double>(), "A"));
     groups.insert(g);
+    Es.insert(Key(r["E"].get<double>(), "E"));
     auto& [ok, n] = by_c[Key(c, "c dt/h")][g];
     ++n;
     if (survived(r)) ++ok;
@@ -527,7 +488,7 @@ void courant_scan_table(std::ostream& md, const Comparison& cmp) {
   }
   md << "**Experiment** ([courant.md](courant.md)): each E of Table 1 for each method and A, "
         "dt = C h / c. Runs reaching T out of the "
-     << table1_E_count(cmp.rows("courant")) << " values of E:\n\n| c dt/h |";
+     << Es.size() << " values of E:\n\n| c dt/h |";
   for (const auto& g : groups)
     md << " " << g.first << " A=" << shortest(g.second) << " |";
   md << "\n|---|";
@@ -559,11 +520,10 @@ void above_spectral_limit_section(std::ostream& md, const Comparison& cmp) {
         "limit (spectral.md; USL with FLIP at the paper's "
      << shortest(cmp.cells.empty() ? 0.0 : cmp.cells.front().row["ppc"].get<double>())
      << " particles per cell: the limit on each record, in the table above). For this problem E "
-        "and dt enter the discrete "
-        "dynamics only through c dt / h and the run length c T (the manufactured solution and "
-        "the scheme are invariant when t is scaled by c): at a fixed T a larger E is the same "
-        "Courant number run for more wave passes, so an outcome at one C can change with E, "
-        "and the scan runs each E of Table 1. ";
+        "and dt enter the discrete dynamics only through c dt / h and the run length c T (the "
+        "manufactured solution and the scheme are invariant when t is scaled by c): at a fixed T a "
+        "larger E is the same Courant number run for more wave passes, so an outcome at one C can "
+        "change with E, and the scan runs each E of Table 1. ";
   if (cmp.have("courant")) {
     courant_scan_table(md, cmp);
   } else {
@@ -579,21 +539,18 @@ void above_our_edge_section(std::ostream& md, const Comparison& cmp) {
     not_run(md, "courant");
     return;
   }
-  const std::map<std::string, double> limit = spectral_limits(cmp);
   md << "The scan's edges per method and A, and their ratio to the scheme's spectral limit "
         "(below an edge runs can fail too; courant.md gives per case where survival stops): ";
-  bool first = true;
   int edges = 0, above = 0;
   for (const auto& [k, c] : cmp.edges) {
-    md << (first ? "" : ", ") << k.first << " A=" << shortest(k.second) << ": "
-       << (std::isfinite(c) ? shortest(c) : std::string("no edge in the scan"));
-    const auto l = limit.find(k.first);
-    if (std::isfinite(c) && l != limit.end()) {
+    md << (k == cmp.edges.begin()->first ? "" : ", ") << k.first << " A=" << shortest(k.second)
+       << ": " << (std::isfinite(c) ? shortest(c) : std::string("no edge in the scan"));
+    const auto l = cmp.limit.find(k.first);
+    if (std::isfinite(c) && l != cmp.limit.end()) {
       md << " (" << fixed(c / l->second, 3) << "x)";
       ++edges;
       above += c > l->second;
     }
-    first = false;
   }
   md << "). " << above << " of " << edges
      << " of these edges lie above the spectral limit; a cell failing above the limit is in the "
@@ -610,6 +567,7 @@ void gimp_wall_exit_section(std::ostream& md, const Comparison& cmp) {
   }
   int reached = 0, n = 0, meaningless = 0;
   std::vector<double> paper_rel, amplitudes, in_cells, moduli, rerun_dt;
+  std::map<Accuracy, int> paper_class;  // the paper's error at T per A, by accuracy class
   for (const Cell* c : cmp.in_class("gimp-wall-exit")) {
     const RunParams& p = c->spec->params;
     amplitudes.push_back(p.A);
@@ -617,8 +575,9 @@ void gimp_wall_exit_section(std::ostream& md, const Comparison& cmp) {
     moduli.push_back(p.E);
     if (c->paper && c->paper->max_error.kind == PaperValue::number) {
       paper_rel.push_back(c->paper->max_error.value / p.A);
+      ++paper_class[accuracy_class(paper_rel.back(), 1)];
     }
-    if (const ojson* r = periodic_run(cmp, *c)) {
+    if (const ojson* r = c->rerun) {
       ++n;
       reached += survived(*r);
       meaningless += outcome(*r) == "meaningless";
@@ -630,13 +589,8 @@ void gimp_wall_exit_section(std::ostream& md, const Comparison& cmp) {
      << ". The paper's own max errors for them are " << distribution(paper_rel)
      << " times A (by this project's classes, docs/studies.md \"Accuracy classes\", applied to "
         "its error at T: "
-     << std::count_if(paper_rel.begin(), paper_rel.end(), [](double x) { return x >= 1; })
-     << " meaningless, "
-     << std::count_if(paper_rel.begin(), paper_rel.end(),
-                      [](double x) { return x >= kAccurateFraction && x < 1; })
-     << " inaccurate, "
-     << std::count_if(paper_rel.begin(), paper_rel.end(),
-                      [](double x) { return x < kAccurateFraction; })
+     << paper_class[Accuracy::meaningless] << " meaningless, " << paper_class[Accuracy::inaccurate]
+     << " inaccurate, " << paper_class[Accuracy::accurate]
      << " accurate; the paper gives no error over time). "
         "**Experiment** ([walls.md](walls.md)): the same cells with periodic boundaries, "
      << n << " of " << cmp.count("gimp-wall-exit") << " (dt = " << listing(rerun_dt)
@@ -660,28 +614,26 @@ void mpm_crossing_failure_section(std::ostream& md, const Comparison& cmp) {
   for (const Cell* c : cells) {
     const ojson& r = c->row;
     const RunRow rr(r);
-    const ojson* periodic = periodic_run(cmp, *c);
     md << "| " << cell_name(*c) << " | " << sci(*rr.courant) << " | "
        << rr.failure_reason.value_or("") << " | "
        << (rr.failure_time ? ratio(*rr.failure_time / r["T"].get<double>()) : std::string("–"))
        << " | " << (rr.error_over_A() ? ratio(*rr.error_over_A()) : std::string("–")) << " | "
-       << (periodic ? short_verdict(*periodic) : std::string("not rerun")) << " |\n";
+       << (c->rerun ? short_verdict(*c->rerun) : std::string("not rerun")) << " |\n";
   }
   md << "\n";
 }
 
 // The crossing experiment: MPM's and GIMP's error over time per E and amplitude.
 void crossing_table(std::ostream& md, const Comparison& cmp) {
+  const Rows& rows = cmp.rows("crossing");
   md << "Linear MPM's shape-function gradient jumps when a particle crosses a cell boundary "
         "(the grid-crossing error of the literature); GIMP's weights are C1 and their gradient "
         "does not jump. The experiment measures the error against the number of crossings, not "
-        "the force at a crossing. "
-        "**Experiment** ([crossing.md](crossing.md)): E = "
-     << listing(cmp.rows("crossing"), "E") << ", dt = " << listing(cmp.rows("crossing"), "dt")
-     << ", amplitude " << span(numbers(cmp.rows("crossing"), "A"))
+        "the force at a crossing. **Experiment** ([crossing.md](crossing.md)): E = "
+     << listing(rows, "E") << ", dt = " << listing(rows, "dt") << ", amplitude "
+     << span(numbers(rows, "A"))
      << ".\n\n| E | A | crossings MPM | MPM error over time / A | GIMP error over time / A |\n"
         "|---|---|---|---|---|\n";
-  const Rows& rows = cmp.rows("crossing");
   auto rel = [](const ojson& x) {
     const RunRow run(x);
     return run.survived() ? ratio(*run.error_over_A()) : "\\* " + run.failure_reason.value_or("");
@@ -689,9 +641,8 @@ void crossing_table(std::ostream& md, const Comparison& cmp) {
   for (const auto& r : rows) {
     if (RunRow(r).method != "mpm") continue;
     const ojson* g = nullptr;
-    for (const auto& q : rows) {
+    for (const auto& q : rows)
       if (RunRow(q).method == "gimp" && q["E"] == r["E"] && q["A"] == r["A"]) g = &q;
-    }
     md << "| " << shortest(r["E"].get<double>()) << " | " << shortest(r["A"].get<double>()) << " | "
        << (r["crossings"].is_null() ? std::string("–") : r["crossings"].dump()) << " | " << rel(r)
        << " | " << (g ? rel(*g) : "–") << " |\n";
@@ -776,14 +727,13 @@ void periodic_mpm_failures(std::ostream& md, const Comparison& cmp) {
   if (!cmp.have("walls")) return;
   int reached = 0, n = 0;
   for (const Cell* c : cmp.in_class("mpm-crossing-failure")) {
-    if (const ojson* r = periodic_run(cmp, *c)) {
+    if (const ojson* r = c->rerun) {
       ++n;
       reached += survived(*r);
     }
   }
   md << "With periodic boundaries ([walls.md](walls.md)), " << reached << " of " << n
-     << " of the MPM failures of the previous class that the walls experiment reruns reach "
-        "T.\n\n";
+     << " of the MPM failures of the previous class that the walls experiment reruns reach T.\n\n";
 }
 
 // MPM's max error more than 3 times the paper's: the grid-crossing error.
@@ -810,7 +760,7 @@ void gimp_error_larger_section(std::ostream& md, const Comparison& cmp) {
   std::string helped;
   int meaningless = 0, within = 0;
   for (const Cell* c : cmp.in_class("gimp-error-larger")) {
-    const ojson* r = periodic_run(cmp, *c);
+    const ojson* r = c->rerun;
     if (r && outcome(*r) == "meaningless") ++meaningless;
     const bool stable = r && outcome(*r) == "stable";
     const auto periodic_error = stable ? compared_error(*r, cmp.error_of(*c)) : std::nullopt;
@@ -824,8 +774,7 @@ void gimp_error_larger_section(std::ostream& md, const Comparison& cmp) {
     }
   }
   md << "Near a Dirichlet wall our GIMP keeps only the nodes inside the domain, so a particle "
-        "whose "
-        "support reaches past the wall loses part of its weight (the design's default). "
+        "whose support reaches past the wall loses part of its weight (the design's default). "
         "**Experiment** ([walls.md](walls.md)): the cells of this class that the walls experiment "
         "holds, rerun with periodic boundaries: ours / paper goes from "
      << distribution(dirichlet) << " to " << distribution(periodic)
@@ -854,11 +803,10 @@ void ours_meaningless_section(std::ostream& md, const Comparison& cmp) {
   for (const Cell* c : cells) {
     const ojson& r = c->row;
     mpm += RunRow(r).method == "mpm";
-    const ojson* periodic = cmp.have("walls") ? periodic_run(cmp, *c) : nullptr;
     md << "| " << cell_name(*c) << " | " << (c->paper ? show(c->paper->max_error) : "–") << " | "
        << opt_sci(r["max_error"]) << " | "
        << (RunRow(r).error_over_A() ? ratio(*RunRow(r).error_over_A()) : std::string("–")) << " | "
-       << (periodic ? short_verdict(*periodic) : std::string("–")) << " |\n";
+       << (c->rerun ? short_verdict(*c->rerun) : std::string("–")) << " |\n";
   }
   md << "\n"
      << mpm << " of " << cells.size()
@@ -902,9 +850,8 @@ std::map<std::string, std::map<std::string, std::vector<double>>> eq108_ratios(
   for (const auto& r : cmp.rows("eq108")) {
     if (!r["dt_stable_min"].is_number() || outcome(r) != "stable") continue;
     for (const auto& c : cmp.cells) {
-      if (!same_cell(r, *c.spec) || !c.paper || c.paper->dt_stable.kind != PaperValue::number) {
+      if (!same_cell(r, *c.spec) || !c.paper || c.paper->dt_stable.kind != PaperValue::number)
         continue;
-      }
       const std::string option = "sigma " + r["dt_stable_sigma"].get<std::string>() + ", ||v|| " +
                                  r["dt_stable_vnorm"].get<std::string>();
       per_option[option][RunRow(r).method].push_back(r["dt_stable_min"].get<double>() /
@@ -917,14 +864,14 @@ std::map<std::string, std::map<std::string, std::vector<double>>> eq108_ratios(
 // Our dt_stable against the paper's in the cells where ours is stable, and the readings of
 // eq. (108) that the eq108 experiment tries.
 void dt_stable_section(std::ostream& md, const Comparison& cmp) {
-  const std::vector<double> mpm = dt_stable_ratios(cmp, true), gimp = dt_stable_ratios(cmp, false);
+  const std::vector<double>& mpm = cmp.mpm.dt_stable_ratios;
+  const std::vector<double>& gimp = cmp.gimp.dt_stable_ratios;
   const auto smaller = std::count_if(mpm.begin(), mpm.end(), [](double x) { return x < 1; }) +
                        std::count_if(gimp.begin(), gimp.end(), [](double x) { return x < 1; });
   md << "<a id=\"dt-stable\"></a>\n### dt_stable: ours against the paper's\n\n"
         "Over the cells where the paper gives a dt_stable and our run is stable (reached T with "
         "an error over time below A; the cell table gives its error over time per A and its "
-        "accuracy class), our eq. (108) bound is "
-        "smaller than the paper's in "
+        "accuracy class), our eq. (108) bound is smaller than the paper's in "
      << smaller << " of " << mpm.size() + gimp.size() << ": ours / paper is " << distribution(mpm)
      << " for MPM and " << distribution(gimp) << " for GIMP. ";
   if (!cmp.have("eq108")) {
@@ -973,9 +920,6 @@ void unreadable_section(std::ostream& md, const Comparison& cmp) {
      << reference << "](" << reference << "); they are compared like the others but labelled.\n";
 }
 
-// comparison.md: the summary, every cell, then the classes of disagreement in the order of
-// comparison_classes(), with the dt_stable gap before the unreadable cells, then the figures.
-// The comparison's conclusions, each decided by the cells.
 // The paper's dt stable column for one method, in units of h/c, against its spectral limit.
 Claim dt_stable_claim(const std::string& m, const std::vector<double>& v, double lim) {
   const double lo = *std::min_element(v.begin(), v.end(), TotalLess());
@@ -998,12 +942,7 @@ Claim dt_stable_claim(const std::string& m, const std::vector<double>& v, double
 
 // Every disagreeing cell explained by a rerun of this report.
 Claim explained_claim(const Comparison& cmp) {
-  long long disagree = 0, explained = 0;
-  for (const auto& c : cmp.cells) {
-    if (!disagreeing(c.v.cls)) continue;
-    ++disagree;
-    explained += c.explained();
-  }
+  const long long disagree = cmp.disagreements.cells, explained = cmp.disagreements.explained;
   Claim x = claim("every-disagreement-explained",
                   "Every Table 1 cell that disagrees with the paper is explained by a rerun of "
                   "this report (the rerun, with one documented choice changed alone, agrees "
@@ -1014,11 +953,11 @@ Claim explained_claim(const Comparison& cmp) {
   return x;
 }
 
+// The comparison's conclusions, each decided by the cells.
 std::vector<Claim> comparison_claims(const Comparison& cmp) {
   std::vector<Claim> claims;
   int above = 0, above_fail = 0;
   std::map<std::string, std::vector<double>> paper_dt_stable;  // method -> c dt_stable / h
-  const std::map<std::string, double> limit = spectral_limits(cmp);
   int sensitive = 0, sensitive_paper_stable = 0, rerun = 0;
   for (std::size_t i = 0; i < cmp.cells.size(); ++i) {
     const Cell& c = cmp.cells[i];
@@ -1030,14 +969,12 @@ std::vector<Claim> comparison_claims(const Comparison& cmp) {
       ++above;
       above_fail += outcome(r) == "unstable";
     }
-    if (c.paper && c.paper->dt_stable.kind == PaperValue::number) {
+    if (c.paper && c.paper->dt_stable.kind == PaperValue::number)
       paper_dt_stable[m].push_back(c.paper->dt_stable.value * std::sqrt(r["E"].get<double>()) *
                                    r["cells"].get<double>());
-    }
-    if (cmp.ensemble && i < cmp.ensemble->size() && (*cmp.ensemble)[i].is_object() &&
-        number_or_zero((*cmp.ensemble)[i], "members") > 0)
-      ++rerun;
-    if (cmp.ensemble && i < cmp.ensemble->size() && (*cmp.ensemble)[i]["sensitive"] == true) {
+    const ojson* e = cmp.ensemble && i < cmp.ensemble->size() ? &(*cmp.ensemble)[i] : nullptr;
+    if (e && e->is_object() && number_or_zero(*e, "members") > 0) ++rerun;
+    if (e && (*e)["sensitive"] == true) {
       ++sensitive;
       sensitive_paper_stable += c.paper && c.paper->max_error.kind == PaperValue::number;
     }
@@ -1047,9 +984,8 @@ std::vector<Claim> comparison_claims(const Comparison& cmp) {
                   "{fail} of {above} such cells fail");
   a.every("fail", above_fail, "above", above);
   claims.push_back(a);
-  for (const auto& [m, v] : paper_dt_stable) {
-    claims.push_back(dt_stable_claim(m, v, limit.at(m)));
-  }
+  for (const auto& [m, v] : paper_dt_stable)
+    claims.push_back(dt_stable_claim(m, v, cmp.limit.at(m)));
   claims.push_back(explained_claim(cmp));
   if (cmp.ensemble) {
     Claim e = claim("no-sensitive-cell",
@@ -1057,9 +993,8 @@ std::vector<Claim> comparison_claims(const Comparison& cmp) {
                     "is perturbed far below the discretisation error",
                     "{sensitive} of {rerun} cells rerun are sensitive ({paper_stable} of them "
                     "stable in the paper); table1.md counts each by its verdict as run, as this "
-                    "report does, and names it; the cells near "
-                    "their edge too costly for this tier are rerun in ensembles.md (make "
-                    "studies), which this tier does not read");
+                    "report does, and names it; the cells near their edge too costly for this tier "
+                    "are rerun in ensembles.md (make studies), which this tier does not read");
     e.count("sensitive", sensitive).count("rerun", rerun);
     e.count("paper_stable", sensitive_paper_stable);
     e.holds = sensitive == 0;
@@ -1068,6 +1003,8 @@ std::vector<Claim> comparison_claims(const Comparison& cmp) {
   return claims;
 }
 
+// comparison.md: the summary, every cell, then the classes of disagreement in the order of
+// comparison_classes(), with the dt_stable gap before the unreadable cells, then the figures.
 void write_markdown(const Comparison& cmp, const FigureSections& figures) {
   std::ostringstream md;
   introduction(md, cmp);
@@ -1105,9 +1042,10 @@ void write_comparison(const StudyInputs& inputs, const std::filesystem::path& ou
   }
   Comparison cmp(*table1->second.spec, out, error_at);
   cmp.support = supporting_rows(inputs);
-  cmp.peers = study_object(inputs, "peers");
-  if (const auto p = inputs.find("peers"); p != inputs.end() && p->second.present())
+  if (const auto p = inputs.find("peers"); p != inputs.end() && p->second.present()) {
     cmp.peer_rows = case_rows(p->second.doc);
+    if (p->second.doc.contains("study")) cmp.peers = &p->second.doc.at("study");
+  }
   if (const nlohmann::ordered_json& t = table1->second.doc;
       t.contains("study") && t["study"].contains("ensemble"))
     cmp.ensemble = &t["study"]["ensemble"];

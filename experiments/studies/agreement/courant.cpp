@@ -19,15 +19,23 @@
 #include "shared/edge_length.hpp"
 #include "study.hpp"
 
-namespace mpmstab {
-
-namespace studies::courant {
+namespace mpmstab::studies::courant {
 namespace {
 
 using ojson = nlohmann::ordered_json;
 
-// ---------------------------------------------------------------------------------------------
-// Findings
+std::vector<FollowUp> courant_follow_up(const FollowUpContext& c);
+StudyReport courant_report(const ReportContext& c);
+std::string courant_index(const Spec& spec, const std::vector<ojson>& rows);
+
+const StudyRegistration kCourant{{
+    .name = "courant",
+    .summary = "per case, the largest Courant number up to which the scan's runs reach T",
+    .records = {.error_over_time = true},
+    .follow_up = courant_follow_up,
+    .report = courant_report,
+    .index = courant_index,
+}};
 
 // One case of the scan: its runs in increasing C, and where survival stops.
 struct Scan {
@@ -35,9 +43,12 @@ struct Scan {
   double A = 0, E = 0;
   std::vector<std::size_t> runs;        // row indices, increasing C
   std::optional<std::size_t> survives;  // the run at the largest C up to which all survive
+  bool edge = false;                    // a run above `survives` fails: a survival edge
   std::optional<std::size_t> stable;    // the run at the largest C up to which all are stable
   std::vector<double> comes_back;       // C that survive above a C that failed
   bool any_survives = false;            // some C of the scan reaches T
+  // How long the survival edge lasts when rerun for length (lasting_text); "–" for no edge.
+  std::string length = "–";
 };
 
 std::vector<Scan> scans(const std::vector<ojson>& rows) {
@@ -75,6 +86,7 @@ std::vector<Scan> scans(const std::vector<ojson>& rows) {
     }
     const EdgeLine line = edge_line(survival), stable = edge_line(stability);
     if (line.edge) s.survives = at[*line.edge];
+    s.edge = s.survives && *s.survives != s.runs.back();
     if (stable.edge) s.stable = at[*stable.edge];
     for (const auto& [C, v] : survival)
       if (line.fail && C > *line.fail && v == EdgeVerdict::holds) s.comes_back.push_back(C);
@@ -83,12 +95,11 @@ std::vector<Scan> scans(const std::vector<ojson>& rows) {
   return out;
 }
 
-// The rows whose run is a survival edge of the scan (a C up to which every run survives, with
-// a failure above it), in row order: the runs rerun for length.
-std::vector<std::size_t> edge_rows(const std::vector<ojson>& rows) {
+// The rows whose run is a survival edge of the scan, in row order: the runs rerun for length.
+std::vector<std::size_t> edge_rows(const std::vector<Scan>& all) {
   std::vector<std::size_t> out;
-  for (const Scan& s : scans(rows))
-    if (s.survives && *s.survives != s.runs.back()) out.push_back(*s.survives);
+  for (const Scan& s : all)
+    if (s.edge) out.push_back(*s.survives);
   std::sort(out.begin(), out.end());
   return out;
 }
@@ -105,7 +116,7 @@ ojson as_edge(const ojson& r) {
 std::vector<FollowUp> courant_follow_up(const FollowUpContext& c) {
   std::vector<ojson> edges;
   std::vector<CaseSpec> cases;
-  const std::vector<std::size_t> rows = edge_rows(c.rows);
+  const std::vector<std::size_t> rows = edge_rows(scans(c.rows));
   for (const std::size_t i : rows) {
     edges.push_back(as_edge(c.rows[i]));
     cases.push_back(c.spec.cases.at(i));
@@ -113,39 +124,62 @@ std::vector<FollowUp> courant_follow_up(const FollowUpContext& c) {
   return all_length_runs(edges, cases, rows);
 }
 
-// ---------------------------------------------------------------------------------------------
-// Claims and rendering
-
-// A Courant number of the scan (dt = C h / c was rounded to 6 digits): "0.78", "0.0625".
-std::string c_text(double C) {
-  return significant(C, 3);
-}
-
-struct Counts {
+// Every case of the scan, and what the text, the claims and the index count of them.
+struct Findings {
+  std::vector<Scan> scans;
   int cases = 0, no_survivor = 0, fail_everywhere = 0, not_monotone = 0, edges = 0,
       edges_meaningless = 0;
   LengthTally length_tally;
 };
 
-std::vector<Claim> courant_claims(const Counts& n) {
+// The findings from the rows and the length runs of the survival edges (without them, each edge
+// is not tested for length).
+Findings find(const std::vector<ojson>& rows, const std::vector<ojson>& follow_up) {
+  Findings f{.scans = scans(rows)};
+  const std::vector<std::size_t> at = edge_rows(f.scans);
+  std::vector<ojson> edges;
+  for (const std::size_t i : at)
+    edges.push_back(as_edge(rows[i]));
+  const LengthRuns lengths = read_length_runs(edges, follow_up, at);
+  for (Scan& s : f.scans) {
+    ++f.cases;
+    f.no_survivor += !s.survives;
+    f.fail_everywhere += !s.any_survives;
+    f.not_monotone += !s.comes_back.empty();
+    if (!s.edge) continue;
+    const ojson& edge = edges[std::find(at.begin(), at.end(), *s.survives) - at.begin()];
+    ++f.edges;
+    f.edges_meaningless += outcome(rows[*s.survives]) == "meaningless";
+    f.length_tally.add(lasting(lengths, edge, "dt_edge"));
+    s.length = lasting_text(lengths, edge, "dt_edge");
+  }
+  return f;
+}
+
+std::vector<Claim> courant_claims(const Findings& f) {
   Claim some = claim("every-case-survives-somewhere",
                      "Every case survives to T at the smallest Courant number of the scan",
                      "{none} of {cases} cases fail at the smallest C of the scan");
-  some.count("none", n.no_survivor).count("cases", n.cases);
-  some.over(n.cases);
-  some.holds = n.no_survivor == 0;
+  some.count("none", f.no_survivor).count("cases", f.cases);
+  some.over(f.cases);
+  some.holds = f.no_survivor == 0;
   Claim mono = claim("survival-monotone-in-courant",
                      "Survival to T is monotone in C in every case: no C survives above one "
                      "that failed",
                      "{not_monotone} of {cases} cases survive again above a failure");
-  mono.count("not_monotone", n.not_monotone).count("cases", n.cases);
-  mono.over(n.cases);
-  mono.holds = n.not_monotone == 0;
+  mono.count("not_monotone", f.not_monotone).count("cases", f.cases);
+  mono.over(f.cases);
+  mono.holds = f.not_monotone == 0;
   const Claim length = length_claim("courant-edges-hold-for-length",
                                     "Every survival edge of the scan survives {first}x and "
                                     "{second}x its run length (at most {cap} wave passes)",
-                                    "{held} of {tested} do", n.length_tally);
+                                    "{held} of {tested} do", f.length_tally);
   return {some, mono, length};
+}
+
+// A Courant number of the scan (dt = C h / c was rounded to 6 digits): "0.78", "0.0625".
+std::string c_text(double C) {
+  return significant(C, 3);
 }
 
 // A run's outcome with its error over time per A and, for a stable run, its accuracy class
@@ -162,58 +196,7 @@ std::string run_text(const ojson& r) {
 }
 
 StudyReport courant_report(const ReportContext& c) {
-  const auto all = scans(c.rows);
-  // The length runs, keyed by the edge rows as edge_length reads them.
-  std::vector<ojson> edges;
-  std::map<std::size_t, std::size_t> edge_of;  // row index -> index in edges
-  const std::vector<std::size_t> rows = edge_rows(c.rows);
-  for (const std::size_t i : rows) {
-    edge_of[i] = edges.size();
-    edges.push_back(as_edge(c.rows[i]));
-  }
-  const LengthRuns lengths = read_length_runs(edges, c.follow_up, rows);
-  Counts n;
-  std::ostringstream table;
-  table << "| method | A | E | A/h | c T | survives to T up to C | run there | length | stable up "
-           "to C | run there | survives again above a failure at C |\n"
-           "|---|---|---|---|---|---|---|---|---|---|---|\n";
-  for (const Scan& s : all) {
-    ++n.cases;
-    const ojson& first = c.rows[s.runs.front()];
-    table << "| " << s.method << " | " << shortest(s.A) << " | " << shortest(s.E) << " | "
-          << significant(first["A_over_h"].get<double>(), 3) << " | "
-          << significant(*RunRow(first).wave_passes, 3) << " | ";
-    n.fail_everywhere += !s.any_survives;
-    if (!s.survives) {
-      ++n.no_survivor;
-      table << "below the scan: its smallest C, " << c_text(*RunRow(first).courant)
-            << ", fails | – | – | ";
-    } else {
-      const ojson& at = c.rows[*s.survives];
-      const bool top = *s.survives == s.runs.back();
-      table << c_text(*RunRow(at).courant) << (top ? " (the largest C of the scan)" : "") << " | "
-            << run_text(at) << " | ";
-      if (const auto e = edge_of.find(*s.survives); e != edge_of.end()) {
-        ++n.edges;
-        n.edges_meaningless += outcome(at) == "meaningless";
-        n.length_tally.add(lasting(lengths, edges[e->second], "dt_edge"));
-        table << lasting_text(lengths, edges[e->second], "dt_edge") << " | ";
-      } else {
-        table << "– | ";
-      }
-    }
-    if (s.stable) {
-      table << c_text(*RunRow(c.rows[*s.stable]).courant) << " | " << run_text(c.rows[*s.stable])
-            << " | ";
-    } else {
-      table << "below the scan: its smallest C is not stable | – | ";
-    }
-    n.not_monotone += !s.comes_back.empty();
-    std::vector<std::string> back;
-    for (const double C : s.comes_back)
-      back.push_back(c_text(C));
-    table << (back.empty() ? std::string("–") : list_of(back)) << " |\n";
-  }
+  const Findings f = find(c.rows, c.follow_up);
   std::ostringstream md;
   md << "## Results\n\n**Reading.** Per case (method, A and E: A / h and c T fixed): *survives "
         "to T up to C*, the largest Courant number C of the scan such that the runs at C and at "
@@ -226,42 +209,52 @@ StudyReport courant_report(const ReportContext& c) {
      << " times its wave passes (at most " << shortest(kLongPasses)
      << "); *stable up to C*, the same with runs that reach T with an error over time below A, "
         "and the run there; and the C that reach T above a C that failed. Of "
-     << n.cases << " cases, " << n.no_survivor << " fail at the smallest C of the scan ("
-     << n.fail_everywhere << " of them at each C of the scan) and " << n.not_monotone
-     << " reach T again above a failure; of " << n.edges
-     << " survival edges (a failure above them), " << n.edges_meaningless
-     << " are meaningless runs and " << n.length_tally.held << " of " << n.length_tally.tested
+     << f.cases << " cases, " << f.no_survivor << " fail at the smallest C of the scan ("
+     << f.fail_everywhere << " of them at each C of the scan) and " << f.not_monotone
+     << " reach T again above a failure; of " << f.edges
+     << " survival edges (a failure above them), " << f.edges_meaningless
+     << " are meaningless runs and " << f.length_tally.held << " of " << f.length_tally.tested
      << " rerun for length survive each length they were rerun for.\n\n"
-     << table.str();
-  return StudyReport{.markdown = md.str(), .claims = courant_claims(n)};
+     << "| method | A | E | A/h | c T | survives to T up to C | run there | length | stable up "
+        "to C | run there | survives again above a failure at C |\n"
+        "|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const Scan& s : f.scans) {
+    const ojson& first = c.rows[s.runs.front()];
+    md << "| " << s.method << " | " << shortest(s.A) << " | " << shortest(s.E) << " | "
+       << significant(first["A_over_h"].get<double>(), 3) << " | "
+       << significant(*RunRow(first).wave_passes, 3) << " | ";
+    if (!s.survives) {
+      md << "below the scan: its smallest C, " << c_text(*RunRow(first).courant)
+         << ", fails | – | – | ";
+    } else {
+      const ojson& at = c.rows[*s.survives];
+      md << c_text(*RunRow(at).courant) << (s.edge ? "" : " (the largest C of the scan)") << " | "
+         << run_text(at) << " | " << s.length << " | ";
+    }
+    if (s.stable) {
+      md << c_text(*RunRow(c.rows[*s.stable]).courant) << " | " << run_text(c.rows[*s.stable])
+         << " | ";
+    } else {
+      md << "below the scan: its smallest C is not stable | – | ";
+    }
+    std::vector<std::string> back;
+    for (const double C : s.comes_back)
+      back.push_back(c_text(C));
+    md << (back.empty() ? std::string("–") : list_of(back)) << " |\n";
+  }
+  return StudyReport{.markdown = md.str(), .claims = courant_claims(f)};
 }
 
 std::string courant_index(const Spec& spec, const std::vector<ojson>& rows) {
-  int at_smallest = 0, everywhere = 0, cases = 0;
-  for (const Scan& s : scans(rows)) {
-    ++cases;
-    at_smallest += !s.survives;
-    everywhere += !s.any_survives;
-  }
+  const Findings f = find(rows, {});
   std::ostringstream md;
   md << "**What it shows.** Per case, the largest Courant number of the scan up to which its "
         "runs reach T ("
-     << at_smallest << " of " << cases << " cases fail at the smallest C of the scan, "
-     << everywhere << " at each C of it), the run there and how long it lasts: [" << spec.name
-     << ".md](" << spec.name << ".md).\n\n";
+     << f.no_survivor << " of " << f.cases << " cases fail at the smallest C of the scan, "
+     << f.fail_everywhere << " at each C of it), the run there and how long it lasts: ["
+     << spec.name << ".md](" << spec.name << ".md).\n\n";
   return md.str();
 }
 
-const StudyRegistration kCourant{{
-    .name = "courant",
-    .summary = "per case, the largest Courant number up to which the scan's runs reach T",
-    .records = {.error_over_time = true},
-    .follow_up = courant_follow_up,
-    .report = courant_report,
-    .index = courant_index,
-}};
-
 }  // namespace
-}  // namespace studies::courant
-
-}  // namespace mpmstab
+}  // namespace mpmstab::studies::courant

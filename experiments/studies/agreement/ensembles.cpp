@@ -12,9 +12,7 @@
 #include "shared/ensemble.hpp"
 #include "study.hpp"
 
-namespace mpmstab {
-
-namespace studies::ensembles {
+namespace mpmstab::studies::ensembles {
 namespace {
 
 using ojson = nlohmann::ordered_json;
@@ -30,9 +28,8 @@ std::vector<EnsembleCell> rerun_cells(const std::vector<ojson>& rows,
   const std::vector<EnsembleResult> all =
       ensemble_results(rows, follow_up, EnsembleNeed::in_studies);
   std::vector<EnsembleCell> cells;
-  for (std::size_t i = 0; i < rows.size(); ++i) {
+  for (std::size_t i = 0; i < rows.size(); ++i)
     if (all[i].need == EnsembleNeed::in_studies) cells.push_back({i, all[i]});
-  }
   return cells;
 }
 
@@ -111,6 +108,4 @@ const StudyRegistration kEnsembles{{
 }};
 
 }  // namespace
-}  // namespace studies::ensembles
-
-}  // namespace mpmstab
+}  // namespace mpmstab::studies::ensembles

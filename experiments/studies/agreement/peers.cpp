@@ -1,13 +1,10 @@
 // The peers study: our solver against independent code run on the same bar (a reference file
 // of the peer's measured values, reference/peers/), case by case, within stated tolerances.
-#include <algorithm>
 #include <cmath>
-#include <map>
 #include <sstream>
 
 #include "agreement/peers.hpp"
 #include "csv.hpp"
-#include "key.hpp"
 #include "report_util.hpp"
 #include "run_row.hpp"
 #include "study.hpp"
@@ -18,6 +15,27 @@ namespace studies::peers {
 namespace {
 
 using ojson = nlohmann::ordered_json;
+
+std::string peers_index(const Spec& spec, const std::vector<ojson>& rows);
+
+const StudyRegistration kPeers{{
+    .name = "peers",
+    .summary = "our solver against independent code's measured values, within stated tolerances",
+    .needs_reference = true,
+    .records = {.error_over_time = true},
+    .report =
+        [](const ReportContext& c) {
+          const PeersStudy s = study_peers(c.spec, c.rows);
+          return StudyReport{.markdown = peers_markdown(c.spec, s, c.out),
+                             .data_csv = peers_verdicts_csv(s, c.csv_header),
+                             .json = peers_json(s)};
+        },
+    .index = peers_index,
+    .blessed = {{.file = "peers_data.csv",
+                 .key_columns = {"method", "E", "A", "dt", "T"},
+                 .value_columns = {"outcome_agrees", "step_agrees", "errors_agree", "within"},
+                 .what = "agreement with the peer"}},
+}};
 
 // The tolerances a faithful solver meets (docs/studies.md, "Against independent code"): the same
 // outcome, the failure at the same step give or take one, and, for runs that are stable (not
@@ -94,10 +112,14 @@ std::optional<double> ratio_of(const std::optional<double>& ours,
 
 PeerCase compare_case(const ojson& row, const PeerValue& v) {
   const RunRow rr(row);
-  PeerCase c;
-  c.basis = v.basis;
-  c.ours_outcome = rr.outcome;
-  c.peer_outcome = v.outcome;
+  PeerCase c{.row = &row,
+             .basis = v.basis,
+             .ours_outcome = rr.outcome,
+             .peer_outcome = v.outcome,
+             .peer_failure = v.failure,
+             .peer_step = v.fail_step,
+             .peer_error = v.max_error_T,
+             .peer_over_time = v.max_error_over_time};
   c.outcome_agrees = (v.outcome == "unstable") == !rr.survived();
   if (v.fail_step && rr.failure_step) {
     c.step_agrees = std::llabs(*rr.failure_step - *v.fail_step) <= kStepTolerance;
@@ -118,32 +140,46 @@ PeerCase compare_case(const ojson& row, const PeerValue& v) {
   return c;
 }
 
-}  // namespace
-}  // namespace studies::peers
+// The cases of one basis: agreeing outcomes, equal failure steps, the error ratios judged.
+BasisFindings basis_findings(const std::vector<PeerCase>& cases, const char* basis) {
+  BasisFindings b{.basis = basis};
+  std::vector<double> ratios;
+  for (const auto& c : cases) {
+    if (c.basis != basis) continue;
+    ++b.cases;
+    b.outcomes += c.outcome_agrees;
+    if (c.peer_step) {
+      ++b.failing;
+      b.steps += c.step_agrees;
+    }
+    b.within += c.agrees;
+    if (c.errors_judged && c.error_ratio) ratios.push_back(*c.error_ratio);
+  }
+  b.judged = static_cast<int>(ratios.size());
+  if (ratios.empty()) return b;
+  b.lo = quantile(ratios, 0);
+  b.median = quantile(ratios, 0.5);
+  b.hi = quantile(ratios, 1);
+  return b;
+}
 
-PeersStudy study_peers(const Spec& spec, const std::vector<nlohmann::ordered_json>& rows) {
-  using namespace studies::peers;
+// The findings: every row against the peer's values (rows must outlive them).
+Findings find(const Spec& spec, const std::vector<ojson>& rows) {
   const std::vector<PeerValue> peer = read_peer(spec.reference);
-  PeersStudy s;
+  Findings s;
   for (const auto& row : rows) {
     const PeerValue* v = find_peer(peer, row);
     if (!v) {
       ++s.unmatched;
       continue;
     }
-    PeerCase c = compare_case(row, *v);
-    c.row = &row;
-    c.peer_failure = v->failure;
-    c.peer_step = v->fail_step;
-    c.peer_error = v->max_error_T;
-    c.peer_over_time = v->max_error_over_time;
-    s.cases.push_back(c);
+    s.cases.push_back(compare_case(row, *v));
+    s.agree += s.cases.back().agrees;
   }
+  for (const char* basis : {"linear", "GIMP"})
+    s.bases.push_back(basis_findings(s.cases, basis));
   return s;
 }
-
-namespace studies::peers {
-namespace {
 
 std::string opt_ratio(const std::optional<double>& r) {
   if (!r) return "–";
@@ -156,41 +192,22 @@ std::string opt_number(const std::optional<double>& v) {
   return v ? sci(*v, 4) : "–";
 }
 
-// Per basis: cases, agreeing outcomes, equal failure steps, error ratios over the judged cases.
+// The statement, and per basis: cases, agreeing outcomes, equal failure steps, error ratios.
 std::string summary(const PeersStudy& s) {
   std::ostringstream md;
-  int agree = 0;
-  for (const auto& c : s.cases)
-    agree += c.agrees;
-  md << "**Statement.** Our solver reproduces Uintah's 1D MPM code on " << agree << " of "
+  md << "**Statement.** Our solver reproduces Uintah's 1D MPM code on " << s.agree << " of "
      << s.cases.size() << " cases within the tolerances below";
-  if (s.unmatched > 0) {
+  if (s.unmatched > 0)
     md << "; " << s.unmatched << " of our cases have no peer value and are not compared";
-  }
   md << ".\n\n";
   md << "| basis | cases | outcomes agree | failure steps equal (±1) | error ratios judged | "
         "ours / peer at T: min, median, max | within tolerance |\n|---|---|---|---|---|---|---|\n";
-  for (const char* basis : {"linear", "GIMP"}) {
-    int n = 0, outcomes = 0, steps = 0, failing = 0, within = 0;
-    std::vector<double> ratios;
-    for (const auto& c : s.cases) {
-      if (c.basis != basis) continue;
-      ++n;
-      outcomes += c.outcome_agrees;
-      if (c.peer_step) {
-        ++failing;
-        steps += c.step_agrees;
-      }
-      within += c.agrees;
-      if (c.errors_judged && c.error_ratio) ratios.push_back(*c.error_ratio);
-    }
-    std::sort(ratios.begin(), ratios.end(), TotalLess());
-    md << "| " << basis << " | " << n << " | " << outcomes << " of " << n << " | " << steps
-       << " of " << failing << " | " << ratios.size() << " | "
-       << (ratios.empty() ? std::string("–")
-                          : opt_ratio(ratios.front()) + ", " + opt_ratio(quantile(ratios, 0.5)) +
-                                ", " + opt_ratio(ratios.back()))
-       << " | " << within << " of " << n << " |\n";
+  for (const BasisFindings& b : s.bases) {
+    md << "| " << b.basis << " | " << b.cases << " | " << b.outcomes << " of " << b.cases << " | "
+       << b.steps << " of " << b.failing << " | " << b.judged << " | "
+       << (b.lo ? opt_ratio(b.lo) + ", " + opt_ratio(b.median) + ", " + opt_ratio(b.hi)
+                : std::string("–"))
+       << " | " << b.within << " of " << b.cases << " |\n";
   }
   return md.str();
 }
@@ -205,8 +222,7 @@ std::string rules(const Spec& spec, const std::filesystem::path& out) {
         "**Tolerances**, what a faithful solver must meet: the same outcome (the peer's "
         "records say only whether its run reached T, written *reached T* in the table, as our "
         "*stable*, *meaningless* and runs of under a wave pass do; ours is given with its "
-        "accuracy class); the failure at the "
-        "same step, ±"
+        "accuracy class); the failure at the same step, ±"
      << kStepTolerance
      << "; and where both runs are stable (ours not meaningless), the max error at T and over "
         "time within a relative "
@@ -247,8 +263,21 @@ std::string every_case(const PeersStudy& s) {
   return md.str();
 }
 
+std::string peers_index(const Spec& spec, const std::vector<ojson>& rows) {
+  const PeersStudy s = study_peers(spec, rows);
+  std::ostringstream md;
+  md << "**What it shows.** Our solver reproduces Uintah's 1D MPM code on " << s.agree << " of "
+     << s.cases.size() << " cases (same outcome, same failure step, errors within the "
+     << "stated tolerances): [" << spec.name << ".md](" << spec.name << ".md).\n\n";
+  return md.str();
+}
+
 }  // namespace
 }  // namespace studies::peers
+
+PeersStudy study_peers(const Spec& spec, const std::vector<nlohmann::ordered_json>& rows) {
+  return studies::peers::find(spec, rows);
+}
 
 std::string peers_markdown(const Spec& spec, const PeersStudy& s,
                            const std::filesystem::path& out) {
@@ -257,7 +286,6 @@ std::string peers_markdown(const Spec& spec, const PeersStudy& s,
 }
 
 std::string peers_verdicts_csv(const PeersStudy& s, const std::string& header_lines) {
-  using namespace studies::peers;
   std::ostringstream csv;
   csv << header_lines << "# one row per case: does it agree with the peer within the tolerances\n"
       << "method,E,A,dt,T,outcome_agrees,step_agrees,errors_agree,within\n";
@@ -273,46 +301,7 @@ std::string peers_verdicts_csv(const PeersStudy& s, const std::string& header_li
 }
 
 nlohmann::ordered_json peers_json(const PeersStudy& s) {
-  using namespace studies::peers;
-  int agree = 0;
-  for (const auto& c : s.cases)
-    agree += c.agrees;
-  return {{"cases", s.cases.size()}, {"agree", agree}, {"unmatched", s.unmatched}};
+  return {{"cases", s.cases.size()}, {"agree", s.agree}, {"unmatched", s.unmatched}};
 }
-
-namespace studies::peers {
-namespace {
-
-std::string peers_index(const Spec& spec, const std::vector<ojson>& rows) {
-  const PeersStudy s = study_peers(spec, rows);
-  const ojson j = peers_json(s);
-  std::ostringstream md;
-  md << "**What it shows.** Our solver reproduces Uintah's 1D MPM code on " << j["agree"].dump()
-     << " of " << j["cases"].dump() << " cases (same outcome, same failure step, errors within the "
-     << "stated tolerances): [" << spec.name << ".md](" << spec.name << ".md).\n\n";
-  return md.str();
-}
-
-const StudyRegistration kPeers{{
-    .name = "peers",
-    .summary = "our solver against independent code's measured values, within stated tolerances",
-    .needs_reference = true,
-    .records = {.error_over_time = true},
-    .report =
-        [](const ReportContext& c) {
-          const PeersStudy s = study_peers(c.spec, c.rows);
-          return StudyReport{.markdown = peers_markdown(c.spec, s, c.out),
-                             .data_csv = peers_verdicts_csv(s, c.csv_header),
-                             .json = peers_json(s)};
-        },
-    .index = peers_index,
-    .blessed = {{.file = "peers_data.csv",
-                 .key_columns = {"method", "E", "A", "dt", "T"},
-                 .value_columns = {"outcome_agrees", "step_agrees", "errors_agree", "within"},
-                 .what = "agreement with the peer"}},
-}};
-
-}  // namespace
-}  // namespace studies::peers
 
 }  // namespace mpmstab

@@ -25,12 +25,26 @@ struct PeerCase {
   bool agrees = false;  // within every tolerance
 };
 
-struct PeersStudy {
-  std::vector<PeerCase> cases;
-  int unmatched = 0;  // our cases without a peer value
+namespace studies::peers {
+// The cases of one basis of the peer: how many agree in each respect, and ours / peer max error
+// at T over the cases whose errors are judged.
+struct BasisFindings {
+  std::string basis;
+  int cases = 0, outcomes = 0, failing = 0, steps = 0, within = 0, judged = 0;
+  std::optional<double> lo, median, hi;
 };
 
-// Every row against the peer values in spec.reference (rows must outlive the result).
+// Every case against the peer, and what the report, its JSON and the index count of them.
+struct Findings {
+  std::vector<PeerCase> cases;
+  int unmatched = 0;                 // our cases without a peer value
+  int agree = 0;                     // of the cases, within every tolerance
+  std::vector<BasisFindings> bases;  // linear, then GIMP
+};
+}  // namespace studies::peers
+using PeersStudy = studies::peers::Findings;
+
+// The findings: every row against the peer values in spec.reference (rows must outlive them).
 PeersStudy study_peers(const Spec& spec, const std::vector<nlohmann::ordered_json>& rows);
 std::string peers_markdown(const Spec& spec, const PeersStudy& s, const std::filesystem::path& out);
 // <name>_data.csv: per case, whether it agrees (make check compares it with the blessed verdicts).

@@ -6,60 +6,14 @@
 #include "shared/paper_table1.hpp"
 #include "study.hpp"
 
-namespace mpmstab {
-
-namespace studies::variants {
+namespace mpmstab::studies::variants {
 namespace {
 
 using ojson = nlohmann::ordered_json;
 
-// The variants study reads the courant scan (for the class above-our-edge) when it has been run
-// into the same folder.
-StudyReport variants_report(const ReportContext& c) {
-  CourantEdges edges;
-  const StudyInput& courant = c.inputs.at("courant");
-  if (courant.present()) {
-    edges =
-        courant_edges(std::vector<ojson>(courant.doc["cases"].begin(), courant.doc["cases"].end()));
-  }
-  const VariantsStudy study = study_variants(c.spec, c.rows, read_paper_table1(c.spec), edges);
-  return StudyReport{.markdown = variants_markdown(c.spec, study, courant.present()),
-                     .data_csv = variants_data_csv(study, c.csv_header),
-                     .json = study_to_json(study)};
-}
-
-// The figure draws one point per cell where both the paper and the variant's run are stable and
-// the paper's error is readable (kind 0 rows of the data file, counted in the study JSON), and a
-// median per variant and method; its subtitle says which cells it selects, why, and where the
-// others are.
-std::string variants_subtitle(const Spec& spec, const ojson& doc) {
-  std::size_t drawn = 0, variants = 0;
-  if (doc.contains("study") && doc["study"].contains("variants")) {
-    for (const auto& v : doc["study"]["variants"]) {
-      ++variants;
-      for (const auto& [column, m] : v["by_method"].items())
-        drawn += m["errors_compared"].get<std::size_t>();
-    }
-  }
-  const std::size_t runs = doc["cases"].size();
-  std::string s = "Drawn: the " + std::to_string(drawn) + " of " + std::to_string(runs) +
-                  " runs (" + std::to_string(variants) +
-                  " variants of the Table 1 cells) where the paper and our run are both stable "
-                  "and the paper's error is readable, since a ratio needs two errors; the other " +
-                  std::to_string(runs - drawn) + " are compared by verdict in " + spec.name + ".md";
-  return s;
-}
-
-std::string variants_index(const Spec& spec, const std::vector<ojson>&) {
-  std::ostringstream md;
-  md << "![" << spec.title << "](" << spec.name << ".png)\n\n**What it shows.** "
-     << spec.variants.size()
-     << " variants of Table 1's cells, each a documented implementation choice (or a pair) "
-        "changed from the default; per variant and method the agreement with the paper and "
-        "the cost, and which choices can or cannot account for each class of disagreement: ["
-     << spec.name << ".md](" << spec.name << ".md).\n\n";
-  return md.str();
-}
+StudyReport variants_report(const ReportContext& c);
+std::string variants_index(const Spec& spec, const std::vector<ojson>& rows);
+std::string variants_subtitle(const Spec& spec, const ojson& doc);
 
 const StudyRegistration kVariants{{
     .name = "variants",
@@ -75,7 +29,48 @@ const StudyRegistration kVariants{{
     .figure_subtitle = variants_subtitle,
 }};
 
-}  // namespace
-}  // namespace studies::variants
+// The findings from the rows; the courant scan, an input of the report only, tells apart the
+// failure classes (above-our-edge), which neither the index nor the subtitle prints.
+Findings find(const Spec& spec, const std::vector<ojson>& rows, const CourantEdges& edges = {}) {
+  return study_variants(spec, rows, read_paper_table1(spec), edges);
+}
 
-}  // namespace mpmstab
+// The variants study reads the courant scan (for the class above-our-edge) when it has been run
+// into the same folder.
+StudyReport variants_report(const ReportContext& c) {
+  const StudyInput& courant = c.inputs.at("courant");
+  const CourantEdges edges = courant.present()
+                                 ? courant_edges(std::vector<ojson>(courant.doc["cases"].begin(),
+                                                                    courant.doc["cases"].end()))
+                                 : CourantEdges{};
+  const Findings f = find(c.spec, c.rows, edges);
+  return StudyReport{.markdown = variants_markdown(c.spec, f, courant.present()),
+                     .data_csv = variants_data_csv(f, c.csv_header),
+                     .json = study_to_json(f)};
+}
+
+std::string variants_index(const Spec& spec, const std::vector<ojson>& rows) {
+  std::ostringstream md;
+  md << "![" << spec.title << "](" << spec.name << ".png)\n\n**What it shows.** "
+     << find(spec, rows).variants.size()
+     << " variants of Table 1's cells, each a documented implementation choice (or a pair) "
+        "changed from the default; per variant and method the agreement with the paper and "
+        "the cost, and which choices can or cannot account for each class of disagreement: ["
+     << spec.name << ".md](" << spec.name << ".md).\n\n";
+  return md.str();
+}
+
+// The figure draws one point per cell where both the paper and the variant's run are stable and
+// the paper's error is readable (kind 0 rows of the data file), and a median per variant and
+// method; its subtitle says which cells it selects, why, and where the others are.
+std::string variants_subtitle(const Spec& spec, const ojson& doc) {
+  const Findings f = find(spec, std::vector<ojson>(doc["cases"].begin(), doc["cases"].end()));
+  return "Drawn: the " + std::to_string(f.drawn) + " of " + std::to_string(f.runs) + " runs (" +
+         std::to_string(f.variants.size()) +
+         " variants of the Table 1 cells) where the paper and our run are both stable and the "
+         "paper's error is readable, since a ratio needs two errors; the other " +
+         std::to_string(f.runs - f.drawn) + " are compared by verdict in " + spec.name + ".md";
+}
+
+}  // namespace
+}  // namespace mpmstab::studies::variants

@@ -5,7 +5,6 @@
 // variants_report.cpp, and variants.cpp registers the study.
 #pragma once
 
-#include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -22,7 +21,13 @@ struct VariantMethodSummary {
   int cells = 0;
   AgreementCounts counts;
   double particle_steps = 0;  // work summed over the variant's runs of this column
+  std::optional<double> median_error_ratio, median_dt_stable_ratio;  // of the counts' ratios
 };
+
+// Which of the study's verdicts a variant earns for a class (criterion stated in variants.md):
+// accounts when at least half of the class's cells agree under it, partly when some but fewer
+// do, not at all when none does; not applicable when it ran none of them.
+enum class Accounts { yes, partly, no, not_applicable };
 
 // One variant, one class of disagreement (the cells' class under the default run).
 struct VariantClassOutcome {
@@ -38,6 +43,8 @@ struct VariantClassOutcome {
   // accurate (core/base/accuracy.hpp): agreeing with the paper's max error is not accuracy.
   std::vector<double> agreeing_error_over_A;
   int agreeing_not_accurate = 0;
+  Accounts accounts = Accounts::not_applicable;  // accounts_for() the class
+  bool mostly_meaningless = false;               // most of the verdict_agree are meaningless
 };
 
 struct VariantOutcome {
@@ -54,26 +61,28 @@ struct VariantOutcome {
   std::vector<std::pair<std::string, double>> error_ratios;  // (column, ours / paper) per cell
 };
 
-struct VariantsStudy {
+namespace studies::variants {
+// Every variant's tallies, and what the report, the index and the figure's subtitle say of them.
+struct Findings {
   std::vector<VariantOutcome> variants;    // in spec order
   std::size_t baseline = 0;                // index of the default variant
   int cells = 0;                           // cells of the default variant
   std::map<std::string, int> class_cells;  // class id -> cells of that class under the default
+  // The variant (not the default) with the largest net gain in cells in full agreement over the
+  // default, and those that change no cell's agreement (indices in `variants`).
+  std::optional<std::size_t> largest_gain;
+  std::vector<std::size_t> unchanged;
+  // The runs, and those the figure draws: the paper and ours both stable, the paper's error
+  // readable.
+  std::size_t runs = 0, drawn = 0;
 };
+}  // namespace studies::variants
+using VariantsStudy = studies::variants::Findings;
 
-// Whether a cell of a class agrees with the paper in the sense of that class: the stability
-// verdict for the verdict classes, max errors within a factor 3 for the error classes, and full
-// agreement for the agreement classes.
-bool agrees_as(const CellVerdict& under_variant, ClassKind class_kind);
-
-// Which of the study's verdicts a variant earns for a class (criterion stated in variants.md):
-// accounts when at least half of the class's cells agree under it, partly when some but fewer
-// do, not at all when none does; not applicable when it ran none of them.
-enum class Accounts { yes, partly, no, not_applicable };
 Accounts accounts_for(const VariantClassOutcome& o, int class_cells);
 
-// The study from the flat result rows of a variants spec (rows[i] is spec.cases[i]), the paper's
-// table and the Courant edges of the courant scan (empty without it).
+// The findings from the flat result rows of a variants spec (rows[i] is spec.cases[i]), the
+// paper's table and the Courant edges of the courant scan (empty without it).
 VariantsStudy study_variants(const Spec& spec, const std::vector<nlohmann::ordered_json>& rows,
                              const std::map<Table1Key, PaperCell>& paper,
                              const CourantEdges& edges);
@@ -96,8 +105,5 @@ int class_cell_count(const VariantsStudy& s, const std::string& class_id);
 
 // A variant's outcome for a class (all zero when it ran none of the class's cells).
 VariantClassOutcome class_outcome(const VariantOutcome& v, const std::string& class_id);
-
-// The median of a list of ratios, none when it is empty.
-std::optional<double> median_ratio(const std::vector<double>& ratios);
 
 }  // namespace mpmstab

@@ -32,10 +32,26 @@ struct CellReader {
 
 // The index of the default variant (the first marked baseline; 0 when none is).
 std::size_t baseline_index(const Spec& spec) {
-  for (std::size_t j = 0; j < spec.variants.size(); ++j) {
+  for (std::size_t j = 0; j < spec.variants.size(); ++j)
     if (spec.variants[j].baseline) return j;
-  }
   return 0;
+}
+
+// Whether a cell of a class agrees with the paper in the sense of that class: the stability
+// verdict for the verdict classes, max errors within a factor 3 for the error classes, and full
+// agreement for the agreement classes.
+bool agrees_as(const CellVerdict& v, ClassKind kind) {
+  switch (kind) {
+    case ClassKind::verdict:
+      return v.same_verdict();
+    case ClassKind::error:
+      return v.cls == "agree-stable";
+    case ClassKind::agreement:
+      return v.agrees();
+    case ClassKind::unreadable:
+      return false;
+  }
+  return false;
 }
 
 // Adds case i to a variant's tallies: per column of the paper, per class of its cell under the
@@ -90,6 +106,37 @@ VariantOutcome variant_outcome(const VariantSpec& vs, const CellReader& read,
   return o;
 }
 
+// The median of a list of ratios, none when it is empty.
+std::optional<double> median_ratio(const std::vector<double>& ratios) {
+  if (ratios.empty()) return std::nullopt;
+  return quantile(ratios, 0.5);
+}
+
+// What the reading and the figure say, from the tallies: the medians, each variant's verdict
+// per class, the variant of the largest net gain, those that change nothing, the runs drawn.
+void conclude(VariantsStudy& s) {
+  auto gain = [](const VariantOutcome& v) { return v.agreeing - v.agreeing_under_default; };
+  for (std::size_t j = 0; j < s.variants.size(); ++j) {
+    VariantOutcome& v = s.variants[j];
+    for (auto& [column, m] : v.by_method) {
+      m.median_error_ratio = median_ratio(m.counts.error_ratios);
+      m.median_dt_stable_ratio = median_ratio(m.counts.dt_stable_ratios);
+      s.drawn += m.counts.errors_compared;
+    }
+    bool same = true;  // every cell of an agreement class still agrees, none of another does
+    for (auto& [cls, o] : v.by_class) {
+      o.accounts = accounts_for(o, class_cell_count(s, cls));
+      o.mostly_meaningless = 2 * o.meaningless > o.verdict_agree;
+      const ComparisonClass* k = find_class(cls);
+      if (k && k->kind == ClassKind::agreement && o.agree != o.covered) same = false;
+      if (k && k->kind != ClassKind::agreement && o.agree != 0) same = false;
+    }
+    if (v.baseline) continue;
+    if (same) s.unchanged.push_back(j);
+    if (!s.largest_gain || gain(v) > gain(s.variants[*s.largest_gain])) s.largest_gain = j;
+  }
+}
+
 // How study_to_json names a verdict of accounts_for().
 const char* accounts_name(Accounts a) {
   return a == Accounts::yes              ? "yes"
@@ -111,8 +158,8 @@ ojson variant_json(const VariantOutcome& v) {
   e["particle_steps"] = v.particle_steps;
   ojson by_method = ojson::object();
   for (const auto& [column, m] : v.by_method) {
-    const auto err = median_ratio(m.counts.error_ratios);
-    const auto dts = median_ratio(m.counts.dt_stable_ratios);
+    const auto& err = m.median_error_ratio;
+    const auto& dts = m.median_dt_stable_ratio;
     by_method[column] = {{"cells", m.cells},
                          {"verdicts_agree", m.counts.verdicts_agree},
                          {"verdicts_compared", m.counts.verdicts_compared},
@@ -140,7 +187,7 @@ ojson class_json(const VariantsStudy& s, const ComparisonClass& k) {
                    {"verdict_agree", o.verdict_agree},
                    {"meaningless", o.meaningless},
                    {"breaks", v.breaks},
-                   {"accounts", accounts_name(accounts_for(o, n))}});
+                   {"accounts", accounts_name(o.accounts)}});
   }
   return {{"title", k.title}, {"cells", n}, {"variants", per}};
 }
@@ -149,49 +196,23 @@ ojson class_json(const VariantsStudy& s, const ComparisonClass& k) {
 }  // namespace studies::variants_analysis
 
 std::vector<const ComparisonClass*> variants_disagreement_classes() {
-  using namespace studies::variants_analysis;
   std::vector<const ComparisonClass*> out;
-  for (const auto& k : comparison_classes()) {
+  for (const auto& k : comparison_classes())
     if (k.kind == ClassKind::verdict || k.kind == ClassKind::error) out.push_back(&k);
-  }
   return out;
 }
 
 int class_cell_count(const VariantsStudy& s, const std::string& class_id) {
-  using namespace studies::variants_analysis;
   const auto it = s.class_cells.find(class_id);
   return it == s.class_cells.end() ? 0 : it->second;
 }
 
 VariantClassOutcome class_outcome(const VariantOutcome& v, const std::string& class_id) {
-  using namespace studies::variants_analysis;
   const auto it = v.by_class.find(class_id);
   return it == v.by_class.end() ? VariantClassOutcome{} : it->second;
 }
 
-std::optional<double> median_ratio(const std::vector<double>& ratios) {
-  using namespace studies::variants_analysis;
-  if (ratios.empty()) return std::nullopt;
-  return quantile(ratios, 0.5);
-}
-
-bool agrees_as(const CellVerdict& v, ClassKind kind) {
-  using namespace studies::variants_analysis;
-  switch (kind) {
-    case ClassKind::verdict:
-      return v.same_verdict();
-    case ClassKind::error:
-      return v.cls == "agree-stable";
-    case ClassKind::agreement:
-      return v.agrees();
-    case ClassKind::unreadable:
-      return false;
-  }
-  return false;
-}
-
 Accounts accounts_for(const VariantClassOutcome& o, int class_cells) {
-  using namespace studies::variants_analysis;
   if (o.covered == 0) return Accounts::not_applicable;
   if (o.agree > 0 && 2 * o.agree >= class_cells) return Accounts::yes;
   return o.agree > 0 ? Accounts::partly : Accounts::no;
@@ -215,6 +236,8 @@ VariantsStudy study_variants(const Spec& spec, const std::vector<nlohmann::order
   }
   for (const VariantSpec& vs : spec.variants)
     s.variants.push_back(variant_outcome(vs, read, under_default));
+  s.runs = rows.size();
+  conclude(s);
   return s;
 }
 

@@ -59,14 +59,6 @@ std::string method_title(const std::string& column) {
   return column == "mpm" ? "MPM" : column == "gimp" ? "GIMP" : column;
 }
 
-// "a", "a and b", "a, b and c".
-std::string and_list(const std::vector<std::string>& v) {
-  std::string out;
-  for (std::size_t i = 0; i < v.size(); ++i)
-    out += (i == 0 ? "" : i + 1 == v.size() ? " and " : ", ") + v[i];
-  return out;
-}
-
 // "a; b; c", or "none".
 std::string semicolon_list(const std::vector<std::string>& v) {
   std::string out;
@@ -88,13 +80,12 @@ ClassVerdicts class_verdicts(const VariantsStudy& s, const ComparisonClass& k, i
     if (v.baseline) continue;
     const VariantClassOutcome o = class_outcome(v, k.id);
     const std::string breaks = v.breaks ? ", breaking " + breaking(v.breaks) : "";
-    switch (accounts_for(o, n)) {
+    switch (o.accounts) {
       case Accounts::yes:
         c.yes.push_back(named(v) + " (" + agree_text(o, n) + breaks + ")");
-        if (2 * o.meaningless > o.verdict_agree) {
+        if (o.mostly_meaningless)
           c.mostly_meaningless.push_back(named(v) + " (" + of(o.meaningless, o.verdict_agree) +
                                          ")");
-        }
         break;
       case Accounts::partly:
         c.partly.push_back(named(v) + " (" + agree_text(o, n) + breaks + ")");
@@ -124,9 +115,9 @@ std::string class_reading(const VariantsStudy& s, const ComparisonClass& k) {
   std::ostringstream md;
   if (!c.yes.empty()) {
     md << "Can account for this class (at least half of its " << cells_word(n) << " reach " << what
-       << "): " << and_list(c.yes) << ". ";
+       << "): " << list_of(c.yes) << ". ";
     if (!c.mostly_meaningless.empty()) {
-      md << "But most of the runs that survive under " << and_list(c.mostly_meaningless)
+      md << "But most of the runs that survive under " << list_of(c.mostly_meaningless)
          << " are meaningless (their error over time reached A): they match the paper's verdict, "
             "not an answer of the size of its Max Error. ";
     }
@@ -134,11 +125,11 @@ std::string class_reading(const VariantsStudy& s, const ComparisonClass& k) {
     md << "No variant accounts for this class: none brings half of its " << cells_word(n) << " to "
        << what << ". ";
   }
-  if (!c.partly.empty()) md << "Partly (some, fewer than half): " << and_list(c.partly) << ". ";
+  if (!c.partly.empty()) md << "Partly (some, fewer than half): " << list_of(c.partly) << ". ";
   if (!c.no.empty())
-    md << "Cannot account for it (no cell reaches " << what << "): " << and_list(c.no) << ". ";
+    md << "Cannot account for it (no cell reaches " << what << "): " << list_of(c.no) << ". ";
   if (!c.not_run.empty())
-    md << "Not applicable (ran none of its cells): " << and_list(c.not_run) << ".";
+    md << "Not applicable (ran none of its cells): " << list_of(c.not_run) << ".";
   std::string text = md.str();
   while (!text.empty() && text.back() == ' ')
     text.pop_back();
@@ -148,18 +139,12 @@ std::string class_reading(const VariantsStudy& s, const ComparisonClass& k) {
 // The reading: the variant that brings the most cells into full agreement beyond those that
 // already agree under the default, if any does.
 void write_largest_gain(std::ostream& md, const VariantsStudy& s) {
-  const VariantOutcome* gain = nullptr;
-  for (const auto& v : s.variants) {
-    if (v.baseline) continue;
-    const int g = v.agreeing - v.agreeing_under_default;
-    if (!gain || g > gain->agreeing - gain->agreeing_under_default) gain = &v;
-  }
-  if (!gain) return;
-  const int g = gain->agreeing - gain->agreeing_under_default;
-  if (g > 0) {
-    md << "The largest net gain over the default is " << named(*gain) << " (" << gain->change
-       << "): " << gain->agreeing << " of its " << gain->cells << " cells agree, against "
-       << gain->agreeing_under_default << " under the default (" << gain->breaks << " broken). ";
+  if (!s.largest_gain) return;
+  const VariantOutcome& gain = s.variants[*s.largest_gain];
+  if (gain.agreeing > gain.agreeing_under_default) {
+    md << "The largest net gain over the default is " << named(gain) << " (" << gain.change
+       << "): " << gain.agreeing << " of its " << gain.cells << " cells agree, against "
+       << gain.agreeing_under_default << " under the default (" << gain.breaks << " broken). ";
   } else {
     md << "No variant raises the number of cells in full agreement above the default's. ";
   }
@@ -169,31 +154,21 @@ void write_largest_gain(std::ostream& md, const VariantsStudy& s) {
 // still agrees, none of a disagreement class does).
 void write_unchanged(std::ostream& md, const VariantsStudy& s) {
   std::vector<std::string> unchanged;
-  for (const auto& v : s.variants) {
-    if (v.baseline) continue;
-    bool same = true;
-    for (const auto& [cls, o] : v.by_class) {
-      const ComparisonClass* k = find_class(cls);
-      if (k && k->kind == ClassKind::agreement && o.agree != o.covered) same = false;
-      if (k && k->kind != ClassKind::agreement && o.agree != 0) same = false;
-    }
-    if (same) unchanged.push_back(named(v));
-  }
+  for (const std::size_t j : s.unchanged)
+    unchanged.push_back(named(s.variants[j]));
   if (!unchanged.empty())
-    md << "Neither fixing nor breaking any cell: " << and_list(unchanged) << ". ";
+    md << "Neither fixing nor breaking any cell: " << list_of(unchanged) << ". ";
 }
 
 // The reading: each class of disagreement with cells, with the variants that account for it.
 void write_accounted_classes(std::ostream& md, const VariantsStudy& s) {
   std::vector<std::string> accounted, not_accounted;
   for (const ComparisonClass* k : variants_disagreement_classes()) {
-    const int n = class_cell_count(s, k->id);
-    if (n == 0) continue;
+    if (class_cell_count(s, k->id) == 0) continue;
     std::string by;
-    for (const auto& v : s.variants) {
-      if (!v.baseline && accounts_for(class_outcome(v, k->id), n) == Accounts::yes)
+    for (const auto& v : s.variants)
+      if (!v.baseline && class_outcome(v, k->id).accounts == Accounts::yes)
         by += (by.empty() ? "" : ", ") + named(v);
-    }
     std::string cls = "[";
     cls.append(k->id).append("](#").append(k->id).append(")");
     if (by.empty()) {
@@ -228,18 +203,16 @@ void write_method(std::ostream& md, const Spec& spec, bool have_courant) {
      << agreement_factor()
      << " (the comparator's rule |a − b| <= ((k − 1) / k) max(|a|, |b|) with k = "
      << agreement_factor()
-     << ", `experiments/engine/compare.hpp`). "
-        "Cells whose "
-        "paper value is unreadable are not compared. A variant that changes the method (cpGIMP) "
-        "is still compared with the paper's GIMP column. Our error is the max error at T unless "
-        "the variant's `error_at` says otherwise. Medians are over the cells where both are "
-        "stable (max error) or where ours is stable and the paper prints dt_stable. Work: the "
-        "particle-steps (particles x steps) of the variant's runs, summed; runs with the same "
-        "parameters in two variants (the `error_at` variant and the default, for example) are "
-        "computed once and counted in both. Wall times are in [performance.md](performance.md). "
-        "A meaningless run (it survived, but its error over time reached A) never agrees with a "
-        "stable cell of the paper. A cell's class is its class in comparison.md, that is under the "
-        "default run"
+     << ", `experiments/engine/compare.hpp`). Cells whose paper value is unreadable are not "
+        "compared. A variant that changes the method (cpGIMP) is still compared with the paper's "
+        "GIMP column. Our error is the max error at T unless the variant's `error_at` says "
+        "otherwise. Medians are over the cells where both are stable (max error) or where ours is "
+        "stable and the paper prints dt_stable. Work: the particle-steps (particles x steps) of "
+        "the variant's runs, summed; runs with the same parameters in two variants (the `error_at` "
+        "variant and the default, for example) are computed once and counted in both. Wall times "
+        "are in [performance.md](performance.md). A meaningless run (it survived, but its error "
+        "over time reached A) never agrees with a stable cell of the paper. A cell's class is its "
+        "class in comparison.md, that is under the default run"
      << (have_courant ? ""
                       : " (the Courant scan, courant.json, was not available: the class "
                         "above-our-edge could not be told apart)")
@@ -277,9 +250,8 @@ void write_per_method(std::ostream& md, const VariantsStudy& s) {
       md << "| " << named(v) << " | " << method_title(column) << " | " << m.cells << " | "
          << of(m.counts.verdicts_agree, m.counts.verdicts_compared) << " | "
          << of(m.counts.errors_within, m.counts.errors_compared) << " | "
-         << opt_ratio(median_ratio(m.counts.error_ratios)) << " | "
-         << opt_ratio(median_ratio(m.counts.dt_stable_ratios)) << " | " << sci(m.particle_steps)
-         << " |\n";
+         << opt_ratio(m.median_error_ratio) << " | " << opt_ratio(m.median_dt_stable_ratio) << " | "
+         << sci(m.particle_steps) << " |\n";
     }
   }
 }
@@ -311,16 +283,27 @@ void write_classes(std::ostream& md, const VariantsStudy& s) {
         "class's cells agree with the paper under the variant: the same stability verdict and, "
         "where both are stable, max errors within a factor "
      << agreement_factor()
-     << " (a variant that only brings the verdict is shown with its error ratios to the paper, "
-        "and does not count), and how many cells that agree fully under the default it "
-        "breaks (over all its cells). **Criterion:** a variant *accounts* for a class when at "
-        "least half of the class's cells agree under it, and *partly* accounts when it brings "
-        "some, but fewer than half, into agreement. As in comparison.md, a run that reaches T "
-        "with an error over time of A or more is *meaningless*, never stable: such runs are "
-        "counted apart, beside the agreeing cells. The sentences below are generated from the "
-        "tables.\n\n";
+     << " (a variant that only brings the verdict is shown with its error ratios to the paper, and "
+        "does not count), and how many cells that agree fully under the default it breaks (over "
+        "all its cells). **Criterion:** a variant *accounts* for a class when at least half of the "
+        "class's cells agree under it, and *partly* accounts when it brings some, but fewer than "
+        "half, into agreement. As in comparison.md, a run that reaches T with an error over time "
+        "of A or more is *meaningless*, never stable: such runs are counted apart, beside the "
+        "agreeing cells. The sentences below are generated from the tables.\n\n";
   for (const ComparisonClass* k : variants_disagreement_classes())
     write_class(md, s, *k);
+}
+
+// The columns of variants_data.csv coded as numbers, in the order of their codes.
+const std::vector<std::string> kMethods = {"mpm", "gimp"};
+const std::vector<std::string> kKinds = {"one cell (both stable)",
+                                         "the median of the variant's cells",
+                                         "the tic of the variant (ratio one, not drawn)"};
+constexpr int kOneCell = 0, kMedian = 1, kTic = 2;
+constexpr double kTicRatio = 1;  // where a tic's label sits on the ratio axis
+
+int method_code(const std::string& column) {
+  return int(std::find(kMethods.begin(), kMethods.end(), column) - kMethods.begin());
 }
 
 }  // namespace
@@ -338,24 +321,6 @@ std::string variants_markdown(const Spec& spec, const VariantsStudy& s, bool hav
   return md.str();
 }
 
-namespace studies::variants_report {
-namespace {
-
-// The columns of variants_data.csv coded as numbers, in the order of their codes.
-const std::vector<std::string> kMethods = {"mpm", "gimp"};
-const std::vector<std::string> kKinds = {"one cell (both stable)",
-                                         "the median of the variant's cells",
-                                         "the tic of the variant (ratio one, not drawn)"};
-constexpr int kOneCell = 0, kMedian = 1, kTic = 2;
-constexpr double kTicRatio = 1;  // where a tic's label sits on the ratio axis
-
-int method_code(const std::string& column) {
-  return int(std::find(kMethods.begin(), kMethods.end(), column) - kMethods.begin());
-}
-
-}  // namespace
-}  // namespace studies::variants_report
-
 std::string variants_data_csv(const VariantsStudy& s, const std::string& header_lines) {
   using namespace studies::variants_report;
   std::ostringstream csv;
@@ -363,15 +328,13 @@ std::string variants_data_csv(const VariantsStudy& s, const std::string& header_
       << "; kind: " << codes(kKinds) << "\nx,method,kind,ratio,variant\n";
   for (std::size_t j = 0; j < s.variants.size(); ++j) {
     const auto& v = s.variants[j];
-    for (const auto& [column, r] : v.error_ratios) {
+    for (const auto& [column, r] : v.error_ratios)
       csv << j + 1 << ',' << method_code(column) << ',' << kOneCell << ',' << shortest(r) << ','
           << v.name << "\n";
-    }
     for (const auto& [column, m] : v.by_method) {
-      if (const auto med = median_ratio(m.counts.error_ratios)) {
+      if (const auto& med = m.median_error_ratio)
         csv << j + 1 << ',' << method_code(column) << ',' << kMedian << ',' << shortest(*med) << ','
             << v.name << "\n";
-      }
     }
   }
   // The tics last: gnuplot keeps the last label given at a position.
