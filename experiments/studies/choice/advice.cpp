@@ -98,8 +98,7 @@ std::vector<CheckedSetting> checked_settings(const ReportContext& c) {
   return out;
 }
 
-// What the report, its claims, the index paragraph and the subtitle say: the settings and the
-// counts of their corners.
+// What the report, its claims, the index paragraph and the subtitle say, found once.
 struct Findings {
   std::vector<CheckedSetting> settings;  // with their corners and regions (none for the index)
   // Per setting, the runs that failed: those its regions exclude, then its base run to a longer

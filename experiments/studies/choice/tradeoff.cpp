@@ -520,9 +520,8 @@ std::vector<BestOfMethods> best_of_methods(const TradeRows& t) {
   return out;
 }
 
-// What one scene's rows show: the cheapest runs, how far the step and the grid move GIMP's
-// error, the bound against the CFL rule, MPM against GIMP, how the runs ended and the Pareto
-// front.
+// What one scene's rows show: the cheapest runs, how far the step and the grid move GIMP's error,
+// the bound against the CFL rule, MPM against GIMP, how the runs ended, the Pareto front.
 struct SceneFindings {
   TradeRows t;
   std::vector<std::vector<std::optional<std::size_t>>> cheapest;  // per E (t.Es), per target
@@ -539,18 +538,23 @@ struct SceneFindings {
   // table has a column for: dt_collapse always, then every other reason some run stopped with.
   std::map<std::string, VerdictTally> endings;
   std::vector<std::string> reasons;
-  std::set<std::size_t> front;  // the runs on the Pareto front of their E
+  std::set<std::size_t> front;              // the runs on the Pareto front of their E
+  std::vector<std::vector<double>> passes;  // per E, the wave passes c T of its runs
 };
 
 SceneFindings scene_findings(const std::vector<ojson>& rows) {
   SceneFindings s{.t = TradeRows(rows)};
   std::map<std::string, int> wins;
   for (double E : s.t.Es) {
-    s.cheapest.push_back(cheapest(rows, s.t.at(E)));
+    const std::vector<std::size_t> at = s.t.at(E);
+    s.cheapest.push_back(cheapest(rows, at));
     for (const auto& b : s.cheapest.back())
       if (b) ++wins[method_label(rows[*b]) + " " + text(rows[*b], "policy")];
-    const auto front = pareto_front(rows, s.t.at(E));
+    const auto front = pareto_front(rows, at);
     s.front.insert(front.begin(), front.end());
+    auto& passes = s.passes.emplace_back();
+    for (std::size_t i : at)
+      if (const auto cT = RunRow(rows[i]).wave_passes) passes.push_back(*cT);
   }
   for (const auto& [name, n] : wins) {
     s.reached += n;
@@ -607,13 +611,13 @@ FigureCount figure_count(const std::vector<ojson>& rows) {
   return n;
 }
 
-// What the report, its claims and the subtitle say, found once (moved, never copied: each scene's
-// TradeRows refers into `scenes`).
+// What the report, its claims and the subtitle say, found once.
 struct Findings {
-  TradeRows all;                      // every scene's rows
-  std::vector<SceneRows> scenes;      // the paper's bar first
-  std::vector<SceneFindings> scene;   // what each scene's rows show
-  std::vector<MarginRange> ranges;    // each parameter's stable range, over every scene
+  TradeRows all;                     // every scene's rows
+  std::vector<double> passes;        // the wave passes c T of every run
+  std::vector<SceneRows> scenes;     // the paper's bar first (never copied: `scene` refers into it)
+  std::vector<SceneFindings> scene;  // what each scene's rows show
+  std::vector<MarginRange> ranges;   // each parameter's stable range, over every scene
   int gimp_better = 0, compared = 0;  // (scene, E) pairs where GIMP's best error is below MPM's
   double spread_max = 0;              // the bar: the largest factor the step moves GIMP's error by
   // The periodic twins by method (in the order the rows first name it), E and cells; at how many
@@ -627,6 +631,7 @@ struct Findings {
 // which prints no finding of theirs).
 Findings find(const std::vector<ojson>& rows, const std::vector<ojson>& follow_up) {
   Findings f{.all = TradeRows(rows), .scenes = by_scene(rows)};
+  f.passes = values_of(rows, &RunRow::wave_passes);
   for (const auto& g : advice_groups(rows))
     f.ranges.push_back(stable_range(f.all, g));
   for (const auto& sc : f.scenes) {
@@ -751,7 +756,8 @@ std::string results_intro(const Spec& spec) {
 // What the runs say about picking a setting (advice.md recommends): the stable ranges of each
 // policy's parameter (a description): the rule, and per method and policy the value advised, the
 // rows it rests on, the value checked beyond it and why the next value run is not advised.
-std::string advice_table(const TradeRows& t, const std::vector<MarginRange>& all) {
+std::string advice_table(const Findings& f) {
+  const TradeRows& t = f.all;
   std::ostringstream md;
   md << "### What the runs say about picking a setting\n\nThis study measures; it does not "
         "recommend. This project answers a user's problem with `mpmstab advise`, which runs each "
@@ -770,12 +776,11 @@ std::string advice_table(const TradeRows& t, const std::vector<MarginRange>& all
         "value checked beyond it. A value with no run at "
      << shortest(kMargin)
      << " times it or beyond is not shown: its margin is not checked. These runs lie at A / h = "
-     << listing(t.rows, "A_over_h")
-     << " and c T = " << span(values_of(t.rows, &RunRow::wave_passes), 3)
+     << listing(t.rows, "A_over_h") << " and c T = " << span(f.passes, 3)
      << " wave passes, and a range is checked there only.\n\n"
      << "| method and policy | stable with margin | rests on | checked to | the next value run, "
         "not stable with margin |\n|---|---|---|---|---|\n";
-  for (const auto& a : all) {
+  for (const auto& a : f.ranges) {
     md << "| " << a.group.name() << " | ";
     if (a.advised) {
       // "C up to 0.25 | <rows> | C = 0.5 (1.5x = 0.375)": the value advised, the rows it rests
@@ -967,17 +972,15 @@ std::string walls_cost_section(const Findings& f) {
 
 // Every setting at one E with its steps, particle-steps, dt range, verdict and error; the
 // Pareto front marked.
-std::string settings_table(const SceneFindings& s, double E, const std::string& of_scene) {
+std::string settings_table(const SceneFindings& s, std::size_t e, const std::string& of_scene) {
   const TradeRows& t = s.t;
-  const auto idx = t.at(E);
+  const double E = t.Es[e];
   std::ostringstream md;
-  std::vector<double> passes;
-  for (std::size_t i : idx)
-    if (const auto cT = RunRow(t.rows[i]).wave_passes) passes.push_back(*cT);
-  md << "### E = " << shortest(E) << " (c T = " << span(passes, 3) << " wave passes)" << of_scene
+  md << "### E = " << shortest(E) << " (c T = " << span(s.passes[e], 3) << " wave passes)"
+     << of_scene
      << "\n\n| setting | steps | particle-steps | dt range | mean dt | verdict | max error over "
         "time | Pareto |\n|---|---|---|---|---|---|---|---|\n";
-  for (std::size_t i : idx) {
+  for (std::size_t i : t.at(E)) {
     const ojson& r = t.rows[i];
     md << "| " << setting(r) << " | " << r["steps"].dump() << " | " << work(r) << " | "
        << opt_sci(r["dt_min"]) << " to " << opt_sci(r["dt_max"]) << " | " << opt_sci(r["dt_mean"])
@@ -996,8 +999,8 @@ std::string scene_markdown(const SceneRows& sc, const SceneFindings& s, bool fir
   md << cheapest_table(s, of_scene) << "\n"
      << what_the_rows_show(s) << "\n\n"
      << endings_table(s, of_scene);
-  for (double E : s.t.Es)
-    md << settings_table(s, E, of_scene);
+  for (std::size_t e = 0; e < s.t.Es.size(); ++e)
+    md << settings_table(s, e, of_scene);
   return md.str();
 }
 
@@ -1097,7 +1100,7 @@ std::string tradeoff_subtitle(const Spec& spec, const ojson& doc) {
 StudyReport tradeoff_report(const ReportContext& c) {
   const Findings f = find(c.rows, c.follow_up);
   StudyReport report{.claims = tradeoff_claims(f)};
-  report.markdown = results_intro(c.spec) + advice_table(f.all, f.ranges) + walls_cost_section(f);
+  report.markdown = results_intro(c.spec) + advice_table(f) + walls_cost_section(f);
   for (std::size_t i = 0; i < f.scenes.size(); ++i)
     report.markdown += scene_markdown(f.scenes[i], f.scene[i], i == 0);
   report.data_csv = tradeoff_data_csv(f, c.csv_header);
