@@ -3,7 +3,6 @@
 // scenes, layouts and a finer grid (advice.hpp). advice.json stores the settings and their runs,
 // from which `mpmstab advise` predicts before it verifies on the problem (advice_verify.hpp);
 // advice.md lists every setting with its runs and where they passed, and answers no problem.
-#include <algorithm>
 #include <map>
 #include <sstream>
 
@@ -16,23 +15,15 @@
 #include "run_row.hpp"
 #include "study.hpp"
 
-namespace mpmstab {
-
-namespace studies::advice {
+namespace mpmstab::studies::advice {
 namespace {
 
 using ojson = nlohmann::ordered_json;
 
 // ---------------------------------------------------------------------------------------------
-// Findings: the settings, their corners and regions
+// Follow-ups: the corner runs of each setting worth checking
 
-std::string transfer_of(const ojson& r) {
-  std::string t = text(r, "transfer");
-  for (const char* order : {"flip_fraction", "xpic_order", "fmpm_order"})
-    if (has_number(r, order)) t += "(" + shortest(r[order].get<double>()) + ")";
-  return t;
-}
-
+// A run as a corner of its setting reads it.
 CornerRun corner_of(const ojson& r, CornerKind kind, double length) {
   CornerRun c{.kind = kind, .length = length, .A = r["A"].get<double>()};
   c.cells = r["cells"].get<int>();
@@ -55,6 +46,7 @@ std::string corner_role(const Corner& k) {
   return "corner " + std::string(to_string(k.kind)) + " at c T/L " + shortest(k.length);
 }
 
+// Every corner of every setting worth checking.
 std::vector<FollowUp> advice_follow_up(const FollowUpContext& c) {
   std::vector<FollowUp> runs;
   for (std::size_t i = 0; i < c.rows.size(); ++i) {
@@ -65,6 +57,18 @@ std::vector<FollowUp> advice_follow_up(const FollowUpContext& c) {
   return runs;
 }
 
+// ---------------------------------------------------------------------------------------------
+// Findings: the settings, their corners and regions, and what the corners say
+
+// The transfer as a setting names it, with its order where it has one: "fmpm(2)".
+std::string transfer_of(const ojson& r) {
+  std::string t = text(r, "transfer");
+  for (const char* order : {"flip_fraction", "xpic_order", "fmpm_order"})
+    if (has_number(r, order)) t += "(" + shortest(r[order].get<double>()) + ")";
+  return t;
+}
+
+// A setting from its base run's row, with that run as its first corner.
 CheckedSetting setting_of(const ojson& r) {
   CheckedSetting s{.method = RunRow(r).method,
                    .transfer = transfer_of(r),
@@ -88,30 +92,42 @@ std::vector<CheckedSetting> checked_settings(const ReportContext& c) {
         for (const ojson* run : follow_ups_of(c.follow_up, i, corner_role(k)))
           s.corners.push_back(corner_of(*run, k.kind, k.length));
     }
+    s.regions = regions_of(s);
     out.push_back(std::move(s));
   }
-  for (auto& s : out)
-    s.regions = regions_of(s);
   return out;
 }
 
-// ---------------------------------------------------------------------------------------------
-// Claims
-
-struct Counts {
-  int settings = 0, checked = 0, with_region = 0;
-  int finer_fails = 0, finer_tested = 0;    // accurate base, finer corner not accurate
+// What the report, its claims, the index paragraph and the subtitle say, found once.
+struct Findings {
+  std::vector<CheckedSetting> settings;  // with their corners and regions (none for the index)
+  // Per setting, the runs that failed: those its regions exclude, then its base run to a longer
+  // length where that fails.
+  std::vector<std::vector<CornerRun>> failed;
+  int cases = 0, checked = 0;             // the settings, and those run again at their corners
+  int with_region = 0, to_longest = 0;    // with a region (to some length), with one to the longest
+  int finer_fails = 0, finer_tested = 0;  // accurate base, finer corner not accurate
   int longer_fails = 0, longer_tested = 0;  // accurate base, base to the longer length not
   int scene_fails = 0, scene_tested = 0;    // largest A passes on the bar, neo-Hookean fails
 };
 
-Counts count(const std::vector<CheckedSetting>& settings) {
-  Counts n;
+// The findings from the rows (a setting each) and the settings checked at their corners: the
+// report's from its follow-ups, the subtitle's from advice.json, none where the index has only
+// the rows.
+Findings find(const std::vector<ojson>& rows, std::vector<CheckedSetting> settings) {
+  Findings n{.settings = std::move(settings), .cases = int(rows.size())};
+  for (const auto& r : rows)
+    n.checked += worth_checking(r);
   const double shorter = kRegionRule.lengths.front(), longer = kRegionRule.lengths.back();
-  for (const auto& s : settings) {
-    ++n.settings;
+  for (const auto& s : n.settings) {
+    auto& failed = n.failed.emplace_back();
+    for (const auto& r : s.regions) {
+      failed.insert(failed.end(), r.excluded.begin(), r.excluded.end());
+      n.to_longest += r.length == longer;
+    }
+    for (const auto& c : s.corners)
+      if (c.kind == CornerKind::base && c.length != shorter && !c.passes()) failed.push_back(c);
     if (s.corners.size() <= 1) continue;
-    ++n.checked;
     n.with_region += !s.regions.empty();
     if (const CornerRun* f = s.corner(CornerKind::finer, shorter)) {
       ++n.finer_tested;
@@ -132,8 +148,10 @@ Counts count(const std::vector<CheckedSetting>& settings) {
   return n;
 }
 
-std::vector<Claim> advice_claims(const Counts& n) {
-  std::vector<Claim> claims;
+// ---------------------------------------------------------------------------------------------
+// Claims
+
+std::vector<Claim> advice_claims(const Findings& n) {
   Claim finer = claim("fixed-courant-fails-finer",
                       "A Courant number accurate on its grid is not accurate on every finer grid: "
                       "some setting accurate on its grid is not at {refine}x the cells",
@@ -142,7 +160,6 @@ std::vector<Claim> advice_claims(const Counts& n) {
       .count("fails", n.finer_fails)
       .count("tested", n.finer_tested);
   finer.holds = n.finer_fails > 0;
-  claims.push_back(finer);
   Claim longer = claim("accurate-base-fails-longer",
                        "A setting accurate to c T/L = {short} is not always accurate to {long}",
                        "{fails} of {tested} checked settings fail to the longer length");
@@ -151,50 +168,30 @@ std::vector<Claim> advice_claims(const Counts& n) {
       .count("fails", n.longer_fails)
       .count("tested", n.longer_tested);
   longer.holds = n.longer_fails > 0;
-  claims.push_back(longer);
   Claim scene = claim("bar-does-not-cover-neo-hookean",
                       "A setting accurate on the bar at the largest amplitude is not always "
                       "accurate on the neo-Hookean scene there",
                       "{fails} of {tested} such corners fail on the neo-Hookean scene");
   scene.count("fails", n.scene_fails).count("tested", n.scene_tested);
   scene.holds = n.scene_fails > 0;
-  claims.push_back(scene);
-  return claims;
+  return {finer, longer, scene};
 }
 
 // ---------------------------------------------------------------------------------------------
-// Rendering
+// Text
 
 std::string error_text(const std::optional<double>& e) {
   return e ? sci(*e) + " A" : std::string("–");
 }
 
+// A corner run in a table: "A/L 0.05 to c T/L 10: 3.1e-3 A", "neo-Hookean to c T/L 100: unstable".
 std::string corner_text(const CornerRun& c) {
-  std::ostringstream s;
-  switch (c.kind) {
-    case CornerKind::base:
-      s << "base";
-      break;
-    case CornerKind::smallest_A:
-    case CornerKind::largest_A:
-      s << "A/L " << value_text(c.A);
-      break;
-    case CornerKind::periodic:
-      s << "periodic";
-      break;
-    case CornerKind::other_scene:
-      s << "neo-Hookean";
-      break;
-    case CornerKind::jittered:
-      s << "jittered";
-      break;
-    case CornerKind::finer:
-      s << c.cells << " cells";
-      break;
-  }
-  s << " to c T/L " << value_text(c.length) << ": "
-    << (c.outcome == "stable" ? error_text(c.error_over_A) : c.outcome);
-  return s.str();
+  std::string what(corner_words(c.kind));
+  if (c.kind == CornerKind::smallest_A || c.kind == CornerKind::largest_A)
+    what = "A/L " + value_text(c.A);
+  if (c.kind == CornerKind::finer) what = std::to_string(c.cells) + " cells";
+  return what + " to c T/L " + value_text(c.length) + ": " +
+         (c.outcome == "stable" ? error_text(c.error_over_A) : c.outcome);
 }
 
 std::string rule_text() {
@@ -231,12 +228,13 @@ std::string rule_text() {
   return md.str();
 }
 
-std::string settings_table(const std::vector<CheckedSetting>& settings) {
+std::string settings_table(const Findings& n) {
   std::ostringstream md;
   md << "## Every setting, its runs and where they passed\n\n"
      << "| method | cells | C | spectral limit / C | base error / A | runs passed in (largest "
         "error / A) | failed runs |\n|---|---|---|---|---|---|---|\n";
-  for (const auto& s : settings) {
+  for (std::size_t i = 0; i < n.settings.size(); ++i) {
+    const CheckedSetting& s = n.settings[i];
     md << "| " << s.method_text() << " | " << s.cells << " | " << shortest(s.courant) << " | "
        << (s.courant_spectral ? ratio(*s.courant_spectral / s.courant) : std::string("–")) << " | "
        << (s.corners.front().outcome == "stable" ? error_text(s.corners.front().error_over_A)
@@ -250,25 +248,20 @@ std::string settings_table(const std::vector<CheckedSetting>& settings) {
          << " | – |\n";
       continue;
     }
-    std::string regions, excluded;
-    for (const auto& r : s.regions) {
+    std::string regions, failed;
+    for (const auto& r : s.regions)
       regions +=
           (regions.empty() ? "" : "<br>") + region_text(r) + " (" + sci(r.error_over_A) + ")";
-      for (const auto& c : r.excluded)
-        excluded += (excluded.empty() ? "" : "<br>") + corner_text(c);
-    }
-    for (const auto& c : s.corners) {
-      if (c.kind == CornerKind::base && c.length != kRegionRule.lengths.front() && !c.passes())
-        excluded += (excluded.empty() ? "" : "<br>") + corner_text(c);
-    }
-    md << regions << " | " << (excluded.empty() ? "–" : excluded) << " |\n";
+    for (const auto& c : n.failed[i])
+      failed += (failed.empty() ? "" : "<br>") + corner_text(c);
+    md << regions << " | " << (failed.empty() ? "–" : failed) << " |\n";
   }
   return md.str() + "\n";
 }
 
-std::string reading(const Counts& n) {
+std::string reading(const Findings& n) {
   std::ostringstream md;
-  md << "**Reading.** Of " << n.settings << " settings, " << n.checked
+  md << "**Reading.** Of " << n.cases << " settings, " << n.checked
      << " have an accurate base run within the spectral limit's margin and were run at their "
         "corners; "
      << n.with_region << " passed to at least one length. " << n.finer_fails << " of "
@@ -281,55 +274,10 @@ std::string reading(const Counts& n) {
   return md.str();
 }
 
-// The figure's data: per setting, its method's panel, cells, C, the longest region (0: none) and
-// error over time / A of its runs there.
-std::string figure_csv(const std::vector<CheckedSetting>& settings) {
-  std::ostringstream csv;
-  csv << "panel,method,cells,courant,region_cT,error_over_A\n";
-  std::map<std::string, int> panel;
-  for (const auto& s : settings) {
-    const std::string name = s.method_text();
-    const auto [it, added] = panel.emplace(name, int(panel.size()));
-    (void)added;
-    const Region* longest = s.regions.empty() ? nullptr : &s.regions.back();
-    csv << it->second << ',' << name << ',' << s.cells << ',' << shortest(s.courant) << ','
-        << (longest ? longest->length : 0.0) << ','
-        << (longest ? sci(longest->error_over_A, 3) : std::string("nan")) << '\n';
-  }
-  return csv.str();
-}
-
-StudyReport advice_report(const ReportContext& c) {
-  const auto settings = checked_settings(c);
-  const Counts n = count(settings);
-  std::ostringstream md;
-  md << "## Results\n\n"
-     << rule_text() << reading(n) << settings_table(settings)
-     << "The figure marks each setting by the longest length to which its runs passed (none: "
-        "its base run did not pass to either length).\n";
-  ojson list = ojson::array();
-  for (const auto& s : settings)
-    list.push_back(to_json(s));
-  const RegionRule& r = kRegionRule;
-  ojson rule = {{"amplitudes", r.amplitudes},
-                {"lengths", r.lengths},
-                {"refine", r.refine},
-                {"jitter", r.jitter},
-                {"limit_margin", r.limit_margin},
-                {"accurate_fraction", kAccurateFraction}};
-  return StudyReport{.markdown = md.str(),
-                     .data_csv = figure_csv(settings),
-                     .json = {{"rule", rule}, {"settings", list}},
-                     .claims = advice_claims(n)};
-}
-
 std::string advice_index(const Spec& spec, const std::vector<ojson>& rows) {
-  int accurate = 0;
-  for (const auto& r : rows)
-    accurate += worth_checking(r);
+  const Findings n = find(rows, {});
   std::ostringstream md;
-  md << "**What it shows.** Of the " << rows.size() << " settings of its fixed grid of C, "
-     << accurate
+  md << "**What it shows.** Of the " << n.cases << " settings of its fixed grid of C, " << n.checked
      << " have an accurate base run within the spectral limit's margin and were run again at "
         "other amplitudes, lengths, boundaries, on the neo-Hookean scene, jittered and on a finer "
         "grid. `mpmstab advise` "
@@ -339,18 +287,57 @@ std::string advice_index(const Spec& spec, const std::vector<ojson>& rows) {
   return md.str();
 }
 
-// "120 settings; 90 checked at their corners; 41 with a region to c T/L = 100".
-std::string advice_subtitle(const Spec&, const ojson& doc) {
-  std::size_t checked = 0, longest = 0;
-  const ojson& settings = doc["study"]["settings"];
+// ---------------------------------------------------------------------------------------------
+// Figure
+
+// The figure's data: per setting, its method's panel, cells, C, the longest region (0: none) and
+// error over time / A of its runs there.
+std::string figure_csv(const std::vector<CheckedSetting>& settings) {
+  std::ostringstream csv;
+  csv << "panel,method,cells,courant,region_cT,error_over_A\n";
+  std::map<std::string, int> panel;
   for (const auto& s : settings) {
-    checked += s["corners"].size() > 1;
-    for (const auto& r : s["regions"])
-      longest += r["cT_max"].get<double>() == kRegionRule.lengths.back();
+    const std::string name = s.method_text();
+    const auto it = panel.emplace(name, int(panel.size())).first;  // the method's panel
+    const Region* longest = s.regions.empty() ? nullptr : &s.regions.back();
+    csv << it->second << ',' << name << ',' << s.cells << ',' << shortest(s.courant) << ','
+        << (longest ? longest->length : 0.0) << ','
+        << (longest ? sci(longest->error_over_A, 3) : std::string("nan")) << '\n';
   }
-  return std::to_string(settings.size()) + " settings; " + std::to_string(checked) +
-         " run again beyond their base run; " + std::to_string(longest) +
+  return csv.str();
+}
+
+// "120 settings; 90 run again beyond their base run; 60 whose runs passed to c T/L = 100".
+std::string advice_subtitle(const Spec&, const ojson& doc) {
+  const std::vector<ojson> rows(doc["cases"].begin(), doc["cases"].end());
+  const Findings n = find(rows, checked_settings_of(doc));
+  return std::to_string(n.cases) + " settings; " + std::to_string(n.checked) +
+         " run again beyond their base run; " + std::to_string(n.to_longest) +
          " whose runs passed to c T/L = " + value_text(kRegionRule.lengths.back());
+}
+
+// The report, from the findings: the rule, the reading, every setting and the figure's data.
+StudyReport advice_report(const ReportContext& c) {
+  const Findings n = find(c.rows, checked_settings(c));
+  std::ostringstream md;
+  md << "## Results\n\n"
+     << rule_text() << reading(n) << settings_table(n)
+     << "The figure marks each setting by the longest length to which its runs passed (none: "
+        "its base run did not pass to either length).\n";
+  ojson list = ojson::array();
+  for (const auto& s : n.settings)
+    list.push_back(to_json(s));
+  const RegionRule& r = kRegionRule;
+  ojson rule = {{"amplitudes", r.amplitudes},
+                {"lengths", r.lengths},
+                {"refine", r.refine},
+                {"jitter", r.jitter},
+                {"limit_margin", r.limit_margin},
+                {"accurate_fraction", kAccurateFraction}};
+  return StudyReport{.markdown = md.str(),
+                     .data_csv = figure_csv(n.settings),
+                     .json = {{"rule", rule}, {"settings", list}},
+                     .claims = advice_claims(n)};
 }
 
 const StudyRegistration kAdvice{{
@@ -366,6 +353,4 @@ const StudyRegistration kAdvice{{
 }};
 
 }  // namespace
-}  // namespace studies::advice
-
-}  // namespace mpmstab
+}  // namespace mpmstab::studies::advice

@@ -3,192 +3,40 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <map>
 #include <sstream>
 #include <string_view>
 
 #include "base/accuracy.hpp"
 #include "csv.hpp"
 #include "files.hpp"
-#include "key.hpp"
 #include "report_util.hpp"
 
 namespace mpmstab {
-
-// ---------------------------------------------------------------------------------------------
-// Regions
-
-std::string_view to_string(CornerKind k) {
-  switch (k) {
-    case CornerKind::base:
-      return "base";
-    case CornerKind::smallest_A:
-      return "smallest_A";
-    case CornerKind::largest_A:
-      return "largest_A";
-    case CornerKind::periodic:
-      return "periodic";
-    case CornerKind::other_scene:
-      return "neo_hookean";
-    case CornerKind::jittered:
-      return "jittered";
-    case CornerKind::finer:
-      return "finer";
-  }
-  return "base";
-}
-
-namespace studies::advice_rule {
-namespace {
-
-std::optional<CornerKind> corner_kind(std::string_view name) {
-  for (CornerKind k :
-       {CornerKind::base, CornerKind::smallest_A, CornerKind::largest_A, CornerKind::periodic,
-        CornerKind::other_scene, CornerKind::jittered, CornerKind::finer}) {
-    if (to_string(k) == name) return k;
-  }
-  return std::nullopt;
-}
-
-}  // namespace
-}  // namespace studies::advice_rule
-
-std::vector<Corner> region_corners(const RunParams& base, const RegionRule& rule) {
-  using namespace studies::advice_rule;
-  const double c = wave_speed(base);
-  std::vector<Corner> out;
-  auto add = [&](CornerKind kind, double length, double A) {
-    Corner corner{.kind = kind, .length = length, .params = base};
-    RunParams& p = corner.params;
-    p.T = length / c;
-    p.A = A;
-    p.observe.error_over_time = true;
-    if (kind == CornerKind::periodic) p.bc = Boundary::periodic;
-    if (kind == CornerKind::other_scene) p.scene = SceneKind::steffen;
-    if (kind == CornerKind::jittered) p.layout.jitter = rule.jitter;
-    if (kind == CornerKind::finer) {
-      p.cells = base.cells * rule.refine;
-      if (p.stepping.policy == TimeStepPolicy::fixed) p.dt = base.dt / rule.refine;
-    }
-    out.push_back(std::move(corner));
-  };
-  const double small = rule.amplitudes[0], middle = rule.amplitudes[1], large = rule.amplitudes[2];
-  for (const double length : rule.lengths) {
-    if (length != rule.lengths.front()) add(CornerKind::base, length, middle);
-    add(CornerKind::smallest_A, length, small);
-    add(CornerKind::largest_A, length, large);
-    add(CornerKind::periodic, length, large);
-    add(CornerKind::other_scene, length, large);
-    add(CornerKind::jittered, length, large);
-  }
-  add(CornerKind::finer, rule.lengths.front(), middle);
-  return out;
-}
-
-bool CornerRun::passes() const {
-  using namespace studies::advice_rule;
-  return outcome == "stable" && error_over_A && *error_over_A < kAccurateFraction;
-}
-
-const CornerRun* CheckedSetting::corner(CornerKind kind, double length) const {
-  for (const auto& c : corners)
-    if (c.kind == kind && c.length == length) return &c;
-  return nullptr;
-}
-
-std::vector<Region> regions_of(const CheckedSetting& s, const RegionRule& rule) {
-  using namespace studies::advice_rule;
-  std::vector<Region> out;
-  if (s.corners.empty() || !s.courant_spectral ||
-      !(s.courant <= *s.courant_spectral / rule.limit_margin))
-    return out;
-  const CornerRun* finer = s.corner(CornerKind::finer, rule.lengths.front());
-  for (const double length : rule.lengths) {
-    const CornerRun* base = s.corner(CornerKind::base, length);
-    if (!base || !base->passes()) continue;
-    Region r{.length = length, .A_min = rule.amplitudes[1], .A_max = rule.amplitudes[1]};
-    r.cells_max = s.cells;
-    r.error_over_A = *base->error_over_A;
-    auto include = [&](const CornerRun* c) {
-      if (!c) return false;
-      if (!c->passes()) {
-        r.excluded.push_back(*c);
-        return false;
-      }
-      r.error_over_A = std::max(r.error_over_A, *c->error_over_A);
-      return true;
-    };
-    if (include(s.corner(CornerKind::smallest_A, length))) r.A_min = rule.amplitudes[0];
-    const bool large = include(s.corner(CornerKind::largest_A, length));
-    if (large) r.A_max = rule.amplitudes[2];
-    // At the largest amplitude: counted only where that amplitude is in the region.
-    for (const CornerKind kind :
-         {CornerKind::periodic, CornerKind::other_scene, CornerKind::jittered}) {
-      const CornerRun* c = s.corner(kind, length);
-      const bool in = large ? include(c) : false;
-      if (!large && c && !c->passes()) r.excluded.push_back(*c);
-      if (kind == CornerKind::periodic) r.periodic = in;
-      if (kind == CornerKind::other_scene) r.other_scene = in;
-      if (kind == CornerKind::jittered) r.jittered = in;
-    }
-    r.finer = include(finer);
-    if (r.finer) r.cells_max = s.cells * rule.refine;
-    out.push_back(std::move(r));
-  }
-  return out;
-}
-
-namespace studies::advice_rule {
-namespace {
-
-std::string label_of(const CheckedSetting& s) {
-  std::string l = s.method;
-  if (s.transfer != "flip") l += "/" + s.transfer;
-  if (s.update != "usl") l += "/" + s.update;
-  return l;
-}
-
-}  // namespace
-}  // namespace studies::advice_rule
-
-bool advice_selected(const CheckedSetting& s, const std::vector<std::string>& methods) {
-  using namespace studies::advice_rule;
-  if (methods.empty()) return true;
-  for (const auto& m : methods) {
-    if (m == s.method || m == label_of(s) || m == s.method + "/" + s.transfer + "/" + s.update ||
-        m == s.method + "/" + s.transfer)
-      return true;
-  }
-  return false;
-}
-
-std::string setting_name(const CheckedSetting& s) {
-  using namespace studies::advice_rule;
-  std::ostringstream t;
-  t << s.method_text() << ", " << s.cells << " cells, C = " << shortest(s.courant);
-  return t.str();
-}
-
-std::string region_text(const Region& r, const RegionRule& rule) {
-  using namespace studies::advice_rule;
-  std::ostringstream s;
-  s << "A/L " << value_text(r.A_min);
-  if (r.A_max != r.A_min) s << " to " << value_text(r.A_max);
-  s << ", c T/L to " << value_text(r.length) << "; walls"
-    << (r.periodic ? " and periodic" : " only") << "; the bar"
-    << (r.other_scene ? " and the neo-Hookean scene" : " only") << "; uniform"
-    << (r.jittered ? " and jittered (" + shortest(rule.jitter) + ")" : std::string(" only")) << "; "
-    << (r.finer ? "and one run on " + std::to_string(r.cells_max) + " cells (A/L " +
-                      value_text(rule.amplitudes[1]) + ", walls, the bar, uniform, to c T/L " +
-                      value_text(rule.lengths.front()) + ")"
-                : std::string("no finer grid"));
-  return s.str();
-}
 
 namespace studies::advice_rule {
 namespace {
 
 using json_t = nlohmann::ordered_json;
+
+// Each corner kind with its name in results/advice.json and its words in a report.
+struct CornerNames {
+  CornerKind kind;
+  std::string_view name, words;
+};
+constexpr CornerNames kCornerNames[] = {{CornerKind::base, "base", "base"},
+                                        {CornerKind::smallest_A, "smallest_A", ""},
+                                        {CornerKind::largest_A, "largest_A", ""},
+                                        {CornerKind::periodic, "periodic", "periodic"},
+                                        {CornerKind::other_scene, "neo_hookean", "neo-Hookean"},
+                                        {CornerKind::jittered, "jittered", "jittered"},
+                                        {CornerKind::finer, "finer", ""}};
+
+// The corner kind a name in results/advice.json gives (to_string's inverse).
+std::optional<CornerKind> corner_kind(std::string_view name) {
+  for (const auto& n : kCornerNames)
+    if (n.name == name) return n.kind;
+  return std::nullopt;
+}
 
 json_t corner_json(const CornerRun& c) {
   return {{"kind", std::string(to_string(c.kind))},
@@ -284,6 +132,135 @@ Region region_from_json(const json_t& j, const std::string& where) {
 }  // namespace
 }  // namespace studies::advice_rule
 
+// ---------------------------------------------------------------------------------------------
+// Regions
+
+std::string_view to_string(CornerKind k) {
+  for (const auto& n : studies::advice_rule::kCornerNames)
+    if (n.kind == k) return n.name;
+  return "base";
+}
+
+std::string_view corner_words(CornerKind k) {
+  for (const auto& n : studies::advice_rule::kCornerNames)
+    if (n.kind == k) return n.words;
+  return "";
+}
+
+std::vector<Corner> region_corners(const RunParams& base, const RegionRule& rule) {
+  const double c = wave_speed(base);
+  std::vector<Corner> out;
+  auto add = [&](CornerKind kind, double length, double A) {
+    Corner corner{.kind = kind, .length = length, .params = base};
+    RunParams& p = corner.params;
+    p.T = length / c;
+    p.A = A;
+    p.observe.error_over_time = true;
+    if (kind == CornerKind::periodic) p.bc = Boundary::periodic;
+    if (kind == CornerKind::other_scene) p.scene = SceneKind::steffen;
+    if (kind == CornerKind::jittered) p.layout.jitter = rule.jitter;
+    if (kind == CornerKind::finer) {
+      p.cells = base.cells * rule.refine;
+      if (p.stepping.policy == TimeStepPolicy::fixed) p.dt = base.dt / rule.refine;
+    }
+    out.push_back(std::move(corner));
+  };
+  const double small = rule.amplitudes[0], middle = rule.amplitudes[1], large = rule.amplitudes[2];
+  for (const double length : rule.lengths) {
+    if (length != rule.lengths.front()) add(CornerKind::base, length, middle);
+    add(CornerKind::smallest_A, length, small);
+    add(CornerKind::largest_A, length, large);
+    add(CornerKind::periodic, length, large);
+    add(CornerKind::other_scene, length, large);
+    add(CornerKind::jittered, length, large);
+  }
+  add(CornerKind::finer, rule.lengths.front(), middle);
+  return out;
+}
+
+bool CornerRun::passes() const {
+  return outcome == "stable" && error_over_A && *error_over_A < kAccurateFraction;
+}
+
+const CornerRun* CheckedSetting::corner(CornerKind kind, double length) const {
+  for (const auto& c : corners)
+    if (c.kind == kind && c.length == length) return &c;
+  return nullptr;
+}
+
+std::vector<Region> regions_of(const CheckedSetting& s, const RegionRule& rule) {
+  std::vector<Region> out;
+  if (s.corners.empty() || !s.courant_spectral ||
+      !(s.courant <= *s.courant_spectral / rule.limit_margin))
+    return out;
+  const CornerRun* finer = s.corner(CornerKind::finer, rule.lengths.front());
+  for (const double length : rule.lengths) {
+    const CornerRun* base = s.corner(CornerKind::base, length);
+    if (!base || !base->passes()) continue;
+    Region r{.length = length, .A_min = rule.amplitudes[1], .A_max = rule.amplitudes[1]};
+    r.cells_max = s.cells;
+    r.error_over_A = *base->error_over_A;
+    auto include = [&](const CornerRun* c) {
+      if (!c) return false;
+      if (!c->passes()) {
+        r.excluded.push_back(*c);
+        return false;
+      }
+      r.error_over_A = std::max(r.error_over_A, *c->error_over_A);
+      return true;
+    };
+    if (include(s.corner(CornerKind::smallest_A, length))) r.A_min = rule.amplitudes[0];
+    const bool large = include(s.corner(CornerKind::largest_A, length));
+    if (large) r.A_max = rule.amplitudes[2];
+    // At the largest amplitude: counted only where that amplitude is in the region.
+    for (const auto& [kind, in] : {std::pair{CornerKind::periodic, &r.periodic},
+                                   {CornerKind::other_scene, &r.other_scene},
+                                   {CornerKind::jittered, &r.jittered}}) {
+      const CornerRun* c = s.corner(kind, length);
+      *in = large && include(c);
+      if (!large && c && !c->passes()) r.excluded.push_back(*c);
+    }
+    r.finer = include(finer);
+    if (r.finer) r.cells_max = s.cells * rule.refine;
+    out.push_back(std::move(r));
+  }
+  return out;
+}
+
+bool advice_selected(const CheckedSetting& s, const std::vector<std::string>& methods) {
+  if (methods.empty()) return true;
+  std::string label = s.method;  // "gimp/apic": the parts other than flip and usl
+  if (s.transfer != "flip") label += "/" + s.transfer;
+  if (s.update != "usl") label += "/" + s.update;
+  for (const auto& m : methods) {
+    if (m == s.method || m == label || m == s.method + "/" + s.transfer + "/" + s.update ||
+        m == s.method + "/" + s.transfer)
+      return true;
+  }
+  return false;
+}
+
+std::string setting_name(const CheckedSetting& s) {
+  std::ostringstream t;
+  t << s.method_text() << ", " << s.cells << " cells, C = " << shortest(s.courant);
+  return t.str();
+}
+
+std::string region_text(const Region& r, const RegionRule& rule) {
+  std::ostringstream s;
+  s << "A/L " << value_text(r.A_min);
+  if (r.A_max != r.A_min) s << " to " << value_text(r.A_max);
+  s << ", c T/L to " << value_text(r.length) << "; walls"
+    << (r.periodic ? " and periodic" : " only") << "; the bar"
+    << (r.other_scene ? " and the neo-Hookean scene" : " only") << "; uniform"
+    << (r.jittered ? " and jittered (" + shortest(rule.jitter) + ")" : std::string(" only")) << "; "
+    << (r.finer ? "and one run on " + std::to_string(r.cells_max) + " cells (A/L " +
+                      value_text(rule.amplitudes[1]) + ", walls, the bar, uniform, to c T/L " +
+                      value_text(rule.lengths.front()) + ")"
+                : std::string("no finer grid"));
+  return s.str();
+}
+
 nlohmann::ordered_json to_json(const CheckedSetting& s) {
   using namespace studies::advice_rule;
   nlohmann::ordered_json corners = nlohmann::ordered_json::array(),
@@ -305,7 +282,6 @@ nlohmann::ordered_json to_json(const CheckedSetting& s) {
 }
 
 std::string transfer_name(const std::string& transfer) {
-  using namespace studies::advice_rule;
   const auto open = transfer.find('(');
   if (open == std::string::npos) return transfer;
   if (transfer.back() != ')') return std::string();
@@ -357,7 +333,6 @@ CheckedSetting checked_setting_from_json(const nlohmann::ordered_json& j) {
 }
 
 std::vector<CheckedSetting> checked_settings_of(const nlohmann::ordered_json& doc) {
-  using namespace studies::advice_rule;
   if (!doc.is_object() || !doc.contains("study") || !doc["study"].is_object() ||
       !doc["study"].contains("settings") || !doc["study"]["settings"].is_array())
     throw InputError("study.settings: missing (not the advice study's results)");
@@ -373,10 +348,7 @@ std::vector<CheckedSetting> checked_settings_of(const nlohmann::ordered_json& do
   return out;
 }
 
-// The options of `mpmstab run` that give a setting's transfer: its parameter, where it has one
-// ("fmpm(2)"), is the transfer's own option (--fmpm-order 2), as a run of the setting takes it.
 std::string transfer_options(const std::string& transfer) {
-  using namespace studies::advice_rule;
   const std::string name = transfer_name(transfer);
   std::string text = "--transfer " + name;
   if (name == transfer) return text;

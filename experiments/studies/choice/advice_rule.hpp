@@ -46,7 +46,9 @@ inline constexpr RegionRule kRegionRule{};
 inline constexpr double kAdviceE = 1;
 
 enum class CornerKind { base, smallest_A, largest_A, periodic, other_scene, jittered, finer };
-std::string_view to_string(CornerKind k);
+std::string_view to_string(CornerKind k);  // its name in results/advice.json
+// A kind in a report's words: "base", "periodic", "neo-Hookean", "jittered" (else empty).
+std::string_view corner_words(CornerKind k);
 
 struct Corner {
   CornerKind kind = CornerKind::base;

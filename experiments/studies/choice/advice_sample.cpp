@@ -18,9 +18,7 @@
 #include "run_row.hpp"
 #include "study.hpp"
 
-namespace mpmstab {
-
-namespace studies::advice_sample {
+namespace mpmstab::studies::advice_sample {
 namespace {
 
 using ojson = nlohmann::ordered_json;
@@ -135,10 +133,6 @@ std::string decade(double x) {
   return value_text(low) + " to " + value_text(low * 10);
 }
 
-std::string layout_of(const VerifyProblem& vp) {
-  return vp.jitter > 0 ? "jittered" : "uniform";
-}
-
 // The attributes a miss rate is given per, each with its value for a problem.
 struct Attribute {
   const char* name;
@@ -147,7 +141,8 @@ struct Attribute {
 const Attribute kAttributes[] = {
     {"scene", [](const VerifyProblem& v) { return v.problem.scene; }},
     {"boundary", [](const VerifyProblem& v) { return v.problem.bc; }},
-    {"layout", [](const VerifyProblem& v) { return layout_of(v); }},
+    {"layout",
+     [](const VerifyProblem& v) { return std::string(v.jitter > 0 ? "jittered" : "uniform"); }},
     {"A/L", [](const VerifyProblem& v) { return decade(v.problem.A); }},
     {"c T/L", [](const VerifyProblem& v) { return decade(v.problem.cT); }},
     {"target / A", [](const VerifyProblem& v) { return decade(v.problem.target); }},
@@ -297,16 +292,6 @@ void problems_table(std::ostream& md, const std::vector<SampleProblem>& problems
   }
 }
 
-std::string sample_markdown(const std::vector<SampleProblem>& problems, const Tally& all) {
-  std::ostringstream md;
-  draw_text(md, all);
-  per_method_tables(md, problems);
-  per_setting_table(md, problems);
-  cost_text(md, problems);
-  problems_table(md, problems);
-  return md.str() + "\n";
-}
-
 ojson sample_json(const std::vector<SampleProblem>& problems, const Tally& all) {
   ojson list = ojson::array();
   for (const auto& sp : problems) {
@@ -349,7 +334,13 @@ StudyReport sample_report(const ReportContext& c) {
   Tally all;
   for (const auto& sp : problems)
     all.add(sp);
-  return StudyReport{.markdown = sample_markdown(problems, all),
+  std::ostringstream md;
+  draw_text(md, all);
+  per_method_tables(md, problems);
+  per_setting_table(md, problems);
+  cost_text(md, problems);
+  problems_table(md, problems);
+  return StudyReport{.markdown = md.str() + "\n",
                      .json = sample_json(problems, all),
                      .claims = sample_claims(all)};
 }
@@ -372,6 +363,4 @@ const StudyRegistration kAdviceSample{{
 }};
 
 }  // namespace
-}  // namespace studies::advice_sample
-
-}  // namespace mpmstab
+}  // namespace mpmstab::studies::advice_sample

@@ -12,24 +12,6 @@
 
 namespace mpmstab {
 
-std::string outside_domain(const VerifyProblem& vp, const AdviceDomain& d) {
-  const Problem& p = vp.problem;
-  std::ostringstream s;
-  if (p.A < d.A_min || p.A > d.A_max)
-    s << "--A: A/L = " << value_text(p.A) << " is outside the domain advise answers (A/L "
-      << value_text(d.A_min) << " to " << value_text(d.A_max) << ")";
-  else if (p.cT > d.cT_max)
-    s << "--cT: c T/L = " << value_text(p.cT) << " is longer than the domain advise answers (c T/L "
-      << "to " << value_text(d.cT_max) << ")";
-  else if (p.target < d.target_min || p.target > d.target_max)
-    s << "--error: a target of " << value_text(p.target) << " A is outside the domain advise "
-      << "answers (" << value_text(d.target_min) << " A to " << value_text(d.target_max) << " A)";
-  else if (vp.jitter < 0 || vp.jitter > d.jitter_max)
-    s << "--jitter: " << value_text(vp.jitter) << " is outside the domain advise answers (at most "
-      << value_text(d.jitter_max) << ")";
-  return s.str();
-}
-
 namespace studies::advice_verify {
 namespace {
 
@@ -69,22 +51,10 @@ const CornerRun* nearest(const CheckedSetting& s, const std::vector<CornerKind>&
   return best;
 }
 
+// A matching run in words: "periodic A/L = 0.05, c T/L = 10".
 std::string run_words(const CornerRun& c) {
-  std::string kind;
-  switch (c.kind) {
-    case CornerKind::periodic:
-      kind = "periodic ";
-      break;
-    case CornerKind::other_scene:
-      kind = "neo-Hookean ";
-      break;
-    case CornerKind::jittered:
-      kind = "jittered ";
-      break;
-    default:
-      break;
-  }
-  return kind + "A/L = " + value_text(c.A) + ", c T/L = " + value_text(c.length);
+  return (bar_kind(c.kind) ? std::string() : std::string(corner_words(c.kind)) + " ") +
+         "A/L = " + value_text(c.A) + ", c T/L = " + value_text(c.length);
 }
 
 struct Prediction {
@@ -165,117 +135,6 @@ double steps_of(double cT, int cells, double courant) {
   return std::max(1.0, std::ceil(cT * cells / courant - 1e-9));
 }
 
-}  // namespace
-}  // namespace studies::advice_verify
-
-std::string candidate_name(const Candidate& c) {
-  using namespace studies::advice_verify;
-  std::ostringstream t;
-  t << c.from->method_text() << ", " << c.cells << " cells, C = " << shortest(c.from->courant);
-  if (c.start == VelocityStart::half_step) t << ", half-step start";
-  return t.str();
-}
-
-RunParams run_params(const Candidate& c, const VerifyProblem& vp) {
-  using namespace studies::advice_verify;
-  const CheckedSetting& s = *c.from;
-  const Problem& p = vp.problem;
-  RunParams r;
-  r.method = *parse_method(s.method);
-  const std::string transfer = transfer_name(s.transfer);
-  r.transfer = *parse_transfer(transfer);
-  if (transfer != s.transfer) {
-    const double order = std::stod(s.transfer.substr(transfer.size() + 1));
-    if (r.transfer == Transfer::fmpm) r.fmpm_order = int(order);
-    if (r.transfer == Transfer::xpic) r.xpic_order = int(order);
-    if (r.transfer == Transfer::blend) r.flip_fraction = order;
-  }
-  r.update = *parse_update_order(s.update);
-  r.start = c.start;
-  r.E = kAdviceE;
-  r.A = p.A;
-  r.T = p.cT;
-  r.cells = c.cells;
-  r.ppc = s.ppc;
-  r.scene = *parse_scene(p.scene);
-  r.bc = *parse_boundary(p.bc);
-  r.layout.jitter = vp.jitter;
-  r.stepping.policy = TimeStepPolicy::cfl;
-  r.stepping.cfl_factor = s.courant;
-  r.observe = Observe{};
-  r.observe.dt_stable = false;
-  r.observe.crossings = false;
-  return r;
-}
-
-std::string run_command(const Candidate& c, const VerifyProblem& vp) {
-  using namespace studies::advice_verify;
-  const CheckedSetting& s = *c.from;
-  const Problem& p = vp.problem;
-  std::ostringstream out;
-  out << "mpmstab run --method " << s.method << " " << transfer_options(s.transfer) << " --update "
-      << s.update << " --cells " << c.cells << " --policy cfl --cfl-factor " << shortest(s.courant)
-      << " --E " << value_text(kAdviceE) << " --A " << value_text(p.A) << " --T "
-      << value_text(p.cT);
-  if (c.start == VelocityStart::half_step) out << " --start half_step";
-  if (p.scene != "bar") out << " --scene " << p.scene;
-  if (p.bc != "dirichlet") out << " --bc " << p.bc;
-  if (vp.jitter > 0) out << " --jitter " << value_text(vp.jitter);
-  return out.str();
-}
-
-std::vector<Candidate> candidates(const std::vector<CheckedSetting>& settings,
-                                  const VerifyProblem& vp, const AdviceDomain& d) {
-  using namespace studies::advice_verify;
-  const Problem& p = vp.problem;
-  std::vector<Candidate> out;
-  for (std::size_t i = 0; i < settings.size(); ++i) {
-    const CheckedSetting& s = settings[i];
-    if (!advice_selected(s, p.methods)) continue;
-    for (const int cells : d.cells) {
-      // A finer grid rests on the setting of the same method and C with the most cells not
-      // above it; the study's own grids on themselves.
-      if (cells < s.cells) continue;
-      bool coarser_than_another = false;
-      for (const auto& t : settings)
-        if (&t != &s && t.method_text() == s.method_text() && t.courant == s.courant &&
-            t.cells > s.cells && t.cells <= cells)
-          coarser_than_another = true;
-      if (coarser_than_another) continue;
-      const studies::advice_verify::Prediction pr = predict(s, cells, vp, kRegionRule);
-      const double steps = steps_of(p.cT, cells, s.courant);
-      if (steps < double(kMinStepsToJudge)) continue;  // too short for a verdict
-      for (const VelocityStart start : {VelocityStart::exact, VelocityStart::half_step}) {
-        Candidate c{.from = &s, .cells = cells, .start = start};
-        c.predicted_error_over_A = pr.error_over_A;
-        c.predicted_from = pr.from;
-        if (start == VelocityStart::half_step) c.predicted_from += " (runs from the exact start)";
-        c.particle_steps = double(s.ppc) * cells * steps;
-        c.verify_particle_steps =
-            c.particle_steps +
-            double(s.ppc) * cells * steps_of(d.length_factor * p.cT, cells, s.courant) +
-            double(s.ppc) * cells * d.grid_factor *
-                steps_of(p.cT, cells * d.grid_factor, s.courant);
-        out.push_back(std::move(c));
-      }
-    }
-  }
-  std::stable_sort(out.begin(), out.end(), [&](const Candidate& a, const Candidate& b) {
-    const bool ea = a.predicted_error_over_A && *a.predicted_error_over_A <= p.target;
-    const bool eb = b.predicted_error_over_A && *b.predicted_error_over_A <= p.target;
-    if (ea != eb) return ea;
-    if (a.particle_steps != b.particle_steps) return a.particle_steps < b.particle_steps;
-    const double pa = a.predicted_error_over_A.value_or(INFINITY);
-    const double pb = b.predicted_error_over_A.value_or(INFINITY);
-    if (pa != pb) return pa < pb;
-    return a.start == VelocityStart::exact && b.start != VelocityStart::exact;
-  });
-  return out;
-}
-
-namespace studies::advice_verify {
-namespace {
-
 VerifyingRun verifying_run(std::string what, const RunParams& params, double target,
                            const RunFn& run_fn) {
   VerifyingRun v{.what = std::move(what), .params = params};
@@ -313,58 +172,8 @@ std::string failure_words(const VerifyingRun& r, double target) {
   return s.str();
 }
 
-}  // namespace
-}  // namespace studies::advice_verify
-
-std::vector<std::pair<std::string, RunParams>> verifying_params(const Candidate& c,
-                                                                const VerifyProblem& vp,
-                                                                const AdviceDomain& d) {
-  using namespace studies::advice_verify;
-  const RunParams base = run_params(c, vp);
-  RunParams longer = base;
-  longer.T = base.T * d.length_factor;
-  RunParams finer = base;
-  finer.cells = base.cells * d.grid_factor;
-  return {{"the problem", base},
-          {shortest(d.length_factor) + " x c T", longer},
-          {std::to_string(d.grid_factor) + " x the cells", finer}};
-}
-
-Trial verify(const Candidate& c, const VerifyProblem& vp, const RunFn& run_fn,
-             const AdviceDomain& d) {
-  using namespace studies::advice_verify;
-  const double target = vp.problem.target;
-  Trial t{.candidate = c};
-  const auto runs = verifying_params(c, vp, d);
-  t.runs.push_back(verifying_run(runs[0].first, runs[0].second, target, run_fn));
-  if (!t.runs.back().passes) {
-    t.why = failure_words(t.runs.back(), target);
-    return t;
-  }
-  // The two others are independent: side by side, each its own run (no sum is shared).
-  auto later = std::async(std::launch::async, [&] {
-    return verifying_run(runs[1].first, runs[1].second, target, run_fn);
-  });
-  VerifyingRun grid = verifying_run(runs[2].first, runs[2].second, target, run_fn);
-  t.runs.push_back(later.get());
-  t.runs.push_back(std::move(grid));
-  t.passed = true;
-  for (const auto& r : t.runs)
-    if (!r.passes) {
-      t.passed = false;
-      t.why = failure_words(r, target);
-      break;
-    }
-  return t;
-}
-
-namespace studies::advice_verify {
-namespace {
-
-// The margins on the problem: the one edge search (core/run/edge.hpp) in C, from the answer's C
-// up by edge_step to edge_top, bisected to edge_tolerance and scanned below each edge from the
-// answer's C up to it; every run at length_factor x c T, the length the answer is verified at.
-// Stops, unmeasured, where a probe would pass the budget left.
+// The margins on the problem (ProblemEdges, advice_verify.hpp), scanned up to edge_top. Stops,
+// unmeasured, where a probe would pass the budget left.
 struct OverBudget {};
 
 ProblemEdges problem_edges(const Candidate& c, const VerifyProblem& vp, double budget_left,
@@ -384,7 +193,6 @@ ProblemEdges problem_edges(const Candidate& c, const VerifyProblem& vp, double b
     params.stepping.cfl_factor = C;
     const VerifyingRun r = verifying_run("edge", params, target, run_fn);
     e.seconds += r.seconds;
-    e.particle_steps += r.particle_steps;
     EdgeProbe p{.dt = C, .survived = r.outcome != "unstable" && r.outcome != "no verdict"};
     // A run too short for a verdict neither survives nor fails (the search reads its steps).
     p.steps = r.outcome == "too_short" ? 0 : kMinStepsToJudge;
@@ -412,17 +220,10 @@ ProblemEdges problem_edges(const Candidate& c, const VerifyProblem& vp, double b
   return e;
 }
 
-}  // namespace
-}  // namespace studies::advice_verify
-
-namespace studies::advice_verify {
-namespace {
-
 // The refusal when no candidate is offered: every one of the methods asked for is too short for
 // a verdict on every grid, or none is offered.
 void refuse_without_candidates(Verified& v, const std::vector<CheckedSetting>& settings,
                                const Problem& p, const AdviceDomain& d) {
-  // Every candidate of the methods asked for is too short for a verdict, or none is offered.
   double shortest_cT = INFINITY;
   for (const auto& s : settings)
     if (advice_selected(s, p.methods))
@@ -468,8 +269,251 @@ std::string budget_refusal(const Verified& v, const Candidate& c, double estimat
   return s.str();
 }
 
+// ---------------------------------------------------------------------------------------------
+// Output
+
+using ojson = nlohmann::ordered_json;
+
+std::string problem_line(const VerifyProblem& vp) {
+  const Problem& p = vp.problem;
+  std::ostringstream s;
+  s << "mpmstab advise: A/L = " << value_text(p.A) << ", c T/L = " << value_text(p.cT)
+    << ", target error over time " << value_text(p.target) << " A, " << p.scene << ", " << p.bc
+    << ", " << (vp.jitter > 0 ? "jittered " + value_text(vp.jitter) : std::string("uniform"))
+    << "\n";
+  return s.str();
+}
+
+std::string run_line(const VerifyingRun& r, bool with_seconds) {
+  std::ostringstream s;
+  s << "    " << r.what << " (" << r.params.cells << " cells, c T/L = " << value_text(r.params.T)
+    << "): " << outcome_words(r);
+  if (r.error_over_A) s << ", error over time " << sci(*r.error_over_A) << " A";
+  s << ", " << sci(r.particle_steps) << " particle-steps";
+  if (with_seconds) s << ", " << significant(r.seconds, 2) << " s";
+  s << ": " << (r.passes ? "passes" : "FAILS") << "\n";
+  return s.str();
+}
+
+std::string prediction_words(const Candidate& c) {
+  return c.predicted_error_over_A ? sci(*c.predicted_error_over_A) + " A from " + c.predicted_from
+                                  : "none (" + c.predicted_from + ")";
+}
+
+// "C = 0.79 (1.6x the setting's C), fails at C = 0.8; monotone" or "none: fails at the
+// setting's C = 0.5 over this length", with the highest C that holds above the failure where
+// the edge is not monotone.
+std::string edge_words(const std::optional<double>& low, const std::optional<double>& high,
+                       const std::optional<double>& above, double C0, double top) {
+  std::ostringstream s;
+  if (!low) {
+    s << "none: "
+      << (high ? "fails at the setting's C = " + significant(*high, 3) : std::string("no verdict"));
+  } else {
+    s << "C = " << significant(*low, 3) << " (" << ratio(*low / C0) << "x the setting's C)";
+    if (high)
+      s << ", fails at C = " << significant(*high, 3);
+    else
+      s << ", not reached up to C = " << significant(top, 3);
+  }
+  s << (above ? "; not monotone: holds again at up to C = " + significant(*above, 3)
+              : std::string(low ? "; monotone" : ""));
+  return s.str();
+}
+
+ojson opt(const std::optional<double>& x) {
+  return x ? ojson(*x) : ojson(nullptr);
+}
+
+ojson run_json(const VerifyingRun& r) {
+  return {{"what", r.what},
+          {"cells", r.params.cells},
+          {"cT", r.params.T},
+          {"outcome", r.outcome},
+          {"under_a_wave_pass", under_a_pass(r)},
+          {"error_over_A", opt(r.error_over_A)},
+          {"particle_steps", r.particle_steps},
+          {"seconds", r.seconds},
+          {"passes", r.passes}};
+}
+
+ojson candidate_json(const Candidate& c, const VerifyProblem& vp) {
+  const CheckedSetting& s = *c.from;
+  return {{"method", s.method},
+          {"transfer", s.transfer},
+          {"update", s.update},
+          {"cells", c.cells},
+          {"ppc", s.ppc},
+          {"courant", s.courant},
+          {"start", std::string(c.start == VelocityStart::exact ? "exact" : "half_step")},
+          {"predicted_error_over_A", opt(c.predicted_error_over_A)},
+          {"predicted_from", c.predicted_from},
+          {"particle_steps", c.particle_steps},
+          {"run", run_command(c, vp)}};
+}
+
+ojson problem_json(const VerifyProblem& vp) {
+  const Problem& p = vp.problem;
+  return {{"A", p.A},         {"cT", p.cT}, {"error", p.target},
+          {"scene", p.scene}, {"bc", p.bc}, {"jitter", vp.jitter}};
+}
+
 }  // namespace
 }  // namespace studies::advice_verify
+
+std::string outside_domain(const VerifyProblem& vp, const AdviceDomain& d) {
+  const Problem& p = vp.problem;
+  std::ostringstream s;
+  if (p.A < d.A_min || p.A > d.A_max)
+    s << "--A: A/L = " << value_text(p.A) << " is outside the domain advise answers (A/L "
+      << value_text(d.A_min) << " to " << value_text(d.A_max) << ")";
+  else if (p.cT > d.cT_max)
+    s << "--cT: c T/L = " << value_text(p.cT) << " is longer than the domain advise answers (c T/L "
+      << "to " << value_text(d.cT_max) << ")";
+  else if (p.target < d.target_min || p.target > d.target_max)
+    s << "--error: a target of " << value_text(p.target) << " A is outside the domain advise "
+      << "answers (" << value_text(d.target_min) << " A to " << value_text(d.target_max) << " A)";
+  else if (vp.jitter < 0 || vp.jitter > d.jitter_max)
+    s << "--jitter: " << value_text(vp.jitter) << " is outside the domain advise answers (at most "
+      << value_text(d.jitter_max) << ")";
+  return s.str();
+}
+
+std::string candidate_name(const Candidate& c) {
+  std::ostringstream t;
+  t << c.from->method_text() << ", " << c.cells << " cells, C = " << shortest(c.from->courant);
+  if (c.start == VelocityStart::half_step) t << ", half-step start";
+  return t.str();
+}
+
+RunParams run_params(const Candidate& c, const VerifyProblem& vp) {
+  const CheckedSetting& s = *c.from;
+  const Problem& p = vp.problem;
+  const std::string transfer = transfer_name(s.transfer);
+  RunParams r{.method = *parse_method(s.method),
+              .E = kAdviceE,
+              .A = p.A,
+              .T = p.cT,
+              .cells = c.cells,
+              .ppc = s.ppc,
+              .bc = *parse_boundary(p.bc),
+              .scene = *parse_scene(p.scene),
+              .transfer = *parse_transfer(transfer),
+              .update = *parse_update_order(s.update),
+              .start = c.start,
+              .stepping = {.policy = TimeStepPolicy::cfl, .cfl_factor = s.courant},
+              .observe = {.dt_stable = false, .crossings = false}};
+  if (transfer != s.transfer) {
+    const double order = std::stod(s.transfer.substr(transfer.size() + 1));
+    if (r.transfer == Transfer::fmpm) r.fmpm_order = int(order);
+    if (r.transfer == Transfer::xpic) r.xpic_order = int(order);
+    if (r.transfer == Transfer::blend) r.flip_fraction = order;
+  }
+  r.layout.jitter = vp.jitter;
+  return r;
+}
+
+std::string run_command(const Candidate& c, const VerifyProblem& vp) {
+  const CheckedSetting& s = *c.from;
+  const Problem& p = vp.problem;
+  std::ostringstream out;
+  out << "mpmstab run --method " << s.method << " " << transfer_options(s.transfer) << " --update "
+      << s.update << " --cells " << c.cells << " --policy cfl --cfl-factor " << shortest(s.courant)
+      << " --E " << value_text(kAdviceE) << " --A " << value_text(p.A) << " --T "
+      << value_text(p.cT);
+  if (c.start == VelocityStart::half_step) out << " --start half_step";
+  if (p.scene != "bar") out << " --scene " << p.scene;
+  if (p.bc != "dirichlet") out << " --bc " << p.bc;
+  if (vp.jitter > 0) out << " --jitter " << value_text(vp.jitter);
+  return out.str();
+}
+
+std::vector<Candidate> candidates(const std::vector<CheckedSetting>& settings,
+                                  const VerifyProblem& vp, const AdviceDomain& d) {
+  using namespace studies::advice_verify;
+  const Problem& p = vp.problem;
+  std::vector<Candidate> out;
+  for (std::size_t i = 0; i < settings.size(); ++i) {
+    const CheckedSetting& s = settings[i];
+    if (!advice_selected(s, p.methods)) continue;
+    for (const int cells : d.cells) {
+      // A finer grid rests on the setting of the same method and C with the most cells not
+      // above it; the study's own grids on themselves.
+      if (cells < s.cells) continue;
+      bool coarser_than_another = false;
+      for (const auto& t : settings)
+        if (&t != &s && t.method_text() == s.method_text() && t.courant == s.courant &&
+            t.cells > s.cells && t.cells <= cells)
+          coarser_than_another = true;
+      if (coarser_than_another) continue;
+      const Prediction pr = predict(s, cells, vp, kRegionRule);
+      const double steps = steps_of(p.cT, cells, s.courant);
+      if (steps < double(kMinStepsToJudge)) continue;  // too short for a verdict
+      for (const VelocityStart start : {VelocityStart::exact, VelocityStart::half_step}) {
+        Candidate c{.from = &s, .cells = cells, .start = start};
+        c.predicted_error_over_A = pr.error_over_A;
+        c.predicted_from = pr.from;
+        if (start == VelocityStart::half_step) c.predicted_from += " (runs from the exact start)";
+        c.particle_steps = double(s.ppc) * cells * steps;
+        c.verify_particle_steps =
+            c.particle_steps +
+            double(s.ppc) * cells * steps_of(d.length_factor * p.cT, cells, s.courant) +
+            double(s.ppc) * cells * d.grid_factor *
+                steps_of(p.cT, cells * d.grid_factor, s.courant);
+        out.push_back(std::move(c));
+      }
+    }
+  }
+  std::stable_sort(out.begin(), out.end(), [&](const Candidate& a, const Candidate& b) {
+    const bool ea = a.predicted_error_over_A && *a.predicted_error_over_A <= p.target;
+    const bool eb = b.predicted_error_over_A && *b.predicted_error_over_A <= p.target;
+    if (ea != eb) return ea;
+    if (a.particle_steps != b.particle_steps) return a.particle_steps < b.particle_steps;
+    const double pa = a.predicted_error_over_A.value_or(INFINITY);
+    const double pb = b.predicted_error_over_A.value_or(INFINITY);
+    if (pa != pb) return pa < pb;
+    return a.start == VelocityStart::exact && b.start != VelocityStart::exact;
+  });
+  return out;
+}
+
+std::vector<std::pair<std::string, RunParams>> verifying_params(const Candidate& c,
+                                                                const VerifyProblem& vp,
+                                                                const AdviceDomain& d) {
+  const RunParams base = run_params(c, vp);
+  RunParams longer = base;
+  longer.T = base.T * d.length_factor;
+  RunParams finer = base;
+  finer.cells = base.cells * d.grid_factor;
+  return {{"the problem", base},
+          {shortest(d.length_factor) + " x c T", longer},
+          {std::to_string(d.grid_factor) + " x the cells", finer}};
+}
+
+Trial verify(const Candidate& c, const VerifyProblem& vp, const RunFn& run_fn,
+             const AdviceDomain& d) {
+  using namespace studies::advice_verify;
+  const double target = vp.problem.target;
+  Trial t{.candidate = c};
+  const auto runs = verifying_params(c, vp, d);
+  t.runs.push_back(verifying_run(runs[0].first, runs[0].second, target, run_fn));
+  if (!t.runs.back().passes) {
+    t.why = failure_words(t.runs.back(), target);
+    return t;
+  }
+  // The two others are independent: side by side, each its own run (no sum is shared).
+  auto later = std::async(std::launch::async, [&] {
+    return verifying_run(runs[1].first, runs[1].second, target, run_fn);
+  });
+  VerifyingRun grid = verifying_run(runs[2].first, runs[2].second, target, run_fn);
+  t.runs.push_back(later.get());
+  t.runs.push_back(std::move(grid));
+  const auto failed =
+      std::find_if(t.runs.begin(), t.runs.end(), [](const VerifyingRun& r) { return !r.passes; });
+  t.passed = failed == t.runs.end();
+  if (!t.passed) t.why = failure_words(*failed, target);
+  return t;
+}
 
 Verified verified_advice(const std::vector<CheckedSetting>& settings, const VerifyProblem& vp,
                          double budget_seconds, bool edges, const RunFn& run_fn,
@@ -527,7 +571,6 @@ Verified verified_advice(const std::vector<CheckedSetting>& settings, const Veri
 }
 
 std::vector<VerifyProblem> draw_problems(const SampleRule& rule, const AdviceDomain& d) {
-  using namespace studies::advice_verify;
   std::mt19937_64 gen(rule.seed);
   auto u = [&] { return double(gen() >> 11) * 0x1.0p-53; };
   auto rounded = [](double x, double low, double high) {
@@ -554,102 +597,6 @@ std::vector<VerifyProblem> draw_problems(const SampleRule& rule, const AdviceDom
   }
   return out;
 }
-
-// ---------------------------------------------------------------------------------------------
-// Output
-
-namespace studies::advice_verify {
-namespace {
-
-using ojson = nlohmann::ordered_json;
-
-std::string problem_line(const VerifyProblem& vp) {
-  const Problem& p = vp.problem;
-  std::ostringstream s;
-  s << "mpmstab advise: A/L = " << value_text(p.A) << ", c T/L = " << value_text(p.cT)
-    << ", target error over time " << value_text(p.target) << " A, " << p.scene << ", " << p.bc
-    << ", " << (vp.jitter > 0 ? "jittered " + value_text(vp.jitter) : std::string("uniform"))
-    << "\n";
-  return s.str();
-}
-
-std::string run_line(const VerifyingRun& r, bool with_seconds) {
-  std::ostringstream s;
-  s << "    " << r.what << " (" << r.params.cells << " cells, c T/L = " << value_text(r.params.T)
-    << "): " << studies::advice_verify::outcome_words(r);
-  if (r.error_over_A) s << ", error over time " << sci(*r.error_over_A) << " A";
-  s << ", " << sci(r.particle_steps) << " particle-steps";
-  if (with_seconds) s << ", " << significant(r.seconds, 2) << " s";
-  s << ": " << (r.passes ? "passes" : "FAILS") << "\n";
-  return s.str();
-}
-
-std::string prediction_words(const Candidate& c) {
-  return c.predicted_error_over_A ? sci(*c.predicted_error_over_A) + " A from " + c.predicted_from
-                                  : "none (" + c.predicted_from + ")";
-}
-
-// "C = 0.79 (1.6x the setting's C), fails at C = 0.8; monotone" or "none: fails at the
-// setting's C = 0.5 over this length", with the highest C that holds above the failure where
-// the edge is not monotone.
-std::string edge_words(const std::optional<double>& low, const std::optional<double>& high,
-                       const std::optional<double>& above, double C0, double top) {
-  std::ostringstream s;
-  if (!low) {
-    s << "none: "
-      << (high ? "fails at the setting's C = " + significant(*high, 3) : std::string("no verdict"));
-  } else {
-    s << "C = " << significant(*low, 3) << " (" << ratio(*low / C0) << "x the setting's C)";
-    if (high)
-      s << ", fails at C = " << significant(*high, 3);
-    else
-      s << ", not reached up to C = " << significant(top, 3);
-  }
-  s << (above ? "; not monotone: holds again at up to C = " + significant(*above, 3)
-              : std::string(low ? "; monotone" : ""));
-  return s.str();
-}
-
-ojson run_json(const VerifyingRun& r) {
-  return {{"what", r.what},
-          {"cells", r.params.cells},
-          {"cT", r.params.T},
-          {"outcome", r.outcome},
-          {"under_a_wave_pass", studies::advice_verify::under_a_pass(r)},
-          {"error_over_A", r.error_over_A ? ojson(*r.error_over_A) : ojson(nullptr)},
-          {"particle_steps", r.particle_steps},
-          {"seconds", r.seconds},
-          {"passes", r.passes}};
-}
-
-ojson candidate_json(const Candidate& c, const VerifyProblem& vp) {
-  const CheckedSetting& s = *c.from;
-  return {{"method", s.method},
-          {"transfer", s.transfer},
-          {"update", s.update},
-          {"cells", c.cells},
-          {"ppc", s.ppc},
-          {"courant", s.courant},
-          {"start", std::string(c.start == VelocityStart::exact ? "exact" : "half_step")},
-          {"predicted_error_over_A",
-           c.predicted_error_over_A ? ojson(*c.predicted_error_over_A) : ojson(nullptr)},
-          {"predicted_from", c.predicted_from},
-          {"particle_steps", c.particle_steps},
-          {"run", run_command(c, vp)}};
-}
-
-ojson problem_json(const VerifyProblem& vp) {
-  const Problem& p = vp.problem;
-  return {{"A", p.A},         {"cT", p.cT}, {"error", p.target},
-          {"scene", p.scene}, {"bc", p.bc}, {"jitter", vp.jitter}};
-}
-
-ojson opt(const std::optional<double>& x) {
-  return x ? ojson(*x) : ojson(nullptr);
-}
-
-}  // namespace
-}  // namespace studies::advice_verify
 
 std::string verified_text(const Verified& v, const VerifyProblem& vp, bool with_seconds) {
   using namespace studies::advice_verify;
@@ -706,26 +653,26 @@ std::string verified_text(const Verified& v, const VerifyProblem& vp, bool with_
 
 nlohmann::ordered_json verified_json(const Verified& v, const VerifyProblem& vp) {
   using namespace studies::advice_verify;
-  nlohmann::ordered_json rejected = nlohmann::ordered_json::array();
+  ojson rejected = ojson::array();
   for (const Trial& t : v.rejected) {
-    nlohmann::ordered_json runs = nlohmann::ordered_json::array();
+    ojson runs = ojson::array();
     for (const auto& r : t.runs)
       runs.push_back(run_json(r));
     rejected.push_back(
         {{"candidate", candidate_json(t.candidate, vp)}, {"why", t.why}, {"runs", runs}});
   }
-  nlohmann::ordered_json out = {{"problem", problem_json(vp)},
-                                {"verified", true},
-                                {"eligible", v.eligible},
-                                {"rejected", rejected},
-                                {"particle_steps", v.particle_steps},
-                                {"seconds", v.seconds}};
+  ojson out = {{"problem", problem_json(vp)},
+               {"verified", true},
+               {"eligible", v.eligible},
+               {"rejected", rejected},
+               {"particle_steps", v.particle_steps},
+               {"seconds", v.seconds}};
   if (!v.answer) {
     out["refused"] = v.refusal;
     out["bound"] = v.bound;
     return out;
   }
-  nlohmann::ordered_json runs = nlohmann::ordered_json::array();
+  ojson runs = ojson::array();
   for (const auto& r : v.answer->runs)
     runs.push_back(run_json(r));
   out["answer"] = candidate_json(v.answer->candidate, vp);
@@ -744,8 +691,7 @@ nlohmann::ordered_json verified_json(const Verified& v, const VerifyProblem& vp)
                     {"accuracy_fails_at", opt(m.dt_inaccurate)},
                     {"accuracy_monotone", m.accuracy_monotone()},
                     {"accurate_above", opt(m.accurate_above)},
-                    {"scan_top", v.edges.measured ? nlohmann::ordered_json(v.edges.scan_top)
-                                                  : nlohmann::ordered_json(nullptr)},
+                    {"scan_top", v.edges.measured ? ojson(v.edges.scan_top) : ojson(nullptr)},
                     {"small_amplitude_limit", opt(s.courant_spectral)}};
   return out;
 }

@@ -114,7 +114,6 @@ struct ProblemEdges {
   EdgeResult search;
   double cT = 0, A = 0;  // the run length and amplitude of every run of the search
   double scan_top = 0;   // the largest C the scan reaches
-  double particle_steps = 0;
   double seconds = 0;
 };
 

@@ -27,12 +27,14 @@
 #include "step/simulation.hpp"
 #include "study.hpp"
 
-namespace mpmstab {
-
-namespace studies::methods {
+namespace mpmstab::studies::methods {
 namespace {
 
 using ojson = nlohmann::ordered_json;
+
+// ---------------------------------------------------------------------------------------------
+// Findings: each method's row (its runs and fitted orders), its wave column, the wave column
+// against runs, and the reading's facts
 
 // What identifies a method in a row: basis, wall treatment, transfer and its order, update.
 using MethodKey = std::tuple<std::string, std::string, std::string, int, std::string>;
@@ -89,6 +91,10 @@ struct MethodRow {
   const ojson* table1 = nullptr;  // methods_grid: 100 cells, dt = 1e-4
   std::vector<const ojson*> grid;
   Order order_h, order_dt;
+  // The error over time at Table 1's setting, where its run ended stable.
+  std::optional<double> error() const {
+    return table1 ? stable_error_over_time(*table1) : std::nullopt;
+  }
 };
 
 // Table 1's setting among the rows of methods_grid: the paper's grid at its smallest fixed dt.
@@ -111,11 +117,6 @@ bool is_order_h_run(const ojson& r) {
   return r["policy"].get<std::string>() == "cfl" &&
          r["cfl_factor"].get<double>() == kOrderHCourant &&
          r["A"].get<double>() == kOrderHAmplitude;
-}
-
-std::optional<double> error_of(const ojson& r) {
-  if (outcome(r) != "stable" || !has_number(r, "max_error")) return std::nullopt;
-  return r["max_error"].get<double>();
 }
 
 double dt_of(const ojson& r) {
@@ -168,57 +169,10 @@ std::vector<MethodRow> method_rows(const std::vector<ojson>& edges,
   return rows;
 }
 
-// "2.01 (5 of 5)": the order and the runs it is fitted over of the runs of its kind; "– (2 of 5)"
-// with fewer than loglog_slope needs.
-std::string order_text(const Order& o) {
-  if (o.runs == 0) return "–";
-  return (o.value ? fixed(*o.value, 2) : std::string("–")) + " (" + std::to_string(o.fitted) +
-         " of " + std::to_string(o.runs) + ")";
-}
-
-std::string edge_text(const ojson& r, const char* column, const char* missing) {
-  return has_number(r, column) ? fixed(r[column].get<double>(), 3) : std::string(missing);
-}
-
-// The accuracy edge, or why there is none: withheld where the search's reference run or its run
-// at the edge is not accurate (report.hpp, add_accuracy_classes); "–" where the search found
-// none (its reference run meaningless).
-std::string accuracy_edge_text(const ojson& r) {
-  if (has_number(r, "dt_accurate_over_cfl"))
-    return fixed(r["dt_accurate_over_cfl"].get<double>(), 3);
-  return r.contains("accuracy_edge_withheld") && r["accuracy_edge_withheld"].is_boolean() &&
-                 r["accuracy_edge_withheld"].get<bool>()
-             ? "withheld"
-             : "–";
-}
-
-std::string table1_text(const MethodRow& m) {
-  if (!m.table1) return "–";
-  const auto e = error_of(*m.table1);
-  return e ? sci(*e) : verdict(*m.table1);
-}
-
-// The error over time at Table 1's setting with its size per A and its accuracy class, and the
-// energy balance error there ("–" where the run did not end stable: its verdict is in the column
-// before).
-std::string table1_over_time(const MethodRow& m) {
-  const auto e = m.table1 ? stable_error_over_time(*m.table1) : std::nullopt;
-  if (!e || !has_number(*m.table1, "A")) return "–";
-  const double A = (*m.table1)["A"].get<double>();
-  return sci(*e) + " (" + ratio(*e / A) + " A, " + std::string(to_string(accuracy_class(*e, A))) +
-         ")";
-}
-std::string table1_energy(const MethodRow& m) {
-  if (!m.table1 || outcome(*m.table1) != "stable" || !has_number(*m.table1, "energy_error_max"))
-    return "–";
-  return sci((*m.table1)["energy_error_max"].get<double>());
-}
-
 std::string method_name(const MethodRow& m) {
   return basis_text(m.key) + " / " + transfer_text(m.key) + " / " + std::get<4>(m.key);
 }
 
-// ---------------------------------------------------------------------------------------------
 // The wave column: how many cells per wavelength a wave needs to come out within kWaveTolerance
 // of the exact one after kWavePeriods of its periods, at c dt / h = kWaveCourant. A wave of the
 // uniform layout's interior is carried by the scheme's physical branch lambda (its Bloch symbol,
@@ -239,11 +193,7 @@ std::optional<RunParams> scheme_params(const MethodKey& k, int ppc) {
   const auto t = parse_transfer(transfer);
   const auto u = parse_update_order(update);
   if (!b || !t || !u) return std::nullopt;
-  RunParams p;
-  p.method = *b;
-  p.transfer = *t;
-  p.update = *u;
-  p.ppc = ppc;
+  RunParams p{.method = *b, .ppc = ppc, .transfer = *t, .update = *u};
   if (*t == Transfer::xpic && order > 0) p.xpic_order = order;
   if (*t == Transfer::fmpm && order > 0) p.fmpm_order = order;
   return p;
@@ -294,12 +244,6 @@ std::string cells_text(double cells) {
   return fixed(std::round(cells / unit) * unit, std::max(0, 2 - magnitude));
 }
 
-std::string wave_text(const WaveCells& w) {
-  if (!w.computed) return "–";
-  if (w.above_limit) return "above the limit";
-  return w.cells ? cells_text(*w.cells) : "> " + shortest(kMaxCellsPerWavelength);
-}
-
 // The wave column set against runs: the dispersion study's single-mode runs at kWaveCourant (the
 // mode scene, one standing wave of the periodic bar, to T = its periods), each run's error over
 // time per A beside the symbol's largest |lambda^n - e^{i omega n dt}| over the run's steps.
@@ -328,12 +272,11 @@ std::vector<ModeCheck> mode_checks(const StudyInputs& inputs) {
       continue;
     const auto p = scheme_params(key_of(r), r["ppc"].get<int>());
     if (!p) continue;
-    ModeCheck c;
-    c.label = rr.method_label;
-    c.cells = r["cells"].get<int>();
-    c.steps = *rr.steps;
-    c.run = *rr.error_over_A();
-    c.run_outcome = rr.outcome;
+    ModeCheck c{.label = rr.method_label,
+                .cells = r["cells"].get<int>(),
+                .steps = *rr.steps,
+                .run = *rr.error_over_A(),
+                .run_outcome = rr.outcome};
     const double kh = 2 * std::numbers::pi / c.cells;
     const DispersionPoint d = dispersion_at(*p, kWaveCourant, kh);
     for (long long n = 1; n <= c.steps; ++n) {
@@ -367,8 +310,110 @@ PairOrder pair_order(const std::vector<ModeCheck>& checks) {
   return o;
 }
 
-Claim wave_order_claim(const std::vector<ModeCheck>& checks) {
-  const PairOrder o = pair_order(checks);
+// The rows of methods_grid (none where its results are not in the folder).
+std::vector<ojson> grid_rows(const StudyInputs& inputs) {
+  const StudyInput& in = inputs.at("methods_grid");
+  if (!in.present()) return {};
+  return std::vector<ojson>(in.doc["cases"].begin(), in.doc["cases"].end());
+}
+
+// What the report, its claim, the index paragraph and the subtitle say, found once.
+struct Findings {
+  std::vector<MethodRow> methods;  // one per row, with its runs and fitted orders
+  std::vector<WaveCells> waves;    // the wave column, one per method
+  std::vector<ModeCheck> checks;   // the dispersion study's runs the wave column is set against
+  // The runs of methods_grid the error at Table 1's setting and each order are measured over.
+  std::vector<ojson> table1_runs, h_runs, cfl_runs, fixed_runs;
+  // At Table 1's setting: how the methods' runs ended (others: too short or not run).
+  int stable = 0, meaningless = 0, unstable = 0, others = 0, accurate = 0, inaccurate = 0;
+  int with_order_h = 0, with_order_dt = 0, edges = 0, meaningless_edges = 0;
+  int beyond = 0;  // the methods whose wave needs more than kMaxCellsPerWavelength
+  // A smallest or largest value, with the methods whose value prints as its does.
+  struct Extreme {
+    std::optional<double> value;
+    std::string methods;
+  } best_error, fewest_cells, most_cells, widest_edge;
+  // The wave column against runs: run minus symbol per run, in how many the run's error is the
+  // larger, and how the pairs of schemes order.
+  std::vector<double> differences;
+  int larger = 0;
+  PairOrder order;
+};
+
+// The smallest value over the methods (the largest with `largest`), where a method has one, with
+// the methods whose value prints as its does (ties at the printed precision), by name.
+template <class Value, class Text>
+Findings::Extreme extreme(const std::vector<MethodRow>& rows, Value value, bool largest,
+                          Text text) {
+  Findings::Extreme x;
+  for (std::size_t i = 0; i < rows.size(); ++i)
+    if (const auto v = value(i); v && (!x.value || (largest ? *v > *x.value : *v < *x.value)))
+      x.value = v;
+  std::vector<std::string> names;
+  for (std::size_t i = 0; i < rows.size() && x.value; ++i)
+    if (const auto v = value(i); v && text(*v) == text(*x.value))
+      names.push_back(method_name(rows[i]));
+  x.methods = list_of(names);
+  return x;
+}
+
+// The findings from the rows (the edge searches), those of methods_grid and the dispersion
+// study's (the report's inputs; the index and the subtitle have only the rows).
+Findings find(const std::vector<ojson>& rows, const std::vector<ojson>& grid,
+              const StudyInputs& inputs) {
+  Findings f{.methods = method_rows(rows, grid)};
+  f.waves = wave_column(f.methods);
+  f.checks = mode_checks(inputs);
+  for (const auto& r : grid) {
+    if (is_table1_setting(r)) f.table1_runs.push_back(r);
+    if (is_order_h_run(r)) {
+      f.h_runs.push_back(r);
+      continue;
+    }
+    if (r["cells"].get<int>() != kTable1Cells) continue;
+    (r["policy"].get<std::string>() == "cfl" ? f.cfl_runs : f.fixed_runs).push_back(r);
+  }
+  for (const auto& c : f.checks) {
+    f.differences.push_back(c.difference());
+    f.larger += c.difference() > 0;
+  }
+  f.order = pair_order(f.checks);
+  // The reading's facts at Table 1's setting, of the wave column and of the edges.
+  for (std::size_t i = 0; i < f.methods.size(); ++i) {
+    const MethodRow& m = f.methods[i];
+    const std::string ending = m.table1 ? outcome(*m.table1) : std::string();
+    f.stable += ending == "stable";
+    f.meaningless += ending == "meaningless";
+    f.unstable += ending == "unstable";
+    if (m.error()) (accurate_run(*m.table1) ? f.accurate : f.inaccurate) += 1;
+    f.with_order_h += m.order_h.value.has_value();
+    f.with_order_dt += m.order_dt.value.has_value();
+    f.beyond += f.waves[i].computed && !f.waves[i].above_limit && !f.waves[i].cells;
+    if (!has_number(*m.edge, "dt_edge_over_cfl")) continue;
+    ++f.edges;
+    f.meaningless_edges += outcome(*m.edge) == "meaningless";
+  }
+  f.others = int(f.methods.size()) - f.stable - f.meaningless - f.unstable;
+  const auto error = [&](std::size_t i) { return f.methods[i].error(); };
+  const auto cells = [&](std::size_t i) { return f.waves[i].cells; };
+  const auto edge = [&](std::size_t i) -> std::optional<double> {
+    const ojson& r = *f.methods[i].edge;
+    if (!has_number(r, "dt_edge_over_cfl") || outcome(r) == "meaningless") return std::nullopt;
+    return r["dt_edge_over_cfl"].get<double>();
+  };
+  const auto sci2 = [](double v) { return sci(v); };
+  const auto fixed3 = [](double v) { return fixed(v, 3); };
+  f.best_error = extreme(f.methods, error, false, sci2);
+  f.fewest_cells = extreme(f.methods, cells, false, cells_text);
+  f.most_cells = extreme(f.methods, cells, true, cells_text);
+  f.widest_edge = extreme(f.methods, edge, true, fixed3);
+  return f;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Claims
+
+Claim wave_order_claim(const Findings& f) {
   Claim c = claim("runs-order-schemes-as-the-wave-column",
                   "On each grid of the dispersion study's single-mode runs at c dt / h = "
                   "{courant}, the runs' errors over time order the schemes as the Bloch symbol's "
@@ -378,8 +423,63 @@ Claim wave_order_claim(const std::vector<ModeCheck>& checks) {
                   "than {tie}");
   c.value("courant", shortest(kWaveCourant))
       .value("tie", shortest(kSameWaveError))
-      .every("alike", o.alike, "pairs", o.pairs);
+      .every("alike", f.order.alike, "pairs", f.order.pairs);
   return c;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Text
+
+// "2.01 (5 of 5)": the order and the runs it is fitted over of the runs of its kind; "– (2 of 5)"
+// with fewer than loglog_slope needs.
+std::string order_text(const Order& o) {
+  if (o.runs == 0) return "–";
+  return (o.value ? fixed(*o.value, 2) : std::string("–")) + " (" + std::to_string(o.fitted) +
+         " of " + std::to_string(o.runs) + ")";
+}
+
+std::string edge_text(const ojson& r, const char* column, const char* missing) {
+  return has_number(r, column) ? fixed(r[column].get<double>(), 3) : std::string(missing);
+}
+
+// The accuracy edge, or why there is none: withheld where the search's reference run or its run
+// at the edge is not accurate (report.hpp, add_accuracy_classes); "–" where the search found
+// none (its reference run meaningless).
+std::string accuracy_edge_text(const ojson& r) {
+  const bool withheld = r.contains("accuracy_edge_withheld") &&
+                        r["accuracy_edge_withheld"].is_boolean() &&
+                        r["accuracy_edge_withheld"].get<bool>();
+  return edge_text(r, "dt_accurate_over_cfl", withheld ? "withheld" : "–");
+}
+
+// The error at T at Table 1's setting, or the verdict where the run did not end stable.
+std::string table1_text(const MethodRow& m) {
+  if (!m.table1) return "–";
+  const ojson& r = *m.table1;
+  return outcome(r) == "stable" && has_number(r, "max_error") ? sci(r["max_error"].get<double>())
+                                                              : verdict(r);
+}
+
+// The error over time at Table 1's setting with its size per A and its accuracy class, and the
+// energy balance error there ("–" where the run did not end stable: its verdict is in the column
+// before).
+std::string table1_over_time(const MethodRow& m) {
+  const auto e = m.error();
+  if (!e || !has_number(*m.table1, "A")) return "–";
+  const double A = (*m.table1)["A"].get<double>();
+  return sci(*e) + " (" + ratio(*e / A) + " A, " + std::string(to_string(accuracy_class(*e, A))) +
+         ")";
+}
+std::string table1_energy(const MethodRow& m) {
+  if (!m.table1 || outcome(*m.table1) != "stable" || !has_number(*m.table1, "energy_error_max"))
+    return "–";
+  return sci((*m.table1)["energy_error_max"].get<double>());
+}
+
+std::string wave_text(const WaveCells& w) {
+  if (!w.computed) return "–";
+  if (w.above_limit) return "above the limit";
+  return w.cells ? cells_text(*w.cells) : "> " + shortest(kMaxCellsPerWavelength);
 }
 
 std::string run_text(const ModeCheck& c) {
@@ -388,33 +488,29 @@ std::string run_text(const ModeCheck& c) {
   return s + ")";
 }
 
-std::string mode_check_text(const std::vector<ModeCheck>& checks) {
-  if (checks.empty()) {
+// The wave column against the dispersion study's runs: the spread of run minus symbol, and a
+// table of the runs.
+std::string mode_check_text(const Findings& f) {
+  if (f.checks.empty()) {
     return "The dispersion study has not been run into this folder: the wave column is not set "
            "against runs here.\n\n";
   }
-  std::vector<double> differences;
-  int larger = 0;
-  for (const auto& c : checks) {
-    differences.push_back(c.difference());
-    larger += c.difference() > 0;
-  }
   std::ostringstream md;
-  md << "**The wave column against runs.** The dispersion study's " << checks.size()
+  md << "**The wave column against runs.** The dispersion study's " << f.checks.size()
      << " single-mode runs at c dt / h = " << shortest(kWaveCourant)
      << " (the mode scene: one free standing wave of the periodic bar, its wavelength the bar's "
         "length, on as many cells as the wave has cells per wavelength, to the end of its "
      << "periods) give their error over time per A beside the symbol's largest "
         "|lambda^n - e^(i omega n dt)| over the same steps. The difference, run minus symbol, "
         "spans "
-     << span(differences, 2) << " (the run's error the larger in " << larger << " of "
-     << checks.size()
+     << span(f.differences, 2) << " (the run's error the larger in " << f.larger << " of "
+     << f.checks.size()
      << " runs): a run measures the displacement, the sum of the grid velocities over the "
         "steps, where the symbol carries the velocity and the strain. How the two order the "
         "schemes on each grid is the claim above.\n\n"
      << "| scheme | cells per wavelength | steps | run: error over time / A (outcome, class) | "
         "symbol: largest error over its steps | run minus symbol |\n|---|---|---|---|---|---|\n";
-  for (const auto& c : checks) {
+  for (const auto& c : f.checks) {
     md << "| " << c.label << " | " << c.cells << " | " << c.steps << " | " << run_text(c) << " | "
        << fixed(c.symbol, 3) << " | " << fixed(c.difference(), 3) << " |\n";
   }
@@ -422,100 +518,45 @@ std::string mode_check_text(const std::vector<ModeCheck>& checks) {
   return md.str();
 }
 
-// ---------------------------------------------------------------------------------------------
 // The reading: facts of the table, every number from its rows.
-
-// The methods whose value prints as the best's does (ties at the printed precision), by name.
-template <class Text>
-std::string tied_names(const std::vector<MethodRow>& rows, const std::string& best, Text text) {
-  std::vector<std::string> names;
-  for (std::size_t i = 0; i < rows.size(); ++i) {
-    const auto t = text(i);
-    if (t && *t == best) names.push_back(method_name(rows[i]));
-  }
-  return list_of(names);
-}
-
-std::string reading(const std::vector<MethodRow>& rows, const std::vector<WaveCells>& waves) {
-  std::map<std::string, int> outcomes;
-  int accurate = 0, inaccurate = 0, with_order_h = 0, with_order_dt = 0, beyond = 0;
-  std::optional<double> best_error, widest, fewest, most;
-  std::size_t edges = 0, meaningless_edges = 0;
-  for (std::size_t i = 0; i < rows.size(); ++i) {
-    const MethodRow& m = rows[i];
-    ++outcomes[m.table1 ? outcome(*m.table1) : std::string()];
-    if (const auto e = m.table1 ? stable_error_over_time(*m.table1) : std::nullopt) {
-      (accurate_run(*m.table1) ? accurate : inaccurate) += 1;
-      if (!best_error || *e < *best_error) best_error = e;
-    }
-    with_order_h += m.order_h.value.has_value();
-    with_order_dt += m.order_dt.value.has_value();
-    if (waves[i].computed && !waves[i].above_limit) {
-      const auto& cells = waves[i].cells;
-      beyond += !cells;
-      if (cells && (!fewest || *cells < *fewest)) fewest = cells;
-      if (cells && (!most || *cells > *most)) most = cells;
-    }
-    if (!has_number(*m.edge, "dt_edge_over_cfl")) continue;
-    ++edges;
-    if (outcome(*m.edge) == "meaningless") {
-      ++meaningless_edges;
-      continue;
-    }
-    const double edge = (*m.edge)["dt_edge_over_cfl"].get<double>();
-    if (!widest || edge > *widest) widest = edge;
-  }
-  const auto error_text = [&](std::size_t i) -> std::optional<std::string> {
-    const auto e = rows[i].table1 ? stable_error_over_time(*rows[i].table1) : std::nullopt;
-    return e ? std::optional(sci(*e)) : std::nullopt;
-  };
-  const auto edge_of = [&](std::size_t i) -> std::optional<std::string> {
-    const ojson& r = *rows[i].edge;
-    if (!has_number(r, "dt_edge_over_cfl") || outcome(r) == "meaningless") return std::nullopt;
-    return fixed(r["dt_edge_over_cfl"].get<double>(), 3);
-  };
-  const auto wave_of = [&](std::size_t i) -> std::optional<std::string> {
-    return waves[i].cells ? std::optional(cells_text(*waves[i].cells)) : std::nullopt;
-  };
-
+std::string reading(const Findings& f) {
   std::ostringstream md;
-  md << "Of " << rows.size() << " methods at Table 1's setting, " << outcomes["stable"]
-     << " end stable (" << accurate << " accurate, error over time below "
-     << shortest(kAccurateFraction) << " A; " << inaccurate << " inaccurate, from "
-     << shortest(kAccurateFraction) << " A up to A), " << outcomes["meaningless"]
-     << " meaningless and " << outcomes["unstable"] << " unstable";
-  const int others =
-      int(rows.size()) - outcomes["stable"] - outcomes["meaningless"] - outcomes["unstable"];
-  if (others > 0) md << " (" << others << " too short or not run)";
-  if (best_error) {
-    md << "; the smallest error over time there is " << sci(*best_error) << " ("
-       << tied_names(rows, sci(*best_error), error_text) << ")";
+  md << "Of " << f.methods.size() << " methods at Table 1's setting, " << f.stable
+     << " end stable (" << f.accurate << " accurate, error over time below "
+     << shortest(kAccurateFraction) << " A; " << f.inaccurate << " inaccurate, from "
+     << shortest(kAccurateFraction) << " A up to A), " << f.meaningless << " meaningless and "
+     << f.unstable << " unstable";
+  if (f.others > 0) md << " (" << f.others << " too short or not run)";
+  if (f.best_error.value) {
+    md << "; the smallest error over time there is " << sci(*f.best_error.value) << " ("
+       << f.best_error.methods << ")";
   }
-  md << ". An order in h is fitted for " << with_order_h << " of " << rows.size()
-     << " methods and an order in dt for " << with_order_dt << ". ";
-  if (fewest) {
+  md << ". An order in h is fitted for " << f.with_order_h << " of " << f.methods.size()
+     << " methods and an order in dt for " << f.with_order_dt << ". ";
+  if (f.fewest_cells.value) {
     md << "The smallest number of cells per wavelength for a wave error of at most "
        << percent(kWaveTolerance) << " after " << shortest(kWavePeriods)
-       << " periods at c dt / h = " << shortest(kWaveCourant) << " is " << cells_text(*fewest)
-       << " (" << tied_names(rows, cells_text(*fewest), wave_of) << "), the largest found "
-       << cells_text(*most) << " (" << tied_names(rows, cells_text(*most), wave_of) << ")";
-    if (beyond > 0)
-      md << "; " << beyond << " methods need more than " << shortest(kMaxCellsPerWavelength);
+       << " periods at c dt / h = " << shortest(kWaveCourant) << " is "
+       << cells_text(*f.fewest_cells.value) << " (" << f.fewest_cells.methods
+       << "), the largest found " << cells_text(*f.most_cells.value) << " (" << f.most_cells.methods
+       << ")";
+    if (f.beyond > 0)
+      md << "; " << f.beyond << " methods need more than " << shortest(kMaxCellsPerWavelength);
     md << ". ";
   }
-  md << "Of " << edges << " survival edges at the tiny amplitude, " << meaningless_edges
+  md << "Of " << f.edges << " survival edges at the tiny amplitude, " << f.meaningless_edges
      << " are runs whose error over time reached A (meaningless: marked in the table and the "
         "figure)";
-  if (widest) {
-    md << "; the widest of the others is " << fixed(*widest, 3) << " h/c ("
-       << tied_names(rows, fixed(*widest, 3), edge_of)
+  if (f.widest_edge.value) {
+    md << "; the widest of the others is " << fixed(*f.widest_edge.value, 3) << " h/c ("
+       << f.widest_edge.methods
        << "), a run of this length only: an edge is not a recommended step";
   }
   md << ".";
   return md.str();
 }
 
-std::string methods_table(const std::vector<MethodRow>& rows, const std::vector<WaveCells>& waves) {
+std::string methods_table(const Findings& f) {
   std::ostringstream md;
   md << "| basis | transfer | update | error at T at Table 1's setting | error over time there | "
         "energy balance error there | cells per wavelength for a wave error (damping and phase "
@@ -525,12 +566,12 @@ std::string methods_table(const std::vector<MethodRow>& rows, const std::vector<
      << ") | order in h (fitted over n of N runs) | order in dt (fitted over n of N runs) | "
         "spectral limit (h/c) | survival edge (h/c) | accuracy edge (h/c) | node visits per "
         "particle-step |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
-  for (std::size_t i = 0; i < rows.size(); ++i) {
-    const MethodRow& m = rows[i];
+  for (std::size_t i = 0; i < f.methods.size(); ++i) {
+    const MethodRow& m = f.methods[i];
     const RunRow edge(*m.edge);
     md << "| " << basis_text(m.key) << " | " << transfer_text(m.key) << " | " << std::get<4>(m.key)
        << " | " << table1_text(m) << " | " << table1_over_time(m) << " | " << table1_energy(m)
-       << " | " << wave_text(waves[i]) << " | " << order_text(m.order_h) << " | "
+       << " | " << wave_text(f.waves[i]) << " | " << order_text(m.order_h) << " | "
        << order_text(m.order_dt) << " | "
        << (edge.courant_spectral ? fixed(*edge.courant_spectral, 3)
                                  : "> " + shortest(kMaxSpectralCourant))
@@ -541,59 +582,11 @@ std::string methods_table(const std::vector<MethodRow>& rows, const std::vector<
   return md.str();
 }
 
-std::vector<ojson> grid_rows(const StudyInputs& inputs) {
-  const StudyInput& in = inputs.at("methods_grid");
-  if (!in.present()) return {};
-  return std::vector<ojson>(in.doc["cases"].begin(), in.doc["cases"].end());
-}
-
-const std::vector<std::string> kBases = {"mpm",
-                                         "gimp",
-                                         "cpgimp",
-                                         "cpdi",
-                                         "bspline2",
-                                         "bspline3",
-                                         "bspline2 (modified)",
-                                         "bspline3 (modified)"};
-const std::vector<std::string> kTransfers = {"flip", "pic", "apic", "xpic(2)", "fmpm(2)"};
-const std::vector<std::string> kUpdates = {"usl", "usf", "musl"};
-
-int index_in(const std::vector<std::string>& list, const std::string& s) {
-  const auto it = std::find(list.begin(), list.end(), s);
-  return it == list.end() ? -1 : int(it - list.begin());
-}
-
-// <name>_data.csv: one row per method with an error over time at Table 1's setting and a survival
-// edge.
-std::string methods_data(const std::vector<MethodRow>& rows, const std::string& header) {
-  std::ostringstream csv;
-  csv << header << "# panel: update order (" << codes(kUpdates) << "); series: basis ("
-      << codes(kBases) << "); shape: transfer (" << codes(kTransfers) << ")\n"
-      << "panel,series,shape,edge_over_cfl,error,meaningless_at_edge\n";
-  for (const auto& m : rows) {
-    const auto e = m.table1 ? stable_error_over_time(*m.table1) : std::nullopt;
-    if (!e || !has_number(*m.edge, "dt_edge_over_cfl")) continue;
-    csv << index_in(kUpdates, std::get<4>(m.key)) << ',' << index_in(kBases, basis_text(m.key))
-        << ',' << index_in(kTransfers, transfer_text(m.key)) << ','
-        << shortest((*m.edge)["dt_edge_over_cfl"].get<double>()) << ',' << shortest(*e) << ','
-        << (outcome(*m.edge) == "meaningless" ? 1 : 0) << '\n';
-  }
-  return csv.str();
-}
-
 // How the error at Table 1's setting and the orders are measured, every number from the rows
 // of methods_grid that give them.
-std::string how_to_read_the_setting(const std::vector<ojson>& grid) {
-  std::vector<ojson> table1, h_runs, cfl_runs, fixed_runs;
-  for (const auto& r : grid) {
-    if (is_table1_setting(r)) table1.push_back(r);
-    if (is_order_h_run(r)) {
-      h_runs.push_back(r);
-      continue;
-    }
-    if (r["cells"].get<int>() != kTable1Cells) continue;
-    (r["policy"].get<std::string>() == "cfl" ? cfl_runs : fixed_runs).push_back(r);
-  }
+std::string how_to_read_the_setting(const Findings& f) {
+  const auto& [table1, h_runs, cfl_runs, fixed_runs] =
+      std::tie(f.table1_runs, f.h_runs, f.cfl_runs, f.fixed_runs);
   std::ostringstream md;
   md << "- *error at T at Table 1's setting*: max_p |u_p - u(X_p, T)| at T = "
      << listing(table1, "T") << " on the bar, E = " << listing(table1, "E")
@@ -649,12 +642,72 @@ std::string wave_how_to_read(const std::vector<ojson>& edge_rows) {
   return md.str();
 }
 
-StudyReport methods_report(const ReportContext& c) {
-  const std::vector<ojson> grid = grid_rows(c.inputs);
-  const auto rows = method_rows(c.rows, grid);
-  const auto waves = wave_column(rows);
+std::string methods_index(const Spec& spec, const std::vector<ojson>& rows) {
+  const Findings f = find(rows, {}, {});
   std::ostringstream md;
-  md << "## Results\n\n**Reading.** " << reading(rows, waves) << "\n\n"
+  md << "![" << spec.title << "](" << spec.name << ".png)\n\n**What it shows.** "
+     << f.methods.size()
+     << " methods (basis x transfer x update order), each with its error at Table 1's setting, "
+        "its orders in h and dt with the runs each is fitted over, the cells per wavelength for "
+        "a wave error of at most "
+     << percent(kWaveTolerance) << " after " << shortest(kWavePeriods)
+     << " periods, its edges and its work per particle-step; the recommendations are "
+        "advice.md's. Details: ["
+     << spec.name << ".md](" << spec.name << ".md).\n\n";
+  return md.str();
+}
+
+// ---------------------------------------------------------------------------------------------
+// Figure
+
+const std::vector<std::string> kBases = {"mpm",
+                                         "gimp",
+                                         "cpgimp",
+                                         "cpdi",
+                                         "bspline2",
+                                         "bspline3",
+                                         "bspline2 (modified)",
+                                         "bspline3 (modified)"};
+const std::vector<std::string> kTransfers = {"flip", "pic", "apic", "xpic(2)", "fmpm(2)"};
+const std::vector<std::string> kUpdates = {"usl", "usf", "musl"};
+
+int index_in(const std::vector<std::string>& list, const std::string& s) {
+  const auto it = std::find(list.begin(), list.end(), s);
+  return it == list.end() ? -1 : int(it - list.begin());
+}
+
+// <name>_data.csv: one row per method with an error over time at Table 1's setting and a survival
+// edge.
+std::string methods_data(const std::vector<MethodRow>& rows, const std::string& header) {
+  std::ostringstream csv;
+  csv << header << "# panel: update order (" << codes(kUpdates) << "); series: basis ("
+      << codes(kBases) << "); shape: transfer (" << codes(kTransfers) << ")\n"
+      << "panel,series,shape,edge_over_cfl,error,meaningless_at_edge\n";
+  for (const auto& m : rows) {
+    const auto e = m.error();
+    if (!e || !has_number(*m.edge, "dt_edge_over_cfl")) continue;
+    csv << index_in(kUpdates, std::get<4>(m.key)) << ',' << index_in(kBases, basis_text(m.key))
+        << ',' << index_in(kTransfers, transfer_text(m.key)) << ','
+        << shortest((*m.edge)["dt_edge_over_cfl"].get<double>()) << ',' << shortest(*e) << ','
+        << (outcome(*m.edge) == "meaningless" ? 1 : 0) << '\n';
+  }
+  return csv.str();
+}
+
+// "120 methods with a survival edge; E = 64, 100 cells".
+std::string methods_subtitle(const Spec&, const ojson& doc) {
+  const std::vector<ojson> rows(doc["cases"].begin(), doc["cases"].end());
+  const Findings f = find(rows, {}, {});
+  return std::to_string(f.edges) + " methods with a survival edge; E = " + listing(rows, "E") +
+         ", " + listing(rows, "cells") + " cells";
+}
+
+// The report, from the findings: the reading, how to read a row, the table, the wave check.
+StudyReport methods_report(const ReportContext& c) {
+  const std::vector<ojson> grid = grid_rows(c.inputs);  // the findings point into it
+  const Findings f = find(c.rows, grid, c.inputs);
+  std::ostringstream md;
+  md << "## Results\n\n**Reading.** " << reading(f) << "\n\n"
      << "This table measures; it does not recommend: this project answers a user's problem with "
         "`mpmstab advise`, which runs each answer on that problem before giving it "
         "([advice.md](advice.md)).\n\n"
@@ -666,7 +719,7 @@ StudyReport methods_report(const ReportContext& c) {
      << c.spec.name << ".svg](" << c.spec.name << ".svg); data: [" << c.spec.name << "_data.csv]("
      << c.spec.name << "_data.csv).\n\n"
      << "How to read a row:\n\n"
-     << how_to_read_the_setting(grid) << wave_how_to_read(c.rows)
+     << how_to_read_the_setting(f) << wave_how_to_read(c.rows)
      << "- *spectral limit*: the largest c dt / h at which the scheme's map, linearised about "
         "rest at the uniform layout, amplifies nothing: the Bloch limit of the interior "
         "(docs/theory.md, \"The spectral limit\"; the walls' treatment does not enter it; "
@@ -687,35 +740,12 @@ StudyReport methods_report(const ReportContext& c) {
   if (grid.empty()) {
     md << "methods_grid has not been run into this folder: the columns it provides are `–`.\n\n";
   }
-  const std::vector<ModeCheck> checks = mode_checks(c.inputs);
-  md << methods_table(rows, waves) << "\n" << mode_check_text(checks);
+  md << methods_table(f) << "\n" << mode_check_text(f);
   std::vector<Claim> claims;
-  if (!checks.empty()) claims.push_back(wave_order_claim(checks));
+  if (!f.checks.empty()) claims.push_back(wave_order_claim(f));
   return StudyReport{.markdown = md.str(),
-                     .data_csv = methods_data(rows, c.csv_header),
+                     .data_csv = methods_data(f.methods, c.csv_header),
                      .claims = std::move(claims)};
-}
-
-std::string methods_index(const Spec& spec, const std::vector<ojson>& rows) {
-  std::ostringstream md;
-  md << "![" << spec.title << "](" << spec.name << ".png)\n\n**What it shows.** " << rows.size()
-     << " methods (basis x transfer x update order), each with its error at Table 1's setting, "
-        "its orders in h and dt with the runs each is fitted over, the cells per wavelength for "
-        "a wave error of at most "
-     << percent(kWaveTolerance) << " after " << shortest(kWavePeriods)
-     << " periods, its edges and its work per particle-step; the recommendations are "
-        "advice.md's. Details: ["
-     << spec.name << ".md](" << spec.name << ".md).\n\n";
-  return md.str();
-}
-
-std::string methods_subtitle(const Spec&, const ojson& doc) {
-  std::size_t n = 0;
-  for (const auto& r : doc["cases"])
-    n += has_number(r, "dt_edge_over_cfl") ? 1 : 0;
-  const std::vector<ojson> rows(doc["cases"].begin(), doc["cases"].end());
-  return std::to_string(n) + " methods with a survival edge; E = " + listing(rows, "E") + ", " +
-         listing(rows, "cells") + " cells";
 }
 
 const StudyRegistration kMethods{{
@@ -731,6 +761,4 @@ const StudyRegistration kMethods{{
 }};
 
 }  // namespace
-}  // namespace studies::methods
-
-}  // namespace mpmstab
+}  // namespace mpmstab::studies::methods

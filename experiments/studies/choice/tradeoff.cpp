@@ -20,19 +20,63 @@
 #include "key.hpp"
 #include "report_util.hpp"
 #include "run_row.hpp"
-#include "scenes/validate.hpp"
 #include "shared/by_scene.hpp"
 #include "study.hpp"
 
-namespace mpmstab {
-
-namespace studies::tradeoff {
+namespace mpmstab::studies::tradeoff {
 namespace {
 
 using ojson = nlohmann::ordered_json;
 
+// The settings the sentences and claims compare: the paper's grid (kCoarse) against the finest
+// (kFine), both under the CFL rule at kCflRef; stepping at the eq. (108) bound with safety
+// kBoundSafety; the bound "buys no accuracy" when its error is within kNoGainFactor of the CFL
+// rule's.
+constexpr int kCoarse = 100, kFine = 400;
+constexpr double kCflRef = 0.5, kBoundSafety = 1.0, kNoGainFactor = 2.0;
+
 // ---------------------------------------------------------------------------------------------
-// Settings and their parameters (docs/studies.md, "Time-step policies")
+// Follow-ups. What the walls cost: every run of the paper's bar under the CFL rule at kCflRef
+// (every method, and GIMP and MPM on every grid) is rerun with periodic boundaries, which the
+// periodic manufactured solution allows. The twin has no wall: its error is the interior's own,
+// and the ratio of the two is what the Dirichlet walls' treatment adds.
+
+// The rows whose periodic twin is run, in row order.
+std::vector<std::size_t> twin_rows(const std::vector<ojson>& rows) {
+  std::vector<std::size_t> idx;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const ojson& r = rows[i];
+    if (text(r, "scene") == "bar" && text(r, "bc") == "dirichlet" && text(r, "policy") == "cfl" &&
+        r["cfl_factor"].get<double>() == kCflRef)
+      idx.push_back(i);
+  }
+  return idx;
+}
+
+// The follow-up runs: the periodic twins.
+constexpr const char* kPeriodicTwin = "periodic twin";
+std::vector<FollowUp> tradeoff_follow_ups(const FollowUpContext& c) {
+  std::vector<FollowUp> runs;
+  for (const std::size_t i : twin_rows(c.rows)) {
+    RunParams p = c.spec.cases.at(i).params;
+    p.bc = Boundary::periodic;
+    runs.push_back({.of = i, .role = kPeriodicTwin, .params = p});
+  }
+  return runs;
+}
+
+// Each twin by the index of its row (absent where the follow-up runs are).
+std::map<std::size_t, const ojson*> periodic_twins(const std::vector<ojson>& rows,
+                                                   const std::vector<ojson>& follow_up) {
+  std::map<std::size_t, const ojson*> out;
+  for (const std::size_t i : twin_rows(rows))
+    for (const ojson* twin : follow_ups_of(follow_up, i, kPeriodicTwin))
+      out[i] = twin;
+  return out;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Findings: settings and their parameters (docs/studies.md, "Time-step policies")
 
 const std::vector<std::string> kPolicies = {"fixed", "cfl", "adaptive", "min", "spectral"};
 
@@ -63,8 +107,7 @@ std::string parameter_text(const std::string& policy, double v) {
 // A setting's name: "gimp cfl C=0.5", "mpm adaptive s=2", "gimp fixed dt=1e-4".
 std::string setting(const ojson& r) {
   const std::string policy = text(r, "policy");
-  std::string s = method_label(r);
-  s += " " + policy;
+  std::string s = method_label(r) + " " + policy;
   if (policy == "fixed") s += " dt=" + param(r["dt"].get<double>());
   if (policy == "cfl" || policy == "min") s += " C=" + shortest(r["cfl_factor"].get<double>());
   if (policy == "adaptive" || policy == "min" || policy == "spectral")
@@ -73,8 +116,23 @@ std::string setting(const ojson& r) {
   return s;
 }
 
-// ---------------------------------------------------------------------------------------------
-// Accuracy and cost
+// The index of `key` in `seen`, appended when new: methods, values of E, panels and series in the
+// order they first appear.
+template <class T>
+std::size_t index_in(std::vector<T>& seen, const T& key) {
+  const auto it = std::find(seen.begin(), seen.end(), key);
+  if (it != seen.end()) return static_cast<std::size_t>(it - seen.begin());
+  seen.push_back(key);
+  return seen.size() - 1;
+}
+
+// The methods of the rows in the order they first appear.
+std::vector<std::string> methods_of(const std::vector<ojson>& rows) {
+  std::vector<std::string> methods;
+  for (const auto& r : rows)
+    index_in(methods, method_label(r));
+  return methods;
+}
 
 // Whether run i ranks before run j on cost: fewer particle-steps, then the smaller error, then
 // the earlier row. A total order, so that every ranking is the same on every rerun.
@@ -133,18 +191,15 @@ struct TradeRows {
   std::vector<double> Es;
 
   explicit TradeRows(const std::vector<ojson>& scene_rows) : rows(scene_rows) {
-    for (const auto& r : rows) {
-      const double E = r["E"].get<double>();
-      if (std::find(Es.begin(), Es.end(), E) == Es.end()) Es.push_back(E);
-    }
+    for (const auto& r : rows)
+      index_in(Es, r["E"].get<double>());
   }
 
   // Indices of the runs at E.
   std::vector<std::size_t> at(double E) const {
     std::vector<std::size_t> idx;
-    for (std::size_t i = 0; i < rows.size(); ++i) {
+    for (std::size_t i = 0; i < rows.size(); ++i)
       if (rows[i]["E"].get<double>() == E) idx.push_back(i);
-    }
     return idx;
   }
 
@@ -152,12 +207,10 @@ struct TradeRows {
   // `value`; null when the sweep has none.
   const ojson* find(double E, const std::string& method, const std::string& policy, double value,
                     int cells) const {
-    for (const auto& r : rows) {
+    for (const auto& r : rows)
       if (r["E"].get<double>() == E && method_label(r) == method && text(r, "policy") == policy &&
-          r["cells"].get<int>() == cells && parameter(r) == value) {
+          r["cells"].get<int>() == cells && parameter(r) == value)
         return &r;
-      }
-    }
     return nullptr;
   }
 };
@@ -170,79 +223,8 @@ std::string list_of_E(const std::vector<double>& Es) {
   return list_of(items);
 }
 
-// ---------------------------------------------------------------------------------------------
-// How the runs ended, per policy (docs/studies.md, "Outcomes")
-
-std::map<std::string, VerdictTally> endings_by_policy(const std::vector<ojson>& rows) {
-  std::map<std::string, VerdictTally> by_policy;
-  for (const auto& p : kPolicies)
-    by_policy[p];
-  for (const auto& r : rows)
-    by_policy[text(r, "policy")].add(r);
-  return by_policy;
-}
-
-// The failure reasons the table has a column for: dt_collapse always, then every other reason
-// some run stopped with, alphabetically.
-std::vector<std::string> reason_columns(const std::map<std::string, VerdictTally>& by_policy) {
-  std::set<std::string> others;
-  for (const auto& [p, e] : by_policy) {
-    for (const auto& [reason, n] : e.reasons) {
-      if (reason != "dt_collapse") others.insert(reason);
-    }
-  }
-  std::vector<std::string> columns = {"dt_collapse"};
-  columns.insert(columns.end(), others.begin(), others.end());
-  return columns;
-}
-
 int count_of(const std::map<std::string, int>& m, const std::string& key) {
-  const auto it = m.find(key);
-  return it == m.end() ? 0 : it->second;
-}
-
-// Per policy, the runs and how they ended; the unstable ones per failure reason.
-std::string endings_table(const std::vector<ojson>& rows, const std::string& of_scene) {
-  const auto by_policy = endings_by_policy(rows);
-  const auto reasons = reason_columns(by_policy);
-  std::ostringstream md;
-  md << "### How the runs ended" << of_scene
-     << "\n\nPer time-step policy, the runs that were stable, meaningless (survived, but the "
-        "error over time reached A) and unstable, and the unstable ones by the reason they "
-        "stopped. dt_collapse: the adaptive or min policy asked for a step below "
-     << sci(kDtCollapseFraction, 1) << " times the CFL step h/c.\n\n"
-     << "| policy | runs | stable | meaningless | unstable |";
-  for (const auto& reason : reasons)
-    md << " " << reason << " |";
-  md << "\n|---|---|---|---|---|";
-  for (std::size_t k = 0; k < reasons.size(); ++k)
-    md << "---|";
-  md << "\n";
-  for (const auto& p : kPolicies) {
-    const VerdictTally& e = by_policy.at(p);
-    md << "| " << p << " | " << e.runs << " | " << e.stable << " | " << e.meaningless << " | "
-       << e.unstable << " |";
-    for (const auto& reason : reasons)
-      md << " " << count_of(e.reasons, reason) << " |";
-    md << "\n";
-  }
-  md << "\n";
-  return md.str();
-}
-
-ojson endings_json(const std::vector<ojson>& rows) {
-  ojson j = ojson::object();
-  for (const auto& [p, e] : endings_by_policy(rows)) {
-    ojson reasons = {{"dt_collapse", count_of(e.reasons, "dt_collapse")}};
-    for (const auto& [reason, n] : e.reasons)
-      reasons[reason] = n;
-    j[p] = {{"runs", e.runs},
-            {"stable", e.stable},
-            {"meaningless", e.meaningless},
-            {"unstable", e.unstable},
-            {"failure_reasons", reasons}};
-  }
-  return j;
+  return m.count(key) ? m.at(key) : 0;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -276,13 +258,8 @@ struct AdviceGroup {
 
 // The groups of a scene: by method in the order they first appear, then by policy.
 std::vector<AdviceGroup> advice_groups(const std::vector<ojson>& rows) {
-  std::vector<std::string> methods;
-  for (const auto& r : rows) {
-    const std::string m = method_label(r);
-    if (std::find(methods.begin(), methods.end(), m) == methods.end()) methods.push_back(m);
-  }
   std::vector<AdviceGroup> groups;
-  for (const auto& m : methods) {
+  for (const auto& m : methods_of(rows)) {
     for (const auto& p : kPolicies) {
       std::set<Key> Cs;
       bool any = false;
@@ -300,36 +277,51 @@ std::vector<AdviceGroup> advice_groups(const std::vector<ojson>& rows) {
   return groups;
 }
 
+// "36 rows: gimp cfl C = 0.05..0.5 at E = 4, 64 and 1000 on 100, 200 and 400 cells in the
+// scenes bar and steffen".
+std::string describe_rows(const TradeRows& t, const AdviceGroup& g,
+                          const std::vector<std::size_t>& idx) {
+  std::set<Key> values;
+  std::set<int> cells;
+  std::vector<double> Es;
+  std::vector<std::string> scenes;
+  for (std::size_t i : idx) {
+    values.insert(Key(parameter(t.rows[i]), "the policy's parameter"));
+    cells.insert(t.rows[i]["cells"].get<int>());
+    index_in(Es, t.rows[i]["E"].get<double>());
+    index_in(scenes, text(t.rows[i], "scene"));
+  }
+  std::string s = std::to_string(idx.size()) + " rows: " + g.name() + (g.cfl_factor ? ", " : " ") +
+                  parameter_symbol(g.policy) + " = " + parameter_text(g.policy, *values.begin());
+  if (values.size() > 1) s += ".." + parameter_text(g.policy, *values.rbegin());
+  s += " at E = " + list_of_E(Es);
+  if (cells.size() > 1 || *cells.begin() != 100) {
+    std::vector<std::string> names;
+    for (int n : cells)
+      names.push_back(std::to_string(n));
+    s += " on " + list_of(names) + " cells";
+  }
+  return s + (scenes.size() > 1 ? " in the scenes " : " in the scene ") + list_of(scenes);
+}
+
 // The rule applied to one value v of a group's parameter.
 struct ValueCheck {
   double value = 0;
   bool advised = false;
-  std::vector<std::size_t> rests_on;  // the group's runs up to the checking value, per E
-  std::vector<double> checked;        // per E, the smallest value run at or beyond 1.5 v
-  std::string why_not;                // why it is not advised
+  std::string rests_on;  // the group's runs up to the checking value (describe_rows), where advised
+  double checked_lo = 0, checked_hi = 0;  // over E, the smallest value run at or beyond 1.5 v
+  std::string why_not;                    // why it is not advised
 };
 
 // The group's runs at E, by parameter (then row order).
 std::vector<std::size_t> group_rows_at(const TradeRows& t, const AdviceGroup& g, double E) {
   std::vector<std::size_t> idx;
-  for (std::size_t i : t.at(E)) {
+  for (std::size_t i : t.at(E))
     if (g.holds(t.rows[i])) idx.push_back(i);
-  }
   std::stable_sort(idx.begin(), idx.end(), [&](std::size_t a, std::size_t b) {
     return TotalLess()(parameter(t.rows[a]), parameter(t.rows[b]));
   });
   return idx;
-}
-
-// The smallest parameter of `idx` at or beyond `at_least` (a relative 1e-9 below it counts, so
-// that 1.5 x 1e-4 finds a run at 1.5e-4).
-std::optional<double> first_at_or_beyond(const TradeRows& t, const std::vector<std::size_t>& idx,
-                                         double at_least) {
-  for (std::size_t i : idx) {
-    const double p = parameter(t.rows[i]);
-    if (p >= at_least * (1 - 1e-9)) return p;
-  }
-  return std::nullopt;
 }
 
 // "gimp cfl C=0.7 at E = 4 (bar): \* nonpositive_F at step 258 (t = 9.0e-1)".
@@ -338,19 +330,23 @@ std::string row_verdict(const ojson& r) {
          "): " + verdict(r);
 }
 
-// A run whose largest step lies above its scheme's spectral limit (where both are recorded):
-// its survival holds for this amplitude and run length only.
-
 // Whether v is advised (the rule above), and the rows it rests on or why not. A run that is not
 // stable up to the checking value (or, with none, among all the group's runs at E) tells first,
-// then a value not run at some E, then a margin that no run checks.
+// then a run whose largest step lies above its scheme's spectral limit (where both are recorded:
+// its survival holds for this amplitude and run length only), then a value not run at some E,
+// then a margin that no run checks.
 ValueCheck check_value(const TradeRows& t, const AdviceGroup& g, double v) {
   ValueCheck c;
   c.value = v;
-  std::vector<double> not_run, unchecked;  // the values of E
+  std::vector<std::size_t> rests_on;
+  std::vector<double> checked, not_run, unchecked;  // the values checked; the values of E
   for (double E : t.Es) {
     const auto idx = group_rows_at(t, g, E);
-    const auto p = first_at_or_beyond(t, idx, kMargin * v);
+    // The smallest parameter run at or beyond 1.5 v (a relative 1e-9 below it counts, so that
+    // 1.5 x 1e-4 finds a run at 1.5e-4).
+    std::optional<double> p;
+    for (std::size_t i : idx)
+      if (!p && parameter(t.rows[i]) >= kMargin * v * (1 - 1e-9)) p = parameter(t.rows[i]);
     const double limit = p.value_or(std::numeric_limits<double>::infinity());
     for (std::size_t i : idx) {
       if (parameter(t.rows[i]) > limit) break;
@@ -361,16 +357,15 @@ ValueCheck check_value(const TradeRows& t, const AdviceGroup& g, double v) {
                     fixed(*rr.courant, 3) + ", above the spectral limit " +
                     fixed(*rr.courant_spectral, 3);
       }
-      c.rests_on.push_back(i);
+      rests_on.push_back(i);
     }
     const bool run_at_v = std::any_of(idx.begin(), idx.end(),
                                       [&](std::size_t i) { return parameter(t.rows[i]) == v; });
     if (!run_at_v) not_run.push_back(E);
-    if (p) {
-      c.checked.push_back(*p);
-    } else {
+    if (p)
+      checked.push_back(*p);
+    else
       unchecked.push_back(E);
-    }
   }
   if (c.why_not.empty() && !not_run.empty()) c.why_not = "not run at E = " + list_of_E(not_run);
   if (c.why_not.empty() && !unchecked.empty()) {
@@ -378,6 +373,11 @@ ValueCheck check_value(const TradeRows& t, const AdviceGroup& g, double v) {
                 ") at E = " + list_of_E(unchecked) + "; margin not checked";
   }
   c.advised = c.why_not.empty();
+  if (!c.advised) return c;
+  c.rests_on = describe_rows(t, g, rests_on);
+  const auto [lo, hi] = std::minmax_element(checked.begin(), checked.end(), TotalLess());
+  c.checked_lo = *lo;
+  c.checked_hi = *hi;
   return c;
 }
 
@@ -391,9 +391,8 @@ struct MarginRange {
 
 MarginRange stable_range(const TradeRows& t, const AdviceGroup& g) {
   std::set<Key> values;
-  for (const auto& r : t.rows) {
+  for (const auto& r : t.rows)
     if (g.holds(r)) values.insert(Key(parameter(r), "the policy's parameter"));
-  }
   MarginRange a{g, std::nullopt, {}};
   std::vector<ValueCheck> checks;
   for (double v : values)
@@ -412,279 +411,39 @@ MarginRange stable_range(const TradeRows& t, const AdviceGroup& g) {
   return a;
 }
 
-std::vector<MarginRange> stable_ranges(const TradeRows& t) {
-  std::vector<MarginRange> all;
-  for (const auto& g : advice_groups(t.rows))
-    all.push_back(stable_range(t, g));
-  return all;
-}
-
-// "36 rows: gimp cfl C = 0.05..0.5 at E = 4, 64 and 1000 on 100, 200 and 400 cells in the
-// scenes bar and steffen".
-std::string describe_rows(const TradeRows& t, const AdviceGroup& g,
-                          const std::vector<std::size_t>& idx) {
-  std::set<Key> values;
-  std::set<int> cells;
-  std::vector<double> Es;
-  std::vector<std::string> scenes;
-  for (std::size_t i : idx) {
-    values.insert(Key(parameter(t.rows[i]), "the policy's parameter"));
-    cells.insert(t.rows[i]["cells"].get<int>());
-    const double E = t.rows[i]["E"].get<double>();
-    if (std::find(Es.begin(), Es.end(), E) == Es.end()) Es.push_back(E);
-    const std::string scene = text(t.rows[i], "scene");
-    if (std::find(scenes.begin(), scenes.end(), scene) == scenes.end()) scenes.push_back(scene);
-  }
-  std::string s = std::to_string(idx.size()) + " rows: " + g.name() + (g.cfl_factor ? ", " : " ") +
-                  parameter_symbol(g.policy) + " = " + parameter_text(g.policy, *values.begin());
-  if (values.size() > 1) s += ".." + parameter_text(g.policy, *values.rbegin());
-  s += " at E = " + list_of_E(Es);
-  if (cells.size() > 1 || *cells.begin() != 100) {
-    std::vector<std::string> names;
-    for (int n : cells)
-      names.push_back(std::to_string(n));
-    s += " on " + list_of(names) + " cells";
-  }
-  return s + (scenes.size() > 1 ? " in the scenes " : " in the scene ") + list_of(scenes);
-}
-
-// "C = 0.5": the value checked beyond the advised one (a range when it differs between values
-// of E).
-std::string checked_text(const AdviceGroup& g, const ValueCheck& c) {
-  const auto [lo, hi] = std::minmax_element(c.checked.begin(), c.checked.end(), TotalLess());
-  std::string s = g.value(*lo);
-  if (*hi != *lo) s += " to " + parameter_text(g.policy, *hi);
-  return s;
-}
-
-// "C up to 0.25".
-std::string advised_text(const MarginRange& a) {
-  return std::string(parameter_symbol(a.group.policy)) + " up to " +
-         parameter_text(a.group.policy, a.advised->value);
-}
-
-// The rule, and per method and policy the value advised, the rows it rests on, the value checked
-// beyond it and why the next value run is not advised.
-std::string advice_table(const TradeRows& t, const std::vector<MarginRange>& all) {
-  std::ostringstream md;
-  md << "### Stable ranges of each policy's parameter, over every scene\n\nA description of the "
-        "runs, not a recommendation (`mpmstab advise` answers a problem, and verifies the answer "
-        "by runs on it; advice.md). A value v of a "
-        "parameter (a fixed dt, the CFL factor C, the safety factor s) is stable with a "
-     << shortest(kMargin) << "x margin for a method and policy if, at every E the study runs ("
-     << list_of_E(t.Es) << "), they were run at v and at some p >= " << shortest(kMargin)
-     << " v, and every one of their runs with the parameter up to p (on every grid, in every "
-        "scene) is stable: not unstable, not meaningless, and none of its steps above the "
-        "scheme's spectral limit (where the run records it: a run that survives above the limit "
-        "survives at this amplitude and run length only). The largest such v is shown; p is the "
-        "value checked beyond it. A value with no run at "
-     << shortest(kMargin)
-     << " times it or beyond is not shown: its margin is not checked. These runs lie at A / h = "
-     << listing(t.rows, "A_over_h")
-     << " and c T = " << span(values_of(t.rows, &RunRow::wave_passes), 3)
-     << " wave passes, and a range is checked there only.\n\n"
-     << "| method and policy | stable with margin | rests on | checked to | the next value run, "
-        "not stable with margin |\n|---|---|---|---|---|\n";
-  for (const auto& a : all) {
-    md << "| " << a.group.name() << " | ";
-    if (a.advised) {
-      md << advised_text(a) << " | " << describe_rows(t, a.group, a.advised->rests_on)
-         << ", all stable | " << checked_text(a.group, *a.advised) << " (" << shortest(kMargin)
-         << "x = " << parameter_text(a.group.policy, kMargin * a.advised->value) << ") | ";
-    } else {
-      md << "no value | – | – | ";
-    }
-    md << a.group.value(a.next.value) << ": " << a.next.why_not << " |\n";
-  }
-  md << "\n";
-  return md.str();
-}
-
-ojson advice_json(const TradeRows& t, const std::vector<MarginRange>& all) {
-  ojson j = ojson::array();
-  for (const auto& a : all) {
-    const ojson checked_to = a.advised
-                                 ? ojson(*std::max_element(a.advised->checked.begin(),
-                                                           a.advised->checked.end(), TotalLess()))
-                                 : ojson(nullptr);
-    ojson g = {{"method", a.group.method},
-               {"policy", a.group.policy},
-               {"cfl_factor", a.group.cfl_factor ? ojson(*a.group.cfl_factor) : ojson(nullptr)},
-               {"parameter", parameter_key(a.group.policy)},
-               {"advised", a.advised ? ojson(a.advised->value) : ojson(nullptr)},
-               {"rests_on",
-                a.advised ? ojson(describe_rows(t, a.group, a.advised->rests_on)) : ojson(nullptr)},
-               {"checked_to", checked_to},
-               {"next_value", a.next.value},
-               {"next_not_advised", a.next.why_not}};
-    j.push_back(g);
-  }
-  return j;
-}
-
 // ---------------------------------------------------------------------------------------------
-// The advice paragraph
+// Findings: what each scene's rows show
 
-// Per E (in the order of TradeRows::Es), the cheapest run reaching each target.
-using CheapestByE = std::vector<std::vector<std::optional<std::size_t>>>;
-
-CheapestByE cheapest_by_E(const TradeRows& t) {
-  CheapestByE best;
-  for (double E : t.Es)
-    best.push_back(cheapest(t.rows, t.at(E)));
-  return best;
-}
-
-// How often each method and policy ("gimp cfl") is the cheapest for an (E, target) pair.
-std::map<std::string, int> wins_by_policy(const TradeRows& t, const CheapestByE& best) {
-  std::map<std::string, int> count;
-  for (const auto& per_target : best) {
-    for (const auto& b : per_target) {
-      if (!b) continue;
-      const ojson& r = t.rows[*b];
-      ++count[method_label(r) + " " + text(r, "policy")];
-    }
-  }
-  return count;
-}
-
-// The first scene's opening: what accuracy and cost mean here, where the wall times are, and
-// the figure.
-std::string results_intro(const Spec& spec) {
-  std::ostringstream md;
-  md << "## Results\n\nAccuracy is the max error over time (the largest particle displacement "
-        "error after any step), since for most E the exact displacement at T is zero. Cost is "
-        "the work of the run in particle-steps (particles x steps), which a rerun reproduces "
-        "exactly; ties are broken by the smaller error, then by the order of the spec. The wall "
-        "times of these runs are measurements of the machine and are kept apart: see "
-        "[performance.md](performance.md) and [timings.json](timings.json). Only a stable run "
-        "reaches an accuracy: a run that failed (unstable) or whose error reached A "
-        "(meaningless) reaches none. Pareto front: no other setting at the same E is both "
-        "cheaper and more accurate.\n\n"
-     << cost_metric_text() << "\n\n![" << spec.title << "](" << spec.name << ".png)\n\n"
-     << "Vector version: [" << spec.name << ".svg](" << spec.name << ".svg); data: [" << spec.name
-     << "_data.csv](" << spec.name << "_data.csv).\n\n";
-  return md.str();
-}
-
-// Per E and target error, the cheapest setting that reaches it, with its error and cost.
-std::string cheapest_table(const TradeRows& t, const CheapestByE& best,
-                           const std::string& of_scene) {
-  std::ostringstream md;
-  md << "### The cheapest setting for each accuracy" << of_scene
-     << "\n\nEach reached the accuracy in one run, with no margin and no confirming run: "
-        "the cheapest on these runs, not a recommendation (advice.md recommends).\n\n| E |";
-  for (double target : kTargets)
-    md << " max error <= " << sci(target, 1) << " |";
-  md << "\n|---|";
-  for (std::size_t k = 0; k < kTargets.size(); ++k)
-    md << "---|";
-  md << "\n";
-  for (std::size_t e = 0; e < t.Es.size(); ++e) {
-    md << "| " << shortest(t.Es[e]) << " |";
-    for (const auto& b : best[e]) {
-      if (!b) {
-        md << " not reached |";
-        continue;
-      }
-      const ojson& r = t.rows[*b];
-      md << " " << setting(r) << ": " << sci(*stable_error_over_time(r)) << " in " << work(r)
-         << " particle-steps (" << r["steps"].dump() << " steps) |";
-    }
-    md << "\n";
-  }
-  return md.str();
-}
-
-// Which method and policy is most often the cheapest way to a target accuracy (the first by
-// name on a tie).
-std::string cheapest_overall_sentence(const std::map<std::string, int>& winners) {
-  if (winners.empty()) return "No setting reaches any of the target accuracies. ";
-  const auto top =
-      std::max_element(winners.begin(), winners.end(),
-                       [](const auto& a, const auto& b) { return a.second < b.second; });
-  int reached = 0;
-  for (const auto& [k, n] : winners)
-    reached += n;
-  std::ostringstream s;
-  s << "The cheapest setting for a target accuracy, in particle-steps, is " << top->first << " in "
-    << top->second << " of the " << reached << " (E, target) pairs that some setting reaches. ";
-  return s.str();
-}
-
-// The settings the sentences and claims compare: the paper's grid (kCoarse) against the finest
-// (kFine), both under the CFL rule at kCflRef; stepping at the eq. (108) bound with safety
-// kBoundSafety; the bound "buys no accuracy" when its error is within kNoGainFactor of the CFL
-// rule's.
-constexpr int kCoarse = 100, kFine = 400;
-constexpr double kCflRef = 0.5, kBoundSafety = 1.0, kNoGainFactor = 2.0;
-
-// GIMP's errors at E over every stable fixed and CFL step on the paper's grid (kCoarse).
-std::vector<double> gimp_step_errors(const TradeRows& t, double E) {
-  std::vector<double> errs;
-  for (const auto& r : t.rows) {
-    const std::string policy = text(r, "policy");
-    if (r["E"].get<double>() == E && method_label(r) == "gimp" &&
-        r["cells"].get<int>() == kCoarse && (policy == "cfl" || policy == "fixed") &&
-        stable_error_over_time(r)) {
-      errs.push_back(*stable_error_over_time(r));
-    }
-  }
-  return errs;
-}
-
-// Stepping at the eq. (108) bound (adaptive, kBoundSafety) against the CFL rule at kCflRef on
-// the paper's grid, for MPM and GIMP at every E where both have an error: the ratios of their
-// step counts and of their errors, pair by pair.
-struct BoundAgainstCfl {
-  std::vector<double> step_ratio, error_ratio;
+// How far GIMP's error moves at one E: with dt on the paper's grid (every stable fixed and CFL
+// step), and with the grid (CFL at kCflRef, on every finer grid run).
+struct StepSpread {
+  double E = 0, lo = 0, hi = 0;               // the least and largest error over the steps
+  std::vector<std::pair<int, double>> finer;  // cells and error, ascending in cells
 };
 
-BoundAgainstCfl bound_against_cfl(const TradeRows& t) {
-  BoundAgainstCfl out;
+// Per E where GIMP has a stable fixed or CFL step on the paper's grid, how far its error moves.
+std::vector<StepSpread> step_spreads(const TradeRows& t) {
+  std::vector<StepSpread> out;
   for (double E : t.Es) {
-    for (const char* m : {"gimp", "mpm"}) {
-      const ojson* b = t.find(E, m, "adaptive", kBoundSafety, kCoarse);
-      const ojson* c = t.find(E, m, "cfl", kCflRef, kCoarse);
-      if (b && c && stable_error_over_time(*b) && stable_error_over_time(*c)) {
-        out.step_ratio.push_back((*b)["steps"].get<double>() / (*c)["steps"].get<double>());
-        out.error_ratio.push_back(*stable_error_over_time(*b) / *stable_error_over_time(*c));
-      }
+    std::vector<double> errs;
+    std::set<int> finer;  // the finer grids run under the CFL rule at kCflRef
+    for (const auto& r : t.rows) {
+      const std::string policy = text(r, "policy");
+      const int cells = r["cells"].get<int>();
+      if (r["E"].get<double>() == E && method_label(r) == "gimp" && cells == kCoarse &&
+          (policy == "cfl" || policy == "fixed") && stable_error_over_time(r))
+        errs.push_back(*stable_error_over_time(r));
+      if (cells > kCoarse && t.find(E, "gimp", "cfl", kCflRef, cells) == &r) finer.insert(cells);
     }
+    if (errs.empty()) continue;
+    const auto [lo, hi] = std::minmax_element(errs.begin(), errs.end(), TotalLess());
+    StepSpread s{.E = E, .lo = *lo, .hi = *hi};
+    for (const int cells : finer)
+      if (const auto e = stable_error_over_time(*t.find(E, "gimp", "cfl", kCflRef, cells)))
+        s.finer.emplace_back(cells, *e);
+    out.push_back(std::move(s));
   }
   return out;
-}
-
-// Per E, how far GIMP's error moves with dt on the paper's grid (fixed and CFL steps), and how
-// far it moves with the grid (CFL at kCflRef, on every finer grid run).
-std::string gimp_spread_sentences(const TradeRows& t) {
-  std::ostringstream s;
-  for (double E : t.Es) {
-    const std::vector<double> errs = gimp_step_errors(t, E);
-    if (errs.empty()) continue;
-    std::vector<int> finer;  // the finer grids run under the CFL rule at kCflRef, ascending
-    for (const auto& r : t.rows) {
-      const int cells = r["cells"].get<int>();
-      if (cells > kCoarse && t.find(E, "gimp", "cfl", kCflRef, cells) == &r &&
-          std::find(finer.begin(), finer.end(), cells) == finer.end())
-        finer.push_back(cells);
-    }
-    std::sort(finer.begin(), finer.end());
-    const auto [lo, hi] = std::minmax_element(errs.begin(), errs.end(), TotalLess());
-    s << "E = " << shortest(E) << ": every stable fixed or CFL step of GIMP on " << kCoarse
-      << " cells gives an error between " << sci(*lo) << " and " << sci(*hi);
-    std::string moved;
-    for (std::size_t i = 0; i < finer.size(); ++i) {
-      const ojson* g = t.find(E, "gimp", "cfl", kCflRef, finer[i]);
-      if (!stable_error_over_time(*g)) continue;
-      moved += (moved.empty() ? "" : ", ") + sci(*stable_error_over_time(*g)) + " on " +
-               std::to_string(finer[i]) + " cells";
-    }
-    if (!moved.empty())
-      s << "; the grid moves it: " << moved << " (CFL, C = " << shortest(kCflRef) << ")";
-    s << ". ";
-  }
-  return s.str();
 }
 
 // GIMP on the paper's grid (kCoarse) against the finest (kFine), both under the CFL rule at
@@ -713,217 +472,114 @@ GridRefinement grid_refinement(const TradeRows& t) {
   return g;
 }
 
-std::string refinement_sentence(const GridRefinement& g) {
-  if (g.total == 0) return "";
-  std::ostringstream s;
-  s << "A finer grid lowered GIMP's error at " << g.better << " of " << g.total << " values of E ("
-    << kFine << " against " << kCoarse << " cells). ";
-  return s.str();
-}
-
-// Stepping at the eq. (108) bound against the CFL rule: the ranges of the ratios of their step
-// counts and of their errors.
-std::string bound_stepping_sentence(const TradeRows& t) {
-  const auto [step_ratio, error_ratio] = bound_against_cfl(t);
-  if (step_ratio.empty()) return "";
-  const auto [slo, shi] = std::minmax_element(step_ratio.begin(), step_ratio.end(), TotalLess());
-  const auto [elo, ehi] = std::minmax_element(error_ratio.begin(), error_ratio.end(), TotalLess());
-  std::ostringstream s;
-  s << "Stepping at the eq. (108) bound (adaptive, s = " << shortest(kBoundSafety) << ") takes "
-    << ratio(*slo) << " to " << ratio(*shi)
-    << " times the steps of the CFL rule at C = " << shortest(kCflRef) << " for " << ratio(*elo)
-    << " to " << ratio(*ehi) << " times its error. ";
-  return s.str();
-}
-
-// Per E, the best accuracy MPM reaches against the best GIMP reaches; whether GIMP's is the
-// better at every E where both reach one.
-struct MethodComparison {
-  std::string sentences;
-  int gimp_better = 0, compared = 0;
+// Stepping at the eq. (108) bound (adaptive, kBoundSafety) against the CFL rule at kCflRef on
+// the paper's grid, for MPM and GIMP at every E where both have an error: over the pairs, the
+// ranges of the ratios of their step counts and of their errors.
+struct BoundAgainstCfl {
+  std::size_t pairs = 0;
+  double steps_lo = 0, steps_hi = 0, errors_lo = 0, errors_hi = 0;  // where there are pairs
 };
 
-MethodComparison mpm_against_gimp(const TradeRows& t) {
-  MethodComparison c;
-  std::ostringstream s;
+BoundAgainstCfl bound_against_cfl(const TradeRows& t) {
+  std::vector<double> steps, errors;
   for (double E : t.Es) {
-    const ojson *best_gimp = nullptr, *best_mpm = nullptr;
+    for (const char* m : {"gimp", "mpm"}) {
+      const ojson* b = t.find(E, m, "adaptive", kBoundSafety, kCoarse);
+      const ojson* c = t.find(E, m, "cfl", kCflRef, kCoarse);
+      if (b && c && stable_error_over_time(*b) && stable_error_over_time(*c)) {
+        steps.push_back((*b)["steps"].get<double>() / (*c)["steps"].get<double>());
+        errors.push_back(*stable_error_over_time(*b) / *stable_error_over_time(*c));
+      }
+    }
+  }
+  if (steps.empty()) return {};
+  const auto [slo, shi] = std::minmax_element(steps.begin(), steps.end(), TotalLess());
+  const auto [elo, ehi] = std::minmax_element(errors.begin(), errors.end(), TotalLess());
+  return {steps.size(), *slo, *shi, *elo, *ehi};
+}
+
+// Per E where both reach an accuracy, the runs with the best error of MPM and of GIMP.
+struct BestOfMethods {
+  double E = 0;
+  const ojson *mpm = nullptr, *gimp = nullptr;
+};
+
+std::vector<BestOfMethods> best_of_methods(const TradeRows& t) {
+  std::vector<BestOfMethods> out;
+  for (double E : t.Es) {
+    BestOfMethods b{.E = E};
     for (const auto& r : t.rows) {
       const std::string m = method_label(r);
       if (r["E"].get<double>() != E || !stable_error_over_time(r) || (m != "gimp" && m != "mpm"))
         continue;
-      const ojson*& best = m == "gimp" ? best_gimp : best_mpm;
+      const ojson*& best = m == "gimp" ? b.gimp : b.mpm;
       if (!best || *stable_error_over_time(r) < *stable_error_over_time(*best)) best = &r;
     }
-    // The error with its size against A and its accuracy class: the best is not always accurate.
-    auto error_text = [](const ojson& r) {
-      const RunRow run(r);
-      const std::optional<Accuracy> a = run.accuracy();
-      return sci(*run.stable_error_over_time()) +
-             (a ? " (" + beside_thresholds(*run.error_over_A(), {kAccurateFraction, 1.0}) + " A, " +
-                      std::string(to_string(*a)) + ")"
-                : std::string());
-    };
-    if (best_gimp && best_mpm) {
-      s << "E = " << shortest(E) << ": the best MPM error is " << error_text(*best_mpm)
-        << ", GIMP's " << error_text(*best_gimp) << ". ";
-      ++c.compared;
-      c.gimp_better += *stable_error_over_time(*best_gimp) < *stable_error_over_time(*best_mpm);
-    }
+    if (b.gimp && b.mpm) out.push_back(b);
   }
-  c.sentences = s.str();
-  return c;
+  return out;
 }
 
-// What one scene's rows show: every sentence is computed from them.
-std::string what_the_rows_show(const TradeRows& t, const std::map<std::string, int>& winners) {
-  std::string s = "**What the rows show.** " + cheapest_overall_sentence(winners) +
-                  gimp_spread_sentences(t) + refinement_sentence(grid_refinement(t)) +
-                  bound_stepping_sentence(t) + mpm_against_gimp(t).sentences;
-  while (s.back() == ' ')
-    s.pop_back();
+// What one scene's rows show: the cheapest runs, how far the step and the grid move GIMP's error,
+// the bound against the CFL rule, MPM against GIMP, how the runs ended, the Pareto front.
+struct SceneFindings {
+  TradeRows t;
+  std::vector<std::vector<std::optional<std::size_t>>> cheapest;  // per E (t.Es), per target
+  // The method and policy ("gimp cfl") most often the cheapest (the first by name on a tie), in
+  // how many (E, target) pairs, of the pairs that some setting reaches.
+  std::string top;
+  int top_wins = 0, reached = 0;
+  std::vector<StepSpread> spreads;
+  GridRefinement refinement;
+  BoundAgainstCfl bound;
+  std::vector<BestOfMethods> best;
+  int gimp_better = 0;  // of `best`, where GIMP's error is the smaller
+  // How the runs of each policy ended (docs/studies.md, "Outcomes"), and the failure reasons the
+  // table has a column for: dt_collapse always, then every other reason some run stopped with.
+  std::map<std::string, VerdictTally> endings;
+  std::vector<std::string> reasons;
+  std::set<std::size_t> front;              // the runs on the Pareto front of their E
+  std::vector<std::vector<double>> passes;  // per E, the wave passes c T of its runs
+};
+
+SceneFindings scene_findings(const std::vector<ojson>& rows) {
+  SceneFindings s{.t = TradeRows(rows)};
+  std::map<std::string, int> wins;
+  for (double E : s.t.Es) {
+    const std::vector<std::size_t> at = s.t.at(E);
+    s.cheapest.push_back(cheapest(rows, at));
+    for (const auto& b : s.cheapest.back())
+      if (b) ++wins[method_label(rows[*b]) + " " + text(rows[*b], "policy")];
+    const auto front = pareto_front(rows, at);
+    s.front.insert(front.begin(), front.end());
+    auto& passes = s.passes.emplace_back();
+    for (std::size_t i : at)
+      if (const auto cT = RunRow(rows[i]).wave_passes) passes.push_back(*cT);
+  }
+  for (const auto& [name, n] : wins) {
+    s.reached += n;
+    if (n <= s.top_wins) continue;
+    s.top = name;
+    s.top_wins = n;
+  }
+  s.spreads = step_spreads(s.t);
+  s.refinement = grid_refinement(s.t);
+  s.bound = bound_against_cfl(s.t);
+  s.best = best_of_methods(s.t);
+  for (const auto& b : s.best)
+    s.gimp_better += *stable_error_over_time(*b.gimp) < *stable_error_over_time(*b.mpm);
+  for (const auto& p : kPolicies)
+    s.endings[p];
+  for (const auto& r : rows)
+    s.endings[text(r, "policy")].add(r);
+  std::set<std::string> others;  // the failure reasons but dt_collapse, alphabetically
+  for (const auto& [p, e] : s.endings)
+    for (const auto& [reason, n] : e.reasons)
+      if (reason != "dt_collapse") others.insert(reason);
+  s.reasons = {"dt_collapse"};
+  s.reasons.insert(s.reasons.end(), others.begin(), others.end());
   return s;
 }
-
-// The claims the rows of the paper's bar (the first scene) decide for GIMP: the step moves the
-// error less than the grid does; a finer grid lowers it; stepping at the eq. (108) bound buys
-// no accuracy over the CFL rule.
-
-void grid_and_step_claims(const TradeRows& t, std::vector<Claim>& claims) {
-  const GridRefinement g = grid_refinement(t);
-  double spread_max = 0;
-  for (double E : t.Es) {
-    const std::vector<double> errs = gimp_step_errors(t, E);
-    if (errs.empty()) continue;
-    const auto [lo, hi] = std::minmax_element(errs.begin(), errs.end(), TotalLess());
-    spread_max = std::max(spread_max, *hi / *lo);
-  }
-  const int total = g.total, better = g.better;
-  const double grid_min = g.least_fall;
-  Claim spread = claim("step-moves-error-less-than-grid",
-                       "For GIMP on the paper's bar, below the edge the time step moves the error "
-                       "over time less than the grid does, at every E: a smaller step costs work "
-                       "and buys no accuracy",
-                       "the step moves it by a factor of at most {spread} (every stable fixed and "
-                       "CFL step on {coarse} cells); {coarse} to {fine} cells lower it by a factor "
-                       "of at least {grid} (a factor below one: it rises); {total} values of E");
-  spread.number("spread", spread_max)
-      .count("coarse", kCoarse)
-      .count("fine", kFine)
-      .number("grid", grid_min)
-      .count("total", total);
-  spread.holds = total > 0 && spread_max < grid_min;
-  claims.push_back(spread);
-
-  Claim finer = claim("finer-grid-lowers-error",
-                      "A finer grid lowers GIMP's error over time on the paper's bar at every E",
-                      "{better} of {total} values of E ({fine} against {coarse} cells, CFL C = "
-                      "{C})");
-  finer.every("better", better, "total", total)
-      .count("fine", kFine)
-      .count("coarse", kCoarse)
-      .value("C", shortest(kCflRef));
-  claims.push_back(finer);
-
-  const auto [step_ratio, error_ratio] = bound_against_cfl(t);
-  Claim bound = claim("bound-buys-no-accuracy",
-                      "Stepping at the eq. (108) bound (adaptive, s = {s}) takes more steps than "
-                      "the CFL rule at C = {C} and does not lower the error over time by a factor "
-                      "of {factor}, for MPM and GIMP at every E on the paper's bar where both runs "
-                      "reach T below A",
-                      "{pairs} pairs: {slo} to {shi} times the steps, {elo} to {ehi} times the "
-                      "error; {left} of {all} (method, E) pairs left out: a run failed or was "
-                      "meaningless");
-  bound.value("s", shortest(kBoundSafety))
-      .value("C", shortest(kCflRef))
-      .value("factor", shortest(kNoGainFactor))
-      .count("pairs", static_cast<long long>(step_ratio.size()))
-      .count("left", static_cast<long long>(2 * t.Es.size() - step_ratio.size()))
-      .count("all", static_cast<long long>(2 * t.Es.size()));
-  if (step_ratio.empty()) {
-    bound.value("slo", "–").value("shi", "–").value("elo", "–").value("ehi", "–");
-  } else {
-    const auto [slo, shi] = std::minmax_element(step_ratio.begin(), step_ratio.end(), TotalLess());
-    const auto [elo, ehi] =
-        std::minmax_element(error_ratio.begin(), error_ratio.end(), TotalLess());
-    bound.value("slo", ratio(*slo))
-        .value("shi", ratio(*shi))
-        .value("elo", ratio(*elo))
-        .value("ehi", ratio(*ehi));
-    bound.holds = *slo > 1 && *elo > 1 / kNoGainFactor;
-  }
-  claims.push_back(bound);
-}
-
-// What the runs say about picking a setting (advice.md recommends): GIMP against MPM over every
-// scene as a claim; the claims the bar's rows decide; then the stable ranges of each
-// policy's parameter (a description).
-std::string advice_section(const std::vector<ojson>& rows, const std::vector<SceneRows>& scenes,
-                           const std::vector<MarginRange>& ranges, std::vector<Claim>& claims) {
-  MethodComparison methods;
-  for (const auto& sc : scenes) {
-    const MethodComparison c = mpm_against_gimp(TradeRows(sc.rows));
-    methods.gimp_better += c.gimp_better;
-    methods.compared += c.compared;
-  }
-  Claim gimp = claim("gimp-more-accurate-than-mpm",
-                     "GIMP's best error over time is below MPM's at every (scene, E) pair where "
-                     "both reach an accuracy",
-                     "{better} of {compared} pairs");
-  gimp.every("better", methods.gimp_better, "compared", methods.compared);
-  claims.push_back(gimp);
-  grid_and_step_claims(TradeRows(scenes.front().rows), claims);
-  return "### What the runs say about picking a setting\n\nThis study measures; it does not "
-         "recommend. This project answers a user's problem with `mpmstab advise`, which runs each "
-         "answer on that problem before giving it ([advice.md](advice.md)): a setting that is "
-         "cheapest here is cheapest on these runs only.\n\n" +
-         advice_table(TradeRows(rows), ranges);
-}
-
-// ---------------------------------------------------------------------------------------------
-// The tables per E and the scene's section
-
-// Every setting at one E with its steps, particle-steps, dt range, verdict and error; the
-// Pareto front marked.
-std::string settings_table(const TradeRows& t, double E, const std::string& of_scene) {
-  const auto idx = t.at(E);
-  const auto front = pareto_front(t.rows, idx);
-  std::ostringstream md;
-  std::vector<double> passes;
-  for (std::size_t i : idx)
-    if (const auto cT = RunRow(t.rows[i]).wave_passes) passes.push_back(*cT);
-  md << "### E = " << shortest(E) << " (c T = " << span(passes, 3) << " wave passes)" << of_scene
-     << "\n\n| setting | steps | particle-steps | dt range | mean dt | verdict | max error over "
-        "time | Pareto |\n|---|---|---|---|---|---|---|---|\n";
-  for (std::size_t i : idx) {
-    const ojson& r = t.rows[i];
-    md << "| " << setting(r) << " | " << r["steps"].dump() << " | " << work(r) << " | "
-       << opt_sci(r["dt_min"]) << " to " << opt_sci(r["dt_max"]) << " | " << opt_sci(r["dt_mean"])
-       << " | " << verdict(r) << " | " << opt_sci(RunRow(r).error_over_time) << " | "
-       << (front.count(i) ? "**yes**" : "") << " |\n";
-  }
-  md << "\n";
-  return md.str();
-}
-
-// One scene's section, headed by the scene; a further scene's (`first` false) tables name it.
-std::string scene_markdown(const std::vector<ojson>& rows, bool first) {
-  const TradeRows t(rows);
-  const std::string scene = rows.front()["scene"].get<std::string>();
-  const std::string of_scene = first ? "" : " (" + scene + ")";
-  const auto best = cheapest_by_E(t);
-  std::ostringstream md;
-  md << "## " << scene_title(scene) << "\n\n";
-  md << cheapest_table(t, best, of_scene) << "\n"
-     << what_the_rows_show(t, wins_by_policy(t, best)) << "\n\n"
-     << endings_table(rows, of_scene);
-  for (double E : t.Es)
-    md << settings_table(t, E, of_scene);
-  return md.str();
-}
-
-// ---------------------------------------------------------------------------------------------
-// The figure: the first scene's stable runs, error against particle-steps
 
 // A run the figure draws: stable, with an error a log axis can show.
 bool drawn(const ojson& r) {
@@ -943,18 +599,432 @@ FigureCount figure_count(const std::vector<ojson>& rows) {
   n.runs = rows.size();
   for (const auto& r : rows) {
     const Ending e = RunRow(r).ending();
-    if (drawn(r)) {
+    if (drawn(r))
       ++n.drawn;
-    } else if (e == Ending::unstable) {
+    else if (e == Ending::unstable)
       ++n.unstable;
-    } else if (e == Ending::meaningless) {
+    else if (e == Ending::meaningless)
       ++n.meaningless;
-    } else {
+    else
       ++n.no_error;
-    }
   }
   return n;
 }
+
+// What the report, its claims and the subtitle say, found once.
+struct Findings {
+  TradeRows all;                     // every scene's rows
+  std::vector<double> passes;        // the wave passes c T of every run
+  std::vector<SceneRows> scenes;     // the paper's bar first (never copied: `scene` refers into it)
+  std::vector<SceneFindings> scene;  // what each scene's rows show
+  std::vector<MarginRange> ranges;   // each parameter's stable range, over every scene
+  int gimp_better = 0, compared = 0;  // (scene, E) pairs where GIMP's best error is below MPM's
+  double spread_max = 0;              // the bar: the largest factor the step moves GIMP's error by
+  // The periodic twins by method (in the order the rows first name it), E and cells; at how many
+  // E GIMP's twin on kFine cells has a smaller error than on kCoarse, of those compared.
+  std::vector<std::pair<std::size_t, const ojson*>> twins;
+  int twins_lowered = 0, twins_compared = 0;
+  FigureCount figure;  // of the first scene
+};
+
+// The findings from the rows and the follow-up runs (the periodic twins; none for the subtitle,
+// which prints no finding of theirs).
+Findings find(const std::vector<ojson>& rows, const std::vector<ojson>& follow_up) {
+  Findings f{.all = TradeRows(rows), .scenes = by_scene(rows)};
+  f.passes = values_of(rows, &RunRow::wave_passes);
+  for (const auto& g : advice_groups(rows))
+    f.ranges.push_back(stable_range(f.all, g));
+  for (const auto& sc : f.scenes) {
+    f.scene.push_back(scene_findings(sc.rows));
+    f.gimp_better += f.scene.back().gimp_better;
+    f.compared += int(f.scene.back().best.size());
+  }
+  for (const auto& s : f.scene.front().spreads)
+    f.spread_max = std::max(f.spread_max, s.hi / s.lo);
+  // The twins in the walls' table order, and GIMP without walls against the grid: does refining
+  // lower the interior's error?
+  const auto twins = periodic_twins(rows, follow_up);
+  for (const auto& [i, twin] : twins) {
+    if (method_label(rows[i]) != "gimp" || rows[i]["cells"].get<int>() != kFine) continue;
+    for (const auto& [j, coarse] : twins) {
+      if (method_label(rows[j]) == "gimp" && rows[j]["cells"].get<int>() == kCoarse &&
+          rows[j]["E"] == rows[i]["E"] && stable_error_over_time(*twin) &&
+          stable_error_over_time(*coarse)) {
+        ++f.twins_compared;
+        f.twins_lowered += *stable_error_over_time(*twin) < *stable_error_over_time(*coarse);
+      }
+    }
+  }
+  const std::vector<std::string> methods = methods_of(rows);
+  auto order = [&](std::size_t i) {
+    const ojson& r = rows[i];
+    return std::tuple(std::find(methods.begin(), methods.end(), method_label(r)) - methods.begin(),
+                      Key(r["E"].get<double>(), "E"), r["cells"].get<int>());
+  };
+  f.twins.assign(twins.begin(), twins.end());
+  std::stable_sort(f.twins.begin(), f.twins.end(),
+                   [&](const auto& a, const auto& b) { return order(a.first) < order(b.first); });
+  f.figure = figure_count(f.scenes.front().rows);
+  return f;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Claims: GIMP against MPM over every scene; and what the rows of the paper's bar (the first
+// scene) decide for GIMP: the step moves the error less than the grid does; a finer grid lowers
+// it; stepping at the eq. (108) bound buys no accuracy over the CFL rule.
+
+std::vector<Claim> tradeoff_claims(const Findings& f) {
+  Claim gimp = claim("gimp-more-accurate-than-mpm",
+                     "GIMP's best error over time is below MPM's at every (scene, E) pair where "
+                     "both reach an accuracy",
+                     "{better} of {compared} pairs");
+  gimp.every("better", f.gimp_better, "compared", f.compared);
+  const SceneFindings& bar = f.scene.front();
+  const GridRefinement& g = bar.refinement;
+  Claim spread = claim("step-moves-error-less-than-grid",
+                       "For GIMP on the paper's bar, below the edge the time step moves the error "
+                       "over time less than the grid does, at every E: a smaller step costs work "
+                       "and buys no accuracy",
+                       "the step moves it by a factor of at most {spread} (every stable fixed and "
+                       "CFL step on {coarse} cells); {coarse} to {fine} cells lower it by a factor "
+                       "of at least {grid} (a factor below one: it rises); {total} values of E");
+  spread.number("spread", f.spread_max)
+      .count("coarse", kCoarse)
+      .count("fine", kFine)
+      .number("grid", g.least_fall)
+      .count("total", g.total);
+  spread.holds = g.total > 0 && f.spread_max < g.least_fall;
+  Claim finer = claim("finer-grid-lowers-error",
+                      "A finer grid lowers GIMP's error over time on the paper's bar at every E",
+                      "{better} of {total} values of E ({fine} against {coarse} cells, CFL C = "
+                      "{C})");
+  finer.every("better", g.better, "total", g.total)
+      .count("fine", kFine)
+      .count("coarse", kCoarse)
+      .value("C", shortest(kCflRef));
+  const BoundAgainstCfl& b = bar.bound;
+  const auto all = static_cast<long long>(2 * bar.t.Es.size()),
+             pairs = static_cast<long long>(b.pairs);
+  Claim bound = claim("bound-buys-no-accuracy",
+                      "Stepping at the eq. (108) bound (adaptive, s = {s}) takes more steps than "
+                      "the CFL rule at C = {C} and does not lower the error over time by a factor "
+                      "of {factor}, for MPM and GIMP at every E on the paper's bar where both runs "
+                      "reach T below A",
+                      "{pairs} pairs: {slo} to {shi} times the steps, {elo} to {ehi} times the "
+                      "error; {left} of {all} (method, E) pairs left out: a run failed or was "
+                      "meaningless");
+  bound.value("s", shortest(kBoundSafety))
+      .value("C", shortest(kCflRef))
+      .value("factor", shortest(kNoGainFactor))
+      .count("pairs", pairs)
+      .count("left", all - pairs)
+      .count("all", all);
+  if (b.pairs == 0) {
+    bound.value("slo", "–").value("shi", "–").value("elo", "–").value("ehi", "–");
+  } else {
+    bound.value("slo", ratio(b.steps_lo))
+        .value("shi", ratio(b.steps_hi))
+        .value("elo", ratio(b.errors_lo))
+        .value("ehi", ratio(b.errors_hi));
+    bound.holds = b.steps_lo > 1 && b.errors_lo > 1 / kNoGainFactor;
+  }
+  return {gimp, spread, finer, bound};
+}
+
+// ---------------------------------------------------------------------------------------------
+// Text
+
+// The first scene's opening: what accuracy and cost mean here, where the wall times are, and
+// the figure.
+std::string results_intro(const Spec& spec) {
+  std::ostringstream md;
+  md << "## Results\n\nAccuracy is the max error over time (the largest particle displacement "
+        "error after any step), since for most E the exact displacement at T is zero. Cost is "
+        "the work of the run in particle-steps (particles x steps), which a rerun reproduces "
+        "exactly; ties are broken by the smaller error, then by the order of the spec. The wall "
+        "times of these runs are measurements of the machine and are kept apart: see "
+        "[performance.md](performance.md) and [timings.json](timings.json). Only a stable run "
+        "reaches an accuracy: a run that failed (unstable) or whose error reached A "
+        "(meaningless) reaches none. Pareto front: no other setting at the same E is both "
+        "cheaper and more accurate.\n\n"
+     << cost_metric_text() << "\n\n![" << spec.title << "](" << spec.name << ".png)\n\n"
+     << "Vector version: [" << spec.name << ".svg](" << spec.name << ".svg); data: [" << spec.name
+     << "_data.csv](" << spec.name << "_data.csv).\n\n";
+  return md.str();
+}
+
+// What the runs say about picking a setting (advice.md recommends): the stable ranges of each
+// policy's parameter (a description): the rule, and per method and policy the value advised, the
+// rows it rests on, the value checked beyond it and why the next value run is not advised.
+std::string advice_table(const Findings& f) {
+  const TradeRows& t = f.all;
+  std::ostringstream md;
+  md << "### What the runs say about picking a setting\n\nThis study measures; it does not "
+        "recommend. This project answers a user's problem with `mpmstab advise`, which runs each "
+        "answer on that problem before giving it ([advice.md](advice.md)): a setting that is "
+        "cheapest here is cheapest on these runs only.\n\n"
+     << "### Stable ranges of each policy's parameter, over every scene\n\nA description of the "
+        "runs, not a recommendation (`mpmstab advise` answers a problem, and verifies the answer "
+        "by runs on it; advice.md). A value v of a "
+        "parameter (a fixed dt, the CFL factor C, the safety factor s) is stable with a "
+     << shortest(kMargin) << "x margin for a method and policy if, at every E the study runs ("
+     << list_of_E(t.Es) << "), they were run at v and at some p >= " << shortest(kMargin)
+     << " v, and every one of their runs with the parameter up to p (on every grid, in every "
+        "scene) is stable: not unstable, not meaningless, and none of its steps above the "
+        "scheme's spectral limit (where the run records it: a run that survives above the limit "
+        "survives at this amplitude and run length only). The largest such v is shown; p is the "
+        "value checked beyond it. A value with no run at "
+     << shortest(kMargin)
+     << " times it or beyond is not shown: its margin is not checked. These runs lie at A / h = "
+     << listing(t.rows, "A_over_h") << " and c T = " << span(f.passes, 3)
+     << " wave passes, and a range is checked there only.\n\n"
+     << "| method and policy | stable with margin | rests on | checked to | the next value run, "
+        "not stable with margin |\n|---|---|---|---|---|\n";
+  for (const auto& a : f.ranges) {
+    md << "| " << a.group.name() << " | ";
+    if (a.advised) {
+      // "C up to 0.25 | <rows> | C = 0.5 (1.5x = 0.375)": the value advised, the rows it rests
+      // on and the value checked beyond it (a range where it differs between values of E).
+      const ValueCheck& v = *a.advised;
+      const std::string& policy = a.group.policy;
+      md << parameter_symbol(policy) << " up to " << parameter_text(policy, v.value) << " | "
+         << v.rests_on << ", all stable | " << a.group.value(v.checked_lo)
+         << (v.checked_hi != v.checked_lo ? " to " + parameter_text(policy, v.checked_hi) : "")
+         << " (" << shortest(kMargin) << "x = " << parameter_text(policy, kMargin * v.value)
+         << ") | ";
+    } else {
+      md << "no value | – | – | ";
+    }
+    md << a.group.value(a.next.value) << ": " << a.next.why_not << " |\n";
+  }
+  md << "\n";
+  return md.str();
+}
+
+ojson advice_json(const std::vector<MarginRange>& all) {
+  ojson j = ojson::array();
+  for (const auto& a : all) {
+    ojson g = {{"method", a.group.method},
+               {"policy", a.group.policy},
+               {"cfl_factor", a.group.cfl_factor ? ojson(*a.group.cfl_factor) : ojson(nullptr)},
+               {"parameter", parameter_key(a.group.policy)},
+               {"advised", a.advised ? ojson(a.advised->value) : ojson(nullptr)},
+               {"rests_on", a.advised ? ojson(a.advised->rests_on) : ojson(nullptr)},
+               {"checked_to", a.advised ? ojson(a.advised->checked_hi) : ojson(nullptr)},
+               {"next_value", a.next.value},
+               {"next_not_advised", a.next.why_not}};
+    j.push_back(g);
+  }
+  return j;
+}
+
+// Per policy, the runs and how they ended; the unstable ones per failure reason.
+std::string endings_table(const SceneFindings& s, const std::string& of_scene) {
+  const auto& reasons = s.reasons;
+  std::ostringstream md;
+  md << "### How the runs ended" << of_scene
+     << "\n\nPer time-step policy, the runs that were stable, meaningless (survived, but the "
+        "error over time reached A) and unstable, and the unstable ones by the reason they "
+        "stopped. dt_collapse: the adaptive or min policy asked for a step below "
+     << sci(kDtCollapseFraction, 1) << " times the CFL step h/c.\n\n"
+     << "| policy | runs | stable | meaningless | unstable |";
+  for (const auto& reason : reasons)
+    md << " " << reason << " |";
+  md << "\n|---|---|---|---|---|";
+  for (std::size_t k = 0; k < reasons.size(); ++k)
+    md << "---|";
+  md << "\n";
+  for (const auto& p : kPolicies) {
+    const VerdictTally& e = s.endings.at(p);
+    md << "| " << p << " | " << e.runs << " | " << e.stable << " | " << e.meaningless << " | "
+       << e.unstable << " |";
+    for (const auto& reason : reasons)
+      md << " " << count_of(e.reasons, reason) << " |";
+    md << "\n";
+  }
+  md << "\n";
+  return md.str();
+}
+
+ojson endings_json(const SceneFindings& s) {
+  ojson j = ojson::object();
+  for (const auto& [p, e] : s.endings) {
+    ojson reasons = {{"dt_collapse", count_of(e.reasons, "dt_collapse")}};
+    for (const auto& [reason, n] : e.reasons)
+      reasons[reason] = n;
+    j[p] = {{"runs", e.runs},
+            {"stable", e.stable},
+            {"meaningless", e.meaningless},
+            {"unstable", e.unstable},
+            {"failure_reasons", reasons}};
+  }
+  return j;
+}
+
+// Per E and target error, the cheapest setting that reaches it, with its error and cost.
+std::string cheapest_table(const SceneFindings& s, const std::string& of_scene) {
+  const TradeRows& t = s.t;
+  std::ostringstream md;
+  md << "### The cheapest setting for each accuracy" << of_scene
+     << "\n\nEach reached the accuracy in one run, with no margin and no confirming run: "
+        "the cheapest on these runs, not a recommendation (advice.md recommends).\n\n| E |";
+  for (double target : kTargets)
+    md << " max error <= " << sci(target, 1) << " |";
+  md << "\n|---|";
+  for (std::size_t k = 0; k < kTargets.size(); ++k)
+    md << "---|";
+  md << "\n";
+  for (std::size_t e = 0; e < t.Es.size(); ++e) {
+    md << "| " << shortest(t.Es[e]) << " |";
+    for (const auto& b : s.cheapest[e]) {
+      if (!b) {
+        md << " not reached |";
+        continue;
+      }
+      const ojson& r = t.rows[*b];
+      md << " " << setting(r) << ": " << sci(*stable_error_over_time(r)) << " in " << work(r)
+         << " particle-steps (" << r["steps"].dump() << " steps) |";
+    }
+    md << "\n";
+  }
+  return md.str();
+}
+
+// What one scene's rows show: which method and policy is most often the cheapest way to a
+// target accuracy; per E, how far GIMP's error moves with dt on the paper's grid (fixed and CFL
+// steps) and with the grid (CFL at kCflRef, on every finer grid run); what a finer grid does;
+// stepping at the eq. (108) bound against the CFL rule (the ranges of the ratios of their step
+// counts and of their errors); per E, the best accuracy MPM reaches against the best GIMP
+// reaches.
+std::string what_the_rows_show(const SceneFindings& f) {
+  std::ostringstream s;
+  s << "**What the rows show.** ";
+  if (f.reached == 0)
+    s << "No setting reaches any of the target accuracies. ";
+  else
+    s << "The cheapest setting for a target accuracy, in particle-steps, is " << f.top << " in "
+      << f.top_wins << " of the " << f.reached << " (E, target) pairs that some setting reaches. ";
+  for (const StepSpread& e : f.spreads) {
+    s << "E = " << shortest(e.E) << ": every stable fixed or CFL step of GIMP on " << kCoarse
+      << " cells gives an error between " << sci(e.lo) << " and " << sci(e.hi);
+    std::string moved;
+    for (const auto& [cells, error] : e.finer)
+      moved += (moved.empty() ? "" : ", ") + sci(error) + " on " + std::to_string(cells) + " cells";
+    if (!moved.empty())
+      s << "; the grid moves it: " << moved << " (CFL, C = " << shortest(kCflRef) << ")";
+    s << ". ";
+  }
+  const GridRefinement& g = f.refinement;
+  if (g.total > 0)
+    s << "A finer grid lowered GIMP's error at " << g.better << " of " << g.total
+      << " values of E (" << kFine << " against " << kCoarse << " cells). ";
+  const BoundAgainstCfl& b = f.bound;
+  if (b.pairs > 0)
+    s << "Stepping at the eq. (108) bound (adaptive, s = " << shortest(kBoundSafety) << ") takes "
+      << ratio(b.steps_lo) << " to " << ratio(b.steps_hi)
+      << " times the steps of the CFL rule at C = " << shortest(kCflRef) << " for "
+      << ratio(b.errors_lo) << " to " << ratio(b.errors_hi) << " times its error. ";
+  // The error with its size against A and its accuracy class: the best is not always accurate.
+  auto error_text = [](const ojson& r) {
+    const RunRow run(r);
+    const std::optional<Accuracy> a = run.accuracy();
+    return sci(*run.stable_error_over_time()) +
+           (a ? " (" + beside_thresholds(*run.error_over_A(), {kAccurateFraction, 1.0}) + " A, " +
+                    std::string(to_string(*a)) + ")"
+              : std::string());
+  };
+  for (const BestOfMethods& m : f.best)
+    s << "E = " << shortest(m.E) << ": the best MPM error is " << error_text(*m.mpm) << ", GIMP's "
+      << error_text(*m.gimp) << ". ";
+  std::string text = s.str();
+  while (text.back() == ' ')
+    text.pop_back();
+  return text;
+}
+
+// The twins beside their rows, and what the walls cost GIMP's refinement.
+std::string walls_cost_section(const Findings& f) {
+  const std::vector<ojson>& rows = f.all.rows;
+  if (f.twins.empty()) return "";
+  std::ostringstream md;
+  md << "### What the walls cost\n\nEvery run of the paper's bar under the CFL rule at C = "
+     << shortest(kCflRef)
+     << " rerun with periodic boundaries (no wall: the interior's own error). A ratio well "
+        "below one is error the Dirichlet walls' treatment adds; walls.md does the same for "
+        "every Table 1 cell.\n\n";
+  if (f.twins_compared > 0) {
+    md << "Without walls a finer grid lowered GIMP's error at " << f.twins_lowered << " of "
+       << f.twins_compared << " values of E (" << kFine << " against " << kCoarse << " cells).\n\n";
+  }
+  md << "| method | E | cells | Dirichlet: error over time | periodic twin | periodic / Dirichlet "
+        "|\n|---|---|---|---|---|---|\n";
+  for (const auto& [i, twin] : f.twins) {
+    const ojson& r = rows[i];
+    const auto d = stable_error_over_time(r), p = stable_error_over_time(*twin);
+    md << "| " << method_label(r) << " | " << shortest(r["E"].get<double>()) << " | "
+       << r["cells"].get<int>() << " | " << (d ? sci(*d) : verdict(r)) << " | "
+       << (p ? sci(*p) : verdict(*twin)) << " | " << (d && p ? ratio(*p / *d) : std::string("–"))
+       << " |\n";
+  }
+  md << "\n";
+  return md.str();
+}
+
+// Every setting at one E with its steps, particle-steps, dt range, verdict and error; the
+// Pareto front marked.
+std::string settings_table(const SceneFindings& s, std::size_t e, const std::string& of_scene) {
+  const TradeRows& t = s.t;
+  const double E = t.Es[e];
+  std::ostringstream md;
+  md << "### E = " << shortest(E) << " (c T = " << span(s.passes[e], 3) << " wave passes)"
+     << of_scene
+     << "\n\n| setting | steps | particle-steps | dt range | mean dt | verdict | max error over "
+        "time | Pareto |\n|---|---|---|---|---|---|---|---|\n";
+  for (std::size_t i : t.at(E)) {
+    const ojson& r = t.rows[i];
+    md << "| " << setting(r) << " | " << r["steps"].dump() << " | " << work(r) << " | "
+       << opt_sci(r["dt_min"]) << " to " << opt_sci(r["dt_max"]) << " | " << opt_sci(r["dt_mean"])
+       << " | " << verdict(r) << " | " << opt_sci(RunRow(r).error_over_time) << " | "
+       << (s.front.count(i) ? "**yes**" : "") << " |\n";
+  }
+  md << "\n";
+  return md.str();
+}
+
+// One scene's section, headed by the scene; a further scene's (`first` false) tables name it.
+std::string scene_markdown(const SceneRows& sc, const SceneFindings& s, bool first) {
+  const std::string of_scene = first ? "" : " (" + sc.scene + ")";
+  std::ostringstream md;
+  md << "## " << scene_title(sc.scene) << "\n\n";
+  md << cheapest_table(s, of_scene) << "\n"
+     << what_the_rows_show(s) << "\n\n"
+     << endings_table(s, of_scene);
+  for (std::size_t e = 0; e < s.t.Es.size(); ++e)
+    md << settings_table(s, e, of_scene);
+  return md.str();
+}
+
+// The study's JSON: the advice from every scene's rows, per scene how the runs of each policy
+// ended, and what the figure draws.
+ojson tradeoff_json(const Findings& f) {
+  ojson endings = ojson::object();
+  for (std::size_t k = 0; k < f.scenes.size(); ++k)
+    endings[f.scenes[k].scene] = endings_json(f.scene[k]);
+  const FigureCount& n = f.figure;
+  return {{"margin", kMargin},
+          {"stable_ranges", advice_json(f.ranges)},
+          {"endings", endings},
+          {"figure",
+           {{"scene", n.scene},
+            {"runs", n.runs},
+            {"drawn", n.drawn},
+            {"unstable", n.unstable},
+            {"meaningless", n.meaningless},
+            {"stable_without_error", n.no_error}}}};
+}
+
+// ---------------------------------------------------------------------------------------------
+// Figure: the first scene's stable runs, error against particle-steps
 
 // "120 of 136 runs of the scene bar drawn; left out: 14 unstable, 2 meaningless". No single
 // quotes: it is handed to gnuplot inside them.
@@ -982,26 +1052,17 @@ int policy_code(const std::string& p) {
   return static_cast<int>(std::find(kPolicies.begin(), kPolicies.end(), p) - kPolicies.begin());
 }
 
-// The index of `key` in `seen`, appended when new: panels and series in the order they first
-// appear.
-template <class T>
-std::size_t index_in(std::vector<T>& seen, const T& key) {
-  const auto it = std::find(seen.begin(), seen.end(), key);
-  if (it != seen.end()) return static_cast<std::size_t>(it - seen.begin());
-  seen.push_back(key);
-  return seen.size() - 1;
-}
-
 // One row per run drawn: its panel (E), its series (method, policy, grid) and grid rank
 // (0 the coarsest), its cost and its error.
-std::string tradeoff_data_csv(const std::vector<ojson>& rows, const std::string& header_lines) {
-  const TradeRows t(rows);
+std::string tradeoff_data_csv(const Findings& f, const std::string& header_lines) {
+  const std::vector<ojson>& rows = f.scenes.front().rows;
+  const SceneFindings& s = f.scene.front();
   std::set<int> grids;
   for (const auto& r : rows)
     grids.insert(r["cells"].get<int>());
   std::vector<std::tuple<std::string, std::string, int>> series;
   std::ostringstream csv;
-  csv << header_lines << "# " << figure_count_text(figure_count(rows)) << "\n"
+  csv << header_lines << "# " << figure_count_text(f.figure) << "\n"
       << "# one row per run drawn (stable, with an error); panel: the index of E; series: the "
          "index of (method, policy, cells) in the order of the spec; method: "
       << codes(kFigureMethods) << ", " << kFigureMethods.size()
@@ -1010,24 +1071,19 @@ std::string tradeoff_data_csv(const std::vector<ojson>& rows, const std::string&
          "is on the Pareto front of its E, a boolean (no other run at that E both cheaper and "
          "more accurate)\nE,panel,series,method,policy,cells,grid,particle_steps,steps,error,"
          "pareto\n";
-  std::set<std::size_t> front;
-  for (double E : t.Es) {
-    const auto f = pareto_front(rows, t.at(E));
-    front.insert(f.begin(), f.end());
-  }
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const ojson& r = rows[i];
     if (!drawn(r)) continue;
     const double E = r["E"].get<double>();
     const int cells = r["cells"].get<int>();
     const std::size_t panel =
-        static_cast<std::size_t>(std::find(t.Es.begin(), t.Es.end(), E) - t.Es.begin());
-    const std::size_t s = index_in(series, {method_label(r), text(r, "policy"), cells});
-    csv << shortest(E) << ',' << panel << ',' << s << ',' << method_code(method_label(r)) << ','
+        static_cast<std::size_t>(std::find(s.t.Es.begin(), s.t.Es.end(), E) - s.t.Es.begin());
+    const std::size_t k = index_in(series, {method_label(r), text(r, "policy"), cells});
+    csv << shortest(E) << ',' << panel << ',' << k << ',' << method_code(method_label(r)) << ','
         << policy_code(text(r, "policy")) << ',' << cells << ','
         << std::distance(grids.begin(), grids.find(cells)) << ','
         << static_cast<long long>(particle_steps(r)) << ',' << r["steps"].dump() << ','
-        << shortest(*stable_error_over_time(r)) << ',' << (front.count(i) ? 1 : 0) << '\n';
+        << shortest(*stable_error_over_time(r)) << ',' << (s.front.count(i) ? 1 : 0) << '\n';
   }
   return csv.str();
 }
@@ -1035,136 +1091,20 @@ std::string tradeoff_data_csv(const std::vector<ojson>& rows, const std::string&
 // The figure's subtitle: what it draws and leaves out of the first scene.
 std::string tradeoff_subtitle(const Spec& spec, const ojson& doc) {
   const std::vector<ojson> rows(doc["cases"].begin(), doc["cases"].end());
-  std::string s = figure_count_text(figure_count(by_scene(rows).front().rows));
-  return s + "; every run of every scene is in " + spec.name + ".md";
+  return figure_count_text(find(rows, {}).figure) + "; every run of every scene is in " +
+         spec.name + ".md";
 }
 
-// The study's JSON: the advice from every scene's rows, per scene how the runs of each policy
-// ended, and what the figure draws.
-ojson tradeoff_json(const std::vector<ojson>& rows, const std::vector<SceneRows>& scenes,
-                    const std::vector<MarginRange>& ranges) {
-  ojson endings = ojson::object();
-  for (const auto& sc : scenes)
-    endings[sc.scene] = endings_json(sc.rows);
-  const FigureCount n = figure_count(scenes.front().rows);
-  return {{"margin", kMargin},
-          {"stable_ranges", advice_json(TradeRows(rows), ranges)},
-          {"endings", endings},
-          {"figure",
-           {{"scene", n.scene},
-            {"runs", n.runs},
-            {"drawn", n.drawn},
-            {"unstable", n.unstable},
-            {"meaningless", n.meaningless},
-            {"stable_without_error", n.no_error}}}};
-}
-
-// ---------------------------------------------------------------------------------------------
-// What the walls cost: every run of the paper's bar under the CFL rule at kCflRef (every method,
-// and GIMP and MPM on every grid) is rerun with periodic boundaries, which the periodic
-// manufactured solution allows. The twin has no wall: its error is the interior's own, and the
-// ratio of the two is what the Dirichlet walls' treatment adds.
-
-// The rows whose periodic twin is run, in row order.
-std::vector<std::size_t> twin_rows(const std::vector<ojson>& rows) {
-  std::vector<std::size_t> idx;
-  for (std::size_t i = 0; i < rows.size(); ++i) {
-    const ojson& r = rows[i];
-    if (text(r, "scene") == "bar" && text(r, "bc") == "dirichlet" && text(r, "policy") == "cfl" &&
-        parameter(r) == kCflRef)
-      idx.push_back(i);
-  }
-  return idx;
-}
-
-// The follow-up runs: the periodic twins.
-constexpr const char* kPeriodicTwin = "periodic twin";
-std::vector<FollowUp> tradeoff_follow_ups(const FollowUpContext& c) {
-  std::vector<FollowUp> runs;
-  for (const std::size_t i : twin_rows(c.rows)) {
-    RunParams p = c.spec.cases.at(i).params;
-    p.bc = Boundary::periodic;
-    runs.push_back({.of = i, .role = kPeriodicTwin, .params = p});
-  }
-  return runs;
-}
-
-// Each twin by the index of its row (absent where the follow-up runs are).
-std::map<std::size_t, const ojson*> periodic_twins(const std::vector<ojson>& rows,
-                                                   const std::vector<ojson>& follow_up) {
-  std::map<std::size_t, const ojson*> out;
-  for (const std::size_t i : twin_rows(rows))
-    for (const ojson* twin : follow_ups_of(follow_up, i, kPeriodicTwin))
-      out[i] = twin;
-  return out;
-}
-
-std::string walls_cost_section(const std::vector<ojson>& rows,
-                               const std::map<std::size_t, const ojson*>& twins) {
-  if (twins.empty()) return "";
-  std::ostringstream md;
-  md << "### What the walls cost\n\nEvery run of the paper's bar under the CFL rule at C = "
-     << shortest(kCflRef)
-     << " rerun with periodic boundaries (no wall: the interior's own error). A ratio well "
-        "below one is error the Dirichlet walls' treatment adds; walls.md does the same for "
-        "every Table 1 cell.\n\n";
-  // GIMP without walls against the grid: does refining lower the interior's error?
-  int lowered = 0, compared = 0;
-  for (const auto& [i, twin] : twins) {
-    if (method_label(rows[i]) != "gimp" || rows[i]["cells"].get<int>() != kFine) continue;
-    for (const auto& [j, coarse] : twins) {
-      if (method_label(rows[j]) == "gimp" && rows[j]["cells"].get<int>() == kCoarse &&
-          rows[j]["E"] == rows[i]["E"] && stable_error_over_time(*twin) &&
-          stable_error_over_time(*coarse)) {
-        ++compared;
-        lowered += *stable_error_over_time(*twin) < *stable_error_over_time(*coarse);
-      }
-    }
-  }
-  if (compared > 0) {
-    md << "Without walls a finer grid lowered GIMP's error at " << lowered << " of " << compared
-       << " values of E (" << kFine << " against " << kCoarse << " cells).\n\n";
-  }
-  md << "| method | E | cells | Dirichlet: error over time | periodic twin | periodic / Dirichlet "
-        "|\n|---|---|---|---|---|---|\n";
-  // By method (in the order the rows first name it), then E, then cells.
-  std::vector<std::string> methods;
-  for (const auto& r : rows) {
-    const std::string m = method_label(r);
-    if (std::find(methods.begin(), methods.end(), m) == methods.end()) methods.push_back(m);
-  }
-  auto order = [&](std::size_t i) {
-    const ojson& r = rows[i];
-    return std::tuple(std::find(methods.begin(), methods.end(), method_label(r)) - methods.begin(),
-                      Key(r["E"].get<double>(), "E"), r["cells"].get<int>());
-  };
-  std::vector<std::pair<std::size_t, const ojson*>> sorted(twins.begin(), twins.end());
-  std::stable_sort(sorted.begin(), sorted.end(),
-                   [&](const auto& a, const auto& b) { return order(a.first) < order(b.first); });
-  for (const auto& [i, twin] : sorted) {
-    const ojson& r = rows[i];
-    const auto d = stable_error_over_time(r), p = stable_error_over_time(*twin);
-    md << "| " << method_label(r) << " | " << shortest(r["E"].get<double>()) << " | "
-       << r["cells"].get<int>() << " | " << (d ? sci(*d) : verdict(r)) << " | "
-       << (p ? sci(*p) : verdict(*twin)) << " | " << (d && p ? ratio(*p / *d) : std::string("–"))
-       << " |\n";
-  }
-  md << "\n";
-  return md.str();
-}
-
-// The report: the definitions and the figure, the advice from every scene's rows, then one
-// section per scene; the figure's data from the first scene (the paper's bar).
+// The report, from the findings: the definitions and the figure, the advice from every scene's
+// rows, then one section per scene; the figure's data from the first scene (the paper's bar).
 StudyReport tradeoff_report(const ReportContext& c) {
-  const auto scenes = by_scene(c.rows);
-  const auto ranges = stable_ranges(TradeRows(c.rows));
-  StudyReport report;
-  report.markdown = results_intro(c.spec) + advice_section(c.rows, scenes, ranges, report.claims) +
-                    walls_cost_section(c.rows, periodic_twins(c.rows, c.follow_up));
-  for (std::size_t i = 0; i < scenes.size(); ++i)
-    report.markdown += scene_markdown(scenes[i].rows, i == 0);
-  report.data_csv = tradeoff_data_csv(scenes.front().rows, c.csv_header);
-  report.json = tradeoff_json(c.rows, scenes, ranges);
+  const Findings f = find(c.rows, c.follow_up);
+  StudyReport report{.claims = tradeoff_claims(f)};
+  report.markdown = results_intro(c.spec) + advice_table(f) + walls_cost_section(f);
+  for (std::size_t i = 0; i < f.scenes.size(); ++i)
+    report.markdown += scene_markdown(f.scenes[i], f.scene[i], i == 0);
+  report.data_csv = tradeoff_data_csv(f, c.csv_header);
+  report.json = tradeoff_json(f);
   return report;
 }
 
@@ -1187,6 +1127,4 @@ const StudyRegistration kTradeoff{{
 }};
 
 }  // namespace
-}  // namespace studies::tradeoff
-
-}  // namespace mpmstab
+}  // namespace mpmstab::studies::tradeoff
