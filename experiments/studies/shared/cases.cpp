@@ -21,8 +21,7 @@ const std::vector<std::string> kOptionalParams = {
     "transfer", "flip_fraction", "xpic_order", "fmpm_order", "update", "body_force_time",
     "dt_stable_sigma", "dt_stable_vnorm"};
 
-// What the cases find: how many there are and how they ended, the one tally the table's heading
-// and the index paragraph give.
+// What the cases find: their count and how they ended, which the heading and the index give.
 struct Findings {
   std::size_t cases = 0;
   VerdictTally verdicts;
