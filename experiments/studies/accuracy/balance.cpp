@@ -14,6 +14,7 @@
 #include <limits>
 #include <map>
 #include <optional>
+#include <set>
 #include <sstream>
 #include <tuple>
 
@@ -24,15 +25,10 @@
 #include "run_row.hpp"
 #include "study.hpp"
 
-namespace mpmstab {
-
-namespace studies::balance {
+namespace mpmstab::studies::balance {
 namespace {
 
 using ojson = nlohmann::ordered_json;
-
-// ---------------------------------------------------------------------------------------------
-// The fit e(C) = S + k C^p
 
 // The range of p, and the step of the grid it is first searched on.
 constexpr double kOrderLow = 0.25;
@@ -189,14 +185,11 @@ std::pair<double, double> grid_then_golden(const F& f, double lo, double hi, dou
   return refined.second < best_f ? refined : std::pair{x_at(best), best_f};
 }
 
-// The least-squares fit of ln e = ln(S + k C^p) to the points (C, e), C and e positive.
+// The least-squares fit of ln e = ln(S + k C^p) to the points (C, e), C descending and e
+// positive.
 Fit fit_curve(const std::vector<std::pair<double, double>>& points) {
   LogResiduals r(points);
-  double c_min = points.front().first, c_max = points.front().first;
-  for (const auto& pt : points) {
-    c_min = std::min(c_min, pt.first);
-    c_max = std::max(c_max, pt.first);
-  }
+  const double c_min = points.back().first, c_max = points.front().first;
   // For each p the best v; over p the best of those.
   const auto best_v = [&](double p) {
     const double lo = p * std::log(c_min / c_max) - std::log(kReach), hi = std::log(kReach);
@@ -237,10 +230,6 @@ Fit fit_curve(const std::vector<std::pair<double, double>>& points) {
   fit.rms = std::sqrt(best / static_cast<double>(points.size()));
   return fit;
 }
-
-// ---------------------------------------------------------------------------------------------
-// Findings
-
 struct Curve {
   std::string scene, method;
   int cells = 0;
@@ -254,6 +243,10 @@ struct Curve {
   // k C_max^p / S: the fitted time term at the largest C measured against the floor (infinite
   // where S = 0, zero where k = 0).
   double time_share = 0;
+  // The time term of an exact-start curve is a start-up effect: it is resolved, and the same
+  // method, scene and grid with the half-step start has a negligible one. None where the exact
+  // start's time term is not resolved or the curve has no fitted half-step twin.
+  std::optional<bool> start_up;
   bool resolved() const { return fit && time_share >= 1 / kResolved; }
   bool negligible() const { return fit && time_share < 1 / kResolved; }
 };
@@ -312,9 +305,7 @@ std::map<CurveKey, Curve> curves(const std::vector<ojson>& rows) {
   for (const auto& r : rows) {
     const CurveKey key{text(r, "scene"), curve_label(r), r["cells"].get<int>()};
     Curve& c = out[key];
-    c.scene = std::get<0>(key);
-    c.method = std::get<1>(key);
-    c.cells = std::get<2>(key);
+    std::tie(c.scene, c.method, c.cells) = key;
     if (!accurate_run(r) || !crossing_free(r)) {
       c.left_out.push_back(r["cfl_factor"].get<double>());
       continue;
@@ -330,133 +321,126 @@ std::map<CurveKey, Curve> curves(const std::vector<ojson>& rows) {
               [](const auto& a, const auto& b) { return TotalLess()(b.first, a.first); });
     fit_into(c);
   }
+  for (auto& [key, c] : out) {
+    const auto twin = out.find({c.scene, c.method + kHalfStep, c.cells});
+    if (!half_step(c.method) && c.resolved() && twin != out.end() && twin->second.fit)
+      c.start_up = twin->second.negligible();
+  }
   return out;
-}
-
-// The same method, scene and grid with the half-step start, for an exact-start curve.
-const Curve* half_step_twin(const std::map<CurveKey, Curve>& all, const Curve& exact) {
-  const auto it = all.find({exact.scene, exact.method + kHalfStep, exact.cells});
-  return it == all.end() ? nullptr : &it->second;
-}
-
-// The time term of an exact-start curve is a start-up effect: it is resolved, and the same
-// method, scene and grid with the half-step start has a negligible one. nullopt where the exact
-// start's time term is not resolved or the curve has no fitted half-step twin.
-std::optional<bool> start_up_effect(const std::map<CurveKey, Curve>& all, const Curve& c) {
-  if (half_step(c.method) || !c.resolved()) return std::nullopt;
-  const Curve* twin = half_step_twin(all, c);
-  if (!twin || !twin->fit) return std::nullopt;
-  return twin->negligible();
 }
 
 // Per method and scene: the grids in order, and the slope of log(balancing C) against log(h)
 // over the grids where it lies within the scan (at least three).
 struct Trend {
-  std::vector<const Curve*> grids;
+  std::map<int, const Curve*> grids;  // by cells
   std::optional<double> slope;
   bool falls = false;  // the balancing C falls with every refinement where within the scan
   int bracketed = 0;
 };
 
-std::map<std::pair<std::string, std::string>, Trend> trends(const std::map<CurveKey, Curve>& all) {
-  std::map<std::pair<std::string, std::string>, Trend> out;
-  for (const auto& [key, c] : all)
-    out[{c.scene, c.method}].grids.push_back(&c);
-  for (auto& [key, t] : out) {
+// How many curves (or methods and scenes) a claim is about, and how many of them satisfy it.
+struct Count {
+  int hits = 0, n = 0;
+  void add(bool hit) {
+    ++n;
+    hits += hit;
+  }
+};
+
+// What the study finds: every curve with its fit and balance, the trends with the grid, and the
+// counts its claims and its index paragraph give.
+struct Findings {
+  std::map<CurveKey, Curve> curves;
+  std::map<std::pair<std::string, std::string>, Trend> trends;  // by scene and method
+  std::set<int> grids;                                          // the cells of every curve
+  int fitted = 0, bracketed = 0;  // curves fitted, and those whose balancing C is within the scan
+  Count flip_first, fmpm_second, falls, start_up, half_second, still_none;
+};
+
+// The findings: every curve, fitted, and what the claims and the index count of them.
+Findings find(const std::vector<ojson>& rows) {
+  Findings f;
+  f.curves = curves(rows);
+  for (const auto& [key, c] : f.curves) {
+    f.trends[{c.scene, c.method}].grids[c.cells] = &c;
+    f.grids.insert(c.cells);
+    f.bracketed += c.balance.has_value();
+    if (!c.fit) continue;
+    ++f.fitted;
+    if (c.scene == kStillScene) f.still_none.add(c.time_share < 1);
+    if (c.start_up) f.start_up.add(*c.start_up);
+    if (!c.resolved()) continue;
+    const double p = *c.fit->p;
+    if (half_step(c.method))
+      f.half_second.add(std::abs(p - 2) <= kOrderTolerance);
+    else if (consistent_mass(c.method))
+      f.fmpm_second.add(std::abs(p - 2) <= kOrderTolerance);
+    else
+      f.flip_first.add(std::abs(p - 1) <= kOrderTolerance);
+  }
+  for (auto& [key, t] : f.trends) {
     std::vector<std::pair<double, double>> xy;
     std::optional<double> previous;
     t.falls = true;
-    for (const Curve* c : t.grids) {
+    for (const auto& [cells, c] : t.grids) {
       if (!c->balance) continue;
       ++t.bracketed;
-      xy.emplace_back(1.0 / c->cells, *c->balance);
+      xy.emplace_back(1.0 / cells, *c->balance);
       if (previous && !(*c->balance < *previous)) t.falls = false;
       previous = c->balance;
     }
     t.slope = loglog_slope(xy);
+    if (!consistent_mass(key.second) && !half_step(key.second) && t.bracketed >= 2)
+      f.falls.add(t.falls);
   }
-  return out;
+  return f;
 }
 
-// ---------------------------------------------------------------------------------------------
-// Claims
-
-std::vector<Claim> balance_claims(const std::map<CurveKey, Curve>& all,
-                                  const std::map<std::pair<std::string, std::string>, Trend>& tr) {
-  int flip_n = 0, flip_first = 0, fmpm_n = 0, fmpm_second = 0, trend_n = 0, trend_falls = 0;
-  int start_n = 0, start_up = 0, half_order_n = 0, half_second = 0, still_n = 0, still_none = 0;
-  for (const auto& [key, c] : all) {
-    if (!c.fit) continue;
-    if (c.scene == kStillScene) {
-      ++still_n;
-      still_none += c.time_share < 1;
-    }
-    if (const auto effect = start_up_effect(all, c)) {
-      ++start_n;
-      start_up += *effect;
-    }
-    if (!c.resolved()) continue;
-    const double p = *c.fit->p;
-    if (half_step(c.method)) {
-      ++half_order_n;
-      half_second += std::abs(p - 2) <= kOrderTolerance;
-    } else if (consistent_mass(c.method)) {
-      ++fmpm_n;
-      fmpm_second += std::abs(p - 2) <= kOrderTolerance;
-    } else {
-      ++flip_n;
-      flip_first += std::abs(p - 1) <= kOrderTolerance;
-    }
-  }
-  for (const auto& [key, t] : tr) {
-    if (consistent_mass(key.second) || half_step(key.second) || t.bracketed < 2) continue;
-    ++trend_n;
-    trend_falls += t.falls;
-  }
-  Claim first = claim("flip-time-error-first-order",
-                      "With FLIP, USL and the exact start the fitted time order p is first order "
-                      "in C (within {tol}) on every method, scene and grid where the time term is "
-                      "resolved",
-                      "{first} of {n} curves");
-  first.value("tol", shortest(kOrderTolerance)).every("first", flip_first, "n", flip_n);
-  Claim second = claim("consistent-mass-restores-second-order",
-                       "With the consistent mass nearly restored (FMPM of order eight) the fitted "
-                       "time order p is second order in C (within {tol}) on every scene and grid "
-                       "where the time term is resolved",
-                       "{second} of {n} curves");
-  second.value("tol", shortest(kOrderTolerance)).every("second", fmpm_second, "n", fmpm_n);
-  Claim falls = claim("balance-falls-with-h",
-                      "With FLIP and USL the fitted balancing C falls with every refinement of "
-                      "the grid, for every method and scene where it lies within the scan on two "
-                      "grids or more",
-                      "{falls} of {n} methods and scenes");
-  falls.every("falls", trend_falls, "n", trend_n);
-  Claim start =
-      claim("balance-is-start-up-effect",
-            "The balance is a start-up effect: on every method, scene and grid where "
-            "the exact start's fitted time term is resolved (which includes every curve "
-            "whose balancing C lies within or under the scan), the half-step start leaves a "
-            "negligible time term (its fitted k C^p under S / {resolved} at every "
-            "measured C)",
-            "{removed} of {n} curves");
-  start.value("resolved", shortest(kResolved)).every("removed", start_up, "n", start_n);
-  Claim half_order = claim("half-step-start-second-order",
-                           "With a half-step start the fitted time order p is second order in C "
-                           "(within {tol}) wherever the time term is resolved",
-                           "{second} of {n} curves");
-  half_order.value("tol", shortest(kOrderTolerance))
-      .every("second", half_second, "n", half_order_n);
-  Claim still = claim("no-balance-without-initial-acceleration",
-                      "On the {scene} scene, which starts with zero acceleration, the fitted time "
-                      "term stays under S at every measured C (no balancing C within or under "
-                      "the scan) for every method, start and grid",
-                      "{none} of {n} curves");
-  still.value("scene", kStillScene).every("none", still_none, "n", still_n);
-  return {first, second, falls, start, half_order, still};
+// A claim about every curve (or method and scene) of a kind, "{hits} of {n} curves", with the
+// value its statement names first (none where `value` is empty).
+Claim every_curve(const char* id, const char* statement, const char* evidence, const char* hits,
+                  const Count& count, const char* name = "", const std::string& value = "") {
+  Claim c = claim(id, statement, evidence);
+  if (!value.empty()) c.value(name, value);
+  c.every(hits, count.hits, "n", count.n);
+  return c;
 }
 
-// ---------------------------------------------------------------------------------------------
-// Rendering
+std::vector<Claim> balance_claims(const Findings& f) {
+  const std::string tol = shortest(kOrderTolerance);
+  return {
+      every_curve("flip-time-error-first-order",
+                  "With FLIP, USL and the exact start the fitted time order p is first order in C "
+                  "(within {tol}) on every method, scene and grid where the time term is resolved",
+                  "{first} of {n} curves", "first", f.flip_first, "tol", tol),
+      every_curve("consistent-mass-restores-second-order",
+                  "With the consistent mass nearly restored (FMPM of order eight) the fitted time "
+                  "order p is second order in C (within {tol}) on every scene and grid where the "
+                  "time term is resolved",
+                  "{second} of {n} curves", "second", f.fmpm_second, "tol", tol),
+      every_curve("balance-falls-with-h",
+                  "With FLIP and USL the fitted balancing C falls with every refinement of the "
+                  "grid, for every method and scene where it lies within the scan on two grids or "
+                  "more",
+                  "{falls} of {n} methods and scenes", "falls", f.falls),
+      every_curve("balance-is-start-up-effect",
+                  "The balance is a start-up effect: on every method, scene and grid where the "
+                  "exact start's fitted time term is resolved (which includes every curve whose "
+                  "balancing C lies within or under the scan), the half-step start leaves a "
+                  "negligible time term (its fitted k C^p under S / {resolved} at every measured "
+                  "C)",
+                  "{removed} of {n} curves", "removed", f.start_up, "resolved",
+                  shortest(kResolved)),
+      every_curve("half-step-start-second-order",
+                  "With a half-step start the fitted time order p is second order in C (within "
+                  "{tol}) wherever the time term is resolved",
+                  "{second} of {n} curves", "second", f.half_second, "tol", tol),
+      every_curve("no-balance-without-initial-acceleration",
+                  "On the {scene} scene, which starts with zero acceleration, the fitted time term "
+                  "stays under S at every measured C (no balancing C within or under the scan) for "
+                  "every method, start and grid",
+                  "{none} of {n} curves", "none", f.still_none, "scene", kStillScene)};
+}
 
 std::string scene_name(const std::string& scene) {
   return scene == "steffen" ? "neo-Hookean" : scene;
@@ -479,30 +463,24 @@ std::string time_term_text(const Curve& c) {
   return !c.fit ? "–" : c.resolved() ? "resolved" : "negligible";
 }
 
-std::string balance_table(const std::map<std::pair<std::string, std::string>, Trend>& tr) {
+std::string balance_table(const Findings& f) {
   std::ostringstream md;
-  std::vector<int> cells;
-  for (const auto& [key, t] : tr)
-    for (const Curve* c : t.grids)
-      if (std::find(cells.begin(), cells.end(), c->cells) == cells.end()) cells.push_back(c->cells);
-  std::sort(cells.begin(), cells.end());
   md << "| scene | method |";
-  for (int n : cells)
+  for (int n : f.grids)
     md << " " << n << " cells: balancing C (p) |";
   md << " slope of log(balancing C) against log(h) |\n|---|---|";
-  for (std::size_t k = 0; k <= cells.size(); ++k)
+  for (std::size_t k = 0; k <= f.grids.size(); ++k)
     md << "---|";
   md << "\n";
-  for (const auto& [key, t] : tr) {
+  for (const auto& [key, t] : f.trends) {
     md << "| " << scene_name(key.first) << " | " << key.second << " |";
-    for (int n : cells) {
-      const auto it = std::find_if(t.grids.begin(), t.grids.end(),
-                                   [n](const Curve* c) { return c->cells == n; });
+    for (int n : f.grids) {
+      const auto it = t.grids.find(n);
       if (it == t.grids.end()) {
         md << " |";
         continue;
       }
-      const Curve& c = **it;
+      const Curve& c = *it->second;
       md << " " << balance_text(c) << " (" << order_text(c) << ")" << (c.complete ? "" : " ‡")
          << " |";
     }
@@ -514,9 +492,7 @@ std::string balance_table(const std::map<std::pair<std::string, std::string>, Tr
 std::string fits_table(const std::map<CurveKey, Curve>& all) {
   std::ostringstream md;
   md << "| scene | method | cells | S | k | p | RMS of ln residuals (ln e − ln fit) | balancing C "
-        "| "
-        "time term | "
-        "k C_max^p / S |\n|---|---|---|---|---|---|---|---|---|---|\n";
+        "| time term | k C_max^p / S |\n|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& [key, c] : all) {
     md << "| " << scene_name(c.scene) << " | " << c.method << " | " << c.cells << " | ";
     if (!c.fit) {
@@ -545,15 +521,10 @@ std::string curves_table(const std::map<CurveKey, Curve>& all) {
   return md.str();
 }
 
-ojson optional_number(const std::optional<double>& v) {
-  return v ? ojson(*v) : ojson(nullptr);
-}
-
 ojson curves_json(const std::map<CurveKey, Curve>& all) {
   ojson out = ojson::array();
   for (const auto& [key, c] : all) {
     const bool fitted = c.fit.has_value();
-    const auto start_up = start_up_effect(all, c);
     out.push_back(
         {{"scene", c.scene},
          {"method", c.method},
@@ -561,22 +532,21 @@ ojson curves_json(const std::map<CurveKey, Curve>& all) {
          {"points", c.points.size()},
          {"S", fitted ? ojson(c.fit->S) : ojson(nullptr)},
          {"k", fitted ? ojson(c.fit->k) : ojson(nullptr)},
-         {"p", fitted ? optional_number(c.fit->p) : ojson(nullptr)},
+         {"p", fitted && c.fit->p ? ojson(*c.fit->p) : ojson(nullptr)},
          {"rms_log_residual", fitted ? ojson(c.fit->rms) : ojson(nullptr)},
-         {"b", optional_number(c.b)},
-         {"balancing_courant", optional_number(c.balance)},
+         {"b", c.b ? ojson(*c.b) : ojson(nullptr)},
+         {"balancing_courant", c.balance ? ojson(*c.balance) : ojson(nullptr)},
          {"balance_note", c.balance_note.empty() ? ojson(nullptr) : ojson(c.balance_note)},
          {"time_share",
           fitted && std::isfinite(c.time_share) ? ojson(c.time_share) : ojson(nullptr)},
          {"time_term", fitted ? ojson(time_term_text(c)) : ojson(nullptr)},
-         {"start_up_effect", start_up ? ojson(*start_up) : ojson(nullptr)}});
+         {"start_up_effect", c.start_up ? ojson(*c.start_up) : ojson(nullptr)}});
   }
   return out;
 }
 
 StudyReport balance_report(const ReportContext& ctx) {
-  const auto all = curves(ctx.rows);
-  const auto tr = trends(all);
+  const Findings f = find(ctx.rows);
   std::ostringstream md;
   md << "## Results\n\nPer method, scene and grid the error over time e at the Courant numbers C "
         "run is fitted by e(C) = S + k C^p: S is the floor the error keeps as C goes to zero (the "
@@ -597,64 +567,57 @@ StudyReport balance_report(const ReportContext& ctx) {
         "refined by "
      << kGoldenSteps
      << " steps of golden-section search. The two ends of that search, no floor (S zero, p the "
-        "least-squares slope of ln e against ln C clamped to its range) and no time term (k "
-        "zero, e constant), replace the fit where their sum of squares is not larger. A curve is "
-        "fitted where at least "
+        "least-squares slope of ln e against ln C clamped to its range) and no time term (k zero, "
+        "e constant), replace the fit where their sum of squares is not larger. A curve is fitted "
+        "where at least "
      << kFitPoints
      << " of its runs enter. The *RMS of ln residuals* is the square root of the mean over the "
         "measured C of (ln e − ln(S + k C^p))², the typical relative misfit of the fit. The "
-        "*balancing C* is b where it lies between C_min and C_max, \"below\" or \"above\" the "
-        "scan where it lies outside, and \"none\" with the parameter that is zero where the fit "
-        "puts no floor (S) or no time term (k). The time term is *resolved* where its fitted value "
-        "at "
+        "*balancing C* is b where it lies between C_min and C_max, \"below\" or \"above\" the scan "
+        "where it lies outside, and \"none\" with the parameter that is zero where the fit puts no "
+        "floor (S) or no time term (k). The time term is *resolved* where its fitted value at "
         "C_max, k C_max^p, is at least S / "
      << shortest(kResolved) << ", and *negligible* otherwise (then k C^p is under S / "
      << shortest(kResolved)
      << " at every measured C, since it rises with C); a fitted p is compared with first or "
         "second order only where the time term is resolved. The time term of a curve with the "
         "exact start, and with it its balance, is a *start-up effect* where it is resolved and the "
-        "same method, scene and grid with the half-step start has a negligible time term; a "
-        "curve that balances within or under the scan has a resolved time term.\n\n"
-        "Only runs that end stable and accurate and in which no particle crosses a cell enter; "
-        "a run left out at the largest C is the stability limit (the curve starts below it), "
-        "and `‡` marks a grid where one was left out below a C that entered. Each balancing C "
-        "is that of one curve, one scene, method and grid, and the last column fits log of the "
-        "balancing C against log(h) over the grids of one scene and method where it lies within "
-        "the scan (at least three): no balancing C of one scene is applied to another scene in "
-        "this report. A positive slope q means the balancing C falls as h^q and the balancing "
-        "step dt = C h / c as h times h^q, so a C that balances on one grid leaves the time "
-        "error above the spatial one on a finer grid.\n\n"
-     << balance_table(tr)
+        "same method, scene and grid with the half-step start has a negligible time term; a curve "
+        "that balances within or under the scan has a resolved time term.\n\nOnly runs that end "
+        "stable and accurate and in which no particle crosses a cell enter; a run left out at the "
+        "largest C is the stability limit (the curve starts below it), and `‡` marks a grid where "
+        "one was left out below a C that entered. Each balancing C is that of one curve, one "
+        "scene, method and grid, and the last column fits log of the balancing C against log(h) "
+        "over the grids of one scene and method where it lies within the scan (at least three): no "
+        "balancing C of one scene is applied to another scene in this report. A positive slope q "
+        "means the balancing C falls as h^q and the balancing step dt = C h / c as h times h^q, so "
+        "a C that balances on one grid leaves the time error above the spatial one on a finer "
+        "grid.\n\n"
+     << balance_table(f)
      << "\nTwo known causes of a first-order time term are tested: FLIP's lumped-mass "
-        "re-projection, by the rows of FMPM of order eight (the consistent mass nearly "
-        "restored), and a start from rest with a non-zero acceleration (the neo-Hookean scene "
-        "starts at rest, the bar with its acceleration zero), by the rows with a half-step "
-        "start (the particles' velocity starts half a step before the start, so that the "
-        "velocity of the first position update lies half a step after it, as the leapfrog's "
-        "staggered start has it). The claims above say which one moves the balance.\n"
+        "re-projection, by the rows of FMPM of order eight (the consistent mass nearly restored), "
+        "and a start from rest with a non-zero acceleration (the neo-Hookean scene starts at rest, "
+        "the bar with its acceleration zero), by the rows with a half-step start (the particles' "
+        "velocity starts half a step before the start, so that the velocity of the first position "
+        "update lies half a step after it, as the leapfrog's staggered start has it). The claims "
+        "above say which one moves the balance.\n"
      << "\n### The fit of each curve\n\n"
-        "k C_max^p / S is the fitted time term at the largest measured C against the floor "
-        "(– where S is zero); `†` marks a p at an end of the range it is searched over, "
-        "where that range, not the data, stops the fit.\n\n"
-     << fits_table(all) << "\n### Each curve\n\n"
-     << curves_table(all);
+        "k C_max^p / S is the fitted time term at the largest measured C against the floor (– "
+        "where S is zero); `†` marks a p at an end of the range it is searched over, where that "
+        "range, not the data, stops the fit.\n\n"
+     << fits_table(f.curves) << "\n### Each curve\n\n"
+     << curves_table(f.curves);
   return StudyReport{.markdown = md.str(),
-                     .json = {{"curves", curves_json(all)}},
-                     .claims = balance_claims(all, tr)};
+                     .json = {{"curves", curves_json(f.curves)}},
+                     .claims = balance_claims(f)};
 }
-
 std::string balance_index(const Spec& spec, const std::vector<ojson>& rows) {
-  const auto all = curves(rows);
-  int fitted = 0, bracketed = 0;
-  for (const auto& [key, c] : all) {
-    fitted += c.fit.has_value();
-    bracketed += c.balance.has_value();
-  }
+  const Findings f = find(rows);
   std::ostringstream md;
   md << "**What it shows.** The fit e(C) = S + k C^p of the error over time against the Courant "
         "number per method, scene and grid, and the C at which its time term equals its floor ("
-     << bracketed << " of " << fitted << " fitted curves balance within the scan): [" << spec.name
-     << ".md](" << spec.name << ".md).\n\n";
+     << f.bracketed << " of " << f.fitted << " fitted curves balance within the scan): ["
+     << spec.name << ".md](" << spec.name << ".md).\n\n";
   return md.str();
 }
 
@@ -667,6 +630,4 @@ const StudyRegistration kBalance{{
 }};
 
 }  // namespace
-}  // namespace studies::balance
-
-}  // namespace mpmstab
+}  // namespace mpmstab::studies::balance

@@ -22,9 +22,7 @@
 #include "spec.hpp"
 #include "study.hpp"
 
-namespace mpmstab {
-
-namespace studies::dispersion {
+namespace mpmstab::studies::dispersion {
 namespace {
 
 using ojson = nlohmann::ordered_json;
@@ -53,6 +51,54 @@ constexpr double kPeriodAgreement = 1e-4;
 constexpr double kWellKept = 0.9;
 // Two schemes need the same cells per wavelength when they agree within this fraction.
 constexpr double kSameCells = 1e-6;
+// The index's headline: the cells per wavelength of linear MPM and the cubic B-spline with FLIP
+// and of the cubic B-spline with FMPM at the index's Courant number (one of kCourants).
+constexpr std::size_t kIndexCourant = 1;
+const std::vector<std::pair<Method, Transfer>> kHeadline = {{Method::mpm, Transfer::flip},
+                                                            {Method::bspline3, Transfer::flip},
+                                                            {Method::bspline3, Transfer::fmpm}};
+
+// The amplitude a branch point keeps over one period: |lambda| to the power of the steps per
+// period, a full turn of phase divided by the phase per step (0 where the phase does not turn).
+double kept_per_period(const DispersionPoint& d) {
+  return d.phase > 0 ? std::pow(d.damping, 2 * kPi / d.phase) : 0.0;
+}
+
+// One single-mode run: its prediction from the branch and its measured period.
+struct ModeRun {
+  const ojson* row = nullptr;
+  std::string label;
+  int cells = 0;
+  double courant = 0, dt = 0, exact = 0;
+  DispersionPoint predicted_point;
+  double predicted = 0;  // 2 pi dt / arg(lambda)
+  ModePeriod measured;
+  bool measured_ok() const { return measured.periods > 0; }
+  double relative() const { return measured.period / predicted - 1; }
+  // |lambda| over one predicted period: the amplitude the branch keeps.
+  double kept() const { return kept_per_period(predicted_point); }
+};
+
+// The single-mode runs: the period each case measures (measure_mode_period, a run the report makes
+// itself; the index and the subtitle do without) beside the one its branch predicts.
+std::vector<ModeRun> mode_runs(const Spec& spec, const std::vector<ojson>& rows) {
+  std::vector<ModeRun> out;
+  for (std::size_t i = 0; i < rows.size() && i < spec.cases.size(); ++i) {
+    const RunParams& p = spec.cases[i].params;
+    ModeRun m;
+    m.row = &rows[i];
+    m.label = method_label(rows[i]);
+    m.cells = p.cells;
+    m.courant = *courant_number(p);
+    m.dt = *fixed_step(p);
+    m.exact = 1 / wave_speed(p);
+    m.predicted_point = dispersion_at(p, m.courant, 2 * kPi / p.cells);
+    m.predicted = 2 * kPi * m.dt / m.predicted_point.phase;
+    m.measured = measure_mode_period(p);
+    out.push_back(m);
+  }
+  return out;
+}
 
 // A scheme's flat description, as a row names it (method_label).
 ojson scheme_row(const RunParams& p) {
@@ -74,12 +120,6 @@ struct AtCourant {
   double kept = 0;              // the amplitude kept over one period at that wavelength
   double first_phase_speed = 0;
 };
-
-// The amplitude a branch point keeps over one period: |lambda| to the power of the steps per
-// period, a full turn of phase divided by the phase per step (0 where the phase does not turn).
-double kept_per_period(const DispersionPoint& d) {
-  return d.phase > 0 ? std::pow(d.damping, 2 * kPi / d.phase) : 0.0;
-}
 
 struct Scheme {
   RunParams params;
@@ -144,53 +184,6 @@ std::vector<Scheme> bloch_schemes(int ppc) {
   return out;
 }
 
-// One single-mode run: its prediction from the branch and its measured period.
-struct ModeRun {
-  const ojson* row = nullptr;
-  std::string label;
-  int cells = 0;
-  double courant = 0, dt = 0, exact = 0;
-  DispersionPoint predicted_point;
-  double predicted = 0;  // 2 pi dt / arg(lambda)
-  ModePeriod measured;
-  bool measured_ok() const { return measured.periods > 0; }
-  double relative() const { return measured.period / predicted - 1; }
-  // |lambda| over one predicted period: the amplitude the branch keeps.
-  double kept() const { return kept_per_period(predicted_point); }
-};
-
-std::vector<ModeRun> mode_runs(const ReportContext& c) {
-  std::vector<ModeRun> out;
-  for (std::size_t i = 0; i < c.rows.size() && i < c.spec.cases.size(); ++i) {
-    const ojson& r = c.rows[i];
-    const RunParams& p = c.spec.cases[i].params;
-    ModeRun m;
-    m.row = &r;
-    m.label = method_label(r);
-    m.cells = p.cells;
-    m.courant = *courant_number(p);
-    m.dt = *fixed_step(p);
-    m.exact = 1 / wave_speed(p);
-    m.predicted_point = dispersion_at(p, m.courant, 2 * kPi / p.cells);
-    m.predicted = 2 * kPi * m.dt / m.predicted_point.phase;
-    m.measured = measure_mode_period(p);
-    out.push_back(m);
-  }
-  return out;
-}
-
-std::string cells_text(const AtCourant& a) {
-  if (!a.below_limit) return "above the limit";
-  return a.cells ? fixed(*a.cells, 1) : std::string("not reached");
-}
-
-std::string courant_header() {
-  std::string s;
-  for (const double C : kCourants)
-    s += " C = " + shortest(C) + " |";
-  return s;
-}
-
 // The schemes of a basis or of a transfer, in the table's order.
 const Scheme* find_scheme(const std::vector<Scheme>& schemes, Method m, Transfer t) {
   for (const auto& s : schemes)
@@ -198,72 +191,257 @@ const Scheme* find_scheme(const std::vector<Scheme>& schemes, Method m, Transfer
   return nullptr;
 }
 
-std::string cells_table(const std::vector<Scheme>& schemes) {
-  std::ostringstream md;
-  md << "| scheme | spectral limit (c dt / h) |" << courant_header() << "\n|---|---|";
-  for (std::size_t k = 0; k < kCourants.size(); ++k)
-    md << "---|";
-  md << "\n";
-  for (const auto& s : schemes) {
-    md << "| " << s.label << " | " << (s.limit ? fixed(*s.limit, 4) : std::string("–")) << " |";
-    for (const auto& a : s.at)
-      md << " " << cells_text(a) << " |";
-    md << "\n";
-  }
-  return md.str();
+// Cells per wavelength of one basis with one transfer at Courant number k, if computed.
+std::optional<double> cells_of(const std::vector<Scheme>& schemes, Method m, Transfer t,
+                               std::size_t k) {
+  const Scheme* s = find_scheme(schemes, m, t);
+  return s ? s->at[k].cells : std::nullopt;
 }
 
-// The amplitude each scheme keeps over one period at the wavelength of the cells table.
-std::string kept_table(const std::vector<Scheme>& schemes) {
+// The fewest cells per wavelength at one Courant number, and the schemes that need as many.
+struct Fewest {
+  std::vector<std::string> schemes;
+  double cells = 0, kept = 0;
+};
+// One Courant number: the fewest cells per wavelength of every scheme and, where those do not
+// keep kWellKept of the amplitude, of the schemes that do; the schemes above their spectral limit.
+struct Reading {
+  std::optional<Fewest> fewest, fewest_kept;
+  std::vector<std::string> above_limit;
+};
+
+// The pairs of a B-spline and a Courant number compared (spline_pairs), those that hold, and the
+// pairs themselves: "C = 0.1: mpm 23.0, bspline2 30.1; ...".
+struct SplinePairs {
+  int hits = 0, compared = 0;
+  std::string pairs;
+};
+
+// What the study finds: every scheme's branch and cells per wavelength, the single-mode runs
+// against their prediction, and what the claims, the text, the index and the subtitle count.
+struct Findings {
+  std::size_t cases = 0;
+  int ppc = 0;  // the cases' particles per cell, every scheme's
+  std::vector<Scheme> schemes;
+  std::vector<Reading> readings;  // one per kCourants
+  std::vector<std::string> drawn;
+  int consistent = 0, branches = 0;  // branches whose phase speed at the first kh is within
+  double worst_deviation = 0;        // kConsistency of one, and the largest deviation
+  std::string worst_branch = "–";
+  SplinePairs flip, full_mass;
+  std::vector<ModeRun> runs;
+  long meaningless = 0;                  // runs marked meaningless
+  int agree = 0, measured = 0;           // runs whose measured period agrees with the prediction
+  std::optional<std::size_t> worst_run;  // the largest relative difference
+  int nearer = 0, compared = 0;          // runs nearer the prediction than the exact period
+};
+
+// The B-splines' cells per wavelength at each Courant number: with FLIP against linear MPM's
+// (fmpm false: the pairs that need more), or with FMPM against their own with FLIP (fmpm true:
+// the pairs that need fewer).
+SplinePairs spline_pairs(const std::vector<Scheme>& schemes, bool fmpm) {
+  SplinePairs p;
+  for (std::size_t k = 0; k < kCourants.size(); ++k) {
+    const auto linear = cells_of(schemes, Method::mpm, Transfer::flip, k);
+    if (!fmpm && !linear) continue;
+    std::string part = fmpm ? "" : "mpm " + fixed(*linear, 1);
+    for (const Method m : {Method::bspline2, Method::bspline3}) {
+      const auto flip = cells_of(schemes, m, Transfer::flip, k);
+      const auto against = fmpm ? flip : linear;
+      const auto cells = fmpm ? cells_of(schemes, m, Transfer::fmpm, k) : flip;
+      if (!cells || !against) continue;
+      ++p.compared;
+      p.hits += fmpm ? *cells < *against : *cells > *against;
+      part += std::string(part.empty() ? "" : ", ") + std::string(to_string(m)) + " " +
+              fixed(*cells, 1) + (fmpm ? " against " + fixed(*against, 1) : "");
+    }
+    if (!part.empty())
+      p.pairs += (p.pairs.empty() ? "" : "; ") + ("C = " + shortest(kCourants[k]) + ": " + part);
+  }
+  if (p.pairs.empty()) p.pairs = "–";
+  return p;
+}
+
+// The findings from the rows and, in the report, the single-mode runs (mode_runs).
+Findings find(const std::vector<ojson>& rows, std::vector<ModeRun> runs = {}) {
+  Findings f;
+  f.cases = rows.size();
+  f.runs = std::move(runs);
+  // The single-mode runs against their prediction.
+  for (std::size_t i = 0; i < f.runs.size(); ++i) {
+    const ModeRun& m = f.runs[i];
+    f.meaningless += outcome(*m.row) == "meaningless";
+    if (!m.measured_ok()) continue;
+    ++f.measured;
+    f.agree += std::abs(m.relative()) <= kPeriodAgreement;
+    if (!f.worst_run || std::abs(m.relative()) > std::abs(f.runs[*f.worst_run].relative()))
+      f.worst_run = i;
+    if (std::abs(m.predicted / m.exact - 1) <= kPeriodAgreement) continue;
+    ++f.compared;
+    f.nearer += std::abs(m.measured.period - m.predicted) < std::abs(m.measured.period - m.exact);
+  }
+  if (rows.empty()) return f;
+  f.ppc = rows.front()["ppc"].get<int>();
+  f.schemes = bloch_schemes(f.ppc);
+  // The reading of each Courant number, the schemes drawn, the consistency of every branch and
+  // the B-splines' cells per wavelength.
+  const auto fewest = [&](std::size_t k, bool well_kept) -> std::optional<Fewest> {
+    // At Courant number k, of every scheme or of those that keep kWellKept, with every tie.
+    const auto in = [&](const AtCourant& a) {
+      return a.cells && (!well_kept || a.kept >= kWellKept);
+    };
+    const AtCourant* best = nullptr;
+    for (const auto& s : f.schemes)
+      if (in(s.at[k]) && (!best || *s.at[k].cells < *best->cells)) best = &s.at[k];
+    if (!best) return std::nullopt;
+    Fewest least{{}, *best->cells, best->kept};
+    for (const auto& s : f.schemes)
+      if (in(s.at[k]) && std::abs(*s.at[k].cells - least.cells) <= kSameCells * least.cells)
+        least.schemes.push_back(s.label);
+    return least;
+  };
+  for (std::size_t k = 0; k < kCourants.size(); ++k) {
+    Reading r{fewest(k, false), fewest(k, true), {}};
+    if (r.fewest && r.fewest->kept >= kWellKept) r.fewest_kept.reset();  // the same schemes
+    for (const auto& s : f.schemes)
+      if (!s.at[k].below_limit) r.above_limit.push_back(s.label);
+    f.readings.push_back(r);
+  }
+  for (const auto& s : f.schemes) {
+    if (s.drawn) f.drawn.push_back(s.label);
+    for (const auto& a : s.at) {
+      if (!a.below_limit) continue;
+      ++f.branches;
+      const double e = std::abs(a.first_phase_speed - 1);
+      f.consistent += e <= kConsistency;
+      if (e >= f.worst_deviation) {
+        f.worst_deviation = e;
+        f.worst_branch = s.label + " at C = " + shortest(a.courant);
+      }
+    }
+  }
+  f.flip = spline_pairs(f.schemes, false);
+  f.full_mass = spline_pairs(f.schemes, true);
+  return f;
+}
+
+Claim period_claim(const Findings& f) {
+  const ModeRun* worst = f.worst_run ? &f.runs[*f.worst_run] : nullptr;
+  Claim c = claim("period-agrees-with-bloch",
+                  "The measured period of every single-mode run agrees with the Bloch "
+                  "prediction within {tolerance}",
+                  "{agree} of {runs} runs ({measured} with a measured period); the largest "
+                  "relative difference is {worst}, {scheme} at {cells} cells per wavelength and "
+                  "C = {C}");
+  c.value("tolerance", percent(kPeriodAgreement))
+      .every("agree", f.agree, "runs", static_cast<long long>(f.runs.size()))
+      .count("measured", f.measured)
+      .value("worst", worst ? sci(worst->relative(), 2) : "–")
+      .value("scheme", worst ? worst->label : "–")
+      .value("cells", worst ? std::to_string(worst->cells) : "–")
+      .value("C", worst ? shortest(worst->courant) : "–");
+  return c;
+}
+
+// The prediction explains the measured period: it lies nearer the prediction than the exact
+// period, on every run whose predicted period differs from the exact one by more than the
+// agreement.
+Claim explains_claim(const Findings& f) {
+  Claim c = claim("dispersion-explains-period",
+                  "Where the scheme's period differs from the exact one, the measured period "
+                  "is the one the Bloch symbol predicts, not the exact one",
+                  "{nearer} of {compared} runs whose predicted period differs from the exact "
+                  "one by more than {tolerance} measure a period nearer the prediction");
+  c.every("nearer", f.nearer, "compared", f.compared).value("tolerance", percent(kPeriodAgreement));
+  return c;
+}
+
+Claim consistency_claim(const Findings& f) {
+  Claim c = claim("phase-speed-tends-to-one",
+                  "Every scheme's phase speed tends to the wave speed as kh tends to zero",
+                  "at kh = pi / {samples}: {consistent} of {curves} branches (scheme and Courant "
+                  "number) within {tolerance} of c; the largest deviation is {worst}, "
+                  "{scheme}");
+  c.count("samples", kDispersionSamples)
+      .every("consistent", f.consistent, "curves", f.branches)
+      .value("tolerance", sci(kConsistency, 1))
+      .value("worst", sci(f.worst_deviation, 2))
+      .value("scheme", f.worst_branch);
+  return c;
+}
+
+// With FLIP, each B-spline needs more cells per wavelength than linear MPM: FLIP's transfer
+// acts as the mass M_L M^-1 M_L (docs/theory.md, "Dispersion"), and a wider basis's consistent
+// mass M differs more from its lumped one.
+Claim flip_spline_claim(const Findings& f) {
+  Claim c = claim("flip-splines-need-more-cells",
+                  "With FLIP, the quadratic and cubic B-splines need more cells per wavelength "
+                  "than linear MPM for a phase error of {tolerance}, at every Courant number",
+                  "{more} of {compared} pairs of a B-spline and a Courant number ({pairs})");
+  c.value("tolerance", percent(kPhaseTolerance))
+      .every("more", f.flip.hits, "compared", f.flip.compared)
+      .value("pairs", f.flip.pairs);
+  return c;
+}
+
+// With FMPM (the full mass matrix's series) each B-spline needs fewer cells per wavelength than
+// with FLIP: the transfer, not the basis, sets the phase error.
+Claim full_mass_claim(const Findings& f) {
+  Claim c = claim("full-mass-splines-need-fewer-cells",
+                  "With FMPM({order}), the quadratic and cubic B-splines need fewer cells per "
+                  "wavelength than with FLIP for a phase error of {tolerance}, at every Courant "
+                  "number below the limit",
+                  "{fewer} of {compared} pairs of a B-spline and a Courant number ({pairs})");
+  c.count("order", kSeriesOrder)
+      .value("tolerance", percent(kPhaseTolerance))
+      .every("fewer", f.full_mass.hits, "compared", f.full_mass.compared)
+      .value("pairs", f.full_mass.pairs);
+  return c;
+}
+
+std::string cells_text(const AtCourant& a) {
+  if (!a.below_limit) return "above the limit";
+  return a.cells ? fixed(*a.cells, 1) : std::string("not reached");
+}
+
+// A table of every scheme, one column per Courant number: its cells per wavelength (after its
+// spectral limit), or the amplitude it keeps over one period at that wavelength.
+std::string scheme_table(const std::vector<Scheme>& schemes, bool cells) {
   std::ostringstream md;
-  md << "| scheme |" << courant_header() << "\n|---|";
+  md << (cells ? "| scheme | spectral limit (c dt / h) |" : "| scheme |");
+  for (const double C : kCourants)
+    md << " C = " << shortest(C) << " |";
+  md << (cells ? "\n|---|---|" : "\n|---|");
   for (std::size_t k = 0; k < kCourants.size(); ++k)
     md << "---|";
   md << "\n";
   for (const auto& s : schemes) {
     md << "| " << s.label << " |";
+    if (cells) md << " " << (s.limit ? fixed(*s.limit, 4) : std::string("–")) << " |";
     for (const auto& a : s.at)
-      md << " " << (a.cells ? fixed(a.kept, 3) : std::string("–")) << " |";
+      md << " " << (cells ? cells_text(a) : a.cells ? fixed(a.kept, 3) : std::string("–")) << " |";
     md << "\n";
   }
   return md.str();
 }
 
-// The reading of the tables: at each Courant number the scheme that needs the fewest cells per
-// wavelength, with the amplitude it keeps, and the fewest among the schemes that keep at least
+// The reading of the tables: at each Courant number the schemes that need the fewest cells per
+// wavelength, with the amplitude they keep, and the fewest among the schemes that keep at least
 // kWellKept of it.
-std::string reading(const std::vector<Scheme>& schemes) {
-  // The schemes whose cells per wavelength equal s's at Courant number k (within kSameCells):
-  // "mpm/apic, gimp/apic, cpgimp/apic and cpdi/apic".
-  const auto tied = [&](const Scheme& s, std::size_t k, bool well_kept) {
-    std::vector<std::string> names;
-    for (const auto& o : schemes) {
-      const AtCourant& a = o.at[k];
-      if (a.cells && (!well_kept || a.kept >= kWellKept) &&
-          std::abs(*a.cells - *s.at[k].cells) <= kSameCells * *s.at[k].cells)
-        names.push_back(o.label);
-    }
-    return list_of(names);
-  };
+std::string reading(const Findings& f) {
   std::ostringstream md;
   md << "**Reading** (computed from the table).";
   for (std::size_t k = 0; k < kCourants.size(); ++k) {
-    const Scheme *best = nullptr, *kept = nullptr;
-    for (const auto& s : schemes) {
-      const AtCourant& a = s.at[k];
-      if (!a.cells) continue;
-      if (!best || *a.cells < *best->at[k].cells) best = &s;
-      if (a.kept >= kWellKept && (!kept || *a.cells < *kept->at[k].cells)) kept = &s;
-    }
-    if (!best) continue;
+    const Reading& r = f.readings[k];
+    if (!r.fewest) continue;
     md << " At C = " << shortest(kCourants[k])
-       << " the fewest cells per wavelength: " << tied(*best, k, false) << ", "
-       << fixed(*best->at[k].cells, 1) << " (keeping " << fixed(best->at[k].kept, 3)
+       << " the fewest cells per wavelength: " << list_of(r.fewest->schemes) << ", "
+       << fixed(r.fewest->cells, 1) << " (keeping " << fixed(r.fewest->kept, 3)
        << " of the amplitude per period there)";
-    if (kept && kept != best) {
+    if (r.fewest_kept) {
       md << "; of the schemes that keep at least " << shortest(kWellKept) << ", "
-         << tied(*kept, k, true) << ", " << fixed(*kept->at[k].cells, 1) << " (keeping "
-         << fixed(kept->at[k].kept, 3) << ")";
+         << list_of(r.fewest_kept->schemes) << ", " << fixed(r.fewest_kept->cells, 1)
+         << " (keeping " << fixed(r.fewest_kept->kept, 3) << ")";
     }
     md << ".";
   }
@@ -272,24 +450,21 @@ std::string reading(const std::vector<Scheme>& schemes) {
 }
 
 // The Courant numbers left out of some scheme, with the schemes: "0.75 (bspline3, ...)".
-std::string left_out_text(const std::vector<Scheme>& schemes) {
+std::string left_out_text(const Findings& f) {
   std::vector<std::string> parts;
-  for (std::size_t k = 0; k < kCourants.size(); ++k) {
-    std::vector<std::string> names;
-    for (const auto& s : schemes)
-      if (!s.at[k].below_limit) names.push_back(s.label);
-    if (!names.empty()) parts.push_back("C = " + shortest(kCourants[k]) + " for " + list_of(names));
-  }
+  for (std::size_t k = 0; k < kCourants.size(); ++k)
+    if (!f.readings[k].above_limit.empty())
+      parts.push_back("C = " + shortest(kCourants[k]) + " for " +
+                      list_of(f.readings[k].above_limit));
   return parts.empty() ? "none" : list_of(parts);
 }
 
 std::string runs_table(const std::vector<ModeRun>& runs) {
   std::ostringstream md;
   md << "| scheme | cells per wavelength | C | steps per exact period | exact period | predicted "
-        "period "
-        "| measured period | periods measured | relative difference, measured to predicted | "
-        "amplitude kept per "
-        "period (predicted) | run |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
+        "period | measured period | periods measured | relative difference, measured to predicted "
+        "| amplitude kept per period (predicted) | run "
+        "|\n|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& m : runs) {
     md << "| " << m.label << " | " << m.cells << " | " << shortest(m.courant) << " | "
        << fixed(m.exact / m.dt, 1) << " | " << significant(m.exact, 6) << " | "
@@ -301,180 +476,26 @@ std::string runs_table(const std::vector<ModeRun>& runs) {
   return md.str();
 }
 
-// ---------------------------------------------------------------------------------------------
-// Claims
-
-Claim period_claim(const std::vector<ModeRun>& runs) {
-  int agree = 0, measured = 0;
-  const ModeRun* worst = nullptr;
-  for (const auto& m : runs) {
-    if (!m.measured_ok()) continue;
-    ++measured;
-    agree += std::abs(m.relative()) <= kPeriodAgreement;
-    if (!worst || std::abs(m.relative()) > std::abs(worst->relative())) worst = &m;
-  }
-  Claim c = claim("period-agrees-with-bloch",
-                  "The measured period of every single-mode run agrees with the Bloch "
-                  "prediction within {tolerance}",
-                  "{agree} of {runs} runs ({measured} with a measured period); the largest "
-                  "relative difference is {worst}, {scheme} at {cells} cells per wavelength and "
-                  "C = {C}");
-  c.value("tolerance", percent(kPeriodAgreement))
-      .every("agree", agree, "runs", static_cast<long long>(runs.size()))
-      .count("measured", measured)
-      .value("worst", worst ? sci(worst->relative(), 2) : "–")
-      .value("scheme", worst ? worst->label : "–")
-      .value("cells", worst ? std::to_string(worst->cells) : "–")
-      .value("C", worst ? shortest(worst->courant) : "–");
-  return c;
-}
-
-// The prediction explains the measured period: it lies nearer the prediction than the exact
-// period, on every run whose predicted period differs from the exact one by more than the
-// agreement.
-Claim explains_claim(const std::vector<ModeRun>& runs) {
-  int nearer = 0, compared = 0;
-  for (const auto& m : runs) {
-    if (!m.measured_ok() || std::abs(m.predicted / m.exact - 1) <= kPeriodAgreement) continue;
-    ++compared;
-    nearer += std::abs(m.measured.period - m.predicted) < std::abs(m.measured.period - m.exact);
-  }
-  Claim c = claim("dispersion-explains-period",
-                  "Where the scheme's period differs from the exact one, the measured period "
-                  "is the one the Bloch symbol predicts, not the exact one",
-                  "{nearer} of {compared} runs whose predicted period differs from the exact "
-                  "one by more than {tolerance} measure a period nearer the prediction");
-  c.every("nearer", nearer, "compared", compared).value("tolerance", percent(kPeriodAgreement));
-  return c;
-}
-
-Claim consistency_claim(const std::vector<Scheme>& schemes) {
-  int consistent = 0, curves = 0;
-  double worst = 0;
-  std::string worst_label = "–";
-  for (const auto& s : schemes) {
-    for (const auto& a : s.at) {
-      if (!a.below_limit) continue;
-      ++curves;
-      const double e = std::abs(a.first_phase_speed - 1);
-      consistent += e <= kConsistency;
-      if (e >= worst) {
-        worst = e;
-        worst_label = s.label + " at C = " + shortest(a.courant);
-      }
-    }
-  }
-  Claim c = claim("phase-speed-tends-to-one",
-                  "Every scheme's phase speed tends to the wave speed as kh tends to zero",
-                  "at kh = pi / {samples}: {consistent} of {curves} branches (scheme and "
-                  "Courant number) within {tolerance} of c; the largest deviation is {worst}, "
-                  "{scheme}");
-  c.count("samples", kDispersionSamples)
-      .every("consistent", consistent, "curves", curves)
-      .value("tolerance", sci(kConsistency, 1))
-      .value("worst", sci(worst, 2))
-      .value("scheme", worst_label);
-  return c;
-}
-
-// Cells per wavelength of one basis with one transfer at Courant number k, if computed.
-std::optional<double> cells_of(const std::vector<Scheme>& schemes, Method m, Transfer t,
-                               std::size_t k) {
-  const Scheme* s = find_scheme(schemes, m, t);
-  return s ? s->at[k].cells : std::nullopt;
-}
-
-const std::vector<Method> kSplines = {Method::bspline2, Method::bspline3};
-
-// With FLIP, each B-spline needs more cells per wavelength than linear MPM: FLIP's transfer
-// acts as the mass M_L M^-1 M_L (docs/theory.md, "Dispersion"), and a wider basis's consistent
-// mass M differs more from its lumped one.
-Claim flip_spline_claim(const std::vector<Scheme>& schemes) {
-  int more = 0, compared = 0;
-  std::string pairs;
-  for (std::size_t k = 0; k < kCourants.size(); ++k) {
-    const auto linear = cells_of(schemes, Method::mpm, Transfer::flip, k);
-    if (!linear) continue;
-    std::string part = "C = " + shortest(kCourants[k]) + ": mpm " + fixed(*linear, 1);
-    for (const Method m : kSplines) {
-      const auto spline = cells_of(schemes, m, Transfer::flip, k);
-      if (!spline) continue;
-      ++compared;
-      more += *spline > *linear;
-      part += ", " + std::string(to_string(m)) + " " + fixed(*spline, 1);
-    }
-    pairs += (pairs.empty() ? "" : "; ") + part;
-  }
-  Claim c = claim("flip-splines-need-more-cells",
-                  "With FLIP, the quadratic and cubic B-splines need more cells per wavelength "
-                  "than linear MPM for a phase error of {tolerance}, at every Courant number",
-                  "{more} of {compared} pairs of a B-spline and a Courant number ({pairs})");
-  c.value("tolerance", percent(kPhaseTolerance))
-      .every("more", more, "compared", compared)
-      .value("pairs", pairs.empty() ? "–" : pairs);
-  return c;
-}
-
-// With FMPM (the full mass matrix's series) each B-spline needs fewer cells per wavelength than
-// with FLIP: the transfer, not the basis, sets the phase error.
-Claim full_mass_claim(const std::vector<Scheme>& schemes) {
-  int fewer = 0, compared = 0;
-  std::string pairs;
-  for (std::size_t k = 0; k < kCourants.size(); ++k) {
-    std::string part;
-    for (const Method m : kSplines) {
-      const auto flip = cells_of(schemes, m, Transfer::flip, k);
-      const auto full = cells_of(schemes, m, Transfer::fmpm, k);
-      if (!flip || !full) continue;
-      ++compared;
-      fewer += *full < *flip;
-      part += std::string(part.empty() ? "" : ", ") + std::string(to_string(m)) + " " +
-              fixed(*full, 1) + " against " + fixed(*flip, 1);
-    }
-    if (!part.empty())
-      pairs += (pairs.empty() ? "" : "; ") + ("C = " + shortest(kCourants[k]) + ": " + part);
-  }
-  Claim c = claim("full-mass-splines-need-fewer-cells",
-                  "With FMPM({order}), the quadratic and cubic B-splines need fewer cells per "
-                  "wavelength than with FLIP for a phase error of {tolerance}, at every Courant "
-                  "number below the limit",
-                  "{fewer} of {compared} pairs of a B-spline and a Courant number ({pairs})");
-  c.count("order", kSeriesOrder)
-      .value("tolerance", percent(kPhaseTolerance))
-      .every("fewer", fewer, "compared", compared)
-      .value("pairs", pairs.empty() ? "–" : pairs);
-  return c;
-}
-
-// ---------------------------------------------------------------------------------------------
-// Report
-
-std::string dispersion_markdown(const ReportContext& c, const std::vector<Scheme>& schemes,
-                                const std::vector<ModeRun>& runs) {
+std::string dispersion_markdown(const ReportContext& c, const Findings& f) {
   const ojson& first = c.rows.front();
-  const auto meaningless = std::count_if(
-      runs.begin(), runs.end(), [](const ModeRun& m) { return outcome(*m.row) == "meaningless"; });
-  std::vector<std::string> drawn;
-  for (const auto& s : schemes)
-    if (s.drawn) drawn.push_back(s.label);
   std::ostringstream md;
   md << "![The phase speed of the physical branch against kh](" << c.spec.name << ".png)\n\n"
      << "A Fourier mode of the uniform layout with phase kh per cell (k the wavenumber, h the "
         "cell size: the wave spans a full turn of phase divided by kh cells) is multiplied each "
         "step by the eigenvalues of the Bloch symbol S(kh) (docs/theory.md, \"Dispersion\"). The "
         "*physical branch* is the acoustic eigenvalue lambda of positive phase, followed "
-        "continuously from kh near zero; its phase speed is c_num / c = arg(lambda) / (C kh) "
-        "and its damping |lambda| per step, at the Courant number C = c dt / h. Every scheme "
-        "here is USL with "
-     << first["ppc"].get<int>()
-     << " particles per cell at the uniform layout; XPIC and FMPM at order " << kSeriesOrder
+        "continuously from kh near zero; its phase speed is c_num / c = arg(lambda) / (C kh) and "
+        "its damping |lambda| per step, at the Courant number C = c dt / h. Every scheme here is "
+        "USL with "
+     << f.ppc << " particles per cell at the uniform layout; XPIC and FMPM at order "
+     << kSeriesOrder
      << ". E only rescales time (docs/theory.md, \"Dimensionless coordinates\"): the phase "
-        "speed, the damping per step and the period in units of 1/c depend on C, kh and the "
-        "scheme alone, so the runs take E = "
+        "speed, the damping per step and the period in units of 1/c depend on C, kh and the scheme "
+        "alone, so the runs take E = "
      << shortest(first["E"].get<double>())
      << ". A Courant number at or above a scheme's spectral limit is left out for it (its "
         "branch amplifies some wave there): "
-     << left_out_text(schemes) << ".\n\n";
+     << left_out_text(f) << ".\n\n";
 
   md << "## Cells per wavelength for a phase error of " << percent(kPhaseTolerance) << "\n\n"
      << "The smallest number of cells per wavelength above which the phase error |c_num - c| / c "
@@ -483,13 +504,13 @@ std::string dispersion_markdown(const ReportContext& c, const std::vector<Scheme
      << " (the scan of kh from the longest waves up, then a bisection): on a coarser grid some "
         "wave the grid carries runs more than "
      << percent(kPhaseTolerance) << " too fast or too slow. Multiply by the particles per cell ("
-     << first["ppc"].get<int>() << ") for particles per wavelength.\n\n"
-     << cells_table(schemes) << "\n"
+     << f.ppc << ") for particles per wavelength.\n\n"
+     << scheme_table(f.schemes, true) << "\n"
      << "**Amplitude kept per period** at the cells per wavelength of the table above: "
         "|lambda| to the power of the steps per period (a full turn of phase divided by "
         "arg(lambda)).\n\n"
-     << kept_table(schemes) << "\n"
-     << reading(schemes);
+     << scheme_table(f.schemes, false) << "\n"
+     << reading(f);
 
   md << "## Single-mode runs: the predicted and the measured period\n\n"
      << "Each case runs the mode scene: one free standing wave of the periodic bar whose "
@@ -498,26 +519,82 @@ std::string dispersion_markdown(const ReportContext& c, const std::vector<Scheme
      << value_text(first["A"].get<double>())
      << " (linear) to T = " << shortest(first["T"].get<double>())
      << " on as many cells as the wave has cells per wavelength. The measured period is twice "
-        "the mean spacing of the extrema (maxima and minima) of the mode's amplitude "
-        "a(t) = sum_p V_p (x_p - X_p) s_p / sum_p V_p s_p s_p, V_p the reference volume and s_p "
-        "the mode's shape sin(2 pi X) at X_p, each extremum the turning point of the quartic "
-        "through the five values around "
-        "it. Extrema, not zero crossings: the displacement sums the grid velocities over the "
-        "steps, so it oscillates about a small constant offset, and where the scheme damps the "
-        "oscillation shrinks under the offset and the zero crossings drift, while the turning "
-        "points stay half a period apart. The predicted period is the branch's, a full turn of "
-        "phase divided by arg(lambda) per step, at the run's kh and C; the amplitude kept per "
-        "period is |lambda| to the power of the predicted steps per period. The run column is "
+        "the mean spacing of the extrema (maxima and minima) of the mode's amplitude a(t) = sum_p "
+        "V_p (x_p - X_p) s_p / sum_p V_p s_p s_p, V_p the reference volume and s_p the mode's "
+        "shape sin(2 pi X) at X_p, each extremum the turning point of the quartic through the five "
+        "values around it. Extrema, not zero crossings: the displacement sums the grid velocities "
+        "over the steps, so it oscillates about a small constant offset, and where the scheme "
+        "damps the oscillation shrinks under the offset and the zero crossings drift, while the "
+        "turning points stay half a period apart. The predicted period is the branch's, a full "
+        "turn of phase divided by arg(lambda) per step, at the run's kh and C; the amplitude kept "
+        "per period is |lambda| to the power of the predicted steps per period. The run column is "
         "the harness's verdict against the exact wave: "
-     << meaningless << " of " << runs.size()
+     << f.meaningless << " of " << f.runs.size()
      << " runs are marked meaningless because their error over time reached A (the scheme's "
         "wave drifts out of phase with the exact one, whose period differs from its own); their "
         "periods are measured all the same.\n\n"
-     << runs_table(runs) << "\n"
-     << "The figure draws " << list_of(drawn)
+     << runs_table(f.runs) << "\n"
+     << "The figure draws " << list_of(f.drawn)
      << "; schemes whose curves coincide share one line, named by all of them. A curve ends "
-        "where the branch's eigenvalue turns real (it meets its mirror image on the real axis) "
-        "and the wave no longer propagates.\n\n";
+        "where the branch's eigenvalue turns real (it meets its mirror image on the real axis) and "
+        "the wave no longer propagates.\n\n";
+  return md.str();
+}
+
+// The study's JSON: the cells per wavelength, for the other studies to read.
+ojson dispersion_json(const std::vector<Scheme>& schemes, const std::vector<ModeRun>& runs) {
+  ojson j = {{"phase_tolerance", kPhaseTolerance},
+             {"courants", kCourants},
+             {"cells_per_wavelength", ojson::array()},
+             {"periods", ojson::array()}};
+  for (const auto& s : schemes) {
+    for (const auto& a : s.at) {
+      j["cells_per_wavelength"].push_back(
+          {{"method", s.label},
+           {"basis", std::string(to_string(s.params.method))},
+           {"transfer", std::string(to_string(s.params.transfer))},
+           {"update", std::string(to_string(s.params.update))},
+           {"ppc", s.params.ppc},
+           {"courant", a.courant},
+           {"spectral_limit", s.limit ? ojson(*s.limit) : ojson(nullptr)},
+           {"below_limit", a.below_limit},
+           {"cells_per_wavelength_1pct", a.cells ? ojson(*a.cells) : ojson(nullptr)}});
+    }
+  }
+  for (const auto& m : runs) {
+    j["periods"].push_back(
+        {{"method", m.label},
+         {"cells", m.cells},
+         {"courant", m.courant},
+         {"exact_period", m.exact},
+         {"predicted_period", m.predicted},
+         {"measured_period", m.measured_ok() ? ojson(m.measured.period) : ojson(nullptr)},
+         {"periods_measured", m.measured.periods},
+         {"relative_difference", m.measured_ok() ? ojson(m.relative()) : ojson(nullptr)}});
+  }
+  return j;
+}
+
+std::string dispersion_index(const Spec& spec, const std::vector<ojson>& rows) {
+  const Findings f = find(rows);
+  std::ostringstream md;
+  md << "![" << spec.title << "](" << spec.name
+     << ".png)\n\n**What it shows.** The phase speed and damping of every basis and transfer "
+        "against the wavenumber, from the Bloch symbol, at C = "
+     << listing(std::vector<double>(kCourants)) << "; the cells per wavelength each needs for "
+     << "a phase error of " << percent(kPhaseTolerance);
+  if (!f.schemes.empty()) {
+    std::vector<std::string> parts;
+    for (const auto& [m, t] : kHeadline) {
+      const Scheme& s = *find_scheme(f.schemes, m, t);
+      const auto& cells = s.at[kIndexCourant].cells;
+      parts.push_back(s.label + " " + (cells ? fixed(*cells, 1) : std::string("–")));
+    }
+    md << " (at C = " << shortest(kCourants[kIndexCourant]) << ": " << list_of(parts) << ")";
+  }
+  md << "; and " << f.cases
+     << " single-mode runs whose measured period is set against the predicted one: [" << spec.name
+     << ".md](" << spec.name << ".md).\n\n";
   return md.str();
 }
 
@@ -587,85 +664,24 @@ std::string dispersion_data(const std::vector<Scheme>& schemes, const std::strin
   return csv.str();
 }
 
-// The study's JSON: the cells per wavelength, for the other studies to read.
-ojson dispersion_json(const std::vector<Scheme>& schemes, const std::vector<ModeRun>& runs) {
-  ojson j;
-  j["phase_tolerance"] = kPhaseTolerance;
-  j["courants"] = kCourants;
-  ojson cells = ojson::array();
-  for (const auto& s : schemes) {
-    for (const auto& a : s.at) {
-      ojson e;
-      e["method"] = s.label;
-      e["basis"] = std::string(to_string(s.params.method));
-      e["transfer"] = std::string(to_string(s.params.transfer));
-      e["update"] = std::string(to_string(s.params.update));
-      e["ppc"] = s.params.ppc;
-      e["courant"] = a.courant;
-      e["spectral_limit"] = s.limit ? ojson(*s.limit) : ojson(nullptr);
-      e["below_limit"] = a.below_limit;
-      e["cells_per_wavelength_1pct"] = a.cells ? ojson(*a.cells) : ojson(nullptr);
-      cells.push_back(e);
-    }
-  }
-  j["cells_per_wavelength"] = cells;
-  ojson periods = ojson::array();
-  for (const auto& m : runs) {
-    ojson e;
-    e["method"] = m.label;
-    e["cells"] = m.cells;
-    e["courant"] = m.courant;
-    e["exact_period"] = m.exact;
-    e["predicted_period"] = m.predicted;
-    e["measured_period"] = m.measured_ok() ? ojson(m.measured.period) : ojson(nullptr);
-    e["periods_measured"] = m.measured.periods;
-    e["relative_difference"] = m.measured_ok() ? ojson(m.relative()) : ojson(nullptr);
-    periods.push_back(e);
-  }
-  j["periods"] = periods;
-  return j;
-}
-
 std::string dispersion_subtitle(const Spec&, const ojson& doc) {
-  const auto& rows = doc["cases"];
-  if (rows.empty()) return "";
-  return "USL, " + std::to_string(rows.front()["ppc"].get<int>()) +
+  const Findings f = find(std::vector<ojson>(doc["cases"].begin(), doc["cases"].end()));
+  if (f.cases == 0) return "";
+  return "USL, " + std::to_string(f.ppc) +
          " particles per cell, uniform layout (the Bloch symbol of the interior); every basis "
          "with FLIP, and " +
          std::string(to_string(kTransferBasis)) + " with every other transfer";
 }
 
-// The index's headline: the cells per wavelength of linear MPM and the cubic B-spline with FLIP
-// and of the cubic B-spline with FMPM at the index's Courant number.
-constexpr double kIndexCourant = 0.25;
-
-std::string dispersion_index(const Spec& spec, const std::vector<ojson>& rows) {
-  std::ostringstream md;
-  md << "![" << spec.title << "](" << spec.name
-     << ".png)\n\n**What it shows.** The phase speed and damping of every basis and transfer "
-        "against the wavenumber, from the Bloch symbol, at C = "
-     << listing(std::vector<double>(kCourants)) << "; the cells per wavelength each needs for "
-     << "a phase error of " << percent(kPhaseTolerance);
-  if (!rows.empty()) {
-    std::vector<std::string> parts;
-    for (const auto& [m, t] :
-         {std::pair{Method::mpm, Transfer::flip}, std::pair{Method::bspline3, Transfer::flip},
-          std::pair{Method::bspline3, Transfer::fmpm}}) {
-      RunParams p;
-      p.method = m;
-      p.transfer = t;
-      p.fmpm_order = kSeriesOrder;
-      p.ppc = rows.front()["ppc"].get<int>();
-      const auto cells = cells_per_wavelength(p, kIndexCourant);
-      parts.push_back(method_label(scheme_row(p)) + " " +
-                      (cells ? fixed(*cells, 1) : std::string("–")));
-    }
-    md << " (at C = " << shortest(kIndexCourant) << ": " << list_of(parts) << ")";
-  }
-  md << "; and " << rows.size()
-     << " single-mode runs whose measured period is set against the predicted one: [" << spec.name
-     << ".md](" << spec.name << ".md).\n\n";
-  return md.str();
+// The report: the findings once (with the single-mode runs), and from them the claims, the text,
+// the figure's data and the study's JSON.
+StudyReport dispersion_report(const ReportContext& c) {
+  const Findings f = find(c.rows, mode_runs(c.spec, c.rows));
+  return StudyReport{.markdown = dispersion_markdown(c, f),
+                     .data_csv = dispersion_data(f.schemes, c.csv_header),
+                     .json = dispersion_json(f.schemes, f.runs),
+                     .claims = {period_claim(f), explains_claim(f), consistency_claim(f),
+                                flip_spline_claim(f), full_mass_claim(f)}};
 }
 
 const StudyRegistration kDispersion{{
@@ -673,23 +689,10 @@ const StudyRegistration kDispersion{{
     .summary = "phase speed and damping of every scheme from the Bloch symbol, the cells per "
                "wavelength for a small phase error, and single-mode runs that measure the period",
     .figure = true,
-    .report =
-        [](const ReportContext& c) {
-          const std::vector<Scheme> schemes = bloch_schemes(c.rows.front()["ppc"].get<int>());
-          const std::vector<ModeRun> runs = mode_runs(c);
-          std::vector<Claim> claims = {period_claim(runs), explains_claim(runs),
-                                       consistency_claim(schemes), flip_spline_claim(schemes),
-                                       full_mass_claim(schemes)};
-          return StudyReport{.markdown = dispersion_markdown(c, schemes, runs),
-                             .data_csv = dispersion_data(schemes, c.csv_header),
-                             .json = dispersion_json(schemes, runs),
-                             .claims = std::move(claims)};
-        },
+    .report = dispersion_report,
     .index = dispersion_index,
     .figure_subtitle = dispersion_subtitle,
 }};
 
 }  // namespace
-}  // namespace studies::dispersion
-
-}  // namespace mpmstab
+}  // namespace mpmstab::studies::dispersion

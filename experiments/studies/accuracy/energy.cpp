@@ -6,7 +6,6 @@
 // cells), fixed-step runs that fail the early warnings.
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <map>
 #include <set>
 #include <sstream>
@@ -21,9 +20,7 @@
 #include "study.hpp"
 #include "sweep.hpp"
 
-namespace mpmstab {
-
-namespace studies::energy {
+namespace mpmstab::studies::energy {
 namespace {
 
 using ojson = nlohmann::ordered_json;
@@ -40,61 +37,51 @@ Cell cell_of(const ojson& r) {
   return {RunRow(r).method, Key(r["E"].get<double>(), "E"), Key(r["A"].get<double>(), "A"),
           Key(r["dt"].get<double>(), "dt")};
 }
-std::string cell_text(const Cell& c) {
-  return std::get<0>(c) + ", E = " + shortest(std::get<1>(c)) +
-         ", A = " + shortest(std::get<2>(c)) + ", dt = " + shortest(std::get<3>(c));
-}
 
 bool fixed_step(const ojson& r) {
   return r["policy"].get<std::string>() == "fixed";
 }
 
-// The cells run with more than one transfer or update order: the histories.
-std::set<Cell> history_cells(const std::vector<ojson>& rows) {
+// The cells run with more than one transfer or update order (the histories): the indices of
+// their fixed-step rows, in row order.
+std::map<Cell, std::vector<std::size_t>> histories(const std::vector<ojson>& rows) {
   std::map<Cell, std::set<std::string>> variants;
   for (const auto& r : rows)
     if (fixed_step(r)) variants[cell_of(r)].insert(method_label(r));
-  std::set<Cell> cells;
-  for (const auto& [c, v] : variants)
-    if (v.size() > 1) cells.insert(c);
+  std::map<Cell, std::vector<std::size_t>> cells;
+  for (std::size_t i = 0; i < rows.size(); ++i)
+    if (fixed_step(rows[i]) && variants[cell_of(rows[i])].size() > 1)
+      cells[cell_of(rows[i])].push_back(i);
   return cells;
 }
 
-std::string num(const ojson& r, const char* column, int digits = 2) {
-  return has_number(r, column) ? sci(r[column].get<double>(), digits) : std::string("–");
-}
-
-// The balance of each history cell, one row per transfer or update order.
-std::string history_table(const std::vector<ojson>& rows, const std::set<Cell>& cells) {
-  std::ostringstream md;
-  for (const Cell& c : cells) {
-    md << "**" << cell_text(c) << "** (c dt/h = ";
-    bool first = true;
-    for (const auto& r : rows) {
-      if (!fixed_step(r) || cell_of(r) != c) continue;
-      if (first) {
-        md << shortest(RunRow(r).courant.value())
-           << ", A/h = " << shortest(r["A_over_h"].get<double>())
-           << ", c T = " << shortest(*RunRow(r).wave_passes)
-           << ")\n\n| transfer and update | outcome | balance error, max | against the exact "
-              "K + U, max | drift per period | error over time |\n|---|---|---|---|---|---|\n";
-        first = false;
-      }
-      md << "| " << method_label(r) << " | " << verdict(r) << " | " << num(r, "energy_error_max")
-         << " | " << num(r, "energy_exact_error_max") << " | " << num(r, "energy_drift") << " | "
-         << opt_sci(RunRow(r).error_over_time) << " |\n";
-    }
-    md << "\n";
-  }
-  return md.str();
-}
-
-// The drift sweeps of one method: (variable, row), coarsest first.
+// The drift sweeps of one method: (variable, row), coarsest first, and the fitted orders of the
+// balance error, max, and of the drift per period.
 struct Sweep {
   std::string method;
   std::string variable;  // "C" or "cells"
-  std::vector<std::pair<double, const ojson*>> points;
+  struct Point {
+    double x = 0;
+    const ojson* row = nullptr;
+    bool in_regime = false;  // enters the orders
+  };
+  std::vector<Point> points;
+  std::optional<double> error_order, drift_order;
 };
+
+// The fitted order of |column| against the sweep's variable (C or h), stable runs only.
+// A point enters an order only in its regime (report_util.hpp): an accurate run, and against h
+// one in which no particle crosses a cell.
+std::optional<double> sweep_order(const Sweep& sw, const char* column) {
+  std::vector<std::pair<double, double>> xy;
+  for (const auto& p : sw.points) {
+    if (!p.in_regime || !has_number(*p.row, column)) continue;
+    const double v = std::abs((*p.row)[column].get<double>());
+    if (v > 0) xy.emplace_back(p.x, v);
+  }
+  return loglog_slope(xy);
+}
+
 std::vector<Sweep> drift_sweeps(const std::vector<ojson>& rows) {
   std::map<std::pair<std::string, std::string>, Sweep> s;
   for (const auto& r : rows) {
@@ -102,51 +89,187 @@ std::vector<Sweep> drift_sweeps(const std::vector<ojson>& rows) {
     const std::string m = method_label(r);
     const double C = r["cfl_factor"].get<double>();
     const int cells = r["cells"].get<int>();
-    if (cells == kDtSweepCells) {
-      auto& sw = s[{m, "C"}];
-      sw.method = m;
-      sw.variable = "C";
-      sw.points.emplace_back(C, &r);
-    }
-    if (C == kHSweepCourant) {
-      auto& sw = s[{m, "cells"}];
-      sw.method = m;
-      sw.variable = "cells";
-      sw.points.emplace_back(1.0 / cells, &r);
-    }
+    if (cells == kDtSweepCells) s[{m, "C"}].points.push_back({C, &r, accurate_run(r)});
+    if (C == kHSweepCourant)
+      s[{m, "cells"}].points.push_back({1.0 / cells, &r, accurate_run(r) && crossing_free(r)});
   }
   std::vector<Sweep> out;
   for (auto& [k, sw] : s) {
+    std::tie(sw.method, sw.variable) = k;
     std::sort(sw.points.begin(), sw.points.end(),
-              [](const auto& a, const auto& b) { return TotalLess()(b.first, a.first); });
+              [](const auto& a, const auto& b) { return TotalLess()(b.x, a.x); });
+    sw.error_order = sweep_order(sw, "energy_error_max");
+    sw.drift_order = sweep_order(sw, "energy_drift");
     out.push_back(sw);
   }
   return out;
 }
 
-// The fitted order of |column| against the sweep's variable (C or h), stable runs only.
-// A point enters an order only in its regime (report_util.hpp): an accurate run, and against h
-// one in which no particle crosses a cell.
-bool in_regime(const Sweep& sw, const ojson& r) {
-  return accurate_run(r) && (sw.variable == "C" || crossing_free(r));
-}
+// The early warnings of a fixed-step run.
+struct Warning {
+  const ojson* row = nullptr;
+  bool failed = false;         // the run failed; otherwise it reached T
+  long long failure_step = 0;  // the failing step, or the last step of a run that reached T
+  std::optional<long long> energy_step;  // first step with the balance beyond kEnergyWarning
+  std::optional<long long> eq108_step;   // first step whose dt exceeds eq. (108) of its state
+  std::optional<bool> above_spectral;    // c dt/h above the spectral limit (from step 0)
+};
 
-std::optional<double> sweep_order(const Sweep& sw, const char* column) {
-  std::vector<std::pair<double, double>> xy;
-  for (const auto& [x, r] : sw.points) {
-    if (!in_regime(sw, *r) || !has_number(*r, column)) continue;
-    const double v = std::abs((*r)[column].get<double>());
-    if (v > 0) xy.emplace_back(x, v);
+// How often a signal fired: before a failure (warned), and in a run that reached T.
+struct Lead {
+  int warned = 0, false_warnings = 0;
+  void add(bool failed, bool fired) { (failed ? warned : false_warnings) += fired; }
+};
+
+// What the study finds: the histories, the drift sweeps with their orders and the early warnings,
+// with every count its claims, its text, its index paragraph and its subtitle give.
+struct Findings {
+  std::map<Cell, std::vector<std::size_t>> histories;
+  std::vector<double> drift_A, drift_A_over_h;  // of the drift sweeps' runs
+  std::vector<Sweep> sweeps;
+  std::vector<Warning> failures;       // the warnings of the runs that failed
+  long long failed = 0, survived = 0;  // fixed-step runs that failed and that reached T
+  Lead energy, eq108, spectral;        // the balance, eq. (108) and the spectral limit
+  int pic_above = 0, pic_cells = 0;    // history cells with both, PIC's balance error above FLIP's
+  int converge = 0, fitted = 0;        // sweeps with a fitted order of the balance error, positive
+};
+
+// The findings from the rows and, in the report, the records (whose histories give the step at
+// which eq. (108) first warns; the index and the subtitle, which print no such step, pass none).
+Findings find(const std::vector<ojson>& rows, const SweepOutcome& records) {
+  Findings f;
+  f.histories = histories(rows);
+  // PIC's and FLIP's balance errors at each history cell.
+  for (const auto& [c, cell_rows] : f.histories) {
+    std::optional<double> flip, pic;
+    for (const std::size_t i : cell_rows) {
+      const ojson& r = rows[i];
+      if (!has_number(r, "energy_error_max")) continue;
+      if (method_label(r) == std::get<0>(c)) flip = r["energy_error_max"].get<double>();
+      if (method_label(r) == std::get<0>(c) + "/pic") pic = r["energy_error_max"].get<double>();
+    }
+    if (!flip || !pic) continue;
+    ++f.pic_cells;
+    f.pic_above += *pic > *flip;
   }
-  return loglog_slope(xy);
+  f.sweeps = drift_sweeps(rows);
+  for (const auto& sw : f.sweeps) {
+    f.fitted += sw.error_order.has_value();
+    f.converge += sw.error_order && *sw.error_order > 0;
+  }
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const ojson& r = rows[i];
+    if (r["policy"].get<std::string>() == "cfl") {
+      if (has_number(r, "A")) f.drift_A.push_back(r["A"].get<double>());
+      if (has_number(r, "A_over_h")) f.drift_A_over_h.push_back(r["A_over_h"].get<double>());
+    }
+    if (!fixed_step(r)) continue;
+    Warning x;
+    x.row = &r;
+    x.failed = outcome(r) == "unstable" && has_number(r, "failure_step");
+    x.failure_step = x.failed ? r["failure_step"].get<long long>() : r["steps"].get<long long>();
+    if (has_number(r, "energy_warning_step"))
+      x.energy_step = r["energy_warning_step"].get<long long>();
+    const double dt = r["dt"].get<double>();
+    const ojson* record = i < records.records.size() ? &records.records[i] : nullptr;
+    if (record && record->is_object() && record->contains("history")) {
+      for (const auto& h : (*record)["history"]) {
+        // The bound of the state after step n limits step n + 1.
+        if (h["dt_stable"].is_number() && dt > h["dt_stable"].get<double>()) {
+          x.eq108_step = h["step"].get<long long>() + 1;
+          break;
+        }
+      }
+    }
+    x.above_spectral = above_spectral_limit(r);
+    // Before the failure, in a run that failed; at all, in one that reached T.
+    const auto fired = [&](const std::optional<long long>& s) {
+      return x.failed ? s && *s < x.failure_step : s.has_value();
+    };
+    f.energy.add(x.failed, fired(x.energy_step));
+    f.eq108.add(x.failed, fired(x.eq108_step));
+    f.spectral.add(x.failed, x.above_spectral && *x.above_spectral);
+    (x.failed ? f.failed : f.survived) += 1;
+    if (x.failed) f.failures.push_back(x);
+  }
+  return f;
 }
 
-// The rows of the drift sweeps (the cfl runs).
-std::vector<ojson> drift_rows(const std::vector<ojson>& rows) {
-  std::vector<ojson> out;
-  for (const auto& r : rows)
-    if (r["policy"].get<std::string>() == "cfl") out.push_back(r);
-  return out;
+// A warning claim: it holds when the signal came before every failure (`hits`, the value named
+// `hits_name`) and in no run that reached T.
+Claim warning_claim(const char* id, const std::string& statement, const char* evidence,
+                    const char* hits_name, const Lead& lead, const Findings& f) {
+  Claim c = claim(id, statement, evidence);
+  c.count(hits_name, lead.warned)
+      .count("failed", f.failed)
+      .count("false_warnings", lead.false_warnings)
+      .count("survived", f.survived);
+  c.holds = f.failed > 0 && lead.warned == f.failed && lead.false_warnings == 0;
+  return c;
+}
+
+// An early warning before every failure, and the same signal in the runs that reach T (false
+// warnings).
+Claim lead_claim(const Findings& f, const Lead& lead, const char* id, const char* what) {
+  return warning_claim(
+      id,
+      std::string(what) + " warns before every failure of this study and in no run that reaches T",
+      "before {warned} of {failed} failures; in {false_warnings} of {survived} fixed-step runs "
+      "that reach T",
+      "warned", lead, f);
+}
+
+std::vector<Claim> energy_claims(const Findings& f) {
+  Claim pic = claim("pic-dissipates",
+                    "PIC's energy balance error exceeds FLIP's at every history cell (PIC "
+                    "dissipates what FLIP keeps)",
+                    "{holds} of {total} cells");
+  pic.every("holds", f.pic_above, "total", f.pic_cells);
+  Claim converges = claim("balance-converges",
+                          "The energy balance error falls as dt and h fall, for MPM and GIMP on "
+                          "the bar at the drift sweeps' amplitude, over the runs in the regime "
+                          "orders are fitted in",
+                          "{converge} of {total} sweeps have a positive fitted order");
+  converges.every("converge", f.converge, "total", f.fitted);
+  return {pic, converges,
+          lead_claim(f, f.energy, "energy-warns", "The energy balance leaving its band"),
+          lead_claim(f, f.eq108, "eq108-warns", "A dt above eq. (108)"),
+          warning_claim("spectral-warns",
+                        "A c dt/h above the spectral limit warns before every failure of this "
+                        "study and in no run that reaches T",
+                        "{above} of {failed} failed runs step above the limit; {false_warnings} of "
+                        "{survived} fixed-step runs that reach T",
+                        "above", f.spectral, f)};
+}
+
+std::string cell_text(const Cell& c) {
+  return std::get<0>(c) + ", E = " + shortest(std::get<1>(c)) +
+         ", A = " + shortest(std::get<2>(c)) + ", dt = " + shortest(std::get<3>(c));
+}
+
+std::string num(const ojson& r, const char* column, int digits = 2) {
+  return has_number(r, column) ? sci(r[column].get<double>(), digits) : std::string("–");
+}
+
+// The balance of each history cell, one row per transfer or update order.
+std::string history_table(const std::vector<ojson>& rows, const Findings& f) {
+  std::ostringstream md;
+  for (const auto& [c, cell_rows] : f.histories) {
+    const ojson& first = rows[cell_rows.front()];
+    md << "**" << cell_text(c) << "** (c dt/h = " << shortest(RunRow(first).courant.value())
+       << ", A/h = " << shortest(first["A_over_h"].get<double>())
+       << ", c T = " << shortest(*RunRow(first).wave_passes)
+       << ")\n\n| transfer and update | outcome | balance error, max | against the exact "
+          "K + U, max | drift per period | error over time |\n|---|---|---|---|---|---|\n";
+    for (const std::size_t i : cell_rows) {
+      const ojson& r = rows[i];
+      md << "| " << method_label(r) << " | " << verdict(r) << " | " << num(r, "energy_error_max")
+         << " | " << num(r, "energy_exact_error_max") << " | " << num(r, "energy_drift") << " | "
+         << opt_sci(RunRow(r).error_over_time) << " |\n";
+    }
+    md << "\n";
+  }
+  return md.str();
 }
 
 std::string energy_order_text(const std::optional<double>& o) {
@@ -159,54 +282,17 @@ std::string drift_table(const std::vector<Sweep>& sweeps) {
         "balance error | order of the drift |\n|---|---|---|---|---|\n";
   for (const auto& sw : sweeps) {
     std::vector<std::string> pts;
-    for (const auto& [x, r] : sw.points) {
+    for (const auto& p : sw.points) {
       const std::string label =
-          sw.variable == "C" ? "C = " + shortest(x) : shortest(1.0 / x) + " cells";
-      pts.push_back(label + ": " + num(*r, "energy_error_max") + " / " + num(*r, "energy_drift") +
-                    (in_regime(sw, *r) ? "" : " †"));
+          sw.variable == "C" ? "C = " + shortest(p.x) : shortest(1.0 / p.x) + " cells";
+      pts.push_back(label + ": " + num(*p.row, "energy_error_max") + " / " +
+                    num(*p.row, "energy_drift") + (p.in_regime ? "" : " †"));
     }
     md << "| " << sw.method << " | " << (sw.variable == "C" ? "c dt/h" : "h") << " | "
-       << list_of(pts) << " | " << energy_order_text(sweep_order(sw, "energy_error_max")) << " | "
-       << energy_order_text(sweep_order(sw, "energy_drift")) << " |\n";
+       << list_of(pts) << " | " << energy_order_text(sw.error_order) << " | "
+       << energy_order_text(sw.drift_order) << " |\n";
   }
   return md.str();
-}
-
-// The early warnings of a failed run.
-struct Warning {
-  const ojson* row = nullptr;
-  bool failed = false;         // the run failed; otherwise it reached T
-  long long failure_step = 0;  // the failing step, or the last step of a run that reached T
-  std::optional<long long> energy_step;  // first step with the balance beyond kEnergyWarning
-  std::optional<long long> eq108_step;   // first step whose dt exceeds eq. (108) of its state
-  std::optional<bool> above_spectral;    // c dt/h above the spectral limit (from step 0)
-};
-std::vector<Warning> warnings(const std::vector<ojson>& rows, const SweepOutcome& outcome_) {
-  std::vector<Warning> w;
-  for (std::size_t i = 0; i < rows.size(); ++i) {
-    const ojson& r = rows[i];
-    if (!fixed_step(r)) continue;
-    Warning x;
-    x.row = &r;
-    x.failed = outcome(r) == "unstable" && has_number(r, "failure_step");
-    x.failure_step = x.failed ? r["failure_step"].get<long long>() : r["steps"].get<long long>();
-    if (has_number(r, "energy_warning_step"))
-      x.energy_step = r["energy_warning_step"].get<long long>();
-    const double dt = r["dt"].get<double>();
-    const ojson* record = i < outcome_.records.size() ? &outcome_.records[i] : nullptr;
-    if (record && record->is_object() && record->contains("history")) {
-      for (const auto& h : (*record)["history"]) {
-        // The bound of the state after step n limits step n + 1.
-        if (h["dt_stable"].is_number() && dt > h["dt_stable"].get<double>()) {
-          x.eq108_step = h["step"].get<long long>() + 1;
-          break;
-        }
-      }
-    }
-    x.above_spectral = above_spectral_limit(r);
-    w.push_back(x);
-  }
-  return w;
 }
 
 std::string lead_text(const std::optional<long long>& step, long long failure) {
@@ -214,13 +300,12 @@ std::string lead_text(const std::optional<long long>& step, long long failure) {
   return "step " + std::to_string(*step) + " (" + std::to_string(failure - *step) + " before)";
 }
 
-std::string warning_table(const std::vector<Warning>& w) {
+std::string warning_table(const std::vector<Warning>& failures) {
   std::ostringstream md;
   md << "| case | c dt/h (spectral limit) | A/h | failure | energy balance beyond "
      << shortest(kEnergyWarning) << " | dt above eq. (108) | spectral limit |\n"
      << "|---|---|---|---|---|---|---|\n";
-  for (const auto& x : w) {
-    if (!x.failed) continue;
+  for (const auto& x : failures) {
     const ojson& r = *x.row;
     const RunRow run(r);
     md << "| " << cell_text(cell_of(r)) << " | " << fixed(*run.courant, 3) << " ("
@@ -236,135 +321,37 @@ std::string warning_table(const std::vector<Warning>& w) {
   return md.str();
 }
 
-// FLIP against PIC at each history cell.
-Claim pic_dissipates_claim(const std::vector<ojson>& rows, const std::set<Cell>& cells) {
-  int holds = 0, total = 0;
-  for (const Cell& c : cells) {
-    std::optional<double> flip, pic;
-    for (const auto& r : rows) {
-      if (!fixed_step(r) || cell_of(r) != c || !has_number(r, "energy_error_max")) continue;
-      if (method_label(r) == std::get<0>(c)) flip = r["energy_error_max"].get<double>();
-      if (method_label(r) == std::get<0>(c) + "/pic") pic = r["energy_error_max"].get<double>();
-    }
-    if (!flip || !pic) continue;
-    ++total;
-    holds += *pic > *flip;
-  }
-  Claim c = claim("pic-dissipates",
-                  "PIC's energy balance error exceeds FLIP's at every history cell (PIC "
-                  "dissipates what FLIP keeps)",
-                  "{holds} of {total} cells");
-  c.every("holds", holds, "total", total);
-  return c;
-}
-
-// The balance error converges with dt and h.
-Claim balance_converges_claim(const std::vector<Sweep>& sweeps) {
-  int converge = 0, total = 0;
-  for (const auto& sw : sweeps) {
-    const auto o = sweep_order(sw, "energy_error_max");
-    if (!o) continue;
-    ++total;
-    converge += *o > 0;
-  }
-  Claim c = claim("balance-converges",
-                  "The energy balance error falls as dt and h fall, for MPM and GIMP on the "
-                  "bar at the drift sweeps' amplitude, over the runs in the regime orders are "
-                  "fitted in",
-                  "{converge} of {total} sweeps have a positive fitted order");
-  c.every("converge", converge, "total", total);
-  return c;
-}
-
-// The failed runs and the fixed-step runs that reach T, which the warning claims count.
-struct WarningCounts {
-  long long failed = 0, survived = 0;
-};
-
-WarningCounts warning_counts(const std::vector<Warning>& w) {
-  WarningCounts n;
-  for (const auto& x : w)
-    (x.failed ? n.failed : n.survived) += 1;
-  return n;
-}
-
-// A warning claim: it holds when the signal came before every failure (`hits`, the value named
-// `hits_name`) and in no run that reached T.
-Claim warning_claim(const char* id, const std::string& statement, const char* evidence,
-                    const char* hits_name, int hits, int false_warnings, const WarningCounts& n) {
-  Claim c = claim(id, statement, evidence);
-  c.count(hits_name, hits)
-      .count("failed", n.failed)
-      .count("false_warnings", false_warnings)
-      .count("survived", n.survived);
-  c.holds = n.failed > 0 && hits == n.failed && false_warnings == 0;
-  return c;
-}
-
-// An early warning (the step at which `member` first fired) before every failure, and the same
-// signal in the runs that reach T (false warnings).
-Claim lead_claim(const std::vector<Warning>& w, std::optional<long long> Warning::*member,
-                 const char* id, const char* what) {
-  const WarningCounts n = warning_counts(w);
-  int warned = 0, false_warnings = 0;
-  for (const auto& x : w) {
-    const auto& s = x.*member;
-    if (x.failed) {
-      warned += s && *s < x.failure_step;
-    } else {
-      false_warnings += s.has_value();
-    }
-  }
-  return warning_claim(
-      id,
-      std::string(what) + " warns before every failure of this study and in no run that reaches T",
-      "before {warned} of {failed} failures; in {false_warnings} of {survived} fixed-step runs "
-      "that reach T",
-      "warned", warned, false_warnings, n);
-}
-
-Claim spectral_warns_claim(const std::vector<Warning>& w) {
-  const WarningCounts n = warning_counts(w);
-  int above = 0, false_warnings = 0;
-  for (const auto& x : w) {
-    const bool a = x.above_spectral && *x.above_spectral;
-    (x.failed ? above : false_warnings) += a;
-  }
-  return warning_claim("spectral-warns",
-                       "A c dt/h above the spectral limit warns before every failure of this "
-                       "study and in no run that reaches T",
-                       "{above} of {failed} failed runs step above the limit; {false_warnings} of "
-                       "{survived} fixed-step runs that reach T",
-                       "above", above, false_warnings, n);
-}
-
-std::vector<Claim> energy_claims(const std::vector<ojson>& rows, const std::set<Cell>& cells,
-                                 const std::vector<Sweep>& sweeps, const std::vector<Warning>& w) {
-  return {
-      pic_dissipates_claim(rows, cells), balance_converges_claim(sweeps),
-      lead_claim(w, &Warning::energy_step, "energy-warns", "The energy balance leaving its band"),
-      lead_claim(w, &Warning::eq108_step, "eq108-warns", "A dt above eq. (108)"),
-      spectral_warns_claim(w)};
+std::string energy_index(const Spec& spec, const std::vector<ojson>& rows) {
+  const Findings f = find(rows, SweepOutcome{});
+  std::ostringstream md;
+  md << "![" << spec.title << "](" << spec.name << ".png)\n\n**What it shows.** The energy balance "
+     << "of each transfer and update order over time, its drift against dt and h, and, for "
+     << f.failed << " failing runs, how early the balance (it leaves its band before "
+     << f.energy.warned << " of " << f.failed << " failures, and also in "
+     << f.energy.false_warnings << " of " << f.survived
+     << " runs that reach T), eq. (108) and the spectral limit warn: [" << spec.name << ".md]("
+     << spec.name << ".md).\n\n";
+  return md.str();
 }
 
 // <name>_data.csv: panel (history cell), series (transfer and update order), t and the balance.
-std::string energy_data(const std::vector<ojson>& rows, const SweepOutcome& out,
-                        const std::set<Cell>& cells, const std::string& header) {
+std::string energy_data(const std::vector<ojson>& rows, const SweepOutcome& out, const Findings& f,
+                        const std::string& header) {
   std::map<Cell, int> panel;
-  int k = 0;
-  for (const Cell& c : cells)
-    panel[c] = k++;
   std::map<std::string, int> series;
-  for (const auto& r : rows)
-    if (fixed_step(r) && cells.count(cell_of(r))) series.emplace(method_label(r), 0);
-  k = 0;
+  for (const auto& [c, cell_rows] : f.histories) {
+    panel.emplace(c, static_cast<int>(panel.size()));
+    for (const std::size_t i : cell_rows)
+      series.emplace(method_label(rows[i]), 0);
+  }
+  int k = 0;
   for (auto& [m, s] : series)
     s = k++;
   std::ostringstream csv;
   csv << header << "panel,series,cell,method,t,energy_balance\n";
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const ojson& r = rows[i];
-    if (!fixed_step(r) || !cells.count(cell_of(r))) continue;
+    if (!fixed_step(r) || !f.histories.count(cell_of(r))) continue;
     const ojson& record = out.records[i];
     if (!record.is_object() || !record.contains("history")) continue;
     const auto& h = record["history"];
@@ -381,11 +368,15 @@ std::string energy_data(const std::vector<ojson>& rows, const SweepOutcome& out,
   return csv.str();
 }
 
+// The subtitle: the fixed-step runs that reach T, which the warning claims count.
+std::string energy_subtitle(const Spec&, const ojson& doc) {
+  const std::vector<ojson> rows(doc["cases"].begin(), doc["cases"].end());
+  return std::to_string(find(rows, {}).survived) + " fixed-step runs that reach T";
+}
+
+// The report: the findings once, and from them the claims, the text and the figure's data.
 StudyReport energy_report(const ReportContext& ctx) {
-  const auto& rows = ctx.rows;
-  const auto cells = history_cells(rows);
-  const auto sweeps = drift_sweeps(rows);
-  const auto w = warnings(rows, ctx.outcome);
+  const Findings f = find(ctx.rows, ctx.outcome);
   std::ostringstream md;
   md << "**The quantities** (docs/theory.md, \"Energy\"): the kinetic energy K (half of sum_p "
         "m_p v_p squared), the strain energy U (sum_p of the reference volume times W(F_p)), the "
@@ -398,14 +389,14 @@ StudyReport energy_report(const ReportContext& ctx) {
      << "![" << ctx.spec.title << "](" << ctx.spec.name << ".png)\n\n"
      << "## Each transfer and update order\n\nThe figure draws the balance error e over time for "
         "each; the table gives the measures of the whole run.\n\n"
-     << history_table(rows, cells)
-     << "## The drift against dt and h\n\nThe bar at A = " << listing(drift_rows(rows), "A")
-     << " (its rows are in the CSV; A / h = " << listing(drift_rows(rows), "A_over_h")
+     << history_table(ctx.rows, f)
+     << "## The drift against dt and h\n\nThe bar at A = " << listing(f.drift_A)
+     << " (its rows are in the CSV; A / h = " << listing(f.drift_A_over_h)
      << "); each point: the balance error, max, and the drift per period. The orders are "
         "least-squares slopes on log-log axes against c dt/h (on "
      << kDtSweepCells << " cells) and against h (at C = " << shortest(kHSweepCourant)
      << "), of the absolute values; " << order_regime_text() << " (`†`: outside it).\n\n"
-     << drift_table(sweeps)
+     << drift_table(f.sweeps)
      << "\n## Warnings before a failure\n\nFor each run of the study that fails: the step at "
         "which its energy balance first leaves the band of "
      << shortest(kEnergyWarning)
@@ -414,39 +405,10 @@ StudyReport energy_report(const ReportContext& ctx) {
         "above it from the start or never). Each warning is given with how many steps it comes "
         "before the failure. The claims also count the same signals in the fixed-step runs of the "
         "study that reach T: a warning that also fires there does not tell a failure apart.\n\n"
-     << warning_table(w);
-  StudyReport report;
-  report.markdown = md.str();
-  report.data_csv = energy_data(rows, ctx.outcome, cells, ctx.csv_header);
-  report.claims = energy_claims(rows, cells, sweeps, w);
-  return report;
-}
-
-std::string energy_subtitle(const Spec&, const ojson& doc) {
-  int n = 0;
-  for (const auto& r : doc["cases"])
-    n += r["policy"].get<std::string>() == "fixed" && !RunRow(r).outcome.empty() &&
-         RunRow(r).survived();
-  return std::to_string(n) + " fixed-step runs that reach T";
-}
-
-std::string energy_index(const Spec& spec, const std::vector<ojson>& rows) {
-  const auto w = warnings(rows, SweepOutcome{});
-  int energy = 0, failed = 0, false_warnings = 0, survived = 0;
-  for (const auto& x : w) {
-    failed += x.failed;
-    survived += !x.failed;
-    energy += x.failed && x.energy_step && *x.energy_step < x.failure_step;
-    false_warnings += !x.failed && x.energy_step.has_value();
-  }
-  std::ostringstream md;
-  md << "![" << spec.title << "](" << spec.name << ".png)\n\n**What it shows.** The energy balance "
-     << "of each transfer and update order over time, its drift against dt and h, and, for "
-     << failed << " failing runs, how early the balance (it leaves its band before " << energy
-     << " of " << failed << " failures, and also in " << false_warnings << " of " << survived
-     << " runs that reach T), eq. (108) and the spectral limit warn: [" << spec.name << ".md]("
-     << spec.name << ".md).\n\n";
-  return md.str();
+     << warning_table(f.failures);
+  return StudyReport{.markdown = md.str(),
+                     .data_csv = energy_data(ctx.rows, ctx.outcome, f, ctx.csv_header),
+                     .claims = energy_claims(f)};
 }
 
 const StudyRegistration kEnergy{{
@@ -460,6 +422,4 @@ const StudyRegistration kEnergy{{
 }};
 
 }  // namespace
-}  // namespace studies::energy
-
-}  // namespace mpmstab
+}  // namespace mpmstab::studies::energy

@@ -8,9 +8,7 @@
 #include "study.hpp"
 #include "sweep.hpp"
 
-namespace mpmstab {
-
-namespace studies::figure {
+namespace mpmstab::studies::figure {
 namespace {
 
 using ojson = nlohmann::ordered_json;
@@ -25,8 +23,7 @@ std::string figure_markdown(const Spec& spec, const std::vector<ojson>& rows) {
      << "_data.csv](" << spec.name << "_data.csv).\n\n";
   md << "| method | E | A | dt | c dt/h | steps | verdict | max error at end | max error over "
         "time | dt_stable min | crossings | particle-steps "
-        "|\n|---|---|---|---|---|---|---|---|---|---|---|"
-        "---|\n";
+        "|\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   md << "| " << to_string(p.method) << " | " << shortest(p.E) << " | " << shortest(p.A) << " | "
      << param(p.dt) << " | " << sci(RunRow(r).courant.value()) << " | " << r["steps"].dump()
      << " of " << *step_count(p.T, p.dt) << " | " << verdict(r) << " | " << opt_sci(r["max_error"])
@@ -96,12 +93,9 @@ ojson figure_json(const ojson& record) {
 std::string figure_subtitle(const Spec&, const ojson& doc) {
   const auto& c = doc["cases"][0];
   std::string drawn;
-  if (doc.contains("study")) {
-    drawn = doc["study"]["drawn"].dump();
-    drawn += " ";
-    drawn += doc["study"]["drawn_what"].get<std::string>();
-    drawn += " drawn; ";
-  }
+  if (doc.contains("study"))
+    drawn = doc["study"]["drawn"].dump() + " " + doc["study"]["drawn_what"].get<std::string>() +
+            " drawn; ";
   std::string subtitle = RunRow(c).method + ", E = " + shortest(c["E"].get<double>()) +
                          ", A = " + shortest(c["A"].get<double>()) +
                          ", dt = " + shortest(c["dt"].get<double>()) + ", " + c["cells"].dump() +
@@ -136,6 +130,4 @@ const StudyRegistration kFigure{{
 }};
 
 }  // namespace
-}  // namespace studies::figure
-
-}  // namespace mpmstab
+}  // namespace mpmstab::studies::figure

@@ -16,15 +16,22 @@
 #include "shared/paper_table1.hpp"
 #include "study.hpp"
 
-namespace mpmstab {
-
-namespace studies::table1 {
+namespace mpmstab::studies::table1 {
 namespace {
 
 using ojson = nlohmann::ordered_json;
 namespace fs = std::filesystem;
 
-struct Table1Summary {
+// The ensembles of the cells near their edge (ensemble.hpp), in row order.
+std::vector<FollowUp> table1_follow_up(const FollowUpContext& c) {
+  return ensemble_follow_up(c, EnsembleNeed::near);
+}
+
+// What the study finds: the paper's cells beside ours, how our runs ended, the ensembles of the
+// cells near their edge, and every count the summary, the claims and the index paragraph give.
+struct Findings {
+  std::map<Table1Key, PaperCell> paper;   // the paper's cells, as transcribed
+  std::vector<EnsembleResult> ensembles;  // one per row
   int cells = 0, paper_stable = 0, paper_unstable = 0, paper_unknown = 0;
   // How our runs ended (run_row.hpp), over every cell and per method (in row order).
   VerdictTally ours;
@@ -34,58 +41,48 @@ struct Table1Summary {
   int verdicts_agree = 0, verdicts_compared = 0;
   // Of the cells whose verdicts are the same: both stable (ours accurate or inaccurate), both
   // unstable.
-  int both_stable_accurate = 0, both_stable_inaccurate = 0, both_unstable = 0;
+  int both_stable = 0, both_stable_accurate = 0, both_stable_inaccurate = 0, both_unstable = 0;
   // Compared cells whose ensemble disagrees with their verdict: counted by their verdict as run.
   int sensitive = 0, sensitive_agree = 0;
   int paper_stable_ours_not = 0, paper_stable_ours_not_above_limit = 0;
   int paper_stable_ours_meaningless = 0, paper_unstable_ours_meaningless = 0;
   int paper_stable_ours_too_short = 0, paper_unstable_ours_too_short = 0;
   int errors_within_factor = 0, errors_compared = 0, errors_compared_accurate = 0;
+  // Every cell run above its scheme's spectral limit, and those ending stable; every cell rerun
+  // as an ensemble, and those sensitive; the near cells rerun in ensembles.md, and not at all.
+  int above = 0, stable_above = 0, rerun = 0, rerun_sensitive = 0, in_studies = 0, costly = 0;
+  bool over_time = false;  // some case compares its error over time with the paper's
 };
 
-VerdictTally& method_tally(Table1Summary& s, const std::string& method) {
-  for (auto& [m, a] : s.by_method)
-    if (m == method) return a;
-  return s.by_method.emplace_back(method, VerdictTally{}).second;
-}
-
-// A compared cell counted by how it stands against the paper's verdict.
-void count_agreement(Table1Summary& s, const RunRow& r, CellAgreement agreement,
-                     bool stable_in_paper) {
-  using enum CellAgreement;
-  switch (agreement) {
-    case both_stable:
-      (r.accurate() ? s.both_stable_accurate : s.both_stable_inaccurate) += 1;
-      break;
-    case both_unstable:
-      ++s.both_unstable;
-      break;
-    case paper_stable_ours_unstable:
-      ++s.paper_stable_ours_not;
-      s.paper_stable_ours_not_above_limit += r.above_spectral_limit();
-      break;
-    case ours_meaningless:
-      (stable_in_paper ? s.paper_stable_ours_meaningless : s.paper_unstable_ours_meaningless) += 1;
-      break;
-    case ours_too_short:
-      (stable_in_paper ? s.paper_stable_ours_too_short : s.paper_unstable_ours_too_short) += 1;
-      break;
-    default:
-      break;
-  }
-}
-
-Table1Summary summarize_table1(const Spec& spec, const std::vector<ojson>& rows,
-                               const std::map<Table1Key, PaperCell>& paper,
-                               const std::vector<EnsembleResult>& ensembles) {
-  Table1Summary s;
+// The findings from the rows and the ensembles' runs (none for the index, which counts only the
+// cells).
+Findings find(const Spec& spec, const std::vector<ojson>& rows,
+              const std::vector<ojson>& follow_up) {
+  Findings s;
+  s.paper = read_paper_table1(spec);
+  s.ensembles = ensemble_results(rows, follow_up, EnsembleNeed::near);
+  const auto method_tally = [&](const std::string& method) -> VerdictTally& {  // in row order
+    for (auto& [m, a] : s.by_method)
+      if (m == method) return a;
+    return s.by_method.emplace_back(method, VerdictTally{}).second;
+  };
   for (std::size_t i = 0; i < rows.size(); ++i) {
+    s.over_time = s.over_time || spec.cases[i].error_at == ErrorAt::max_over_time;
     const RunRow r(rows[i]);
+    const EnsembleResult& e = s.ensembles[i];
     ++s.cells;
     s.ours.add(r);
-    if (r.outcome == "stable") method_tally(s, r.method).add(r);
-    const auto it = paper.find(paper_key(spec.cases[i]));
-    const PaperCell* pc = it == paper.end() ? nullptr : &it->second;
+    if (r.outcome == "stable") method_tally(r.method).add(r);
+    if (r.above_spectral_limit()) {
+      ++s.above;
+      s.stable_above += r.ending() == Ending::stable;
+    }
+    s.rerun += e.members > 0;
+    s.rerun_sensitive += e.sensitive();
+    s.costly += e.need == EnsembleNeed::too_costly;
+    s.in_studies += e.need == EnsembleNeed::in_studies;
+    const auto it = s.paper.find(paper_key(spec.cases[i]));
+    const PaperCell* pc = it == s.paper.end() ? nullptr : &it->second;
     const CellAgreement agreement = cell_agreement(r, pc);
     if (!compared(agreement)) {
       ++s.paper_unknown;
@@ -95,11 +92,33 @@ Table1Summary summarize_table1(const Spec& spec, const std::vector<ojson>& rows,
     (stable_in_paper ? s.paper_stable : s.paper_unstable) += 1;
     ++s.verdicts_compared;
     s.verdicts_agree += verdicts_agree(agreement);
-    if (i < ensembles.size() && ensembles[i].sensitive()) {
+    if (e.sensitive()) {
       ++s.sensitive;
       s.sensitive_agree += verdicts_agree(agreement);
     }
-    count_agreement(s, r, agreement, stable_in_paper);
+    // The cell, by how it stands against the paper's verdict.
+    using enum CellAgreement;
+    switch (agreement) {
+      case both_stable:
+        ++s.both_stable;
+        (r.accurate() ? s.both_stable_accurate : s.both_stable_inaccurate) += 1;
+        break;
+      case both_unstable:
+        ++s.both_unstable;
+        break;
+      case paper_stable_ours_unstable:
+        ++s.paper_stable_ours_not;
+        s.paper_stable_ours_not_above_limit += r.above_spectral_limit();
+        break;
+      case ours_meaningless:
+        ++(stable_in_paper ? s.paper_stable_ours_meaningless : s.paper_unstable_ours_meaningless);
+        break;
+      case ours_too_short:
+        (stable_in_paper ? s.paper_stable_ours_too_short : s.paper_unstable_ours_too_short) += 1;
+        break;
+      default:
+        break;
+    }
     const auto ours = compared_error(rows[i], spec.cases[i].error_at);
     if (agreement == CellAgreement::both_stable && ours) {
       ++s.errors_compared;
@@ -108,6 +127,40 @@ Table1Summary summarize_table1(const Spec& spec, const std::vector<ojson>& rows,
     }
   }
   return s;
+}
+
+std::vector<Claim> table1_claims(const Findings& f) {
+  Claim a = claim("none-stable-above-limit",
+                  "No cell run at a Courant number c dt/h above its scheme's spectral limit ends "
+                  "stable",
+                  "{stable_above} of {above} such cells end stable");
+  a.count("stable_above", f.stable_above).count("above", f.above).over(f.above);
+  a.holds = f.stable_above == 0;
+  Claim b = claim("verdicts-robust",
+                  "The verdict of every cell near its edge survives a perturbation of its layout "
+                  "by a few {unit} of the particle spacing",
+                  "{sensitive} of {tested} cells rerun as an ensemble of {members} are sensitive; "
+                  "{in_studies} cells near their edge are rerun in ensembles.md (make studies), "
+                  "{costly} were not rerun (cost)");
+  b.value("unit", sci(kEnsemblePerturbation, 1))
+      .count("sensitive", f.rerun_sensitive)
+      .count("tested", f.rerun)
+      .count("members", kEnsembleMembers)
+      .count("in_studies", f.in_studies)
+      .count("costly", f.costly);
+  b.over(f.rerun);
+  b.holds = f.rerun_sensitive == 0;
+  Claim c = claim("stable-cells-accurate",
+                  "Every cell that ends stable is accurate: its error over time stays below "
+                  "{fraction} A",
+                  "{accurate} of {stable} stable cells are accurate; {inaccurate} are inaccurate, "
+                  "with an error over time of {range} A");
+  c.value("fraction", shortest(kAccurateFraction))
+      .every("accurate", f.ours.accurate, "stable", f.ours.stable);
+  c.count("inaccurate", f.ours.inaccurate)
+      .value("range", f.ours.inaccurate_errors.empty() ? std::string("–")
+                                                       : span(f.ours.inaccurate_errors, 2));
+  return {a, b, c};
 }
 
 // "23 accurate and 17 inaccurate (error over time 0.1 to 0.89 A)".
@@ -122,17 +175,16 @@ std::string accuracy_split(const VerdictTally& a) {
 }
 
 // The stability verdicts against the paper's, over the cells comparison.md counts.
-std::string table1_agreement_text(const Table1Summary& s) {
+std::string table1_agreement_text(const Findings& s) {
   std::ostringstream md;
   md << "Of the " << s.verdicts_compared
      << " cells with a readable paper value (the cells comparison.md counts), the paper's "
         "stability verdict and ours are the same in "
-     << s.verdicts_agree << " of " << s.verdicts_compared << " ("
-     << s.both_stable_accurate + s.both_stable_inaccurate << " stable in both, ours "
-     << s.both_stable_accurate << " accurate and " << s.both_stable_inaccurate << " inaccurate; "
-     << s.both_unstable << " unstable in both); the paper lists as stable "
-     << s.paper_stable_ours_not << " cells that are unstable here, "
-     << s.paper_stable_ours_not_above_limit
+     << s.verdicts_agree << " of " << s.verdicts_compared << " (" << s.both_stable
+     << " stable in both, ours " << s.both_stable_accurate << " accurate and "
+     << s.both_stable_inaccurate << " inaccurate; " << s.both_unstable
+     << " unstable in both); the paper lists as stable " << s.paper_stable_ours_not
+     << " cells that are unstable here, " << s.paper_stable_ours_not_above_limit
      << " of them at a Courant number c dt / h above the scheme's spectral limit (the linear "
         "limit of the step at the uniform layout: spectral.md). Meaningless here, counted with "
         "neither verdict: "
@@ -154,7 +206,7 @@ std::string table1_agreement_text(const Table1Summary& s) {
   return md.str();
 }
 
-std::string table1_summary_text(const Table1Summary& s) {
+std::string table1_summary_text(const Findings& s) {
   std::ostringstream md;
   md << s.cells << " cells. Paper: " << s.paper_stable << " stable, " << s.paper_unstable
      << " unstable (`*`), " << s.paper_unknown
@@ -190,16 +242,13 @@ std::string table1_summary_text(const Table1Summary& s) {
 }
 
 // What the marks and columns mean, with the source of the paper values.
-std::string table1_legend(const Spec& spec, const fs::path& out) {
-  bool over_time = false;
-  for (const auto& c : spec.cases)
-    over_time = over_time || c.error_at == ErrorAt::max_over_time;
+std::string table1_legend(const Spec& spec, const fs::path& out, bool over_time) {
   std::ostringstream md;
   md << "Legend: `*` unstable (ours: the reason and the step where the run stopped); "
         "*stable* (ours): the run survived to T with an error over time below the amplitude A; "
-        "*meaningless*: the run survived but its error over time reached A; *error over time / "
-        "A*: the largest displacement error over the steps and particles of a run that reached "
-        "T, per A; *accuracy*: its class (docs/studies.md, \"Accuracy classes\"): accurate below "
+        "*meaningless*: the run survived but its error over time reached A; *error over time / A*: "
+        "the largest displacement error over the steps and particles of a run that reached T, per "
+        "A; *accuracy*: its class (docs/studies.md, \"Accuracy classes\"): accurate below "
      << shortest(kAccurateFraction)
      << " A, inaccurate from there up to A, meaningless from A, given beside each stable verdict; "
         "*inferred*: the paper does not print this cell's dt; *transcription*: the confidence of "
@@ -273,12 +322,10 @@ std::string ensemble_legend() {
 // The summary, the legend, then one table per (E, A) block in the order the spec lists them,
 // under a heading per E.
 std::string table1_markdown(const Spec& spec, const std::vector<ojson>& rows, const fs::path& out,
-                            const std::vector<EnsembleResult>& ensembles) {
-  const auto paper = read_paper_table1(spec);
+                            const Findings& f) {
   std::ostringstream md;
-  md << "## Results\n\n**Summary.** "
-     << table1_summary_text(summarize_table1(spec, rows, paper, ensembles)) << "\n\n"
-     << table1_legend(spec, out) << ensemble_legend();
+  md << "## Results\n\n**Summary.** " << table1_summary_text(f) << "\n\n"
+     << table1_legend(spec, out, f.over_time) << ensemble_legend();
   std::vector<std::pair<double, double>> blocks;
   for (const auto& c : spec.cases) {
     const std::pair<double, double> b{c.params.E, c.params.A};
@@ -305,82 +352,31 @@ std::string table1_markdown(const Spec& spec, const std::vector<ojson>& rows, co
     for (std::size_t i = 0; i < rows.size(); ++i) {
       const auto& p = spec.cases[i].params;
       if (p.E == E && p.A == A)
-        md << table1_row(spec.cases[i], rows[i], paper, ensemble_text(rows[i], ensembles[i]));
+        md << table1_row(spec.cases[i], rows[i], f.paper, ensemble_text(rows[i], f.ensembles[i]));
     }
     md << "\n";
   }
   return md.str();
 }
 
+// The report: the findings once (with the ensembles), and from them the summary, the table, the
+// claims and the ensembles in the study's JSON.
+StudyReport table1_report(const ReportContext& c) {
+  const Findings f = find(c.spec, c.rows, c.follow_up);
+  ojson json = {{"ensemble", ojson::array()}};
+  for (std::size_t i = 0; i < c.rows.size(); ++i)
+    json["ensemble"].push_back(ensemble_json(c.rows[i], f.ensembles[i]));
+  return StudyReport{.markdown = table1_markdown(c.spec, c.rows, c.out, f),
+                     .json = json,
+                     .claims = table1_claims(f)};
+}
+
 std::string table1_index(const Spec& spec, const std::vector<ojson>& rows) {
-  return "**What it shows.** The " + std::to_string(rows.size()) +
-         " cells of the paper's Table 1 beside ours, each with its verdict, its errors, its "
-         "error over time / A and accuracy class, the paper's values and whether its verdict "
+  return "**What it shows.** The " + std::to_string(find(spec, rows, {}).cells) +
+         " cells of the paper's Table 1 beside ours, each with its verdict, its errors, its error "
+         "over time / A and accuracy class, the paper's values and whether its verdict "
          "survives a perturbed layout. Full table, counts and conclusions: [" +
          spec.name + ".md](" + spec.name + ".md).\n\n";
-}
-
-// The ensembles of the cells near their edge (ensemble.hpp), in row order.
-std::vector<FollowUp> table1_follow_up(const FollowUpContext& c) {
-  return ensemble_follow_up(c, EnsembleNeed::near);
-}
-
-std::vector<EnsembleResult> table1_ensembles(const std::vector<ojson>& rows,
-                                             const std::vector<ojson>& follow_up) {
-  return ensemble_results(rows, follow_up, EnsembleNeed::near);
-}
-
-std::vector<Claim> table1_claims(const std::vector<ojson>& rows,
-                                 const std::vector<EnsembleResult>& ensembles) {
-  int above = 0, stable_above = 0, tested = 0, sensitive = 0, costly = 0, in_studies = 0;
-  VerdictTally stable;
-  for (std::size_t i = 0; i < rows.size(); ++i) {
-    const RunRow r(rows[i]);
-    stable.add(r);
-    if (r.above_spectral_limit()) {
-      ++above;
-      stable_above += r.ending() == Ending::stable;
-    }
-    tested += ensembles[i].members > 0;
-    sensitive += ensembles[i].sensitive();
-    costly += ensembles[i].need == EnsembleNeed::too_costly;
-    in_studies += ensembles[i].need == EnsembleNeed::in_studies;
-  }
-  std::vector<Claim> claims;
-  Claim a = claim("none-stable-above-limit",
-                  "No cell run at a Courant number c dt/h above its scheme's spectral limit ends "
-                  "stable",
-                  "{stable_above} of {above} such cells end stable");
-  a.count("stable_above", stable_above).count("above", above).over(above);
-  a.holds = stable_above == 0;
-  claims.push_back(a);
-  Claim b = claim("verdicts-robust",
-                  "The verdict of every cell near its edge survives a perturbation of its layout "
-                  "by a few {unit} of the particle spacing",
-                  "{sensitive} of {tested} cells rerun as an ensemble of {members} are sensitive; "
-                  "{in_studies} cells near their edge are rerun in ensembles.md (make studies), "
-                  "{costly} were not rerun (cost)");
-  b.value("unit", sci(kEnsemblePerturbation, 1))
-      .count("sensitive", sensitive)
-      .count("tested", tested)
-      .count("members", kEnsembleMembers)
-      .count("in_studies", in_studies)
-      .count("costly", costly);
-  b.over(tested);
-  b.holds = sensitive == 0;
-  claims.push_back(b);
-  Claim c = claim("stable-cells-accurate",
-                  "Every cell that ends stable is accurate: its error over time stays below "
-                  "{fraction} A",
-                  "{accurate} of {stable} stable cells are accurate; {inaccurate} are inaccurate, "
-                  "with an error over time of {range} A");
-  c.value("fraction", shortest(kAccurateFraction))
-      .every("accurate", stable.accurate, "stable", stable.stable);
-  c.count("inaccurate", stable.inaccurate)
-      .value("range", stable.inaccurate_errors.empty() ? std::string("–")
-                                                       : span(stable.inaccurate_errors, 2));
-  claims.push_back(c);
-  return claims;
 }
 
 const StudyRegistration kTable1{{
@@ -389,20 +385,9 @@ const StudyRegistration kTable1{{
     .needs_reference = true,
     .records = {.error_over_time = true, .dt_stable = true},
     .follow_up = table1_follow_up,
-    .report =
-        [](const ReportContext& c) {
-          const auto ensembles = table1_ensembles(c.rows, c.follow_up);
-          ojson json = {{"ensemble", ojson::array()}};
-          for (std::size_t i = 0; i < c.rows.size(); ++i)
-            json["ensemble"].push_back(ensemble_json(c.rows[i], ensembles[i]));
-          return StudyReport{.markdown = table1_markdown(c.spec, c.rows, c.out, ensembles),
-                             .json = json,
-                             .claims = table1_claims(c.rows, ensembles)};
-        },
+    .report = table1_report,
     .index = table1_index,
 }};
 
 }  // namespace
-}  // namespace studies::table1
-
-}  // namespace mpmstab
+}  // namespace mpmstab::studies::table1

@@ -13,9 +13,7 @@
 #include "report_util.hpp"
 #include "study.hpp"
 
-namespace mpmstab {
-
-namespace studies::table2 {
+namespace mpmstab::studies::table2 {
 namespace {
 
 using ojson = nlohmann::ordered_json;
@@ -46,39 +44,6 @@ std::string dt_sound_text(const CsvTable& paper, const std::vector<ojson>& rows)
   return md.str();
 }
 
-// Per method: the range of ours / paper over the stable cases, and how many cases failed.
-std::string table2_summary_text(const Spec& spec, const std::vector<ojson>& rows) {
-  const CsvTable paper = read_csv(spec.reference);
-  std::map<std::string, std::pair<double, double>> range;  // method -> min, max ratio
-  std::map<std::string, int> compared, unstable;
-  for (std::size_t i = 0; i < rows.size(); ++i) {
-    const auto& p = spec.cases[i].params;
-    const std::string m(to_string(p.method));
-    if (!survived(rows[i])) {
-      ++unstable[m];
-      continue;
-    }
-    for (const auto& row : paper.rows) {
-      const std::string col = "crossings_A" + shortest(p.A);
-      if (std::stod(row.at("E")) != p.E || !row.count(col)) continue;
-      const double r = rows[i]["crossings"].get<double>() / std::stod(row.at(col));
-      auto [it, fresh] = range.try_emplace(m, r, r);
-      it->second.first = std::min(it->second.first, r);
-      it->second.second = std::max(it->second.second, r);
-      ++compared[m];
-    }
-  }
-  std::ostringstream md;
-  for (const auto& [m, lr] : range) {
-    md << "Ours with " << m << " count " << ratio(lr.first) << " to " << ratio(lr.second)
-       << " times the paper's crossings in the " << compared[m] << " cases that reach T";
-    if (unstable[m]) md << " (" << unstable[m] << " more became unstable before T)";
-    md << ". ";
-  }
-  md << dt_sound_text(paper, rows);
-  return md.str();
-}
-
 // The cases of the spec and the paper's table they are compared with.
 struct Table2Data {
   const Spec& spec;
@@ -101,6 +66,14 @@ struct Table2Data {
     }
   }
 
+  // The paper's crossing count at (E, A), as printed; null where it gives none.
+  const std::string* paper_count(double E, double A) const {
+    const auto row = paper_by_E.find(Key(E, "E"));
+    if (row == paper_by_E.end()) return nullptr;
+    const auto it = row->second.find("crossings_A" + shortest(A));
+    return it == row->second.end() ? nullptr : &it->second;
+  }
+
   // Our row for (E, A, method); null when the spec has no such case.
   const ojson* find_row(double E, double A, const std::string& m) const {
     for (std::size_t i = 0; i < rows.size(); ++i) {
@@ -110,6 +83,31 @@ struct Table2Data {
     return nullptr;
   }
 };
+
+// Per method: the range of ours / paper over the cases that reach T, and how many cases failed.
+std::string table2_summary_text(const Table2Data& d) {
+  std::map<std::string, std::vector<double>> ratios;  // method -> ours / paper
+  std::map<std::string, int> unstable;
+  for (std::size_t i = 0; i < d.rows.size(); ++i) {
+    const auto& p = d.spec.cases[i].params;
+    const std::string m(to_string(p.method));
+    if (!survived(d.rows[i])) {
+      ++unstable[m];
+    } else if (const std::string* paper = d.paper_count(p.E, p.A)) {
+      ratios[m].push_back(d.rows[i]["crossings"].get<double>() / std::stod(*paper));
+    }
+  }
+  std::ostringstream md;
+  for (const auto& [m, r] : ratios) {
+    const auto [lo, hi] = std::minmax_element(r.begin(), r.end());
+    md << "Ours with " << m << " count " << ratio(*lo) << " to " << ratio(*hi)
+       << " times the paper's crossings in the " << r.size() << " cases that reach T";
+    if (unstable[m]) md << " (" << unstable[m] << " more became unstable before T)";
+    md << ". ";
+  }
+  md << dt_sound_text(d.paper, d.rows);
+  return md.str();
+}
 
 // Our crossing count; for a run that became unstable, "\* n (to step k)".
 std::string crossings(const ojson* r) {
@@ -122,18 +120,17 @@ std::string crossings(const ojson* r) {
 }
 
 // The summary and what the columns mean, with the source of the paper values.
-std::string table2_intro(const Spec& spec, const std::vector<ojson>& rows, const fs::path& out) {
+std::string table2_intro(const Table2Data& d, const fs::path& out) {
   std::ostringstream md;
-  md << "## Results\n\n**Summary.** " << table2_summary_text(spec, rows)
+  md << "## Results\n\n**Summary.** " << table2_summary_text(d)
      << "\n\nCrossings: the number of cell boundaries passed by all particles over the "
         "run ([theory](../docs/theory.md#measured-quantities)). `*`: the run became unstable; the "
-        "count is up to the failure. "
-        "The paper's counts are \"approximate\"; its dt and method for them are not stated. Ours "
-        "use dt = "
-     << param(spec.cases.front().params.dt)
+        "count is up to the failure. The paper's counts are \"approximate\"; its dt and method for "
+        "them are not stated. Ours use dt = "
+     << param(d.spec.cases.front().params.dt)
      << " for every E. dt_sound: the paper's column equals 1/c; the speed-of-sound limit of "
         "the grid is h/c. Paper values from ["
-     << link(out, spec.reference) << "](" << link(out, spec.reference) << ").\n\n";
+     << link(out, d.spec.reference) << "](" << link(out, d.spec.reference) << ").\n\n";
   return md.str();
 }
 
@@ -144,16 +141,9 @@ std::string crossings_row(const Table2Data& d, double E) {
   std::ostringstream md;
   md << "| " << shortest(E) << " |";
   for (double A : d.As) {
-    std::string paper_count = "–";
-    double paper_n = 0;
-    if (pit != d.paper_by_E.end()) {
-      const std::string col = "crossings_A" + shortest(A);
-      if (pit->second.count(col)) {
-        paper_count = pit->second.at(col);
-        paper_n = std::stod(paper_count);
-      }
-    }
-    md << " " << paper_count << " |";
+    const std::string* paper_count = d.paper_count(E, A);
+    const double paper_n = paper_count ? std::stod(*paper_count) : 0;
+    md << " " << (paper_count ? *paper_count : "–") << " |";
     for (const auto& m : d.methods) {
       const ojson* r = d.find_row(E, A, m);
       std::string ratio_text = "–";
@@ -233,15 +223,14 @@ struct RuleCounts {
 std::vector<RuleCounts> rule_counts(const Table2Data& d) {
   std::vector<RuleCounts> out;
   for (double E : d.Es) {
-    const auto pit = d.paper_by_E.find(Key(E, "E"));
     for (double A : d.As) {
-      const std::string col = "crossings_A" + shortest(A);
-      if (pit == d.paper_by_E.end() || !pit->second.count(col)) continue;
+      const std::string* paper = d.paper_count(E, A);
+      if (!paper) continue;
       const CaseSpec* c = nullptr;
       for (const auto& each : d.spec.cases)
         if (each.params.E == E && each.params.A == A) c = &each;
       if (!c) continue;
-      RuleCounts r{.E = E, .A = A, .paper = std::stod(pit->second.at(col))};
+      RuleCounts r{.E = E, .A = A, .paper = std::stod(*paper)};
       r.steps = step_count(c->params.T, c->params.dt).value_or(0);
       r.cells = c->params.cells;
       r.every_step = exact_crossings(c->params, r.steps);
@@ -272,9 +261,9 @@ std::string counting_rules_section(const Table2Data& d, std::vector<Claim>& clai
   const auto names = rules_of(counts.front());
   std::ostringstream md;
   md << "\n\n### Counting rules\n\nThe exact motion's own count, and what each rule a reader "
-        "could have used gives, computed from the exact displacement u(X_p, t) at the particles "
-        "of the runs' layout, sampled at the runs' dt (no solver enters). A rule reproduces the "
-        "paper where it lies within "
+        "could have used gives, computed from the exact displacement u(X_p, t) at the particles of "
+        "the runs' layout, sampled at the runs' dt (no solver enters). A rule reproduces the paper "
+        "where it lies within "
      << percent(kApproximate)
      << " of the paper's count (the paper calls its counts approximate). The last column: the "
         "grid on which the exact motion would cross as often as the paper says, since the count "
@@ -341,9 +330,8 @@ std::string counting_rules_section(const Table2Data& d, std::vector<Claim>& clai
 StudyReport table2_report(const Spec& spec, const std::vector<ojson>& rows, const fs::path& out) {
   const Table2Data d(spec, rows);
   StudyReport report;
-  report.markdown = table2_intro(spec, rows, out) + crossings_table(d) +
-                    transcription_notes(d.paper) + counting_rules_section(d, report.claims) +
-                    every_case_table(spec, rows);
+  report.markdown = table2_intro(d, out) + crossings_table(d) + transcription_notes(d.paper) +
+                    counting_rules_section(d, report.claims) + every_case_table(spec, rows);
   return report;
 }
 
@@ -362,6 +350,4 @@ const StudyRegistration kTable2{{
 }};
 
 }  // namespace
-}  // namespace studies::table2
-
-}  // namespace mpmstab
+}  // namespace mpmstab::studies::table2

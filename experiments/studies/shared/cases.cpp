@@ -8,9 +8,7 @@
 #include "run_row.hpp"
 #include "study.hpp"
 
-namespace mpmstab {
-
-namespace studies::cases {
+namespace mpmstab::studies::cases {
 namespace {
 
 using ojson = nlohmann::ordered_json;
@@ -22,6 +20,17 @@ const std::vector<std::string> kOptionalParams = {
     // The transfer and the order of the update, and the form of the eq. (108) bound.
     "transfer", "flip_fraction", "xpic_order", "fmpm_order", "update", "body_force_time",
     "dt_stable_sigma", "dt_stable_vnorm"};
+
+// What the cases find: their count and how they ended, which the heading and the index give.
+struct Findings {
+  std::size_t cases = 0;
+  VerdictTally verdicts;
+};
+
+// The findings: the cases counted and their verdicts tallied.
+Findings find(const std::vector<ojson>& rows) {
+  return {rows.size(), verdict_tally(rows)};
+}
 
 // The parameter columns: method, E, A, dt, then every optional parameter that differs between
 // the cases.
@@ -103,12 +112,19 @@ std::string case_row(const ojson& r, const std::vector<std::string>& params,
   return md.str();
 }
 
-// "12 stable (9 accurate, 3 inaccurate)".
-std::string stable_text(const VerdictTally& n) {
+// "12 cases: 9 stable (7 accurate, 2 inaccurate), 1 meaningless, 2 unstable": the tally, with
+// `meaningless` after the count of meaningless runs.
+std::string outcomes_text(const Findings& f, const char* meaningless) {
+  const VerdictTally& n = f.verdicts;
   std::ostringstream s;
-  s << n.stable << " stable (" << n.accurate << " accurate, " << n.inaccurate << " inaccurate";
+  s << f.cases << " cases: " << n.stable << " stable (" << n.accurate << " accurate, "
+    << n.inaccurate << " inaccurate";
   if (n.unmeasured > 0) s << ", " << n.unmeasured << " with no error over time recorded";
-  s << ")";
+  s << "), " << n.meaningless << " meaningless" << meaningless << ", " << n.unstable << " unstable";
+  if (n.too_short > 0) s << ", " << n.too_short << " too short for a verdict";
+  if (n.under_a_wave_pass > 0)
+    s << ", " << n.under_a_wave_pass << " under a wave pass (reached T below A in fewer than "
+      << shortest(kMinWavePasses) << " wave pass c T / L: not counted as stable)";
   return s.str();
 }
 
@@ -116,16 +132,10 @@ std::string stable_text(const VerdictTally& n) {
 std::string cases_markdown(const Spec& spec, const std::vector<ojson>& rows) {
   const auto params = varying_params(rows);
   const auto& observe = spec.cases.front().params.observe;
-  const VerdictTally n = verdict_tally(rows);
   std::ostringstream md;
   md << "## Results\n\n"
-     << rows.size() << " cases: " << stable_text(n) << ", " << n.meaningless
-     << " meaningless (survived, but the error over time reached A), " << n.unstable << " unstable";
-  if (n.too_short > 0) md << ", " << n.too_short << " too short for a verdict";
-  if (n.under_a_wave_pass > 0)
-    md << ", " << n.under_a_wave_pass << " under a wave pass (reached T below A in fewer than "
-       << shortest(kMinWavePasses) << " wave pass c T / L: not counted as stable)";
-  md << ". Common to all: " << common_params(rows, params) << ".\n\n"
+     << outcomes_text(find(rows), " (survived, but the error over time reached A)")
+     << ". Common to all: " << common_params(rows, params) << ".\n\n"
      << cases_header(params, observe);
   for (const auto& r : rows)
     md << case_row(r, params, observe);
@@ -133,16 +143,8 @@ std::string cases_markdown(const Spec& spec, const std::vector<ojson>& rows) {
 }
 
 std::string cases_index(const Spec& spec, const std::vector<ojson>& rows) {
-  const VerdictTally n = verdict_tally(rows);
-  std::ostringstream md;
-  md << "**What it shows.** " << rows.size() << " cases: " << stable_text(n) << ", "
-     << n.meaningless << " meaningless, " << n.unstable << " unstable";
-  if (n.too_short > 0) md << ", " << n.too_short << " too short for a verdict";
-  if (n.under_a_wave_pass > 0)
-    md << ", " << n.under_a_wave_pass << " under a wave pass (reached T below A in fewer than "
-       << shortest(kMinWavePasses) << " wave pass c T / L: not counted as stable)";
-  md << ". Full table: [" << spec.name << ".md](" << spec.name << ".md).\n\n";
-  return md.str();
+  return "**What it shows.** " + outcomes_text(find(rows), "") + ". Full table: [" + spec.name +
+         ".md](" + spec.name + ".md).\n\n";
 }
 
 const StudyRegistration kCases{{
@@ -156,6 +158,4 @@ const StudyRegistration kCases{{
 }};
 
 }  // namespace
-}  // namespace studies::cases
-
-}  // namespace mpmstab
+}  // namespace mpmstab::studies::cases
