@@ -174,12 +174,15 @@ tier:
 	echo "make $(if $(filter paper,$(TIER)),reproduce,studies): $$(echo "$$(date +%s.%N) - $$start" | bc | xargs printf '%.1f') s wall; reports in $(RESULTS)/README.md"
 
 # Both tiers re-rendered into results/ (from the cache when it is warm: nothing is recomputed),
-# then every committed report, figure and generated document compared byte for byte with the
+# every figure redrawn (its subtitle is code: a tier redraws a figure only when its data, its
+# results or its script changed), then every committed report, figure and generated document
+# compared byte for byte with the
 # commit: a change of the code that moves no result passes; one that moves a byte fails, naming
 # the files. Run it after every step of a refactoring.
 reports-unchanged: build
 	@$(MAKE) --no-print-directory tier TIER=paper RESULTS=results
 	@$(MAKE) --no-print-directory tier TIER=studies RESULTS=results
+	@for spec in $$($(MPMSTAB) list --figures); do $(MPMSTAB) plot $$spec --out results || exit 1; done
 	$(MPMSTAB) documents --check $(DOCUMENTS) --results results
 	@changed=$$(git status --porcelain --untracked-files=all -- results $(DOCUMENTS)); \
 	if [ -n "$$changed" ]; then \
@@ -193,15 +196,15 @@ timings: build
 	specs=$$($(MPMSTAB) list) && \
 	  $(MPMSTAB) performance $$specs --bench $(RESULTS)/benchmark_step.json --out $(RESULTS)
 
-# The figures of the experiments whose study draws one, each redrawn only when its data or its
-# script changed. FIGURES (names) comes from mpmstab list --figures.
+# The figures of the experiments whose study draws one, each redrawn only when its data, its
+# results (the subtitle reads them) or its script changed. FIGURES (names) comes from mpmstab list --figures.
 figures: build
 	@$(MAKE) --no-print-directory plots \
 	  FIGURES="$$($(MPMSTAB) list --figures $(if $(TIER),--tier $(TIER)) | sed 's|.*/||; s|\.json$$||')"
 
 plots: $(FIGURES:%=$(RESULTS)/%.png)
 
-$(RESULTS)/%.png $(RESULTS)/%.svg &: $(RESULTS)/%_data.csv experiments/%.gp experiments/history.gp
+$(RESULTS)/%.png $(RESULTS)/%.svg &: $(RESULTS)/%_data.csv $(RESULTS)/%.json experiments/%.gp experiments/history.gp
 	$(MPMSTAB) plot experiments/$*.json --out $(RESULTS)
 
 SOURCES = $(shell git ls-files '*.cpp' '*.hpp' 2>/dev/null)
