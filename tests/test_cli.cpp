@@ -1,4 +1,5 @@
 // The command line: every invalid input exits 2 naming the option; a valid run prints JSON.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -13,6 +14,7 @@
 
 #include "args.hpp"
 #include "result_json.hpp"
+#include "run_summary.hpp"
 #include "support.hpp"
 
 namespace {
@@ -81,12 +83,28 @@ TEST(Cli, TheSummarysLabelsAreTheRecordsKeysAndNoErrorOverTimeIsCalledTheErrorAt
     EXPECT_TRUE(known) << "'" << label << "' in: " << line;
   }
   EXPECT_GT(labels, 8);
-  for (const char* command : {"edge --method gimp --E 4 --A 0.015 --T 0.2", "edge --help",
-                              "advise --help", "run --help"}) {
+  for (const char* command : {"edge --help", "advise --help", "run --help"}) {
     const auto o = run_mpmstab(command);
-    EXPECT_EQ(o.output.find("error at T there"), std::string::npos) << command;
     EXPECT_EQ(o.output.find("error at T stays"), std::string::npos) << command;
   }
+  // The edge's "error over time there" is the error over time of a run at dt_edge, and its
+  // "error at T there" that run's error at T.
+  const std::string edge_case = "--method gimp --E 64 --A 0.015 --T 1";
+  const auto text = run_mpmstab("edge " + edge_case);
+  const auto json = run_mpmstab("edge " + edge_case + " --json");
+  ASSERT_EQ(json.status, 0) << json.output;
+  const double dt_edge = nlohmann::json::parse(json.output)["dt_edge"].get<double>();
+  const auto at_edge =
+      run_mpmstab("run " + edge_case + " --dt " + fmt::format("{:.17g}", dt_edge) + " --json");
+  ASSERT_EQ(at_edge.status, 0) << at_edge.output;
+  const auto r = nlohmann::json::parse(at_edge.output);
+  EXPECT_NE(
+      text.output.find("error over time there " + fmt(r["max_error_over_time"].get<double>())),
+      std::string::npos)
+      << text.output;
+  EXPECT_NE(text.output.find("error at T there      " + fmt(r["max_error"].get<double>())),
+            std::string::npos)
+      << text.output;
 }
 
 // README's example of a run is a doc test: the command of its "## Running one case" block is

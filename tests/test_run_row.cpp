@@ -71,6 +71,25 @@ TEST(RunRow, ARunUnderAWavePassIsNotStable) {
   EXPECT_EQ(verdict_word(stable_row(0.5, 0.05)), under_a_wave_pass_word(0.5));
 }
 
+// Where a set of runs lies: its amplitudes, run lengths, grids and scenes, each value once; one
+// amplitude reads as that one, so a claim measured there cannot pass for one across amplitudes.
+TEST(Coverage, SaysWhichAmplitudesLengthsGridsAndScenesTheRunsSpan) {
+  std::vector<ojson> rows;
+  for (double cT : {2.0, 8.0, 31.6, 2.0}) {
+    ojson r = stable_row(cT, 0.01);
+    r["cells"] = 100;
+    rows.push_back(r);
+  }
+  EXPECT_EQ(coverage_of(rows).text(), "A = 0.01; c T = 2, 8 and 31.6; 100 cells; bar");
+  rows[1]["A"] = 0.05;
+  rows[2]["cells"] = 200;
+  rows[3]["scene"] = "steffen";
+  rows.push_back(stable_row(100, 0.01));
+  EXPECT_EQ(coverage_of(rows).text(),
+            "A = 0.01 and 0.05; c T = 2 to 100 (4 values); 100 and 200 cells; bar and steffen");
+  EXPECT_EQ(Coverage{}.text(), "");
+}
+
 TEST(VerdictTally, CountsEachEndingOnce) {
   ojson meaningless = stable_row(2, 1.5);
   meaningless["outcome"] = "meaningless";

@@ -102,8 +102,11 @@ void print_summary(std::ostream& out, const RunParams& params, const EdgeResult&
   if (e.at_edge) {
     if (e.at_edge->outcome)
       out << "  outcome at dt_edge    " << to_string(*e.at_edge->outcome) << "\n";
+    if (e.at_edge->max_error_over_time)
+      out << "  error over time there " << fmt(*e.at_edge->max_error_over_time) << " ("
+          << fmt(*e.at_edge->max_error_over_time / params.A) << " A)\n";
     if (e.at_edge->max_error)
-      out << "  error over time there " << fmt(*e.at_edge->max_error) << "\n";
+      out << "  error at T there      " << fmt(*e.at_edge->max_error) << "\n";
     if (e.at_edge->dt_stable_min) {
       out << "  eq. (108) at dt_edge  " << fmt(*e.at_edge->dt_stable_min)
           << "\n  dt_edge / eq. (108)   " << fmt(*e.dt_edge / *e.at_edge->dt_stable_min) << "\n";

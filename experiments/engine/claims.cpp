@@ -1,5 +1,7 @@
 #include "claims.hpp"
 
+#include "run_row.hpp"
+
 #include <fmt/args.h>
 #include <fmt/format.h>
 
@@ -17,6 +19,16 @@ using ojson = nlohmann::ordered_json;
 
 Claim& Claim::value(std::string name, std::string text) {
   values.emplace_back(std::move(name), std::move(text));
+  return *this;
+}
+
+Claim& Claim::on(const Coverage& runs) {
+  measured_on = runs.text();
+  return *this;
+}
+
+Claim& Claim::on(std::string what) {
+  measured_on = std::move(what);
   return *this;
 }
 
@@ -122,11 +134,12 @@ std::string claims_markdown(const std::vector<Claim>& claims) {
      << holding << " of " << claims.size()
      << " hold. Their truth values are in the CSV `_claims` file beside this report and `make "
         "check` compares them with the blessed ones.\n\n"
-     << "| claim | what decides it | holds |\n|---|---|---|\n";
+     << "| claim | what decides it | measured on | holds |\n|---|---|---|---|\n";
   for (const auto& c : claims) {
     md << "| " << render_statement(c) << " | "
        << (c.evidence.empty() ? std::string("–") : render(c, c.evidence)) << " | "
-       << status_markdown(c) << " |\n";
+       << (c.measured_on.empty() ? std::string("–") : c.measured_on) << " | " << status_markdown(c)
+       << " |\n";
   }
   md << "\n";
   return md.str();
@@ -144,6 +157,7 @@ ojson claims_json(const std::vector<Claim>& claims) {
                  {"values", values},
                  {"statement", render_statement(c)},
                  {"evidence", c.evidence.empty() ? std::string() : render(c, c.evidence)},
+                 {"measured_on", c.measured_on},
                  {"holds", c.status() == Claim::Status::holds},
                  {"status", status_csv(c)}});
   }

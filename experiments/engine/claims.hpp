@@ -15,6 +15,8 @@
 
 namespace mpmstab {
 
+struct Coverage;  // run_row.hpp
+
 struct Claim {
   std::string id;  // stable within the report: the key make check compares by
   // The sentence, with {name} for each value. It holds no number of its own: thresholds,
@@ -25,6 +27,15 @@ struct Claim {
   // What decides it, in words with placeholders like the statement ("" when the statement
   // says it): "{failing} of {above} runs above the limit fail".
   std::string evidence;
+
+  // Where the runs that decide it lie (Coverage::text of those rows: amplitudes, run lengths,
+  // grids, scenes), printed beside it: a conclusion measured at one amplitude, one length or
+  // one grid says so. A claim that no run decides names what does (a transcription, a formula,
+  // an independent code's records). Every committed claim says one or the other
+  // (tests/test_claims.cpp).
+  std::string measured_on;
+  Claim& on(const Coverage& runs);
+  Claim& on(std::string what);
 
   // For a claim about every one of a set of cases (cells, runs, settings): how many there are.
   // -1 (the default) for a claim of another form. A claim over no case is vacuous, and one that

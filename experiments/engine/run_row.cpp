@@ -1,5 +1,7 @@
 #include "run_row.hpp"
 
+#include <algorithm>
+
 #include "base/result.hpp"
 #include "csv.hpp"
 #include "report_util.hpp"
@@ -67,6 +69,8 @@ RunRow::RunRow(const ojson& row)
       error_over_time(number_at(row, "max_error_over_time")),
       A(number_at(row, "A")),
       wave_passes(number_at(row, "cT")),
+      cells(number_at(row, "cells")),
+      scene(text(row, "scene")),
       courant(number_at(row, "courant")),
       courant_spectral(number_at(row, "courant_spectral")),
       method(text(row, "method")),
@@ -74,6 +78,58 @@ RunRow::RunRow(const ojson& row)
       scheme_label(label_of_scheme(row, method_label)) {
   if (const std::string reason = text(row, "failure_reason"); !reason.empty())
     failure_reason = reason;
+}
+
+namespace {
+
+void insert_coverage_value(std::vector<double>& values, const std::optional<double>& v) {
+  if (!v) return;
+  const double x = std::stod(significant(*v, 3));
+  const auto at = std::lower_bound(values.begin(), values.end(), x);
+  if (at == values.end() || *at != x) values.insert(at, x);
+}
+
+// One value as itself, two or three listed, more as their range and count.
+std::string coverage_values(const std::vector<double>& v) {
+  if (v.size() <= 3) return mpmstab::listing(v);
+  return span(v) + " (" + std::to_string(v.size()) + " values)";
+}
+
+}  // namespace
+
+void Coverage::add(const RunRow& r) {
+  insert_coverage_value(A, r.A);
+  insert_coverage_value(wave_passes, r.wave_passes);
+  insert_coverage_value(cells, r.cells);
+  const std::string scene = r.scene.empty() ? "bar" : r.scene;
+  if (std::find(scenes.begin(), scenes.end(), scene) == scenes.end()) scenes.push_back(scene);
+}
+
+std::string Coverage::text() const {
+  if (empty()) return "";
+  std::vector<std::string> parts;
+  if (!A.empty()) parts.push_back("A = " + coverage_values(A));
+  if (!wave_passes.empty()) parts.push_back("c T = " + coverage_values(wave_passes));
+  if (!cells.empty()) parts.push_back(coverage_values(cells) + " cells");
+  if (!scenes.empty()) parts.push_back(list_of(scenes));
+  std::string s;
+  for (std::size_t k = 0; k < parts.size(); ++k)
+    s += (k ? "; " : "") + parts[k];
+  return s;
+}
+
+Coverage coverage_of(const std::vector<ojson>& rows) {
+  Coverage c;
+  for (const auto& r : rows)
+    c.add(r);
+  return c;
+}
+
+Coverage coverage_of(const std::vector<const ojson*>& rows) {
+  Coverage c;
+  for (const auto* r : rows)
+    c.add(*r);
+  return c;
 }
 
 bool RunRow::under_a_wave_pass() const {

@@ -46,6 +46,8 @@ struct RunRow {
   std::optional<double> error_over_time;  // max_error_over_time, where recorded
   std::optional<double> A;
   std::optional<double> wave_passes;  // c T / L
+  std::optional<double> cells;
+  std::string scene;  // "" where the row names none (the paper's bar)
   std::optional<double> courant, courant_spectral;
   std::string method;        // the basis ("" where the row names none)
   std::string method_label;  // "gimp/xpic(2)", "bspline3/usf"
@@ -90,6 +92,23 @@ struct VerdictTally {
   int survived() const { return meaningless + too_short + under_a_wave_pass + stable; }
 };
 VerdictTally verdict_tally(const std::vector<nlohmann::ordered_json>& rows);
+
+// Where a set of runs lies in what a conclusion drawn from them could be read across: the
+// amplitudes A, the run lengths in wave passes c T, the grids (cells) and the scenes. A claim
+// states it beside itself (Claim::on), so that a conclusion measured at one amplitude, one run
+// length or one grid says so, computed from the rows that decide it.
+struct Coverage {
+  std::vector<double> A, wave_passes, cells;  // distinct values, increasing
+  std::vector<std::string> scenes;            // distinct, in the order met ("bar" for none)
+  void add(const RunRow& r);
+  void add(const nlohmann::ordered_json& row) { add(RunRow(row)); }
+  bool empty() const { return A.empty() && wave_passes.empty() && cells.empty(); }
+  // "A = 0.015; c T = 2 to 31.6; 100 cells; bar": one value as itself, two or three listed,
+  // more as their range; "" when empty.
+  std::string text() const;
+};
+Coverage coverage_of(const std::vector<nlohmann::ordered_json>& rows);
+Coverage coverage_of(const std::vector<const nlohmann::ordered_json*>& rows);
 
 // The outcome of a flat record: "unstable", "meaningless", "stable", "too_short" ("" where not
 // measured).
