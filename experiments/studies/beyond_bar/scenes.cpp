@@ -325,8 +325,7 @@ std::string per_scene_section(const std::vector<ojson>& rows,
     const std::string method = run.method;
     const auto dense = run.courant_spectral;
     const auto it = interior.find(method);
-    std::string q = "–";
-    if (dense && it != interior.end()) q = fixed(*dense / it->second, 3);
+    const std::string q = dense && it != interior.end() ? fixed(*dense / it->second, 3) : "–";
     md << "| " << text(r, "scene") << " | " << method << " | " << verdict(r) << " | "
        << opt_sci(RunRow(r).error_over_A()) << " | " << opt_sci(relative(r, "error_l2_time"))
        << " | " << work(r) << " | " << edge_text(edges, {text(r, "scene"), method, "none"}) << " | "
@@ -442,47 +441,37 @@ std::string peer_sections(const ReportContext& ctx, const std::map<std::string, 
 // The claims on the peers, the verdicts and the limits.
 std::vector<Claim> survey_claims(const Findings& n) {
   std::vector<Claim> claims;
-  {
-    Claim c = claim("rigid-like-uintah-advect-block",
-                    "On Uintah's advectBlock at its own setting, every basis compared survives "
-                    "and keeps the block rigid to round-off in both codes (position error over "
-                    "the run below {tolerance} cells): {agree} of {compared}.");
-    c.value("tolerance", sci(kRoundOffCells, 1))
-        .every("agree", n.rigid_agree, "compared", n.rigid_compared);
-    claims.push_back(c);
-  }
-  {
-    Claim c = claim("agrees-with-uintah-impulsive",
-                    "On Uintah's impulsiveBar at its own setting, every basis compared has the "
-                    "peer's outcome and its final error within {tolerance}: {agree} of "
-                    "{compared}.");
-    c.value("tolerance", percent(kPeerTolerance))
-        .every("agree", n.peer_agree, "compared", n.peer_compared);
-    claims.push_back(c);
-  }
-  {
-    Claim c = claim("every-run-has-a-verdict",
-                    "Every run ends with a verdict (unstable, meaningless or stable): {with} of "
-                    "{runs}.");
-    c.every("with", n.verdicts, "runs", static_cast<long long>(n.runs));
-    claims.push_back(c);
-  }
-  {
-    Claim c = claim("free-surface-lowers-only-spline-limits",
-                    "The free surface lowers the spectral limit (the dense limit of the body more "
-                    "than {tolerance} below the interior one) for each B-spline pair (scene and "
-                    "B-spline basis run here) and for no other method: {spline_lowered} of "
-                    "{splines} B-spline pairs, "
-                    "{other_lowered} of {others} others (dense over interior from {lo} to "
-                    "{hi}).");
-    c.value("tolerance", percent(kLimitDrop));
-    c.count("spline_lowered", n.spline_lowered).count("splines", n.splines);
-    c.count("other_lowered", n.other_lowered).count("others", n.others);
-    c.number("lo", n.limits_compared ? n.ratio_lo : 0, 3).number("hi", n.ratio_hi, 3);
-    c.holds =
-        n.splines > 0 && n.others > 0 && n.spline_lowered == n.splines && n.other_lowered == 0;
-    claims.push_back(c);
-  }
+  Claim rigid = claim("rigid-like-uintah-advect-block",
+                      "On Uintah's advectBlock at its own setting, every basis compared survives "
+                      "and keeps the block rigid to round-off in both codes (position error over "
+                      "the run below {tolerance} cells): {agree} of {compared}.");
+  rigid.value("tolerance", sci(kRoundOffCells, 1))
+      .every("agree", n.rigid_agree, "compared", n.rigid_compared);
+  claims.push_back(rigid);
+  Claim peer =
+      claim("agrees-with-uintah-impulsive",
+            "On Uintah's impulsiveBar at its own setting, every basis compared has the "
+            "peer's outcome and its final error within {tolerance}: {agree} of {compared}.");
+  peer.value("tolerance", percent(kPeerTolerance))
+      .every("agree", n.peer_agree, "compared", n.peer_compared);
+  claims.push_back(peer);
+  Claim verdicts = claim("every-run-has-a-verdict",
+                         "Every run ends with a verdict (unstable, meaningless or stable): {with} "
+                         "of {runs}.");
+  verdicts.every("with", n.verdicts, "runs", static_cast<long long>(n.runs));
+  claims.push_back(verdicts);
+  Claim c = claim("free-surface-lowers-only-spline-limits",
+                  "The free surface lowers the spectral limit (the dense limit of the body more "
+                  "than {tolerance} below the interior one) for each B-spline pair (scene and "
+                  "B-spline basis run here) and for no other method: {spline_lowered} of "
+                  "{splines} B-spline pairs, {other_lowered} of {others} others (dense over "
+                  "interior from {lo} to {hi}).");
+  c.value("tolerance", percent(kLimitDrop));
+  c.count("spline_lowered", n.spline_lowered).count("splines", n.splines);
+  c.count("other_lowered", n.other_lowered).count("others", n.others);
+  c.number("lo", n.limits_compared ? n.ratio_lo : 0, 3).number("hi", n.ratio_hi, 3);
+  c.holds = n.splines > 0 && n.others > 0 && n.spline_lowered == n.splines && n.other_lowered == 0;
+  claims.push_back(c);
   return claims;
 }
 
@@ -536,11 +525,9 @@ StudyReport scenes_report(const ReportContext& ctx) {
   std::vector<Claim> claims = survey_claims(f);
   for (auto& c : treatment_and_trade_claims(f))
     claims.push_back(std::move(c));
-  StudyReport report;
-  report.markdown = md.str();
-  report.claims = std::move(claims);
-  report.data_csv = scenes_data(rows, ctx.outcome, f.ref, ctx.csv_header);
-  return report;
+  return StudyReport{.markdown = md.str(),
+                     .data_csv = scenes_data(rows, ctx.outcome, f.ref, ctx.csv_header),
+                     .claims = std::move(claims)};
 }
 
 std::string scenes_subtitle(const Spec& spec, const ojson& doc) {
@@ -555,10 +542,9 @@ std::string scenes_index(const Spec& spec, const std::vector<ojson>& rows) {
   md << "![" << spec.title << "](" << spec.name << ".png)\n\n**What it shows.** " << f.scenes.size()
      << " scenes (" << list_of(f.scenes)
      << ") against their exact solutions, per method: the error over time, the free end's "
-        "motion beside the exact one, and the cost at "
-        "three Courant numbers, the dense spectral limit of each body with its free surfaces "
-        "against the interior limit, the survival edge, the small-mass treatments and an "
-        "extremes battery, in "
+        "motion beside the exact one, and the cost at three Courant numbers, the dense spectral "
+        "limit of each body with its free surfaces against the interior limit, the survival "
+        "edge, the small-mass treatments and an extremes battery, in "
      << f.runs << " runs. [" << spec.name << ".md](" << spec.name << ".md)\n";
   return md.str();
 }

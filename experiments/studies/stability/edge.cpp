@@ -40,13 +40,8 @@ std::string passes(const ojson& r) {
 
 // "mpm, A = 0.05, E = 4 (c T = 2)".
 std::string case_name(const ojson& r) {
-  std::string s = RunRow(r).method;
-  s += ", A = ";
-  s += shortest(r["A"].get<double>());
-  s += ", E = ";
-  s += shortest(r["E"].get<double>());
-  s += " (c T = " + passes(r) + ")";
-  return s;
+  return RunRow(r).method + ", A = " + shortest(r["A"].get<double>()) +
+         ", E = " + shortest(r["E"].get<double>()) + " (c T = " + passes(r) + ")";
 }
 
 struct Flip {
@@ -95,8 +90,7 @@ std::string monotone_text(const ojson& r) {
 // Why a row has no survival edge: no dt of the scan survives, or the smallest dt tried fails
 // (a larger one may survive: no dt below it does).
 std::string no_edge_text(const ojson& r) {
-  if (has_number(r, "dt_fail")) return "none: the smallest dt tried fails";
-  return "none in the scan";
+  return has_number(r, "dt_fail") ? "none: the smallest dt tried fails" : "none in the scan";
 }
 
 std::string min_max(std::vector<double> v) {
@@ -233,11 +227,8 @@ int panel_of(const ojson& r) {
 
 int series_of(const ojson& r) {
   const RunRow rr(r);
-  for (std::size_t i = 0; i < kSeries.size(); ++i) {
-    if (rr.method == kSeries[i].first && rr.A == kSeries[i].second) {
-      return int(i) + 1;
-    }
-  }
+  for (std::size_t i = 0; i < kSeries.size(); ++i)
+    if (rr.method == kSeries[i].first && rr.A == kSeries[i].second) return int(i) + 1;
   return 0;
 }
 
@@ -268,11 +259,10 @@ FigureCount figure_count(const std::vector<ojson>& rows) {
       continue;
     }
     c.drawn.push_back(&r);
-    if (has_number(r, "dt_accurate")) {
+    if (has_number(r, "dt_accurate"))
       ++c.with_accuracy;
-    } else {
+    else
       c.no_accuracy.push_back(&r);
-    }
   }
   std::stable_sort(c.drawn.begin(), c.drawn.end(), [](const ojson* a, const ojson* b) {
     return std::tuple(panel_of(*a), series_of(*a), Key(*RunRow(*a).wave_passes, "c T")) <
@@ -500,25 +490,21 @@ std::string method_summary(const std::string& name, const Edges& m) {
   }
   md << name << ": the survival edge is " << min_max(m.edge) << " h/c, and the run there is "
      << "meaningless in " << m.meaningless << " of " << m.with_edge << " cases";
-  if (!m.accurate.empty()) {
+  if (!m.accurate.empty())
     md << "; the accuracy edge is " << min_max(m.accurate) << " h/c, below the survival edge "
        << "in " << m.below << " of " << m.accurate.size() << " cases (down to " << ratio(m.below_lo)
        << " times it)";
-  }
-  if (m.no_accuracy) {
+  if (m.no_accuracy)
     md << "; " << m.no_accuracy << " ha" << (m.no_accuracy == 1 ? "s" : "ve")
        << " no accuracy edge (the run at the smallest surviving dt is meaningless)";
-  }
-  if (m.withheld) {
+  if (m.withheld)
     md << "; " << m.withheld << " ha" << (m.withheld == 1 ? "s" : "ve")
        << " none that is accurate (the search's reference run or its run at the edge has an "
           "error over time of at least "
        << shortest(kAccurateFraction) << " A)";
-  }
-  if (m.bound_n) {
+  if (m.bound_n)
     md << "; eq. (108) at the survival edge is " << ratio(m.bound_lo) << " to " << ratio(m.bound_hi)
        << " times below it";
-  }
   md << ". ";
   return md.str();
 }
@@ -553,52 +539,41 @@ std::string search_rule(const EdgeOptions& o) {
   search[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(search[0])));
   return "**The search.** " + search +
          ". The *survival edge* dt_edge is the largest dt up to which every dt tried survives to "
-         "T; the run there is measured (its outcome, its error at T, the minimum of eq. (108) over "
-         "it). The *accuracy "
-         "edge* dt_accurate: the reference is the smallest dt tried that survives, and its error "
-         "over time (max over steps and particles) the yardstick; walking up from it, "
-         "dt_accurate is the last dt tried before the first that fails or has an error over time "
-         "more than " +
+         "T; the run there is measured (its outcome, its error at T, the minimum of eq. (108) "
+         "over it). The *accuracy edge* dt_accurate: the reference is the smallest dt tried that "
+         "survives, and its error over time (max over steps and particles) the yardstick; walking "
+         "up from it, dt_accurate is the last dt tried before the first that fails or has an "
+         "error over time more than " +
          shortest(o.accuracy_factor) +
-         " times the reference's, bisected against that one to "
-         "the same tolerance and scanned below in the same way, and its run must be stable (its "
-         "error over time stays below A), else "
-         "the search "
-         "goes on below it. An accuracy edge is one only where its reference run and its own run "
-         "are accurate (their error over time below " +
+         " times the reference's, bisected against that one to the same tolerance and scanned "
+         "below in the same way, and its run must be stable (its error over time stays below A), "
+         "else the search goes on below it. An accuracy edge is one only where its reference run "
+         "and its own run are accurate (their error over time below " +
          shortest(kAccurateFraction) +
          " A, docs/studies.md, \"Accuracy classes\"); elsewhere the table says why there is none. "
-         "Every error over time is also given per A. The "
-         "probes observe only their error over time; the outcome is "
-         "measured for the reference and at both edges. Survival is *not monotone* when a dt above "
-         "the lowest failure survives again: the edge stays below that failure, and the column "
-         "gives the highest dt that survives above it and, in increasing dt, each dt from which "
-         "the run fails or survives again (between it and the dt tried just below it). Every "
-         "edge holds for the amplitude A and the run length c T of its row. The *spectral "
-         "limit* is the Courant number at which the scheme, linearised about rest with the "
-         "particles "
-         "of the initial layout frozen, starts to amplify (docs/theory.md, \"The spectral "
-         "limit\"): "
-         "the edge of a tiny amplitude; where the edges at the paper's amplitudes lie against it "
-         "is "
-         "counted in the conclusions. The *ensemble* column: the case rerun on layouts perturbed "
-         "far "
-         "below the discretisation error (docs/studies.md, \"Ensembles\") at dt_edge and at the dt "
-         "just above it that failed; *robust* when every member survives at dt_edge and fails "
-         "above, "
-         "*sensitive* otherwise. The survival edge's *bracket* is the dt just above it that "
-         "failed: the edge lies between the two. The *edge / limit* columns give each edge's "
-         "margin "
-         "to the spectral limit (below one: below the limit) and how long it holds: every edge, "
-         "below the limit too, is rerun at its dt for " +
+         "Every error over time is also given per A. The probes observe only their error over "
+         "time; the outcome is measured for the reference and at both edges. Survival is *not "
+         "monotone* when a dt above the lowest failure survives again: the edge stays below that "
+         "failure, and the column gives the highest dt that survives above it and, in increasing "
+         "dt, each dt from which the run fails or survives again (between it and the dt tried "
+         "just below it). Every edge holds for the amplitude A and the run length c T of its row. "
+         "The *spectral limit* is the Courant number at which the scheme, linearised about rest "
+         "with the particles of the initial layout frozen, starts to amplify (docs/theory.md, "
+         "\"The spectral limit\"): the edge of a tiny amplitude; where the edges at the paper's "
+         "amplitudes lie against it is counted in the conclusions. The *ensemble* column: the "
+         "case rerun on layouts perturbed far below the discretisation error (docs/studies.md, "
+         "\"Ensembles\") at dt_edge and at the dt just above it that failed; *robust* when every "
+         "member survives at dt_edge and fails above, *sensitive* otherwise. The survival edge's "
+         "*bracket* is the dt just above it that failed: the edge lies between the two. The *edge "
+         "/ limit* columns give each edge's margin to the spectral limit (below one: below the "
+         "limit) and how long it holds: every edge, below the limit too, is rerun at its dt for " +
          shortest(kLengthFactors[0]) + " and " + shortest(kLengthFactors[1]) +
          " times its wave passes (at most " + shortest(kLongPasses) +
          "), and printed as holding to the longest it passed (a survival edge by surviving, an "
          "accuracy edge by staying stable and accurate) or as **transient** with the length at "
-         "which it failed. No edge is claimed beyond the length it was rerun for. E only "
-         "rescales time: a case at E run to T is the scheme run for c T = sqrt(E) T "
-         "wave passes (column c T), so the edges against E at a fixed T are edges against run "
-         "length.";
+         "which it failed. No edge is claimed beyond the length it was rerun for. E only rescales "
+         "time: a case at E run to T is the scheme run for c T = sqrt(E) T wave passes (column c "
+         "T), so the edges against E at a fixed T are edges against run length.";
 }
 
 // An error over time with its size per A: "3.1e-4 (0.021 A)".
@@ -609,6 +584,17 @@ std::string per_A(const ojson& r, const char* error, const char* over_A) {
                                 : std::string());
 }
 
+// The accuracy edge's two cells: the edge over h/c (with the dt first when `with_dt`) and its
+// margin to the spectral limit, or why there is none: "1.2e-3 (0.61) | 0.95 x limit; ... |".
+std::string accuracy_cells(const EdgeFollowUps& f, const ojson& r, bool with_dt) {
+  if (!has_number(r, "dt_accurate"))
+    return r.value("accuracy_edge_withheld", false) ? "none (not accurate) | – |"
+                                                    : "none (reference meaningless) | – |";
+  const std::string over = in_cfl(r["dt_accurate_over_cfl"].get<double>());
+  return (with_dt ? sci(r["dt_accurate"].get<double>(), 3) + " (" + over + ")" : over) + " | " +
+         margin_text(f, r, "dt_accurate") + " |";
+}
+
 // Per case: where it lies (A / h, c T), both edges against h/c with the bracket the bisection
 // left and their margin to the spectral limit, the run at the survival edge, the errors at T,
 // eq. (108), the flips and what the search cost.
@@ -617,11 +603,8 @@ std::string edge_table(const std::vector<const ojson*>& rows, const EdgeFollowUp
   md << "| method | A | A/h | E | c T | h/c | spectral limit (h/c) | survival edge dt_edge (h/c; "
         "bracket) | survival edge / limit; length | run at dt_edge | error at T there | accuracy "
         "edge dt_accurate (h/c) | accuracy edge / limit; length | error over time: reference → at "
-        "dt_accurate "
-        "(periodic "
-        "twin) | "
-        "eq. (108) at dt_edge (dt_edge / it) | survival in dt | ensemble | probes | "
-        "particle-steps |\n"
+        "dt_accurate (periodic twin) | eq. (108) at dt_edge (dt_edge / it) | survival in dt | "
+        "ensemble | probes | particle-steps |\n"
         "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const ojson* p : rows) {
     const ojson& r = *p;
@@ -640,16 +623,8 @@ std::string edge_table(const std::vector<const ojson*>& rows, const EdgeFollowUp
         md << "; fails at " << in_cfl(r["dt_fail"].get<double>() / r["dt_cfl"].get<double>());
       md << ") | " << margin_text(f, r, "dt_edge") << " | " << edge_run_verdict(r) << " | "
          << opt_sci(r["max_error"]) << " | ";
-      if (has_number(r, "dt_accurate")) {
-        md << sci(r["dt_accurate"].get<double>(), 3) << " ("
-           << in_cfl(r["dt_accurate_over_cfl"].get<double>()) << ") | "
-           << margin_text(f, r, "dt_accurate") << " | ";
-      } else if (r.value("accuracy_edge_withheld", false)) {
-        md << "none (not accurate) | – | ";
-      } else {
-        md << "none (reference meaningless) | – | ";
-      }
-      md << per_A(r, "max_error_reference", "error_reference_over_A") << " → "
+      md << accuracy_cells(f, r, true) << " "
+         << per_A(r, "max_error_reference", "error_reference_over_A") << " → "
          << per_A(r, "max_error_at_accurate", "error_at_accurate_over_A");
       if (const auto it = f.twins.find(&r); it != f.twins.end())
         md << " (periodic "
@@ -696,11 +671,10 @@ std::string not_drawn_text(const FigureCount& c) {
      << " of them with their accuracy edge.";
   for (const auto& [reason, rows] : c.not_drawn)
     md << " Not drawn, " << reason << " (" << rows.size() << "): " << listed(rows) << ".";
-  if (!c.no_accuracy.empty()) {
+  if (!c.no_accuracy.empty())
     md << " Drawn without an accuracy edge, their reference run being meaningless or the edge "
           "not accurate ("
        << c.no_accuracy.size() << "): " << listed(c.no_accuracy) << ".";
-  }
   return md.str();
 }
 
@@ -724,14 +698,7 @@ std::string amplitude_table(const SceneFindings& s, const EdgeFollowUps& f) {
       }
       md << in_cfl((*r)["dt_edge_over_cfl"].get<double>()) << monotone_words(*r) << " | "
          << margin_text(f, *r, "dt_edge") << " | " << edge_run_verdict(*r) << " | ";
-      if (has_number(*r, "dt_accurate")) {
-        md << in_cfl((*r)["dt_accurate_over_cfl"].get<double>()) << " | "
-           << margin_text(f, *r, "dt_accurate") << " |\n";
-      } else if (r->value("accuracy_edge_withheld", false)) {
-        md << "none (not accurate) | – |\n";
-      } else {
-        md << "none (reference meaningless) | – |\n";
-      }
+      md << accuracy_cells(f, *r, false) << "\n";
     }
   }
   return md.str();
@@ -801,10 +768,9 @@ std::string edge_data_csv(const FigureCount& count, const std::string& header_li
   csv << header_lines << "# " << edge_subtitle_text(count) << "\n";
   for (const auto& [reason, list] : count.not_drawn)
     csv << "# not drawn, " << reason << ": " << listed(list) << "\n";
-  if (!count.no_accuracy.empty()) {
+  if (!count.no_accuracy.empty())
     csv << "# drawn without an accuracy edge (reference meaningless or not accurate): "
         << listed(count.no_accuracy) << "\n";
-  }
   csv << "# panel:";
   for (std::size_t i = 0; i < kPanels.size(); ++i)
     csv << (i ? ", " : " ") << i << ' ' << kPanels[i];
@@ -813,10 +779,9 @@ std::string edge_data_csv(const FigureCount& count, const std::string& header_li
     csv << (i ? ", " : " ") << i + 1 << ' ' << kSeries[i].first
         << " A = " << shortest(kSeries[i].second);
   csv << "; cT: the wave passes c T = sqrt(E) T of the run; dt in units of h/c; "
-         "meaningless_at_edge: "
-         "whether the run at the survival edge is meaningless (a boolean); limit_over_cfl: the "
-         "scheme's "
-         "spectral limit at the layout; eq108_over_cfl: eq. (108) at the survival edge (its "
+         "meaningless_at_edge: whether the run at the survival edge is meaningless (a boolean); "
+         "limit_over_cfl: the scheme's spectral limit at the layout; eq108_over_cfl: eq. (108) at "
+         "the survival edge (its "
          "minimum over the run there), both in units of h/c (empty where not measured)\n"
          "panel,series,cT,dt_edge_over_cfl,dt_accurate_over_cfl,meaningless_at_edge,limit_over_cfl,"
          "eq108_over_cfl\n";

@@ -131,9 +131,8 @@ std::map<std::string, double> measured_edges(const StudyInputs& inputs) {
 
 // The update order of a scheme's name ("gimp/xpic(2)/usf" -> "usf"; no suffix: usl).
 std::string update_of(const std::string& name) {
-  for (const char* u : {"/usf", "/musl"}) {
+  for (const char* u : {"/usf", "/musl"})
     if (name.find(u) != std::string::npos) return u + 1;
-  }
   return "usl";
 }
 
@@ -277,15 +276,40 @@ Eq108Grid eq108_grid(const std::vector<ojson>& rows) {
   return g;
 }
 
-// Findings: how far one basis and layout moves with E, the ratio against the particles per cell
-// and against the particle count (GIMP), and how far the state moved the bound from rest.
-struct Eq108Spread {
-  double spread = 1, lo = 0, hi = 0, E_lo = 0, E_hi = 0;
-  std::string basis;
-  int ppc = 0;
+// Per E at the first row's particles per cell, one row of the table per basis run there: its run
+// and its ratio over every particles per cell run at that E (n of them, ppc_lo to ppc_hi).
+struct Eq108Row {
+  const Eq108Point* p = nullptr;
+  double lo = 1e300, hi = 0;
+  int n = 0, ppc_lo = 0, ppc_hi = 0;
 };
-Eq108Spread eq108_spread(const Eq108Grid& g) {
-  Eq108Spread s;
+
+// What the eq. (108) section finds: its runs; how far one basis and layout moves with E (the
+// largest spread, between the runs spread_lo and spread_hi of one basis and particles per cell);
+// GIMP's ratio against the particles per cell at the first E and against the particle count; how
+// far the state moved the bound from rest; the table per E and each E's range of the ratio over
+// the bases and particles per cell; the range at the first row's particles per cell over every E,
+// for the scheme table's reading (lo > hi: none); the grids run; the runs below the limit and the
+// one with the largest ratio. Its pointers are into grid.points: it is moved, never copied.
+struct Eq108Findings {
+  Eq108Grid grid;
+  double spread = 1;
+  const Eq108Point *spread_lo = nullptr, *spread_hi = nullptr;  // none: no spread above 1
+  std::vector<std::pair<double, double>> by_ppc;                // GIMP at the first E: ppc, ratio
+  std::vector<const Eq108Point*> gimp_count;                    // GIMP by particle count
+  std::optional<double> ppc_slope, count_slope;
+  double shift = 0;
+  const Eq108Point* shifted = nullptr;  // the run whose state moved the bound most
+  std::vector<Eq108Row> rows;
+  std::vector<std::pair<double, std::pair<double, double>>> per_E;  // E -> ratio lo, hi
+  double lo = 1e300, hi = 0, E_lo = 0, E_hi = 0;
+  int cells_lo = 0, cells_hi = 0, below = 0;
+  const Eq108Point* worst = nullptr;
+};
+
+// The largest spread of the ratio over E at one basis and particles per cell.
+void find_spread(Eq108Findings& f) {
+  const Eq108Grid& g = f.grid;
   for (const auto& b : g.bases) {
     for (int ppc : g.ppcs) {
       const Eq108Point *lo = nullptr, *hi = nullptr;
@@ -295,80 +319,20 @@ Eq108Spread eq108_spread(const Eq108Grid& g) {
         if (!lo || p->ratio() < lo->ratio()) lo = p;
         if (!hi || p->ratio() > hi->ratio()) hi = p;
       }
-      if (lo && hi->ratio() / lo->ratio() > s.spread) {
-        s.spread = hi->ratio() / lo->ratio();
-        s.basis = b;
-        s.ppc = ppc;
-        s.lo = lo->ratio();
-        s.hi = hi->ratio();
-        s.E_lo = lo->E;
-        s.E_hi = hi->E;
+      if (lo && hi->ratio() / lo->ratio() > f.spread) {
+        f.spread = hi->ratio() / lo->ratio();
+        f.spread_lo = lo;
+        f.spread_hi = hi;
       }
     }
   }
-  return s;
 }
-
-struct Eq108Trends {
-  std::vector<std::pair<double, double>> by_ppc;  // GIMP at the first E: ppc, ratio
-  std::optional<double> ppc_slope;
-  std::vector<std::pair<double, double>> by_count;  // GIMP: particles, ratio
-  std::vector<const Eq108Point*> gimp_count;
-  std::optional<double> count_slope;
-  double shift = 0;
-  const Eq108Point* shifted = nullptr;  // the run whose state moved the bound most
-};
-Eq108Trends eq108_trends(const Eq108Grid& g) {
-  Eq108Trends t;
-  for (const auto& p : g.points)
-    if (p.method == "gimp" && p.E == g.E0 && p.cells == g.cells0)
-      t.by_ppc.emplace_back(p.ppc, p.ratio());
-  t.ppc_slope = loglog_slope(t.by_ppc);
-  if (std::find(g.bases.begin(), g.bases.end(), "gimp") != g.bases.end()) {
-    t.gimp_count = g.by_count("gimp");
-    for (const Eq108Point* p : t.gimp_count)
-      t.by_count.emplace_back(p->particles, p->ratio());
-  }
-  t.count_slope = loglog_slope(t.by_count);
-  for (const auto& p : g.points) {
-    if (!t.shifted || p.state_shift() > t.shift) {
-      t.shift = p.state_shift();
-      t.shifted = &p;
-    }
-  }
-  return t;
-}
-
-// Per E at the first row's particles per cell, one row of the table per basis run there: its run
-// and its ratio over every particles per cell run at that E (n of them, ppc_lo to ppc_hi).
-struct Eq108Row {
-  const Eq108Point* p = nullptr;
-  double lo = 1e300, hi = 0;
-  int n = 0, ppc_lo = 0, ppc_hi = 0;
-};
-
-// What the eq. (108) section finds: its runs and their trends; the table per E and each E's
-// range of the ratio over the bases and particles per cell; the range at the first row's
-// particles per cell over every E, for the scheme table's reading (lo > hi: none); the grids
-// run; the runs below the limit and the one with the largest ratio. Its pointers are into
-// grid.points: it is moved, never copied.
-struct Eq108Findings {
-  Eq108Grid grid;
-  Eq108Spread spread;
-  Eq108Trends trends;
-  std::vector<Eq108Row> rows;
-  std::vector<std::pair<double, std::pair<double, double>>> per_E;  // E -> ratio lo, hi
-  double lo = 1e300, hi = 0, E_lo = 0, E_hi = 0;
-  int cells_lo = 0, cells_hi = 0, below = 0;
-  const Eq108Point* worst = nullptr;
-};
 
 // The findings of the eq. (108) section.
 Eq108Findings eq108_findings(const std::vector<ojson>& rows) {
   Eq108Findings f{.grid = eq108_grid(rows)};
   const Eq108Grid& g = f.grid;
-  f.spread = eq108_spread(g);
-  f.trends = eq108_trends(g);
+  find_spread(f);
   for (double E : g.Es) {
     double lo = 1e300, hi = 0;
     for (const auto& b : g.bases) {
@@ -401,7 +365,20 @@ Eq108Findings eq108_findings(const std::vector<ojson>& rows) {
     f.cells_hi = std::max(f.cells_hi, p.cells);
     f.below += p.ratio() < 1;
     if (!f.worst || p.ratio() > f.worst->ratio()) f.worst = &p;
+    if (p.method == "gimp" && p.E == g.E0 && p.cells == g.cells0)
+      f.by_ppc.emplace_back(p.ppc, p.ratio());
+    if (!f.shifted || p.state_shift() > f.shift) {
+      f.shift = p.state_shift();
+      f.shifted = &p;
+    }
   }
+  f.ppc_slope = loglog_slope(f.by_ppc);
+  if (std::find(g.bases.begin(), g.bases.end(), "gimp") != g.bases.end())
+    f.gimp_count = g.by_count("gimp");
+  std::vector<std::pair<double, double>> by_count;  // GIMP: particles, ratio
+  for (const Eq108Point* p : f.gimp_count)
+    by_count.emplace_back(p->particles, p->ratio());
+  f.count_slope = loglog_slope(by_count);
   return f;
 }
 
@@ -478,11 +455,10 @@ Findings find(const Spec& spec, const std::vector<ojson>& rows, const StudyInput
              .edges = measured_edges(inputs),
              .eq108 = eq108_findings(rows)};
   for (const auto& s : f.schemes) {
-    if (s.confirmed()) {
+    if (s.confirmed())
       ++f.confirmed;
-    } else {
+    else
       f.not_confirmed.push_back(s.name);
-    }
     if (s.below && s.above && f.s_below == 0 && has_number(*s.below, "safety") &&
         has_number(*s.above, "safety")) {
       f.s_below = (*s.below)["safety"].get<double>();
@@ -525,7 +501,8 @@ Claim confirmed_claim(const Findings& f) {
 }
 
 // The claim that the runs' state does not move eq. (108) at the tiny amplitude.
-Claim eq108_rest_claim(const Eq108Grid& g, const Eq108Trends& t) {
+Claim eq108_rest_claim(const Eq108Findings& f) {
+  const Eq108Grid& g = f.grid;
   const auto n = static_cast<long long>(g.points.size());
   Claim e = claim("eq108-at-rest",
                   "At the tiny amplitude the state of the runs does not move eq. (108): its "
@@ -535,19 +512,17 @@ Claim eq108_rest_claim(const Eq108Grid& g, const Eq108Trends& t) {
                   "{basis} at E = {E}, ppc {ppc} (negligible: below {tolerance})");
   e.count("n", n)
       .value("A", g.points.empty() ? "–" : shortest(g.points.front().A))
-      .value("gap", n ? sci(t.shift, 2) : "–")
-      .value("basis", t.shifted ? t.shifted->method : "–")
-      .value("E", t.shifted ? shortest(t.shifted->E) : "–")
-      .value("ppc", t.shifted ? std::to_string(t.shifted->ppc) : "–")
+      .value("gap", n ? sci(f.shift, 2) : "–")
+      .value("basis", f.shifted ? f.shifted->method : "–")
+      .value("E", f.shifted ? shortest(f.shifted->E) : "–")
+      .value("ppc", f.shifted ? std::to_string(f.shifted->ppc) : "–")
       .value("tolerance", shortest(kStateNegligible));
-  e.holds = n > 0 && t.shift < kStateNegligible;
+  e.holds = n > 0 && f.shift < kStateNegligible;
   return e;
 }
 
 std::vector<Claim> eq108_claims(const Eq108Findings& f) {
   const Eq108Grid& g = f.grid;
-  const Eq108Spread& s = f.spread;
-  const Eq108Trends& t = f.trends;
   const Eq108Point* worst = f.worst;
   std::vector<Claim> claims;
   Claim a = claim("eq108-below-limit-every-E",
@@ -566,16 +541,16 @@ std::vector<Claim> eq108_claims(const Eq108Findings& f) {
                   "at one basis and layout the ratio changes with E by up to a factor {spread}: "
                   "{basis} at ppc {ppc}, {lo} at E = {E_lo} and {hi} at E = {E_hi} "
                   "(homogeneous: below {threshold})");
-  const bool spread_found = !s.basis.empty();
-  b.value("spread", fixed(s.spread, 2))
-      .value("basis", spread_found ? s.basis : "–")
-      .value("ppc", spread_found ? std::to_string(s.ppc) : "–")
-      .value("lo", spread_found ? ratio_text(s.lo) : "–")
-      .value("E_lo", spread_found ? shortest(s.E_lo) : "–")
-      .value("hi", spread_found ? ratio_text(s.hi) : "–")
-      .value("E_hi", spread_found ? shortest(s.E_hi) : "–")
+  const Eq108Point *s_lo = f.spread_lo, *s_hi = f.spread_hi;
+  b.value("spread", fixed(f.spread, 2))
+      .value("basis", s_lo ? s_lo->method : "–")
+      .value("ppc", s_lo ? std::to_string(s_lo->ppc) : "–")
+      .value("lo", s_lo ? ratio_text(s_lo->ratio()) : "–")
+      .value("E_lo", s_lo ? shortest(s_lo->E) : "–")
+      .value("hi", s_lo ? ratio_text(s_hi->ratio()) : "–")
+      .value("E_hi", s_lo ? shortest(s_hi->E) : "–")
       .value("threshold", shortest(kHomogeneousSpread));
-  b.holds = s.spread > kHomogeneousSpread;
+  b.holds = f.spread > kHomogeneousSpread;
   claims.push_back(b);
 
   Claim c = claim("eq108-falls-as-sqrt-ppc",
@@ -584,11 +559,11 @@ std::vector<Claim> eq108_claims(const Eq108Findings& f) {
                   "GIMP at E = {E}, {points} values of particles per cell: fitted exponent "
                   "{slope} (expected {expected} within {tolerance})");
   c.value("E", shortest(g.E0))
-      .count("points", static_cast<long long>(t.by_ppc.size()))
-      .value("slope", t.ppc_slope ? fixed(*t.ppc_slope, 3) : "–")
+      .count("points", static_cast<long long>(f.by_ppc.size()))
+      .value("slope", f.ppc_slope ? fixed(*f.ppc_slope, 3) : "–")
       .value("expected", shortest(kSqrtSlope))
       .value("tolerance", shortest(kSlopeTolerance));
-  c.holds = t.ppc_slope && std::abs(*t.ppc_slope - kSqrtSlope) <= kSlopeTolerance;
+  c.holds = f.ppc_slope && std::abs(*f.ppc_slope - kSqrtSlope) <= kSlopeTolerance;
   claims.push_back(c);
 
   Claim d = claim("eq108-independent-of-grid",
@@ -597,13 +572,13 @@ std::vector<Claim> eq108_claims(const Eq108Findings& f) {
                   "GIMP at E = {E}, {points} grids: fitted exponent against the particle count "
                   "{slope} (unchanged: within {tolerance} of zero)");
   d.value("E", shortest(g.E0))
-      .count("points", static_cast<long long>(t.by_count.size()))
-      .value("slope", t.count_slope ? fixed(*t.count_slope, 3) : "–")
+      .count("points", static_cast<long long>(f.gimp_count.size()))
+      .value("slope", f.count_slope ? fixed(*f.count_slope, 3) : "–")
       .value("tolerance", shortest(kSlopeTolerance));
-  d.holds = t.count_slope && std::abs(*t.count_slope) <= kSlopeTolerance;
+  d.holds = f.count_slope && std::abs(*f.count_slope) <= kSlopeTolerance;
   claims.push_back(d);
 
-  claims.push_back(eq108_rest_claim(g, t));
+  claims.push_back(eq108_rest_claim(f));
   return claims;
 }
 
@@ -623,13 +598,12 @@ std::string eq108_intro(const Eq108Findings& f) {
           "first table shows, and with the particles per cell. Each run is the bar at A = "
        << shortest(p0.A) << " with USL, FLIP and the uniform layout, under the spectral policy at "
        << shortest(p0.safety) << " times the limit, ";
-    if (g.cT_hi <= g.cT_lo * (1 + 1e-9)) {
+    if (g.cT_hi <= g.cT_lo * (1 + 1e-9))
       md << "for T = " << shortest(g.cT_lo) << " / sqrt(E) (c T / L = " << shortest(g.cT_lo)
          << " crossings of the bar and the same steps at every E)";
-    } else {
+    else
       md << "for c T / L = " << shortest(g.cT_lo) << " to " << shortest(g.cT_hi)
          << " crossings of the bar";
-    }
     md << ", on " << g.cells0 << " cells";
     if (f.cells_hi > f.cells_lo)
       md << " (the last table: " << f.cells_lo << " to " << f.cells_hi << " cells)";
@@ -663,7 +637,7 @@ std::string eq108_per_E(const Eq108Findings& f) {
 }
 
 std::string eq108_per_E_reading(const Eq108Findings& f) {
-  const Eq108Spread& s = f.spread;
+  const Eq108Point *lo = f.spread_lo, *hi = f.spread_hi;
   std::ostringstream md;
   if (!f.per_E.empty()) {
     md << "\nThe ratio per E, over the bases and particles per cell:";
@@ -674,20 +648,20 @@ std::string eq108_per_E_reading(const Eq108Findings& f) {
       sep = "; ";
     }
     md << ".";
-    if (!s.basis.empty()) {
-      md << " At one basis and layout it changes with E by up to a factor " << fixed(s.spread, 2)
-         << " (" << s.basis << " at " << s.ppc << " particles per cell: " << ratio_text(s.lo)
-         << " at E = " << shortest(s.E_lo) << ", " << ratio_text(s.hi)
-         << " at E = " << shortest(s.E_hi)
+    if (lo)
+      md << " At one basis and layout it changes with E by up to a factor " << fixed(f.spread, 2)
+         << " (" << lo->method << " at " << lo->ppc
+         << " particles per cell: " << ratio_text(lo->ratio()) << " at E = " << shortest(lo->E)
+         << ", " << ratio_text(hi->ratio()) << " at E = " << shortest(hi->E)
          << "); a bound homogeneous in E would give one ratio at every E.";
-    }
     md << "\n\n";
   }
 
   return md.str();
 }
 // By particles per cell at every E, for the bases run at more than one.
-std::string eq108_per_ppc(const Eq108Grid& g, const Eq108Trends& t) {
+std::string eq108_per_ppc(const Eq108Findings& f) {
+  const Eq108Grid& g = f.grid;
   std::ostringstream md;
   if (g.ppcs.size() > 1) {
     md << "**Per particles per cell** on " << g.cells0
@@ -718,8 +692,8 @@ std::string eq108_per_ppc(const Eq108Grid& g, const Eq108Trends& t) {
       }
     }
     md << "\nAt a fixed grid the ratio falls with the particles per cell";
-    if (t.ppc_slope)
-      md << ": fitted exponent " << fixed(*t.ppc_slope, 3) << " (GIMP at E = " << shortest(g.E0)
+    if (f.ppc_slope)
+      md << ": fitted exponent " << fixed(*f.ppc_slope, 3) << " (GIMP at E = " << shortest(g.E0)
          << ")";
     md << ".\n\n";
   }
@@ -728,7 +702,8 @@ std::string eq108_per_ppc(const Eq108Grid& g, const Eq108Trends& t) {
 }
 
 // Against the particle count: the first E and particles per cell on every grid.
-std::string eq108_per_count(const Eq108Grid& g, const Eq108Trends& t) {
+std::string eq108_per_count(const Eq108Findings& f) {
+  const Eq108Grid& g = f.grid;
   std::ostringstream md;
   std::ostringstream count_table;
   for (const auto& b : g.bases) {
@@ -743,25 +718,23 @@ std::string eq108_per_count(const Eq108Grid& g, const Eq108Trends& t) {
        << " particles per cell on every grid\n\n| basis | cells | particles | eq. (108) / "
           "limit | eq. (108) / limit x sqrt(particles) |\n|---|---|---|---|---|\n"
        << count_table.str() << "\n";
-    if (t.gimp_count.size() >= 2) {
-      const Eq108Point *a = t.gimp_count.front(), *z = t.gimp_count.back();
+    if (f.gimp_count.size() >= 2) {
+      const Eq108Point *a = f.gimp_count.front(), *z = f.gimp_count.back();
       md << "Refining the grid from " << a->particles << " to " << z->particles
          << " particles moves GIMP's ratio from " << ratio_text(a->ratio()) << " to "
          << ratio_text(z->ratio());
-      if (t.count_slope)
-        md << " (fitted exponent against the particle count " << fixed(*t.count_slope, 3) << ")";
+      if (f.count_slope)
+        md << " (fitted exponent against the particle count " << fixed(*f.count_slope, 3) << ")";
       md << ", and the ratio times sqrt(particles) from "
          << fixed(a->ratio() * std::sqrt(double(a->particles)), 3) << " to "
          << fixed(z->ratio() * std::sqrt(double(z->particles)), 3) << ". ";
-      if (t.count_slope && std::abs(*t.count_slope) <= kSlopeTolerance) {
+      if (f.count_slope && std::abs(*f.count_slope) <= kSlopeTolerance)
         md << "So eq. (108) does not shrink as 1/sqrt(particles) when the grid is refined at a "
               "fixed number of particles per cell; at a fixed grid, where the particles per cell "
               "set the count, it falls with them as the previous table shows.";
-      } else if (t.count_slope) {
-        md << "So eq. (108)'s ratio changes with the particle count on a refined grid as its "
-              "power "
-           << fixed(*t.count_slope, 3) << ".";
-      }
+      else if (f.count_slope)
+        md << "So eq. (108)'s ratio changes with the particle count on a refined grid as its power "
+           << fixed(*f.count_slope, 3) << ".";
       md << "\n\n";
     }
   }
@@ -770,23 +743,23 @@ std::string eq108_per_count(const Eq108Grid& g, const Eq108Trends& t) {
 }
 
 // The state against the bound at rest.
-std::string eq108_state(const Eq108Grid& g, const Eq108Trends& t) {
+std::string eq108_state(const Eq108Findings& f) {
+  const Eq108Grid& g = f.grid;
   std::ostringstream md;
   if (!g.points.empty()) {
     md << "The l2 norm of the nodal velocities grows as the square root of the node count for "
           "nodal velocities of a given size, and the bound falls as it grows. ";
-    if (t.shift < kStateNegligible) {
+    if (f.shift < kStateNegligible)
       md << "At A = " << shortest(g.points.front().A) << " that term does not show: over the "
-         << g.points.size() << " runs, eq. (108)'s minimum lies within " << sci(t.shift, 2)
+         << g.points.size() << " runs, eq. (108)'s minimum lies within " << sci(f.shift, 2)
          << " (relative) of its value at rest (F = 1, no stress, no velocity, at the run's E, "
             "grid and particles per cell), so what the tables show is the formula's constants "
             "(sqrt(E) beside F_max = 1, and the particles per cell m in h sqrt(m) / (4 m "
             "(sqrt(E) + F_max + ||v||) + ...)), not the state of the runs.\n\n";
-    } else {
+    else
       md << "Over the " << g.points.size() << " runs the state moves eq. (108)'s minimum by up to "
-         << sci(t.shift, 2)
+         << sci(f.shift, 2)
          << " (relative) from its value at rest (F = 1, no stress, no velocity).\n\n";
-    }
   }
 
   return md.str();
@@ -794,9 +767,8 @@ std::string eq108_state(const Eq108Grid& g, const Eq108Trends& t) {
 
 // The eq. (108) section: its tables and readings.
 std::string eq108_markdown(const Eq108Findings& f) {
-  return eq108_intro(f) + eq108_per_E(f) + eq108_per_E_reading(f) +
-         eq108_per_ppc(f.grid, f.trends) + eq108_per_count(f.grid, f.trends) +
-         eq108_state(f.grid, f.trends);
+  return eq108_intro(f) + eq108_per_E(f) + eq108_per_E_reading(f) + eq108_per_ppc(f) +
+         eq108_per_count(f) + eq108_state(f);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -825,10 +797,9 @@ std::string reading(const Findings& f, const ojson& first) {
     sep = "; ";
   }
   md << " (the CFL number is 1).";
-  if (f.edge_hi > 0) {
+  if (f.edge_hi > 0)
     md << " The measured edges lie at " << fixed(f.edge_lo, 4) << " to " << fixed(f.edge_hi, 4)
        << " times the limit.";
-  }
   if (f.eq_hi > 0) {
     const Eq108Findings& eq108 = f.eq108;
     md << " Eq. (108) at the same state lies at " << fixed(f.eq_lo, 3) << " to "
@@ -838,11 +809,10 @@ std::string reading(const Findings& f, const ojson& first) {
                ? std::to_string(f.particles_lo)
                : std::to_string(f.particles_lo) + " to " + std::to_string(f.particles_hi))
        << " particles) only: its ratio changes with E";
-    if (eq108.hi > 0 && eq108.E_hi > eq108.E_lo) {
+    if (eq108.hi > 0 && eq108.E_hi > eq108.E_lo)
       md << " (at " << first["ppc"].get<int>() << " particles per cell with USL and FLIP, "
          << fixed(eq108.lo, 3) << " to " << fixed(eq108.hi, 3)
          << " over E = " << shortest(eq108.E_lo) << " to " << shortest(eq108.E_hi) << ")";
-    }
     md << " and with the particles per cell (the section on eq. (108) below).";
   }
   md << "\n\n";
@@ -915,11 +885,10 @@ std::string spectral_markdown(const std::vector<ojson>& rows, const Findings& f)
      << " A (a bounded run's error, its phase error included, is at most twice A; one that "
         "reaches A is also marked meaningless); a run that grows passes "
      << shortest(kBound)
-     << " A or fails. Eq. (108) is "
-        "defined for MPM, GIMP and cpGIMP only (`–` for the other bases). The measured edge is the "
-        "spectral_edge experiment's "
-        "([spectral_edge.md](spectral_edge.md)): the largest fixed dt that stays bounded, found "
-        "by its search without reading the limit. Eq. (108) is the minimum of our bound "
+     << " A or fails. Eq. (108) is defined for MPM, GIMP and cpGIMP only (`–` for the other "
+        "bases). The measured edge is the spectral_edge experiment's "
+        "([spectral_edge.md](spectral_edge.md)): the largest fixed dt that stays bounded, "
+        "found by its search without reading the limit. Eq. (108) is the minimum of our bound "
         "over the run at "
      << f.below << " times the limit. The CFL number is 1 in these units.\n\n"
      << reading(f, first)
@@ -959,8 +928,7 @@ std::string spectral_data(const ReportContext& c, const Findings& f) {
       << " cells); in c dt / h: limit the spectral limit, edge the measured edge (empty: not "
          "measured), eq108 our eq. (108), the minimum over the run at "
       << safeties(c.rows, true, false)
-      << " times the limit; "
-         "ratio eq108 / limit\n"
+      << " times the limit; ratio eq108 / limit\n"
          "method,E,ppc,limit,edge,eq108,ratio\n";
   // Sorted by method, E and ppc: each curve one contiguous block.
   auto points = f.eq108.grid.points;
@@ -1003,8 +971,7 @@ std::string spectral_index(const Spec& spec, const std::vector<ojson>& rows) {
   md << "![" << spec.title << "](" << spec.name
      << ".png)\n\n**What it shows.** The spectral limit of " << f.schemes.size()
      << " schemes (basis x transfer x update order, particles per cell and layout), each checked "
-        "by "
-        "two runs at a tiny amplitude just below and just above it: confirmed for "
+        "by two runs at a tiny amplitude just below and just above it: confirmed for "
      << f.confirmed << " of " << f.schemes.size()
      << "; and eq. (108) against the limit at every E the studies use: [" << spec.name << ".md]("
      << spec.name << ".md).\n\n";
