@@ -200,32 +200,20 @@ Fit fit_curve(const std::vector<std::pair<double, double>>& points) {
                        .first;
   const double v = best_v(p).first;
   double log_k = 0;
-  const double interior = r.at(p, v, &log_k);
-
-  Fit fit;
-  double best = interior;
-  fit.form = FitForm::floor_and_term;
-  fit.p = p;
-  fit.k = std::exp(log_k);
-  fit.S = std::exp(log_k + p * r.u_max() + v);
+  double best = r.at(p, v, &log_k);
+  Fit fit{FitForm::floor_and_term, std::exp(log_k + p * r.u_max() + v), std::exp(log_k), p};
   // The two ends of the search over v: no floor (S = 0) and no time term (k = 0).
   double p0 = 0, log_k0 = 0;
   const double no_floor = r.no_floor(p0, log_k0);
   if (no_floor <= best) {
     best = no_floor;
-    fit.form = FitForm::no_floor;
-    fit.p = p0;
-    fit.k = std::exp(log_k0);
-    fit.S = 0;
+    fit = {FitForm::no_floor, 0, std::exp(log_k0), p0};
   }
   double log_S = 0;
   const double no_term = r.no_term(log_S);
   if (no_term <= best) {
     best = no_term;
-    fit.form = FitForm::no_term;
-    fit.p.reset();
-    fit.k = 0;
-    fit.S = std::exp(log_S);
+    fit = {FitForm::no_term, std::exp(log_S), 0, std::nullopt};
   }
   fit.rms = std::sqrt(best / static_cast<double>(points.size()));
   return fit;

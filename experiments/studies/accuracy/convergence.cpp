@@ -15,6 +15,7 @@
 #include <map>
 #include <sstream>
 #include <tuple>
+#include <utility>
 
 #include "analysis/time_error.hpp"
 #include "claims.hpp"
@@ -118,8 +119,7 @@ std::vector<TimeErrorRow> time_error_rows(const Spec& spec, const std::vector<oj
   for (std::size_t i = 0; i < rows.size(); ++i) {
     if (sweep_of(rows[i]) != "dt") continue;
     const auto key = std::make_pair(Key(rows[i]["E"].get<double>(), "E"), method_label(rows[i]));
-    if (seen[key]) continue;
-    seen[key] = true;
+    if (std::exchange(seen[key], true)) continue;
     const RunParams& base = spec.cases[i].params;
     std::vector<UpdateOrder> updates = {base.update};
     if (base.transfer == Transfer::flip && base.update == UpdateOrder::usl &&
@@ -149,25 +149,21 @@ std::vector<TimeErrorRow> time_error_rows(const Spec& spec, const std::vector<oj
     if (std::any_of(twins.begin(), twins.end(),
                     [&](const TimeErrorRow& r) { return r.method.rfind(label, 0) == 0; }))
       continue;
-    for (const double fraction : {1.0, kLinearAmplitudeFraction}) {
+    // The twin at both amplitudes, then the control: FLIP itself at the smaller amplitude.
+    using Twin = std::pair<bool, double>;  // (FMPM, the fraction of the amplitude)
+    for (const auto& [fmpm, fraction] : {Twin{true, 1.0}, Twin{true, kLinearAmplitudeFraction},
+                                         Twin{false, kLinearAmplitudeFraction}}) {
       RunParams p = base;
-      p.transfer = Transfer::fmpm;
-      p.fmpm_order = kConsistentOrder;
       p.A = base.A * fraction;
-      TimeErrorRow row{smallest_E, label + (fraction == 1.0 ? "" : ", A = " + param(p.A)), "usl",
-                       time_errors(p, kTimeSampleCourant, kTimeSubsteps, kTimeReferenceSubsteps)};
-      row.consistent_mass = true;
-      row.linear = fraction != 1.0;
-      twins.push_back(std::move(row));
+      if (fmpm) {
+        p.transfer = Transfer::fmpm;
+        p.fmpm_order = kConsistentOrder;
+      }
+      const std::string name = fmpm ? label : std::string(to_string(base.method));
+      twins.push_back({smallest_E, name + (fraction == 1.0 ? "" : ", A = " + param(p.A)), "usl",
+                       time_errors(p, kTimeSampleCourant, kTimeSubsteps, kTimeReferenceSubsteps),
+                       fmpm, fraction != 1.0});
     }
-    // The control: FLIP itself at the smaller amplitude.
-    RunParams p = base;
-    p.A = base.A * kLinearAmplitudeFraction;
-    TimeErrorRow control{smallest_E, std::string(to_string(base.method)) + ", A = " + param(p.A),
-                         "usl",
-                         time_errors(p, kTimeSampleCourant, kTimeSubsteps, kTimeReferenceSubsteps)};
-    control.linear = true;
-    twins.push_back(std::move(control));
   }
   out.insert(out.end(), twins.begin(), twins.end());
   return out;
@@ -199,9 +195,8 @@ std::optional<double> value_of(const Point& p, Norm n) {
 // regime orders are fitted in (at least three).
 std::optional<double> fitted_order(const std::vector<Point>& points, Norm n) {
   std::vector<std::pair<double, double>> xy;
-  for (const auto& p : points) {
+  for (const auto& p : points)
     if (const auto e = value_of(p, n); e && p.fit) xy.emplace_back(p.x, *e);
-  }
   return loglog_slope(xy);
 }
 
@@ -273,7 +268,7 @@ std::tuple<Refinements, Refinements, Refinements> refinements(const std::vector<
     }
     g[sweep_of(r)][{Key(r["E"].get<double>(), "E"), method_label(r)}].points.push_back(p);
   }
-  for (auto& [sweep, by] : g) {
+  for (auto& [sweep, by] : g)
     for (auto& [key, ref] : by) {
       auto& points = ref.points;
       std::sort(points.begin(), points.end(),
@@ -286,7 +281,6 @@ std::tuple<Refinements, Refinements, Refinements> refinements(const std::vector<
           o.steps.push_back(step_order(points[k - 1], points[k], n));
       }
     }
-  }
   return {std::move(g["h"]), std::move(g["dt"]), std::move(g["peer"])};
 }
 
@@ -645,11 +639,10 @@ std::string special_check(const Findings& f) {
   std::ostringstream md;
   md << "**The instant T.** |sin(c pi T)|, the exact displacement at T over its amplitude: "
      << list_of(items(f.ordinary)) << (f.ordinary.empty() ? "" : ", away from zero");
-  if (!f.special.empty()) {
+  if (!f.special.empty())
     md << (f.ordinary.empty() ? "" : "; ") << list_of(items(f.special)) << " below "
        << shortest(kSpecialFactor) << ", where the error at T measures the phase, not the "
        << "displacement";
-  }
   md << ". Every order is fitted to a norm over the whole run all the same, which no instant can "
         "make small.";
   return md.str();
@@ -876,10 +869,8 @@ std::string convergence_index(const Spec& spec, const std::vector<ojson>& rows) 
   std::ostringstream md;
   md << "![" << spec.title << "](" << spec.name << ".png)\n\n**What it shows.** Fitted order "
      << "of the error over time in h:";
-  bool first = true;
   for (const auto& [E, at] : f.index) {
-    md << (first ? " " : "; ") << "E = " << shortest(E) << ": ";
-    first = false;
+    md << (E == f.index.begin()->first ? " " : "; ") << "E = " << shortest(E) << ": ";
     if (!at.any_fitted && at.under_a_pass) {
       md << "none fitted (its runs cover c T = " << shortest(*at.under_a_pass) << " < "
          << shortest(kMinWavePasses) << " wave pass: not stable)";

@@ -172,7 +172,7 @@ Findings find(const std::vector<ojson>& rows, const SweepOutcome& records) {
       x.energy_step = r["energy_warning_step"].get<long long>();
     const double dt = r["dt"].get<double>();
     const ojson* record = i < records.records.size() ? &records.records[i] : nullptr;
-    if (record && record->is_object() && record->contains("history")) {
+    if (record && record->is_object() && record->contains("history"))
       for (const auto& h : (*record)["history"]) {
         // The bound of the state after step n limits step n + 1.
         if (h["dt_stable"].is_number() && dt > h["dt_stable"].get<double>()) {
@@ -180,7 +180,6 @@ Findings find(const std::vector<ojson>& rows, const SweepOutcome& records) {
           break;
         }
       }
-    }
     x.above_spectral = above_spectral_limit(r);
     // Before the failure, in a run that failed; at all, in one that reached T.
     const auto fired = [&](const std::optional<long long>& s) {

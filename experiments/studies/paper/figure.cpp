@@ -53,11 +53,10 @@ std::string figure_data_csv(const ojson& record, const std::string& header_lines
     }
   } else if (record.contains("history")) {
     csv << "step,time,error,dt_stable,crossings\n";
-    for (const auto& h : record["history"]) {
+    for (const auto& h : record["history"])
       csv << h["step"].dump() << ',' << cell(h["time"]) << ',' << cell(h["error"]) << ','
           << cell(h["dt_stable"]) << ',' << (h["crossings"].is_null() ? "" : h["crossings"].dump())
           << '\n';
-    }
   }
   return csv.str();
 }
@@ -77,9 +76,8 @@ std::string figure_index(const Spec& spec, const std::vector<ojson>& rows) {
 // What the data file holds: the rows drawn (history steps or particles), for the title, and the
 // history of a history figure.
 ojson figure_json(const ojson& record) {
-  if (record.contains("final_state")) {
+  if (record.contains("final_state"))
     return {{"drawn", record["final_state"]["X"].size()}, {"drawn_what", "particles"}};
-  }
   if (record.contains("history")) {
     // The history itself too: other studies (the comparison with the paper's figures) read it.
     return {{"drawn", record["history"].size()},

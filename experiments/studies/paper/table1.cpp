@@ -22,11 +22,6 @@ namespace {
 using ojson = nlohmann::ordered_json;
 namespace fs = std::filesystem;
 
-// The ensembles of the cells near their edge (ensemble.hpp), in row order.
-std::vector<FollowUp> table1_follow_up(const FollowUpContext& c) {
-  return ensemble_follow_up(c, EnsembleNeed::near);
-}
-
 // What the study finds: the paper's cells beside ours, how our runs ended, the ensembles of the
 // cells near their edge, and every count the summary, the claims and the index paragraph give.
 struct Findings {
@@ -147,8 +142,8 @@ std::vector<Claim> table1_claims(const Findings& f) {
       .count("tested", f.rerun)
       .count("members", kEnsembleMembers)
       .count("in_studies", f.in_studies)
-      .count("costly", f.costly);
-  b.over(f.rerun);
+      .count("costly", f.costly)
+      .over(f.rerun);
   b.holds = f.rerun_sensitive == 0;
   Claim c = claim("stable-cells-accurate",
                   "Every cell that ends stable is accurate: its error over time stays below "
@@ -216,21 +211,16 @@ std::string table1_summary_text(const Findings& s) {
      << " A, inaccurate from there up to A)";
   if (s.by_method.size() > 1) {
     md << "; per method, ";
-    bool first = true;
-    for (const auto& [method, a] : s.by_method) {
-      md << (first ? "" : "; ") << method << " " << a.stable << " stable: " << accuracy_split(a);
-      first = false;
-    }
+    for (const auto& [method, a] : s.by_method)
+      md << (method == s.by_method.front().first ? "" : "; ") << method << " " << a.stable
+         << " stable: " << accuracy_split(a);
   }
   md << ". " << s.ours.meaningless << " meaningless (survived, but the error over time reached A), "
      << s.ours.unstable << " unstable";
   if (!s.ours.reasons.empty()) {
     md << " (";
-    bool first = true;
-    for (const auto& [reason, count] : s.ours.reasons) {
-      md << (first ? "" : ", ") << reason << " " << count;
-      first = false;
-    }
+    for (const auto& [reason, count] : s.ours.reasons)
+      md << (reason == s.ours.reasons.begin()->first ? "" : ", ") << reason << " " << count;
     md << ")";
   }
   if (s.ours.too_short) md << ", " << s.ours.too_short << " too short to judge";
@@ -276,9 +266,8 @@ std::string table1_row(const CaseSpec& cs, const ojson& r,
   const PaperCell* pc = it == paper.end() ? nullptr : &it->second;
   const auto ours = compared_error(r, cs.error_at);
   std::string ratio_text = "–";
-  if (pc && pc->max_error.kind == PaperValue::number && ours) {
+  if (pc && pc->max_error.kind == PaperValue::number && ours)
     ratio_text = ratio(*ours / pc->max_error.value);
-  }
   // The error over time / A and accuracy class of a run that reached T stable or meaningless.
   const RunRow run(r);
   const bool classed = run.outcome == "stable" || run.outcome == "meaningless";
@@ -347,8 +336,8 @@ std::string table1_markdown(const Spec& spec, const std::vector<ojson>& rows, co
        << " (A / h = " << significant(amplitude_per_cell(in_block->params), 3) << ")**\n\n";
     md << "| dt | method | c dt/h | dt_stable paper | dt_stable ours | max error paper | max error "
           "ours | ours / paper | ours: verdict | error over time / A | accuracy | transcription | "
-          "particle-steps | ensemble |\n";
-    md << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+          "particle-steps | ensemble |\n"
+       << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (std::size_t i = 0; i < rows.size(); ++i) {
       const auto& p = spec.cases[i].params;
       if (p.E == E && p.A == A)
@@ -384,7 +373,8 @@ const StudyRegistration kTable1{{
     .summary = "Table 1 of the paper: accuracy and stability per E, A, dt and method",
     .needs_reference = true,
     .records = {.error_over_time = true, .dt_stable = true},
-    .follow_up = table1_follow_up,
+    // The ensembles of the cells near their edge (ensemble.hpp), in row order.
+    .follow_up = [](const FollowUpContext& c) { return ensemble_follow_up(c, EnsembleNeed::near); },
     .report = table1_report,
     .index = table1_index,
 }};

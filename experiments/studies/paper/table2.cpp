@@ -113,9 +113,8 @@ std::string table2_summary_text(const Table2Data& d) {
 std::string crossings(const ojson* r) {
   if (!r || !(*r)["crossings"].is_number()) return "–";
   std::string s = std::to_string((*r)["crossings"].get<std::int64_t>());
-  if (!survived(*r)) {
+  if (!survived(*r))
     s = "\\* " + s + " (to step " + std::to_string((*r)["failure_step"].get<std::int64_t>()) + ")";
-  }
   return s;
 }
 
@@ -147,9 +146,8 @@ std::string crossings_row(const Table2Data& d, double E) {
     for (const auto& m : d.methods) {
       const ojson* r = d.find_row(E, A, m);
       std::string ratio_text = "–";
-      if (r && survived(*r) && (*r)["crossings"].is_number() && paper_n > 0) {
+      if (r && survived(*r) && (*r)["crossings"].is_number() && paper_n > 0)
         ratio_text = ratio((*r)["crossings"].get<double>() / paper_n);
-      }
       md << " " << crossings(r) << " | " << ratio_text << " |";
     }
   }
@@ -182,9 +180,8 @@ std::string crossings_table(const Table2Data& d) {
 std::string transcription_notes(const CsvTable& paper) {
   std::ostringstream md;
   md << "\nNotes from the transcription: ";
-  for (const auto& row : paper.rows) {
+  for (const auto& row : paper.rows)
     if (!row.at("note").empty()) md << "E = " << row.at("E") << ": " << row.at("note") << ". ";
-  }
   return md.str();
 }
 

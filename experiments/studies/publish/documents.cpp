@@ -51,11 +51,10 @@ std::string tier_times(const std::filesystem::path& results) {
     const std::string key = "(" + tier + ")";
     if (t.contains(key) && t[key].is_object()) runs.emplace_back("`" + tier + "`", &t[key]);
   }
-  for (const std::string& tier : commands) {
+  for (const std::string& tier : commands)
     for (const auto& [key, e] : t.items())
       if (key.starts_with("(" + tier + " on ") && e.is_object())
         runs.emplace_back("`" + tier + "`", &e);
-  }
   for (const auto& [name, entry] : runs) {
     const ojson& e = *entry;
     auto number = [&](const char* key) { return number_or_zero(e, key); };
@@ -102,19 +101,10 @@ std::string tier_times(const std::filesystem::path& results) {
   return md.str();
 }
 
-// The problem of README.md's advice example.
-Problem readme_problem() {
-  Problem p;
-  p.A = 0.015;
-  p.cT = 8;
-  p.target = 0.01;
-  return p;
-}
-
 // README.md: `mpmstab advise` on the example problem, answered from results/advice.json.
 std::string advise_example(const std::filesystem::path& results) {
   const ojson doc = results_file(results, "advice.json");
-  const Problem p = readme_problem();
+  const Problem p{.A = 0.015, .cT = 8, .target = 0.01};  // the problem of README.md's example
   std::ostringstream md;
   md << "```\n$ build/mpmstab advise --A " << value_text(p.A) << " --cT " << value_text(p.cT)
      << " --error " << value_text(p.target) << "\n";
@@ -134,17 +124,8 @@ std::string advise_example(const std::filesystem::path& results) {
 
 // README.md: `mpmstab run` on one case of Table 1, its text summary as the command prints it
 // (without the wall time, which varies from run to run).
-RunParams readme_run_params() {
-  RunParams p;
-  p.method = Method::gimp;
-  p.E = 4;
-  p.A = 0.015;
-  p.dt = 1e-3;
-  return p;
-}
-
 std::string run_example() {
-  const RunParams p = readme_run_params();
+  const RunParams p{.method = Method::gimp, .E = 4, .A = 0.015, .dt = 1e-3};
   std::ostringstream md;
   md << "```\n$ build/mpmstab run --method " << to_string(p.method) << " --E " << shortest(p.E)
      << " --A " << shortest(p.A) << " --dt " << value_text(p.dt) << "\n"

@@ -93,29 +93,23 @@ std::string verdict_table(const char* header, const std::vector<E>& values) {
 }  // namespace studies::verdicts
 
 std::vector<Outcome> all_outcomes() {
-  using namespace studies::verdicts;
-  return enum_values<Outcome>();
+  return studies::verdicts::enum_values<Outcome>();
 }
 std::vector<FailureReason> all_failure_reasons() {
-  using namespace studies::verdicts;
-  return enum_values<FailureReason>();
+  return studies::verdicts::enum_values<FailureReason>();
 }
 std::vector<Accuracy> all_accuracy_classes() {
-  using namespace studies::verdicts;
-  return enum_values<Accuracy>();
+  return studies::verdicts::enum_values<Accuracy>();
 }
 
 std::string outcomes_table() {
-  using namespace studies::verdicts;
-  return verdict_table("outcome", all_outcomes());
+  return studies::verdicts::verdict_table("outcome", all_outcomes());
 }
 std::string failure_reasons_table() {
-  using namespace studies::verdicts;
-  return verdict_table("reason", all_failure_reasons());
+  return studies::verdicts::verdict_table("reason", all_failure_reasons());
 }
 std::string accuracy_classes_table() {
-  using namespace studies::verdicts;
-  return verdict_table("class", all_accuracy_classes());
+  return studies::verdicts::verdict_table("class", all_accuracy_classes());
 }
 
 }  // namespace mpmstab

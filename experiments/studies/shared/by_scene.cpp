@@ -21,9 +21,8 @@ std::vector<SceneRows> by_scene(const std::vector<ojson>& rows) {
 }
 
 std::string scene_title(const std::string& scene) {
-  if (scene == "steffen") {
+  if (scene == "steffen")
     return "Second scene: Steffen et al. (2008), neo-Hookean, u = A sin(2 pi X) cos(c pi t)";
-  }
   if (scene == "bar") return "The paper's bar";
   return "Scene " + scene;
 }

@@ -36,14 +36,10 @@ Findings find(const std::vector<ojson>& rows) {
 // the cases.
 std::vector<std::string> varying_params(const std::vector<ojson>& rows) {
   std::vector<std::string> params = {"method", "E", "A", "dt"};
-  for (const std::string& col : kOptionalParams) {
-    for (const auto& r : rows) {
-      if (r[col] != rows.front()[col]) {
-        params.push_back(col);
-        break;
-      }
-    }
-  }
+  for (const std::string& col : kOptionalParams)
+    if (std::any_of(rows.begin(), rows.end(),
+                    [&](const ojson& r) { return r[col] != rows.front()[col]; }))
+      params.push_back(col);
   return params;
 }
 
@@ -100,14 +96,12 @@ std::string case_row(const ojson& r, const std::vector<std::string>& params,
   md << " " << opt_sci(row.courant) << " | " << coordinate("A_over_h") << " | "
      << (row.wave_passes ? significant(*row.wave_passes, 3) : "–") << " | " << verdict(r) << " | "
      << opt_sci(r["max_error"]) << " |";
-  if (observe.error_over_time) {
+  if (observe.error_over_time)
     md << " " << (row.error_over_time ? sci(*row.error_over_time) : "–") << " | "
        << (row.error_over_A() ? ratio(*row.error_over_A()) : "–") << " |";
-  }
   if (observe.dt_stable) md << " " << opt_sci(r["dt_stable_min"]) << " |";
-  if (observe.crossings) {
+  if (observe.crossings)
     md << " " << (r["crossings"].is_null() ? std::string("–") : r["crossings"].dump()) << " |";
-  }
   md << " " << work(r) << " |\n";
   return md.str();
 }

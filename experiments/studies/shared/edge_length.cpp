@@ -88,21 +88,19 @@ LengthRuns read_length_runs(const std::vector<ojson>& rows, const std::vector<oj
     for (const double dt : edges_of(r)) {
       const std::vector<double> lengths = test_lengths(*RunRow(r).wave_passes);
       for (std::size_t k = 0; k < lengths.size(); ++k) {
-        const double length = lengths[k];
         const auto asked = follow_ups_of(follow_up, of, length_role(dt, k));
         if (asked.empty()) continue;
         const ojson& run = *asked.front();
         const RunRow rr(run);
-        LongRun l;
-        l.dt = dt;
-        l.length = length;
-        l.survived = rr.survived();
-        l.outcome = rr.outcome;
-        l.error_over_A = rr.error_over_A();
-        l.passes = l.survived || !rr.failure_time
-                       ? *rr.wave_passes
-                       : std::sqrt(run["E"].get<double>()) * *rr.failure_time;
-        out[&r].push_back(l);
+        const bool survived = rr.survived();
+        out[&r].push_back({.dt = dt,
+                           .length = lengths[k],
+                           .passes = survived || !rr.failure_time
+                                         ? *rr.wave_passes
+                                         : std::sqrt(run["E"].get<double>()) * *rr.failure_time,
+                           .survived = survived,
+                           .outcome = rr.outcome,
+                           .error_over_A = rr.error_over_A()});
       }
     }
   }
@@ -157,11 +155,10 @@ std::string lasting_text(const LengthRuns& runs, const ojson& r, const char* dt_
 void LengthTally::add(const Lasting& l) {
   if (!l.tested) return;
   ++tested;
-  if (l.holds) {
+  if (l.holds)
     ++held;
-  } else {
+  else
     failed_at.push_back(l.length);
-  }
 }
 
 Claim length_claim(std::string id, std::string statement, std::string evidence,

@@ -74,13 +74,13 @@ std::vector<FollowUp> ensemble_follow_up(const FollowUpContext& c, EnsembleNeed 
   return runs;
 }
 
-std::vector<EnsembleResult> ensemble_results(const std::vector<nlohmann::ordered_json>& rows,
-                                             const std::vector<nlohmann::ordered_json>& follow_up,
+std::vector<EnsembleResult> ensemble_results(const std::vector<ojson>& rows,
+                                             const std::vector<ojson>& follow_up,
                                              EnsembleNeed need) {
   std::vector<EnsembleResult> out;
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const EnsembleNeed n = ensemble_need(rows[i]);
-    std::vector<nlohmann::ordered_json> members;
+    std::vector<ojson> members;
     if (n == need)
       for (const auto* m : follow_ups_of(follow_up, i, kEnsembleMember))
         members.push_back(*m);

@@ -72,7 +72,6 @@ std::vector<PaperRow> read_paper_rows(const std::filesystem::path& reference) {
 }
 
 std::map<Table1Key, PaperCell> read_paper_table1(const Spec& spec) {
-  using namespace studies::paper_table1;
   const std::vector<PaperRow> rows = read_paper_rows(spec.reference);
   const auto printed = [&](double A, double E, const std::string& method, double dt) {
     return std::any_of(rows.begin(), rows.end(), [&](const PaperRow& r) {
@@ -117,13 +116,11 @@ std::map<Table1Key, PaperCell> read_paper_table1(const Spec& spec) {
 }
 
 Table1Key paper_key(const CaseSpec& c) {
-  using namespace studies::paper_table1;
   const auto& p = c.params;
   return {Key(p.A, "A"), Key(p.E, "E"), Key(p.dt, "dt"), std::string(to_string(c.paper_method))};
 }
 
 bool within_agreement_factor(double ours, double paper) {
-  using namespace studies::paper_table1;
   static const ColumnRule rule{"max_error", 0, (kAgreementFactor - 1) / kAgreementFactor, false};
   return cells_agree(CellValue{CellValue::Kind::number, ours, ""},
                      CellValue{CellValue::Kind::number, paper, ""}, rule);
@@ -150,7 +147,6 @@ CellAgreement cell_agreement(const RunRow& row, const PaperCell* paper) {
 }
 
 std::string agreement_factor() {
-  using namespace studies::paper_table1;
   return param(kAgreementFactor);
 }
 
