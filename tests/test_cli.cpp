@@ -98,11 +98,11 @@ TEST(Cli, TheSummarysLabelsAreTheRecordsKeysAndNoErrorOverTimeIsCalledTheErrorAt
       run_mpmstab("run " + edge_case + " --dt " + fmt::format("{:.17g}", dt_edge) + " --json");
   ASSERT_EQ(at_edge.status, 0) << at_edge.output;
   const auto r = nlohmann::json::parse(at_edge.output);
-  EXPECT_NE(
-      text.output.find("error over time there " + fmt(r["max_error_over_time"].get<double>())),
-      std::string::npos)
+  EXPECT_NE(text.output.find("error over time there " +
+                             mpmstab::fmt(r["max_error_over_time"].get<double>())),
+            std::string::npos)
       << text.output;
-  EXPECT_NE(text.output.find("error at T there      " + fmt(r["max_error"].get<double>())),
+  EXPECT_NE(text.output.find("error at T there      " + mpmstab::fmt(r["max_error"].get<double>())),
             std::string::npos)
       << text.output;
 }
