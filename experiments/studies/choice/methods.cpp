@@ -5,13 +5,13 @@
 // at a tiny amplitude and the counted work per particle-step. It recommends nothing: the
 // project's recommendations are advice.md's (advice.hpp). The edges are this study's own cases
 // (edge searches); the errors and orders come from the rows of methods_grid, which it reads; the
-// wave column from each scheme's Bloch symbol (core/analysis/dispersion.hpp), set against the
-// single-mode runs of the dispersion study where its results are in the folder.
+// wave column from each scheme's Bloch symbol (core/analysis/dispersion.hpp), set against a
+// single-mode run of each scheme at the column's value (its follow-up runs).
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <numbers>
 #include <optional>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <tuple>
@@ -40,11 +40,9 @@ using ojson = nlohmann::ordered_json;
 using MethodKey = std::tuple<std::string, std::string, std::string, int, std::string>;
 MethodKey key_of(const ojson& r) {
   const std::string transfer = r["transfer"].get<std::string>();
-  int order = 0;
-  if (transfer == "xpic" && has_number(r, "xpic_order")) order = r["xpic_order"].get<int>();
-  if (transfer == "fmpm" && has_number(r, "fmpm_order")) order = r["fmpm_order"].get<int>();
-  return {RunRow(r).method, r["walls"].get<std::string>(), transfer, order,
-          r["update"].get<std::string>()};
+  const std::string order = transfer + "_order";  // xpic_order, fmpm_order
+  return {RunRow(r).method, r["walls"].get<std::string>(), transfer,
+          int(number_or_zero(r, order.c_str())), r["update"].get<std::string>()};
 }
 
 std::string basis_text(const MethodKey& k) {
@@ -181,28 +179,52 @@ std::string method_name(const MethodRow& m) {
 constexpr double kWaveCourant = 0.5;
 constexpr double kWavePeriods = 10;
 constexpr double kWaveTolerance = 0.01;
-// Two Courant numbers of a row are the same within this (the mode runs' c dt / h is a ratio of
-// powers of two, exact in binary).
-constexpr double kSameCourant = 1e-9;
+// The column set against runs: a single-mode run (the mode scene, one free standing wave of the
+// periodic bar, its wavelength the bar's length) on as many cells as the column gives, rounded
+// up, at kWaveCourant to kWavePeriods periods, at the dispersion study's E and A (linear: E only
+// rescales time). A run costs ppc n x (periods n / C) particle-steps on n cells: a scheme whose
+// column exceeds kMaxWaveRunCells (PIC's thousands of cells) is not run, and the report says so.
+constexpr double kWaveRunE = 1;
+constexpr double kWaveRunAmplitude = 1e-6;
+constexpr int kMaxWaveRunCells = 1024;
+constexpr const char* kWaveRun = "single-mode run at the wave column's cells";
+
+// What identifies a scheme's interior: the method key without the walls (they do not enter the
+// symbol, and the periodic mode scene has none), with the particles per cell.
+using Interior = std::pair<MethodKey, int>;
+Interior interior_of(MethodKey k, const ojson& row) {
+  std::get<1>(k) = "";
+  return {k, has_number(row, "ppc") ? row["ppc"].get<int>() : 0};
+}
 
 // The scheme of a row's method at `ppc` particles per cell (nullopt for a name this program does
 // not know); the walls do not enter the interior's symbol.
-std::optional<RunParams> scheme_params(const MethodKey& k, int ppc) {
-  const auto& [method, walls, transfer, order, update] = k;
+std::optional<RunParams> scheme_params(const Interior& id) {
+  const auto& [method, walls, transfer, order, update] = id.first;
   const auto b = parse_method(method);
   const auto t = parse_transfer(transfer);
   const auto u = parse_update_order(update);
   if (!b || !t || !u) return std::nullopt;
-  RunParams p{.method = *b, .ppc = ppc, .transfer = *t, .update = *u};
+  RunParams p{.method = *b, .ppc = id.second, .transfer = *t, .update = *u};
   if (*t == Transfer::xpic && order > 0) p.xpic_order = order;
   if (*t == Transfer::fmpm && order > 0) p.fmpm_order = order;
   return p;
 }
 
+// A scheme's wave column and, where it was run, its single-mode run on that many cells (where
+// the symbol's error is within the tolerance, by the column's definition).
 struct WaveCells {
   bool computed = false;        // false where the symbol does not apply (or the name is unknown)
   bool above_limit = false;     // kWaveCourant at or above the scheme's Bloch limit
   std::optional<double> cells;  // nullopt: more than kMaxCellsPerWavelength (or not computed)
+  std::string transfer;         // the scheme's transfer ("fmpm(2)")
+  const ojson* run = nullptr;   // the single-mode run, where there is one
+  // The cells a run at the column's value takes (0 where the column has none).
+  int run_cells() const { return cells ? int(std::ceil(*cells)) : 0; }
+  bool within() const {
+    return run && RunRow(*run).stable_over_a_wave_pass() &&
+           RunRow(*run).error_over_A() <= kWaveTolerance;
+  }
 };
 
 WaveCells wave_cells(const std::optional<RunParams>& p) {
@@ -221,18 +243,42 @@ WaveCells wave_cells(const std::optional<RunParams>& p) {
   return w;
 }
 
-// One per method row, the schemes that share an interior (the walls' treatments) computed once.
-std::vector<WaveCells> wave_column(const std::vector<MethodRow>& rows) {
-  std::map<std::tuple<std::string, std::string, int, std::string, int>, WaveCells> computed;
+// The follow-up runs: one per scheme (the walls' treatments share it) whose column is at most
+// kMaxWaveRunCells, on that many cells rounded up (one wavelength), at kWaveCourant.
+std::vector<FollowUp> wave_runs(const FollowUpContext& c) {
+  std::vector<FollowUp> runs;
+  std::set<Interior> asked;
+  for (std::size_t i = 0; i < c.rows.size(); ++i) {
+    const Interior id = interior_of(key_of(c.rows[i]), c.rows[i]);
+    const int cells = wave_cells(scheme_params(id)).run_cells();
+    if (cells == 0 || cells > kMaxWaveRunCells || !asked.insert(id).second) continue;
+    RunParams p = c.spec.cases.at(i).params;
+    std::tie(p.scene, p.bc, p.walls) = std::tuple{SceneKind::mode, Boundary::periodic, Walls::clip};
+    std::tie(p.E, p.A, p.cells) = std::tuple{kWaveRunE, kWaveRunAmplitude, cells};
+    p.stepping.policy = TimeStepPolicy::fixed;
+    p.T = kWavePeriods / std::sqrt(kWaveRunE);  // a period is 1 / c
+    p.dt = kWaveCourant / (cells * std::sqrt(kWaveRunE));
+    runs.push_back({.of = i, .role = kWaveRun, .params = p});
+  }
+  return runs;
+}
+
+// One per method row, the schemes that share an interior computed once, each with its
+// single-mode run among `follow_up`.
+std::vector<WaveCells> wave_column(const std::vector<MethodRow>& rows,
+                                   const std::vector<ojson>& follow_up) {
+  std::map<Interior, WaveCells> computed;
+  for (const auto& r : follow_up)
+    if (r.value(kFollowUpRole, "") == kWaveRun) computed[interior_of(key_of(r), r)].run = &r;
   std::vector<WaveCells> out;
   for (const auto& m : rows) {
-    const auto& [method, walls, transfer, order, update] = m.key;
-    const int ppc = has_number(*m.edge, "ppc") ? (*m.edge)["ppc"].get<int>() : 0;
-    const auto id = std::tuple{method, transfer, order, update, ppc};
-    auto it = computed.find(id);
-    if (it == computed.end())
-      it = computed.emplace(id, wave_cells(scheme_params(m.key, ppc))).first;
-    out.push_back(it->second);
+    const Interior id = interior_of(m.key, *m.edge);
+    if (WaveCells& w = computed[id]; !w.computed) {
+      const ojson* run = w.run;
+      w = wave_cells(scheme_params(id));
+      std::tie(w.transfer, w.run) = std::tuple{transfer_text(m.key), run};
+    }
+    out.push_back(computed[id]);
   }
   return out;
 }
@@ -244,86 +290,20 @@ std::string cells_text(double cells) {
   return fixed(std::round(cells / unit) * unit, std::max(0, 2 - magnitude));
 }
 
-// The wave column set against runs: the dispersion study's single-mode runs at kWaveCourant (the
-// mode scene, one standing wave of the periodic bar, to T = its periods), each run's error over
-// time per A beside the symbol's largest |lambda^n - e^{i omega n dt}| over the run's steps.
-struct ModeCheck {
-  std::string label;
-  int cells = 0;
-  long long steps = 0;
-  double run = 0, symbol = 0;
-  std::string run_outcome;  // the run's outcome (outcome(), report_util.hpp)
-  double difference() const { return run - symbol; }
-};
-
-// Two schemes' symbol errors closer than this (per amplitude) are the same scheme's: at the
-// uniform layout with two particles per cell linear MPM, uGIMP, cpGIMP and CPDI share a symbol.
-constexpr double kSameWaveError = 1e-3;
-
-std::vector<ModeCheck> mode_checks(const StudyInputs& inputs) {
-  std::vector<ModeCheck> out;
-  const auto it = inputs.find("dispersion");
-  if (it == inputs.end() || !it->second.present() || !it->second.doc["cases"].is_array())
-    return out;
-  for (const auto& r : it->second.doc["cases"]) {
-    const RunRow rr(r);
-    if (!rr.courant || std::abs(*rr.courant - kWaveCourant) > kSameCourant || !rr.survived() ||
-        !rr.error_over_A() || !rr.steps || !has_number(r, "cells") || !has_number(r, "ppc"))
-      continue;
-    const auto p = scheme_params(key_of(r), r["ppc"].get<int>());
-    if (!p) continue;
-    ModeCheck c{.label = rr.method_label,
-                .cells = r["cells"].get<int>(),
-                .steps = *rr.steps,
-                .run = *rr.error_over_A(),
-                .run_outcome = rr.outcome};
-    const double kh = 2 * std::numbers::pi / c.cells;
-    const DispersionPoint d = dispersion_at(*p, kWaveCourant, kh);
-    for (long long n = 1; n <= c.steps; ++n) {
-      const double periods = double(n) * kWaveCourant * kh / (2 * std::numbers::pi);
-      c.symbol = std::max(c.symbol, amplitude_error(d, kWaveCourant, periods));
-    }
-    out.push_back(c);
-  }
-  return out;
-}
-
-// The pairs of schemes on the same grid whose runs end stable and whose symbol errors stay below
-// the amplitude (neither measure has lost the wave: an error from A on says only that, 2 for a
-// wave in antiphase, 1 for one damped away) and differ by more than kSameWaveError: how many the
-// runs' errors order as the symbol's do.
-struct PairOrder {
-  int alike = 0, pairs = 0;
-};
-PairOrder pair_order(const std::vector<ModeCheck>& checks) {
-  PairOrder o;
-  for (std::size_t i = 0; i < checks.size(); ++i) {
-    for (std::size_t j = i + 1; j < checks.size(); ++j) {
-      const ModeCheck &a = checks[i], &b = checks[j];
-      if (a.cells != b.cells || a.run_outcome != "stable" || b.run_outcome != "stable" ||
-          a.symbol >= 1 || b.symbol >= 1 || std::abs(a.symbol - b.symbol) <= kSameWaveError)
-        continue;
-      ++o.pairs;
-      o.alike += (a.run - b.run) * (a.symbol - b.symbol) > 0;
-    }
-  }
-  return o;
-}
-
 // The rows of methods_grid (none where its results are not in the folder).
 std::vector<ojson> grid_rows(const StudyInputs& inputs) {
-  const StudyInput& in = inputs.at("methods_grid");
-  if (!in.present()) return {};
-  return std::vector<ojson>(in.doc["cases"].begin(), in.doc["cases"].end());
+  const auto in = inputs.find("methods_grid");
+  if (in == inputs.end() || !in->second.present()) return {};
+  return std::vector<ojson>(in->second.doc["cases"].begin(), in->second.doc["cases"].end());
 }
 
 // What the report, its claim, the index paragraph and the subtitle say, found once.
 struct Findings {
   std::vector<MethodRow> methods;  // one per row, with its runs and fitted orders
   std::vector<WaveCells> waves;    // the wave column, one per method
-  std::vector<ModeCheck> checks;   // the dispersion study's runs the wave column is set against
   // The runs of methods_grid the error at Table 1's setting and each order are measured over.
   std::vector<ojson> table1_runs, h_runs, cfl_runs, fixed_runs;
+  Coverage edges_on, dt_on;  // where the edges and the orders in dt are measured
   // At Table 1's setting: how the methods' runs ended (others: too short or not run).
   int stable = 0, meaningless = 0, unstable = 0, others = 0, accurate = 0, inaccurate = 0;
   int with_order_h = 0, with_order_dt = 0, edges = 0, meaningless_edges = 0;
@@ -333,11 +313,13 @@ struct Findings {
     std::optional<double> value;
     std::string methods;
   } best_error, fewest_cells, most_cells, widest_edge;
-  // The wave column against runs: run minus symbol per run, in how many the run's error is the
-  // larger, and how the pairs of schemes order.
-  std::vector<double> differences;
-  int larger = 0;
-  PairOrder order;
+  // The wave column against its single-mode runs (one per scheme): the runs, how many come out
+  // within the tolerance, by transfer (within, runs); the schemes above the cap, not run, and
+  // what their runs would cost; what the runs made cost, in particle-steps.
+  std::vector<ojson> wave_rows;
+  int within = 0, not_run = 0;
+  std::map<std::string, std::pair<int, int>> by_transfer;
+  double run_cost = 0, not_run_cost = 0;
 };
 
 // The smallest value over the methods (the largest with `largest`), where a method has one, with
@@ -357,13 +339,12 @@ Findings::Extreme extreme(const std::vector<MethodRow>& rows, Value value, bool 
   return x;
 }
 
-// The findings from the rows (the edge searches), those of methods_grid and the dispersion
-// study's (the report's inputs; the index and the subtitle have only the rows).
+// The findings from the rows (the edge searches), those of methods_grid and the follow-up runs
+// (the report's; the index and the subtitle have only the rows).
 Findings find(const std::vector<ojson>& rows, const std::vector<ojson>& grid,
-              const StudyInputs& inputs) {
+              const std::vector<ojson>& follow_up) {
   Findings f{.methods = method_rows(rows, grid)};
-  f.waves = wave_column(f.methods);
-  f.checks = mode_checks(inputs);
+  f.waves = wave_column(f.methods, follow_up);
   for (const auto& r : grid) {
     if (is_table1_setting(r)) f.table1_runs.push_back(r);
     if (is_order_h_run(r)) {
@@ -372,15 +353,28 @@ Findings find(const std::vector<ojson>& rows, const std::vector<ojson>& grid,
     }
     if (r["cells"].get<int>() != kTable1Cells) continue;
     (r["policy"].get<std::string>() == "cfl" ? f.cfl_runs : f.fixed_runs).push_back(r);
+    f.dt_on.add(r);
   }
-  for (const auto& c : f.checks) {
-    f.differences.push_back(c.difference());
-    f.larger += c.difference() > 0;
-  }
-  f.order = pair_order(f.checks);
+  f.edges_on = coverage_of(rows);
   // The reading's facts at Table 1's setting, of the wave column and of the edges.
+  std::set<Interior> schemes;  // the wave column's runs, counted once per scheme
   for (std::size_t i = 0; i < f.methods.size(); ++i) {
     const MethodRow& m = f.methods[i];
+    const WaveCells& w = f.waves[i];
+    if (const double n = w.run_cells(); schemes.insert(interior_of(m.key, *m.edge)).second) {
+      // A scheme not run: what its run would cost, ppc n x the steps to its periods.
+      f.not_run += n > kMaxWaveRunCells;
+      if (n > kMaxWaveRunCells)
+        f.not_run_cost +=
+            number_or_zero(*m.edge, "ppc") * n * std::ceil(kWavePeriods * n / kWaveCourant);
+      if (w.run) {
+        f.wave_rows.push_back(*w.run);
+        f.run_cost += RunRow(*w.run).particle_steps();
+        f.within += w.within();
+        f.by_transfer[w.transfer].first += w.within();
+        ++f.by_transfer[w.transfer].second;
+      }
+    }
     const std::string ending = m.table1 ? outcome(*m.table1) : std::string();
     f.stable += ending == "stable";
     f.meaningless += ending == "meaningless";
@@ -401,29 +395,29 @@ Findings find(const std::vector<ojson>& rows, const std::vector<ojson>& grid,
     if (!has_number(r, "dt_edge_over_cfl") || outcome(r) == "meaningless") return std::nullopt;
     return r["dt_edge_over_cfl"].get<double>();
   };
-  const auto sci2 = [](double v) { return sci(v); };
-  const auto fixed3 = [](double v) { return fixed(v, 3); };
-  f.best_error = extreme(f.methods, error, false, sci2);
+  f.best_error = extreme(f.methods, error, false, [](double v) { return sci(v); });
   f.fewest_cells = extreme(f.methods, cells, false, cells_text);
   f.most_cells = extreme(f.methods, cells, true, cells_text);
-  f.widest_edge = extreme(f.methods, edge, true, fixed3);
+  f.widest_edge = extreme(f.methods, edge, true, [](double v) { return fixed(v, 3); });
   return f;
 }
 
 // ---------------------------------------------------------------------------------------------
 // Claims
 
-Claim wave_order_claim(const Findings& f) {
-  Claim c = claim("runs-order-schemes-as-the-wave-column",
-                  "On each grid of the dispersion study's single-mode runs at c dt / h = "
-                  "{courant}, the runs' errors over time order the schemes as the Bloch symbol's "
-                  "wave errors over the same steps do",
-                  "{alike} of {pairs} pairs of schemes on the same grid whose runs end stable and "
-                  "whose symbol errors stay below A (neither measure meaningless), apart by more "
-                  "than {tie}");
-  c.value("courant", shortest(kWaveCourant))
-      .value("tie", shortest(kSameWaveError))
-      .every("alike", f.order.alike, "pairs", f.order.pairs);
+Claim wave_run_claim(const Findings& f) {
+  Claim c = claim("wave-column-within-tolerance-in-a-run",
+                  "At its wave column's value, rounded up to whole cells, the single-mode run of "
+                  "every scheme whose column is at most {cap} cells stays within {tolerance} of "
+                  "A over {periods} periods at c dt / h = {courant}",
+                  "{within} of {runs} schemes' runs end stable with an error over time of at "
+                  "most {tolerance} A");
+  c.value("cap", std::to_string(kMaxWaveRunCells))
+      .value("tolerance", percent(kWaveTolerance))
+      .value("periods", shortest(kWavePeriods))
+      .value("courant", shortest(kWaveCourant))
+      .every("within", f.within, "runs", (long long)f.wave_rows.size())
+      .on(coverage_of(f.wave_rows));
   return c;
 }
 
@@ -482,50 +476,32 @@ std::string wave_text(const WaveCells& w) {
   return w.cells ? cells_text(*w.cells) : "> " + shortest(kMaxCellsPerWavelength);
 }
 
-std::string run_text(const ModeCheck& c) {
-  std::string s = fixed(c.run, 3) + " (" + c.run_outcome;
-  if (c.run_outcome == "stable") s += ", " + std::string(to_string(accuracy_class(c.run, 1.0)));
-  return s + ")";
+// The column's single-mode run: its error over time per A as a percentage (on the side of the
+// tolerance it was judged), or its verdict, or why there is none.
+std::string wave_run_text(const WaveCells& w) {
+  if (!w.run) return w.run_cells() > kMaxWaveRunCells ? "not run (column above its cap)" : "–";
+  const RunRow run(*w.run);
+  if (!run.stable_over_a_wave_pass() || !run.error_over_A()) return verdict(*w.run);
+  return beside_thresholds(100 * *run.error_over_A(), {100 * kWaveTolerance}) + "%";
 }
 
-// The wave column against the dispersion study's runs: the spread of run minus symbol, and a
-// table of the runs.
-std::string mode_check_text(const Findings& f) {
-  if (f.checks.empty()) {
-    return "The dispersion study has not been run into this folder: the wave column is not set "
-           "against runs here.\n\n";
-  }
-  std::ostringstream md;
-  md << "**The wave column against runs.** The dispersion study's " << f.checks.size()
-     << " single-mode runs at c dt / h = " << shortest(kWaveCourant)
-     << " (the mode scene: one free standing wave of the periodic bar, its wavelength the bar's "
-        "length, on as many cells as the wave has cells per wavelength, to the end of its "
-     << "periods) give their error over time per A beside the symbol's largest "
-        "|lambda^n - e^(i omega n dt)| over the same steps. The difference, run minus symbol, "
-        "spans "
-     << span(f.differences, 2) << " (the run's error the larger in " << f.larger << " of "
-     << f.checks.size()
-     << " runs): a run measures the displacement, the sum of the grid velocities over the "
-        "steps, where the symbol carries the velocity and the strain. How the two order the "
-        "schemes on each grid is the claim above.\n\n"
-     << "| scheme | cells per wavelength | steps | run: error over time / A (outcome, class) | "
-        "symbol: largest error over its steps | run minus symbol |\n|---|---|---|---|---|---|\n";
-  for (const auto& c : f.checks) {
-    md << "| " << c.label << " | " << c.cells << " | " << c.steps << " | " << run_text(c) << " | "
-       << fixed(c.symbol, 3) << " | " << fixed(c.difference(), 3) << " |\n";
-  }
-  md << "\n";
-  return md.str();
+// The schemes whose run is within the tolerance, by transfer: "flip 18 of 18, apic 6 of 18".
+std::string transfers_text(const Findings& f) {
+  std::vector<std::string> names;
+  for (const auto& [transfer, counts] : f.by_transfer)
+    names.push_back(transfer + " " + std::to_string(counts.first) + " of " +
+                    std::to_string(counts.second));
+  return list_of(names);
 }
 
 // The reading: facts of the table, every number from its rows.
 std::string reading(const Findings& f) {
   std::ostringstream md;
-  md << "Of " << f.methods.size() << " methods at Table 1's setting, " << f.stable
-     << " end stable (" << f.accurate << " accurate, error over time below "
-     << shortest(kAccurateFraction) << " A; " << f.inaccurate << " inaccurate, from "
-     << shortest(kAccurateFraction) << " A up to A), " << f.meaningless << " meaningless and "
-     << f.unstable << " unstable";
+  md << "Of " << f.methods.size() << " methods at Table 1's setting ("
+     << coverage_of(f.table1_runs).text() << "), " << f.stable << " end stable (" << f.accurate
+     << " accurate, error over time below " << shortest(kAccurateFraction) << " A; " << f.inaccurate
+     << " inaccurate, from " << shortest(kAccurateFraction) << " A up to A), " << f.meaningless
+     << " meaningless and " << f.unstable << " unstable";
   if (f.others > 0) md << " (" << f.others << " too short or not run)";
   if (f.best_error.value) {
     md << "; the smallest error over time there is " << sci(*f.best_error.value) << " ("
@@ -534,7 +510,8 @@ std::string reading(const Findings& f) {
   md << ". An order in h is fitted for " << f.with_order_h << " of " << f.methods.size()
      << " methods and an order in dt for " << f.with_order_dt << ". ";
   if (f.fewest_cells.value) {
-    md << "The smallest number of cells per wavelength for a wave error of at most "
+    md << "By the Bloch symbol, the smallest number of cells per wavelength for a wave error of at "
+          "most "
        << percent(kWaveTolerance) << " after " << shortest(kWavePeriods)
        << " periods at c dt / h = " << shortest(kWaveCourant) << " is "
        << cells_text(*f.fewest_cells.value) << " (" << f.fewest_cells.methods
@@ -542,15 +519,22 @@ std::string reading(const Findings& f) {
        << ")";
     if (f.beyond > 0)
       md << "; " << f.beyond << " methods need more than " << shortest(kMaxCellsPerWavelength);
-    md << ". ";
+    md << ". Run on its own column's value, rounded up (" << coverage_of(f.wave_rows).text()
+       << "), the single-mode run of " << f.within << " of " << f.wave_rows.size()
+       << " schemes stays within " << percent(kWaveTolerance) << " of A over its periods"
+       << ", by transfer " << transfers_text(f) << " (" << f.not_run
+       << " others not run: their column exceeds " << kMaxWaveRunCells
+       << " cells): the column is the symbol's, and where a scheme's run is not within, that "
+          "many cells do not give a run of that scheme the tolerance. ";
   }
-  md << "Of " << f.edges << " survival edges at the tiny amplitude, " << f.meaningless_edges
+  md << "Of " << f.edges << " survival edges at the tiny amplitude (" << f.edges_on.text() << "), "
+     << f.meaningless_edges
      << " are runs whose error over time reached A (meaningless: marked in the table and the "
         "figure)";
   if (f.widest_edge.value) {
     md << "; the widest of the others is " << fixed(*f.widest_edge.value, 3) << " h/c ("
        << f.widest_edge.methods
-       << "), a run of this length only: an edge is not a recommended step";
+       << "), at this amplitude and run length only: an edge is not a recommended step";
   }
   md << ".";
   return md.str();
@@ -562,17 +546,19 @@ std::string methods_table(const Findings& f) {
         "energy balance error there | cells per wavelength for a wave error (damping and phase "
         "together, per amplitude) of at most "
      << percent(kWaveTolerance) << " after " << shortest(kWavePeriods)
-     << " periods (Bloch symbol, C = " << shortest(kWaveCourant)
-     << ") | order in h (fitted over n of N runs) | order in dt (fitted over n of N runs) | "
-        "spectral limit (h/c) | survival edge (h/c) | accuracy edge (h/c) | node visits per "
-        "particle-step |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+     << " periods (Bloch symbol of the linearised step, C = " << shortest(kWaveCourant)
+     << ") | its single-mode run on that many cells: error over time / A | order in h ("
+     << coverage_of(f.h_runs).text() << "; fitted over n of N runs) | order in dt ("
+     << f.dt_on.text() << "; fitted over n of N runs) | spectral limit (h/c) | survival edge (h/c; "
+     << f.edges_on.text() << ") | accuracy edge (h/c; the same runs) | node visits per "
+     << "particle-step |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (std::size_t i = 0; i < f.methods.size(); ++i) {
     const MethodRow& m = f.methods[i];
     const RunRow edge(*m.edge);
     md << "| " << basis_text(m.key) << " | " << transfer_text(m.key) << " | " << std::get<4>(m.key)
        << " | " << table1_text(m) << " | " << table1_over_time(m) << " | " << table1_energy(m)
-       << " | " << wave_text(f.waves[i]) << " | " << order_text(m.order_h) << " | "
-       << order_text(m.order_dt) << " | "
+       << " | " << wave_text(f.waves[i]) << " | " << wave_run_text(f.waves[i]) << " | "
+       << order_text(m.order_h) << " | " << order_text(m.order_dt) << " | "
        << (edge.courant_spectral ? fixed(*edge.courant_spectral, 3)
                                  : "> " + shortest(kMaxSpectralCourant))
        << " | " << edge_text(*m.edge, "dt_edge_over_cfl", "not found in the scan");
@@ -594,11 +580,10 @@ std::string how_to_read_the_setting(const Findings& f) {
      << listing(table1, "ppc") << " particles, dt = " << param(kTable1Dt)
      << " (the verdict where the run did not end stable), shown, never fitted; *error over time "
         "there*: the largest such error after any step, with its size per A and its accuracy "
-        "class; *energy balance error there*: the largest "
-        "balance error of the particles' kinetic and strain energy and the body force's work, per "
-        "the initial energy (docs/theory.md, \"Energy\");\n"
-     << "- *order in h*: least-squares slope of log(error over time) against log(h) over the runs "
-        "on "
+        "class; *energy balance error there*: the largest balance error of the particles' kinetic "
+        "and strain energy and the body force's work, per the initial energy (docs/theory.md, "
+        "\"Energy\");\n- *order in h*: least-squares slope of log(error over time) against "
+        "log(h) over the runs on "
      << listing(h_runs, "cells") << " cells at C = c dt / h = " << shortest(kOrderHCourant)
      << " and A = " << listing(h_runs, "A") << " (E = " << listing(h_runs, "E")
      << ", T = " << listing(h_runs, "T") << "; A / h " << span(numbers(h_runs, "A_over_h"))
@@ -609,16 +594,18 @@ std::string how_to_read_the_setting(const Findings& f) {
      << " (C = " << listing(values_of(fixed_runs, &RunRow::courant)) << "); " << order_regime_text()
      << ". Beside each order, (n of N): the N runs of its kind the method has and the n of them "
         "in the regime, the points it is fitted over (`–` before them with fewer than the fit "
-        "needs). An order in dt near zero is what a time error smaller than the grid's gives;\n";
+        "needs). An order in dt near zero says that over these runs the error over time hardly "
+        "changes with dt;\n";
   return md.str();
 }
 
-std::string wave_how_to_read(const std::vector<ojson>& edge_rows) {
+std::string wave_how_to_read(const std::vector<ojson>& edge_rows, const Findings& f) {
   std::ostringstream md;
   md << "- *cells per wavelength for |lambda^n - e^(i omega t)| <= " << percent(kWaveTolerance)
      << " after " << shortest(kWavePeriods)
-     << " periods*: the smallest number of cells per wavelength above which a wave of the "
-        "interior of the uniform layout comes out within "
+     << " periods*: the smallest number of cells per wavelength above which, by the Bloch "
+        "symbol of the scheme's step linearised at rest, a wave of the interior of the uniform "
+        "layout comes out within "
      << percent(kWaveTolerance) << " of the exact wave after " << shortest(kWavePeriods)
      << " of its periods, at c dt / h = " << shortest(kWaveCourant)
      << ". The wave is carried by the scheme's physical branch lambda, the acoustic eigenvalue "
@@ -638,7 +625,19 @@ std::string wave_how_to_read(const std::vector<ojson>& edge_rows) {
      << listing(edge_rows, "ppc")
      << "); the walls do not enter it (a B-spline with modified walls has its interior's "
         "value). dispersion.md's cells per wavelength for a phase error alone leave the damping "
-        "out;\n";
+        "out;\n- *its single-mode run on that many cells*: the error over time per A (or the "
+        "verdict) of one run of the mode scene, one free standing wave of the periodic bar with "
+        "the bar's length as its wavelength, on the column's value rounded up, at c dt / h = "
+     << shortest(kWaveCourant) << " to the end of " << shortest(kWavePeriods)
+     << " periods (E = " << shortest(kWaveRunE) << ", A = " << param(kWaveRunAmplitude)
+     << "), where the symbol's error is within the tolerance by the column's definition; one run "
+        "per scheme, the walls' treatments sharing it. The symbol follows the particles' "
+        "velocities and strains (and APIC's affine terms) through the step linearised at rest; a "
+        "run's error is that of the displacement, the sum of the grid velocities over the steps. "
+        "The runs take "
+     << sci(f.run_cost) << " particle-steps; `not run (column above its cap)` where the column "
+     << "exceeds " << kMaxWaveRunCells << " cells (" << f.not_run
+     << " schemes, whose runs would take " << sci(f.not_run_cost) << " particle-steps);\n";
   return md.str();
 }
 
@@ -651,7 +650,8 @@ std::string methods_index(const Spec& spec, const std::vector<ojson>& rows) {
         "its orders in h and dt with the runs each is fitted over, the cells per wavelength for "
         "a wave error of at most "
      << percent(kWaveTolerance) << " after " << shortest(kWavePeriods)
-     << " periods, its edges and its work per particle-step; the recommendations are "
+     << " periods by the Bloch symbol with a single-mode run on that many cells, its edges at a "
+        "tiny amplitude and its work per particle-step; the recommendations are "
         "advice.md's. Details: ["
      << spec.name << ".md](" << spec.name << ".md).\n\n";
   return md.str();
@@ -694,32 +694,32 @@ std::string methods_data(const std::vector<MethodRow>& rows, const std::string& 
   return csv.str();
 }
 
-// "120 methods with a survival edge; E = 64, 100 cells".
+// "120 methods with a survival edge; E = 64, A = 1e-4, 100 cells".
 std::string methods_subtitle(const Spec&, const ojson& doc) {
   const std::vector<ojson> rows(doc["cases"].begin(), doc["cases"].end());
   const Findings f = find(rows, {}, {});
   return std::to_string(f.edges) + " methods with a survival edge; E = " + listing(rows, "E") +
-         ", " + listing(rows, "cells") + " cells";
+         ", A = " + listing(rows, "A") + ", " + listing(rows, "cells") + " cells";
 }
 
 // The report, from the findings: the reading, how to read a row, the table, the wave check.
 StudyReport methods_report(const ReportContext& c) {
   const std::vector<ojson> grid = grid_rows(c.inputs);  // the findings point into it
-  const Findings f = find(c.rows, grid, c.inputs);
+  const Findings f = find(c.rows, grid, c.follow_up);
   std::ostringstream md;
   md << "## Results\n\n**Reading.** " << reading(f) << "\n\n"
      << "This table measures; it does not recommend: this project answers a user's problem with "
         "`mpmstab advise`, which runs each answer on that problem before giving it "
         "([advice.md](advice.md)).\n\n"
      << cost_metric_text() << "\n\n![" << c.spec.title << "](" << c.spec.name
-     << ".png)\n\nThe figure places each method by its survival edge at the tiny "
-     << "amplitude (x) and its error over time at Table 1's setting (y), one panel per update "
-        "order; a "
-     << "method unstable at that setting or without an edge is left out. Vector version: ["
+     << ".png)\n\nThe figure places each method by its survival edge at the tiny amplitude A = "
+     << listing(c.rows, "A")
+     << " (x) and its error over time at Table 1's setting (y), one panel per update order; a "
+        "method unstable at that setting or without an edge is left out. Vector version: ["
      << c.spec.name << ".svg](" << c.spec.name << ".svg); data: [" << c.spec.name << "_data.csv]("
      << c.spec.name << "_data.csv).\n\n"
      << "How to read a row:\n\n"
-     << how_to_read_the_setting(f) << wave_how_to_read(c.rows)
+     << how_to_read_the_setting(f) << wave_how_to_read(c.rows, f)
      << "- *spectral limit*: the largest c dt / h at which the scheme's map, linearised about "
         "rest at the uniform layout, amplifies nothing: the Bloch limit of the interior "
         "(docs/theory.md, \"The spectral limit\"; the walls' treatment does not enter it; "
@@ -737,15 +737,12 @@ StudyReport methods_report(const ReportContext& c) {
         "that one step makes (counted from the code: p2g, g2p and the stress update, plus what "
         "the update order and the transfer add), what makes one particle-step of a method dearer "
         "than another's; the measured time per particle-step is in performance.md.\n\n";
-  if (grid.empty()) {
+  if (grid.empty())
     md << "methods_grid has not been run into this folder: the columns it provides are `–`.\n\n";
-  }
-  md << methods_table(f) << "\n" << mode_check_text(f);
-  std::vector<Claim> claims;
-  if (!f.checks.empty()) claims.push_back(wave_order_claim(f));
+  md << methods_table(f) << "\n";
   return StudyReport{.markdown = md.str(),
                      .data_csv = methods_data(f.methods, c.csv_header),
-                     .claims = std::move(claims)};
+                     .claims = {wave_run_claim(f)}};
 }
 
 const StudyRegistration kMethods{{
@@ -753,8 +750,9 @@ const StudyRegistration kMethods{{
     .summary = "one row per method: error, orders with their support, cells per wavelength for "
                "a wave error after some periods, tiny-amplitude edges, work per particle-step",
     .work = CaseWork::edge_search,
-    .inputs = {{.name = "methods_grid", .required = true}, {.name = "dispersion"}},
+    .inputs = {{.name = "methods_grid", .required = true}},
     .figure = true,
+    .follow_up = wave_runs,
     .report = methods_report,
     .index = methods_index,
     .figure_subtitle = methods_subtitle,
