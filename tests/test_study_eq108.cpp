@@ -104,20 +104,23 @@ TEST(Eq108Study, ACoarserGridIsSetAgainstThePaperBesideThePapersGrid) {
             "the best reading (scaled, l2: the most cells within it, ties broken by the smallest "
             "mean absolute natural log of ours / paper, here 2.53) is within it in 0 of 3 cells; "
             "its ratios 0.08");
-  // The coarser grid: 1.2 times the paper in each, beside 0.08 on the paper's grid.
-  EXPECT_EQ(r.claims[1].id, "grid-10-mpm-gives-the-paper");
+  // The coarser grid: 1.2 times the paper in each, beside 0.08 on the paper's grid; measured on
+  // that grid's runs.
+  EXPECT_EQ(r.claims[1].id, "grid-10-scaled-l2-gives-the-paper");
   EXPECT_TRUE(r.claims[1].holds);
   EXPECT_EQ(r.claims[1].support, 3);
   EXPECT_EQ(render_statement(r.claims[1]),
             "On 10 cells (h = 0.1) instead of the paper's 100, eq. (108) (scaled, l2) gives the "
-            "paper's MPM dt stable within a factor 3 in every cell where both are measured");
+            "paper's dt stable column within a factor 3 in every cell where both are measured");
   EXPECT_EQ(render(r.claims[1], r.claims[1].evidence),
-            "3 of 3 cells; ratios 1.2 (on 100 cells 0.08 in 3 cells)");
+            "3 of 3 cells, ratios 1.2, in those within it 1.2 (on 100 cells 0.08 in 3 cells)");
+  EXPECT_EQ(r.claims[1].measured_on, "A = 0.015; c T = 4, 8 and 16; 10 cells; bar");
+  EXPECT_EQ(r.claims[0].measured_on, "A = 0.015; c T = 4, 8 and 16; 100 cells; bar");
   EXPECT_NE(r.markdown.find("## On 10 cells"), std::string::npos) << r.markdown;
-  // The row: the paper, the paper's grid's bound and ratio, then this grid's bound, its error
-  // over time / A (1e-5 / 0.015) and accuracy class, and its ratio.
-  EXPECT_NE(r.markdown.find("| 9.1e-4 | scaled, l2 | 7.3e-5 | 0.08 | 1.1e-3 | 6.7e-4 | accurate | "
-                            "1.2 |"),
+  // The row: the paper, the paper's grid's bound and ratio, then this grid's bound, its ratio,
+  // its error over time / A (1e-5 / 0.015) and accuracy class.
+  EXPECT_NE(r.markdown.find("| 9.1e-4 | scaled, l2 | 7.3e-5 | 0.08 | 1.1e-3 | 1.2 | 6.7e-4 | "
+                            "accurate |"),
             std::string::npos)
       << r.markdown;
   // One cell four times below the paper on the coarser grid refutes it.
@@ -125,14 +128,14 @@ TEST(Eq108Study, ACoarserGridIsSetAgainstThePaperBesideThePapersGrid) {
   const StudyReport worse = report();
   EXPECT_FALSE(worse.claims[1].holds);
   EXPECT_EQ(render(worse.claims[1], worse.claims[1].evidence),
-            "2 of 3 cells; ratios 0.25 to 1.2 (on 100 cells 0.08 in 3 cells); beyond it: E = 64, "
-            "A = 0.015, dt = 1e-4 (0.25 times the paper's 1.8e-3, transcribed with high "
-            "confidence)");
+            "2 of 3 cells, ratios 0.25 to 1.2, in those within it 1.2 (on 100 cells 0.08 in 3 "
+            "cells); beyond it: mpm E = 64, A = 0.015, dt = 1e-4 (0.25 times the paper's 1.8e-3, "
+            "transcribed with high confidence)");
   // A meaningless run on the coarser grid is shown but not compared.
   test_support::meaningless_row(rows[4]);
   const StudyReport fewer = report();
   EXPECT_EQ(fewer.claims[1].support, 2);
-  EXPECT_NE(fewer.markdown.find("4.5e-4 (meaningless) | 1.0 | meaningless | – |"),
+  EXPECT_NE(fewer.markdown.find("4.5e-4 (meaningless) | – | 1.0 | meaningless |"),
             std::string::npos)
       << fewer.markdown;
 }

@@ -47,7 +47,7 @@ std::string stable_ours() {
 }
 
 // The two classes where the verdicts agree.
-std::vector<ClassDefinition> agreement_classes() {
+std::vector<ComparisonClass> agreement_classes() {
   const std::string f = agreement_factor();
   return {
       {"agree-stable", "Agree: both stable, max errors within a factor " + f,
@@ -60,7 +60,7 @@ std::vector<ClassDefinition> agreement_classes() {
 }
 
 // The failure classes (failure_class()), the meaningless one and the one without a verdict.
-std::vector<ClassDefinition> failure_classes() {
+std::vector<ComparisonClass> failure_classes() {
   const std::string f = agreement_factor();
   // The failure classes (failure_class()) share their first condition.
   const std::string goes_on =
@@ -114,7 +114,7 @@ std::vector<ClassDefinition> failure_classes() {
 }
 
 // The classes where both runs are stable and the errors differ, and the rest.
-std::vector<ClassDefinition> error_classes() {
+std::vector<ComparisonClass> error_classes() {
   const std::string f = agreement_factor();
   return {
       {"mpm-error-larger", "MPM: both stable, our max error more than " + f + " times the paper's",
@@ -143,15 +143,22 @@ std::vector<ClassDefinition> error_classes() {
 }  // namespace
 }  // namespace studies::comparison
 
-const std::vector<ClassDefinition>& comparison_classes() {
+const std::vector<ComparisonClass>& comparison_classes() {
   using namespace studies::comparison;
-  static const std::vector<ClassDefinition> classes = [] {
-    std::vector<ClassDefinition> all = agreement_classes();
+  static const std::vector<ComparisonClass> classes = [] {
+    std::vector<ComparisonClass> all = agreement_classes();
     for (auto part : {failure_classes(), error_classes()})
       all.insert(all.end(), part.begin(), part.end());
     return all;
   }();
   return classes;
+}
+
+std::string semicolon_list(const std::vector<std::string>& v) {
+  std::string out;
+  for (const auto& x : v)
+    out += (out.empty() ? "" : "; ") + x;
+  return out.empty() ? std::string("none") : out;
 }
 
 const ComparisonClass* find_class(const std::string& id) {
@@ -176,10 +183,6 @@ const std::string& explained_definition() {
       "instead of Dirichlet walls, for the cells it holds); the variants study, of the studies "
       "tier, does the same for each documented choice and is linked, not read";
   return text;
-}
-
-bool explains(const CellVerdict& rerun) {
-  return rerun.agrees();
 }
 
 double scan_courant(const nlohmann::ordered_json& row) {

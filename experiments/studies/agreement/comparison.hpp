@@ -39,10 +39,12 @@ struct ComparisonClass {
   std::string definition;  // what the predicate decides, in the order classify() tests it
   ClassKind kind;
 };
-using ClassDefinition = ComparisonClass;
+
+// "a; b; c" (items that hold commas), or "none".
+std::string semicolon_list(const std::vector<std::string>& v);
 
 // Every class, in the order the reports explain them.
-const std::vector<ClassDefinition>& comparison_classes();
+const std::vector<ComparisonClass>& comparison_classes();
 const ComparisonClass* find_class(const std::string& id);
 
 // The classes as a Markdown table, one row per class: its id, its title and its definition
@@ -51,7 +53,8 @@ std::string comparison_classes_markdown();
 
 // When an experiment of the comparison *explains* a cell that disagrees with the paper, in
 // words: a rerun of the cell by that experiment with one documented choice changed alone agrees
-// with the paper (explains() below). comparison.md counts, per class, the cells explained.
+// fully with the paper (CellVerdict::agrees() of its verdict by classify() against the cell's
+// paper value). comparison.md counts, per class, the cells explained.
 const std::string& explained_definition();
 
 // A run's Courant number as the courant scan groups its runs: rounded to 1e-4 (the scan's dts
@@ -81,10 +84,6 @@ struct CellVerdict {
   // Fully in agreement: same verdict, and the max errors within a factor 3 where both stable.
   bool agrees() const { return cls == "agree-stable" || cls == "agree-unstable"; }
 };
-
-// Whether a rerun of a disagreeing cell (its verdict by classify() against the cell's paper
-// value) explains the cell: the rerun agrees fully (CellVerdict::agrees()).
-bool explains(const CellVerdict& rerun);
 
 // Agreement counted over a set of cells, as the comparison's summary states it.
 struct AgreementCounts {

@@ -76,7 +76,7 @@ std::optional<double> number(const ojson& row, const char* key) {
 // the recorded steps.
 struct Trace {
   std::optional<double> peak_error, bound_min, bound_median;
-  std::int64_t peak_step = 0, bound_min_step = 0;
+  std::int64_t peak_step = 0, bound_min_step = 0, last_step = 0;
 };
 
 Trace trace_of(const ojson* history) {
@@ -84,7 +84,7 @@ Trace trace_of(const ojson* history) {
   if (!history) return t;
   std::vector<double> bounds;
   for (const auto& h : *history) {
-    const std::int64_t step = h.at("step").get<std::int64_t>();
+    const std::int64_t step = t.last_step = h.at("step").get<std::int64_t>();
     if (const auto e = number(h, "error"); e && (!t.peak_error || *e > *t.peak_error)) {
       t.peak_error = e;
       t.peak_step = step;
@@ -118,13 +118,6 @@ std::string case_text(const std::string& method, double E, double A, double dt) 
 // A count as the paper gives it: "100000", not "1e+05".
 std::string count_text(double v) {
   return v == std::round(v) && std::abs(v) < 1e15 ? std::to_string(std::llround(v)) : shortest(v);
-}
-
-// The steps a run of the row's case takes to T.
-std::optional<std::int64_t> planned_steps(const ojson& row) {
-  const auto T = number(row, "T"), dt = number(row, "dt");
-  if (!T || !dt) return std::nullopt;
-  return step_count(*T, *dt);
 }
 
 // ---- One observable: the paper's value, ours, and the verdict.
@@ -181,11 +174,13 @@ Line outcome_line(const PaperObservable* p, const ojson& row) {
   return l;
 }
 
+// Our steps, of the steps to T.
 Line steps_line(const PaperObservable* p, const ojson& row) {
   const std::int64_t steps = row.at("steps").get<std::int64_t>();
-  const auto planned = planned_steps(row);
   std::string ours = std::to_string(steps);
-  if (planned) ours += " of " + std::to_string(*planned);
+  const auto T = number(row, "T"), dt = number(row, "dt");
+  if (const auto planned = T && dt ? step_count(*T, *dt) : std::nullopt)
+    ours += " of " + std::to_string(*planned);
   return numeric_line("steps", p, double(steps), ours);
 }
 
@@ -211,18 +206,31 @@ Line bound_min_line(const PaperObservable* p, const OurRun& run) {
   return numeric_line("eq. (108) bound, minimum", p, b, ours);
 }
 
-// Where the bound is smallest: the paper's Fig. 3 has it shrink at the failure.
-Line bound_min_step_line(const PaperObservable* p, const OurRun& run) {
+// Where the bound is smallest: the paper's Fig. 3 has it shrink at the failure (its step where
+// the paper's run fails). Where the paper says so, ours agrees when it is smallest at the last
+// step its history records before our failure; otherwise the steps are compared by the factor.
+Line bound_min_step_line(const PaperObservable* p, const PaperObservable* paper_steps,
+                         const OurRun& run) {
   const Trace& t = run.trace;
   const ojson& row = *run.row;
+  const auto pv = paper_number(p);
+  const bool at_failure = pv && paper_number(paper_steps) == pv && outcome(row) == "unstable";
   Line l{"eq. (108) bound, smallest at", paper_text(p), "history not recorded", kNoValue};
-  if (paper_number(p)) l.paper = "step " + l.paper;
+  if (pv) l.paper = "step " + l.paper + (at_failure ? ", the paper's failure" : "");
   if (!t.bound_min) return l;
+  const bool last = t.bound_min_step == t.last_step;
   l.ours = "step " + std::to_string(t.bound_min_step) + " (" +
            (outcome(row) == "unstable" ? "failure at step " + row.at("failure_step").dump()
                                        : "end at step " + row.at("steps").dump()) +
-           "); " + ratio(*t.bound_min / *t.bound_median) + " x its median over the run";
-  if (const auto pv = paper_number(p)) l.verdict = factor_verdict(double(t.bound_min_step), *pv);
+           (last ? "; the last step recorded" : "") + "); " +
+           ratio(*t.bound_min / *t.bound_median) + " x its median over the run";
+  if (at_failure) {
+    l.verdict = last ? "agree: both at the failure"
+                     : "differ: ours " + std::to_string(t.last_step - t.bound_min_step) +
+                           " steps before the last recorded";
+  } else if (pv) {
+    l.verdict = factor_verdict(double(t.bound_min_step), *pv);
+  }
   return l;
 }
 
@@ -312,18 +320,28 @@ struct EqualTimeCount {
   }
 };
 
+// The two runs at the times both record, the largest error in u / A of each there, and how much
+// of the paper's run of the figure (to `paper_end`: its steps times its dt) those times span.
+// The paper's text is about its runs: the times test it only when they span at least
+// 1 / kAgreementFactor of the paper's run (as the steps of a figure agree within the factor);
+// otherwise no time is counted.
 struct EqualTimeComparison {
   std::vector<EqualTime> times;
   EqualTimeCount crossings, error_per_crossing;
+  double paper_end = 0, error_over_A = 0, other_error_over_A = 0;
+  double share() const { return times.empty() ? 0 : times.back().t / paper_end; }
+  bool tests() const { return share() * kAgreementFactor >= 1; }
 };
 
-EqualTimeComparison compare_at_equal_times(const ojson* history, const ojson* other) {
-  EqualTimeComparison c;
-  c.times = equal_times(history, other);
+EqualTimeComparison compare_at_equal_times(const ojson* history, const ojson* other,
+                                           double paper_end, double A, double other_A) {
+  EqualTimeComparison c{.times = equal_times(history, other), .paper_end = paper_end};
   for (const auto& e : c.times) {
     c.crossings.add(e.t, e.crossings, e.other_crossings);
     if (e.crossings > 0 && e.other_crossings > 0)
       c.error_per_crossing.add(e.t, e.error / e.crossings, e.other_error / e.other_crossings);
+    c.error_over_A = std::max(c.error_over_A, e.error / A);
+    c.other_error_over_A = std::max(c.other_error_over_A, e.other_error / other_A);
   }
   return c;
 }
@@ -342,9 +360,12 @@ std::string equal_time_text(const EqualTimeCount& n, const std::string& directio
   return s.str();
 }
 
-// The verdict of a count: the paper's direction at each time both record, at none, or at some.
-std::string count_verdict(const EqualTimeCount& n, const std::string& direction) {
+// The verdict of a count: the paper's direction at each time both record, at none, or at some;
+// not tested when those times span too little of the paper's run.
+std::string count_verdict(const EqualTimeComparison& c, const EqualTimeCount& n,
+                          const std::string& direction) {
   if (n.total() == 0) return kNoValue;
+  if (!c.tests()) return "not tested: " + ratio(100 * c.share()) + "% of the paper's run";
   const int k = n.in_direction(direction);
   if (k == n.total()) return "agree";
   const std::string at =
@@ -357,47 +378,52 @@ std::vector<Line> equal_time_lines(const Against& a, const EqualTimeComparison& 
   const std::string other = figure_title(a.other);
   return {
       {"grid crossings by equal times, against " + other, paper,
-       equal_time_text(c.crossings, a.direction), count_verdict(c.crossings, a.direction)},
+       equal_time_text(c.crossings, a.direction), count_verdict(c, c.crossings, a.direction)},
       {"error in u per grid crossing by equal times, against " + other, paper,
        equal_time_text(c.error_per_crossing, a.direction),
-       count_verdict(c.error_per_crossing, a.direction)},
+       count_verdict(c, c.error_per_crossing, a.direction)},
   };
 }
 
 // The claims of one comparison between two figures: at each time both record, our run's
 // crossings, and its error per crossing, more (or fewer) than the other run's by more than the
-// agreement factor, as the paper's text has it.
+// agreement factor, as the paper's text has it; counted only where the times test it.
 std::vector<Claim> equal_time_claims(const PaperFigure& f, const Against& a,
-                                     const EqualTimeComparison& c) {
+                                     const EqualTimeComparison& c, const Coverage& runs) {
   std::vector<Claim> out;
   const std::string relation = a.direction + " than " + agreement_factor() + " times";
   auto one = [&](const std::string& id, const std::string& statement, const EqualTimeCount& n) {
     Claim k = claim(f.name + "-" + id + "-vs-" + a.other, statement,
-                    "{n} of {times} times both runs record, from t = {first} to {last}; ours / "
-                    "the other run's {lo} to {hi}");
+                    "{n} of {times} times counted; both runs record {all} times, {span}, where "
+                    "the error in u of ours reaches {error} A and that of the other run "
+                    "{other_error} A; ours / the other run's there {lo} to {hi}");
     k.value("fig", figure_title(f.name)).value("other", figure_title(a.other));
     k.value("relation", relation)
+        .value("share", ratio(100 / kAgreementFactor) + "%")
         .value("paper", a.direction + " grid-crossing errors than " + figure_title(a.other));
-    k.every("n", n.in_direction(a.direction), "times", n.total());
-    if (n.total() > 0) {
-      const auto [lo, hi] = std::minmax_element(n.ratios.begin(), n.ratios.end(), TotalLess());
-      k.value("first", sci(n.times.front()))
-          .value("last", sci(n.times.back()))
-          .value("lo", ratio(*lo))
-          .value("hi", ratio(*hi));
-    } else {
-      for (const char* v : {"first", "last", "lo", "hi"})
-        k.value(v, kNoValue);
-    }
-    out.push_back(k);
+    k.every("n", c.tests() ? n.in_direction(a.direction) : 0, "times", c.tests() ? n.total() : 0);
+    k.count("all", n.total());
+    const bool any = n.total() > 0;
+    const auto [lo, hi] = std::minmax_element(n.ratios.begin(), n.ratios.end(), TotalLess());
+    k.value("span", any ? "t = " + sci(c.times.front().t) + " to " + sci(c.times.back().t) + ", " +
+                              ratio(100 * c.share()) +
+                              "% of the paper's run (to t = " + sci(c.paper_end) + ")"
+                        : kNoValue)
+        .value("error", ratio(c.error_over_A))
+        .value("other_error", ratio(c.other_error_over_A))
+        .value("lo", any ? ratio(*lo) : kNoValue)
+        .value("hi", any ? ratio(*hi) : kNoValue);
+    out.push_back(k.on(runs));
   };
   one("crossings",
-      "At each time both runs record, our run of {fig} has crossed cell boundaries {relation} "
-      "as often as our run of {other} (the paper's text: {paper})",
+      "At each time both runs record, over at least {share} of the paper's run of {fig}, our run "
+      "of {fig} has crossed cell boundaries {relation} as often as our run of {other} (the "
+      "paper's text: {paper})",
       c.crossings);
   one("error-per-crossing",
-      "At each time both runs record, our run of {fig} has an error in u per grid crossing "
-      "{relation} that of our run of {other} (the paper's text: {paper})",
+      "At each time both runs record, over at least {share} of the paper's run of {fig}, our run "
+      "of {fig} has an error in u per grid crossing {relation} that of our run of {other} (the "
+      "paper's text: {paper})",
       c.error_per_crossing);
   return out;
 }
@@ -425,7 +451,15 @@ void equal_time_table(std::ostream& md, const PaperFigure& f, const Against& a,
     md << " (our run of " << fig << " ends at t = " << sci(*end) << ")";
   md << "; the verdicts of the two rows above count the times at which ours "
      << (a.direction == "fewer" ? "lies under " : "exceeds ") << other
-     << "'s by more than a factor " << agreement_factor() << ".\n\n"
+     << "'s by more than a factor " << agreement_factor() << ". They span "
+     << ratio(100 * c.share()) << "% of the paper's run of " << fig
+     << " (to t = " << sci(c.paper_end) << "; " << fig << "'s error in u reaches "
+     << ratio(c.error_over_A) << " A there, " << other << "'s " << ratio(c.other_error_over_A)
+     << " A)"
+     << (c.tests() ? "."
+                   : ", less than the " + ratio(100 / kAgreementFactor) +
+                         "% that tests the paper's text: the rows read *not tested*.")
+     << "\n\n"
      << "| t | crossings " << fig << " | " << other << " | error in u " << fig << " | " << other
      << " | error per crossing, " << fig << " / " << other << " |\n|---|---|---|---|---|---|\n";
   for (const auto& e : c.times) {
@@ -489,12 +523,12 @@ std::string courant_context(const ojson& row, const StudyInputs& inputs) {
   const std::string method = RunRow(row).method;
   int n = 0, reached = 0;
   std::int64_t last_failure = 0;
-  std::set<Key> amplitudes;
+  Coverage runs;
   for (const auto& r : it->second.doc.at("cases")) {
     const RunRow rr(r);
     if (scan_courant(r) != c || rr.method != method) continue;
     ++n;
-    amplitudes.insert(Key(*rr.A, "A"));
+    runs.add(rr);
     if (rr.survived()) {
       ++reached;
     } else {
@@ -502,12 +536,9 @@ std::string courant_context(const ojson& row, const StudyInputs& inputs) {
     }
   }
   if (n == 0) return "The courant scan has no run of this method at c dt/h = " + shortest(c) + ".";
-  std::string as;
-  for (double a : amplitudes)
-    as += (as.empty() ? "" : " and ") + shortest(a);
   std::string s = "In the courant scan ([courant.md](courant.md)), " + std::to_string(reached) +
                   " of the " + std::to_string(n) + " " + method +
-                  " runs at c dt/h = " + shortest(c) + " (A = " + as + ") reach T";
+                  " runs at c dt/h = " + shortest(c) + " (" + runs.text() + ") reach T";
   if (reached < n) s += "; the last of the failures comes at step " + std::to_string(last_failure);
   return s + ".";
 }
@@ -610,18 +641,12 @@ void variant_runs(std::ostream& md, const PaperFigure& f, const ojson& row,
       meaningless.push_back(label + " (" + (e ? ratio(*e) : kNoValue) + " A)");
     if (paper_steps && (!closest || distance(r) < distance(*closest))) closest = &r;
   }
-  auto listed = [](const std::vector<std::string>& v) {
-    std::string s;
-    for (const auto& x : v)
-      s += (s.empty() ? "" : "; ") + x;
-    return s;
-  };
   md << "\n";
   md << yes.size() << " of " << cases.size() << " of these runs reproduce the paper's run"
-     << (yes.empty() ? std::string(".") : ": " + listed(yes) + ".");
+     << (yes.empty() ? std::string(".") : ": " + semicolon_list(yes) + ".");
   if (!meaningless.empty()) {
     md << " Reaching T only as meaningless runs (error over time at least A): "
-       << listed(meaningless) << ".";
+       << semicolon_list(meaningless) << ".";
     const PaperObservable* peak = f.find("peak_error");
     if (!peak || !peak->stated())
       md << " The paper's text does not state its run's error, so whether it too reached A "
@@ -725,7 +750,7 @@ void figure_section(std::ostream& md, const PaperFigure& f, const std::vector<Pa
                              steps_line(f.find("steps"), *row),
                              peak_error_line(f.find("peak_error"), run),
                              bound_min_line(f.find("dt_stable_min"), run),
-                             bound_min_step_line(f.find("bound_min_step"), run),
+                             bound_min_step_line(f.find("bound_min_step"), f.find("steps"), run),
                              crossings_line(f.find("crossings"), run)};
   const std::optional<Against> vs = against(f.find("crossing_errors"));
   EqualTimeComparison at_equal_times;
@@ -734,10 +759,20 @@ void figure_section(std::ostream& md, const PaperFigure& f, const std::vector<Pa
     const auto o = inputs.find(vs->other);
     const ojson* other_history =
         o != inputs.end() && o->second.present() ? history_of(o->second.doc) : nullptr;
-    at_equal_times = compare_at_equal_times(history, other_history);
+    const auto paper_steps = paper_number(f.find("steps"));
+    const double A = row->at("A").get<double>(), T = row->at("T").get<double>();
+    at_equal_times =
+        compare_at_equal_times(history, other_history, paper_steps ? *paper_steps * f.dt : T, A,
+                               other_row ? other_row->at("A").get<double>() : A);
     for (auto& l : equal_time_lines(*vs, at_equal_times))
       lines.push_back(std::move(l));
-    for (auto& figure_claim : equal_time_claims(f, *vs, at_equal_times))
+    // The runs the claims read, over the span of c t the times both record.
+    Coverage runs = coverage_of(std::vector<const ojson*>{row});
+    if (other_row) runs.add(*other_row);
+    if (!at_equal_times.times.empty())
+      runs.wave_passes = {
+          std::stod(significant(*RunRow(*row).wave_passes * at_equal_times.times.back().t / T, 3))};
+    for (auto& figure_claim : equal_time_claims(f, *vs, at_equal_times, runs))
       out.claims.push_back(std::move(figure_claim));
   }
   for (const auto& l : lines)

@@ -124,24 +124,27 @@ std::vector<FollowUp> courant_follow_up(const FollowUpContext& c) {
   return all_length_runs(edges, cases, rows);
 }
 
-// Every case of the scan, and what the text, the claims and the index count of them.
+// Every case of the scan, and what the text, the claims and the index count of them; the runs
+// each claim reads: the scan's smallest C of each case, every run, the runs for length.
 struct Findings {
   std::vector<Scan> scans;
   int cases = 0, no_survivor = 0, fail_everywhere = 0, not_monotone = 0, edges = 0,
       edges_meaningless = 0;
   LengthTally length_tally;
+  Coverage smallest, all, lengths;
 };
 
 // The findings from the rows and the length runs of the survival edges (without them, each edge
 // is not tested for length).
 Findings find(const std::vector<ojson>& rows, const std::vector<ojson>& follow_up) {
-  Findings f{.scans = scans(rows)};
+  Findings f{.scans = scans(rows), .all = coverage_of(rows), .lengths = coverage_of(follow_up)};
   const std::vector<std::size_t> at = edge_rows(f.scans);
   std::vector<ojson> edges;
   for (const std::size_t i : at)
     edges.push_back(as_edge(rows[i]));
   const LengthRuns lengths = read_length_runs(edges, follow_up, at);
   for (Scan& s : f.scans) {
+    f.smallest.add(rows[s.runs.front()]);
     ++f.cases;
     f.no_survivor += !s.survives;
     f.fail_everywhere += !s.any_survives;
@@ -161,20 +164,20 @@ std::vector<Claim> courant_claims(const Findings& f) {
                      "Every case survives to T at the smallest Courant number of the scan",
                      "{none} of {cases} cases fail at the smallest C of the scan");
   some.count("none", f.no_survivor).count("cases", f.cases);
-  some.over(f.cases);
+  some.over(f.cases).on(f.smallest);
   some.holds = f.no_survivor == 0;
   Claim mono = claim("survival-monotone-in-courant",
                      "Survival to T is monotone in C in every case: no C survives above one "
                      "that failed",
                      "{not_monotone} of {cases} cases survive again above a failure");
   mono.count("not_monotone", f.not_monotone).count("cases", f.cases);
-  mono.over(f.cases);
+  mono.over(f.cases).on(f.all);
   mono.holds = f.not_monotone == 0;
-  const Claim length = length_claim("courant-edges-hold-for-length",
-                                    "Every survival edge of the scan survives {first}x and "
-                                    "{second}x its run length (at most {cap} wave passes)",
-                                    "{held} of {tested} do", f.length_tally);
-  return {some, mono, length};
+  Claim length = length_claim("courant-edges-hold-for-length",
+                              "Every survival edge of the scan survives {first}x and "
+                              "{second}x its run length (at most {cap} wave passes)",
+                              "{held} of {tested} do", f.length_tally);
+  return {some, mono, length.on(f.lengths)};
 }
 
 // A Courant number of the scan (dt = C h / c was rounded to 6 digits): "0.78", "0.0625".

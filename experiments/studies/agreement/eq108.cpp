@@ -7,6 +7,7 @@
 #include <limits>
 #include <map>
 #include <optional>
+#include <set>
 #include <sstream>
 
 #include "base/accuracy.hpp"
@@ -39,8 +40,7 @@ std::string reading_of(const ojson& r) {
   return text(r, "dt_stable_sigma") + ", " + text(r, "dt_stable_vnorm");
 }
 
-// One run of a cell: our flat row, and our bound / the paper's dt stable where they are compared
-// (bound_ratio()).
+// One run of a cell: our flat row, and our bound / the paper's dt stable where they are compared.
 struct Run {
   const ojson* row = nullptr;
   std::optional<double> ratio;
@@ -53,15 +53,6 @@ struct Eq108Cell {
   std::vector<Run> runs;
   const Eq108Cell* on_paper_grid = nullptr;  // on another grid, the cell on the paper's grid
 };
-
-// Our bound / the paper's dt stable where both are numbers and our run ended stable (a
-// meaningless run's bound is shown, not compared), as the comparison counts it.
-std::optional<double> bound_ratio(const Eq108Cell& c, const ojson& r) {
-  if (!c.paper || c.paper->dt_stable.kind != PaperValue::number || outcome(r) != "stable" ||
-      !has_number(r, "dt_stable_min"))
-    return std::nullopt;
-  return r["dt_stable_min"].get<double>() / c.paper->dt_stable.value;
-}
 
 // The cells of the study: each Table 1 cell with its paper row and its run under each reading,
 // and the readings in the order the rows give them.
@@ -85,24 +76,20 @@ Eq108Cells eq108_cells(const Spec& spec, const std::vector<ojson>& rows,
       const auto p = paper.find(key);
       out.cells.push_back({&spec.cases[i], p == paper.end() ? nullptr : &p->second, {}});
     }
+    // Our bound / the paper's dt stable where both are numbers and our run ended stable (a
+    // meaningless run's bound is shown, not compared), as the comparison counts it.
     Eq108Cell& cell = out.cells[it->second];
-    cell.runs.push_back({&rows[i], bound_ratio(cell, rows[i])});
+    const bool compared = cell.paper && cell.paper->dt_stable.kind == PaperValue::number &&
+                          outcome(rows[i]) == "stable" && has_number(rows[i], "dt_stable_min");
+    cell.runs.push_back({&rows[i], compared ? std::optional(rows[i]["dt_stable_min"].get<double>() /
+                                                            cell.paper->dt_stable.value)
+                                            : std::nullopt});
   }
   return out;
 }
 
 // The grid of the paper's bar (Table 1's runs): the default cells.
 const int kPaperGrid = RunParams{}.cells;
-
-// The cells of the cases on another grid than the paper's, in the order the spec first has them.
-std::vector<int> other_grids(const Spec& spec) {
-  std::vector<int> grids;
-  for (const CaseSpec& c : spec.cases)
-    if (c.params.cells != kPaperGrid &&
-        std::find(grids.begin(), grids.end(), c.params.cells) == grids.end())
-      grids.push_back(c.params.cells);
-  return grids;
-}
 
 // The run of a cell under `reading`, if the cell has one.
 const Run* run_of(const Eq108Cell& cell, const std::string& reading) {
@@ -111,69 +98,46 @@ const Run* run_of(const Eq108Cell& cell, const std::string& reading) {
   return run == cell.runs.end() ? nullptr : &*run;
 }
 
-// The same Table 1 cell (method, E, A, dt) among `cells`.
-const Eq108Cell* same_cell(const std::vector<Eq108Cell>& cells, const Eq108Cell& cell) {
-  const RunParams& p = cell.spec->params;
-  const auto it = std::find_if(cells.begin(), cells.end(), [&](const Eq108Cell& c) {
-    const RunParams& q = c.spec->params;
-    return q.method == p.method && q.E == p.E && q.A == p.A && q.dt == p.dt;
-  });
-  return it == cells.end() ? nullptr : &*it;
-}
-
-// A compared cell beyond the agreement factor, with the paper's value and the confidence of its
-// transcription: "E = 4, A = 0.05, dt = 1.2e-3 (0.08 times the paper's 5.0e-2, transcribed with
-// low confidence)".
-std::string outside_text(const Eq108Cell& cell, double q) {
-  const RunParams& p = cell.spec->params;
-  return "E = " + shortest(p.E) + ", A = " + shortest(p.A) + ", dt = " + param(p.dt) + " (" +
-         ratio(q) + " times the paper's " + show(cell.paper->dt_stable) + ", transcribed with " +
-         cell.paper->confidence + " confidence)";
-}
-
-// Per reading and method: ours / paper over the cells where both are measured, how many within
-// the factor and the cells beyond it; on another grid, the same reading's ratios on the paper's.
+// Ours / paper over the compared runs (of a reading, a method, a grid): the ratios, those within
+// the factor, the cells beyond it, named with the paper's value and the confidence of its
+// transcription ("mpm E = 4, A = 0.05, dt = 1.2e-3 (0.08 times the paper's 5.0e-2, transcribed
+// with low confidence)"), and the runs; on another grid, the same reading's ratios on the paper's.
 struct Stats {
-  std::vector<double> ratios, paper_grid_ratios;
-  int within = 0;
+  std::vector<double> ratios, within, paper_grid_ratios;
   std::vector<std::string> outside;
+  std::vector<const ojson*> rows;
 };
 
 // Adds a compared run of `cell` to `s`.
 void add(Stats& s, const Eq108Cell& cell, const Run& run) {
+  const RunParams& p = cell.spec->params;
   s.ratios.push_back(*run.ratio);
-  const bool within = within_agreement_factor((*run.row)["dt_stable_min"].get<double>(),
-                                              cell.paper->dt_stable.value);
-  s.within += within;
-  if (!within) s.outside.push_back(outside_text(cell, *run.ratio));
+  s.rows.push_back(run.row);
+  if (within_agreement_factor((*run.row)["dt_stable_min"].get<double>(),
+                              cell.paper->dt_stable.value)) {
+    s.within.push_back(*run.ratio);
+    return;
+  }
+  s.outside.push_back(std::string(to_string(p.method)) + " E = " + shortest(p.E) +
+                      ", A = " + shortest(p.A) + ", dt = " + param(p.dt) + " (" +
+                      ratio(*run.ratio) + " times the paper's " + show(cell.paper->dt_stable) +
+                      ", transcribed with " + cell.paper->confidence + " confidence)");
 }
 
-// One reading on the paper's grid: per method, and over every method (the cells within the
-// factor, their ratios and the mean |ln(ours / paper)|).
+// One reading on the paper's grid: per method, over every method, and the mean |ln(ours /
+// paper)| over every method's cells.
 struct Reading {
   std::string name;
   std::map<std::string, Stats> by_method;
-  int within = 0;
-  std::vector<double> ratios;
+  Stats all;
   double mean_log_distance = 0;
 };
 
-double reading_log_distance(const std::vector<double>& ratios) {
-  double sum = 0;
-  int n = 0;
-  for (const double r : ratios)
-    if (r > 0) {
-      sum += std::abs(std::log(r));
-      ++n;
-    }
-  return n ? sum / n : std::numeric_limits<double>::infinity();
-}
-
-// Another grid than the paper's: its cells, and per (reading, method) its Stats.
+// Another grid than the paper's: its cells, and per reading its Stats.
 struct Grid {
   int cells = 0;
   Eq108Cells on;
-  std::map<std::pair<std::string, std::string>, Stats> stats;
+  std::map<std::string, Stats> by_reading;
 };
 
 // Every reading on the paper's grid, the best of them (the most cells within the agreement
@@ -192,30 +156,42 @@ Findings find(const Spec& spec, const std::vector<ojson>& rows) {
   f.cells = eq108_cells(spec, rows, f.paper, kPaperGrid);
   for (const std::string& name : f.cells.readings) {
     Reading r{.name = name};
-    for (const Eq108Cell& cell : f.cells.cells)
-      if (const Run* run = run_of(cell, name); run && run->ratio)
+    for (const Eq108Cell& cell : f.cells.cells) {
+      if (const Run* run = run_of(cell, name); run && run->ratio) {
         add(r.by_method[std::string(to_string(cell.spec->params.method))], cell, *run);
-    for (const auto& [method, s] : r.by_method) {
-      r.within += s.within;
-      r.ratios.insert(r.ratios.end(), s.ratios.begin(), s.ratios.end());
+        add(r.all, cell, *run);
+      }
     }
-    r.mean_log_distance = reading_log_distance(r.ratios);
+    double sum = 0;  // the mean |ln(ours / paper)|, infinite over no cell
+    for (const double q : r.all.ratios)
+      sum += std::abs(std::log(q));
+    r.mean_log_distance =
+        r.all.ratios.empty() ? std::numeric_limits<double>::infinity() : sum / r.all.ratios.size();
     const Reading* best = f.readings.empty() ? nullptr : &f.readings[f.best];
-    if (best && (r.within > best->within ||
-                 (r.within == best->within && r.mean_log_distance < best->mean_log_distance)))
+    const std::size_t within = r.all.within.size();
+    if (best &&
+        (within > best->all.within.size() ||
+         (within == best->all.within.size() && r.mean_log_distance < best->mean_log_distance)))
       f.best = f.readings.size();
     f.readings.push_back(std::move(r));
   }
   // Each other grid: each run set against the paper, beside the same cell and reading on the
   // paper's grid.
-  for (const int grid : other_grids(spec)) {
+  std::set<int> grids;  // the other grids, smallest first
+  for (const CaseSpec& c : spec.cases)
+    if (c.params.cells != kPaperGrid) grids.insert(c.params.cells);
+  for (const int grid : grids) {
     Grid& g = f.grids.emplace_back(Grid{grid, eq108_cells(spec, rows, f.paper, grid), {}});
     for (Eq108Cell& cell : g.on.cells) {
-      cell.on_paper_grid = same_cell(f.cells.cells, cell);
+      const auto& on = f.cells.cells;  // the same Table 1 cell on the paper's grid
+      const auto it = std::find_if(on.begin(), on.end(), [&](const Eq108Cell& c) {
+        return paper_key(*c.spec) == paper_key(*cell.spec);
+      });
+      cell.on_paper_grid = it == on.end() ? nullptr : &*it;
       for (const Run& run : cell.runs) {
         const std::string reading = reading_of(*run.row);
-        Stats& s = g.stats[{reading, std::string(to_string(cell.spec->params.method))}];
         const Run* paper_run = cell.on_paper_grid ? run_of(*cell.on_paper_grid, reading) : nullptr;
+        Stats& s = g.by_reading[reading];
         if (paper_run && paper_run->ratio) s.paper_grid_ratios.push_back(*paper_run->ratio);
         if (run.ratio) add(s, cell, run);
       }
@@ -236,37 +212,41 @@ Claim reading_claim(const Findings& f) {
   c.count("cells", kPaperGrid)
       .value("k", agreement_factor())
       .value("best", best.name)
-      .every("within", best.within, "n", static_cast<long long>(best.ratios.size()))
-      .value("span", span(best.ratios, 2))
-      .number("distance", best.mean_log_distance, 3);
+      .every("within", static_cast<long long>(best.all.within.size()), "n",
+             static_cast<long long>(best.all.ratios.size()))
+      .value("span", span(best.all.ratios, 2))
+      .number("distance", best.mean_log_distance, 3)
+      .on(coverage_of(best.all.rows));
   return c;
 }
 
-// The claim of one (reading, method) on `grid` cells: every compared cell within the factor.
-Claim grid_claim(int grid, const std::pair<std::string, std::string>& key, const Stats& s) {
-  const double h = 1.0 / grid;
+// The claim of one reading on another grid, over every method: every compared cell within the
+// factor; beside it the ratios of the cells within it and the cells beyond it.
+Claim grid_claim(const Grid& g, const std::string& reading, const Stats& s) {
+  auto spans = [](const std::vector<double>& v) { return v.empty() ? "–" : span(v, 2); };
   const std::string evidence =
-      "{within} of {n} cells; ratios {span} (on {paper_cells} cells {paper_span} in {paper_n} "
-      "cells)";
-  Claim c = claim("grid-" + std::to_string(grid) + "-" + key.second + "-gives-the-paper",
+      "{within} of {n} cells, ratios {span}, in those within it {within_span} (on {paper_cells} "
+      "cells {paper_span} in {paper_n} cells)";
+  std::string slug = reading;  // "scaled, l2" -> "scaled-l2"
+  if (const auto comma = slug.find(", "); comma != std::string::npos) slug.replace(comma, 2, "-");
+  Claim c = claim("grid-" + std::to_string(g.cells) + "-" + slug + "-gives-the-paper",
                   "On {cells} cells (h = {h}) instead of the paper's {paper_cells}, eq. (108) "
-                  "({reading}) gives the paper's {method} dt stable within a factor {k} in "
-                  "every cell where both are measured",
+                  "({reading}) gives the paper's dt stable column within a factor {k} in every "
+                  "cell where both are measured",
                   s.outside.empty() ? evidence : evidence + "; beyond it: {outside}");
   if (!s.outside.empty()) c.value("outside", list_of(s.outside));
-  c.count("cells", grid)
-      .value("h", shortest(h))
+  c.count("cells", g.cells)
+      .value("h", shortest(1.0 / g.cells))
       .count("paper_cells", kPaperGrid)
-      .value("reading", key.first)
-      .value("method", key.second == "mpm"    ? "MPM"
-                       : key.second == "gimp" ? "GIMP"
-                                              : key.second)
+      .value("reading", reading)
       .value("k", agreement_factor())
-      .every("within", s.within, "n", static_cast<long long>(s.ratios.size()))
-      .value("span", s.ratios.empty() ? std::string("–") : span(s.ratios, 2))
-      .value("paper_span",
-             s.paper_grid_ratios.empty() ? std::string("–") : span(s.paper_grid_ratios, 2))
-      .count("paper_n", static_cast<long long>(s.paper_grid_ratios.size()));
+      .every("within", static_cast<long long>(s.within.size()), "n",
+             static_cast<long long>(s.ratios.size()))
+      .value("span", spans(s.ratios))
+      .value("within_span", spans(s.within))
+      .value("paper_span", spans(s.paper_grid_ratios))
+      .count("paper_n", static_cast<long long>(s.paper_grid_ratios.size()))
+      .on(coverage_of(s.rows));
   return c;
 }
 
@@ -286,6 +266,22 @@ std::string accuracy_columns(const ojson& r) {
   return sci(*run.error_over_A()) + " | " + std::string(to_string(*run.accuracy()));
 }
 
+// A cell's columns, its c dt/h from `row`: "| gimp | 4 | 0.05 | 1e-3 | 2.0e-2 | 0.5 | 2 | 1.2e-3
+// |".
+std::string cell_columns(const Eq108Cell& cell, const ojson& row) {
+  const RunParams& p = cell.spec->params;
+  return "| " + std::string(to_string(p.method)) + " | " + shortest(p.E) + " | " + shortest(p.A) +
+         " | " + param(p.dt) + " | " + sci(RunRow(row).courant.value()) + " | " +
+         significant(amplitude_per_cell(p), 3) + " | " + significant(wave_passes(p), 3) + " | " +
+         (cell.paper ? show(cell.paper->dt_stable) : "–") + " |";
+}
+
+// A run's bound and its ratio to the paper: " 4.8e-6 | 0.12 |"; dashes without a run.
+std::string bound_columns(const Run* run) {
+  return " " + (run ? bound_text(*run->row) : "–") + " | " +
+         (run && run->ratio ? ratio(*run->ratio) : "–") + " |";
+}
+
 // The table of every cell of the paper's grid under every reading.
 std::string eq108_table(const Eq108Cells& e) {
   std::ostringstream table;
@@ -297,17 +293,9 @@ std::string eq108_table(const Eq108Cells& e) {
     table << "---|---|";
   table << "\n";
   for (const auto& cell : e.cells) {
-    const RunParams& p = cell.spec->params;
-    table << "| " << to_string(p.method) << " | " << shortest(p.E) << " | " << shortest(p.A)
-          << " | " << param(p.dt) << " | " << sci(RunRow(*cell.runs.front().row).courant.value())
-          << " | " << significant(amplitude_per_cell(p), 3) << " | "
-          << significant(wave_passes(p), 3) << " | "
-          << (cell.paper ? show(cell.paper->dt_stable) : "–") << " |";
-    for (const auto& reading : e.readings) {
-      const Run* run = run_of(cell, reading);
-      table << " " << (run ? bound_text(*run->row) : "–") << " | "
-            << (run && run->ratio ? ratio(*run->ratio) : "–") << " |";
-    }
+    table << cell_columns(cell, *cell.runs.front().row);
+    for (const auto& reading : e.readings)
+      table << bound_columns(run_of(cell, reading));
     table << "\n";
   }
   return table.str();
@@ -322,38 +310,20 @@ void other_grid_section(std::ostream& md, const Grid& g) {
      << " cells, h = " << shortest(paper_h)
      << ") at the same E, A and dt, under the reading named: eq. (108) evaluated with the "
         "coarser grid's h on the coarser grid's runs. *ratio* is ours / the paper's dt stable, "
-        "compared as above; beside it the same cell and reading on "
+        "compared as above; before it the same cell and reading on "
      << kPaperGrid
      << " cells. A run reported stable has its error over time / A and accuracy class beside "
-        "it.\n\n**Reading.** ";
-  for (const auto& [key, s] : g.stats) {
-    md << key.second << " (" << key.first << ") on " << g.cells
-       << " cells: " << (s.ratios.empty() ? std::string("no cell compared") : span(s.ratios, 2))
-       << " times the paper (" << s.within << " of " << s.ratios.size() << " within a factor "
-       << agreement_factor() << "; on " << kPaperGrid << " cells "
-       << (s.paper_grid_ratios.empty() ? std::string("no cell compared")
-                                       : span(s.paper_grid_ratios, 2))
-       << ", " << s.paper_grid_ratios.size() << " cells)"
-       << (s.outside.empty() ? std::string("") : "; beyond the factor: " + list_of(s.outside))
-       << ". ";
-  }
-  md << "\n\n| method | E | A | dt | c dt/h | A/h | paper's dt stable | reading | ours on "
+        "it; the Conclusions above count its rows over every method.\n\n| method | E | A | dt "
+        "| c dt/h | A/h | c T | paper's dt stable | reading | ours on "
      << kPaperGrid << " cells | ratio | ours on " << g.cells
-     << " cells | error over time / A | accuracy | ratio |\n"
-        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+     << " cells | ratio | error over time / A | accuracy |\n"
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const Eq108Cell& cell : g.on.cells) {
-    const RunParams& p = cell.spec->params;
     for (const Run& run : cell.runs) {
       const std::string reading = reading_of(*run.row);
-      const Run* paper_run = cell.on_paper_grid ? run_of(*cell.on_paper_grid, reading) : nullptr;
-      md << "| " << to_string(p.method) << " | " << shortest(p.E) << " | " << shortest(p.A) << " | "
-         << param(p.dt) << " | " << sci(RunRow(*run.row).courant.value()) << " | "
-         << significant(amplitude_per_cell(p), 3) << " | "
-         << (cell.paper ? show(cell.paper->dt_stable) : "–") << " | " << reading << " | "
-         << (paper_run ? bound_text(*paper_run->row) : "–") << " | "
-         << (paper_run && paper_run->ratio ? ratio(*paper_run->ratio) : "–") << " | "
-         << bound_text(*run.row) << " | " << accuracy_columns(*run.row) << " | "
-         << (run.ratio ? ratio(*run.ratio) : "–") << " |\n";
+      md << cell_columns(cell, *run.row) << " " << reading << " |"
+         << bound_columns(cell.on_paper_grid ? run_of(*cell.on_paper_grid, reading) : nullptr)
+         << bound_columns(&run) << " " << accuracy_columns(*run.row) << " |\n";
     }
   }
 }
@@ -370,16 +340,16 @@ StudyReport eq108_report(const ReportContext& c) {
     md << r.name << ": ";
     for (const auto& [method, s] : r.by_method)
       md << (method == r.by_method.begin()->first ? "" : "; ") << method << " " << span(s.ratios, 2)
-         << " times the paper (" << s.within << " of " << s.ratios.size() << " within a factor "
-         << agreement_factor() << ")";
+         << " times the paper (" << s.within.size() << " of " << s.ratios.size()
+         << " within a factor " << agreement_factor() << ")";
     md << ". ";
   }
   md << "\n\n" << eq108_table(f.cells);
   std::vector<Claim> claims = {reading_claim(f)};
   for (const Grid& g : f.grids) {
     other_grid_section(md, g);
-    for (const auto& [key, s] : g.stats)
-      claims.push_back(grid_claim(g.cells, key, s));
+    for (const auto& [reading, s] : g.by_reading)
+      claims.push_back(grid_claim(g, reading, s));
   }
   return StudyReport{.markdown = md.str(), .claims = claims};
 }

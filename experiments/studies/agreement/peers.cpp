@@ -88,13 +88,9 @@ std::vector<PeerValue> read_peer(const std::filesystem::path& file) {
   return values;
 }
 
-// The peer's basis for one of our methods: linear MPM is "linear", both GIMPs are "GIMP".
-std::string basis_of(const std::string& method) {
-  return method == "mpm" ? "linear" : "GIMP";
-}
-
 const PeerValue* find_peer(const std::vector<PeerValue>& peer, const ojson& row) {
-  const std::string basis = basis_of(RunRow(row).method);
+  // The peer's basis: linear MPM is "linear", both GIMPs are "GIMP".
+  const std::string basis = RunRow(row).method == "mpm" ? "linear" : "GIMP";
   for (const auto& v : peer) {
     if (v.basis == basis && v.E == row["E"].get<double>() && v.A == row["A"].get<double>() &&
         v.dt == row["dt"].get<double>() && v.T == row["T"].get<double>()) {
@@ -188,10 +184,6 @@ std::string opt_ratio(const std::optional<double>& r) {
   return buf;
 }
 
-std::string opt_number(const std::optional<double>& v) {
-  return v ? sci(*v, 4) : "–";
-}
-
 // The statement, and per basis: cases, agreeing outcomes, equal failure steps, error ratios.
 std::string summary(const PeersStudy& s) {
   std::ostringstream md;
@@ -255,8 +247,9 @@ std::string every_case(const PeersStudy& s) {
        << (c.ours_outcome == "stable" ? verdict(r) : c.ours_outcome) << " / "
        << (c.peer_outcome == "stable" ? std::string("reached T") : c.peer_outcome) << " | "
        << our_step << " / " << peer_step << " | " << opt_sci(r["max_error"]) << " / "
-       << opt_number(c.peer_error) << " | " << opt_ratio(c.error_ratio) << " | "
-       << opt_sci(RunRow(r).error_over_time) << " / " << opt_number(c.peer_over_time) << " | "
+       << (c.peer_error ? sci(*c.peer_error, 4) : "–") << " | " << opt_ratio(c.error_ratio) << " | "
+       << opt_sci(RunRow(r).error_over_time) << " / "
+       << (c.peer_over_time ? sci(*c.peer_over_time, 4) : "–") << " | "
        << opt_ratio(c.over_time_ratio) << (c.errors_judged ? "" : " (not judged)") << " | "
        << (c.agrees ? "yes" : "**no**") << " |\n";
   }

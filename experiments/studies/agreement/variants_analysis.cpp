@@ -137,14 +137,6 @@ void conclude(VariantsStudy& s) {
   }
 }
 
-// How study_to_json names a verdict of accounts_for().
-const char* accounts_name(Accounts a) {
-  return a == Accounts::yes              ? "yes"
-         : a == Accounts::partly         ? "partly"
-         : a == Accounts::not_applicable ? "not applicable"
-                                         : "no";
-}
-
 // One variant's totals and its per-column agreement with the paper.
 ojson variant_json(const VariantOutcome& v) {
   ojson e;
@@ -187,7 +179,10 @@ ojson class_json(const VariantsStudy& s, const ComparisonClass& k) {
                    {"verdict_agree", o.verdict_agree},
                    {"meaningless", o.meaningless},
                    {"breaks", v.breaks},
-                   {"accounts", accounts_name(o.accounts)}});
+                   {"accounts", o.accounts == Accounts::yes              ? "yes"
+                                : o.accounts == Accounts::partly         ? "partly"
+                                : o.accounts == Accounts::not_applicable ? "not applicable"
+                                                                         : "no"}});
   }
   return {{"title", k.title}, {"cells", n}, {"variants", per}};
 }

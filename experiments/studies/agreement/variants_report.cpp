@@ -16,10 +16,6 @@ namespace {
 
 using ojson = nlohmann::ordered_json;
 
-std::string opt_ratio(const std::optional<double>& v) {
-  return v ? ratio(*v) : "–";
-}
-
 std::string of(int k, int n) {
   return std::to_string(k) + " of " + std::to_string(n);
 }
@@ -40,12 +36,6 @@ std::string agree_text(const VariantClassOutcome& o, int n) {
   return s;
 }
 
-// "no cell that agrees", "1 cell that agrees", "3 cells that agree" (under the default).
-std::string breaking(int n) {
-  return (n == 0 ? std::string("no") : std::to_string(n)) +
-         (n == 1 || n == 0 ? " cell that agrees" : " cells that agree") + " under the default";
-}
-
 std::string cells_word(int n) {
   return std::to_string(n) + (n == 1 ? " cell" : " cells");
 }
@@ -53,18 +43,6 @@ std::string cells_word(int n) {
 // A variant's name as the reports show it.
 std::string named(const VariantOutcome& v) {
   return "`" + v.name + "`";
-}
-
-std::string method_title(const std::string& column) {
-  return column == "mpm" ? "MPM" : column == "gimp" ? "GIMP" : column;
-}
-
-// "a; b; c", or "none".
-std::string semicolon_list(const std::vector<std::string>& v) {
-  std::string out;
-  for (std::size_t i = 0; i < v.size(); ++i)
-    out += (i == 0 ? "" : "; ") + v[i];
-  return out.empty() ? std::string("none") : out;
 }
 
 // The variants (other than the default) sorted by what they make of one class of n cells, each
@@ -79,7 +57,10 @@ ClassVerdicts class_verdicts(const VariantsStudy& s, const ComparisonClass& k, i
   for (const auto& v : s.variants) {
     if (v.baseline) continue;
     const VariantClassOutcome o = class_outcome(v, k.id);
-    const std::string breaks = v.breaks ? ", breaking " + breaking(v.breaks) : "";
+    const std::string breaks = v.breaks ? ", breaking " + cells_word(v.breaks) +
+                                              (v.breaks == 1 ? " that agrees" : " that agree") +
+                                              " under the default"
+                                        : "";
     switch (o.accounts) {
       case Accounts::yes:
         c.yes.push_back(named(v) + " (" + agree_text(o, n) + breaks + ")");
@@ -242,13 +223,14 @@ void write_per_method(std::ostream& md, const VariantsStudy& s) {
      << "| variant | method | cells | verdicts agree | max error within " << agreement_factor()
      << "x | median max error "
         "ratio | median dt_stable ratio | particle-steps |\n|---|---|---|---|---|---|---|---|\n";
+  auto opt_ratio = [](const std::optional<double>& r) { return r ? ratio(*r) : "–"; };
   for (const auto& v : s.variants) {
     for (const char* column : {"mpm", "gimp"}) {
       const auto it = v.by_method.find(column);
       if (it == v.by_method.end()) continue;
       const auto& m = it->second;
-      md << "| " << named(v) << " | " << method_title(column) << " | " << m.cells << " | "
-         << of(m.counts.verdicts_agree, m.counts.verdicts_compared) << " | "
+      md << "| " << named(v) << " | " << (column == std::string("mpm") ? "MPM" : "GIMP") << " | "
+         << m.cells << " | " << of(m.counts.verdicts_agree, m.counts.verdicts_compared) << " | "
          << of(m.counts.errors_within, m.counts.errors_compared) << " | "
          << opt_ratio(m.median_error_ratio) << " | " << opt_ratio(m.median_dt_stable_ratio) << " | "
          << sci(m.particle_steps) << " |\n";
