@@ -10,9 +10,10 @@
 #         panel,series,cT,dt_edge_over_cfl,dt_accurate_over_cfl,meaningless_at_edge,
 #         limit_over_cfl,eq108_over_cfl
 #         (panel 0 the bar, 1 the second scene; series 1 GIMP A = 0.015, 2 GIMP A = 0.05,
-#         3 MPM A = 0.015, 4 MPM A = 0.05, 5 CPDI, 6 quadratic B-spline, 7 cubic B-spline, at
-#         A = 0.015); an empty dt_accurate_over_cfl: no accuracy edge; an empty limit_over_cfl
-#         or eq108_over_cfl: not measured.
+#         3 MPM A = 0.015, 4 MPM A = 0.05, 5 CPDI A = 0.015, 6 CPDI A = 0.05, 7 quadratic
+#         B-spline A = 0.015, 8 A = 0.05, 9 cubic B-spline A = 0.015, 10 A = 0.05, as the
+#         header's series line lists them); an empty dt_accurate_over_cfl: no accuracy edge; an
+#         empty limit_over_cfl or eq108_over_cfl: not measured.
 #         One row per drawn case.
 # Writes: outbase.png and outbase.svg.
 # Variables: datafile, outbase (required), subtitle (optional).
@@ -47,11 +48,14 @@ bottom = STATS_min < edge_min ? STATS_min : edge_min
 ylow = 10 ** floor(log10(bottom))
 yhigh = 10 ** (log10(top > 1 ? top : 1) + 0.15)
 
-array colour[7] = ["#1f77b4", "#6baed6", "#d62728", "#ff9896", "#2ca02c", "#9467bd", "#8c564b"]
-array filled[7] = [7, 5, 9, 11, 13, 15, 3]
-array open[7] = [6, 4, 8, 10, 12, 14, 2]
-array name[7] = ["GIMP, A = 0.015", "GIMP, A = 0.05", "MPM, A = 0.015", "MPM, A = 0.05", \
-                 "CPDI, A = 0.015", "B-spline 2, A = 0.015", "B-spline 3, A = 0.015"]
+# Each method in one hue, lighter at A = 0.05.
+array colour[10] = ["#1f77b4", "#6baed6", "#d62728", "#ff9896", "#2ca02c", "#98df8a", \
+                    "#9467bd", "#c5b0d5", "#8c564b", "#c49c94"]
+array filled[10] = [7, 5, 9, 11, 13, 13, 15, 15, 3, 3]
+array open[10] = [6, 4, 8, 10, 12, 12, 14, 14, 2, 2]
+array name[10] = ["GIMP, A = 0.015", "GIMP, A = 0.05", "MPM, A = 0.015", "MPM, A = 0.05", \
+                  "CPDI, A = 0.015", "CPDI, A = 0.05", "B-spline 2, A = 0.015", \
+                  "B-spline 2, A = 0.05", "B-spline 3, A = 0.015", "B-spline 3, A = 0.05"]
 
 # The PNG's text is in DejaVu Sans (fonts-dejavu-core; mpmstab plot lets gnuplot see no other
 # font); the SVG only names its font, which the viewer resolves.
@@ -79,10 +83,10 @@ do for [ext in "png svg"] {
         set rmargin at screen (p == 0 ? 0.48 : 0.97)
         plot datafile using 3:(cfl(p)) with linespoints lw 1.5 pt 1 ps 1.2 lc rgb "black", \
              datafile using 3:(meaningless(p)) with points pt 2 ps 2.6 lw 1.5 lc rgb "black", \
-             for [s = 1:7] datafile using 3:(sel(p, s, $4)) with linespoints lw 1.5 pt filled[s] ps 1.2 lc rgb colour[s], \
-             for [s = 1:7] datafile using 3:(sel(p, s, $5)) with linespoints lw 1.5 dt 2 pt open[s] ps 1.8 lc rgb colour[s], \
-             for [s = 1:7] datafile using 3:(sel(p, s, $7)) with lines lw 1 dt 3 lc rgb colour[s], \
-             for [s = 1:7] datafile using 3:(sel(p, s, $8)) with linespoints lw 1 dt 4 pt open[s] ps 0.8 lc rgb colour[s]
+             for [s = 1:10] datafile using 3:(sel(p, s, $4)) with linespoints lw 1.5 pt filled[s] ps 1.2 lc rgb colour[s], \
+             for [s = 1:10] datafile using 3:(sel(p, s, $5)) with linespoints lw 1.5 dt 2 pt open[s] ps 1.8 lc rgb colour[s], \
+             for [s = 1:10] datafile using 3:(sel(p, s, $7)) with lines lw 1 dt 3 lc rgb colour[s], \
+             for [s = 1:10] datafile using 3:(sel(p, s, $8)) with linespoints lw 1 dt 4 pt open[s] ps 0.8 lc rgb colour[s]
     }
     # The legend of both panels, below them.
     unset title
@@ -100,9 +104,9 @@ do for [ext in "png svg"] {
     set bmargin at screen 0.01
     set key center center horizontal maxrows 8 samplen 3 spacing 1.0
     plot NaN with linespoints lw 1.5 pt 1 ps 1.2 lc rgb "black" title "h/c (speed-of-sound limit)", \
-         for [s = 1:7] NaN with linespoints lw 1.5 pt filled[s] ps 1.2 lc rgb colour[s] title "survival edge, " . name[s], \
+         for [s = 1:10] NaN with linespoints lw 1.5 pt filled[s] ps 1.2 lc rgb colour[s] title "survival edge, " . name[s], \
          NaN with points pt 2 ps 2.6 lw 1.5 lc rgb "black" title "run at the survival edge meaningless", \
-         for [s = 1:7] NaN with linespoints lw 1.5 dt 2 pt open[s] ps 1.8 lc rgb colour[s] title "accuracy edge, " . name[s], \
+         for [s = 1:10] NaN with linespoints lw 1.5 dt 2 pt open[s] ps 1.8 lc rgb colour[s] title "accuracy edge, " . name[s], \
          NaN with lines lw 1 dt 3 lc rgb "black" title "spectral limit (dotted, each series' colour)", \
          NaN with linespoints lw 1 dt 4 pt 6 ps 0.8 lc rgb "black" title "eq. (108) at the survival edge (dash-dotted)"
     unset multiplot

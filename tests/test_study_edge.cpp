@@ -296,20 +296,23 @@ TEST(EdgeStudy, ReportStatesTheRuleAndReadsBothEdgesFromTheRows) {
                     "accurate (their error over time below 0.1 A"),
             std::string::npos)
       << md;
-  // The reading, computed from the rows.
+  // The reading, computed from the rows: per method and amplitude, each range with the run
+  // lengths it spans.
   EXPECT_NE(
-      md.find("Of 3 searches, 2 found a survival edge and 1 none (no dt of the scan survives, or "
-              "the smallest dt tried fails)."),
+      md.find("Of 3 searches (A = 0.015 and 0.05; c T = 2; 100 cells), 2 found a survival "
+              "edge and 1 none (no dt of the scan survives, or the smallest dt tried fails)."),
       std::string::npos)
       << md;
-  EXPECT_NE(md.find("gimp: the survival edge is 0.700 to 0.820 h/c, and the run there is "
-                    "meaningless in 1 of 2 cases; the accuracy edge is 0.788 h/c, below the "
-                    "survival edge in 1 of 1 cases (down to 0.96 times it); 1 has no accuracy "
-                    "edge"),
+  EXPECT_NE(md.find("gimp at A = 0.015: the survival edge is 0.820 h/c over c T = 2, and the run "
+                    "there is meaningless in 1 of 1 cases; the accuracy edge is 0.788 h/c over c "
+                    "T = 2, below the survival edge in 1 of 1 cases (down to 0.96 times it); eq. "
+                    "(108) at the survival edge is 41 times below it. gimp at A = 0.05: the "
+                    "survival edge is 0.700 h/c over c T = 2, and the run there is meaningless in "
+                    "0 of 1 cases; 1 has no accuracy edge"),
             std::string::npos)
       << md;
-  EXPECT_NE(md.find("mpm: no edge: no dt of the scan survives, or the smallest dt tried fails (1 "
-                    "case)."),
+  EXPECT_NE(md.find("mpm at A = 0.015: no edge at c T = 2: no dt of the scan survives, or the "
+                    "smallest dt tried fails."),
             std::string::npos)
       << md;
   EXPECT_NE(
@@ -367,6 +370,7 @@ TEST(EdgeStudy, EdgesAreRerunOnPerturbedLayoutsAndASensitiveOneIsMarked) {
     found = true;
     EXPECT_FALSE(c.holds);
     EXPECT_EQ(render(c, c.evidence), "1 of 2 edges rerun are robust; 2 edges found");
+    EXPECT_EQ(c.measured_on, "A = 0.015 and 0.05; c T = 2; 100 cells; bar");  // the edges' rows
   }
   EXPECT_TRUE(found);
 }
@@ -403,7 +407,7 @@ TEST(EdgeStudy, EveryEdgeIsRerunForLengthAndATransientOneSaysWhereItFails) {
   const std::string& md = report.markdown;
   // The twin's error over time beside the Dirichlet run's, and per method in the walls paragraph.
   EXPECT_NE(md.find("| 1.0e-5 → 6.0e-6 (periodic 3.0e-6) |"), std::string::npos) << md;
-  EXPECT_NE(md.find("gimp 0.5 to 0.5 times the Dirichlet one (median 0.5, 1 of 1 twins)"),
+  EXPECT_NE(md.find("gimp at A = 0.015: 0.5 times the Dirichlet one (median 0.5, 1 of 1 twins)"),
             std::string::npos)
       << md;
   EXPECT_NE(md.find("| 1.084 x limit; **transient**: fails at c T = 63 |"), std::string::npos)
@@ -422,8 +426,8 @@ TEST(EdgeStudy, EveryEdgeIsRerunForLengthAndATransientOneSaysWhereItFails) {
     if (c.id == "survival-edges-hold-for-length") {
       ++found;
       EXPECT_FALSE(c.holds);
-      EXPECT_EQ(render(c, c.evidence),
-                "1 of 2 hold; the others fail or leave the accuracy class at c T = 63");
+      EXPECT_EQ(render(c, c.evidence), "1 of 2 hold; the others fail at c T = 63");
+      EXPECT_EQ(c.measured_on, "A = 0.015 and 0.05; c T = 2; 100 cells; bar");
     }
     if (c.id == "accuracy-edges-hold-for-length") {
       ++found;
@@ -460,7 +464,8 @@ TEST(EdgeStudy, FigureDataHasARowPerDrawnCaseAndTheTitleCountsThem) {
   EXPECT_NE(csv.find("# not drawn, no series in the figure: bar: cpgimp, A = 0.015, c T = 2\n"),
             std::string::npos)
       << csv;
-  EXPECT_NE(report.markdown.find("**Drawn.** 3 of 5 cases, 2 of them with their accuracy edge. "
+  EXPECT_NE(report.markdown.find("**Drawn.** 3 of 5 cases (A = 0.015 and 0.05; c T = 2; 100 "
+                                 "cells), 2 of them with their accuracy edge. "
                                  "Not drawn, no edge (none in the scan) (1): bar: mpm, A = "
                                  "0.015, c T = 2. Not drawn, no series in the figure (1): bar: "
                                  "cpgimp, A = 0.015, c T = 2. Drawn "
@@ -474,8 +479,8 @@ TEST(EdgeStudy, FigureDataHasARowPerDrawnCaseAndTheTitleCountsThem) {
   doc["cases"] = rows;
   const std::string subtitle = find_study("edge")->figure_subtitle(spec, doc);
   EXPECT_EQ(subtitle.rfind(std::to_string(test_support::data_lines(csv).size()) +
-                               " of 5 cases drawn (2 with an "
-                               "accuracy edge)",
+                               " of 5 cases drawn (A = 0.015 and 0.05, c T = 2, 100 cells, 2 "
+                               "with an accuracy edge)",
                            0),
             0u)
       << subtitle;

@@ -36,7 +36,10 @@ TEST(SpectralStudy, ConfirmsALimitOnlyWhenBelowStaysBoundedAndAboveGrows) {
   test_support::meaningless_row(rows[3]);
   rows[3]["max_error_over_time"] = 2e-6;
   const std::string md = test_support::study_report("spectral", rows).markdown;
-  EXPECT_NE(md.find("for 1 of 2 schemes; not for `gimp`"), std::string::npos) << md;
+  // The schemes' runs say where they lie: the tiny amplitude, one run length, one grid.
+  EXPECT_NE(md.find("for 1 of 2 schemes (A = 1e-6; c T = 1; 50 cells; bar); not for `gimp`"),
+            std::string::npos)
+      << md;
   EXPECT_NE(md.find("| mpm | 0.7564 | bloch | – | 0.0874 | bounded (error 5.0e-1 A) | grew "
                     "(error 4.0e1 A) | yes |"),
             std::string::npos)
@@ -75,7 +78,11 @@ TEST(SpectralStudy, ConfirmationClaimCountsTheSchemes) {
   rows[3]["max_error_over_time"] = 0.5e-6;  // gimp's run above the limit stays bounded
   report = test_support::study_report("spectral", rows);
   EXPECT_FALSE(holds(report, "spectral-limit-confirmed"));
-  EXPECT_NE(report.markdown.find("for 1 of 2 schemes; not for `gimp`"), std::string::npos);
+  EXPECT_NE(report.markdown.find("for 1 of 2 schemes (A = 1e-6; c T = 1; 50 cells; bar); not for "
+                                 "`gimp`"),
+            std::string::npos);
+  EXPECT_EQ(claim_of(report, "spectral-limit-confirmed").measured_on,
+            "A = 1e-6; c T = 1; 50 cells; bar");
 }
 
 // A run of the E study: gimp (or mpm) at 2 particles per cell on `cells` cells, at 0.95 times the
@@ -201,8 +208,10 @@ ojson edge_row(const char* method, double A, double edge, double limit) {
 TEST(SpectralEdgeStudy, AgreementHoldsWithinFivePercentAndTheAmplitudeTableShowsTheFall) {
   std::vector<ojson> rows = {edge_row("mpm", 1e-6, 0.7607, 0.7559),
                              edge_row("gimp", 1e-6, 0.70, 0.7559),  // 7.4% below: disagrees
-                             edge_row("mpm", 0.015, 0.70, 0.7559)};
+                             edge_row("mpm", 0.015, 0.70, 0.7559),
+                             edge_row("mpm", 0.05, 0.70, 0.7559)};
   test_support::meaningless_row(rows[2]);
+  rows[3]["dt_edge"] = nullptr;  // no edge in the scan at A = 0.05
   const std::string md = test_support::study_report("spectral_edge", rows).markdown;
   EXPECT_NE(md.find("1 of 2 measured edges lie within 5% of the spectral limit"), std::string::npos)
       << md;
@@ -212,7 +221,15 @@ TEST(SpectralEdgeStudy, AgreementHoldsWithinFivePercentAndTheAmplitudeTableShows
   EXPECT_NE(md.find("| 0.9260 | **no** |"), std::string::npos) << md;
   // mpm has two amplitudes: its row in the amplitude table, the meaningless edge marked.
   EXPECT_NE(md.find("| mpm | 1.006 | 0.926 * |"), std::string::npos) << md;
-  EXPECT_NE(md.find("mpm: lowest 0.926 of the limit, at A = 0.015."), std::string::npos) << md;
+  // The lowest edge measured, and the amplitude at which none was found (lower still).
+  EXPECT_NE(md.find("mpm: lowest measured 0.926 of the limit, at A = 0.015; no edge in the scan "
+                    "at A = 0.05."),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("## The measured edge against the spectral limit (A = 1e-6; c T = 1; 50 "
+                    "cells; bar)"),
+            std::string::npos)
+      << md;
 }
 
 }  // namespace

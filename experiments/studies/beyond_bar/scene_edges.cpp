@@ -58,12 +58,6 @@ ScanEdge scan_edge(const ojson& r) {
   return ScanEdge::inside;
 }
 
-RunParams at_dt(RunParams p, double dt) {
-  p.stepping.policy = TimeStepPolicy::fixed;
-  p.dt = dt;
-  return p;
-}
-
 // What each follow-up run of a row is for: a member of its ensemble at dt_edge or at dt_fail, or
 // a rerun of an edge for length (edge_length).
 constexpr const char* kMemberAtEdge = "ensemble member at dt_edge";
@@ -75,12 +69,15 @@ std::vector<FollowUp> edges_follow_up(const FollowUpContext& c) {
   for (std::size_t i = 0; i < c.rows.size(); ++i) {
     const ojson& r = c.rows[i];
     if (!has_number(r, "dt_edge") || !has_number(r, "dt_fail")) continue;
-    const RunParams& base = c.spec.cases.at(i).params;
-    for (const char* column : {"dt_edge", "dt_fail"})
-      for (auto& p : ensemble_members(at_dt(base, r[column].get<double>())))
+    RunParams at = c.spec.cases.at(i).params;  // at a fixed step
+    at.stepping.policy = TimeStepPolicy::fixed;
+    for (const char* column : {"dt_edge", "dt_fail"}) {
+      at.dt = r[column].get<double>();
+      for (auto& p : ensemble_members(at))
         runs.push_back({.of = i,
                         .role = column == std::string("dt_edge") ? kMemberAtEdge : kMemberAtFail,
                         .params = std::move(p)});
+    }
   }
   for (auto& f : all_length_runs(c.rows, c.spec.cases))
     runs.push_back(std::move(f));
@@ -181,13 +178,16 @@ std::string accuracy_edge_text(const ojson& r) {
 // What the study finds, from its rows and their follow-up runs (none for the index, which prints
 // no finding of them): how many rows have an edge inside the scan, why the others have none and
 // their scenes, how many are monotone or have a reference at round-off; of the edges inside the
-// scan, how many are meaningless, how they lie against the dense limit, how many hold on every
-// perturbed layout and how long they hold.
+// scan, how many are meaningless, how they lie against the dense limit (and how long those above
+// it hold), how many hold on every perturbed layout and how long they hold; where the rows each
+// claim reads lie (run_row.hpp): every row, those with an edge inside the scan, those compared
+// with the limit, checked on perturbed layouts and rerun for length.
 struct Findings {
   int rows = 0, with_edge = 0, robust_rows = 0, checked = 0, above = 0, compared = 0;
   int monotone = 0;  // rows whose search found survival monotone in dt
   int meaningless_edges = 0;
   int above_under_a_pass = 0;  // edges above the limit whose run covered under a wave pass
+  int above_tested = 0, above_held = 0;  // edges above the limit rerun for length, those that held
   // The rows without an edge inside the scan, by why, and their scenes.
   int to_top = 0, edge_too_short = 0, none_survives = 0;
   std::vector<std::string> edgeless_scenes;
@@ -196,6 +196,7 @@ struct Findings {
   double worst = 0;
   std::vector<std::optional<Robustness>> robust;  // per row
   LengthRuns lengths;
+  Coverage all_at, inside_at, compared_at, checked_at, tested_at;
 };
 
 // The findings of the rows and their follow-up runs.
@@ -206,6 +207,7 @@ Findings find(const std::vector<ojson>& rows, const std::vector<ojson>& follow_u
     const RunRow rr(r);
     const ScanEdge where = scan_edge(r);
     ++n.rows;
+    n.all_at.add(r);
     n.monotone += survival_monotone(r);
     n.round_off_references += reference_at_round_off(r);
     n.to_top += where == ScanEdge::survives_to_top;
@@ -218,17 +220,24 @@ Findings find(const std::vector<ojson>& rows, const std::vector<ojson>& follow_u
       continue;
     }
     ++n.with_edge;
+    n.inside_at.add(r);
     n.meaningless_edges += rr.outcome == "meaningless";
-    n.length_tally.add(lasting(n.lengths, r, "dt_edge"));
+    const Lasting lasts = lasting(n.lengths, r, "dt_edge");
+    n.length_tally.add(lasts);
+    if (lasts.tested) n.tested_at.add(r);
     if (rr.courant_spectral) {
       const double q = *courant_of(r, "dt_edge") / *rr.courant_spectral;
       ++n.compared;
+      n.compared_at.add(r);
       n.worst = std::max(n.worst, q);
       n.above += q > kLimitMargin;
       n.above_under_a_pass += q > kLimitMargin && rr.wave_passes.value_or(0) < kMinWavePasses;
+      n.above_tested += q > kLimitMargin && lasts.tested;
+      n.above_held += q > kLimitMargin && lasts.holds;
     }
     if (const auto& robust = n.robust[i]) {
       ++n.checked;
+      n.checked_at.add(r);
       n.robust_rows +=
           robust->survive_at_edge == robust->members && robust->fail_above == robust->members;
     }
@@ -242,7 +251,7 @@ std::vector<Claim> edges_claims(const Findings& n) {
             "{with} of {cases} do; of the others, {top} survive to the top of the scan (a "
             "step of T), {short} have runs too short to judge (under a wave pass or too few "
             "steps) and {none_survive} fail at the smallest dt tried");
-  edge.every("with", n.with_edge, "cases", n.rows);
+  edge.every("with", n.with_edge, "cases", n.rows).on(n.all_at);
   edge.count("top", n.to_top)
       .count("short", n.edge_too_short)
       .count("none_survive", n.none_survives);
@@ -250,16 +259,18 @@ std::vector<Claim> edges_claims(const Findings& n) {
                        "Every edge inside the scan holds on every perturbed layout (all survive "
                        "at the edge, all fail just above it)",
                        "{robust} of {checked} edges do");
-  robust.every("robust", n.robust_rows, "checked", n.checked);
+  robust.every("robust", n.robust_rows, "checked", n.checked).on(n.checked_at);
   Claim meaningful =
       claim("edges-meaningful", "No survival edge inside the scan is a meaningless run",
             "{meaningless} of {with} are");
   meaningful.count("meaningless", n.meaningless_edges).count("with", n.with_edge).over(n.with_edge);
   meaningful.holds = n.meaningless_edges == 0;
-  const Claim length = length_claim("edges-hold-for-length",
-                                    "Every survival edge inside the scan survives {first}x and "
-                                    "{second}x its run length (at most {cap} wave passes)",
-                                    "{held} of {tested} do", n.length_tally);
+  meaningful.on(n.inside_at);
+  Claim length = length_claim("edges-hold-for-length",
+                              "Every survival edge inside the scan survives {first}x and "
+                              "{second}x its run length (at most {cap} wave passes)",
+                              "{held} of {tested} do", n.length_tally);
+  length.on(n.tested_at);
   Claim limit = claim("edges-at-or-below-limit",
                       "No survival edge inside the scan lies above {margin} times the dense "
                       "spectral limit of its body",
@@ -267,12 +278,12 @@ std::vector<Claim> edges_claims(const Findings& n) {
                       "than {passes} wave pass (the largest ratio is {worst})");
   limit.number("margin", kLimitMargin, 3).count("above", n.above).count("compared", n.compared);
   limit.count("short_above", n.above_under_a_pass).number("passes", kMinWavePasses, 3);
-  limit.number("worst", n.worst, 3).over(n.compared);
+  limit.number("worst", n.worst, 3).over(n.compared).on(n.compared_at);
   limit.holds = n.compared > 0 && n.above == 0;
   Claim mono = claim("survival-monotone", "Survival is monotone in dt in every row",
                      "{monotone} of {rows} rows (where it is not, the edge is the lowest failure "
                      "found)");
-  mono.every("monotone", n.monotone, "rows", n.rows);
+  mono.every("monotone", n.monotone, "rows", n.rows).on(n.all_at);
   return {edge, robust, meaningful, length, limit, mono};
 }
 
@@ -348,8 +359,12 @@ StudyReport edges_report(const ReportContext& ctx) {
   md << edges_intro(ctx);
   for (std::size_t i = 0; i < rows.size(); ++i)
     md << edge_row(rows[i], n.robust[i], n.lengths);
-  md << "\nAn edge above the dense limit is one at which the growth the limit predicts has "
-        "not reached a failure by T (c T is given per scene in the scenes report). "
+  md << "\n"
+     << n.above << " edges inside the scan lie above " << shortest(kLimitMargin)
+     << " times the dense limit: runs that reached T (the column A/h, c T) at a step at which "
+        "the linearised map amplifies. Of the "
+     << n.above_tested << " rerun for length, " << n.above_held
+     << " hold to the longest length and " << n.above_tested - n.above_held << " fail. "
      << n.rows - n.with_edge << " of " << n.rows
      << " rows have no survival edge inside the scan: " << n.to_top << " survive to its top, "
      << n.edge_too_short << " have runs too short to judge (under a wave pass or too few steps), "

@@ -110,16 +110,6 @@ std::string edge_text(const std::map<EdgeKey, ojson>& edges, const EdgeKey& key)
   return it == edges.end() ? "–" : mpmstab::edge_text(it->second);
 }
 
-// The interior (Bloch) limit of each method, from the bar rows.
-std::map<std::string, double> interior_limits(const std::vector<ojson>& rows,
-                                              const std::map<std::string, Reference>& ref) {
-  std::map<std::string, double> out;
-  for (const auto& r : rows)
-    if (const RunRow run(r); part_of(r, ref) == Part::interior && run.courant_spectral)
-      out[run.method] = *run.courant_spectral;
-  return out;
-}
-
 std::vector<std::string> scenes_in_order(const std::vector<ojson>& rows) {
   std::vector<std::string> out;
   for (const auto& r : rows) {
@@ -183,25 +173,16 @@ std::string scenes_data(const std::vector<ojson>& rows, const SweepOutcome& out,
   return csv.str();
 }
 
-using Treated = std::map<std::pair<std::string, std::string>, std::map<std::string, ojson>>;
-
 // The runs at the reference Courant number with and without each small-mass treatment, by scene
 // and method.
-Treated treated_runs(const std::vector<ojson>& rows, const std::map<std::string, Reference>& ref) {
-  Treated treated;
-  for (const auto& r : rows) {
-    const Part p = part_of(r, ref);
-    if (p == Part::treatment || (p == Part::trade && at_reference(r)))
-      treated[{text(r, "scene"), RunRow(r).method}][small_mass_of(r)] = r;
-  }
-  return treated;
-}
+using Treated = std::map<std::pair<std::string, std::string>, std::map<std::string, ojson>>;
 
 // Each small-mass treatment against no treatment, over the (scene, method) pairs that ran both:
 // a run is good when it is stable over at least a wave pass (not unstable, not meaningless). A
 // pair with a run too short for a verdict (under a wave pass, or too few steps) is left out.
 struct TreatmentCount {
   int rescued = 0, rescued_accurate = 0, failing = 0, broken = 0, good = 0, short_pairs = 0;
+  Coverage at;  // where the pairs counted lie (run_row.hpp)
 };
 
 // One treatment against none.
@@ -220,6 +201,8 @@ TreatmentCount treatment_count(const Treated& treated, const char* treatment) {
       continue;
     }
     const bool stable_with = with.ending() == Ending::stable;
+    n.at.add(without);
+    n.at.add(with);
     if (without.ending() != Ending::stable) {
       ++n.failing;
       n.rescued += stable_with;
@@ -236,7 +219,9 @@ TreatmentCount treatment_count(const Treated& treated, const char* treatment) {
 // the interior limits, the runs with and without each treatment; how many runs the figure draws
 // and how many have a verdict; the dense limit against the interior one (lowered for the
 // B-splines and for the others, the range of the ratio); the peers matched; each treatment
-// against none; the trade (the pairs whose error does not fall by a factor 2 with the step).
+// against none; the trade (the pairs whose error does not fall by a factor 2 with the step);
+// where the rows each claim reads lie (run_row.hpp): every run, the runs whose limits are
+// compared, the peers' runs, the trade's pairs.
 struct Findings {
   std::map<std::string, Reference> ref;
   std::vector<std::string> scenes;
@@ -249,6 +234,7 @@ struct Findings {
   std::map<std::string, TreatmentCount> treatments;
   int trade_pairs = 0, trade_flat = 0;
   double trade_worst = 0;
+  Coverage all_at, limits_at, peer_at, rigid_at, trade_at;
 };
 
 // The peers' rows matched: within kPeerTolerance on the impulsive bar, rigid to round-off on the
@@ -258,11 +244,13 @@ void find_peers(const ojson& r, const CsvTable& peer, Findings& f) {
   if (text(r, "scene") == "impulsive") {
     const auto [in_cells, theirs] = beside_peer(r, opt(r, "max_error"), peer, "impulsiveBar");
     ++f.peer_compared;
+    f.peer_at.add(r);
     f.peer_agree +=
         rr.survived() && theirs && in_cells && std::abs(*in_cells / *theirs - 1) <= kPeerTolerance;
   } else if (text(r, "scene") == "block") {
     const auto [in_cells, theirs] = beside_peer(r, rr.error_over_time, peer, "advectBlock");
     ++f.rigid_compared;
+    f.rigid_at.add(r);
     f.rigid_agree += rr.survived() && theirs && in_cells && *in_cells < kRoundOffCells &&
                      *theirs < kRoundOffCells;
   }
@@ -271,25 +259,31 @@ void find_peers(const ojson& r, const CsvTable& peer, Findings& f) {
 // The findings of the rows and the peer's table.
 Findings find(const Spec& spec, const std::vector<ojson>& rows) {
   Findings f{.ref = references(rows), .scenes = scenes_in_order(rows)};
-  f.interior = interior_limits(rows, f.ref);
-  f.treated = treated_runs(rows, f.ref);
+  for (const auto& r : rows)  // the interior (Bloch) limit of each method, from the bar rows
+    if (const RunRow run(r); part_of(r, f.ref) == Part::interior && run.courant_spectral)
+      f.interior[run.method] = *run.courant_spectral;
   const CsvTable peer = read_csv(spec.reference);
-  std::map<std::pair<std::string, std::string>, std::map<Key, double>> err;  // the trade's
+  // The trade's error per A and run, by scene, method and c dt/h.
+  std::map<std::pair<std::string, std::string>, std::map<Key, std::pair<double, const ojson*>>> err;
   f.runs = int(rows.size());
   for (const auto& r : rows) {
     f.verdicts += !outcome(r).empty();
+    f.all_at.add(r);
     const Part part = part_of(r, f.ref);
     const RunRow run(r);
     if (part == Part::peer) find_peers(r, peer, f);
+    if (part == Part::treatment || (part == Part::trade && at_reference(r)))
+      f.treated[{text(r, "scene"), run.method}][small_mass_of(r)] = r;
     if (part != Part::trade) continue;
     if (const auto e = run.error_over_A(); e && run.survived())
-      err[{text(r, "scene"), run.method}][Key(num(r, "cfl_factor"), "cfl_factor")] = *e;
+      err[{text(r, "scene"), run.method}][Key(num(r, "cfl_factor"), "cfl_factor")] = {*e, &r};
     if (!at_reference(r)) continue;
     ++f.at_reference;
     const auto it = f.interior.find(run.method);
     if (!run.courant_spectral || it == f.interior.end()) continue;
     const double x = *run.courant_spectral / it->second;
     ++f.limits_compared;
+    f.limits_at.add(r);
     const bool spline = run.method.rfind("bspline", 0) == 0;
     (spline ? f.splines : f.others) += 1;
     (spline ? f.spline_lowered : f.other_lowered) += x < 1 - kLimitDrop;
@@ -301,7 +295,9 @@ Findings find(const Spec& spec, const std::vector<ojson>& rows) {
   for (const auto& [key, by] : err) {
     if (by.size() < 2) continue;
     ++f.trade_pairs;
-    const double gain = by.rbegin()->second / by.begin()->second;
+    for (const auto& [courant, run] : by)
+      f.trade_at.add(*run.second);
+    const double gain = by.rbegin()->second.first / by.begin()->second.first;
     f.trade_worst = std::max(f.trade_worst, gain);
     f.trade_flat += gain < 2;
   }
@@ -332,7 +328,6 @@ std::string per_scene_section(const std::vector<ojson>& rows,
        << opt_fixed(dense) << " | " << (it == interior.end() ? "–" : fixed(it->second, 3)) << " | "
        << q << " |\n";
   }
-
   return md.str();
 }
 
@@ -349,7 +344,6 @@ std::string trade_section(const std::vector<ojson>& rows,
        << shortest(num(r, "cfl_factor")) << " | " << verdict(r) << " | "
        << opt_sci(RunRow(r).error_over_A()) << " | " << work(r) << " |\n";
   }
-
   return md.str();
 }
 
@@ -367,7 +361,6 @@ std::string extremes_section(const std::vector<ojson>& rows,
        << significant(*RunRow(r).wave_passes, 3) << " | " << verdict(r) << " | "
        << opt_sci(RunRow(r).error_over_A()) << " |\n";
   }
-
   return md.str();
 }
 
@@ -388,7 +381,6 @@ std::string small_mass_section(const Treated& treated, const std::map<EdgeKey, o
          << edge_text(edges, {key.first, key.second, t}) << " |\n";
     }
   }
-
   return md.str();
 }
 
@@ -434,7 +426,6 @@ std::string peer_sections(const ReportContext& ctx, const std::map<std::string, 
     md << "| " << rr.method << " | " << shortest(num(r, "steps")) << " | " << rr.outcome
        << " | stable | " << opt_sci(in_cells) << " | " << opt_sci(theirs) << " |\n";
   }
-
   return md.str();
 }
 
@@ -446,19 +437,21 @@ std::vector<Claim> survey_claims(const Findings& n) {
                       "and keeps the block rigid to round-off in both codes (position error over "
                       "the run below {tolerance} cells): {agree} of {compared}.");
   rigid.value("tolerance", sci(kRoundOffCells, 1))
-      .every("agree", n.rigid_agree, "compared", n.rigid_compared);
+      .every("agree", n.rigid_agree, "compared", n.rigid_compared)
+      .on(n.rigid_at);
   claims.push_back(rigid);
   Claim peer =
       claim("agrees-with-uintah-impulsive",
             "On Uintah's impulsiveBar at its own setting, every basis compared has the "
             "peer's outcome and its final error within {tolerance}: {agree} of {compared}.");
   peer.value("tolerance", percent(kPeerTolerance))
-      .every("agree", n.peer_agree, "compared", n.peer_compared);
+      .every("agree", n.peer_agree, "compared", n.peer_compared)
+      .on(n.peer_at);
   claims.push_back(peer);
   Claim verdicts = claim("every-run-has-a-verdict",
                          "Every run ends with a verdict (unstable, meaningless or stable): {with} "
                          "of {runs}.");
-  verdicts.every("with", n.verdicts, "runs", static_cast<long long>(n.runs));
+  verdicts.every("with", n.verdicts, "runs", static_cast<long long>(n.runs)).on(n.all_at);
   claims.push_back(verdicts);
   Claim c = claim("free-surface-lowers-only-spline-limits",
                   "The free surface lowers the spectral limit (the dense limit of the body more "
@@ -471,6 +464,7 @@ std::vector<Claim> survey_claims(const Findings& n) {
   c.count("other_lowered", n.other_lowered).count("others", n.others);
   c.number("lo", n.limits_compared ? n.ratio_lo : 0, 3).number("hi", n.ratio_hi, 3);
   c.holds = n.splines > 0 && n.others > 0 && n.spline_lowered == n.splines && n.other_lowered == 0;
+  c.on(n.limits_at);
   claims.push_back(c);
   return claims;
 }
@@ -489,7 +483,7 @@ std::vector<Claim> treatment_and_trade_claims(const Findings& f) {
     c.value("treatment", treatment).count("rescued", n.rescued).count("failing", n.failing);
     c.count("accurate", n.rescued_accurate);
     c.count("broken", n.broken).count("good", n.good);
-    c.over(n.failing);  // a rescue of one run is not "every run"
+    c.over(n.failing).on(n.at);  // a rescue of one run is not "every run"
     c.holds = n.failing > 0 && n.rescued == n.failing && n.broken == 0;
     claims.push_back(c);
   }
@@ -500,7 +494,8 @@ std::vector<Claim> treatment_and_trade_claims(const Findings& f) {
                   "{worst}).");
   c.number("factor", 2)
       .every("flat", f.trade_flat, "pairs", f.trade_pairs)
-      .number("worst", f.trade_worst, 3);
+      .number("worst", f.trade_worst, 3)
+      .on(f.trade_at);
   claims.push_back(c);
   return claims;
 }
@@ -509,14 +504,18 @@ StudyReport scenes_report(const ReportContext& ctx) {
   const auto& rows = ctx.rows;
   const Findings f = find(ctx.spec, rows);
   const auto edges = edges_of(ctx.inputs);
+  Coverage edges_at;  // where the edges' searches lie
+  for (const auto& [key, r] : edges)
+    edges_at.add(r);
   std::ostringstream md;
   md << "**The measures** (docs/theory.md, \"Scenes\"): *error over time / A*, the largest "
         "|u_p - u(X_p, t)| over the particles and the steps, per the scene's displacement scale "
         "A; *L2 / A*, the RMS over the body and the run; *cost*, particle-steps. *Dense limit*: "
         "the spectral limit, in c dt/h, of the whole body with its free surfaces; *interior*: "
         "the Bloch limit of the same scheme on a periodic lattice; *edge*: the survival edge "
-        "in c dt/h from [scene_edges.md](scene_edges.md) (none where that experiment has not "
-        "been run).\n\n"
+        "in c dt/h from [scene_edges.md](scene_edges.md), searched at "
+     << (edges_at.empty() ? std::string("–") : edges_at.text())
+     << " (none where that experiment has not been run).\n\n"
      << cost_metric_text() << "\n\n";
 
   md << per_scene_section(rows, f.ref, f.interior, edges) << trade_section(rows, f.ref)

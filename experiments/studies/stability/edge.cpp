@@ -38,53 +38,19 @@ std::string passes(const ojson& r) {
   return significant(*RunRow(r).wave_passes, 3);
 }
 
-// "mpm, A = 0.05, E = 4 (c T = 2)".
-std::string case_name(const ojson& r) {
-  return RunRow(r).method + ", A = " + shortest(r["A"].get<double>()) +
-         ", E = " + shortest(r["E"].get<double>()) + " (c T = " + passes(r) + ")";
-}
-
-struct Flip {
-  bool survives = false;
-  double dt = 0;
-};
-
-// The column survival_flips, "fails 0.000625; survives 0.00088": each dt from which survival
-// changes as dt grows, below the survival edge.
-std::vector<Flip> flips_of(const ojson& r) {
-  std::vector<Flip> flips;
-  if (!r.contains("survival_flips") || !r["survival_flips"].is_string()) return flips;
-  std::string text = r["survival_flips"].get<std::string>();
-  std::replace(text.begin(), text.end(), ';', ' ');
-  std::istringstream in(text);
-  std::string word;
-  double dt = 0;
-  while (in >> word >> dt)
-    flips.push_back({word == "survives", dt});
-  return flips;
-}
-
-// "fails from 6.25e-4, survives from 8.84e-4".
-std::string flips_text(const std::vector<Flip>& flips) {
-  std::string s;
-  for (const auto& f : flips) {
-    if (!s.empty()) s += ", ";
-    s += f.survives ? "survives from " : "fails from ";
-    s += sci(f.dt, 3);
-  }
-  return s;
-}
-
 // "monotone", or "**not monotone**: survives again at up to 1.58e-4 (fails from 1.12e-4,
-// survives from 1.58e-4)".
+// survives from 1.58e-4)": the column survival_flips, "fails 0.000112; survives 0.000158", gives
+// each dt from which survival changes as dt grows, below the survival edge.
 std::string monotone_text(const ojson& r) {
   if (survival_monotone(r)) return "monotone";
-  std::string s = "**not monotone**";
+  std::string s = "**not monotone**", flips = text(r, "survival_flips"), word, from;
   if (has_number(r, "dt_survives_above"))
     s += ": survives again at up to " + sci(r["dt_survives_above"].get<double>(), 3);
-  const auto flips = flips_of(r);
-  if (!flips.empty()) s += " (" + flips_text(flips) + ")";
-  return s;
+  std::replace(flips.begin(), flips.end(), ';', ' ');
+  std::istringstream in(flips);
+  for (double dt = 0; in >> word >> dt;)
+    from += (from.empty() ? "" : ", ") + word + " from " + sci(dt, 3);
+  return from.empty() ? s : s + " (" + from + ")";
 }
 
 // Why a row has no survival edge: no dt of the scan survives, or the smallest dt tried fails
@@ -93,15 +59,16 @@ std::string no_edge_text(const ojson& r) {
   return has_number(r, "dt_fail") ? "none: the smallest dt tried fails" : "none in the scan";
 }
 
-std::string min_max(std::vector<double> v) {
-  const auto [lo, hi] = std::minmax_element(v.begin(), v.end(), TotalLess());
-  return *lo == *hi ? in_cfl(*lo) : in_cfl(*lo) + " to " + in_cfl(*hi);
+// "0.91 to 1.2", or "1" where both ends print alike.
+std::string from_to(const std::string& lo, const std::string& hi) {
+  return lo == hi ? lo : lo + " to " + hi;
 }
 
-// "0.91 to 1.2": the range of some ratios.
-std::string ratio_range(const std::vector<double>& v) {
+// The range of some values, each printed by `print`: some dts over h/c ("0.823 to 0.897") or
+// some ratios ("0.91 to 1.2").
+std::string range_of(const std::vector<double>& v, std::string (*print)(double) = in_cfl) {
   const auto [lo, hi] = std::minmax_element(v.begin(), v.end(), TotalLess());
-  return ratio(*lo) + " to " + ratio(*hi);
+  return from_to(print(*lo), print(*hi));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -124,13 +91,6 @@ RunParams at_dt(const RunParams& base, double dt) {
   return p;
 }
 
-// What the walls cost at the accuracy edge: a case with Dirichlet walls and an accuracy edge is
-// rerun there with periodic boundaries (both scenes' exact solutions are periodic), whose error
-// at T is the interior's own.
-bool has_twin(const ojson& r) {
-  return text(r, "bc") == "dirichlet" && has_number(r, "dt_accurate");
-}
-
 // What each follow-up run of a case is for: a member of its ensemble at dt_edge or at dt_fail,
 // a rerun of an edge for length (edge_length), the periodic twin at dt_accurate.
 constexpr const char* kMemberAtEdge = "ensemble member at dt_edge";
@@ -151,8 +111,11 @@ std::vector<FollowUp> edge_follow_up(const FollowUpContext& c) {
   }
   for (auto& f : all_length_runs(c.rows, c.spec.cases))
     runs.push_back(std::move(f));
+  // What the walls cost at the accuracy edge: a case with Dirichlet walls and an accuracy edge is
+  // rerun there with periodic boundaries (both scenes' exact solutions are periodic), whose error
+  // at T is the interior's own.
   for (std::size_t i = 0; i < c.rows.size(); ++i) {
-    if (!has_twin(c.rows[i])) continue;
+    if (text(c.rows[i], "bc") != "dirichlet" || !has_number(c.rows[i], "dt_accurate")) continue;
     RunParams p = at_dt(c.spec.cases.at(i).params, c.rows[i]["dt_accurate"].get<double>());
     p.bc = Boundary::periodic;
     runs.push_back({.of = i, .role = kTwin, .params = p});
@@ -217,8 +180,9 @@ std::string ensemble_cell(const std::map<const ojson*, EdgeEnsemble>& all, const
 // The figure: one panel per scene, one series per method and amplitude.
 const std::vector<std::string> kPanels = {"bar", "steffen"};
 const std::vector<std::pair<std::string, double>> kSeries = {
-    {"gimp", 0.015}, {"gimp", 0.05},      {"mpm", 0.015},     {"mpm", 0.05},
-    {"cpdi", 0.015}, {"bspline2", 0.015}, {"bspline3", 0.015}};
+    {"gimp", 0.015},     {"gimp", 0.05},    {"mpm", 0.015},      {"mpm", 0.05},
+    {"cpdi", 0.015},     {"cpdi", 0.05},    {"bspline2", 0.015}, {"bspline2", 0.05},
+    {"bspline3", 0.015}, {"bspline3", 0.05}};
 
 int panel_of(const ojson& r) {
   const auto it = std::find(kPanels.begin(), kPanels.end(), r["scene"].get<std::string>());
@@ -274,11 +238,13 @@ FigureCount figure_count(const std::vector<ojson>& rows) {
 // ---------------------------------------------------------------------------------------------
 // Findings
 
-// What some searches found (one method's in one scene, or every search): how many found a
-// survival edge, how often the run there is meaningless, both edges over h/c, the accuracy edge
-// against the survival edge (how often below it, and the lowest ratio), why some have none; the
-// survival edge against eq. (108) at it and against the spectral limit at the layout, and the
-// accuracy edge against that limit.
+// What some searches found (one method's at one amplitude in one scene, or every search): how
+// many found a survival edge, how often the run there is meaningless, both edges over h/c, the
+// accuracy edge against the survival edge (how often below it, and the lowest ratio), why some
+// have none; the survival edge against eq. (108) at it and against the spectral limit at the
+// layout, and the accuracy edge against that limit; and where the searches lie that decide each
+// (Coverage, run_row.hpp): every one, those with a survival edge, without one, with an accuracy
+// edge, with eq. (108) measured, with a limit, with a limit and an accuracy edge.
 struct Edges {
   int cases = 0, with_edge = 0, meaningless = 0, below = 0, no_accuracy = 0, withheld = 0;
   std::vector<double> edge, accurate;
@@ -287,17 +253,21 @@ struct Edges {
   double bound_lo = 1e300, bound_hi = 0;
   int limit_n = 0, limit_above = 0, accurate_limit_n = 0, accurate_limit_above = 0;
   double limit_hi = 0;
+  Coverage all_at, edge_at, none_at, accurate_at, bound_at, limit_at, accurate_limit_at;
   // Counts one search in.
   void add(const ojson& r) {
     ++cases;
-    if (!has_number(r, "dt_edge")) return;
+    all_at.add(r);
+    if (!has_number(r, "dt_edge")) return none_at.add(r);
     ++with_edge;
+    edge_at.add(r);
     const RunRow rr(r);
     edge.push_back(r["dt_edge_over_cfl"].get<double>());
     meaningless += rr.outcome == "meaningless";
     if (has_number(r, "dt_edge_over_stable")) {
       const double over = r["dt_edge_over_stable"].get<double>();
       ++bound_n;
+      bound_at.add(r);
       bound_below += over > 1;
       bound_lo = std::min(bound_lo, over);
       bound_hi = std::max(bound_hi, over);
@@ -306,15 +276,18 @@ struct Edges {
     if (limit) {
       const double rel = r["dt_edge_over_cfl"].get<double>() / *limit;
       ++limit_n;
+      limit_at.add(r);
       limit_above += rel > 1;
       limit_hi = std::max(limit_hi, rel);
     }
     if (has_number(r, "dt_accurate")) {
       accurate.push_back(r["dt_accurate_over_cfl"].get<double>());
+      accurate_at.add(r);
       const double ratio = r["dt_accurate"].get<double>() / r["dt_edge"].get<double>();
       below_lo = std::min(below_lo, ratio);
       below += ratio < 1;
       accurate_limit_n += limit.has_value();
+      if (limit) accurate_limit_at.add(r);
       accurate_limit_above +=
           limit && r["dt_accurate"].get<double>() / r["dt_cfl"].get<double>() > *limit;
     } else if (r.value("accuracy_edge_withheld", false)) {
@@ -329,16 +302,17 @@ struct Edges {
 // amplitudes, its searches in order of A / h.
 constexpr std::size_t kAmplitudeSweep = 3;
 
-// What one scene's searches found: per method, its edges; the searches not monotone (with their
-// flips); per method, how many periodic twins were run and each one's error over time against
-// the Dirichlet run's; the amplitude sweeps.
+// What one scene's searches found: per method and amplitude, its edges; the searches not monotone
+// (with their flips); per method and amplitude, how many periodic twins were run and each one's
+// error over time against the Dirichlet run's; the amplitude sweeps.
+using Group = std::pair<std::string, Key>;  // a method and an amplitude
 struct SceneFindings {
   std::string scene;
   std::vector<const ojson*> rows;
-  std::map<std::string, Edges> per;
+  std::map<Group, Edges> per;
   std::vector<std::string> non_monotone;
-  std::map<std::string, int> twins;
-  std::map<std::string, std::vector<double>> twin_ratios;
+  std::map<Group, int> twins;
+  std::map<Group, std::vector<double>> twin_ratios;
   std::vector<std::pair<std::string, std::vector<const ojson*>>> sweeps;  // method, rows
   int none = 0;  // searches without a survival edge
 };
@@ -351,18 +325,22 @@ SceneFindings scene_findings(std::string scene, std::vector<const ojson*> rows,
   for (const ojson* p : s.rows) {
     const ojson& r = *p;
     const RunRow rr(r);
-    s.per[rr.method].add(r);
+    const Group group{rr.method, Key(*rr.A, "A")};
+    s.per[group].add(r);
     s.none += !has_number(r, "dt_edge");
     sweeps[{rr.method, Key(*rr.wave_passes, "c T")}].push_back(p);
+    // A search not monotone: "mpm, A = 0.05, E = 4 (c T = 2) (**not monotone**: ...)".
     if (has_number(r, "dt_edge") && !survival_monotone(r))
-      s.non_monotone.push_back(case_name(r) + " (" + monotone_text(r) + ")");
+      s.non_monotone.push_back(rr.method + ", A = " + shortest(*rr.A) +
+                               ", E = " + shortest(r["E"].get<double>()) + " (c T = " + passes(r) +
+                               ") (" + monotone_text(r) + ")");
     const auto it = f.twins.find(p);
     if (it == f.twins.end()) continue;
-    ++s.twins[rr.method];
+    ++s.twins[group];
     const RunRow twin(it->second);
     if (twin.survived() && twin.error_over_time && has_number(r, "max_error_at_accurate"))
-      s.twin_ratios[rr.method].push_back(*twin.error_over_time /
-                                         r["max_error_at_accurate"].get<double>());
+      s.twin_ratios[group].push_back(*twin.error_over_time /
+                                     r["max_error_at_accurate"].get<double>());
   }
   for (auto& [key, list] : sweeps) {
     if (list.size() < kAmplitudeSweep) continue;
@@ -377,13 +355,14 @@ SceneFindings scene_findings(std::string scene, std::vector<const ojson*> rows,
 // What the study finds, from its rows and their follow-up runs (none for the index and the
 // subtitle, which print no finding of them): each scene's, every search's, how many edges were
 // rerun on an ensemble and how many of those are robust, how many searches found survival
-// monotone, the survival and the accuracy edges rerun for length, and what the figure draws.
-// Its pointers are into the rows.
+// monotone, the survival and the accuracy edges rerun for length (and where those searches lie),
+// and what the figure draws. Its pointers are into the rows.
 struct Findings {
   std::vector<SceneFindings> scenes;
   Edges all;
   int run = 0, robust = 0, monotone = 0;
   std::array<LengthTally, 2> lengths;  // dt_edge, dt_accurate
+  std::array<Coverage, 2> lengths_at;
   FigureCount figure;
 };
 
@@ -398,8 +377,11 @@ Findings find(const std::vector<ojson>& rows, const EdgeFollowUps& f) {
     it->second.push_back(&r);
     out.all.add(r);
     out.monotone += survival_monotone(r);
-    out.lengths[0].add(lasting(f.long_runs, r, "dt_edge"));
-    out.lengths[1].add(lasting(f.long_runs, r, "dt_accurate"));
+    for (const std::size_t k : {0, 1}) {
+      const Lasting l = lasting(f.long_runs, r, k ? "dt_accurate" : "dt_edge");
+      out.lengths[k].add(l);
+      if (l.tested) out.lengths_at[k].add(r);
+    }
     const auto e = f.ensembles.find(&r);
     if (!has_number(r, "dt_edge") || e == f.ensembles.end() || !e->second.run()) continue;
     ++out.run;
@@ -426,7 +408,7 @@ std::vector<Claim> edge_claims(const Findings& f) {
       .count("robust", f.robust)
       .count("run", f.run)
       .count("with_edge", e.with_edge);
-  ens.over(f.run);
+  ens.over(f.run).on(e.edge_at);
   ens.holds = f.run == e.with_edge && f.robust == f.run;
   claims.push_back(ens);
 
@@ -436,7 +418,8 @@ std::vector<Claim> edge_claims(const Findings& f) {
                       "{below} of {n}; the edge is {lo} to {hi} times eq. (108)");
   eq108.every("below", e.bound_below, "n", e.bound_n)
       .value("lo", e.bound_n ? ratio(e.bound_lo) : "–")
-      .value("hi", e.bound_n ? ratio(e.bound_hi) : "–");
+      .value("hi", e.bound_n ? ratio(e.bound_hi) : "–")
+      .on(e.bound_at);
   claims.push_back(eq108);
 
   Claim limit = claim("edges-at-most-the-limit",
@@ -445,7 +428,7 @@ std::vector<Claim> edge_claims(const Findings& f) {
   limit.count("above", e.limit_above)
       .count("n", e.limit_n)
       .value("hi", e.limit_n ? fixed(e.limit_hi, 3) : "–");
-  limit.over(e.limit_n);
+  limit.over(e.limit_n).on(e.limit_at);
   limit.holds = e.limit_above == 0;
   claims.push_back(limit);
 
@@ -454,7 +437,7 @@ std::vector<Claim> edge_claims(const Findings& f) {
                       "mode of the linearised step grows; how long each holds is tested apart)",
                       "{above} of {n} lie above it");
   below.count("above", e.accurate_limit_above).count("n", e.accurate_limit_n);
-  below.over(e.accurate_limit_n);
+  below.over(e.accurate_limit_n).on(e.accurate_limit_at);
   below.holds = e.accurate_limit_above == 0;
   claims.push_back(below);
 
@@ -466,13 +449,15 @@ std::vector<Claim> edge_claims(const Findings& f) {
         std::string("Every ") + (survival ? "survival" : "accuracy") +
             " edge holds when its run is {first}x and {second}x as long (at most {cap} wave "
             "passes)",
-        "{held} of {tested} hold; the others fail or leave the accuracy class at c T = {span}", t);
-    c.value("span", span(t.failed_at, 3));
+        std::string("{held} of {tested} hold; the others fail") +
+            (survival ? "" : " or leave the accuracy class") + " at c T = {span}",
+        t);
+    c.value("span", span(t.failed_at, 3)).on(f.lengths_at[survival ? 0 : 1]);
     claims.push_back(c);
   }
   Claim mono = claim("survival-monotone", "Survival is monotone in dt in every search",
                      "{monotone} of {n} searches");
-  mono.every("monotone", f.monotone, "n", static_cast<long long>(f.all.cases));
+  mono.every("monotone", f.monotone, "n", static_cast<long long>(f.all.cases)).on(f.all.all_at);
   claims.push_back(mono);
   return claims;
 }
@@ -480,20 +465,37 @@ std::vector<Claim> edge_claims(const Findings& f) {
 // ---------------------------------------------------------------------------------------------
 // Text
 
-// One method's sentence of the summary.
-std::string method_summary(const std::string& name, const Edges& m) {
+// Why a search found no survival edge, where the reading does not tell the two apart.
+constexpr const char* kNoEdge = "no dt of the scan survives, or the smallest dt tried fails";
+
+// Where some searches lie, their scene named apart (each section and panel names its own): "A =
+// 0.015 and 0.05; c T = 1 to 100 (7 values); 100 cells", with `lengths_only` "c T = 1, 2 and 4";
+// in `one_clause` (the figure's subtitle, which breaks its lines at "; ") its parts joined by ", ".
+std::string where(Coverage c, bool lengths_only = false, bool one_clause = false) {
+  c.scenes.clear();
+  if (lengths_only) c.A = c.cells = {};
+  std::string s = c.text();
+  for (auto at = s.find("; "); one_clause && at != std::string::npos; at = s.find("; ", at))
+    s.replace(at, 2, ", ");
+  return s;
+}
+
+// One method's sentence of the summary at one amplitude: each range with the run lengths its
+// searches span.
+std::string method_summary(const Group& group, const Edges& m) {
   std::ostringstream md;
-  if (m.edge.empty()) {
-    md << name << ": no edge: no dt of the scan survives, or the smallest dt tried fails ("
-       << m.cases << (m.cases == 1 ? " case" : " cases") << "). ";
-    return md.str();
-  }
-  md << name << ": the survival edge is " << min_max(m.edge) << " h/c, and the run there is "
-     << "meaningless in " << m.meaningless << " of " << m.with_edge << " cases";
+  md << group.first << " at A = " << shortest(group.second) << ": ";
+  if (m.edge.empty())
+    return md.str() + "no edge at " + where(m.none_at, true) + ": " + kNoEdge + ". ";
+  md << "the survival edge is " << range_of(m.edge) << " h/c over " << where(m.edge_at, true)
+     << ", and the run there is meaningless in " << m.meaningless << " of " << m.with_edge
+     << " cases";
+  if (m.with_edge < m.cases) md << "; none at " << where(m.none_at, true) << " (" << kNoEdge << ")";
   if (!m.accurate.empty())
-    md << "; the accuracy edge is " << min_max(m.accurate) << " h/c, below the survival edge "
-       << "in " << m.below << " of " << m.accurate.size() << " cases (down to " << ratio(m.below_lo)
-       << " times it)";
+    md << "; the accuracy edge is " << range_of(m.accurate) << " h/c over "
+       << where(m.accurate_at, true) << ", below the survival edge in " << m.below << " of "
+       << m.accurate.size() << " cases"
+       << (m.below ? " (down to " + ratio(m.below_lo) + " times it)" : "");
   if (m.no_accuracy)
     md << "; " << m.no_accuracy << " ha" << (m.no_accuracy == 1 ? "s" : "ve")
        << " no accuracy edge (the run at the smallest surviving dt is meaningless)";
@@ -503,24 +505,25 @@ std::string method_summary(const std::string& name, const Edges& m) {
           "error over time of at least "
        << shortest(kAccurateFraction) << " A)";
   if (m.bound_n)
-    md << "; eq. (108) at the survival edge is " << ratio(m.bound_lo) << " to " << ratio(m.bound_hi)
+    md << "; eq. (108) at the survival edge is " << from_to(ratio(m.bound_lo), ratio(m.bound_hi))
        << " times below it";
   md << ". ";
   return md.str();
 }
 
-// The reading of one scene's searches: per method, the range of both edges over h/c, how often
-// the run at the survival edge is meaningless and the accuracy edge lies below it; the searches
-// without an edge; the non-monotone ones with their flips.
+// The reading of one scene's searches and where they lie: per method and amplitude, the range of
+// both edges over h/c with the run lengths they span, how often the run at the survival edge is
+// meaningless and the accuracy edge lies below it; the searches without an edge; the
+// non-monotone ones with their flips.
 std::string edge_summary_text(const SceneFindings& s) {
   const std::size_t n = s.rows.size();
   std::ostringstream md;
-  md << "Of " << n << " searches, " << n - std::size_t(s.none) << " found a survival edge";
-  if (s.none)
-    md << " and " << s.none << " none (no dt of the scan survives, or the smallest dt tried fails)";
+  md << "Of " << n << " searches (" << where(coverage_of(s.rows)) << "), "
+     << n - std::size_t(s.none) << " found a survival edge";
+  if (s.none) md << " and " << s.none << " none (" << kNoEdge << ")";
   md << ". ";
-  for (const auto& [name, m] : s.per)
-    md << method_summary(name, m);
+  for (const auto& [group, m] : s.per)
+    md << method_summary(group, m);
   md << s.non_monotone.size() << " of " << n
      << " searches found survival not monotone in dt (a dt above the lowest failure survives; "
         "the edge is below that failure)";
@@ -600,11 +603,11 @@ std::string accuracy_cells(const EdgeFollowUps& f, const ojson& r, bool with_dt)
 // eq. (108), the flips and what the search cost.
 std::string edge_table(const std::vector<const ojson*>& rows, const EdgeFollowUps& f) {
   std::ostringstream md;
-  md << "| method | A | A/h | E | c T | h/c | spectral limit (h/c) | survival edge dt_edge (h/c; "
-        "bracket) | survival edge / limit; length | run at dt_edge | error at T there | accuracy "
-        "edge dt_accurate (h/c) | accuracy edge / limit; length | error over time: reference → at "
-        "dt_accurate (periodic twin) | eq. (108) at dt_edge (dt_edge / it) | survival in dt | "
-        "ensemble | probes | particle-steps |\n"
+  md << "| method | A | A/h | E | c T | h/c | spectral limit (h/c) | survival edge dt_edge "
+        "(h/c; bracket) | survival edge / limit; length | run at dt_edge (error over time / A) "
+        "| error at T there | accuracy edge dt_accurate (h/c) | accuracy edge / limit; length | "
+        "error over time: reference → at dt_accurate (periodic twin) | eq. (108) at dt_edge "
+        "(dt_edge / it) | survival in dt | ensemble | probes | particle-steps |\n"
         "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const ojson* p : rows) {
     const ojson& r = *p;
@@ -644,30 +647,26 @@ std::string edge_table(const std::vector<const ojson*>& rows, const EdgeFollowUp
 
 // "bar: mpm, A = 0.05, c T = 4, 8; steffen: ...".
 std::string listed(const std::vector<const ojson*>& rows) {
-  std::vector<std::pair<std::string, std::vector<std::string>>> groups;
+  std::vector<std::pair<std::string, std::string>> groups;  // "bar: mpm, A = 0.05", "4, 8"
   for (const ojson* r : rows) {
     const RunRow rr(*r);
-    std::string key =
-        (*r)["scene"].get<std::string>() + ": " + rr.method + ", A = " + shortest(*rr.A);
+    const std::string key = text(*r, "scene") + ": " + rr.method + ", A = " + shortest(*rr.A);
     auto it =
         std::find_if(groups.begin(), groups.end(), [&](const auto& g) { return g.first == key; });
-    if (it == groups.end()) it = groups.insert(groups.end(), {key, {}});
-    it->second.push_back(passes(*r));
+    if (it == groups.end()) it = groups.insert(groups.end(), {key, ""});
+    it->second += (it->second.empty() ? "" : ", ") + passes(*r);
   }
   std::string s;
-  for (const auto& [key, Es] : groups) {
-    if (!s.empty()) s += "; ";
-    s += key + ", c T = ";
-    for (std::size_t i = 0; i < Es.size(); ++i)
-      s += (i ? ", " : "") + Es[i];
-  }
+  for (const auto& [key, lengths] : groups)
+    s += (s.empty() ? "" : "; ") + key + ", c T = " + lengths;
   return s;
 }
 
 // What the figure leaves out, and why.
 std::string not_drawn_text(const FigureCount& c) {
   std::ostringstream md;
-  md << "**Drawn.** " << c.drawn.size() << " of " << c.cases << " cases, " << c.with_accuracy
+  md << "**Drawn.** " << c.drawn.size() << " of " << c.cases << " cases ("
+     << where(coverage_of(c.drawn)) << "), " << c.with_accuracy
      << " of them with their accuracy edge.";
   for (const auto& [reason, rows] : c.not_drawn)
     md << " Not drawn, " << reason << " (" << rows.size() << "): " << listed(rows) << ".";
@@ -686,7 +685,7 @@ std::string amplitude_table(const SceneFindings& s, const EdgeFollowUps& f) {
   md << "\n**Against amplitude.** The same cases ordered by A / h at one run length: each "
         "edge, its margin to the spectral limit and the run there.\n\n"
         "| method | c T | A/h | survival edge (h/c) | survival edge / limit; length | run at "
-        "it | accuracy edge (h/c) | accuracy edge / limit; length |\n"
+        "it (error over time / A) | accuracy edge (h/c) | accuracy edge / limit; length |\n"
         "|---|---|---|---|---|---|---|---|\n";
   for (const auto& [method, list] : s.sweeps) {
     for (const ojson* r : list) {
@@ -704,24 +703,24 @@ std::string amplitude_table(const SceneFindings& s, const EdgeFollowUps& f) {
   return md.str();
 }
 
-// What the walls cost at the accuracy edge, per method: the periodic twin's error over time against
-// the Dirichlet run's ("" when no twin was run).
+// What the walls cost at the accuracy edge, per method and amplitude: the periodic twin's error
+// over time against the Dirichlet run's ("" when no twin was run).
 std::string walls_text(const SceneFindings& s) {
   if (s.twins.empty()) return "";
   std::ostringstream md;
   md << "**Walls.** Each case with Dirichlet walls is rerun at its accuracy edge with periodic "
         "boundaries (no wall: the interior's own error); the periodic error over time is, per "
-        "method, ";
+        "method and amplitude, ";
   bool first = true;
   for (const auto& [m, n] : s.twins) {
-    md << (first ? "" : "; ") << m << " ";
+    md << (first ? "" : "; ") << m.first << " at A = " << shortest(m.second) << ": ";
     first = false;
     const auto it = s.twin_ratios.find(m);
     if (it == s.twin_ratios.end()) {
       md << "not compared (" << n << " twins, none reached T)";
       continue;
     }
-    md << ratio_range(it->second) << " times the Dirichlet one (median "
+    md << range_of(it->second, ratio) << " times the Dirichlet one (median "
        << ratio(quantile(it->second, 0.5)) << ", " << it->second.size() << " of " << n << " twins)";
   }
   md << ".\n\n";
@@ -756,7 +755,8 @@ std::string edge_markdown(const Spec& spec, const Findings& all, const SceneFind
 
 std::string edge_subtitle_text(const FigureCount& c) {
   std::string s = std::to_string(c.drawn.size()) + " of " + std::to_string(c.cases) +
-                  " cases drawn (" + std::to_string(c.with_accuracy) + " with an accuracy edge)";
+                  " cases drawn (" + where(coverage_of(c.drawn), false, true) + ", " +
+                  std::to_string(c.with_accuracy) + " with an accuracy edge)";
   for (const auto& [reason, rows] : c.not_drawn)
     s += "; not drawn, " + reason + ": " + std::to_string(rows.size());
   return s;

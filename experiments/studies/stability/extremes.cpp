@@ -33,33 +33,12 @@ int verdict_code(const RunRow& r) {
   return it == kVerdicts.end() ? 0 : int(it - kVerdicts.begin());
 }
 
-// How a run that the solver calls stable is counted here (VerdictTally, run_row.hpp): stable
-// over at least kMinWavePasses wave passes, accurate or not (an error over time that is not
-// recorded is not accurate), or too short in wave passes to count as stable.
-enum class Standing { accurate, inaccurate, under_a_pass };
-
-Standing standing(const RunRow& r) {
-  if (r.under_a_wave_pass()) return Standing::under_a_pass;
-  return r.accuracy() == Accuracy::accurate ? Standing::accurate : Standing::inaccurate;
-}
-
-// The error over time per A of a run that reached T with a stable or meaningless outcome.
-std::optional<double> error_per_A(const RunRow& r) {
-  return r.outcome == "stable" || r.outcome == "meaningless" ? r.error_over_A() : std::nullopt;
-}
-
 // The quantities a run that reached T reports, and which of them it measures. Eq. (108) is
 // derived for MPM, GIMP and cpGIMP only (has_eq108): for the other bases dt_stable_min is null
 // because it is not measured, not because it is not finite.
 const std::vector<const char*> kSurvivorOutputs = {
     "max_error", "max_error_over_time", "dt_stable_min", "dt_min", "dt_max", "dt_mean", "courant",
     "crossings"};
-
-bool measured(const ojson& r, const std::string& key) {
-  if (key != "dt_stable_min") return true;
-  const auto m = parse_method(RunRow(r).method);
-  return m && has_eq108(*m);
-}
 
 // What a run that reached T reports: how many of its measured quantities are null or not finite
 // (JSON has no NaN: a NaN or an infinity is written as null, so a measured quantity that is null
@@ -71,9 +50,10 @@ struct OutputCheck {
 
 OutputCheck check_outputs(const ojson& r) {
   OutputCheck c;
+  const auto method = parse_method(RunRow(r).method);
   for (const char* key : kSurvivorOutputs) {
     const bool number = r.contains(key) && r[key].is_number();
-    if (!measured(r, key)) {
+    if (key == std::string_view("dt_stable_min") && !(method && has_eq108(*method))) {
       c.not_measured += !number;
     } else if (!number || !std::isfinite(r[key].get<double>())) {
       ++c.non_finite;
@@ -84,13 +64,10 @@ OutputCheck check_outputs(const ojson& r) {
 
 // Failure reasons with their counts: "left_domain 1, nonpositive_F 73".
 std::string reason_counts(const std::map<std::string, int>& reasons) {
-  std::ostringstream s;
-  bool first = true;
-  for (const auto& [reason, n] : reasons) {
-    s << (first ? "" : ", ") << reason << " " << n;
-    first = false;
-  }
-  return s.str();
+  std::string s;
+  for (const auto& [reason, n] : reasons)
+    s += (s.empty() ? "" : ", ") + reason + " " + std::to_string(n);
+  return s;
 }
 
 // The case with the most work (particle-steps, deterministic): its work and its parameters.
@@ -132,6 +109,9 @@ struct Counts {
   double above_survivor_ratio = 0;      // the largest c dt/h over the limit of a survivor
   int above_survivor_under_a_pass = 0;  // survivors of fewer than kMinWavePasses wave passes
   int unlimited = 0;                    // runs without a spectral limit
+  // Where the runs each claim counts lie (run_row.hpp): every case, those that reached T, those
+  // above the limit long enough to judge, those counted stable.
+  Coverage all_at, reached_at, above_judged_at, stable_at;
   // The runs the solver calls stable, over a wave pass or not.
   int solver_stable() const { return verdicts.stable + verdicts.under_a_wave_pass; }
   int inaccurate() const { return verdicts.inaccurate + verdicts.unmeasured; }
@@ -145,6 +125,8 @@ Counts count_rows(const std::vector<ojson>& rows) {
     const RunRow r(row);
     c.with_verdict += !r.outcome.empty();
     c.verdicts.add(r);
+    c.all_at.add(r);
+    if (r.ending() == Ending::stable) c.stable_at.add(r);
     const int v = verdict_code(r);
     const long long steps = r.steps.value_or(0);
     if (v != 2) {
@@ -155,6 +137,7 @@ Counts count_rows(const std::vector<ojson>& rows) {
       }
       if (v < 3 && steps < kMinStepsToJudge) ++c.few_step_verdicts;
       ++c.reached;
+      c.reached_at.add(r);
       const OutputCheck out = check_outputs(row);
       c.non_finite += out.non_finite > 0;
       c.not_measured += out.not_measured > 0;
@@ -166,6 +149,7 @@ Counts count_rows(const std::vector<ojson>& rows) {
     const double over = *r.courant / *r.courant_spectral;
     if (!r.above_spectral_limit()) continue;
     ++c.above;
+    if (v != 3) c.above_judged_at.add(r);
     if (v == 2) {
       ++c.above_failed;
     } else if (v == 3) {
@@ -225,7 +209,7 @@ std::vector<Claim> extremes_claims(const Counts& c) {
   std::vector<Claim> claims;
   Claim verdicts = claim("every-case-has-a-verdict", "Every case ends with a verdict",
                          "{with} of {total} cases have one");
-  verdicts.every("with", c.with_verdict, "total", c.total);
+  verdicts.every("with", c.with_verdict, "total", c.total).on(c.all_at);
   claims.push_back(verdicts);
 
   Claim finite = claim("outputs-finite",
@@ -234,7 +218,7 @@ std::vector<Claim> extremes_claims(const Counts& c) {
                        "{bad} of {reached} do; {unmeasured} report dt_stable_min as not measured "
                        "(eq. (108) is not defined for their basis), which is not counted");
   finite.count("bad", c.non_finite).count("reached", c.reached).count("unmeasured", c.not_measured);
-  finite.over(c.reached);
+  finite.over(c.reached).on(c.reached_at);
   finite.holds = c.non_finite == 0;
   claims.push_back(finite);
 
@@ -246,6 +230,7 @@ std::vector<Claim> extremes_claims(const Counts& c) {
       .count("few", c.few_step_verdicts)
       .count("short", c.verdicts.too_short);
   enough.holds = c.few_step_verdicts == 0;
+  enough.on(c.reached_at);
   claims.push_back(enough);
 
   Claim above = claim("above-limit-fails",
@@ -262,7 +247,8 @@ std::vector<Claim> extremes_claims(const Counts& c) {
       .count("survived_short", c.above_survivor_under_a_pass)
       .value("passes", shortest(kMinWavePasses))
       .count("short", c.above_too_short)
-      .over(c.above_failed + c.above_survived);
+      .over(c.above_failed + c.above_survived)
+      .on(c.above_judged_at);
   above.holds = c.above_survived == 0;
   claims.push_back(above);
 
@@ -275,6 +261,7 @@ std::vector<Claim> extremes_claims(const Counts& c) {
       .value("fraction", shortest(kAccurateFraction))
       .every("accurate", c.verdicts.accurate, "stable", c.verdicts.accurate + c.inaccurate());
   accurate.count("inaccurate", c.inaccurate()).count("apart", c.verdicts.under_a_wave_pass);
+  accurate.on(c.stable_at);
   claims.push_back(accurate);
   return claims;
 }
@@ -303,8 +290,10 @@ std::string band_name(const Band& b, const std::string& x) {
   return name + b.note;
 }
 
-// One band of one method: how many runs fall in it, by verdict (a stable one by its standing),
-// and the reasons of the failures.
+// One band of one method: how many runs fall in it, by verdict, and the reasons of the failures.
+// A run the solver calls stable is counted as VerdictTally (run_row.hpp) counts it: stable over
+// at least kMinWavePasses wave passes, accurate or not (an error over time that is not recorded
+// is not accurate), or too short in wave passes to count as stable.
 struct BandCount {
   int runs = 0, accurate = 0, inaccurate = 0, under = 0, meaningless = 0, too_short = 0;
   std::map<std::string, int> why;
@@ -324,12 +313,10 @@ std::vector<BandCount> band_counts(const std::vector<ojson>& rows, const std::st
       if (x < b.lo || x >= b.hi) continue;
       ++n.runs;
       const int v = verdict_code(r);
-      if (v == 0) {
-        const Standing st = standing(r);
-        n.accurate += st == Standing::accurate;
-        n.inaccurate += st == Standing::inaccurate;
-        n.under += st == Standing::under_a_pass;
-      }
+      if (v == 0)
+        ++(r.under_a_wave_pass()                ? n.under
+           : r.accuracy() == Accuracy::accurate ? n.accurate
+                                                : n.inaccurate);
       n.meaningless += v == 1;
       n.too_short += v == 3;
       if (v == 2) ++n.why[*r.failure_reason];
@@ -394,8 +381,9 @@ std::string band_table(const std::vector<BandCount>& counts, const std::vector<B
   return md.str();
 }
 
-// The reading for one method: above its limit, how many runs long enough to judge fail, how many
-// survive and how long and how far above the limit they ran, how many are too short to judge;
+// The reading for one method: above its limit, where the runs long enough to judge lie and how
+// many fail, how many survive and how long and how far above the limit they ran, how many are too
+// short to judge;
 // below it, how many fail and how many of those have particles crossing cells.
 std::string method_reading(const MethodFindings& f) {
   const Counts& c = f.counts;
@@ -404,8 +392,8 @@ std::string method_reading(const MethodFindings& f) {
   if (f.limit_hi == 0) return md.str() + "no spectral limit recorded. ";
   md << "above its spectral limit (c dt/h " << fixed(f.limit_lo, 3);
   if (f.limit_hi > f.limit_lo) md << " to " << fixed(f.limit_hi, 3);
-  md << " at these layouts) " << c.above_failed << " of " << c.above_failed + c.above_survived
-     << " runs long enough to judge fail";
+  md << " at these layouts; runs on " << c.above_judged_at.text() << ") " << c.above_failed
+     << " of " << c.above_failed + c.above_survived << " runs long enough to judge fail";
   if (c.above_survived) {
     md << ", " << c.above_survived << " survive (the longest ran " << c.above_survivor_steps
        << " steps, at most " << fixed(c.above_survivor_ratio, 5) << " times the limit; "
@@ -427,7 +415,9 @@ std::string every_case_table(const std::vector<ojson>& rows) {
         "|\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& r : rows) {
     const RunRow run(r);
-    const auto e = error_per_A(run);
+    // The error over time per A of a run that reached T stable or meaningless.
+    const auto e =
+        run.outcome == "stable" || run.outcome == "meaningless" ? run.error_over_A() : std::nullopt;
     md << "| " << run.method_label << " | " << r["bc"].get<std::string>() << " | "
        << shortest(r["E"].get<double>()) << " | " << shortest(r["A"].get<double>()) << " | "
        << param(r["dt"].get<double>()) << " | " << param(r["T"].get<double>()) << " | "
@@ -443,19 +433,14 @@ std::string every_case_table(const std::vector<ojson>& rows) {
 // The methods of the rows (method_label: the basis, then a transfer other than FLIP), the
 // paper's first, then the other bases in a fixed order, then the rest as they first appear.
 std::vector<std::string> methods_of(const std::vector<ojson>& rows) {
+  const std::vector<std::string> order = {"gimp", "mpm", "cpgimp", "cpdi", "bspline2", "bspline3"};
   std::vector<std::string> present;
-  for (const char* m : {"gimp", "mpm", "cpgimp", "cpdi", "bspline2", "bspline3"}) {
-    for (const auto& r : rows) {
-      if (method_label(r) == m) {
-        present.emplace_back(m);
-        break;
-      }
-    }
-  }
-  for (const auto& r : rows) {
-    const std::string m = method_label(r);
-    if (std::find(present.begin(), present.end(), m) == present.end()) present.push_back(m);
-  }
+  for (const auto& r : rows)
+    if (std::find(present.begin(), present.end(), method_label(r)) == present.end())
+      present.push_back(method_label(r));
+  std::stable_sort(present.begin(), present.end(), [&](const std::string& a, const std::string& b) {
+    return std::find(order.begin(), order.end(), a) < std::find(order.begin(), order.end(), b);
+  });
   return present;
 }
 
@@ -535,17 +520,13 @@ std::string extremes_data_csv(const Findings& f, const std::string& header_lines
 // What the figure draws: every case, at fewer spots than cases.
 std::string extremes_subtitle(const Spec&, const ojson& doc) {
   const Findings f = find(std::vector<ojson>(doc["cases"].begin(), doc["cases"].end()));
-  std::string s = std::to_string(f.counts.total);
-  s += " cases at ";
-  s += std::to_string(f.spots.size());
-  s += " spots; the verdicts of one spot side by side, the marker growing with its number of "
-       "cases (printed where it holds more than one); the stable marker is the solver's "
-       "outcome: ";
-  s += std::to_string(f.counts.verdicts.under_a_wave_pass);
-  s += " of its ";
-  s += std::to_string(f.counts.solver_stable());
-  s += " runs ran under c T = " + shortest(kMinWavePasses) + " wave pass";
-  return s;
+  return std::to_string(f.counts.total) + " cases at " + std::to_string(f.spots.size()) +
+         " spots; the verdicts of one spot side by side, the marker growing with its number of "
+         "cases (printed where it holds more than one); the stable marker is the solver's "
+         "outcome: " +
+         std::to_string(f.counts.verdicts.under_a_wave_pass) + " of its " +
+         std::to_string(f.counts.solver_stable()) +
+         " runs ran under c T = " + shortest(kMinWavePasses) + " wave pass";
 }
 
 std::string extremes_index(const Spec& spec, const std::vector<ojson>& rows) {

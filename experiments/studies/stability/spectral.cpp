@@ -5,9 +5,7 @@
 // several grids: its ratio to the limit, which is not fixed by c dt / h, A/h and c T (eq. (108) is
 // not dimensionally homogeneous), against its value at rest.
 #include <algorithm>
-#include <cctype>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <map>
 #include <optional>
@@ -117,23 +115,17 @@ std::vector<Scheme> schemes_of(const std::vector<ojson>& rows) {
 }
 
 // The measured edges of the spectral_edge experiment at a tiny amplitude, by scheme label, in
-// c dt / h (empty when it has not been run).
-std::map<std::string, double> measured_edges(const StudyInputs& inputs) {
+// c dt / h (empty when it has not been run), and where their runs lie.
+std::map<std::string, double> measured_edges(const StudyInputs& inputs, Coverage& at) {
   std::map<std::string, double> out;
   const auto it = inputs.find("spectral_edge");
   if (it == inputs.end() || !it->second.present()) return out;
   for (const auto& r : it->second.doc.at("cases")) {
     if (r["A"].get<double>() >= 1e-5 || !has_number(r, "dt_edge")) continue;
     out[scheme_label(r)] = r["dt_edge"].get<double>() / r["dt_cfl"].get<double>();
+    at.add(r);
   }
   return out;
-}
-
-// The update order of a scheme's name ("gimp/xpic(2)/usf" -> "usf"; no suffix: usl).
-std::string update_of(const std::string& name) {
-  for (const char* u : {"/usf", "/musl"})
-    if (name.find(u) != std::string::npos) return u + 1;
-  return "usl";
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -151,21 +143,12 @@ struct Eq108Point {
   int cells = 0, ppc = 0, particles = 0;
   double A = 0, T = 0, safety = 0;
   double limit = 0, eq108 = 0, rest = 0;
+  const ojson* row = nullptr;  // its run
   double ratio() const { return eq108 / limit; }
   double c() const { return std::sqrt(E); }  // the bar's density is 1
   // How far the run's state moved eq. (108) from its value at rest, relative.
   double state_shift() const { return std::abs(1 - eq108 / rest); }
 };
-
-// Eq. (108) at rest (F = 1, no stress, no velocity) at E, h = c dt_cfl and ppc particles per
-// cell, in c dt / h: the formula's constants alone.
-double eq108_at_rest(Method method, double E, double dt_cfl, int ppc) {
-  StableDtInputs rest;
-  rest.F_max = 1;
-  const double h = dt_cfl * std::sqrt(E);
-  return stable_dt(rest, StableDtGeometry{method, E, h, ppc, h / ppc}, StressScaling::scaled) /
-         dt_cfl;
-}
 
 std::vector<Eq108Point> eq108_points(const std::vector<ojson>& rows) {
   std::vector<Eq108Point> out;
@@ -188,7 +171,14 @@ std::vector<Eq108Point> eq108_points(const std::vector<ojson>& rows) {
                  r["safety"].get<double>(),
                  *run.courant_spectral,
                  r["dt_stable_min"].get<double>() / dt_cfl};
-    p.rest = eq108_at_rest(*method, p.E, dt_cfl, p.ppc);
+    // Eq. (108) at rest (F = 1, no stress, no velocity) at the run's E, h = c dt_cfl and
+    // particles per cell, in c dt / h: the formula's constants alone.
+    StableDtInputs rest;
+    rest.F_max = 1;
+    const double h = dt_cfl * std::sqrt(p.E);
+    const StableDtGeometry geometry{*method, p.E, h, p.ppc, h / p.ppc};
+    p.rest = stable_dt(rest, geometry, StressScaling::scaled) / dt_cfl;
+    p.row = &r;
     out.push_back(p);
   }
   return out;
@@ -202,17 +192,6 @@ std::vector<Eq108Point> eq108_points(const std::vector<ojson>& rows) {
 constexpr double kHomogeneousSpread = 1.1;
 constexpr double kSqrtSlope = -0.5, kSlopeTolerance = 0.1;
 constexpr double kStateNegligible = 0.01;
-
-// c = sqrt(E) to three significant digits: "1", "31.6", "100".
-std::string speed(double c) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", c);
-  return buf;
-}
-
-std::string ratio_text(double r) {
-  return fixed(r, 3);
-}
 
 template <class T>
 void add_unique(std::vector<T>& v, const T& x) {
@@ -290,7 +269,9 @@ struct Eq108Row {
 // far the state moved the bound from rest; the table per E and each E's range of the ratio over
 // the bases and particles per cell; the range at the first row's particles per cell over every E,
 // for the scheme table's reading (lo > hi: none); the grids run; the runs below the limit and the
-// one with the largest ratio. Its pointers are into grid.points: it is moved, never copied.
+// one with the largest ratio; where the runs of each claim lie (run_row.hpp): every run, those on
+// the first row's grid, GIMP's against the particles per cell and against the particle count.
+// Its pointers are into grid.points: it is moved, never copied.
 struct Eq108Findings {
   Eq108Grid grid;
   double spread = 1;
@@ -305,6 +286,7 @@ struct Eq108Findings {
   double lo = 1e300, hi = 0, E_lo = 0, E_hi = 0;
   int cells_lo = 0, cells_hi = 0, below = 0;
   const Eq108Point* worst = nullptr;
+  Coverage points_at, grid_at, ppc_at, count_at;
 };
 
 // The largest spread of the ratio over E at one basis and particles per cell.
@@ -364,9 +346,13 @@ Eq108Findings eq108_findings(const std::vector<ojson>& rows) {
     f.cells_lo = std::min(f.cells_lo, p.cells);
     f.cells_hi = std::max(f.cells_hi, p.cells);
     f.below += p.ratio() < 1;
+    f.points_at.add(*p.row);
+    if (p.cells == g.cells0) f.grid_at.add(*p.row);
     if (!f.worst || p.ratio() > f.worst->ratio()) f.worst = &p;
-    if (p.method == "gimp" && p.E == g.E0 && p.cells == g.cells0)
+    if (p.method == "gimp" && p.E == g.E0 && p.cells == g.cells0) {
       f.by_ppc.emplace_back(p.ppc, p.ratio());
+      f.ppc_at.add(*p.row);
+    }
     if (!f.shifted || p.state_shift() > f.shift) {
       f.shift = p.state_shift();
       f.shifted = &p;
@@ -376,8 +362,10 @@ Eq108Findings eq108_findings(const std::vector<ojson>& rows) {
   if (std::find(g.bases.begin(), g.bases.end(), "gimp") != g.bases.end())
     f.gimp_count = g.by_count("gimp");
   std::vector<std::pair<double, double>> by_count;  // GIMP: particles, ratio
-  for (const Eq108Point* p : f.gimp_count)
+  for (const Eq108Point* p : f.gimp_count) {
     by_count.emplace_back(p->particles, p->ratio());
+    f.count_at.add(*p->row);
+  }
   f.count_slope = loglog_slope(by_count);
   return f;
 }
@@ -396,13 +384,14 @@ struct PaperFindings {
 // and the paper's Table 1: each scheme and whether its limit is confirmed, the safety factors of
 // its runs, the range of the limits per update order (at the default particles per cell and the
 // uniform layout), of eq. (108) and of the measured edge over the limit, and the eq. (108)
-// section's and the paper's findings. Its schemes point into the rows.
+// section's and the paper's findings; where the schemes' runs and the measured edges' runs lie
+// (run_row.hpp). Its schemes point into the rows.
 struct Findings {
   std::vector<Scheme> schemes;
+  Coverage schemes_at, edges_at;
   int confirmed = 0;
   std::vector<std::string> not_confirmed;
-  std::string below, above;         // the safety factors of the scheme rows: "0.95", "1.05"
-  double s_below = 0, s_above = 0;  // those of the first scheme with both runs
+  std::string below, above;  // the safety factors of the scheme rows: "0.95", "1.05"
   std::map<std::string, std::pair<double, double>> limits;  // update order -> lo, hi
   double eq_lo = 1e300, eq_hi = 0, edge_lo = 1e300, edge_hi = 0;
   int particles_lo = 0, particles_hi = 0;
@@ -452,21 +441,21 @@ Findings find(const Spec& spec, const std::vector<ojson>& rows, const StudyInput
   Findings f{.schemes = schemes_of(rows),
              .below = safeties(rows, true, true),
              .above = safeties(rows, false, true),
-             .edges = measured_edges(inputs),
              .eq108 = eq108_findings(rows)};
+  f.edges = measured_edges(inputs, f.edges_at);
   for (const auto& s : f.schemes) {
+    for (const ojson* r : {s.below, s.above})
+      if (r) f.schemes_at.add(*r);
     if (s.confirmed())
       ++f.confirmed;
     else
       f.not_confirmed.push_back(s.name);
-    if (s.below && s.above && f.s_below == 0 && has_number(*s.below, "safety") &&
-        has_number(*s.above, "safety")) {
-      f.s_below = (*s.below)["safety"].get<double>();
-      f.s_above = (*s.above)["safety"].get<double>();
-    }
     const auto limit = s.limit();
     if (limit && s.uniform_two()) {
-      auto [it, fresh] = f.limits.emplace(update_of(s.name), std::pair{*limit, *limit});
+      std::string update = "usl";  // the name's update order: "gimp/xpic(2)/usf" -> "usf"
+      for (const char* u : {"/usf", "/musl"})
+        if (s.name.find(u) != std::string::npos) update = u + 1;
+      auto [it, fresh] = f.limits.emplace(update, std::pair{*limit, *limit});
       it->second = {std::min(it->second.first, *limit), std::max(it->second.second, *limit)};
     }
     if (const auto e = s.eq108(); e && limit) {
@@ -495,8 +484,9 @@ Claim confirmed_claim(const Findings& f) {
                   "stays bounded and the run just above it grows",
                   "{confirmed} of {schemes} schemes, runs at {below} and {above} times the limit");
   c.every("confirmed", f.confirmed, "schemes", static_cast<long long>(f.schemes.size()))
-      .value("below", f.s_below > 0 ? shortest(f.s_below) : "–")
-      .value("above", f.s_above > 0 ? shortest(f.s_above) : "–");
+      .value("below", f.below)
+      .value("above", f.above)
+      .on(f.schemes_at);
   return c;
 }
 
@@ -518,6 +508,7 @@ Claim eq108_rest_claim(const Eq108Findings& f) {
       .value("ppc", f.shifted ? std::to_string(f.shifted->ppc) : "–")
       .value("tolerance", shortest(kStateNegligible));
   e.holds = n > 0 && f.shift < kStateNegligible;
+  e.on(f.points_at);
   return e;
 }
 
@@ -526,11 +517,15 @@ std::vector<Claim> eq108_claims(const Eq108Findings& f) {
   const Eq108Point* worst = f.worst;
   std::vector<Claim> claims;
   Claim a = claim("eq108-below-limit-every-E",
-                  "Eq. (108) lies below the spectral limit at every E and particles per cell",
+                  "Eq. (108) lies below the spectral limit at every E ({Es}) and particles per "
+                  "cell ({ppcs}) run, at A = {A}",
                   "{below} of {n} runs; the largest ratio is {worst}, {basis} at E = {E}, ppc "
                   "{ppc}");
+  std::vector<double> ppcs(g.ppcs.begin(), g.ppcs.end());
+  a.value("Es", listing(g.Es)).value("ppcs", span(ppcs)).on(f.points_at);
+  a.value("A", listing(f.points_at.A));
   a.every("below", f.below, "n", static_cast<long long>(g.points.size()))
-      .value("worst", worst ? ratio_text(worst->ratio()) : "–")
+      .value("worst", worst ? fixed(worst->ratio(), 3) : "–")
       .value("basis", worst ? worst->method : "–")
       .value("E", worst ? shortest(worst->E) : "–")
       .value("ppc", worst ? std::to_string(worst->ppc) : "–");
@@ -545,12 +540,13 @@ std::vector<Claim> eq108_claims(const Eq108Findings& f) {
   b.value("spread", fixed(f.spread, 2))
       .value("basis", s_lo ? s_lo->method : "–")
       .value("ppc", s_lo ? std::to_string(s_lo->ppc) : "–")
-      .value("lo", s_lo ? ratio_text(s_lo->ratio()) : "–")
+      .value("lo", s_lo ? fixed(s_lo->ratio(), 3) : "–")
       .value("E_lo", s_lo ? shortest(s_lo->E) : "–")
-      .value("hi", s_lo ? ratio_text(s_hi->ratio()) : "–")
+      .value("hi", s_lo ? fixed(s_hi->ratio(), 3) : "–")
       .value("E_hi", s_lo ? shortest(s_hi->E) : "–")
       .value("threshold", shortest(kHomogeneousSpread));
   b.holds = f.spread > kHomogeneousSpread;
+  b.on(f.grid_at);
   claims.push_back(b);
 
   Claim c = claim("eq108-falls-as-sqrt-ppc",
@@ -564,6 +560,7 @@ std::vector<Claim> eq108_claims(const Eq108Findings& f) {
       .value("expected", shortest(kSqrtSlope))
       .value("tolerance", shortest(kSlopeTolerance));
   c.holds = f.ppc_slope && std::abs(*f.ppc_slope - kSqrtSlope) <= kSlopeTolerance;
+  c.on(f.ppc_at);
   claims.push_back(c);
 
   Claim d = claim("eq108-independent-of-grid",
@@ -576,6 +573,7 @@ std::vector<Claim> eq108_claims(const Eq108Findings& f) {
       .value("slope", f.count_slope ? fixed(*f.count_slope, 3) : "–")
       .value("tolerance", shortest(kSlopeTolerance));
   d.holds = f.count_slope && std::abs(*f.count_slope) <= kSlopeTolerance;
+  d.on(f.count_at);
   claims.push_back(d);
 
   claims.push_back(eq108_rest_claim(f));
@@ -610,7 +608,6 @@ std::string eq108_intro(const Eq108Findings& f) {
     md << ". Eq. (108) is the minimum of the bound over the run, in units of h/c; the spectral "
           "limit, in c dt / h, is the same at every E.\n\n";
   }
-
   return md.str();
 }
 
@@ -624,15 +621,14 @@ std::string eq108_per_E(const Eq108Findings& f) {
         "|---|---|---|---|---|---|---|\n";
   for (const Eq108Row& r : f.rows) {
     const Eq108Point* p = r.p;
-    md << "| " << shortest(p->E) << " | " << speed(p->c()) << " | " << p->method << " | "
-       << fixed(p->limit, 4) << " | " << fixed(p->eq108, 4) << " | " << ratio_text(p->ratio())
+    md << "| " << shortest(p->E) << " | " << significant(p->c(), 3) << " | " << p->method << " | "
+       << fixed(p->limit, 4) << " | " << fixed(p->eq108, 4) << " | " << fixed(p->ratio(), 3)
        << " | "
-       << (r.n > 1 ? ratio_text(r.lo) + " to " + ratio_text(r.hi) + " (ppc " +
+       << (r.n > 1 ? fixed(r.lo, 3) + " to " + fixed(r.hi, 3) + " (ppc " +
                          std::to_string(r.ppc_lo) + " to " + std::to_string(r.ppc_hi) + ")"
                    : std::string("–"))
        << " |\n";
   }
-
   return md.str();
 }
 
@@ -643,20 +639,19 @@ std::string eq108_per_E_reading(const Eq108Findings& f) {
     md << "\nThe ratio per E, over the bases and particles per cell:";
     std::string sep = " ";
     for (const auto& [E, r] : f.per_E) {
-      md << sep << "E = " << shortest(E) << ", " << ratio_text(r.first) << " to "
-         << ratio_text(r.second);
+      md << sep << "E = " << shortest(E) << ", " << fixed(r.first, 3) << " to "
+         << fixed(r.second, 3);
       sep = "; ";
     }
     md << ".";
     if (lo)
       md << " At one basis and layout it changes with E by up to a factor " << fixed(f.spread, 2)
          << " (" << lo->method << " at " << lo->ppc
-         << " particles per cell: " << ratio_text(lo->ratio()) << " at E = " << shortest(lo->E)
-         << ", " << ratio_text(hi->ratio()) << " at E = " << shortest(hi->E)
+         << " particles per cell: " << fixed(lo->ratio(), 3) << " at E = " << shortest(lo->E)
+         << ", " << fixed(hi->ratio(), 3) << " at E = " << shortest(hi->E)
          << "); a bound homogeneous in E would give one ratio at every E.";
     md << "\n\n";
   }
-
   return md.str();
 }
 // By particles per cell at every E, for the bases run at more than one.
@@ -686,7 +681,7 @@ std::string eq108_per_ppc(const Eq108Findings& f) {
         md << "| " << b << " | " << shortest(E) << " |";
         for (int ppc : g.ppcs) {
           const Eq108Point* p = g.find(b, E, ppc);
-          md << " " << (p ? ratio_text(p->ratio()) : std::string("–")) << " |";
+          md << " " << (p ? fixed(p->ratio(), 3) : std::string("–")) << " |";
         }
         md << "\n";
       }
@@ -697,7 +692,6 @@ std::string eq108_per_ppc(const Eq108Findings& f) {
          << ")";
     md << ".\n\n";
   }
-
   return md.str();
 }
 
@@ -709,7 +703,7 @@ std::string eq108_per_count(const Eq108Findings& f) {
   for (const auto& b : g.bases) {
     for (const Eq108Point* p : g.by_count(b)) {
       count_table << "| " << p->method << " | " << p->cells << " | " << p->particles << " | "
-                  << ratio_text(p->ratio()) << " | "
+                  << fixed(p->ratio(), 3) << " | "
                   << fixed(p->ratio() * std::sqrt(double(p->particles)), 3) << " |\n";
     }
   }
@@ -721,8 +715,8 @@ std::string eq108_per_count(const Eq108Findings& f) {
     if (f.gimp_count.size() >= 2) {
       const Eq108Point *a = f.gimp_count.front(), *z = f.gimp_count.back();
       md << "Refining the grid from " << a->particles << " to " << z->particles
-         << " particles moves GIMP's ratio from " << ratio_text(a->ratio()) << " to "
-         << ratio_text(z->ratio());
+         << " particles moves GIMP's ratio from " << fixed(a->ratio(), 3) << " to "
+         << fixed(z->ratio(), 3);
       if (f.count_slope)
         md << " (fitted exponent against the particle count " << fixed(*f.count_slope, 3) << ")";
       md << ", and the ratio times sqrt(particles) from "
@@ -738,7 +732,6 @@ std::string eq108_per_count(const Eq108Findings& f) {
       md << "\n\n";
     }
   }
-
   return md.str();
 }
 
@@ -761,7 +754,6 @@ std::string eq108_state(const Eq108Findings& f) {
          << sci(f.shift, 2)
          << " (relative) from its value at rest (F = 1, no stress, no velocity).\n\n";
   }
-
   return md.str();
 }
 
@@ -778,7 +770,7 @@ std::string reading(const Findings& f, const ojson& first) {
   std::ostringstream md;
   md << "**Reading** (computed from the rows). The limit is confirmed (the run at " << f.below
      << " times it stays bounded, the run at " << f.above << " times it grows) for " << f.confirmed
-     << " of " << f.schemes.size() << " schemes";
+     << " of " << f.schemes.size() << " schemes (" << f.schemes_at.text() << ")";
   if (f.not_confirmed.empty()) {
     md << ". ";
   } else {
@@ -799,7 +791,7 @@ std::string reading(const Findings& f, const ojson& first) {
   md << " (the CFL number is 1).";
   if (f.edge_hi > 0)
     md << " The measured edges lie at " << fixed(f.edge_lo, 4) << " to " << fixed(f.edge_hi, 4)
-       << " times the limit.";
+       << " times the limit (" << f.edges_at.text() << ").";
   if (f.eq_hi > 0) {
     const Eq108Findings& eq108 = f.eq108;
     md << " Eq. (108) at the same state lies at " << fixed(f.eq_lo, 3) << " to "
@@ -972,7 +964,7 @@ std::string spectral_index(const Spec& spec, const std::vector<ojson>& rows) {
      << ".png)\n\n**What it shows.** The spectral limit of " << f.schemes.size()
      << " schemes (basis x transfer x update order, particles per cell and layout), each checked "
         "by two runs at a tiny amplitude just below and just above it: confirmed for "
-     << f.confirmed << " of " << f.schemes.size()
+     << f.confirmed << " of " << f.schemes.size() << " (" << f.schemes_at.text() << ")"
      << "; and eq. (108) against the limit at every E the studies use: [" << spec.name << ".md]("
      << spec.name << ".md).\n\n";
   return md.str();

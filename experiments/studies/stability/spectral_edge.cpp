@@ -33,10 +33,6 @@ constexpr double kProbeBound = 3.0;
 // The search: the default scan, bisected to a finer tolerance, a probe surviving only bounded.
 const EdgeOptions kSearch{.tolerance = 0.005, .bound = kProbeBound};
 
-bool tiny(const ojson& r) {
-  return r["A"].get<double>() < kTinyA;
-}
-
 // The measured edge over the spectral limit; none without either.
 std::optional<double> edge_ratio(const ojson& r) {
   if (!has_number(r, "dt_edge") || !has_number(r, "dt_spectral")) return std::nullopt;
@@ -48,30 +44,30 @@ bool agrees(const ojson& r) {
   return q && std::abs(*q - 1) <= kAgreement;
 }
 
-std::string analysis_of(const ojson& r) {
-  return r["spectral_analysis"].is_string() ? r["spectral_analysis"].get<std::string>() : "–";
-}
-
 // What the study finds, from its rows and the runs of each edge for length (none for the
 // index, which prints no length finding). Its pointers are into the rows.
 struct Findings {
-  // The tiny-amplitude rows (the linear edge), their amplitudes, how many agree with the limit
-  // and the range of their edge over the limit (lo > hi: none measured).
+  // The tiny-amplitude rows (the linear edge), how many agree with the limit and the range of
+  // their edge over the limit (lo > hi: none measured).
   std::vector<const ojson*> linear;
-  std::vector<double> linear_A;
   int agreeing = 0;
   double lo = 1e300, hi = -1e300;
   // The edges measured above the tiny amplitude, and those below the limit.
   int nonlinear = 0, below = 0;
   // The schemes measured at more than one amplitude (first seen first), those amplitudes in
-  // increasing order, the row of each, and per scheme its lowest edge over the limit with its A.
+  // increasing order, the row of each, and per scheme its lowest edge over the limit with its A
+  // and the amplitudes at which the scan found no edge.
   std::vector<std::string> schemes;
   std::vector<double> amplitudes;
   std::map<std::pair<std::string, Key>, const ojson*> at;
   std::map<std::string, std::pair<double, double>> lowest;
+  std::map<std::string, std::vector<double>> edgeless;
   // The rows with an edge (each rerun for length), and how long their edges hold.
   std::vector<const ojson*> with_edge;
   LengthTally lengths;
+  // Where the runs lie (run_row.hpp) of the tiny amplitude, of the edges measured above it, of
+  // the amplitude table and of the edges rerun for length.
+  Coverage linear_at, nonlinear_at, amplitudes_at, lengths_at;
 };
 
 // The findings of the rows and their runs for length.
@@ -80,16 +76,19 @@ Findings find(const std::vector<ojson>& rows, const LengthRuns& lengths) {
   std::map<std::string, int> runs;  // rows per scheme
   for (const auto& r : rows) {
     ++runs[scheme_label(r)];
-    f.lengths.add(lasting(lengths, r, "dt_edge", kProbeBound));
+    const Lasting lasts = lasting(lengths, r, "dt_edge", kProbeBound);
+    f.lengths.add(lasts);
+    if (lasts.tested) f.lengths_at.add(r);
     if (has_number(r, "dt_edge")) f.with_edge.push_back(&r);
     const auto q = edge_ratio(r);
-    if (!tiny(r)) {
+    if (r["A"].get<double>() >= kTinyA) {
       f.nonlinear += q.has_value();
       f.below += q && *q < 1;
+      if (q) f.nonlinear_at.add(r);
       continue;
     }
     f.linear.push_back(&r);
-    f.linear_A.push_back(r["A"].get<double>());
+    f.linear_at.add(r);
     f.agreeing += agrees(r);
     if (q) {
       f.lo = std::min(f.lo, *q);
@@ -104,6 +103,8 @@ Findings find(const std::vector<ojson>& rows, const LengthRuns& lengths) {
       f.amplitudes.push_back(A);
     if (std::find(f.schemes.begin(), f.schemes.end(), s) == f.schemes.end()) f.schemes.push_back(s);
     f.at[{s, Key(A, "A")}] = &r;
+    f.amplitudes_at.add(r);
+    if (!edge_ratio(r)) f.edgeless[s].push_back(A);
   }
   std::sort(f.amplitudes.begin(), f.amplitudes.end(), TotalLess());
   for (const auto& s : f.schemes) {
@@ -117,24 +118,23 @@ Findings find(const std::vector<ojson>& rows, const LengthRuns& lengths) {
 }
 
 std::vector<Claim> spectral_edge_claims(const Findings& f) {
-  const Claim length = length_claim("edges-hold-for-length",
-                                    "Every measured edge stays bounded for {first}x and {second}x "
-                                    "its run length (at most {cap} wave passes)",
-                                    "{held} of {tested} do", f.lengths);
+  Claim length = length_claim("edges-hold-for-length",
+                              "Every measured edge stays bounded for {first}x and {second}x "
+                              "its run length (at most {cap} wave passes)",
+                              "{held} of {tested} do", f.lengths);
   Claim under = claim("nonlinear-edges-below-limit",
                       "Every edge measured above the tiny amplitude lies below the spectral limit",
                       "{below} of {n} do");
-  under.every("below", f.below, "n", f.nonlinear);
+  under.every("below", f.below, "n", f.nonlinear).on(f.nonlinear_at);
+  length.on(f.lengths_at);
   return {length, under};
 }
 
 std::string agreement_table(const Findings& f) {
   std::ostringstream md;
-  const RunRow front(*f.linear.front());
-  md << "## The measured edge against the spectral limit at A = " << shortest(*front.A)
-     << ", c T = " << shortest(*front.wave_passes) << "\n\n**Reading** (computed from the rows). "
-     << f.agreeing << " of " << f.linear.size() << " measured edges lie within "
-     << shortest(100 * kAgreement) << "% of the spectral limit";
+  md << "## The measured edge against the spectral limit (" << f.linear_at.text()
+     << ")\n\n**Reading** (computed from the rows). " << f.agreeing << " of " << f.linear.size()
+     << " measured edges lie within " << shortest(100 * kAgreement) << "% of the spectral limit";
   if (f.lo <= f.hi)
     md << " (edge / limit from " << fixed(f.lo, 4) << " to " << fixed(f.hi, 4) << ")";
   md << ".\n\n| scheme | measured edge (c dt / h) | first dt above it that grew | spectral limit "
@@ -147,8 +147,8 @@ std::string agreement_table(const Findings& f) {
     };
     const auto q = edge_ratio(*r);
     md << "| " << scheme_label(*r) << " | " << in_h("dt_edge") << monotone_words(*r) << " | "
-       << in_h("dt_fail") << " | " << in_h("dt_spectral") << " | " << analysis_of(*r) << " | "
-       << (q ? fixed(*q, 4) : std::string("–")) << " | " << (agrees(*r) ? "yes" : "**no**")
+       << in_h("dt_fail") << " | " << in_h("dt_spectral") << " | " << text(*r, "spectral_analysis")
+       << " | " << (q ? fixed(*q, 4) : std::string("–")) << " | " << (agrees(*r) ? "yes" : "**no**")
        << " |\n";
   }
   return md.str();
@@ -157,17 +157,25 @@ std::string agreement_table(const Findings& f) {
 // Per scheme, the edge over the limit at each amplitude.
 std::string amplitude_table(const Findings& f) {
   std::ostringstream md;
-  md << "## The nonlinear edge as A grows\n\nEach cell: the measured edge over the spectral limit "
+  md << "## The nonlinear edge as A grows (" << f.amplitudes_at.text()
+     << ")\n\nEach cell: the measured edge over the spectral limit "
         "(the linear edge); `*` marks a case whose run at the edge is meaningless (its error "
         "reached A although it stayed below "
      << shortest(kProbeBound)
      << " A); `–` no edge in the scan.\n\n"
         "**Reading** (computed from the rows).";
   for (const auto& s : f.schemes) {
-    if (const auto it = f.lowest.find(s); it != f.lowest.end()) {
-      md << " " << s << ": lowest " << fixed(it->second.first, 3)
-         << " of the limit, at A = " << shortest(it->second.second) << ".";
-    }
+    const auto low = f.lowest.find(s);
+    const auto none = f.edgeless.find(s);
+    if (low == f.lowest.end() && none == f.edgeless.end()) continue;
+    md << " " << s << ":";
+    if (low != f.lowest.end())
+      md << " lowest measured " << fixed(low->second.first, 3)
+         << " of the limit, at A = " << shortest(low->second.second);
+    if (none != f.edgeless.end())
+      md << (low != f.lowest.end() ? ";" : "")
+         << " no edge in the scan at A = " << listing(none->second);
+    md << ".";
   }
   md << "\n\n| scheme |";
   for (double A : f.amplitudes)
@@ -278,12 +286,12 @@ std::string spectral_edge_data(const Findings& f, const std::string& header) {
 std::string spectral_edge_index(const Spec& spec, const std::vector<ojson>& rows) {
   const Findings f = find(rows, {});
   std::ostringstream md;
-  md << "![" << spec.title << "](" << spec.name
-     << ".png)\n\n**What it shows.** At A = " << listing(f.linear_A) << " " << f.agreeing << " of "
-     << f.linear.size() << " measured edges lie within " << shortest(100 * kAgreement)
-     << "% of the spectral limit; above it, " << f.below << " of " << f.nonlinear
-     << " measured edges lie below the limit, and each edge is rerun for length: [" << spec.name
-     << ".md](" << spec.name << ".md).\n\n";
+  md << "![" << spec.title << "](" << spec.name << ".png)\n\n**What it shows.** " << f.agreeing
+     << " of " << f.linear.size() << " measured edges lie within " << shortest(100 * kAgreement)
+     << "% of the spectral limit (" << f.linear_at.text() << "); " << f.below << " of "
+     << f.nonlinear << " edges measured at larger amplitudes lie below the limit ("
+     << f.nonlinear_at.text() << "), and each edge is rerun for length: [" << spec.name << ".md]("
+     << spec.name << ".md).\n\n";
   return md.str();
 }
 
