@@ -109,7 +109,16 @@ struct Findings {
   int finer_fails = 0, finer_tested = 0;  // accurate base, finer corner not accurate
   int longer_fails = 0, longer_tested = 0;  // accurate base, base to the longer length not
   int scene_fails = 0, scene_tested = 0;    // largest A passes on the bar, neo-Hookean fails
+  Coverage finer_on, longer_on, scene_on;   // the runs each count reads
 };
+
+// Adds a corner run to a coverage: its amplitude, length (c T, at E = kAdviceE), grid and scene.
+void cover(Coverage& on, const CornerRun& c) {
+  on.add(ojson{{"A", c.A},
+               {"cT", c.length},
+               {"cells", c.cells},
+               {"scene", c.kind == CornerKind::other_scene ? "steffen" : "bar"}});
+}
 
 // The findings from the rows (a setting each) and the settings checked at their corners: the
 // report's from its follow-ups, the subtitle's from advice.json, none where the index has only
@@ -129,18 +138,26 @@ Findings find(const std::vector<ojson>& rows, std::vector<CheckedSetting> settin
       if (c.kind == CornerKind::base && c.length != shorter && !c.passes()) failed.push_back(c);
     if (s.corners.size() <= 1) continue;
     n.with_region += !s.regions.empty();
+    const CornerRun* base = &s.corners.front();  // the base run to the shorter length
     if (const CornerRun* f = s.corner(CornerKind::finer, shorter)) {
       ++n.finer_tested;
       n.finer_fails += !f->passes();
+      for (const CornerRun* c : {base, f})
+        cover(n.finer_on, *c);
     }
     if (const CornerRun* b = s.corner(CornerKind::base, longer)) {
       ++n.longer_tested;
       n.longer_fails += !b->passes();
+      for (const CornerRun* c : {base, b})
+        cover(n.longer_on, *c);
     }
     for (const double length : kRegionRule.lengths) {
       const CornerRun* large = s.corner(CornerKind::largest_A, length);
       const CornerRun* scene = s.corner(CornerKind::other_scene, length);
-      if (!large || !scene || !large->passes()) continue;
+      if (!large || !scene) continue;
+      cover(n.scene_on, *large);
+      if (!large->passes()) continue;
+      cover(n.scene_on, *scene);
       ++n.scene_tested;
       n.scene_fails += !scene->passes();
     }
@@ -160,6 +177,7 @@ std::vector<Claim> advice_claims(const Findings& n) {
       .count("fails", n.finer_fails)
       .count("tested", n.finer_tested);
   finer.holds = n.finer_fails > 0;
+  finer.on(n.finer_on);
   Claim longer = claim("accurate-base-fails-longer",
                        "A setting accurate to c T/L = {short} is not always accurate to {long}",
                        "{fails} of {tested} checked settings fail to the longer length");
@@ -168,12 +186,14 @@ std::vector<Claim> advice_claims(const Findings& n) {
       .count("fails", n.longer_fails)
       .count("tested", n.longer_tested);
   longer.holds = n.longer_fails > 0;
+  longer.on(n.longer_on);
   Claim scene = claim("bar-does-not-cover-neo-hookean",
                       "A setting accurate on the bar at the largest amplitude is not always "
                       "accurate on the neo-Hookean scene there",
                       "{fails} of {tested} such corners fail on the neo-Hookean scene");
   scene.count("fails", n.scene_fails).count("tested", n.scene_tested);
   scene.holds = n.scene_fails > 0;
+  scene.on(n.scene_on);
   return {finer, longer, scene};
 }
 
@@ -241,10 +261,16 @@ std::string settings_table(const Findings& n) {
                                                  : s.corners.front().outcome)
        << " | ";
     if (s.regions.empty()) {
+      const CornerRun& base = s.corners.front();
+      const std::string why =
+          !base.passes()
+              ? "the base run is " +
+                    (base.outcome == "stable" ? std::string("not accurate") : base.outcome)
+          : s.courant_spectral
+              ? "C is beyond the spectral limit / " + shortest(kRegionRule.limit_margin)
+              : "its spectral limit is not recorded";
       md << (s.corners.size() > 1 ? "none: the base run to the longer length fails too"
-                                  : "none: not checked (the base run is not accurate or C is "
-                                    "beyond the spectral limit / " +
-                                        shortest(kRegionRule.limit_margin) + ")")
+                                  : "none: not checked (" + why + ")")
          << " | – |\n";
       continue;
     }

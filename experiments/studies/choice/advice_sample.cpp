@@ -89,17 +89,11 @@ std::vector<SampleProblem> findings(const std::vector<CheckedSetting>& settings,
     for (auto& [what, params] : verifying_params(*sp.lookup, sp.problem)) {
       const auto asked = follow_ups_of(follow_up, FollowUp::kNoCase, verifying_role(i, what));
       if (asked.size() != 1) throw std::logic_error("advice_sample: a follow-up is missing");
-      const ojson& r = *asked.front();
-      VerifyingRun v{.what = what, .params = params};
-      v.outcome = outcome(r);
-      if (const auto e = RunRow(r).error_over_time) v.error_over_A = *e / params.A;
-      v.particle_steps = particle_steps(r);
-      v.passes =
-          v.outcome == "stable" && v.error_over_A && *v.error_over_A <= sp.problem.problem.target;
+      const double target = sp.problem.problem.target;
+      VerifyingRun v = verifying_run_of(what, *asked.front(), target);
       if (!v.passes && sp.status == SampleStatus::passes) {
         sp.status = SampleStatus::misses;
-        sp.why = what + ": " + v.outcome +
-                 (v.error_over_A ? ", error over time " + sci(*v.error_over_A) + " A" : "");
+        sp.why = failure_words(v, target);
       }
       sp.runs.push_back(std::move(v));
     }
@@ -151,7 +145,7 @@ const Attribute kAttributes[] = {
 // ---------------------------------------------------------------------------------------------
 // Claims
 
-std::vector<Claim> sample_claims(const Tally& all) {
+std::vector<Claim> sample_claims(const Tally& all, const std::vector<ojson>& verifying) {
   Claim miss = claim("lookup-misses",
                      "The prediction alone is not an answer: the cheapest candidate it ranks "
                      "first fails its verifying runs on some drawn problem",
@@ -161,6 +155,7 @@ std::vector<Claim> sample_claims(const Tally& all) {
       .count("drawn", all.drawn)
       .over(all.verified);
   miss.holds = all.misses > 0;
+  miss.on(coverage_of(verifying));
   return {miss};
 }
 
@@ -342,7 +337,7 @@ StudyReport sample_report(const ReportContext& c) {
   problems_table(md, problems);
   return StudyReport{.markdown = md.str() + "\n",
                      .json = sample_json(problems, all),
-                     .claims = sample_claims(all)};
+                     .claims = sample_claims(all, c.follow_up)};
 }
 
 std::string sample_index(const Spec& spec, const std::vector<ojson>&) {

@@ -9,6 +9,7 @@
 
 #include "csv.hpp"
 #include "report_util.hpp"
+#include "run_row.hpp"
 
 namespace mpmstab {
 
@@ -135,6 +136,11 @@ double steps_of(double cT, int cells, double courant) {
   return std::max(1.0, std::ceil(cT * cells / courant - 1e-9));
 }
 
+// A verifying run passes: it ended stable, with an error over time / A at most the target.
+bool meets(const VerifyingRun& v, double target) {
+  return v.outcome == "stable" && v.error_over_A && *v.error_over_A <= target;
+}
+
 VerifyingRun verifying_run(std::string what, const RunParams& params, double target,
                            const RunFn& run_fn) {
   VerifyingRun v{.what = std::move(what), .params = params};
@@ -144,8 +150,7 @@ VerifyingRun verifying_run(std::string what, const RunParams& params, double tar
   v.outcome = r.outcome ? std::string(to_string(*r.outcome)) : std::string("no verdict");
   if (r.max_error_over_time) v.error_over_A = *r.max_error_over_time / params.A;
   v.particle_steps = double(r.particles) * double(r.steps);
-  v.passes =
-      r.outcome && *r.outcome == Outcome::stable && v.error_over_A && *v.error_over_A <= target;
+  v.passes = meets(v, target);
   return v;
 }
 
@@ -158,18 +163,6 @@ bool under_a_pass(const VerifyingRun& r) {
 // A verifying run's outcome in the reports' words.
 std::string outcome_words(const VerifyingRun& r) {
   return under_a_pass(r) ? under_a_wave_pass_word(wave_passes(r.params)) : r.outcome;
-}
-
-std::string failure_words(const VerifyingRun& r, double target) {
-  std::ostringstream s;
-  s << r.what << ": " << outcome_words(r);
-  if (r.outcome == "too_short")
-    s << " (" << r.params.cells << " cells at C = " << shortest(r.params.stepping.cfl_factor)
-      << " take fewer than " << kMinStepsToJudge << " steps)";
-  else if (r.error_over_A)
-    s << ", error over time " << sci(*r.error_over_A) << " A"
-      << (r.outcome == "stable" ? " > the target " + value_text(target) + " A" : "");
-  return s.str();
 }
 
 // The margins on the problem (ProblemEdges, advice_verify.hpp), scanned up to edge_top. Stops,
@@ -360,6 +353,35 @@ ojson problem_json(const VerifyProblem& vp) {
 
 }  // namespace
 }  // namespace studies::advice_verify
+
+VerifyingRun verifying_run_of(std::string what, const nlohmann::ordered_json& row, double target) {
+  using namespace studies::advice_verify;
+  const RunRow r(row);
+  VerifyingRun v{.what = std::move(what), .outcome = r.outcome.empty() ? "no verdict" : r.outcome};
+  for (const auto& [key, field] :
+       {std::pair{"E", &v.params.E}, {"A", &v.params.A}, {"T", &v.params.T}})
+    if (has_number(row, key)) *field = row[key].get<double>();
+  v.params.cells = r.cells ? int(*r.cells) : 0;
+  v.error_over_A = r.error_over_A();
+  v.particle_steps = r.particle_steps();
+  v.passes = meets(v, target);
+  return v;
+}
+
+std::string failure_words(const VerifyingRun& r, double target) {
+  using namespace studies::advice_verify;
+  std::ostringstream s;
+  s << r.what << ": " << outcome_words(r);
+  if (r.outcome == "too_short")
+    s << " (" << r.params.cells << " cells at C = " << shortest(r.params.stepping.cfl_factor)
+      << " take fewer than " << kMinStepsToJudge << " steps)";
+  else if (r.error_over_A)
+    s << ", error over time " << sci(*r.error_over_A) << " A"
+      << (r.outcome == "stable"
+              ? " > the target " + value_text(std::stod(significant(target, 3))) + " A"
+              : "");
+  return s.str();
+}
 
 std::string outside_domain(const VerifyProblem& vp, const AdviceDomain& d) {
   const Problem& p = vp.problem;

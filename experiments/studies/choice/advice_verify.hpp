@@ -95,6 +95,12 @@ struct VerifyingRun {
   bool passes = false;  // stable, with an error over time at most the target
 };
 
+// A verifying run read back from the result row of a study's follow-up run (advice_sample,
+// tradeoff), as verify() records a run it makes; its params hold the row's E, A, T and cells.
+VerifyingRun verifying_run_of(std::string what, const nlohmann::ordered_json& row, double target);
+// Why a verifying run failed: "4 x c T: stable, error over time 0.12 A > the target 0.1 A".
+std::string failure_words(const VerifyingRun& r, double target);
+
 // A candidate tried, with its verifying runs and, where it failed, why.
 struct Trial {
   Candidate candidate;

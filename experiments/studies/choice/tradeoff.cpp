@@ -1,10 +1,11 @@
 // The speed/accuracy trade: error against cost across methods, time-step policies and their
 // parameters. Cost is the deterministic work of a run, particles x steps (particle-steps); the
 // machine's wall times are kept apart (performance.md, timings.json), so a rerun writes the same
-// report. It measures and recommends nothing: every recommendation is advice.md's (advice.hpp).
+// report. It recommends nothing: every recommendation is advice.md's (advice_verify.hpp).
 // From the rows of every scene, each parameter's stable range with a margin, and the rows it
-// rests on. Per scene: the cheapest setting for each accuracy, how the runs of each policy
-// ended, and per E every setting with the Pareto front marked.
+// rests on. Per scene: the cheapest setting for each accuracy that passes its verifying runs (at
+// the paper's largest amplitude and over a longer run), how the runs of each policy ended, and
+// per E every setting with the Pareto front marked.
 #include <algorithm>
 #include <iomanip>
 #include <limits>
@@ -15,6 +16,8 @@
 #include <tuple>
 
 #include "base/params.hpp"
+#include "choice/advice_rule.hpp"
+#include "choice/advice_verify.hpp"
 #include "claims.hpp"
 #include "csv.hpp"
 #include "key.hpp"
@@ -53,7 +56,63 @@ std::vector<std::size_t> twin_rows(const std::vector<ojson>& rows) {
   return idx;
 }
 
-// The follow-up runs: the periodic twins.
+// The cheapest settings, verified as `mpmstab advise` verifies an answer: per scene, E and target
+// error, the kVerified cheapest runs reaching the target are run again at the paper's largest
+// amplitude (where the target is read as the same error over time / A) and over length_factor x
+// c T (kAdviceDomain); a setting passes where both end stable within the target.
+const std::vector<double> kTargets = {1e-3, 1e-4, 1e-5};
+constexpr std::size_t kVerified = 8;
+
+// A case's verifying runs, by role (a default RunParams gives the roles alone).
+std::vector<std::pair<std::string, RunParams>> verifying_runs(const RunParams& p) {
+  RunParams larger = p, longer = p;
+  larger.A = kPaperLargestA;
+  longer.T *= kAdviceDomain.length_factor;
+  return {{"A = " + value_text(kPaperLargestA), larger},
+          {shortest(kAdviceDomain.length_factor) + " x c T", longer}};
+}
+
+// Whether run i ranks before run j on cost: fewer particle-steps, then the smaller error, then
+// the earlier row. A total order, so that every ranking is the same on every rerun.
+bool cheaper(const std::vector<ojson>& rows, std::size_t i, std::size_t j) {
+  const TotalLess less;  // total even where a record holds a NaN
+  const double ci = particle_steps(rows[i]), cj = particle_steps(rows[j]);
+  if (less(ci, cj) || less(cj, ci)) return less(ci, cj);
+  constexpr double kNone = std::numeric_limits<double>::infinity();
+  const double ei = stable_error_over_time(rows[i]).value_or(kNone),
+               ej = stable_error_over_time(rows[j]).value_or(kNone);
+  if (less(ei, ej) || less(ej, ei)) return less(ei, ej);
+  return i < j;
+}
+
+// The runs of `idx` reaching `target`, cheapest first (cheaper()).
+std::vector<std::size_t> reaching(const std::vector<ojson>& rows, std::vector<std::size_t> idx,
+                                  double target) {
+  std::erase_if(idx, [&](std::size_t i) {
+    const auto e = stable_error_over_time(rows[i]);
+    return !e || *e > target;
+  });
+  std::sort(idx.begin(), idx.end(),
+            [&](std::size_t i, std::size_t j) { return cheaper(rows, i, j); });
+  return idx;
+}
+
+// The runs verified: per scene and E, the kVerified cheapest reaching each target.
+std::set<std::size_t> verified_rows(const std::vector<ojson>& rows) {
+  std::map<std::pair<std::string, Key>, std::vector<std::size_t>> groups;
+  for (std::size_t i = 0; i < rows.size(); ++i)
+    groups[{text(rows[i], "scene"), Key(rows[i]["E"].get<double>(), "E")}].push_back(i);
+  std::set<std::size_t> out;
+  for (const auto& [scene_E, idx] : groups) {
+    for (const double target : kTargets) {
+      const auto r = reaching(rows, idx, target);
+      out.insert(r.begin(), r.begin() + std::ptrdiff_t(std::min(r.size(), kVerified)));
+    }
+  }
+  return out;
+}
+
+// The follow-up runs: the periodic twins, then the verifying runs.
 constexpr const char* kPeriodicTwin = "periodic twin";
 std::vector<FollowUp> tradeoff_follow_ups(const FollowUpContext& c) {
   std::vector<FollowUp> runs;
@@ -62,6 +121,9 @@ std::vector<FollowUp> tradeoff_follow_ups(const FollowUpContext& c) {
     p.bc = Boundary::periodic;
     runs.push_back({.of = i, .role = kPeriodicTwin, .params = p});
   }
+  for (const std::size_t i : verified_rows(c.rows))
+    for (auto& [role, p] : verifying_runs(c.spec.cases.at(i).params))
+      runs.push_back({.of = i, .role = role, .params = p});
   return runs;
 }
 
@@ -96,12 +158,9 @@ double parameter(const ojson& r) {
   return r[parameter_key(text(r, "policy"))].get<double>();
 }
 
-// A parameter value as the report writes it: "1e-4" for a dt, "0.25" for C or s.
+// A parameter value as the report writes it: "1e-4" for a dt, "0.25", "0.375" or "1.05" for C or s.
 std::string parameter_text(const std::string& policy, double v) {
-  if (policy == "fixed") return param(v);
-  std::ostringstream s;  // a factor: three significant digits, plain ("0.375", "1.05")
-  s << std::setprecision(3) << v;
-  return s.str();
+  return policy == "fixed" ? param(v) : significant(v, 3);
 }
 
 // A setting's name: "gimp cfl C=0.5", "mpm adaptive s=2", "gimp fixed dt=1e-4".
@@ -134,19 +193,6 @@ std::vector<std::string> methods_of(const std::vector<ojson>& rows) {
   return methods;
 }
 
-// Whether run i ranks before run j on cost: fewer particle-steps, then the smaller error, then
-// the earlier row. A total order, so that every ranking is the same on every rerun.
-bool cheaper(const std::vector<ojson>& rows, std::size_t i, std::size_t j) {
-  const TotalLess less;  // total even where a record holds a NaN
-  const double ci = particle_steps(rows[i]), cj = particle_steps(rows[j]);
-  if (less(ci, cj) || less(cj, ci)) return less(ci, cj);
-  constexpr double kNone = std::numeric_limits<double>::infinity();
-  const double ei = stable_error_over_time(rows[i]).value_or(kNone),
-               ej = stable_error_over_time(rows[j]).value_or(kNone);
-  if (less(ei, ej) || less(ej, ei)) return less(ei, ej);
-  return i < j;
-}
-
 // Indices of the runs on the Pareto front of (particle-steps, error): no other run is both
 // cheaper and more accurate. Runs equal in both are both on it.
 std::set<std::size_t> pareto_front(const std::vector<ojson>& rows,
@@ -166,22 +212,6 @@ std::set<std::size_t> pareto_front(const std::vector<ojson>& rows,
     if (!dominated) front.insert(i);
   }
   return front;
-}
-
-const std::vector<double> kTargets = {1e-3, 1e-4, 1e-5};
-
-// The cheapest run (cheaper()) of `idx` reaching each target error.
-std::vector<std::optional<std::size_t>> cheapest(const std::vector<ojson>& rows,
-                                                 const std::vector<std::size_t>& idx) {
-  std::vector<std::optional<std::size_t>> best(kTargets.size());
-  for (std::size_t t = 0; t < kTargets.size(); ++t) {
-    for (std::size_t i : idx) {
-      const auto e = stable_error_over_time(rows[i]);
-      if (!e || *e > kTargets[t]) continue;
-      if (!best[t] || cheaper(rows, i, *best[t])) best[t] = i;
-    }
-  }
-  return best;
 }
 
 // The rows of one scene, the values of E they hold (in the order they first appear) and the
@@ -214,18 +244,6 @@ struct TradeRows {
     return nullptr;
   }
 };
-
-// "4, 64 and 1000".
-std::string list_of_E(const std::vector<double>& Es) {
-  std::vector<std::string> items;
-  for (double E : Es)
-    items.push_back(shortest(E));
-  return list_of(items);
-}
-
-int count_of(const std::map<std::string, int>& m, const std::string& key) {
-  return m.count(key) ? m.at(key) : 0;
-}
 
 // ---------------------------------------------------------------------------------------------
 // Stable ranges with a margin, a description of the runs (recommendations are advice.md's): a
@@ -277,31 +295,22 @@ std::vector<AdviceGroup> advice_groups(const std::vector<ojson>& rows) {
   return groups;
 }
 
-// "36 rows: gimp cfl C = 0.05..0.5 at E = 4, 64 and 1000 on 100, 200 and 400 cells in the
-// scenes bar and steffen".
+// "36 rows: gimp cfl C = 0.05..0.5 at E = 4, 64 and 1000 (A = 0.015; c T = 2, 8 and 31.6; 100,
+// 200 and 400 cells; bar and steffen)": their count, values, E and coverage.
 std::string describe_rows(const TradeRows& t, const AdviceGroup& g,
                           const std::vector<std::size_t>& idx) {
   std::set<Key> values;
-  std::set<int> cells;
+  std::vector<const ojson*> rows;
   std::vector<double> Es;
-  std::vector<std::string> scenes;
   for (std::size_t i : idx) {
     values.insert(Key(parameter(t.rows[i]), "the policy's parameter"));
-    cells.insert(t.rows[i]["cells"].get<int>());
-    index_in(Es, t.rows[i]["E"].get<double>());
-    index_in(scenes, text(t.rows[i], "scene"));
+    rows.push_back(&t.rows[i]);
+    Es.push_back(t.rows[i]["E"].get<double>());
   }
   std::string s = std::to_string(idx.size()) + " rows: " + g.name() + (g.cfl_factor ? ", " : " ") +
-                  parameter_symbol(g.policy) + " = " + parameter_text(g.policy, *values.begin());
+                  g.value(*values.begin());
   if (values.size() > 1) s += ".." + parameter_text(g.policy, *values.rbegin());
-  s += " at E = " + list_of_E(Es);
-  if (cells.size() > 1 || *cells.begin() != 100) {
-    std::vector<std::string> names;
-    for (int n : cells)
-      names.push_back(std::to_string(n));
-    s += " on " + list_of(names) + " cells";
-  }
-  return s + (scenes.size() > 1 ? " in the scenes " : " in the scene ") + list_of(scenes);
+  return s + " at E = " + listing(Es) + " (" + coverage_of(rows).text() + ")";
 }
 
 // The rule applied to one value v of a group's parameter.
@@ -367,10 +376,10 @@ ValueCheck check_value(const TradeRows& t, const AdviceGroup& g, double v) {
     else
       unchecked.push_back(E);
   }
-  if (c.why_not.empty() && !not_run.empty()) c.why_not = "not run at E = " + list_of_E(not_run);
+  if (c.why_not.empty() && !not_run.empty()) c.why_not = "not run at E = " + listing(not_run);
   if (c.why_not.empty() && !unchecked.empty()) {
     c.why_not = "no row at " + shortest(kMargin) + "x (" + g.value(kMargin * v) +
-                ") at E = " + list_of_E(unchecked) + "; margin not checked";
+                ") at E = " + listing(unchecked) + "; margin not checked";
   }
   c.advised = c.why_not.empty();
   if (!c.advised) return c;
@@ -419,6 +428,7 @@ MarginRange stable_range(const TradeRows& t, const AdviceGroup& g) {
 struct StepSpread {
   double E = 0, lo = 0, hi = 0;               // the least and largest error over the steps
   std::vector<std::pair<int, double>> finer;  // cells and error, ascending in cells
+  std::vector<const ojson*> read;             // the runs of both
 };
 
 // Per E where GIMP has a stable fixed or CFL step on the paper's grid, how far its error moves.
@@ -426,21 +436,26 @@ std::vector<StepSpread> step_spreads(const TradeRows& t) {
   std::vector<StepSpread> out;
   for (double E : t.Es) {
     std::vector<double> errs;
+    std::vector<const ojson*> read;
     std::set<int> finer;  // the finer grids run under the CFL rule at kCflRef
     for (const auto& r : t.rows) {
       const std::string policy = text(r, "policy");
       const int cells = r["cells"].get<int>();
       if (r["E"].get<double>() == E && method_label(r) == "gimp" && cells == kCoarse &&
-          (policy == "cfl" || policy == "fixed") && stable_error_over_time(r))
+          (policy == "cfl" || policy == "fixed") && stable_error_over_time(r)) {
         errs.push_back(*stable_error_over_time(r));
+        read.push_back(&r);
+      }
       if (cells > kCoarse && t.find(E, "gimp", "cfl", kCflRef, cells) == &r) finer.insert(cells);
     }
     if (errs.empty()) continue;
     const auto [lo, hi] = std::minmax_element(errs.begin(), errs.end(), TotalLess());
-    StepSpread s{.E = E, .lo = *lo, .hi = *hi};
-    for (const int cells : finer)
-      if (const auto e = stable_error_over_time(*t.find(E, "gimp", "cfl", kCflRef, cells)))
-        s.finer.emplace_back(cells, *e);
+    StepSpread s{.E = E, .lo = *lo, .hi = *hi, .read = read};
+    for (const int cells : finer) {
+      const ojson* r = t.find(E, "gimp", "cfl", kCflRef, cells);
+      s.read.push_back(r);
+      if (const auto e = stable_error_over_time(*r)) s.finer.emplace_back(cells, *e);
+    }
     out.push_back(std::move(s));
   }
   return out;
@@ -453,6 +468,7 @@ std::vector<StepSpread> step_spreads(const TradeRows& t) {
 struct GridRefinement {
   int better = 0, total = 0;
   double least_fall = 0;
+  std::vector<const ojson*> read;  // the runs on both grids
 };
 
 GridRefinement grid_refinement(const TradeRows& t) {
@@ -461,6 +477,8 @@ GridRefinement grid_refinement(const TradeRows& t) {
   for (double E : t.Es) {
     const ojson* coarse = t.find(E, "gimp", "cfl", kCflRef, kCoarse);
     const ojson* fine = t.find(E, "gimp", "cfl", kCflRef, kFine);
+    for (const ojson* r : {coarse, fine})
+      if (r) g.read.push_back(r);
     if (!coarse || !fine || !stable_error_over_time(*coarse) || !stable_error_over_time(*fine))
       continue;
     const double change = *stable_error_over_time(*fine) / *stable_error_over_time(*coarse);
@@ -478,24 +496,28 @@ GridRefinement grid_refinement(const TradeRows& t) {
 struct BoundAgainstCfl {
   std::size_t pairs = 0;
   double steps_lo = 0, steps_hi = 0, errors_lo = 0, errors_hi = 0;  // where there are pairs
+  std::vector<const ojson*> read;                                   // the runs of both policies
 };
 
 BoundAgainstCfl bound_against_cfl(const TradeRows& t) {
   std::vector<double> steps, errors;
+  std::vector<const ojson*> read;
   for (double E : t.Es) {
     for (const char* m : {"gimp", "mpm"}) {
       const ojson* b = t.find(E, m, "adaptive", kBoundSafety, kCoarse);
       const ojson* c = t.find(E, m, "cfl", kCflRef, kCoarse);
+      for (const ojson* r : {b, c})
+        if (r) read.push_back(r);
       if (b && c && stable_error_over_time(*b) && stable_error_over_time(*c)) {
         steps.push_back((*b)["steps"].get<double>() / (*c)["steps"].get<double>());
         errors.push_back(*stable_error_over_time(*b) / *stable_error_over_time(*c));
       }
     }
   }
-  if (steps.empty()) return {};
+  if (steps.empty()) return {.read = read};
   const auto [slo, shi] = std::minmax_element(steps.begin(), steps.end(), TotalLess());
   const auto [elo, ehi] = std::minmax_element(errors.begin(), errors.end(), TotalLess());
-  return {steps.size(), *slo, *shi, *elo, *ehi};
+  return {steps.size(), *slo, *shi, *elo, *ehi, read};
 }
 
 // Per E where both reach an accuracy, the runs with the best error of MPM and of GIMP.
@@ -520,15 +542,49 @@ std::vector<BestOfMethods> best_of_methods(const TradeRows& t) {
   return out;
 }
 
-// What one scene's rows show: the cheapest runs, how far the step and the grid move GIMP's error,
-// the bound against the CFL rule, MPM against GIMP, how the runs ended, the Pareto front.
+// Where run r lies beyond its method and policy's stable range with a margin, in words ("" where
+// within it).
+std::string beyond_range(const std::vector<MarginRange>& ranges, const ojson& r) {
+  for (const auto& a : ranges) {
+    if (!a.group.holds(r)) continue;
+    if (!a.advised) return a.group.name() + " has no stable range with margin";
+    if (parameter(r) <= a.advised->value) return "";
+    return "outside " + a.group.name() + "'s stable range with margin (" +
+           parameter_symbol(a.group.policy) + " up to " +
+           parameter_text(a.group.policy, a.advised->value) + ")";
+  }
+  return "";
+}
+
+// One target at one E: how many runs reach it and, cheapest first, those of the kVerified
+// cheapest tried until one passed its verifying runs (then the last).
+struct CheapestCell {
+  struct Tried {
+    std::size_t row = 0;
+    std::vector<VerifyingRun> runs;  // per role of verifying_runs()
+    bool passed = true;
+    std::string why;  // the first verifying run it failed (failure_words)
+  };
+  std::size_t reaching = 0;
+  std::vector<Tried> tried;
+  const Tried* chosen() const {
+    return !tried.empty() && tried.back().passed ? &tried.back() : nullptr;
+  }
+};
+
+// What one scene's rows show: the cheapest verified runs, how far the step and the grid move
+// GIMP's error, the bound against the CFL rule, MPM against GIMP, how the runs ended, the Pareto
+// front.
 struct SceneFindings {
   TradeRows t;
-  std::vector<std::vector<std::optional<std::size_t>>> cheapest;  // per E (t.Es), per target
-  // The method and policy ("gimp cfl") most often the cheapest (the first by name on a tie), in
-  // how many (E, target) pairs, of the pairs that some setting reaches.
+  std::vector<std::size_t> global;                  // each row's index among every scene's
+  std::vector<std::vector<CheapestCell>> cheapest;  // per E (t.Es), per target
+  // The method and policy ("gimp cfl") most often the cheapest verified (the first by name on a
+  // tie), in how many (E, target) pairs; the pairs some run reaches, those with a verified
+  // setting, and of those how many lie beyond their stable range with a margin.
   std::string top;
-  int top_wins = 0, reached = 0;
+  int top_wins = 0, reached = 0, verified = 0, beyond = 0;
+  std::vector<const ojson*> verifying_read;  // every verifying run read
   std::vector<StepSpread> spreads;
   GridRefinement refinement;
   BoundAgainstCfl bound;
@@ -542,14 +598,45 @@ struct SceneFindings {
   std::vector<std::vector<double>> passes;  // per E, the wave passes c T of its runs
 };
 
-SceneFindings scene_findings(const std::vector<ojson>& rows) {
-  SceneFindings s{.t = TradeRows(rows)};
+// A run tried for `target`: whether its verifying runs pass, read as `mpmstab advise` reads its
+// own (the target per the run's A: at the largest amplitude, the same error over time / A).
+CheapestCell::Tried tried_for(SceneFindings& s, std::size_t i, double target,
+                              const std::vector<ojson>& follow_up) {
+  CheapestCell::Tried tried{.row = i};
+  const double over_A = target / *RunRow(s.t.rows[i]).A;
+  for (const auto& [role, params] : verifying_runs({})) {
+    const auto asked = follow_ups_of(follow_up, s.global[i], role);
+    if (!asked.empty()) s.verifying_read.push_back(asked.front());
+    const VerifyingRun& v =
+        tried.runs.emplace_back(asked.empty() ? VerifyingRun{.what = role, .outcome = "not run"}
+                                              : verifying_run_of(role, *asked.front(), over_A));
+    if (!v.passes && tried.passed) tried.why = failure_words(v, over_A);
+    tried.passed = tried.passed && v.passes;
+  }
+  return tried;
+}
+
+SceneFindings scene_findings(const std::vector<ojson>& rows, std::vector<std::size_t> global,
+                             const std::vector<ojson>& follow_up,
+                             const std::vector<MarginRange>& ranges) {
+  SceneFindings s{.t = TradeRows(rows), .global = std::move(global)};
   std::map<std::string, int> wins;
   for (double E : s.t.Es) {
     const std::vector<std::size_t> at = s.t.at(E);
-    s.cheapest.push_back(cheapest(rows, at));
-    for (const auto& b : s.cheapest.back())
-      if (b) ++wins[method_label(rows[*b]) + " " + text(rows[*b], "policy")];
+    auto& cells = s.cheapest.emplace_back();
+    for (const double target : kTargets) {
+      const auto r = reaching(rows, at, target);
+      CheapestCell& cell = cells.emplace_back();
+      cell.reaching = r.size();
+      for (std::size_t k = 0; k < std::min(r.size(), kVerified) && !cell.chosen(); ++k)
+        cell.tried.push_back(tried_for(s, r[k], target, follow_up));
+      s.reached += !r.empty();
+      if (const auto* c = cell.chosen()) {
+        ++wins[method_label(rows[c->row]) + " " + text(rows[c->row], "policy")];
+        ++s.verified;
+        s.beyond += !beyond_range(ranges, rows[c->row]).empty();
+      }
+    }
     const auto front = pareto_front(rows, at);
     s.front.insert(front.begin(), front.end());
     auto& passes = s.passes.emplace_back();
@@ -557,7 +644,6 @@ SceneFindings scene_findings(const std::vector<ojson>& rows) {
       if (const auto cT = RunRow(rows[i]).wave_passes) passes.push_back(*cT);
   }
   for (const auto& [name, n] : wins) {
-    s.reached += n;
     if (n <= s.top_wins) continue;
     s.top = name;
     s.top_wins = n;
@@ -635,7 +721,10 @@ Findings find(const std::vector<ojson>& rows, const std::vector<ojson>& follow_u
   for (const auto& g : advice_groups(rows))
     f.ranges.push_back(stable_range(f.all, g));
   for (const auto& sc : f.scenes) {
-    f.scene.push_back(scene_findings(sc.rows));
+    std::vector<std::size_t> global;  // the scene's rows among all (by_scene keeps their order)
+    for (std::size_t i = 0; i < rows.size(); ++i)
+      if (text(rows[i], "scene") == sc.scene) global.push_back(i);
+    f.scene.push_back(scene_findings(sc.rows, std::move(global), follow_up, f.ranges));
     f.gimp_better += f.scene.back().gimp_better;
     f.compared += int(f.scene.back().best.size());
   }
@@ -673,12 +762,41 @@ Findings find(const std::vector<ojson>& rows, const std::vector<ojson>& follow_u
 // scene) decide for GIMP: the step moves the error less than the grid does; a finer grid lowers
 // it; stepping at the eq. (108) bound buys no accuracy over the CFL rule.
 
+// Per scene: the cheapest setting that passes its verifying runs is one method and policy at
+// every (E, target) pair some run reaches; decided by the scene's rows (the ranking) and the
+// verifying runs read.
+Claim cheapest_claim(const SceneRows& sc, const SceneFindings& s) {
+  Claim c = claim("cheapest-verified-" + sc.scene,
+                  "On the scene {scene}, {top} is the cheapest setting in particle-steps that "
+                  "passes its verifying runs (stable within the target at A = {A} and over {k} x "
+                  "c T) at every (E, target) pair some run reaches",
+                  "{wins} of {pairs} pairs; {none} without a passing setting among their {n} "
+                  "cheapest");
+  c.value("scene", sc.scene)
+      .value("top", s.top.empty() ? "–" : s.top)
+      .value("A", value_text(kPaperLargestA))
+      .value("k", shortest(kAdviceDomain.length_factor))
+      .count("none", s.reached - s.verified)
+      .count("n", static_cast<long long>(kVerified))
+      .every("wins", s.top_wins, "pairs", s.reached);
+  std::vector<const ojson*> read = s.verifying_read;
+  for (const auto& r : sc.rows)
+    read.push_back(&r);
+  c.on(coverage_of(read));
+  return c;
+}
+
 std::vector<Claim> tradeoff_claims(const Findings& f) {
   Claim gimp = claim("gimp-more-accurate-than-mpm",
                      "GIMP's best error over time is below MPM's at every (scene, E) pair where "
                      "both reach an accuracy",
                      "{better} of {compared} pairs");
   gimp.every("better", f.gimp_better, "compared", f.compared);
+  std::vector<const ojson*> gimp_mpm;  // the runs the best errors are chosen from
+  for (const auto& sc : f.scenes)
+    for (const auto& r : sc.rows)
+      if (method_label(r) == "gimp" || method_label(r) == "mpm") gimp_mpm.push_back(&r);
+  gimp.on(coverage_of(gimp_mpm));
   const SceneFindings& bar = f.scene.front();
   const GridRefinement& g = bar.refinement;
   Claim spread = claim("step-moves-error-less-than-grid",
@@ -694,6 +812,10 @@ std::vector<Claim> tradeoff_claims(const Findings& f) {
       .number("grid", g.least_fall)
       .count("total", g.total);
   spread.holds = g.total > 0 && f.spread_max < g.least_fall;
+  std::vector<const ojson*> spread_read = g.read;
+  for (const auto& e : bar.spreads)
+    spread_read.insert(spread_read.end(), e.read.begin(), e.read.end());
+  spread.on(coverage_of(spread_read));
   Claim finer = claim("finer-grid-lowers-error",
                       "A finer grid lowers GIMP's error over time on the paper's bar at every E",
                       "{better} of {total} values of E ({fine} against {coarse} cells, CFL C = "
@@ -701,7 +823,8 @@ std::vector<Claim> tradeoff_claims(const Findings& f) {
   finer.every("better", g.better, "total", g.total)
       .count("fine", kFine)
       .count("coarse", kCoarse)
-      .value("C", shortest(kCflRef));
+      .value("C", shortest(kCflRef))
+      .on(coverage_of(g.read));
   const BoundAgainstCfl& b = bar.bound;
   const auto all = static_cast<long long>(2 * bar.t.Es.size()),
              pairs = static_cast<long long>(b.pairs);
@@ -718,7 +841,8 @@ std::vector<Claim> tradeoff_claims(const Findings& f) {
       .value("factor", shortest(kNoGainFactor))
       .count("pairs", pairs)
       .count("left", all - pairs)
-      .count("all", all);
+      .count("all", all)
+      .on(coverage_of(b.read));
   if (b.pairs == 0) {
     bound.value("slo", "–").value("shi", "–").value("elo", "–").value("ehi", "–");
   } else {
@@ -728,7 +852,10 @@ std::vector<Claim> tradeoff_claims(const Findings& f) {
         .value("ehi", ratio(b.errors_hi));
     bound.holds = b.steps_lo > 1 && b.errors_lo > 1 / kNoGainFactor;
   }
-  return {gimp, spread, finer, bound};
+  std::vector<Claim> claims = {gimp, spread, finer, bound};
+  for (std::size_t k = 0; k < f.scenes.size(); ++k)
+    claims.push_back(cheapest_claim(f.scenes[k], f.scene[k]));
+  return claims;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -761,22 +888,24 @@ std::string advice_table(const Findings& f) {
   std::ostringstream md;
   md << "### What the runs say about picking a setting\n\nThis study measures; it does not "
         "recommend. This project answers a user's problem with `mpmstab advise`, which runs each "
-        "answer on that problem before giving it ([advice.md](advice.md)): a setting that is "
-        "cheapest here is cheapest on these runs only.\n\n"
+        "answer on that problem before giving it ([advice.md](advice.md)): a setting named the "
+        "cheapest here is the cheapest of these runs that also passed at the paper's largest "
+        "amplitude and over a longer run, and is checked nowhere else.\n\n"
      << "### Stable ranges of each policy's parameter, over every scene\n\nA description of the "
         "runs, not a recommendation (`mpmstab advise` answers a problem, and verifies the answer "
         "by runs on it; advice.md). A value v of a "
         "parameter (a fixed dt, the CFL factor C, the safety factor s) is stable with a "
      << shortest(kMargin) << "x margin for a method and policy if, at every E the study runs ("
-     << list_of_E(t.Es) << "), they were run at v and at some p >= " << shortest(kMargin)
+     << listing(t.Es) << "), they were run at v and at some p >= " << shortest(kMargin)
      << " v, and every one of their runs with the parameter up to p (on every grid, in every "
         "scene) is stable: not unstable, not meaningless, and none of its steps above the "
         "scheme's spectral limit (where the run records it: a run that survives above the limit "
         "survives at this amplitude and run length only). The largest such v is shown; p is the "
         "value checked beyond it. A value with no run at "
      << shortest(kMargin)
-     << " times it or beyond is not shown: its margin is not checked. These runs lie at A / h = "
-     << listing(t.rows, "A_over_h") << " and c T = " << span(f.passes, 3)
+     << " times it or beyond is not shown: its margin is not checked. These runs lie at A = "
+     << listing(t.rows, "A") << " (A / h = " << listing(t.rows, "A_over_h")
+     << ") and c T = " << span(f.passes, 3)
      << " wave passes, and a range is checked there only.\n\n"
      << "| method and policy | stable with margin | rests on | checked to | the next value run, "
         "not stable with margin |\n|---|---|---|---|---|\n";
@@ -839,7 +968,7 @@ std::string endings_table(const SceneFindings& s, const std::string& of_scene) {
     md << "| " << p << " | " << e.runs << " | " << e.stable << " | " << e.meaningless << " | "
        << e.unstable << " |";
     for (const auto& reason : reasons)
-      md << " " << count_of(e.reasons, reason) << " |";
+      md << " " << (e.reasons.count(reason) ? e.reasons.at(reason) : 0) << " |";
     md << "\n";
   }
   md << "\n";
@@ -849,7 +978,7 @@ std::string endings_table(const SceneFindings& s, const std::string& of_scene) {
 ojson endings_json(const SceneFindings& s) {
   ojson j = ojson::object();
   for (const auto& [p, e] : s.endings) {
-    ojson reasons = {{"dt_collapse", count_of(e.reasons, "dt_collapse")}};
+    ojson reasons = {{"dt_collapse", 0}};
     for (const auto& [reason, n] : e.reasons)
       reasons[reason] = n;
     j[p] = {{"runs", e.runs},
@@ -861,30 +990,71 @@ ojson endings_json(const SceneFindings& s) {
   return j;
 }
 
-// Per E and target error, the cheapest setting that reaches it, with its error and cost.
-std::string cheapest_table(const SceneFindings& s, const std::string& of_scene) {
-  const TradeRows& t = s.t;
+// How the targets are read and verified, at the amplitude of the scene's runs.
+std::string cheapest_rule(const SceneFindings& s) {
+  const double A = *RunRow(s.t.rows.front()).A;
+  std::vector<std::string> per_A;
+  for (double target : kTargets)
+    per_A.push_back(significant(target / A, 3));
   std::ostringstream md;
-  md << "### The cheapest setting for each accuracy" << of_scene
-     << "\n\nEach reached the accuracy in one run, with no margin and no confirming run: "
-        "the cheapest on these runs, not a recommendation (advice.md recommends).\n\n| E |";
+  md << "A target is a max error over time at the amplitude of these runs, A = "
+     << listing(s.t.rows, "A") << " (the targets are " << list_of(per_A)
+     << " A). At each E and target the " << kVerified
+     << " cheapest runs reaching it, in particle-steps, are run again as `mpmstab advise` "
+        "verifies an answer: at the paper's largest amplitude, A = "
+     << value_text(kPaperLargestA) << ", where a target is read as the same error over time / A ("
+     << sci(kTargets.front(), 1) << " becomes " << sci(kTargets.front() * kPaperLargestA / A)
+     << "), and over " << shortest(kAdviceDomain.length_factor)
+     << " x c T with the same target. A setting passes when both end stable within the target. "
+        "Each cell names the cheapest that passes, the cheaper ones that failed and the run "
+        "each failed, and where the setting lies beyond its method and policy's stable range "
+        "with a margin (the table above). Passed at these points only: the cheapest on these "
+        "runs, not an answer to another problem (`mpmstab advise` verifies on the problem; "
+        "advice.md).\n\n";
+  return md.str();
+}
+
+// One cell: the cheapest setting that passed, or that none of those tried did, with the cheaper
+// ones that failed.
+std::string cheapest_cell(const SceneFindings& s, const CheapestCell& cell,
+                          const std::vector<MarginRange>& ranges) {
+  if (cell.reaching == 0) return "not reached";
+  std::string failed;
+  for (const auto& tried : cell.tried)
+    if (!tried.passed)
+      failed +=
+          (failed.empty() ? "" : "; ") + setting(s.t.rows[tried.row]) + " (" + tried.why + ")";
+  const CheapestCell::Tried* c = cell.chosen();
+  if (!c) {
+    return "none passed of the " + std::to_string(cell.tried.size()) + " cheapest of " +
+           std::to_string(cell.reaching) + " reaching it: " + failed;
+  }
+  const ojson& r = s.t.rows[c->row];
+  std::string text = setting(r) + ": " + sci(*stable_error_over_time(r)) + " in " + work(r) +
+                     " particle-steps (" + r["steps"].dump() + " steps); verified";
+  for (const VerifyingRun& v : c->runs)
+    text += ", " + v.what + ": " + sci(*v.error_over_A) + " A";
+  const std::string beyond = beyond_range(ranges, r);
+  return text + (beyond.empty() ? "" : "; " + beyond) +
+         (failed.empty() ? "" : "; cheaper, failed: " + failed);
+}
+
+// Per E and target error, the cheapest setting that reaches it and passes its verifying runs.
+std::string cheapest_table(const SceneFindings& s, const std::string& of_scene,
+                           const std::vector<MarginRange>& ranges) {
+  std::ostringstream md;
+  md << "### The cheapest setting for each accuracy, verified" << of_scene << "\n\n"
+     << cheapest_rule(s) << "| E |";
   for (double target : kTargets)
     md << " max error <= " << sci(target, 1) << " |";
   md << "\n|---|";
   for (std::size_t k = 0; k < kTargets.size(); ++k)
     md << "---|";
   md << "\n";
-  for (std::size_t e = 0; e < t.Es.size(); ++e) {
-    md << "| " << shortest(t.Es[e]) << " |";
-    for (const auto& b : s.cheapest[e]) {
-      if (!b) {
-        md << " not reached |";
-        continue;
-      }
-      const ojson& r = t.rows[*b];
-      md << " " << setting(r) << ": " << sci(*stable_error_over_time(r)) << " in " << work(r)
-         << " particle-steps (" << r["steps"].dump() << " steps) |";
-    }
+  for (std::size_t e = 0; e < s.t.Es.size(); ++e) {
+    md << "| " << shortest(s.t.Es[e]) << " |";
+    for (const auto& cell : s.cheapest[e])
+      md << " " << cheapest_cell(s, cell, ranges) << " |";
     md << "\n";
   }
   return md.str();
@@ -898,12 +1068,26 @@ std::string cheapest_table(const SceneFindings& s, const std::string& of_scene) 
 // reaches.
 std::string what_the_rows_show(const SceneFindings& f) {
   std::ostringstream s;
-  s << "**What the rows show.** ";
-  if (f.reached == 0)
+  s << "**What the rows show** (runs at " << coverage_of(f.t.rows).text() << "). ";
+  if (f.reached == 0) {
     s << "No setting reaches any of the target accuracies. ";
-  else
-    s << "The cheapest setting for a target accuracy, in particle-steps, is " << f.top << " in "
-      << f.top_wins << " of the " << f.reached << " (E, target) pairs that some setting reaches. ";
+  } else {
+    if (f.verified == 0)
+      s << "No setting passes its verifying runs at any of the " << f.reached
+        << " (E, target) pairs some run reaches";
+    else
+      s << "The cheapest setting for a target accuracy, in particle-steps, that passes its "
+           "verifying runs is "
+        << f.top << " in " << f.top_wins << " of the " << f.reached
+        << " (E, target) pairs some run reaches";
+    if (f.verified > 0 && f.reached > f.verified)
+      s << "; " << f.reached - f.verified << " have none among their " << kVerified << " cheapest";
+    s << " (verified on " << coverage_of(f.verifying_read).text() << "). ";
+    if (f.verified > 0)
+      s << "In " << f.beyond << " of the " << f.verified
+        << " pairs the setting named lies beyond its method and policy's stable range with a "
+           "margin. ";
+  }
   for (const StepSpread& e : f.spreads) {
     s << "E = " << shortest(e.E) << ": every stable fixed or CFL step of GIMP on " << kCoarse
       << " cells gives an error between " << sci(e.lo) << " and " << sci(e.hi);
@@ -920,8 +1104,9 @@ std::string what_the_rows_show(const SceneFindings& f) {
       << " values of E (" << kFine << " against " << kCoarse << " cells). ";
   const BoundAgainstCfl& b = f.bound;
   if (b.pairs > 0)
-    s << "Stepping at the eq. (108) bound (adaptive, s = " << shortest(kBoundSafety) << ") takes "
-      << ratio(b.steps_lo) << " to " << ratio(b.steps_hi)
+    s << "Over " << b.pairs << " (method, E) pairs of MPM and GIMP, stepping at the eq. (108) "
+      << "bound (adaptive, s = " << shortest(kBoundSafety) << ") takes " << ratio(b.steps_lo)
+      << " to " << ratio(b.steps_hi)
       << " times the steps of the CFL rule at C = " << shortest(kCflRef) << " for "
       << ratio(b.errors_lo) << " to " << ratio(b.errors_hi) << " times its error. ";
   // The error with its size against A and its accuracy class: the best is not always accurate.
@@ -992,11 +1177,12 @@ std::string settings_table(const SceneFindings& s, std::size_t e, const std::str
 }
 
 // One scene's section, headed by the scene; a further scene's (`first` false) tables name it.
-std::string scene_markdown(const SceneRows& sc, const SceneFindings& s, bool first) {
+std::string scene_markdown(const SceneRows& sc, const SceneFindings& s, bool first,
+                           const std::vector<MarginRange>& ranges) {
   const std::string of_scene = first ? "" : " (" + sc.scene + ")";
   std::ostringstream md;
   md << "## " << scene_title(sc.scene) << "\n\n";
-  md << cheapest_table(s, of_scene) << "\n"
+  md << cheapest_table(s, of_scene, ranges) << "\n"
      << what_the_rows_show(s) << "\n\n"
      << endings_table(s, of_scene);
   for (std::size_t e = 0; e < s.t.Es.size(); ++e)
@@ -1013,6 +1199,10 @@ ojson tradeoff_json(const Findings& f) {
   const FigureCount& n = f.figure;
   return {{"margin", kMargin},
           {"stable_ranges", advice_json(f.ranges)},
+          {"verifying",
+           {{"A", kPaperLargestA},
+            {"length_factor", kAdviceDomain.length_factor},
+            {"candidates", kVerified}}},
           {"endings", endings},
           {"figure",
            {{"scene", n.scene},
@@ -1102,7 +1292,7 @@ StudyReport tradeoff_report(const ReportContext& c) {
   StudyReport report{.claims = tradeoff_claims(f)};
   report.markdown = results_intro(c.spec) + advice_table(f) + walls_cost_section(f);
   for (std::size_t i = 0; i < f.scenes.size(); ++i)
-    report.markdown += scene_markdown(f.scenes[i], f.scene[i], i == 0);
+    report.markdown += scene_markdown(f.scenes[i], f.scene[i], i == 0, f.ranges);
   report.data_csv = tradeoff_data_csv(f, c.csv_header);
   report.json = tradeoff_json(f);
   return report;
@@ -1119,8 +1309,12 @@ const StudyRegistration kTradeoff{{
         [](const Spec& spec, const std::vector<ojson>&) {
           return "![" + spec.title + "](" + spec.name + ".png)\n\n**What it shows.** The cost of " +
                  "each accuracy in particle-steps across methods, time-step policies and their "
-                 "parameters, the Pareto front, the cheapest run for each target on these runs and "
-                 "each parameter's stable range; the recommendations are advice.md's: [" +
+                 "parameters, the Pareto front, the cheapest setting for each target that passes "
+                 "its runs at the paper's largest amplitude, A = " +
+                 value_text(kPaperLargestA) + ", and over " +
+                 shortest(kAdviceDomain.length_factor) +
+                 " x c T, and each parameter's stable range; the recommendations are advice.md's: "
+                 "[" +
                  spec.name + ".md](" + spec.name + ".md).\n\n";
         },
     .figure_subtitle = tradeoff_subtitle,
