@@ -1,12 +1,17 @@
 // The trade study's reading of its rows: cost in particle-steps (the Pareto front and the
-// cheapest setting for each accuracy), only a stable run reaching an accuracy, the runs of each
-// policy by how they ended, each parameter's stable range with a 1.5x margin of stable rows and
-// naming them, no recommendation of its own (advice.md's), and a figure whose data and title
-// count the runs it draws.
+// cheapest setting for each accuracy, named only once its runs at the paper's largest amplitude
+// and over 4 x c T pass), only a stable run reaching an accuracy, the runs of each policy by how
+// they ended, each parameter's stable range with a 1.5x margin of stable rows and naming them, no
+// recommendation of its own (advice.md's), every claim saying where it was measured, and a figure
+// whose data and title count the runs it draws.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <set>
 #include <sstream>
 
+#include "choice/advice_rule.hpp"
+#include "csv.hpp"
 #include "study_rows.hpp"
 
 namespace mpmstab {
@@ -48,6 +53,32 @@ std::string markdown(const std::vector<ojson>& rows) {
   return test_support::study_report("tradeoff", rows).markdown;
 }
 
+// The verifying runs of row `of`, as the engine tags them: at A = 0.05 with an error over time of
+// `larger` times the row's error / A, and over 4 x c T with `longer` times its error.
+std::vector<ojson> verifying(const ojson& row, std::size_t of, double larger = 1,
+                             double longer = 1) {
+  ojson big = row, long_run = row;
+  big["A"] = 0.05;
+  big["max_error_over_time"] = row["max_error_over_time"].get<double>() / 0.015 * 0.05 * larger;
+  long_run["T"] = row["T"].get<double>() * 4;
+  long_run["cT"] = row["cT"].get<double>() * 4;
+  long_run["max_error_over_time"] = row["max_error_over_time"].get<double>() * longer;
+  big[kFollowUpOf] = long_run[kFollowUpOf] = of;
+  big[kFollowUpRole] = "A = 0.05";
+  long_run[kFollowUpRole] = "4 x c T";
+  return {big, long_run};
+}
+
+// Every row's verifying runs, all passing.
+std::vector<ojson> all_verified(const std::vector<ojson>& rows) {
+  std::vector<ojson> out;
+  for (std::size_t i = 0; i < rows.size(); ++i)
+    if (rows[i]["outcome"] == "stable")
+      for (const ojson& v : verifying(rows[i], i))
+        out.push_back(v);
+  return out;
+}
+
 TEST(TradeoffStudy, ParetoFrontAndCheapestSettingRankByParticleSteps) {
   std::vector<ojson> rows = {
       fixed_run(1e-3, 2e-4, 1000),       // 2e5 particle-steps, reaches 1e-3 only
@@ -58,17 +89,18 @@ TEST(TradeoffStudy, ParetoFrontAndCheapestSettingRankByParticleSteps) {
       fixed_run(4e-4, 8e-6, 1000, 800),  // 8e5 as dt=1e-4: equal cost, larger error
       fixed_run(1e-5, 1e-7, 100)};       // cheapest and best, but meaningless: reaches nothing
   test_support::meaningless_row(rows[6]);
-  const std::string md = markdown(rows);
+  const std::string md = test_support::study_report("tradeoff", rows, all_verified(rows)).markdown;
 
   const std::string cheapest = line_with(md, "| 4 |");
-  EXPECT_NE(cheapest.find("| gimp fixed dt=1e-3: 2.0e-4 in 2.0e5 particle-steps (1000 steps) |"),
+  EXPECT_NE(cheapest.find("| gimp fixed dt=1e-3: 2.0e-4 in 2.0e5 particle-steps (1000 steps); "
+                          "verified, A = 0.05: 1.3e-2 A, 4 x c T: 1.3e-2 A"),
             std::string::npos)
       << cheapest;
-  EXPECT_NE(cheapest.find("| gimp fixed dt=5e-5: 9.0e-5 in 4.0e5 particle-steps (2000 steps) |"),
+  EXPECT_NE(cheapest.find("| gimp fixed dt=5e-5: 9.0e-5 in 4.0e5 particle-steps (2000 steps); "),
             std::string::npos)
       << cheapest;
   // dt=1e-4 and dt=4e-4 cost the same; the smaller error ranks first.
-  EXPECT_NE(cheapest.find("| gimp fixed dt=1e-4: 5.0e-6 in 8.0e5 particle-steps (4000 steps) |"),
+  EXPECT_NE(cheapest.find("| gimp fixed dt=1e-4: 5.0e-6 in 8.0e5 particle-steps (4000 steps); "),
             std::string::npos)
       << cheapest;
 
@@ -83,10 +115,151 @@ TEST(TradeoffStudy, ParetoFrontAndCheapestSettingRankByParticleSteps) {
         << off_front;
   }
   EXPECT_NE(line_with(md, "| gimp fixed dt=3e-4 |").find("| 500 | 8.0e5 |"), std::string::npos);
-  EXPECT_NE(md.find("The cheapest setting for a target accuracy, in particle-steps, is gimp fixed "
-                    "in 3 of the 3"),
+  EXPECT_NE(md.find("The cheapest setting for a target accuracy, in particle-steps, that passes "
+                    "its verifying runs is gimp fixed in 3 of the 3 (E, target) pairs"),
             std::string::npos)
       << md;
+}
+
+// The cheapest run reaching a target is named only when it is stable within the target at the
+// paper's largest amplitude (the same error over time / A) and over 4 x c T; else the cheapest
+// that is, with the cheaper ones that failed and where.
+TEST(TradeoffStudy, TheCheapestSettingIsNamedOnlyOnceItsVerifyingRunsPass) {
+  const std::vector<ojson> rows = {fixed_run(1e-3, 2e-4, 1000), fixed_run(5e-4, 3e-4, 2000),
+                                   fixed_run(2e-4, 4e-4, 5000), fixed_run(1e-4, 5e-4, 10000)};
+  // The verifying runs of rows 0 to 2, row 2's at A = 0.05 with `larger` times its error / A.
+  auto follow_ups = [&](double larger) {
+    std::vector<ojson> out;
+    for (std::size_t i = 0; i < 3; ++i)
+      for (const ojson& v : verifying(rows[i], i, i == 2 ? larger : 1, i == 1 ? 4 : 1))
+        out.push_back(v);
+    test_support::fail_row(out[0], "nonpositive_F");  // dt = 1e-3 fails at A = 0.05
+    return out;  // dt = 5e-4: over 4 x c T, 4 x 3e-4 / 0.015 A = 0.08 A > the target 0.0667 A
+  };
+  // dt = 2e-4 at A = 0.05: 1.99 x 4e-4 / 0.015 A = 0.053 A, within the same error / A, 0.0667 A.
+  const auto report = test_support::study_report("tradeoff", rows, follow_ups(1.99));
+  const std::string cell = line_with(report.markdown, "| 4 |");
+  EXPECT_NE(cell.find("| gimp fixed dt=2e-4: 4.0e-4 in 1.0e6 particle-steps (5000 steps); "
+                      "verified, A = 0.05: 5.3e-2 A, 4 x c T: 2.7e-2 A; cheaper, failed: gimp "
+                      "fixed dt=1e-3 (A = 0.05: unstable); gimp fixed dt=5e-4 (4 x c T: stable, "
+                      "error over time 8.0e-2 A > the target 0.0667 A) |"),
+            std::string::npos)
+      << cell;
+  // At 3.3 x its error / A, 0.088 A, dt = 2e-4 fails too: none of the 3 cheapest passed (the
+  // fourth is not tried).
+  const std::string none = line_with(markdown(rows), "| 4 |");
+  EXPECT_NE(
+      line_with(test_support::study_report("tradeoff", rows, follow_ups(3.3)).markdown, "| 4 |")
+          .find("| none passed of the 3 cheapest of 4 reaching it: gimp fixed dt=1e-3 (A = "
+                "0.05: unstable); gimp fixed dt=5e-4 (4 x c T: stable, error over time "
+                "8.0e-2 A > the target 0.0667 A); gimp fixed dt=2e-4 (A = 0.05: stable, "
+                "error over time 8.8e-2 A > the target 0.0667 A) |"),
+      std::string::npos);
+  // Without its verifying runs no setting is named.
+  EXPECT_NE(none.find("| none passed of the 3 cheapest of 4 reaching it: gimp fixed dt=1e-3 (A = "
+                      "0.05: not run)"),
+            std::string::npos)
+      << none;
+  // The claim counts the pairs with a verified setting and says where it was measured.
+  const auto claim = std::find_if(report.claims.begin(), report.claims.end(),
+                                  [](const Claim& c) { return c.id == "cheapest-verified-bar"; });
+  ASSERT_NE(claim, report.claims.end());
+  EXPECT_EQ(render(*claim, claim->evidence),
+            "1 of 1 pairs; 0 without a passing setting among their 3 cheapest");
+  EXPECT_EQ(claim->measured_on, "A = 0.015 and 0.05; c T = 2 and 8; 100 cells; bar");
+}
+
+// Each setting named is said to lie beyond its method and policy's stable range with a margin
+// where it does.
+TEST(TradeoffStudy, ACheapestSettingBeyondItsStableRangeSaysSo) {
+  std::vector<ojson> rows;
+  for (double C : {0.25, 0.5, 1.0}) {
+    ojson r = policy_run("gimp", 4, "cfl", C);
+    r["steps"] = int(200 / C);
+    r["max_error_over_time"] = 2e-5;
+    rows.push_back(r);
+  }
+  test_support::fail_row(rows[2], "nonpositive_F");  // C = 1 fails: the range stops at 0.25
+  const auto md = test_support::study_report("tradeoff", rows, all_verified(rows)).markdown;
+  EXPECT_NE(line_with(md, "| gimp cfl |").find("| C up to 0.25 |"), std::string::npos) << md;
+  EXPECT_NE(line_with(md, "| 4 |")
+                .find("| gimp cfl C=0.5: 2.0e-5 in 8.0e4 particle-steps (400 steps); verified, "
+                      "A = 0.05: 1.3e-3 A, 4 x c T: 1.3e-3 A; outside gimp cfl's stable range "
+                      "with margin (C up to 0.25) |"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("in 2 of the 2 (E, target) pairs some run reaches; at 0 of them none of the "
+                    "3 cheapest passes (verified on A = 0.015 and 0.05; c T = 2 and 8; 100 cells; "
+                    "bar). In 2 of the 2 pairs with one, the setting named lies beyond its method "
+                    "and policy's stable range with a margin"),
+            std::string::npos)
+      << md;
+}
+
+// Per scene, E and target the kVerified cheapest runs reaching it are asked for again at the
+// paper's largest amplitude and at 4 x T, each once.
+TEST(TradeoffStudy, TheCheapestRunsAreAskedForAtTheLargestAmplitudeAndFourTimesTheLength) {
+  std::vector<ojson> rows;
+  for (int k = 0; k < 12; ++k)
+    rows.push_back(fixed_run(1e-3 / (k + 1), 1e-5 * (k + 1), 1000 * (k + 1)));
+  ojson other = rows[0];
+  other["scene"] = "steffen";
+  rows.push_back(other);
+  Spec spec;
+  spec.study = find_study("tradeoff");
+  for (const auto& r : rows) {
+    CaseSpec c;
+    c.params.E = r["E"].get<double>();
+    c.params.A = r["A"].get<double>();
+    c.params.T = r["T"].get<double>();
+    spec.cases.push_back(c);
+  }
+  const StudyInputs inputs;
+  const auto asked = spec.study->follow_up(FollowUpContext{spec, rows, inputs});
+  // The 3 cheapest of the bar's twelve, and the one of steffen: two runs each.
+  ASSERT_EQ(asked.size(), 8u);
+  std::set<std::size_t> of;
+  for (const FollowUp& f : asked) {
+    of.insert(f.of);
+    if (f.role == "A = 0.05") {
+      EXPECT_EQ(f.params.A, kPaperLargestA);
+      EXPECT_EQ(f.params.T, 1.0);
+    } else {
+      EXPECT_EQ(f.role, "4 x c T");
+      EXPECT_EQ(f.params.A, 0.015);
+      EXPECT_EQ(f.params.T, 4.0);
+    }
+  }
+  EXPECT_EQ(of, (std::set<std::size_t>{0, 1, 2, 12}));
+}
+
+// The paper's largest amplitude, at which every cheapest setting is verified, is the largest A of
+// the transcribed Table 1.
+TEST(TradeoffStudy, ThePapersLargestAmplitudeIsTableOnesLargest) {
+  const CsvTable paper =
+      read_csv(std::filesystem::path(MPMSTAB_SOURCE_DIR) / "reference" / "paper" / "table1.csv");
+  double largest = 0;
+  for (const auto& row : paper.rows)
+    largest = std::max(largest, std::stod(row.at("A")));
+  EXPECT_EQ(largest, kPaperLargestA);
+}
+
+// Every claim says where the runs that decide it lie.
+TEST(TradeoffStudy, EveryClaimSaysWhereItWasMeasured) {
+  std::vector<ojson> rows;
+  for (double E : {4.0, 64.0, 1000.0}) {
+    for (const char* m : {"gimp", "mpm"}) {
+      rows.push_back(policy_run(m, E, "cfl", 0.5));
+      rows.push_back(policy_run(m, E, "adaptive", 1));
+      ojson fine = policy_run(m, E, "cfl", 0.5);
+      fine["cells"] = 400;
+      rows.push_back(fine);
+    }
+  }
+  const auto report = test_support::study_report("tradeoff", rows, all_verified(rows));
+  ASSERT_EQ(report.claims.size(), 5u);
+  for (const auto& c : report.claims)
+    EXPECT_NE(c.measured_on.find("A = 0.015"), std::string::npos) << c.id << ": " << c.measured_on;
 }
 
 TEST(TradeoffStudy, NoWallTimeIsReadAndTheReportLinksWhereTheyAre) {
@@ -167,8 +340,9 @@ TEST(TradeoffStudy, StableRangeNamesItsRowsAndTheValueCheckedBeyondIt) {
   rows.push_back(fine);
   const std::string md = markdown(rows);
   const std::string gimp = line_with(md, "| gimp cfl |");
-  EXPECT_NE(gimp.find("| C up to 0.25 | 7 rows: gimp cfl C = 0.1..0.5 at E = 4 and 10000 on 100 "
-                      "and 400 cells in the scene bar, all stable | C = 0.5 (1.5x = 0.375) |"),
+  EXPECT_NE(gimp.find("| C up to 0.25 | 7 rows: gimp cfl C = 0.1..0.5 at E = 4 and 10000 (A = "
+                      "0.015; c T = 2 and 100; 100 and 400 cells; bar), all stable | C = 0.5 "
+                      "(1.5x = 0.375) |"),
             std::string::npos)
       << gimp;
   // C = 0.5 is stable everywhere, but nothing was run at 0.75 or beyond.

@@ -1,8 +1,6 @@
-// The advice study: settings a user can choose (a method, a grid, a Courant number), each run on
-// a base problem and, where that run is accurate, at other amplitudes, lengths, boundaries,
-// scenes, layouts and a finer grid (advice.hpp). advice.json stores the settings and their runs,
-// from which `mpmstab advise` predicts before it verifies on the problem (advice_verify.hpp);
-// advice.md lists every setting with its runs and where they passed, and answers no problem.
+// The advice study: settings (a method, a grid, a Courant number), each run on a base problem and,
+// where that run is accurate, at its corners (advice_rule.hpp). advice.json stores them for
+// `mpmstab advise` to predict from (advice_verify.hpp); advice.md lists them, answering nothing.
 #include <map>
 #include <sstream>
 
@@ -32,8 +30,7 @@ CornerRun corner_of(const ojson& r, CornerKind kind, double length) {
   return c;
 }
 
-// The base run of a setting is checked at its corners where it is accurate and within its
-// spectral limit: a region can exist only there.
+// A setting is run at its corners where its base run is accurate and within the limit's margin.
 bool worth_checking(const ojson& base) {
   const CornerRun c = corner_of(base, CornerKind::base, kRegionRule.lengths.front());
   const RunRow run(base);
@@ -60,18 +57,13 @@ std::vector<FollowUp> advice_follow_up(const FollowUpContext& c) {
 // ---------------------------------------------------------------------------------------------
 // Findings: the settings, their corners and regions, and what the corners say
 
-// The transfer as a setting names it, with its order where it has one: "fmpm(2)".
-std::string transfer_of(const ojson& r) {
-  std::string t = text(r, "transfer");
-  for (const char* order : {"flip_fraction", "xpic_order", "fmpm_order"})
-    if (has_number(r, order)) t += "(" + shortest(r[order].get<double>()) + ")";
-  return t;
-}
-
-// A setting from its base run's row, with that run as its first corner.
+// A setting from its base run's row, that run its first corner; its transfer "fmpm(2)".
 CheckedSetting setting_of(const ojson& r) {
+  std::string transfer = text(r, "transfer");
+  for (const char* order : {"flip_fraction", "xpic_order", "fmpm_order"})
+    if (has_number(r, order)) transfer += "(" + shortest(r[order].get<double>()) + ")";
   CheckedSetting s{.method = RunRow(r).method,
-                   .transfer = transfer_of(r),
+                   .transfer = transfer,
                    .update = text(r, "update"),
                    .cells = r["cells"].get<int>(),
                    .ppc = r["ppc"].get<int>(),
@@ -81,8 +73,7 @@ CheckedSetting setting_of(const ojson& r) {
   return s;
 }
 
-// Every setting of the spec with its corner runs (the follow-ups asked for its row, one per
-// corner of region_corners()) and its regions.
+// Every setting of the spec with its corner runs (its row's follow-ups) and its regions.
 std::vector<CheckedSetting> checked_settings(const ReportContext& c) {
   std::vector<CheckedSetting> out;
   for (std::size_t i = 0; i < c.rows.size(); ++i) {
@@ -101,24 +92,30 @@ std::vector<CheckedSetting> checked_settings(const ReportContext& c) {
 // What the report, its claims, the index paragraph and the subtitle say, found once.
 struct Findings {
   std::vector<CheckedSetting> settings;  // with their corners and regions (none for the index)
-  // Per setting, the runs that failed: those its regions exclude, then its base run to a longer
-  // length where that fails.
+  // Per setting, the runs its regions exclude, then its base run to a longer length if it fails.
   std::vector<std::vector<CornerRun>> failed;
   int cases = 0, checked = 0;             // the settings, and those run again at their corners
   int with_region = 0, to_longest = 0;    // with a region (to some length), with one to the longest
   int finer_fails = 0, finer_tested = 0;  // accurate base, finer corner not accurate
   int longer_fails = 0, longer_tested = 0;  // accurate base, base to the longer length not
   int scene_fails = 0, scene_tested = 0;    // largest A passes on the bar, neo-Hookean fails
+  Coverage finer_on, longer_on, scene_on;   // the runs each count reads
 };
 
-// The findings from the rows (a setting each) and the settings checked at their corners: the
-// report's from its follow-ups, the subtitle's from advice.json, none where the index has only
-// the rows.
+// The findings from the rows and the settings (from the follow-ups, advice.json, or none).
 Findings find(const std::vector<ojson>& rows, std::vector<CheckedSetting> settings) {
   Findings n{.settings = std::move(settings), .cases = int(rows.size())};
   for (const auto& r : rows)
     n.checked += worth_checking(r);
   const double shorter = kRegionRule.lengths.front(), longer = kRegionRule.lengths.back();
+  // A corner run in a coverage: its amplitude, length (c T, at E = kAdviceE), grid and scene.
+  const auto cover = [](Coverage& on, std::initializer_list<const CornerRun*> runs) {
+    for (const CornerRun* c : runs)
+      on.add(ojson{{"A", c->A},
+                   {"cT", c->length},
+                   {"cells", c->cells},
+                   {"scene", c->kind == CornerKind::other_scene ? "steffen" : "bar"}});
+  };
   for (const auto& s : n.settings) {
     auto& failed = n.failed.emplace_back();
     for (const auto& r : s.regions) {
@@ -129,18 +126,23 @@ Findings find(const std::vector<ojson>& rows, std::vector<CheckedSetting> settin
       if (c.kind == CornerKind::base && c.length != shorter && !c.passes()) failed.push_back(c);
     if (s.corners.size() <= 1) continue;
     n.with_region += !s.regions.empty();
+    const CornerRun* base = &s.corners.front();  // the base run to the shorter length
     if (const CornerRun* f = s.corner(CornerKind::finer, shorter)) {
       ++n.finer_tested;
       n.finer_fails += !f->passes();
+      cover(n.finer_on, {base, f});
     }
     if (const CornerRun* b = s.corner(CornerKind::base, longer)) {
       ++n.longer_tested;
       n.longer_fails += !b->passes();
+      cover(n.longer_on, {base, b});
     }
     for (const double length : kRegionRule.lengths) {
       const CornerRun* large = s.corner(CornerKind::largest_A, length);
       const CornerRun* scene = s.corner(CornerKind::other_scene, length);
-      if (!large || !scene || !large->passes()) continue;
+      if (!large || !scene) continue;
+      cover(n.scene_on, {large, scene});
+      if (!large->passes()) continue;
       ++n.scene_tested;
       n.scene_fails += !scene->passes();
     }
@@ -160,6 +162,7 @@ std::vector<Claim> advice_claims(const Findings& n) {
       .count("fails", n.finer_fails)
       .count("tested", n.finer_tested);
   finer.holds = n.finer_fails > 0;
+  finer.on(n.finer_on);
   Claim longer = claim("accurate-base-fails-longer",
                        "A setting accurate to c T/L = {short} is not always accurate to {long}",
                        "{fails} of {tested} checked settings fail to the longer length");
@@ -168,12 +171,14 @@ std::vector<Claim> advice_claims(const Findings& n) {
       .count("fails", n.longer_fails)
       .count("tested", n.longer_tested);
   longer.holds = n.longer_fails > 0;
+  longer.on(n.longer_on);
   Claim scene = claim("bar-does-not-cover-neo-hookean",
                       "A setting accurate on the bar at the largest amplitude is not always "
                       "accurate on the neo-Hookean scene there",
                       "{fails} of {tested} such corners fail on the neo-Hookean scene");
   scene.count("fails", n.scene_fails).count("tested", n.scene_tested);
   scene.holds = n.scene_fails > 0;
+  scene.on(n.scene_on);
   return {finer, longer, scene};
 }
 
@@ -241,10 +246,15 @@ std::string settings_table(const Findings& n) {
                                                  : s.corners.front().outcome)
        << " | ";
     if (s.regions.empty()) {
+      const CornerRun& base = s.corners.front();
+      std::string why =
+          "the base run is " + (base.outcome == "stable" ? "not accurate" : base.outcome);
+      if (base.passes())
+        why = s.courant_spectral
+                  ? "C is beyond the spectral limit / " + shortest(kRegionRule.limit_margin)
+                  : "its spectral limit is not recorded";
       md << (s.corners.size() > 1 ? "none: the base run to the longer length fails too"
-                                  : "none: not checked (the base run is not accurate or C is "
-                                    "beyond the spectral limit / " +
-                                        shortest(kRegionRule.limit_margin) + ")")
+                                  : "none: not checked (" + why + ")")
          << " | – |\n";
       continue;
     }
@@ -280,9 +290,8 @@ std::string advice_index(const Spec& spec, const std::vector<ojson>& rows) {
   md << "**What it shows.** Of the " << n.cases << " settings of its fixed grid of C, " << n.checked
      << " have an accurate base run within the spectral limit's margin and were run again at "
         "other amplitudes, lengths, boundaries, on the neo-Hookean scene, jittered and on a finer "
-        "grid. `mpmstab advise` "
-        "predicts from these runs and answers a problem only with a setting it has run on that "
-        "problem. Details: ["
+        "grid. `mpmstab advise` predicts from these runs and answers a problem only with a "
+        "setting it has run on that problem. Details: ["
      << spec.name << ".md](" << spec.name << ".md).\n\n";
   return md.str();
 }
@@ -290,8 +299,7 @@ std::string advice_index(const Spec& spec, const std::vector<ojson>& rows) {
 // ---------------------------------------------------------------------------------------------
 // Figure
 
-// The figure's data: per setting, its method's panel, cells, C, the longest region (0: none) and
-// error over time / A of its runs there.
+// Per setting: its method's panel, cells, C, its longest region (0: none) and error / A there.
 std::string figure_csv(const std::vector<CheckedSetting>& settings) {
   std::ostringstream csv;
   csv << "panel,method,cells,courant,region_cT,error_over_A\n";
@@ -305,15 +313,6 @@ std::string figure_csv(const std::vector<CheckedSetting>& settings) {
         << (longest ? sci(longest->error_over_A, 3) : std::string("nan")) << '\n';
   }
   return csv.str();
-}
-
-// "120 settings; 90 run again beyond their base run; 60 whose runs passed to c T/L = 100".
-std::string advice_subtitle(const Spec&, const ojson& doc) {
-  const std::vector<ojson> rows(doc["cases"].begin(), doc["cases"].end());
-  const Findings n = find(rows, checked_settings_of(doc));
-  return std::to_string(n.cases) + " settings; " + std::to_string(n.checked) +
-         " run again beyond their base run; " + std::to_string(n.to_longest) +
-         " whose runs passed to c T/L = " + value_text(kRegionRule.lengths.back());
 }
 
 // The report, from the findings: the rule, the reading, every setting and the figure's data.
@@ -349,7 +348,15 @@ const StudyRegistration kAdvice{{
     .follow_up = advice_follow_up,
     .report = advice_report,
     .index = advice_index,
-    .figure_subtitle = advice_subtitle,
+    // "120 settings; 90 run again beyond their base run; 60 whose runs passed to c T/L = 100".
+    .figure_subtitle =
+        [](const Spec&, const ojson& doc) {
+          const std::vector<ojson> rows(doc["cases"].begin(), doc["cases"].end());
+          const Findings n = find(rows, checked_settings_of(doc));
+          return std::to_string(n.cases) + " settings; " + std::to_string(n.checked) +
+                 " run again beyond their base run; " + std::to_string(n.to_longest) +
+                 " whose runs passed to c T/L = " + value_text(kRegionRule.lengths.back());
+        },
 }};
 
 }  // namespace

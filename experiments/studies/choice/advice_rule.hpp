@@ -1,7 +1,5 @@
-// The advice study's settings (a method, a grid and a Courant number) and the runs each is
-// checked by, as results/advice.json stores them: what `mpmstab advise` predicts from before it
-// verifies a candidate on the user's problem (advice_verify.hpp; docs/studies.md, "Advice:
-// verified on the problem").
+// The advice study's settings and the runs each is checked by, as results/advice.json stores them:
+// what `mpmstab advise` predicts from before it verifies (advice_verify.hpp).
 #pragma once
 
 #include <array>
@@ -16,28 +14,28 @@
 namespace mpmstab {
 
 // ---------------------------------------------------------------------------------------------
-// Regions (docs/studies.md, "Advice: verified on the problem"). A setting is a method (basis,
-// transfer, update order), a grid of `cells` cells with 2 particles each and a Courant number
-// C = c dt / h. Its base run solves the bar with walls at the middle amplitude to the shorter
-// length. E only rescales time (c T and c dt / h fix a run), so the region of a setting is
-// stated in A / L, c T / L, the scene, the boundary, the layout and the cells alone, and is
-// checked at its corners:
+// Regions (docs/studies.md, "Advice: verified on the problem"). A setting is a method, a grid of
+// `cells` cells with 2 particles each and a Courant number C = c dt / h; its base run solves the
+// bar with walls at the middle amplitude to the shorter length. E only rescales time, so a region
+// is stated in A / L, c T / L, scene, boundary, layout and cells, and checked at its corners:
 //   - on the bar with walls, at the smallest, middle and largest amplitude, to each length;
-//   - at the largest amplitude, to each length: with periodic boundaries, on the neo-Hookean
-//     scene (Steffen et al. 2008) and on a layout jittered by `jitter` of the particle spacing;
+//   - at the largest amplitude, to each length: periodic, on the neo-Hookean scene (Steffen et
+//     al. 2008) and on a layout jittered by `jitter` of the particle spacing;
 //   - on `refine` times the cells at the same C, at the middle amplitude, to the shorter length.
-// A corner passes when its run ends stable and accurate (error over time below
-// kAccurateFraction A, base/accuracy.hpp). A failing corner shrinks the region to exclude it
-// and the region says so: the amplitude range stops at the largest passing amplitude below it;
-// periodic boundaries, the other scene and the jittered layout are in only where their corner
-// and the largest amplitude pass; finer grids only where the refined corner passes. A region
-// exists to a length only where the base run to that length passes and C is within the
-// scheme's spectral limit / limit_margin. A region describes where a setting's runs passed; no
-// answer is given from it (the error between its runs is not measured).
+// A corner passes when its run ends stable and accurate (below kAccurateFraction A). A failing
+// corner is excluded, and the region says so: the amplitudes stop below it; periodic, the other
+// scene and the jittered layout are in only where their corner and the largest amplitude pass;
+// finer grids only where the refined corner passes. A region exists to a length only where the
+// base run to it passes and C is within the spectral limit / limit_margin. It describes where
+// the runs passed; no answer is given from it (the error between its runs is not measured).
+// The paper's largest amplitude, A / L (reference/paper/table1.csv; a test checks it there): the
+// largest corner's, and where tradeoff verifies each cheapest setting it names.
+inline constexpr double kPaperLargestA = 5e-2;
 struct RegionRule {
-  std::array<double, 3> amplitudes{1e-3, 1.5e-2, 5e-2};  // A / L: smallest, middle, largest
-  std::array<double, 2> lengths{10, 100};                // c T / L: the base's, the longest
-  int refine = 8;                                        // the finest grid: cells x refine
+  std::array<double, 3> amplitudes{1e-3, 1.5e-2,
+                                   kPaperLargestA};  // A / L: smallest, middle, largest
+  std::array<double, 2> lengths{10, 100};            // c T / L: the base's, the longest
+  int refine = 8;                                    // the finest grid: cells x refine
   double jitter = 0.05;        // the jittered corner: particles moved up to jitter / 2
   double limit_margin = 1.25;  // C at most the spectral limit / limit_margin
 };
@@ -83,8 +81,7 @@ struct Region {
   std::vector<CornerRun> excluded;  // the corners that failed, and what they excluded
 };
 
-// A setting with its corners and regions: what results/advice.json stores and `mpmstab advise`
-// reads.
+// A setting with its corners and regions: what advice.json stores and `mpmstab advise` reads.
 struct CheckedSetting {
   std::string method, transfer, update;  // "gimp", "flip", "usl"; transfer with its order
   int cells = 0, ppc = 2;
@@ -114,8 +111,7 @@ struct Problem {
 // A method filter's entry names a basis ("gimp"), a method ("gimp/apic", "gimp/musl") or a
 // method with every part ("gimp/flip/usl"); an empty filter selects every setting.
 bool advice_selected(const CheckedSetting& s, const std::vector<std::string>& methods);
-// The options of `mpmstab run` that give a setting's transfer: its parameter, where it has one
-// ("fmpm(2)"), is the transfer's own option (--fmpm-order 2), as a run of the setting takes it.
+// The options of `mpmstab run` that give a setting's transfer ("fmpm(2)": --fmpm-order 2).
 std::string transfer_options(const std::string& transfer);
 
 // The setting's name: "gimp/apic usl, 50 cells, C = 0.25".
@@ -133,8 +129,7 @@ nlohmann::ordered_json to_json(const CheckedSetting& s);
 std::string transfer_name(const std::string& transfer);
 // Refuses (InputError) a method, transfer or update the solver does not know.
 CheckedSetting checked_setting_from_json(const nlohmann::ordered_json& j);
-// Every setting of an advice results document (its study.settings); throws InputError naming
-// the setting and key where one is malformed.
+// Every setting of an advice results document; throws InputError naming a malformed one's key.
 std::vector<CheckedSetting> checked_settings_of(const nlohmann::ordered_json& doc);
 
 }  // namespace mpmstab

@@ -1,10 +1,7 @@
-// The advice sample: what the prediction alone is worth. Problems drawn at random over the domain
-// of `mpmstab advise` (draw_problems, seeded); for each, the lookup (the candidate the prediction
-// ranks first, what `mpmstab advise --no-verify` prints) is run through its verifying runs (the
-// problem, 4 x c T, twice the cells), and the report counts how often it fails them: overall, per
-// method, per attribute of the problem and per setting with the box in which its own runs passed.
-// Its cases are the advice study's (cases_from: the same runs, computed once); its follow-up runs
-// are the lookups' verifying runs, read from the advice study's results.
+// The advice sample: what the prediction alone is worth. For problems drawn at random over the
+// domain of `mpmstab advise` (seeded), the lookup (`advise --no-verify`'s answer) is run through
+// its verifying runs; the report counts how often it fails them, overall, per method, attribute
+// and setting. Its cases are the advice study's (cases_from); its follow-ups, the verifying runs.
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -42,8 +39,7 @@ std::vector<CheckedSetting> sample_settings(const StudyInputs& inputs) {
   return checked_settings_of(in->second.doc);
 }
 
-// The problems and their lookups, in the order of the draw; `settings` must outlive the result
-// (a candidate points into it).
+// The problems and their lookups in draw order (a candidate points into `settings`).
 std::vector<SampleProblem> lookups(const std::vector<CheckedSetting>& settings) {
   std::vector<SampleProblem> out;
   for (const VerifyProblem& vp : draw_problems()) {
@@ -89,17 +85,11 @@ std::vector<SampleProblem> findings(const std::vector<CheckedSetting>& settings,
     for (auto& [what, params] : verifying_params(*sp.lookup, sp.problem)) {
       const auto asked = follow_ups_of(follow_up, FollowUp::kNoCase, verifying_role(i, what));
       if (asked.size() != 1) throw std::logic_error("advice_sample: a follow-up is missing");
-      const ojson& r = *asked.front();
-      VerifyingRun v{.what = what, .params = params};
-      v.outcome = outcome(r);
-      if (const auto e = RunRow(r).error_over_time) v.error_over_A = *e / params.A;
-      v.particle_steps = particle_steps(r);
-      v.passes =
-          v.outcome == "stable" && v.error_over_A && *v.error_over_A <= sp.problem.problem.target;
+      const double target = sp.problem.problem.target;
+      VerifyingRun v = verifying_run_of(what, *asked.front(), target);
       if (!v.passes && sp.status == SampleStatus::passes) {
         sp.status = SampleStatus::misses;
-        sp.why = what + ": " + v.outcome +
-                 (v.error_over_A ? ", error over time " + sci(*v.error_over_A) + " A" : "");
+        sp.why = failure_words(v, target);
       }
       sp.runs.push_back(std::move(v));
     }
@@ -151,7 +141,7 @@ const Attribute kAttributes[] = {
 // ---------------------------------------------------------------------------------------------
 // Claims
 
-std::vector<Claim> sample_claims(const Tally& all) {
+std::vector<Claim> sample_claims(const Tally& all, const std::vector<ojson>& verifying) {
   Claim miss = claim("lookup-misses",
                      "The prediction alone is not an answer: the cheapest candidate it ranks "
                      "first fails its verifying runs on some drawn problem",
@@ -161,26 +151,12 @@ std::vector<Claim> sample_claims(const Tally& all) {
       .count("drawn", all.drawn)
       .over(all.verified);
   miss.holds = all.misses > 0;
+  miss.on(coverage_of(verifying));
   return {miss};
 }
 
 // ---------------------------------------------------------------------------------------------
 // Rendering
-
-std::string status_text(const SampleProblem& sp) {
-  switch (sp.status) {
-    case SampleStatus::no_lookup:
-      return "no candidate predicted to meet the target";
-    case SampleStatus::over_cap:
-      return "not run: its verifying runs take " + sci(sp.lookup->verify_particle_steps) +
-             " particle-steps, above the cap";
-    case SampleStatus::passes:
-      return "passes";
-    case SampleStatus::misses:
-      return "**misses** (" + sp.why + ")";
-  }
-  return "";
-}
 
 // How the problems were drawn and what the lookups gave, in two paragraphs.
 void draw_text(std::ostream& md, const Tally& all) {
@@ -288,7 +264,22 @@ void problems_table(std::ostream& md, const std::vector<SampleProblem>& problems
     for (const auto& r : sp.runs)
       errors += (errors.empty() ? "" : ", ") +
                 (r.outcome == "stable" && r.error_over_A ? sci(*r.error_over_A) : r.outcome);
-    md << (errors.empty() ? "–" : errors) << " | " << status_text(sp) << " |\n";
+    md << (errors.empty() ? "–" : errors) << " | ";
+    switch (sp.status) {
+      case SampleStatus::no_lookup:
+        md << "no candidate predicted to meet the target";
+        break;
+      case SampleStatus::over_cap:
+        md << "not run: its verifying runs take " << sci(sp.lookup->verify_particle_steps)
+           << " particle-steps, above the cap";
+        break;
+      case SampleStatus::passes:
+        md << "passes";
+        break;
+      case SampleStatus::misses:
+        md << "**misses** (" << sp.why << ")";
+    }
+    md << " |\n";
   }
 }
 
@@ -342,14 +333,7 @@ StudyReport sample_report(const ReportContext& c) {
   problems_table(md, problems);
   return StudyReport{.markdown = md.str() + "\n",
                      .json = sample_json(problems, all),
-                     .claims = sample_claims(all)};
-}
-
-std::string sample_index(const Spec& spec, const std::vector<ojson>&) {
-  return "**What it shows.** How often the prediction alone (`mpmstab advise --no-verify`) fails "
-         "the runs `mpmstab advise` verifies with, on problems drawn at random over its domain, "
-         "per method and per attribute of the problem: [" +
-         spec.name + ".md](" + spec.name + ".md).\n\n";
+                     .claims = sample_claims(all, c.follow_up)};
 }
 
 const StudyRegistration kAdviceSample{{
@@ -359,7 +343,13 @@ const StudyRegistration kAdviceSample{{
     .inputs = {{.name = "advice", .required = true}},
     .follow_up = sample_follow_up,
     .report = sample_report,
-    .index = sample_index,
+    .index =
+        [](const Spec& spec, const std::vector<ojson>&) {
+          return "**What it shows.** How often the prediction alone (`mpmstab advise --no-verify`) "
+                 "fails the runs `mpmstab advise` verifies with, on problems drawn at random over "
+                 "its domain, per method and per attribute of the problem: [" +
+                 spec.name + ".md](" + spec.name + ".md).\n\n";
+        },
 }};
 
 }  // namespace

@@ -9,6 +9,7 @@
 
 #include "csv.hpp"
 #include "report_util.hpp"
+#include "run_row.hpp"
 
 namespace mpmstab {
 
@@ -18,9 +19,8 @@ namespace {
 // ---------------------------------------------------------------------------------------------
 // The prediction (docs/studies.md, "Advice: verified on the problem")
 
-// The corner kinds whose runs match a problem: its scene, boundary and layout. A problem that
-// differs from the bar with walls and a uniform layout in one attribute is matched by the corner
-// of that attribute; in several, by each of theirs (no corner differs in two).
+// The corner kinds whose runs match a problem's scene, boundary and layout: the corner of each
+// attribute in which it differs from the bar with walls and a uniform layout.
 std::vector<CornerKind> matching_kinds(const VerifyProblem& vp) {
   const Problem& p = vp.problem;
   std::vector<CornerKind> kinds;
@@ -35,8 +35,7 @@ bool bar_kind(CornerKind k) {
   return k == CornerKind::base || k == CornerKind::smallest_A || k == CornerKind::largest_A;
 }
 
-// Of the runs of `kinds` to `length`, the one nearest the problem's amplitude (in log A; ties:
-// the larger amplitude).
+// Of the runs of `kinds` to `length`, the nearest in log A (ties: the larger amplitude).
 const CornerRun* nearest(const CheckedSetting& s, const std::vector<CornerKind>& kinds,
                          double length, double A) {
   const CornerRun* best = nullptr;
@@ -62,12 +61,9 @@ struct Prediction {
   std::string from;
 };
 
-// The prediction for the setting's own grid: the largest error of its runs that match the
-// problem (matching_kinds), each the nearest in amplitude, to the length that covers c T (the
-// shorter checked length, else the longer; the error over time of a run is the largest up to its
-// end, so a shorter problem's is at most it); beyond the longer length, that error grown in
-// proportion to c T (a phase error grows linearly in time). No prediction where no run matches or
-// a matching run did not end stable.
+// The prediction on the setting's own grid: the largest error of its matching runs, each the
+// nearest in amplitude, to the shorter length covering c T (else the longer, and beyond it grown
+// in proportion to c T, as a phase error). None where no run matches or one did not end stable.
 Prediction predict_own(const CheckedSetting& s, const VerifyProblem& vp, const RegionRule& rule) {
   const Problem& p = vp.problem;
   const double shorter = rule.lengths.front(), longer = rule.lengths.back();
@@ -107,9 +103,8 @@ Prediction predict_own(const CheckedSetting& s, const VerifyProblem& vp, const R
   return out;
 }
 
-// The prediction on a finer grid: the own grid's, scaled by (cells / n)^q, with q the order that
-// the setting's finer run measured (its error at refine x the cells against its base run's, both
-// at the middle amplitude to the shorter length; q below zero counts as zero).
+// On a finer grid: the own grid's, scaled by (cells / n)^q, q (at least zero) the order its finer
+// run measured against its base run.
 Prediction predict(const CheckedSetting& s, int cells, const VerifyProblem& vp,
                    const RegionRule& rule) {
   Prediction own = predict_own(s, vp, rule);
@@ -135,6 +130,11 @@ double steps_of(double cT, int cells, double courant) {
   return std::max(1.0, std::ceil(cT * cells / courant - 1e-9));
 }
 
+// A verifying run passes: it ended stable, with an error over time / A at most the target.
+bool meets(const VerifyingRun& v, double target) {
+  return v.outcome == "stable" && v.error_over_A && *v.error_over_A <= target;
+}
+
 VerifyingRun verifying_run(std::string what, const RunParams& params, double target,
                            const RunFn& run_fn) {
   VerifyingRun v{.what = std::move(what), .params = params};
@@ -144,13 +144,11 @@ VerifyingRun verifying_run(std::string what, const RunParams& params, double tar
   v.outcome = r.outcome ? std::string(to_string(*r.outcome)) : std::string("no verdict");
   if (r.max_error_over_time) v.error_over_A = *r.max_error_over_time / params.A;
   v.particle_steps = double(r.particles) * double(r.steps);
-  v.passes =
-      r.outcome && *r.outcome == Outcome::stable && v.error_over_A && *v.error_over_A <= target;
+  v.passes = meets(v, target);
   return v;
 }
 
-// A verifying run stable over fewer than kMinWavePasses wave passes: not called stable
-// (docs/studies.md, "Outcomes").
+// A verifying run stable over fewer than kMinWavePasses wave passes: not called stable.
 bool under_a_pass(const VerifyingRun& r) {
   return stable_under_a_wave_pass(r.outcome == "stable", wave_passes(r.params));
 }
@@ -160,20 +158,7 @@ std::string outcome_words(const VerifyingRun& r) {
   return under_a_pass(r) ? under_a_wave_pass_word(wave_passes(r.params)) : r.outcome;
 }
 
-std::string failure_words(const VerifyingRun& r, double target) {
-  std::ostringstream s;
-  s << r.what << ": " << outcome_words(r);
-  if (r.outcome == "too_short")
-    s << " (" << r.params.cells << " cells at C = " << shortest(r.params.stepping.cfl_factor)
-      << " take fewer than " << kMinStepsToJudge << " steps)";
-  else if (r.error_over_A)
-    s << ", error over time " << sci(*r.error_over_A) << " A"
-      << (r.outcome == "stable" ? " > the target " + value_text(target) + " A" : "");
-  return s.str();
-}
-
-// The margins on the problem (ProblemEdges, advice_verify.hpp), scanned up to edge_top. Stops,
-// unmeasured, where a probe would pass the budget left.
+// The margins on the problem (ProblemEdges), unmeasured where a probe would pass the budget.
 struct OverBudget {};
 
 ProblemEdges problem_edges(const Candidate& c, const VerifyProblem& vp, double budget_left,
@@ -220,8 +205,7 @@ ProblemEdges problem_edges(const Candidate& c, const VerifyProblem& vp, double b
   return e;
 }
 
-// The refusal when no candidate is offered: every one of the methods asked for is too short for
-// a verdict on every grid, or none is offered.
+// The refusal when no candidate is offered: too short for a verdict, or no method offered.
 void refuse_without_candidates(Verified& v, const std::vector<CheckedSetting>& settings,
                                const Problem& p, const AdviceDomain& d) {
   double shortest_cT = INFINITY;
@@ -237,20 +221,6 @@ void refuse_without_candidates(Verified& v, const std::vector<CheckedSetting>& s
                         " steps on every grid offered); the shortest that gets one is c T/L = " +
                         value_text(shortest_cT)
                   : "--methods: no setting of the methods asked for is offered";
-}
-
-// The refusal when no candidate is predicted to meet the target: the closest prediction.
-void refuse_without_eligible(Verified& v, const std::vector<Candidate>& list, const Problem& p) {
-  const Candidate* closest = nullptr;
-  for (const auto& c : list)
-    if (c.predicted_error_over_A &&
-        (!closest || *c.predicted_error_over_A < *closest->predicted_error_over_A))
-      closest = &c;
-  v.bound = "target";
-  v.refusal = "--error: no candidate is predicted to meet " + value_text(p.target) + " A";
-  if (closest)
-    v.refusal += "; the most accurate prediction is " + candidate_name(*closest) + " at " +
-                 sci(*closest->predicted_error_over_A) + " A (" + closest->predicted_from + ")";
 }
 
 // The refusal when the next candidate's verifying runs would pass the budget.
@@ -300,9 +270,8 @@ std::string prediction_words(const Candidate& c) {
                                   : "none (" + c.predicted_from + ")";
 }
 
-// "C = 0.79 (1.6x the setting's C), fails at C = 0.8; monotone" or "none: fails at the
-// setting's C = 0.5 over this length", with the highest C that holds above the failure where
-// the edge is not monotone.
+// "C = 0.79 (1.6x the setting's C), fails at C = 0.8; monotone", "none: fails at the setting's
+// C = 0.5", with the highest C that holds above a failure where not monotone.
 std::string edge_words(const std::optional<double>& low, const std::optional<double>& high,
                        const std::optional<double>& above, double C0, double top) {
   std::ostringstream s;
@@ -360,6 +329,36 @@ ojson problem_json(const VerifyProblem& vp) {
 
 }  // namespace
 }  // namespace studies::advice_verify
+
+VerifyingRun verifying_run_of(std::string what, const nlohmann::ordered_json& row, double target) {
+  using namespace studies::advice_verify;
+  const RunRow r(row);
+  VerifyingRun v{.what = std::move(what),
+                 .outcome = r.outcome.empty() ? "no verdict" : r.outcome,
+                 .error_over_A = r.error_over_A(),
+                 .particle_steps = r.particle_steps()};
+  for (const auto& [key, field] :
+       {std::pair{"E", &v.params.E}, {"A", &v.params.A}, {"T", &v.params.T}})
+    if (has_number(row, key)) *field = row[key].get<double>();
+  v.params.cells = r.cells ? int(*r.cells) : 0;
+  v.passes = meets(v, target);
+  return v;
+}
+
+std::string failure_words(const VerifyingRun& r, double target) {
+  using namespace studies::advice_verify;
+  std::ostringstream s;
+  s << r.what << ": " << outcome_words(r);
+  if (r.outcome == "too_short")
+    s << " (" << r.params.cells << " cells at C = " << shortest(r.params.stepping.cfl_factor)
+      << " take fewer than " << kMinStepsToJudge << " steps)";
+  else if (r.error_over_A)
+    s << ", error over time " << sci(*r.error_over_A) << " A"
+      << (r.outcome == "stable"
+              ? " > the target " + value_text(std::stod(significant(target, 3))) + " A"
+              : "");
+  return s.str();
+}
 
 std::string outside_domain(const VerifyProblem& vp, const AdviceDomain& d) {
   const Problem& p = vp.problem;
@@ -528,8 +527,17 @@ Verified verified_advice(const std::vector<CheckedSetting>& settings, const Veri
     refuse_without_candidates(v, settings, p, d);
     return v;
   }
-  if (v.eligible == 0) {
-    refuse_without_eligible(v, list, p);
+  if (v.eligible == 0) {  // refused: the closest prediction
+    const Candidate* closest = nullptr;
+    for (const auto& c : list)
+      if (c.predicted_error_over_A &&
+          (!closest || *c.predicted_error_over_A < *closest->predicted_error_over_A))
+        closest = &c;
+    v.bound = "target";
+    v.refusal = "--error: no candidate is predicted to meet " + value_text(p.target) + " A";
+    if (closest)
+      v.refusal += "; the most accurate prediction is " + candidate_name(*closest) + " at " +
+                   sci(*closest->predicted_error_over_A) + " A (" + closest->predicted_from + ")";
     return v;
   }
   double rate = d.nominal_seconds_per_particle_step;

@@ -1,9 +1,7 @@
 // Advice verified at the point of use (docs/studies.md, "Advice: verified on the problem"): the
-// candidates a problem can be answered with, each with the error the advice study's matching runs
-// predict for it and its cost on the problem; the runs that verify a candidate on the problem
-// itself; and the search that answers with the cheapest candidate whose every verifying run is
-// stable and within the target. `mpmstab advise` answers by it, and the advice study measures
-// with it what the prediction alone is worth.
+// candidates for a problem with their predicted error and cost, the runs that verify one on the
+// problem, and the search that answers with the cheapest whose every verifying run is stable
+// within the target. `mpmstab advise` answers by it; advice_sample and tradeoff verify with it.
 #pragma once
 
 #include <cstdint>
@@ -30,8 +28,7 @@ struct AdviceDomain {
   double length_factor = 4;    // a verifying run goes to this many times c T
   int grid_factor = 2;         // the grid check: this many times the cells at the same C
   double budget_seconds = 60;  // the default bound on the verifying runs
-  // Before any run has measured this machine, a verifying run is estimated at this many seconds
-  // per particle-step (later estimates use the runs made so far).
+  // Seconds per particle-step a verifying run is estimated at before a run has measured them.
   double nominal_seconds_per_particle_step = 4e-8;
   // The margins: C stepped up by edge_step from the answer's until a run fails or C passes
   // edge_top, then each bracket bisected until its ends are within a factor edge_tolerance.
@@ -56,8 +53,7 @@ struct Candidate {
   const CheckedSetting* from = nullptr;  // the study's setting its prediction rests on
   int cells = 0;
   VelocityStart start = VelocityStart::exact;
-  // The prediction: the error over time / A of the matching runs (none: no matching run, or one
-  // that failed), and in words which runs and what scaling.
+  // The prediction (error over time / A; none where no run matches or one failed), in words.
   std::optional<double> predicted_error_over_A;
   std::string predicted_from;
   double particle_steps = 0;         // of the run on the problem
@@ -71,16 +67,12 @@ RunParams run_params(const Candidate& c, const VerifyProblem& p);
 // The options of `mpmstab run` that run it on the problem.
 std::string run_command(const Candidate& c, const VerifyProblem& p);
 
-// Every candidate for the problem, in the order they are tried: those the prediction says meet
-// the target (predicted error at most the target), cheapest on the problem first (ties: the
-// smaller prediction, then the exact start), then none of the others. The prediction of a
-// candidate comes from its setting's runs that match the problem (docs/studies.md, "Advice:
-// verified on the problem").
+// Every candidate for the problem in the order tried: those predicted to meet the target,
+// cheapest first (ties: the smaller prediction, then the exact start), then the others.
 std::vector<Candidate> candidates(const std::vector<CheckedSetting>& settings,
                                   const VerifyProblem& p, const AdviceDomain& d = kAdviceDomain);
 
-// A candidate's verifying runs, named, in the order they are made: the problem, length_factor x
-// c T, grid_factor x the cells at the same C.
+// A candidate's verifying runs, named: the problem, length_factor x c T, grid_factor x the cells.
 std::vector<std::pair<std::string, RunParams>> verifying_params(
     const Candidate& c, const VerifyProblem& p, const AdviceDomain& d = kAdviceDomain);
 
@@ -95,6 +87,11 @@ struct VerifyingRun {
   bool passes = false;  // stable, with an error over time at most the target
 };
 
+// A verifying run read back from a study's follow-up row; its params hold its E, A, T and cells.
+VerifyingRun verifying_run_of(std::string what, const nlohmann::ordered_json& row, double target);
+// Why a verifying run failed: "4 x c T: stable, error over time 0.12 A > the target 0.1 A".
+std::string failure_words(const VerifyingRun& r, double target);
+
 // A candidate tried, with its verifying runs and, where it failed, why.
 struct Trial {
   Candidate candidate;
@@ -103,11 +100,9 @@ struct Trial {
   std::string why;  // the first run that failed, in words
 };
 
-// The margins of the answer on the problem, in C: where its run stops surviving and where it
-// stops meeting the target, by the one edge search (core/run/edge.hpp; its steps are C): from
-// the answer's C up by edge_step, bisected to edge_tolerance, scanned below each edge from the
-// answer's C; every run at length_factor x c T (the length the answer is verified at). The
-// survival edge is dt_edge, the accuracy edge (stable and within the target) dt_accurate.
+// The answer's margins on the problem, in C, by the edge search (core/run/edge.hpp) from its C,
+// every run at length_factor x c T: the survival edge (dt_edge) and the accuracy edge (stable
+// within the target, dt_accurate).
 struct ProblemEdges {
   bool measured = false;
   std::string not_measured;  // why, where not measured
@@ -134,21 +129,16 @@ using RunFn = std::function<RunResult(const RunParams&)>;
 Trial verify(const Candidate& c, const VerifyProblem& p, const RunFn& run_fn,
              const AdviceDomain& d = kAdviceDomain);
 
-// The search: candidates in order, each verified, until one passes, the budget (seconds of
-// verifying runs, estimated before each candidate from the runs made so far) is spent, or none
-// is left. With `edges`, the answer's margins are measured on the problem within what is left
-// of the budget.
+// The search: candidates in order, each verified, until one passes, the budget (seconds, estimated
+// from the runs made so far) is spent or none is left; then, with `edges`, the answer's margins.
 Verified verified_advice(const std::vector<CheckedSetting>& settings, const VerifyProblem& p,
                          double budget_seconds, bool edges, const RunFn& run_fn,
                          const AdviceDomain& d = kAdviceDomain);
 
-// The advice sample (docs/studies.md, "Advice: verified on the problem"): problems drawn at
-// random over the domain from a fixed seed (std::mt19937_64, each uniform u in [0, 1) from the
-// top 53 bits of a draw), each value rounded to two significant digits: A / L, c T / L (from
-// cT_low) and the target log-uniform over the domain; the scene, the boundary and the layout
-// each one of two with even odds, a jittered layout's jitter uniform in (jitter_low,
-// jitter_max]. The lookup of a problem (the prediction's cheapest candidate) is verified where
-// its three runs cost at most verify_cap particle-steps.
+// The advice sample (docs/studies.md): problems drawn from a fixed seed (std::mt19937_64, u from
+// a draw's top 53 bits), rounded to two significant digits: A / L, c T / L (from cT_low) and the
+// target log-uniform; scene, boundary and layout at even odds, a jitter uniform in (jitter_low,
+// jitter_max]. A lookup is verified where its runs cost at most verify_cap particle-steps.
 struct SampleRule {
   std::uint64_t seed = 20261128;
   int problems = 240;
@@ -160,8 +150,7 @@ inline constexpr SampleRule kSampleRule{};
 std::vector<VerifyProblem> draw_problems(const SampleRule& rule = kSampleRule,
                                          const AdviceDomain& d = kAdviceDomain);
 
-// The search's result as `mpmstab advise` prints it (without the seconds, which vary from run to
-// run: what a generated document shows), and as JSON.
+// The search's result as `mpmstab advise` prints it (a document's: without the seconds), as JSON.
 std::string verified_text(const Verified& v, const VerifyProblem& p, bool with_seconds = true);
 nlohmann::ordered_json verified_json(const Verified& v, const VerifyProblem& p);
 // The lookup alone (--no-verify): the first candidate, said plainly to be unverified.
