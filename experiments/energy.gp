@@ -1,5 +1,5 @@
-# energy.gp -- the energy balance error over time, one panel per Table 1 cell, one series per
-# transfer and update order.
+# energy.gp -- the energy balance error over time, one panel per Table 1 cell (two rows of panels
+# where there are more than two), one series per transfer and update order.
 #
 # Reads : datafile (results/energy_data.csv): '#' lines, then the header
 #         panel,series,cell,method,t,energy_balance and one row per drawn step. panel: 0.. per
@@ -22,6 +22,8 @@ stats datafile using "panel" nooutput
 panels = int(STATS_max) + 1
 stats datafile using "series" nooutput
 nseries = int(STATS_max) + 1
+rows = panels > 2 ? 2 : 1
+cols = int((panels + rows - 1) / rows)
 array cells[panels]
 array names[nseries]
 do for [k = 1:panels] {
@@ -41,14 +43,14 @@ set grid
 do for [format in "png svg"] {
     if (format eq "png") {
         face = "DejaVu Sans"
-        set terminal pngcairo size 1500,550 font "DejaVu Sans,10" noenhanced
+        set terminal pngcairo size 1500,550 * rows font "DejaVu Sans,10" noenhanced
     } else {
         face = "Arial"
-        set terminal svg size 1500,550 font "Arial,10" noenhanced background "white"
+        set terminal svg size 1500,550 * rows font "Arial,10" noenhanced background "white"
     }
     set key outside right top font face . ",9"
     set output outbase . "." . format
-    set multiplot layout 1, panels title "Energy balance over time, each transfer and update order (" . subtitle . ")"
+    set multiplot layout rows, cols title "Energy balance over time, each transfer and update order (" . subtitle . ")"
     do for [k = 1:panels] {
         set title cells[k]
         plot for [s = 1:nseries] datafile \

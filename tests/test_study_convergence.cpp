@@ -8,6 +8,7 @@
 #include <regex>
 #include <sstream>
 
+#include "study_rows.hpp"
 #include "support.hpp"
 
 namespace {
@@ -33,7 +34,10 @@ TEST(ConvergenceStudy, TheFittedOrderIsTheSlopeOfTheTabulatedErrors) {
     "cases": [{"method": "bspline2", "cells": 25}, {"method": "bspline2", "cells": 50},
               {"method": "bspline2", "cells": 100},
               {"method": "mpm", "cells": 25, "dt": 0.2, "T": 0.5},
-              {"method": "mpm", "cells": 50}, {"method": "mpm", "cells": 100}]})";
+              {"method": "mpm", "cells": 50}, {"method": "mpm", "cells": 100},
+              {"method": "bspline2", "cells": 25, "A": 2e-4},
+              {"method": "bspline2", "cells": 50, "A": 2e-4},
+              {"method": "bspline2", "cells": 100, "A": 2e-4}]})";
   const auto r = mpmstab::test_support::run_mpmstab("sweep " + (dir / "conv.json").string() +
                                                     " --out " + (dir / "out").string());
   ASSERT_EQ(r.status, 0) << r.output;
@@ -63,6 +67,22 @@ TEST(ConvergenceStudy, TheFittedOrderIsTheSlopeOfTheTabulatedErrors) {
   // at T alone.
   EXPECT_NE(md.find("The L2 error over time"), std::string::npos) << md;
   EXPECT_TRUE(fs::exists(dir / "out" / "conv_data.csv"));
+  // The refinement at another amplitude has a table of its own and is not drawn: the figure's
+  // data holds the three bspline2 and the two stable mpm runs at the study's amplitude.
+  EXPECT_NE(md.find("### The bases with a published order on finer grids"), std::string::npos);
+  EXPECT_EQ(mpmstab::test_support::data_lines(read(dir / "out" / "conv_data.csv")).size(), 5u);
+  // The published order is set against each refinement's last observed order (the first
+  // table's, at the study's amplitude, and the one at the smaller amplitude), and the claim
+  // says over which runs.
+  const auto doc = nlohmann::json::parse(read(dir / "out" / "conv.json"));
+  for (const auto& c : doc["claims"]) {
+    if (c["id"] != "published-spatial-orders") continue;
+    const std::string evidence = c["evidence"];
+    EXPECT_NE(evidence.find("bspline2 at E = 64: " + m[7].str()), std::string::npos) << evidence;
+    EXPECT_NE(evidence.find("bspline2 at E = 64, A = 2e-4: "), std::string::npos) << evidence;
+    EXPECT_EQ(c["measured_on"], "A = 2e-4 and 1e-3; c T = 2.4; 25, 50 and 100 cells; bar");
+    EXPECT_EQ(c["status"], "too-few");  // two refinements
+  }
   fs::remove_all(dir);
 }
 

@@ -221,7 +221,8 @@ struct SplinePairs {
 // against their prediction, and what the claims, the text, the index and the subtitle count.
 struct Findings {
   std::size_t cases = 0;
-  int ppc = 0;  // the cases' particles per cell, every scheme's
+  int ppc = 0;        // the cases' particles per cell, every scheme's
+  std::string bloch;  // what decides the claims no run decides: the Bloch symbol of that layout
   std::vector<Scheme> schemes;
   std::vector<Reading> readings;  // one per kCourants
   std::vector<std::string> drawn;
@@ -234,6 +235,7 @@ struct Findings {
   int agree = 0, measured = 0;           // runs whose measured period agrees with the prediction
   std::optional<std::size_t> worst_run;  // the largest relative difference
   int nearer = 0, compared = 0;          // runs nearer the prediction than the exact period
+  Coverage measured_on, compared_on;     // the runs measured, and those compared
 };
 
 // The B-splines' cells per wavelength at each Courant number: with FLIP against linear MPM's
@@ -273,15 +275,19 @@ Findings find(const std::vector<ojson>& rows, std::vector<ModeRun> runs = {}) {
     f.meaningless += outcome(*m.row) == "meaningless";
     if (!m.measured_ok()) continue;
     ++f.measured;
+    f.measured_on.add(*m.row);
     f.agree += std::abs(m.relative()) <= kPeriodAgreement;
     if (!f.worst_run || std::abs(m.relative()) > std::abs(f.runs[*f.worst_run].relative()))
       f.worst_run = i;
     if (std::abs(m.predicted / m.exact - 1) <= kPeriodAgreement) continue;
     ++f.compared;
+    f.compared_on.add(*m.row);
     f.nearer += std::abs(m.measured.period - m.predicted) < std::abs(m.measured.period - m.exact);
   }
   if (rows.empty()) return f;
   f.ppc = rows.front()["ppc"].get<int>();
+  f.bloch = "the Bloch symbol of the uniform layout, " + std::to_string(f.ppc) +
+            " particles per cell, USL (no run)";
   f.schemes = bloch_schemes(f.ppc);
   // The reading of each Courant number, the schemes drawn, the consistency of every branch and
   // the B-splines' cells per wavelength.
@@ -339,7 +345,8 @@ Claim period_claim(const Findings& f) {
       .value("worst", worst ? sci(worst->relative(), 2) : "–")
       .value("scheme", worst ? worst->label : "–")
       .value("cells", worst ? std::to_string(worst->cells) : "–")
-      .value("C", worst ? shortest(worst->courant) : "–");
+      .value("C", worst ? shortest(worst->courant) : "–")
+      .on(f.measured_on);
   return c;
 }
 
@@ -352,7 +359,9 @@ Claim explains_claim(const Findings& f) {
                   "is the one the Bloch symbol predicts, not the exact one",
                   "{nearer} of {compared} runs whose predicted period differs from the exact "
                   "one by more than {tolerance} measure a period nearer the prediction");
-  c.every("nearer", f.nearer, "compared", f.compared).value("tolerance", percent(kPeriodAgreement));
+  c.every("nearer", f.nearer, "compared", f.compared)
+      .value("tolerance", percent(kPeriodAgreement))
+      .on(f.compared_on);
   return c;
 }
 
@@ -366,36 +375,32 @@ Claim consistency_claim(const Findings& f) {
       .every("consistent", f.consistent, "curves", f.branches)
       .value("tolerance", sci(kConsistency, 1))
       .value("worst", sci(f.worst_deviation, 2))
-      .value("scheme", f.worst_branch);
+      .value("scheme", f.worst_branch)
+      .on(f.bloch);
   return c;
 }
 
 // With FLIP, each B-spline needs more cells per wavelength than linear MPM: FLIP's transfer
 // acts as the mass M_L M^-1 M_L (docs/theory.md, "Dispersion"), and a wider basis's consistent
-// mass M differs more from its lumped one.
-Claim flip_spline_claim(const Findings& f) {
-  Claim c = claim("flip-splines-need-more-cells",
-                  "With FLIP, the quadratic and cubic B-splines need more cells per wavelength "
-                  "than linear MPM for a phase error of {tolerance}, at every Courant number",
-                  "{more} of {compared} pairs of a B-spline and a Courant number ({pairs})");
+// mass M differs more from its lumped one. With FMPM (the full mass matrix's series) each needs
+// fewer than with FLIP: the transfer, not the basis, sets the phase error.
+Claim spline_claim(const Findings& f, bool fmpm) {
+  const SplinePairs& p = fmpm ? f.full_mass : f.flip;
+  Claim c = fmpm ? claim("full-mass-splines-need-fewer-cells",
+                         "With FMPM({order}), the quadratic and cubic B-splines need fewer cells "
+                         "per wavelength than with FLIP for a phase error of {tolerance}, at every "
+                         "Courant number below the limit",
+                         "{hits} of {compared} pairs of a B-spline and a Courant number ({pairs})")
+                 : claim("flip-splines-need-more-cells",
+                         "With FLIP, the quadratic and cubic B-splines need more cells per "
+                         "wavelength than linear MPM for a phase error of {tolerance}, at every "
+                         "Courant number",
+                         "{hits} of {compared} pairs of a B-spline and a Courant number ({pairs})");
+  if (fmpm) c.count("order", kSeriesOrder);
   c.value("tolerance", percent(kPhaseTolerance))
-      .every("more", f.flip.hits, "compared", f.flip.compared)
-      .value("pairs", f.flip.pairs);
-  return c;
-}
-
-// With FMPM (the full mass matrix's series) each B-spline needs fewer cells per wavelength than
-// with FLIP: the transfer, not the basis, sets the phase error.
-Claim full_mass_claim(const Findings& f) {
-  Claim c = claim("full-mass-splines-need-fewer-cells",
-                  "With FMPM({order}), the quadratic and cubic B-splines need fewer cells per "
-                  "wavelength than with FLIP for a phase error of {tolerance}, at every Courant "
-                  "number below the limit",
-                  "{fewer} of {compared} pairs of a B-spline and a Courant number ({pairs})");
-  c.count("order", kSeriesOrder)
-      .value("tolerance", percent(kPhaseTolerance))
-      .every("fewer", f.full_mass.hits, "compared", f.full_mass.compared)
-      .value("pairs", f.full_mass.pairs);
+      .every("hits", p.hits, "compared", p.compared)
+      .value("pairs", p.pairs)
+      .on(f.bloch);
   return c;
 }
 
@@ -681,7 +686,7 @@ StudyReport dispersion_report(const ReportContext& c) {
                      .data_csv = dispersion_data(f.schemes, c.csv_header),
                      .json = dispersion_json(f.schemes, f.runs),
                      .claims = {period_claim(f), explains_claim(f), consistency_claim(f),
-                                flip_spline_claim(f), full_mass_claim(f)}};
+                                spline_claim(f, false), spline_claim(f, true)}};
 }
 
 const StudyRegistration kDispersion{{

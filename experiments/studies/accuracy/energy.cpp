@@ -127,11 +127,15 @@ struct Findings {
   std::map<Cell, std::vector<std::size_t>> histories;
   std::vector<double> drift_A, drift_A_over_h;  // of the drift sweeps' runs
   std::vector<Sweep> sweeps;
-  std::vector<Warning> failures;       // the warnings of the runs that failed
-  long long failed = 0, survived = 0;  // fixed-step runs that failed and that reached T
-  Lead energy, eq108, spectral;        // the balance, eq. (108) and the spectral limit
-  int pic_above = 0, pic_cells = 0;    // history cells with both, PIC's balance error above FLIP's
-  int converge = 0, fitted = 0;        // sweeps with a fitted order of the balance error, positive
+  std::vector<Warning> failures;          // the warnings of the runs that failed
+  long long failed = 0, survived = 0;     // fixed-step runs that failed and that reached T
+  Lead energy, eq108, spectral;           // the balance, eq. (108) and the spectral limit
+  long long drawn = 0, drawn_failed = 0;  // the histories' runs, and those that failed
+  int pic_above = 0, pic_cells = 0;  // history cells with both, PIC's balance error above FLIP's
+  int converge = 0, fitted = 0;      // sweeps with a fitted order of the balance error, positive
+  // Where the runs that decide each claim lie: the history cells' FLIP and PIC runs, the points of
+  // the sweeps with a fitted order, the fixed-step runs.
+  Coverage pic_on, converge_on, warnings_on;
 };
 
 // The findings from the rows and, in the report, the records (whose histories give the step at
@@ -144,6 +148,8 @@ Findings find(const std::vector<ojson>& rows, const SweepOutcome& records) {
     std::optional<double> flip, pic;
     for (const std::size_t i : cell_rows) {
       const ojson& r = rows[i];
+      ++f.drawn;
+      f.drawn_failed += !survived(r);
       if (!has_number(r, "energy_error_max")) continue;
       if (method_label(r) == std::get<0>(c)) flip = r["energy_error_max"].get<double>();
       if (method_label(r) == std::get<0>(c) + "/pic") pic = r["energy_error_max"].get<double>();
@@ -151,11 +157,14 @@ Findings find(const std::vector<ojson>& rows, const SweepOutcome& records) {
     if (!flip || !pic) continue;
     ++f.pic_cells;
     f.pic_above += *pic > *flip;
+    f.pic_on.add(rows[cell_rows.front()]);  // a cell's runs share A, c T, grid and scene
   }
   f.sweeps = drift_sweeps(rows);
   for (const auto& sw : f.sweeps) {
     f.fitted += sw.error_order.has_value();
     f.converge += sw.error_order && *sw.error_order > 0;
+    for (const auto& p : sw.points)
+      if (sw.error_order && p.in_regime) f.converge_on.add(*p.row);
   }
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const ojson& r = rows[i];
@@ -164,6 +173,7 @@ Findings find(const std::vector<ojson>& rows, const SweepOutcome& records) {
       if (has_number(r, "A_over_h")) f.drift_A_over_h.push_back(r["A_over_h"].get<double>());
     }
     if (!fixed_step(r)) continue;
+    f.warnings_on.add(r);
     Warning x;
     x.row = &r;
     x.failed = outcome(r) == "unstable" && has_number(r, "failure_step");
@@ -204,6 +214,7 @@ Claim warning_claim(const char* id, const std::string& statement, const char* ev
       .count("false_warnings", lead.false_warnings)
       .count("survived", f.survived);
   c.holds = f.failed > 0 && lead.warned == f.failed && lead.false_warnings == 0;
+  c.on(f.warnings_on);
   return c;
 }
 
@@ -219,17 +230,16 @@ Claim lead_claim(const Findings& f, const Lead& lead, const char* id, const char
 }
 
 std::vector<Claim> energy_claims(const Findings& f) {
-  Claim pic = claim("pic-dissipates",
-                    "PIC's energy balance error exceeds FLIP's at every history cell (PIC "
-                    "dissipates what FLIP keeps)",
-                    "{holds} of {total} cells");
-  pic.every("holds", f.pic_above, "total", f.pic_cells);
+  Claim pic =
+      claim("pic-dissipates", "PIC's energy balance error exceeds FLIP's at every history cell",
+            "{holds} of {total} cells");
+  pic.every("holds", f.pic_above, "total", f.pic_cells).on(f.pic_on);
   Claim converges = claim("balance-converges",
                           "The energy balance error falls as dt and h fall, for MPM and GIMP on "
                           "the bar at the drift sweeps' amplitude, over the runs in the regime "
                           "orders are fitted in",
                           "{converge} of {total} sweeps have a positive fitted order");
-  converges.every("converge", f.converge, "total", f.fitted);
+  converges.every("converge", f.converge, "total", f.fitted).on(f.converge_on);
   return {pic, converges,
           lead_claim(f, f.energy, "energy-warns", "The energy balance leaving its band"),
           lead_claim(f, f.eq108, "eq108-warns", "A dt above eq. (108)"),
@@ -307,7 +317,9 @@ std::string warning_table(const std::vector<Warning>& failures) {
   for (const auto& x : failures) {
     const ojson& r = *x.row;
     const RunRow run(r);
-    md << "| " << cell_text(cell_of(r)) << " | " << fixed(*run.courant, 3) << " ("
+    Cell c = cell_of(r);
+    std::get<0>(c) = run.method_label;  // with its transfer and update order
+    md << "| " << cell_text(c) << " | " << fixed(*run.courant, 3) << " ("
        << (run.courant_spectral ? fixed(*run.courant_spectral, 3) : "–") << ") | "
        << shortest(r["A_over_h"].get<double>()) << " | " << run.failure_reason.value_or("")
        << " at step " << x.failure_step << " | " << lead_text(x.energy_step, x.failure_step)
@@ -322,15 +334,16 @@ std::string warning_table(const std::vector<Warning>& failures) {
 
 std::string energy_index(const Spec& spec, const std::vector<ojson>& rows) {
   const Findings f = find(rows, SweepOutcome{});
-  std::ostringstream md;
-  md << "![" << spec.title << "](" << spec.name << ".png)\n\n**What it shows.** The energy balance "
-     << "of each transfer and update order over time, its drift against dt and h, and, for "
-     << f.failed << " failing runs, how early the balance (it leaves its band before "
-     << f.energy.warned << " of " << f.failed << " failures, and also in "
-     << f.energy.false_warnings << " of " << f.survived
-     << " runs that reach T), eq. (108) and the spectral limit warn: [" << spec.name << ".md]("
-     << spec.name << ".md).\n\n";
-  return md.str();
+  return "![" + spec.title + "](" + spec.name +
+         ".png)\n\n**What it shows.** The energy balance of each transfer and update order over "
+         "time, its drift against dt and h, and, for " +
+         std::to_string(f.failed) +
+         " failing runs, how early the balance (it leaves its band before " +
+         std::to_string(f.energy.warned) + " of " + std::to_string(f.failed) +
+         " failures, and also in " + std::to_string(f.energy.false_warnings) + " of " +
+         std::to_string(f.survived) +
+         " runs that reach T), eq. (108) and the spectral limit warn: [" + spec.name + ".md](" +
+         spec.name + ".md).\n\n";
 }
 
 // <name>_data.csv: panel (history cell), series (transfer and update order), t and the balance.
@@ -367,10 +380,12 @@ std::string energy_data(const std::vector<ojson>& rows, const SweepOutcome& out,
   return csv.str();
 }
 
-// The subtitle: the fixed-step runs that reach T, which the warning claims count.
+// The subtitle: the runs drawn, and those of them that stop before T.
 std::string energy_subtitle(const Spec&, const ojson& doc) {
   const std::vector<ojson> rows(doc["cases"].begin(), doc["cases"].end());
-  return std::to_string(find(rows, {}).survived) + " fixed-step runs that reach T";
+  const Findings f = find(rows, {});
+  return std::to_string(f.drawn) + " runs at " + std::to_string(f.histories.size()) +
+         " Table 1 cells, " + std::to_string(f.drawn_failed) + " of them unstable before T";
 }
 
 // The report: the findings once, and from them the claims, the text and the figure's data.

@@ -63,14 +63,12 @@ std::string figure_data_csv(const ojson& record, const std::string& header_lines
 
 std::string figure_index(const Spec& spec, const std::vector<ojson>& rows) {
   const ojson& r = rows.front();
-  std::ostringstream md;
-  md << "![" << spec.title << "](" << spec.name << ".png)\n\n**What it shows.** This run "
-     << (survived(r) ? "reached T" : "did not reach T") << ": " << verdict(r) << "; "
-     << r["steps"].dump() << " steps, max error over time " << opt_sci(RunRow(r).error_over_time)
-     << ", eq. (108) minimum " << opt_sci(r["dt_stable_min"])
-     << " against dt = " << param(r["dt"].get<double>()) << ". Details: [" << spec.name << ".md]("
-     << spec.name << ".md).\n\n";
-  return md.str();
+  return "![" + spec.title + "](" + spec.name + ".png)\n\n**What it shows.** This run " +
+         (survived(r) ? "reached T" : "did not reach T") + ": " + verdict(r) + "; " +
+         r["steps"].dump() + " steps, max error over time " + opt_sci(RunRow(r).error_over_time) +
+         ", eq. (108) minimum " + opt_sci(r["dt_stable_min"]) +
+         " against dt = " + param(r["dt"].get<double>()) + ". Details: [" + spec.name + ".md](" +
+         spec.name + ".md).\n\n";
 }
 
 // What the data file holds: the rows drawn (history steps or particles), for the title, and the

@@ -46,6 +46,7 @@ struct Findings {
   // Every cell run above its scheme's spectral limit, and those ending stable; every cell rerun
   // as an ensemble, and those sensitive; the near cells rerun in ensembles.md, and not at all.
   int above = 0, stable_above = 0, rerun = 0, rerun_sensitive = 0, in_studies = 0, costly = 0;
+  Coverage above_on, rerun_on, stable_on;  // the runs of those above the limit, rerun, stable
   bool over_time = false;  // some case compares its error over time with the paper's
 };
 
@@ -68,7 +69,10 @@ Findings find(const Spec& spec, const std::vector<ojson>& rows,
     ++s.cells;
     s.ours.add(r);
     if (r.outcome == "stable") method_tally(r.method).add(r);
+    if (r.ending() == Ending::stable) s.stable_on.add(r);
+    if (e.members > 0) s.rerun_on.add(r);
     if (r.above_spectral_limit()) {
+      s.above_on.add(r);
       ++s.above;
       s.stable_above += r.ending() == Ending::stable;
     }
@@ -131,6 +135,7 @@ std::vector<Claim> table1_claims(const Findings& f) {
                   "{stable_above} of {above} such cells end stable");
   a.count("stable_above", f.stable_above).count("above", f.above).over(f.above);
   a.holds = f.stable_above == 0;
+  a.on(f.above_on);
   Claim b = claim("verdicts-robust",
                   "The verdict of every cell near its edge survives a perturbation of its layout "
                   "by a few {unit} of the particle spacing",
@@ -145,6 +150,7 @@ std::vector<Claim> table1_claims(const Findings& f) {
       .count("costly", f.costly)
       .over(f.rerun);
   b.holds = f.rerun_sensitive == 0;
+  b.on(f.rerun_on);
   Claim c = claim("stable-cells-accurate",
                   "Every cell that ends stable is accurate: its error over time stays below "
                   "{fraction} A",
@@ -154,7 +160,8 @@ std::vector<Claim> table1_claims(const Findings& f) {
       .every("accurate", f.ours.accurate, "stable", f.ours.stable);
   c.count("inaccurate", f.ours.inaccurate)
       .value("range", f.ours.inaccurate_errors.empty() ? std::string("–")
-                                                       : span(f.ours.inaccurate_errors, 2));
+                                                       : span(f.ours.inaccurate_errors, 2))
+      .on(f.stable_on);
   return {a, b, c};
 }
 
@@ -233,28 +240,26 @@ std::string table1_summary_text(const Findings& s) {
 
 // What the marks and columns mean, with the source of the paper values.
 std::string table1_legend(const Spec& spec, const fs::path& out, bool over_time) {
-  std::ostringstream md;
-  md << "Legend: `*` unstable (ours: the reason and the step where the run stopped); "
-        "*stable* (ours): the run survived to T with an error over time below the amplitude A; "
-        "*meaningless*: the run survived but its error over time reached A; *error over time / A*: "
-        "the largest displacement error over the steps and particles of a run that reached T, per "
-        "A; *accuracy*: its class (docs/studies.md, \"Accuracy classes\"): accurate below "
-     << shortest(kAccurateFraction)
-     << " A, inaccurate from there up to A, meaningless from A, given beside each stable verdict; "
-        "*inferred*: the paper does not print this cell's dt; *transcription*: the confidence of "
-        "the paper value as transcribed in ["
-     << link(out, spec.reference) << "](" << link(out, spec.reference)
-     << ") (low-confidence cells are data, not truth). dt_stable is the minimum over the run of "
-        "eq. (108) (stress "
-     << to_string(spec.cases.front().params.stable.sigma) << ", ||v|| "
-     << to_string(spec.cases.front().params.stable.vnorm)
-     << "). Work: particles x steps of the run (deterministic; wall times are in "
-        "[performance.md](performance.md)). Quantities are defined in docs/theory.md."
-     << (over_time ? " Max error ours: at T, or the largest over the run where marked (over time), "
-                     "as the case's error_at chooses."
-                   : "")
-     << "\n\n";
-  return md.str();
+  return "Legend: `*` unstable (ours: the reason and the step where the run stopped); *stable* "
+         "(ours): the run survived to T with an error over time below the amplitude A; "
+         "*meaningless*: the run survived but its error over time reached A; *error over time / "
+         "A*: the largest displacement error over the steps and particles of a run that reached T, "
+         "per A; *accuracy*: its class (docs/studies.md, \"Accuracy classes\"): accurate below " +
+         shortest(kAccurateFraction) +
+         " A, inaccurate from there up to A, meaningless from A, given beside each stable verdict; "
+         "*inferred*: the paper does not print this cell's dt; *transcription*: the confidence of "
+         "the paper value as transcribed in [" +
+         link(out, spec.reference) + "](" + link(out, spec.reference) +
+         ") (low-confidence cells are data, not truth). dt_stable is the minimum over the run of "
+         "eq. (108) (stress " +
+         std::string(to_string(spec.cases.front().params.stable.sigma)) + ", ||v|| " +
+         std::string(to_string(spec.cases.front().params.stable.vnorm)) +
+         "). Work: particles x steps of the run (deterministic; wall times are in "
+         "[performance.md](performance.md)). Quantities are defined in docs/theory.md." +
+         (over_time ? " Max error ours: at T, or the largest over the run where marked (over "
+                      "time), as the case's error_at chooses."
+                    : "") +
+         "\n\n";
 }
 
 // One cell of the table: the paper's dt_stable and max error beside ours, our verdict, the
@@ -290,22 +295,20 @@ std::string table1_row(const CaseSpec& cs, const ojson& r,
 }
 
 std::string ensemble_legend() {
-  std::ostringstream md;
-  md << "*ensemble*: a cell near its edge (unstable below its spectral limit, meaningless, or "
-        "stable with an error over time of at least "
-     << shortest(kNearErrorFraction) << " A or c dt/h above the limit / "
-     << shortest(kNearLimitMargin) << ") is rerun with " << kEnsembleMembers
-     << " layouts shifted or jittered by a few " << sci(kEnsemblePerturbation, 1)
-     << " of the particle spacing, far below the discretisation error; it is *robust* when "
-        "every member ends as it does, **sensitive** otherwise (with the members' outcomes). A "
-        "near cell whose members would each cost more than "
-     << sci(kPaperEnsembleBudget, 2)
-     << " particle-steps is rerun in the studies tier, [ensembles.md](ensembles.md) (`make "
-        "studies`), up to "
-     << sci(kEnsembleMemberBudget, 2)
-     << " each; above that it is not rerun (cost), and says so (docs/studies.md, "
-        "\"Ensembles\").\n\n";
-  return md.str();
+  return "*ensemble*: a cell near its edge (unstable below its spectral limit, meaningless, or "
+         "stable with an error over time of at least " +
+         shortest(kNearErrorFraction) + " A or c dt/h above the limit / " +
+         shortest(kNearLimitMargin) + ") is rerun with " + std::to_string(kEnsembleMembers) +
+         " layouts shifted or jittered by a few " + sci(kEnsemblePerturbation, 1) +
+         " of the particle spacing, far below the discretisation error; it is *robust* when "
+         "every member ends as it does, **sensitive** otherwise (with the members' outcomes). A "
+         "near cell whose members would each cost more than " +
+         sci(kPaperEnsembleBudget, 2) +
+         " particle-steps is rerun in the studies tier, [ensembles.md](ensembles.md) (`make "
+         "studies`), up to " +
+         sci(kEnsembleMemberBudget, 2) +
+         " each; above that it is not rerun (cost), and says so (docs/studies.md, "
+         "\"Ensembles\").\n\n";
 }
 
 // The summary, the legend, then one table per (E, A) block in the order the spec lists them,
