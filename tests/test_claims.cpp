@@ -99,6 +99,10 @@ TEST(Claims, CommittedReportsTypeNoNumberByHand) {
       for (const auto& [k, v] : c["values"].items())
         back.value(k, v.get<std::string>());
       EXPECT_EQ(render_statement(back), c["statement"].get<std::string>());
+      // Where its rows lie (Claim::on): a conclusion says which amplitudes, lengths and grids
+      // it was measured on.
+      EXPECT_FALSE(c.value("measured_on", std::string()).empty())
+          << entry.path() << ": " << c["id"];
     }
   }
   EXPECT_GT(claims, 0);
