@@ -21,25 +21,6 @@ namespace studies::comparison {
 namespace {
 using ojson = nlohmann::ordered_json;
 
-// The verdict and class of a cell that cell_agreement() (shared/paper_table1.hpp) finds stable
-// in both: by the factor between the max errors.
-void classify_both_stable(CellVerdict& cell, const RunRow& run, double error, double paper) {
-  cell.error_ratio = error / paper;
-  if (within_agreement_factor(error, paper)) {
-    cell.verdict = "agree";
-    cell.cls = "agree-stable";
-    return;
-  }
-  cell.verdict = "differ: our error " +
-                 beside_thresholds(*cell.error_ratio, {kAgreementFactor, 1 / kAgreementFactor}) +
-                 "x";
-  if (*cell.error_ratio > 1) {
-    cell.cls = run.method == "mpm" ? "mpm-error-larger" : "gimp-error-larger";
-  } else {
-    cell.cls = "error-smaller";
-  }
-}
-
 // The condition every run of ours that reaches T meets in the classes that compare errors.
 std::string stable_ours() {
   return "ours reaches T with an error over time below A (an error over time of at least A is the "
@@ -242,54 +223,48 @@ std::string failure_class(const nlohmann::ordered_json& r, const CourantEdges& e
 
 CellVerdict classify(const nlohmann::ordered_json& r, const PaperCell* paper,
                      const CourantEdges& edges, ErrorAt error_at) {
-  using namespace studies::comparison;
   using enum CellAgreement;
   CellVerdict cell;
   const RunRow run(r);
   const CellAgreement agreement = cell_agreement(run, paper);
   cell.agreement = agreement;
-  if (agreement == unreadable) {
-    cell.verdict = "paper unreadable";
-    cell.cls = "unreadable";
+  // The cell, given its verdict and class.
+  const auto with = [&cell](std::string verdict, std::string cls) {
+    cell.verdict = std::move(verdict);
+    cell.cls = std::move(cls);
     return cell;
-  }
+  };
+  if (agreement == unreadable) return with("paper unreadable", "unreadable");
   if (paper->dt_stable.kind == PaperValue::number && r["dt_stable_min"].is_number() &&
       run.outcome == "stable") {
     cell.dt_stable_ratio = r["dt_stable_min"].get<double>() / paper->dt_stable.value;
   }
-  const bool stable_in_paper = paper_says_stable(*paper);
+  const std::string paper_verdict = paper_says_stable(*paper) ? "paper stable" : "paper unstable";
   switch (agreement) {
     case ours_meaningless:
       // It survived, but its answer is as large as the solution: it agrees with neither verdict.
-      cell.verdict =
-          stable_in_paper ? "paper stable, ours meaningless" : "paper unstable, ours meaningless";
-      cell.cls = "ours-meaningless";
-      return cell;
+      return with(paper_verdict + ", ours meaningless", "ours-meaningless");
     case ours_too_short:
-      cell.verdict = stable_in_paper ? "paper stable, ours too short for a verdict"
-                                     : "paper unstable, ours too short for a verdict";
-      cell.cls = "ours-too-short";
-      return cell;
-    case both_stable:
-      if (const std::optional<double> error = compared_error(r, error_at)) {
-        classify_both_stable(cell, run, *error, paper->max_error.value);
-      } else {
-        cell.verdict = "our error not recorded";
-        cell.cls = "unreadable";
-      }
-      return cell;
+      return with(paper_verdict + ", ours too short for a verdict", "ours-too-short");
+    case both_stable: {
+      // Stable in both: by the factor between the max errors.
+      const std::optional<double> error = compared_error(r, error_at);
+      if (!error) return with("our error not recorded", "unreadable");
+      const double paper_error = paper->max_error.value;
+      cell.error_ratio = *error / paper_error;
+      if (within_agreement_factor(*error, paper_error)) return with("agree", "agree-stable");
+      const double q = *cell.error_ratio;
+      const char* larger = run.method == "mpm" ? "mpm-error-larger" : "gimp-error-larger";
+      return with("differ: our error " +
+                      beside_thresholds(q, {kAgreementFactor, 1 / kAgreementFactor}) + "x",
+                  q > 1 ? larger : "error-smaller");
+    }
     case both_unstable:
-      cell.verdict = "agree: both unstable";
-      cell.cls = "agree-unstable";
-      return cell;
+      return with("agree: both unstable", "agree-unstable");
     case paper_unstable_ours_stable:
-      cell.verdict = "paper unstable, ours stable";
-      cell.cls = "paper-unstable-ours-stable";
-      return cell;
+      return with("paper unstable, ours stable", "paper-unstable-ours-stable");
     default:
-      cell.verdict = "paper stable, ours unstable";
-      cell.cls = failure_class(r, edges);
-      return cell;
+      return with("paper stable, ours unstable", failure_class(r, edges));
   }
 }
 

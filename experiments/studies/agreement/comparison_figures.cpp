@@ -186,23 +186,17 @@ Line steps_line(const PaperObservable* p, const ojson& row) {
 
 Line peak_error_line(const PaperObservable* p, const OurRun& run) {
   const RunRow rr(*run.row);
-  std::string ours = "not recorded";
   const auto e = rr.error_over_time;
-  if (e) {
-    ours = sci(*e);
-    if (const auto over_A = rr.error_over_A()) ours += " = " + ratio(*over_A) + " A";
-    if (run.trace.peak_error) ours += " (step " + std::to_string(run.trace.peak_step) + ")";
-  }
+  std::string ours = e ? sci(*e) : "not recorded";
+  if (const auto over_A = rr.error_over_A(); e && over_A) ours += " = " + ratio(*over_A) + " A";
+  if (e && run.trace.peak_error) ours += " (step " + std::to_string(run.trace.peak_step) + ")";
   return numeric_line("peak error over time", p, e, ours);
 }
 
 Line bound_min_line(const PaperObservable* p, const OurRun& run) {
   const auto b = number(*run.row, "dt_stable_min");
-  std::string ours = "not recorded";
-  if (b) {
-    ours = sci(*b);
-    if (run.trace.bound_min) ours += " (step " + std::to_string(run.trace.bound_min_step) + ")";
-  }
+  std::string ours = b ? sci(*b) : "not recorded";
+  if (b && run.trace.bound_min) ours += " (step " + std::to_string(run.trace.bound_min_step) + ")";
   return numeric_line("eq. (108) bound, minimum", p, b, ours);
 }
 
@@ -242,11 +236,8 @@ std::optional<double> end_time(const ojson& row) {
 
 Line crossings_line(const PaperObservable* p, const OurRun& run) {
   const auto c = number(*run.row, "crossings");
-  std::string ours = "not recorded";
-  if (c) {
-    ours = shortest(*c);
-    if (const auto t = end_time(*run.row)) ours += " by t = " + sci(*t) + " (the run's end)";
-  }
+  std::string ours = c ? shortest(*c) : "not recorded";
+  if (const auto t = end_time(*run.row); c && t) ours += " by t = " + sci(*t) + " (the run's end)";
   return numeric_line("grid crossings", p, c, ours);
 }
 

@@ -112,14 +112,6 @@ Rows case_rows(const ojson& doc) {
   return Rows(cases.begin(), cases.end());
 }
 
-// The rows of every supporting experiment that has been run, by input name.
-std::map<std::string, Rows> supporting_rows(const StudyInputs& inputs) {
-  std::map<std::string, Rows> rows;
-  for (const auto& [name, input] : inputs)
-    if (name != "table1" && name != "peers" && input.present()) rows[name] = case_rows(input.doc);
-  return rows;
-}
-
 // Every case of the table1 experiment (rows[i] is its case i) against its paper cell, counted
 // per class and per method; the spectral limits from the Table 1 records.
 void compare_cells(Comparison& cmp, const Rows& rows) {
@@ -504,9 +496,12 @@ void class_opening(std::ostream& md, const Comparison& cmp, const std::string& i
      << anchor << "](" << anchor << ").\n\n";
 }
 
-void not_run(std::ostream& md, const char* name) {
-  md << "*The supporting experiment `" << name << "` has not been run: `make reproduce` runs "
-     << "it.*\n\n";
+// Whether the supporting experiment `name` has been run; where it has not, the section says so.
+bool ran(std::ostream& md, const Comparison& cmp, const char* name) {
+  if (!cmp.have(name))
+    md << "*The supporting experiment `" << name << "` has not been run: `make reproduce` runs "
+       << "it.*\n\n";
+  return cmp.have(name);
 }
 
 // The courant scan: per Courant number, how many values of E reach T, per method and amplitude.
@@ -581,21 +576,14 @@ void above_spectral_limit_section(std::ostream& md, const Comparison& cmp) {
         "manufactured solution and the scheme are invariant when t is scaled by c): at a fixed T a "
         "larger E is the same Courant number run for more wave passes, so an outcome at one C can "
         "change with E, and the scan runs each E of Table 1. ";
-  if (cmp.have("courant")) {
-    courant_scan_table(md, cmp);
-  } else {
-    not_run(md, "courant");
-  }
+  if (ran(md, cmp, "courant")) courant_scan_table(md, cmp);
 }
 
 // Paper stable (its run goes on) where ours fails at or below the spectral limit but at or above
 // the scan's edge for its method and amplitude.
 void above_our_edge_section(std::ostream& md, const Comparison& cmp) {
   class_opening(md, cmp, "above-our-edge");
-  if (!cmp.have("courant")) {
-    not_run(md, "courant");
-    return;
-  }
+  if (!ran(md, cmp, "courant")) return;
   md << "The scan's edges per method and A over its runs ("
      << coverage_of(cmp.rows("courant")).text()
      << "), and their ratio to the scheme's spectral limit (below an edge runs can fail too; "
@@ -620,10 +608,7 @@ void above_our_edge_section(std::ostream& md, const Comparison& cmp) {
 // with periodic boundaries.
 void gimp_wall_exit_section(std::ostream& md, const Comparison& cmp) {
   class_opening(md, cmp, "gimp-wall-exit");
-  if (!cmp.have("walls")) {
-    not_run(md, "walls");
-    return;
-  }
+  if (!ran(md, cmp, "walls")) return;
   int reached = 0, n = 0, meaningless = 0;
   std::vector<double> paper_rel, in_cells, rerun_dt;
   std::map<Accuracy, int> paper_class;  // the paper's error at T per A, by accuracy class
@@ -731,22 +716,16 @@ void crossing_summary(std::ostream& md, const Comparison& cmp) {
 // MPM's max error more than 3 times the paper's, beside the crossing experiment.
 void mpm_error_larger_section(std::ostream& md, const Comparison& cmp) {
   class_opening(md, cmp, "mpm-error-larger");
-  if (cmp.have("crossing")) {
-    crossing_table(md, cmp);
-    crossing_summary(md, cmp);
-  } else {
-    not_run(md, "crossing");
-  }
+  if (!ran(md, cmp, "crossing")) return;
+  crossing_table(md, cmp);
+  crossing_summary(md, cmp);
 }
 
 // GIMP's max error more than 3 times the paper's: the cells the walls explain, from the same cells
 // rerun with periodic boundaries.
 void gimp_error_larger_section(std::ostream& md, const Comparison& cmp) {
   class_opening(md, cmp, "gimp-error-larger");
-  if (!cmp.have("walls")) {
-    not_run(md, "walls");
-    return;
-  }
+  if (!ran(md, cmp, "walls")) return;
   std::vector<double> dirichlet, periodic;
   std::string helped;
   int meaningless = 0, within = 0;
@@ -832,10 +811,7 @@ void dt_stable_section(std::ostream& md, const Comparison& cmp) {
      << coverage_of(compared).text() << "), our eq. (108) bound is smaller than the paper's in "
      << smaller << " of " << mpm.size() + gimp.size() << ": ours / paper is " << distribution(mpm)
      << " for MPM and " << distribution(gimp) << " for GIMP. ";
-  if (!cmp.have("eq108")) {
-    not_run(md, "eq108");
-    return;
-  }
+  if (!ran(md, cmp, "eq108")) return;
   const Rows& eq108 = cmp.rows("eq108");
   md << "**Experiment** ([eq108.md](eq108.md)): the cells at dt = " << listing(eq108, "dt")
      << " under the four readings of the two ambiguities of eq. (108), stress divided by "
@@ -1051,7 +1027,9 @@ void write_comparison(const StudyInputs& inputs, const std::filesystem::path& ou
     throw MissingInput((out / (name + ".json")).string() + " not found: run the sweep first");
   }
   Comparison cmp(*table1->second.spec, out, error_at);
-  cmp.support = supporting_rows(inputs);
+  for (const auto& [name, input] : inputs)
+    if (name != "table1" && name != "peers" && input.present())
+      cmp.support[name] = case_rows(input.doc);
   if (const auto p = inputs.find("peers"); p != inputs.end() && p->second.present()) {
     cmp.peer_rows = case_rows(p->second.doc);
     if (p->second.doc.contains("study")) cmp.peers = &p->second.doc.at("study");

@@ -104,24 +104,24 @@ std::vector<std::size_t> edge_rows(const std::vector<Scan>& all) {
   return out;
 }
 
-// An edge row as edge_length reads it: its own dt as dt_edge.
-ojson as_edge(const ojson& r) {
-  ojson e = r;
-  e["dt_edge"] = r["dt"];
-  e["dt_accurate"] = nullptr;
-  return e;
+// The edge rows `at` as edge_length reads them: each its own dt as dt_edge.
+std::vector<ojson> as_edges(const std::vector<ojson>& rows, const std::vector<std::size_t>& at) {
+  std::vector<ojson> edges;
+  for (const std::size_t i : at) {
+    ojson& e = edges.emplace_back(rows[i]);
+    e["dt_edge"] = rows[i]["dt"];
+    e["dt_accurate"] = nullptr;
+  }
+  return edges;
 }
 
 // The runs of every edge for length, each asked for the case whose run is the edge.
 std::vector<FollowUp> courant_follow_up(const FollowUpContext& c) {
-  std::vector<ojson> edges;
   std::vector<CaseSpec> cases;
   const std::vector<std::size_t> rows = edge_rows(scans(c.rows));
-  for (const std::size_t i : rows) {
-    edges.push_back(as_edge(c.rows[i]));
+  for (const std::size_t i : rows)
     cases.push_back(c.spec.cases.at(i));
-  }
-  return all_length_runs(edges, cases, rows);
+  return all_length_runs(as_edges(c.rows, rows), cases, rows);
 }
 
 // Every case of the scan, and what the text, the claims and the index count of them; the runs
@@ -139,9 +139,7 @@ struct Findings {
 Findings find(const std::vector<ojson>& rows, const std::vector<ojson>& follow_up) {
   Findings f{.scans = scans(rows), .all = coverage_of(rows), .lengths = coverage_of(follow_up)};
   const std::vector<std::size_t> at = edge_rows(f.scans);
-  std::vector<ojson> edges;
-  for (const std::size_t i : at)
-    edges.push_back(as_edge(rows[i]));
+  const std::vector<ojson> edges = as_edges(rows, at);
   const LengthRuns lengths = read_length_runs(edges, follow_up, at);
   for (Scan& s : f.scans) {
     f.smallest.add(rows[s.runs.front()]);

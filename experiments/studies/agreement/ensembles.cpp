@@ -33,10 +33,6 @@ std::vector<EnsembleCell> rerun_cells(const std::vector<ojson>& rows,
   return cells;
 }
 
-std::vector<FollowUp> ensembles_follow_up(const FollowUpContext& c) {
-  return ensemble_follow_up(c, EnsembleNeed::in_studies);
-}
-
 // Claims: a sensitive cell is counted, never hidden; none rerun is vacuous, not holding.
 std::vector<Claim> ensembles_claims(const std::vector<ojson>& rows,
                                     const std::vector<EnsembleCell>& cells) {
@@ -90,7 +86,8 @@ const StudyRegistration kEnsembles{{
     .name = "ensembles",
     .summary = "Table 1's costly cells near their edge, rerun as ensembles of perturbed layouts",
     .records = {.error_over_time = true, .dt_stable = true},
-    .follow_up = ensembles_follow_up,
+    .follow_up =
+        [](const FollowUpContext& c) { return ensemble_follow_up(c, EnsembleNeed::in_studies); },
     .report =
         [](const ReportContext& c) {
           const auto cells = rerun_cells(c.rows, c.follow_up);

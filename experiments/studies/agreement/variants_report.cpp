@@ -150,8 +150,7 @@ void write_accounted_classes(std::ostream& md, const VariantsStudy& s) {
     for (const auto& v : s.variants)
       if (!v.baseline && class_outcome(v, k->id).accounts == Accounts::yes)
         by += (by.empty() ? "" : ", ") + named(v);
-    std::string cls = "[";
-    cls.append(k->id).append("](#").append(k->id).append(")");
+    const std::string cls = "[" + std::string(k->id) + "](#" + k->id + ")";
     if (by.empty()) {
       not_accounted.push_back(cls);
     } else {

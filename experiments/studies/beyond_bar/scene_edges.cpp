@@ -99,8 +99,7 @@ std::vector<std::optional<Robustness>> robustness(const std::vector<ojson>& rows
     if (at_edge.size() != std::size_t(kEnsembleMembers) ||
         at_fail.size() != std::size_t(kEnsembleMembers))
       continue;
-    Robustness r;
-    r.members = kEnsembleMembers;
+    Robustness r{.members = kEnsembleMembers};
     for (const ojson* m : at_edge)
       r.survive_at_edge += survived(*m);
     for (const ojson* m : at_fail)
@@ -297,30 +296,26 @@ std::string edges_intro(const ReportContext& ctx) {
         "**not monotone** and the highest that does); a row has none inside the scan where it "
         "survives to the top of the scan (a step of T), where its runs are too short to judge "
         "(under a wave pass, or too few steps), or where the smallest dt tried fails; *accuracy "
-        "edge*: the largest up to which the "
-        "error over time stays within the search's factor of the smallest dt's (the "
-        "reference's) ("
+        "edge*: the largest up to which the error over time stays within the search's factor of "
+        "the smallest dt's (the reference's) ("
      << edge_search_text(ctx.spec.study->edge)
      << "); none is read where the reference's error over time is at round-off, below "
      << param(kRoundOffEpsilons) << " machine epsilons (" << sci(round_off_floor_over_A())
      << ") times A, nor where the reference or the run at the edge is not accurate (its class and "
         "error over time per A are given); *dense limit*: the spectral limit of the whole body "
-        "with its free surfaces "
-        "(docs/theory.md, \"The spectral limit\"); *perturbed*: of "
+        "with its free surfaces (docs/theory.md, \"The spectral limit\"); *perturbed*: of "
      << kEnsembleMembers << " layouts perturbed by " << sci(kEnsemblePerturbation)
      << " of the particle spacing, how many survive at the edge and how many fail just above "
         "it; *run at the edge*: the run at the largest surviving dt, its outcome and error over "
         "time per A, with its accuracy class where it is stable (docs/studies.md, \"Accuracy "
         "classes\"; a meaningless edge is a run whose error reached A: it survives and answers "
-        "nothing); *length*: each edge rerun "
-        "at "
+        "nothing); *length*: each edge rerun at "
      << shortest(kLengthFactors[0]) << " and " << shortest(kLengthFactors[1])
      << " times its wave passes (at most " << shortest(kLongPasses)
      << "), holding to the longest it passed or **transient** where it failed.\n\n"
      << "| scene | method | small-mass | A/h, c T | survival edge c dt/h | fails at | run at the "
-        "edge | "
-        "survival edge: length | accuracy edge | accuracy edge: length | dense limit | edge / "
-        "limit | perturbed: survive at edge, fail above |\n"
+        "edge | survival edge: length | accuracy edge | accuracy edge: length | dense limit | "
+        "edge / limit | perturbed: survive at edge, fail above |\n"
         "|---|---|---|---|---:|---:|---|---|---:|---|---:|---:|---|\n";
   return md.str();
 }
@@ -381,8 +376,7 @@ std::string edges_index(const Spec& spec, const std::vector<ojson>& rows) {
   md << "**What it shows.** The survival and accuracy edges in c dt/h of " << n.rows
      << " scene, method and small-mass cases (" << n.with_edge
      << " with a survival edge inside the scan), each beside the dense spectral limit of its body "
-        "and "
-        "checked on perturbed layouts. ["
+        "and checked on perturbed layouts. ["
      << spec.name << ".md](" << spec.name << ".md)\n";
   return md.str();
 }

@@ -153,33 +153,31 @@ Findings find(const std::vector<ojson>& rows, std::vector<CheckedSetting> settin
 // ---------------------------------------------------------------------------------------------
 // Claims
 
+// A claim that some of the `tested` fail: it holds when one does.
+Claim some_fail(Claim c, int fails, int tested, const Coverage& on) {
+  c.count("fails", fails).count("tested", tested);
+  c.holds = fails > 0;
+  return c.on(on);
+}
+
 std::vector<Claim> advice_claims(const Findings& n) {
   Claim finer = claim("fixed-courant-fails-finer",
                       "A Courant number accurate on its grid is not accurate on every finer grid: "
                       "some setting accurate on its grid is not at {refine}x the cells",
                       "{fails} of {tested} checked settings fail at {refine}x the cells");
-  finer.count("refine", kRegionRule.refine)
-      .count("fails", n.finer_fails)
-      .count("tested", n.finer_tested);
-  finer.holds = n.finer_fails > 0;
-  finer.on(n.finer_on);
+  finer.count("refine", kRegionRule.refine);
   Claim longer = claim("accurate-base-fails-longer",
                        "A setting accurate to c T/L = {short} is not always accurate to {long}",
                        "{fails} of {tested} checked settings fail to the longer length");
   longer.value("short", value_text(kRegionRule.lengths.front()))
-      .value("long", value_text(kRegionRule.lengths.back()))
-      .count("fails", n.longer_fails)
-      .count("tested", n.longer_tested);
-  longer.holds = n.longer_fails > 0;
-  longer.on(n.longer_on);
+      .value("long", value_text(kRegionRule.lengths.back()));
   Claim scene = claim("bar-does-not-cover-neo-hookean",
                       "A setting accurate on the bar at the largest amplitude is not always "
                       "accurate on the neo-Hookean scene there",
                       "{fails} of {tested} such corners fail on the neo-Hookean scene");
-  scene.count("fails", n.scene_fails).count("tested", n.scene_tested);
-  scene.holds = n.scene_fails > 0;
-  scene.on(n.scene_on);
-  return {finer, longer, scene};
+  return {some_fail(finer, n.finer_fails, n.finer_tested, n.finer_on),
+          some_fail(longer, n.longer_fails, n.longer_tested, n.longer_on),
+          some_fail(scene, n.scene_fails, n.scene_tested, n.scene_on)};
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -440,9 +440,7 @@ std::string edge_text(const ojson& r, const char* column, const char* missing) {
 // at the edge is not accurate (report.hpp, add_accuracy_classes); "–" where the search found
 // none (its reference run meaningless).
 std::string accuracy_edge_text(const ojson& r) {
-  const bool withheld = r.contains("accuracy_edge_withheld") &&
-                        r["accuracy_edge_withheld"].is_boolean() &&
-                        r["accuracy_edge_withheld"].get<bool>();
+  const bool withheld = r.value("accuracy_edge_withheld", false);
   return edge_text(r, "dt_accurate_over_cfl", withheld ? "withheld" : "–");
 }
 

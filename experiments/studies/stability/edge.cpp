@@ -711,10 +711,9 @@ std::string walls_text(const SceneFindings& s) {
   md << "**Walls.** Each case with Dirichlet walls is rerun at its accuracy edge with periodic "
         "boundaries (no wall: the interior's own error); the periodic error over time is, per "
         "method and amplitude, ";
-  bool first = true;
   for (const auto& [m, n] : s.twins) {
-    md << (first ? "" : "; ") << m.first << " at A = " << shortest(m.second) << ": ";
-    first = false;
+    md << (m == s.twins.begin()->first ? "" : "; ") << m.first << " at A = " << shortest(m.second)
+       << ": ";
     const auto it = s.twin_ratios.find(m);
     if (it == s.twin_ratios.end()) {
       md << "not compared (" << n << " twins, none reached T)";

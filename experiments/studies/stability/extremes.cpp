@@ -108,7 +108,6 @@ struct Counts {
   long long above_survivor_steps = 0;   // the most steps an above-limit survivor took
   double above_survivor_ratio = 0;      // the largest c dt/h over the limit of a survivor
   int above_survivor_under_a_pass = 0;  // survivors of fewer than kMinWavePasses wave passes
-  int unlimited = 0;                    // runs without a spectral limit
   // Where the runs each claim counts lie (run_row.hpp): every case, those that reached T, those
   // above the limit long enough to judge, those counted stable.
   Coverage all_at, reached_at, above_judged_at, stable_at;
@@ -142,12 +141,8 @@ Counts count_rows(const std::vector<ojson>& rows) {
       c.non_finite += out.non_finite > 0;
       c.not_measured += out.not_measured > 0;
     }
-    if (!r.courant_spectral) {
-      ++c.unlimited;
-      continue;
-    }
-    const double over = *r.courant / *r.courant_spectral;
     if (!r.above_spectral_limit()) continue;
+    const double over = *r.courant / *r.courant_spectral;
     ++c.above;
     if (v != 3) c.above_judged_at.add(r);
     if (v == 2) {

@@ -283,7 +283,7 @@ struct Eq108Findings {
   const Eq108Point* shifted = nullptr;  // the run whose state moved the bound most
   std::vector<Eq108Row> rows;
   std::vector<std::pair<double, std::pair<double, double>>> per_E;  // E -> ratio lo, hi
-  double lo = 1e300, hi = 0, E_lo = 0, E_hi = 0;
+  double lo = 1e300, hi = 0;
   int cells_lo = 0, cells_hi = 0, below = 0;
   const Eq108Point* worst = nullptr;
   Coverage points_at, grid_at, ppc_at, count_at;
@@ -336,10 +336,6 @@ Eq108Findings eq108_findings(const std::vector<ojson>& rows) {
       f.rows.push_back(row);
     }
     if (hi > 0) f.per_E.push_back({E, {lo, hi}});
-  }
-  if (!g.Es.empty()) {
-    f.E_lo = g.Es.front();
-    f.E_hi = g.Es.back();
   }
   f.cells_lo = f.cells_hi = g.cells0;
   for (const auto& p : g.points) {
@@ -757,12 +753,6 @@ std::string eq108_state(const Eq108Findings& f) {
   return md.str();
 }
 
-// The eq. (108) section: its tables and readings.
-std::string eq108_markdown(const Eq108Findings& f) {
-  return eq108_intro(f) + eq108_per_E(f) + eq108_per_E_reading(f) + eq108_per_ppc(f) +
-         eq108_per_count(f) + eq108_state(f);
-}
-
 // ---------------------------------------------------------------------------------------------
 // Text
 
@@ -794,6 +784,7 @@ std::string reading(const Findings& f, const ojson& first) {
        << " times the limit (" << f.edges_at.text() << ").";
   if (f.eq_hi > 0) {
     const Eq108Findings& eq108 = f.eq108;
+    const std::vector<double>& Es = eq108.grid.Es;  // in increasing order
     md << " Eq. (108) at the same state lies at " << fixed(f.eq_lo, 3) << " to "
        << fixed(f.eq_hi, 3) << " times the limit, at E = " << shortest(first["E"].get<double>())
        << " on " << first["cells"].get<int>() << " cells ("
@@ -801,10 +792,10 @@ std::string reading(const Findings& f, const ojson& first) {
                ? std::to_string(f.particles_lo)
                : std::to_string(f.particles_lo) + " to " + std::to_string(f.particles_hi))
        << " particles) only: its ratio changes with E";
-    if (eq108.hi > 0 && eq108.E_hi > eq108.E_lo)
+    if (eq108.hi > 0 && Es.back() > Es.front())
       md << " (at " << first["ppc"].get<int>() << " particles per cell with USL and FLIP, "
          << fixed(eq108.lo, 3) << " to " << fixed(eq108.hi, 3)
-         << " over E = " << shortest(eq108.E_lo) << " to " << shortest(eq108.E_hi) << ")";
+         << " over E = " << shortest(Es.front()) << " to " << shortest(Es.back()) << ")";
     md << " and with the particles per cell (the section on eq. (108) below).";
   }
   md << "\n\n";
@@ -902,7 +893,11 @@ std::string spectral_markdown(const std::vector<ojson>& rows, const Findings& f)
        << " | " << (s.above ? run_text(*s.above) : "–") << " | "
        << (s.confirmed() ? "yes" : "**no**") << " |\n";
   }
-  md << "\n" << eq108_markdown(f.eq108) << paper_table(f);
+  // The eq. (108) section, its tables and readings; then the paper's column.
+  const Eq108Findings& e = f.eq108;
+  md << "\n"
+     << eq108_intro(e) << eq108_per_E(e) << eq108_per_E_reading(e) << eq108_per_ppc(e)
+     << eq108_per_count(e) << eq108_state(e) << paper_table(f);
   return md.str();
 }
 
