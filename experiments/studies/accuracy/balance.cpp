@@ -237,7 +237,6 @@ struct Curve {
   // start's time term is not resolved or the curve has no fitted half-step twin.
   std::optional<bool> start_up;
   bool resolved() const { return fit && time_share >= 1 / kResolved; }
-  bool negligible() const { return fit && time_share < 1 / kResolved; }
 };
 
 using CurveKey = std::tuple<std::string, std::string, int>;
@@ -259,9 +258,8 @@ bool consistent_mass(const std::string& method) {
 
 // The fit of a curve, its balancing C and its time share.
 void fit_into(Curve& c) {
-  bool positive = true;
-  for (const auto& [C, e] : c.points)
-    positive = positive && C > 0 && e > 0;
+  const bool positive = std::all_of(c.points.begin(), c.points.end(),
+                                    [](const auto& p) { return p.first > 0 && p.second > 0; });
   if (c.points.size() < kFitPoints || !positive) return;
   c.fit = fit_curve(c.points);
   const Fit& f = *c.fit;
@@ -314,7 +312,7 @@ std::map<CurveKey, Curve> curves(const std::vector<ojson>& rows) {
   for (auto& [key, c] : out) {
     const auto twin = out.find({c.scene, c.method + kHalfStep, c.cells});
     if (!half_step(c.method) && c.resolved() && twin != out.end() && twin->second.fit)
-      c.start_up = twin->second.negligible();
+      c.start_up = !twin->second.resolved();
   }
   return out;
 }

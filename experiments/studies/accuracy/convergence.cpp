@@ -193,15 +193,6 @@ std::optional<double> value_of(const Point& p, Norm n) {
   return n == Norm::over_time ? p.over_time : n == Norm::l2_time ? p.l2_time : p.error_at_T;
 }
 
-// The fitted order: the slope of log(error) against log(x) over the points with an error in the
-// regime orders are fitted in (at least three).
-std::optional<double> fitted_order(const std::vector<Point>& points, Norm n) {
-  std::vector<std::pair<double, double>> xy;
-  for (const auto& p : points)
-    if (const auto e = value_of(p, n); e && p.fit) xy.emplace_back(p.x, *e);
-  return loglog_slope(xy);
-}
-
 // The observed order between two successive points, log(e1 / e2) / log(x1 / x2); none where
 // either lies outside the regime orders are fitted in.
 std::optional<double> step_order(const Point& coarse, const Point& fine, Norm n) {
@@ -289,7 +280,12 @@ std::tuple<Refinements, Refinements, Refinements, Refinements> refinements(
                 [](const Point& a, const Point& b) { return TotalLess()(b.x, a.x); });
       for (const Norm n : {Norm::over_time, Norm::l2_time, Norm::at_T}) {
         Orders& o = ref.norms[static_cast<std::size_t>(n)];
-        o.fitted = fitted_order(points, n);
+        // The fitted order: the slope of log(error) against log(x) over the points with an error
+        // in the regime orders are fitted in (at least three).
+        std::vector<std::pair<double, double>> xy;
+        for (const auto& p : points)
+          if (const auto e = value_of(p, n); e && p.fit) xy.emplace_back(p.x, *e);
+        o.fitted = loglog_slope(xy);
         o.limit = richardson_limit(points, n);
         for (std::size_t k = 1; k < points.size(); ++k)
           o.steps.push_back(step_order(points[k - 1], points[k], n));
@@ -305,15 +301,6 @@ double spread(const std::map<Key, double>& orders) {
     hi = std::max(hi, o);
   }
   return orders.empty() ? 0 : hi - lo;
-}
-
-// Whether the last two observed orders in the regime agree (the asymptotic range is reached).
-bool asymptotic(const std::vector<std::optional<double>>& all) {
-  std::vector<double> q;
-  for (const auto& o : all)
-    if (o) q.push_back(*o);
-  if (q.size() < 2) return false;
-  return std::abs(q[q.size() - 1] - q[q.size() - 2]) <= kAsymptoticSpread;
 }
 
 // The orders in h (error over time) of one method across E: fitted and observed, and whether
@@ -337,7 +324,11 @@ std::map<std::string, MethodOrders> orders_by_method(const Refinements& h) {
     const Orders& over_time = ref[Norm::over_time];
     if (over_time.fitted) o.order[E] = *over_time.fitted;
     o.steps[E] = over_time.steps;
-    o.asymptotic[E] = asymptotic(over_time.steps);
+    std::vector<double> q;  // the observed orders in the regime
+    for (const auto& step : over_time.steps)
+      if (step) q.push_back(*step);
+    o.asymptotic[E] =
+        q.size() >= 2 && std::abs(q[q.size() - 1] - q[q.size() - 2]) <= kAsymptoticSpread;
   }
   for (auto& [method, o] : m) {
     o.compared = o.order.size() >= 2;
@@ -414,6 +405,8 @@ struct Findings {
   // kOrderAgreement of it, each named with that order.
   Count published;
   std::vector<std::string> published_last;
+  // Per method, its fitted orders in h beside the last refinement's, with its grids.
+  std::map<std::string, std::vector<std::string>> ours;
   // Fitted orders above what theory allows, each named with the evidence, the last refinement's
   // order (what the order tends to once the coarse grids stop weighing); met where it falls back
   // to the theory's (within kOrderAgreement), those named in `fall`, the others in `stay`.
@@ -435,7 +428,6 @@ struct Findings {
   std::vector<std::string> consistent_orders;
   Baseline baseline;
   std::optional<double> peer_at_T;  // our order in the baseline's norm
-  bool peer_agrees = false;
   Coverage peer_on;
   std::map<Key, OrdersAtE> index;
   VerdictTally drawn;  // the figure: the stable runs of the h sweep
@@ -545,14 +537,24 @@ Findings find(const Spec& spec, const std::vector<ojson>& rows, std::vector<Time
   // The orders in h of each method across E; of every refinement against the theory's order and,
   // where one is published, the last refinement's against it.
   f.methods = orders_by_method(f.h);
-  for (const auto& [key, ref] : f.h)
+  for (const auto& [key, ref] : f.h) {
     if (f.methods.at(key.second).compared) f.agree.cover(ref);
+    OrdersAtE& at = f.index[key.first];
+    at.by_method.emplace_back(key.second, ref[Norm::over_time].fitted);
+    at.any_fitted = at.any_fitted || ref[Norm::over_time].fitted.has_value();
+  }
   for (const auto& [method, o] : f.methods)
     if (o.compared) f.agree.add(o.agree);
   for (const Refinements* sweep : {&f.h, &f.fine})
     for (const auto& [key, ref] : *sweep) {
       const Orders& over_time = ref[Norm::over_time];
       const auto last = last_order(over_time.steps);
+      if (over_time.fitted)
+        f.ours[key.second].push_back(ref.where + ": " + fixed(*over_time.fitted, 2) + ", last " +
+                                     (last ? fixed(last->first, 2) + " (" +
+                                                 ref.points[last->second].label + " to " +
+                                                 ref.points[last->second + 1].label + ")"
+                                           : std::string("–")));
       if (const auto pub = published_order(key.second).order; pub && last) {
         f.published.add(std::abs(last->first - *pub) <= kOrderAgreement, last->first);
         f.published.cover(ref);
@@ -567,16 +569,9 @@ Findings find(const Spec& spec, const std::vector<ojson>& rows, std::vector<Time
                         (last ? fixed(last->first, 2) : std::string("–")) + ")");
       (falls ? f.fall : f.stay).push_back(name);
     }
-  for (const auto& [key, ref] : f.h) {
-    OrdersAtE& at = f.index[key.first];
-    at.by_method.emplace_back(key.second, ref[Norm::over_time].fitted);
-    at.any_fitted = at.any_fitted || ref[Norm::over_time].fitted.has_value();
-  }
   time_orders(std::move(t), f);
   f.baseline = read_baseline(spec.reference);
   if (!f.peer.empty()) f.peer_at_T = f.peer.begin()->second[Norm::at_T].fitted;
-  f.peer_agrees = f.peer_at_T && f.baseline.order_max &&
-                  std::abs(*f.peer_at_T - *f.baseline.order_max) <= kOrderAgreement;
   return f;
 }
 
@@ -606,9 +601,6 @@ Claim time_order_claim(const Count& n, bool leapfrog) {
 }
 
 std::vector<Claim> convergence_claims(const Findings& f) {
-  // In the linear limit FLIP's first-order term is its lumped-mass re-projection where restoring
-  // the consistent mass, and nothing else, brings the leapfrog's order: the FMPM twin falls at it
-  // and FLIP at the same amplitude does not.
   Claim consistent = counted(
       "time-order-consistent-mass",
       "At an amplitude {fraction} of the study's, USL's time error falls at the leapfrog order "
@@ -641,7 +633,8 @@ std::vector<Claim> convergence_claims(const Findings& f) {
       .value("ours", order_text(f.peer_at_T))
       .value("theirs", order_text(f.baseline.order_max))
       .on(f.peer_on.text() + "; the baseline's records");
-  uintah.holds = f.peer_agrees;
+  uintah.holds = f.peer_at_T && f.baseline.order_max &&
+                 std::abs(*f.peer_at_T - *f.baseline.order_max) <= kOrderAgreement;
   return {counted("orders-agree-across-E",
                   "The fitted orders in h of each method agree across E within {tolerance}",
                   "{met} of {total} methods", f.agree),
@@ -730,8 +723,6 @@ std::string disagreement(const std::string& method, const MethodOrders& o) {
     per_E.push_back(fixed(order, 2) + " at E = " + shortest(E) + " (observed " + list_of(qs) +
                     (o.asymptotic.at(E) ? ", asymptotic" : ", not yet asymptotic") + ")");
   }
-  // The last refinement's order at each E: where these agree, the fitted orders differ only
-  // through the coarse grids.
   std::string last = "; the last refinements' orders spread by " +
                      (o.last_spread ? fixed(*o.last_spread, 2) : std::string("–"));
   if (o.last_spread)
@@ -782,19 +773,15 @@ std::string above_theory_reading(const Findings& f) {
   }
   md << f.above.size() << " fitted orders exceed it by more than " << shortest(kOrderAgreement)
      << ": " << list_of(f.above) << ". ";
-  // For those that fall back at the last refinement the fit is weighted by a coarse-grid regime
-  // that does not persist.
-  const auto& fall = f.fall;
-  const auto& stay = f.stay;
-  if (!fall.empty())
-    md << "At the last refinement " << list_of(fall) << " " << (fall.size() == 1 ? "falls" : "fall")
-       << " to within " << shortest(kOrderAgreement)
+  if (!f.fall.empty())
+    md << "At the last refinement " << list_of(f.fall) << " "
+       << (f.fall.size() == 1 ? "falls" : "fall") << " to within " << shortest(kOrderAgreement)
        << " of it: there the fitted order is weighted by coarse grids whose order does not "
           "persist, and the order to expect on finer grids is the last refinement's. ";
-  if (!stay.empty())
-    md << list_of(stay) << " " << (stay.size() == 1 ? "stays" : "stay") << " above it at the "
+  if (!f.stay.empty())
+    md << list_of(f.stay) << " " << (f.stay.size() == 1 ? "stays" : "stay") << " above it at the "
        << "last refinement: the grids run do not show where "
-       << (stay.size() == 1 ? "its" : "their") << " order settles. ";
+       << (f.stay.size() == 1 ? "its" : "their") << " order settles. ";
   md << "What makes the coarse grids converge faster is not isolated here.";
   return md.str();
 }
@@ -817,19 +804,9 @@ std::string published_table(const Findings& f) {
         "refinement's observed order |\n|---|---|---|---|\n";
   for (const auto& [method, o] : f.methods) {
     const PublishedOrder pub = published_order(method);
-    std::vector<std::string> ours;
-    for (const Refinements* sweep : {&f.h, &f.fine})
-      for (const auto& [key, ref] : *sweep) {
-        const Orders& q = ref[Norm::over_time];
-        const auto last = last_order(q.steps);
-        if (key.second != method || !q.fitted) continue;
-        ours.push_back(ref.where + ": " + fixed(*q.fitted, 2) + ", last " +
-                       (last ? fixed(last->first, 2) + " (" + ref.points[last->second].label +
-                                   " to " + ref.points[last->second + 1].label + ")"
-                             : std::string("–")));
-      }
+    const auto ours = f.ours.find(method);
     md << "| " << method << " | " << (pub.order ? shortest(*pub.order) : "–") << " | " << pub.source
-       << " | " << list_of(ours) << " |\n";
+       << " | " << (ours == f.ours.end() ? "" : list_of(ours->second)) << " |\n";
   }
   return md.str();
 }

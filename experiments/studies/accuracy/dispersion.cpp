@@ -70,13 +70,11 @@ struct ModeRun {
   std::string label;
   int cells = 0;
   double courant = 0, dt = 0, exact = 0;
-  DispersionPoint predicted_point;
   double predicted = 0;  // 2 pi dt / arg(lambda)
+  double kept = 0;       // |lambda| over one predicted period: the amplitude the branch keeps
   ModePeriod measured;
   bool measured_ok() const { return measured.periods > 0; }
   double relative() const { return measured.period / predicted - 1; }
-  // |lambda| over one predicted period: the amplitude the branch keeps.
-  double kept() const { return kept_per_period(predicted_point); }
 };
 
 // The single-mode runs: the period each case measures (measure_mode_period, a run the report makes
@@ -92,8 +90,9 @@ std::vector<ModeRun> mode_runs(const Spec& spec, const std::vector<ojson>& rows)
     m.courant = *courant_number(p);
     m.dt = *fixed_step(p);
     m.exact = 1 / wave_speed(p);
-    m.predicted_point = dispersion_at(p, m.courant, 2 * kPi / p.cells);
-    m.predicted = 2 * kPi * m.dt / m.predicted_point.phase;
+    const DispersionPoint predicted = dispersion_at(p, m.courant, 2 * kPi / p.cells);
+    m.predicted = 2 * kPi * m.dt / predicted.phase;
+    m.kept = kept_per_period(predicted);
     m.measured = measure_mode_period(p);
     out.push_back(m);
   }
@@ -138,7 +137,7 @@ std::vector<Scheme> bloch_schemes(int ppc) {
   for (int j = 1; j <= kFigureSamples; ++j)
     figure_khs.push_back(kPi * j / kFigureSamples);
   std::vector<Scheme> out;
-  for (const Transfer t : kTransfers) {
+  for (const Transfer t : kTransfers)
     for (const Method m : kBases) {
       Scheme s;
       s.params.method = m;
@@ -180,7 +179,6 @@ std::vector<Scheme> bloch_schemes(int ppc) {
       }
       out.push_back(std::move(s));
     }
-  }
   return out;
 }
 
@@ -189,13 +187,6 @@ const Scheme* find_scheme(const std::vector<Scheme>& schemes, Method m, Transfer
   for (const auto& s : schemes)
     if (s.params.method == m && s.params.transfer == t) return &s;
   return nullptr;
-}
-
-// Cells per wavelength of one basis with one transfer at Courant number k, if computed.
-std::optional<double> cells_of(const std::vector<Scheme>& schemes, Method m, Transfer t,
-                               std::size_t k) {
-  const Scheme* s = find_scheme(schemes, m, t);
-  return s ? s->at[k].cells : std::nullopt;
 }
 
 // The fewest cells per wavelength at one Courant number, and the schemes that need as many.
@@ -244,13 +235,18 @@ struct Findings {
 SplinePairs spline_pairs(const std::vector<Scheme>& schemes, bool fmpm) {
   SplinePairs p;
   for (std::size_t k = 0; k < kCourants.size(); ++k) {
-    const auto linear = cells_of(schemes, Method::mpm, Transfer::flip, k);
+    // Cells per wavelength of one basis with one transfer at Courant number k, if computed.
+    const auto cells_of = [&](Method m, Transfer t) {
+      const Scheme* s = find_scheme(schemes, m, t);
+      return s ? s->at[k].cells : std::nullopt;
+    };
+    const auto linear = cells_of(Method::mpm, Transfer::flip);
     if (!fmpm && !linear) continue;
     std::string part = fmpm ? "" : "mpm " + fixed(*linear, 1);
     for (const Method m : {Method::bspline2, Method::bspline3}) {
-      const auto flip = cells_of(schemes, m, Transfer::flip, k);
+      const auto flip = cells_of(m, Transfer::flip);
       const auto against = fmpm ? flip : linear;
-      const auto cells = fmpm ? cells_of(schemes, m, Transfer::fmpm, k) : flip;
+      const auto cells = fmpm ? cells_of(m, Transfer::fmpm) : flip;
       if (!cells || !against) continue;
       ++p.compared;
       p.hits += fmpm ? *cells < *against : *cells > *against;
@@ -476,7 +472,7 @@ std::string runs_table(const std::vector<ModeRun>& runs) {
        << significant(m.predicted, 6) << " | "
        << (m.measured_ok() ? significant(m.measured.period, 6) : std::string("–")) << " | "
        << m.measured.periods << " | " << (m.measured_ok() ? sci(m.relative(), 2) : "–") << " | "
-       << significant(m.kept(), 4) << " | " << verdict(*m.row) << " |\n";
+       << significant(m.kept, 4) << " | " << verdict(*m.row) << " |\n";
   }
   return md.str();
 }
@@ -552,8 +548,8 @@ ojson dispersion_json(const std::vector<Scheme>& schemes, const std::vector<Mode
              {"courants", kCourants},
              {"cells_per_wavelength", ojson::array()},
              {"periods", ojson::array()}};
-  for (const auto& s : schemes) {
-    for (const auto& a : s.at) {
+  for (const auto& s : schemes)
+    for (const auto& a : s.at)
       j["cells_per_wavelength"].push_back(
           {{"method", s.label},
            {"basis", std::string(to_string(s.params.method))},
@@ -564,9 +560,7 @@ ojson dispersion_json(const std::vector<Scheme>& schemes, const std::vector<Mode
            {"spectral_limit", s.limit ? ojson(*s.limit) : ojson(nullptr)},
            {"below_limit", a.below_limit},
            {"cells_per_wavelength_1pct", a.cells ? ojson(*a.cells) : ojson(nullptr)}});
-    }
-  }
-  for (const auto& m : runs) {
+  for (const auto& m : runs)
     j["periods"].push_back(
         {{"method", m.label},
          {"cells", m.cells},
@@ -576,7 +570,6 @@ ojson dispersion_json(const std::vector<Scheme>& schemes, const std::vector<Mode
          {"measured_period", m.measured_ok() ? ojson(m.measured.period) : ojson(nullptr)},
          {"periods_measured", m.measured.periods},
          {"relative_difference", m.measured_ok() ? ojson(m.relative()) : ojson(nullptr)}});
-  }
   return j;
 }
 
@@ -656,16 +649,14 @@ std::string dispersion_data(const std::vector<Scheme>& schemes, const std::strin
          "has no rows at a Courant number at or above its spectral limit, nor where its branch "
          "does not propagate\n"
       << "panel,courant,series,scheme,kh,phase_speed,damping\n";
-  for (std::size_t k = 0; k < kCourants.size(); ++k) {
-    for (std::size_t code = 0; code < series.size(); ++code) {
+  for (std::size_t k = 0; k < kCourants.size(); ++k)
+    for (std::size_t code = 0; code < series.size(); ++code)
       for (const auto& d : series[code].scheme->curves[k]) {
         if (!d.propagates) continue;
         csv << k << ',' << shortest(kCourants[k]) << ',' << code << ',' << series[code].name << ','
             << shortest(d.kh) << ',' << shortest(d.phase_speed) << ',' << shortest(d.damping)
             << '\n';
       }
-    }
-  }
   return csv.str();
 }
 

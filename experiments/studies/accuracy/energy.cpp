@@ -58,8 +58,7 @@ std::map<Cell, std::vector<std::size_t>> histories(const std::vector<ojson>& row
 // The drift sweeps of one method: (variable, row), coarsest first, and the fitted orders of the
 // balance error, max, and of the drift per period.
 struct Sweep {
-  std::string method;
-  std::string variable;  // "C" or "cells"
+  std::string method, variable;  // the variable: "C" or "cells"
   struct Point {
     double x = 0;
     const ojson* row = nullptr;
@@ -204,11 +203,18 @@ Findings find(const std::vector<ojson>& rows, const SweepOutcome& records) {
   return f;
 }
 
-// A warning claim: it holds when the signal came before every failure (`hits`, the value named
+// An early warning before every failure, and the same signal in the runs that reach T (false
+// warnings): it holds when the signal came before every failure (`hits`, the value named
 // `hits_name`) and in no run that reached T.
-Claim warning_claim(const char* id, const std::string& statement, const char* evidence,
-                    const char* hits_name, const Lead& lead, const Findings& f) {
-  Claim c = claim(id, statement, evidence);
+Claim lead_claim(const Findings& f, const Lead& lead, const char* id, const char* what,
+                 const char* hits_name = "warned",
+                 const char* evidence =
+                     "before {warned} of {failed} failures; in {false_warnings} of {survived} "
+                     "fixed-step runs that reach T") {
+  Claim c = claim(
+      id,
+      std::string(what) + " warns before every failure of this study and in no run that reaches T",
+      evidence);
   c.count(hits_name, lead.warned)
       .count("failed", f.failed)
       .count("false_warnings", lead.false_warnings)
@@ -216,17 +222,6 @@ Claim warning_claim(const char* id, const std::string& statement, const char* ev
   c.holds = f.failed > 0 && lead.warned == f.failed && lead.false_warnings == 0;
   c.on(f.warnings_on);
   return c;
-}
-
-// An early warning before every failure, and the same signal in the runs that reach T (false
-// warnings).
-Claim lead_claim(const Findings& f, const Lead& lead, const char* id, const char* what) {
-  return warning_claim(
-      id,
-      std::string(what) + " warns before every failure of this study and in no run that reaches T",
-      "before {warned} of {failed} failures; in {false_warnings} of {survived} fixed-step runs "
-      "that reach T",
-      "warned", lead, f);
 }
 
 std::vector<Claim> energy_claims(const Findings& f) {
@@ -243,12 +238,9 @@ std::vector<Claim> energy_claims(const Findings& f) {
   return {pic, converges,
           lead_claim(f, f.energy, "energy-warns", "The energy balance leaving its band"),
           lead_claim(f, f.eq108, "eq108-warns", "A dt above eq. (108)"),
-          warning_claim("spectral-warns",
-                        "A c dt/h above the spectral limit warns before every failure of this "
-                        "study and in no run that reaches T",
-                        "{above} of {failed} failed runs step above the limit; {false_warnings} of "
-                        "{survived} fixed-step runs that reach T",
-                        "above", f.spectral, f)};
+          lead_claim(f, f.spectral, "spectral-warns", "A c dt/h above the spectral limit", "above",
+                     "{above} of {failed} failed runs step above the limit; {false_warnings} of "
+                     "{survived} fixed-step runs that reach T")};
 }
 
 std::string cell_text(const Cell& c) {

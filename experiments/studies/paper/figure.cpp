@@ -76,12 +76,11 @@ std::string figure_index(const Spec& spec, const std::vector<ojson>& rows) {
 ojson figure_json(const ojson& record) {
   if (record.contains("final_state"))
     return {{"drawn", record["final_state"]["X"].size()}, {"drawn_what", "particles"}};
-  if (record.contains("history")) {
-    // The history itself too: other studies (the comparison with the paper's figures) read it.
+  // The history itself too: other studies (the comparison with the paper's figures) read it.
+  if (record.contains("history"))
     return {{"drawn", record["history"].size()},
             {"drawn_what", "recorded steps"},
             {"history", record["history"]}};
-  }
   return {{"drawn", 0}, {"drawn_what", "rows"}};
 }
 

@@ -1,7 +1,6 @@
 // The paper's Table 1: E blocks, dt rows, MPM and GIMP, the paper's dt stable and max error
 // beside ours, with a summary of where the stability verdicts and errors agree.
 #include <algorithm>
-#include <cmath>
 #include <map>
 #include <optional>
 #include <sstream>
@@ -97,32 +96,22 @@ Findings find(const Spec& spec, const std::vector<ojson>& rows,
     }
     // The cell, by how it stands against the paper's verdict.
     using enum CellAgreement;
-    switch (agreement) {
-      case both_stable:
-        ++s.both_stable;
-        (r.accurate() ? s.both_stable_accurate : s.both_stable_inaccurate) += 1;
-        break;
-      case both_unstable:
-        ++s.both_unstable;
-        break;
-      case paper_stable_ours_unstable:
-        ++s.paper_stable_ours_not;
-        s.paper_stable_ours_not_above_limit += r.above_spectral_limit();
-        break;
-      case ours_meaningless:
-        ++(stable_in_paper ? s.paper_stable_ours_meaningless : s.paper_unstable_ours_meaningless);
-        break;
-      case ours_too_short:
-        (stable_in_paper ? s.paper_stable_ours_too_short : s.paper_unstable_ours_too_short) += 1;
-        break;
-      default:
-        break;
+    s.both_unstable += agreement == both_unstable;
+    if (agreement == paper_stable_ours_unstable) {
+      ++s.paper_stable_ours_not;
+      s.paper_stable_ours_not_above_limit += r.above_spectral_limit();
     }
-    const auto ours = compared_error(rows[i], spec.cases[i].error_at);
-    if (agreement == CellAgreement::both_stable && ours) {
+    if (agreement == ours_meaningless)
+      ++(stable_in_paper ? s.paper_stable_ours_meaningless : s.paper_unstable_ours_meaningless);
+    if (agreement == ours_too_short)
+      ++(stable_in_paper ? s.paper_stable_ours_too_short : s.paper_unstable_ours_too_short);
+    if (agreement != both_stable) continue;
+    ++s.both_stable;
+    (r.accurate() ? s.both_stable_accurate : s.both_stable_inaccurate) += 1;
+    if (const auto ours = compared_error(rows[i], spec.cases[i].error_at)) {
       ++s.errors_compared;
       s.errors_compared_accurate += r.accurate();
-      if (within_agreement_factor(*ours, pc->max_error.value)) ++s.errors_within_factor;
+      s.errors_within_factor += within_agreement_factor(*ours, pc->max_error.value);
     }
   }
   return s;
@@ -238,7 +227,7 @@ std::string table1_summary_text(const Findings& s) {
   return md.str();
 }
 
-// What the marks and columns mean, with the source of the paper values.
+// What the marks and columns mean, with the source of the paper values, and the ensembles.
 std::string table1_legend(const Spec& spec, const fs::path& out, bool over_time) {
   return "Legend: `*` unstable (ours: the reason and the step where the run stopped); *stable* "
          "(ours): the run survived to T with an error over time below the amplitude A; "
@@ -259,7 +248,20 @@ std::string table1_legend(const Spec& spec, const fs::path& out, bool over_time)
          (over_time ? " Max error ours: at T, or the largest over the run where marked (over "
                       "time), as the case's error_at chooses."
                     : "") +
-         "\n\n";
+         "\n\n*ensemble*: a cell near its edge (unstable below its spectral limit, meaningless, or "
+         "stable with an error over time of at least " +
+         shortest(kNearErrorFraction) + " A or c dt/h above the limit / " +
+         shortest(kNearLimitMargin) + ") is rerun with " + std::to_string(kEnsembleMembers) +
+         " layouts shifted or jittered by a few " + sci(kEnsemblePerturbation, 1) +
+         " of the particle spacing, far below the discretisation error; it is *robust* when "
+         "every member ends as it does, **sensitive** otherwise (with the members' outcomes). A "
+         "near cell whose members would each cost more than " +
+         sci(kPaperEnsembleBudget, 2) +
+         " particle-steps is rerun in the studies tier, [ensembles.md](ensembles.md) (`make "
+         "studies`), up to " +
+         sci(kEnsembleMemberBudget, 2) +
+         " each; above that it is not rerun (cost), and says so (docs/studies.md, "
+         "\"Ensembles\").\n\n";
 }
 
 // One cell of the table: the paper's dt_stable and max error beside ours, our verdict, the
@@ -294,49 +296,24 @@ std::string table1_row(const CaseSpec& cs, const ojson& r,
   return md.str();
 }
 
-std::string ensemble_legend() {
-  return "*ensemble*: a cell near its edge (unstable below its spectral limit, meaningless, or "
-         "stable with an error over time of at least " +
-         shortest(kNearErrorFraction) + " A or c dt/h above the limit / " +
-         shortest(kNearLimitMargin) + ") is rerun with " + std::to_string(kEnsembleMembers) +
-         " layouts shifted or jittered by a few " + sci(kEnsemblePerturbation, 1) +
-         " of the particle spacing, far below the discretisation error; it is *robust* when "
-         "every member ends as it does, **sensitive** otherwise (with the members' outcomes). A "
-         "near cell whose members would each cost more than " +
-         sci(kPaperEnsembleBudget, 2) +
-         " particle-steps is rerun in the studies tier, [ensembles.md](ensembles.md) (`make "
-         "studies`), up to " +
-         sci(kEnsembleMemberBudget, 2) +
-         " each; above that it is not rerun (cost), and says so (docs/studies.md, "
-         "\"Ensembles\").\n\n";
-}
-
 // The summary, the legend, then one table per (E, A) block in the order the spec lists them,
 // under a heading per E.
 std::string table1_markdown(const Spec& spec, const std::vector<ojson>& rows, const fs::path& out,
                             const Findings& f) {
   std::ostringstream md;
   md << "## Results\n\n**Summary.** " << table1_summary_text(f) << "\n\n"
-     << table1_legend(spec, out, f.over_time) << ensemble_legend();
-  std::vector<std::pair<double, double>> blocks;
+     << table1_legend(spec, out, f.over_time);
+  std::vector<std::pair<double, double>> blocks;  // (E, A), each at its first case
   for (const auto& c : spec.cases) {
-    const std::pair<double, double> b{c.params.E, c.params.A};
-    if (std::find(blocks.begin(), blocks.end(), b) == blocks.end()) blocks.push_back(b);
-  }
-  double current_E = std::nan("");
-  for (const auto& block : blocks) {
-    const double E = block.first, A = block.second;  // named: a lambda below captures them
+    const double E = c.params.E, A = c.params.A;
+    if (std::find(blocks.begin(), blocks.end(), std::pair{E, A}) != blocks.end()) continue;
     // The block in the coordinates that fix a run: c T for E (at the spec's T), A / h for A.
-    const auto in_block =
-        std::find_if(spec.cases.begin(), spec.cases.end(),
-                     [&](const CaseSpec& c) { return c.params.E == E && c.params.A == A; });
-    if (E != current_E) {
-      md << "### E = " << shortest(E) << " (c T = " << significant(wave_passes(in_block->params), 3)
+    if (blocks.empty() || E != blocks.back().first)
+      md << "### E = " << shortest(E) << " (c T = " << significant(wave_passes(c.params), 3)
          << " wave passes)\n\n";
-      current_E = E;
-    }
-    md << "**A = " << shortest(A)
-       << " (A / h = " << significant(amplitude_per_cell(in_block->params), 3) << ")**\n\n";
+    blocks.emplace_back(E, A);
+    md << "**A = " << shortest(A) << " (A / h = " << significant(amplitude_per_cell(c.params), 3)
+       << ")**\n\n";
     md << "| dt | method | c dt/h | dt_stable paper | dt_stable ours | max error paper | max error "
           "ours | ours / paper | ours: verdict | error over time / A | accuracy | transcription | "
           "particle-steps | ensemble |\n"

@@ -23,26 +23,6 @@ namespace fs = std::filesystem;
 // digits are printed to four significant figures.
 constexpr double kPrintedRounding = 1e-3;
 
-// Where the paper's dt_sound column is 1/c and where not, and how h/c relates to it.
-std::string dt_sound_text(const CsvTable& paper, const std::vector<ojson>& rows) {
-  int equal = 0;
-  std::string differ;
-  for (const auto& row : paper.rows) {
-    const double E = std::stod(row.at("E")), printed = std::stod(row.at("dt_sound"));
-    const double inverse_c = 1 / std::sqrt(E);
-    if (std::abs(printed - inverse_c) <= kPrintedRounding * inverse_c) {
-      ++equal;
-    } else {
-      differ += (differ.empty() ? "" : "; ") + std::string("E = ") + shortest(E) + ": " +
-                row.at("dt_sound") + " printed, 1/c = " + significant(inverse_c, 4);
-    }
-  }
-  return "The paper's dt_sound column is 1/c in " + std::to_string(equal) + " of " +
-         std::to_string(paper.rows.size()) + " rows" +
-         (differ.empty() ? "" : " (not at " + differ + ")") +
-         "; the grid's speed-of-sound step h/c is " + listing(rows, "cells") + " times smaller.";
-}
-
 // The cases of the spec and the paper's table they are compared with.
 struct Table2Data {
   const Spec& spec;
@@ -83,7 +63,8 @@ struct Table2Data {
   }
 };
 
-// Per method: the range of ours / paper over the cases that reach T, and how many cases failed.
+// Per method: the range of ours / paper over the cases that reach T, and how many cases failed;
+// then where the paper's dt_sound column is 1/c and where not, and how h/c relates to it.
 std::string table2_summary_text(const Table2Data& d) {
   std::map<std::string, std::vector<double>> ratios;  // method -> ours / paper
   std::map<std::string, int> unstable;
@@ -104,7 +85,21 @@ std::string table2_summary_text(const Table2Data& d) {
     if (unstable[m]) md << " (" << unstable[m] << " more became unstable before T)";
     md << ". ";
   }
-  md << dt_sound_text(d.paper, d.rows);
+  int equal = 0;
+  std::string differ;
+  for (const auto& row : d.paper.rows) {
+    const double E = std::stod(row.at("E")), printed = std::stod(row.at("dt_sound"));
+    const double inverse_c = 1 / std::sqrt(E);
+    if (std::abs(printed - inverse_c) <= kPrintedRounding * inverse_c) {
+      ++equal;
+    } else {
+      differ += (differ.empty() ? "" : "; ") + std::string("E = ") + shortest(E) + ": " +
+                row.at("dt_sound") + " printed, 1/c = " + significant(inverse_c, 4);
+    }
+  }
+  md << "The paper's dt_sound column is 1/c in " << equal << " of " << d.paper.rows.size()
+     << " rows" << (differ.empty() ? "" : " (not at " + differ + ")")
+     << "; the grid's speed-of-sound step h/c is " << listing(d.rows, "cells") << " times smaller.";
   return md.str();
 }
 
@@ -155,7 +150,7 @@ std::string crossings_row(const Table2Data& d, double E) {
   return md.str();
 }
 
-// The paper's Table 2 with ours beside it: one row per E.
+// The paper's Table 2 with ours beside it, one row per E, and the notes of its transcription.
 std::string crossings_table(const Table2Data& d) {
   std::ostringstream md;
   md << "| E |";
@@ -170,14 +165,8 @@ std::string crossings_table(const Table2Data& d) {
   md << "---|---|---|\n";
   for (double E : d.Es)
     md << crossings_row(d, E);
-  return md.str();
-}
-
-// The notes the transcription of the paper's table records.
-std::string transcription_notes(const CsvTable& paper) {
-  std::ostringstream md;
   md << "\nNotes from the transcription: ";
-  for (const auto& row : paper.rows)
+  for (const auto& row : d.paper.rows)
     if (!row.at("note").empty()) md << "E = " << row.at("E") << ": " << row.at("note") << ". ";
   return md.str();
 }
@@ -271,11 +260,13 @@ std::string counting_rules_section(const Table2Data& d, std::vector<Claim>& clai
   md << "---|\n";
   std::vector<int> within(names.size(), 0);
   std::vector<std::vector<double>> ratios(names.size());
-  std::vector<double> grids;
+  std::vector<double> grids, gimp_over_exact;
   for (const auto& r : counts) {
+    const ojson* g = d.find_row(r.E, r.A, "gimp");
     md << "| " << shortest(r.E) << " | " << shortest(r.A) << " | " << shortest(r.paper) << " | "
-       << crossings(d.find_row(r.E, r.A, "gimp")) << " | " << crossings(d.find_row(r.E, r.A, "mpm"))
-       << " |";
+       << crossings(g) << " | " << crossings(d.find_row(r.E, r.A, "mpm")) << " |";
+    if (g && survived(*g) && has_number(*g, "crossings"))
+      gimp_over_exact.push_back((*g)["crossings"].get<double>() / double(r.every_step.every));
     const auto rules = rules_of(r);
     for (std::size_t k = 0; k < rules.size(); ++k) {
       const double n = double(rules[k].second);
@@ -299,12 +290,6 @@ std::string counting_rules_section(const Table2Data& d, std::vector<Claim>& clai
     md << " (within " << percent(kApproximate) << " in " << within[k] << ")";
     best = std::max(best, within[k]);
   }
-  std::vector<double> gimp_over_exact;
-  for (const auto& r : counts) {
-    const ojson* g = d.find_row(r.E, r.A, "gimp");
-    if (g && survived(*g) && has_number(*g, "crossings"))
-      gimp_over_exact.push_back((*g)["crossings"].get<double>() / double(r.every_step.every));
-  }
   md << ". Our GIMP's counts, in the " << gimp_over_exact.size()
      << " cells where its run reaches T, are " << span(gimp_over_exact, 3)
      << " times the exact motion's own: the gap to the paper's counts is already in the exact "
@@ -327,7 +312,7 @@ std::string counting_rules_section(const Table2Data& d, std::vector<Claim>& clai
 StudyReport table2_report(const Spec& spec, const std::vector<ojson>& rows, const fs::path& out) {
   const Table2Data d(spec, rows);
   StudyReport report;
-  report.markdown = table2_intro(d, out) + crossings_table(d) + transcription_notes(d.paper) +
+  report.markdown = table2_intro(d, out) + crossings_table(d) +
                     counting_rules_section(d, report.claims) + every_case_table(spec, rows);
   return report;
 }
