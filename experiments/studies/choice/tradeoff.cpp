@@ -681,13 +681,15 @@ std::vector<Claim> tradeoff_claims(const Findings& f) {
   gimp.on(coverage_of(gimp_mpm));
   const SceneFindings& bar = f.scene.front();
   const GridRefinement& g = bar.refinement;
-  Claim spread = claim("step-moves-error-less-than-grid",
-                       "For GIMP on the paper's bar, below the edge the time step moves the error "
-                       "over time less than the grid does, at every E: a smaller step costs work "
-                       "and buys no accuracy",
-                       "the step moves it by a factor of at most {spread} (every stable fixed and "
-                       "CFL step on {coarse} cells); {coarse} to {fine} cells lower it by a factor "
-                       "of at least {grid} (a factor below one: it rises); {total} values of E");
+  Claim spread =
+      claim("step-moves-error-less-than-grid",
+            "For GIMP on the paper's bar, below the edge the time step moves the error "
+            "over time less than the grid does, at every E: a smaller step costs work "
+            "and buys no accuracy",
+            "the step moves it by a factor of at most {spread} (every stable fixed and "
+            "CFL step on {coarse} cells); going from {coarse} to {fine} cells divides it "
+            "by {grid} at the least (below one: the finer grid's error is larger); "
+            "{total} values of E");
   spread.number("spread", f.spread_max)
       .count("coarse", kCoarse)
       .count("fine", kFine)

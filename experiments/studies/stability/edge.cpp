@@ -331,7 +331,7 @@ SceneFindings scene_findings(std::string scene, std::vector<const ojson*> rows,
     sweeps[{rr.method, Key(*rr.wave_passes, "c T")}].push_back(p);
     // A search not monotone: "mpm, A = 0.05, E = 4 (c T = 2) (**not monotone**: ...)".
     if (has_number(r, "dt_edge") && !survival_monotone(r))
-      s.non_monotone.push_back(rr.method + ", A = " + shortest(*rr.A) +
+      s.non_monotone.push_back(rr.method + ", A = " + value_text(*rr.A) +
                                ", E = " + shortest(r["E"].get<double>()) + " (c T = " + passes(r) +
                                ") (" + monotone_text(r) + ")");
     const auto it = f.twins.find(p);
@@ -484,7 +484,7 @@ std::string where(Coverage c, bool lengths_only = false, bool one_clause = false
 // searches span.
 std::string method_summary(const Group& group, const Edges& m) {
   std::ostringstream md;
-  md << group.first << " at A = " << shortest(group.second) << ": ";
+  md << group.first << " at A = " << value_text(group.second) << ": ";
   if (m.edge.empty())
     return md.str() + "no edge at " + where(m.none_at, true) + ": " + kNoEdge + ". ";
   md << "the survival edge is " << range_of(m.edge) << " h/c over " << where(m.edge_at, true)
@@ -645,20 +645,22 @@ std::string edge_table(const std::vector<const ojson*>& rows, const EdgeFollowUp
   return md.str();
 }
 
-// "bar: mpm, A = 0.05, c T = 4, 8; steffen: ...".
+// "bar: mpm, A = 0.05, c T = 4, 8; steffen: ...": by scene, method and A, each run length
+// ascending.
 std::string listed(const std::vector<const ojson*>& rows) {
-  std::vector<std::pair<std::string, std::string>> groups;  // "bar: mpm, A = 0.05", "4, 8"
+  std::map<std::tuple<std::string, std::string, double>, std::vector<double>> groups;
   for (const ojson* r : rows) {
     const RunRow rr(*r);
-    const std::string key = text(*r, "scene") + ": " + rr.method + ", A = " + shortest(*rr.A);
-    auto it =
-        std::find_if(groups.begin(), groups.end(), [&](const auto& g) { return g.first == key; });
-    if (it == groups.end()) it = groups.insert(groups.end(), {key, ""});
-    it->second += (it->second.empty() ? "" : ", ") + passes(*r);
+    groups[{text(*r, "scene"), rr.method, *rr.A}].push_back(*rr.wave_passes);
   }
   std::string s;
-  for (const auto& [key, lengths] : groups)
-    s += (s.empty() ? "" : "; ") + key + ", c T = " + lengths;
+  for (auto& [key, lengths] : groups) {
+    std::sort(lengths.begin(), lengths.end());
+    s += (s.empty() ? "" : "; ") + std::get<0>(key) + ": " + std::get<1>(key) +
+         ", A = " + value_text(std::get<2>(key)) + ", c T =";
+    for (std::size_t k = 0; k < lengths.size(); ++k)
+      s += (k ? ", " : " ") + significant(lengths[k], 3);
+  }
   return s;
 }
 
@@ -712,7 +714,7 @@ std::string walls_text(const SceneFindings& s) {
         "boundaries (no wall: the interior's own error); the periodic error over time is, per "
         "method and amplitude, ";
   for (const auto& [m, n] : s.twins) {
-    md << (m == s.twins.begin()->first ? "" : "; ") << m.first << " at A = " << shortest(m.second)
+    md << (m == s.twins.begin()->first ? "" : "; ") << m.first << " at A = " << value_text(m.second)
        << ": ";
     const auto it = s.twin_ratios.find(m);
     if (it == s.twin_ratios.end()) {
