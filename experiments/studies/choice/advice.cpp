@@ -25,6 +25,7 @@ using ojson = nlohmann::ordered_json;
 CornerRun corner_of(const ojson& r, CornerKind kind, double length) {
   CornerRun c{.kind = kind, .length = length, .A = r["A"].get<double>()};
   c.cells = r["cells"].get<int>();
+  c.jitter = r.value("jitter", 0.0);
   c.outcome = outcome(r);
   if (const auto e = RunRow(r).error_over_time) c.error_over_A = *e / c.A;
   return c;

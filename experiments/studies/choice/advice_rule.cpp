@@ -42,6 +42,7 @@ json_t corner_json(const CornerRun& c) {
   return {{"kind", std::string(to_string(c.kind))},
           {"cT", c.length},
           {"A", c.A},
+          {"jitter", c.jitter},
           {"cells", c.cells},
           {"outcome", c.outcome},
           {"error_over_A", c.error_over_A ? json_t(*c.error_over_A) : json_t(nullptr)}};
@@ -102,6 +103,8 @@ CornerRun corner_from_json(const json_t& j, const std::string& where) {
   c.kind = *kind;
   c.length = number_at(j, "cT", where);
   c.A = number_at(j, "A", where);
+  c.jitter = number_at(j, "jitter", where);
+  if (!(c.jitter >= 0 && c.jitter <= 1)) throw InputError(where + ".jitter: must be 0 to 1");
   c.cells = int_at(j, "cells", where);
   c.outcome = string_at(j, "outcome", where);
   const json_t& e = at(j, "error_over_A", where);

@@ -65,6 +65,7 @@ inline constexpr std::size_t kRegionCorners = 12;
 struct CornerRun {
   CornerKind kind = CornerKind::base;
   double length = 0, A = 0;
+  double jitter = 0;  // the layout's jitter (of the particle spacing; 0: uniform)
   int cells = 0;
   std::string outcome;                 // unstable, meaningless, stable, too_short
   std::optional<double> error_over_A;  // error over time / A, where measured
