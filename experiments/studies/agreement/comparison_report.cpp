@@ -821,9 +821,10 @@ void dt_stable_section(std::ostream& md, const Comparison& cmp) {
   std::size_t mpm_cells = 0;
   for (const auto& [key, e] : cmp.eq108) {
     if (key.first != cmp.cells.front().spec->params.cells) continue;
+    const auto& by_method = e.by_method;  // a lambda may not name a structured binding
     auto of = [&](const char* m) {
-      const auto it = e.by_method.find(m);
-      return it == e.by_method.end() ? std::vector<double>{} : it->second.ratios;
+      const auto it = by_method.find(m);
+      return it == by_method.end() ? std::vector<double>{} : it->second.ratios;
     };
     md << "| " << key.second << " | " << distribution(of("mpm")) << " | "
        << distribution(of("gimp")) << " |\n";
