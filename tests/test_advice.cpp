@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "choice/advice_rule.hpp"
+#include "choice/advice_verify.hpp"
 #include "files.hpp"
 #include "run/run.hpp"
 #include "support.hpp"
@@ -57,11 +58,13 @@ TEST(Advice, CornersCoverEachAxisOfTheRegionAtTheSameCourantNumber) {
     periodic += p.bc == Boundary::periodic;
     jittered += p.layout.jitter > 0;
   }
-  // Each of the scene, boundary and layout corners once per length; the finer grid once.
+  // Each of the scene and boundary corners once per length, the layout once per jitter and
+  // length, the largest jitter the one `mpmstab advise` answers to; the finer grid once.
   EXPECT_EQ(finer, 1);
   EXPECT_EQ(other_scene, 2);
   EXPECT_EQ(periodic, 2);
-  EXPECT_EQ(jittered, 2);
+  EXPECT_EQ(jittered, 2 * int(kRegionRule.jitters.size()));
+  EXPECT_EQ(kRegionRule.jitters.back(), kAdviceDomain.jitter_max);
 }
 
 CornerRun corner(CornerKind kind, double length, double error_over_A,
@@ -86,8 +89,10 @@ CheckedSetting passing(double courant, int cells, double error) {
   s.courant = courant;
   s.courant_spectral = 0.75;
   s.corners.push_back(corner(CornerKind::base, kRegionRule.lengths.front(), error));
-  for (const auto& c : region_corners(base_run(cells, courant)))
+  for (const auto& c : region_corners(base_run(cells, courant))) {
     s.corners.push_back(corner(c.kind, c.length, error));
+    s.corners.back().jitter = c.jitter;
+  }
   s.regions = regions_of(s);
   return s;
 }
@@ -98,13 +103,29 @@ CornerRun* find(CheckedSetting& s, CornerKind kind, double length) {
   return nullptr;
 }
 
+TEST(Advice, AJitteredRegionStopsBelowTheFirstJitterThatFails) {
+  CheckedSetting s = passing(0.25, 50, 0.01);
+  const double long_ = kRegionRule.lengths.back();
+  for (auto& c : s.corners)
+    if (c.kind == CornerKind::jittered && c.length == long_ && c.jitter == kRegionRule.jitters[1])
+      c.outcome = "unstable";
+  s.regions = regions_of(s);
+  ASSERT_EQ(s.regions.size(), 2u);
+  EXPECT_EQ(s.regions[0].jitter, kRegionRule.jitters.back());
+  EXPECT_EQ(s.regions[1].jitter, kRegionRule.jitters.front());
+  ASSERT_EQ(s.regions[1].excluded.size(), 1u);  // the failing one; the larger one is beyond it
+  EXPECT_EQ(s.regions[1].excluded.front().jitter, kRegionRule.jitters[1]);
+  EXPECT_NE(region_text(s.regions[1]).find("jittered to 0.05"), std::string::npos);
+}
+
 TEST(Advice, AFailingCornerShrinksTheRegionAndIsNamed) {
   const double short_ = kRegionRule.lengths.front(), long_ = kRegionRule.lengths.back();
   CheckedSetting s = passing(0.25, 50, 0.01);
   ASSERT_EQ(s.regions.size(), 2u);
   EXPECT_EQ(s.regions[1].A_min, kRegionRule.amplitudes[0]);
   EXPECT_EQ(s.regions[1].A_max, kRegionRule.amplitudes[2]);
-  EXPECT_TRUE(s.regions[1].periodic && s.regions[1].other_scene && s.regions[1].jittered);
+  EXPECT_TRUE(s.regions[1].periodic && s.regions[1].other_scene);
+  EXPECT_EQ(s.regions[1].jitter, kRegionRule.jitters.back());
   EXPECT_EQ(s.regions[1].cells_max, 50 * kRegionRule.refine);
 
   // The largest amplitude fails to the longer length: the region stops at the middle one, and
@@ -122,7 +143,7 @@ TEST(Advice, AFailingCornerShrinksTheRegionAndIsNamed) {
   EXPECT_EQ(shorter.cells_max, 50);
   const Region& longer = s.regions[1];
   EXPECT_EQ(longer.A_max, kRegionRule.amplitudes[1]);
-  EXPECT_FALSE(longer.periodic || longer.other_scene || longer.jittered);
+  EXPECT_FALSE(longer.periodic || longer.other_scene || longer.jitter > 0);
   EXPECT_EQ(longer.excluded.size(), 2u);  // the largest amplitude and the finer grid
   EXPECT_NE(region_text(longer).find("no finer grid"), std::string::npos);
 

@@ -41,7 +41,9 @@ bool worth_checking(const ojson& base) {
 
 // What a corner run is for: its corner (kind and length).
 std::string corner_role(const Corner& k) {
-  return "corner " + std::string(to_string(k.kind)) + " at c T/L " + shortest(k.length);
+  return "corner " + std::string(to_string(k.kind)) +
+         (k.kind == CornerKind::jittered ? " " + shortest(k.jitter) : std::string()) +
+         " at c T/L " + shortest(k.length);
 }
 
 // Every corner of every setting worth checking.
@@ -211,9 +213,11 @@ std::string rule_text() {
      << ", the setting is run again: on the bar with walls at A/L = " << value_text(r.amplitudes[0])
      << ", " << value_text(r.amplitudes[1]) << " and " << value_text(r.amplitudes[2])
      << "; at A/L = " << value_text(r.amplitudes[2])
-     << " with periodic boundaries, on the neo-Hookean scene and on a layout jittered by "
-     << shortest(r.jitter)
-     << " of the particle spacing; each to c T/L = " << value_text(r.lengths.front()) << " and "
+     << " with periodic boundaries, on the neo-Hookean scene and on layouts jittered by "
+     << listing(std::vector<double>(r.jitters.begin(), r.jitters.end()))
+     << " of the particle spacing (the jitter `mpmstab advise` answers runs to "
+     << value_text(kAdviceDomain.jitter_max)
+     << "); each to c T/L = " << value_text(r.lengths.front()) << " and "
      << value_text(r.lengths.back()) << "; and on " << r.refine
      << " times the cells at the same C, A/L = " << value_text(r.amplitudes[1])
      << ", to c T/L = " << value_text(r.lengths.front())
@@ -329,7 +333,7 @@ StudyReport advice_report(const ReportContext& c) {
   ojson rule = {{"amplitudes", r.amplitudes},
                 {"lengths", r.lengths},
                 {"refine", r.refine},
-                {"jitter", r.jitter},
+                {"jitters", r.jitters},
                 {"limit_margin", r.limit_margin},
                 {"accurate_fraction", kAccurateFraction}};
   return StudyReport{.markdown = md.str(),

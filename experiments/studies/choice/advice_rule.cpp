@@ -57,7 +57,7 @@ json_t region_json(const Region& r) {
           {"A_max", r.A_max},
           {"periodic", r.periodic},
           {"neo_hookean", r.other_scene},
-          {"jittered", r.jittered},
+          {"jitter_max", r.jitter},
           {"finer", r.finer},
           {"cells_max", r.cells_max},
           {"error_over_A", r.error_over_A},
@@ -119,7 +119,7 @@ Region region_from_json(const json_t& j, const std::string& where) {
   r.A_max = number_at(j, "A_max", where);
   r.periodic = bool_at(j, "periodic", where);
   r.other_scene = bool_at(j, "neo_hookean", where);
-  r.jittered = bool_at(j, "jittered", where);
+  r.jitter = number_at(j, "jitter_max", where);
   r.finer = bool_at(j, "finer", where);
   r.cells_max = int_at(j, "cells_max", where);
   r.error_over_A = number_at(j, "error_over_A", where);
@@ -153,15 +153,15 @@ std::string_view corner_words(CornerKind k) {
 std::vector<Corner> region_corners(const RunParams& base, const RegionRule& rule) {
   const double c = wave_speed(base);
   std::vector<Corner> out;
-  auto add = [&](CornerKind kind, double length, double A) {
-    Corner corner{.kind = kind, .length = length, .params = base};
+  auto add = [&](CornerKind kind, double length, double A, double jitter = 0) {
+    Corner corner{.kind = kind, .length = length, .jitter = jitter, .params = base};
     RunParams& p = corner.params;
     p.T = length / c;
     p.A = A;
     p.observe.error_over_time = true;
     if (kind == CornerKind::periodic) p.bc = Boundary::periodic;
     if (kind == CornerKind::other_scene) p.scene = SceneKind::steffen;
-    if (kind == CornerKind::jittered) p.layout.jitter = rule.jitter;
+    p.layout.jitter = jitter;
     if (kind == CornerKind::finer) {
       p.cells = base.cells * rule.refine;
       if (p.stepping.policy == TimeStepPolicy::fixed) p.dt = base.dt / rule.refine;
@@ -175,7 +175,8 @@ std::vector<Corner> region_corners(const RunParams& base, const RegionRule& rule
     add(CornerKind::largest_A, length, large);
     add(CornerKind::periodic, length, large);
     add(CornerKind::other_scene, length, large);
-    add(CornerKind::jittered, length, large);
+    for (const double jitter : rule.jitters)
+      add(CornerKind::jittered, length, large, jitter);
   }
   add(CornerKind::finer, rule.lengths.front(), middle);
   return out;
@@ -185,9 +186,9 @@ bool CornerRun::passes() const {
   return outcome == "stable" && error_over_A && *error_over_A < kAccurateFraction;
 }
 
-const CornerRun* CheckedSetting::corner(CornerKind kind, double length) const {
+const CornerRun* CheckedSetting::corner(CornerKind kind, double length, double jitter) const {
   for (const auto& c : corners)
-    if (c.kind == kind && c.length == length) return &c;
+    if (c.kind == kind && c.length == length && c.jitter == jitter) return &c;
   return nullptr;
 }
 
@@ -217,11 +218,22 @@ std::vector<Region> regions_of(const CheckedSetting& s, const RegionRule& rule) 
     if (large) r.A_max = rule.amplitudes[2];
     // At the largest amplitude: counted only where that amplitude is in the region.
     for (const auto& [kind, in] : {std::pair{CornerKind::periodic, &r.periodic},
-                                   {CornerKind::other_scene, &r.other_scene},
-                                   {CornerKind::jittered, &r.jittered}}) {
+                                   {CornerKind::other_scene, &r.other_scene}}) {
       const CornerRun* c = s.corner(kind, length);
       *in = large && include(c);
       if (!large && c && !c->passes()) r.excluded.push_back(*c);
+    }
+    // The jittered layouts in ascending jitter, up to the first that fails (include records
+    // it); one beyond the region is recorded where it fails.
+    bool jittered = large;
+    for (const double jitter : rule.jitters) {
+      const CornerRun* c = s.corner(CornerKind::jittered, length, jitter);
+      if (jittered && include(c)) {
+        r.jitter = jitter;
+        continue;
+      }
+      if (!jittered && c && !c->passes()) r.excluded.push_back(*c);
+      jittered = false;
     }
     r.finer = include(finer);
     if (r.finer) r.cells_max = s.cells * rule.refine;
@@ -256,7 +268,7 @@ std::string region_text(const Region& r, const RegionRule& rule) {
   s << ", c T/L to " << value_text(r.length) << "; walls"
     << (r.periodic ? " and periodic" : " only") << "; the bar"
     << (r.other_scene ? " and the neo-Hookean scene" : " only") << "; uniform"
-    << (r.jittered ? " and jittered (" + shortest(rule.jitter) + ")" : std::string(" only")) << "; "
+    << (r.jitter > 0 ? " and jittered to " + shortest(r.jitter) : std::string(" only")) << "; "
     << (r.finer ? "and one run on " + std::to_string(r.cells_max) + " cells (A/L " +
                       value_text(rule.amplitudes[1]) + ", walls, the bar, uniform, to c T/L " +
                       value_text(rule.lengths.front()) + ")"

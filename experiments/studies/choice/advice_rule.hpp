@@ -20,11 +20,13 @@ namespace mpmstab {
 // is stated in A / L, c T / L, scene, boundary, layout and cells, and checked at its corners:
 //   - on the bar with walls, at the smallest, middle and largest amplitude, to each length;
 //   - at the largest amplitude, to each length: periodic, on the neo-Hookean scene (Steffen et
-//     al. 2008) and on a layout jittered by `jitter` of the particle spacing;
+//     al. 2008) and on layouts jittered by each of `jitters` of the particle spacing, across the
+//     jitter `mpmstab advise` answers;
 //   - on `refine` times the cells at the same C, at the middle amplitude, to the shorter length.
 // A corner passes when its run ends stable and accurate (below kAccurateFraction A). A failing
 // corner is excluded, and the region says so: the amplitudes stop below it; periodic, the other
-// scene and the jittered layout are in only where their corner and the largest amplitude pass;
+// scene are in only where their corner and the largest amplitude pass, the jittered layouts up
+// to the largest jitter below which every jittered corner passes;
 // finer grids only where the refined corner passes. A region exists to a length only where the
 // base run to it passes and C is within the spectral limit / limit_margin. It describes where
 // the runs passed; no answer is given from it (the error between its runs is not measured).
@@ -36,7 +38,8 @@ struct RegionRule {
                                    kPaperLargestA};  // A / L: smallest, middle, largest
   std::array<double, 2> lengths{10, 100};            // c T / L: the base's, the longest
   int refine = 8;                                    // the finest grid: cells x refine
-  double jitter = 0.05;        // the jittered corner: particles moved up to jitter / 2
+  // The jittered corners: particles moved up to jitter / 2 of their spacing, for each.
+  std::array<double, 3> jitters{0.05, 0.2, 0.5};
   double limit_margin = 1.25;  // C at most the spectral limit / limit_margin
 };
 inline constexpr RegionRule kRegionRule{};
@@ -51,15 +54,16 @@ std::string_view corner_words(CornerKind k);
 struct Corner {
   CornerKind kind = CornerKind::base;
   double length = 0;  // c T / L
+  double jitter = 0;  // the layout's (the jittered corners')
   RunParams params;
 };
 
 // The corner runs of a setting whose base run is `base` (the bar with walls, A = the middle
 // amplitude, T = the shorter length / c), in a fixed order: per length, the base (the longer
 // length only: the base run is the case itself), the smallest and largest amplitude, periodic,
-// the other scene and the jittered layout; then the finer grid.
+// the other scene and the jittered layouts, by jitter; then the finer grid.
 std::vector<Corner> region_corners(const RunParams& base, const RegionRule& rule = kRegionRule);
-inline constexpr std::size_t kRegionCorners = 12;
+inline constexpr std::size_t kRegionCorners = 16;
 
 // One corner run as a setting's region reads it.
 struct CornerRun {
@@ -76,7 +80,8 @@ struct CornerRun {
 struct Region {
   double length = 0;            // checked to c T / L = length
   double A_min = 0, A_max = 0;  // A / L
-  bool periodic = false, other_scene = false, jittered = false, finer = false;
+  bool periodic = false, other_scene = false, finer = false;
+  double jitter = 0;                // jittered layouts up to this jitter (0: uniform only)
   int cells_max = 0;                // the setting's cells, or cells x refine
   double error_over_A = 0;          // the largest error over time / A of its corners
   std::vector<CornerRun> excluded;  // the corners that failed, and what they excluded
@@ -90,8 +95,9 @@ struct CheckedSetting {
   std::optional<double> courant_spectral;  // the spectral limit of its uniform layout
   std::vector<CornerRun> corners;          // the base run first, then region_corners() order
   std::vector<Region> regions;             // per length at which a region exists, ascending
-  // The corner run of a kind to a length (nullptr where it was not run).
-  const CornerRun* corner(CornerKind kind, double length) const;
+  // The corner run of a kind to a length (nullptr where it was not run); a jittered one at a
+  // jitter.
+  const CornerRun* corner(CornerKind kind, double length, double jitter = 0) const;
   // "gimp/apic/usl": basis, transfer and update order.
   std::string method_text() const { return method + "/" + transfer + "/" + update; }
 };
