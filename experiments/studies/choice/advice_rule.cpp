@@ -104,7 +104,9 @@ CornerRun corner_from_json(const json_t& j, const std::string& where) {
   c.length = number_at(j, "cT", where);
   c.A = number_at(j, "A", where);
   c.jitter = number_at(j, "jitter", where);
-  if (!(c.jitter >= 0 && c.jitter <= 1)) throw InputError(where + ".jitter: must be 0 to 1");
+  if (!(c.jitter >= 0 && c.jitter <= 1))
+    throw InputError(where +
+                     ".jitter: must be a fraction of the particle spacing, from zero to one");
   c.cells = int_at(j, "cells", where);
   c.outcome = string_at(j, "outcome", where);
   const json_t& e = at(j, "error_over_A", where);
