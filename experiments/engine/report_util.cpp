@@ -132,6 +132,17 @@ std::string codes(const std::vector<std::string>& names, int first) {
   return out;
 }
 
+std::string rule_cells(std::size_t n) {
+  std::string s;
+  for (std::size_t k = 0; k < n; ++k)
+    s += "---|";
+  return s;
+}
+
+std::string opt_fixed(std::optional<double> v, int decimals) {
+  return v ? fixed(*v, decimals) : "–";
+}
+
 std::string opt_sci(const ojson& v) {
   return v.is_number() ? sci(v.get<double>()) : "–";
 }

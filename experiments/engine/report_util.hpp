@@ -2,6 +2,7 @@
 // vocabulary (a run's outcome, verdict, accuracy, labels and cost) is run_row.hpp, included here.
 #pragma once
 
+#include <algorithm>
 #include <filesystem>
 #include <initializer_list>
 #include <map>
@@ -9,6 +10,7 @@
 #include <optional>
 #include <string>
 #include <tuple>
+#include <type_traits>
 #include <vector>
 
 #include "run/edge.hpp"
@@ -32,6 +34,13 @@ std::string significant(double v, int digits);
 // is not on, or on its other side: a value set beside a verdict judged against a threshold reads
 // on the side it was judged ("0.0997 A, accurate", not "0.1 A, accurate"; "3.01x", not "3x").
 std::string beside_thresholds(double v, std::initializer_list<double> thresholds, int digits = 2);
+// The cells of a Markdown table's rule row: "---|" `n` times.
+std::string rule_cells(std::size_t n);
+// Appends x to v unless v holds it already (v keeps the order values first appear in).
+template <class T>
+void add_unique(std::vector<T>& v, const std::type_identity_t<T>& x) {
+  if (std::find(v.begin(), v.end(), x) == v.end()) v.push_back(x);
+}
 // Items joined as prose: "a", "a and b", "a, b and c" ("" when empty).
 std::string list_of(const std::vector<std::string>& items);
 // A value of a parameter as prose prints it: shortest() from 0.01 to 1e5 ("0.05", "10000"),
@@ -61,6 +70,8 @@ std::string codes(const std::vector<std::string>& names, int first = 0);
 std::string opt_sci(const nlohmann::ordered_json& v);
 // A value in sci(), or "–" for none (a RunRow's optional columns).
 std::string opt_sci(const std::optional<double>& v);
+// A value with `decimals` decimals, or "–".
+std::string opt_fixed(std::optional<double> v, int decimals = 3);
 // A string column of a row ("" where it is missing or not a string).
 std::string text(const nlohmann::ordered_json& row, const char* column);
 // The row has a number in `column` (not null, not missing).

@@ -414,8 +414,7 @@ Claim every_curve(const char* id, const char* statement, const char* evidence, c
                   const Count& count, const char* name = "", const std::string& value = "") {
   Claim c = claim(id, statement, evidence);
   if (!value.empty()) c.value(name, value);
-  c.every(hits, count.hits, "n", count.n).on(count.n > 0 ? count.on : count.searched);
-  return c;
+  return c.every(hits, count.hits, "n", count.n).on(count.n > 0 ? count.on : count.searched);
 }
 
 std::vector<Claim> balance_claims(const Findings& f) {
@@ -481,10 +480,8 @@ std::string balance_table(const Findings& f) {
   md << "| scene | method |";
   for (int n : f.grids)
     md << " " << n << " cells: balancing C (p) |";
-  md << " slope of log(balancing C) against log(h) |\n|---|---|";
-  for (std::size_t k = 0; k <= f.grids.size(); ++k)
-    md << "---|";
-  md << "\n";
+  md << " slope of log(balancing C) against log(h) |\n|---|---|" << rule_cells(f.grids.size() + 1)
+     << "\n";
   for (const auto& [key, t] : f.trends) {
     md << "| " << scene_name(key.first) << " | " << key.second << " |";
     for (int n : f.grids) {
@@ -497,7 +494,7 @@ std::string balance_table(const Findings& f) {
       md << " " << balance_text(c) << " (" << order_text(c) << ")" << (c.complete ? "" : " ‡")
          << " |";
     }
-    md << " " << (t.slope ? fixed(*t.slope, 2) : std::string("–")) << " |\n";
+    md << " " << opt_fixed(t.slope, 2) << " |\n";
   }
   return md.str();
 }

@@ -436,10 +436,6 @@ struct Findings {
   int left_out = 0;
 };
 
-std::string order_text(const std::optional<double>& order) {
-  return order ? fixed(*order, 2) : std::string("–");
-}
-
 // The time order of every row, and what the claims and the reading count: the sweep's rows against
 // their update order's expected order (USL's by transfer: with FLIP its first and last halving of
 // C, and each row's difference at the smallest C against the USF rows' at the same E), the
@@ -469,7 +465,7 @@ void time_orders(std::vector<TimeErrorRow> t, Findings& f) {
       f.consistent_orders.push_back(row.method.substr(0, row.method.find(',')) +
                                     " at E = " + shortest(row.E) + " (FMPM(" +
                                     std::to_string(kConsistentOrder) + ") " + fixed(*fmpm, 2) +
-                                    ", FLIP " + order_text(row.order) + ")");
+                                    ", FLIP " + opt_fixed(row.order, 2) + ")");
     }
     if (row.consistent_mass || row.linear) continue;
     Count& n = row.update == "usl" ? f.usl : f.usf_musl;
@@ -581,8 +577,7 @@ Findings find(const Spec& spec, const std::vector<ojson>& rows, std::vector<Time
 // A claim about each case of a Count, within kOrderAgreement, measured on the Count's runs.
 Claim counted(const char* id, const char* statement, const char* evidence, const Count& n) {
   Claim c = claim(id, statement, evidence);
-  c.number("tolerance", kOrderAgreement).every("met", n.met, "total", n.total).on(n.on);
-  return c;
+  return c.number("tolerance", kOrderAgreement).every("met", n.met, "total", n.total).on(n.on);
 }
 
 // USL (leapfrog) or USF and MUSL: the time order of every method and E against the published one.
@@ -637,8 +632,8 @@ std::vector<Claim> convergence_claims(const Findings& f) {
                        "baseline measures it)",
                        "ours {ours}, the baseline's {theirs}");
   uintah.number("tolerance", kOrderAgreement)
-      .value("ours", order_text(f.peer_at_T))
-      .value("theirs", order_text(f.baseline.order_max))
+      .value("ours", opt_fixed(f.peer_at_T, 2))
+      .value("theirs", opt_fixed(f.baseline.order_max, 2))
       .on(f.peer_on.text() + "; the baseline's records");
   uintah.holds = f.peer_at_T && f.baseline.order_max &&
                  std::abs(*f.peer_at_T - *f.baseline.order_max) <= kOrderAgreement;
@@ -676,9 +671,7 @@ std::string refinement_head(const char* first, const Refinement& ref, const char
   md << first;
   for (const auto& p : ref.points)
     md << " " << p.label << " |";
-  md << last << rule;
-  for (std::size_t k = 0; k < ref.points.size(); ++k)
-    md << "---|";
+  md << last << rule << rule_cells(ref.points.size());
   return md.str();
 }
 
@@ -695,8 +688,8 @@ std::string sweep_table(const Refinements& sweep, Norm n) {
     for (std::size_t k = 0; k < ref.points.size(); ++k)
       md << " " << point_text(ref, k, n) << " |";
     const auto& at_T = ref.points.back().error_at_T;
-    md << " " << order_text(ref[n].fitted) << " | " << (ref[n].limit ? sci(*ref[n].limit, 2) : "–")
-       << " | " << (at_T ? sci(*at_T, 2) : "–") << " |\n";
+    md << " " << opt_fixed(ref[n].fitted, 2) << " | " << opt_sci(ref[n].limit) << " | "
+       << opt_sci(at_T) << " |\n";
   }
   return md.str();
 }
@@ -726,12 +719,11 @@ std::string disagreement(const std::string& method, const MethodOrders& o) {
   for (const auto& [E, order] : o.order) {
     std::vector<std::string> qs;
     for (const auto& v : o.steps.at(E))
-      qs.push_back(v ? fixed(*v, 2) : std::string("–"));
+      qs.push_back(opt_fixed(v, 2));
     per_E.push_back(fixed(order, 2) + " at E = " + shortest(E) + " (observed " + list_of(qs) +
                     (o.asymptotic.at(E) ? ", asymptotic" : ", not yet asymptotic") + ")");
   }
-  std::string last = "; the last refinements' orders spread by " +
-                     (o.last_spread ? fixed(*o.last_spread, 2) : std::string("–"));
+  std::string last = "; the last refinements' orders spread by " + opt_fixed(o.last_spread, 2);
   if (o.last_spread)
     last += o.last_agree ? ", within the tolerance: the difference is the coarse grids'"
                          : ", beyond the tolerance: the difference persists to the finest grid "
@@ -863,10 +855,8 @@ std::string time_error_table(const std::vector<TimeErrorRow>& t) {
   md << "| E | method |";
   for (const auto& p : t.front().study.points)
     md << " C = " << shortest(p.courant) << " |";
-  md << " fitted order | expected | particle-steps |\n|---|---|";
-  for (std::size_t k = 0; k < t.front().study.points.size(); ++k)
-    md << "---|";
-  md << "---|---|---|\n";
+  md << " fitted order | expected | particle-steps |\n|---|---|"
+     << rule_cells(t.front().study.points.size()) << "---|---|---|\n";
   for (const auto& row : t) {
     md << "| " << shortest(row.E) << " | " << row.method << " |";
     long long work = row.study.reference_particle_steps;
@@ -885,7 +875,7 @@ std::string time_error_table(const std::vector<TimeErrorRow>& t) {
       md << " |";
       before = d;
     }
-    md << " " << order_text(row.order) << " | " << shortest(expected_time_order(row.update))
+    md << " " << opt_fixed(row.order, 2) << " | " << shortest(expected_time_order(row.update))
        << " | " << sci(double(work), 2) << " |\n";
   }
   return md.str();
@@ -906,8 +896,8 @@ std::string peer_section(const Spec& spec, const Findings& f) {
   for (std::size_t k = 0; k < b.nodes.size(); ++k)
     pairs.push_back(shortest(b.nodes[k]) + " nodes: max " + sci(b.max[k], 2) + ", L2 " +
                     sci(b.l2[k], 2));
-  md << list_of(pairs) << "; fitted order in h " << order_text(b.order_max) << " (max) and "
-     << order_text(b.order_l2) << " (L2).\n\n"
+  md << list_of(pairs) << "; fitted order in h " << opt_fixed(b.order_max, 2) << " (max) and "
+     << opt_fixed(b.order_l2, 2) << " (L2).\n\n"
      << "The same measurement here: the neo-Hookean manufactured solution (scene steffen), linear "
         "MPM, "
      << first["ppc"].get<int>()
@@ -928,11 +918,11 @@ std::string peer_section(const Spec& spec, const Findings& f) {
       md << "| " << name << " |";
       for (std::size_t k = 0; k < ref.points.size(); ++k)
         md << " " << point_text(ref, k, n) << " |";
-      md << " " << order_text(ref[n].fitted) << " |\n";
+      md << " " << opt_fixed(ref[n].fitted, 2) << " |\n";
     }
   }
-  md << "\n**Reading.** In the baseline's norm our order is " << order_text(f.peer_at_T)
-     << " and the baseline's " << order_text(b.order_max)
+  md << "\n**Reading.** In the baseline's norm our order is " << opt_fixed(f.peer_at_T, 2)
+     << " and the baseline's " << opt_fixed(b.order_max, 2)
      << ". Of the differences named above, E and the |v_p| in its step do not move an order (E "
         "only rescales time; |v_p| / c is at most pi A / L = "
      << sci(std::acos(-1.0) * first["A"].get<double>(), 2)
@@ -961,7 +951,7 @@ std::string convergence_index(const Spec& spec, const std::vector<ojson>& rows) 
       continue;
     }
     for (std::size_t k = 0; k < at.by_method.size(); ++k)
-      md << (k ? ", " : "") << at.by_method[k].first << " " << order_text(at.by_method[k].second);
+      md << (k ? ", " : "") << at.by_method[k].first << " " << opt_fixed(at.by_method[k].second, 2);
   }
   md << ". The L2 norm over time, the observed order of each refinement, the time error against "
         "dt, the published orders and Uintah's baseline: ["

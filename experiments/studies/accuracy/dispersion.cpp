@@ -329,13 +329,13 @@ Findings find(const std::vector<ojson>& rows, std::vector<ModeRun> runs = {}) {
 
 Claim period_claim(const Findings& f) {
   const ModeRun* worst = f.worst_run ? &f.runs[*f.worst_run] : nullptr;
-  Claim c = claim("period-agrees-with-bloch",
-                  "The measured period of every single-mode run agrees with the Bloch "
-                  "prediction within {tolerance}",
-                  "{agree} of {runs} runs ({measured} with a measured period); the largest "
-                  "relative difference is {worst}, {scheme} at {cells} cells per wavelength and "
-                  "C = {C}");
-  c.value("tolerance", percent(kPeriodAgreement))
+  return claim("period-agrees-with-bloch",
+               "The measured period of every single-mode run agrees with the Bloch "
+               "prediction within {tolerance}",
+               "{agree} of {runs} runs ({measured} with a measured period); the largest "
+               "relative difference is {worst}, {scheme} at {cells} cells per wavelength and "
+               "C = {C}")
+      .value("tolerance", percent(kPeriodAgreement))
       .every("agree", f.agree, "runs", static_cast<long long>(f.runs.size()))
       .count("measured", f.measured)
       .value("worst", worst ? sci(worst->relative(), 2) : "–")
@@ -343,37 +343,34 @@ Claim period_claim(const Findings& f) {
       .value("cells", worst ? std::to_string(worst->cells) : "–")
       .value("C", worst ? shortest(worst->courant) : "–")
       .on(f.measured_on);
-  return c;
 }
 
 // The prediction explains the measured period: it lies nearer the prediction than the exact
 // period, on every run whose predicted period differs from the exact one by more than the
 // agreement.
 Claim explains_claim(const Findings& f) {
-  Claim c = claim("dispersion-explains-period",
-                  "Where the scheme's period differs from the exact one, the measured period "
-                  "is the one the Bloch symbol predicts, not the exact one",
-                  "{nearer} of {compared} runs whose predicted period differs from the exact "
-                  "one by more than {tolerance} measure a period nearer the prediction");
-  c.every("nearer", f.nearer, "compared", f.compared)
+  return claim("dispersion-explains-period",
+               "Where the scheme's period differs from the exact one, the measured period "
+               "is the one the Bloch symbol predicts, not the exact one",
+               "{nearer} of {compared} runs whose predicted period differs from the exact "
+               "one by more than {tolerance} measure a period nearer the prediction")
+      .every("nearer", f.nearer, "compared", f.compared)
       .value("tolerance", percent(kPeriodAgreement))
       .on(f.compared_on);
-  return c;
 }
 
 Claim consistency_claim(const Findings& f) {
-  Claim c = claim("phase-speed-tends-to-one",
-                  "Every scheme's phase speed tends to the wave speed as kh tends to zero",
-                  "at kh = pi / {samples}: {consistent} of {curves} branches (scheme and Courant "
-                  "number) within {tolerance} of c; the largest deviation is {worst}, "
-                  "{scheme}");
-  c.count("samples", kDispersionSamples)
+  return claim("phase-speed-tends-to-one",
+               "Every scheme's phase speed tends to the wave speed as kh tends to zero",
+               "at kh = pi / {samples}: {consistent} of {curves} branches (scheme and Courant "
+               "number) within {tolerance} of c; the largest deviation is {worst}, "
+               "{scheme}")
+      .count("samples", kDispersionSamples)
       .every("consistent", f.consistent, "curves", f.branches)
       .value("tolerance", sci(kConsistency, 1))
       .value("worst", sci(f.worst_deviation, 2))
       .value("scheme", f.worst_branch)
       .on(f.bloch);
-  return c;
 }
 
 // With FLIP, each B-spline needs more cells per wavelength than linear MPM: FLIP's transfer
@@ -393,11 +390,10 @@ Claim spline_claim(const Findings& f, bool fmpm) {
                          "Courant number",
                          "{hits} of {compared} pairs of a B-spline and a Courant number ({pairs})");
   if (fmpm) c.count("order", kSeriesOrder);
-  c.value("tolerance", percent(kPhaseTolerance))
+  return c.value("tolerance", percent(kPhaseTolerance))
       .every("hits", p.hits, "compared", p.compared)
       .value("pairs", p.pairs)
       .on(f.bloch);
-  return c;
 }
 
 std::string cells_text(const AtCourant& a) {
@@ -412,13 +408,10 @@ std::string scheme_table(const std::vector<Scheme>& schemes, bool cells) {
   md << (cells ? "| scheme | spectral limit (c dt / h) |" : "| scheme |");
   for (const double C : kCourants)
     md << " C = " << shortest(C) << " |";
-  md << (cells ? "\n|---|---|" : "\n|---|");
-  for (std::size_t k = 0; k < kCourants.size(); ++k)
-    md << "---|";
-  md << "\n";
+  md << (cells ? "\n|---|---|" : "\n|---|") << rule_cells(kCourants.size()) << "\n";
   for (const auto& s : schemes) {
     md << "| " << s.label << " |";
-    if (cells) md << " " << (s.limit ? fixed(*s.limit, 4) : std::string("–")) << " |";
+    if (cells) md << " " << opt_fixed(s.limit, 4) << " |";
     for (const auto& a : s.at)
       md << " " << (cells ? cells_text(a) : a.cells ? fixed(a.kept, 3) : std::string("–")) << " |";
     md << "\n";
@@ -586,7 +579,7 @@ std::string dispersion_index(const Spec& spec, const std::vector<ojson>& rows) {
     for (const auto& [m, t] : kHeadline) {
       const Scheme& s = *find_scheme(f.schemes, m, t);
       const auto& cells = s.at[kIndexCourant].cells;
-      parts.push_back(s.label + " " + (cells ? fixed(*cells, 1) : std::string("–")));
+      parts.push_back(s.label + " " + opt_fixed(cells, 1));
     }
     md << " (at C = " << shortest(kCourants[kIndexCourant]) << ": " << list_of(parts) << ")";
   }

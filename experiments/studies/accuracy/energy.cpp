@@ -220,8 +220,7 @@ Claim lead_claim(const Findings& f, const Lead& lead, const char* id, const char
       .count("false_warnings", lead.false_warnings)
       .count("survived", f.survived);
   c.holds = f.failed > 0 && lead.warned == f.failed && lead.false_warnings == 0;
-  c.on(f.warnings_on);
-  return c;
+  return c.on(f.warnings_on);
 }
 
 std::vector<Claim> energy_claims(const Findings& f) {
@@ -273,10 +272,6 @@ std::string history_table(const std::vector<ojson>& rows, const Findings& f) {
   return md.str();
 }
 
-std::string energy_order_text(const std::optional<double>& o) {
-  return o ? fixed(*o, 2) : "–";
-}
-
 std::string drift_table(const std::vector<Sweep>& sweeps) {
   std::ostringstream md;
   md << "| method | against | points: balance error, max / drift per period | order of the "
@@ -290,8 +285,8 @@ std::string drift_table(const std::vector<Sweep>& sweeps) {
                     num(*p.row, "energy_drift") + (p.in_regime ? "" : " †"));
     }
     md << "| " << sw.method << " | " << (sw.variable == "C" ? "c dt/h" : "h") << " | "
-       << list_of(pts) << " | " << energy_order_text(sw.error_order) << " | "
-       << energy_order_text(sw.drift_order) << " |\n";
+       << list_of(pts) << " | " << opt_fixed(sw.error_order, 2) << " | "
+       << opt_fixed(sw.drift_order, 2) << " |\n";
   }
   return md.str();
 }
@@ -312,10 +307,10 @@ std::string warning_table(const std::vector<Warning>& failures) {
     Cell c = cell_of(r);
     std::get<0>(c) = run.method_label;  // with its transfer and update order
     md << "| " << cell_text(c) << " | " << fixed(*run.courant, 3) << " ("
-       << (run.courant_spectral ? fixed(*run.courant_spectral, 3) : "–") << ") | "
-       << shortest(r["A_over_h"].get<double>()) << " | " << run.failure_reason.value_or("")
-       << " at step " << x.failure_step << " | " << lead_text(x.energy_step, x.failure_step)
-       << " | " << lead_text(x.eq108_step, x.failure_step) << " | "
+       << opt_fixed(run.courant_spectral) << ") | " << shortest(r["A_over_h"].get<double>())
+       << " | " << run.failure_reason.value_or("") << " at step " << x.failure_step << " | "
+       << lead_text(x.energy_step, x.failure_step) << " | "
+       << lead_text(x.eq108_step, x.failure_step) << " | "
        << (!x.above_spectral   ? "not recorded"
            : *x.above_spectral ? "above from the first step"
                                : "below: no warning")

@@ -688,9 +688,7 @@ void quoted_passages(std::ostream& md, const PaperFigure& f) {
     auto sec = std::find_if(quoted.begin(), quoted.end(),
                             [&](const auto& q) { return q.first == o.section; });
     if (sec == quoted.end()) sec = quoted.insert(quoted.end(), {o.section, {}});
-    auto& passages = sec->second;
-    if (std::find(passages.begin(), passages.end(), o.evidence) == passages.end())
-      passages.push_back(o.evidence);
+    add_unique(sec->second, o.evidence);
   }
   for (const auto& [section, passages] : quoted) {
     md << "The paper, " << section << ":";

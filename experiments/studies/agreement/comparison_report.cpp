@@ -452,8 +452,8 @@ void cell_table(std::ostream& md, const Comparison& cmp) {
        << (c.paper ? show(c.paper->dt_stable) : "–") << " | "
        << (stable ? opt_sci(r["dt_stable_min"]) : "\\*") << " | "
        << (c.v.dt_stable_ratio ? ratio(*c.v.dt_stable_ratio) : "–") << " | "
-       << (c.paper ? show(c.paper->max_error) : "–") << " | "
-       << (stable ? (error ? sci(*error) : std::string("–")) : "\\*") << " | "
+       << (c.paper ? show(c.paper->max_error) : "–") << " | " << (stable ? opt_sci(error) : "\\*")
+       << " | "
        << (c.v.error_ratio
                ? beside_thresholds(*c.v.error_ratio, {kAgreementFactor, 1 / kAgreementFactor})
                : "–")
@@ -541,10 +541,7 @@ void courant_scan_table(std::ostream& md, const Comparison& cmp) {
      << Es.size() << " values of E:\n\n| c dt/h |";
   for (const auto& g : groups)
     md << " " << g.first << " A=" << shortest(g.second) << " |";
-  md << "\n|---|";
-  for (std::size_t k = 0; k < groups.size(); ++k)
-    md << "---|";
-  md << "\n";
+  md << "\n|---|" << rule_cells(groups.size()) << "\n";
   for (const auto& [c, per] : by_c) {
     md << "| " << shortest(c) << " |";
     for (const auto& g : groups)

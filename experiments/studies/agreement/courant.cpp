@@ -24,19 +24,6 @@ namespace {
 
 using ojson = nlohmann::ordered_json;
 
-std::vector<FollowUp> courant_follow_up(const FollowUpContext& c);
-StudyReport courant_report(const ReportContext& c);
-std::string courant_index(const Spec& spec, const std::vector<ojson>& rows);
-
-const StudyRegistration kCourant{{
-    .name = "courant",
-    .summary = "per case, the largest Courant number up to which the scan's runs reach T",
-    .records = {.error_over_time = true},
-    .follow_up = courant_follow_up,
-    .report = courant_report,
-    .index = courant_index,
-}};
-
 // One case of the scan: its runs in increasing C, and where survival stops.
 struct Scan {
   std::string method;
@@ -161,15 +148,13 @@ std::vector<Claim> courant_claims(const Findings& f) {
   Claim some = claim("every-case-survives-somewhere",
                      "Every case survives to T at the smallest Courant number of the scan",
                      "{none} of {cases} cases fail at the smallest C of the scan");
-  some.count("none", f.no_survivor).count("cases", f.cases);
-  some.over(f.cases).on(f.smallest);
+  some.count("none", f.no_survivor).count("cases", f.cases).over(f.cases).on(f.smallest);
   some.holds = f.no_survivor == 0;
   Claim mono = claim("survival-monotone-in-courant",
                      "Survival to T is monotone in C in every case: no C survives above one "
                      "that failed",
                      "{not_monotone} of {cases} cases survive again above a failure");
-  mono.count("not_monotone", f.not_monotone).count("cases", f.cases);
-  mono.over(f.cases).on(f.all);
+  mono.count("not_monotone", f.not_monotone).count("cases", f.cases).over(f.cases).on(f.all);
   mono.holds = f.not_monotone == 0;
   Claim length = length_claim("courant-edges-hold-for-length",
                               "Every survival edge of the scan survives {first}x and "
@@ -256,6 +241,15 @@ std::string courant_index(const Spec& spec, const std::vector<ojson>& rows) {
      << spec.name << ".md](" << spec.name << ".md).\n\n";
   return md.str();
 }
+
+const StudyRegistration kCourant{{
+    .name = "courant",
+    .summary = "per case, the largest Courant number up to which the scan's runs reach T",
+    .records = {.error_over_time = true},
+    .follow_up = courant_follow_up,
+    .report = courant_report,
+    .index = courant_index,
+}};
 
 }  // namespace
 }  // namespace mpmstab::studies::courant

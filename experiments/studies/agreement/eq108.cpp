@@ -23,18 +23,6 @@ namespace {
 
 using ojson = nlohmann::ordered_json;
 
-StudyReport eq108_report(const ReportContext& c);
-std::string eq108_index(const Spec& spec, const std::vector<ojson>& rows);
-
-const StudyRegistration kEq108{{
-    .name = "eq108",
-    .summary = "every reading of eq. (108) on the Table 1 cells, against the paper's dt stable",
-    .needs_reference = true,
-    .records = {.dt_stable = true},
-    .report = eq108_report,
-    .index = eq108_index,
-}};
-
 // A reading of eq. (108): "scaled, l2".
 std::string reading_of(const ojson& r) {
   return text(r, "dt_stable_sigma") + ", " + text(r, "dt_stable_vnorm");
@@ -68,8 +56,7 @@ Eq108Cells eq108_cells(const Spec& spec, const std::vector<ojson>& rows,
   for (std::size_t i = 0; i < rows.size(); ++i) {
     if (spec.cases[i].params.cells != grid) continue;
     const std::string reading = reading_of(rows[i]);
-    if (std::find(out.readings.begin(), out.readings.end(), reading) == out.readings.end())
-      out.readings.push_back(reading);
+    add_unique(out.readings, reading);
     const Table1Key key = paper_key(spec.cases[i]);
     auto [it, fresh] = index.try_emplace(key, out.cells.size());
     if (fresh) {
@@ -203,13 +190,13 @@ Findings find(const Spec& spec, const std::vector<ojson>& rows) {
 // The claim of the paper's grid: the best reading gives the paper's column within the factor.
 Claim reading_claim(const Findings& f) {
   const Reading best = f.readings.empty() ? Reading{} : f.readings[f.best];
-  Claim c = claim("a-reading-gives-the-paper",
-                  "Some reading of eq. (108) on the paper's {cells} cells gives the paper's "
-                  "dt stable column within a factor {k} in every cell where both are measured",
-                  "the best reading ({best}: the most cells within it, ties broken by the "
-                  "smallest mean absolute natural log of ours / paper, here {distance}) is within "
-                  "it in {within} of {n} cells; its ratios {span}");
-  c.count("cells", kPaperGrid)
+  return claim("a-reading-gives-the-paper",
+               "Some reading of eq. (108) on the paper's {cells} cells gives the paper's "
+               "dt stable column within a factor {k} in every cell where both are measured",
+               "the best reading ({best}: the most cells within it, ties broken by the "
+               "smallest mean absolute natural log of ours / paper, here {distance}) is within "
+               "it in {within} of {n} cells; its ratios {span}")
+      .count("cells", kPaperGrid)
       .value("k", agreement_factor())
       .value("best", best.name)
       .every("within", static_cast<long long>(best.all.within.size()), "n",
@@ -217,7 +204,6 @@ Claim reading_claim(const Findings& f) {
       .value("span", span(best.all.ratios, 2))
       .number("distance", best.mean_log_distance, 3)
       .on(coverage_of(best.all.rows));
-  return c;
 }
 
 // The claim of one reading on another grid, over every method: every compared cell within the
@@ -235,7 +221,7 @@ Claim grid_claim(const Grid& g, const std::string& reading, const Stats& s) {
                   "cell where both are measured",
                   s.outside.empty() ? evidence : evidence + "; beyond it: {outside}");
   if (!s.outside.empty()) c.value("outside", list_of(s.outside));
-  c.count("cells", g.cells)
+  return c.count("cells", g.cells)
       .value("h", shortest(1.0 / g.cells))
       .count("paper_cells", kPaperGrid)
       .value("reading", reading)
@@ -247,7 +233,6 @@ Claim grid_claim(const Grid& g, const std::string& reading, const Stats& s) {
       .value("paper_span", spans(s.paper_grid_ratios))
       .count("paper_n", static_cast<long long>(s.paper_grid_ratios.size()))
       .on(coverage_of(s.rows));
-  return c;
 }
 
 // A run's bound as the tables show it: the number where it ended stable, the number marked where
@@ -288,10 +273,7 @@ std::string eq108_table(const Eq108Cells& e) {
   table << "| method | E | A | dt | c dt/h | A/h | c T | paper's dt stable |";
   for (const auto& r : e.readings)
     table << " ours (" << r << ") | ratio |";
-  table << "\n|---|---|---|---|---|---|---|---|";
-  for (std::size_t k = 0; k < e.readings.size(); ++k)
-    table << "---|---|";
-  table << "\n";
+  table << "\n|---|---|---|---|---|---|---|---|" << rule_cells(2 * e.readings.size()) << "\n";
   for (const auto& cell : e.cells) {
     table << cell_columns(cell, *cell.runs.front().row);
     for (const auto& reading : e.readings)
@@ -363,6 +345,15 @@ std::string eq108_index(const Spec& spec, const std::vector<ojson>& rows) {
          ", set against the paper's dt stable column: [" + spec.name + ".md](" + spec.name +
          ".md).\n\n";
 }
+
+const StudyRegistration kEq108{{
+    .name = "eq108",
+    .summary = "every reading of eq. (108) on the Table 1 cells, against the paper's dt stable",
+    .needs_reference = true,
+    .records = {.dt_stable = true},
+    .report = eq108_report,
+    .index = eq108_index,
+}};
 
 }  // namespace
 }  // namespace mpmstab::studies::eq108

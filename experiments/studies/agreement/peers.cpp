@@ -16,27 +16,6 @@ namespace {
 
 using ojson = nlohmann::ordered_json;
 
-std::string peers_index(const Spec& spec, const std::vector<ojson>& rows);
-
-const StudyRegistration kPeers{{
-    .name = "peers",
-    .summary = "our solver against independent code's measured values, within stated tolerances",
-    .needs_reference = true,
-    .records = {.error_over_time = true},
-    .report =
-        [](const ReportContext& c) {
-          const PeersStudy s = study_peers(c.spec, c.rows);
-          return StudyReport{.markdown = peers_markdown(c.spec, s, c.out),
-                             .data_csv = peers_verdicts_csv(s, c.csv_header),
-                             .json = peers_json(s)};
-        },
-    .index = peers_index,
-    .blessed = {{.file = "peers_data.csv",
-                 .key_columns = {"method", "E", "A", "dt", "T"},
-                 .value_columns = {"outcome_agrees", "step_agrees", "errors_agree", "within"},
-                 .what = "agreement with the peer"}},
-}};
-
 // The tolerances a faithful solver meets (docs/studies.md, "Against independent code"): the same
 // outcome, the failure at the same step give or take one, and, for runs that are stable (not
 // meaningless) in both, errors equal to a relative 1e-9 with the linear basis (the same
@@ -264,6 +243,25 @@ std::string peers_index(const Spec& spec, const std::vector<ojson>& rows) {
      << "stated tolerances): [" << spec.name << ".md](" << spec.name << ".md).\n\n";
   return md.str();
 }
+
+const StudyRegistration kPeers{{
+    .name = "peers",
+    .summary = "our solver against independent code's measured values, within stated tolerances",
+    .needs_reference = true,
+    .records = {.error_over_time = true},
+    .report =
+        [](const ReportContext& c) {
+          const PeersStudy s = study_peers(c.spec, c.rows);
+          return StudyReport{.markdown = peers_markdown(c.spec, s, c.out),
+                             .data_csv = peers_verdicts_csv(s, c.csv_header),
+                             .json = peers_json(s)};
+        },
+    .index = peers_index,
+    .blessed = {{.file = "peers_data.csv",
+                 .key_columns = {"method", "E", "A", "dt", "T"},
+                 .value_columns = {"outcome_agrees", "step_agrees", "errors_agree", "within"},
+                 .what = "agreement with the peer"}},
+}};
 
 }  // namespace
 }  // namespace studies::peers

@@ -11,24 +11,6 @@ namespace {
 
 using ojson = nlohmann::ordered_json;
 
-StudyReport variants_report(const ReportContext& c);
-std::string variants_index(const Spec& spec, const std::vector<ojson>& rows);
-std::string variants_subtitle(const Spec& spec, const ojson& doc);
-
-const StudyRegistration kVariants{{
-    .name = "variants",
-    .summary = "Table 1's cells under documented implementation choices, against the paper",
-    .needs_reference = true,
-    .takes_variants = true,
-    .records = {.error_over_time = true, .dt_stable = true},
-    .study_columns = true,
-    .inputs = {{.name = "courant"}},
-    .figure = true,
-    .report = variants_report,
-    .index = variants_index,
-    .figure_subtitle = variants_subtitle,
-}};
-
 // The findings from the rows; the courant scan, an input of the report only, tells apart the
 // failure classes (above-our-edge), which neither the index nor the subtitle prints.
 Findings find(const Spec& spec, const std::vector<ojson>& rows, const CourantEdges& edges = {}) {
@@ -71,6 +53,20 @@ std::string variants_subtitle(const Spec& spec, const ojson& doc) {
          "paper's error is readable, since a ratio needs two errors; the other " +
          std::to_string(f.runs - f.drawn) + " are compared by verdict in " + spec.name + ".md";
 }
+
+const StudyRegistration kVariants{{
+    .name = "variants",
+    .summary = "Table 1's cells under documented implementation choices, against the paper",
+    .needs_reference = true,
+    .takes_variants = true,
+    .records = {.error_over_time = true, .dt_stable = true},
+    .study_columns = true,
+    .inputs = {{.name = "courant"}},
+    .figure = true,
+    .report = variants_report,
+    .index = variants_index,
+    .figure_subtitle = variants_subtitle,
+}};
 
 }  // namespace
 }  // namespace mpmstab::studies::variants

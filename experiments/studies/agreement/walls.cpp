@@ -16,17 +16,6 @@ namespace {
 
 using ojson = nlohmann::ordered_json;
 
-StudyReport walls_report(const ReportContext& c);
-std::string walls_index(const Spec& spec, const std::vector<ojson>& rows);
-
-const StudyRegistration kWalls{{
-    .name = "walls",
-    .summary = "each cell with Dirichlet walls and with periodic boundaries, side by side",
-    .records = {.error_over_time = true, .crossings = true},
-    .report = walls_report,
-    .index = walls_index,
-}};
-
 // The two runs of one cell.
 struct Twin {
   const ojson* dirichlet = nullptr;
@@ -207,6 +196,14 @@ std::string walls_index(const Spec& spec, const std::vector<ojson>& rows) {
      << spec.name << ".md).\n\n";
   return md.str();
 }
+
+const StudyRegistration kWalls{{
+    .name = "walls",
+    .summary = "each cell with Dirichlet walls and with periodic boundaries, side by side",
+    .records = {.error_over_time = true, .crossings = true},
+    .report = walls_report,
+    .index = walls_index,
+}};
 
 }  // namespace
 }  // namespace mpmstab::studies::walls

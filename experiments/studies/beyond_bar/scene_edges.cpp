@@ -213,9 +213,7 @@ Findings find(const std::vector<ojson>& rows, const std::vector<ojson>& follow_u
     n.edge_too_short += where == ScanEdge::edge_too_short;
     n.none_survives += where == ScanEdge::none_survives;
     if (where != ScanEdge::inside) {
-      if (std::find(n.edgeless_scenes.begin(), n.edgeless_scenes.end(), text(r, "scene")) ==
-          n.edgeless_scenes.end())
-        n.edgeless_scenes.push_back(text(r, "scene"));
+      add_unique(n.edgeless_scenes, text(r, "scene"));
       continue;
     }
     ++n.with_edge;

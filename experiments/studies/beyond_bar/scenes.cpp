@@ -112,10 +112,8 @@ std::string edge_text(const std::map<EdgeKey, ojson>& edges, const EdgeKey& key)
 
 std::vector<std::string> scenes_in_order(const std::vector<ojson>& rows) {
   std::vector<std::string> out;
-  for (const auto& r : rows) {
-    const std::string s = text(r, "scene");
-    if (s != "bar" && std::find(out.begin(), out.end(), s) == out.end()) out.push_back(s);
-  }
+  for (const auto& r : rows)
+    if (text(r, "scene") != "bar") add_unique(out, text(r, "scene"));
   return out;
 }
 
@@ -431,7 +429,6 @@ std::string peer_sections(const ReportContext& ctx, const std::map<std::string, 
 
 // The claims on the peers, the verdicts and the limits.
 std::vector<Claim> survey_claims(const Findings& n) {
-  std::vector<Claim> claims;
   Claim rigid = claim("rigid-like-uintah-advect-block",
                       "On Uintah's advectBlock at its own setting, every basis compared survives "
                       "and keeps the block rigid to round-off in both codes (position error over "
@@ -439,7 +436,6 @@ std::vector<Claim> survey_claims(const Findings& n) {
   rigid.value("tolerance", sci(kRoundOffCells, 1))
       .every("agree", n.rigid_agree, "compared", n.rigid_compared)
       .on(n.rigid_at);
-  claims.push_back(rigid);
   Claim peer =
       claim("agrees-with-uintah-impulsive",
             "On Uintah's impulsiveBar at its own setting, every basis compared has the "
@@ -447,12 +443,10 @@ std::vector<Claim> survey_claims(const Findings& n) {
   peer.value("tolerance", percent(kPeerTolerance))
       .every("agree", n.peer_agree, "compared", n.peer_compared)
       .on(n.peer_at);
-  claims.push_back(peer);
   Claim verdicts = claim("every-run-has-a-verdict",
                          "Every run ends with a verdict (unstable, meaningless or stable): {with} "
                          "of {runs}.");
   verdicts.every("with", n.verdicts, "runs", static_cast<long long>(n.runs)).on(n.all_at);
-  claims.push_back(verdicts);
   Claim c = claim("free-surface-lowers-only-spline-limits",
                   "The free surface lowers the spectral limit (the dense limit of the body more "
                   "than {tolerance} below the interior one) for each B-spline pair (scene and "
@@ -464,9 +458,7 @@ std::vector<Claim> survey_claims(const Findings& n) {
   c.count("other_lowered", n.other_lowered).count("others", n.others);
   c.number("lo", n.limits_compared ? n.ratio_lo : 0, 3).number("hi", n.ratio_hi, 3);
   c.holds = n.splines > 0 && n.others > 0 && n.spline_lowered == n.splines && n.other_lowered == 0;
-  c.on(n.limits_at);
-  claims.push_back(c);
-  return claims;
+  return {rigid, peer, verdicts, c.on(n.limits_at)};
 }
 
 // Each treatment against no treatment, and whether a smaller step buys accuracy.
@@ -483,20 +475,18 @@ std::vector<Claim> treatment_and_trade_claims(const Findings& f) {
     c.value("treatment", treatment).count("rescued", n.rescued).count("failing", n.failing);
     c.count("accurate", n.rescued_accurate);
     c.count("broken", n.broken).count("good", n.good);
-    c.over(n.failing).on(n.at);  // a rescue of one run is not "every run"
     c.holds = n.failing > 0 && n.rescued == n.failing && n.broken == 0;
-    claims.push_back(c);
+    claims.push_back(c.over(n.failing).on(n.at));  // a rescue of one run is not "every run"
   }
   Claim c = claim("space-error-dominates",
                   "At these settings the error does not move with the step: from the largest "
                   "to the smallest c dt/h of the trade the error falls by less than a factor "
                   "{factor} in {flat} of {pairs} scene and method pairs (the largest fall is "
                   "{worst}).");
-  c.number("factor", 2)
-      .every("flat", f.trade_flat, "pairs", f.trade_pairs)
-      .number("worst", f.trade_worst, 3)
-      .on(f.trade_at);
-  claims.push_back(c);
+  claims.push_back(c.number("factor", 2)
+                       .every("flat", f.trade_flat, "pairs", f.trade_pairs)
+                       .number("worst", f.trade_worst, 3)
+                       .on(f.trade_at));
   return claims;
 }
 

@@ -122,9 +122,8 @@ std::vector<Claim> table1_claims(const Findings& f) {
                   "No cell run at a Courant number c dt/h above its scheme's spectral limit ends "
                   "stable",
                   "{stable_above} of {above} such cells end stable");
-  a.count("stable_above", f.stable_above).count("above", f.above).over(f.above);
+  a.count("stable_above", f.stable_above).count("above", f.above).over(f.above).on(f.above_on);
   a.holds = f.stable_above == 0;
-  a.on(f.above_on);
   Claim b = claim("verdicts-robust",
                   "The verdict of every cell near its edge survives a perturbation of its layout "
                   "by a few {unit} of the particle spacing",
@@ -146,8 +145,8 @@ std::vector<Claim> table1_claims(const Findings& f) {
                   "{accurate} of {stable} stable cells are accurate; {inaccurate} are inaccurate, "
                   "with an error over time of {range} A");
   c.value("fraction", shortest(kAccurateFraction))
-      .every("accurate", f.ours.accurate, "stable", f.ours.stable);
-  c.count("inaccurate", f.ours.inaccurate)
+      .every("accurate", f.ours.accurate, "stable", f.ours.stable)
+      .count("inaccurate", f.ours.inaccurate)
       .value("range", f.ours.inaccurate_errors.empty() ? std::string("–")
                                                        : span(f.ours.inaccurate_errors, 2))
       .on(f.stable_on);

@@ -38,10 +38,9 @@ struct Table2Data {
     for (const auto& row : paper.rows)
       paper_by_E[Key(std::stod(row.at("E")), "Table 2's E")] = row;
     for (const auto& c : spec.cases) {
-      if (std::find(Es.begin(), Es.end(), c.params.E) == Es.end()) Es.push_back(c.params.E);
-      if (std::find(As.begin(), As.end(), c.params.A) == As.end()) As.push_back(c.params.A);
-      const std::string m(to_string(c.params.method));
-      if (std::find(methods.begin(), methods.end(), m) == methods.end()) methods.push_back(m);
+      add_unique(Es, c.params.E);
+      add_unique(As, c.params.A);
+      add_unique(methods, std::string(to_string(c.params.method)));
     }
   }
 
@@ -159,10 +158,8 @@ std::string crossings_table(const Table2Data& d) {
     for (const auto& m : d.methods)
       md << " ours " << m << " | " << m << " / paper |";
   }
-  md << " dt_sound paper | 1/c | h/c |\n|---|";
-  for (std::size_t k = 0; k < d.As.size() * (1 + 2 * d.methods.size()); ++k)
-    md << "---|";
-  md << "---|---|---|\n";
+  md << " dt_sound paper | 1/c | h/c |\n|---|"
+     << rule_cells(d.As.size() * (1 + 2 * d.methods.size())) << "---|---|---|\n";
   for (double E : d.Es)
     md << crossings_row(d, E);
   md << "\nNotes from the transcription: ";
@@ -254,10 +251,7 @@ std::string counting_rules_section(const Table2Data& d, std::vector<Claim>& clai
      << "| E | A | paper | ours gimp | ours mpm |";
   for (const auto& [name, n] : names)
     md << " " << name << " |";
-  md << " grid matching the paper |\n|---|---|---|---|---|";
-  for (std::size_t k = 0; k < names.size(); ++k)
-    md << "---|";
-  md << "---|\n";
+  md << " grid matching the paper |\n|---|---|---|---|---|" << rule_cells(names.size()) << "---|\n";
   std::vector<int> within(names.size(), 0);
   std::vector<std::vector<double>> ratios(names.size());
   std::vector<double> grids, gimp_over_exact;
@@ -301,11 +295,10 @@ std::string counting_rules_section(const Table2Data& d, std::vector<Claim>& clai
                   "Some counting rule of the exact motion on the paper's layout gives the paper's "
                   "crossing counts within {tol} in every cell",
                   "the best rule is within it in {best} of {n} cells");
-  c.value("tol", percent(kApproximate))
-      .every("best", best, "n", static_cast<long long>(counts.size()))
-      .on("the exact motion, no solver, at the layout and dt of the runs: " +
-          coverage_of(d.rows).text());
-  claims.push_back(c);
+  claims.push_back(c.value("tol", percent(kApproximate))
+                       .every("best", best, "n", static_cast<long long>(counts.size()))
+                       .on("the exact motion, no solver, at the layout and dt of the runs: " +
+                           coverage_of(d.rows).text()));
   return md.str();
 }
 

@@ -196,8 +196,8 @@ std::string cells_per_wavelength(const std::filesystem::path& results) {
       continue;
     const std::string m = e["method"].get<std::string>();
     const double C = e["courant"].get<double>();
-    if (std::find(schemes.begin(), schemes.end(), m) == schemes.end()) schemes.push_back(m);
-    if (std::find(courants.begin(), courants.end(), C) == courants.end()) courants.push_back(C);
+    add_unique(schemes, m);
+    add_unique(courants, C);
     const bool below = e.value("below_limit", false);
     cell[{m, C}] = !below ? "above the limit"
                    : e["cells_per_wavelength_1pct"].is_number()
@@ -209,10 +209,7 @@ std::string cells_per_wavelength(const std::filesystem::path& results) {
   md << "| scheme |";
   for (const double C : courants)
     md << " C = " << shortest(C) << " |";
-  md << "\n|---|";
-  for (std::size_t k = 0; k < courants.size(); ++k)
-    md << "---|";
-  md << "\n";
+  md << "\n|---|" << rule_cells(courants.size()) << "\n";
   for (const auto& m : schemes) {
     md << "| " << m << " |";
     for (const double C : courants) {

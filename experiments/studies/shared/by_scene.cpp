@@ -58,10 +58,6 @@ std::optional<double> courant_of(const ojson& r, const char* column) {
   return r[column].get<double>() / r["dt_cfl"].get<double>();
 }
 
-std::string opt_fixed(std::optional<double> v, int decimals) {
-  return v ? fixed(*v, decimals) : "–";
-}
-
 std::string edge_text(const ojson& r) {
   const auto edge = courant_of(r, "dt_edge");
   // Where the run at the largest surviving dt has no verdict, the scan found no edge.

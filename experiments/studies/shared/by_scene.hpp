@@ -40,8 +40,6 @@ StudyReport report_by_scene(const ReportContext& c, SceneSection section, SceneD
 std::string small_mass_of(const nlohmann::ordered_json& r);
 // c dt / h of the dt in `column` of a row (its dt_cfl is h / c); none where either is null.
 std::optional<double> courant_of(const nlohmann::ordered_json& r, const char* column);
-// A value with `decimals` decimals, or "–".
-std::string opt_fixed(std::optional<double> v, int decimals = 3);
 // The survival edge of an edge-search row as a report prints it: its c dt/h, "every dt to T
 // survives" where no dt of the scan failed, "0.812 (meaningless)" where the run at the edge is
 // meaningless, "–" where it has none.

@@ -69,9 +69,7 @@ std::string cases_header(const std::vector<std::string>& params, const Observe& 
   md << " particle-steps |\n|";
   const std::size_t n_cols = params.size() + 6 + (observe.error_over_time ? 2 : 0) +
                              (observe.dt_stable ? 1 : 0) + (observe.crossings ? 1 : 0);
-  for (std::size_t k = 0; k < n_cols; ++k)
-    md << "---|";
-  md << "\n";
+  md << rule_cells(n_cols) << "\n";
   return md.str();
 }
 
@@ -97,7 +95,7 @@ std::string case_row(const ojson& r, const std::vector<std::string>& params,
      << (row.wave_passes ? significant(*row.wave_passes, 3) : "–") << " | " << verdict(r) << " | "
      << opt_sci(r["max_error"]) << " |";
   if (observe.error_over_time)
-    md << " " << (row.error_over_time ? sci(*row.error_over_time) : "–") << " | "
+    md << " " << opt_sci(row.error_over_time) << " | "
        << (row.error_over_A() ? ratio(*row.error_over_A()) : "–") << " |";
   if (observe.dt_stable) md << " " << opt_sci(r["dt_stable_min"]) << " |";
   if (observe.crossings)

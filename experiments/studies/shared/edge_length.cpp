@@ -26,11 +26,8 @@ std::string monotone_words(const ojson& r) {
 
 std::vector<double> edges_of(const ojson& r) {
   std::vector<double> dts;
-  for (const char* col : {"dt_edge", "dt_accurate"}) {
-    if (!has_number(r, col)) continue;
-    const double dt = r[col].get<double>();
-    if (std::find(dts.begin(), dts.end(), dt) == dts.end()) dts.push_back(dt);
-  }
+  for (const char* col : {"dt_edge", "dt_accurate"})
+    if (has_number(r, col)) add_unique(dts, r[col].get<double>());
   return dts;
 }
 

@@ -408,19 +408,17 @@ std::vector<Claim> edge_claims(const Findings& f) {
       .count("robust", f.robust)
       .count("run", f.run)
       .count("with_edge", e.with_edge);
-  ens.over(f.run).on(e.edge_at);
   ens.holds = f.run == e.with_edge && f.robust == f.run;
-  claims.push_back(ens);
+  claims.push_back(ens.over(f.run).on(e.edge_at));
 
   Claim eq108 = claim("eq108-below-every-edge",
                       "Eq. (108) at the survival edge lies below the edge in every case where "
                       "both are measured",
                       "{below} of {n}; the edge is {lo} to {hi} times eq. (108)");
-  eq108.every("below", e.bound_below, "n", e.bound_n)
-      .value("lo", e.bound_n ? ratio(e.bound_lo) : "–")
-      .value("hi", e.bound_n ? ratio(e.bound_hi) : "–")
-      .on(e.bound_at);
-  claims.push_back(eq108);
+  claims.push_back(eq108.every("below", e.bound_below, "n", e.bound_n)
+                       .value("lo", e.bound_n ? ratio(e.bound_lo) : "–")
+                       .value("hi", e.bound_n ? ratio(e.bound_hi) : "–")
+                       .on(e.bound_at));
 
   Claim limit = claim("edges-at-most-the-limit",
                       "No survival edge lies above its scheme's spectral limit at the layout",
@@ -428,18 +426,16 @@ std::vector<Claim> edge_claims(const Findings& f) {
   limit.count("above", e.limit_above)
       .count("n", e.limit_n)
       .value("hi", e.limit_n ? fixed(e.limit_hi, 3) : "–");
-  limit.over(e.limit_n).on(e.limit_at);
   limit.holds = e.limit_above == 0;
-  claims.push_back(limit);
+  claims.push_back(limit.over(e.limit_n).on(e.limit_at));
 
   Claim below = claim("accurate-edges-at-most-the-limit",
                       "Every accuracy edge lies at or below its scheme's spectral limit (where no "
                       "mode of the linearised step grows; how long each holds is tested apart)",
                       "{above} of {n} lie above it");
   below.count("above", e.accurate_limit_above).count("n", e.accurate_limit_n);
-  below.over(e.accurate_limit_n).on(e.accurate_limit_at);
   below.holds = e.accurate_limit_above == 0;
-  claims.push_back(below);
+  claims.push_back(below.over(e.accurate_limit_n).on(e.accurate_limit_at));
 
   // Each kind of edge rerun for length: which hold to the longest test length.
   for (const bool survival : {true, false}) {
@@ -452,8 +448,7 @@ std::vector<Claim> edge_claims(const Findings& f) {
         std::string("{held} of {tested} hold; the others fail") +
             (survival ? "" : " or leave the accuracy class") + " at c T = {span}",
         t);
-    c.value("span", span(t.failed_at, 3)).on(f.lengths_at[survival ? 0 : 1]);
-    claims.push_back(c);
+    claims.push_back(c.value("span", span(t.failed_at, 3)).on(f.lengths_at[survival ? 0 : 1]));
   }
   Claim mono = claim("survival-monotone", "Survival is monotone in dt in every search",
                      "{monotone} of {n} searches");
@@ -616,7 +611,7 @@ std::string edge_table(const std::vector<const ojson*>& rows, const EdgeFollowUp
     md << "| " << rr.method << " | " << shortest(*rr.A) << " | "
        << significant(r["A_over_h"].get<double>(), 3) << " | " << shortest(r["E"].get<double>())
        << " | " << passes(r) << " | " << sci(r["dt_cfl"].get<double>(), 3) << " | "
-       << (rr.courant_spectral ? in_cfl(*rr.courant_spectral) : std::string("–")) << " | ";
+       << opt_fixed(rr.courant_spectral) << " | ";
     if (!found) {
       md << no_edge_text(r) << " | – | – | – | – | – | – | – | ";
     } else {
@@ -772,10 +767,7 @@ std::string edge_data_csv(const FigureCount& count, const std::string& header_li
   if (!count.no_accuracy.empty())
     csv << "# drawn without an accuracy edge (reference meaningless or not accurate): "
         << listed(count.no_accuracy) << "\n";
-  csv << "# panel:";
-  for (std::size_t i = 0; i < kPanels.size(); ++i)
-    csv << (i ? ", " : " ") << i << ' ' << kPanels[i];
-  csv << "; series:";
+  csv << "# panel: " << codes(kPanels) << "; series:";
   for (std::size_t i = 0; i < kSeries.size(); ++i)
     csv << (i ? ", " : " ") << i + 1 << ' ' << kSeries[i].first
         << " A = " << shortest(kSeries[i].second);

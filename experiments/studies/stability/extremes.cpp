@@ -204,8 +204,7 @@ std::vector<Claim> extremes_claims(const Counts& c) {
   std::vector<Claim> claims;
   Claim verdicts = claim("every-case-has-a-verdict", "Every case ends with a verdict",
                          "{with} of {total} cases have one");
-  verdicts.every("with", c.with_verdict, "total", c.total).on(c.all_at);
-  claims.push_back(verdicts);
+  claims.push_back(verdicts.every("with", c.with_verdict, "total", c.total).on(c.all_at));
 
   Claim finite = claim("outputs-finite",
                        "No run that reached T reports a NaN or an infinity in a quantity it "
@@ -213,9 +212,8 @@ std::vector<Claim> extremes_claims(const Counts& c) {
                        "{bad} of {reached} do; {unmeasured} report dt_stable_min as not measured "
                        "(eq. (108) is not defined for their basis), which is not counted");
   finite.count("bad", c.non_finite).count("reached", c.reached).count("unmeasured", c.not_measured);
-  finite.over(c.reached).on(c.reached_at);
   finite.holds = c.non_finite == 0;
-  claims.push_back(finite);
+  claims.push_back(finite.over(c.reached).on(c.reached_at));
 
   Claim enough = claim("verdicts-rest-on-enough-steps",
                        "No stable or meaningless verdict rests on fewer than {min} steps",
@@ -225,8 +223,7 @@ std::vector<Claim> extremes_claims(const Counts& c) {
       .count("few", c.few_step_verdicts)
       .count("short", c.verdicts.too_short);
   enough.holds = c.few_step_verdicts == 0;
-  enough.on(c.reached_at);
-  claims.push_back(enough);
+  claims.push_back(enough.on(c.reached_at));
 
   Claim above = claim("above-limit-fails",
                       "Every run above its scheme's spectral limit that is long enough to judge "
@@ -256,8 +253,7 @@ std::vector<Claim> extremes_claims(const Counts& c) {
       .value("fraction", shortest(kAccurateFraction))
       .every("accurate", c.verdicts.accurate, "stable", c.verdicts.accurate + c.inaccurate());
   accurate.count("inaccurate", c.inaccurate()).count("apart", c.verdicts.under_a_wave_pass);
-  accurate.on(c.stable_at);
-  claims.push_back(accurate);
+  claims.push_back(accurate.on(c.stable_at));
   return claims;
 }
 
@@ -417,9 +413,9 @@ std::string every_case_table(const std::vector<ojson>& rows) {
        << shortest(r["E"].get<double>()) << " | " << shortest(r["A"].get<double>()) << " | "
        << param(r["dt"].get<double>()) << " | " << param(r["T"].get<double>()) << " | "
        << r["cells"].dump() << " | " << r["ppc"].dump() << " | " << opt_sci(run.courant) << " | "
-       << (run.wave_passes ? sci(*run.wave_passes) : "–") << " | " << verdict_word(r) << " | "
-       << (run.error_over_time ? sci(*run.error_over_time) : "–") << " | " << (e ? sci(*e) : "–")
-       << " | " << (e ? std::string(to_string(accuracy_class(*e, 1.0))) : std::string("–")) << " | "
+       << opt_sci(run.wave_passes) << " | " << verdict_word(r) << " | "
+       << opt_sci(run.error_over_time) << " | " << opt_sci(e) << " | "
+       << (e ? std::string(to_string(accuracy_class(*e, 1.0))) : std::string("–")) << " | "
        << work(r) << " |\n";
   }
   return md.str();
@@ -431,8 +427,7 @@ std::vector<std::string> methods_of(const std::vector<ojson>& rows) {
   const std::vector<std::string> order = {"gimp", "mpm", "cpgimp", "cpdi", "bspline2", "bspline3"};
   std::vector<std::string> present;
   for (const auto& r : rows)
-    if (std::find(present.begin(), present.end(), method_label(r)) == present.end())
-      present.push_back(method_label(r));
+    add_unique(present, method_label(r));
   std::stable_sort(present.begin(), present.end(), [&](const std::string& a, const std::string& b) {
     return std::find(order.begin(), order.end(), a) < std::find(order.begin(), order.end(), b);
   });
@@ -499,10 +494,9 @@ std::string extremes_data_csv(const Findings& f, const std::string& header_lines
   std::ostringstream csv;
   csv << header_lines
       << "# one row per spot: method (its panel, counted from zero), Courant number, amplitude "
-         "in cells, verdict (";
-  for (std::size_t i = 0; i < kVerdicts.size(); ++i)
-    csv << (i ? ", " : "") << i << ' ' << kVerdicts[i];
-  csv << "), the number of cases there and the method's name\n"
+         "in cells, verdict ("
+      << codes(kVerdicts)
+      << "), the number of cases there and the method's name\n"
          "method,courant,A_over_h,verdict,cases,name\n";
   for (const auto& [spot, count] : f.spots) {
     const auto& [method, courant, a_over_h, verdict] = spot;

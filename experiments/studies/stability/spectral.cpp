@@ -193,11 +193,6 @@ constexpr double kHomogeneousSpread = 1.1;
 constexpr double kSqrtSlope = -0.5, kSlopeTolerance = 0.1;
 constexpr double kStateNegligible = 0.01;
 
-template <class T>
-void add_unique(std::vector<T>& v, const T& x) {
-  if (std::find(v.begin(), v.end(), x) == v.end()) v.push_back(x);
-}
-
 // The runs the eq. (108) section reads: every run's point, and those on the first row's grid by
 // E, particles per cell and basis.
 struct Eq108Grid {
@@ -411,9 +406,8 @@ std::optional<PaperFindings> paper_findings(const std::filesystem::path& referen
   PaperFindings p;
   std::map<std::tuple<std::string, Key, Key>, std::vector<double>> values;
   for (const PaperRow& r : read_paper_rows(reference)) {
-    if (std::find(p.Es.begin(), p.Es.end(), r.E) == p.Es.end()) p.Es.push_back(r.E);
-    if (std::find(p.keys.begin(), p.keys.end(), std::pair{r.method, r.A}) == p.keys.end())
-      p.keys.emplace_back(r.method, r.A);
+    add_unique(p.Es, r.E);
+    add_unique(p.keys, {r.method, r.A});
     // Table 1's own reading of a cell: '*' and unreadable text ('4.?e-6') are no number.
     const PaperValue& dt_stable = r.cell.dt_stable;
     if (dt_stable.kind != PaperValue::number || !(dt_stable.value > 0)) continue;
@@ -475,15 +469,14 @@ Findings find(const Spec& spec, const std::vector<ojson>& rows, const StudyInput
 
 // The schemes' limits confirmed by their runs.
 Claim confirmed_claim(const Findings& f) {
-  Claim c = claim("spectral-limit-confirmed",
-                  "Every scheme's spectral limit is confirmed by runs: the run just below it "
-                  "stays bounded and the run just above it grows",
-                  "{confirmed} of {schemes} schemes, runs at {below} and {above} times the limit");
-  c.every("confirmed", f.confirmed, "schemes", static_cast<long long>(f.schemes.size()))
+  return claim("spectral-limit-confirmed",
+               "Every scheme's spectral limit is confirmed by runs: the run just below it "
+               "stays bounded and the run just above it grows",
+               "{confirmed} of {schemes} schemes, runs at {below} and {above} times the limit")
+      .every("confirmed", f.confirmed, "schemes", static_cast<long long>(f.schemes.size()))
       .value("below", f.below)
       .value("above", f.above)
       .on(f.schemes_at);
-  return c;
 }
 
 // The claim that the runs' state does not move eq. (108) at the tiny amplitude.
@@ -504,8 +497,7 @@ Claim eq108_rest_claim(const Eq108Findings& f) {
       .value("ppc", f.shifted ? std::to_string(f.shifted->ppc) : "–")
       .value("tolerance", shortest(kStateNegligible));
   e.holds = n > 0 && f.shift < kStateNegligible;
-  e.on(f.points_at);
-  return e;
+  return e.on(f.points_at);
 }
 
 std::vector<Claim> eq108_claims(const Eq108Findings& f) {
@@ -542,8 +534,7 @@ std::vector<Claim> eq108_claims(const Eq108Findings& f) {
       .value("E_hi", s_lo ? shortest(s_hi->E) : "–")
       .value("threshold", shortest(kHomogeneousSpread));
   b.holds = f.spread > kHomogeneousSpread;
-  b.on(f.grid_at);
-  claims.push_back(b);
+  claims.push_back(b.on(f.grid_at));
 
   Claim c = claim("eq108-falls-as-sqrt-ppc",
                   "At a fixed grid, eq. (108)'s ratio to the limit falls as the inverse square "
@@ -552,12 +543,11 @@ std::vector<Claim> eq108_claims(const Eq108Findings& f) {
                   "{slope} (expected {expected} within {tolerance})");
   c.value("E", shortest(g.E0))
       .count("points", static_cast<long long>(f.by_ppc.size()))
-      .value("slope", f.ppc_slope ? fixed(*f.ppc_slope, 3) : "–")
+      .value("slope", opt_fixed(f.ppc_slope))
       .value("expected", shortest(kSqrtSlope))
       .value("tolerance", shortest(kSlopeTolerance));
   c.holds = f.ppc_slope && std::abs(*f.ppc_slope - kSqrtSlope) <= kSlopeTolerance;
-  c.on(f.ppc_at);
-  claims.push_back(c);
+  claims.push_back(c.on(f.ppc_at));
 
   Claim d = claim("eq108-independent-of-grid",
                   "At a fixed number of particles per cell, refining the grid leaves eq. (108)'s "
@@ -566,11 +556,10 @@ std::vector<Claim> eq108_claims(const Eq108Findings& f) {
                   "{slope} (unchanged: within {tolerance} of zero)");
   d.value("E", shortest(g.E0))
       .count("points", static_cast<long long>(f.gimp_count.size()))
-      .value("slope", f.count_slope ? fixed(*f.count_slope, 3) : "–")
+      .value("slope", opt_fixed(f.count_slope))
       .value("tolerance", shortest(kSlopeTolerance));
   d.holds = f.count_slope && std::abs(*f.count_slope) <= kSlopeTolerance;
-  d.on(f.count_at);
-  claims.push_back(d);
+  claims.push_back(d.on(f.count_at));
 
   claims.push_back(eq108_rest_claim(f));
   return claims;
@@ -659,10 +648,7 @@ std::string eq108_per_ppc(const Eq108Findings& f) {
        << " cells: the spectral limit, then eq. (108) / limit at each E\n\n| basis | E |";
     for (int ppc : g.ppcs)
       md << " ppc " << ppc << " |";
-    md << "\n|---|---|";
-    for (std::size_t k = 0; k < g.ppcs.size(); ++k)
-      md << "---|";
-    md << "\n";
+    md << "\n|---|---|" << rule_cells(g.ppcs.size()) << "\n";
     for (const auto& b : g.bases) {
       if (g.ppcs_of(b).size() < 2) continue;
       md << "| " << b << " | spectral limit |";
@@ -809,8 +795,7 @@ std::string paper_table(const Findings& f) {
   const PaperFindings& p = *f.paper;
   auto of = [&](const std::string& method, bool limit) -> std::string {
     const Scheme* s = f.scheme(method);
-    const auto v = !s ? std::nullopt : limit ? s->limit() : s->eq108();
-    return v ? fixed(*v, 3) : "–";
+    return opt_fixed(!s ? std::nullopt : limit ? s->limit() : s->eq108());
   };
   std::ostringstream md;
   md << "## The paper's dt stable column\n\nTable 1's \"dt stable\" (eq. (108) of the paper's "
@@ -829,10 +814,7 @@ std::string paper_table(const Findings& f) {
      << ", E = "
      << (f.schemes.empty() ? std::string("–")
                            : value_text(f.schemes.front().row()["E"].get<double>()))
-     << " |\n|---|---|";
-  for (std::size_t i = 0; i < p.Es.size() + 2; ++i)
-    md << "---|";
-  md << "\n";
+     << " |\n|---|---|" << rule_cells(p.Es.size() + 2) << "\n";
   for (const auto& [method, A] : p.keys) {
     md << "| " << method << " | " << shortest(A) << " | ";
     for (double E : p.Es) {
@@ -889,9 +871,9 @@ std::string spectral_markdown(const std::vector<ojson>& rows, const Findings& f)
                ? s.row()["spectral_analysis"].get<std::string>()
                : std::string("–"))
        << " | " << (edge != f.edges.end() ? fixed(edge->second, 4) : std::string("–")) << " | "
-       << (eq ? fixed(*eq, 4) : std::string("–")) << " | " << (s.below ? run_text(*s.below) : "–")
-       << " | " << (s.above ? run_text(*s.above) : "–") << " | "
-       << (s.confirmed() ? "yes" : "**no**") << " |\n";
+       << opt_fixed(eq, 4) << " | " << (s.below ? run_text(*s.below) : "–") << " | "
+       << (s.above ? run_text(*s.above) : "–") << " | " << (s.confirmed() ? "yes" : "**no**")
+       << " |\n";
   }
   // The eq. (108) section, its tables and readings; then the paper's column.
   const Eq108Findings& e = f.eq108;

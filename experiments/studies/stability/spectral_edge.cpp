@@ -99,9 +99,8 @@ Findings find(const std::vector<ojson>& rows, const LengthRuns& lengths) {
     const double A = r["A"].get<double>();
     const std::string s = scheme_label(r);
     if (runs[s] < 2) continue;
-    if (std::find(f.amplitudes.begin(), f.amplitudes.end(), A) == f.amplitudes.end())
-      f.amplitudes.push_back(A);
-    if (std::find(f.schemes.begin(), f.schemes.end(), s) == f.schemes.end()) f.schemes.push_back(s);
+    add_unique(f.amplitudes, A);
+    add_unique(f.schemes, s);
     f.at[{s, Key(A, "A")}] = &r;
     f.amplitudes_at.add(r);
     if (!edge_ratio(r)) f.edgeless[s].push_back(A);
@@ -148,8 +147,7 @@ std::string agreement_table(const Findings& f) {
     const auto q = edge_ratio(*r);
     md << "| " << scheme_label(*r) << " | " << in_h("dt_edge") << monotone_words(*r) << " | "
        << in_h("dt_fail") << " | " << in_h("dt_spectral") << " | " << text(*r, "spectral_analysis")
-       << " | " << (q ? fixed(*q, 4) : std::string("–")) << " | " << (agrees(*r) ? "yes" : "**no**")
-       << " |\n";
+       << " | " << opt_fixed(q, 4) << " | " << (agrees(*r) ? "yes" : "**no**") << " |\n";
   }
   return md.str();
 }
@@ -180,10 +178,7 @@ std::string amplitude_table(const Findings& f) {
   md << "\n\n| scheme |";
   for (double A : f.amplitudes)
     md << " A = " << shortest(A) << " |";
-  md << "\n|---|";
-  for (std::size_t i = 0; i < f.amplitudes.size(); ++i)
-    md << "---|";
-  md << "\n";
+  md << "\n|---|" << rule_cells(f.amplitudes.size()) << "\n";
   for (const auto& s : f.schemes) {
     md << "| " << s << " |";
     for (double A : f.amplitudes) {
@@ -193,8 +188,7 @@ std::string amplitude_table(const Findings& f) {
         continue;
       }
       const auto q = edge_ratio(*it->second);
-      md << " " << (q ? fixed(*q, 3) : std::string("–"))
-         << (q && outcome(*it->second) == "meaningless" ? " *" : "") << " |";
+      md << " " << opt_fixed(q) << (q && outcome(*it->second) == "meaningless" ? " *" : "") << " |";
     }
     md << "\n";
   }
