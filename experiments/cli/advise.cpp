@@ -1,6 +1,6 @@
-// `mpmstab advise`: the cheapest checked setting for a problem in dimensionless form, answered
-// from results/advice.json by the rule of advice.hpp (the one advice.md answers by), and with
-// --confirm, the setting run on the problem and at its corners.
+// `mpmstab advise`: a setting for a problem in dimensionless form, verified on the problem by the
+// search of advice_verify.hpp from the settings of results/advice.json, within a budget of
+// particle-steps.
 #include <cmath>
 #include <iostream>
 #include <sstream>
@@ -20,22 +20,37 @@ namespace mpmstab::cli {
 
 namespace {
 
-constexpr const char* kAdviseHelp =
-    R"(Usage: mpmstab advise --A <A/L> --cT <c T/L> --error <target> [options]
+// The help, with the default budget from AdviceDomain.
+std::string advise_help() {
+  return R"(Usage: mpmstab advise --A <A/L> --cT <c T/L> --error <target> [options]
 
 Answers a problem of the bar (or the neo-Hookean scene) in dimensionless form, amplitude A/L,
 run length c T/L (wave passes) and a target error over time (the largest displacement error over
 steps and particles) as a fraction of A, with a setting (method, transfer, update order, cells,
-C = c dt/h, start) verified on that problem (docs/studies.md, "Advice: verified on the problem").
+particles per cell, C = c dt/h, start) verified on that problem (docs/studies.md, "Advice:
+verified on the problem").
+
 The candidates are the advice study's settings (results/advice.json) and their methods and
-Courant numbers on finer grids, to 800 cells, each with the exact or the half-step start. Those
-whose prediction (the study's runs that match the problem's scene, boundary and layout) meets
-the target are tried cheapest first; each is run on the problem, to 4 x c T and on twice the
-cells at the same C. The answer is the first whose every verifying run ends stable within the
-target; it prints each verifying run, each candidate rejected and why, and the answer's
-survival and accuracy edges in C measured on the problem beside its small-amplitude (Bloch)
-limit. A problem outside the domain, too short for a verdict, that no candidate meets, or whose
-next candidate would pass the budget is refused with exit status 2, naming the bound.
+Courant numbers on finer grids, to 800 cells, each with 2 and with 4 particles per cell and with
+the exact and the half-step start. They are taken cheapest first in particle-steps (particles x
+steps) of their run on the problem. A candidate is skipped only where a run of the study that
+matches the problem (a run of the candidate itself, with 2 particles per cell from the exact
+start, on the same scene, boundary and layout, at an amplitude within a factor 3 of A and a
+jitter within a factor 2, to a length covering c T) predicts that it fails, or where the
+problem's own runs already show it cannot pass (a run of the same method, particles per cell
+and start on at least its cells at no larger C measured an error above the target, or one on its
+cells at no larger C was unstable). Every other prediction is distant: it orders candidates, it
+never excludes one. Each candidate not skipped is run on the problem, to 4 x c T and on twice
+the cells at the same C; the answer is the first whose every verifying run ends stable within
+the target: the cheapest that passed among the candidates not skipped. It prints each candidate
+rejected and why, the answer's verifying runs, how many were tried and skipped, the
+particle-steps spent, and the answer's survival and accuracy edges in C measured on the problem
+beside its small-amplitude (Bloch) limit. A problem outside the domain, too short for a
+verdict, whose every candidate is skipped or fails (the smallest error the search measured is
+named), or whose next candidate would take the particle-steps spent past the budget is refused
+with exit status 2, naming the bound. The budget counts particle-steps, not seconds: the same
+problem gets the same answer or refusal on any machine (the seconds are printed beside, in the
+text only).
 
 Required:
   --A <x>            amplitude over the bar's length, 1e-4 to 0.05
@@ -49,14 +64,17 @@ Options:
                              (default 0: the uniform layout)
   --methods <list>           comma-separated: a basis (gimp), a method (gimp/apic,
                              gimp/musl) or basis/transfer/update; default every method
-  --budget <seconds>         bound on the verifying runs and the margins' probes
-                             (default 60); a candidate whose runs would pass it is not run
+  --budget <particle-steps>  bound on the particle-steps of the verifying runs and the
+                             margins' probes (default )" +
+         sci(kAdviceDomain.budget_particle_steps) + R"(); a candidate whose runs would pass it
+                             is not run
   --no-margins               do not measure the survival and accuracy edges
-  --no-verify                the prediction's cheapest candidate, run on nothing: said
-                             plainly to be unverified
+  --no-verify                the cheapest candidate whose prediction meets the target, run
+                             on nothing: said plainly to be unverified
   --data <file>              the advice data (default results/advice.json)
-  --json                     one JSON object with the same content
+  --json                     one JSON object with the same content (without the seconds)
 )";
+}
 
 std::vector<OptionSpec> options() {
   return {{"A"},
@@ -167,14 +185,14 @@ std::vector<CheckedSetting> load(const std::filesystem::path& file) {
 int cmd_advise(const std::vector<std::string_view>& argv) {
   const Args args(argv, options());
   if (args.flag("help")) {
-    std::cout << kAdviseHelp;
+    std::cout << advise_help();
     return 0;
   }
   if (!args.positional().empty())
     throw UsageError("unexpected argument '" + std::string(args.positional().front()) + "'");
   // 1. The problem, checked against the domain.
   const VerifyProblem vp = problem_from(args);
-  double budget = kAdviceDomain.budget_seconds;
+  double budget = kAdviceDomain.budget_particle_steps;
   if (args.value("budget")) budget = positive(args, "budget");
   if (args.flag("no-verify") && (args.value("budget") || args.flag("no-margins")))
     throw UsageError("--no-verify runs nothing: --budget and --no-margins do not apply");
@@ -187,14 +205,14 @@ int cmd_advise(const std::vector<std::string_view>& argv) {
   // 3. The lookup alone, where asked for.
   if (args.flag("no-verify")) {
     const std::vector<Candidate> list = candidates(settings, vp);
-    if (list.empty() || !list.front().predicted_error_over_A ||
-        *list.front().predicted_error_over_A > vp.problem.target)
+    const Candidate* c = predicted_cheapest(list, vp.problem.target);
+    if (!c)
       throw UsageError("--error: no candidate is predicted to meet " +
                        value_text(vp.problem.target) + " A (or none gets a verdict)");
     if (json)
-      std::cout << unverified_json(list.front(), vp).dump(2) << "\n";
+      std::cout << unverified_json(*c, vp).dump(2) << "\n";
     else
-      std::cout << unverified_text(list.front(), vp);
+      std::cout << unverified_text(*c, vp);
     return 0;
   }
   // 4. The search: candidates verified on the problem, cheapest first.

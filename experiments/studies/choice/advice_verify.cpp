@@ -6,6 +6,7 @@
 #include <future>
 #include <random>
 #include <sstream>
+#include <tuple>
 
 #include "csv.hpp"
 #include "report_util.hpp"
@@ -19,9 +20,9 @@ namespace {
 // ---------------------------------------------------------------------------------------------
 // The prediction (docs/studies.md, "Advice: verified on the problem")
 
-// The corner kinds whose runs match a problem's scene, boundary and layout: the corner of each
-// attribute in which it differs from the bar with walls and a uniform layout.
-std::vector<CornerKind> matching_kinds(const VerifyProblem& vp) {
+// The corner kinds whose runs differ from a problem's scene, boundary and layout least: the corner
+// of each attribute in which it differs from the bar with walls and a uniform layout.
+std::vector<CornerKind> nearest_kinds(const VerifyProblem& vp) {
   const Problem& p = vp.problem;
   std::vector<CornerKind> kinds;
   if (p.bc == "periodic") kinds.push_back(CornerKind::periodic);
@@ -50,7 +51,7 @@ const CornerRun* nearest(const CheckedSetting& s, const std::vector<CornerKind>&
   return best;
 }
 
-// A matching run in words: "periodic A/L = 0.05, c T/L = 10".
+// A run in words: "periodic A/L = 0.05, c T/L = 10".
 std::string run_words(const CornerRun& c) {
   return (bar_kind(c.kind) ? std::string() : std::string(corner_words(c.kind)) + " ") +
          "A/L = " + value_text(c.A) + ", c T/L = " + value_text(c.length);
@@ -58,17 +59,55 @@ std::string run_words(const CornerRun& c) {
 
 struct Prediction {
   std::optional<double> error_over_A;
+  bool matching = false;
   std::string from;
 };
 
-// The prediction on the setting's own grid: the largest error of its matching runs, each the
-// nearest in amplitude, to the shorter length covering c T (else the longer, and beyond it grown
-// in proportion to c T, as a phase error). None where no run matches or one did not end stable.
-Prediction predict_own(const CheckedSetting& s, const VerifyProblem& vp, const RegionRule& rule) {
+// a and b within a factor f of each other.
+bool within(double a, double b, double f) {
+  return a <= b * f * (1 + 1e-12) && b <= a * f * (1 + 1e-12);
+}
+
+// A corner run matches the problem: the same scene, boundary and layout (uniform with uniform; a
+// jitter within match_jitter_factor of the problem's), an amplitude within match_A_factor of its
+// A, and a run length covering its c T.
+bool matches(const CornerRun& c, const VerifyProblem& vp, const AdviceDomain& d) {
+  const Problem& p = vp.problem;
+  const std::string scene = c.kind == CornerKind::other_scene ? "steffen" : "bar";
+  const std::string bc = c.kind == CornerKind::periodic ? "periodic" : "dirichlet";
+  const bool layout = vp.jitter > 0
+                          ? c.jitter > 0 && within(c.jitter, vp.jitter, d.match_jitter_factor)
+                          : c.jitter == 0;
+  return scene == p.scene && bc == p.bc && layout && within(c.A, p.A, d.match_A_factor) &&
+         c.length >= p.cT;
+}
+
+// The run of the candidate itself (a setting's method and C with its particles per cell, on
+// `cells` cells, from the exact start; any setting's corner) matching the problem: the shortest
+// covering c T, then the nearest in log A (ties: the larger amplitude).
+const CornerRun* matching_run(const std::vector<CheckedSetting>& settings, const CheckedSetting& s,
+                              int cells, const VerifyProblem& vp, const AdviceDomain& d) {
+  const CornerRun* best = nullptr;
+  auto key = [&](const CornerRun& c) {
+    return std::tuple(c.length, std::abs(std::log(c.A / vp.problem.A)), -c.A);
+  };
+  for (const auto& t : settings) {
+    if (t.method_text() != s.method_text() || t.courant != s.courant || t.ppc != s.ppc) continue;
+    for (const auto& c : t.corners)
+      if (c.cells == cells && matches(c, vp, d) && (!best || key(c) < key(*best))) best = &c;
+  }
+  return best;
+}
+
+// The distant prediction on the setting's own grid: the largest error of the runs of the kinds
+// nearest the problem, each the nearest in amplitude, to the shorter length covering c T (else
+// the longer, and beyond it grown in proportion to c T, as a phase error). None where no such run
+// exists or one did not end stable.
+Prediction distant_own(const CheckedSetting& s, const VerifyProblem& vp, const RegionRule& rule) {
   const Problem& p = vp.problem;
   const double shorter = rule.lengths.front(), longer = rule.lengths.back();
   const double length = p.cT <= shorter ? shorter : longer;
-  const std::vector<CornerKind> kinds = matching_kinds(vp);
+  const std::vector<CornerKind> kinds = nearest_kinds(vp);
   std::vector<const CornerRun*> used;
   if (bar_kind(kinds.front())) {
     if (const CornerRun* c = nearest(s, kinds, length, p.A)) used.push_back(c);
@@ -79,7 +118,7 @@ Prediction predict_own(const CheckedSetting& s, const VerifyProblem& vp, const R
   Prediction out;
   if (used.empty() || (!bar_kind(kinds.front()) && used.size() < kinds.size())) {
     out.from =
-        "no run of " + setting_name(s) + " matches the problem to c T/L = " + value_text(length);
+        "no run of " + setting_name(s) + " is near the problem to c T/L = " + value_text(length);
     return out;
   }
   double e = 0;
@@ -103,18 +142,19 @@ Prediction predict_own(const CheckedSetting& s, const VerifyProblem& vp, const R
   return out;
 }
 
-// On a finer grid: the own grid's, scaled by (cells / n)^q, q (at least zero) the order its finer
-// run measured against its base run.
-Prediction predict(const CheckedSetting& s, int cells, const VerifyProblem& vp,
+// The distant prediction on a finer grid: the own grid's, scaled by (cells / n)^q, q (at least
+// zero) the order its finer run measured against its base run.
+Prediction distant(const CheckedSetting& s, int cells, const VerifyProblem& vp,
                    const RegionRule& rule) {
-  Prediction own = predict_own(s, vp, rule);
+  Prediction own = distant_own(s, vp, rule);
   if (cells == s.cells || !own.error_over_A) return own;
   const CornerRun* base = s.corner(CornerKind::base, rule.lengths.front());
   const CornerRun* finer = s.corner(CornerKind::finer, rule.lengths.front());
   if (!base || !finer || !base->passes() || !finer->passes() || !(*base->error_over_A > 0) ||
       !(*finer->error_over_A > 0)) {
-    return {std::nullopt, setting_name(s) + " has no passing run on " +
-                              std::to_string(s.cells * rule.refine) + " cells to scale it by"};
+    return {std::nullopt, false,
+            setting_name(s) + " has no passing run on " + std::to_string(s.cells * rule.refine) +
+                " cells to scale it by"};
   }
   const double q =
       std::max(0.0, std::log(*base->error_over_A / *finer->error_over_A) / std::log(rule.refine));
@@ -124,6 +164,30 @@ Prediction predict(const CheckedSetting& s, int cells, const VerifyProblem& vp,
               "/" + std::to_string(cells) + ")^" + significant(q, 2) + " (the order its run on " +
               std::to_string(s.cells * rule.refine) + " cells measured)";
   return own;
+}
+
+// A candidate's prediction: matching where a run of the candidate itself matches the problem,
+// else distant, saying why.
+Prediction predict(const std::vector<CheckedSetting>& settings, const CheckedSetting& s,
+                   const Candidate& c, const VerifyProblem& vp, const AdviceDomain& d) {
+  const bool own_runs = c.ppc == s.ppc && c.start == VelocityStart::exact;
+  if (const CornerRun* m = own_runs ? matching_run(settings, s, c.cells, vp, d) : nullptr) {
+    Prediction out{.matching = true, .from = "its run at " + run_words(*m)};
+    if (m->outcome == "stable" && m->error_over_A)
+      out.error_over_A = *m->error_over_A;
+    else
+      out.from += ", which ended " + m->outcome;
+    return out;
+  }
+  Prediction out = distant(s, c.cells, vp, kRegionRule);
+  const std::string why =
+      c.ppc != s.ppc ? "the study's runs have " + std::to_string(s.ppc) + " ppc"
+      : c.start != VelocityStart::exact
+          ? "the study's runs start exactly"
+          : "no run of this method and C on " + std::to_string(c.cells) +
+                " cells matches the problem's scene, boundary, layout, A and c T";
+  out.from = "distant (" + why + "): " + out.from;
+  return out;
 }
 
 double steps_of(double cT, int cells, double courant) {
@@ -158,12 +222,12 @@ std::string outcome_words(const VerifyingRun& r) {
   return under_a_pass(r) ? under_a_wave_pass_word(wave_passes(r.params)) : r.outcome;
 }
 
-// The margins on the problem (ProblemEdges), unmeasured where a probe would pass the budget.
+// The margins on the problem (ProblemEdges), unmeasured where a probe would take the
+// particle-steps of the probes past `budget_left`.
 struct OverBudget {};
 
 ProblemEdges problem_edges(const Candidate& c, const VerifyProblem& vp, double budget_left,
-                           double seconds_per_particle_step, const RunFn& run_fn,
-                           const AdviceDomain& d) {
+                           const RunFn& run_fn, const AdviceDomain& d) {
   ProblemEdges e;
   const double target = vp.problem.target;
   RunParams params = run_params(c, vp);
@@ -174,9 +238,10 @@ ProblemEdges problem_edges(const Candidate& c, const VerifyProblem& vp, double b
   e.A = params.A;
   const EdgeSurvey survey = [&](double C, bool) {
     const double work = double(params.ppc) * params.cells * steps_of(params.T, params.cells, C);
-    if (e.seconds + work * seconds_per_particle_step > budget_left) throw OverBudget{};
+    if (e.particle_steps + work > budget_left) throw OverBudget{};
     params.stepping.cfl_factor = C;
     const VerifyingRun r = verifying_run("edge", params, target, run_fn);
+    e.particle_steps += r.particle_steps;
     e.seconds += r.seconds;
     EdgeProbe p{.dt = C, .survived = r.outcome != "unstable" && r.outcome != "no verdict"};
     // A run too short for a verdict neither survives nor fails (the search reads its steps).
@@ -197,7 +262,9 @@ ProblemEdges problem_edges(const Candidate& c, const VerifyProblem& vp, double b
     e.search = find_edge(EdgeAxis{.unit = C0, .top = d.edge_top, .wave_passes = e.cT, .A = e.A},
                          survey, o);
   } catch (const OverBudget&) {
-    e.not_measured = "not measured: its probes would pass the budget";
+    e.not_measured = "not measured: its next probe would pass the budget (" +
+                     sci(e.particle_steps) + " particle-steps of probes made, " + sci(budget_left) +
+                     " left)";
     return e;
   }
   e.measured = true;
@@ -223,20 +290,53 @@ void refuse_without_candidates(Verified& v, const std::vector<CheckedSetting>& s
                   : "--methods: no setting of the methods asked for is offered";
 }
 
-// The refusal when the next candidate's verifying runs would pass the budget.
-std::string budget_refusal(const Verified& v, const Candidate& c, double estimate,
-                           double budget_seconds) {
+// "3 tried, 12 skipped (10 predicted to fail by runs that match the problem, 2 shown unable to
+// pass by the problem's own runs)".
+std::string tried_words(const Verified& v) {
+  const std::size_t tried = v.rejected.size() + (v.answer ? 1 : 0);
   std::ostringstream s;
-  if (v.rejected.empty())
-    s << "--budget: the cheapest candidate, " << candidate_name(c) << ", needs about "
-      << significant(estimate, 2) << " s of verifying runs (" << sci(c.verify_particle_steps)
-      << " particle-steps); the budget is " << value_text(budget_seconds) << " s";
-  else
-    s << "--budget: " << v.rejected.size() << " candidate" << (v.rejected.size() > 1 ? "s" : "")
-      << " failed in " << significant(v.seconds, 2) << " s; the next, " << candidate_name(c)
-      << ", needs about " << significant(estimate, 2) << " s more (" << sci(c.verify_particle_steps)
-      << " particle-steps); the budget is " << value_text(budget_seconds) << " s";
+  s << tried << " tried, " << v.skipped_predicted + v.skipped_own_runs << " skipped ("
+    << v.skipped_predicted << " predicted to fail by runs that match the problem, "
+    << v.skipped_own_runs << " shown unable to pass by the problem's own runs)";
   return s.str();
+}
+
+// "; the smallest error over time the search measured on the problem is 2.3e-3 A, by ...".
+std::string smallest_words(const Verified& v) {
+  if (!v.smallest) return "; no run of the problem the search made ended stable";
+  return "; the smallest error over time the search measured on the problem is " +
+         sci(v.smallest->error_over_A) + " A, by " + candidate_name(v.smallest->candidate);
+}
+
+// The refusal when the next candidate's verifying runs would pass the budget.
+std::string budget_refusal(const Verified& v, const Candidate& c, double budget) {
+  std::ostringstream s;
+  s << "--budget: the next candidate, " << candidate_name(c) << ", needs "
+    << sci(c.verify_particle_steps) << " particle-steps of verifying runs; with the "
+    << sci(v.particle_steps) << " spent (" << tried_words(v) << ") that passes the budget of "
+    << sci(budget) << " particle-steps";
+  if (!v.rejected.empty()) s << smallest_words(v);
+  return s.str();
+}
+
+// The refusal when every candidate was skipped or failed.
+std::string target_refusal(const Verified& v, const Problem& p) {
+  return "--error: no candidate meets " + value_text(p.target) + " A: of " +
+         std::to_string(v.candidates) + ", " + tried_words(v) + smallest_words(v);
+}
+
+// A trial's runs counted into the search: their particle-steps and seconds, the runs of the
+// problem itself (the first and the grid check; not the longer run), the smallest error measured.
+void account(Verified& v, std::vector<VerifyingRun>& problem_runs, const Trial& t) {
+  for (std::size_t i = 0; i < t.runs.size(); ++i) {
+    v.particle_steps += t.runs[i].particle_steps;
+    v.seconds += t.runs[i].seconds;
+    if (i != 1) problem_runs.push_back(t.runs[i]);
+  }
+  const VerifyingRun& first = t.runs.front();
+  if (first.outcome == "stable" && first.error_over_A &&
+      (!v.smallest || *first.error_over_A < v.smallest->error_over_A))
+    v.smallest = Measured{.error_over_A = *first.error_over_A, .candidate = t.candidate};
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -266,7 +366,11 @@ std::string run_line(const VerifyingRun& r, bool with_seconds) {
 }
 
 std::string prediction_words(const Candidate& c) {
-  return c.predicted_error_over_A ? sci(*c.predicted_error_over_A) + " A from " + c.predicted_from
+  if (c.matching)
+    return c.predicted_error_over_A
+               ? sci(*c.predicted_error_over_A) + " A from " + c.predicted_from + " (matching)"
+               : "fails: " + c.predicted_from + " (matching)";
+  return c.predicted_error_over_A ? sci(*c.predicted_error_over_A) + " A, " + c.predicted_from
                                   : "none (" + c.predicted_from + ")";
 }
 
@@ -290,6 +394,41 @@ std::string edge_words(const std::optional<double>& low, const std::optional<dou
   return s.str();
 }
 
+// "  particle-steps spent    9.0e4 of verifying runs and 1.2e6 of the margins' probes, of a
+// budget of 2.0e9 (1.2 s of runs)": the seconds where asked for, beside, never deciding.
+std::string spent_line(const Verified& v, bool with_seconds) {
+  std::ostringstream s;
+  s << "  particle-steps spent    " << sci(v.particle_steps) << " of verifying runs";
+  if (v.edges.particle_steps > 0)
+    s << " and " << sci(v.edges.particle_steps) << " of the margins' probes";
+  s << ", of a budget of " << sci(v.budget);
+  if (with_seconds) s << " (" << significant(v.seconds + v.edges.seconds, 2) << " s of runs)";
+  s << "\n";
+  return s.str();
+}
+
+// The answer's margins, as lines.
+std::string margins_text(const Verified& v, const CheckedSetting& s) {
+  std::ostringstream out;
+  const EdgeResult& m = v.edges.search;
+  if (v.edges.measured && m.too_short) {
+    out << "  margins                 none: runs of c T = " << value_text(v.edges.cT) << " < "
+        << shortest(kMinWavePasses) << " wave pass are too short for a verdict\n";
+  } else if (v.edges.measured) {
+    out << "  margins measured at     c T = " << value_text(v.edges.cT) << " (the length the "
+        << "answer is verified at), A = " << value_text(v.edges.A) << "\n"
+        << "  survival edge           "
+        << edge_words(m.dt_edge, m.dt_fail, m.survives_above, s.courant, v.edges.scan_top)
+        << " (on this problem)\n"
+        << "  accuracy edge           "
+        << edge_words(m.dt_accurate, m.dt_inaccurate, m.accurate_above, s.courant, v.edges.scan_top)
+        << " (within the target on this problem)\n";
+  } else {
+    out << "  margins                 " << v.edges.not_measured << "\n";
+  }
+  return out.str();
+}
+
 ojson opt(const std::optional<double>& x) {
   return x ? ojson(*x) : ojson(nullptr);
 }
@@ -302,7 +441,6 @@ ojson run_json(const VerifyingRun& r) {
           {"under_a_wave_pass", under_a_pass(r)},
           {"error_over_A", opt(r.error_over_A)},
           {"particle_steps", r.particle_steps},
-          {"seconds", r.seconds},
           {"passes", r.passes}};
 }
 
@@ -312,10 +450,11 @@ ojson candidate_json(const Candidate& c, const VerifyProblem& vp) {
           {"transfer", s.transfer},
           {"update", s.update},
           {"cells", c.cells},
-          {"ppc", s.ppc},
+          {"ppc", c.ppc},
           {"courant", s.courant},
           {"start", std::string(c.start == VelocityStart::exact ? "exact" : "half_step")},
           {"predicted_error_over_A", opt(c.predicted_error_over_A)},
+          {"prediction_matching", c.matching},
           {"predicted_from", c.predicted_from},
           {"particle_steps", c.particle_steps},
           {"run", run_command(c, vp)}};
@@ -380,7 +519,8 @@ std::string outside_domain(const VerifyProblem& vp, const AdviceDomain& d) {
 
 std::string candidate_name(const Candidate& c) {
   std::ostringstream t;
-  t << c.from->method_text() << ", " << c.cells << " cells, C = " << shortest(c.from->courant);
+  t << c.from->method_text() << ", " << c.cells << " cells x " << c.ppc
+    << " ppc, C = " << shortest(c.from->courant);
   if (c.start == VelocityStart::half_step) t << ", half-step start";
   return t.str();
 }
@@ -394,7 +534,7 @@ RunParams run_params(const Candidate& c, const VerifyProblem& vp) {
               .A = p.A,
               .T = p.cT,
               .cells = c.cells,
-              .ppc = s.ppc,
+              .ppc = c.ppc,
               .bc = *parse_boundary(p.bc),
               .scene = *parse_scene(p.scene),
               .transfer = *parse_transfer(transfer),
@@ -417,9 +557,9 @@ std::string run_command(const Candidate& c, const VerifyProblem& vp) {
   const Problem& p = vp.problem;
   std::ostringstream out;
   out << "mpmstab run --method " << s.method << " " << transfer_options(s.transfer) << " --update "
-      << s.update << " --cells " << c.cells << " --policy cfl --cfl-factor " << shortest(s.courant)
-      << " --E " << value_text(kAdviceE) << " --A " << value_text(p.A) << " --T "
-      << value_text(p.cT);
+      << s.update << " --cells " << c.cells << " --ppc " << c.ppc << " --policy cfl --cfl-factor "
+      << shortest(s.courant) << " --E " << value_text(kAdviceE) << " --A " << value_text(p.A)
+      << " --T " << value_text(p.cT);
   if (c.start == VelocityStart::half_step) out << " --start half_step";
   if (p.scene != "bar") out << " --scene " << p.scene;
   if (p.bc != "dirichlet") out << " --bc " << p.bc;
@@ -427,13 +567,16 @@ std::string run_command(const Candidate& c, const VerifyProblem& vp) {
   return out.str();
 }
 
+bool predicted_to_fail(const Candidate& c, double target) {
+  return c.matching && (!c.predicted_error_over_A || *c.predicted_error_over_A > target);
+}
+
 std::vector<Candidate> candidates(const std::vector<CheckedSetting>& settings,
                                   const VerifyProblem& vp, const AdviceDomain& d) {
   using namespace studies::advice_verify;
   const Problem& p = vp.problem;
   std::vector<Candidate> out;
-  for (std::size_t i = 0; i < settings.size(); ++i) {
-    const CheckedSetting& s = settings[i];
+  for (const CheckedSetting& s : settings) {
     if (!advice_selected(s, p.methods)) continue;
     for (const int cells : d.cells) {
       // A finer grid rests on the setting of the same method and C with the most cells not
@@ -445,29 +588,33 @@ std::vector<Candidate> candidates(const std::vector<CheckedSetting>& settings,
             t.cells > s.cells && t.cells <= cells)
           coarser_than_another = true;
       if (coarser_than_another) continue;
-      const Prediction pr = predict(s, cells, vp, kRegionRule);
       const double steps = steps_of(p.cT, cells, s.courant);
       if (steps < double(kMinStepsToJudge)) continue;  // too short for a verdict
-      for (const VelocityStart start : {VelocityStart::exact, VelocityStart::half_step}) {
-        Candidate c{.from = &s, .cells = cells, .start = start};
-        c.predicted_error_over_A = pr.error_over_A;
-        c.predicted_from = pr.from;
-        if (start == VelocityStart::half_step) c.predicted_from += " (runs from the exact start)";
-        c.particle_steps = double(s.ppc) * cells * steps;
-        c.verify_particle_steps =
-            c.particle_steps +
-            double(s.ppc) * cells * steps_of(d.length_factor * p.cT, cells, s.courant) +
-            double(s.ppc) * cells * d.grid_factor *
-                steps_of(p.cT, cells * d.grid_factor, s.courant);
-        out.push_back(std::move(c));
+      std::vector<int> ppcs{s.ppc};
+      if (d.more_ppc != s.ppc) ppcs.push_back(d.more_ppc);
+      for (const int ppc : ppcs) {
+        for (const VelocityStart start : {VelocityStart::exact, VelocityStart::half_step}) {
+          Candidate c{.from = &s, .cells = cells, .ppc = ppc, .start = start};
+          Prediction pr = predict(settings, s, c, vp, d);
+          c.predicted_error_over_A = pr.error_over_A;
+          c.matching = pr.matching;
+          c.predicted_from = std::move(pr.from);
+          c.particle_steps = double(ppc) * cells * steps;
+          c.verify_particle_steps =
+              c.particle_steps +
+              double(ppc) * cells * steps_of(d.length_factor * p.cT, cells, s.courant) +
+              double(ppc) * cells * d.grid_factor *
+                  steps_of(p.cT, cells * d.grid_factor, s.courant);
+          out.push_back(std::move(c));
+        }
       }
     }
   }
   std::stable_sort(out.begin(), out.end(), [&](const Candidate& a, const Candidate& b) {
-    const bool ea = a.predicted_error_over_A && *a.predicted_error_over_A <= p.target;
-    const bool eb = b.predicted_error_over_A && *b.predicted_error_over_A <= p.target;
-    if (ea != eb) return ea;
     if (a.particle_steps != b.particle_steps) return a.particle_steps < b.particle_steps;
+    const bool ma = a.matching && !predicted_to_fail(a, p.target);
+    const bool mb = b.matching && !predicted_to_fail(b, p.target);
+    if (ma != mb) return ma;
     const double pa = a.predicted_error_over_A.value_or(INFINITY);
     const double pb = b.predicted_error_over_A.value_or(INFINITY);
     if (pa != pb) return pa < pb;
@@ -514,47 +661,60 @@ Trial verify(const Candidate& c, const VerifyProblem& vp, const RunFn& run_fn,
   return t;
 }
 
+std::string shown_unable(const Candidate& c, const VerifyProblem& vp,
+                         const std::vector<VerifyingRun>& problem_runs) {
+  const RunParams q = run_params(c, vp);
+  const double target = vp.problem.target;
+  for (const VerifyingRun& r : problem_runs) {
+    const RunParams& o = r.params;
+    if (o.method != q.method || o.transfer != q.transfer || o.fmpm_order != q.fmpm_order ||
+        o.xpic_order != q.xpic_order || o.flip_fraction != q.flip_fraction ||
+        o.update != q.update || o.ppc != q.ppc || o.start != q.start || o.T != q.T)
+      continue;
+    const double C = o.stepping.cfl_factor;
+    const std::string at =
+        "its run on " + std::to_string(o.cells) + " cells at C = " + shortest(C) + " ";
+    if (r.outcome == "unstable") {
+      if (q.cells == o.cells && q.stepping.cfl_factor >= C) return at + "was unstable";
+    } else if (r.error_over_A && *r.error_over_A > target && q.cells <= o.cells &&
+               q.stepping.cfl_factor >= C) {
+      return at + "measured an error over time of " + sci(*r.error_over_A) + " A";
+    }
+  }
+  return "";
+}
+
 Verified verified_advice(const std::vector<CheckedSetting>& settings, const VerifyProblem& vp,
-                         double budget_seconds, bool edges, const RunFn& run_fn,
+                         double budget_particle_steps, bool edges, const RunFn& run_fn,
                          const AdviceDomain& d) {
   using namespace studies::advice_verify;
   const Problem& p = vp.problem;
   Verified v;
+  v.budget = budget_particle_steps;
   const std::vector<Candidate> list = candidates(settings, vp, d);
-  for (const auto& c : list)
-    if (c.predicted_error_over_A && *c.predicted_error_over_A <= p.target) ++v.eligible;
+  v.candidates = list.size();
   if (list.empty()) {
     refuse_without_candidates(v, settings, p, d);
     return v;
   }
-  if (v.eligible == 0) {  // refused: the closest prediction
-    const Candidate* closest = nullptr;
-    for (const auto& c : list)
-      if (c.predicted_error_over_A &&
-          (!closest || *c.predicted_error_over_A < *closest->predicted_error_over_A))
-        closest = &c;
-    v.bound = "target";
-    v.refusal = "--error: no candidate is predicted to meet " + value_text(p.target) + " A";
-    if (closest)
-      v.refusal += "; the most accurate prediction is " + candidate_name(*closest) + " at " +
-                   sci(*closest->predicted_error_over_A) + " A (" + closest->predicted_from + ")";
-    return v;
-  }
-  double rate = d.nominal_seconds_per_particle_step;
-  for (std::size_t i = 0; i < v.eligible; ++i) {
-    const Candidate& c = list[i];
-    const double estimate = c.verify_particle_steps * rate;
-    if (v.seconds + estimate > budget_seconds) {
+  std::vector<VerifyingRun> problem_runs;  // of the candidates tried: the problem, the grid check
+  for (const Candidate& c : list) {
+    if (predicted_to_fail(c, p.target)) {
+      ++v.skipped_predicted;
+      continue;
+    }
+    if (!shown_unable(c, vp, problem_runs).empty()) {
+      ++v.skipped_own_runs;
+      continue;
+    }
+    // Decided on particle-steps alone, counted from the candidate's parameters before it runs.
+    if (v.particle_steps + c.verify_particle_steps > budget_particle_steps) {
       v.bound = "budget";
-      v.refusal = budget_refusal(v, c, estimate, budget_seconds);
+      v.refusal = budget_refusal(v, c, budget_particle_steps);
       return v;
     }
     Trial t = verify(c, vp, run_fn, d);
-    for (const auto& r : t.runs) {
-      v.seconds += r.seconds;
-      v.particle_steps += r.particle_steps;
-    }
-    if (v.particle_steps > 0) rate = std::max(rate * 0.25, v.seconds / v.particle_steps);
+    account(v, problem_runs, t);
     if (t.passed) {
       v.answer = std::move(t);
       break;
@@ -563,19 +723,25 @@ Verified verified_advice(const std::vector<CheckedSetting>& settings, const Veri
   }
   if (!v.answer) {
     v.bound = "target";
-    v.refusal = "--error: each of the " + std::to_string(v.eligible) +
-                " candidates predicted to meet " + value_text(p.target) +
-                " A failed its verifying runs";
+    v.refusal = target_refusal(v, p);
     return v;
   }
-  if (edges) {
-    const double left = std::max(0.0, budget_seconds - v.seconds);
-    v.edges = problem_edges(v.answer->candidate, vp, left,
-                            v.particle_steps > 0 ? v.seconds / v.particle_steps : rate, run_fn, d);
-  } else {
+  if (edges)
+    v.edges =
+        problem_edges(v.answer->candidate, vp, budget_particle_steps - v.particle_steps, run_fn, d);
+  else
     v.edges.not_measured = "not measured (--no-margins)";
-  }
   return v;
+}
+
+const Candidate* predicted_cheapest(const std::vector<Candidate>& list, double target) {
+  const Candidate* distant = nullptr;
+  for (const Candidate& c : list) {
+    if (!c.predicted_error_over_A || *c.predicted_error_over_A > target) continue;
+    if (c.matching) return &c;
+    if (!distant) distant = &c;
+  }
+  return distant;
 }
 
 std::vector<VerifyProblem> draw_problems(const SampleRule& rule, const AdviceDomain& d) {
@@ -609,48 +775,34 @@ std::vector<VerifyProblem> draw_problems(const SampleRule& rule, const AdviceDom
 std::string verified_text(const Verified& v, const VerifyProblem& vp, bool with_seconds) {
   using namespace studies::advice_verify;
   std::ostringstream out;
-  out << problem_line(vp);
-  out << "  candidates predicted to meet the target: " << v.eligible << "; tried "
-      << v.rejected.size() + (v.answer ? 1 : 0) << ", cheapest first\n";
+  out << problem_line(vp) << "  candidates              " << v.candidates
+      << ", cheapest first in particle-steps of the run of the problem; a candidate is skipped "
+         "only where a matching run predicts it fails or the problem's own runs show it cannot "
+         "pass\n";
   for (const Trial& t : v.rejected) {
     out << "  rejected " << candidate_name(t.candidate) << ": " << t.why << "\n";
     for (const auto& r : t.runs)
       out << run_line(r, with_seconds);
   }
   if (!v.answer) {
-    out << "  refused (" << v.bound << "): " << v.refusal << "\n";
+    out << "  search                  " << tried_words(v) << "\n"
+        << spent_line(v, with_seconds) << "  refused (" << v.bound << "): " << v.refusal << "\n";
     return out.str();
   }
   const Candidate& c = v.answer->candidate;
   const CheckedSetting& s = *c.from;
-  out << "  setting                 " << candidate_name(c) << " (" << s.ppc
-      << " particles per cell), verified on this problem\n"
+  out << "  setting                 " << candidate_name(c) << ", verified on this problem\n"
       << "  verifying runs          each reaching T with an error over time at most "
       << value_text(vp.problem.target) << " A (stable where it covers at least "
       << shortest(kMinWavePasses) << " wave pass)\n";
   for (const auto& r : v.answer->runs)
     out << run_line(r, with_seconds);
-  out << "  predicted error / A     " << prediction_words(c) << "\n"
+  out << "  passed                  the answer alone (the search stops at the first candidate "
+         "that passes: the cheapest that passes among those not skipped)\n"
+      << "  search                  " << tried_words(v) << "\n"
+      << "  predicted error / A     " << prediction_words(c) << "\n"
       << "  particle-steps          " << sci(c.particle_steps) << " (the run of the problem)\n"
-      << "  verification cost       " << sci(v.particle_steps) << " particle-steps"
-      << (with_seconds ? ", " + significant(v.seconds, 2) + " s" : std::string()) << "\n";
-  const EdgeResult& m = v.edges.search;
-  if (v.edges.measured && m.too_short) {
-    out << "  margins                 none: runs of c T = " << value_text(v.edges.cT) << " < "
-        << shortest(kMinWavePasses) << " wave pass are too short for a verdict\n";
-  } else if (v.edges.measured) {
-    out << "  margins measured at     c T = " << value_text(v.edges.cT) << " (the length the "
-        << "answer is verified at), A = " << value_text(v.edges.A) << "\n"
-        << "  survival edge           "
-        << edge_words(m.dt_edge, m.dt_fail, m.survives_above, s.courant, v.edges.scan_top)
-        << " (on this problem)\n"
-        << "  accuracy edge           "
-        << edge_words(m.dt_accurate, m.dt_inaccurate, m.accurate_above, s.courant, v.edges.scan_top)
-        << " (within the target on this problem)\n";
-  } else {
-    out << "  margins                 " << v.edges.not_measured << "\n";
-  }
-  out << "  small-amplitude limit   "
+      << spent_line(v, with_seconds) << margins_text(v, s) << "  small-amplitude limit   "
       << (s.courant_spectral ? "C = " + significant(*s.courant_spectral, 3) + " (" +
                                    ratio(*s.courant_spectral / s.courant) +
                                    "x; the Bloch limit of the uniform layout at rest)"
@@ -669,12 +821,21 @@ nlohmann::ordered_json verified_json(const Verified& v, const VerifyProblem& vp)
     rejected.push_back(
         {{"candidate", candidate_json(t.candidate, vp)}, {"why", t.why}, {"runs", runs}});
   }
+  ojson smallest = nullptr;
+  if (v.smallest)
+    smallest = {{"error_over_A", v.smallest->error_over_A},
+                {"candidate", candidate_json(v.smallest->candidate, vp)}};
   ojson out = {{"problem", problem_json(vp)},
                {"verified", true},
-               {"eligible", v.eligible},
+               {"candidates", v.candidates},
+               {"tried", v.rejected.size() + (v.answer ? 1 : 0)},
+               {"skipped_predicted_to_fail", v.skipped_predicted},
+               {"skipped_by_own_runs", v.skipped_own_runs},
                {"rejected", rejected},
+               {"smallest_measured", smallest},
+               {"budget_particle_steps", v.budget},
                {"particle_steps", v.particle_steps},
-               {"seconds", v.seconds}};
+               {"margins_particle_steps", v.edges.particle_steps}};
   if (!v.answer) {
     out["refused"] = v.refusal;
     out["bound"] = v.bound;
@@ -685,6 +846,7 @@ nlohmann::ordered_json verified_json(const Verified& v, const VerifyProblem& vp)
     runs.push_back(run_json(r));
   out["answer"] = candidate_json(v.answer->candidate, vp);
   out["verifying_runs"] = runs;
+  out["passed"] = ojson::array({out["answer"]});
   const auto& s = *v.answer->candidate.from;
   const EdgeResult& m = v.edges.search;
   out["margins"] = {{"measured", v.edges.measured},
@@ -708,9 +870,8 @@ std::string unverified_text(const Candidate& c, const VerifyProblem& vp) {
   using namespace studies::advice_verify;
   std::ostringstream out;
   out << problem_line(vp) << "  UNVERIFIED (--no-verify): no run of this problem was made; the "
-      << "setting is the prediction's cheapest\n"
-      << "  setting                 " << candidate_name(c) << " (" << c.from->ppc
-      << " particles per cell)\n"
+      << "setting is the cheapest whose prediction meets the target\n"
+      << "  setting                 " << candidate_name(c) << "\n"
       << "  predicted error / A     " << prediction_words(c) << "\n"
       << "  particle-steps          " << sci(c.particle_steps) << "\n"
       << "  run it with             " << run_command(c, vp) << "\n";

@@ -113,10 +113,10 @@ std::string advise_example(const std::filesystem::path& results) {
     return md.str();
   }
   const std::vector<CheckedSetting> settings = checked_settings_of(doc);
-  // The search without a budget: the answer does not depend on this machine's speed. The
-  // seconds, which do, are left out.
+  // The search with the default budget (particle-steps: the same answer on any machine). The
+  // seconds, which vary, are left out.
   const VerifyProblem vp{.problem = p};
-  const Verified v = verified_advice(settings, vp, INFINITY, true,
+  const Verified v = verified_advice(settings, vp, kAdviceDomain.budget_particle_steps, true,
                                      [](const RunParams& params) { return run(params); });
   md << verified_text(v, vp, false) << "```\n";
   return md.str();
@@ -152,9 +152,10 @@ std::string advice_domain_table() {
      << "| a verifying run's length: `length_factor` x c T | " << shortest(d.length_factor)
      << " |\n"
      << "| the grid check: `grid_factor` x the cells | " << d.grid_factor << " |\n"
-     << "| the default budget, seconds | " << shortest(d.budget_seconds) << " |\n"
-     << "| seconds per particle-step before any run | " << sci(d.nominal_seconds_per_particle_step)
-     << " |\n"
+     << "| candidates' particles per cell: the setting's and `more_ppc` | " << d.more_ppc << " |\n"
+     << "| a matching run: A within a factor; a jitter within a factor | "
+     << shortest(d.match_A_factor) << "; " << shortest(d.match_jitter_factor) << " |\n"
+     << "| the default budget, particle-steps | " << sci(d.budget_particle_steps) << " |\n"
      << "| the margins: C stepped by, up to; bisected to a factor | " << significant(d.edge_step, 4)
      << ", " << shortest(d.edge_top) << "; " << shortest(d.edge_tolerance) << " |\n";
   return md.str();
