@@ -32,7 +32,7 @@ CornerRun corner_run(CornerKind kind, double length, double A, int cells, double
   c.cells = cells;
   c.outcome = outcome;
   c.error_over_A = error_over_A;
-  if (kind == CornerKind::jittered) c.jitter = kRegionRule.jitter;
+  if (kind == CornerKind::jittered) c.jitter = kRegionRule.jitters.front();
   return c;
 }
 
