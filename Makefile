@@ -1,7 +1,15 @@
 # mpmstab front door. `make` builds the tool, `make test` builds and runs the test suite, `make bench`
 # the benchmarks. Every target first installs the Debian packages it needs if they are missing.
 
-BUILD_DIR  ?= build
+# The kernels' instruction-set ceiling: empty (every version, the CPU's best chosen at run time),
+# avx2 or portable; each builds in its own folder, build-avx2 or build-portable, and gives the same
+# results byte for byte (only the time moves): `make reproduce ISA=avx2`.
+ISA        ?=
+ifeq ($(filter-out avx2 portable,$(ISA)),)
+else
+$(error ISA must be empty, avx2 or portable, not '$(ISA)')
+endif
+BUILD_DIR  ?= build$(if $(ISA),-$(ISA))
 BUILD_TYPE ?= Release
 JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
 # CI builds treat compiler warnings as errors.
@@ -45,6 +53,9 @@ help:
 	@echo "make timings      publish this machine's timings: results/timings.json, performance.md"
 	@echo "make format       clang-format every source file in place"
 	@echo "make deps         only install the missing Debian packages"
+	@echo "ISA=avx2|portable  any target above with the kernels' instruction set capped (AVX2, or"
+	@echo "                   the -march target only), built in build-avx2 or build-portable; the"
+	@echo "                   same results byte for byte, another time"
 
 # Install only what is missing; apt-get needs root (sudo is used when available).
 deps:
@@ -65,14 +76,14 @@ deps:
 $(BUILD_DIR)/CMakeCache.txt: CMakeLists.txt | deps
 	@if [ ! -e $(BUILD_DIR)/CMakeCache.txt ]; then \
 	  mkdir -p $(BUILD_DIR) && date +%s.%N > $(BUILD_DIR)/fresh-build-start; fi
-	cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) -DMPMSTAB_WERROR=$(WERROR)
+	cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) -DMPMSTAB_WERROR=$(WERROR) -DMPMSTAB_ISA=$(ISA)
 
 # `make` builds the tool only; the test programs (the suite, the kernels of every instruction
 # set, the benchmark) are built by `make test` and `make bench`. What keeps a fresh build short is
 # in CMakeLists.txt: the harness at -Og in unity groups, the solver exactly as its recorded flags
 # say with a precompiled Eigen, and the layers compiled side by side.
 build: deps $(BUILD_DIR)/CMakeCache.txt
-	cmake -S . -B $(BUILD_DIR) -DMPMSTAB_WERROR=$(WERROR) > /dev/null
+	cmake -S . -B $(BUILD_DIR) -DMPMSTAB_WERROR=$(WERROR) -DMPMSTAB_ISA=$(ISA) > /dev/null
 	@start=$$(cat $(BUILD_DIR)/fresh-build-start 2>/dev/null); rm -f $(BUILD_DIR)/fresh-build-start; \
 	echo "cmake --build $(BUILD_DIR) -j $(JOBS) --target mpmstab"; \
 	cmake --build $(BUILD_DIR) -j $(JOBS) --target mpmstab || exit $$?; \
@@ -85,7 +96,7 @@ build: deps $(BUILD_DIR)/CMakeCache.txt
 # Everything: the tool and the test programs, in one build so that both cores stay busy.
 build-tests: deps $(BUILD_DIR)/CMakeCache.txt
 	@rm -f $(BUILD_DIR)/fresh-build-start  # the tool and the tests: not what `make` times
-	cmake -S . -B $(BUILD_DIR) -DMPMSTAB_WERROR=$(WERROR) > /dev/null
+	cmake -S . -B $(BUILD_DIR) -DMPMSTAB_WERROR=$(WERROR) -DMPMSTAB_ISA=$(ISA) > /dev/null
 	cmake --build $(BUILD_DIR) -j $(JOBS)
 
 test: build-tests
