@@ -3,8 +3,8 @@
 #include <nlohmann/json.hpp>
 
 #include "provenance.hpp"
-#include "result_json.hpp"
 #include "run/run.hpp"
+#include "sweep.hpp"
 
 namespace mpmstab {
 
@@ -41,9 +41,7 @@ RunResult cached_run(const ResultCache& cache, const RunParams& p) {
   if (const auto found = cache.load(p)) return from_record(p, (*found)["result"]);
   RunResult r = run(p);
   if (r.interrupted) return r;
-  ojson record;
-  record["result"] = to_json(r);
-  record["timing"] = timing_json(r);
+  ojson record = run_record(r);
   record["provenance"] = to_json(current_provenance(1));
   cache.store(p, record);
   return from_record(p, record["result"]);

@@ -326,7 +326,8 @@ SweepPlan plan_sweep(const Spec& spec, const SweepOptions& options,
   return plan;
 }
 
-// The record of a run's result.
+}  // namespace
+
 nlohmann::ordered_json run_record(const RunResult& r) {
   nlohmann::ordered_json rec;
   rec["result"] = to_json(r);
@@ -335,6 +336,8 @@ nlohmann::ordered_json run_record(const RunResult& r) {
   if (r.final_state) rec["final_state"] = final_state_json(*r.final_state);
   return rec;
 }
+
+namespace {
 
 // Computes one case: its record, or null when it was interrupted (neither cached nor reported).
 nlohmann::ordered_json compute_case(const RunParams& p, const Study& study,

@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "base/result.hpp"
 #include "spec.hpp"
 
 namespace mpmstab {
@@ -176,5 +177,9 @@ std::string case_search(const Spec& spec);
 // the records are returned in spec order. Cases with the same canonical parameters are computed
 // (or read from the cache) once.
 SweepOutcome run_sweep(const Spec& spec, const SweepOptions& options);
+
+// The record of a run's result as the cache stores it (its result, timing, and history and final
+// state where observed), without its provenance.
+nlohmann::ordered_json run_record(const RunResult& r);
 
 }  // namespace mpmstab
