@@ -105,26 +105,39 @@ __attribute__((always_inline)) inline void evaluate_block(const Basis& basis, co
         C.f[k][j] = gp[k] * stress_volume + wp[k] * body;
     }
   };
-  // S_ip, G_ip, the base node and the contributions of every particle of the block.
-  MPMSTAB_IVDEP
-  for (int j = 0; j < len; ++j) {
-    double xp = x[j];
-    if constexpr (kPeriodic) xp = fractional_part(xp);
-    int bp;
-    double wp[W], gp[W];
-    if constexpr (requires { basis.eval(xp, F[j], bp, wp, gp); }) {
-      basis.eval(xp, F[j], bp, wp, gp);  // a domain that follows F_p (cpGIMP, CPDI)
-    } else if constexpr (requires { basis.eval_vector(xp, bp, wp, gp); }) {
-      basis.eval_vector(xp, bp, wp, gp);  // B-splines: the walls' modification below
+  // S_ip, G_ip, the base node and the contributions of every particle of the block; for the
+  // B-splines, with or without the elimination of the ghost nodes (a choice made once per block,
+  // so that the loop is free of control flow and vectorizes).
+  const auto evaluate = [&]<bool kEliminate>() __attribute__((always_inline)) {
+    MPMSTAB_IVDEP
+    for (int j = 0; j < len; ++j) {
+      double xp = x[j];
+      if constexpr (kPeriodic) xp = fractional_part(xp);
+      int bp;
+      double wp[W], gp[W];
+      if constexpr (requires { basis.eval(xp, F[j], bp, wp, gp); }) {
+        basis.eval(xp, F[j], bp, wp, gp);  // a domain that follows F_p (cpGIMP, CPDI)
+      } else if constexpr (requires { basis.eliminate; }) {
+        basis.template eval_vector<kEliminate>(xp, bp, wp, gp);  // B-splines: walls below
+      } else {
+        basis.eval(xp, bp, wp, gp);
+      }
+      base[j] = bp + Grid::kOffset;
+      for (int k = 0; k < W; ++k) {
+        w[k][j] = wp[k];
+        g[k][j] = gp[k];
+      }
+      contribute(j, wp, gp);
+    }
+  };
+  if constexpr (requires { basis.eliminate; }) {
+    if (basis.eliminate) {
+      evaluate.template operator()<true>();
     } else {
-      basis.eval(xp, bp, wp, gp);
+      evaluate.template operator()<false>();
     }
-    base[j] = bp + Grid::kOffset;
-    for (int k = 0; k < W; ++k) {
-      w[k][j] = wp[k];
-      g[k][j] = gp[k];
-    }
-    contribute(j, wp, gp);
+  } else {
+    evaluate.template operator()<false>();
   }
   // B-splines with modified walls (shape.hpp): the particles next to a wall get the modified
   // values, and the block's contributions are made again from them.

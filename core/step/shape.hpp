@@ -167,18 +167,17 @@ struct CpGimpBasis {
 // partition of unity and the reproduction of linear fields, and with the wall's velocity fixed at
 // 0 it makes the ghost velocity the odd reflection -c_1. (Plain truncation, dropping S_{-1},
 // would lose partition of unity.) The weight folded in can make S_1 negative next to a wall.
-// With `active` false the values are left as they are, by a select rather than a branch, so that
-// a loop over particles that calls it stays free of control flow (and vectorizes).
+// base (the first node touched) and cells are whole numbers held as doubles: compared as doubles,
+// they give masks of the doubles' width, and a loop over particles that calls this vectorizes.
 template <int W>
-inline void eliminate_ghost_nodes(int base, int cells, double* w_io, double* g_io,
-                                  bool active = true) {
+MPMSTAB_INLINE void eliminate_ghost_nodes(double base, double cells, double* w_io, double* g_io) {
   double w[W], g[W];
   for (int k = 0; k < W; ++k) {
     w[k] = w_io[k];
     g[k] = g_io[k];
   }
   // Left: only node -1 can be beyond the wall, at slot 0 when base == -1.
-  const double left = base == -1 ? 1.0 : 0.0;
+  const double left = base == -1.0 ? 1.0 : 0.0;
   const double wl = left * w[0], gl = left * g[0];
   w[0] -= wl;
   w[1] += 2.0 * wl;
@@ -188,7 +187,7 @@ inline void eliminate_ghost_nodes(int base, int cells, double* w_io, double* g_i
   g[2] -= gl;
   // Right: node N + 1, at slot k = N + 1 - base (2 <= k < W when touched).
   for (int k = 2; k < W; ++k) {
-    const double right = base + k == cells + 1 ? 1.0 : 0.0;
+    const double right = base + k == cells + 1.0 ? 1.0 : 0.0;
     const double wr = right * w[k], gr = right * g[k];
     w[k] -= wr;
     w[k - 1] += 2.0 * wr;
@@ -198,8 +197,8 @@ inline void eliminate_ghost_nodes(int base, int cells, double* w_io, double* g_i
     g[k - 2] -= gr;
   }
   for (int k = 0; k < W; ++k) {
-    w_io[k] = active ? w[k] : w_io[k];
-    g_io[k] = active ? g[k] : g_io[k];
+    w_io[k] = w[k];
+    g_io[k] = g[k];
   }
 }
 
@@ -320,10 +319,11 @@ inline void modify_at_walls(double x, double inv_h, int base, int cells, double*
   }
 }
 
-// p2g evaluates a B-spline in two parts (p2g_kernel.hpp): eval_vector, the uniform splines with
-// the ghost nodes eliminated, branch-free so that the loop over particles vectorizes; then, with
-// modified walls only, modify() on the particles next to a wall, one at a time. eval() is the
-// two together.
+// p2g evaluates a B-spline in two parts (p2g_kernel.hpp): eval_vector<kEliminate>, the uniform
+// splines, with the ghost nodes eliminated when kEliminate (walls == eliminate, chosen once per
+// loop rather than per particle, so that the loop over particles is free of control flow and
+// vectorizes); then, with modified walls only, modify() on the particles next to a wall, one at a
+// time. eval() is the two together.
 
 // Uniform quadratic B-spline, N(r) in units of h (as in Steffen, Kirby & Berzins 2008):
 //   N = 3/4 - r^2 for |r| <= 1/2,  (3/2 - |r|)^2 / 2 for 1/2 <= |r| <= 3/2,  0 beyond.
@@ -349,9 +349,10 @@ struct BSpline2Basis {
       : BSpline2Basis(h, n_cells, dirichlet ? SplineWalls::eliminate : SplineWalls::none) {}
 
   MPMSTAB_INLINE void eval(double x, int& base, double* w, double* g) const {
-    eval_vector(x, base, w, g);
+    eliminate ? eval_vector<true>(x, base, w, g) : eval_vector<false>(x, base, w, g);
     if (modifies()) modify(x, base, w, g);
   }
+  template <bool kEliminate>
   MPMSTAB_INLINE void eval_vector(double x, int& base, double* w, double* g) const {
     const double s = x * inv_h - 0.5;
     const double cell = floor_exact(s);
@@ -364,7 +365,7 @@ struct BSpline2Basis {
     g[0] = (t - 1.0) * inv_h;
     g[1] = -2.0 * c * inv_h;
     g[2] = t * inv_h;
-    eliminate_ghost_nodes<width>(base, cells, w, g, eliminate);
+    if constexpr (kEliminate) eliminate_ghost_nodes<width>(cell, cells, w, g);
   }
   bool modifies() const { return walls == SplineWalls::modified; }
   void modify(double x, int base, double* w, double* g) const {
@@ -397,9 +398,10 @@ struct BSpline3Basis {
       : BSpline3Basis(h, n_cells, dirichlet ? SplineWalls::eliminate : SplineWalls::none) {}
 
   MPMSTAB_INLINE void eval(double x, int& base, double* w, double* g) const {
-    eval_vector(x, base, w, g);
+    eliminate ? eval_vector<true>(x, base, w, g) : eval_vector<false>(x, base, w, g);
     if (modifies()) modify(x, base, w, g);
   }
+  template <bool kEliminate>
   MPMSTAB_INLINE void eval_vector(double x, int& base, double* w, double* g) const {
     const double s = x * inv_h;
     const double cell = floor_exact(s);
@@ -417,7 +419,7 @@ struct BSpline3Basis {
     g[1] = (3.0 * t2 - 4.0 * t) * half_inv_h;
     g[2] = (-3.0 * t2 + 2.0 * t + 1.0) * half_inv_h;
     g[3] = t2 * half_inv_h;
-    eliminate_ghost_nodes<width>(base, cells, w, g, eliminate);
+    if constexpr (kEliminate) eliminate_ghost_nodes<width>(cell - 1.0, cells, w, g);
   }
   bool modifies() const { return walls == SplineWalls::modified; }
   void modify(double x, int base, double* w, double* g) const {
