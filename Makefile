@@ -33,7 +33,7 @@ DOCUMENTS   := README.md docs/theory.md docs/studies.md
 FUZZ_SECONDS ?= 15
 FUZZ_DIR     ?= build-fuzz
 
-.PHONY: all build build-tests deps test test-cluster check bless fuzz bench timings reproduce studies tier figures plots reports-unchanged format format-check clean help
+.PHONY: all build build-tests deps test test-cluster check bless fuzz bench bench-versions timings reproduce studies tier figures plots reports-unchanged format format-check clean help
 
 all: build
 
@@ -50,6 +50,8 @@ help:
 	@echo "make reports-unchanged  re-render both tiers (from the cache when warm) and fail unless"
 	@echo "                   every report, README.md and docs/ come out byte for byte as committed"
 	@echo "make bench        run the step benchmark, write results/benchmark_step.json"
+	@echo "make bench-versions  ns per particle-step of each kernel version this machine runs,"
+	@echo "                   beside a lean loop compiled for the same instruction set"
 	@echo "make timings      publish this machine's timings: results/timings.json, performance.md"
 	@echo "make format       clang-format every source file in place"
 	@echo "make deps         only install the missing Debian packages"
@@ -141,6 +143,13 @@ bless: export MPMSTAB_BLESS_REASON = $(REASON)
 bless: build
 	specs=$$($(MPMSTAB) list) && \
 	  $(MPMSTAB) bless $$specs --jobs $(JOBS) --results $(RESULTS) --reason "$$MPMSTAB_BLESS_REASON"
+
+# Each kernel version this machine can run beside a lean loop compiled for the same instruction
+# set (tests/bench_versions.sh): ns per particle-step per method, best of 3 interleaved runs; the
+# table goes to the terminal and to $(BUILD_DIR)/bench_versions.md, nothing into the checkout.
+bench-versions: build
+	cmake --build $(BUILD_DIR) -j $(JOBS) --target bench_versions
+	tests/bench_versions.sh $(BUILD_DIR)
 
 # The step benchmark (Google Benchmark, 5 repetitions, medians used), pinned to one core.
 bench: build

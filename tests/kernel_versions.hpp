@@ -15,7 +15,8 @@
 namespace mpmstab::kernel_versions {
 
 // Every basis, transfer and update order, a failing run, a free surface with a small-mass
-// treatment and a block crossing cells: each path of the kernels that has a vector version.
+// treatment, a block crossing cells and the B-splines' walls: each path of the kernels that has a
+// vector version.
 inline std::vector<RunParams> cases() {
   std::vector<RunParams> out;
   auto base = [] {
@@ -62,6 +63,18 @@ inline std::vector<RunParams> cases() {
   block.bc = Boundary::periodic;
   block.A = 0.1;
   out.push_back(block);
+  // The B-splines' other walls: none (periodic) and the boundary-modified splines.
+  RunParams mode = base();
+  mode.scene = SceneKind::mode;
+  mode.bc = Boundary::periodic;
+  mode.method = Method::bspline3;
+  out.push_back(mode);
+  for (Method m : {Method::bspline2, Method::bspline3}) {
+    RunParams modified = base();
+    modified.method = m;
+    modified.walls = Walls::modified;
+    out.push_back(modified);
+  }
   return out;
 }
 
