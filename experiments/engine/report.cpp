@@ -1,12 +1,16 @@
 #include "report.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdio>
+#include <exception>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <set>
 #include <sstream>
+#include <thread>
 
 #include "base/accuracy.hpp"
 #include "base/version.hpp"
@@ -776,12 +780,57 @@ std::string index_section(const Spec& spec, const ojson& doc) {
 
 }  // namespace
 
+namespace {
+
+// texts[i] = make(i) for every i, on up to kIndexThreads threads; the texts keep their order,
+// and the first exception is rethrown here. The index's paragraphs are independent (each reads
+// its own spec and results); a few recompute their study's findings, which takes seconds.
+constexpr unsigned kIndexThreads = 4;
+
+std::vector<std::string> in_parallel(std::size_t n,
+                                     const std::function<std::string(std::size_t)>& make) {
+  std::vector<std::string> texts(n);
+  std::vector<std::exception_ptr> errors(n);
+  std::atomic<std::size_t> next{0};
+  const auto work = [&] {
+    for (std::size_t i = next++; i < n; i = next++) {
+      try {
+        texts[i] = make(i);
+      } catch (...) {
+        errors[i] = std::current_exception();
+      }
+    }
+  };
+  const unsigned threads = std::clamp(std::thread::hardware_concurrency(), 1u, kIndexThreads);
+  std::vector<std::thread> pool;
+  for (unsigned t = 1; t < threads; ++t)
+    pool.emplace_back(work);
+  work();
+  for (auto& t : pool)
+    t.join();
+  for (const auto& e : errors)
+    if (e) std::rethrow_exception(e);
+  return texts;
+}
+
+}  // namespace
+
 void write_index(const std::vector<Spec>& specs, const fs::path& out) {
+  // Each spec's results, read once; a derived study (no cases of its own) is a paragraph of the
+  // introduction, every other one a row and a section.
+  std::vector<ojson> docs(specs.size());
+  for (std::size_t i = 0; i < specs.size(); ++i) {
+    if (specs[i].study->has_cases) docs[i] = load_results(specs[i], out);
+  }
+  const std::vector<std::string> sections = in_parallel(specs.size(), [&](std::size_t i) {
+    const Spec& spec = specs[i];
+    if (!spec.study->has_cases) return spec.study->index(spec, {});
+    return docs[i].is_null() ? std::string() : index_section(spec, docs[i]);
+  });
   std::ostringstream md;
   md << index_intro();
-  // A derived study (no cases of its own) is a paragraph of the introduction.
-  for (const auto& spec : specs) {
-    if (!spec.study->has_cases) md << spec.study->index(spec, {});
+  for (std::size_t i = 0; i < specs.size(); ++i) {
+    if (!specs[i].study->has_cases) md << sections[i];
   }
   md << "Outcomes and accuracy classes (docs/studies.md, \"Outcomes\"): *unstable*, the run "
         "stopped with a failure; *meaningless*, it reached T but its error over time reached the "
@@ -798,20 +847,18 @@ void write_index(const std::vector<Spec>& specs, const fs::path& out) {
         "| experiment | made by | report | data | cases | unstable | meaningless | too short | "
         "under a wave pass | stable | of them accurate | of them inaccurate |\n"
         "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
-  std::vector<std::pair<const Spec*, ojson>> docs;
-  for (const auto& spec : specs) {
-    if (!spec.study->has_cases) continue;
-    ojson doc = load_results(spec, out);
-    if (doc.is_null()) {
-      md << "| " << spec.title << " | not generated | | | | | | | | | | |\n";
-      continue;
+  for (std::size_t i = 0; i < specs.size(); ++i) {
+    if (!specs[i].study->has_cases) continue;
+    if (docs[i].is_null()) {
+      md << "| " << specs[i].title << " | not generated | | | | | | | | | | |\n";
+    } else {
+      md << index_row(specs[i], docs[i]);
     }
-    docs.emplace_back(&spec, std::move(doc));
-    md << index_row(spec, docs.back().second);
   }
   md << "\n";
-  for (const auto& [spec, doc] : docs)
-    md << index_section(*spec, doc);
+  for (std::size_t i = 0; i < specs.size(); ++i) {
+    if (specs[i].study->has_cases) md << sections[i];
+  }
   write_if_changed(out / "README.md", md.str());
 }
 
