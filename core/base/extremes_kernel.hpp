@@ -133,4 +133,94 @@ struct Extremes8 {
 }  // namespace
 #endif
 
+#if MPMSTAB_AVX2
+namespace {
+
+// The running extremes 4 particles at a time with AVX2, for a CPU without AVX-512: the lane-wise
+// operations of Extremes8 in the same operand order, finiteness as in the portable pass (v * 0
+// is NaN exactly when v is NaN or infinite), and the tail one particle at a time (add_particle).
+// Shared by state_extremes's AVX2 pass (failure.cpp) and the AVX2 pass of USL's g2p and stress
+// update (phases.cpp); inlined, so that the accumulators stay in registers.
+template <bool with_error>
+struct Extremes4 {
+  __m256d zero = _mm256_setzero_pd(), sign = _mm256_set1_pd(-0.0);
+  __m256d F_min = _mm256_set1_pd(std::numeric_limits<double>::infinity());
+  __m256d F_max = _mm256_set1_pd(-std::numeric_limits<double>::infinity());
+  __m256d x_min = F_min, x_max = F_max;
+  __m256d s_abs = zero, sF_abs = zero, err = zero, not_finite = zero;
+  __m256d f4;
+  const double* X = nullptr;
+  const double* u = nullptr;
+  double f = 0;
+  StateExtremes tail{
+      true, std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(), 0, 0,
+      0,    std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(), 0};
+
+  MPMSTAB_AVX2_TARGET explicit Extremes4(const ErrorTerms* error) {
+    if constexpr (with_error) {
+      X = error->X;
+      u = error->u;
+      f = error->factor;
+    }
+    f4 = _mm256_set1_pd(f);
+  }
+
+  // Particles p .. p + 3 with these x, v, F and sigma.
+  MPMSTAB_AVX2_TARGET MPMSTAB_INLINE void add(std::size_t p, __m256d xp, __m256d vp, __m256d Fp,
+                                              __m256d sp) {
+    if constexpr (with_error) {
+      const __m256d d = _mm256_sub_pd(_mm256_sub_pd(xp, _mm256_loadu_pd(X + p)),
+                                      _mm256_mul_pd(_mm256_loadu_pd(u + p), f4));
+      err = _mm256_max_pd(err, _mm256_andnot_pd(sign, d));
+    }
+    not_finite = _mm256_add_pd(
+        not_finite, _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(xp, zero), _mm256_mul_pd(vp, zero)),
+                                  _mm256_add_pd(_mm256_mul_pd(Fp, zero), _mm256_mul_pd(sp, zero))));
+    F_min = _mm256_min_pd(F_min, Fp);
+    F_max = _mm256_max_pd(F_max, Fp);
+    s_abs = _mm256_max_pd(s_abs, _mm256_andnot_pd(sign, sp));
+    sF_abs = _mm256_max_pd(sF_abs, _mm256_andnot_pd(sign, _mm256_mul_pd(sp, Fp)));
+    x_min = _mm256_min_pd(x_min, xp);
+    x_max = _mm256_max_pd(x_max, xp);
+  }
+
+  // One particle p (the arithmetic of a lane).
+  MPMSTAB_INLINE void add_one(std::size_t p, double x, double v, double F, double s) {
+    if constexpr (with_error) {
+      tail.error_max = std::max(tail.error_max, std::abs((x - X[p]) - u[p] * f));
+    }
+    add_particle(tail, x, v, F, s);
+  }
+
+  MPMSTAB_AVX2_TARGET MPMSTAB_INLINE StateExtremes result() const {
+    alignas(32) double lanes[8][4];
+    _mm256_store_pd(lanes[0], F_min);
+    _mm256_store_pd(lanes[1], F_max);
+    _mm256_store_pd(lanes[2], s_abs);
+    _mm256_store_pd(lanes[3], sF_abs);
+    _mm256_store_pd(lanes[4], x_min);
+    _mm256_store_pd(lanes[5], x_max);
+    _mm256_store_pd(lanes[6], err);
+    _mm256_store_pd(lanes[7], not_finite);
+    StateExtremes e;
+    e.F_min = std::min(*std::min_element(lanes[0], lanes[0] + 4), tail.F_min);
+    e.F_max = std::max(*std::max_element(lanes[1], lanes[1] + 4), tail.F_max);
+    e.F_abs_max = std::max(std::abs(e.F_min), std::abs(e.F_max));
+    e.sigma_abs_max = std::max(*std::max_element(lanes[2], lanes[2] + 4), tail.sigma_abs_max);
+    e.sigmaF_abs_max = std::max(*std::max_element(lanes[3], lanes[3] + 4), tail.sigmaF_abs_max);
+    e.x_min = std::min(*std::min_element(lanes[4], lanes[4] + 4), tail.x_min);
+    e.x_max = std::max(*std::max_element(lanes[5], lanes[5] + 4), tail.x_max);
+    if constexpr (with_error) {
+      e.error_max = std::max(*std::max_element(lanes[6], lanes[6] + 4), tail.error_max);
+    }
+    e.finite = tail.finite;
+    for (int k = 0; k < 4; ++k)
+      e.finite = e.finite && lanes[7][k] == 0.0;
+    return e;
+  }
+};
+
+}  // namespace
+#endif
+
 }  // namespace mpmstab

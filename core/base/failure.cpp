@@ -72,70 +72,24 @@ MPMSTAB_AVX512_TARGET StateExtremes extremes_avx512(const Particles& P, const Er
 #endif
 
 #if MPMSTAB_AVX2
-// The same pass, 4 particles at a time with AVX2, for a CPU without AVX-512: the lane-wise
-// operations of Extremes8 in the same operand order, finiteness as in the portable pass (v * 0
-// is NaN exactly when v is NaN or infinite), and the tail one particle at a time (add_particle).
-// The portable pass reads the arrays once per quantity through Eigen's SSE reductions (about
-// 15% of a GIMP run on an AVX2 CPU); this reads them once.
+// The same pass, 4 particles at a time with AVX2, for a CPU without AVX-512 (Extremes4). The
+// portable pass reads the arrays once per quantity through Eigen's SSE reductions (about 15% of a
+// GIMP run on an AVX2 CPU); this reads them once.
 template <bool with_error>
 MPMSTAB_AVX2_TARGET StateExtremes extremes_avx2(const Particles& P, const ErrorTerms* error) {
   const auto n = static_cast<std::size_t>(P.size());
   const double *x = P.x.data(), *v = P.v.data(), *F = P.F.data(), *s = P.sigma.data();
-  constexpr double kInf = std::numeric_limits<double>::infinity();
-  const __m256d zero = _mm256_setzero_pd(), sign = _mm256_set1_pd(-0.0);
-  const __m256d f4 = _mm256_set1_pd(with_error ? error->factor : 0.0);
-  __m256d F_min = _mm256_set1_pd(kInf), F_max = _mm256_set1_pd(-kInf);
-  __m256d x_min = F_min, x_max = F_max;
-  __m256d s_abs = zero, sF_abs = zero, err = zero, not_finite = zero;
+  Extremes4<with_error> e(error);
   std::size_t p = 0;
   for (; p + 4 <= n; p += 4) {
-    const __m256d xp = _mm256_loadu_pd(x + p), vp = _mm256_loadu_pd(v + p);
-    const __m256d Fp = _mm256_loadu_pd(F + p), sp = _mm256_loadu_pd(s + p);
-    if constexpr (with_error) {
-      const __m256d d = _mm256_sub_pd(_mm256_sub_pd(xp, _mm256_loadu_pd(error->X + p)),
-                                      _mm256_mul_pd(_mm256_loadu_pd(error->u + p), f4));
-      err = _mm256_max_pd(err, _mm256_andnot_pd(sign, d));
-    }
-    not_finite = _mm256_add_pd(
-        not_finite, _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(xp, zero), _mm256_mul_pd(vp, zero)),
-                                  _mm256_add_pd(_mm256_mul_pd(Fp, zero), _mm256_mul_pd(sp, zero))));
-    F_min = _mm256_min_pd(F_min, Fp);
-    F_max = _mm256_max_pd(F_max, Fp);
-    s_abs = _mm256_max_pd(s_abs, _mm256_andnot_pd(sign, sp));
-    sF_abs = _mm256_max_pd(sF_abs, _mm256_andnot_pd(sign, _mm256_mul_pd(sp, Fp)));
-    x_min = _mm256_min_pd(x_min, xp);
-    x_max = _mm256_max_pd(x_max, xp);
+    e.add(p, _mm256_loadu_pd(x + p), _mm256_loadu_pd(v + p), _mm256_loadu_pd(F + p),
+          _mm256_loadu_pd(s + p));
   }
-  alignas(32) double lanes[8][4];
-  _mm256_store_pd(lanes[0], F_min);
-  _mm256_store_pd(lanes[1], F_max);
-  _mm256_store_pd(lanes[2], s_abs);
-  _mm256_store_pd(lanes[3], sF_abs);
-  _mm256_store_pd(lanes[4], x_min);
-  _mm256_store_pd(lanes[5], x_max);
-  _mm256_store_pd(lanes[6], err);
-  _mm256_store_pd(lanes[7], not_finite);
+  for (; p < n; ++p)
+    e.add_one(p, x[p], v[p], F[p], s[p]);
+  const StateExtremes result = e.result();
   _mm256_zeroupper();
-  StateExtremes e;
-  e.finite = true;
-  e.F_min = *std::min_element(lanes[0], lanes[0] + 4);
-  e.F_max = *std::max_element(lanes[1], lanes[1] + 4);
-  e.sigma_abs_max = *std::max_element(lanes[2], lanes[2] + 4);
-  e.sigmaF_abs_max = *std::max_element(lanes[3], lanes[3] + 4);
-  e.x_min = *std::min_element(lanes[4], lanes[4] + 4);
-  e.x_max = *std::max_element(lanes[5], lanes[5] + 4);
-  e.error_max = with_error ? *std::max_element(lanes[6], lanes[6] + 4) : 0.0;
-  for (int k = 0; k < 4; ++k)
-    e.finite = e.finite && lanes[7][k] == 0.0;
-  for (; p < n; ++p) {  // the tail, as Extremes8's
-    if constexpr (with_error) {
-      e.error_max =
-          std::max(e.error_max, std::abs((x[p] - error->X[p]) - error->u[p] * error->factor));
-    }
-    add_particle(e, x[p], v[p], F[p], s[p]);
-  }
-  e.F_abs_max = std::max(std::abs(e.F_min), std::abs(e.F_max));
-  return e;
+  return result;
 }
 #endif
 

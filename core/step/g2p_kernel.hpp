@@ -83,6 +83,73 @@ bool use_avx512() {
 }
 #endif
 
+#if MPMSTAB_AVX2
+// AVX2, 4 particles at a time, for a CPU without AVX-512: as above with 8 grid slots from the
+// first particle's base b0, read with two vector loads. AVX2 has no two-register permutation of
+// doubles: the value at slot r + k of each lane is picked from each half by a permutation of its
+// 32-bit pairs, and the half is chosen by a blend. A block whose stencils leave the 8 slots takes
+// the scalar path.
+struct Slots8 {
+  __m256d lo, hi;  // field[b0 .. b0 + 7]; slots past the end of the array read as 0
+};
+
+MPMSTAB_AVX2_TARGET inline Slots8 load8(const double* field, int b0, int slots) {
+  const int avail = slots - b0 < 8 ? slots - b0 : 8;  // >= W, as the stencil fits
+  const __m256i lane = _mm256_setr_epi64x(0, 1, 2, 3);
+  const __m256i lo = _mm256_cmpgt_epi64(_mm256_set1_epi64x(avail), lane);
+  const __m256i hi = _mm256_cmpgt_epi64(_mm256_set1_epi64x(avail - 4), lane);
+  return {_mm256_maskload_pd(field + b0, lo), _mm256_maskload_pd(field + b0 + 4, hi)};
+}
+
+// Where slot r + k of each lane is: the 32-bit pair to take from a half, and which half.
+struct Pick {
+  __m256i pair;  // (2j, 2j + 1), j = (r + k) mod 4
+  __m256d high;  // all ones where r + k >= 4
+};
+
+// base_p - b0 of particles p0 .. p0 + 3 and the picks of the W slots of their stencils; false
+// if a stencil leaves the 8 slots.
+template <int W>
+MPMSTAB_AVX2_TARGET inline bool relative_bases4(const int* base, std::size_t p0, Pick* picks) {
+  const __m128i rel = _mm_sub_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(base + p0)),
+                                    _mm_set1_epi32(base[p0]));
+  const __m128i limit = _mm_set1_epi32(8 - W);  // unsigned: a negative offset leaves too
+  if (_mm_movemask_epi8(_mm_cmpeq_epi32(_mm_max_epu32(rel, limit), limit)) != 0xFFFF) return false;
+  const __m256i r = _mm256_cvtepu32_epi64(rel);
+  for (int k = 0; k < W; ++k) {
+    const __m256i slot = _mm256_add_epi64(r, _mm256_set1_epi64x(k));
+    const __m256i j2 = _mm256_slli_epi64(_mm256_and_si256(slot, _mm256_set1_epi64x(3)), 1);
+    picks[k].pair =
+        _mm256_or_si256(j2, _mm256_slli_epi64(_mm256_add_epi64(j2, _mm256_set1_epi64x(1)), 32));
+    picks[k].high = _mm256_castsi256_pd(_mm256_cmpgt_epi64(slot, _mm256_set1_epi64x(3)));
+  }
+  return true;
+}
+
+MPMSTAB_AVX2_TARGET inline __m256d permute_pairs(__m256d half, __m256i pair) {
+  return _mm256_castps_pd(_mm256_permutevar8x32_ps(_mm256_castpd_ps(half), pair));
+}
+
+MPMSTAB_AVX2_TARGET inline __m256d pick(const Slots8& f, const Pick& at) {
+  return _mm256_blendv_pd(permute_pairs(f.lo, at.pair), permute_pairs(f.hi, at.pair), at.high);
+}
+
+// interpolate() for particles p0 .. p0 + 3.
+template <int W>
+MPMSTAB_AVX2_TARGET inline __m256d interpolate4(const Rows<W>& wk, std::size_t p0,
+                                                const Slots8& f, const Pick* picks) {
+  __m256d s = _mm256_setzero_pd();
+  for (int k = 0; k < W; ++k)
+    s = _mm256_add_pd(s, _mm256_mul_pd(_mm256_loadu_pd(wk[k] + p0), pick(f, picks[k])));
+  return s;
+}
+
+[[maybe_unused]] bool use_avx2() {  // phases.cpp; transfers.cpp does without
+  static const bool yes = __builtin_cpu_supports("x86-64-v3");
+  return yes;
+}
+#endif
+
 }  // namespace
 
 namespace detail {

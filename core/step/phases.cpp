@@ -221,14 +221,111 @@ MPMSTAB_AVX512_TARGET void particle_pass_avx512(std::size_t n, const int* __rest
   _mm256_zeroupper();
 }
 
-// One pass of particle_pass_avx512 over the run's arrays, the check's flags chosen at run time.
+#endif
+
+#if MPMSTAB_AVX2
+// The same passes 4 particles at a time with AVX2 (g2p_kernel.hpp's Slots8 and picks), for a CPU
+// without AVX-512: the operations of particle_pass_avx512 in each lane, in the same order.
+template <int W, bool kG2p, bool kStress, bool kGridPosition, bool kCheck, bool kError>
+MPMSTAB_AVX2_TARGET void particle_pass_avx2(std::size_t n, const int* __restrict base,
+                                            const Rows<W> w, const Rows<W> g,
+                                            const double* __restrict a_i,
+                                            const double* __restrict v_i, int slots, Particles& P,
+                                            double dt, double E, const StateCheck* check) {
+  double* __restrict x = P.x.data();
+  double* __restrict v = P.v.data();
+  double* __restrict F = P.F.data();
+  double* __restrict sig = P.sigma.data();
+  const __m256d dt4 = _mm256_set1_pd(dt), E4 = _mm256_set1_pd(E), one = _mm256_set1_pd(1.0);
+  Extremes4<kError> e(kError ? check->error : nullptr);
+  std::size_t p0 = 0;
+  for (; p0 + 4 <= n; p0 += 4) {
+    Pick picks[W];
+    if (!relative_bases4<W>(base, p0, picks)) {
+      for (std::size_t p = p0; p < p0 + 4; ++p) {
+        if constexpr (kG2p) g2p_particle<W, kGridPosition>(p, base, w, a_i, v_i, x, v, dt);
+        if constexpr (kStress) stress_particle<W>(p, base, g, v_i, F, sig, dt, E);
+      }
+      if constexpr (kCheck) {
+        e.add(p0, _mm256_loadu_pd(x + p0), _mm256_loadu_pd(v + p0), _mm256_loadu_pd(F + p0),
+              _mm256_loadu_pd(sig + p0));
+      }
+      continue;
+    }
+    const int b0 = base[p0];
+    Slots8 vel;
+    if constexpr (kStress || kGridPosition) vel = load8(v_i, b0, slots);
+    __m256d xp, vp, Fp, sp;
+    if constexpr (kG2p) {  // g2p_particle
+      const __m256d a = interpolate4<W>(w, p0, load8(a_i, b0, slots), picks);
+      vp = _mm256_add_pd(_mm256_loadu_pd(v + p0), _mm256_mul_pd(dt4, a));
+      _mm256_storeu_pd(v + p0, vp);
+      __m256d dx;
+      if constexpr (kGridPosition) {
+        dx = _mm256_mul_pd(dt4, interpolate4<W>(w, p0, vel, picks));
+      } else {
+        dx = _mm256_mul_pd(dt4, vp);
+      }
+      xp = _mm256_add_pd(_mm256_loadu_pd(x + p0), dx);
+      _mm256_storeu_pd(x + p0, xp);
+    } else if constexpr (kCheck) {
+      xp = _mm256_loadu_pd(x + p0);
+      vp = _mm256_loadu_pd(v + p0);
+    }
+    if constexpr (kStress) {  // stress_particle
+      const __m256d L = interpolate4<W>(g, p0, vel, picks);
+      Fp = _mm256_mul_pd(_mm256_loadu_pd(F + p0), _mm256_add_pd(one, _mm256_mul_pd(dt4, L)));
+      _mm256_storeu_pd(F + p0, Fp);
+      sp = _mm256_mul_pd(E4, _mm256_sub_pd(Fp, one));
+      _mm256_storeu_pd(sig + p0, sp);
+    } else if constexpr (kCheck) {
+      Fp = _mm256_loadu_pd(F + p0);
+      sp = _mm256_loadu_pd(sig + p0);
+    }
+    if constexpr (kCheck) e.add(p0, xp, vp, Fp, sp);
+  }
+  for (; p0 < n; ++p0) {
+    if constexpr (kG2p) g2p_particle<W, kGridPosition>(p0, base, w, a_i, v_i, x, v, dt);
+    if constexpr (kStress) stress_particle<W>(p0, base, g, v_i, F, sig, dt, E);
+    if constexpr (kCheck) e.add_one(p0, x[p0], v[p0], F[p0], sig[p0]);
+  }
+  if constexpr (kCheck) *check->extremes = e.result();
+  _mm256_zeroupper();  // as particle_pass_avx512
+}
+#endif
+
+#if MPMSTAB_AVX512 || MPMSTAB_AVX2
+// Whether this CPU takes the hand-written passes (AVX-512, else AVX2).
+bool vector_pass() {
+#if MPMSTAB_AVX512
+  if (use_avx512()) return true;
+#endif
+#if MPMSTAB_AVX2
+  if (use_avx2()) return true;
+#endif
+  return false;
+}
+
+// One pass of particle_pass_avx512 (or _avx2) over the run's arrays, the check's flags chosen at
+// run time.
 template <int W, bool kG2p, bool kStress, bool kGridPosition>
 void particle_pass(const Stencil<W>& S, const Grid& G, double dt, double E, Particles& P,
                    const StateCheck* check) {
   const auto pass = [&]<bool kCheck, bool kError>() {
-    particle_pass_avx512<W, kG2p, kStress, kGridPosition, kCheck, kError>(
-        static_cast<std::size_t>(P.size()), S.base.data(), rows<W>(S.w), rows<W>(S.g),
-        G.accel.data(), G.velocity.data(), static_cast<int>(G.velocity.size()), P, dt, E, check);
+    const auto n = static_cast<std::size_t>(P.size());
+    const auto slots = static_cast<int>(G.velocity.size());
+#if MPMSTAB_AVX512
+    if (use_avx512()) {
+      return particle_pass_avx512<W, kG2p, kStress, kGridPosition, kCheck, kError>(
+          n, S.base.data(), rows<W>(S.w), rows<W>(S.g), G.accel.data(), G.velocity.data(), slots,
+          P, dt, E, check);
+    }
+#endif
+#if MPMSTAB_AVX2
+    particle_pass_avx2<W, kG2p, kStress, kGridPosition, kCheck, kError>(
+        n, S.base.data(), rows<W>(S.w), rows<W>(S.g), G.accel.data(), G.velocity.data(), slots, P,
+        dt, E, check);
+#endif
   };
   if (!check) {
     pass.template operator()<false, false>();
@@ -252,8 +349,8 @@ void particle_pass(const Stencil<W>& S, const Grid& G, double dt, double E, Posi
 
 template <int W, bool kGridPosition>
 void g2p_any(const Stencil<W>& S, const Grid& G, double dt, Particles& P) {
-#if MPMSTAB_AVX512
-  if (use_avx512()) return particle_pass<W, true, false, kGridPosition>(S, G, dt, 0.0, P, nullptr);
+#if MPMSTAB_AVX512 || MPMSTAB_AVX2
+  if (vector_pass()) return particle_pass<W, true, false, kGridPosition>(S, G, dt, 0.0, P, nullptr);
 #endif
   g2p_loop<W, kGridPosition>(static_cast<std::size_t>(P.size()), S.base.data(), rows<W>(S.w),
                              G.accel.data(), G.velocity.data(), P.x.data(), P.v.data(), dt);
@@ -297,10 +394,8 @@ template <int W>
 void stress_update(const Stencil<W>& S, const Grid& G, double dt, const MaterialLaw& law,
                    Particles& P) {
   if (law.kind != Material::linear) return stress_update_law(S, G, dt, law, P);
-#if MPMSTAB_AVX512
-  if (use_avx512()) {
-    return particle_pass<W, false, true, false>(S, G, dt, law.E, P, nullptr);
-  }
+#if MPMSTAB_AVX512 || MPMSTAB_AVX2
+  if (vector_pass()) return particle_pass<W, false, true, false>(S, G, dt, law.E, P, nullptr);
 #endif
   stress_loop<W>(static_cast<std::size_t>(P.size()), S.base.data(), rows<W>(S.g), G.velocity.data(),
                  P.F.data(), P.sigma.data(), dt, law.E);
@@ -309,8 +404,8 @@ void stress_update(const Stencil<W>& S, const Grid& G, double dt, const Material
 template <int W>
 bool g2p(const Stencil<W>& S, const Grid& G, double dt, const ParticleUpdate& rule, Particles& P,
          [[maybe_unused]] const StateCheck* check) {
-#if MPMSTAB_AVX512
-  if (check && use_avx512() && rule.transfer == Transfer::flip) {
+#if MPMSTAB_AVX512 || MPMSTAB_AVX2
+  if (check && vector_pass() && rule.transfer == Transfer::flip) {
     particle_pass<W, true, false>(S, G, dt, 0.0, rule.position, P, check);
     return true;
   }
@@ -322,8 +417,8 @@ bool g2p(const Stencil<W>& S, const Grid& G, double dt, const ParticleUpdate& ru
 template <int W>
 bool stress_update(const Stencil<W>& S, const Grid& G, double dt, const MaterialLaw& law,
                    Particles& P, [[maybe_unused]] const StateCheck* check) {
-#if MPMSTAB_AVX512
-  if (check && use_avx512() && law.kind == Material::linear) {
+#if MPMSTAB_AVX512 || MPMSTAB_AVX2
+  if (check && vector_pass() && law.kind == Material::linear) {
     particle_pass<W, false, true, false>(S, G, dt, law.E, P, check);
     return true;
   }
@@ -335,8 +430,8 @@ bool stress_update(const Stencil<W>& S, const Grid& G, double dt, const Material
 template <int W>
 bool g2p_and_stress(const Stencil<W>& S, const Grid& G, double dt, const ParticleUpdate& rule,
                     const MaterialLaw& law, Particles& P, const StateCheck* check) {
-#if MPMSTAB_AVX512
-  if (!use_avx512() || rule.transfer != Transfer::flip || law.kind != Material::linear) {
+#if MPMSTAB_AVX512 || MPMSTAB_AVX2
+  if (!vector_pass() || rule.transfer != Transfer::flip || law.kind != Material::linear) {
     return false;
   }
   particle_pass<W, true, true>(S, G, dt, law.E, rule.position, P, check);
