@@ -136,8 +136,8 @@ MPMSTAB_AVX2_TARGET inline __m256d pick(const Slots8& f, const Pick& at) {
 
 // interpolate() for particles p0 .. p0 + 3.
 template <int W>
-MPMSTAB_AVX2_TARGET inline __m256d interpolate4(const Rows<W>& wk, std::size_t p0,
-                                                const Slots8& f, const Pick* picks) {
+MPMSTAB_AVX2_TARGET inline __m256d interpolate4(const Rows<W>& wk, std::size_t p0, const Slots8& f,
+                                                const Pick* picks) {
   __m256d s = _mm256_setzero_pd();
   for (int k = 0; k < W; ++k)
     s = _mm256_add_pd(s, _mm256_mul_pd(_mm256_loadu_pd(wk[k] + p0), pick(f, picks[k])));

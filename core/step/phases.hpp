@@ -121,7 +121,8 @@ struct StateCheck {
 };
 
 // USL's g2p then stress update as one pass over the particles, where the step allows it (FLIP,
-// the linear law, a CPU with AVX-512): each particle's arithmetic is the two phases', and with a
+// the linear law, a CPU with AVX-512 or AVX2): each particle's arithmetic is the two phases', and
+// with a
 // `check` the extremes are taken from the values as they are written, instead of in a pass of
 // their own. Returns false, having done nothing, where it does not apply.
 template <int W>
@@ -131,7 +132,7 @@ bool g2p_and_stress(const Stencil<W>& S, const Grid& G, double dt, const Particl
 // g2p and stress_update as the last phase of a step (USF ends with g2p, MUSL and USL with
 // another transfer than FLIP with the stress update), with a `check` (or none) to take in their
 // own pass where they can (g2p: FLIP; the stress update: the linear law; both: a CPU with
-// AVX-512). They always do the phase; true if they took the check.
+// AVX-512 or AVX2). They always do the phase; true if they took the check.
 template <int W>
 bool g2p(const Stencil<W>& S, const Grid& G, double dt, const ParticleUpdate& rule, Particles& P,
          const StateCheck* check);
