@@ -317,8 +317,8 @@ void particle_pass(const Stencil<W>& S, const Grid& G, double dt, double E, Part
 #if MPMSTAB_AVX512
     if (use_avx512()) {
       return particle_pass_avx512<W, kG2p, kStress, kGridPosition, kCheck, kError>(
-          n, S.base.data(), rows<W>(S.w), rows<W>(S.g), G.accel.data(), G.velocity.data(), slots,
-          P, dt, E, check);
+          n, S.base.data(), rows<W>(S.w), rows<W>(S.g), G.accel.data(), G.velocity.data(), slots, P,
+          dt, E, check);
     }
 #endif
 #if MPMSTAB_AVX2
