@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <fstream>
+#include <initializer_list>
 #include <sstream>
 
 #include "base/version.hpp"
@@ -63,15 +64,26 @@ std::string canonical(const RunParams& p, const std::string& search) {
 }
 }  // namespace
 
-std::string fnv1a_hex(std::string_view text) {
+namespace {
+
+// FNV-1a of the pieces one after the other, as of their concatenation, in hexadecimal.
+std::string fnv1a_hex(std::initializer_list<std::string_view> pieces) {
   std::uint64_t h = 1469598103934665603ull;
-  for (const unsigned char c : text) {
-    h ^= c;
-    h *= 1099511628211ull;
+  for (const std::string_view text : pieces) {
+    for (const unsigned char c : text) {
+      h ^= c;
+      h *= 1099511628211ull;
+    }
   }
   char buf[17];
   std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
   return buf;
+}
+
+}  // namespace
+
+std::string fnv1a_hex(std::string_view text) {
+  return fnv1a_hex({text});
 }
 
 std::string case_key(const RunParams& p, const std::string& search) {
@@ -84,7 +96,23 @@ namespace {
 std::string checksum(const nlohmann::ordered_json& record, const std::string& canonical_text) {
   nlohmann::ordered_json content = record;
   content.erase("checksum");
-  return fnv1a_hex(canonical_text + "\n" + content.dump());
+  return fnv1a_hex({canonical_text, "\n", content.dump()});
+}
+
+// The same checksum read from the text of a record as store() writes it: the record's dump, its
+// checksum the last member, `,"checksum":"<16 hex digits>"}`. Without that member, the text
+// before it and the closing brace are the dump of the content (store() checksums the record as
+// it reads back), so hashing them gives checksum() without parsing and dumping again a record
+// that may hold megabytes of history. True when the text is laid out so and its checksum holds;
+// false says nothing (the parsed record is then checked by checksum()).
+bool checksum_holds_in_text(std::string_view text, const std::string& canonical_text) {
+  constexpr std::string_view kMember = ",\"checksum\":\"";
+  constexpr std::size_t kDigits = 16, kTail = kMember.size() + kDigits + 2;  // digits, "}
+  if (text.size() < kTail + 1 || text.substr(text.size() - 2) != "\"}") return false;
+  const std::size_t member = text.size() - kTail;
+  if (text.substr(member, kMember.size()) != kMember) return false;
+  const std::string_view sum = text.substr(member + kMember.size(), kDigits);
+  return fnv1a_hex({canonical_text, "\n", text.substr(0, member), "}"}) == sum;
 }
 
 // The columns added to the record after the first cached runs, each with the value every run
@@ -120,12 +148,13 @@ void add_scene_columns(nlohmann::ordered_json& result) {
 }
 
 // A stored record's checks, in order; true when it may stand for the case.
-bool intact(nlohmann::ordered_json& record, const std::string& canonical_text) {
+// `summed`: the checksum is already known to hold (checksum_holds_in_text).
+bool intact(nlohmann::ordered_json& record, const std::string& canonical_text, bool summed) {
   if (!record.is_object()) return false;
   const auto canon = record.find("canonical");
   const auto sum = record.find("checksum");
   if (canon == record.end() || sum == record.end() || *canon != canonical_text ||
-      !sum->is_string() || *sum != checksum(record, canonical_text)) {
+      !sum->is_string() || (!summed && *sum != checksum(record, canonical_text))) {
     return false;
   }
   const auto result = record.find("result");
@@ -156,7 +185,8 @@ CacheLookup ResultCache::check(std::string_view text, const std::filesystem::pat
   CacheLookup found;
   try {
     auto record = parse_json_strict<nlohmann::ordered_json>(text, file);
-    if (intact(record, canonical(p, search))) {
+    const std::string canonical_text = canonical(p, search);
+    if (intact(record, canonical_text, checksum_holds_in_text(text, canonical_text))) {
       found.record = std::move(record);
       return found;
     }

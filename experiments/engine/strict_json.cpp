@@ -50,26 +50,45 @@ std::string control_character(const std::string& s) {
   return "";
 }
 
+// One step of the path to a value, from its parent: a key of an object or an index of an array.
+// The path is written out only for a message, so that a walk over a record of megabytes builds
+// no string per value.
+struct Step {
+  const Step* parent = nullptr;
+  const std::string* key = nullptr;  // nullptr: the index of an array element
+  std::size_t index = 0;
+};
+
+// The path of `step` in the form cases[3].E ("" for the document itself).
+std::string path_of(const Step* step) {
+  if (!step) return "";
+  std::string path = path_of(step->parent);
+  if (step->key) return path.empty() ? *step->key : path + "." + *step->key;
+  return path + "[" + std::to_string(step->index) + "]";
+}
+
 // Refuses control characters in strings and turns -0 into 0, walking the parsed tree.
 template <class Json>
-void check_values(Json& v, const std::string& path, const std::filesystem::path& file) {
+void check_values(Json& v, const Step* step, const std::filesystem::path& file) {
   if (v.is_string()) {
     if (const auto c = control_character(v.template get_ref<const std::string&>()); !c.empty()) {
-      throw InputError(file, at(path) + "contains the control character " + c +
+      throw InputError(file, at(path_of(step)) + "contains the control character " + c +
                                  " (a line break or tab may not appear in a string)");
     }
   } else if (v.is_number_float()) {
     if (v.template get<double>() == 0.0) v = 0.0;
   } else if (v.is_array()) {
-    for (std::size_t i = 0; i < v.size(); ++i)
-      check_values(v[i], path + "[" + std::to_string(i) + "]", file);
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      const Step here{step, nullptr, i};
+      check_values(v[i], &here, file);
+    }
   } else if (v.is_object()) {
     for (auto it = v.begin(); it != v.end(); ++it) {
-      const std::string here = path.empty() ? it.key() : path + "." + it.key();
       if (const auto c = control_character(it.key()); !c.empty()) {
-        throw InputError(file, at(path) + "a key contains the control character " + c);
+        throw InputError(file, at(path_of(step)) + "a key contains the control character " + c);
       }
-      check_values(it.value(), here, file);
+      const Step here{step, &it.key(), 0};
+      check_values(it.value(), &here, file);
     }
   }
 }
@@ -96,53 +115,84 @@ void check_values(Json& v, const std::string& path, const std::filesystem::path&
 
 }  // namespace
 
+// nlohmann's DOM builder behind a SAX interface that keeps the frames (for the path of a message)
+// and refuses a repeated key. nlohmann's own callback parser does the same work but rescans the
+// parent array each time an element ends (to drop discarded values), which made reading a cache
+// record with a history of 66,000 steps take seconds; this builder does not rescan.
+template <class Json>
+class StrictSax {
+ public:
+  using number_integer_t = typename Json::number_integer_t;
+  using number_unsigned_t = typename Json::number_unsigned_t;
+  using number_float_t = typename Json::number_float_t;
+  using string_t = typename Json::string_t;
+  using binary_t = typename Json::binary_t;
+
+  StrictSax(Json& doc, const std::filesystem::path& file) : dom_(doc, true), file_(file) {}
+
+  const std::vector<Frame>& frames() const { return frames_; }
+
+  bool null() { return value(dom_.null()); }
+  bool boolean(bool b) { return value(dom_.boolean(b)); }
+  bool number_integer(number_integer_t n) { return value(dom_.number_integer(n)); }
+  bool number_unsigned(number_unsigned_t n) { return value(dom_.number_unsigned(n)); }
+  bool number_float(number_float_t x, const string_t& s) { return value(dom_.number_float(x, s)); }
+  bool string(string_t& s) { return value(dom_.string(s)); }
+  bool binary(binary_t& b) { return value(dom_.binary(b)); }
+  bool start_object(std::size_t n) {
+    frames_.push_back(Frame{true, {}, {}, 0});
+    return dom_.start_object(n);
+  }
+  bool key(string_t& k) {
+    Frame& f = frames_.back();
+    for (const auto& seen : f.keys) {
+      if (seen == k) {
+        f.key = k;
+        throw InputError(file_, path_of(frames_) +
+                                    ": is given twice in one object (JSON would keep the "
+                                    "last one without a word)");
+      }
+    }
+    f.keys.push_back(k);
+    f.key = k;
+    return dom_.key(k);
+  }
+  bool end_object() { return end(dom_.end_object()); }
+  bool start_array(std::size_t n) {
+    frames_.push_back(Frame{false, {}, {}, 0});
+    return dom_.start_array(n);
+  }
+  bool end_array() { return end(dom_.end_array()); }
+  template <class Exception>
+  bool parse_error(std::size_t position, const std::string& token, const Exception& e) {
+    return dom_.parse_error(position, token, e);  // throws e
+  }
+
+ private:
+  bool value(bool ok) {  // a value is complete: the next element of an array
+    if (!frames_.empty() && !frames_.back().object) ++frames_.back().index;
+    return ok;
+  }
+  bool end(bool ok) {
+    frames_.pop_back();
+    return value(ok);
+  }
+
+  nlohmann::detail::json_sax_dom_parser<Json> dom_;
+  const std::filesystem::path& file_;
+  std::vector<Frame> frames_;
+};
+
 template <class Json>
 Json parse_json_strict(std::string_view text, const std::filesystem::path& file) {
   if (text.starts_with("\xEF\xBB\xBF")) {
     throw InputError(file, "starts with a UTF-8 byte-order mark; save it without one");
   }
-  std::vector<Frame> frames;
-  using Event = nlohmann::json::parse_event_t;
-  auto after_value = [&frames] {
-    if (!frames.empty() && !frames.back().object) ++frames.back().index;
-  };
-  const auto callback = [&](int, Event event, Json& parsed) {
-    switch (event) {
-      case Event::object_start:
-        frames.push_back(Frame{true, {}, {}, 0});
-        break;
-      case Event::array_start:
-        frames.push_back(Frame{false, {}, {}, 0});
-        break;
-      case Event::key: {
-        Frame& f = frames.back();
-        const auto& key = parsed.template get_ref<const std::string&>();
-        for (const auto& seen : f.keys) {
-          if (seen == key) {
-            f.key = key;
-            throw InputError(file, path_of(frames) +
-                                       ": is given twice in one object (JSON would keep the "
-                                       "last one without a word)");
-          }
-        }
-        f.keys.push_back(key);
-        f.key = key;
-        break;
-      }
-      case Event::object_end:
-      case Event::array_end:
-        frames.pop_back();
-        after_value();
-        break;
-      case Event::value:
-        after_value();
-        break;
-    }
-    return true;
-  };
+  Json doc;
+  StrictSax<Json> sax(doc, file);
   try {
-    Json doc = Json::parse(text.begin(), text.end(), callback);
-    check_values(doc, "", file);
+    Json::sax_parse(text.begin(), text.end(), &sax);
+    check_values(doc, nullptr, file);
     return doc;
   } catch (const nlohmann::json::parse_error& e) {
     malformed(text, file, e);
@@ -152,7 +202,7 @@ Json parse_json_strict(std::string_view text, const std::filesystem::path& file)
     if (const auto where = what.find("] "); where != std::string::npos) {
       what = what.substr(where + 2);
     }
-    throw InputError(file, at(path_of(frames)) + "malformed JSON: " + what);
+    throw InputError(file, at(path_of(sax.frames())) + "malformed JSON: " + what);
   }
 }
 
