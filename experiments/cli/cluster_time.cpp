@@ -71,9 +71,18 @@ ojson recorded(const std::filesystem::path& path) {
 }  // namespace
 
 int cmd_cluster_time(const std::vector<std::string_view>& argv) {
-  const Args args(argv, {{"tier"}, {"nodes"}, {"cpus-per-node"}, {"at-once"}, {"shards"},
-                         {"array-seconds"}, {"render-seconds"}, {"seconds"}, {"array-records"},
-                         {"render-records"}, {"out"}, {"help", false}});
+  const Args args(argv, {{"tier"},
+                         {"nodes"},
+                         {"cpus-per-node"},
+                         {"at-once"},
+                         {"shards"},
+                         {"array-seconds"},
+                         {"render-seconds"},
+                         {"seconds"},
+                         {"array-records"},
+                         {"render-records"},
+                         {"out"},
+                         {"help", false}});
   if (args.flag("help")) {
     std::cout << kClusterTimeHelp;
     return 0;
@@ -112,8 +121,9 @@ int cmd_cluster_time(const std::vector<std::string_view>& argv) {
   for (auto& [k, v] : sorted)
     doc[k] = std::move(v);
   write_if_changed(path, doc.dump(1) + "\n");
-  std::cerr << "[cluster-time] " << tier << " tier on " << nodes << " node(s): "
-            << entry["wall_seconds"].get<double>() << " s -> " << path.string() << "\n";
+  std::cerr << "[cluster-time] " << tier << " tier on " << nodes
+            << " node(s): " << entry["wall_seconds"].get<double>() << " s -> " << path.string()
+            << "\n";
   return 0;
 }
 
