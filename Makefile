@@ -33,7 +33,7 @@ DOCUMENTS   := README.md docs/theory.md docs/studies.md
 FUZZ_SECONDS ?= 15
 FUZZ_DIR     ?= build-fuzz
 
-.PHONY: all build build-tests deps test test-cluster check bless fuzz bench bench-versions timings reproduce studies tier figures plots reports-unchanged format format-check clean help
+.PHONY: all build build-tests deps test test-cluster studies-cluster reproduce-cluster check bless fuzz bench bench-versions timings reproduce studies tier figures plots reports-unchanged format format-check clean help
 
 all: build
 
@@ -42,6 +42,10 @@ help:
 	@echo "make test         build and run the test suite (CTest), then make check, then make fuzz"
 	@echo "make test-cluster  shard sweeps on a throwaway local Slurm cluster and with GNU parallel;"
 	@echo "                   the merged reports must equal an unsharded run's, byte for byte"
+	@echo "make studies-cluster NODES=1|2  make studies as one Slurm job array on a throwaway"
+	@echo "                   local cluster of NODES nodes, JOBS tasks at once; results/ byte for"
+	@echo "                   byte, the wall time into results/cluster_timings.json"
+	@echo "                   (make reproduce-cluster: the paper tier)"
 	@echo "make fuzz         fuzz the spec, results and cache readers, FUZZ_SECONDS (default 15) each"
 	@echo "make check        rerun a fast subset of every experiment against reference/regression"
 	@echo "make bless REASON=\"...\"  accept the current values as blessed, logged in BLESSED.md"
@@ -112,6 +116,22 @@ test: build-tests
 test-cluster: build
 	MPMSTAB=$(MPMSTAB) tests/cluster/test_cluster.sh
 
+# A whole tier as one Slurm job array (mpmstab slurm --tier) on a throwaway cluster of NODES slurmd
+# nodes on this machine (tests/cluster/tier_cluster.sh): from an empty cache into a scratch folder
+# (RESULTS_DIR, default a temporary one), every file must come out byte for byte as committed in
+# results/; the wall time is then recorded in results/cluster_timings.json (make timings shows it
+# in results/performance.md). JOBS array tasks run at once, on one node of JOBS CPUs or NODES nodes
+# sharing them. make studies-cluster NODES=2 JOBS=2.
+NODES  ?= 1
+SHARDS ?= 8
+studies-cluster: build
+	MPMSTAB=$(MPMSTAB) TIER=studies NODES=$(NODES) JOBS=$(JOBS) SHARDS=$(SHARDS) RESULTS_DIR=$(RESULTS_DIR) \
+	  tests/cluster/tier_cluster.sh
+
+reproduce-cluster: build
+	MPMSTAB=$(MPMSTAB) TIER=paper NODES=$(NODES) JOBS=$(JOBS) SHARDS=$(SHARDS) RESULTS_DIR=$(RESULTS_DIR) \
+	  tests/cluster/tier_cluster.sh
+
 # A bounded fuzz run, FUZZ_SECONDS each, of the three readers of outside text (libFuzzer, with
 # address and UB sanitizers): the spec parser, the results reader and the cache reader. The
 # committed corpora tests/fuzz/corpus*, the specs and tests/fuzz/seeds (a real results file and
@@ -177,13 +197,14 @@ reproduce: build
 studies: build
 	@$(MAKE) --no-print-directory tier TIER=studies
 
-# The tier named by TIER (paper or studies); reproduce and studies call it.
+# The tier named by TIER (paper or studies); reproduce and studies call it, and so does the render
+# job of a tier run as a Slurm job array (mpmstab slurm --tier), with the cache the array filled.
 tier:
 	@start=$$(date +%s.%N); \
 	specs=$$($(MPMSTAB) list --tier $(TIER)) || exit $$?; \
 	$(MPMSTAB) reproduce $$specs --jobs $(JOBS) --out $(RESULTS) \
 	  --label "make $(if $(filter paper,$(TIER)),reproduce,studies)" || exit $$?; \
-	$(MAKE) --no-print-directory figures TIER=$(TIER) || exit $$?; \
+	$(MAKE) --no-print-directory plots FIGURES="$(FIGURE_NAMES)" || exit $$?; \
 	all=$$($(MPMSTAB) list) || exit $$?; \
 	$(MPMSTAB) index $$all --out $(RESULTS) || exit $$?; \
 	if [ "$(RESULTS)" = results ]; then \
@@ -218,9 +239,10 @@ timings: build
 
 # The figures of the experiments whose study draws one, each redrawn only when its data, its
 # results (the subtitle reads them) or its script changed. FIGURES (names) comes from mpmstab list --figures.
+# (The tier calls plots itself: it runs where the tool is built, also in a Slurm job.)
+FIGURE_NAMES = $$($(MPMSTAB) list --figures $(if $(TIER),--tier $(TIER)) | sed 's|.*/||; s|\.json$$||')
 figures: build
-	@$(MAKE) --no-print-directory plots \
-	  FIGURES="$$($(MPMSTAB) list --figures $(if $(TIER),--tier $(TIER)) | sed 's|.*/||; s|\.json$$||')"
+	@$(MAKE) --no-print-directory plots FIGURES="$(FIGURE_NAMES)"
 
 plots: $(FIGURES:%=$(RESULTS)/%.png)
 

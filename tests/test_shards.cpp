@@ -228,5 +228,70 @@ TEST_F(Shards, CommandLineRefusesBadShardsAndWritesSlurmScripts) {
   EXPECT_NE(submit.find("--dependency=afterok:"), std::string::npos) << submit;
 }
 
+// Several specs sharded in one queue (reproduce --shard), their records gathered (merge
+// --records-only): a reproduce into that folder then computes nothing and writes the reports of
+// an unsharded one, byte for byte.
+TEST_F(Shards, ReproduceShardsAndMergedRecordsGiveTheUnshardedReports) {
+  const std::string a = (dir / "small.json").string(), b = (dir / "other.json").string();
+  std::ofstream(a) << R"({"name": "small", "report": "cases",
+      "defaults": {"T": 0.01, "cells": 10, "dt": 1e-3}, "cases": [)"
+                   << kCases << "]}";
+  std::ofstream(b) << R"({"name": "other", "report": "cases",
+      "defaults": {"T": 0.01, "cells": 12, "dt": 1e-3}, "cases": [)"
+                   << kCasesReversed << "]}";
+  const std::string specs = a + " " + b, d = dir.string();
+  ASSERT_EQ(run_mpmstab("reproduce " + specs + " --jobs 1 --out " + d + "/local").status, 0);
+  for (int i = 0; i < 3; ++i) {
+    const Outcome o = run_mpmstab("reproduce " + specs + " --jobs 1 --shard " + std::to_string(i) +
+                                  "/3 --out " + d + "/shard-" + std::to_string(i));
+    ASSERT_EQ(o.status, 0) << o.output;
+    EXPECT_TRUE(fs::exists(dir / ("shard-" + std::to_string(i)) /
+                           ("other.shard-" + std::to_string(i) + "-of-3.json")));
+    EXPECT_FALSE(fs::exists(dir / ("shard-" + std::to_string(i)) / "small.md"));
+  }
+  // Without one shard: refused, the missing cases named, nothing written.
+  const Outcome partial = run_mpmstab("merge " + specs + " " + d + "/shard-0 " + d +
+                                      "/shard-1 --records-only --out " + d + "/partial");
+  EXPECT_EQ(partial.status, 2) << partial.output;
+  EXPECT_NE(partial.output.find("in none of the folders"), std::string::npos) << partial.output;
+  EXPECT_FALSE(fs::exists(dir / "partial" / "cache"));
+  EXPECT_EQ(run_mpmstab("merge " + specs + " " + d + "/shard-0 --out " + d + "/x").status, 2);
+  const Outcome merged = run_mpmstab("merge " + specs + " " + d + "/shard-0 " + d + "/shard-1 " +
+                                     d + "/shard-2 --records-only --out " + d + "/merged");
+  ASSERT_EQ(merged.status, 0) << merged.output;
+  EXPECT_FALSE(fs::exists(dir / "merged" / "small.md"));
+  const Outcome rendered = run_mpmstab("reproduce " + specs + " --jobs 1 --out " + d + "/merged");
+  ASSERT_EQ(rendered.status, 0) << rendered.output;
+  EXPECT_NE(rendered.output.find("(0 computed, 8 from the cache"), std::string::npos)
+      << rendered.output;
+  for (const char* f : {"small.csv", "small.json", "small.md", "other.csv", "other.md"})
+    EXPECT_EQ(read(dir / "local" / f), read(dir / "merged" / f)) << f;
+
+  // The tier's job array and render job, written in the checkout (its experiments/, Makefile).
+  auto in_checkout = [](const std::string& args) {
+    std::vector<std::string> argv = test_support::words(args);
+    argv.insert(argv.begin(), MPMSTAB_BIN);
+    return test_support::run_program(MPMSTAB_BIN, std::move(argv), MPMSTAB_SOURCE_DIR);
+  };
+  const Outcome slurm = in_checkout("slurm --tier studies --shards 4 --throttle 2 --work " + d +
+                                    "/work --out " + d + "/tier");
+  ASSERT_EQ(slurm.status, 0) << slurm.output;
+  const std::string sweep = read(dir / "work" / "studies.sweep.sbatch");
+  const std::string render = read(dir / "work" / "studies.render.sbatch");
+  EXPECT_NE(sweep.find("#SBATCH --array=0-3%2\n"), std::string::npos) << sweep;
+  EXPECT_NE(sweep.find(" reproduce 'experiments/"), std::string::npos) << sweep;
+  EXPECT_NE(render.find("--records-only --out"), std::string::npos) << render;
+  EXPECT_NE(render.find("exec make --no-print-directory tier 'TIER=studies'"), std::string::npos)
+      << render;
+  EXPECT_NE(read(dir / "work" / "studies.submit.sh")
+                .find("render=$(sbatch --parsable "
+                      "--dependency=afterok:"),
+            std::string::npos);
+  EXPECT_EQ(in_checkout("slurm --tier everything --shards 4 --work " + d + "/w2").status, 2);
+  EXPECT_EQ(in_checkout("slurm " + a + " --tier studies --shards 4 --work " + d + "/w2").status, 2);
+  // Outside a checkout the render job could not run make: refused.
+  EXPECT_EQ(run_mpmstab("slurm --tier studies --shards 4 --work " + d + "/w2").status, 2);
+}
+
 }  // namespace
 }  // namespace mpmstab

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -28,6 +29,7 @@ int cmd_merge(const std::vector<std::string_view>& args);
 int cmd_slurm(const std::vector<std::string_view>& args);
 int cmd_list(const std::vector<std::string_view>& args);
 int cmd_build_time(const std::vector<std::string_view>& args);
+int cmd_cluster_time(const std::vector<std::string_view>& args);
 
 // Shared by the commands that read specs and write reports.
 int default_jobs();                                                        // the machine's cores
@@ -38,5 +40,8 @@ std::filesystem::path output_folder(const Args& args);
 // Makes the --out folder, once every argument and input was checked (UsageError if it cannot).
 void make_output_folder(const std::filesystem::path& out);
 bool omit_timing(const Args& args);  // --timing keep|omit (default keep)
+// The specs of tier `tier` ("paper" or "studies") in DIR, in the order `mpmstab list --tier`
+// prints them (UsageError for another tier or a bad spec).
+std::vector<std::string> tier_spec_paths(const std::filesystem::path& dir, std::string_view tier);
 
 }  // namespace mpmstab::cli

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <set>
 
 #include "commands.hpp"
@@ -136,7 +137,28 @@ void print_studies(const std::vector<Spec>& specs) {
   }
 }
 
+// The specs in run order, of one tier ("paper" or "studies") when given.
+std::vector<const Spec*> listed(const std::vector<Spec>& specs,
+                                std::optional<std::string_view> tier) {
+  if (tier && *tier != "paper" && *tier != "studies")
+    throw UsageError("--tier: unknown value '" + std::string(*tier) +
+                     "' (expected paper or studies)");
+  std::vector<const Spec*> order = run_order(specs);
+  // Every paper experiment reads only paper experiments, whichever tier is asked for.
+  tier_order(order, Tier::paper);
+  if (tier) order = tier_order(order, *tier == "paper" ? Tier::paper : Tier::studies);
+  return order;
+}
+
 }  // namespace
+
+std::vector<std::string> tier_spec_paths(const std::filesystem::path& dir, std::string_view tier) {
+  const std::vector<Spec> specs = specs_in(dir);
+  std::vector<std::string> paths;
+  for (const Spec* s : listed(specs, tier))
+    paths.push_back(s->path.generic_string());
+  return paths;
+}
 
 int cmd_list(const std::vector<std::string_view>& argv) {
   const Args args(argv, {{"tier"}, {"figures", false}, {"studies", false}, {"help", false}});
@@ -147,9 +169,7 @@ int cmd_list(const std::vector<std::string_view>& argv) {
   if (args.positional().size() > 1) throw UsageError("list takes one folder");
   // The options are checked before any spec is read.
   const auto tier = args.value("tier");
-  if (tier && *tier != "paper" && *tier != "studies")
-    throw UsageError("--tier: unknown value '" + std::string(*tier) +
-                     "' (expected paper or studies)");
+  if (tier) listed({}, tier);
   const std::filesystem::path dir =
       args.positional().empty() ? "experiments" : std::string(args.positional().front());
   const std::vector<Spec> specs = specs_in(dir);
@@ -157,11 +177,7 @@ int cmd_list(const std::vector<std::string_view>& argv) {
     print_studies(specs);
     return 0;
   }
-  std::vector<const Spec*> order = run_order(specs);
-  // Every paper experiment reads only paper experiments, whichever tier is asked for.
-  tier_order(order, Tier::paper);
-  if (tier) order = tier_order(order, *tier == "paper" ? Tier::paper : Tier::studies);
-  for (const Spec* s : order) {
+  for (const Spec* s : listed(specs, tier)) {
     if (!args.flag("figures") || s->study->figure) std::cout << s->path.generic_string() << "\n";
   }
   return 0;

@@ -38,6 +38,7 @@ Commands:
   slurm   write a Slurm job array that runs a sweep in shards, and its merge job
   list    the experiment specs in the order they run, or the studies the program knows
   build-time  record the wall time of a fresh build of the tool (make calls it)
+  cluster-time  record the wall time of a tier run as a Slurm job array (make studies-cluster)
 
 'mpmstab <command> --help' describes a command; 'mpmstab --version' prints the version, the
 commit, the compiler and the flags of this build.
@@ -89,11 +90,12 @@ int main(int argc, char** argv) {
     if (command == "slurm") return mpmstab::cli::cmd_slurm(args);
     if (command == "list") return mpmstab::cli::cmd_list(args);
     if (command == "build-time") return mpmstab::cli::cmd_build_time(args);
+    if (command == "cluster-time") return mpmstab::cli::cmd_cluster_time(args);
     std::string message = "unknown command '" + std::string(command) + "'";
     if (auto guess = mpmstab::cli::nearest(
             command, {"run", "edge", "advise", "spectral", "sweep", "reproduce", "index",
                       "documents", "plot", "compare", "check", "bless", "performance", "merge",
-                      "slurm", "list", "build-time"})) {
+                      "slurm", "list", "build-time", "cluster-time"})) {
       message += " (did you mean '" + *guess + "'?)";
     }
     throw mpmstab::cli::UsageError(message);

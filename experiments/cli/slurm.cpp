@@ -7,6 +7,8 @@
 #include <iostream>
 #include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "commands.hpp"
 #include "files.hpp"
@@ -18,9 +20,10 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr const char* kSlurmHelp =
-    R"(Usage: mpmstab slurm <spec.json> --shards N [--partition P] [--time T] [--account A]
-                    [--cpus-per-task C] [--work DIR] [--out DIR] [--timing keep|omit]
-                    [--mpmstab PATH]
+    R"(Usage: mpmstab slurm <spec.json> --shards N [options]
+       mpmstab slurm --tier paper|studies --shards N [--render-cpus R] [options]
+Options: [--partition P] [--time T] [--account A] [--cpus-per-task C] [--throttle M]
+         [--work DIR] [--out DIR] [--timing keep|omit] [--mpmstab PATH]
 
 Writes a Slurm job array that runs the sweep of <spec.json> in N shards (one array task per
 shard) and a merge job that depends on it, and a script that submits both:
@@ -29,18 +32,36 @@ shard) and a merge job that depends on it, and a script that submits both:
   WORK/<name>.merge.sbatch  mpmstab merge <spec> WORK/shard-0 ... --out OUT, run after every
                             array task succeeded (--dependency=afterok)
   WORK/<name>.submit.sh     submits both; prints "sweep <job id>" and "merge <job id>"
+
+With --tier T, the whole tier (make reproduce: paper, make studies: studies; its specs as
+'mpmstab list --tier T' gives them) in one job array over all its cases, and one job that
+renders the tier once every task succeeded:
+  WORK/T.sweep.sbatch   array 0..N-1: mpmstab reproduce <the tier's specs> --shard I/N
+                        --out WORK/shard-I (each case in the shard of its key, as sweep's)
+  WORK/T.render.sbatch  mpmstab merge <specs> WORK/shard-* --records-only --out OUT (every
+                        case's record into OUT/cache), then make tier TIER=T RESULTS=OUT: what
+                        make reproduce or make studies runs, which finds every case in the
+                        cache and computes only the runs the studies choose from their results
+                        (follow-up runs, searches), then writes the reports, figures and index
+  WORK/T.submit.sh      submits both; prints "sweep <job id>" and "render <job id>"
+The render job runs make in the current folder, which must be the checkout (its Makefile and
+experiments/), with gnuplot; OUT results writes into the checkout as make does.
+
 Jobs run in the current folder (--chdir), which must be on a file system the nodes share;
 job logs go to WORK/logs/. Nothing is submitted by this command.
 
 Options:
   --shards N         number of shards (array tasks), 1..10000; required
+  --tier T           the tier paper or studies instead of one spec
   --partition P      Slurm partition (default: the cluster's default)
-  --time T           time limit of each task, as Slurm takes it (e.g. 01:00:00, 2-00:00:00)
+  --time T           time limit of each job, as Slurm takes it (e.g. 01:00:00, 2-00:00:00)
   --account A        Slurm account to charge
-  --cpus-per-task C  cores per task, used as the shard's --jobs (default 1)
+  --cpus-per-task C  cores per array task, used as the shard's --jobs (default 1)
+  --render-cpus R    cores of the render job, its make JOBS (--tier; default C)
+  --throttle M       at most M array tasks at once (Slurm's --array=0-(N-1)%M)
   --work DIR         folder of the scripts, shard outputs and logs (default slurm-<name>)
   --out DIR          folder of the merged reports (default results)
-  --timing keep|omit passed to the merge (as for 'mpmstab sweep')
+  --timing keep|omit passed to the merge (as for 'mpmstab sweep'; not with --tier)
   --mpmstab PATH     the mpmstab binary the jobs run (default: this one)
   --help             show this text
 )";
@@ -92,39 +113,73 @@ fs::path this_binary() {
   return self;
 }
 
-// What the scripts are written from: the checked options and the spec.
+// What the scripts are written from: the checked options and the specs.
 struct SlurmJob {
   std::int64_t shards = 1;
-  std::int64_t cpus = 1;  // per task, the shard's --jobs
-  bool omit = false;      // --timing omit, passed to the merge
-  std::string spec_arg;   // the spec as given, which the jobs read
-  Spec spec;
-  std::string work;  // scripts, shard outputs and logs
-  std::string out;   // merged reports
-  fs::path binary;   // the mpmstab the jobs run
-  std::string logs;  // WORK/logs
+  std::int64_t cpus = 1;               // per task, the shard's --jobs
+  std::int64_t render_cpus = 1;        // the render job's make JOBS (a tier)
+  std::int64_t throttle = 0;           // array tasks at once (0: as many as the cluster gives)
+  bool omit = false;                   // --timing omit, passed to the merge
+  std::string tier;                    // the tier, or empty: one spec
+  std::string name;                    // the spec's name, or the tier
+  std::vector<std::string> spec_args;  // the specs as given, which the jobs read
+  std::size_t cases = 0;               // over every spec
+  std::string work;                    // scripts, shard outputs and logs
+  std::string out;                     // merged reports
+  fs::path binary;                     // the mpmstab the jobs run
+  std::string logs;                    // WORK/logs
 };
 
-// Checks the options and loads the spec; UsageError for the first bad one.
+std::int64_t count_option(const Args& args, std::string_view option, std::int64_t fallback,
+                          std::int64_t most) {
+  const auto v = args.value(option);
+  if (!v) return fallback;
+  const std::int64_t n = parse_int(*v, option);
+  if (n < 1 || n > most) {
+    throw UsageError("--" + std::string(option) + ": must be in [1, " + std::to_string(most) +
+                     "], got " + std::string(*v));
+  }
+  return n;
+}
+
+// The spec, or the tier's specs (UsageError for a bad one).
+void load_job_specs(const Args& args, SlurmJob& job) {
+  if (const auto tier = args.value("tier")) {
+    if (!args.positional().empty()) throw UsageError("--tier: takes no spec (the tier's are run)");
+    if (args.value("timing")) throw UsageError("--timing: not with --tier (make writes the tier)");
+    job.tier = std::string(*tier);
+    job.spec_args = tier_spec_paths("experiments", job.tier);
+    job.name = job.tier;
+    std::error_code ec;
+    if (!fs::is_regular_file("Makefile", ec))
+      throw UsageError("--tier: the render job runs 'make tier' in the current folder, " +
+                       fs::current_path().string() +
+                       ", which has no Makefile (run it in the checkout)");
+  } else {
+    if (args.positional().size() != 1) throw UsageError("slurm takes one spec (or --tier)");
+    job.spec_args = {std::string(args.positional().front())};
+  }
+  std::vector<std::string_view> views(job.spec_args.begin(), job.spec_args.end());
+  for (const Spec& spec : load_specs(views)) {
+    job.cases += spec.cases.size();
+    if (job.tier.empty()) job.name = spec.name;
+  }
+}
+
+// Checks the options and loads the specs; UsageError for the first bad one.
 SlurmJob job_from(const Args& args) {
-  if (args.positional().size() != 1) throw UsageError("slurm takes one spec");
   SlurmJob job;
   const auto shards_text = args.value("shards");
   if (!shards_text) throw UsageError("missing required option --shards");
-  job.shards = parse_int(*shards_text, "shards");
-  if (job.shards < 1 || job.shards > 10000) {
-    throw UsageError("--shards: must be in [1, 10000], got " + std::string(*shards_text));
-  }
-  if (auto v = args.value("cpus-per-task")) {
-    job.cpus = parse_int(*v, "cpus-per-task");
-    if (job.cpus < 1 || job.cpus > 1024) {
-      throw UsageError("--cpus-per-task: must be in [1, 1024], got " + std::string(*v));
-    }
-  }
+  job.shards = count_option(args, "shards", 1, 10000);
+  job.cpus = count_option(args, "cpus-per-task", 1, 1024);
+  job.render_cpus = count_option(args, "render-cpus", job.cpus, 1024);
+  job.throttle = count_option(args, "throttle", 0, 10000);
   job.omit = omit_timing(args);
-  job.spec_arg = std::string(args.positional().front());
-  job.spec = load_specs(args.positional()).front();
-  job.work = std::string(args.value("work").value_or("slurm-" + job.spec.name));
+  load_job_specs(args, job);
+  if (job.tier.empty() && args.value("render-cpus"))
+    throw UsageError("--render-cpus: only with --tier");
+  job.work = std::string(args.value("work").value_or("slurm-" + job.name));
   job.out = std::string(args.value("out").value_or("results"));
   job.binary =
       args.value("mpmstab") ? fs::absolute(std::string(*args.value("mpmstab"))) : this_binary();
@@ -132,6 +187,13 @@ SlurmJob job_from(const Args& args) {
   if (!fs::is_regular_file(job.binary, ec) || ::access(job.binary.c_str(), X_OK) != 0) {
     throw UsageError("--mpmstab: " + job.binary.string() + " is not an executable file");
   }
+  // make takes a variable's value up to the first blank.
+  if (!job.tier.empty())
+    for (const auto& [option, v] : {std::pair{"out", job.out}, {"mpmstab", job.binary.string()}})
+      if (v.find_first_of(" \t") != std::string::npos)
+        throw UsageError("--" + std::string(option) + ": '" + v +
+                         "' has a blank, which make "
+                         "cannot take in RESULTS or MPMSTAB");
   job.logs = (fs::path(job.work) / "logs").string();
   return job;
 }
@@ -153,47 +215,80 @@ std::string common_directives(const Args& args) {
 }
 
 std::string header(const SlurmJob& job) {
-  return "#!/bin/bash\n# Written by 'mpmstab slurm' for " + job.spec_arg + " (" +
-         std::to_string(job.spec.cases.size()) + " cases in " + std::to_string(job.shards) +
-         " shards).\n";
+  const std::string what =
+      job.tier.empty()
+          ? job.spec_args.front()
+          : "the " + job.tier + " tier of " + std::to_string(job.spec_args.size()) + " experiments";
+  return "#!/bin/bash\n# Written by 'mpmstab slurm' for " + what + " (" +
+         std::to_string(job.cases) + " cases in " + std::to_string(job.shards) + " shards).\n";
 }
 
-// The job array: task I runs shard I/N into WORK/shard-I.
+std::string quoted_specs(const SlurmJob& job) {
+  std::string words;
+  for (const auto& spec : job.spec_args)
+    words += " " + sh_quote(spec);
+  return words;
+}
+
+// The job array: task I runs shard I/N into WORK/shard-I (a tier's cases in one queue).
 std::string sweep_script(const SlurmJob& job, const std::string& common) {
   std::ostringstream sweep;
-  sweep << header(job) << "#SBATCH --job-name=mpmstab-" << job.spec.name << "\n#SBATCH --array=0-"
-        << job.shards - 1 << "\n#SBATCH --cpus-per-task=" << job.cpus
-        << "\n#SBATCH --output=" << job.logs << "/" << job.spec.name << "-sweep-%A_%a.out\n"
-        << common << "set -euo pipefail\nexec " << sh_quote(job.binary.string()) << " sweep "
-        << sh_quote(job.spec_arg) << " --shard \"${SLURM_ARRAY_TASK_ID}/" << job.shards
+  sweep << header(job) << "#SBATCH --job-name=mpmstab-" << job.name << "\n#SBATCH --array=0-"
+        << job.shards - 1 << (job.throttle ? "%" + std::to_string(job.throttle) : "")
+        << "\n#SBATCH --cpus-per-task=" << job.cpus << "\n#SBATCH --output=" << job.logs << "/"
+        << job.name << "-sweep-%A_%a.out\n"
+        << common << "set -euo pipefail\nexec " << sh_quote(job.binary.string())
+        << (job.tier.empty() ? " sweep" : " reproduce") << quoted_specs(job)
+        << " --shard \"${SLURM_ARRAY_TASK_ID}/" << job.shards
         << "\" --jobs \"${SLURM_CPUS_PER_TASK:-" << job.cpus << "}\" --out "
         << sh_quote(job.work + "/shard-") << "\"${SLURM_ARRAY_TASK_ID}\"\n";
   return sweep.str();
 }
 
+std::string shard_folders(const SlurmJob& job) {
+  std::string words;
+  for (std::int64_t i = 0; i < job.shards; ++i)
+    words += " " + sh_quote(job.work + "/shard-" + std::to_string(i));
+  return words;
+}
+
 // The merge of every shard's folder into OUT.
 std::string merge_script(const SlurmJob& job, const std::string& common) {
   std::ostringstream merge;
-  merge << header(job) << "#SBATCH --job-name=mpmstab-" << job.spec.name
-        << "-merge\n#SBATCH --output=" << job.logs << "/" << job.spec.name << "-merge-%j.out\n"
-        << common << "set -euo pipefail\nexec " << sh_quote(job.binary.string()) << " merge "
-        << sh_quote(job.spec_arg);
-  for (std::int64_t i = 0; i < job.shards; ++i)
-    merge << " " << sh_quote(job.work + "/shard-" + std::to_string(i));
-  merge << " --out " << sh_quote(job.out) << (job.omit ? " --timing omit" : "") << "\n";
+  merge << header(job) << "#SBATCH --job-name=mpmstab-" << job.name
+        << "-merge\n#SBATCH --output=" << job.logs << "/" << job.name << "-merge-%j.out\n"
+        << common << "set -euo pipefail\nexec " << sh_quote(job.binary.string()) << " merge"
+        << quoted_specs(job) << shard_folders(job) << " --out " << sh_quote(job.out)
+        << (job.omit ? " --timing omit" : "") << "\n";
   return merge.str();
 }
 
-// Submits the array, then the merge with --dependency=afterok on it.
+// A tier's render: every shard's records into OUT/cache, then the tier as make writes it.
+std::string render_script(const SlurmJob& job, const std::string& common) {
+  std::ostringstream render;
+  render << header(job) << "#SBATCH --job-name=mpmstab-" << job.name
+         << "-render\n#SBATCH --cpus-per-task=" << job.render_cpus
+         << "\n#SBATCH --output=" << job.logs << "/" << job.name << "-render-%j.out\n"
+         << common << "set -euo pipefail\n"
+         << sh_quote(job.binary.string()) << " merge" << quoted_specs(job) << shard_folders(job)
+         << " --records-only --out " << sh_quote(job.out)
+         << "\nexec make --no-print-directory tier " << sh_quote("TIER=" + job.tier) << " "
+         << sh_quote("RESULTS=" + job.out) << " " << sh_quote("MPMSTAB=" + job.binary.string())
+         << " \"JOBS=${SLURM_CPUS_PER_TASK:-" << job.render_cpus << "}\"\n";
+  return render.str();
+}
+
+// Submits the array, then the last job (merge or render) with --dependency=afterok on it.
 std::string submit_script(const SlurmJob& job, const std::string& sweep_file,
-                          const std::string& merge_file) {
+                          const std::string& last_file, const std::string& last) {
   std::ostringstream submit;
-  submit << "#!/bin/sh\n# Submits the sweep array of " << job.spec_arg
-         << " and its merge, which runs once every array task succeeded.\nset -eu\ncd "
+  submit << "#!/bin/sh\n# Submits the sweep array of "
+         << (job.tier.empty() ? job.spec_args.front() : "the " + job.tier + " tier") << " and its "
+         << last << ", which runs once every array task succeeded.\nset -eu\ncd "
          << sh_quote(fs::current_path().string()) << "\nsweep=$(sbatch --parsable "
-         << sh_quote(sweep_file)
-         << ")\nsweep=${sweep%%;*}\nmerge=$(sbatch --parsable --dependency=afterok:\"$sweep\" "
-         << sh_quote(merge_file) << ")\necho \"sweep $sweep\"\necho \"merge ${merge%%;*}\"\n";
+         << sh_quote(sweep_file) << ")\nsweep=${sweep%%;*}\n"
+         << last << "=$(sbatch --parsable --dependency=afterok:\"$sweep\" " << sh_quote(last_file)
+         << ")\necho \"sweep $sweep\"\necho \"" << last << " ${" << last << "%%;*}\"\n";
   return submit.str();
 }
 
@@ -201,10 +296,13 @@ std::string submit_script(const SlurmJob& job, const std::string& sweep_file,
 
 int cmd_slurm(const std::vector<std::string_view>& argv) {
   const Args args(argv, {{"shards"},
+                         {"tier"},
                          {"partition"},
                          {"time"},
                          {"account"},
                          {"cpus-per-task"},
+                         {"render-cpus"},
+                         {"throttle"},
                          {"work"},
                          {"out"},
                          {"timing"},
@@ -216,20 +314,24 @@ int cmd_slurm(const std::vector<std::string_view>& argv) {
   }
   const SlurmJob job = job_from(args);
   const std::string common = common_directives(args);
-  const std::string sweep_file = job.work + "/" + job.spec.name + ".sweep.sbatch";
-  const std::string merge_file = job.work + "/" + job.spec.name + ".merge.sbatch";
-  const std::string submit_file = job.work + "/" + job.spec.name + ".submit.sh";
+  const std::string last = job.tier.empty() ? "merge" : "render";
+  const std::string sweep_file = job.work + "/" + job.name + ".sweep.sbatch";
+  const std::string last_file = job.work + "/" + job.name + "." + last + ".sbatch";
+  const std::string submit_file = job.work + "/" + job.name + ".submit.sh";
   std::error_code ec;
   fs::create_directories(job.logs, ec);
   if (ec) throw UsageError("--work: cannot create " + job.logs + ": " + ec.message());
   write_file_atomically(sweep_file, sweep_script(job, common));
-  write_file_atomically(merge_file, merge_script(job, common));
-  write_file_atomically(submit_file, submit_script(job, sweep_file, merge_file));
+  write_file_atomically(last_file,
+                        job.tier.empty() ? merge_script(job, common) : render_script(job, common));
+  write_file_atomically(submit_file, submit_script(job, sweep_file, last_file, last));
   fs::permissions(submit_file, fs::perms::owner_exec | fs::perms::group_exec,
                   fs::perm_options::add);
-  std::cout << "Wrote " << sweep_file << ", " << merge_file << " and " << submit_file
-            << ".\nSubmit with: sh " << submit_file << "\nThe merged reports will be in " << job.out
-            << "/" << job.spec.name << ".md\n";
+  std::cout << "Wrote " << sweep_file << ", " << last_file << " and " << submit_file
+            << ".\nSubmit with: sh " << submit_file << "\nThe "
+            << (job.tier.empty() ? "merged reports will be in " + job.out + "/" + job.name + ".md"
+                                 : "rendered tier will be in " + job.out + "/README.md")
+            << "\n";
   return 0;
 }
 

@@ -84,7 +84,7 @@ option (nothing is run or written), 1 for an internal error.
 
 constexpr const char* kReproduceHelp =
     R"(Usage: mpmstab reproduce <spec.json>... [--jobs N] [--out DIR] [--force]
-                        [--timing keep|omit] [--label NAME]
+                        [--timing keep|omit] [--label NAME] [--shard I/N]
 
 Runs the cases of every spec given in one queue, longest first by their estimated
 particle-steps, on N threads: no thread idles while another finishes a long case of another
@@ -105,9 +105,13 @@ The specs are taken in the order given ('mpmstab list' prints them in the order 
 uses). An input that none of them produces must already be in DIR. --label NAME names the run
 in the progress line and in DIR/cache/timings.json, whose key is NAME in parentheses (make
 reproduce: 'make reproduce', make studies: 'make studies'; default 'reproduce'). Options as for
-'mpmstab sweep' (no --shard). Exit status: 0 when every case ran, 2 for an invalid spec or option
-(nothing is run or written), 1 for an internal error, 128 + the signal when interrupted (the
-finished cases stay in the cache; reports of complete experiments stay written).
+'mpmstab sweep'. With --shard I/N only shard I of the cases of every spec given runs (each case
+in the shard 'mpmstab sweep --shard' gives it), in one queue, into DIR/cache/ with a manifest
+DIR/<name>.shard-I-of-N.json per spec, and nothing else: no follow-up run, no report, no input
+read ('mpmstab slurm --tier' runs a tier's shards so, then renders the tier from their records).
+Exit status: 0 when every case ran, 2 for an invalid spec or option (nothing is run or written),
+1 for an internal error, 128 + the signal when interrupted (the finished cases stay in the
+cache; reports of complete experiments stay written).
 )";
 
 // SIGINT and SIGTERM during a sweep: the handler only raises this flag (async-signal-safe);
@@ -243,8 +247,9 @@ struct ReproducePlan {
   std::vector<std::set<std::string>> waits_for;
 };
 
-// 1. Every spec, and every input none of them produces, read and checked before any work.
-ReproducePlan plan_reproduce(const Args& args, const std::filesystem::path& out) {
+// 1. Every spec, and every input none of them produces, read and checked before any work (a
+// shard reads no input: it only runs cases).
+ReproducePlan plan_reproduce(const Args& args, const std::filesystem::path& out, bool shard) {
   ReproducePlan plan;
   plan.specs = load_specs(args.positional());
   std::set<std::string> produced;
@@ -257,6 +262,7 @@ ReproducePlan plan_reproduce(const Args& args, const std::filesystem::path& out)
   for (std::size_t s = 0; s < plan.specs.size(); ++s) {
     for (const auto& input : load_inputs(plan.specs[s]))
       if (produced.count(input.name)) plan.waits_for[s].insert(input.name);
+    if (shard) continue;
     try {
       check_inputs(plan.specs[s], out, produced);
     } catch (const MissingInput& e) {
@@ -428,11 +434,27 @@ void record_reproduce(const ReproducePublisher& done, std::size_t experiments, d
                          done.computed > 0);
 }
 
+// A shard of several specs' cases (reproduce --shard): one queue, no follow-up, no report; each
+// spec with cases leaves its shard manifest, as a sweep's shard does.
+int reproduce_shard(const ReproducePlan& plan, const SweepOptions& options,
+                    const std::filesystem::path& out, const std::string& label) {
+  SweepQueue queue(options, label);
+  for (const auto& spec : plan.specs)
+    queue.add(spec);
+  const std::vector<SweepOutcome> outcomes = queue.run([](std::size_t, SweepOutcome&) {});
+  for (std::size_t s = 0; s < plan.specs.size(); ++s)
+    if (outcomes[s].interrupted) return interrupted(plan.specs[s], outcomes[s], options);
+  for (std::size_t s = 0; s < plan.specs.size(); ++s)
+    if (plan.specs[s].study->has_cases) finish_shard(plan.specs[s], outcomes[s], options, out);
+  return 0;
+}
+
 }  // namespace
 
 int cmd_reproduce(const std::vector<std::string_view>& argv) {
-  const Args args(argv,
-                  {{"jobs"}, {"out"}, {"force", false}, {"timing"}, {"label"}, {"help", false}});
+  const Args args(
+      argv,
+      {{"jobs"}, {"out"}, {"force", false}, {"timing"}, {"label"}, {"shard"}, {"help", false}});
   if (args.flag("help")) {
     std::cout << kReproduceHelp;
     return 0;
@@ -448,7 +470,7 @@ int cmd_reproduce(const std::vector<std::string_view>& argv) {
   SweepOptions options = sweep_options(args);
   const bool omit = omit_timing(args);
   const auto out = output_folder(args);
-  const ReproducePlan plan = plan_reproduce(args, out);
+  const ReproducePlan plan = plan_reproduce(args, out, options.shard.has_value());
   make_output_folder(out);
   finish_publications_in(out);  // a report set a killed run left half published
   options.cache = out / "cache";
@@ -457,6 +479,7 @@ int cmd_reproduce(const std::vector<std::string_view>& argv) {
   options.progress_line = ::isatty(STDERR_FILENO) != 0;
   options.cancel = &g_stop;
   install_stop_handlers();
+  if (options.shard) return reproduce_shard(plan, options, out, label);
 
   // One queue; each experiment's follow-up runs join it once its cases are complete and what it
   // reads is written, and it is published once they are done.

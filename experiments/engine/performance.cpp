@@ -526,6 +526,46 @@ void write_experiment_times(std::ostream& md, const std::vector<Spec>& specs, co
   }
 }
 
+// One row of the tier runs as a Slurm job array (cluster_timings.json, mpmstab cluster-time).
+void cluster_row(std::ostream& md, const ojson& r) {
+  auto number = [&](const char* key) { return number_or_zero(r, key); };
+  auto count = [&](const char* key) { return std::to_string(std::llround(number(key))); };
+  const double array = number("array_records"), render = number("render_records");
+  md << "| " << text(r, "tier") << " | " << count("nodes") << " x " << count("cpus_per_node")
+     << " | " << count("tasks_at_once") << " | " << count("shards") << " | "
+     << seconds(number("array_seconds")) << " | " << seconds(number("render_seconds")) << " | **"
+     << seconds(number("wall_seconds")) << "** | " << count("array_records") << " / "
+     << count("render_records") << " ("
+     << (array + render > 0 ? fixed(100 * array / (array + render), 0) : std::string("0"))
+     << "% in the array) | " << machine_of(r) << " | " << text(r, "commit").substr(0, 7) << " |\n";
+}
+
+// The tier runs as a Slurm job array on the throwaway cluster (make studies-cluster), from
+// <out>/cluster_timings.json; nothing when it is absent.
+void write_cluster_times(std::ostream& md, const fs::path& out) {
+  const auto text_of = read_if_present(out / "cluster_timings.json");
+  if (!text_of) return;
+  const ojson all = parse_json_strict<ojson>(*text_of, out / "cluster_timings.json");
+  md << "\n## A tier as a Slurm job array\n\nFrom [cluster_timings.json](cluster_timings.json), "
+        "which `make studies-cluster NODES=n` (tests/cluster/tier_cluster.sh) writes only after "
+        "the tier it ran came out byte for byte as committed: the whole tier as one Slurm job "
+        "array over all its cases (`mpmstab slurm --tier`, each case in the shard of its key), "
+        "from an empty cache, then one job that gathers the shards' records and renders the tier "
+        "(`make tier`), computing what the studies choose from their results (follow-up runs, "
+        "the searches of the advice sample). The cluster is a throwaway one on the machine "
+        "named: its nodes are slurmd daemons sharing that machine's CPUs, so two nodes of one "
+        "CPU have the CPUs one node of two has, and tasks at once bounds the array tasks that "
+        "run together (the array's throttle). Array: from submission to the last task's end; "
+        "render: from then to the render job's end; total: both. Records: "
+        "the runs computed in the array and in the render job.\n\n"
+        "| tier | nodes x CPUs | tasks at once | shards | array | render | total wall | "
+        "records computed: array / render | machine | commit |\n"
+        "|---|---|---|---|---|---|---|---|---|---|\n";
+  if (all.is_object())
+    for (const auto& [key, r] : all.items())
+      if (r.is_object()) cluster_row(md, r);
+}
+
 // How many cases a tier run computed (0 where it did not record it).
 double computed_cases(const ojson& e) {
   return e.contains("computed") && e["computed"].is_number() ? e["computed"].get<double>() : 0.0;
@@ -612,6 +652,7 @@ void write_performance(const std::vector<Spec>& specs, const fs::path& bench, co
         "wall time of every experiment of `make reproduce`.\n\n";
   write_benchmark(md, bench);
   write_experiment_times(md, specs, out, bench_figures(bench));
+  write_cluster_times(md, out);
   write_if_changed(out / "performance.md", md.str());
 }
 
