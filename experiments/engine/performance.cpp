@@ -536,8 +536,8 @@ void cluster_row(std::ostream& md, const ojson& r) {
      << seconds(number("array_seconds")) << " | " << seconds(number("render_seconds")) << " | **"
      << seconds(number("wall_seconds")) << "** | " << count("array_records") << " / "
      << count("render_records") << " ("
-     << (array + render > 0 ? fixed(100 * array / (array + render), 0) : std::string("0"))
-     << "% in the array) | " << machine_of(r) << " | " << text(r, "commit").substr(0, 7) << " |\n";
+     << fixed(array + render > 0 ? 100 * array / (array + render) : 0.0, 0) << "% in the array) | "
+     << machine_of(r) << " | " << text(r, "commit").substr(0, 7) << " |\n";
 }
 
 // The tier runs as a Slurm job array on the throwaway cluster (make studies-cluster), from
