@@ -6,6 +6,7 @@
 // The report counts the answers and the refusals per layout and per target decade, the answers
 // that fail again, and the work each search took. Its cases are the advice study's (cases_from).
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <future>
 #include <map>
@@ -38,8 +39,9 @@ struct Searched {
   std::optional<Trial> again;  // the answer's verifying runs made again, separately
 };
 
-// Every drawn problem searched, two at a time (each search is a sequence; the problems are
-// independent, and each run's result does not depend on which thread made it).
+// Every drawn problem searched on two threads, each taking the next problem as it finishes one
+// (each search is a sequence; the problems are independent, and each run's result does not
+// depend on which thread made it).
 std::vector<Searched> searched(const std::vector<CheckedSetting>& settings,
                                const std::filesystem::path& out) {
   const ResultCache cache(out / "cache");
@@ -57,12 +59,14 @@ std::vector<Searched> searched(const std::vector<CheckedSetting>& settings,
         verified_advice(settings, s.problem, kAdviceDomain.budget_particle_steps, false, run_fn);
     if (s.search.answer) s.again = verify(s.search.answer->candidate, s.problem, separate);
   };
-  for (std::size_t i = 0; i < all.size(); i += 2) {
-    auto second = i + 1 < all.size() ? std::async(std::launch::async, one, std::ref(all[i + 1]))
-                                     : std::future<void>();
-    one(all[i]);
-    if (second.valid()) second.get();
-  }
+  std::atomic<std::size_t> next{0};
+  const auto worker = [&] {
+    for (std::size_t i = next++; i < all.size(); i = next++)
+      one(all[i]);
+  };
+  auto other = std::async(std::launch::async, worker);
+  worker();
+  other.get();
   return all;
 }
 
