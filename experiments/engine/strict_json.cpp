@@ -1,5 +1,6 @@
 #include "strict_json.hpp"
 
+#include <cstdint>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -18,9 +19,12 @@ struct Frame {
   std::size_t index = 0;          // the current element of an array
 };
 
-std::string path_of(const std::vector<Frame>& frames) {
+// The path of the value being read in the form cases[3].E, through the first `depth` frames
+// (all of them by default; one fewer: the path of the innermost object or array itself).
+std::string path_of(const std::vector<Frame>& frames, std::size_t depth = SIZE_MAX) {
   std::string path;
-  for (const Frame& f : frames) {
+  for (std::size_t i = 0; i < frames.size() && i < depth; ++i) {
+    const Frame& f = frames[i];
     if (f.object) {
       if (f.key.empty() && f.keys.empty()) continue;
       if (!path.empty()) path += '.';
@@ -50,49 +54,6 @@ std::string control_character(const std::string& s) {
   return "";
 }
 
-// One step of the path to a value, from its parent: a key of an object or an index of an array.
-// The path is written out only for a message, so that a walk over a record of megabytes builds
-// no string per value.
-struct Step {
-  const Step* parent = nullptr;
-  const std::string* key = nullptr;  // nullptr: the index of an array element
-  std::size_t index = 0;
-};
-
-// The path of `step` in the form cases[3].E ("" for the document itself).
-std::string path_of(const Step* step) {
-  if (!step) return "";
-  std::string path = path_of(step->parent);
-  if (step->key) return path.empty() ? *step->key : path + "." + *step->key;
-  return path + "[" + std::to_string(step->index) + "]";
-}
-
-// Refuses control characters in strings and turns -0 into 0, walking the parsed tree.
-template <class Json>
-void check_values(Json& v, const Step* step, const std::filesystem::path& file) {
-  if (v.is_string()) {
-    if (const auto c = control_character(v.template get_ref<const std::string&>()); !c.empty()) {
-      throw InputError(file, at(path_of(step)) + "contains the control character " + c +
-                                 " (a line break or tab may not appear in a string)");
-    }
-  } else if (v.is_number_float()) {
-    if (v.template get<double>() == 0.0) v = 0.0;
-  } else if (v.is_array()) {
-    for (std::size_t i = 0; i < v.size(); ++i) {
-      const Step here{step, nullptr, i};
-      check_values(v[i], &here, file);
-    }
-  } else if (v.is_object()) {
-    for (auto it = v.begin(); it != v.end(); ++it) {
-      if (const auto c = control_character(it.key()); !c.empty()) {
-        throw InputError(file, at(path_of(step)) + "a key contains the control character " + c);
-      }
-      const Step here{step, &it.key(), 0};
-      check_values(it.value(), &here, file);
-    }
-  }
-}
-
 [[noreturn]] void malformed(std::string_view text, const std::filesystem::path& file,
                             const nlohmann::json::parse_error& e) {
   // Line and column of the byte where parsing stopped.
@@ -116,9 +77,10 @@ void check_values(Json& v, const Step* step, const std::filesystem::path& file) 
 }  // namespace
 
 // nlohmann's DOM builder behind a SAX interface that keeps the frames (for the path of a message)
-// and refuses a repeated key. nlohmann's own callback parser does the same work but rescans the
-// parent array each time an element ends (to drop discarded values), which made reading a cache
-// record with a history of 66,000 steps take seconds; this builder does not rescan.
+// and checks each key and value as it is read: a repeated key and a control character are
+// refused, -0 becomes 0. nlohmann's own callback parser rescans the parent array each time an
+// element ends (to drop discarded values), time quadratic in the length of a history; this
+// builder does not rescan, and nothing walks the document again after it is read.
 template <class Json>
 class StrictSax {
  public:
@@ -136,14 +98,26 @@ class StrictSax {
   bool boolean(bool b) { return value(dom_.boolean(b)); }
   bool number_integer(number_integer_t n) { return value(dom_.number_integer(n)); }
   bool number_unsigned(number_unsigned_t n) { return value(dom_.number_unsigned(n)); }
-  bool number_float(number_float_t x, const string_t& s) { return value(dom_.number_float(x, s)); }
-  bool string(string_t& s) { return value(dom_.string(s)); }
+  bool number_float(number_float_t x, const string_t& s) {
+    return value(dom_.number_float(x == 0.0 ? 0.0 : x, s));  // -0 reads as 0
+  }
+  bool string(string_t& s) {
+    if (const auto c = control_character(s); !c.empty()) {
+      throw InputError(file_, at(path_of(frames_)) + "contains the control character " + c +
+                                  " (a line break or tab may not appear in a string)");
+    }
+    return value(dom_.string(s));
+  }
   bool binary(binary_t& b) { return value(dom_.binary(b)); }
   bool start_object(std::size_t n) {
     frames_.push_back(Frame{true, {}, {}, 0});
     return dom_.start_object(n);
   }
   bool key(string_t& k) {
+    if (const auto c = control_character(k); !c.empty()) {
+      throw InputError(file_, at(path_of(frames_, frames_.size() - 1)) +
+                                  "a key contains the control character " + c);
+    }
     Frame& f = frames_.back();
     for (const auto& seen : f.keys) {
       if (seen == k) {
@@ -192,7 +166,6 @@ Json parse_json_strict(std::string_view text, const std::filesystem::path& file)
   StrictSax<Json> sax(doc, file);
   try {
     Json::sax_parse(text.begin(), text.end(), &sax);
-    check_values(doc, nullptr, file);
     return doc;
   } catch (const nlohmann::json::parse_error& e) {
     malformed(text, file, e);
