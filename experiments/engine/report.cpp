@@ -1,12 +1,10 @@
 #include "report.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <exception>
 #include <fstream>
-#include <functional>
 #include <map>
 #include <set>
 #include <sstream>
@@ -19,6 +17,7 @@
 #include "csv.hpp"
 #include "files.hpp"
 #include "key.hpp"
+#include "parallel.hpp"
 #include "report_util.hpp"
 #include "result_json.hpp"
 #include "run_row.hpp"
@@ -782,36 +781,9 @@ std::string index_section(const Spec& spec, const ojson& doc) {
 
 namespace {
 
-// texts[i] = make(i) for every i, on up to kIndexThreads threads; the texts keep their order,
-// and the first exception is rethrown here. The index's paragraphs are independent (each reads
-// its own spec and results); a few recompute their study's findings, which takes seconds.
+// The index's paragraphs are independent (each reads its own spec and results); a few recompute
+// their study's findings, which takes seconds: they are written side by side.
 constexpr unsigned kIndexThreads = 4;
-
-std::vector<std::string> in_parallel(std::size_t n,
-                                     const std::function<std::string(std::size_t)>& make) {
-  std::vector<std::string> texts(n);
-  std::vector<std::exception_ptr> errors(n);
-  std::atomic<std::size_t> next{0};
-  const auto work = [&] {
-    for (std::size_t i = next++; i < n; i = next++) {
-      try {
-        texts[i] = make(i);
-      } catch (...) {
-        errors[i] = std::current_exception();
-      }
-    }
-  };
-  const unsigned threads = std::clamp(std::thread::hardware_concurrency(), 1u, kIndexThreads);
-  std::vector<std::thread> pool;
-  for (unsigned t = 1; t < threads; ++t)
-    pool.emplace_back(work);
-  work();
-  for (auto& t : pool)
-    t.join();
-  for (const auto& e : errors)
-    if (e) std::rethrow_exception(e);
-  return texts;
-}
 
 }  // namespace
 
@@ -822,10 +794,15 @@ void write_index(const std::vector<Spec>& specs, const fs::path& out) {
   for (std::size_t i = 0; i < specs.size(); ++i) {
     if (specs[i].study->has_cases) docs[i] = load_results(specs[i], out);
   }
-  const std::vector<std::string> sections = in_parallel(specs.size(), [&](std::size_t i) {
+  std::vector<std::string> sections(specs.size());
+  const unsigned threads = std::clamp(std::thread::hardware_concurrency(), 1u, kIndexThreads);
+  for_each_in_parallel(specs.size(), threads, [&](std::size_t i) {
     const Spec& spec = specs[i];
-    if (!spec.study->has_cases) return spec.study->index(spec, {});
-    return docs[i].is_null() ? std::string() : index_section(spec, docs[i]);
+    if (!spec.study->has_cases) {
+      sections[i] = spec.study->index(spec, {});
+    } else if (!docs[i].is_null()) {
+      sections[i] = index_section(spec, docs[i]);
+    }
   });
   std::ostringstream md;
   md << index_intro();

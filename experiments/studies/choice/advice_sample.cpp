@@ -6,9 +6,7 @@
 // The report counts the answers and the refusals per layout and per target decade, the answers
 // that fail again, and the work each search took. Its cases are the advice study's (cases_from).
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <future>
 #include <map>
 #include <sstream>
 
@@ -17,6 +15,7 @@
 #include "choice/advice_verify.hpp"
 #include "claims.hpp"
 #include "csv.hpp"
+#include "parallel.hpp"
 #include "report_util.hpp"
 #include "study.hpp"
 
@@ -59,14 +58,7 @@ std::vector<Searched> searched(const std::vector<CheckedSetting>& settings,
         verified_advice(settings, s.problem, kAdviceDomain.budget_particle_steps, false, run_fn);
     if (s.search.answer) s.again = verify(s.search.answer->candidate, s.problem, separate);
   };
-  std::atomic<std::size_t> next{0};
-  const auto worker = [&] {
-    for (std::size_t i = next++; i < all.size(); i = next++)
-      one(all[i]);
-  };
-  auto other = std::async(std::launch::async, worker);
-  worker();
-  other.get();
+  for_each_in_parallel(all.size(), 2, [&](std::size_t i) { one(all[i]); });
   return all;
 }
 
