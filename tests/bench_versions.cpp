@@ -15,12 +15,10 @@
 #include <iostream>
 #include <string>
 #include <string_view>
-#include <utility>
 
 #include "base/params.hpp"
 #ifdef MPMSTAB_BENCH_LEAN
 #include "lean_step.hpp"
-#include "scenes/bar.hpp"
 #else
 #include "base/instruction_set.hpp"
 #include "run/run.hpp"
@@ -39,15 +37,7 @@ int usage(const std::string& message) {
 // Wall ns per particle-step of one run of p.
 double ns_per_particle_step(const mpmstab::RunParams& p) {
 #ifdef MPMSTAB_BENCH_LEAN
-  const mpmstab::BarScene bar(p.E, p.A);
-  const mpmstab::Particles P = bar.initial_particles(p.cells, p.ppc);
-  mpmstab::lean::State s;
-  for (Eigen::Index i = 0; i < P.size(); ++i) {
-    s.x.push_back(P.x[i]), s.v.push_back(P.v[i]), s.F.push_back(P.F[i]);
-    s.sigma.push_back(P.sigma[i]), s.mass.push_back(P.mass[i]);
-    s.volume0.push_back(P.volume0[i]), s.body.push_back(bar.body_force_profile(P.X[i]));
-  }
-  const mpmstab::lean::Timing t = mpmstab::lean::run(p, std::move(s));
+  const mpmstab::lean::Timing t = mpmstab::lean::run(p, mpmstab::lean::bar_state(p));
   if (!(t.checksum > 0)) std::cerr << "bench_versions: unexpected lean state\n";
   return t.seconds * 1e9 / static_cast<double>(t.particle_steps);
 #else

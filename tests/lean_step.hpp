@@ -20,6 +20,9 @@ struct State {
   std::vector<double> x, v, F, sigma, mass, volume0, body;
 };
 
+// The bar's particles for p (E, A, cells, ppc) at t = 0 (lean_state.cpp).
+State bar_state(const RunParams& p);
+
 // The bases the lean loop has: mpm, gimp, bspline2, bspline3.
 bool supports(Method m);
 
