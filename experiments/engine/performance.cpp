@@ -547,7 +547,8 @@ void write_cluster_times(std::ostream& md, const fs::path& out) {
   if (!text_of) return;
   const ojson all = parse_json_strict<ojson>(*text_of, out / "cluster_timings.json");
   md << "\n## A tier as a Slurm job array\n\nFrom [cluster_timings.json](cluster_timings.json), "
-        "which `make studies-cluster NODES=n` (tests/cluster/tier_cluster.sh) writes only after "
+        "which `make studies-cluster NODES=n` and `make reproduce-cluster NODES=n` "
+        "(tests/cluster/tier_cluster.sh) write only after "
         "the tier it ran came out byte for byte as committed: the whole tier as one Slurm job "
         "array over all its cases (`mpmstab slurm --tier`, each case in the shard of its key), "
         "from an empty cache, then one job that gathers the shards' records and renders the tier "
