@@ -51,45 +51,41 @@ StateExtremes extremes_by_array(const Particles& P, const ErrorTerms* error) {
   return e;
 }
 
-#if MPMSTAB_AVX512
-// Every quantity in one pass, 8 particles at a time (and the error when `with_error`).
-template <bool with_error>
-MPMSTAB_AVX512_TARGET StateExtremes extremes_avx512(const Particles& P, const ErrorTerms* error) {
+MPMSTAB_LANES_BEGIN
+
+// Every quantity in one pass, L::n particles at a time (and the error when `with_error`). The
+// portable pass reads the arrays once per quantity through Eigen's SSE reductions (about 15% of a
+// GIMP run on an AVX2 CPU); this reads them once.
+template <class L, bool with_error>
+MPMSTAB_LANES_BODY StateExtremes extremes_pass(const Particles& P, const ErrorTerms* error) {
   const auto n = static_cast<std::size_t>(P.size());
   const double *x = P.x.data(), *v = P.v.data(), *F = P.F.data(), *s = P.sigma.data();
-  Extremes8<with_error> e(error);
+  Extremes<L, with_error> e(error);
   std::size_t p = 0;
-  for (; p + 8 <= n; p += 8) {
-    e.add(p, _mm512_loadu_pd(x + p), _mm512_loadu_pd(v + p), _mm512_loadu_pd(F + p),
-          _mm512_loadu_pd(s + p));
-  }
+  for (; p + L::n <= n; p += L::n)
+    e.add(p, L::load(x + p), L::load(v + p), L::load(F + p), L::load(s + p));
   for (; p < n; ++p)
     e.add_one(p, x[p], v[p], F[p], s[p]);
   const StateExtremes result = e.result();
-  _mm256_zeroupper();  // as particle_pass_avx512 (phases.cpp) does
+  L::end();
   return result;
+}
+
+MPMSTAB_LANES_END
+
+#if MPMSTAB_AVX512
+template <bool with_error>
+MPMSTAB_AVX512_TARGET MPMSTAB_LANES_ENTRY StateExtremes extremes_avx512(const Particles& P,
+                                                                        const ErrorTerms* error) {
+  return extremes_pass<Lanes8, with_error>(P, error);
 }
 #endif
 
 #if MPMSTAB_AVX2
-// The same pass, 4 particles at a time with AVX2, for a CPU without AVX-512 (Extremes4). The
-// portable pass reads the arrays once per quantity through Eigen's SSE reductions (about 15% of a
-// GIMP run on an AVX2 CPU); this reads them once.
 template <bool with_error>
-MPMSTAB_AVX2_TARGET StateExtremes extremes_avx2(const Particles& P, const ErrorTerms* error) {
-  const auto n = static_cast<std::size_t>(P.size());
-  const double *x = P.x.data(), *v = P.v.data(), *F = P.F.data(), *s = P.sigma.data();
-  Extremes4<with_error> e(error);
-  std::size_t p = 0;
-  for (; p + 4 <= n; p += 4) {
-    e.add(p, _mm256_loadu_pd(x + p), _mm256_loadu_pd(v + p), _mm256_loadu_pd(F + p),
-          _mm256_loadu_pd(s + p));
-  }
-  for (; p < n; ++p)
-    e.add_one(p, x[p], v[p], F[p], s[p]);
-  const StateExtremes result = e.result();
-  _mm256_zeroupper();
-  return result;
+MPMSTAB_AVX2_TARGET MPMSTAB_LANES_ENTRY StateExtremes extremes_avx2(const Particles& P,
+                                                                    const ErrorTerms* error) {
+  return extremes_pass<Lanes4, with_error>(P, error);
 }
 #endif
 

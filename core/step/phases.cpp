@@ -145,142 +145,67 @@ MPMSTAB_SIMD_CLONES void stress_loop(std::size_t n, const int* __restrict base, 
     stress_particle<W>(p, base, g, v_i, F, sig, dt, E);
 }
 
-#if MPMSTAB_AVX512
-// The passes over the particles from the grid, 8 particles at a time (g2p_kernel.hpp): FLIP's
-// g2p (kG2p), the stress update with the linear law (kStress), or both in one pass (USL), each
-// lane doing the operations of g2p_particle and stress_particle; with kCheck, the state's
-// extremes (and with kError the error over time) taken from the values as the pass writes them,
-// the others read (extremes_kernel.hpp).
-template <int W, bool kG2p, bool kStress, bool kGridPosition, bool kCheck, bool kError>
-MPMSTAB_AVX512_TARGET void particle_pass_avx512(std::size_t n, const int* __restrict base,
-                                                const Rows<W> w, const Rows<W> g,
-                                                const double* __restrict a_i,
-                                                const double* __restrict v_i, int slots,
-                                                Particles& P, double dt, double E,
-                                                const StateCheck* check) {
-  double* __restrict x = P.x.data();
-  double* __restrict v = P.v.data();
-  double* __restrict F = P.F.data();
-  double* __restrict sig = P.sigma.data();
-  const __m512d dt8 = _mm512_set1_pd(dt), E8 = _mm512_set1_pd(E), one = _mm512_set1_pd(1.0);
-  Extremes8<kError> e(kError ? check->error : nullptr);
-  std::size_t p0 = 0;
-  for (; p0 + 8 <= n; p0 += 8) {
-    __m512i r;
-    if (!relative_bases<W>(base, p0, r)) {
-      for (std::size_t p = p0; p < p0 + 8; ++p) {
-        if constexpr (kG2p) g2p_particle<W, kGridPosition>(p, base, w, a_i, v_i, x, v, dt);
-        if constexpr (kStress) stress_particle<W>(p, base, g, v_i, F, sig, dt, E);
-      }
-      if constexpr (kCheck) {
-        e.add(p0, _mm512_loadu_pd(x + p0), _mm512_loadu_pd(v + p0), _mm512_loadu_pd(F + p0),
-              _mm512_loadu_pd(sig + p0));
-      }
-      continue;
-    }
-    const int b0 = base[p0];
-    Slots16 vel;
-    if constexpr (kStress || kGridPosition) vel = load16(v_i, b0, slots);
-    __m512d xp, vp, Fp, sp;
-    if constexpr (kG2p) {  // g2p_particle
-      const __m512d a = interpolate8<W>(w, p0, load16(a_i, b0, slots), r);
-      vp = _mm512_add_pd(_mm512_loadu_pd(v + p0), _mm512_mul_pd(dt8, a));
-      _mm512_storeu_pd(v + p0, vp);
-      __m512d dx;
-      if constexpr (kGridPosition) {
-        dx = _mm512_mul_pd(dt8, interpolate8<W>(w, p0, vel, r));
-      } else {
-        dx = _mm512_mul_pd(dt8, vp);
-      }
-      xp = _mm512_add_pd(_mm512_loadu_pd(x + p0), dx);
-      _mm512_storeu_pd(x + p0, xp);
-    } else if constexpr (kCheck) {
-      xp = _mm512_loadu_pd(x + p0);
-      vp = _mm512_loadu_pd(v + p0);
-    }
-    if constexpr (kStress) {  // stress_particle
-      const __m512d L = interpolate8<W>(g, p0, vel, r);
-      Fp = _mm512_mul_pd(_mm512_loadu_pd(F + p0), _mm512_add_pd(one, _mm512_mul_pd(dt8, L)));
-      _mm512_storeu_pd(F + p0, Fp);
-      sp = _mm512_mul_pd(E8, _mm512_sub_pd(Fp, one));
-      _mm512_storeu_pd(sig + p0, sp);
-    } else if constexpr (kCheck) {
-      Fp = _mm512_loadu_pd(F + p0);
-      sp = _mm512_loadu_pd(sig + p0);
-    }
-    if constexpr (kCheck) e.add(p0, xp, vp, Fp, sp);
-  }
-  for (; p0 < n; ++p0) {
-    if constexpr (kG2p) g2p_particle<W, kGridPosition>(p0, base, w, a_i, v_i, x, v, dt);
-    if constexpr (kStress) stress_particle<W>(p0, base, g, v_i, F, sig, dt, E);
-    if constexpr (kCheck) e.add_one(p0, x[p0], v[p0], F[p0], sig[p0]);
-  }
-  if constexpr (kCheck) *check->extremes = e.result();
-  // Leave no upper vector state dirty for the SSE code that runs next (GCC 12 omits this
-  // vzeroupper here; without it the next step's body force took 4x its time on this CPU).
-  _mm256_zeroupper();
-}
+MPMSTAB_LANES_BEGIN
 
-#endif
-
-#if MPMSTAB_AVX2
-// The same passes 4 particles at a time with AVX2 (g2p_kernel.hpp's Slots8 and picks), for a CPU
-// without AVX-512: the operations of particle_pass_avx512 in each lane, in the same order.
-template <int W, bool kG2p, bool kStress, bool kGridPosition, bool kCheck, bool kError>
-MPMSTAB_AVX2_TARGET void particle_pass_avx2(std::size_t n, const int* __restrict base,
+// The passes over the particles from the grid, L::n particles at a time (g2p_kernel.hpp's
+// GridLanes8 and GridLanes4): FLIP's g2p (kG2p), the stress update with the linear law (kStress),
+// or both in one pass (USL), each lane doing the operations of g2p_particle and stress_particle;
+// with kCheck, the state's extremes (and with kError the error over time) taken from the values
+// as the pass writes them, the others read (extremes_kernel.hpp).
+template <class L, int W, bool kG2p, bool kStress, bool kGridPosition, bool kCheck, bool kError>
+MPMSTAB_LANES_BODY void particle_pass_lanes(std::size_t n, const int* __restrict base,
                                             const Rows<W> w, const Rows<W> g,
                                             const double* __restrict a_i,
                                             const double* __restrict v_i, int slots, Particles& P,
                                             double dt, double E, const StateCheck* check) {
+  using V = typename L::V;
   double* __restrict x = P.x.data();
   double* __restrict v = P.v.data();
   double* __restrict F = P.F.data();
   double* __restrict sig = P.sigma.data();
-  const __m256d dt4 = _mm256_set1_pd(dt), E4 = _mm256_set1_pd(E), one = _mm256_set1_pd(1.0);
-  Extremes4<kError> e(kError ? check->error : nullptr);
+  const V dtv = L::set1(dt), Ev = L::set1(E), one = L::set1(1.0);
+  Extremes<L, kError> e(kError ? check->error : nullptr);
   std::size_t p0 = 0;
-  for (; p0 + 4 <= n; p0 += 4) {
-    Pick picks[W];
-    if (!relative_bases4<W>(base, p0, picks)) {
-      for (std::size_t p = p0; p < p0 + 4; ++p) {
+  for (; p0 + L::n <= n; p0 += L::n) {
+    typename L::Where r;
+    if (!L::template where<W>(base, p0, slots, r)) {
+      for (std::size_t p = p0; p < p0 + L::n; ++p) {
         if constexpr (kG2p) g2p_particle<W, kGridPosition>(p, base, w, a_i, v_i, x, v, dt);
         if constexpr (kStress) stress_particle<W>(p, base, g, v_i, F, sig, dt, E);
       }
       if constexpr (kCheck) {
-        e.add(p0, _mm256_loadu_pd(x + p0), _mm256_loadu_pd(v + p0), _mm256_loadu_pd(F + p0),
-              _mm256_loadu_pd(sig + p0));
+        e.add(p0, L::load(x + p0), L::load(v + p0), L::load(F + p0), L::load(sig + p0));
       }
       continue;
     }
-    const int b0 = base[p0];
-    Slots8 vel;
-    if constexpr (kStress || kGridPosition) vel = load8(v_i, b0, slots);
-    __m256d xp, vp, Fp, sp;
+    typename L::Slots vel;
+    if constexpr (kStress || kGridPosition) vel = L::slots(v_i, r);
+    V xp, vp, Fp, sp;
     if constexpr (kG2p) {  // g2p_particle
-      const __m256d a = interpolate4<W>(w, p0, load8(a_i, b0, slots), picks);
-      vp = _mm256_add_pd(_mm256_loadu_pd(v + p0), _mm256_mul_pd(dt4, a));
-      _mm256_storeu_pd(v + p0, vp);
-      __m256d dx;
+      const V a = L::template interpolate<W>(w, p0, L::slots(a_i, r), r);
+      vp = L::add(L::load(v + p0), L::mul(dtv, a));
+      L::store(v + p0, vp);
+      V dx;
       if constexpr (kGridPosition) {
-        dx = _mm256_mul_pd(dt4, interpolate4<W>(w, p0, vel, picks));
+        dx = L::mul(dtv, L::template interpolate<W>(w, p0, vel, r));
       } else {
-        dx = _mm256_mul_pd(dt4, vp);
+        dx = L::mul(dtv, vp);
       }
-      xp = _mm256_add_pd(_mm256_loadu_pd(x + p0), dx);
-      _mm256_storeu_pd(x + p0, xp);
+      xp = L::add(L::load(x + p0), dx);
+      L::store(x + p0, xp);
     } else if constexpr (kCheck) {
-      xp = _mm256_loadu_pd(x + p0);
-      vp = _mm256_loadu_pd(v + p0);
+      xp = L::load(x + p0);
+      vp = L::load(v + p0);
     }
     if constexpr (kStress) {  // stress_particle
-      const __m256d L = interpolate4<W>(g, p0, vel, picks);
-      Fp = _mm256_mul_pd(_mm256_loadu_pd(F + p0), _mm256_add_pd(one, _mm256_mul_pd(dt4, L)));
-      _mm256_storeu_pd(F + p0, Fp);
-      sp = _mm256_mul_pd(E4, _mm256_sub_pd(Fp, one));
-      _mm256_storeu_pd(sig + p0, sp);
+      const V Lv = L::template interpolate<W>(g, p0, vel, r);
+      Fp = L::mul(L::load(F + p0), L::add(one, L::mul(dtv, Lv)));
+      L::store(F + p0, Fp);
+      sp = L::mul(Ev, L::sub(Fp, one));
+      L::store(sig + p0, sp);
     } else if constexpr (kCheck) {
-      Fp = _mm256_loadu_pd(F + p0);
-      sp = _mm256_loadu_pd(sig + p0);
+      Fp = L::load(F + p0);
+      sp = L::load(sig + p0);
     }
     if constexpr (kCheck) e.add(p0, xp, vp, Fp, sp);
   }
@@ -290,7 +215,23 @@ MPMSTAB_AVX2_TARGET void particle_pass_avx2(std::size_t n, const int* __restrict
     if constexpr (kCheck) e.add_one(p0, x[p0], v[p0], F[p0], sig[p0]);
   }
   if constexpr (kCheck) *check->extremes = e.result();
-  _mm256_zeroupper();  // as particle_pass_avx512
+  L::end();
+}
+
+MPMSTAB_LANES_END
+
+// The pass's entry point for each instruction set (base/lanes.hpp).
+#if MPMSTAB_AVX512
+template <int W, bool... kFlags, class... Args>
+MPMSTAB_AVX512_TARGET MPMSTAB_LANES_ENTRY void particle_pass_avx512(Args&&... args) {
+  particle_pass_lanes<GridLanes8, W, kFlags...>(std::forward<Args>(args)...);
+}
+#endif
+
+#if MPMSTAB_AVX2
+template <int W, bool... kFlags, class... Args>
+MPMSTAB_AVX2_TARGET MPMSTAB_LANES_ENTRY void particle_pass_avx2(Args&&... args) {
+  particle_pass_lanes<GridLanes4, W, kFlags...>(std::forward<Args>(args)...);
 }
 #endif
 
@@ -306,8 +247,8 @@ bool vector_pass() {
   return false;
 }
 
-// One pass of particle_pass_avx512 (or _avx2) over the run's arrays, the check's flags chosen at
-// run time.
+// One pass of particle_pass_lanes, on the lanes of this CPU, over the run's arrays, the check's
+// flags chosen at run time.
 template <int W, bool kG2p, bool kStress, bool kGridPosition>
 void particle_pass(const Stencil<W>& S, const Grid& G, double dt, double E, Particles& P,
                    const StateCheck* check) {

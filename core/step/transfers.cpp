@@ -3,6 +3,7 @@
 // arithmetic of the plain loop it replaces operation for operation: vector lanes are independent
 // particles, and each grid node sums its contributions in particle order.
 #include <cmath>
+#include <utility>
 
 #include "step/g2p_kernel.hpp"
 
@@ -202,44 +203,61 @@ inline void transfer_particle(std::size_t p, const TransferInputs<W, kTransfer>&
   x[p] += dt * (in.grid_position ? v_grid : v_new);
 }
 
-#if MPMSTAB_AVX512
-// transfer_particle for 8 particles at a time, lane for lane the same operations.
-template <int W, Transfer kTransfer>
-MPMSTAB_AVX512_TARGET void transfer_avx512(std::size_t n, const TransferInputs<W, kTransfer>& in,
-                                           int slots, double* __restrict x, double* __restrict v,
-                                           double* __restrict C, double dt) {
-  const __m512d dt8 = _mm512_set1_pd(dt);
-  const __m512d alpha8 = _mm512_set1_pd(in.alpha), beta8 = _mm512_set1_pd(1.0 - in.alpha);
+MPMSTAB_LANES_BEGIN
+
+// transfer_particle for L::n particles at a time (g2p_kernel.hpp), lane for lane the same
+// operations.
+template <class L, int W, Transfer kTransfer>
+MPMSTAB_LANES_BODY void transfer_lanes(std::size_t n, const TransferInputs<W, kTransfer>& in,
+                                       int slots, double* __restrict x, double* __restrict v,
+                                       double* __restrict C, double dt) {
+  using V = typename L::V;
+  const V dtv = L::set1(dt), alpha = L::set1(in.alpha), beta = L::set1(1.0 - in.alpha);
   std::size_t p0 = 0;
-  for (; p0 + 8 <= n; p0 += 8) {
-    __m512i r;
-    if (!relative_bases<W>(in.base, p0, r)) {
-      for (std::size_t p = p0; p < p0 + 8; ++p)
+  for (; p0 + L::n <= n; p0 += L::n) {
+    typename L::Where r;
+    if (!L::template where<W>(in.base, p0, slots, r)) {
+      for (std::size_t p = p0; p < p0 + L::n; ++p)
         transfer_particle<W, kTransfer>(p, in, x, v, C, dt);
       continue;
     }
-    const int b0 = in.base[p0];
-    const Slots16 vs = load16(in.v_i, b0, slots);
-    const __m512d v_grid = interpolate8<W>(in.w, p0, vs, r);
-    __m512d v_new = v_grid;
+    const typename L::Slots vs = L::slots(in.v_i, r);
+    const V v_grid = L::template interpolate<W>(in.w, p0, vs, r);
+    V v_new = v_grid;
     if constexpr (kTransfer == Transfer::blend) {
-      const __m512d v_flip = _mm512_add_pd(
-          _mm512_loadu_pd(v + p0),
-          _mm512_mul_pd(dt8, interpolate8<W>(in.w, p0, load16(in.a_i, b0, slots), r)));
-      v_new = _mm512_add_pd(_mm512_mul_pd(alpha8, v_flip), _mm512_mul_pd(beta8, v_grid));
+      const V a = L::template interpolate<W>(in.w, p0, L::slots(in.a_i, r), r);
+      const V v_flip = L::add(L::load(v + p0), L::mul(dtv, a));
+      v_new = L::add(L::mul(alpha, v_flip), L::mul(beta, v_grid));
     }
     if constexpr (kTransfer == Transfer::apic) {
-      _mm512_storeu_pd(C + p0, interpolate8<W>(in.g, p0, vs, r));
+      L::store(C + p0, L::template interpolate<W>(in.g, p0, vs, r));
     }
     if constexpr (kTransfer == Transfer::xpic) {
-      v_new = _mm512_add_pd(v_grid, interpolate8<W>(in.w, p0, load16(in.w_i, b0, slots), r));
+      v_new = L::add(v_grid, L::template interpolate<W>(in.w, p0, L::slots(in.w_i, r), r));
     }
-    _mm512_storeu_pd(v + p0, v_new);
-    const __m512d dx = _mm512_mul_pd(dt8, in.grid_position ? v_grid : v_new);
-    _mm512_storeu_pd(x + p0, _mm512_add_pd(_mm512_loadu_pd(x + p0), dx));
+    L::store(v + p0, v_new);
+    const V dx = L::mul(dtv, in.grid_position ? v_grid : v_new);
+    L::store(x + p0, L::add(L::load(x + p0), dx));
   }
   for (; p0 < n; ++p0)
     transfer_particle<W, kTransfer>(p0, in, x, v, C, dt);
+  L::end();
+}
+
+MPMSTAB_LANES_END
+
+// The pass's entry point for each instruction set (base/lanes.hpp).
+#if MPMSTAB_AVX512
+template <int W, Transfer kTransfer, class... Args>
+MPMSTAB_AVX512_TARGET MPMSTAB_LANES_ENTRY void transfer_avx512(Args&&... args) {
+  transfer_lanes<GridLanes8, W, kTransfer>(std::forward<Args>(args)...);
+}
+#endif
+
+#if MPMSTAB_AVX2
+template <int W, Transfer kTransfer, class... Args>
+MPMSTAB_AVX2_TARGET MPMSTAB_LANES_ENTRY void transfer_avx2(Args&&... args) {
+  transfer_lanes<GridLanes4, W, kTransfer>(std::forward<Args>(args)...);
 }
 #endif
 
@@ -253,11 +271,13 @@ void g2p_transfer(const Stencil<W>& S, const Grid& G, double dt, const ParticleU
       rule.flip_fraction, rule.position == PositionUpdate::grid};
   const auto n = static_cast<std::size_t>(P.size());
   double* C = kTransfer == Transfer::apic ? P.C.data() : nullptr;
+  const auto slots = static_cast<int>(G.velocity.size());
 #if MPMSTAB_AVX512
-  if (use_avx512()) {
-    return transfer_avx512<W, kTransfer>(n, in, static_cast<int>(G.velocity.size()), P.x.data(),
-                                         P.v.data(), C, dt);
-  }
+  if (use_avx512())
+    return transfer_avx512<W, kTransfer>(n, in, slots, P.x.data(), P.v.data(), C, dt);
+#endif
+#if MPMSTAB_AVX2
+  if (use_avx2()) return transfer_avx2<W, kTransfer>(n, in, slots, P.x.data(), P.v.data(), C, dt);
 #endif
   for (std::size_t p = 0; p < n; ++p)
     transfer_particle<W, kTransfer>(p, in, P.x.data(), P.v.data(), C, dt);
