@@ -271,7 +271,7 @@ void g2p_transfer(const Stencil<W>& S, const Grid& G, double dt, const ParticleU
       rule.flip_fraction, rule.position == PositionUpdate::grid};
   const auto n = static_cast<std::size_t>(P.size());
   double* C = kTransfer == Transfer::apic ? P.C.data() : nullptr;
-  const auto slots = static_cast<int>(G.velocity.size());
+  [[maybe_unused]] const auto slots = static_cast<int>(G.velocity.size());
 #if MPMSTAB_AVX512
   if (use_avx512())
     return transfer_avx512<W, kTransfer>(n, in, slots, P.x.data(), P.v.data(), C, dt);
