@@ -263,9 +263,13 @@ void particle_pass(const Stencil<W>& S, const Grid& G, double dt, double E, Part
     }
 #endif
 #if MPMSTAB_AVX2
-    particle_pass_avx2<W, kG2p, kStress, kGridPosition, kCheck, kError>(
+    // With AVX2's 16 vector registers, the extremes' accumulators and the pass's values do not fit
+    // together: the extremes are taken by their own pass over the values just written (the same
+    // lanes, the same values).
+    particle_pass_avx2<W, kG2p, kStress, kGridPosition, false, false>(
         n, S.base.data(), rows<W>(S.w), rows<W>(S.g), G.accel.data(), G.velocity.data(), slots, P,
         dt, E, check);
+    if constexpr (kCheck) *check->extremes = state_extremes(P, kError ? check->error : nullptr);
 #endif
   };
   if (!check) {
