@@ -89,6 +89,13 @@ MPMSTAB_AVX2_TARGET MPMSTAB_LANES_ENTRY StateExtremes extremes_avx2(const Partic
 }
 #endif
 
+#if MPMSTAB_SSE2
+template <bool with_error>
+MPMSTAB_LANES_ENTRY StateExtremes extremes_sse2(const Particles& P, const ErrorTerms* error) {
+  return extremes_pass<Lanes2, with_error>(P, error);
+}
+#endif
+
 }  // namespace
 
 double max_error(const Particles& P, const ErrorTerms& error) {
@@ -107,6 +114,11 @@ StateExtremes state_extremes(const Particles& P, const ErrorTerms* error) {
   static const bool avx2 = __builtin_cpu_supports("x86-64-v3");
   if (avx2 && P.size() > 0) {
     return error ? extremes_avx2<true>(P, error) : extremes_avx2<false>(P, nullptr);
+  }
+#endif
+#if MPMSTAB_SSE2
+  if (P.size() > 0) {
+    return error ? extremes_sse2<true>(P, error) : extremes_sse2<false>(P, nullptr);
   }
 #endif
   return extremes_by_array(P, error);

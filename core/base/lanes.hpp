@@ -1,11 +1,11 @@
-// The vector lanes of the hand-written kernels: Lanes8 (AVX-512, 8 doubles) and Lanes4 (AVX2, 4
-// doubles), each the same set of static functions on its own register type. A kernel is written
-// once, as a template over its lanes L marked MPMSTAB_LANES_BODY, and instantiated for each
-// instruction set by a function with that set's target and MPMSTAB_LANES_ENTRY. GCC cannot inline
-// a function with a target into one without it, so the template calls L's functions and the entry
-// point's `flatten` inlines the template and, once they are in the target's code, L's functions.
-// Every lane does a scalar's operations in the same order: an instantiation for 8 lanes and one for
-// 4 give the same bits. Internal to core/.
+// The vector lanes of the hand-written kernels: Lanes8 (AVX-512, 8 doubles), Lanes4 (AVX2, 4
+// doubles) and Lanes2 (SSE2, 2 doubles), each the same set of static functions on its own register
+// type. A kernel is written once, as a template over its lanes L marked MPMSTAB_LANES_BODY, and
+// instantiated for each instruction set by a function with that set's target and
+// MPMSTAB_LANES_ENTRY. GCC cannot inline a function with a target into one without it, so the
+// template calls L's functions and the entry point's `flatten` inlines the template and, once they
+// are in the target's code, L's functions. Every lane does a scalar's operations in the same order:
+// an instantiation for 8 lanes and one for 4 give the same bits. Internal to core/.
 #pragma once
 
 #include <algorithm>
@@ -104,6 +104,45 @@ struct Lanes4 {
     return _mm256_movemask_pd(_mm256_cmp_pd(seen, _mm256_setzero_pd(), _CMP_EQ_OQ)) == 0xF;
   }
   MPMSTAB_AVX2_TARGET static void end() { _mm256_zeroupper(); }
+};
+#endif
+
+#if MPMSTAB_SSE2
+// SSE2, the x86-64 baseline: every x86-64 CPU has it, so no target and no check at run time.
+struct Lanes2 {
+  using V = __m128d;
+  static constexpr int n = 2;
+  static V load(const double* p) { return _mm_loadu_pd(p); }
+  static void store(double* p, V a) { _mm_storeu_pd(p, a); }
+  static V set1(double a) { return _mm_set1_pd(a); }
+  static V add(V a, V b) { return _mm_add_pd(a, b); }
+  static V sub(V a, V b) { return _mm_sub_pd(a, b); }
+  static V mul(V a, V b) { return _mm_mul_pd(a, b); }
+  static V min(V a, V b) { return _mm_min_pd(a, b); }
+  static V max(V a, V b) { return _mm_max_pd(a, b); }
+  static V abs(V a) { return _mm_andnot_pd(_mm_set1_pd(-0.0), a); }
+  static double lane_min(V a) {
+    alignas(16) double t[n];
+    _mm_store_pd(t, a);
+    return *std::min_element(t, t + n);
+  }
+  static double lane_max(V a) {
+    alignas(16) double t[n];
+    _mm_store_pd(t, a);
+    return *std::max_element(t, t + n);
+  }
+  // As Lanes4: the sum of v * 0 stays 0 while every value seen is finite.
+  using NotFinite = __m128d;
+  static NotFinite none_seen() { return _mm_setzero_pd(); }
+  static NotFinite see(NotFinite seen, V x, V v, V F, V s) {
+    const V zero = _mm_setzero_pd();
+    return _mm_add_pd(seen, _mm_add_pd(_mm_add_pd(_mm_mul_pd(x, zero), _mm_mul_pd(v, zero)),
+                                       _mm_add_pd(_mm_mul_pd(F, zero), _mm_mul_pd(s, zero))));
+  }
+  static bool finite(NotFinite seen) {
+    return _mm_movemask_pd(_mm_cmpeq_pd(seen, _mm_setzero_pd())) == 0x3;
+  }
+  static void end() {}
 };
 #endif
 

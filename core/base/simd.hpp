@@ -4,18 +4,21 @@
 
 // Instruction sets. MPMSTAB_SIMD_CLONES compiles a function for AVX-512 (x86-64-v4), AVX2
 // (x86-64-v3) and the build's own target; the loader picks the best one the CPU has (GCC function
-// multiversioning). g2p and the stress update also have hand-written AVX-512 versions, chosen
-// at run time (use_avx512). FMA contraction stays off in every version (-ffp-contract=off).
+// multiversioning). g2p, the stress update and the state's extremes also have hand-written
+// versions over vector lanes (lanes.hpp), the widest the CPU has chosen at run time. FMA
+// contraction stays off in every version (-ffp-contract=off).
 //
 // MPMSTAB_KERNELS_PORTABLE (the build's own target only) and MPMSTAB_KERNELS_AVX2 (AVX2 and the
 // build's own target, no AVX-512) build the same kernels without the versions above them: the
 // reproducibility test (tests/test_kernel_versions.cpp) runs the same cases on every version
 // this machine can run and compares the results byte for byte.
 //
-// MPMSTAB_AVX2 marks the hand-written AVX2 versions (the state's extremes, failure.cpp), chosen
-// at run time on a CPU with AVX2 and without AVX-512.
+// MPMSTAB_AVX2 marks the hand-written AVX2 versions, chosen at run time on a CPU with AVX2 and
+// without AVX-512; MPMSTAB_SSE2 the hand-written SSE2 ones (2 doubles, the x86-64 baseline), in
+// every x86-64 build, for a CPU with neither.
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && \
     defined(MPMSTAB_KERNELS_PORTABLE)
+#include <immintrin.h>
 #define MPMSTAB_SIMD_CLONES
 #define MPMSTAB_AVX512 0
 #define MPMSTAB_AVX2 0
@@ -38,6 +41,11 @@
 #define MPMSTAB_SIMD_CLONES
 #define MPMSTAB_AVX512 0
 #define MPMSTAB_AVX2 0
+#endif
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#define MPMSTAB_SSE2 1
+#else
+#define MPMSTAB_SSE2 0
 #endif
 // A kernel's helper that must be inlined into each instruction set's version of its caller.
 #define MPMSTAB_INLINE __attribute__((always_inline)) inline

@@ -1,9 +1,9 @@
 // The gather side of the kernels: sum_i S_ip field_i over a particle's stencil, one particle at
-// a time and several at a time (AVX-512: 8, AVX2: 4), shared by phases.cpp (FLIP's g2p, the stress
-// update) and transfers.cpp (the other velocity transfers). The other transfers live in a
-// translation unit of their own for the reason p2g_kernel.hpp gives: added to phases.cpp, they made
-// GCC's multiversioned FLIP step about 1.4x slower (BM_Step, GIMP), with the same code. Internal to
-// core/: included by those two files only.
+// a time and several at a time (AVX-512: 8, AVX2: 4, SSE2: 2), shared by phases.cpp (FLIP's g2p,
+// the stress update) and transfers.cpp (the other velocity transfers). The other transfers live in
+// a translation unit of their own for the reason p2g_kernel.hpp gives: added to phases.cpp, they
+// made GCC's multiversioned FLIP step about 1.4x slower (BM_Step, GIMP), with the same code.
+// Internal to core/: included by those two files only.
 #pragma once
 
 #include <array>
@@ -145,6 +145,49 @@ bool use_avx2() {
   static const bool yes = __builtin_cpu_supports("x86-64-v3");
   return yes;
 }
+#endif
+
+#if MPMSTAB_SSE2
+// SSE2, 2 particles at a time, for an x86-64 CPU without AVX2: as GridLanes4, each particle's 4
+// stencil values read with two loads from its base, and slot k of the 2 particles made by one
+// unpack of the loads that hold it.
+struct GridLanes2 : Lanes2 {
+  struct Where {
+    const int* base;  // of the block's first particle
+  };
+  struct Slots {
+    __m128d at[4];  // [k]: field[base_p + k] of each lane
+  };
+
+  template <int W>
+  static bool where(const int* base, std::size_t p0, int count, Where& at) {
+    const auto last = static_cast<unsigned>(count - 4);  // a negative base fails too
+    if (static_cast<unsigned>(base[p0]) > last || static_cast<unsigned>(base[p0 + 1]) > last) {
+      return false;
+    }
+    at.base = base + p0;
+    return true;
+  }
+
+  static Slots slots(const double* field, const Where& at) {
+    const double* f0 = field + at.base[0];
+    const double* f1 = field + at.base[1];
+    const __m128d lo0 = _mm_loadu_pd(f0), hi0 = _mm_loadu_pd(f0 + 2);
+    const __m128d lo1 = _mm_loadu_pd(f1), hi1 = _mm_loadu_pd(f1 + 2);
+    return {{_mm_unpacklo_pd(lo0, lo1), _mm_unpackhi_pd(lo0, lo1), _mm_unpacklo_pd(hi0, hi1),
+             _mm_unpackhi_pd(hi0, hi1)}};
+  }
+
+  // interpolate() for particles p0 and p0 + 1.
+  template <int W>
+  static __m128d interpolate(const Rows<W>& wk, std::size_t p0, const Slots& f, const Where&) {
+    static_assert(W <= 4, "a stencil of at most 4 nodes");
+    __m128d s = _mm_setzero_pd();
+    for (int k = 0; k < W; ++k)
+      s = _mm_add_pd(s, _mm_mul_pd(_mm_loadu_pd(wk[k] + p0), f.at[k]));
+    return s;
+  }
+};
 #endif
 
 }  // namespace

@@ -235,20 +235,14 @@ MPMSTAB_AVX2_TARGET MPMSTAB_LANES_ENTRY void particle_pass_avx2(Args&&... args) 
 }
 #endif
 
-#if MPMSTAB_AVX512 || MPMSTAB_AVX2
-// Whether this CPU takes the hand-written passes (AVX-512, else AVX2).
-bool vector_pass() {
-#if MPMSTAB_AVX512
-  if (use_avx512()) return true;
-#endif
-#if MPMSTAB_AVX2
-  if (use_avx2()) return true;
-#endif
-  return false;
+#if MPMSTAB_SSE2
+template <int W, bool... kFlags, class... Args>
+MPMSTAB_LANES_ENTRY void particle_pass_sse2(Args&&... args) {
+  particle_pass_lanes<GridLanes2, W, kFlags...>(std::forward<Args>(args)...);
 }
 
-// One pass of particle_pass_lanes, on the lanes of this CPU, over the run's arrays, the check's
-// flags chosen at run time.
+// One pass of particle_pass_lanes, on the widest lanes of this CPU (AVX-512, AVX2, else SSE2),
+// over the run's arrays, the check's flags chosen at run time.
 template <int W, bool kG2p, bool kStress, bool kGridPosition>
 void particle_pass(const Stencil<W>& S, const Grid& G, double dt, double E, Particles& P,
                    const StateCheck* check) {
@@ -262,15 +256,23 @@ void particle_pass(const Stencil<W>& S, const Grid& G, double dt, double E, Part
           dt, E, check);
     }
 #endif
+    // With the 16 vector registers of AVX2 and SSE2, the extremes' accumulators and the pass's
+    // values do not fit together: the extremes are taken by their own pass over the values just
+    // written (the same lanes, the same values).
+    const auto unchecked = [&]() {
 #if MPMSTAB_AVX2
-    // With AVX2's 16 vector registers, the extremes' accumulators and the pass's values do not fit
-    // together: the extremes are taken by their own pass over the values just written (the same
-    // lanes, the same values).
-    particle_pass_avx2<W, kG2p, kStress, kGridPosition, false, false>(
-        n, S.base.data(), rows<W>(S.w), rows<W>(S.g), G.accel.data(), G.velocity.data(), slots, P,
-        dt, E, check);
-    if constexpr (kCheck) *check->extremes = state_extremes(P, kError ? check->error : nullptr);
+      if (use_avx2()) {
+        return particle_pass_avx2<W, kG2p, kStress, kGridPosition, false, false>(
+            n, S.base.data(), rows<W>(S.w), rows<W>(S.g), G.accel.data(), G.velocity.data(), slots,
+            P, dt, E, check);
+      }
 #endif
+      particle_pass_sse2<W, kG2p, kStress, kGridPosition, false, false>(
+          n, S.base.data(), rows<W>(S.w), rows<W>(S.g), G.accel.data(), G.velocity.data(), slots, P,
+          dt, E, check);
+    };
+    unchecked();
+    if constexpr (kCheck) *check->extremes = state_extremes(P, kError ? check->error : nullptr);
   };
   if (!check) {
     pass.template operator()<false, false>();
@@ -294,8 +296,8 @@ void particle_pass(const Stencil<W>& S, const Grid& G, double dt, double E, Posi
 
 template <int W, bool kGridPosition>
 void g2p_any(const Stencil<W>& S, const Grid& G, double dt, Particles& P) {
-#if MPMSTAB_AVX512 || MPMSTAB_AVX2
-  if (vector_pass()) return particle_pass<W, true, false, kGridPosition>(S, G, dt, 0.0, P, nullptr);
+#if MPMSTAB_SSE2
+  return particle_pass<W, true, false, kGridPosition>(S, G, dt, 0.0, P, nullptr);
 #endif
   g2p_loop<W, kGridPosition>(static_cast<std::size_t>(P.size()), S.base.data(), rows<W>(S.w),
                              G.accel.data(), G.velocity.data(), P.x.data(), P.v.data(), dt);
@@ -339,8 +341,8 @@ template <int W>
 void stress_update(const Stencil<W>& S, const Grid& G, double dt, const MaterialLaw& law,
                    Particles& P) {
   if (law.kind != Material::linear) return stress_update_law(S, G, dt, law, P);
-#if MPMSTAB_AVX512 || MPMSTAB_AVX2
-  if (vector_pass()) return particle_pass<W, false, true, false>(S, G, dt, law.E, P, nullptr);
+#if MPMSTAB_SSE2
+  return particle_pass<W, false, true, false>(S, G, dt, law.E, P, nullptr);
 #endif
   stress_loop<W>(static_cast<std::size_t>(P.size()), S.base.data(), rows<W>(S.g), G.velocity.data(),
                  P.F.data(), P.sigma.data(), dt, law.E);
@@ -349,8 +351,8 @@ void stress_update(const Stencil<W>& S, const Grid& G, double dt, const Material
 template <int W>
 bool g2p(const Stencil<W>& S, const Grid& G, double dt, const ParticleUpdate& rule, Particles& P,
          [[maybe_unused]] const StateCheck* check) {
-#if MPMSTAB_AVX512 || MPMSTAB_AVX2
-  if (check && vector_pass() && rule.transfer == Transfer::flip) {
+#if MPMSTAB_SSE2
+  if (check && rule.transfer == Transfer::flip) {
     particle_pass<W, true, false>(S, G, dt, 0.0, rule.position, P, check);
     return true;
   }
@@ -362,8 +364,8 @@ bool g2p(const Stencil<W>& S, const Grid& G, double dt, const ParticleUpdate& ru
 template <int W>
 bool stress_update(const Stencil<W>& S, const Grid& G, double dt, const MaterialLaw& law,
                    Particles& P, [[maybe_unused]] const StateCheck* check) {
-#if MPMSTAB_AVX512 || MPMSTAB_AVX2
-  if (check && vector_pass() && law.kind == Material::linear) {
+#if MPMSTAB_SSE2
+  if (check && law.kind == Material::linear) {
     particle_pass<W, false, true, false>(S, G, dt, law.E, P, check);
     return true;
   }
@@ -375,8 +377,8 @@ bool stress_update(const Stencil<W>& S, const Grid& G, double dt, const Material
 template <int W>
 bool g2p_and_stress(const Stencil<W>& S, const Grid& G, double dt, const ParticleUpdate& rule,
                     const MaterialLaw& law, Particles& P, const StateCheck* check) {
-#if MPMSTAB_AVX512 || MPMSTAB_AVX2
-  if (!vector_pass() || rule.transfer != Transfer::flip || law.kind != Material::linear) {
+#if MPMSTAB_SSE2
+  if (rule.transfer != Transfer::flip || law.kind != Material::linear) {
     return false;
   }
   particle_pass<W, true, true>(S, G, dt, law.E, rule.position, P, check);

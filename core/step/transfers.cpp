@@ -261,6 +261,13 @@ MPMSTAB_AVX2_TARGET MPMSTAB_LANES_ENTRY void transfer_avx2(Args&&... args) {
 }
 #endif
 
+#if MPMSTAB_SSE2
+template <int W, Transfer kTransfer, class... Args>
+MPMSTAB_LANES_ENTRY void transfer_sse2(Args&&... args) {
+  transfer_lanes<GridLanes2, W, kTransfer>(std::forward<Args>(args)...);
+}
+#endif
+
 template <int W, Transfer kTransfer>
 void g2p_transfer(const Stencil<W>& S, const Grid& G, double dt, const ParticleUpdate& rule,
                   Particles& P) {
@@ -278,6 +285,9 @@ void g2p_transfer(const Stencil<W>& S, const Grid& G, double dt, const ParticleU
 #endif
 #if MPMSTAB_AVX2
   if (use_avx2()) return transfer_avx2<W, kTransfer>(n, in, slots, P.x.data(), P.v.data(), C, dt);
+#endif
+#if MPMSTAB_SSE2
+  return transfer_sse2<W, kTransfer>(n, in, slots, P.x.data(), P.v.data(), C, dt);
 #endif
   for (std::size_t p = 0; p < n; ++p)
     transfer_particle<W, kTransfer>(p, in, P.x.data(), P.v.data(), C, dt);
