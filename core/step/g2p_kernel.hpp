@@ -95,29 +95,40 @@ bool use_avx512() {
 }
 #endif
 
-#if MPMSTAB_AVX2
-// AVX2, 4 particles at a time, for a CPU without AVX-512. A stencil has at most 4 nodes, so each
-// particle's values of a field are one vector load from its base, and a 4 x 4 transposition makes
-// of them the values of slot k for the 4 particles (6 shuffles with 4 loads; AVX2 has no
-// two-register permutation of doubles, and its gathers are slow on the CPUs that lack AVX-512).
-// A block with a stencil whose 4 slots pass the end of the grid arrays takes the scalar path.
-struct GridLanes4 : Lanes4 {
+#if MPMSTAB_SSE2
+// What GridLanes4 and GridLanes2 share: a stencil has at most 4 nodes, so each particle's values
+// of a field are read by loads from its own base and transposed into the values of slot k for
+// the L::n particles (Slots, from each's slots()), which its interpolate() weighs. A block with a
+// stencil whose 4 slots pass the end of the grid arrays takes the scalar path. (interpolate()
+// returns a vector: written here, without a target, it would draw GCC's -Wpsabi note where the
+// template is instantiated, so each lanes writes its own.)
+template <class L>
+struct TransposedLanes : L {
+  using V = typename L::V;
   struct Where {
     const int* base;  // of the block's first particle
   };
   struct Slots {
-    __m256d at[4];  // [k]: field[base_p + k] of each lane
+    V at[4];  // [k]: field[base_p + k] of each lane
   };
 
   template <int W>
-  MPMSTAB_AVX2_TARGET static bool where(const int* base, std::size_t p0, int count, Where& at) {
-    const __m128i b = _mm_loadu_si128(reinterpret_cast<const __m128i*>(base + p0));
-    const __m128i last = _mm_set1_epi32(count - 4);  // unsigned: a negative base fails too
-    if (_mm_movemask_epi8(_mm_cmpeq_epi32(_mm_max_epu32(b, last), last)) != 0xFFFF) return false;
+  MPMSTAB_LANES_BODY static bool where(const int* base, std::size_t p0, int count, Where& at) {
+    const auto last = static_cast<unsigned>(count - 4);  // a negative base fails too
+    for (int j = 0; j < L::n; ++j)
+      if (static_cast<unsigned>(base[p0 + j]) > last) return false;
     at.base = base + p0;
     return true;
   }
+};
+#endif
 
+#if MPMSTAB_AVX2
+// AVX2, 4 particles at a time, for a CPU without AVX-512 (TransposedLanes): each particle's 4
+// values of a field are one vector load from its base, and a 4 x 4 transposition makes of them
+// the values of slot k for the 4 particles (6 shuffles with 4 loads; AVX2 has no two-register
+// permutation of doubles, and its gathers are slow on the CPUs that lack AVX-512).
+struct GridLanes4 : TransposedLanes<Lanes4> {
   MPMSTAB_AVX2_TARGET static Slots slots(const double* field, const Where& at) {
     const __m256d r0 = _mm256_loadu_pd(field + at.base[0]);
     const __m256d r1 = _mm256_loadu_pd(field + at.base[1]);
@@ -148,27 +159,10 @@ bool use_avx2() {
 #endif
 
 #if MPMSTAB_SSE2
-// SSE2, 2 particles at a time, for an x86-64 CPU without AVX2: as GridLanes4, each particle's 4
-// stencil values read with two loads from its base, and slot k of the 2 particles made by one
-// unpack of the loads that hold it.
-struct GridLanes2 : Lanes2 {
-  struct Where {
-    const int* base;  // of the block's first particle
-  };
-  struct Slots {
-    __m128d at[4];  // [k]: field[base_p + k] of each lane
-  };
-
-  template <int W>
-  static bool where(const int* base, std::size_t p0, int count, Where& at) {
-    const auto last = static_cast<unsigned>(count - 4);  // a negative base fails too
-    if (static_cast<unsigned>(base[p0]) > last || static_cast<unsigned>(base[p0 + 1]) > last) {
-      return false;
-    }
-    at.base = base + p0;
-    return true;
-  }
-
+// SSE2, 2 particles at a time, for an x86-64 CPU without AVX2 (TransposedLanes): each particle's
+// 4 values of a field read with two loads from its base, and slot k of the 2 particles made by
+// one unpack of the loads that hold it.
+struct GridLanes2 : TransposedLanes<Lanes2> {
   static Slots slots(const double* field, const Where& at) {
     const double* f0 = field + at.base[0];
     const double* f1 = field + at.base[1];
