@@ -127,23 +127,26 @@ inline void stress_particle(std::size_t p, const int* __restrict base, const Row
   sig[p] = E * (F[p] - 1.0);
 }
 
+#if !MPMSTAB_SSE2
+// The plain loops, for a build without the hand-written passes (not GCC on x86-64).
 template <int W, bool kGridPosition>
-MPMSTAB_SIMD_CLONES void g2p_loop(std::size_t n, const int* __restrict base, const Rows<W> w,
-                                  const double* __restrict a_i, const double* __restrict v_i,
-                                  double* __restrict x, double* __restrict v, double dt) {
+void g2p_loop(std::size_t n, const int* __restrict base, const Rows<W> w,
+              const double* __restrict a_i, const double* __restrict v_i, double* __restrict x,
+              double* __restrict v, double dt) {
   MPMSTAB_IVDEP
   for (std::size_t p = 0; p < n; ++p)
     g2p_particle<W, kGridPosition>(p, base, w, a_i, v_i, x, v, dt);
 }
 
 template <int W>
-MPMSTAB_SIMD_CLONES void stress_loop(std::size_t n, const int* __restrict base, const Rows<W> g,
-                                     const double* __restrict v_i, double* __restrict F,
-                                     double* __restrict sig, double dt, double E) {
+void stress_loop(std::size_t n, const int* __restrict base, const Rows<W> g,
+                 const double* __restrict v_i, double* __restrict F, double* __restrict sig,
+                 double dt, double E) {
   MPMSTAB_IVDEP
   for (std::size_t p = 0; p < n; ++p)
     stress_particle<W>(p, base, g, v_i, F, sig, dt, E);
 }
+#endif
 
 MPMSTAB_LANES_BEGIN
 
@@ -297,10 +300,11 @@ void particle_pass(const Stencil<W>& S, const Grid& G, double dt, double E, Posi
 template <int W, bool kGridPosition>
 void g2p_any(const Stencil<W>& S, const Grid& G, double dt, Particles& P) {
 #if MPMSTAB_SSE2
-  return particle_pass<W, true, false, kGridPosition>(S, G, dt, 0.0, P, nullptr);
-#endif
+  particle_pass<W, true, false, kGridPosition>(S, G, dt, 0.0, P, nullptr);
+#else
   g2p_loop<W, kGridPosition>(static_cast<std::size_t>(P.size()), S.base.data(), rows<W>(S.w),
                              G.accel.data(), G.velocity.data(), P.x.data(), P.v.data(), dt);
+#endif
 }
 
 // Stress update with a material law other than the linear one, one particle after the other.
@@ -342,10 +346,11 @@ void stress_update(const Stencil<W>& S, const Grid& G, double dt, const Material
                    Particles& P) {
   if (law.kind != Material::linear) return stress_update_law(S, G, dt, law, P);
 #if MPMSTAB_SSE2
-  return particle_pass<W, false, true, false>(S, G, dt, law.E, P, nullptr);
-#endif
+  particle_pass<W, false, true, false>(S, G, dt, law.E, P, nullptr);
+#else
   stress_loop<W>(static_cast<std::size_t>(P.size()), S.base.data(), rows<W>(S.g), G.velocity.data(),
                  P.F.data(), P.sigma.data(), dt, law.E);
+#endif
 }
 
 template <int W>

@@ -287,10 +287,11 @@ void g2p_transfer(const Stencil<W>& S, const Grid& G, double dt, const ParticleU
   if (use_avx2()) return transfer_avx2<W, kTransfer>(n, in, slots, P.x.data(), P.v.data(), C, dt);
 #endif
 #if MPMSTAB_SSE2
-  return transfer_sse2<W, kTransfer>(n, in, slots, P.x.data(), P.v.data(), C, dt);
-#endif
+  transfer_sse2<W, kTransfer>(n, in, slots, P.x.data(), P.v.data(), C, dt);
+#else
   for (std::size_t p = 0; p < n; ++p)
     transfer_particle<W, kTransfer>(p, in, P.x.data(), P.v.data(), C, dt);
+#endif
 }
 
 }  // namespace
