@@ -395,6 +395,8 @@ TEST_F(Hostile, EveryBadInputExitsTwoNamesTheCulpritAndChangesNothing) {
        "plot_bad/fig3.json: cases[0].method: is missing"},
       {"compare DIR/t1.json --out DIR/t1_bad", "t1_bad/t1.json: cases[0].method: has the wrong"},
       {"merge DIR/good.json DIR/absent_shard --out DIR/out", "not a folder"},
+      {"merge DIR/good.json DIR/shard_bad --with-follow-ups --out DIR/out", "--with-follow-ups"},
+      {"reproduce DIR/good.json DIR/shard_bad --follow-ups --out DIR/out", "--follow-ups"},
       // the history file: never anything but a regular file
       {"run --method gimp --E 4 --A 0.01 --dt 1e-3 --history /dev/null", "a device"},
       {"run --method gimp --E 4 --A 0.01 --dt 1e-3 --history DIR/fifo.csv", "a FIFO"},

@@ -280,17 +280,84 @@ TEST_F(Shards, ReproduceShardsAndMergedRecordsGiveTheUnshardedReports) {
   const std::string render = read(dir / "work" / "studies.render.sbatch");
   EXPECT_NE(sweep.find("#SBATCH --array=0-3%2\n"), std::string::npos) << sweep;
   EXPECT_NE(sweep.find(" reproduce 'experiments/"), std::string::npos) << sweep;
-  EXPECT_NE(render.find("--records-only --out"), std::string::npos) << render;
+  const std::string follow = read(dir / "work" / "studies.follow.sbatch");
+  EXPECT_NE(follow.find("#SBATCH --array=0-3%2\n"), std::string::npos) << follow;
+  EXPECT_NE(follow.find("/shard-3' --follow-ups --shard \"${SLURM_ARRAY_TASK_ID}/4\""),
+            std::string::npos)
+      << follow;
+  EXPECT_NE(render.find("/follow-3' --records-only --with-follow-ups --out"), std::string::npos)
+      << render;
   EXPECT_NE(render.find("exec make --no-print-directory tier 'TIER=studies'"), std::string::npos)
       << render;
-  EXPECT_NE(read(dir / "work" / "studies.submit.sh")
-                .find("render=$(sbatch --parsable "
-                      "--dependency=afterok:"),
-            std::string::npos);
+  // Each job after the one before it: cases, follow-up runs, render.
+  const std::string submit = read(dir / "work" / "studies.submit.sh");
+  EXPECT_NE(submit.find("follow=$(sbatch --parsable --dependency=afterok:\"$sweep\" "),
+            std::string::npos)
+      << submit;
+  EXPECT_NE(submit.find("render=$(sbatch --parsable --dependency=afterok:\"$follow\" "),
+            std::string::npos)
+      << submit;
   EXPECT_EQ(in_checkout("slurm --tier everything --shards 4 --work " + d + "/w2").status, 2);
   EXPECT_EQ(in_checkout("slurm " + a + " --tier studies --shards 4 --work " + d + "/w2").status, 2);
   // Outside a checkout the render job could not run make: refused.
   EXPECT_EQ(run_mpmstab("slurm --tier studies --shards 4 --work " + d + "/w2").status, 2);
+}
+
+// The follow-up runs in an array of their own (reproduce --follow-ups --shard I/N): chosen from
+// the cases' shards, computed in shards, gathered (merge --with-follow-ups); make reproduce then
+// computes nothing more and writes the unsharded reports, byte for byte.
+TEST_F(Shards, FollowUpShardsGiveTheUnshardedReportsAndLeaveNothingToCompute) {
+  const std::string a = (dir / "tiny_edge.json").string(), d = dir.string();
+  std::ofstream(a) << R"({"name": "tiny_edge", "report": "edge", "record": ["error_over_time"],
+      "defaults": {"T": 0.25, "cells": 8, "ppc": 2, "bc": "dirichlet"},
+      "cases": [{"method": "gimp", "A": 0.015, "E": 4}, {"method": "mpm", "A": 0.05, "E": 16}]})";
+  ASSERT_EQ(run_mpmstab("reproduce " + a + " --jobs 1 --out " + d + "/local").status, 0);
+  ASSERT_TRUE(fs::exists(dir / "local" / "tiny_edge_follow_up.csv"));
+  std::string cases, follow;
+  for (int i = 0; i < 3; ++i) {
+    const std::string shard = " --shard " + std::to_string(i) + "/3 --jobs 1 --out " + d;
+    ASSERT_EQ(run_mpmstab("reproduce " + a + shard + "/shard-" + std::to_string(i)).status, 0);
+    cases += " " + d + "/shard-" + std::to_string(i);
+  }
+  // A case missing from every folder given: refused, nothing written.
+  const Outcome missing = run_mpmstab("reproduce " + a + " " + d +
+                                      "/shard-0 --follow-ups --shard 0/3 --out " + d + "/f");
+  EXPECT_EQ(missing.status, 2) << missing.output;
+  EXPECT_NE(missing.output.find("in none of the folders"), std::string::npos) << missing.output;
+  EXPECT_FALSE(fs::exists(dir / "f"));
+  EXPECT_EQ(run_mpmstab("reproduce " + a + cases + " --follow-ups --out " + d + "/f").status, 2);
+  std::size_t manifests = 0;
+  for (int i = 0; i < 3; ++i) {
+    const std::string out = d + "/follow-" + std::to_string(i);
+    const Outcome o = run_mpmstab("reproduce " + a + cases + " --follow-ups --shard " +
+                                  std::to_string(i) + "/3 --jobs 1 --out " + out);
+    ASSERT_EQ(o.status, 0) << o.output;
+    manifests +=
+        fs::exists(fs::path(out) / ("tiny_edge.shard-" + std::to_string(i) + "-of-3.json"));
+    follow += " " + out;
+  }
+  EXPECT_EQ(manifests, 3u);
+  // The follow-up runs must all be found once asked for.
+  const Outcome without = run_mpmstab("merge " + a + cases +
+                                      " --records-only --with-follow-ups --out " + d + "/merged");
+  EXPECT_EQ(without.status, 2) << without.output;
+  EXPECT_NE(without.output.find("its follow-up runs"), std::string::npos) << without.output;
+  EXPECT_FALSE(fs::exists(dir / "merged"));
+  const Outcome merged = run_mpmstab("merge " + a + cases + follow +
+                                     " --records-only --with-follow-ups --out " + d + "/merged");
+  ASSERT_EQ(merged.status, 0) << merged.output;
+  auto records = [&] {
+    std::size_t n = 0;
+    for (const auto& e : fs::directory_iterator(dir / "merged" / "cache"))
+      n += e.path().filename().string().size() == 21;  // <16 hex digits>.json
+    return n;
+  };
+  const std::size_t before = records();
+  ASSERT_EQ(run_mpmstab("reproduce " + a + " --jobs 1 --out " + d + "/merged").status, 0);
+  EXPECT_EQ(records(), before) << "the render computed runs the arrays should have";
+  for (const char* f : {"tiny_edge.csv", "tiny_edge.json", "tiny_edge.md",
+                        "tiny_edge_follow_up.csv", "tiny_edge_claims.csv"})
+    EXPECT_EQ(read(dir / "local" / f), read(dir / "merged" / f)) << f;
 }
 
 }  // namespace

@@ -20,8 +20,9 @@ using ojson = nlohmann::ordered_json;
 
 constexpr const char* kClusterTimeHelp =
     R"help(Usage: mpmstab cluster-time --tier paper|studies --nodes N --cpus-per-node C
-                           --at-once M --shards S --array-seconds A --render-seconds R
-                           --seconds T --array-records X --render-records Y [--out DIR]
+                           --at-once M --shards S --array-seconds A --follow-seconds F
+                           --render-seconds R --seconds T --array-records X
+                           --follow-records Z --render-records Y [--out DIR]
 
 Records one run of a tier as a Slurm job array (mpmstab slurm --tier) in DIR/cluster_timings.json
 (DIR default results), under the key "<tier> tier, N nodes", replacing the last run of that tier
@@ -32,12 +33,15 @@ byte for byte as committed; results/performance.md shows the file (make timings)
   --nodes N           Slurm nodes (slurmd daemons) of the cluster
   --cpus-per-node C   CPUs of each node
   --at-once M         array tasks allowed to run at once (the array's throttle)
-  --shards S          array tasks
-  --array-seconds A   from submission to the last array task's end
-  --render-seconds R  the render job's run (merge of the records, then make tier)
+  --shards S          tasks of each array
+  --array-seconds A   from submission to the last task's end of the cases' array
+  --follow-seconds F  from then to the last task's end of the follow-up runs' array
+  --render-seconds R  from then to the render job's end (merge of the records, make tier)
   --seconds T         from submission to the render job's end
-  --array-records X   case records the array tasks computed
-  --render-records Y  records the render job computed (follow-up runs, searches' runs)
+  --array-records X   case records the cases' array computed
+  --follow-records Z  records the follow-up array computed (the follow-up runs the cases'
+                      records decide)
+  --render-records Y  records the render job computed (the other follow-up runs, searches)
 )help";
 
 double seconds_option(const Args& args, std::string_view name) {
@@ -77,9 +81,11 @@ int cmd_cluster_time(const std::vector<std::string_view>& argv) {
                          {"at-once"},
                          {"shards"},
                          {"array-seconds"},
+                         {"follow-seconds"},
                          {"render-seconds"},
                          {"seconds"},
                          {"array-records"},
+                         {"follow-records"},
                          {"render-records"},
                          {"out"},
                          {"help", false}});
@@ -98,9 +104,11 @@ int cmd_cluster_time(const std::vector<std::string_view>& argv) {
                  {"tasks_at_once", count_of(args, "at-once", 1)},
                  {"shards", count_of(args, "shards", 1)},
                  {"array_seconds", seconds_option(args, "array-seconds")},
+                 {"follow_seconds", seconds_option(args, "follow-seconds")},
                  {"render_seconds", seconds_option(args, "render-seconds")},
                  {"wall_seconds", seconds_option(args, "seconds")},
                  {"array_records", count_of(args, "array-records", 0)},
+                 {"follow_records", count_of(args, "follow-records", 0)},
                  {"render_records", count_of(args, "render-records", 0)}};
   const Provenance p = current_provenance(1);
   entry["commit"] = p.commit;

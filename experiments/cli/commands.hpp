@@ -43,5 +43,13 @@ bool omit_timing(const Args& args);  // --timing keep|omit (default keep)
 // The specs of tier `tier` ("paper" or "studies") in DIR, in the order `mpmstab list --tier`
 // prints them (UsageError for another tier or a bad spec).
 std::vector<std::string> tier_spec_paths(const std::filesystem::path& dir, std::string_view tier);
+// Positional arguments <spec>... <folder>... (merge, reproduce --follow-ups): the specs are the
+// arguments before the first folder, the folders the rest; UsageError unless there is at least
+// one of each and every argument after the first folder is one.
+struct SpecsAndFolders {
+  std::vector<std::string_view> specs;
+  std::vector<std::filesystem::path> folders;
+};
+SpecsAndFolders specs_and_folders(const std::vector<std::string_view>& positional);
 
 }  // namespace mpmstab::cli

@@ -71,4 +71,22 @@ bool omit_timing(const Args& args) {
   throw UsageError("--timing: unknown value '" + std::string(*v) + "' (expected keep or omit)");
 }
 
+SpecsAndFolders specs_and_folders(const std::vector<std::string_view>& pos) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  std::size_t first_dir = 0;
+  while (first_dir < pos.size() && !fs::is_directory(fs::path(pos[first_dir]), ec))
+    ++first_dir;
+  if (first_dir == 0) throw UsageError(std::string(pos.front()) + ": a folder where a spec goes");
+  SpecsAndFolders split;
+  split.specs.assign(pos.begin(), pos.begin() + long(first_dir));
+  for (std::size_t i = first_dir; i < pos.size(); ++i) {
+    if (!fs::is_directory(fs::path(pos[i]), ec))
+      throw UsageError(std::string(pos[i]) + ": not a folder");
+    split.folders.emplace_back(pos[i]);
+  }
+  if (split.folders.empty()) throw UsageError(std::string(pos.back()) + ": not a folder");
+  return split;
+}
+
 }  // namespace mpmstab::cli

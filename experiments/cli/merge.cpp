@@ -16,7 +16,7 @@ namespace fs = std::filesystem;
 
 constexpr const char* kMergeHelp =
     R"(Usage: mpmstab merge <spec.json> <dir>... [--out DIR] [--timing keep|omit]
-       mpmstab merge <spec.json>... <dir>... --records-only [--out DIR]
+       mpmstab merge <spec.json>... <dir>... --records-only [--with-follow-ups] [--out DIR]
 
 Gathers the per-case results of a sweep that ran in shards ('mpmstab sweep <spec> --shard
 I/N --out <dir>', one <dir> per shard, or any folders holding <dir>/cache/) and writes the
@@ -30,11 +30,15 @@ of several specs sharded together by 'mpmstab reproduce --shard I/N'), the recor
 and checked the same way and copied into DIR/cache/, and no report is written: a later
 'mpmstab reproduce' (make reproduce or make studies with RESULTS=DIR) finds every case there and
 computes only what the studies ask for beyond them. A study without cases of its own is skipped.
+With --with-follow-ups, the follow-up runs that the gathered records alone decide (those of
+every study that reads no other experiment's results, which 'mpmstab reproduce --follow-ups
+--shard I/N' computes) must be found too, each checked the same way, and are copied as well.
 
 Options:
   --out DIR          where the reports go (default results)
   --timing keep|omit as for 'mpmstab sweep'
   --records-only     only the records, into DIR/cache/, of one or more specs
+  --with-follow-ups  with --records-only: also the follow-up runs the records decide
   --help             show this text
 
 Exit status: 0 when the reports were written; 2 for bad input or when cases are missing or
@@ -51,50 +55,47 @@ void store_records(const Spec& spec, const SweepOutcome& outcome, const ResultCa
   }
 }
 
-// The specs (the arguments before the first folder) and the folders (the rest).
-std::pair<std::vector<Spec>, std::vector<fs::path>> specs_and_folders(
-    const std::vector<std::string_view>& pos) {
-  std::error_code ec;
-  std::size_t first_dir = 0;
-  while (first_dir < pos.size() && !fs::is_directory(fs::path(pos[first_dir]), ec))
-    ++first_dir;
-  if (first_dir == 0) throw UsageError(std::string(pos.front()) + ": a folder where a spec goes");
-  const std::vector<std::string_view> spec_args(pos.begin(), pos.begin() + long(first_dir));
-  std::vector<fs::path> dirs;
-  for (std::size_t i = first_dir; i < pos.size(); ++i) {
-    if (!fs::is_directory(fs::path(pos[i]), ec))
-      throw UsageError(std::string(pos[i]) + ": not a folder");
-    dirs.emplace_back(pos[i]);
-  }
-  if (dirs.empty()) throw UsageError(std::string(pos.back()) + ": not a folder");
-  return {load_specs(spec_args), std::move(dirs)};
-}
-
-// merge --records-only: every spec's records into OUT/cache, all checked before any is copied.
+// merge --records-only: every spec's records into OUT/cache and, with --with-follow-ups, those
+// of the follow-up runs the records alone decide (follow_ups_from_records), all checked before
+// any is copied.
 int merge_records(const std::vector<Spec>& specs, const std::vector<fs::path>& dirs,
-                  const fs::path& out) {
+                  const fs::path& out, bool with_follow_ups) {
+  std::vector<std::unique_ptr<FollowUps>> follow;  // own the specs merged below
   std::vector<std::pair<const Spec*, SweepOutcome>> merged;
+  std::size_t cases = 0, experiments = 0;
   int rejected = 0;
   for (const Spec& spec : specs) {
     if (!spec.study->has_cases) continue;
+    const Spec* what = &spec;
     try {
-      merged.emplace_back(&spec, merge_shards(spec, dirs));
+      merged.emplace_back(what, merge_shards(spec, dirs));
+      rejected += merged.back().second.rejected;
+      cases += spec.cases.size();
+      ++experiments;
+      if (!with_follow_ups) continue;
+      follow.push_back(follow_ups_from_records(spec, merged.back().second));
+      if (!follow.back()) continue;
+      what = &follow.back()->spec;
+      merged.emplace_back(what, merge_shards(*what, dirs));
+      rejected += merged.back().second.rejected;
     } catch (const MergeError& e) {
-      std::cerr << "mpmstab merge: error: " << spec.name << ": " << e.what()
+      std::cerr << "mpmstab merge: error: " << spec.name
+                << (what == &spec ? ": " : ": its follow-up runs: ") << e.what()
                 << "\nNothing was written.\n";
       return 2;
     }
-    rejected += merged.back().second.rejected;
   }
   make_output_folder(out);
   const ResultCache cache(out / "cache");
-  std::size_t records = 0;
-  for (const auto& [spec, outcome] : merged) {
+  for (const auto& [spec, outcome] : merged)
     store_records(*spec, outcome, cache);
-    records += outcome.records.size();
-  }
-  std::cerr << "[merge] the records of " << records << " cases of " << merged.size()
-            << " experiments from " << dirs.size() << " folders"
+  std::size_t follow_runs = 0;
+  for (const auto& f : follow)
+    follow_runs += f ? f->spec.cases.size() : 0;
+  std::cerr << "[merge] the records of " << cases << " cases of " << experiments << " experiments"
+            << (with_follow_ups ? " and of their " + std::to_string(follow_runs) + " follow-up runs"
+                                : std::string())
+            << " from " << dirs.size() << " folders"
             << (rejected ? " (" + std::to_string(rejected) +
                                " records in the folders failed their checksum or shape and were "
                                "ignored)"
@@ -106,7 +107,9 @@ int merge_records(const std::vector<Spec>& specs, const std::vector<fs::path>& d
 }  // namespace
 
 int cmd_merge(const std::vector<std::string_view>& argv) {
-  const Args args(argv, {{"out"}, {"timing"}, {"records-only", false}, {"help", false}});
+  const Args args(
+      argv,
+      {{"out"}, {"timing"}, {"records-only", false}, {"with-follow-ups", false}, {"help", false}});
   if (args.flag("help")) {
     std::cout << kMergeHelp;
     return 0;
@@ -114,12 +117,16 @@ int cmd_merge(const std::vector<std::string_view>& argv) {
   const auto& pos = args.positional();
   if (pos.size() < 2) throw UsageError("needs a spec and at least one folder of shard results");
   const bool omit = omit_timing(args);
-  const auto [specs, dirs] = specs_and_folders(pos);
+  const SpecsAndFolders given = specs_and_folders(pos);
+  const std::vector<Spec> specs = load_specs(given.specs);
+  const std::vector<fs::path>& dirs = given.folders;
   const fs::path out = output_folder(args);
+  if (args.flag("with-follow-ups") && !args.flag("records-only"))
+    throw UsageError("--with-follow-ups: only with --records-only");
   if (args.flag("records-only")) {
     if (args.value("timing"))
       throw UsageError("--timing: no report is written with --records-only");
-    return merge_records(specs, dirs, out);
+    return merge_records(specs, dirs, out, args.flag("with-follow-ups"));
   }
   if (specs.size() != 1) throw UsageError("takes one spec (several with --records-only)");
   const Spec& spec = specs.front();

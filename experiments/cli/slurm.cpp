@@ -34,16 +34,22 @@ shard) and a merge job that depends on it, and a script that submits both:
   WORK/<name>.submit.sh     submits both; prints "sweep <job id>" and "merge <job id>"
 
 With --tier T, the whole tier (make reproduce: paper, make studies: studies; its specs as
-'mpmstab list --tier T' gives them) in one job array over all its cases, and one job that
-renders the tier once every task succeeded:
+'mpmstab list --tier T' gives them) in one job array over all its cases, a second array over
+the follow-up runs their records decide, and one job that renders the tier:
   WORK/T.sweep.sbatch   array 0..N-1: mpmstab reproduce <the tier's specs> --shard I/N
                         --out WORK/shard-I (each case in the shard of its key, as sweep's)
-  WORK/T.render.sbatch  mpmstab merge <specs> WORK/shard-* --records-only --out OUT (every
-                        case's record into OUT/cache), then make tier TIER=T RESULTS=OUT: what
-                        make reproduce or make studies runs, which finds every case in the
-                        cache and computes only the runs the studies choose from their results
-                        (follow-up runs, searches), then writes the reports, figures and index
-  WORK/T.submit.sh      submits both; prints "sweep <job id>" and "render <job id>"
+  WORK/T.follow.sbatch  array 0..N-1, once every task of the first succeeded: mpmstab reproduce
+                        <specs> WORK/shard-* --follow-ups --shard I/N --out WORK/follow-I: the
+                        follow-up runs of every study that reads no other experiment's results,
+                        chosen from the gathered records as make reproduce chooses them
+  WORK/T.render.sbatch  once every task of the second succeeded: mpmstab merge <specs>
+                        WORK/shard-* WORK/follow-* --records-only --with-follow-ups --out OUT
+                        (every record into OUT/cache), then make tier TIER=T RESULTS=OUT: what
+                        make reproduce or make studies runs, which finds those runs in the cache
+                        and computes only the rest (the follow-up runs of the studies that read
+                        other experiments, the searches the advice sample makes one after
+                        another), then writes the reports, figures and index
+  WORK/T.submit.sh      submits the three; prints "sweep <id>", "follow <id>" and "render <id>"
 The render job runs make in the current folder, which must be the checkout (its Makefile and
 experiments/), with gnuplot; OUT results writes into the checkout as make does.
 
@@ -245,10 +251,11 @@ std::string sweep_script(const SlurmJob& job, const std::string& common) {
   return sweep.str();
 }
 
-std::string shard_folders(const SlurmJob& job) {
+// WORK/<prefix>0 ... WORK/<prefix>(N-1), quoted: the folders of an array's tasks.
+std::string shard_folders(const SlurmJob& job, const std::string& prefix = "shard-") {
   std::string words;
   for (std::int64_t i = 0; i < job.shards; ++i)
-    words += " " + sh_quote(job.work + "/shard-" + std::to_string(i));
+    words += " " + sh_quote(job.work + "/" + prefix + std::to_string(i));
   return words;
 }
 
@@ -263,7 +270,25 @@ std::string merge_script(const SlurmJob& job, const std::string& common) {
   return merge.str();
 }
 
-// A tier's render: every shard's records into OUT/cache, then the tier as make writes it.
+// A tier's second array: task I runs shard I/N of the follow-up runs the records of the first
+// decide into WORK/follow-I.
+std::string follow_script(const SlurmJob& job, const std::string& common) {
+  std::ostringstream follow;
+  follow << header(job) << "#SBATCH --job-name=mpmstab-" << job.name
+         << "-follow\n#SBATCH --array=0-" << job.shards - 1
+         << (job.throttle ? "%" + std::to_string(job.throttle) : "")
+         << "\n#SBATCH --cpus-per-task=" << job.cpus << "\n#SBATCH --output=" << job.logs << "/"
+         << job.name << "-follow-%A_%a.out\n"
+         << common << "set -euo pipefail\nexec " << sh_quote(job.binary.string()) << " reproduce"
+         << quoted_specs(job) << shard_folders(job)
+         << " --follow-ups --shard \"${SLURM_ARRAY_TASK_ID}/" << job.shards
+         << "\" --jobs \"${SLURM_CPUS_PER_TASK:-" << job.cpus << "}\" --out "
+         << sh_quote(job.work + "/follow-") << "\"${SLURM_ARRAY_TASK_ID}\"\n";
+  return follow.str();
+}
+
+// A tier's render: every shard's records and the follow-up runs' into OUT/cache, then the tier
+// as make writes it.
 std::string render_script(const SlurmJob& job, const std::string& common) {
   std::ostringstream render;
   render << header(job) << "#SBATCH --job-name=mpmstab-" << job.name
@@ -271,24 +296,34 @@ std::string render_script(const SlurmJob& job, const std::string& common) {
          << "\n#SBATCH --output=" << job.logs << "/" << job.name << "-render-%j.out\n"
          << common << "set -euo pipefail\n"
          << sh_quote(job.binary.string()) << " merge" << quoted_specs(job) << shard_folders(job)
-         << " --records-only --out " << sh_quote(job.out)
-         << "\nexec make --no-print-directory tier " << sh_quote("TIER=" + job.tier) << " "
-         << sh_quote("RESULTS=" + job.out) << " " << sh_quote("MPMSTAB=" + job.binary.string())
-         << " \"JOBS=${SLURM_CPUS_PER_TASK:-" << job.render_cpus << "}\"\n";
+         << shard_folders(job, "follow-") << " --records-only --with-follow-ups --out "
+         << sh_quote(job.out) << "\nexec make --no-print-directory tier "
+         << sh_quote("TIER=" + job.tier) << " " << sh_quote("RESULTS=" + job.out) << " "
+         << sh_quote("MPMSTAB=" + job.binary.string()) << " \"JOBS=${SLURM_CPUS_PER_TASK:-"
+         << job.render_cpus << "}\"\n";
   return render.str();
 }
 
-// Submits the array, then the last job (merge or render) with --dependency=afterok on it.
-std::string submit_script(const SlurmJob& job, const std::string& sweep_file,
-                          const std::string& last_file, const std::string& last) {
+// Submits the array, then each later job with --dependency=afterok on the one before it: the
+// merge (a spec), or the follow-up array and the render (a tier).
+std::string submit_script(const SlurmJob& job,
+                          const std::vector<std::pair<std::string, std::string>>& jobs) {
   std::ostringstream submit;
   submit << "#!/bin/sh\n# Submits the sweep array of "
-         << (job.tier.empty() ? job.spec_args.front() : "the " + job.tier + " tier") << " and its "
-         << last << ", which runs once every array task succeeded.\nset -eu\ncd "
-         << sh_quote(fs::current_path().string()) << "\nsweep=$(sbatch --parsable "
-         << sh_quote(sweep_file) << ")\nsweep=${sweep%%;*}\n"
-         << last << "=$(sbatch --parsable --dependency=afterok:\"$sweep\" " << sh_quote(last_file)
-         << ")\necho \"sweep $sweep\"\necho \"" << last << " ${" << last << "%%;*}\"\n";
+         << (job.tier.empty() ? job.spec_args.front() : "the " + job.tier + " tier") << " and ";
+  for (std::size_t j = 1; j < jobs.size(); ++j)
+    submit << (j == 1 ? "" : ", then ") << "its " << jobs[j].first;
+  submit << ", each run once every task of the one before succeeded.\nset -eu\ncd "
+         << sh_quote(fs::current_path().string()) << "\n";
+  for (std::size_t j = 0; j < jobs.size(); ++j) {
+    const std::string& name = jobs[j].first;
+    submit << name << "=$(sbatch --parsable "
+           << (j == 0 ? std::string() : "--dependency=afterok:\"$" + jobs[j - 1].first + "\" ")
+           << sh_quote(jobs[j].second) << ")\n"
+           << name << "=${" << name << "%%;*}\n";
+  }
+  for (const auto& [name, file] : jobs)
+    submit << "echo \"" << name << " $" << name << "\"\n";
   return submit.str();
 }
 
@@ -314,21 +349,34 @@ int cmd_slurm(const std::vector<std::string_view>& argv) {
   }
   const SlurmJob job = job_from(args);
   const std::string common = common_directives(args);
-  const std::string last = job.tier.empty() ? "merge" : "render";
-  const std::string sweep_file = job.work + "/" + job.name + ".sweep.sbatch";
-  const std::string last_file = job.work + "/" + job.name + "." + last + ".sbatch";
-  const std::string submit_file = job.work + "/" + job.name + ".submit.sh";
+  auto file = [&](const std::string& what) { return job.work + "/" + job.name + "." + what; };
+  // Each job's name and script, in the order they run.
+  std::vector<std::pair<std::string, std::string>> jobs = {{"sweep", file("sweep.sbatch")}};
+  if (job.tier.empty()) {
+    jobs.emplace_back("merge", file("merge.sbatch"));
+  } else {
+    jobs.emplace_back("follow", file("follow.sbatch"));
+    jobs.emplace_back("render", file("render.sbatch"));
+  }
+  const std::string submit_file = file("submit.sh");
   std::error_code ec;
   fs::create_directories(job.logs, ec);
   if (ec) throw UsageError("--work: cannot create " + job.logs + ": " + ec.message());
-  write_file_atomically(sweep_file, sweep_script(job, common));
-  write_file_atomically(last_file,
-                        job.tier.empty() ? merge_script(job, common) : render_script(job, common));
-  write_file_atomically(submit_file, submit_script(job, sweep_file, last_file, last));
+  write_file_atomically(jobs[0].second, sweep_script(job, common));
+  if (job.tier.empty()) {
+    write_file_atomically(jobs[1].second, merge_script(job, common));
+  } else {
+    write_file_atomically(jobs[1].second, follow_script(job, common));
+    write_file_atomically(jobs[2].second, render_script(job, common));
+  }
+  write_file_atomically(submit_file, submit_script(job, jobs));
   fs::permissions(submit_file, fs::perms::owner_exec | fs::perms::group_exec,
                   fs::perm_options::add);
-  std::cout << "Wrote " << sweep_file << ", " << last_file << " and " << submit_file
-            << ".\nSubmit with: sh " << submit_file << "\nThe "
+  std::string written;
+  for (const auto& [name, path] : jobs)
+    written += path + ", ";
+  std::cout << "Wrote " << written << "and " << submit_file << ".\nSubmit with: sh " << submit_file
+            << "\nThe "
             << (job.tier.empty() ? "merged reports will be in " + job.out + "/" + job.name + ".md"
                                  : "rendered tier will be in " + job.out + "/README.md")
             << "\n";

@@ -85,6 +85,7 @@ option (nothing is run or written), 1 for an internal error.
 constexpr const char* kReproduceHelp =
     R"(Usage: mpmstab reproduce <spec.json>... [--jobs N] [--out DIR] [--force]
                         [--timing keep|omit] [--label NAME] [--shard I/N]
+       mpmstab reproduce <spec.json>... <dir>... --follow-ups --shard I/N [--jobs N] [--out DIR]
 
 Runs the cases of every spec given in one queue, longest first by their estimated
 particle-steps, on N threads: no thread idles while another finishes a long case of another
@@ -109,6 +110,13 @@ reproduce: 'make reproduce', make studies: 'make studies'; default 'reproduce').
 in the shard 'mpmstab sweep --shard' gives it), in one queue, into DIR/cache/ with a manifest
 DIR/<name>.shard-I-of-N.json per spec, and nothing else: no follow-up run, no report, no input
 read ('mpmstab slurm --tier' runs a tier's shards so, then renders the tier from their records).
+With --follow-ups, the folders given after the specs hold the records of every case (the shards'
+folders, as 'mpmstab merge' takes them; a case missing from all is refused, naming it), and the
+queue runs shard I of the follow-up runs those records alone decide: those of every study that
+reads no other experiment's results, chosen as make reproduce chooses them. They go into
+DIR/cache/ with a manifest per experiment; 'mpmstab merge --records-only --with-follow-ups'
+gathers them. A study that reads another experiment's results chooses its follow-up runs when
+make reproduce writes it.
 Exit status: 0 when every case ran, 2 for an invalid spec or option (nothing is run or written),
 1 for an internal error, 128 + the signal when interrupted (the finished cases stay in the
 cache; reports of complete experiments stay written).
@@ -249,9 +257,10 @@ struct ReproducePlan {
 
 // 1. Every spec, and every input none of them produces, read and checked before any work (a
 // shard reads no input: it only runs cases).
-ReproducePlan plan_reproduce(const Args& args, const std::filesystem::path& out, bool shard) {
+ReproducePlan plan_reproduce(const std::vector<std::string_view>& spec_args,
+                             const std::filesystem::path& out, bool shard) {
   ReproducePlan plan;
-  plan.specs = load_specs(args.positional());
+  plan.specs = load_specs(spec_args);
   std::set<std::string> produced;
   for (const auto& spec : plan.specs) {
     if (!produced.insert(spec.name).second) {
@@ -449,17 +458,74 @@ int reproduce_shard(const ReproducePlan& plan, const SweepOptions& options,
   return 0;
 }
 
-}  // namespace
+// The follow-up runs of a tier's second job array (reproduce --follow-ups): each experiment's cases
+// gathered from the folders of the tier's shards (as merge finds them; a missing or disagreeing
+// case is refused before anything is written), and the follow-up runs they decide
+// (follow_ups_from_records).
+std::vector<std::unique_ptr<FollowUps>> follow_ups_of_shards(
+    const ReproducePlan& plan, const std::vector<std::filesystem::path>& folders) {
+  std::vector<std::unique_ptr<FollowUps>> follow;
+  for (const Spec& spec : plan.specs) {
+    if (!spec.study->has_cases || !spec.study->follow_up) continue;
+    try {
+      if (auto f = follow_ups_from_records(spec, merge_shards(spec, folders)))
+        follow.push_back(std::move(f));
+    } catch (const MergeError& e) {
+      throw UsageError(spec.name +
+                       ": its cases cannot be gathered from the folders given: " + e.what());
+    }
+  }
+  return follow;
+}
 
-int cmd_reproduce(const std::vector<std::string_view>& argv) {
-  const Args args(
-      argv,
-      {{"jobs"}, {"out"}, {"force", false}, {"timing"}, {"label"}, {"shard"}, {"help", false}});
-  if (args.flag("help")) {
-    std::cout << kReproduceHelp;
+// A follow-up run of shard I that is also a case (the same key) is not run again: its record is
+// copied from the cases' folders into DIR/cache/, as make reproduce finds it in its cache.
+void copy_follow_ups_run_as_cases(const std::vector<std::unique_ptr<FollowUps>>& follow,
+                                  const std::vector<std::filesystem::path>& folders,
+                                  const SweepOptions& options) {
+  const ResultCache into(options.cache);
+  std::vector<ResultCache> cases;
+  for (const auto& d : folders)
+    cases.emplace_back(d / "cache");
+  for (const auto& f : follow) {
+    const std::string search = case_search(f->spec);
+    for (const CaseSpec& c : f->spec.cases) {
+      if (shard_of(case_key(c.params, search), options.shard->count) != options.shard->index)
+        continue;
+      for (const ResultCache& from : cases) {
+        if (auto record = from.load(c.params, search)) {
+          if (!into.load(c.params, search)) into.store(c.params, *record, search);
+          break;
+        }
+      }
+    }
+  }
+}
+
+// A shard of those follow-up runs (reproduce --follow-ups --shard I/N): shard I of them, in one
+// queue, into DIR/cache/, each experiment's with its shard manifest, as a shard of cases.
+int follow_up_shard(const std::vector<std::unique_ptr<FollowUps>>& follow,
+                    const std::vector<std::filesystem::path>& folders, const SweepOptions& options,
+                    const std::filesystem::path& out, const std::string& label) {
+  if (follow.empty()) {
+    std::cerr << "[reproduce] none of these experiments has follow-up runs its cases' records "
+                 "decide; nothing to run\n";
     return 0;
   }
-  if (args.positional().empty()) throw UsageError("reproduce takes one or more specs");
+  copy_follow_ups_run_as_cases(follow, folders, options);
+  SweepQueue queue(options, label);
+  for (const auto& f : follow)
+    queue.add(f->spec);
+  const std::vector<SweepOutcome> outcomes = queue.run([](std::size_t, SweepOutcome&) {});
+  for (std::size_t s = 0; s < follow.size(); ++s)
+    if (outcomes[s].interrupted) return interrupted(follow[s]->spec, outcomes[s], options);
+  for (std::size_t s = 0; s < follow.size(); ++s)
+    finish_shard(follow[s]->spec, outcomes[s], options, out);
+  return 0;
+}
+
+// --label: letters, digits, spaces, '-' and '_' (it names a key of timings.json).
+std::string run_label(const Args& args) {
   const std::string label = std::string(args.value("label").value_or("reproduce"));
   if (label.empty() || label.size() > 64 ||
       !std::all_of(label.begin(), label.end(), [](unsigned char ch) {
@@ -467,10 +533,37 @@ int cmd_reproduce(const std::vector<std::string_view>& argv) {
       }))
     throw UsageError("--label: letters, digits, spaces, '-' and '_', at most 64, got '" + label +
                      "'");
+  return label;
+}
+
+}  // namespace
+
+int cmd_reproduce(const std::vector<std::string_view>& argv) {
+  const Args args(argv, {{"jobs"},
+                         {"out"},
+                         {"force", false},
+                         {"timing"},
+                         {"label"},
+                         {"shard"},
+                         {"follow-ups", false},
+                         {"help", false}});
+  if (args.flag("help")) {
+    std::cout << kReproduceHelp;
+    return 0;
+  }
+  if (args.positional().empty()) throw UsageError("reproduce takes one or more specs");
+  const std::string label = run_label(args);
   SweepOptions options = sweep_options(args);
   const bool omit = omit_timing(args);
   const auto out = output_folder(args);
-  const ReproducePlan plan = plan_reproduce(args, out, options.shard.has_value());
+  const bool follow_ups = args.flag("follow-ups");
+  if (follow_ups && !options.shard) throw UsageError("--follow-ups: only with --shard I/N");
+  const SpecsAndFolders given =
+      follow_ups ? specs_and_folders(args.positional()) : SpecsAndFolders{args.positional(), {}};
+  const ReproducePlan plan = plan_reproduce(given.specs, out, options.shard.has_value());
+  const std::vector<std::unique_ptr<FollowUps>> follow =
+      follow_ups ? follow_ups_of_shards(plan, given.folders)
+                 : std::vector<std::unique_ptr<FollowUps>>{};
   make_output_folder(out);
   finish_publications_in(out);  // a report set a killed run left half published
   options.cache = out / "cache";
@@ -479,6 +572,7 @@ int cmd_reproduce(const std::vector<std::string_view>& argv) {
   options.progress_line = ::isatty(STDERR_FILENO) != 0;
   options.cancel = &g_stop;
   install_stop_handlers();
+  if (follow_ups) return follow_up_shard(follow, given.folders, options, out, label);
   if (options.shard) return reproduce_shard(plan, options, out, label);
 
   // One queue; each experiment's follow-up runs join it once its cases are complete and what it

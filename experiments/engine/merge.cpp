@@ -105,4 +105,9 @@ SweepOutcome merge_shards(const Spec& spec, const std::vector<fs::path>& dirs) {
   return out;
 }
 
+std::unique_ptr<FollowUps> follow_ups_from_records(const Spec& spec, const SweepOutcome& cases) {
+  if (!spec.study->follow_up || !spec.study->inputs.empty()) return nullptr;
+  return follow_ups(spec, cases, fs::path());  // no input is read
+}
+
 }  // namespace mpmstab

@@ -526,18 +526,23 @@ void write_experiment_times(std::ostream& md, const std::vector<Spec>& specs, co
   }
 }
 
-// One row of the tier runs as a Slurm job array (cluster_timings.json, mpmstab cluster-time).
+// One row of the tier runs as a Slurm job array (cluster_timings.json, mpmstab cluster-time). A
+// row recorded before the follow-up runs had an array of their own has no follow-up column.
 void cluster_row(std::ostream& md, const ojson& r) {
   auto number = [&](const char* key) { return number_or_zero(r, key); };
   auto count = [&](const char* key) { return std::to_string(std::llround(number(key))); };
-  const double array = number("array_records"), render = number("render_records");
+  const bool follow = r.contains("follow_seconds");
+  const double array = number("array_records"), follow_records = number("follow_records"),
+               render = number("render_records");
+  const double all = array + follow_records + render;
   md << "| " << text(r, "tier") << " | " << count("nodes") << " x " << count("cpus_per_node")
      << " | " << count("tasks_at_once") << " | " << count("shards") << " | "
-     << seconds(number("array_seconds")) << " | " << seconds(number("render_seconds")) << " | **"
-     << seconds(number("wall_seconds")) << "** | " << count("array_records") << " / "
-     << count("render_records") << " ("
-     << fixed(array + render > 0 ? 100 * array / (array + render) : 0.0, 0) << "% in the array) | "
-     << machine_of(r) << " | " << text(r, "commit").substr(0, 7) << " |\n";
+     << seconds(number("array_seconds")) << " | "
+     << (follow ? seconds(number("follow_seconds")) : std::string("–")) << " | "
+     << seconds(number("render_seconds")) << " | **" << seconds(number("wall_seconds")) << "** | "
+     << count("array_records") << " / " << (follow ? count("follow_records") : std::string("–"))
+     << " / " << count("render_records") << " (" << fixed(all > 0 ? 100 * render / all : 0.0, 0)
+     << "% in the render) | " << machine_of(r) << " | " << text(r, "commit").substr(0, 7) << " |\n";
 }
 
 // The tier runs as a Slurm job array on the throwaway cluster (make studies-cluster), from
@@ -551,17 +556,21 @@ void write_cluster_times(std::ostream& md, const fs::path& out) {
         "(tests/cluster/tier_cluster.sh) write only after "
         "the tier it ran came out byte for byte as committed: the whole tier as one Slurm job "
         "array over all its cases (`mpmstab slurm --tier`, each case in the shard of its key), "
-        "from an empty cache, then one job that gathers the shards' records and renders the tier "
-        "(`make tier`), computing what the studies choose from their results (follow-up runs, "
-        "the searches of the advice sample). The cluster is a throwaway one on the machine "
-        "named: its nodes are slurmd daemons sharing that machine's CPUs, so two nodes of one "
-        "CPU have the CPUs one node of two has, and tasks at once bounds the array tasks that "
-        "run together (the array's throttle). Array: from submission to the last task's end; "
-        "render: from then to the render job's end; total: both. Records: "
-        "the runs computed in the array and in the render job.\n\n"
-        "| tier | nodes x CPUs | tasks at once | shards | array | render | total wall | "
-        "records computed: array / render | machine | commit |\n"
-        "|---|---|---|---|---|---|---|---|---|---|\n";
+        "from an empty cache; then a second array over the follow-up runs that those records "
+        "decide (those of every study that reads no other experiment's results, each run in the "
+        "shard of its key); then one job that gathers both arrays' records and renders the tier "
+        "(`make tier`), computing what remains (the follow-up runs of the studies that read "
+        "other experiments, the searches of the advice sample). The cluster is a throwaway one "
+        "on the machine named: its nodes are slurmd daemons sharing that machine's CPUs, so two "
+        "nodes of one CPU have the CPUs one node of two has, and tasks at once bounds the array "
+        "tasks that run together (each array's throttle). Cases: from submission to the last "
+        "task's end of the first array; follow-ups: from then to the last task's end of the "
+        "second (– where the run had no second array: its render computed every follow-up "
+        "run); render: from then to the render job's end; total: all three. Records: the runs "
+        "computed in each.\n\n"
+        "| tier | nodes x CPUs | tasks at once | shards | cases | follow-ups | render | total "
+        "wall | records computed: cases / follow-ups / render | machine | commit |\n"
+        "|---|---|---|---|---|---|---|---|---|---|---|\n";
   if (all.is_object())
     for (const auto& [key, r] : all.items())
       if (r.is_object()) cluster_row(md, r);

@@ -5,8 +5,9 @@
 # results/cluster_timings.json (mpmstab cluster-time), which results/performance.md shows.
 #
 # Starts NODES slurmd nodes on localhost (tests/cluster/local_slurm.sh), writes the tier's job
-# array and render job (mpmstab slurm --tier TIER) into a temporary folder, submits them with an
-# empty cache and a scratch results folder, waits, and compares every file the render wrote with
+# array over its cases, the array over the follow-up runs their records decide, and the render
+# job (mpmstab slurm --tier TIER) into a temporary folder, submits them with an empty cache and a
+# scratch results folder, waits for each, and compares every file the render wrote with
 # the committed one: byte for byte, except that the reports' relative links to the checkout
 # (../experiments/..., ../docs/...) are those of a folder outside it. cache/ (the records and the
 # machine's timings) is not compared. The scratch folder starts with the committed reports of the
@@ -79,6 +80,11 @@ prepare_scratch() { # out
   done < <(git -C "$ROOT" ls-files results | sed "s|^results/||" | grep -v /)
 }
 
+# Seconds from one now_us reading to another, to a tenth.
+seconds_between() { # from to
+  awk -v a="$1" -v b="$2" 'BEGIN { printf "%.1f", (b - a) / 1e6 }'
+}
+
 # Every file the render wrote (cache/ and the folder's lock aside) is committed and byte for byte
 # the same; every committed file of the tier was written.
 compare_with_committed() { # out
@@ -106,7 +112,8 @@ compare_with_committed() { # out
 }
 
 main() {
-  local t0 t_array t_end out work ids sweep_id render_id array_records total_records
+  local t0 t_array t_follow t_end out work ids sweep_id follow_id render_id
+  local array_records follow_records total_records
   cd "$ROOT"
   [[ -x $MPMSTAB ]] || die "$MPMSTAB not found; run make build first"
   install_missing_packages
@@ -128,14 +135,18 @@ main() {
   t0=$(now_us)
   ids=$(sh "$work/$TIER.submit.sh" 2>&1) || die "$work/$TIER.submit.sh failed:"$'\n'"$ids"
   sweep_id=$(awk '$1 == "sweep" { print $2 }' <<<"$ids")
+  follow_id=$(awk '$1 == "follow" { print $2 }' <<<"$ids")
   render_id=$(awk '$1 == "render" { print $2 }' <<<"$ids")
-  [[ $sweep_id =~ ^[0-9]+$ && $render_id =~ ^[0-9]+$ ]] ||
-    die "$work/$TIER.submit.sh did not print 'sweep <id>' and 'render <id>' lines:"$'\n'"$ids"
-  JOB_IDS+=("$sweep_id" "$render_id")
-  log "$SHARDS-task array $sweep_id over the tier's cases, then render job $render_id"
+  [[ $sweep_id =~ ^[0-9]+$ && $follow_id =~ ^[0-9]+$ && $render_id =~ ^[0-9]+$ ]] ||
+    die "$work/$TIER.submit.sh did not print 'sweep <id>', 'follow <id>' and 'render <id>' lines:"$'\n'"$ids"
+  JOB_IDS+=("$sweep_id" "$follow_id" "$render_id")
+  log "$SHARDS-task array $sweep_id over the tier's cases, then $SHARDS-task array $follow_id over their follow-up runs, then render job $render_id"
   wait_jobs "$sweep_id"
   t_array=$(now_us)
-  log "array done in $(since "$t0") s; rendering"
+  log "cases' array done in $(since "$t0") s; follow-up runs"
+  wait_jobs "$follow_id"
+  t_follow=$(now_us)
+  log "follow-up array done in $(since "$t_array") s; rendering"
   wait_jobs "$render_id"
   t_end=$(now_us)
   SHOW_CLUSTER_LOGS=0
@@ -143,16 +154,22 @@ main() {
 
   compare_with_committed "$out"
   array_records=$(cached_keys "$work"/shard-* | uniq | wc -l)
+  # (a follow-up run that is also a case is copied from the cases' shards, not computed)
+  follow_records=$(comm -13 <(cached_keys "$work"/shard-* | uniq) \
+    <(cached_keys "$work"/follow-* | uniq) | wc -l)
   total_records=$(cached_keys "$out" | wc -l)
   log "OK: $COMPARED files of the $TIER tier byte for byte as committed (relative links aside;" \
     "${#COPIED[@]} reports of the other tier copied in first for the index);" \
-    "$array_records records computed in the array, $((total_records - array_records)) in the render"
+    "$array_records records computed in the cases' array, $follow_records in the follow-up array," \
+    "$((total_records - array_records - follow_records)) in the render"
   "$MPMSTAB" cluster-time --tier "$TIER" --nodes "$NODES" --cpus-per-node "$CPUS_PER_NODE" \
     --at-once "$JOBS" --shards "$SHARDS" \
-    --array-seconds "$(awk -v a="$t0" -v b="$t_array" 'BEGIN { printf "%.1f", (b - a) / 1e6 }')" \
-    --render-seconds "$(awk -v a="$t_array" -v b="$t_end" 'BEGIN { printf "%.1f", (b - a) / 1e6 }')" \
-    --seconds "$(awk -v a="$t0" -v b="$t_end" 'BEGIN { printf "%.1f", (b - a) / 1e6 }')" \
-    --array-records "$array_records" --render-records "$((total_records - array_records))" \
+    --array-seconds "$(seconds_between "$t0" "$t_array")" \
+    --follow-seconds "$(seconds_between "$t_array" "$t_follow")" \
+    --render-seconds "$(seconds_between "$t_follow" "$t_end")" \
+    --seconds "$(seconds_between "$t0" "$t_end")" \
+    --array-records "$array_records" --follow-records "$follow_records" \
+    --render-records "$((total_records - array_records - follow_records))" \
     --out "$ROOT/results"
 }
 
