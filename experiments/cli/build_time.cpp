@@ -23,7 +23,8 @@ runs from configuring to the linked tool, the installation of Debian packages ex
 results/performance.md).
 
   --seconds <x>  the build's wall time, > 0
-  --jobs <n>     the parallel compile jobs it ran with, 1 to 1024 (default: the machine's cores)
+  --jobs <n>     the parallel compile jobs it ran with, 1 to 1024 (default: the CPUs this
+                 process may run on)
 )help";
 
 }  // namespace

@@ -30,7 +30,7 @@ to run without a reason.
 Options:
   --reference DIR  blessed values (default reference/regression)
   --results DIR    where the studies wrote their blessed outputs (default results)
-  --jobs N         cases run in parallel (default: all cores)
+  --jobs N         cases run in parallel (default: the CPUs it may run on)
   --rtol X         relative tolerance of floating-point columns (default 0: the runs are
                    deterministic, so any difference is a real change)
   --budget X       particle-steps of the largest case in the fast subset, for every spec

@@ -3,15 +3,14 @@
 #include <unistd.h>
 
 #include <filesystem>
-#include <thread>
 
 #include "commands.hpp"
+#include "parallel.hpp"
 
 namespace mpmstab::cli {
 
 int default_jobs() {
-  const unsigned n = std::thread::hardware_concurrency();
-  return n == 0 ? 1 : static_cast<int>(n);
+  return static_cast<int>(available_cpus());
 }
 
 std::vector<Spec> load_specs(const std::vector<std::string_view>& paths) {

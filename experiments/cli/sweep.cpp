@@ -62,7 +62,7 @@ Finished cases are cached in DIR/cache/ under a hash of their parameters and the
 version, and are not computed again unless that key changes or --force is given.
 
 Options:
-  --jobs N   cases run in parallel (default: all cores); results do not depend on N
+  --jobs N   cases run in parallel (default: the CPUs it may run on); results do not depend on N
   --out DIR  output folder (default results)
   --force    compute every case again
   --shard I/N  run only shard I (0 <= I < N) of the cases and write no report: each case

@@ -1,5 +1,7 @@
 #include "parallel.hpp"
 
+#include <sched.h>
+
 #include <atomic>
 #include <exception>
 #include <thread>
@@ -28,6 +30,17 @@ void for_each_in_parallel(std::size_t n, unsigned threads,
     t.join();
   for (const auto& e : errors)
     if (e) std::rethrow_exception(e);
+}
+
+unsigned available_cpus() {
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  if (::sched_getaffinity(0, sizeof set, &set) == 0) {
+    const int n = CPU_COUNT(&set);
+    if (n > 0) return static_cast<unsigned>(n);
+  }
+  const unsigned all = std::thread::hardware_concurrency();
+  return all == 0 ? 1 : all;
 }
 
 }  // namespace mpmstab

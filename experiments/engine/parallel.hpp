@@ -14,4 +14,8 @@ namespace mpmstab {
 void for_each_in_parallel(std::size_t n, unsigned threads,
                           const std::function<void(std::size_t)>& work);
 
+// The CPUs this process may run on: its affinity mask, which taskset or a Slurm job's CPU
+// allocation sets (at least 1; all the machine's where the mask cannot be read).
+unsigned available_cpus();
+
 }  // namespace mpmstab

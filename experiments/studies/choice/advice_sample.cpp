@@ -38,9 +38,10 @@ struct Searched {
   std::optional<Trial> again;  // the answer's verifying runs made again, separately
 };
 
-// Every drawn problem searched on two threads, each taking the next problem as it finishes one
-// (each search is a sequence; the problems are independent, and each run's result does not
-// depend on which thread made it).
+// Every drawn problem searched on as many threads as the process has CPUs (make studies on its
+// machine's, the render job of a tier on a cluster on those Slurm gave it), each taking the next
+// problem as it finishes one (each search is a sequence; the problems are independent, and each
+// run's result does not depend on which thread made it).
 std::vector<Searched> searched(const std::vector<CheckedSetting>& settings,
                                const std::filesystem::path& out) {
   const ResultCache cache(out / "cache");
@@ -58,7 +59,7 @@ std::vector<Searched> searched(const std::vector<CheckedSetting>& settings,
         verified_advice(settings, s.problem, kAdviceDomain.budget_particle_steps, false, run_fn);
     if (s.search.answer) s.again = verify(s.search.answer->candidate, s.problem, separate);
   };
-  for_each_in_parallel(all.size(), 2, [&](std::size_t i) { one(all[i]); });
+  for_each_in_parallel(all.size(), available_cpus(), [&](std::size_t i) { one(all[i]); });
   return all;
 }
 
