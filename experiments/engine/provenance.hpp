@@ -18,7 +18,8 @@ struct Provenance {
   int threads = 1;      // parallel cases in the sweep that computed the result
 };
 
-// The provenance of a computation starting now with `threads` parallel cases.
+// The provenance of a computation starting now with `threads` parallel cases. The commit, whether
+// the tree has uncommitted changes and the CPU are read once per process, at the first call.
 Provenance current_provenance(int threads);
 
 nlohmann::ordered_json to_json(const Provenance& p);
