@@ -236,21 +236,6 @@ std::string quoted_specs(const SlurmJob& job) {
   return words;
 }
 
-// The job array: task I runs shard I/N into WORK/shard-I (a tier's cases in one queue).
-std::string sweep_script(const SlurmJob& job, const std::string& common) {
-  std::ostringstream sweep;
-  sweep << header(job) << "#SBATCH --job-name=mpmstab-" << job.name << "\n#SBATCH --array=0-"
-        << job.shards - 1 << (job.throttle ? "%" + std::to_string(job.throttle) : "")
-        << "\n#SBATCH --cpus-per-task=" << job.cpus << "\n#SBATCH --output=" << job.logs << "/"
-        << job.name << "-sweep-%A_%a.out\n"
-        << common << "set -euo pipefail\nexec " << sh_quote(job.binary.string())
-        << (job.tier.empty() ? " sweep" : " reproduce") << quoted_specs(job)
-        << " --shard \"${SLURM_ARRAY_TASK_ID}/" << job.shards
-        << "\" --jobs \"${SLURM_CPUS_PER_TASK:-" << job.cpus << "}\" --out "
-        << sh_quote(job.work + "/shard-") << "\"${SLURM_ARRAY_TASK_ID}\"\n";
-  return sweep.str();
-}
-
 // WORK/<prefix>0 ... WORK/<prefix>(N-1), quoted: the folders of an array's tasks.
 std::string shard_folders(const SlurmJob& job, const std::string& prefix = "shard-") {
   std::string words;
@@ -270,21 +255,37 @@ std::string merge_script(const SlurmJob& job, const std::string& common) {
   return merge.str();
 }
 
+// A job array of N tasks named `log` in the logs: task I runs `mpmstab <command> --shard I/N
+// --jobs C --out WORK/<prefix>I`.
+std::string array_script(const SlurmJob& job, const std::string& common,
+                         const std::string& name_suffix, const std::string& log,
+                         const std::string& command, const std::string& prefix) {
+  std::ostringstream array;
+  array << header(job) << "#SBATCH --job-name=mpmstab-" << job.name << name_suffix
+        << "\n#SBATCH --array=0-" << job.shards - 1
+        << (job.throttle ? "%" + std::to_string(job.throttle) : "")
+        << "\n#SBATCH --cpus-per-task=" << job.cpus << "\n#SBATCH --output=" << job.logs << "/"
+        << job.name << "-" << log << "-%A_%a.out\n"
+        << common << "set -euo pipefail\nexec " << sh_quote(job.binary.string()) << command
+        << " --shard \"${SLURM_ARRAY_TASK_ID}/" << job.shards
+        << "\" --jobs \"${SLURM_CPUS_PER_TASK:-" << job.cpus << "}\" --out "
+        << sh_quote(job.work + "/" + prefix) << "\"${SLURM_ARRAY_TASK_ID}\"\n";
+  return array.str();
+}
+
+// The job array over the cases: task I runs shard I/N into WORK/shard-I (a tier's cases in one
+// queue).
+std::string sweep_script(const SlurmJob& job, const std::string& common) {
+  return array_script(job, common, "", "sweep",
+                      (job.tier.empty() ? " sweep" : " reproduce") + quoted_specs(job), "shard-");
+}
+
 // A tier's second array: task I runs shard I/N of the follow-up runs the records of the first
 // decide into WORK/follow-I.
 std::string follow_script(const SlurmJob& job, const std::string& common) {
-  std::ostringstream follow;
-  follow << header(job) << "#SBATCH --job-name=mpmstab-" << job.name
-         << "-follow\n#SBATCH --array=0-" << job.shards - 1
-         << (job.throttle ? "%" + std::to_string(job.throttle) : "")
-         << "\n#SBATCH --cpus-per-task=" << job.cpus << "\n#SBATCH --output=" << job.logs << "/"
-         << job.name << "-follow-%A_%a.out\n"
-         << common << "set -euo pipefail\nexec " << sh_quote(job.binary.string()) << " reproduce"
-         << quoted_specs(job) << shard_folders(job)
-         << " --follow-ups --shard \"${SLURM_ARRAY_TASK_ID}/" << job.shards
-         << "\" --jobs \"${SLURM_CPUS_PER_TASK:-" << job.cpus << "}\" --out "
-         << sh_quote(job.work + "/follow-") << "\"${SLURM_ARRAY_TASK_ID}\"\n";
-  return follow.str();
+  return array_script(job, common, "-follow", "follow",
+                      " reproduce" + quoted_specs(job) + shard_folders(job) + " --follow-ups",
+                      "follow-");
 }
 
 // A tier's render: every shard's records and the follow-up runs' into OUT/cache, then the tier
