@@ -311,10 +311,11 @@ std::string submit_script(const SlurmJob& job,
                           const std::vector<std::pair<std::string, std::string>>& jobs) {
   std::ostringstream submit;
   submit << "#!/bin/sh\n# Submits the sweep array of "
-         << (job.tier.empty() ? job.spec_args.front() : "the " + job.tier + " tier") << " and ";
+         << (job.tier.empty() ? job.spec_args.front() : "the " + job.tier + " tier");
   for (std::size_t j = 1; j < jobs.size(); ++j)
-    submit << (j == 1 ? "" : ", then ") << "its " << jobs[j].first;
-  submit << ", each run once every task of the one before succeeded.\nset -eu\ncd "
+    submit << ", then its "
+           << (jobs[j].first == "follow" ? "follow-up array" : jobs[j].first + " job");
+  submit << ", each started once every task of the one before succeeded.\nset -eu\ncd "
          << sh_quote(fs::current_path().string()) << "\n";
   for (std::size_t j = 0; j < jobs.size(); ++j) {
     const std::string& name = jobs[j].first;
