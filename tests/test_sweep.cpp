@@ -417,6 +417,18 @@ TEST_F(Sweeps, ASpecAddedWhileTheQueueRunsJoinsItAndGetsTheRecordsOfItsOwnSweep)
         << i;
 }
 
+// A queue given no spec runs nothing and ends (reproduce --follow-ups of specs that ask for no
+// follow-up run builds none).
+TEST(SweepQueueEmpty, RunsNothingAndEnds) {
+  SweepOptions o;
+  o.jobs = 2;
+  o.quiet = true;
+  SweepQueue queue(o, "empty");
+  bool called = false;
+  EXPECT_TRUE(queue.run([&](std::size_t, SweepOutcome&) { called = true; }).empty());
+  EXPECT_FALSE(called);
+}
+
 // The dense spectral analyses a run asks for count in the queue's estimate: one for a layout
 // that is not uniform where the spec records `spectral`, none for a uniform layout (Bloch's),
 // and more for the spectral policy as the layout moves.

@@ -711,8 +711,10 @@ void SweepQueue::State::work(std::size_t w) {
 void SweepQueue::State::start_progress(bool several) {
   {
     std::lock_guard lock(mutex);
-    progress = std::make_unique<Progress>(several ? label : batches.front().spec->name, runs,
-                                          total_cost, options.progress_line, !several);
+    // An empty queue (no spec added) runs nothing and is named by its label.
+    progress =
+        std::make_unique<Progress>(several || batches.empty() ? label : batches.front().spec->name,
+                                   runs, total_cost, options.progress_line, !several);
     progress->expect(expected);
   }
   workers = std::size_t(std::max(1, options.jobs));
