@@ -13,9 +13,11 @@ die() {
   printf '%s: FAILED: %s\n' "$LOG_NAME" "$*" >&2
   exit 1
 }
-# Microseconds since the epoch, and seconds elapsed since such a time stamp.
+# Microseconds since the epoch; the seconds, to a tenth, from one such time stamp to another, and
+# from one to now.
 now_us() { echo "${EPOCHREALTIME/./}"; }
-since() { awk -v a="$1" -v b="$(now_us)" 'BEGIN { printf "%.1f", (b - a) / 1e6 }'; }
+seconds_between() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.1f", (b - a) / 1e6 }'; }
+since() { seconds_between "$1" "$(now_us)"; }
 
 # --- packages ------------------------------------------------------------------------------------
 

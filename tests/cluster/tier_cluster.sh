@@ -80,11 +80,6 @@ prepare_scratch() { # out
   done < <(git -C "$ROOT" ls-files results | sed "s|^results/||" | grep -v /)
 }
 
-# Seconds from one now_us reading to another, to a tenth.
-seconds_between() { # from to
-  awk -v a="$1" -v b="$2" 'BEGIN { printf "%.1f", (b - a) / 1e6 }'
-}
-
 # Every file the render wrote (cache/ and the folder's lock aside) is committed and byte for byte
 # the same; every committed file of the tier was written.
 compare_with_committed() { # out
