@@ -204,7 +204,7 @@ tier:
 	specs=$$($(MPMSTAB) list --tier $(TIER)) || exit $$?; \
 	$(MPMSTAB) reproduce $$specs --jobs $(JOBS) --out $(RESULTS) \
 	  --label "make $(if $(filter paper,$(TIER)),reproduce,studies)" || exit $$?; \
-	$(MAKE) --no-print-directory plots FIGURES="$(FIGURE_NAMES)" || exit $$?; \
+	$(MAKE) --no-print-directory -j $(JOBS) plots FIGURES="$(FIGURE_NAMES)" || exit $$?; \
 	all=$$($(MPMSTAB) list) || exit $$?; \
 	$(MPMSTAB) index $$all --out $(RESULTS) || exit $$?; \
 	if [ "$(RESULTS)" = results ]; then \
@@ -238,11 +238,12 @@ timings: build
 	  $(MPMSTAB) performance $$specs --bench $(RESULTS)/benchmark_step.json --out $(RESULTS)
 
 # The figures of the experiments whose study draws one, each redrawn only when its data, its
-# results (the subtitle reads them) or its script changed. FIGURES (names) comes from mpmstab list --figures.
+# results (the subtitle reads them) or its script changed, JOBS at a time (each draws in a
+# staging folder of its own). FIGURES (names) comes from mpmstab list --figures.
 # (The tier calls plots itself: it runs where the tool is built, also in a Slurm job.)
 FIGURE_NAMES = $$($(MPMSTAB) list --figures $(if $(TIER),--tier $(TIER)) | sed 's|.*/||; s|\.json$$||')
 figures: build
-	@$(MAKE) --no-print-directory plots FIGURES="$(FIGURE_NAMES)"
+	@$(MAKE) --no-print-directory -j $(JOBS) plots FIGURES="$(FIGURE_NAMES)"
 
 plots: $(FIGURES:%=$(RESULTS)/%.png)
 

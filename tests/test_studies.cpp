@@ -24,7 +24,8 @@ namespace fs = std::filesystem;
 using ojson = nlohmann::ordered_json;
 
 // The recipe's example, declared here as a study file would declare it: a report that counts
-// the runs that reached T, read from the rows, and a figure-free Markdown body.
+// the runs that reached T, read from the rows, and a figure-free Markdown body; its index
+// paragraph reads that count from what the report published, not counting again.
 const StudyRegistration kThrowaway{{
     .name = "throwaway",
     .summary = "how many runs reached T (the architecture recipe's example)",
@@ -39,9 +40,10 @@ const StudyRegistration kThrowaway{{
                              .json = {{"stable", stable}}};
         },
     .index =
-        [](const Spec& spec, const std::vector<ojson>& rows) {
-          return "**What it shows.** " + std::to_string(rows.size()) + " runs: [" + spec.name +
-                 ".md](" + spec.name + ".md).\n\n";
+        [](const Spec& spec, const std::vector<ojson>& rows, const ojson& published) {
+          return "**What it shows.** " + std::to_string(rows.size()) + " runs, " +
+                 published["stable"].dump() + " reached T: [" + spec.name + ".md](" + spec.name +
+                 ".md).\n\n";
         },
 }};
 // Studies registered by this test program only.
@@ -266,7 +268,9 @@ TEST_F(Studies, ANewStudyNeedsOnlyItsDeclarationAndASpec) {
   EXPECT_TRUE(fs::exists(dir / "out/count.csv"));
   EXPECT_FALSE(fs::exists(dir / "out/count_data.csv"));  // no figure declared
   write_index({spec}, dir / "out");
-  EXPECT_NE(read(dir / "out/README.md").find("**What it shows.** 2 runs"), std::string::npos);
+  EXPECT_NE(read(dir / "out/README.md")
+                .find("**What it shows.** 2 runs, " + std::to_string(stable) + " reached T"),
+            std::string::npos);
 }
 
 // A study without cases (the comparison) is written from its declared inputs; a missing

@@ -8,7 +8,6 @@
 #include <map>
 #include <set>
 #include <sstream>
-#include <thread>
 
 #include "base/accuracy.hpp"
 #include "base/version.hpp"
@@ -769,7 +768,7 @@ std::string index_section(const Spec& spec, const ojson& doc) {
   std::ostringstream md;
   md << "## " << spec.title << "\n\n" << spec.description << "\n\n";
   const std::vector<ojson> rows(doc["cases"].begin(), doc["cases"].end());
-  md << spec.study->index(spec, rows);
+  md << spec.study->index(spec, rows, doc.contains("study") ? doc["study"] : ojson());
   md << "Provenance: solver version " << kSolverVersion << ", "
      << doc["provenance"]["compiler"].get<std::string>() << ", Eigen "
      << doc["provenance"]["eigen"].get<std::string>()
@@ -788,18 +787,17 @@ constexpr unsigned kIndexThreads = 4;
 }  // namespace
 
 void write_index(const std::vector<Spec>& specs, const fs::path& out) {
-  // Each spec's results, read once; a derived study (no cases of its own) is a paragraph of the
-  // introduction, every other one a row and a section.
+  // Each spec's results, read once, side by side as the paragraphs are written (the first
+  // failure in the specs' order is the one reported); a derived study (no cases of its own) is a
+  // paragraph of the introduction, every other one a row and a section.
   std::vector<ojson> docs(specs.size());
-  for (std::size_t i = 0; i < specs.size(); ++i) {
-    if (specs[i].study->has_cases) docs[i] = load_results(specs[i], out);
-  }
   std::vector<std::string> sections(specs.size());
-  const unsigned threads = std::clamp(std::thread::hardware_concurrency(), 1u, kIndexThreads);
+  const unsigned threads = std::clamp(available_cpus(), 1u, kIndexThreads);
   for_each_in_parallel(specs.size(), threads, [&](std::size_t i) {
     const Spec& spec = specs[i];
+    if (spec.study->has_cases) docs[i] = load_results(spec, out);
     if (!spec.study->has_cases) {
-      sections[i] = spec.study->index(spec, {});
+      sections[i] = spec.study->index(spec, {}, ojson());
     } else if (!docs[i].is_null()) {
       sections[i] = index_section(spec, docs[i]);
     }

@@ -154,8 +154,11 @@ struct Study {
   // <name>.md's body and the figure data, from the rows of a sweep (studies with cases).
   std::function<StudyReport(const ReportContext&)> report;
   // The paragraph of results/README.md, after the spec's title and description: "What it
-  // shows", from the rows of <name>.json.
-  std::function<std::string(const Spec&, const std::vector<nlohmann::ordered_json>& rows)> index;
+  // shows", from the rows of <name>.json and what its report published there under "study"
+  // (null when it publishes nothing): a finding the report computed is read, not computed again.
+  std::function<std::string(const Spec&, const std::vector<nlohmann::ordered_json>& rows,
+                            const nlohmann::ordered_json& published)>
+      index;
   // The figure's subtitle, from <name>.json (studies with a figure).
   std::function<std::string(const Spec&, const nlohmann::ordered_json& doc)> figure_subtitle;
   // The value gnuplot's `dt` takes (default "0").

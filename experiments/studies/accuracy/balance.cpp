@@ -355,21 +355,18 @@ struct Findings {
   std::map<CurveKey, Curve> curves;
   std::map<std::pair<std::string, std::string>, Trend> trends;  // by scene and method
   std::set<int> grids;                                          // the cells of every curve
-  int fitted = 0, bracketed = 0;  // curves fitted, and those whose balancing C is within the scan
   Count flip_first, fmpm_second, falls, start_up, half_second, still_none;
   std::vector<std::string> untwinned;  // resolved exact-start curves without a fitted twin
 };
 
-// The findings: every curve, fitted, and what the claims and the index count of them.
+// The findings: every curve, fitted, and what the claims count of them.
 Findings find(const std::vector<ojson>& rows) {
   Findings f;
   f.curves = curves(rows);
   for (const auto& [key, c] : f.curves) {
     f.trends[{c.scene, c.method}].grids[c.cells] = &c;
     f.grids.insert(c.cells);
-    f.bracketed += c.balance.has_value();
     if (!c.fit) continue;
-    ++f.fitted;
     if (c.scene == kStillScene) f.still_none.add(c.time_share < 1, c);
     const bool half = half_step(c.method), fmpm = !half && consistent_mass(c.method);
     Count& order = half ? f.half_second : fmpm ? f.fmpm_second : f.flip_first;
@@ -621,11 +618,19 @@ StudyReport balance_report(const ReportContext& ctx) {
                      .json = {{"curves", curves_json(f.curves)}},
                      .claims = balance_claims(f)};
 }
-std::string balance_index(const Spec& spec, const std::vector<ojson>& rows) {
-  const Findings f = find(rows);
+std::string balance_index(const Spec& spec, const std::vector<ojson>&, const ojson& published) {
+  // The report's counts, from the curves it published (curves_json): a fitted curve has its S,
+  // a balancing C within the scan is published where there is one.
+  int fitted = 0, bracketed = 0;
+  if (published.contains("curves")) {
+    for (const auto& c : published["curves"]) {
+      fitted += !c["S"].is_null();
+      bracketed += !c["balancing_courant"].is_null();
+    }
+  }
   return "**What it shows.** The fit e(C) = S + k C^p of the error over time against the Courant "
          "number per method, scene and grid, and the C at which its time term equals its floor (" +
-         std::to_string(f.bracketed) + " of " + std::to_string(f.fitted) +
+         std::to_string(bracketed) + " of " + std::to_string(fitted) +
          " fitted curves balance within the scan): [" + spec.name + ".md](" + spec.name +
          ".md).\n\n";
 }

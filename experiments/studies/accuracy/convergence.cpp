@@ -938,7 +938,7 @@ std::string peer_section(const Spec& spec, const Findings& f) {
 
 // The index paragraph: the figure and the fitted orders in h. An E whose runs are under a wave
 // pass has none fitted, and says why.
-std::string convergence_index(const Spec& spec, const std::vector<ojson>& rows) {
+std::string convergence_index(const Spec& spec, const std::vector<ojson>& rows, const ojson&) {
   const Findings f = find(spec, rows);
   std::ostringstream md;
   md << "![" << spec.title << "](" << spec.name << ".png)\n\n**What it shows.** Fitted order "

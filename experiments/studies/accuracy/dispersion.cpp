@@ -566,24 +566,28 @@ ojson dispersion_json(const std::vector<Scheme>& schemes, const std::vector<Mode
   return j;
 }
 
-std::string dispersion_index(const Spec& spec, const std::vector<ojson>& rows) {
-  const Findings f = find(rows);
+std::string dispersion_index(const Spec& spec, const std::vector<ojson>& rows,
+                             const ojson& published) {
   std::ostringstream md;
   md << "![" << spec.title << "](" << spec.name
      << ".png)\n\n**What it shows.** The phase speed and damping of every basis and transfer "
         "against the wavenumber, from the Bloch symbol, at C = "
      << listing(std::vector<double>(kCourants)) << "; the cells per wavelength each needs for "
      << "a phase error of " << percent(kPhaseTolerance);
-  if (!f.schemes.empty()) {
+  if (published.contains("cells_per_wavelength")) {  // as the report published them
     std::vector<std::string> parts;
-    for (const auto& [m, t] : kHeadline) {
-      const Scheme& s = *find_scheme(f.schemes, m, t);
-      const auto& cells = s.at[kIndexCourant].cells;
-      parts.push_back(s.label + " " + opt_fixed(cells, 1));
-    }
+    for (const auto& [m, t] : kHeadline)
+      for (const auto& c : published["cells_per_wavelength"])
+        if (c["basis"] == to_string(m) && c["transfer"] == to_string(t) &&
+            c["courant"] == kCourants[kIndexCourant]) {
+          const ojson& cells = c["cells_per_wavelength_1pct"];
+          parts.push_back(
+              c["method"].get<std::string>() + " " +
+              opt_fixed(cells.is_null() ? std::nullopt : std::optional(cells.get<double>()), 1));
+        }
     md << " (at C = " << shortest(kCourants[kIndexCourant]) << ": " << list_of(parts) << ")";
   }
-  md << "; and " << f.cases
+  md << "; and " << rows.size()
      << " single-mode runs whose measured period is set against the predicted one: [" << spec.name
      << ".md](" << spec.name << ".md).\n\n";
   return md.str();
@@ -654,9 +658,9 @@ std::string dispersion_data(const std::vector<Scheme>& schemes, const std::strin
 }
 
 std::string dispersion_subtitle(const Spec&, const ojson& doc) {
-  const Findings f = find(std::vector<ojson>(doc["cases"].begin(), doc["cases"].end()));
-  if (f.cases == 0) return "";
-  return "USL, " + std::to_string(f.ppc) +
+  const ojson& rows = doc["cases"];
+  if (rows.empty()) return "";
+  return "USL, " + std::to_string(rows.front()["ppc"].get<int>()) +
          " particles per cell, uniform layout (the Bloch symbol of the interior); every basis "
          "with FLIP, and " +
          std::string(to_string(kTransferBasis)) + " with every other transfer";

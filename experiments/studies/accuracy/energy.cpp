@@ -319,7 +319,7 @@ std::string warning_table(const std::vector<Warning>& failures) {
   return md.str();
 }
 
-std::string energy_index(const Spec& spec, const std::vector<ojson>& rows) {
+std::string energy_index(const Spec& spec, const std::vector<ojson>& rows, const ojson&) {
   const Findings f = find(rows, SweepOutcome{});
   return "![" + spec.title + "](" + spec.name +
          ".png)\n\n**What it shows.** The energy balance of each transfer and update order over "

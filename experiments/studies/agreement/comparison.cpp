@@ -297,7 +297,7 @@ const StudyRegistration kComparison{{
                {.name = "fig3"},
                {.name = "fig2_variants"},
                {.name = "fig3_variants"}},
-    .index = [](const Spec&, const std::vector<ojson>&) -> std::string {
+    .index = [](const Spec&, const std::vector<ojson>&, const ojson&) -> std::string {
       return "**Against the paper:** [comparison.md](comparison.md) sets every Table 1 cell "
              "beside the paper's, with a verdict and a class, and says per class how many of its "
              "cells a rerun of ours explains (brings to agreement with the paper) and how many "

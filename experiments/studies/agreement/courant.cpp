@@ -231,7 +231,7 @@ StudyReport courant_report(const ReportContext& c) {
   return StudyReport{.markdown = md.str(), .claims = courant_claims(f)};
 }
 
-std::string courant_index(const Spec& spec, const std::vector<ojson>& rows) {
+std::string courant_index(const Spec& spec, const std::vector<ojson>& rows, const ojson&) {
   const Findings f = find(rows, {});
   std::ostringstream md;
   md << "**What it shows.** Per case, the largest Courant number of the scan up to which its "

@@ -101,7 +101,7 @@ const StudyRegistration kEnsembles{{
                              .json = json,
                              .claims = ensembles_claims(c.rows, cells)};
         },
-    .index = [](const Spec& spec, const std::vector<ojson>&) -> std::string {
+    .index = [](const Spec& spec, const std::vector<ojson>&, const ojson&) -> std::string {
       return "**What it shows.** Whether the verdicts of Table 1's cells near their edge at the "
              "smallest steps survive a perturbed layout: [" +
              spec.name + ".md](" + spec.name + ".md).\n\n";

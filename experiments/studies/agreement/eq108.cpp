@@ -336,7 +336,7 @@ StudyReport eq108_report(const ReportContext& c) {
   return StudyReport{.markdown = md.str(), .claims = claims};
 }
 
-std::string eq108_index(const Spec& spec, const std::vector<ojson>& rows) {
+std::string eq108_index(const Spec& spec, const std::vector<ojson>& rows, const ojson&) {
   std::string grids;
   for (const Grid& g : find(spec, rows).grids)
     grids +=

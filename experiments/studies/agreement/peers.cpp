@@ -235,7 +235,7 @@ std::string every_case(const PeersStudy& s) {
   return md.str();
 }
 
-std::string peers_index(const Spec& spec, const std::vector<ojson>& rows) {
+std::string peers_index(const Spec& spec, const std::vector<ojson>& rows, const ojson&) {
   const PeersStudy s = study_peers(spec, rows);
   std::ostringstream md;
   md << "**What it shows.** Our solver reproduces Uintah's 1D MPM code on " << s.agree << " of "

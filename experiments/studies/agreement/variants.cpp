@@ -31,7 +31,7 @@ StudyReport variants_report(const ReportContext& c) {
                      .json = study_to_json(f)};
 }
 
-std::string variants_index(const Spec& spec, const std::vector<ojson>& rows) {
+std::string variants_index(const Spec& spec, const std::vector<ojson>& rows, const ojson&) {
   std::ostringstream md;
   md << "![" << spec.title << "](" << spec.name << ".png)\n\n**What it shows.** "
      << find(spec, rows).variants.size()

@@ -190,7 +190,7 @@ StudyReport walls_report(const ReportContext& c) {
   return StudyReport{.markdown = md.str(), .claims = walls_claims(f)};
 }
 
-std::string walls_index(const Spec& spec, const std::vector<ojson>& rows) {
+std::string walls_index(const Spec& spec, const std::vector<ojson>& rows, const ojson&) {
   std::ostringstream md;
   md << "**What it shows.** " << reading(find(rows)) << "Details: [" << spec.name << ".md]("
      << spec.name << ".md).\n\n";

@@ -368,7 +368,7 @@ StudyReport edges_report(const ReportContext& ctx) {
   return StudyReport{.markdown = md.str(), .claims = edges_claims(n)};
 }
 
-std::string edges_index(const Spec& spec, const std::vector<ojson>& rows) {
+std::string edges_index(const Spec& spec, const std::vector<ojson>& rows, const ojson&) {
   const Findings n = find(rows, {});
   std::ostringstream md;
   md << "**What it shows.** The survival and accuracy edges in c dt/h of " << n.rows

@@ -525,7 +525,7 @@ std::string scenes_subtitle(const Spec& spec, const ojson& doc) {
          "; error over time per A";
 }
 
-std::string scenes_index(const Spec& spec, const std::vector<ojson>& rows) {
+std::string scenes_index(const Spec& spec, const std::vector<ojson>& rows, const ojson&) {
   const Findings f = find(spec, rows);
   std::ostringstream md;
   md << "![" << spec.title << "](" << spec.name << ".png)\n\n**What it shows.** " << f.scenes.size()

@@ -287,7 +287,7 @@ std::string reading(const Findings& n) {
   return md.str();
 }
 
-std::string advice_index(const Spec& spec, const std::vector<ojson>& rows) {
+std::string advice_index(const Spec& spec, const std::vector<ojson>& rows, const ojson&) {
   const Findings n = find(rows, {});
   std::ostringstream md;
   md << "**What it shows.** Of the " << n.cases << " settings of its fixed grid of C, " << n.checked

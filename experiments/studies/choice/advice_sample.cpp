@@ -254,7 +254,7 @@ const StudyRegistration kAdviceSample{{
     .inputs = {{.name = "advice", .required = true}},
     .report = sample_report,
     .index =
-        [](const Spec& spec, const std::vector<ojson>&) {
+        [](const Spec& spec, const std::vector<ojson>&, const ojson&) {
           return "**What it shows.** How often `mpmstab advise` answers problems drawn at random "
                  "over its whole domain, per layout and per target decade, whether its answers "
                  "pass again when their verifying runs are made separately, and the work each "

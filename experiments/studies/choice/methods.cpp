@@ -639,11 +639,10 @@ std::string wave_how_to_read(const std::vector<ojson>& edge_rows, const Findings
   return md.str();
 }
 
-std::string methods_index(const Spec& spec, const std::vector<ojson>& rows) {
-  const Findings f = find(rows, {}, {});
+std::string methods_index(const Spec& spec, const std::vector<ojson>& rows, const ojson&) {
   std::ostringstream md;
   md << "![" << spec.title << "](" << spec.name << ".png)\n\n**What it shows.** "
-     << f.methods.size()
+     << method_rows(rows, {}).size()
      << " methods (basis x transfer x update order), each with its error at Table 1's setting, "
         "its orders in h and dt with the runs each is fitted over, the cells per wavelength for "
         "a wave error of at most "

@@ -1121,7 +1121,7 @@ const StudyRegistration kTradeoff{{
     .follow_up = tradeoff_follow_ups,
     .report = tradeoff_report,
     .index =
-        [](const Spec& spec, const std::vector<ojson>&) {
+        [](const Spec& spec, const std::vector<ojson>&, const ojson&) {
           return "![" + spec.title + "](" + spec.name + ".png)\n\n**What it shows.** The cost of " +
                  "each accuracy in particle-steps across methods, time-step policies and their "
                  "parameters, the Pareto front, each parameter's stable range and the cheapest "

@@ -61,7 +61,7 @@ std::string figure_data_csv(const ojson& record, const std::string& header_lines
   return csv.str();
 }
 
-std::string figure_index(const Spec& spec, const std::vector<ojson>& rows) {
+std::string figure_index(const Spec& spec, const std::vector<ojson>& rows, const ojson&) {
   const ojson& r = rows.front();
   return "![" + spec.title + "](" + spec.name + ".png)\n\n**What it shows.** This run " +
          (survived(r) ? "reached T" : "did not reach T") + ": " + verdict(r) + "; " +

@@ -339,7 +339,7 @@ StudyReport table1_report(const ReportContext& c) {
                      .claims = table1_claims(f)};
 }
 
-std::string table1_index(const Spec& spec, const std::vector<ojson>& rows) {
+std::string table1_index(const Spec& spec, const std::vector<ojson>& rows, const ojson&) {
   return "**What it shows.** The " + std::to_string(find(spec, rows, {}).cells) +
          " cells of the paper's Table 1 beside ours, each with its verdict, its errors, its error "
          "over time / A and accuracy class, the paper's values and whether its verdict "

@@ -317,7 +317,7 @@ const StudyRegistration kTable2{{
     .records = {.error_over_time = true, .crossings = true},
     .report = [](const ReportContext& c) { return table2_report(c.spec, c.rows, c.out); },
     .index =
-        [](const Spec& spec, const std::vector<ojson>&) {
+        [](const Spec& spec, const std::vector<ojson>&, const ojson&) {
           return "**What it shows.** Our crossing counts beside the paper's approximate ones, per "
                  "E and A, and both readings of dt_sound: [" +
                  spec.name + ".md](" + spec.name + ".md).\n\n";

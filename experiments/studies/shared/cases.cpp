@@ -134,7 +134,7 @@ std::string cases_markdown(const Spec& spec, const std::vector<ojson>& rows) {
   return md.str();
 }
 
-std::string cases_index(const Spec& spec, const std::vector<ojson>& rows) {
+std::string cases_index(const Spec& spec, const std::vector<ojson>& rows, const ojson&) {
   return "**What it shows.** " + outcomes_text(find(rows), "") + ". Full table: [" + spec.name +
          ".md](" + spec.name + ".md).\n\n";
 }

@@ -810,7 +810,7 @@ StudyReport edge_report(const ReportContext& c) {
   return report;
 }
 
-std::string edge_index(const Spec& spec, const std::vector<ojson>& rows) {
+std::string edge_index(const Spec& spec, const std::vector<ojson>& rows, const ojson&) {
   std::ostringstream md;
   md << "![" << spec.title << "](" << spec.name << ".png)\n\n**What it shows.** ";
   const Findings f = find(rows, {});

@@ -518,7 +518,7 @@ std::string extremes_subtitle(const Spec&, const ojson& doc) {
          " runs ran under c T = " + shortest(kMinWavePasses) + " wave pass";
 }
 
-std::string extremes_index(const Spec& spec, const std::vector<ojson>& rows) {
+std::string extremes_index(const Spec& spec, const std::vector<ojson>& rows, const ojson&) {
   const Counts c = find(rows).counts;
   std::ostringstream md;
   md << "![" << spec.title << "](" << spec.name << ".png)\n\n**What it shows.** " << c.total

@@ -934,7 +934,7 @@ std::string spectral_subtitle(const Spec& spec, const ojson& doc) {
   return s.str();
 }
 
-std::string spectral_index(const Spec& spec, const std::vector<ojson>& rows) {
+std::string spectral_index(const Spec& spec, const std::vector<ojson>& rows, const ojson&) {
   const Findings f = find(spec, rows, {});
   std::ostringstream md;
   md << "![" << spec.title << "](" << spec.name

@@ -277,7 +277,7 @@ std::string spectral_edge_data(const Findings& f, const std::string& header) {
   return csv.str();
 }
 
-std::string spectral_edge_index(const Spec& spec, const std::vector<ojson>& rows) {
+std::string spectral_edge_index(const Spec& spec, const std::vector<ojson>& rows, const ojson&) {
   const Findings f = find(rows, {});
   std::ostringstream md;
   md << "![" << spec.title << "](" << spec.name << ".png)\n\n**What it shows.** " << f.agreeing
