@@ -795,12 +795,12 @@ void write_index(const std::vector<Spec>& specs, const fs::path& out) {
   const unsigned threads = std::clamp(available_cpus(), 1u, kIndexThreads);
   for_each_in_parallel(specs.size(), threads, [&](std::size_t i) {
     const Spec& spec = specs[i];
-    if (spec.study->has_cases) docs[i] = load_results(spec, out);
     if (!spec.study->has_cases) {
       sections[i] = spec.study->index(spec, {}, ojson());
-    } else if (!docs[i].is_null()) {
-      sections[i] = index_section(spec, docs[i]);
+      return;
     }
+    docs[i] = load_results(spec, out);
+    if (!docs[i].is_null()) sections[i] = index_section(spec, docs[i]);
   });
   std::ostringstream md;
   md << index_intro();
