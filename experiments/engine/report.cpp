@@ -780,8 +780,8 @@ std::string index_section(const Spec& spec, const ojson& doc) {
 
 namespace {
 
-// The index's paragraphs are independent (each reads its own spec and results); a few recompute
-// their study's findings, which takes seconds: they are written side by side.
+// The index's paragraphs are independent (each reads its own spec and results file, up to a few
+// megabytes, and some count their study's findings from the rows): they are written side by side.
 constexpr unsigned kIndexThreads = 4;
 
 }  // namespace
