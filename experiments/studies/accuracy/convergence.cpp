@@ -132,7 +132,8 @@ std::vector<TimeErrorRow> time_error_rows(const Spec& spec, const std::vector<oj
                         p.transfer == Transfer::flip,
                         fmpm,
                         linear,
-                        run};
+                        run,
+                        std::nullopt};
   };
   for (std::size_t i = 0; i < rows.size(); ++i) {
     if (sweep_of(rows[i]) != "dt") continue;

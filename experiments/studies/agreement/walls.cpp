@@ -40,7 +40,7 @@ std::vector<Twin> twins(const std::vector<ojson>& rows) {
   std::vector<Twin> out;
   for (const auto& r : rows) {
     if (text(r, "bc") != "periodic") continue;
-    Twin t{nullptr, &r};
+    Twin t{.periodic = &r};
     for (const auto& d : rows)
       if (text(d, "bc") == "dirichlet" && same_but_bc(d, r)) t.dirichlet = &d;
     // The errors over time of runs that ended stable over at least a wave pass.
