@@ -7,6 +7,8 @@ namespace mpmstab {
 
 namespace {
 
+using ojson = nlohmann::ordered_json;
+
 template <class T>
 nlohmann::ordered_json or_null(const std::optional<T>& v) {
   return v ? nlohmann::ordered_json(*v) : nlohmann::ordered_json(nullptr);
@@ -31,7 +33,6 @@ const std::vector<std::string>& record_columns() {
 }
 
 nlohmann::ordered_json to_json(const RunResult& r) {
-  using ojson = nlohmann::ordered_json;
   const RunParams& p = r.params;
   const TimeStepPolicy policy = p.stepping.policy;
   const bool ran = r.steps > 0;
@@ -139,7 +140,6 @@ nlohmann::ordered_json history_to_json(const RunResult& r) {
 }
 
 nlohmann::ordered_json edge_to_json(const EdgeResult& e) {
-  using ojson = nlohmann::ordered_json;
   auto over_cfl = [&](const std::optional<double>& dt) {
     return dt ? ojson(*dt / e.dt_cfl) : ojson(nullptr);
   };
