@@ -9,6 +9,9 @@
 // the energy observer on as well (1), and with the L2 error over time on as well (2): what an
 // observer costs when it is asked for, and that a run without it pays nothing for it.
 // The counter ns_per_particle_step is the time per step divided by the number of particles.
+// The output's context names the CPU, the kernels' instruction set on it and the commit, as
+// every timing of the harness does (engine/provenance.hpp), so that results/performance.md says
+// which machine and which code its figures are of.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -22,6 +25,8 @@
 #include "run/run.hpp"
 #include "scenes/bar.hpp"
 #include "step/simulation.hpp"
+
+#include "provenance.hpp"
 
 namespace {
 
@@ -305,4 +310,14 @@ BENCHMARK(BM_StepScheme)->DenseRange(0, static_cast<int>(std::size(kSchemes)) - 
 
 }  // namespace
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  const mpmstab::Provenance here = mpmstab::current_provenance(1);
+  benchmark::AddCustomContext("cpu", here.cpu);
+  benchmark::AddCustomContext("kernels", here.kernels);
+  benchmark::AddCustomContext("commit", here.commit + (here.dirty ? " (uncommitted changes)" : ""));
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

@@ -191,6 +191,58 @@ TEST(Documents, PublishedTimingsKeepEachMachinesLastTierRun) {
   std::filesystem::remove_all(dir);
 }
 
+// performance.md says on which CPU, kernels and commit the step kernel was benchmarked, and
+// projects a tier's work at the kernel's speed only for a tier run on that same machine.
+TEST(Documents, BenchmarkNamesItsMachineAndProjectsOnlyItsOwnTiers) {
+  const auto dir = std::filesystem::temp_directory_path() / "mpmstab_bench_machine_test";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir / "cache");
+  const auto tier = [](const char* cpu) {
+    return nlohmann::ordered_json{
+        {"cases", 10},  {"computed", 10}, {"particle_steps", 1e9}, {"compute_seconds", 8},
+        {"threads", 2}, {"cpu", cpu},     {"kernels", "AVX2"},     {"wall_seconds", 5}};
+  };
+  std::ofstream(dir / "timings.json") << nlohmann::ordered_json{
+      {"(make reproduce)", tier("Bench CPU")},
+      {"(make studies)", tier("Other CPU")}}.dump(1);
+  const auto figure = [](const char* name, const char* aggregate, double ns) {
+    return nlohmann::ordered_json{{"name", std::string(name) + "_" + aggregate},
+                                  {"run_name", name},
+                                  {"aggregate_name", aggregate},
+                                  {"label", "gimp"},
+                                  {"ns_per_particle_step", ns}};
+  };
+  nlohmann::ordered_json bench = {
+      {"context",
+       {{"date", "2026-01-02"},
+        {"host_name", "box"},
+        {"num_cpus", 2},
+        {"mhz_per_cpu", 3000},
+        {"cpu", "Bench CPU"},
+        {"kernels", "AVX2"},
+        {"commit", "0123456789abcdef"}}},
+      {"benchmarks",
+       {figure("BM_StepInstrumented", "median", 4.0), figure("BM_StepInstrumented", "cv", 0.01)}}};
+  std::ofstream(dir / "bench.json") << bench.dump(1);
+  write_performance({}, dir / "bench.json", dir);
+  const std::string md = slurp(dir / "performance.md");
+  EXPECT_NE(md.find("Measured 2026-01-02 on Bench CPU, AVX2 kernels (box, 2 CPUs at 3000 MHz), "
+                    "commit 0123456,"),
+            std::string::npos)
+      << md;
+  // 1e9 particle-steps at 4 ns on 2 threads: 2 s, said of the run on the benchmark's machine only.
+  const auto reproduce = md.find("**`make reproduce`.**");
+  const auto studies = md.find("**`make studies`.**");
+  ASSERT_NE(reproduce, std::string::npos);
+  ASSERT_NE(studies, std::string::npos);
+  const auto projection = md.find("as benchmarked above on the same machine");
+  EXPECT_NE(projection, std::string::npos);
+  EXPECT_EQ(md.find("as benchmarked above", projection + 1), std::string::npos);
+  EXPECT_LT(reproduce, projection);
+  EXPECT_LT(projection, studies);
+  std::filesystem::remove_all(dir);
+}
+
 // A tier run that found most of its cases in the cache does not measure the tier: it does not
 // replace the published run of the same CPU that computed more of them; one that computed as many
 // does, and one that computed none is not published.

@@ -55,6 +55,7 @@ struct Figure {
 struct BenchFigures {
   std::map<std::string, std::map<std::string, Figure>> fig;
   std::vector<std::string> order;
+  std::string machine;  // machine_of its context: the CPU and the kernels' version
 
   const Figure* find(const std::string& base, const std::string& method) const {
     const auto b = fig.find(base);
@@ -71,6 +72,7 @@ struct BenchFigures {
 
 BenchFigures read_figures(const ojson& doc) {
   BenchFigures b;
+  if (doc.contains("context")) b.machine = machine_of(doc["context"]);
   for (const auto& entry : doc["benchmarks"]) {
     const std::string run = entry.value("run_name", entry.value("name", ""));
     const std::string base = run.substr(0, run.find('/'));
@@ -86,6 +88,19 @@ BenchFigures read_figures(const ojson& doc) {
   return b;
 }
 
+// When, on what and of which code a benchmark file was measured, from its context: "<date> on
+// <CPU>, <version> kernels (<host>, <n> CPUs at <f> MHz), commit <c>". Files written before the
+// benchmark recorded its CPU, kernels and commit (tests/bench_step.cpp) say so.
+std::string bench_machine(const ojson& ctx) {
+  const std::string commit = text(ctx, "commit");
+  std::ostringstream s;
+  s << ctx.value("date", "") << " on " << machine_of(ctx) << " (" << ctx.value("host_name", "")
+    << ", " << ctx.value("num_cpus", 0) << " CPUs at " << ctx.value("mhz_per_cpu", 0.0)
+    << " MHz), commit " << (commit.empty() ? std::string("not recorded") : commit.substr(0, 7));
+  if (commit.find("uncommitted") != std::string::npos) s << " with uncommitted changes";
+  return s.str();
+}
+
 // The table of every benchmark, with the machine it ran on.
 void write_kernel_table(std::ostream& md, const BenchFigures& b, const ojson& ctx) {
   const RunParams bar;  // the benchmark's bar: the default parameters (tests/bench_step.cpp)
@@ -96,9 +111,8 @@ void write_kernel_table(std::ostream& md, const BenchFigures& b, const ojson& ct
      << (b.fig.count("BM_Step") ? "the repetitions" : "–")
      << " (coefficient of variation in "
         "brackets). Measured "
-     << ctx.value("date", "") << " on " << ctx.value("host_name", "") << ", "
-     << ctx.value("num_cpus", 0) << " CPUs at " << ctx.value("mhz_per_cpu", 0.0)
-     << " MHz, the benchmark "
+     << bench_machine(ctx)
+     << ", the benchmark "
         "library's own build "
      << ctx.value("library_build_type", "")
      << " (Debian's package; the measured code is built -O3).\n\n"
@@ -432,7 +446,10 @@ void tier_paragraph(std::ostream& md, const std::string& label, const ojson& r,
   const int threads = std::max(1, static_cast<int>(number("threads")));
   const double cpu = number("compute_seconds");  // each distinct case once
   const double work = number("particle_steps");
-  const double kernel = bench.median("BM_StepInstrumented", "gimp");
+  // The kernel's speed says what the tier's work would take only on the machine it was
+  // benchmarked on.
+  const double kernel =
+      bench.machine == machine_of(r) ? bench.median("BM_StepInstrumented", "gimp") : 0.0;
   md << "**`" << label << "`.** The last run that computed cases ran " << count("cases")
      << " cases (" << count("computed") << " computed; " << sci(work)
      << " particle-steps, each run counted once, follow-up runs included) of "
@@ -445,8 +462,8 @@ void tier_paragraph(std::ostream& md, const std::string& label, const ojson& r,
                     : std::string(""));
   }
   if (kernel > 0) {
-    md << "; at the step kernel's speed with every observer as benchmarked above, on the "
-          "benchmark's machine (BM_StepInstrumented, GIMP, "
+    md << "; at the step kernel's speed with every observer as benchmarked above on the same "
+          "machine (BM_StepInstrumented, GIMP, "
        << fixed(kernel, 2) << " ns per particle-step), it would take "
        << seconds(work * kernel * 1e-9 / threads);
   }
@@ -674,9 +691,8 @@ std::string kernel_brief(const fs::path& bench) {
   const BenchFigures b = read_figures(doc);
   const ojson& ctx = doc["context"];
   std::ostringstream md;
-  md << "Measured " << ctx.value("date", "") << " on " << ctx.value("host_name", "") << " ("
-     << ctx.value("num_cpus", 0) << " CPUs at " << ctx.value("mhz_per_cpu", 0.0)
-     << " MHz); ns per particle-step, median (coefficient of variation):\n\n"
+  md << "Measured " << bench_machine(ctx)
+     << "; ns per particle-step, median (coefficient of variation):\n\n"
      << "| benchmark | GIMP | MPM |\n|---|---|---|\n";
   for (const char* name : {"BM_StepBaseline", "BM_Step", "BM_StepChecked", "BM_StepInstrumented"}) {
     md << "| `" << name << "` |";
