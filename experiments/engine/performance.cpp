@@ -310,6 +310,33 @@ std::string follow_up_cell(const FollowUpWork& f) {
   return s;
 }
 
+// FollowUpWork as timings.json records it beside an experiment's cases, and back (all zero
+// where the entry has none: measured before follow-up runs were recorded, or none asked for).
+ojson to_json(const FollowUpWork& f) {
+  return {{"runs", f.runs},
+          {"in_cache", f.cached},
+          {"particle_steps", f.particle_steps},
+          {"cpu_seconds", f.seconds},
+          {"ns_per_particle_step", f.ns_per_particle_step}};
+}
+
+FollowUpWork follow_up_of(const ojson& entry) {
+  FollowUpWork f;
+  if (!entry.contains("follow_up") || !entry["follow_up"].is_object()) return f;
+  const ojson& j = entry["follow_up"];
+  const auto count = [&](const char* key) {
+    return static_cast<std::size_t>(std::llround(number_or_zero(j, key)));
+  };
+  f.runs = count("runs");
+  f.cached = count("in_cache");
+  f.particle_steps = number_or_zero(j, "particle_steps");
+  f.seconds = number_or_zero(j, "cpu_seconds");
+  if (j.contains("ns_per_particle_step") && j["ns_per_particle_step"].is_array())
+    for (const auto& ns : j["ns_per_particle_step"])
+      if (ns.is_number()) f.ns_per_particle_step.push_back(ns.get<double>());
+  return f;
+}
+
 // One row per experiment with cases: its work and CPU time with its follow-up runs', its wall
 // time and median ns per particle-step; then the total.
 void experiment_rows(std::ostream& md, const std::vector<Spec>& specs, const ojson& timings,
@@ -485,16 +512,17 @@ void build_paragraph(std::ostream& md, const std::string& label, const ojson& r)
 void write_experiment_times(std::ostream& md, const std::vector<Spec>& specs, const fs::path& out,
                             const BenchFigures& bench) {
   md << "## The cost of every experiment\n\nFrom [timings.json](timings.json), the machine's "
-        "measurements of the cases, and the records of the follow-up runs in the cache (every "
-        "other result file is the same on any machine). "
+        "measurements of the cases and of their follow-up runs, the latter read from the records "
+        "in its cache when its timings were published (every other result file is the same on "
+        "any machine). "
         "Particle-steps (particles x steps, of every run of an edge search) are the "
         "deterministic work; CPU time is the sum of the runs' own run times. Both, and the median "
         "ns per particle-step, count the experiment's cases and its follow-up runs: the runs its "
         "study asks for once its cases "
         "are done (an ensemble's members, an edge's longer runs, the verifying runs of the "
-        "advice), as the experiment's published results ask for them and as the cache "
-        "(cache/ beside timings.json, not committed) holds their records; a follow-up run the "
-        "cache lacks is "
+        "advice), as the experiment's published results ask for them and as that cache "
+        "(cache/ beside timings.json, not committed) held their records; a follow-up run the "
+        "cache lacked is "
         "counted in the follow-up runs column and said so, but adds no work. Cases that differ "
         "only in eq. (108)'s options, at a policy that does not step by eq. (108), share one run "
         "(its trajectory is theirs): each counts its share of that run's particle-steps and "
@@ -520,7 +548,9 @@ void write_experiment_times(std::ostream& md, const std::vector<Spec>& specs, co
         "median ns per particle-step |\n|---|---|---|---|---|---|---|\n";
   FollowUps follow;
   for (const auto& spec : specs)
-    if (spec.study->has_cases) follow[spec.name] = follow_up_work(spec, out);
+    if (spec.study->has_cases)
+      follow[spec.name] =
+          timings.contains(spec.name) ? follow_up_of(timings[spec.name]) : FollowUpWork{};
   experiment_rows(md, specs, timings, follow);
   costliest_groups(md, specs, timings, follow);
   bool any = false;
@@ -614,18 +644,19 @@ ojson merged_timings(const ojson& measured, const ojson& published) {
     if (!published_label || !e.is_object()) continue;
     if (!e.contains("cpu") || !e["cpu"].is_string()) continue;
     if (e.contains("computed") && computed_cases(e) == 0) continue;  // measured nothing
-    const std::string cpu = e["cpu"].get<std::string>();
+    // A machine is its CPU and the kernels' version it ran: /proc/cpuinfo names an AVX2-only
+    // EPYC and one with AVX-512 alike.
+    const std::string machine = machine_of(e);
     const std::string label = command_of(*published_label);
     const std::string current = reproduce_timing_key(label);
-    const bool same_machine =
-        out.contains(current) && out[current].contains("cpu") && out[current]["cpu"] == cpu;
+    const bool same_machine = out.contains(current) && machine_of(out[current]) == machine;
     if (same_machine) {
       // Superseded by this machine's run, unless that run computed fewer of the tier's cases.
       if (computed_cases(e) > computed_cases(out[current])) out[current] = e;
       continue;
     }
     // Kept as it was where this machine has no run of the tier; else renamed after its CPU.
-    out[out.contains(current) ? reproduce_timing_key(label + " on " + cpu) : key] = e;
+    out[out.contains(current) ? reproduce_timing_key(label + " on " + machine) : key] = e;
   }
   return out;
 }
@@ -668,9 +699,15 @@ std::string machine_of(const ojson& timing) {
 void write_performance(const std::vector<Spec>& specs, const fs::path& bench, const fs::path& out) {
   // The machine's timings of the runs in `out`, published as <out>/timings.json with the other
   // machines' tier runs it already held.
-  if (const auto measured = read_if_present(machine_timings(out))) {
-    const ojson merged = merged_timings(parse_json_strict<ojson>(*measured, machine_timings(out)),
-                                        read_timings(out));
+  if (const auto text = read_if_present(machine_timings(out))) {
+    ojson measured = parse_json_strict<ojson>(*text, machine_timings(out));
+    // Each experiment's follow-up runs, from this machine's cache, beside its cases' timings:
+    // performance.md then reads one machine's measurements per experiment from timings.json
+    // alone, whatever cache the machine that writes it has.
+    for (const auto& spec : specs)
+      if (spec.study->has_cases && measured.contains(spec.name) && measured[spec.name].is_object())
+        measured[spec.name]["follow_up"] = to_json(follow_up_work(spec, out));
+    const ojson merged = merged_timings(measured, read_timings(out));
     write_if_changed(out / "timings.json", merged.dump(1) + "\n");
   }
   std::ostringstream md;

@@ -23,7 +23,8 @@ void write_performance(const std::vector<Spec>& specs, const std::filesystem::pa
 // many distinct runs (a follow-up that repeats one of the experiment's cases or another follow-up
 // is not counted again), how many of them the cache holds with their timing, and the
 // particle-steps, CPU seconds and ns per particle-step of those. All zero where the study asks for
-// none or its results cannot be read.
+// none or its results cannot be read. write_performance records it in timings.json beside the
+// experiment's cases when it publishes this machine's timings; performance.md reads it there.
 struct FollowUpWork {
   std::size_t runs = 0;
   std::size_t cached = 0;
