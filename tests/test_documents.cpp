@@ -11,7 +11,9 @@
 
 #include "base/instruction_set.hpp"
 #include "cache.hpp"
+#include "cached_run.hpp"
 #include "files.hpp"
+#include "parallel.hpp"
 #include "performance.hpp"
 #include "publish/documents.hpp"
 #include "publish/verdicts.hpp"
@@ -191,6 +193,56 @@ TEST(Documents, PublishedTimingsKeepEachMachinesLastTierRun) {
   std::filesystem::remove_all(dir);
 }
 
+// The runs a report computes itself (through cached_run, on the threads for_each_in_parallel
+// starts) are counted in the account open on the thread that renders it, and a run found in the
+// cache is not; performance.md adds them to their experiment's row.
+TEST(Documents, TheRunsAReportMakesItselfAreCountedInItsExperiment) {
+  const auto dir = std::filesystem::temp_directory_path() / "mpmstab_report_runs_test";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir / "cache");
+  const ResultCache cache(dir / "cache");
+  std::vector<RunParams> runs(3);
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    runs[i].T = 0.01 * static_cast<double>(i + 1);
+    runs[i].dt = 1e-3;
+  }
+  RunAccount account;
+  open_run_account(&account);
+  const auto make_all = [&] {
+    for_each_in_parallel(runs.size(), 2, [&](std::size_t i) { cached_run(cache, runs[i]); });
+  };
+  make_all();
+  EXPECT_EQ(account.runs.load(), 3);
+  // T = 0.01, 0.02, 0.03 at dt = 1e-3: 10 + 20 + 30 steps of 200 particles.
+  EXPECT_DOUBLE_EQ(account.particle_steps.load(), 60.0 * 200.0);
+  EXPECT_GT(account.seconds.load(), 0.0);
+  make_all();  // every run from the cache now: nothing computed, nothing counted
+  EXPECT_EQ(account.runs.load(), 3);
+  open_run_account(nullptr);
+  make_all();
+  EXPECT_EQ(account.runs.load(), 3);
+
+  // A row whose report made runs: counted in their column, and in the work and CPU time.
+  std::ofstream(dir / "timings.json")
+      << nlohmann::ordered_json{{"edge",
+                                 {{"cases", 2},
+                                  {"particle_steps", 1e6},
+                                  {"compute_seconds", 1.0},
+                                  {"sweep_wall_seconds", 1.0},
+                                  {"cpu", "Some CPU"},
+                                  {"per_case", nlohmann::ordered_json::array()},
+                                  {"report_runs",
+                                   {{"runs", 7}, {"particle_steps", 2e6}, {"cpu_seconds", 3.0}}}}}}
+             .dump(1);
+  write_performance(
+      {load_spec(std::filesystem::path(MPMSTAB_SOURCE_DIR) / "experiments" / "edge.json")},
+      dir / "no_benchmark.json", dir);
+  const std::string md = slurp(dir / "performance.md");
+  EXPECT_NE(md.find("| [edge](edge.md) | 2 | – | 7 | 3.0e6 | 4.00 s | 1.00 s |"), std::string::npos)
+      << md;
+  std::filesystem::remove_all(dir);
+}
+
 // performance.md says on which CPU, kernels and commit the step kernel was benchmarked, and
 // projects a tier's work at the kernel's speed only for a tier run on that same machine.
 TEST(Documents, BenchmarkNamesItsMachineAndProjectsOnlyItsOwnTiers) {
@@ -366,16 +418,18 @@ TEST(Documents, PerformanceCountsTheFollowUpRunsInTheExperimentThatAskedForThem)
     const auto at = md.find("| [table1](table1.md) |");
     return at == std::string::npos ? md : md.substr(at, md.find('\n', at) - at);
   };
-  EXPECT_EQ(row().rfind(
-                "| [table1](table1.md) | 1 | 8 | " + sci(steps) + " | " + seconds(secs) + " | ", 0),
-            0u)
+  EXPECT_EQ(
+      row().rfind(
+          "| [table1](table1.md) | 1 | 8 | – | " + sci(steps) + " | " + seconds(secs) + " | ", 0),
+      0u)
       << row();
   // Published in timings.json beside the case's timing: the row reads the same without the cache
   // (a machine whose cache does not hold that machine's records).
   fs::rename(dir / "out" / "cache", dir / "cache_elsewhere");
-  EXPECT_EQ(row().rfind(
-                "| [table1](table1.md) | 1 | 8 | " + sci(steps) + " | " + seconds(secs) + " | ", 0),
-            0u)
+  EXPECT_EQ(
+      row().rfind(
+          "| [table1](table1.md) | 1 | 8 | – | " + sci(steps) + " | " + seconds(secs) + " | ", 0),
+      0u)
       << row();
   fs::rename(dir / "cache_elsewhere", dir / "out" / "cache");
   FollowUpWork work = follow_up_work(spec, dir / "out");
@@ -393,7 +447,7 @@ TEST(Documents, PerformanceCountsTheFollowUpRunsInTheExperimentThatAskedForThem)
   EXPECT_EQ(work.cached, 7u);
   EXPECT_DOUBLE_EQ(work.particle_steps, steps - records[case_file].first - member->second.first);
   EXPECT_NE(
-      row().find("| 1 | 8 (1 not in the cache) | " + sci(steps - member->second.first) + " | "),
+      row().find("| 1 | 8 (1 not in the cache) | – | " + sci(steps - member->second.first) + " | "),
       std::string::npos)
       << row();
   fs::remove_all(dir);

@@ -35,12 +35,27 @@ RunResult from_record(const RunParams& p, const ojson& result) {
   return r;
 }
 
+thread_local RunAccount* t_account = nullptr;
+
 }  // namespace
+
+RunAccount* open_run_account() {
+  return t_account;
+}
+
+void open_run_account(RunAccount* account) {
+  t_account = account;
+}
 
 RunResult cached_run(const ResultCache& cache, const RunParams& p) {
   if (const auto found = cache.load(p)) return from_record(p, (*found)["result"]);
   RunResult r = run(p);
   if (r.interrupted) return r;
+  if (t_account) {
+    ++t_account->runs;
+    t_account->particle_steps += static_cast<double>(r.steps) * static_cast<double>(r.particles);
+    t_account->seconds += r.wall_seconds;
+  }
   ojson record = run_record(r);
   record["provenance"] = to_json(current_provenance(1));
   cache.store(p, record);

@@ -6,6 +6,9 @@
 // not made twice.
 #pragma once
 
+#include <atomic>
+#include <cstdint>
+
 #include "base/params.hpp"
 #include "base/result.hpp"
 #include "cache.hpp"
@@ -16,5 +19,19 @@ namespace mpmstab {
 // histories and final state are not kept). Throws std::runtime_error when the cache folder is not
 // writable.
 RunResult cached_run(const ResultCache& cache, const RunParams& p);
+
+// What the runs cached_run computed (those it did not find in the cache) cost while an account
+// was open on the calling thread: write_reports opens one around each experiment's report, so
+// that timings.json counts the runs a report makes itself (the advice sample's searches) beside
+// its cases and follow-up runs. for_each_in_parallel carries the caller's account to its workers.
+struct RunAccount {
+  std::atomic<std::int64_t> runs{0};
+  std::atomic<double> particle_steps{0};
+  std::atomic<double> seconds{0};  // the runs' own wall times, summed
+};
+
+// The calling thread's open account (nullptr: none), and the one open from now on.
+RunAccount* open_run_account();
+void open_run_account(RunAccount* account);
 
 }  // namespace mpmstab

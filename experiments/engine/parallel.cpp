@@ -7,13 +7,17 @@
 #include <thread>
 #include <vector>
 
+#include "cached_run.hpp"
+
 namespace mpmstab {
 
 void for_each_in_parallel(std::size_t n, unsigned threads,
                           const std::function<void(std::size_t)>& work) {
   std::vector<std::exception_ptr> errors(n);
   std::atomic<std::size_t> next{0};
+  RunAccount* const account = open_run_account();  // the caller's, carried to every worker
   const auto take = [&] {
+    open_run_account(account);
     for (std::size_t i = next++; i < n; i = next++) {
       try {
         work(i);

@@ -10,7 +10,8 @@
 namespace mpmstab {
 
 // work(i) for every i in [0, n), on up to `threads` threads (the calling one among them); the
-// first exception thrown, in index order, is rethrown once every piece has ended.
+// first exception thrown, in index order, is rethrown once every piece has ended. The caller's
+// open run account (cached_run.hpp) is open on every thread that works.
 void for_each_in_parallel(std::size_t n, unsigned threads,
                           const std::function<void(std::size_t)>& work);
 

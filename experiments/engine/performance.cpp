@@ -337,6 +337,20 @@ FollowUpWork follow_up_of(const ojson& entry) {
   return f;
 }
 
+// The runs an experiment's report made itself (timings.json's report_runs, write_reports): how
+// many, their particle-steps and CPU seconds; zero where it made none or none were recorded.
+struct ReportRuns {
+  std::size_t runs = 0;
+  double particle_steps = 0, seconds = 0;
+};
+
+ReportRuns report_runs_of(const ojson& entry) {
+  if (!entry.contains("report_runs") || !entry["report_runs"].is_object()) return {};
+  const ojson& j = entry["report_runs"];
+  return {static_cast<std::size_t>(std::llround(number_or_zero(j, "runs"))),
+          number_or_zero(j, "particle_steps"), number_or_zero(j, "cpu_seconds")};
+}
+
 // One row per experiment with cases: its work and CPU time with its follow-up runs', its wall
 // time and median ns per particle-step; then the total.
 void experiment_rows(std::ostream& md, const std::vector<Spec>& specs, const ojson& timings,
@@ -350,10 +364,11 @@ void experiment_rows(std::ostream& md, const std::vector<Spec>& specs, const ojs
     }
     const ojson& e = timings[spec.name];
     const FollowUpWork& f = follow.at(spec.name);
+    const ReportRuns own = report_runs_of(e);
     const double wall = e["sweep_wall_seconds"].get<double>();
-    const double compute = e["compute_seconds"].get<double>() + f.seconds;
-    const double work =
-        (e.contains("particle_steps") ? e["particle_steps"].get<double>() : 0.0) + f.particle_steps;
+    const double compute = e["compute_seconds"].get<double>() + f.seconds + own.seconds;
+    const double work = (e.contains("particle_steps") ? e["particle_steps"].get<double>() : 0.0) +
+                        f.particle_steps + own.particle_steps;
     std::vector<double> ns = f.ns_per_particle_step;
     for (const auto& c : e["per_case"]) {
       if (c["ns_per_particle_step"].is_number()) ns.push_back(c["ns_per_particle_step"]);
@@ -361,11 +376,11 @@ void experiment_rows(std::ostream& md, const std::vector<Spec>& specs, const ojs
     total_compute += compute;
     total_work += work;
     md << "| [" << spec.name << "](" << spec.name << ".md) | " << e["cases"].dump() << " | "
-       << follow_up_cell(f) << " | " << sci(work) << " | " << seconds(compute) << " | "
-       << seconds(wall) << " | " << (ns.empty() ? std::string("-") : fixed(quantile(ns, 0.5), 1))
-       << " |\n";
+       << follow_up_cell(f) << " | " << (own.runs ? std::to_string(own.runs) : std::string("–"))
+       << " | " << sci(work) << " | " << seconds(compute) << " | " << seconds(wall) << " | "
+       << (ns.empty() ? std::string("-") : fixed(quantile(ns, 0.5), 1)) << " |\n";
   }
-  md << "| all | | | " << sci(total_work) << " | " << seconds(total_compute) << " | | "
+  md << "| all | | | | " << sci(total_work) << " | " << seconds(total_compute) << " | | "
      << (total_work > 0 ? fixed(1e9 * total_compute / total_work, 1) : std::string("-"))
      << " (mean) |\n\n";
 }
@@ -383,6 +398,7 @@ void costliest_groups(std::ostream& md, const std::vector<Spec>& specs, const oj
     double seconds = 0;
   };
   static const std::string kFollowUpGroup = "follow-up runs";
+  static const std::string kReportGroup = "runs of its report";
   std::vector<Group> groups;
   std::vector<std::string> stale;
   double total = 0;
@@ -413,6 +429,9 @@ void costliest_groups(std::ostream& md, const std::vector<Spec>& specs, const oj
     }
     if (const FollowUpWork& f = follow.at(spec.name); f.cached > 0) {
       by_step[kFollowUpGroup] = Group{spec.name, kFollowUpGroup, f.cached, f.seconds};
+    }
+    if (const ReportRuns own = report_runs_of(timings[spec.name]); own.runs > 0) {
+      by_step[kReportGroup] = Group{spec.name, kReportGroup, own.runs, own.seconds};
     }
     for (auto& [step, g] : by_step) {
       total += g.seconds;
@@ -523,7 +542,10 @@ void write_experiment_times(std::ostream& md, const std::vector<Spec>& specs, co
         "advice), as the experiment's published results ask for them and as that cache "
         "(cache/ beside timings.json, not committed) held their records; a follow-up run the "
         "cache lacked is "
-        "counted in the follow-up runs column and said so, but adds no work. Cases that differ "
+        "counted in the follow-up runs column and said so, but adds no work. The runs of its "
+        "report are those its report computed itself while it was written (the advice sample's "
+        "searches, whose runs follow from the runs before them), counted in the run that "
+        "computed them; their work and CPU time are in the row's. Cases that differ "
         "only in eq. (108)'s options, at a policy that does not step by eq. (108), share one run "
         "(its trajectory is theirs): each counts its share of that run's particle-steps and "
         "time. Wall time is the "
@@ -544,8 +566,8 @@ void write_experiment_times(std::ostream& md, const std::vector<Spec>& specs, co
        << "; the kernel benchmark above in a run of its own (its date, host and clock given "
           "there).";
   }
-  md << "\n\n| experiment | cases | follow-up runs | particle-steps | CPU time | wall time | "
-        "median ns per particle-step |\n|---|---|---|---|---|---|---|\n";
+  md << "\n\n| experiment | cases | follow-up runs | runs of its report | particle-steps | CPU "
+        "time | wall time | median ns per particle-step |\n|---|---|---|---|---|---|---|---|\n";
   FollowUps follow;
   for (const auto& spec : specs)
     if (spec.study->has_cases)

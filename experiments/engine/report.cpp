@@ -12,6 +12,7 @@
 #include "base/accuracy.hpp"
 #include "base/version.hpp"
 #include "cache.hpp"
+#include "cached_run.hpp"
 #include "claims.hpp"
 #include "csv.hpp"
 #include "files.hpp"
@@ -282,11 +283,20 @@ void store_timing(const fs::path& path, ojson all, const std::string& name, ojso
 // swept (experiments in name order), in the ignored cache folder: a clock that moved changes no
 // file people browse (`mpmstab performance` publishes them, report.hpp).
 void write_timings(const Spec& spec, const SweepOutcome& outcome, const ojson& when,
-                   const fs::path& out) {
+                   const RunAccount& report_runs, const fs::path& out) {
   const fs::path path = machine_timings(out);
   ojson all = read_timings(path);
   const ojson previous = all.contains(spec.name) ? all[spec.name] : ojson::object();
   ojson entry = sweep_timing(spec, outcome, when, previous);
+  // The runs its report computed; a report rendered again from the cache keeps the count of the
+  // render that computed them.
+  if (report_runs.runs > 0) {
+    entry["report_runs"] = {{"runs", report_runs.runs.load()},
+                            {"particle_steps", report_runs.particle_steps.load()},
+                            {"cpu_seconds", report_runs.seconds.load()}};
+  } else if (previous.contains("report_runs")) {
+    entry["report_runs"] = previous["report_runs"];
+  }
   store_timing(path, std::move(all), spec.name, std::move(entry));
 }
 
@@ -665,9 +675,10 @@ std::vector<ReportFile> render_set(const Spec& spec, const SweepOutcome& outcome
 // 3. Commit: the machine's timings (in the ignored cache folder) and every file of the set, as
 // one publication (files.hpp): all of them or none.
 void commit_set(const Spec& spec, const SweepOutcome& outcome, const ojson& when,
-                const fs::path& out, const std::vector<ReportFile>& files) {
+                const RunAccount& report_runs, const fs::path& out,
+                const std::vector<ReportFile>& files) {
   ReportBatch batch;
-  write_timings(spec, outcome, when, out);
+  write_timings(spec, outcome, when, report_runs, out);
   for (const ReportFile& f : files)
     write_if_changed(f.path, f.text);
   batch.publish();
@@ -733,8 +744,19 @@ void write_reports(const Spec& spec, const SweepOutcome& outcome, const fs::path
                    const FollowUpRunner& runner) {
   fs::create_directories(out);
   const ReportSources sources = load_sources(spec, outcome, out, runner);
-  const std::vector<ReportFile> files = render_set(spec, outcome, out, sources);
-  commit_set(spec, outcome, sources.when, out, files);
+  // The runs the report makes itself, counted while it renders (cached_run.hpp).
+  RunAccount report_runs;
+  RunAccount* const outer = open_run_account();
+  open_run_account(&report_runs);
+  std::vector<ReportFile> files;
+  try {
+    files = render_set(spec, outcome, out, sources);
+  } catch (...) {
+    open_run_account(outer);
+    throw;
+  }
+  open_run_account(outer);
+  commit_set(spec, outcome, sources.when, report_runs, out, files);
 }
 
 namespace {
