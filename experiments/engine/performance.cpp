@@ -498,7 +498,8 @@ void tier_paragraph(std::ostream& md, const std::string& label, const ojson& r,
       bench.machine == machine_of(r) ? bench.median("BM_StepInstrumented", "gimp") : 0.0;
   md << "**`" << label << "`.** The last run that computed cases ran " << count("cases")
      << " cases (" << count("computed") << " computed; " << sci(work)
-     << " particle-steps, each run counted once, follow-up runs included) of "
+     << " particle-steps, each run counted once, follow-up runs included, the runs its reports "
+        "made themselves not: those are in the table above) of "
      << count("experiments") << " experiments on " << threads << " threads (" << machine_of(r)
      << ") in **" << seconds(wall) << "** wall.";
   if (cpu > 0) {
