@@ -314,7 +314,8 @@ int main(int argc, char** argv) {
   const mpmstab::Provenance here = mpmstab::current_provenance(1);
   benchmark::AddCustomContext("cpu", here.cpu);
   benchmark::AddCustomContext("kernels", here.kernels);
-  benchmark::AddCustomContext("commit", here.commit + (here.dirty ? " (uncommitted changes)" : ""));
+  benchmark::AddCustomContext("commit", here.commit);
+  benchmark::AddCustomContext("dirty", here.dirty ? "true" : "false");  // as timings.json says it
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();

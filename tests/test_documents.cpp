@@ -272,7 +272,8 @@ TEST(Documents, BenchmarkNamesItsMachineAndProjectsOnlyItsOwnTiers) {
         {"mhz_per_cpu", 3000},
         {"cpu", "Bench CPU"},
         {"kernels", "AVX2"},
-        {"commit", "0123456789abcdef"}}},
+        {"commit", "0123456789abcdef"},
+        {"dirty", "false"}}},
       {"benchmarks",
        {figure("BM_StepInstrumented", "median", 4.0), figure("BM_StepInstrumented", "cv", 0.01)}}};
   std::ofstream(dir / "bench.json") << bench.dump(1);
@@ -282,6 +283,12 @@ TEST(Documents, BenchmarkNamesItsMachineAndProjectsOnlyItsOwnTiers) {
                     "commit 0123456,"),
             std::string::npos)
       << md;
+  EXPECT_EQ(md.find("with uncommitted changes"), std::string::npos);
+  bench["context"]["dirty"] = "true";  // measured on a tree with changes not committed: said so
+  std::ofstream(dir / "bench.json") << bench.dump(1);
+  write_performance({}, dir / "bench.json", dir);
+  EXPECT_NE(slurp(dir / "performance.md").find("commit 0123456 with uncommitted changes,"),
+            std::string::npos);
   // 1e9 particle-steps at 4 ns on 2 threads: 2 s, said of the run on the benchmark's machine only.
   const auto reproduce = md.find("**`make reproduce`.**");
   const auto studies = md.find("**`make studies`.**");

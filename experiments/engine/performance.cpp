@@ -97,7 +97,7 @@ std::string bench_machine(const ojson& ctx) {
   s << ctx.value("date", "") << " on " << machine_of(ctx) << " (" << ctx.value("host_name", "")
     << ", " << ctx.value("num_cpus", 0) << " CPUs at " << ctx.value("mhz_per_cpu", 0.0)
     << " MHz), commit " << (commit.empty() ? std::string("not recorded") : commit.substr(0, 7));
-  if (commit.find("uncommitted") != std::string::npos) s << " with uncommitted changes";
+  if (text(ctx, "dirty") == "true") s << " with uncommitted changes";
   return s.str();
 }
 
@@ -678,7 +678,7 @@ ojson merged_timings(const ojson& measured, const ojson& published) {
       if (computed_cases(e) > computed_cases(out[current])) out[current] = e;
       continue;
     }
-    // Kept as it was where this machine has no run of the tier; else renamed after its CPU.
+    // Kept as it was where this machine has no run of the tier; else renamed after its machine.
     out[out.contains(current) ? reproduce_timing_key(label + " on " + machine) : key] = e;
   }
   return out;
