@@ -75,7 +75,10 @@ std::string tier_times(const std::filesystem::path& results) {
        << " |\n";
   }
   md << "\nA tier's wall time runs from the start of its queue of runs to its last report; the "
-        "figures, the index and the documents that `make` writes after it are not counted. "
+        "figures, the index and the documents that `make` writes after it are not counted. Its "
+        "CPU time sums the runs of its queue, cases and follow-up runs; the runs its reports "
+        "make themselves (the advice sample's searches) are counted in the cost table of "
+        "[`results/performance.md`](results/performance.md) instead. "
         "`make`'s runs from configuring a new build folder to the linked tool, the installation "
         "of Debian packages excluded.\n";
   // The studies tier's largest experiments by CPU time: where its time goes.
