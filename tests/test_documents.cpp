@@ -221,6 +221,24 @@ TEST(Documents, TheRunsAReportMakesItselfAreCountedInItsExperiment) {
   open_run_account(nullptr);
   make_all();
   EXPECT_EQ(account.runs.load(), 3);
+  // A report's account inside a tier's: a run counts in both; the tier's is open again after.
+  {
+    RunAccount tier;
+    const RunAccountScope tier_scope(tier);
+    RunAccount report;
+    {
+      const RunAccountScope report_scope(report);
+      EXPECT_EQ(open_run_account(), &report);
+      RunParams longer = runs[0];
+      longer.T = 0.04;
+      cached_run(cache, longer);
+    }
+    EXPECT_EQ(open_run_account(), &tier);
+    EXPECT_EQ(report.runs.load(), 1);
+    EXPECT_EQ(tier.runs.load(), 1);
+    EXPECT_DOUBLE_EQ(tier.particle_steps.load(), 40.0 * 200.0);
+  }
+  EXPECT_EQ(open_run_account(), nullptr);
 
   // A row whose report made runs: counted in their column, and in the work and CPU time.
   std::ofstream(dir / "timings.json")
@@ -254,9 +272,12 @@ TEST(Documents, BenchmarkNamesItsMachineAndProjectsOnlyItsOwnTiers) {
         {"cases", 10},  {"computed", 10}, {"particle_steps", 1e9}, {"compute_seconds", 8},
         {"threads", 2}, {"cpu", cpu},     {"kernels", "AVX2"},     {"wall_seconds", 5}};
   };
+  // The studies tier counted the runs its reports made; the other was recorded before they were.
+  nlohmann::ordered_json studies_tier = tier("Other CPU");
+  studies_tier["report_runs"] = {{"runs", 12}, {"particle_steps", 1e8}, {"cpu_seconds", 1}};
   std::ofstream(dir / "timings.json") << nlohmann::ordered_json{
       {"(make reproduce)", tier("Bench CPU")},
-      {"(make studies)", tier("Other CPU")}}.dump(1);
+      {"(make studies)", studies_tier}}.dump(1);
   const auto figure = [](const char* name, const char* aggregate, double ns) {
     return nlohmann::ordered_json{{"name", std::string(name) + "_" + aggregate},
                                   {"run_name", name},
@@ -299,6 +320,14 @@ TEST(Documents, BenchmarkNamesItsMachineAndProjectsOnlyItsOwnTiers) {
   EXPECT_EQ(md.find("as benchmarked above", projection + 1), std::string::npos);
   EXPECT_LT(reproduce, projection);
   EXPECT_LT(projection, studies);
+  const auto left_out = md.find("the runs its reports made themselves not");
+  const auto included = md.find(
+      "follow-up runs and the 12 runs its reports made themselves "
+      "included");
+  EXPECT_LT(reproduce, left_out);
+  EXPECT_LT(left_out, studies);
+  EXPECT_LT(studies, included);
+  EXPECT_NE(included, std::string::npos);
   std::filesystem::remove_all(dir);
 }
 

@@ -13,6 +13,7 @@
 
 #include "analysis/spectral.hpp"
 #include "cache.hpp"
+#include "cached_run.hpp"
 #include "progress.hpp"
 #include "report.hpp"
 #include "result_json.hpp"
@@ -417,6 +418,38 @@ TEST_F(Sweeps, ASpecAddedWhileTheQueueRunsJoinsItAndGetsTheRecordsOfItsOwnSweep)
         << i;
 }
 
+// The runs a report makes itself while it renders on the caller's thread (make reproduce) count in
+// the queue's report account, through the report's own, and only those computed.
+TEST_F(Sweeps, TheRunsOfAReportRenderedWhileTheQueueRunsCountInItsAccount) {
+  const Spec small = load_spec(dir / "small.json");
+  SweepOptions o;
+  o.jobs = 2;
+  o.cache = dir / "queue/cache";
+  o.quiet = true;
+  SweepQueue queue(o, "test");
+  queue.add(small);
+  queue.expect(1e6);  // the report's runs, as published
+  const ResultCache cache(o.cache);
+  RunParams p;
+  p.T = 0.01;
+  p.dt = 1e-3;
+  RunAccount report;
+  {
+    const RunAccountScope counting(queue.report_account());
+    queue.run([&](std::size_t, SweepOutcome&) {
+      const RunAccountScope rendering(report);
+      cached_run(cache, p);
+      cached_run(cache, p);  // from the cache: not counted
+      queue.reports_rendered(1e6);
+    });
+  }
+  EXPECT_EQ(open_run_account(), nullptr);  // the scopes closed
+  EXPECT_EQ(report.runs.load(), 1);
+  EXPECT_EQ(queue.report_account().runs.load(), 1);
+  // 10 steps of 200 particles.
+  EXPECT_DOUBLE_EQ(queue.report_account().particle_steps.load(), 2000.0);
+}
+
 // A queue given no spec runs nothing and ends (reproduce --follow-ups of specs that ask for no
 // follow-up run builds none).
 TEST(SweepQueueEmpty, RunsNothingAndEnds) {
@@ -473,6 +506,26 @@ TEST(ProgressLine, RunningAndExpectedWorkCountInTheTimeToGo) {
   c.finished(false, 80, 80, false);
   EXPECT_TRUE(c.finished());
   EXPECT_NE(c.text("reproduce", 20).find("done"), std::string::npos);
+}
+
+// The runs a report makes itself are expected from its last published count, counted as running
+// while it renders, and as done once it is written, where the expectation leaves the total.
+TEST(ProgressLine, ReportRunsCountAsRunningThenDone) {
+  ProgressCounter c(1, 100);
+  c.expect(300);  // the report's runs, as published
+  c.finished(false, 100, 100, false);
+  EXPECT_FALSE(c.finished());  // every case done; the report still to render
+  EXPECT_DOUBLE_EQ(c.remaining_cost(), 300);
+  c.running(150);  // half of it made so far
+  EXPECT_DOUBLE_EQ(c.remaining_cost(), 150);
+  ASSERT_TRUE(c.seconds_to_go(25));
+  EXPECT_DOUBLE_EQ(*c.seconds_to_go(25), 15);  // 250 done in 25 s, 150 to go
+  c.running(0);
+  c.finished_work(200, 300);  // it made 200 in all
+  EXPECT_TRUE(c.finished());
+  EXPECT_DOUBLE_EQ(c.remaining_cost(), 0);
+  EXPECT_NE(c.text("reproduce", 30).find("3e+02 particle-steps computed"), std::string::npos)
+      << c.text("reproduce", 30);
 }
 
 TEST(ProgressLine, WorkAddedWhileTheQueueRunsJoinsTheTotal) {

@@ -100,7 +100,10 @@ Each experiment's follow-up runs (runs its study chooses from its results: ensem
 perturbed layouts near an edge, confirming runs of a recommendation) join the same queue as
 soon as its cases are done and what it reads is written, and its reports are written when they
 are done. The line's total grows as they join, and counts the dense spectral analyses the runs
-ask for (kDenseAnalysisCost, engine/sweep.hpp) as the particle-steps that take as long.
+ask for (kDenseAnalysisCost, engine/sweep.hpp) as the particle-steps that take as long, and the
+runs a report makes itself while it renders (the advice sample's searches): as many as its last
+render that made some counted, then as they are made. The tier's entry in DIR/cache/timings.json
+counts those runs in its work and CPU time, and apart in report_runs.
 
 The specs are taken in the order given ('mpmstab list' prints them in the order make reproduce
 uses). An input that none of them produces must already be in DIR. --label NAME names the run
@@ -302,6 +305,9 @@ class ReproducePublisher {
         cost += estimated_work(p, "", CaseWork::run, published);
       expected_[s] = cost;
       queue_.expect(cost);
+      // The runs its report makes itself, as its last render that made some counted them.
+      expected_report_[s] = published_report_work(plan_.specs[s], out_);
+      queue_.expect(expected_report_[s]);
     }
   }
 
@@ -353,9 +359,8 @@ class ReproducePublisher {
       return true;
     }
     if (!options_.quiet)
-      std::cerr << (options_.progress_line ? "\r\033[K" : "") << "[" << f->spec.name << "] "
-                << f->spec.cases.size() << " follow-up run"
-                << (f->spec.cases.size() == 1 ? "" : "s") << " join the queue\n";
+      queue_.say("[" + f->spec.name + "] " + std::to_string(f->spec.cases.size()) +
+                 " follow-up run" + (f->spec.cases.size() == 1 ? "" : "s") + " join the queue\n");
     follow_of_[queue_.add(f->spec, expected)] = s;
     follow_specs_[s] = std::move(f);
     return false;
@@ -386,8 +391,10 @@ class ReproducePublisher {
       write_reports(spec, outcome, out_, runner);
       line = summary_line(spec, outcome, wall, out_);
     }
-    if (options_.progress_line) std::cerr << "\r\033[K";
-    std::cerr << line << std::flush;
+    // What the report's own runs made is done; the work expected of them leaves the line.
+    const auto expected = expected_report_.find(index_of(spec));
+    queue_.reports_rendered(expected == expected_report_.end() ? 0.0 : expected->second);
+    queue_.say(line);
     written_.insert(spec.name);
   }
 
@@ -415,25 +422,34 @@ class ReproducePublisher {
   std::map<std::size_t, std::size_t> follow_of_;     // queue batch -> the experiment it follows up
   std::map<std::size_t, SweepOutcome> follow_done_;  // by experiment
   std::map<std::size_t, double> expected_;           // the follow-up work expected, by experiment
+  std::map<std::size_t, double> expected_report_;    // its report's own runs' work expected
   std::set<std::string> written_;
   std::set<std::string> counted_;
 };
 
 // 3. The reproduction's own entry in the machine's timings.
-void record_reproduce(const ReproducePublisher& done, std::size_t experiments, double wall,
-                      const std::filesystem::path& out, const SweepOptions& options, bool omit,
-                      const std::string& label, const EstimateAccuracy& estimate) {
+// `reports`: the runs its reports made themselves (SweepQueue::report_account), counted in its
+// work and CPU time beside its cases and follow-up runs, and apart in report_runs.
+void record_reproduce(const ReproducePublisher& done, const RunAccount& reports,
+                      std::size_t experiments, double wall, const std::filesystem::path& out,
+                      const SweepOptions& options, bool omit, const std::string& label,
+                      const EstimateAccuracy& estimate) {
   const Provenance when = current_provenance(options.jobs);
   nlohmann::ordered_json judged = nullptr;
   if (!omit && estimate.samples > 0) {
     judged = {{"samples", estimate.samples}, {"worst_factor", estimate.worst}, {"at", estimate.at}};
   }
+  const double report_seconds = omit ? 0.0 : reports.seconds.load();
   write_reproduce_timing(out, label,
                          {{"experiments", experiments},
                           {"cases", done.cases},
                           {"computed", done.computed},
-                          {"particle_steps", done.particle_steps},
-                          {"compute_seconds", omit ? 0.0 : done.compute_seconds},
+                          {"particle_steps", done.particle_steps + reports.particle_steps},
+                          {"compute_seconds", omit ? 0.0 : done.compute_seconds + report_seconds},
+                          {"report_runs",
+                           {{"runs", reports.runs.load()},
+                            {"particle_steps", reports.particle_steps.load()},
+                            {"cpu_seconds", report_seconds}}},
                           {"commit", when.commit},
                           {"cpu", when.cpu},
                           {"kernels", when.kernels},
@@ -583,8 +599,12 @@ int cmd_reproduce(const std::vector<std::string_view>& argv) {
   ReproducePublisher publisher(plan, out, options, omit, queue);
   publisher.expect_follow_ups();
   const auto start = std::chrono::steady_clock::now();
-  const std::vector<SweepOutcome> rest =
-      queue.run([&](std::size_t b, SweepOutcome& outcome) { publisher.complete(b, outcome); });
+  // The reports render on this thread: the runs they make count in the queue's account.
+  std::vector<SweepOutcome> rest;
+  {
+    const RunAccountScope counting(queue.report_account());
+    rest = queue.run([&](std::size_t b, SweepOutcome& outcome) { publisher.complete(b, outcome); });
+  }
   for (std::size_t b = 0; b < rest.size(); ++b) {
     if (!rest[b].interrupted) continue;
     const std::size_t s = b < plan.specs.size() ? b : publisher.followed_by(b);
@@ -595,8 +615,8 @@ int cmd_reproduce(const std::vector<std::string_view>& argv) {
   }
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  record_reproduce(publisher, plan.specs.size(), wall, out, options, omit, label,
-                   estimate_accuracy(queue.estimates(), wall));
+  record_reproduce(publisher, queue.report_account(), plan.specs.size(), wall, out, options, omit,
+                   label, estimate_accuracy(queue.estimates(), wall));
   std::cerr << "[reproduce] " << plan.specs.size() << " experiments in "
             << shortest(std::round(wall * 10) / 10) << " s -> " << out.string() << "\n";
   return 0;

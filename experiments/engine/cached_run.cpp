@@ -51,11 +51,8 @@ RunResult cached_run(const ResultCache& cache, const RunParams& p) {
   if (const auto found = cache.load(p)) return from_record(p, (*found)["result"]);
   RunResult r = run(p);
   if (r.interrupted) return r;
-  if (t_account) {
-    ++t_account->runs;
-    t_account->particle_steps += static_cast<double>(r.steps) * static_cast<double>(r.particles);
-    t_account->seconds += r.wall_seconds;
-  }
+  if (t_account)
+    t_account->add(static_cast<double>(r.steps) * static_cast<double>(r.particles), r.wall_seconds);
   ojson record = run_record(r);
   record["provenance"] = to_json(current_provenance(1));
   cache.store(p, record);

@@ -498,10 +498,16 @@ void tier_paragraph(std::ostream& md, const std::string& label, const ojson& r,
       bench.machine == machine_of(r) ? bench.median("BM_StepInstrumented", "gimp") : 0.0;
   md << "**`" << label << "`.** The last run that computed cases ran " << count("cases")
      << " cases (" << count("computed") << " computed; " << sci(work)
-     << " particle-steps, each run counted once, follow-up runs included, the runs its reports "
-        "made themselves not: those are in the table above) of "
-     << count("experiments") << " experiments on " << threads << " threads (" << machine_of(r)
-     << ") in **" << seconds(wall) << "** wall.";
+     << " particle-steps, each run counted once, ";
+  if (r.contains("report_runs") && r["report_runs"].is_object()) {
+    md << "follow-up runs and the " << std::llround(number_or_zero(r["report_runs"], "runs"))
+       << " runs its reports made themselves included";
+  } else {  // recorded before those runs were counted in the tier
+    md << "follow-up runs included, the runs its reports made themselves not: those are in the "
+          "table above";
+  }
+  md << ") of " << count("experiments") << " experiments on " << threads << " threads ("
+     << machine_of(r) << ") in **" << seconds(wall) << "** wall.";
   if (cpu > 0) {
     md << " Their CPU time, " << seconds(cpu) << ", on " << threads
        << " threads kept fully busy would take " << seconds(cpu / threads)

@@ -19,6 +19,14 @@ void ProgressCounter::expect(double cost) {
   expected_ += std::max(0.0, cost);
 }
 
+void ProgressCounter::finished_work(double work, double retire) {
+  work = std::max(0.0, work);
+  estimated_cost_ += work;
+  done_cost_ += work;
+  done_work_ += work;
+  expected_ = std::max(0.0, expected_ - retire);
+}
+
 void ProgressCounter::finished(bool from_cache, double cost, double work, bool unstable) {
   ++done_;
   unstable_ += unstable;

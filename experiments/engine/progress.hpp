@@ -26,6 +26,10 @@ class ProgressCounter {
   // go, run.hpp).
   void running(double work) { running_ = std::max(0.0, work); }
 
+  // Work done outside the tasks (the runs a report makes itself while it renders), now over:
+  // counted as done, its estimate being the work itself; `retire` of the work expected for it
+  // leaves the total.
+  void finished_work(double work, double retire);
   // A task finished: from the cache (no work done, its estimate leaves the total) or computed
   // (its estimate `cost` replaced by the measured `work`); `unstable`: its verdict.
   void finished(bool from_cache, double cost, double work, bool unstable);

@@ -740,22 +740,36 @@ std::map<std::string, double> published_work(const Spec& spec, const fs::path& o
   return work;
 }
 
+double published_report_work(const Spec& spec, const fs::path& out) {
+  for (const fs::path& file : {machine_timings(out), out / "timings.json"}) {
+    try {
+      const std::optional<std::string> text = read_if_present(file);
+      if (!text || text->empty()) continue;
+      const ojson doc = parse_json_strict<ojson>(*text, file);
+      if (!doc.is_object() || !doc.contains(spec.name)) continue;
+      const ojson& entry = doc[spec.name];
+      if (entry.is_object() && entry.contains("report_runs") && entry["report_runs"].is_object() &&
+          has_number(entry["report_runs"], "particle_steps"))
+        return entry["report_runs"]["particle_steps"].get<double>();
+    } catch (const std::exception&) {
+      // an estimate only: timings that cannot be read give none
+    }
+  }
+  return 0;
+}
+
 void write_reports(const Spec& spec, const SweepOutcome& outcome, const fs::path& out,
                    const FollowUpRunner& runner) {
   fs::create_directories(out);
   const ReportSources sources = load_sources(spec, outcome, out, runner);
   // The runs the report makes itself, counted while it renders (cached_run.hpp).
+  // An account open on this thread (the queue's, make reproduce) counts them too.
   RunAccount report_runs;
-  RunAccount* const outer = open_run_account();
-  open_run_account(&report_runs);
   std::vector<ReportFile> files;
-  try {
+  {
+    const RunAccountScope counting(report_runs);
     files = render_set(spec, outcome, out, sources);
-  } catch (...) {
-    open_run_account(outer);
-    throw;
   }
-  open_run_account(outer);
   commit_set(spec, outcome, sources.when, report_runs, out, files);
 }
 

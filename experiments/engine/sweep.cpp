@@ -130,6 +130,25 @@ class Progress {
     std::lock_guard lock(mutex_);
     running_ = std::move(read);
   }
+  // The account of the runs the reports make themselves: their work counts as running until
+  // reports_rendered moves it into the work done.
+  void report_work(const RunAccount* account) {
+    std::lock_guard lock(mutex_);
+    reports_ = account;
+  }
+  void reports_rendered(double retire) {
+    std::lock_guard lock(mutex_);
+    const double made = reports_ ? reports_->particle_steps.load() - reports_counted_ : 0.0;
+    reports_counted_ += made;
+    counter_.finished_work(made, retire);
+  }
+  // A line of the caller's: on a terminal, over the progress line, which the next redraw puts
+  // back below it.
+  void say(const std::string& text) {
+    std::lock_guard lock(mutex_);
+    std::fprintf(stderr, "%s%s", line_ ? "\r\033[K" : "", text.c_str());
+    std::fflush(stderr);
+  }
 
   void done(const Spec& spec, const RunParams& p, const nlohmann::ordered_json& rec,
             bool from_cache, double cost) {
@@ -183,14 +202,20 @@ class Progress {
     const double now = elapsed();
     if (now < last_sample_ + 1 || counter_.finished()) return;
     last_sample_ = now;
-    if (running_) counter_.running(running_());
+    counter_.running(running_work());
     if (const auto to_go = counter_.seconds_to_go(now)) estimates_.emplace_back(now, *to_go);
   }
 
   double elapsed() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
 
+  // The running tasks' work so far, and that of the report rendering now.
+  double running_work() const {
+    const double tasks = running_ ? running_() : 0.0;
+    return tasks + (reports_ ? reports_->particle_steps.load() - reports_counted_ : 0.0);
+  }
+
   void draw(char end) {
-    if (running_) counter_.running(running_());
+    counter_.running(running_work());
     std::fprintf(stderr, "%s%s   %s", end == '\r' ? "\r" : "",
                  counter_.text(label_, elapsed()).c_str(), end == '\n' ? "\n" : "");
   }
@@ -200,6 +225,8 @@ class Progress {
   bool line_, per_case_;
   ProgressCounter counter_;
   std::function<double()> running_;
+  const RunAccount* reports_ = nullptr;
+  double reports_counted_ = 0;  // of reports_'s work, moved into the work done
   double last_print_ = 0;
   double last_sample_ = 0;
   std::vector<std::pair<double, double>> estimates_;
@@ -487,6 +514,7 @@ struct SweepQueue::State {
   std::size_t workers_running = 0;
   std::atomic<int> rejected{0};
   std::exception_ptr error;
+  RunAccount reports;  // the runs the reports rendered on the caller's thread make themselves
 
   bool cancelled() const { return options.cancel && options.cancel->load(); }
   bool before(std::size_t a, std::size_t b) const {  // heap order: b is taken before a
@@ -546,6 +574,27 @@ void SweepQueue::expect(double cost) {
     st.progress->expect(cost);
   } else {
     st.expected += std::max(0.0, cost);
+  }
+}
+
+RunAccount& SweepQueue::report_account() {
+  return state_->reports;
+}
+
+void SweepQueue::reports_rendered(double retire) {
+  State& st = *state_;
+  if (st.progress) {
+    st.progress->reports_rendered(retire);
+  } else {
+    this->retire(retire);
+  }
+}
+
+void SweepQueue::say(const std::string& line) {
+  if (state_->progress) {
+    state_->progress->say(line);
+  } else {
+    std::fputs(line.c_str(), stderr);
   }
 }
 
@@ -721,6 +770,7 @@ void SweepQueue::State::start_progress(bool several) {
   running = std::make_unique<std::atomic<double>[]>(workers);
   for (std::size_t w = 0; w < workers; ++w)
     running[w].store(0.0);
+  progress->report_work(&reports);
   progress->running_work([this] {
     double sum = 0;
     for (std::size_t w = 0; w < workers; ++w)
@@ -748,8 +798,23 @@ std::vector<SweepOutcome> SweepQueue::run(
       if (t.joinable()) t.join();
   };
 
+  // The progress line is redrawn every second by a thread of its own, also while `complete`
+  // renders a report on the caller's thread.
+  std::jthread ticker;
+  if (!st.options.quiet) {
+    ticker = std::jthread([&st](std::stop_token stop) {
+      std::mutex m;
+      std::condition_variable_any wake;
+      std::unique_lock lock(m);
+      for (;;) {
+        wake.wait_for(lock, stop, std::chrono::seconds(1), [] { return false; });
+        if (stop.stop_requested()) return;
+        st.progress->tick();
+      }
+    });
+  }
   // The caller's thread hands each complete batch over (its records counted and shared) while
-  // the workers go on, and redraws the progress line. `complete` may add batches.
+  // the workers go on. `complete` may add batches.
   try {
     for (;;) {
       std::unique_lock lock(st.mutex);
@@ -764,8 +829,6 @@ std::vector<SweepOutcome> SweepQueue::run(
       if (st.error) break;
       if (st.finished.empty()) {
         if (st.workers_running == 0) break;  // interrupted: some batches never finish
-        lock.unlock();
-        if (!st.options.quiet) st.progress->tick();
         continue;
       }
       const std::size_t b = st.finished.front();
@@ -779,9 +842,11 @@ std::vector<SweepOutcome> SweepQueue::run(
       if (complete) complete(b, batch.out);
     }
   } catch (...) {
+    ticker = {};
     stop_workers();
     throw;
   }
+  ticker = {};  // stopped and joined
   stop_workers();
   if (st.error) std::rethrow_exception(st.error);
   if (!st.options.quiet && several) st.progress->finish();

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "base/result.hpp"
+#include "cached_run.hpp"
 #include "spec.hpp"
 
 namespace mpmstab {
@@ -140,6 +141,16 @@ class SweepQueue {
   void expect(double cost);
   // Removes `cost` of the work expected (what was expected and will not come).
   void retire(double cost);
+
+  // The runs the reports make themselves while they render on the caller's thread (cached_run.hpp):
+  // the caller opens this account there (open_run_account) before `run`, and every report's
+  // account counts into it. The progress line counts their work as it is done, and
+  // `reports_rendered` moves what they made into the work done, retiring `retire` of the work
+  // expected (an experiment's report runs as its last published timings count them).
+  RunAccount& report_account();
+  void reports_rendered(double retire);
+  // Prints a line of the caller's between the progress line's redraws (a finished experiment).
+  void say(const std::string& line);
 
   // Runs until every spec added is complete, calling complete(index, outcome) on the caller's
   // thread as each one's last case finishes (the caller may take the outcome, and may add

@@ -64,8 +64,11 @@ std::string tier_times(const std::filesystem::path& results) {
     } else {
       md << sci(number("particle_steps")) << " particle-steps; "
          << static_cast<long long>(number("computed")) << " of "
-         << static_cast<long long>(number("cases")) << " cases computed | "
-         << seconds(number("compute_seconds")) << " | ";
+         << static_cast<long long>(number("cases")) << " cases computed";
+      if (e.contains("report_runs") && e["report_runs"].is_object())
+        md << ", and " << std::llround(number_or_zero(e["report_runs"], "runs"))
+           << " runs of its reports";
+      md << " | " << seconds(number("compute_seconds")) << " | ";
     }
     md << static_cast<long long>(number("threads")) << " | "
        << (e.contains("cpu") ? machine_of(e) : "–") << " | "
@@ -76,9 +79,10 @@ std::string tier_times(const std::filesystem::path& results) {
   }
   md << "\nA tier's wall time runs from the start of its queue of runs to its last report; the "
         "figures, the index and the documents that `make` writes after it are not counted. Its "
-        "CPU time sums the runs of its queue, cases and follow-up runs; the runs its reports "
-        "make themselves (the advice sample's searches) are counted in the cost table of "
-        "[`results/performance.md`](results/performance.md) instead. "
+        "work and CPU time sum the runs it computed: the cases and follow-up runs of its queue "
+        "and, where its row counts them, the runs its reports make themselves (the advice "
+        "sample's searches); a row that does not count them was measured before they were "
+        "counted, and leaves them out. "
         "`make`'s runs from configuring a new build folder to the linked tool, the installation "
         "of Debian packages excluded.\n";
   // The studies tier's largest experiments by CPU time: where its time goes.
