@@ -555,6 +555,22 @@ struct SweepQueue::State {
 
   void work(std::size_t w);
   void start_progress(bool several);
+
+  // The thread that redraws the progress line every second, also while `complete` renders a
+  // report on the caller's thread (none when quiet); stopped and joined when destroyed.
+  std::jthread start_ticker() {
+    if (options.quiet) return {};
+    return std::jthread([this](std::stop_token halt) {
+      std::mutex m;
+      std::condition_variable_any wake;
+      std::unique_lock lock(m);
+      for (;;) {
+        wake.wait_for(lock, halt, std::chrono::seconds(1), [] { return false; });
+        if (halt.stop_requested()) return;
+        progress->tick();
+      }
+    });
+  }
 };
 
 SweepQueue::SweepQueue(const SweepOptions& options, std::string label)
@@ -798,21 +814,7 @@ std::vector<SweepOutcome> SweepQueue::run(
       if (t.joinable()) t.join();
   };
 
-  // The progress line is redrawn every second by a thread of its own, also while `complete`
-  // renders a report on the caller's thread.
-  std::jthread ticker;
-  if (!st.options.quiet) {
-    ticker = std::jthread([&st](std::stop_token stop) {
-      std::mutex m;
-      std::condition_variable_any wake;
-      std::unique_lock lock(m);
-      for (;;) {
-        wake.wait_for(lock, stop, std::chrono::seconds(1), [] { return false; });
-        if (stop.stop_requested()) return;
-        st.progress->tick();
-      }
-    });
-  }
+  std::jthread ticker = st.start_ticker();
   // The caller's thread hands each complete batch over (its records counted and shared) while
   // the workers go on. `complete` may add batches.
   try {
