@@ -9,7 +9,6 @@
 
 #include <array>
 #include <cmath>
-#include <cstring>
 #include <type_traits>
 #include <utility>
 
@@ -20,10 +19,14 @@
 namespace mpmstab {
 
 // ---------------------------------------------------------------------------------------------
-// p2g, eqs. (5)-(7). Particles go in blocks of kBlock. For a block, first S_ip, G_ip and what
-// each particle adds to each of its W nodes (independent iterations, vectorized across
-// particles); then the sums into the grid, particle after particle, so that every node adds its
-// contributions in particle order as the plain scatter does (the order fixes the rounding).
+// p2g, eqs. (5)-(7). Particles go in blocks of kBlock. For a block, first S_ip, G_ip and each
+// particle's force on each of its W nodes (independent iterations, vectorized across particles);
+// then the sums into the grid, particle after particle, so that every node adds its
+// contributions in particle order as the plain scatter does (the order fixes the rounding). The
+// mass and momentum contributions (S_ip m_p, S_ip m_p v_p) are formed there, one 2-lane multiply
+// per node, from the stored S_ip: storing them from the vectorized loop instead took two vector
+// stores and a permutation per node and 8 particles, and ran GIMP 3%, cpGIMP 3-7% slower in
+// every version (whole runs, best of 3 interleaved, on an AMD EPYC with AVX-512).
 // Particles stay nearly sorted, so consecutive ones share nodes: the W nodes under the current
 // particle are held in registers (Window), loaded from the grid when they enter and written
 // back when they leave. This removes the chain of store and reload of the same node from one
@@ -38,8 +41,7 @@ using Pair = double __attribute__((vector_size(16)));
 
 template <int W>
 struct alignas(64) Contributions {
-  double mq[W][kBlock][2];  // (S_ip m_p, S_ip m_p v_p) to node base_p + k
-  double f[W][kBlock];      // -G_ip sigma_p V_p + S_ip m_p b_p
+  double f[W][kBlock];  // -G_ip sigma_p V_p + S_ip m_p b_p
 };
 
 template <int W>
@@ -78,7 +80,6 @@ __attribute__((always_inline)) inline void evaluate_block(const Basis& basis, co
                                                           Contributions<Basis::width>& C) {
   constexpr int W = Basis::width;
   const double* __restrict x = P.x.data() + p0;
-  const double* __restrict v = P.v.data() + p0;
   const double* __restrict F = P.F.data() + p0;
   const double* __restrict sig = P.sigma.data() + p0;
   const double* __restrict m_p = P.mass.data() + p0;
@@ -92,15 +93,9 @@ __attribute__((always_inline)) inline void evaluate_block(const Basis& basis, co
   }
   // What particle j adds to its nodes, from its S_ip and G_ip.
   auto contribute = [&](int j, const double* wp, const double* gp) __attribute__((always_inline)) {
-    const double mass = m_p[j];
-    const double mom = mass * v[j];
-    for (int k = 0; k < W; ++k) {
-      C.mq[k][j][0] = wp[k] * mass;
-      C.mq[k][j][1] = wp[k] * mom;
-    }
     if constexpr (kForce) {
       const double stress_volume = -sig[j] * F[j] * V0[j];  // V_p = F_p V_p^0 (eq. 6)
-      const double body = mass * b_p[j];
+      const double body = m_p[j] * b_p[j];
       for (int k = 0; k < W; ++k)
         C.f[k][j] = gp[k] * stress_volume + wp[k] * body;
     }
@@ -159,8 +154,9 @@ __attribute__((always_inline)) inline void evaluate_block(const Basis& basis, co
 // baseline: BM_Step, GIMP, 3.5 -> 6.3 ns per particle-step when GCC chose not to inline it).
 template <int W, bool kForce>
 __attribute__((always_inline)) inline void scatter_block(const int* base, int len,
-                                                         const Contributions<W>& C, Window<W>& win,
-                                                         double* __restrict m_i,
+                                                         const double* const* w, const double* m_p,
+                                                         const double* v, const Contributions<W>& C,
+                                                         Window<W>& win, double* __restrict m_i,
                                                          double* __restrict q_i,
                                                          double* __restrict f_i) {
   int b = win.b;
@@ -196,10 +192,12 @@ __attribute__((always_inline)) inline void scatter_block(const int* base, int le
       }
       b = bp;
     }
+    // (S_ip m_p, S_ip m_p v_p) to node base_p + k, the two products of one 2-lane multiply.
+    const double mass = m_p[j];
+    const Pair mm = {mass, mass * v[j]};
     for (int k = 0; k < W; ++k) {
-      Pair c;
-      std::memcpy(&c, C.mq[k][j], sizeof c);
-      mq[k] += c;
+      const double s = w[k][j];
+      mq[k] += Pair{s, s} * mm;
       if constexpr (kForce) f[k] += C.f[k][j];
     }
   }
@@ -231,8 +229,11 @@ MPMSTAB_SIMD_CLONES void p2g_kernel(const Basis& basis, const Particles& P,
     } else {
       evaluate_block<kPeriodic, kForce>(basis, P, body_accel, p0, len, S, C);
     }
-    scatter_block<W, kForce>(S.base.data() + p0, len, C, win, G.mass.data(), G.momentum.data(),
-                             G.force.data());
+    const double* w[W];
+    for (int k = 0; k < W; ++k)
+      w[k] = S.w[k].data() + p0;
+    scatter_block<W, kForce>(S.base.data() + p0, len, w, P.mass.data() + p0, P.v.data() + p0, C,
+                             win, G.mass.data(), G.momentum.data(), G.force.data());
   }
   for (int k = 0; k < W; ++k) {
     G.mass[win.b + k] = win.mq[k][0];
