@@ -24,6 +24,7 @@
 #include "progress.hpp"
 #include "provenance.hpp"
 #include "report.hpp"
+#include "report_util.hpp"
 #include "spec.hpp"
 #include "sweep.hpp"
 
@@ -440,23 +441,21 @@ void record_reproduce(const ReproducePublisher& done, const RunAccount& reports,
     judged = {{"samples", estimate.samples}, {"worst_factor", estimate.worst}, {"at", estimate.at}};
   }
   const double report_seconds = omit ? 0.0 : reports.seconds.load();
-  write_reproduce_timing(out, label,
-                         {{"experiments", experiments},
-                          {"cases", done.cases},
-                          {"computed", done.computed},
-                          {"particle_steps", done.particle_steps + reports.particle_steps},
-                          {"compute_seconds", omit ? 0.0 : done.compute_seconds + report_seconds},
-                          {"report_runs",
-                           {{"runs", reports.runs.load()},
-                            {"particle_steps", reports.particle_steps.load()},
-                            {"cpu_seconds", report_seconds}}},
-                          {"commit", when.commit},
-                          {"cpu", when.cpu},
-                          {"kernels", when.kernels},
-                          {"threads", options.jobs},
-                          {"wall_seconds", omit ? 0.0 : wall},
-                          {"time_to_go", judged}},
-                         done.computed > 0);
+  write_reproduce_timing(
+      out, label,
+      {{"experiments", experiments},
+       {"cases", done.cases},
+       {"computed", done.computed},
+       {"particle_steps", done.particle_steps + reports.particle_steps},
+       {"compute_seconds", omit ? 0.0 : done.compute_seconds + report_seconds},
+       {"report_runs", report_runs_json(reports.runs, reports.particle_steps, report_seconds)},
+       {"commit", when.commit},
+       {"cpu", when.cpu},
+       {"kernels", when.kernels},
+       {"threads", options.jobs},
+       {"wall_seconds", omit ? 0.0 : wall},
+       {"time_to_go", judged}},
+      done.computed > 0);
 }
 
 // A shard of several specs' cases (reproduce --shard): one queue, no follow-up, no report; each

@@ -337,20 +337,6 @@ FollowUpWork follow_up_of(const ojson& entry) {
   return f;
 }
 
-// The runs an experiment's report made itself (timings.json's report_runs, write_reports): how
-// many, their particle-steps and CPU seconds; zero where it made none or none were recorded.
-struct ReportRuns {
-  std::size_t runs = 0;
-  double particle_steps = 0, seconds = 0;
-};
-
-ReportRuns report_runs_of(const ojson& entry) {
-  if (!entry.contains("report_runs") || !entry["report_runs"].is_object()) return {};
-  const ojson& j = entry["report_runs"];
-  return {static_cast<std::size_t>(std::llround(number_or_zero(j, "runs"))),
-          number_or_zero(j, "particle_steps"), number_or_zero(j, "cpu_seconds")};
-}
-
 // One row per experiment with cases: its work and CPU time with its follow-up runs', its wall
 // time and median ns per particle-step; then the total.
 void experiment_rows(std::ostream& md, const std::vector<Spec>& specs, const ojson& timings,
@@ -499,9 +485,8 @@ void tier_paragraph(std::ostream& md, const std::string& label, const ojson& r,
   md << "**`" << label << "`.** The last run that computed cases ran " << count("cases")
      << " cases (" << count("computed") << " computed; " << sci(work)
      << " particle-steps, each run counted once, ";
-  if (r.contains("report_runs") && r["report_runs"].is_object()) {
-    md << "follow-up runs and the " << std::llround(number_or_zero(r["report_runs"], "runs"))
-       << " runs its reports made themselves included";
+  if (const ReportRuns reports = report_runs_of(r); reports.recorded) {
+    md << "follow-up runs and the " << reports.runs << " runs its reports made themselves included";
   } else {  // recorded before those runs were counted in the tier
     md << "follow-up runs included, the runs its reports made themselves not: those are in the "
           "table above";

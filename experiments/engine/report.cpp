@@ -291,9 +291,8 @@ void write_timings(const Spec& spec, const SweepOutcome& outcome, const ojson& w
   // The runs its report computed; a report rendered again from the cache keeps the count of the
   // render that computed them.
   if (report_runs.runs > 0) {
-    entry["report_runs"] = {{"runs", report_runs.runs.load()},
-                            {"particle_steps", report_runs.particle_steps.load()},
-                            {"cpu_seconds", report_runs.seconds.load()}};
+    entry["report_runs"] =
+        report_runs_json(report_runs.runs, report_runs.particle_steps, report_runs.seconds);
   } else if (previous.contains("report_runs")) {
     entry["report_runs"] = previous["report_runs"];
   }
@@ -747,10 +746,7 @@ double published_report_work(const Spec& spec, const fs::path& out) {
       if (!text || text->empty()) continue;
       const ojson doc = parse_json_strict<ojson>(*text, file);
       if (!doc.is_object() || !doc.contains(spec.name)) continue;
-      const ojson& entry = doc[spec.name];
-      if (entry.is_object() && entry.contains("report_runs") && entry["report_runs"].is_object() &&
-          has_number(entry["report_runs"], "particle_steps"))
-        return entry["report_runs"]["particle_steps"].get<double>();
+      if (const ReportRuns r = report_runs_of(doc[spec.name]); r.recorded) return r.particle_steps;
     } catch (const std::exception&) {
       // an estimate only: timings that cannot be read give none
     }

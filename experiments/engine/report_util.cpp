@@ -165,6 +165,18 @@ double number_or_zero(const ojson& row, const char* column) {
   return it != row.end() && it->is_number() ? it->get<double>() : 0.0;
 }
 
+ReportRuns report_runs_of(const ojson& entry) {
+  if (!entry.is_object() || !entry.contains("report_runs") || !entry["report_runs"].is_object())
+    return {};
+  const ojson& j = entry["report_runs"];
+  return {true, static_cast<std::size_t>(std::llround(number_or_zero(j, "runs"))),
+          number_or_zero(j, "particle_steps"), number_or_zero(j, "cpu_seconds")};
+}
+
+ojson report_runs_json(std::int64_t runs, double particle_steps, double seconds) {
+  return {{"runs", runs}, {"particle_steps", particle_steps}, {"cpu_seconds", seconds}};
+}
+
 std::string cost_metric_text() {
   return "**Cost.** Every cost here is in particle-steps (particles x steps, of every run a "
          "result needs): deterministic, the same on any machine. What one particle-step of each "

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cstdint>
 #include <filesystem>
 #include <initializer_list>
 #include <map>
@@ -78,6 +79,17 @@ std::string text(const nlohmann::ordered_json& row, const char* column);
 bool has_number(const nlohmann::ordered_json& row, const char* column);
 // The number in `column`, 0 where it is missing or not a number.
 double number_or_zero(const nlohmann::ordered_json& row, const char* column);
+// The runs a report made itself (cached_run.hpp's RunAccount), as timings.json records them under
+// "report_runs" in an experiment's entry (write_reports) and a tier's (make reproduce): how many,
+// their particle-steps and CPU seconds. report_runs_of: zero where the entry records none, and
+// `recorded` false where it has no such field (a tier run measured before they were counted).
+struct ReportRuns {
+  bool recorded = false;
+  std::size_t runs = 0;
+  double particle_steps = 0, seconds = 0;
+};
+ReportRuns report_runs_of(const nlohmann::ordered_json& entry);
+nlohmann::ordered_json report_runs_json(std::int64_t runs, double particle_steps, double seconds);
 // The method of a flat record as the trade study names it: the basis, then the transfer (with
 // its order or FLIP share) where it is not FLIP and the update order where it is not USL: "gimp",
 // "gimp/xpic(2)", "bspline3/usf". Rows without those columns are named by their basis.

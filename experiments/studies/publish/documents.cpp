@@ -65,9 +65,8 @@ std::string tier_times(const std::filesystem::path& results) {
       md << sci(number("particle_steps")) << " particle-steps; "
          << static_cast<long long>(number("computed")) << " of "
          << static_cast<long long>(number("cases")) << " cases computed";
-      if (e.contains("report_runs") && e["report_runs"].is_object())
-        md << ", and " << std::llround(number_or_zero(e["report_runs"], "runs"))
-           << " runs of its reports";
+      if (const ReportRuns reports = report_runs_of(e); reports.recorded)
+        md << ", and " << reports.runs << " runs of its reports";
       md << " | " << seconds(number("compute_seconds")) << " | ";
     }
     md << static_cast<long long>(number("threads")) << " | "
