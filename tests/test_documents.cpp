@@ -17,6 +17,7 @@
 #include "performance.hpp"
 #include "publish/documents.hpp"
 #include "publish/verdicts.hpp"
+#include "report.hpp"
 #include "report_util.hpp"
 #include "spec.hpp"
 #include "support.hpp"
@@ -258,6 +259,29 @@ TEST(Documents, TheRunsAReportMakesItselfAreCountedInItsExperiment) {
   const std::string md = slurp(dir / "performance.md");
   EXPECT_NE(md.find("| [edge](edge.md) | 2 | – | 7 | 3.0e6 | 4.00 s | 1.00 s |"), std::string::npos)
       << md;
+  std::filesystem::remove_all(dir);
+}
+
+// The report runs the progress line expects, by experiment: the machine's own count (its cache's
+// timings.json) before the published one, an experiment either counts, none for the others, and
+// nothing from a file that cannot be read.
+TEST(Documents, TheReportRunsExpectedAreTheMachinesOwnCountElseThePublishedOne) {
+  const auto dir = std::filesystem::temp_directory_path() / "mpmstab_report_work_test";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir / "cache");
+  const auto counted = [](double particle_steps) {
+    return nlohmann::ordered_json{
+        {"report_runs", {{"runs", 3}, {"particle_steps", particle_steps}, {"cpu_seconds", 1}}}};
+  };
+  std::ofstream(dir / "cache" / "timings.json")
+      << nlohmann::ordered_json{{"sample", counted(5e6)}, {"edge", {{"cases", 2}}}}.dump(1);
+  std::ofstream(dir / "timings.json")
+      << nlohmann::ordered_json{{"sample", counted(9e6)}, {"advice", counted(2e6)}}.dump(1);
+  EXPECT_EQ(published_report_work(dir),
+            (std::map<std::string, double>{{"advice", 2e6}, {"sample", 5e6}}));
+  std::ofstream(dir / "cache" / "timings.json") << "{ not json";
+  EXPECT_EQ(published_report_work(dir),
+            (std::map<std::string, double>{{"advice", 2e6}, {"sample", 9e6}}));
   std::filesystem::remove_all(dir);
 }
 

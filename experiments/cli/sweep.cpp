@@ -294,9 +294,11 @@ class ReproducePublisher {
                      const SweepOptions& options, bool omit, SweepQueue& queue)
       : plan_(plan), out_(out), options_(options), omit_(omit), queue_(queue) {}
 
-  // The follow-up runs each experiment's last published results ask for, counted in the
-  // progress line until its own are known (an estimate only).
+  // The follow-up runs each experiment's last published results ask for, and the runs its report
+  // made itself when it last made some, counted in the progress line until its own are known (an
+  // estimate only).
   void expect_follow_ups() {
+    const std::map<std::string, double> report_work = published_report_work(out_);
     for (std::size_t s = 0; s < plan_.specs.size(); ++s) {
       double cost = 0;
       const std::vector<RunParams> follow = expected_follow_ups(plan_.specs[s], out_);
@@ -307,7 +309,8 @@ class ReproducePublisher {
       expected_[s] = cost;
       queue_.expect(cost);
       // The runs its report makes itself, as its last render that made some counted them.
-      expected_report_[s] = published_report_work(plan_.specs[s], out_);
+      const auto report = report_work.find(plan_.specs[s].name);
+      expected_report_[s] = report == report_work.end() ? 0.0 : report->second;
       queue_.expect(expected_report_[s]);
     }
   }

@@ -739,19 +739,22 @@ std::map<std::string, double> published_work(const Spec& spec, const fs::path& o
   return work;
 }
 
-double published_report_work(const Spec& spec, const fs::path& out) {
+std::map<std::string, double> published_report_work(const fs::path& out) {
+  std::map<std::string, double> work;
   for (const fs::path& file : {machine_timings(out), out / "timings.json"}) {
     try {
       const std::optional<std::string> text = read_if_present(file);
       if (!text || text->empty()) continue;
       const ojson doc = parse_json_strict<ojson>(*text, file);
-      if (!doc.is_object() || !doc.contains(spec.name)) continue;
-      if (const ReportRuns r = report_runs_of(doc[spec.name]); r.recorded) return r.particle_steps;
+      if (!doc.is_object()) continue;
+      for (const auto& [name, entry] : doc.items())
+        if (const ReportRuns r = report_runs_of(entry); r.recorded)
+          work.emplace(name, r.particle_steps);  // the machine's own first
     } catch (const std::exception&) {
       // an estimate only: timings that cannot be read give none
     }
   }
-  return 0;
+  return work;
 }
 
 void write_reports(const Spec& spec, const SweepOutcome& outcome, const fs::path& out,

@@ -89,10 +89,11 @@ std::vector<RunParams> expected_follow_ups(const Spec& spec, const std::filesyst
 // particle-steps: a run's steps times its particles, an edge case's whole search); empty when
 // there are none or they cannot be read (an estimate only).
 std::map<std::string, double> published_work(const Spec& spec, const std::filesystem::path& out);
-// The particle-steps of the runs the experiment's report made itself when it last computed some
+// By experiment, the particle-steps of the runs its report made itself when it last computed some
 // (timings.json's report_runs: the machine's own in out/cache, else the published one in out), an
-// estimate of the work its next render will do in an empty cache; 0 when neither says.
-double published_report_work(const Spec& spec, const std::filesystem::path& out);
+// estimate of the work its next render will do in an empty cache; experiments neither file counts
+// are absent. Each file is read once, for every experiment.
+std::map<std::string, double> published_report_work(const std::filesystem::path& out);
 
 // Writes <out>/<name>.csv, .json, .md, <name>_claims.csv for a study that draws conclusions and,
 // for studies with a figure, <name>_data.csv; the sweep's wall times go to <out>/timings.json,

@@ -138,7 +138,7 @@ class Progress {
   }
   void reports_rendered(double retire) {
     std::lock_guard lock(mutex_);
-    const double made = reports_ ? reports_->particle_steps.load() - reports_counted_ : 0.0;
+    const double made = report_work_not_done();
     reports_counted_ += made;
     counter_.finished_work(made, retire);
   }
@@ -208,11 +208,12 @@ class Progress {
 
   double elapsed() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
 
-  // The running tasks' work so far, and that of the report rendering now.
-  double running_work() const {
-    const double tasks = running_ ? running_() : 0.0;
-    return tasks + (reports_ ? reports_->particle_steps.load() - reports_counted_ : 0.0);
+  // The work of the report runs made since the last report was written: the one rendering now.
+  double report_work_not_done() const {
+    return reports_ ? reports_->particle_steps.load() - reports_counted_ : 0.0;
   }
+  // The running tasks' work so far, and that of the report rendering now.
+  double running_work() const { return (running_ ? running_() : 0.0) + report_work_not_done(); }
 
   void draw(char end) {
     counter_.running(running_work());

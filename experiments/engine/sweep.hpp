@@ -143,7 +143,7 @@ class SweepQueue {
   void retire(double cost);
 
   // The runs the reports make themselves while they render on the caller's thread (cached_run.hpp):
-  // the caller opens this account there (open_run_account) before `run`, and every report's
+  // the caller opens this account there (RunAccountScope) around `run`, and every report's
   // account counts into it. The progress line counts their work as it is done, and
   // `reports_rendered` moves what they made into the work done, retiring `retire` of the work
   // expected (an experiment's report runs as its last published timings count them).
