@@ -14,14 +14,21 @@
 
 namespace mpmstab {
 
-// floor(s) as a double, exactly, for |s| < 2^51. Adding and subtracting 1.5 * 2^52 rounds s to
-// the nearest integer (both operations stay: FMA contraction is off and fast-math is not used);
-// one step down if that is above s. No libm call and no round trip through an integer register,
-// so it vectorizes and its dependency chain is short.
+// floor(s) as a double, exactly, for |s| < 2^51. With SSE4.1 (every x86-64-v2 CPU and up, so
+// every kernel version) or on ARM, std::floor: one rounding instruction, vectorized because the
+// build has -fno-trapping-math. Elsewhere, adding and subtracting 1.5 * 2^52 rounds s to the
+// nearest integer (both operations stay: FMA contraction is off and fast-math is not used), one
+// step down if that is above s: no libm call, so it vectorizes too. The two agree on every s
+// but -0.0 (std::floor keeps its sign, the sum gives +0.0): a cell index, and u = s - floor(s)
+// for the bases' s = x / h - lp with lp > 0 or x >= 0 not -0.0, are the same either way.
 inline double floor_exact(double s) {
+#if defined(__SSE4_1__) || defined(__aarch64__)
+  return std::floor(s);
+#else
   constexpr double kRound = 6755399441055744.0;  // 1.5 * 2^52
   const double r = (s + kRound) - kRound;
   return r > s ? r - 1.0 : r;
+#endif
 }
 
 // x - floor(x), bit for bit as with std::floor, for every x (the periodic wrap of a position).
@@ -42,9 +49,11 @@ inline int floor_to_int(double s) {
   return static_cast<int>(floor_exact(s));
 }
 
-// max(d, 0) without a branch, exactly: (d + |d|) / 2 is d or 0 with no rounding.
+// max(d, 0), one select (maxpd on x86): d, or +0.0 where d < 0; NaN stays NaN. Bit for bit the
+// (d + |d|) / 2 it replaces for every d but -0.0, which no caller's difference of two values
+// gives (a - b is -0.0 only for a = -0.0, b = +0.0).
 inline double positive_part(double d) {
-  return 0.5 * (d + std::abs(d));
+  return d < 0.0 ? 0.0 : d;
 }
 
 // Linear hat N_i(x) = max(0, 1 - |x - X_i| / h): two nodes per particle (the standard MPM of the
