@@ -14,6 +14,7 @@ BUILD=${1:?usage: bench_versions.sh BUILD_DIR}
 ROUNDS=${ROUNDS:-3}
 PARTICLE_STEPS=${PARTICLE_STEPS:-2e7}
 read -r -a METHODS <<<"${METHODS:-gimp mpm bspline2 bspline3}"
+RATIO_FAST=6 RATIO_PORTABLE=4.5 SPLINE_OVER_GIMP=2
 ARCH=$(sed -n 's/^MPMSTAB_ARCH:STRING=//p' "$BUILD/CMakeCache.txt")
 
 # version binary : lean binary, for the versions built here.
@@ -25,7 +26,7 @@ command -v taskset >/dev/null && PIN=(taskset -c 0)
 
 declare -A BEST ISA
 run() { # binary key: one run per method, keep the best
-  local line method ns isa
+  local method ns isa
   while read -r method ns isa; do
     local k="$2/$method"
     if [[ -z ${BEST[$k]:-} ]] || awk -v a="$ns" -v b="${BEST[$k]}" 'BEGIN { exit !(a < b) }'; then
@@ -76,5 +77,25 @@ flags=$(grep -m1 -o -w 'avx512f' /proc/cpuinfo || true)
     done
     echo "$row"
   done
+  # The targets: GIMP and MPM at least RATIO_FAST times faster than their lean loop in the
+  # default and AVX2 versions and RATIO_PORTABLE in the portable one; each B-spline at most
+  # SPLINE_OVER_GIMP times GIMP's cost in every version.
+  echo
+  verdicts=""
+  for pair in "${PAIRS[@]}"; do
+    v=${pair%%:*} l=${pair##*:}
+    target=$([[ $v == portable ]] && echo "$RATIO_PORTABLE" || echo "$RATIO_FAST")
+    for m in gimp mpm; do
+      [[ -n ${BEST[$v/$m]:-} && -n ${BEST[lean-$l/$m]:-} ]] || continue
+      verdicts+=$(awk -v a="${BEST[$v/$m]}" -v b="${BEST[lean-$l/$m]}" -v t="$target" -v what="$v $m" \
+        'BEGIN { printf "- %s: lean / version %.1fx, target at least %sx: %s\n", what, b / a, t, (b / a >= t ? "met" : "**not met**") }')$'\n'
+    done
+    for spline in bspline2 bspline3; do
+      [[ -n ${BEST[$v/$spline]:-} && -n ${BEST[$v/gimp]:-} ]] || continue
+      verdicts+=$(awk -v a="${BEST[$v/$spline]}" -v b="${BEST[$v/gimp]}" -v t="$SPLINE_OVER_GIMP" -v what="$v $spline" \
+        'BEGIN { printf "- %s: %.2fx GIMP, target at most %sx: %s\n", what, a / b, t, (a / b <= t ? "met" : "**not met**") }')$'\n'
+    done
+  done
+  printf '%s' "$verdicts"
 } | tee "$BUILD/bench_versions.md.tmp"
 mv "$BUILD/bench_versions.md.tmp" "$BUILD/bench_versions.md"
