@@ -4,30 +4,35 @@
 
 namespace mpmstab {
 
-double kinetic_energy(const Particles& P) {
-  double k = 0;
-  for (Eigen::Index p = 0; p < P.size(); ++p)
-    k += 0.5 * P.mass[p] * P.v[p] * P.v[p];
-  return k;
+namespace {
+
+template <bool kWork>
+EnergySums sums(const Particles& P, const MaterialLaw& law, const double* v_before, const double* b,
+                double dt) {
+  EnergySums s;
+  for (Eigen::Index p = 0; p < P.size(); ++p) {
+    s.kinetic += 0.5 * P.mass[p] * P.v[p] * P.v[p];
+    s.strain += P.volume0[p] * law.energy(P.F[p]);
+    if constexpr (kWork) s.work += P.mass[p] * b[p] * dt * 0.5 * (v_before[p] + P.v[p]);
+  }
+  return s;
 }
 
-double strain_energy(const Particles& P, const MaterialLaw& law) {
-  double u = 0;
-  for (Eigen::Index p = 0; p < P.size(); ++p)
-    u += P.volume0[p] * law.energy(P.F[p]);
-  return u;
-}
+}  // namespace
 
-double body_force_work(const Particles& P, const Eigen::ArrayXd& v_before, const Eigen::ArrayXd& b,
-                       double dt) {
-  double w = 0;
-  for (Eigen::Index p = 0; p < P.size(); ++p)
-    w += P.mass[p] * b[p] * dt * 0.5 * (v_before[p] + P.v[p]);
-  return w;
+EnergySums energy_sums(const Particles& P, const MaterialLaw& law, const Eigen::ArrayXd& v_before,
+                       const Eigen::ArrayXd& b, double dt) {
+  if (b.size() == P.size() && v_before.size() == P.size()) {
+    return sums<true>(P, law, v_before.data(), b.data(), dt);
+  }
+  return sums<false>(P, law, nullptr, nullptr, dt);
 }
 
 EnergyObserver::EnergyObserver(const Particles& P, const MaterialLaw& law, const Scene& scene)
-    : law_(law), scene_(scene), initial_(kinetic_energy(P) + strain_energy(P, law)) {
+    : law_(law), scene_(scene), initial_([&] {
+        const EnergySums s = energy_sums(P, law, {}, {}, 0.0);
+        return s.kinetic + s.strain;
+      }()) {
   v_before_.resize(P.size());
 }
 
@@ -38,9 +43,10 @@ void EnergyObserver::before_step(const Particles& P) {
 EnergySample EnergyObserver::after_step(const Particles& P, const Eigen::ArrayXd& b, double t,
                                         std::int64_t step) {
   EnergySample s;
-  s.kinetic = kinetic_energy(P);
-  s.strain = strain_energy(P, law_);
-  if (b.size() == P.size()) work_ += body_force_work(P, v_before_, b, t - t_before_);
+  const EnergySums sums = energy_sums(P, law_, v_before_, b, t - t_before_);
+  s.kinetic = sums.kinetic;
+  s.strain = sums.strain;
+  if (b.size() == P.size()) work_ += sums.work;
   t_before_ = t;
   s.work = work_;
   s.exact = scene_.exact_energy(t);

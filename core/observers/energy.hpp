@@ -30,11 +30,17 @@ namespace mpmstab {
 // balance: the step at which a run first exceeds it is recorded (energy_warning_step).
 inline constexpr double kEnergyWarning = 0.1;
 
-double kinetic_energy(const Particles& P);
-double strain_energy(const Particles& P, const MaterialLaw& law);
-// sum_p m_p b_p dt (v_before_p + v_p) / 2.
-double body_force_work(const Particles& P, const Eigen::ArrayXd& v_before, const Eigen::ArrayXd& b,
-                       double dt);
+// K_n, U_n and one step's body-force work sum_p m_p b_p dt (v_before_p + v_p) / 2 (0 without a
+// body force: b empty), in one pass over the particles: each sum adds its terms in particle
+// order, as three loops would, and the three independent chains of additions overlap (three
+// loops wait on each addition's latency in turn: 0.9 us a step for 200 particles).
+struct EnergySums {
+  double kinetic = 0;
+  double strain = 0;
+  double work = 0;
+};
+EnergySums energy_sums(const Particles& P, const MaterialLaw& law, const Eigen::ArrayXd& v_before,
+                       const Eigen::ArrayXd& b, double dt);
 
 // The energies of one recorded step.
 struct EnergySample {
