@@ -46,7 +46,7 @@ EnergySample EnergyObserver::after_step(const Particles& P, const Eigen::ArrayXd
   const EnergySums sums = energy_sums(P, law_, v_before_, b, t - t_before_);
   s.kinetic = sums.kinetic;
   s.strain = sums.strain;
-  if (b.size() == P.size()) work_ += sums.work;
+  work_ += sums.work;
   t_before_ = t;
   s.work = work_;
   s.exact = scene_.exact_energy(t);
