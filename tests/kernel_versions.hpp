@@ -15,8 +15,8 @@
 namespace mpmstab::kernel_versions {
 
 // Every basis, transfer and update order, a failing run, a free surface with a small-mass
-// treatment, a block crossing cells and the B-splines' walls: each path of the kernels that has a
-// vector version.
+// treatment, a block crossing cells, the neo-Hookean law and the B-splines' walls: each path of
+// the kernels that has a vector version.
 inline std::vector<RunParams> cases() {
   std::vector<RunParams> out;
   auto base = [] {
@@ -36,7 +36,8 @@ inline std::vector<RunParams> cases() {
     p.method = m;
     out.push_back(p);
   }
-  for (Transfer t : {Transfer::pic, Transfer::blend, Transfer::apic, Transfer::xpic}) {
+  for (Transfer t :
+       {Transfer::pic, Transfer::blend, Transfer::apic, Transfer::xpic, Transfer::fmpm}) {
     RunParams p = base();
     p.method = Method::gimp;
     p.transfer = t;
@@ -63,6 +64,13 @@ inline std::vector<RunParams> cases() {
   block.bc = Boundary::periodic;
   block.A = 0.1;
   out.push_back(block);
+  // A material law other than the linear one (the stress update's own pass), 3 and 4 nodes.
+  for (Method m : {Method::gimp, Method::cpgimp}) {
+    RunParams steffen = base();
+    steffen.scene = SceneKind::steffen;
+    steffen.method = m;
+    out.push_back(steffen);
+  }
   // The B-splines' other walls: none (periodic) and the boundary-modified splines.
   RunParams mode = base();
   mode.scene = SceneKind::mode;
