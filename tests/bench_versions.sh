@@ -42,6 +42,24 @@ for ((round = 1; round <= ROUNDS; round++)); do
   done
 done
 
+# Each version's ratios, computed once for the table and the verdicts below: lean / version for
+# every method, and each B-spline's cost over GIMP's.
+declare -A LEAN_OVER SPLINE_OVER
+quotient() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.17g", a / b }'; }
+for pair in "${PAIRS[@]}"; do
+  v=${pair%%:*} l=${pair##*:}
+  for m in "${METHODS[@]}"; do
+    if [[ -n ${BEST[$v/$m]:-} && -n ${BEST[lean-$l/$m]:-} ]]; then
+      LEAN_OVER[$v/$m]=$(quotient "${BEST[lean-$l/$m]}" "${BEST[$v/$m]}")
+    fi
+  done
+  for spline in bspline2 bspline3; do
+    if [[ -n ${BEST[$v/$spline]:-} && -n ${BEST[$v/gimp]:-} ]]; then
+      SPLINE_OVER[$v/$spline]=$(quotient "${BEST[$v/$spline]}" "${BEST[$v/gimp]}")
+    fi
+  done
+done
+
 cpu=$(lscpu | sed -n 's/^Model name: *//p' | head -1)
 cores=$(nproc)
 flags=$(grep -m1 -o -w 'avx512f' /proc/cpuinfo || true)
@@ -63,17 +81,16 @@ flags=$(grep -m1 -o -w 'avx512f' /proc/cpuinfo || true)
     row="| $m |"
     for pair in "${PAIRS[@]}"; do
       v=${pair%%:*} l=${pair##*:}
-      row+=$(awk -v a="${BEST[$v/$m]}" -v b="${BEST[lean-$l/$m]}" \
-        'BEGIN { printf " %.2f | %.2f | %.1fx |", a, b, b / a }')
+      row+=$(awk -v a="${BEST[$v/$m]}" -v b="${BEST[lean-$l/$m]}" -v r="${LEAN_OVER[$v/$m]:-}" \
+        'BEGIN { printf " %.2f | %.2f | %.1fx |", a, b, r }')
     done
     echo "$row"
   done
   for spline in bspline2 bspline3; do
-    [[ -n ${BEST[default/$spline]:-} && -n ${BEST[default/gimp]:-} ]] || continue
+    [[ -n ${SPLINE_OVER[default/$spline]:-} ]] || continue
     row="| $spline / gimp |"
     for pair in "${PAIRS[@]}"; do
-      v=${pair%%:*}
-      row+=$(awk -v a="${BEST[$v/$spline]}" -v b="${BEST[$v/gimp]}" 'BEGIN { printf " %.2fx | | |", a / b }')
+      row+=$(awk -v r="${SPLINE_OVER[${pair%%:*}/$spline]:-}" 'BEGIN { printf " %.2fx | | |", r }')
     done
     echo "$row"
   done
@@ -81,21 +98,19 @@ flags=$(grep -m1 -o -w 'avx512f' /proc/cpuinfo || true)
   # default and AVX2 versions and RATIO_PORTABLE in the portable one; each B-spline at most
   # SPLINE_OVER_GIMP times GIMP's cost in every version.
   echo
-  verdicts=""
   for pair in "${PAIRS[@]}"; do
-    v=${pair%%:*} l=${pair##*:}
+    v=${pair%%:*}
     target=$([[ $v == portable ]] && echo "$RATIO_PORTABLE" || echo "$RATIO_FAST")
     for m in gimp mpm; do
-      [[ -n ${BEST[$v/$m]:-} && -n ${BEST[lean-$l/$m]:-} ]] || continue
-      verdicts+=$(awk -v a="${BEST[$v/$m]}" -v b="${BEST[lean-$l/$m]}" -v t="$target" -v what="$v $m" \
-        'BEGIN { printf "- %s: lean / version %.1fx, target at least %sx: %s\n", what, b / a, t, (b / a >= t ? "met" : "**not met**") }')$'\n'
+      [[ -n ${LEAN_OVER[$v/$m]:-} ]] || continue
+      awk -v r="${LEAN_OVER[$v/$m]}" -v t="$target" -v what="$v $m" \
+        'BEGIN { printf "- %s: lean / version %.1fx, target at least %sx: %s\n", what, r, t, (r >= t ? "met" : "**not met**") }'
     done
     for spline in bspline2 bspline3; do
-      [[ -n ${BEST[$v/$spline]:-} && -n ${BEST[$v/gimp]:-} ]] || continue
-      verdicts+=$(awk -v a="${BEST[$v/$spline]}" -v b="${BEST[$v/gimp]}" -v t="$SPLINE_OVER_GIMP" -v what="$v $spline" \
-        'BEGIN { printf "- %s: %.2fx GIMP, target at most %sx: %s\n", what, a / b, t, (a / b <= t ? "met" : "**not met**") }')$'\n'
+      [[ -n ${SPLINE_OVER[$v/$spline]:-} ]] || continue
+      awk -v r="${SPLINE_OVER[$v/$spline]}" -v t="$SPLINE_OVER_GIMP" -v what="$v $spline" \
+        'BEGIN { printf "- %s: %.2fx GIMP, target at most %sx: %s\n", what, r, t, (r <= t ? "met" : "**not met**") }'
     done
   done
-  printf '%s' "$verdicts"
 } | tee "$BUILD/bench_versions.md.tmp"
 mv "$BUILD/bench_versions.md.tmp" "$BUILD/bench_versions.md"
